@@ -1,0 +1,26 @@
+//! # fairsub
+//!
+//! Subdivision surfaces of high shape quality: the schemes of the five fairsub papers
+//! (point-augmented, polar and ternary bi-2, Evolving Guide, QAS+, guided and non-box
+//! subdivision) beside the classic Catmull-Clark, Doo-Sabin and Loop schemes, on whole meshes,
+//! with exact Bezier-patch output, analysis and shape interrogation.
+//!
+//! Architecture (see `DESIGN.md` of the project): a control net ([`mesh::PolyMesh`]) is refined
+//! by a scheme ([`schemes`]) whose rules are written once as stencils ([`stencil`]); the one
+//! geometry kernel applies them; exact surfaces are [`surface::PatchComplex`]es of
+//! [`bezier::BezierPatch`]es, written by [`io`].
+
+#![warn(missing_docs)]
+
+pub mod bezier;
+pub mod error;
+pub mod geom;
+pub mod io;
+pub mod mesh;
+pub mod schemes;
+pub mod stencil;
+pub mod surface;
+
+pub use error::{Error, MeshError, Result};
+pub use geom::Point;
+pub use mesh::PolyMesh;

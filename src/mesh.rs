@@ -1,0 +1,797 @@
+//! Polygon control nets with half-edge connectivity and validation.
+//!
+//! A [`PolyMesh`] holds vertex positions and faces of any size (stored flat, face after face),
+//! plus a half-edge [`Topology`] built once at construction. Construction validates the input
+//! (face sizes, indices, finite coordinates, manifold edges and vertices, consistent orientation)
+//! and reports the first problem with the element it concerns, so every scheme downstream can
+//! rely on a clean 2-manifold (with or without boundary).
+//!
+//! Half-edge `h` is face corner `h` in face order: it runs from the corner's vertex to the next
+//! corner's vertex, and its face lies to its left (faces are counter-clockwise seen from outside).
+//! Rotating counter-clockwise around a vertex goes from outgoing half-edge `h` to
+//! `twin(prev(h))`.
+
+use crate::error::{MeshError, Result};
+use crate::geom::Point;
+
+/// Marks a missing half-edge (no twin on a boundary edge).
+pub const NONE: u32 = u32::MAX;
+
+/// Half-edge connectivity of a [`PolyMesh`].
+#[derive(Debug, Clone, Default)]
+pub struct Topology {
+    he_face: Vec<u32>,
+    twin: Vec<u32>,
+    he_edge: Vec<u32>,
+    edges: Vec<[u32; 2]>,
+    edge_he: Vec<u32>,
+    vert_he: Vec<u32>,
+}
+
+/// A validated manifold polygon mesh (a control net).
+#[derive(Debug, Clone)]
+pub struct PolyMesh {
+    positions: Vec<Point>,
+    face_start: Vec<u32>,
+    corners: Vec<u32>,
+    topo: Topology,
+    dropped: Vec<usize>,
+}
+
+impl PolyMesh {
+    /// Builds and validates a mesh from positions and faces (vertex indices, counter-clockwise).
+    ///
+    /// Vertices that no face uses are dropped (see [`PolyMesh::dropped_vertices`]); the remaining
+    /// vertices keep their relative order. Errors name the face or vertex (input numbering) and
+    /// the reason.
+    pub fn new<F: AsRef<[usize]>>(positions: Vec<Point>, faces: &[F]) -> Result<PolyMesh> {
+        let mut face_start = Vec::with_capacity(faces.len() + 1);
+        let mut corners = Vec::new();
+        face_start.push(0u32);
+        for f in faces {
+            for &v in f.as_ref() {
+                // Out-of-range indices are caught by `from_flat`; keep them representable.
+                corners.push(u32::try_from(v).unwrap_or(u32::MAX));
+            }
+            face_start.push(corners.len() as u32);
+        }
+        // Report huge indices faithfully.
+        for (fi, f) in faces.iter().enumerate() {
+            for &v in f.as_ref() {
+                if v >= positions.len() {
+                    return Err(MeshError::IndexOutOfRange {
+                        face: fi,
+                        index: v as i64,
+                        count: positions.len(),
+                    }
+                    .into());
+                }
+            }
+        }
+        Self::from_flat(positions, face_start, corners)
+    }
+
+    /// Builds and validates a mesh from flat face arrays: face `f` has corners
+    /// `corners[face_start[f]..face_start[f + 1]]`.
+    pub fn from_flat(
+        positions: Vec<Point>,
+        face_start: Vec<u32>,
+        corners: Vec<u32>,
+    ) -> Result<PolyMesh> {
+        let nf = face_start.len().saturating_sub(1);
+        if nf == 0 || positions.is_empty() {
+            return Err(MeshError::Empty.into());
+        }
+        let nv = positions.len();
+        for f in 0..nf {
+            let (a, b) = (face_start[f] as usize, face_start[f + 1] as usize);
+            let face = &corners[a..b];
+            if face.len() < 3 {
+                return Err(MeshError::FaceTooSmall {
+                    face: f,
+                    len: face.len(),
+                }
+                .into());
+            }
+            for &v in face {
+                if v as usize >= nv {
+                    return Err(MeshError::IndexOutOfRange {
+                        face: f,
+                        index: v as i64,
+                        count: nv,
+                    }
+                    .into());
+                }
+            }
+            for i in 0..face.len() {
+                for j in i + 1..face.len() {
+                    if face[i] == face[j] {
+                        return Err(MeshError::RepeatedVertex {
+                            face: f,
+                            vertex: face[i] as usize,
+                        }
+                        .into());
+                    }
+                }
+            }
+        }
+        for (i, p) in positions.iter().enumerate() {
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(MeshError::NonFiniteCoordinate { vertex: i }.into());
+            }
+        }
+        // Drop unused vertices, keeping the order of the used ones.
+        let mut used = vec![false; nv];
+        for &v in &corners {
+            used[v as usize] = true;
+        }
+        let dropped: Vec<usize> = (0..nv).filter(|&v| !used[v]).collect();
+        let (positions, corners, old_of_new) = if dropped.is_empty() {
+            (positions, corners, None)
+        } else {
+            let mut new_of_old = vec![NONE; nv];
+            let mut old_of_new = Vec::with_capacity(nv - dropped.len());
+            let mut pos = Vec::with_capacity(nv - dropped.len());
+            for v in 0..nv {
+                if used[v] {
+                    new_of_old[v] = old_of_new.len() as u32;
+                    old_of_new.push(v);
+                    pos.push(positions[v]);
+                }
+            }
+            let corners = corners.iter().map(|&v| new_of_old[v as usize]).collect();
+            (pos, corners, Some(old_of_new))
+        };
+        let topo = Topology::build(positions.len(), &face_start, &corners).map_err(|e| {
+            // Report vertices in input numbering.
+            match (&old_of_new, e) {
+                (Some(map), MeshError::NonManifoldEdge { edge, faces }) => {
+                    MeshError::NonManifoldEdge {
+                        edge: [map[edge[0]], map[edge[1]]],
+                        faces,
+                    }
+                }
+                (Some(map), MeshError::InconsistentOrientation { edge, faces }) => {
+                    MeshError::InconsistentOrientation {
+                        edge: [map[edge[0]], map[edge[1]]],
+                        faces,
+                    }
+                }
+                (Some(map), MeshError::NonManifoldVertex { vertex, fans }) => {
+                    MeshError::NonManifoldVertex {
+                        vertex: map[vertex],
+                        fans,
+                    }
+                }
+                (_, e) => e,
+            }
+        })?;
+        Ok(PolyMesh {
+            positions,
+            face_start,
+            corners,
+            topo,
+            dropped,
+        })
+    }
+
+    /// Builds a mesh whose validity is guaranteed by construction (refinement output). Still
+    /// builds the topology and fails on a broken input instead of producing a wrong mesh.
+    pub fn from_refinement(
+        positions: Vec<Point>,
+        face_start: Vec<u32>,
+        corners: Vec<u32>,
+    ) -> Result<PolyMesh> {
+        let topo = Topology::build(positions.len(), &face_start, &corners)?;
+        Ok(PolyMesh {
+            positions,
+            face_start,
+            corners,
+            topo,
+            dropped: Vec::new(),
+        })
+    }
+
+    /// Input indices of the vertices that no face used and that were dropped.
+    pub fn dropped_vertices(&self) -> &[usize] {
+        &self.dropped
+    }
+
+    /// Number of vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn num_faces(&self) -> usize {
+        self.face_start.len() - 1
+    }
+
+    /// Number of undirected edges.
+    pub fn num_edges(&self) -> usize {
+        self.topo.edges.len()
+    }
+
+    /// Number of half-edges (= face corners).
+    pub fn num_halfedges(&self) -> usize {
+        self.corners.len()
+    }
+
+    /// Vertex positions.
+    pub fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+
+    /// Replaces the vertex positions (same count, same connectivity).
+    ///
+    /// # Panics
+    /// Panics when the count differs; this is a programming error, not bad input.
+    pub fn set_positions(&mut self, positions: Vec<Point>) {
+        assert_eq!(
+            positions.len(),
+            self.positions.len(),
+            "vertex count must not change"
+        );
+        self.positions = positions;
+    }
+
+    /// Position of vertex `v`.
+    pub fn position(&self, v: usize) -> Point {
+        self.positions[v]
+    }
+
+    /// Corner vertices of face `f`, counter-clockwise.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.corners[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+    }
+
+    /// Number of corners of face `f`.
+    pub fn face_size(&self, f: usize) -> usize {
+        (self.face_start[f + 1] - self.face_start[f]) as usize
+    }
+
+    /// Flat face offsets (`num_faces + 1` entries).
+    pub fn face_starts(&self) -> &[u32] {
+        &self.face_start
+    }
+
+    /// Flat corner array (vertex of each corner, face after face).
+    pub fn corners(&self) -> &[u32] {
+        &self.corners
+    }
+
+    /// Iterator over faces as vertex slices.
+    pub fn faces(&self) -> impl ExactSizeIterator<Item = &[u32]> + '_ {
+        (0..self.num_faces()).map(move |f| self.face(f))
+    }
+
+    /// First half-edge (corner) of face `f`.
+    pub fn face_halfedge(&self, f: usize) -> u32 {
+        self.face_start[f]
+    }
+
+    /// Vertex a half-edge starts at.
+    pub fn he_from(&self, h: u32) -> u32 {
+        self.corners[h as usize]
+    }
+
+    /// Vertex a half-edge ends at.
+    pub fn he_to(&self, h: u32) -> u32 {
+        self.corners[self.he_next(h) as usize]
+    }
+
+    /// Face of a half-edge.
+    pub fn he_face(&self, h: u32) -> u32 {
+        self.topo.he_face[h as usize]
+    }
+
+    /// Next half-edge in the same face.
+    pub fn he_next(&self, h: u32) -> u32 {
+        let f = self.topo.he_face[h as usize] as usize;
+        if h + 1 < self.face_start[f + 1] {
+            h + 1
+        } else {
+            self.face_start[f]
+        }
+    }
+
+    /// Previous half-edge in the same face.
+    pub fn he_prev(&self, h: u32) -> u32 {
+        let f = self.topo.he_face[h as usize] as usize;
+        if h > self.face_start[f] {
+            h - 1
+        } else {
+            self.face_start[f + 1] - 1
+        }
+    }
+
+    /// Opposite half-edge, `None` on the boundary.
+    pub fn he_twin(&self, h: u32) -> Option<u32> {
+        let t = self.topo.twin[h as usize];
+        (t != NONE).then_some(t)
+    }
+
+    /// Undirected edge of a half-edge.
+    pub fn he_edge(&self, h: u32) -> u32 {
+        self.topo.he_edge[h as usize]
+    }
+
+    /// End points of edge `e`.
+    pub fn edge(&self, e: usize) -> [u32; 2] {
+        self.topo.edges[e]
+    }
+
+    /// All edges as vertex pairs.
+    pub fn edges(&self) -> &[[u32; 2]] {
+        &self.topo.edges
+    }
+
+    /// One half-edge of edge `e` (the one with a face on the boundary).
+    pub fn edge_halfedge(&self, e: usize) -> u32 {
+        self.topo.edge_he[e]
+    }
+
+    /// Whether edge `e` lies on the boundary.
+    pub fn is_boundary_edge(&self, e: usize) -> bool {
+        self.topo.twin[self.topo.edge_he[e] as usize] == NONE
+    }
+
+    /// One outgoing half-edge of vertex `v`: for a boundary vertex the one whose counter-clockwise
+    /// rotation visits all faces around it.
+    pub fn vertex_halfedge(&self, v: usize) -> u32 {
+        self.topo.vert_he[v]
+    }
+
+    /// Whether vertex `v` lies on the boundary.
+    pub fn is_boundary_vertex(&self, v: usize) -> bool {
+        self.topo.twin[self.topo.vert_he[v] as usize] == NONE
+    }
+
+    /// Outgoing half-edges of `v`, counter-clockwise; for a boundary vertex starting at its
+    /// boundary half-edge. The last edge of a boundary vertex (the incoming boundary edge) has no
+    /// outgoing half-edge and is not listed; see [`PolyMesh::vertex_neighbors`].
+    pub fn outgoing_halfedges(&self, v: usize) -> Vec<u32> {
+        let start = self.topo.vert_he[v];
+        let mut out = vec![start];
+        let mut h = start;
+        loop {
+            let p = self.he_prev(h);
+            match self.he_twin(p) {
+                Some(t) if t != start => {
+                    out.push(t);
+                    h = t;
+                }
+                _ => break,
+            }
+        }
+        out
+    }
+
+    /// Faces around `v`, counter-clockwise (from the boundary for a boundary vertex).
+    pub fn vertex_faces(&self, v: usize) -> Vec<u32> {
+        self.outgoing_halfedges(v)
+            .into_iter()
+            .map(|h| self.he_face(h))
+            .collect()
+    }
+
+    /// Edge neighbours of `v`, counter-clockwise (for a boundary vertex from one boundary
+    /// neighbour to the other).
+    pub fn vertex_neighbors(&self, v: usize) -> Vec<u32> {
+        let hs = self.outgoing_halfedges(v);
+        let mut out: Vec<u32> = hs.iter().map(|&h| self.he_to(h)).collect();
+        if self.is_boundary_vertex(v) {
+            let last = *hs.last().expect("a vertex has a half-edge");
+            out.push(self.he_from(self.he_prev(last)));
+        }
+        out
+    }
+
+    /// Valence: the number of edges at `v`.
+    pub fn valence(&self, v: usize) -> usize {
+        let n = self.outgoing_halfedges(v).len();
+        if self.is_boundary_vertex(v) { n + 1 } else { n }
+    }
+
+    /// The one-ring of `v`: every vertex of the faces around `v` except `v`, in
+    /// counter-clockwise order, without repetition.
+    pub fn one_ring(&self, v: usize) -> Vec<u32> {
+        let mut out = Vec::new();
+        for h in self.outgoing_halfedges(v) {
+            let mut g = self.he_next(h);
+            while self.he_from(g) != v as u32 {
+                let w = self.he_from(g);
+                if !out.contains(&w) {
+                    out.push(w);
+                }
+                g = self.he_next(g);
+            }
+        }
+        out
+    }
+
+    /// The two-ring of `v`: vertices of faces around one-ring vertices that are neither `v` nor in
+    /// its one-ring (sorted by index).
+    pub fn two_ring(&self, v: usize) -> Vec<u32> {
+        let ring1 = self.one_ring(v);
+        let mut out = Vec::new();
+        for &w in &ring1 {
+            for f in self.vertex_faces(w as usize) {
+                for &x in self.face(f as usize) {
+                    if x != v as u32 && !ring1.contains(&x) && !out.contains(&x) {
+                        out.push(x);
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// Boundary loops, each as the list of its vertices in the direction of the boundary
+    /// half-edges (face on the left).
+    pub fn boundary_loops(&self) -> Vec<Vec<u32>> {
+        let nh = self.corners.len();
+        let mut seen = vec![false; nh];
+        let mut loops = Vec::new();
+        for h0 in 0..nh as u32 {
+            if self.topo.twin[h0 as usize] != NONE || seen[h0 as usize] {
+                continue;
+            }
+            let mut lp = Vec::new();
+            let mut h = h0;
+            loop {
+                seen[h as usize] = true;
+                lp.push(self.he_from(h));
+                // The next boundary half-edge starts where h ends: the boundary half-edge of that
+                // vertex.
+                h = self.topo.vert_he[self.he_to(h) as usize];
+                if h == h0 || seen[h as usize] {
+                    break;
+                }
+            }
+            loops.push(lp);
+        }
+        loops
+    }
+
+    /// Whether every face is a quad.
+    pub fn is_all_quads(&self) -> bool {
+        (0..self.num_faces()).all(|f| self.face_size(f) == 4)
+    }
+
+    /// Whether every face is a triangle.
+    pub fn is_all_triangles(&self) -> bool {
+        (0..self.num_faces()).all(|f| self.face_size(f) == 3)
+    }
+
+    /// Whether `v` is regular in a quad mesh: interior of valence 4, boundary of valence 3, or a
+    /// boundary corner of valence 2, with only quads around it.
+    pub fn is_regular_quad_vertex(&self, v: usize) -> bool {
+        let faces_ok = self
+            .vertex_faces(v)
+            .iter()
+            .all(|&f| self.face_size(f as usize) == 4);
+        let n = self.valence(v);
+        faces_ok
+            && if self.is_boundary_vertex(v) {
+                n == 2 || n == 3
+            } else {
+                n == 4
+            }
+    }
+
+    /// Extraordinary vertices of a quad-dominant net: vertices that are not
+    /// [regular](Self::is_regular_quad_vertex).
+    pub fn extraordinary_vertices(&self) -> Vec<usize> {
+        (0..self.num_vertices())
+            .filter(|&v| !self.is_regular_quad_vertex(v))
+            .collect()
+    }
+
+    /// Extraordinary facets: faces that are not quads.
+    pub fn extraordinary_faces(&self) -> Vec<usize> {
+        (0..self.num_faces())
+            .filter(|&f| self.face_size(f) != 4)
+            .collect()
+    }
+
+    /// Half-edge from `a` to `b`, if the edge exists in that direction.
+    pub fn find_halfedge(&self, a: usize, b: usize) -> Option<u32> {
+        let hs = self.outgoing_halfedges(a);
+        hs.into_iter().find(|&h| self.he_to(h) == b as u32)
+    }
+
+    /// Centroid of face `f`.
+    pub fn face_centroid(&self, f: usize) -> Point {
+        crate::geom::centroid(self.face(f).iter().map(|&v| self.positions[v as usize]))
+    }
+
+    /// Axis-aligned bounding box of the vertex positions.
+    pub fn bounding_box(&self) -> (Point, Point) {
+        crate::geom::bounding_box(self.positions.iter().copied())
+            .expect("a valid mesh has vertices")
+    }
+}
+
+impl Topology {
+    /// Builds half-edge connectivity and checks manifoldness and orientation.
+    fn build(
+        nv: usize,
+        face_start: &[u32],
+        corners: &[u32],
+    ) -> std::result::Result<Topology, MeshError> {
+        let nf = face_start.len() - 1;
+        let nh = corners.len();
+        let mut he_face = vec![0u32; nh];
+        for f in 0..nf {
+            for h in face_start[f]..face_start[f + 1] {
+                he_face[h as usize] = f as u32;
+            }
+        }
+        let next = |h: usize| -> usize {
+            let f = he_face[h] as usize;
+            if h + 1 < face_start[f + 1] as usize {
+                h + 1
+            } else {
+                face_start[f] as usize
+            }
+        };
+        // Outgoing half-edges bucketed per vertex (CSR).
+        let mut out_start = vec![0u32; nv + 1];
+        for &v in corners {
+            out_start[v as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            out_start[v + 1] += out_start[v];
+        }
+        let mut fill = out_start.clone();
+        let mut out_he = vec![0u32; nh];
+        for (h, &v) in corners.iter().enumerate() {
+            out_he[fill[v as usize] as usize] = h as u32;
+            fill[v as usize] += 1;
+        }
+        let to = |h: usize| corners[next(h)];
+        let mut twin = vec![NONE; nh];
+        for h in 0..nh {
+            let (a, b) = (corners[h], to(h));
+            // Same-direction duplicates: orientation conflict or a non-manifold edge.
+            let outs_a =
+                &out_he[out_start[a as usize] as usize..out_start[a as usize + 1] as usize];
+            let outs_b =
+                &out_he[out_start[b as usize] as usize..out_start[b as usize + 1] as usize];
+            let n_same = outs_a.iter().filter(|&&g| to(g as usize) == b).count();
+            let mut n_opp = 0;
+            for &g in outs_b {
+                if to(g as usize) == a {
+                    if n_opp == 0 {
+                        twin[h] = g;
+                    }
+                    n_opp += 1;
+                }
+            }
+            if n_same + n_opp > 2 {
+                let mut faces: Vec<usize> = outs_a
+                    .iter()
+                    .filter(|&&g| to(g as usize) == b)
+                    .chain(outs_b.iter().filter(|&&g| to(g as usize) == a))
+                    .map(|&g| he_face[g as usize] as usize)
+                    .collect();
+                faces.sort_unstable();
+                return Err(MeshError::NonManifoldEdge {
+                    edge: [a.min(b) as usize, a.max(b) as usize],
+                    faces,
+                });
+            }
+            if n_same == 2 {
+                let mut faces: Vec<usize> = outs_a
+                    .iter()
+                    .filter(|&&g| to(g as usize) == b)
+                    .map(|&g| he_face[g as usize] as usize)
+                    .collect();
+                faces.sort_unstable();
+                return Err(MeshError::InconsistentOrientation {
+                    edge: [a as usize, b as usize],
+                    faces: [faces[0], faces[1]],
+                });
+            }
+        }
+        // Edges.
+        let mut he_edge = vec![NONE; nh];
+        let mut edges = Vec::with_capacity(nh / 2 + 1);
+        let mut edge_he = Vec::with_capacity(nh / 2 + 1);
+        for h in 0..nh {
+            if he_edge[h] != NONE {
+                continue;
+            }
+            let e = edges.len() as u32;
+            he_edge[h] = e;
+            let t = twin[h];
+            if t != NONE {
+                he_edge[t as usize] = e;
+            }
+            edges.push([corners[h], to(h)]);
+            edge_he.push(h as u32);
+        }
+        // Vertex half-edges: prefer a boundary outgoing half-edge; check single fans.
+        let prev = |h: usize| -> usize {
+            let f = he_face[h] as usize;
+            if h > face_start[f] as usize {
+                h - 1
+            } else {
+                face_start[f + 1] as usize - 1
+            }
+        };
+        let mut vert_he = vec![NONE; nv];
+        for v in 0..nv {
+            let outs = &out_he[out_start[v] as usize..out_start[v + 1] as usize];
+            let mut start = outs[0];
+            let mut boundary_starts = 0;
+            for &h in outs {
+                if twin[h as usize] == NONE {
+                    boundary_starts += 1;
+                    start = h;
+                }
+            }
+            // Count faces reached by counter-clockwise rotation from `start`.
+            let mut count = 1;
+            let mut h = start as usize;
+            loop {
+                let t = twin[prev(h)];
+                if t == NONE || t == start {
+                    break;
+                }
+                h = t as usize;
+                count += 1;
+                if count > outs.len() {
+                    break;
+                }
+            }
+            if count != outs.len() || boundary_starts > 1 {
+                let fans = boundary_starts.max(2);
+                return Err(MeshError::NonManifoldVertex { vertex: v, fans });
+            }
+            vert_he[v] = start;
+        }
+        Ok(Topology {
+            he_face,
+            twin,
+            he_edge,
+            edges,
+            edge_he,
+            vert_he,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Error;
+
+    fn quad_grid(n: usize) -> PolyMesh {
+        let mut pos = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                pos.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let a = j * (n + 1) + i;
+                faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
+            }
+        }
+        PolyMesh::new(pos, &faces).unwrap()
+    }
+
+    #[test]
+    fn grid_connectivity() {
+        let m = quad_grid(3);
+        assert_eq!(m.num_vertices(), 16);
+        assert_eq!(m.num_faces(), 9);
+        assert_eq!(m.num_edges(), 24);
+        assert_eq!(m.valence(5), 4);
+        assert!(!m.is_boundary_vertex(5));
+        assert_eq!(m.valence(0), 2);
+        assert_eq!(m.valence(1), 3);
+        assert_eq!(m.boundary_loops().len(), 1);
+        assert_eq!(m.boundary_loops()[0].len(), 12);
+        assert_eq!(m.one_ring(5).len(), 8);
+        assert_eq!(m.two_ring(5).len(), 7);
+        assert!(m.extraordinary_vertices().is_empty());
+        // Counter-clockwise neighbours of interior vertex 5 (at (1,1)).
+        let nb = m.vertex_neighbors(5);
+        assert_eq!(nb.len(), 4);
+        let p5 = m.position(5);
+        let ang: Vec<f64> = nb
+            .iter()
+            .map(|&w| {
+                let p = m.position(w as usize);
+                (p[1] - p5[1]).atan2(p[0] - p5[0])
+            })
+            .collect();
+        for k in 0..4 {
+            let d = (ang[(k + 1) % 4] - ang[k]).rem_euclid(2.0 * std::f64::consts::PI);
+            assert!(
+                (d - std::f64::consts::FRAC_PI_2).abs() < 1e-12,
+                "not counter-clockwise"
+            );
+        }
+        // Boundary vertex neighbours run from one boundary neighbour to the other.
+        let nb1 = m.vertex_neighbors(1);
+        assert_eq!(nb1.len(), 3);
+        assert!(m.is_boundary_vertex(nb1[0] as usize) && m.is_boundary_vertex(nb1[2] as usize));
+    }
+
+    #[test]
+    fn errors_name_the_element() {
+        let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
+        let e = PolyMesh::new(p.clone(), &[vec![0, 1]]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::Mesh(MeshError::FaceTooSmall { face: 0, len: 2 })
+        ));
+        let e = PolyMesh::new(p.clone(), &[vec![0, 1, 7]]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::Mesh(MeshError::IndexOutOfRange {
+                face: 0,
+                index: 7,
+                ..
+            })
+        ));
+        let e = PolyMesh::new(p.clone(), &[vec![0, 1, 1]]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::Mesh(MeshError::RepeatedVertex { face: 0, vertex: 1 })
+        ));
+        let e = PolyMesh::new(p.clone(), &[vec![0, 1, 2], vec![0, 1, 3]]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::Mesh(MeshError::InconsistentOrientation { .. })
+        ));
+        let mut q = p.clone();
+        q[2][1] = f64::NAN;
+        let e = PolyMesh::new(q, &[vec![0, 1, 2]]).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::Mesh(MeshError::NonFiniteCoordinate { vertex: 2 })
+        ));
+        let e = PolyMesh::new(p.clone(), &Vec::<Vec<usize>>::new()).unwrap_err();
+        assert!(matches!(e, Error::Mesh(MeshError::Empty)));
+        // Three triangles on edge 0-1.
+        let mut r = p.clone();
+        r.push([0.0, 0.0, 1.0]);
+        let e = PolyMesh::new(r, &[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Mesh(MeshError::NonManifoldEdge { edge: [0, 1], .. })
+            ),
+            "{e}"
+        );
+        // Bow-tie: two triangles sharing only vertex 0.
+        let mut s = p.clone();
+        s.push([-1.0, 0.0, 0.0]);
+        s.push([0.0, -1.0, 0.0]);
+        let e = PolyMesh::new(s, &[vec![0, 1, 2], vec![0, 4, 5]]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::Mesh(MeshError::NonManifoldVertex { vertex: 0, .. })
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn unused_vertices_dropped() {
+        let p = vec![[0.0; 3], [9.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let m = PolyMesh::new(p, &[vec![0, 2, 3]]).unwrap();
+        assert_eq!(m.dropped_vertices(), &[1]);
+        assert_eq!(m.num_vertices(), 3);
+        assert_eq!(m.face(0), &[0, 1, 2]);
+    }
+}
