@@ -142,7 +142,7 @@ impl PolyMesh {
             let corners = corners.iter().map(|&v| new_of_old[v as usize]).collect();
             (pos, corners, Some(old_of_new))
         };
-        let topo = Topology::build(positions.len(), &face_start, &corners).map_err(|e| {
+        let topo = Topology::build(positions.len(), &face_start, &corners, false).map_err(|e| {
             // Report vertices in input numbering.
             match (&old_of_new, e) {
                 (Some(map), MeshError::NonManifoldEdge { edge, faces }) => {
@@ -182,7 +182,25 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let topo = Topology::build(positions.len(), &face_start, &corners)?;
+        let topo = Topology::build(positions.len(), &face_start, &corners, false)?;
+        Ok(PolyMesh {
+            positions,
+            face_start,
+            corners,
+            topo,
+            dropped: Vec::new(),
+        })
+    }
+
+    /// Like [`PolyMesh::from_refinement`], but tolerates non-manifold ("bow-tie") vertices, as
+    /// they occur at the cut of a partially refined region. Such a vertex gets one of its fans;
+    /// callers must not rely on its one-ring (adaptive refinement marks it incomplete).
+    pub fn from_partial_refinement(
+        positions: Vec<Point>,
+        face_start: Vec<u32>,
+        corners: Vec<u32>,
+    ) -> Result<PolyMesh> {
+        let topo = Topology::build(positions.len(), &face_start, &corners, true)?;
         Ok(PolyMesh {
             positions,
             face_start,
@@ -520,6 +538,7 @@ impl Topology {
         nv: usize,
         face_start: &[u32],
         corners: &[u32],
+        relaxed: bool,
     ) -> std::result::Result<Topology, MeshError> {
         let nf = face_start.len() - 1;
         let nh = corners.len();
@@ -625,7 +644,10 @@ impl Topology {
         let mut vert_he = vec![NONE; nv];
         for v in 0..nv {
             let outs = &out_he[out_start[v] as usize..out_start[v + 1] as usize];
-            let mut start = outs[0];
+            let Some(&first) = outs.first() else {
+                continue; // unreferenced vertex (only in refinement output; never queried)
+            };
+            let mut start = first;
             let mut boundary_starts = 0;
             for &h in outs {
                 if twin[h as usize] == NONE {
@@ -647,7 +669,7 @@ impl Topology {
                     break;
                 }
             }
-            if count != outs.len() || boundary_starts > 1 {
+            if !relaxed && (count != outs.len() || boundary_starts > 1) {
                 let fans = boundary_starts.max(2);
                 return Err(MeshError::NonManifoldVertex { vertex: v, fans });
             }

@@ -384,8 +384,8 @@ mod tests {
         }
         let src: Vec<[f64; 1]> = (0..n).map(|i| [i as f64]).collect();
         let out = t.apply(&src);
-        for r in 0..n {
-            assert_eq!(out[r][0], 0.25 * r as f64 + 0.75 * ((r + 1) % n) as f64);
+        for (r, o) in out.iter().enumerate() {
+            assert_eq!(o[0], 0.25 * r as f64 + 0.75 * ((r + 1) % n) as f64);
         }
     }
 }

@@ -1,0 +1,661 @@
+//! Catmull-Clark surfaces as exact patch complexes, by adaptive refinement.
+//!
+//! Every regular quad (see [`super::regular::bi3_net`]) is one exact bi-3 patch. Faces that are not
+//! regular (they touch an extraordinary vertex, a non-quad facet or an irregular boundary vertex)
+//! are refined with Catmull-Clark's own stencils ([`crate::schemes::catmull_clark`]) together with
+//! the two rings of faces around them; the children that have become regular are emitted as
+//! ring `l` (the papers' layout: ring `l` lies at refinement level `l`, `3n` patches around an
+//! isolated vertex of valence `n`), the rest is refined again. After `rings` levels the faces
+//! still touching an extraordinary element are closed by the *Hermite-Coons fill* below, or left
+//! open.
+//!
+//! Only a neighbourhood of the irregular faces is refined, so the cost per level stays
+//! proportional to the number of extraordinary elements. A vertex of a partially refined level is
+//! trusted only where its position and its whole fan of faces are known to equal those of the
+//! uniformly refined mesh; regular patches are emitted only from trusted vertices.
+//!
+//! # The Hermite-Coons fill (fairsub's own, documented construction)
+//!
+//! Each face left inside the last ring becomes one bi-3 patch. Its four boundary curves are
+//! cubics defined once per edge and shared by both faces at the edge, so the fill is C^0
+//! everywhere: an edge shared with an emitted ring patch takes that patch's boundary curve
+//! (exact); any other edge is the cubic Hermite interpolant of the Catmull-Clark limit
+//! positions of its end points and the limit derivatives along the edge (exact at regular
+//! vertices, the Halstead et al. eigenvector tangent scaled by `1 / (3 n)` at an extraordinary
+//! vertex of valence `n`, which is exact for `n = 4`; at irregular boundary vertices the chord).
+//! All spokes at an extraordinary vertex therefore lie in its limit tangent plane. The interior
+//! coefficients are those of the bilinearly blended Coons patch of the four curves. The fill is
+//! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
+//! own boundaries. `fairsub check` measures its defects.
+
+use super::regular::bi3_net;
+use super::{Element, PatchComplex, Provenance};
+use crate::bezier::BezierPatch;
+use crate::error::{Error, Result};
+use crate::geom::{self, Point};
+use crate::mesh::PolyMesh;
+use crate::schemes::catmull_clark::{CatmullClark, edge_point_stencil, vertex_point_stencil};
+use crate::stencil::Stencil;
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+/// Options of [`catmull_clark_complex`].
+#[derive(Debug, Clone, Copy)]
+pub struct CcComplexOptions {
+    /// Number of rings around each extraordinary element (refinement levels).
+    pub rings: usize,
+    /// Close the hole inside the last ring with the Hermite-Coons fill.
+    pub fill: bool,
+}
+
+impl Default for CcComplexOptions {
+    fn default() -> Self {
+        CcComplexOptions {
+            rings: 6,
+            fill: true,
+        }
+    }
+}
+
+/// Per-vertex bookkeeping of a (partially refined) level.
+#[derive(Debug, Clone, Copy)]
+struct VertexInfo {
+    /// Position equals the uniformly refined mesh's.
+    pos_ok: bool,
+    /// The vertex's fan of faces is complete (as in the uniformly refined mesh).
+    fan_ok: bool,
+    /// Input element this vertex descends from by vertex points (or a facet's centre).
+    origin: Option<Element>,
+}
+
+/// Per-face tag of an active face: which extraordinary element and sector it belongs to.
+#[derive(Debug, Clone, Copy)]
+struct FaceTag {
+    input_face: u32,
+    element: Option<Element>,
+    sector: u32,
+}
+
+/// One level of the adaptive refinement.
+struct Level {
+    mesh: PolyMesh,
+    info: Vec<VertexInfo>,
+    /// Faces to process at this level, with their tags.
+    active: Vec<(u32, FaceTag)>,
+}
+
+/// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
+/// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
+/// Hermite-Coons fill. `progress(level)` is called after each level.
+pub fn catmull_clark_complex(
+    mesh: &PolyMesh,
+    opts: CcComplexOptions,
+    mut progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    let has_ngons = !mesh.is_all_quads();
+    if opts.rings == 0 && has_ngons {
+        let f = mesh.extraordinary_faces()[0];
+        return Err(Error::InvalidArgument(format!(
+            "face {f} has {} sides; the fill needs quads, so at least one ring (--rings 1) is required",
+            mesh.face_size(f)
+        )));
+    }
+    let mut out = PatchComplex::new();
+    let info = vec![
+        VertexInfo {
+            pos_ok: true,
+            fan_ok: true,
+            origin: None,
+        };
+        mesh.num_vertices()
+    ];
+    let mut info = info;
+    for (v, i) in info.iter_mut().enumerate() {
+        i.origin = Some(Element::Vertex(v as u32));
+    }
+    let active = (0..mesh.num_faces() as u32)
+        .map(|f| {
+            (
+                f,
+                FaceTag {
+                    input_face: f,
+                    element: None,
+                    sector: 0,
+                },
+            )
+        })
+        .collect();
+    let mut level = Level {
+        mesh: mesh.clone(),
+        info,
+        active,
+    };
+    for l in 0..=opts.rings {
+        let mut marked: Vec<(u32, FaceTag)> = Vec::new();
+        let mut curves: HashMap<(u32, u32), [Point; 4]> = HashMap::new();
+        for &(f, tag) in &level.active {
+            match regular_patch(&level, f as usize) {
+                Some(p) => {
+                    record_curves(&level.mesh, f as usize, &p, &mut curves);
+                    let prov = match (l, tag.element) {
+                        (0, _) | (_, None) => Provenance::Regular {
+                            face: tag.input_face,
+                        },
+                        (_, Some(element)) => Provenance::Ring {
+                            element,
+                            ring: l as u32,
+                            sector: tag.sector,
+                        },
+                    };
+                    out.push(p, prov);
+                }
+                None => marked.push((f, tag_irregular(&level, f as usize, tag))),
+            }
+        }
+        if marked.is_empty() {
+            break;
+        }
+        if l == opts.rings {
+            if opts.fill {
+                fill(&level, &marked, &mut curves, &mut out)?;
+            }
+            break;
+        }
+        level = refine_around(&level, &marked)?;
+        progress(l + 1);
+    }
+    Ok(out)
+}
+
+/// The bi-3 patch of face `f` if it is regular and all its net points are trusted.
+fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
+    let m = &level.mesh;
+    if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
+        return None;
+    }
+    let net = bi3_net(m, f)?;
+    if net.iter().any(|s| {
+        s.entries()
+            .iter()
+            .any(|&(v, _)| !level.info[v as usize].pos_ok)
+    }) {
+        return None;
+    }
+    let pts: Vec<Point> = net.iter().map(|s| s.apply(m.positions())).collect();
+    Some(bi3_from_net(&pts))
+}
+
+/// Tag of an irregular face: the element of its first extraordinary corner (or its own element
+/// for a non-quad input face); faces without one inherit their parent's tag.
+fn tag_irregular(level: &Level, f: usize, tag: FaceTag) -> FaceTag {
+    let m = &level.mesh;
+    if m.face_size(f) != 4 {
+        return FaceTag {
+            element: Some(Element::Face(tag.input_face)),
+            ..tag
+        };
+    }
+    for &v in m.face(f) {
+        let origin = level.info[v as usize].origin;
+        if origin.is_some() && !m.is_regular_quad_vertex(v as usize) {
+            let sector = m
+                .vertex_faces(v as usize)
+                .iter()
+                .position(|&g| g == f as u32)
+                .unwrap_or(0);
+            return FaceTag {
+                element: origin,
+                sector: sector as u32,
+                ..tag
+            };
+        }
+    }
+    tag
+}
+
+/// Stores the boundary curves of an emitted patch of face `f`, keyed by the edge's vertices
+/// (oriented from the smaller index).
+fn record_curves(
+    m: &PolyMesh,
+    f: usize,
+    p: &BezierPatch,
+    curves: &mut HashMap<(u32, u32), [Point; 4]>,
+) {
+    let c = m.face(f);
+    // Face corners 0..3 sit at (u, v) = (0,0), (1,0), (1,1), (0,1).
+    let sides: [[(usize, usize); 4]; 4] = [
+        [(0, 0), (1, 0), (2, 0), (3, 0)],
+        [(3, 0), (3, 1), (3, 2), (3, 3)],
+        [(3, 3), (2, 3), (1, 3), (0, 3)],
+        [(0, 3), (0, 2), (0, 1), (0, 0)],
+    ];
+    for (k, side) in sides.iter().enumerate() {
+        let (a, b) = (c[k], c[(k + 1) % 4]);
+        let mut pts = side.map(|(i, j)| p.cp(i, j));
+        if a > b {
+            pts.reverse();
+        }
+        curves.entry((a.min(b), a.max(b))).or_insert(pts);
+    }
+}
+
+/// Refines the marked faces and two rings of faces around them; returns the next level, whose
+/// active faces are the children of the marked faces.
+fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
+    let m = &level.mesh;
+    let nf = m.num_faces();
+    // Faces within two vertex-rings of the marked faces.
+    let mut sel = vec![false; nf];
+    let mut frontier: Vec<u32> = marked.iter().map(|&(f, _)| f).collect();
+    for &f in &frontier {
+        sel[f as usize] = true;
+    }
+    for _ in 0..2 {
+        let mut next = Vec::new();
+        for &f in &frontier {
+            for &v in m.face(f as usize) {
+                for g in m.vertex_faces(v as usize) {
+                    if !sel[g as usize] {
+                        sel[g as usize] = true;
+                        next.push(g);
+                    }
+                }
+            }
+        }
+        frontier = next;
+    }
+    let nv = m.num_vertices();
+    let ne = m.num_edges();
+    // Child vertex ids: vertex points, edge points, face points of selected faces' elements.
+    const UNSET: u32 = u32::MAX;
+    let mut vid = vec![UNSET; nv];
+    let mut eid = vec![UNSET; ne];
+    let mut fid = vec![UNSET; nf];
+    let mut stencils: Vec<Stencil> = Vec::new();
+    let mut info: Vec<VertexInfo> = Vec::new();
+    let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
+    let face_pos_ok = |g: u32| {
+        m.face(g as usize)
+            .iter()
+            .all(|&x| level.info[x as usize].pos_ok)
+    };
+    let mut face_start = vec![0u32];
+    let mut corners = Vec::new();
+    let mut child_faces_of: HashMap<u32, Vec<u32>> = HashMap::new();
+    let marked_set: HashMap<u32, FaceTag> = marked.iter().copied().collect();
+    for f in 0..nf {
+        if !sel[f] {
+            continue;
+        }
+        let fc = {
+            if fid[f] == UNSET {
+                fid[f] = stencils.len() as u32;
+                let mut s = Stencil::new();
+                let face = m.face(f);
+                for &x in face {
+                    s.add(x as usize, 1.0 / face.len() as f64);
+                }
+                stencils.push(s.merged());
+                info.push(VertexInfo {
+                    pos_ok: face_pos_ok(f as u32),
+                    fan_ok: true,
+                    origin: None,
+                });
+            }
+            fid[f]
+        };
+        let h0 = m.face_halfedge(f);
+        let k = m.face_size(f) as u32;
+        for h in h0..h0 + k {
+            let v = m.he_from(h) as usize;
+            if vid[v] == UNSET {
+                vid[v] = stencils.len() as u32;
+                let vi = level.info[v];
+                let fan = vi.fan_ok && all_faces_selected(v);
+                let pos = vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g));
+                stencils.push(vertex_point_stencil(m, v));
+                info.push(VertexInfo {
+                    pos_ok: pos,
+                    fan_ok: fan,
+                    origin: vi.origin,
+                });
+            }
+            for g in [h, m.he_prev(h)] {
+                let e = m.he_edge(g) as usize;
+                if eid[e] == UNSET {
+                    eid[e] = stencils.len() as u32;
+                    let [a, b] = m.edge(e);
+                    let known = level.info[a as usize].fan_ok || level.info[b as usize].fan_ok;
+                    let hh = m.edge_halfedge(e);
+                    let mut faces = vec![m.he_face(hh)];
+                    if let Some(t) = m.he_twin(hh) {
+                        faces.push(m.he_face(t));
+                    }
+                    stencils.push(edge_point_stencil(m, e));
+                    info.push(VertexInfo {
+                        pos_ok: known && faces.iter().all(|&g| face_pos_ok(g)),
+                        fan_ok: known && faces.iter().all(|&g| sel[g as usize]),
+                        origin: None,
+                    });
+                }
+            }
+            let e_out = eid[m.he_edge(h) as usize];
+            let e_in = eid[m.he_edge(m.he_prev(h)) as usize];
+            if marked_set.contains_key(&(f as u32)) {
+                child_faces_of
+                    .entry(f as u32)
+                    .or_default()
+                    .push((face_start.len() - 1) as u32);
+            }
+            corners.extend_from_slice(&[vid[v], e_out, fc, e_in]);
+            face_start.push(corners.len() as u32);
+        }
+    }
+    // Children of a face point of a non-quad input face are extraordinary: origin = that face.
+    for &(f, tag) in marked {
+        if m.face_size(f as usize) != 4 {
+            info[fid[f as usize] as usize].origin = Some(Element::Face(tag.input_face));
+        }
+    }
+    let mut table = crate::stencil::StencilTable::with_capacity(nv, stencils.len(), 9);
+    for s in stencils {
+        table.push(s);
+    }
+    let positions = table.apply(m.positions());
+    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let mut active = Vec::new();
+    for &(f, tag) in marked {
+        for (k, &c) in child_faces_of[&f].iter().enumerate() {
+            let mut t = tag;
+            if m.face_size(f as usize) != 4 {
+                // Children of an n-gon: one per corner, sector = corner index.
+                t.element = Some(Element::Face(tag.input_face));
+                t.sector = k as u32;
+            }
+            active.push((c, t));
+        }
+    }
+    Ok(Level {
+        mesh: child,
+        info,
+        active,
+    })
+}
+
+/// Limit position and derivative along edge `a -> b` (unit edge parameter) at vertex `a`.
+fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
+    let pos = m.positions();
+    let lim = CatmullClark::limit_stencil(m, a).apply(pos);
+    let hs = m.outgoing_halfedges(a);
+    let quads = m
+        .vertex_faces(a)
+        .iter()
+        .all(|&f| m.face_size(f as usize) == 4);
+    let diag = |h: u32| m.he_from(m.he_next(m.he_next(h))) as usize;
+    if m.is_boundary_vertex(a) {
+        let nb = m.vertex_neighbors(a);
+        let (first, last) = (nb[0] as usize, *nb.last().expect("neighbours") as usize);
+        let along_boundary = b == first || b == last;
+        if along_boundary {
+            let other = if b == first { last } else { first };
+            let d = if nb.len() == 2 {
+                geom::sub(pos[b], pos[a])
+            } else {
+                geom::scale(geom::sub(pos[b], pos[other]), 0.5)
+            };
+            return (lim, d);
+        }
+        if nb.len() == 3 && quads {
+            // Regular boundary vertex, interior edge: derivative of the ghost-extended patch.
+            let d1 = diag(hs[0]);
+            let d2 = diag(hs[1]);
+            let mut s = Stencil::new();
+            s.add(d1, 1.0)
+                .add(b, 4.0)
+                .add(d2, 1.0)
+                .add(first, -1.0)
+                .add(a, -4.0)
+                .add(last, -1.0);
+            return (lim, geom::scale(s.apply(pos), 1.0 / 6.0));
+        }
+        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
+        return (lim, geom::sub(lb, lim));
+    }
+    if !quads {
+        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
+        return (lim, geom::sub(lb, lim));
+    }
+    let n = hs.len();
+    let nf = n as f64;
+    let j = hs
+        .iter()
+        .position(|&h| m.he_to(h) as usize == b)
+        .unwrap_or(0) as isize;
+    let c = (2.0 * PI / nf).cos();
+    let a_n = 1.0 + c + (PI / nf).cos() * (2.0 * (9.0 + c)).sqrt();
+    let cj = |k: isize| (2.0 * PI * (k - j) as f64 / nf).cos();
+    let mut t = Stencil::new();
+    for (i, &h) in hs.iter().enumerate() {
+        let i = i as isize;
+        t.add(m.he_to(h) as usize, a_n * cj(i));
+        t.add(diag(h), cj(i) + cj(i + 1));
+    }
+    (lim, geom::scale(t.apply(pos), 1.0 / (3.0 * nf)))
+}
+
+/// The Hermite-Coons fill of the marked faces of the last level.
+fn fill(
+    level: &Level,
+    marked: &[(u32, FaceTag)],
+    curves: &mut HashMap<(u32, u32), [Point; 4]>,
+    out: &mut PatchComplex,
+) -> Result<()> {
+    let m = &level.mesh;
+    for &(f, tag) in marked {
+        let face = m.face(f as usize);
+        if face.len() != 4 {
+            return Err(Error::Unsupported(format!(
+                "the fill needs quads; face {f} of the last level has {} sides",
+                face.len()
+            )));
+        }
+        let mut sides = [[[0.0; 3]; 4]; 4];
+        for k in 0..4 {
+            let (a, b) = (face[k], face[(k + 1) % 4]);
+            let key = (a.min(b), a.max(b));
+            let c = *curves.entry(key).or_insert_with(|| {
+                let (lo, hi) = key;
+                let (p0, d0) = limit_and_derivative(m, lo as usize, hi as usize);
+                let (p3, d3) = limit_and_derivative(m, hi as usize, lo as usize);
+                [
+                    p0,
+                    geom::axpy(p0, 1.0 / 3.0, d0),
+                    geom::axpy(p3, 1.0 / 3.0, d3),
+                    p3,
+                ]
+            });
+            let mut c = c;
+            if a > b {
+                c.reverse();
+            }
+            sides[k] = c;
+        }
+        let mut b = [[[0.0; 3]; 4]; 4];
+        for i in 0..4 {
+            b[i][0] = sides[0][i];
+            b[3][i] = sides[1][i];
+            b[3 - i][3] = sides[2][i];
+            b[0][3 - i] = sides[3][i];
+        }
+        for i in 1..3 {
+            for j in 1..3 {
+                let (s, t) = (i as f64 / 3.0, j as f64 / 3.0);
+                let mut p = [0.0; 3];
+                for d in 0..3 {
+                    p[d] = (1.0 - s) * b[0][j][d]
+                        + s * b[3][j][d]
+                        + (1.0 - t) * b[i][0][d]
+                        + t * b[i][3][d]
+                        - ((1.0 - s) * (1.0 - t) * b[0][0][d]
+                            + s * (1.0 - t) * b[3][0][d]
+                            + (1.0 - s) * t * b[0][3][d]
+                            + s * t * b[3][3][d]);
+                }
+                b[i][j] = p;
+            }
+        }
+        let cps = b.iter().flat_map(|r| r.iter().copied()).collect();
+        let element = tag.element.unwrap_or(Element::Face(tag.input_face));
+        out.push(
+            BezierPatch::new(3, 3, cps),
+            Provenance::Cap {
+                element,
+                sector: tag.sector,
+            },
+        );
+    }
+    Ok(())
+}
+
+/// Cubic uniform B-spline segment to Bezier (temporary; replaced by `bezier::convert`).
+fn bi3_from_net(net: &[Point]) -> BezierPatch {
+    const M: [[f64; 4]; 4] = [
+        [1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0, 0.0],
+        [0.0, 4.0 / 6.0, 2.0 / 6.0, 0.0],
+        [0.0, 2.0 / 6.0, 4.0 / 6.0, 0.0],
+        [0.0, 1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0],
+    ];
+    let mut cps = vec![[0.0; 3]; 16];
+    for i in 0..4 {
+        for j in 0..4 {
+            let mut p = [0.0; 3];
+            for k in 0..4 {
+                for l in 0..4 {
+                    let w = M[i][k] * M[j][l];
+                    if w != 0.0 {
+                        p = geom::axpy(p, w, net[k * 4 + l]);
+                    }
+                }
+            }
+            cps[i * 4 + j] = p;
+        }
+    }
+    BezierPatch::new(3, 3, cps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> PolyMesh {
+        let p = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ];
+        let f = [
+            [0, 3, 2, 1],
+            [4, 5, 6, 7],
+            [0, 1, 5, 4],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [3, 0, 4, 7],
+        ];
+        PolyMesh::new(p, &f).unwrap()
+    }
+
+    fn de_casteljau(c: &[Point; 4], t: f64) -> Point {
+        let mut q = *c;
+        for r in 1..4 {
+            for i in 0..4 - r {
+                q[i] = geom::lerp(q[i], q[i + 1], t);
+            }
+        }
+        q[0]
+    }
+
+    fn sides(p: &BezierPatch) -> [[Point; 4]; 4] {
+        [
+            [p.cp(0, 0), p.cp(1, 0), p.cp(2, 0), p.cp(3, 0)],
+            [p.cp(3, 0), p.cp(3, 1), p.cp(3, 2), p.cp(3, 3)],
+            [p.cp(0, 3), p.cp(1, 3), p.cp(2, 3), p.cp(3, 3)],
+            [p.cp(0, 0), p.cp(0, 1), p.cp(0, 2), p.cp(0, 3)],
+        ]
+    }
+
+    /// Distance from `p` to a cubic curve (dense sampling, then ternary search).
+    fn dist_to_curve(p: Point, c: &[Point; 4]) -> f64 {
+        let d = |t: f64| geom::dist(p, de_casteljau(c, t));
+        let k = (0..=32)
+            .min_by(|&a, &b| d(a as f64 / 32.0).total_cmp(&d(b as f64 / 32.0)))
+            .unwrap();
+        let (mut lo, mut hi) = (
+            ((k as f64) - 1.0).max(0.0) / 32.0,
+            ((k as f64) + 1.0).min(32.0) / 32.0,
+        );
+        for _ in 0..100 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if d(m1) < d(m2) { hi = m2 } else { lo = m1 }
+        }
+        d(0.5 * (lo + hi))
+    }
+
+    /// Largest distance from a boundary sample of a patch to the nearest side curve of another
+    /// patch: 0 for a closed C^0 complex (T-junctions included).
+    pub(crate) fn max_gap(c: &PatchComplex) -> f64 {
+        let all: Vec<[[Point; 4]; 4]> = c.patches.iter().map(sides).collect();
+        let mut worst: f64 = 0.0;
+        for (a, sa) in all.iter().enumerate() {
+            for side in sa {
+                for k in 0..=4 {
+                    let p = de_casteljau(side, k as f64 / 4.0);
+                    let mut best = f64::INFINITY;
+                    for (b, sb) in all.iter().enumerate() {
+                        if a == b {
+                            continue;
+                        }
+                        for other in sb {
+                            // The curve lies in its control points' box: a lower bound.
+                            let (lo, hi) = geom::bounding_box(other.iter().copied()).unwrap();
+                            let mut gap2 = 0.0;
+                            for d in 0..3 {
+                                let e = (lo[d] - p[d]).max(p[d] - hi[d]).max(0.0);
+                                gap2 += e * e;
+                            }
+                            if gap2.sqrt() >= best {
+                                continue;
+                            }
+                            best = best.min(dist_to_curve(p, other));
+                        }
+                    }
+                    worst = worst.max(best);
+                }
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn cube_rings_and_fill_are_closed() {
+        let m = cube();
+        for rings in [1, 2, 3] {
+            let c =
+                catmull_clark_complex(&m, CcComplexOptions { rings, fill: true }, |_| {}).unwrap();
+            // 8 vertices of valence 3: the cube's faces all touch extraordinary vertices.
+            let caps = c
+                .provenance
+                .iter()
+                .filter(|p| matches!(p, Provenance::Cap { .. }))
+                .count();
+            assert_eq!(caps, 24, "rings {rings}");
+            // Every boundary sample of every patch lies on another patch's boundary sample set.
+            let worst = max_gap(&c);
+            assert!(worst < 1e-12, "rings {rings}: gap {worst}");
+        }
+    }
+}
