@@ -14,6 +14,7 @@
 
 pub mod bezier;
 pub mod error;
+pub mod gallery;
 pub mod geom;
 pub mod io;
 pub mod mesh;

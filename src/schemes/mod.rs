@@ -70,3 +70,55 @@ pub(crate) fn finish_refinement(
     let mesh = PolyMesh::from_refinement(positions, face_start, corners)?;
     Ok(Refinement { mesh, stencils })
 }
+
+/// What `fairsub schemes` tells about a scheme.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SchemeInfo {
+    /// Command-line name.
+    pub name: &'static str,
+    /// Family and paper.
+    pub family: &'static str,
+    /// Input nets it accepts.
+    pub input: &'static str,
+    /// Patches it outputs (degree and layout), if it has exact patch output.
+    pub patches: &'static str,
+    /// Smoothness claimed by its paper (or the classical result).
+    pub smoothness: &'static str,
+    /// Valences / element sizes with rules.
+    pub valences: &'static str,
+    /// Whether refinement (`--levels`) is available.
+    pub refine: bool,
+    /// Whether exact patch output (`--rings`) is available.
+    pub rings: bool,
+    /// Implementation status.
+    pub status: &'static str,
+}
+
+/// Every scheme fairsub knows, implemented or planned, with its properties.
+pub fn catalog() -> Vec<SchemeInfo> {
+    vec![SchemeInfo {
+        name: "catmull-clark",
+        family: "classic primal quad scheme [CC78]",
+        input: "any polygon mesh (one step makes it all quads); boundaries with edge-only interpolation",
+        patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
+        smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
+        valences: "all",
+        refine: true,
+        rings: true,
+        status: "available",
+    }]
+}
+
+/// The refinement scheme of a command-line name; the error lists the available names.
+pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
+    match name {
+        "catmull-clark" | "cc" => Ok(Box::new(CatmullClark)),
+        _ => {
+            let names: Vec<&str> = catalog().iter().filter(|s| s.refine).map(|s| s.name).collect();
+            Err(crate::error::Error::InvalidArgument(format!(
+                "unknown scheme '{name}' (available for refinement: {})",
+                names.join(", ")
+            )))
+        }
+    }
+}

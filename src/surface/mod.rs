@@ -99,3 +99,43 @@ impl PatchComplex {
         self.provenance.extend(other.provenance);
     }
 }
+
+/// Options for exact patch output of any scheme.
+#[derive(Debug, Clone, Copy)]
+pub struct ComplexOptions {
+    /// Rings per extraordinary element.
+    pub rings: usize,
+    /// Close the central hole (each scheme documents its fill).
+    pub fill: bool,
+}
+
+/// The exact surface of `mesh` under the named scheme as a patch complex. `progress(level)` is
+/// called as rings are produced.
+pub fn complex(
+    scheme: &str,
+    mesh: &crate::mesh::PolyMesh,
+    opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> crate::error::Result<PatchComplex> {
+    match scheme {
+        "catmull-clark" | "cc" => cc::catmull_clark_complex(
+            mesh,
+            cc::CcComplexOptions {
+                rings: opts.rings,
+                fill: opts.fill,
+            },
+            progress,
+        ),
+        other => {
+            let names: Vec<&str> = crate::schemes::catalog()
+                .iter()
+                .filter(|s| s.rings)
+                .map(|s| s.name)
+                .collect();
+            Err(crate::error::Error::InvalidArgument(format!(
+                "scheme '{other}' has no exact patch output (available: {})",
+                names.join(", ")
+            )))
+        }
+    }
+}

@@ -1,0 +1,210 @@
+//! `fairsub info`: what a control net consists of and what stands in the way of each scheme.
+
+use fairsub::PolyMesh;
+use fairsub::Result;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// An extraordinary vertex in the report.
+#[derive(Debug, Serialize)]
+struct ExtraordinaryVertex {
+    vertex: usize,
+    valence: usize,
+    boundary: bool,
+}
+
+/// An extraordinary facet in the report.
+#[derive(Debug, Serialize)]
+struct ExtraordinaryFace {
+    face: usize,
+    sides: usize,
+}
+
+/// The `info` report.
+#[derive(Debug, Serialize)]
+pub struct InfoReport {
+    source: String,
+    vertices: usize,
+    edges: usize,
+    faces: usize,
+    euler_characteristic: i64,
+    all_quads: bool,
+    all_triangles: bool,
+    face_sizes: BTreeMap<usize, usize>,
+    interior_valences: BTreeMap<usize, usize>,
+    boundary_valences: BTreeMap<usize, usize>,
+    boundary_loops: Vec<usize>,
+    extraordinary_vertices: Vec<ExtraordinaryVertex>,
+    extraordinary_faces: Vec<ExtraordinaryFace>,
+    bounding_box: [[f64; 3]; 2],
+    problems: Vec<String>,
+    dropped_vertices: Vec<usize>,
+}
+
+/// Builds the report of a net.
+pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
+    let mut face_sizes = BTreeMap::new();
+    for f in 0..m.num_faces() {
+        *face_sizes.entry(m.face_size(f)).or_insert(0) += 1;
+    }
+    let mut interior_valences = BTreeMap::new();
+    let mut boundary_valences = BTreeMap::new();
+    for v in 0..m.num_vertices() {
+        let map = if m.is_boundary_vertex(v) {
+            &mut boundary_valences
+        } else {
+            &mut interior_valences
+        };
+        *map.entry(m.valence(v)).or_insert(0) += 1;
+    }
+    let quad = m.is_all_quads();
+    let tri = m.is_all_triangles();
+    let regular = |v: usize| -> bool {
+        if tri {
+            let n = m.valence(v);
+            if m.is_boundary_vertex(v) { n == 4 || n == 3 } else { n == 6 }
+        } else {
+            m.is_regular_quad_vertex(v)
+        }
+    };
+    let evs: Vec<ExtraordinaryVertex> = (0..m.num_vertices())
+        .filter(|&v| !regular(v))
+        .map(|v| ExtraordinaryVertex {
+            vertex: v,
+            valence: m.valence(v),
+            boundary: m.is_boundary_vertex(v),
+        })
+        .collect();
+    let mut problems = Vec::new();
+    if !tri {
+        // Adjacent extraordinary vertices: the c-net based schemes need them separated.
+        let is_ev: Vec<bool> = {
+            let mut b = vec![false; m.num_vertices()];
+            for e in &evs {
+                b[e.vertex] = true;
+            }
+            b
+        };
+        let mut adjacent = 0;
+        let mut example = None;
+        for &[a, b] in m.edges() {
+            if is_ev[a as usize] && is_ev[b as usize] {
+                adjacent += 1;
+                example.get_or_insert((a, b));
+            }
+        }
+        if let Some((a, b)) = example {
+            problems.push(format!(
+                "{adjacent} edge(s) join two extraordinary vertices (e.g. {a}-{b}): EG, QAS+ and guided \
+                 subdivision first apply one Catmull-Clark step to separate them"
+            ));
+        }
+        for e in evs.iter().filter(|e| e.boundary) {
+            problems.push(format!(
+                "vertex {} is an extraordinary boundary vertex (valence {}): only the classic schemes \
+                 have boundary rules for it",
+                e.vertex, e.valence
+            ));
+        }
+        if !quad && evs.iter().all(|e| !e.boundary) {
+            let ngons = (0..m.num_faces()).filter(|&f| m.face_size(f) != 4).count();
+            problems.push(format!(
+                "{ngons} face(s) are not quads: quad schemes start with one Catmull-Clark step"
+            ));
+        }
+    } else if let Some(e) = evs.iter().find(|e| e.boundary) {
+        problems.push(format!(
+            "vertex {} is an irregular boundary vertex (valence {})",
+            e.vertex, e.valence
+        ));
+    }
+    let (lo, hi) = m.bounding_box();
+    InfoReport {
+        source: source.to_string(),
+        vertices: m.num_vertices(),
+        edges: m.num_edges(),
+        faces: m.num_faces(),
+        euler_characteristic: m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64,
+        all_quads: quad,
+        all_triangles: tri,
+        face_sizes,
+        interior_valences,
+        boundary_valences,
+        boundary_loops: m.boundary_loops().iter().map(|l| l.len()).collect(),
+        extraordinary_faces: (0..m.num_faces())
+            .filter(|&f| !tri && m.face_size(f) != 4)
+            .map(|f| ExtraordinaryFace {
+                face: f,
+                sides: m.face_size(f),
+            })
+            .collect(),
+        extraordinary_vertices: evs,
+        bounding_box: [lo, hi],
+        problems,
+        dropped_vertices: m.dropped_vertices().to_vec(),
+    }
+}
+
+/// Runs `fairsub info`.
+pub fn run(net: &str, json: bool) -> Result<()> {
+    let loaded = super::load_net(net)?;
+    let r = report(net, &loaded.mesh);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&r).expect("serialisable"));
+        return Ok(());
+    }
+    println!("{}", r.source);
+    println!(
+        "  {} vertices, {} edges, {} faces (Euler characteristic {})",
+        r.vertices, r.edges, r.faces, r.euler_characteristic
+    );
+    let fmt = |m: &BTreeMap<usize, usize>| {
+        m.iter().map(|(k, c)| format!("{k}: {c}")).collect::<Vec<_>>().join(", ")
+    };
+    println!("  face sizes:          {}", fmt(&r.face_sizes));
+    println!("  interior valences:   {}", fmt(&r.interior_valences));
+    if !r.boundary_valences.is_empty() {
+        println!("  boundary valences:   {}", fmt(&r.boundary_valences));
+    }
+    println!(
+        "  boundary loops:      {} {:?}",
+        r.boundary_loops.len(),
+        r.boundary_loops
+    );
+    let evs: Vec<String> = r
+        .extraordinary_vertices
+        .iter()
+        .take(20)
+        .map(|e| format!("{}(n={}{})", e.vertex, e.valence, if e.boundary { ",b" } else { "" }))
+        .collect();
+    println!(
+        "  extraordinary vertices: {}{}{}",
+        r.extraordinary_vertices.len(),
+        if evs.is_empty() { "" } else { ": " },
+        evs.join(" ")
+    );
+    if !r.extraordinary_faces.is_empty() {
+        let fs: Vec<String> = r
+            .extraordinary_faces
+            .iter()
+            .take(20)
+            .map(|f| format!("{}({}-gon)", f.face, f.sides))
+            .collect();
+        println!(
+            "  extraordinary faces: {}: {}",
+            r.extraordinary_faces.len(),
+            fs.join(" ")
+        );
+    }
+    println!(
+        "  bounding box: {:?} .. {:?}",
+        r.bounding_box[0], r.bounding_box[1]
+    );
+    if !r.dropped_vertices.is_empty() {
+        println!("  dropped unused vertices: {:?}", r.dropped_vertices);
+    }
+    for p in &r.problems {
+        println!("  note: {p}");
+    }
+    Ok(())
+}

@@ -1,0 +1,164 @@
+//! Command-line interface: argument definitions and the subcommands.
+//!
+//! Each subcommand lives in its own module and returns `fairsub::Result`, so every failure
+//! reaches `main` as one error with a clear message (exit code 1); clap handles usage errors
+//! (exit code 2).
+
+mod demo;
+mod info;
+mod subdivide;
+
+use clap::{Parser, Subcommand};
+use fairsub::Result;
+use fairsub::io::LoadedMesh;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+
+/// fairsub: subdivision surfaces of high shape quality.
+#[derive(Debug, Parser)]
+#[command(name = "fairsub", version, about, long_about = None, after_help = EXAMPLES)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+const EXAMPLES: &str = "\
+Examples:
+  fairsub demo                                   run everything on the embedded default net
+  fairsub info net.obj --json                    counts, valences, extraordinary elements
+  fairsub subdivide net.obj --scheme catmull-clark --levels 3 -o fine.ply
+  fairsub subdivide net.obj --scheme catmull-clark --rings 6 -o surface.bv
+  fairsub subdivide gallery:cnet-5-saddle --scheme catmull-clark --rings 4 -o saddle.igs
+  fairsub schemes
+
+A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the built-in gallery
+(`fairsub gallery --list`).";
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Counts, valences, extraordinary elements, boundaries and problems of a control net.
+    Info {
+        /// The control net (file or gallery:NAME).
+        net: String,
+        /// Print the report as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Refine a net (--levels) or write its exact surface as patches (--rings).
+    #[command(after_help = "\
+The output format follows the extension of -o (.obj .off .ply .bv .igs .iges) or --format.
+Meshes (.obj/.off/.ply) get the refined net after --levels steps; with --rings they get a
+watertight tessellation of the patch complex (--tess samples per patch edge). .bv and .igs get
+the exact patch complex (default 6 rings); with --levels and no --rings, .bv gets the refined net
+as a polyhedron.")]
+    Subdivide(subdivide::Args),
+    /// List the schemes with their properties and supported valences.
+    Schemes {
+        /// Print the list as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Run the main job on the embedded default net and write the results into a folder.
+    Demo {
+        /// Folder for the results (created if missing).
+        #[arg(long, short, default_value = ".")]
+        out: PathBuf,
+    },
+    /// Write the built-in gallery of control nets as OBJ files (or list their names).
+    Gallery {
+        /// Folder to write into.
+        #[arg(long, short, required_unless_present = "list")]
+        out: Option<PathBuf>,
+        /// Only list the names.
+        #[arg(long)]
+        list: bool,
+    },
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Info { net, json } => info::run(&net, json),
+        Command::Subdivide(args) => subdivide::run(args),
+        Command::Schemes { json } => schemes(json),
+        Command::Demo { out } => demo::run(&out),
+        Command::Gallery { out, list } => gallery(out, list),
+    }
+}
+
+/// Loads a net from a file or from the gallery (`gallery:NAME`); prints its warnings.
+pub fn load_net(arg: &str) -> Result<LoadedMesh> {
+    let loaded = if let Some(name) = arg.strip_prefix("gallery:") {
+        let all = fairsub::gallery::all();
+        match all.into_iter().find(|(n, _)| n == name) {
+            Some((_, mesh)) => LoadedMesh {
+                mesh,
+                warnings: Vec::new(),
+            },
+            None => {
+                return Err(fairsub::Error::InvalidArgument(format!(
+                    "no gallery net named '{name}' (see `fairsub gallery --list`)"
+                )));
+            }
+        }
+    } else {
+        fairsub::io::read_mesh(std::path::Path::new(arg))?
+    };
+    for w in &loaded.warnings {
+        eprintln!("warning: {arg}: {w}");
+    }
+    Ok(loaded)
+}
+
+/// A progress bar over `len` steps on stderr; invisible when stderr is not a terminal.
+pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    let pb = ProgressBar::new(len);
+    if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} ({elapsed})") {
+        pb.set_style(style.progress_chars("=> "));
+    }
+    pb.set_message(what.to_string());
+    pb
+}
+
+fn schemes(json: bool) -> Result<()> {
+    let cat = fairsub::schemes::catalog();
+    if json {
+        println!("{}", serde_json::to_string_pretty(&cat).expect("serialisable"));
+        return Ok(());
+    }
+    for s in cat {
+        println!("{} [{}]", s.name, s.status);
+        println!("  family:     {}", s.family);
+        println!("  input:      {}", s.input);
+        println!("  patches:    {}", s.patches);
+        println!("  smoothness: {}", s.smoothness);
+        println!("  valences:   {}", s.valences);
+        println!(
+            "  commands:   {}{}",
+            if s.refine { "subdivide --levels " } else { "" },
+            if s.rings { "subdivide --rings" } else { "" }
+        );
+    }
+    Ok(())
+}
+
+fn gallery(out: Option<PathBuf>, list: bool) -> Result<()> {
+    let all = fairsub::gallery::all();
+    if list {
+        for (name, m) in &all {
+            println!("{name:24} {:4} vertices {:4} faces", m.num_vertices(), m.num_faces());
+        }
+        return Ok(());
+    }
+    let dir = out.expect("clap requires --out without --list");
+    std::fs::create_dir_all(&dir).map_err(|source| fairsub::Error::Io {
+        path: dir.clone(),
+        source,
+    })?;
+    for (name, m) in &all {
+        let path = dir.join(format!("{name}.obj"));
+        fairsub::io::write_mesh(&path, m, fairsub::io::MeshFormat::Obj)?;
+    }
+    println!("wrote {} nets to {}", all.len(), dir.display());
+    Ok(())
+}
