@@ -6,6 +6,10 @@
 //! subdivision matrix for analysis or re-applying the step to moved points all reuse that one
 //! table, so every rule exists exactly once.
 
+pub mod loop_subdivision;
+
+mod common;
+
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::stencil::StencilTable;
