@@ -4,6 +4,7 @@
 
 use fairsub::PolyMesh;
 use fairsub::schemes::Scheme;
+use fairsub::schemes::doo_sabin::{self, DooSabin, DooSabinCc};
 use fairsub::schemes::loop_subdivision::Loop;
 use fairsub::stencil::StencilTable;
 
@@ -36,6 +37,28 @@ fn tri_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
             );
             faces.push(vec![a, b, c]);
             faces.push(vec![a, c, d]);
+        }
+    }
+    PolyMesh::new(pos, &faces).unwrap()
+}
+
+/// A regular quad grid over the lattice points (i, j), 0 <= i, j <= m, with heights `z`.
+fn quad_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
+    let mut pos = Vec::new();
+    for j in 0..=m {
+        for i in 0..=m {
+            pos.push([i as f64, j as f64, z(i as f64, j as f64)]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..m {
+        for i in 0..m {
+            faces.push(vec![
+                gid(m, i, j),
+                gid(m, i + 1, j),
+                gid(m, i + 1, j + 1),
+                gid(m, i, j + 1),
+            ]);
         }
     }
     PolyMesh::new(pos, &faces).unwrap()
@@ -534,4 +557,493 @@ fn loop_rejects_non_triangles_naming_the_face() {
         msg.contains("face 0 has 4 corners") && msg.contains("catmull-clark"),
         "{msg}"
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Doo-Sabin and DS^CC
+
+fn prism(n: usize) -> PolyMesh {
+    let mut pos = Vec::new();
+    for z in [0.0, 1.0] {
+        for i in 0..n {
+            let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+            pos.push([t.cos(), t.sin(), z]);
+        }
+    }
+    let mut faces: Vec<Vec<usize>> = vec![(0..n).rev().collect(), (n..2 * n).collect()];
+    for i in 0..n {
+        let j = (i + 1) % n;
+        faces.push(vec![i, j, n + j, n + i]);
+    }
+    PolyMesh::new(pos, &faces).unwrap()
+}
+
+/// The centred uniform quadratic B-spline, support [-3/2, 3/2].
+fn quad_bspline(x: f64) -> f64 {
+    let a = x.abs();
+    if a <= 0.5 {
+        0.75 - a * a
+    } else if a <= 1.5 {
+        0.5 * (1.5 - a) * (1.5 - a)
+    } else {
+        0.0
+    }
+}
+
+/// Child lattice index (0 ..= 2m + 1) of a coordinate of a child point of the flat quad grid of
+/// size m: corner points sit at i + 1/4 and i + 3/4, boundary points on 0 and m.
+fn child_index(c: f64, m: usize) -> usize {
+    if c == 0.0 {
+        0
+    } else if c == m as f64 {
+        2 * m + 1
+    } else {
+        (2.0 * c + 0.5).round() as usize
+    }
+}
+
+/// Weight of parent lattice point b in child point a for bi-2 refinement (Chaikin mask
+/// (1+z)^3/4 in each direction) of the net extended by a phantom copy of its boundary layer.
+fn doubled_chaikin_weight(mask: &[f64], a: usize, b: usize, m: usize) -> f64 {
+    let mut w = 0.0;
+    for c in -1..=(m as i64 + 1) {
+        if c.clamp(0, m as i64) as usize != b {
+            continue;
+        }
+        let k = a as i64 - 2 * c + 1;
+        if (0..mask.len() as i64).contains(&k) {
+            w += mask[k as usize];
+        }
+    }
+    w
+}
+
+fn dual_schemes() -> [(&'static str, &'static dyn Scheme); 2] {
+    [("doo-sabin", &DooSabin), ("doo-sabin-cc", &DooSabinCc)]
+}
+
+#[test]
+fn doo_sabin_regular_grid_is_bi2_refinement() {
+    let mask = bspline_mask(3);
+    assert_eq!(mask, vec![0.25, 0.75, 0.75, 0.25]);
+    let m = 4;
+    let mesh = quad_grid(m, |_, _| 0.0);
+    for (name, scheme) in dual_schemes() {
+        let r = scheme.refine(&mesh).unwrap();
+        assert_eq!(r.mesh.num_vertices(), (2 * m + 2) * (2 * m + 2));
+        assert!(r.mesh.is_all_quads());
+        let mut seen = vec![false; (2 * m + 2) * (2 * m + 2)];
+        for c in 0..r.mesh.num_vertices() {
+            let p = r.mesh.position(c);
+            let (ai, aj) = (child_index(p[0], m), child_index(p[1], m));
+            seen[aj * (2 * m + 2) + ai] = true;
+            let mut expect = vec![0.0; mesh.num_vertices()];
+            for bj in 0..=m {
+                for bi in 0..=m {
+                    expect[gid(m, bi, bj)] = doubled_chaikin_weight(&mask, ai, bi, m)
+                        * doubled_chaikin_weight(&mask, aj, bj, m);
+                }
+            }
+            assert_eq!(dense_row(&r.stencils, c), expect, "{name}, child {c}");
+        }
+        assert!(
+            seen.iter().all(|&s| s),
+            "{name}: child lattice covered once"
+        );
+        // Interior corner points carry the 9/16, 3/16, 3/16, 1/16 mask.
+        let (i, w) = r.stencils.row(0);
+        assert_eq!(i.len(), 4);
+        let mut ws = w.to_vec();
+        ws.sort_by(f64::total_cmp);
+        assert_eq!(ws, [1.0 / 16.0, 3.0 / 16.0, 3.0 / 16.0, 9.0 / 16.0]);
+    }
+}
+
+#[test]
+fn doo_sabin_limit_is_the_bi2_spline_of_the_doubled_net() {
+    let m = 4;
+    let mesh = quad_grid(m, |_, _| 0.0);
+    // Bi-2 spline of the doubled net at (s, t), as a stencil over the parent points.
+    let spline = |s: f64, t: f64| {
+        let mut w = vec![0.0; mesh.num_vertices()];
+        for cj in -1..=(m as i64 + 1) {
+            for ci in -1..=(m as i64 + 1) {
+                let b = gid(
+                    m,
+                    ci.clamp(0, m as i64) as usize,
+                    cj.clamp(0, m as i64) as usize,
+                );
+                w[b] += quad_bspline(s - ci as f64) * quad_bspline(t - cj as f64);
+            }
+        }
+        w
+    };
+    // Where a point's limit lies in the parameter plane of the parent: a point of lattice index
+    // a out of 0 ..= top sits at a * scale + shift, except that the limits of boundary points
+    // (a = 0 or a = top) lie on the boundary curve, at -1/2 or m + 1/2.
+    let param = |a: usize, top: usize, scale: f64, shift: f64| {
+        if a == 0 {
+            -0.5
+        } else if a == top {
+            m as f64 + 0.5
+        } else {
+            a as f64 * scale + shift
+        }
+    };
+    for (name, scheme) in dual_schemes() {
+        // Parent vertices: interior ones at the integers.
+        let lim = scheme.limit_stencils(&mesh).unwrap();
+        assert!(lim.max_affine_defect() < 1e-15);
+        for j in 0..=m {
+            for i in 0..=m {
+                let (s, t) = (param(i, m, 1.0, 0.0), param(j, m, 1.0, 0.0));
+                let d = max_diff(&dense_row(&lim, gid(m, i, j)), &spline(s, t));
+                assert!(d < 1e-15, "{name}: parent vertex ({i}, {j}): {d}");
+            }
+        }
+        // Child vertices, expressed in parent points, at their parameters.
+        let r = scheme.refine(&mesh).unwrap();
+        let composed = scheme.limit_stencils(&r.mesh).unwrap().compose(&r.stencils);
+        for c in 0..r.mesh.num_vertices() {
+            let p = r.mesh.position(c);
+            let (ai, aj) = (child_index(p[0], m), child_index(p[1], m));
+            let top = 2 * m + 1;
+            let (s, t) = (param(ai, top, 0.5, -0.25), param(aj, top, 0.5, -0.25));
+            let d = max_diff(&dense_row(&composed, c), &spline(s, t));
+            assert!(d < 1e-15, "{name}: child ({ai}, {aj}): {d}");
+        }
+    }
+}
+
+#[test]
+fn doo_sabin_ngon_block_spectrum() {
+    for n in 3..=10 {
+        for (name, w, expect) in [
+            (
+                "doo-sabin",
+                DooSabin::weights(n),
+                (0..n)
+                    .map(|k| match k {
+                        0 => 1.0,
+                        _ if k == 1 || k == n - 1 => 0.5,
+                        _ => 0.25,
+                    })
+                    .collect::<Vec<f64>>(),
+            ),
+            (
+                "doo-sabin-cc",
+                DooSabinCc::weights(n),
+                (0..n)
+                    .map(|k| match k {
+                        0 => 1.0,
+                        _ => 0.5 + 0.25 * (2.0 * std::f64::consts::PI * k as f64 / n as f64).cos(),
+                    })
+                    .collect(),
+            ),
+        ] {
+            // Eigenvalues of a circulant: the DFT of its first row.
+            for (k, e) in expect.iter().enumerate() {
+                let (mut re, mut im) = (0.0, 0.0);
+                for (d, wd) in w.iter().enumerate() {
+                    let t = 2.0 * std::f64::consts::PI * (d * k) as f64 / n as f64;
+                    re += wd * t.cos();
+                    im += wd * t.sin();
+                }
+                assert!(
+                    (re - e).abs() < 1e-14 && im.abs() < 1e-14,
+                    "{name} n={n} k={k}"
+                );
+            }
+            // The block of a real refinement: the top n-gon of a prism.
+            let mesh = prism(n);
+            let scheme: &dyn Scheme = if name == "doo-sabin" {
+                &DooSabin
+            } else {
+                &DooSabinCc
+            };
+            let r = scheme.refine(&mesh).unwrap();
+            let top = mesh.face(1).to_vec();
+            let h0 = mesh.face_halfedge(1) as usize;
+            let mut block = nalgebra::DMatrix::<f64>::zeros(n, n);
+            for i in 0..n {
+                let row = dense_row(&r.stencils, h0 + i);
+                for (j, &v) in top.iter().enumerate() {
+                    block[(i, j)] = row[v as usize];
+                    assert_eq!(row[v as usize], w[(j + n - i) % n]);
+                }
+                assert!((row.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+                assert!(
+                    row.iter()
+                        .enumerate()
+                        .all(|(v, &x)| x == 0.0 || top.contains(&(v as u32)))
+                );
+            }
+            let mut eig: Vec<f64> = block.symmetric_eigenvalues().iter().copied().collect();
+            let mut exp = expect.clone();
+            eig.sort_by(f64::total_cmp);
+            exp.sort_by(f64::total_cmp);
+            assert!(max_diff(&eig, &exp) < 1e-13, "{name} n={n}: {eig:?}");
+        }
+    }
+}
+
+#[test]
+fn doo_sabin_cc_is_the_mean_of_vertex_centroid_and_edge_midpoints() {
+    let mut mesh = prism(5);
+    jiggle(&mut mesh, 0.2);
+    let r = DooSabinCc.refine(&mesh).unwrap();
+    let p = mesh.positions();
+    for f in 0..mesh.num_faces() {
+        let fv = mesh.face(f);
+        let n = fv.len();
+        let c = mesh.face_centroid(f);
+        for i in 0..n {
+            let (v, a, b) = (
+                p[fv[i] as usize],
+                p[fv[(i + n - 1) % n] as usize],
+                p[fv[(i + 1) % n] as usize],
+            );
+            let q = r.mesh.position(mesh.face_halfedge(f) as usize + i);
+            for k in 0..3 {
+                let expect = (v[k] + c[k] + 0.5 * (v[k] + a[k]) + 0.5 * (v[k] + b[k])) / 4.0;
+                assert!((q[k] - expect).abs() < 1e-14);
+            }
+        }
+    }
+}
+
+#[test]
+fn dual_topology_counts() {
+    // (V, E, F) after one step.
+    let nets: Vec<(PolyMesh, (usize, usize, usize))> = vec![
+        (cube(), (24, 48, 26)),
+        (tetrahedron(), (12, 24, 14)),
+        (prism(5), (30, 60, 32)),
+        (quad_grid(3, |_, _| 0.0), (64, 112, 49)),
+        // 54 corner points, 2 x 12 boundary points, 2 kept corners; 18 + 33 + 16 faces.
+        (tri_grid(3, |_, _| 0.0), (80, 146, 67)),
+    ];
+    for (mesh, counts) in &nets {
+        for (name, scheme) in dual_schemes() {
+            let r = scheme.refine(mesh).unwrap();
+            let c = &r.mesh;
+            assert_eq!(
+                (c.num_vertices(), c.num_edges(), c.num_faces()),
+                *counts,
+                "{name}"
+            );
+            assert_eq!(euler(c), euler(mesh));
+            assert_eq!(c.boundary_loops().len(), mesh.boundary_loops().len());
+            assert_valid(c);
+            assert!(r.stencils.max_affine_defect() < 1e-15);
+            // Every child vertex but the kept corners has valence 4 (3 on the boundary).
+            for v in 0..c.num_vertices() {
+                let expect = if !c.is_boundary_vertex(v) {
+                    4
+                } else if c.vertex_faces(v).len() == 1 {
+                    2
+                } else {
+                    3
+                };
+                assert_eq!(c.valence(v), expect, "{name} child vertex {v}");
+            }
+        }
+    }
+    // Orientation: every child face of a convex closed net faces outwards.
+    for mesh in [cube(), prism(7)] {
+        let r = DooSabin.refine(&mesh).unwrap();
+        let centre = fairsub::geom::centroid(mesh.positions().iter().copied());
+        for f in 0..r.mesh.num_faces() {
+            let fv = r.mesh.face(f);
+            let mut n = [0.0; 3];
+            for i in 0..fv.len() {
+                let a = r.mesh.position(fv[i] as usize);
+                let b = r.mesh.position(fv[(i + 1) % fv.len()] as usize);
+                n = fairsub::geom::add(n, fairsub::geom::cross(a, b));
+            }
+            let out = fairsub::geom::sub(r.mesh.face_centroid(f), centre);
+            assert!(fairsub::geom::dot(n, out) > 0.0, "child face {f}");
+        }
+    }
+}
+
+#[test]
+fn doo_sabin_boundary_is_the_chaikin_curve_of_the_boundary_polygon() {
+    let mut mesh = tri_grid(3, |x, y| (x - y).cos());
+    jiggle(&mut mesh, 0.1);
+    let nv = mesh.num_vertices();
+    let bl = &mesh.boundary_loops()[0];
+    // The boundary polygon with every corner doubled, as stencils over the parent points.
+    let mut poly: Vec<usize> = Vec::new();
+    for &v in bl {
+        poly.push(v as usize);
+        if mesh.valence(v as usize) == 2 {
+            poly.push(v as usize);
+        }
+    }
+    assert_eq!(poly.len(), bl.len() + 2);
+    let np = poly.len();
+    // The quadratic B-spline curve of that polygon at parameter x (P_t at x = t, cyclic).
+    let curve = |x: f64| {
+        let mut w = vec![0.0; nv];
+        for t in -(np as i64)..2 * np as i64 {
+            w[poly[t.rem_euclid(np as i64) as usize]] += quad_bspline(x - t as f64);
+        }
+        w
+    };
+    for (name, scheme) in dual_schemes() {
+        let r = scheme.refine(&mesh).unwrap();
+        let lim = scheme.limit_stencils(&mesh).unwrap();
+        // Parent boundary vertices' limits lie on the curve at their parameter.
+        for (t, &v) in poly.iter().enumerate() {
+            let corner = mesh.valence(v) == 2;
+            let x = if corner && poly[(t + 1) % np] == v {
+                t as f64 + 0.5
+            } else if corner {
+                continue;
+            } else {
+                t as f64
+            };
+            assert!(max_diff(&dense_row(&lim, v), &curve(x)) < 1e-15, "{name}");
+        }
+        // Chaikin of the polygon: 3/4 P_t + 1/4 P_{t+1} at t + 1/4, 1/4 P_t + 3/4 P_{t+1} at
+        // t + 3/4; a doubled corner's two coincident points are the one kept corner, at t + 1/2.
+        let mut chaikin: Vec<(Vec<f64>, f64)> = Vec::new();
+        for t in 0..np {
+            let (a, b) = (poly[t], poly[(t + 1) % np]);
+            if a == b {
+                let mut w = vec![0.0; nv];
+                w[a] = 1.0;
+                chaikin.push((w, t as f64 + 0.5));
+                continue;
+            }
+            for (wa, s) in [(0.75, 0.25), (0.25, 0.75)] {
+                let mut w = vec![0.0; nv];
+                w[a] += wa;
+                w[b] += 1.0 - wa;
+                chaikin.push((w, t as f64 + s));
+            }
+        }
+        let child_loops = r.mesh.boundary_loops();
+        assert_eq!(child_loops.len(), 1);
+        let cl = &child_loops[0];
+        assert_eq!(cl.len(), chaikin.len());
+        let rows: Vec<Vec<f64>> = cl
+            .iter()
+            .map(|&c| dense_row(&r.stencils, c as usize))
+            .collect();
+        let shift = (0..cl.len())
+            .find(|&s| rows[s] == chaikin[0].0)
+            .expect("the child boundary starts somewhere on the Chaikin polygon");
+        let composed = scheme.limit_stencils(&r.mesh).unwrap().compose(&r.stencils);
+        for (k, (w, x)) in chaikin.iter().enumerate() {
+            let c = cl[(k + shift) % cl.len()] as usize;
+            assert_eq!(
+                &rows[(k + shift) % cl.len()],
+                w,
+                "{name}: Chaikin point {k}"
+            );
+            // The child's limit there is the parent polygon's quadratic B-spline.
+            let d = max_diff(&dense_row(&composed, c), &curve(*x));
+            assert!(d < 1e-15, "{name}: limit at Chaikin point {k}: {d}");
+        }
+    }
+}
+
+#[test]
+fn doo_sabin_faces_shrink_to_their_limit_points() {
+    let mut open = tri_grid(3, |x, y| 0.2 * x * y);
+    jiggle(&mut open, 0.1);
+    let mut box_net = cube();
+    jiggle(&mut box_net, 0.1);
+    for mesh in [box_net, open, prism(6)] {
+        for (name, scheme) in dual_schemes() {
+            let face_lim = doo_sabin::face_limit_stencils(&mesh).apply(mesh.positions());
+            let vert_lim = scheme
+                .limit_stencils(&mesh)
+                .unwrap()
+                .apply(mesh.positions());
+            // Track face f (index f at every level) and the V-face of every interior vertex v
+            // (index F + E + v at level 1, then the same index as an F-face).
+            let (nf, ne) = (mesh.num_faces(), mesh.num_edges());
+            let mut tracked: Vec<(usize, [f64; 3])> = (0..nf).map(|f| (f, face_lim[f])).collect();
+            for v in (0..mesh.num_vertices()).filter(|&v| !mesh.is_boundary_vertex(v)) {
+                tracked.push((nf + ne + v, vert_lim[v]));
+            }
+            let mut m = mesh.clone();
+            let mut spread = Vec::new();
+            for _ in 1..=6 {
+                m = scheme.refine(&m).unwrap().mesh;
+                let mut worst: f64 = 0.0;
+                for &(f, target) in &tracked {
+                    // The centroid of a nested F-face is its limit point, exactly.
+                    let d = max_diff(&m.face_centroid(f), &target);
+                    assert!(d < 1e-12, "{name} face {f}: {d}");
+                    for &q in m.face(f) {
+                        worst = worst.max(fairsub::geom::dist(m.position(q as usize), target));
+                    }
+                }
+                spread.push(worst);
+            }
+            // The faces contract at the rate of the largest subdominant eigenvalue of their
+            // n-gon blocks: 1/2 for Doo-Sabin, 1/2 + cos(2 pi / n) / 4 for DS^CC.
+            let rate = tracked
+                .iter()
+                .map(|&(f, _)| {
+                    let n = m.face_size(f) as f64;
+                    if name == "doo-sabin" {
+                        0.5
+                    } else {
+                        0.5 + 0.25 * (2.0 * std::f64::consts::PI / n).cos()
+                    }
+                })
+                .fold(0.0, f64::max);
+            let last = spread[5] / spread[4];
+            assert!((last - rate).abs() < 0.02, "{name}: {spread:?}");
+            assert!(spread.windows(2).all(|w| w[1] < w[0]), "{name}: {spread:?}");
+        }
+    }
+}
+
+#[test]
+fn every_child_net_is_valid_over_several_levels() {
+    let mut nets = vec![
+        cube(),
+        tetrahedron(),
+        prism(7),
+        quad_grid(2, |x, _| x),
+        tri_grid(2, |_, y| y),
+    ];
+    jiggle(&mut nets[0], 0.05);
+    // Single faces: every vertex is a corner.
+    let ngon = |n: usize| {
+        let pos = (0..n)
+            .map(|i| {
+                let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+                [t.cos(), t.sin(), 0.0]
+            })
+            .collect();
+        PolyMesh::new(pos, &[(0..n).collect::<Vec<usize>>()]).unwrap()
+    };
+    nets.push(ngon(3));
+    nets.push(ngon(5));
+    for mesh in &nets {
+        for (_, scheme) in dual_schemes() {
+            let mut m = mesh.clone();
+            for _ in 0..3 {
+                m = scheme.refine(&m).unwrap().mesh;
+                assert_valid(&m);
+                assert_eq!(euler(&m), euler(mesh));
+                assert_eq!(m.boundary_loops().len(), mesh.boundary_loops().len());
+            }
+        }
+        if mesh.is_all_triangles() {
+            let mut m = mesh.clone();
+            for _ in 0..3 {
+                m = Loop.refine(&m).unwrap().mesh;
+                assert_valid(&m);
+                assert_eq!(euler(&m), euler(mesh));
+            }
+        }
+    }
 }

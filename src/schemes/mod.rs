@@ -6,6 +6,7 @@
 //! subdivision matrix for analysis or re-applying the step to moved points all reuse that one
 //! table, so every rule exists exactly once.
 
+pub mod doo_sabin;
 pub mod loop_subdivision;
 
 mod common;
