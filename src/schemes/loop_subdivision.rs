@@ -166,6 +166,29 @@ fn check_triangles(mesh: &PolyMesh) -> Result<()> {
     }
 }
 
+/// Writes a vertex-centred mask of Loop's shape into `row`: an interior vertex of valence `n`
+/// keeps `1 - n w(n)` and gives `w(n)` to each edge neighbour; a boundary vertex keeps
+/// `1 - 2 b` and gives `b` to each boundary neighbour; a corner keeps itself. Both the
+/// refinement rule and the limit mask have this shape.
+fn vertex_mask(mesh: &PolyMesh, v: usize, w: fn(usize) -> f64, b: f64, row: &mut RowBuf) {
+    let vi = v as u32;
+    if !mesh.is_boundary_vertex(v) {
+        let n = Outgoing::new(mesh, v).count();
+        let wn = w(n);
+        row.add(vi, 1.0 - n as f64 * wn);
+        for h in Outgoing::new(mesh, v) {
+            row.add(mesh.he_to(h), wn);
+        }
+    } else if is_corner(mesh, v) {
+        row.add(vi, 1.0);
+    } else {
+        let (p, q) = boundary_neighbors(mesh, v);
+        row.add(vi, 1.0 - 2.0 * b);
+        row.add(p, b);
+        row.add(q, b);
+    }
+}
+
 impl Scheme for Loop {
     fn name(&self) -> &'static str {
         "loop"
@@ -178,22 +201,7 @@ impl Scheme for Loop {
         let mut table = StencilTable::with_capacity(nv, nv + ne, 6);
         let mut row = RowBuf::default();
         for v in 0..nv {
-            let vi = v as u32;
-            if !mesh.is_boundary_vertex(v) {
-                let n = Outgoing::new(mesh, v).count();
-                let beta = Self::vertex_beta(n);
-                row.add(vi, 1.0 - n as f64 * beta);
-                for h in Outgoing::new(mesh, v) {
-                    row.add(mesh.he_to(h), beta);
-                }
-            } else if is_corner(mesh, v) {
-                row.add(vi, 1.0);
-            } else {
-                let (a, b) = boundary_neighbors(mesh, v);
-                row.add(vi, 0.75);
-                row.add(a, 0.125);
-                row.add(b, 0.125);
-            }
+            vertex_mask(mesh, v, Self::vertex_beta, 0.125, &mut row);
             row.flush_into(&mut table);
         }
         for e in 0..ne {
@@ -236,22 +244,7 @@ impl Scheme for Loop {
         let mut table = StencilTable::with_capacity(nv, nv, 7);
         let mut row = RowBuf::default();
         for v in 0..nv {
-            let vi = v as u32;
-            if !mesh.is_boundary_vertex(v) {
-                let n = Outgoing::new(mesh, v).count();
-                let chi = Self::limit_chi(n);
-                row.add(vi, 1.0 - n as f64 * chi);
-                for h in Outgoing::new(mesh, v) {
-                    row.add(mesh.he_to(h), chi);
-                }
-            } else if is_corner(mesh, v) {
-                row.add(vi, 1.0);
-            } else {
-                let (a, b) = boundary_neighbors(mesh, v);
-                row.add(vi, 2.0 / 3.0);
-                row.add(a, 1.0 / 6.0);
-                row.add(b, 1.0 / 6.0);
-            }
+            vertex_mask(mesh, v, Self::limit_chi, 1.0 / 6.0, &mut row);
             row.flush_into(&mut table);
         }
         Ok(table)
