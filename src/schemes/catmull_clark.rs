@@ -1,6 +1,8 @@
 //! Catmull-Clark subdivision with boundaries, limit positions and limit normals.
 //!
-//! Rules as in OpenSubdiv's Catmark scheme with edge-only boundary interpolation:
+//! Rules as in OpenSubdiv's Catmark scheme with boundary interpolation of edges and corners
+//! (`VTX_BOUNDARY_EDGE_AND_CORNER`; with edge-only interpolation OpenSubdiv would smooth
+//! valence-2 corners by the crease rule, fairsub keeps them as the foundation issue asks):
 //! face point = centroid; interior edge point = (a + b + F1 + F2) / 4; interior vertex of valence
 //! n: (n - 2)/n v + 1/n^2 sum(edge neighbours) + 1/n^2 sum(face points); boundary edges and
 //! vertices follow the cubic B-spline curve rules of the boundary polygon ((a + b)/2 and

@@ -7,8 +7,14 @@
 //! table, so every rule exists exactly once.
 
 pub mod catmull_clark;
+pub mod doo_sabin;
+pub mod loop_subdivision;
+
+mod common;
 
 pub use catmull_clark::CatmullClark;
+pub use doo_sabin::{DooSabin, DooSabinCc};
+pub use loop_subdivision::Loop;
 
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -106,13 +112,50 @@ pub fn catalog() -> Vec<SchemeInfo> {
         refine: true,
         rings: true,
         status: "available",
-    }]
+    },
+    SchemeInfo {
+        name: "doo-sabin",
+        family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
+        input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
+        patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
+        smoothness: "C^1 (bi-2 on regular parts)",
+        valences: "all facet sizes",
+        refine: true,
+        rings: false,
+        status: "available (refinement)",
+    },
+    SchemeInfo {
+        name: "doo-sabin-cc",
+        family: "DS^CC: face-corner point = mean of vertex, face centroid and the two edge midpoints",
+        input: "any polygon mesh; boundaries as doo-sabin",
+        patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
+        smoothness: "C^1",
+        valences: "all facet sizes",
+        refine: true,
+        rings: false,
+        status: "available (refinement)",
+    },
+    SchemeInfo {
+        name: "loop",
+        family: "classic triangle scheme [Loo87], Loop's original beta",
+        input: "triangle meshes; boundaries as OpenSubdiv (corners stay put)",
+        patches: "quartic box-spline triangles (not yet: exact patch output pending)",
+        smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
+        valences: "all",
+        refine: true,
+        rings: false,
+        status: "available (refinement)",
+    },
+    ]
 }
 
 /// The refinement scheme of a command-line name; the error lists the available names.
 pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
     match name {
         "catmull-clark" | "cc" => Ok(Box::new(CatmullClark)),
+        "doo-sabin" | "ds" => Ok(Box::new(DooSabin)),
+        "doo-sabin-cc" | "ds-cc" => Ok(Box::new(DooSabinCc)),
+        "loop" => Ok(Box::new(Loop)),
         _ => {
             let names: Vec<&str> = catalog().iter().filter(|s| s.refine).map(|s| s.name).collect();
             Err(crate::error::Error::InvalidArgument(format!(

@@ -1,0 +1,174 @@
+//! Small helpers shared by the scheme modules.
+//!
+//! Refinement visits every vertex ring and writes one stencil row per child point, so these two
+//! operations must not allocate per element: [`Outgoing`] walks the outgoing half-edges of a
+//! vertex without building a `Vec` (the same order as [`PolyMesh::outgoing_halfedges`]), and
+//! [`RowBuf`] collects one stencil row in a reused buffer, merges duplicate sources and appends it
+//! to a [`StencilTable`].
+
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::stencil::StencilTable;
+
+/// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
+/// boundary half-edge. Same order as [`PolyMesh::outgoing_halfedges`], without allocating.
+pub(crate) struct Outgoing<'a> {
+    mesh: &'a PolyMesh,
+    start: u32,
+    next: Option<u32>,
+}
+
+impl<'a> Outgoing<'a> {
+    /// Starts the walk around vertex `v`.
+    pub(crate) fn new(mesh: &'a PolyMesh, v: usize) -> Self {
+        let start = mesh.vertex_halfedge(v);
+        Outgoing {
+            mesh,
+            start,
+            next: Some(start),
+        }
+    }
+}
+
+impl Iterator for Outgoing<'_> {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        let h = self.next?;
+        self.next = self
+            .mesh
+            .he_twin(self.mesh.he_prev(h))
+            .filter(|&t| t != self.start);
+        Some(h)
+    }
+}
+
+/// The two boundary neighbours of boundary vertex `v`: the end of its outgoing boundary
+/// half-edge and the start of its incoming one.
+pub(crate) fn boundary_neighbors(mesh: &PolyMesh, v: usize) -> (u32, u32) {
+    let out = mesh.vertex_halfedge(v);
+    let last = Outgoing::new(mesh, v).last().unwrap_or(out);
+    (mesh.he_to(out), mesh.he_from(mesh.he_prev(last)))
+}
+
+/// Whether `v` is a boundary vertex with a single incident face (valence 2): a corner.
+pub(crate) fn is_corner(mesh: &PolyMesh, v: usize) -> bool {
+    let h = mesh.vertex_halfedge(v);
+    mesh.he_twin(h).is_none() && mesh.he_twin(mesh.he_prev(h)).is_none()
+}
+
+/// `cos(2 pi k / n)`, exact at the multiples of 30 degrees where the value is rational (so that
+/// regular weights such as 1/16 or 9/16 come out exactly).
+pub(crate) fn cos_2pi(k: i64, n: i64) -> f64 {
+    let r = k.rem_euclid(n);
+    if (12 * r) % n == 0 {
+        match 12 * r / n {
+            0 => return 1.0,
+            2 | 10 => return 0.5,
+            3 | 9 => return 0.0,
+            4 | 8 => return -0.5,
+            6 => return -1.0,
+            _ => {}
+        }
+    }
+    (2.0 * std::f64::consts::PI * r as f64 / n as f64).cos()
+}
+
+/// `sin(2 pi k / n)`, exact where [`cos_2pi`] is.
+pub(crate) fn sin_2pi(k: i64, n: i64) -> f64 {
+    cos_2pi(4 * k - n, 4 * n)
+}
+
+/// Fails when a child net would need more points than `u32` indices can name.
+pub(crate) fn check_child_size(scheme: &str, points: usize) -> Result<()> {
+    if points > u32::MAX as usize {
+        return Err(Error::Unsupported(format!(
+            "one {scheme} step would create {points} points, more than fairsub's 32-bit indices \
+             allow; refine a part of the net or use fewer levels"
+        )));
+    }
+    Ok(())
+}
+
+/// A reusable buffer for one stencil row.
+#[derive(Debug, Default)]
+pub(crate) struct RowBuf {
+    pairs: Vec<(u32, f64)>,
+}
+
+impl RowBuf {
+    /// Adds `w` times source `i`.
+    #[inline]
+    pub(crate) fn add(&mut self, i: u32, w: f64) {
+        self.pairs.push((i, w));
+    }
+
+    /// Sorts the row by source, merges duplicate sources (degenerate nets can name a vertex
+    /// twice in one rule), drops exact zeros, appends the row to `table` and clears the buffer.
+    pub(crate) fn flush_into(&mut self, table: &mut StencilTable) {
+        self.pairs.sort_unstable_by_key(|p| p.0);
+        let mut k = 0;
+        for r in 0..self.pairs.len() {
+            if k > 0 && self.pairs[k - 1].0 == self.pairs[r].0 {
+                self.pairs[k - 1].1 += self.pairs[r].1;
+            } else {
+                self.pairs[k] = self.pairs[r];
+                k += 1;
+            }
+        }
+        self.pairs.truncate(k);
+        self.pairs.retain(|p| p.1 != 0.0);
+        table.push_pairs(&self.pairs);
+        self.pairs.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn walk_matches_mesh_and_rows_merge() {
+        let pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-1.0, 0.0, 0.0],
+        ];
+        let m = PolyMesh::new(pos, &[vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 4]]).unwrap();
+        for v in 0..m.num_vertices() {
+            let walk: Vec<u32> = Outgoing::new(&m, v).collect();
+            assert_eq!(walk, m.outgoing_halfedges(v));
+            if m.is_boundary_vertex(v) {
+                let nb = m.vertex_neighbors(v);
+                assert_eq!(boundary_neighbors(&m, v), (nb[0], *nb.last().unwrap()));
+            }
+        }
+        let mut t = StencilTable::new(3);
+        let mut row = RowBuf::default();
+        row.add(2, 0.25);
+        row.add(0, 0.5);
+        row.add(2, 0.25);
+        row.add(1, 0.0);
+        row.flush_into(&mut t);
+        assert_eq!(t.row(0), (&[0u32, 2][..], &[0.5, 0.5][..]));
+        assert!(is_corner(&m, 1) && !is_corner(&m, 0) && !is_corner(&m, 2));
+    }
+
+    #[test]
+    fn exact_trigonometry() {
+        assert_eq!(cos_2pi(1, 6), 0.5);
+        assert_eq!(cos_2pi(1, 4), 0.0);
+        assert_eq!(cos_2pi(-1, 3), -0.5);
+        assert_eq!(sin_2pi(1, 4), 1.0);
+        assert_eq!(sin_2pi(1, 12), 0.5);
+        for n in 1i64..20 {
+            for k in -3i64..25 {
+                let x = 2.0 * std::f64::consts::PI * k.rem_euclid(n) as f64 / n as f64;
+                assert!((cos_2pi(k, n) - x.cos()).abs() < 1e-14);
+                assert!((sin_2pi(k, n) - x.sin()).abs() < 1e-14);
+            }
+        }
+    }
+}

@@ -1,0 +1,389 @@
+//! Doo-Sabin subdivision and its Catmull-Clark variant DS^CC, with boundaries, as stencils.
+//!
+//! Both are dual (vertex-splitting) schemes that generalise uniform bi-2 B-spline refinement to
+//! nets of any polygons (D. Doo, M. Sabin, *Behaviour of recursive division surfaces near
+//! extraordinary points*, CAD 10(6), 1978). They share one topological step and differ only in
+//! the rule for the new point at a face corner, a circulant rule on the face's vertices:
+//!
+//! - Doo-Sabin ([`DooSabin`]): for corner `i` of an n-gon `v_0 .. v_{n-1}`,
+//!   `sum_j w_ij v_j` with `w_ii = 1/4 + 5/(4n)`, `w_ij = (3 + 2 cos(2 pi (i-j)/n)) / (4n)`. Its
+//!   n-gon block has the eigenvalues `1, 1/2, 1/2, 1/4, ..., 1/4`.
+//! - DS^CC ([`DooSabinCc`]), the rule Catmull and Clark suggested (reported by Doo and Sabin in
+//!   1978; the bi-2 paper of this project uses it to pre-process coarse nets): the mean of the
+//!   vertex, the face centroid and the midpoints of the two face edges at the vertex,
+//!   `(v_i + c + (v_i + v_{i-1})/2 + (v_i + v_{i+1})/2) / 4`. Eigenvalues
+//!   `1, 1/2 + cos(2 pi k / n) / 4`.
+//!
+//! On a quad both give the bi-2 mask `9/16, 3/16, 3/16, 1/16`.
+//!
+//! # Boundary rules (fairsub's choice)
+//!
+//! The boundary polygon of the net is refined by Chaikin's corner cutting, so the boundary of the
+//! limit surface is the uniform quadratic B-spline curve of the boundary polygon:
+//!
+//! - each boundary edge `a -> b` (in the direction of its half-edge) gets two child points,
+//!   `3/4 a + 1/4 b` and `1/4 a + 3/4 b`;
+//! - the E-face of a boundary edge is the quad of the two face-corner points of its face and its
+//!   two edge points;
+//! - the V-face of a boundary vertex is the polygon of the edge point on its outgoing boundary
+//!   edge, its face-corner points counter-clockwise, and the edge point on its incoming boundary
+//!   edge;
+//! - a corner, a boundary vertex with a single face (valence 2), is also kept as a child point
+//!   that stays put and closes its V-face to a quad (edge point, face-corner point, edge point,
+//!   corner). The boundary curve is then the quadratic B-spline of the boundary polygon with every
+//!   corner doubled: it interpolates the corner with a tangent break, as the Loop and
+//!   Catmull-Clark corner rules (OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`) do.
+//!
+//! Why these rules: on a rectangular quad net they are exactly tensor-product bi-2 B-spline
+//! refinement of the net whose boundary layer of points is doubled (a phantom copy of every
+//! boundary point, four copies of a corner): the phantom face on a boundary edge is degenerate and
+//! its Doo-Sabin corner points are the Chaikin points, so the scheme stays a uniform spline up to
+//! and including the corners, and every other rule is the plain Doo-Sabin rule. Nasri's boundary
+//! rules (A. Nasri, *Polyhedral subdivision methods for free-form surfaces*, ACM TOG 6(1), 1987)
+//! have the same aim, a limit boundary that is the quadratic B-spline of the boundary polygon; we
+//! did not have Nasri's text to hand, so we do not claim to reproduce his masks, and the rules
+//! here are our own documented construction (CGAL's `DooSabin_mask_3` and OpenSubdiv have no
+//! Doo-Sabin boundary rules to compare with). Without
+//! the kept corner the V-face of a corner would be a triangle that survives at every level, and
+//! the bi-2 paper of this project blames exactly such 3-sided faces for Doo-Sabin's worst
+//! highlight-line oscillations. Near boundary vertices with other than two faces the V-face is a
+//! `(k + 2)`-gon touching the boundary; its smoothness is not analysed here.
+//!
+//! An interior vertex of valence 2 (two faces sharing two edges) would give a 2-sided V-face:
+//! that V-face is omitted and its two neighbouring E-faces share the edge instead.
+//!
+//! # Layout of one step
+//!
+//! Child points: `h` for face corner (half-edge) `h`, `0 <= h < H`; then two per boundary edge,
+//! `H + 2b` (near `a`) and `H + 2b + 1` (near `b`) for the `b`-th boundary edge in edge order;
+//! then the kept corners in vertex order. Child faces: the F-face of parent face `f` (index `f`,
+//! its corners are the points `h` of `f` in order), the E-face of every edge in edge order, the
+//! V-face of every vertex in vertex order (omitted for interior vertices of valence 2).
+//!
+//! # Limit points
+//!
+//! A face-corner rule whose rows and columns sum to one keeps the centroid of every F-face, and
+//! F-faces shrink to a point of the limit surface: the limit point of a face is its centroid
+//! ([`face_limit_stencils`]). So the limit point of an interior vertex is the centroid of its
+//! V-face (for a regular quad net the bi-2 mask `(1, 6, 1) x (1, 6, 1) / 64`); of a boundary vertex
+//! with neighbours `u`, `w` on the boundary, the boundary curve's point `(u + 6v + w) / 8`; of a
+//! corner, the corner.
+
+use crate::error::{Error, Result};
+use crate::mesh::{NONE, PolyMesh};
+use crate::stencil::StencilTable;
+
+use super::common::{Outgoing, RowBuf, boundary_neighbors, check_child_size, cos_2pi, is_corner};
+use super::{Refinement, Scheme, finish_refinement};
+
+/// Doo-Sabin subdivision (scheme name `doo-sabin`). See the [module](self) documentation for
+/// the rules, the boundary treatment and the layout of the child net.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DooSabin;
+
+/// DS^CC (scheme name `doo-sabin-cc`): Doo-Sabin's topology with Catmull and Clark's corner
+/// rule `(v + c + m_prev + m_next) / 4`. See the [module](self) documentation.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DooSabinCc;
+
+impl DooSabin {
+    /// The first row of the circulant n-gon block (`n >= 3`): entry `d` is the weight of vertex
+    /// `i + d` (mod n) in the new point of corner `i`: `1/4 + 5/(4n)` for `d = 0`, else
+    /// `(3 + 2 cos(2 pi d / n)) / (4n)`.
+    pub fn weights(n: usize) -> Vec<f64> {
+        let nf = n as f64;
+        (0..n)
+            .map(|d| {
+                if d == 0 {
+                    0.25 + 1.25 / nf
+                } else {
+                    (3.0 + 2.0 * cos_2pi(d as i64, n as i64)) / (4.0 * nf)
+                }
+            })
+            .collect()
+    }
+}
+
+impl DooSabinCc {
+    /// The first row of the circulant n-gon block (`n >= 3`): the vertex itself
+    /// `1/2 + 1/(4n)`, its two face neighbours `1/8 + 1/(4n)`, every other vertex `1/(4n)`.
+    pub fn weights(n: usize) -> Vec<f64> {
+        let q = 0.25 / n as f64;
+        (0..n)
+            .map(|d| match d {
+                0 => 0.5 + q,
+                _ if d == 1 || d + 1 == n => 0.125 + q,
+                _ => q,
+            })
+            .collect()
+    }
+}
+
+impl Scheme for DooSabin {
+    fn name(&self) -> &'static str {
+        "doo-sabin"
+    }
+
+    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        refine_dual(mesh, self.name(), Self::weights)
+    }
+
+    /// Limit points of the net's vertices: see the [module](self) documentation.
+    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
+        dual_limit_stencils(mesh, self.name(), Self::weights)
+    }
+}
+
+impl Scheme for DooSabinCc {
+    fn name(&self) -> &'static str {
+        "doo-sabin-cc"
+    }
+
+    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        refine_dual(mesh, self.name(), Self::weights)
+    }
+
+    /// Limit points of the net's vertices: see the [module](self) documentation.
+    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
+        dual_limit_stencils(mesh, self.name(), Self::weights)
+    }
+}
+
+/// Limit points of the faces of a net under [`DooSabin`] or [`DooSabinCc`] (row `f` for face
+/// `f`): the face centroids, which both corner rules keep at every level while the face shrinks
+/// to a point of the limit surface.
+pub fn face_limit_stencils(mesh: &PolyMesh) -> StencilTable {
+    let nf = mesh.num_faces();
+    let mut table = StencilTable::with_capacity(mesh.num_vertices(), nf, 4);
+    let mut row = RowBuf::default();
+    for f in 0..nf {
+        let w = 1.0 / mesh.face_size(f) as f64;
+        for &v in mesh.face(f) {
+            row.add(v, w);
+        }
+        row.flush_into(&mut table);
+    }
+    table
+}
+
+/// The circulant first rows of a corner rule, computed once per face size.
+struct RuleCache {
+    rule: fn(usize) -> Vec<f64>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl RuleCache {
+    fn new(rule: fn(usize) -> Vec<f64>) -> Self {
+        RuleCache {
+            rule,
+            rows: Vec::new(),
+        }
+    }
+
+    fn get(&mut self, n: usize) -> &[f64] {
+        if self.rows.len() <= n {
+            self.rows.resize(n + 1, Vec::new());
+        }
+        if self.rows[n].is_empty() {
+            self.rows[n] = (self.rule)(n);
+        }
+        &self.rows[n]
+    }
+}
+
+/// Adds the new point of corner `h` (a half-edge) under the circulant corner rule.
+fn add_corner_point(mesh: &PolyMesh, rules: &mut RuleCache, h: u32, scale: f64, row: &mut RowBuf) {
+    let f = mesh.he_face(h) as usize;
+    let verts = mesh.face(f);
+    let n = verts.len();
+    let i = (h - mesh.face_halfedge(f)) as usize;
+    let w = rules.get(n);
+    for (d, &wd) in w.iter().enumerate() {
+        row.add(verts[(i + d) % n], scale * wd);
+    }
+}
+
+/// One step of a dual scheme: Doo-Sabin topology with the given circulant corner rule
+/// (`rule(n)` is the first row of the n-gon block). Boundary and corner points follow the
+/// module's boundary rules whatever the corner rule.
+pub(crate) fn refine_dual(
+    mesh: &PolyMesh,
+    name: &str,
+    rule: fn(usize) -> Vec<f64>,
+) -> Result<Refinement> {
+    let (nv, ne, nf, nh) = (
+        mesh.num_vertices(),
+        mesh.num_edges(),
+        mesh.num_faces(),
+        mesh.num_halfedges(),
+    );
+    // Numbering of boundary edges and corners among the child points.
+    let mut bedge = vec![NONE; ne];
+    let mut nb = 0u32;
+    for (e, slot) in bedge.iter_mut().enumerate() {
+        if mesh.is_boundary_edge(e) {
+            *slot = nb;
+            nb += 1;
+        }
+    }
+    let mut corner = vec![NONE; nv];
+    let mut nc = 0u32;
+    for (v, slot) in corner.iter_mut().enumerate() {
+        if is_corner(mesh, v) {
+            *slot = nc;
+            nc += 1;
+        }
+    }
+    check_child_size(name, nh + 2 * nb as usize + nc as usize)?;
+    let h_count = nh as u32;
+    let edge_point = |e: u32, far: bool| h_count + 2 * bedge[e as usize] + far as u32;
+
+    // Stencils, in child point order.
+    let mut rules = RuleCache::new(rule);
+    let mut table = StencilTable::with_capacity(nv, nh + 2 * nb as usize + nc as usize, 4);
+    let mut row = RowBuf::default();
+    for h in 0..h_count {
+        add_corner_point(mesh, &mut rules, h, 1.0, &mut row);
+        row.flush_into(&mut table);
+    }
+    for e in (0..ne).filter(|&e| mesh.is_boundary_edge(e)) {
+        let h = mesh.edge_halfedge(e);
+        let (a, b) = (mesh.he_from(h), mesh.he_to(h));
+        for (wa, wb) in [(0.75, 0.25), (0.25, 0.75)] {
+            row.add(a, wa);
+            row.add(b, wb);
+            row.flush_into(&mut table);
+        }
+    }
+    for v in (0..nv).filter(|&v| corner[v] != NONE) {
+        row.add(v as u32, 1.0);
+        row.flush_into(&mut table);
+    }
+
+    // Faces, written straight into the flat arrays.
+    let mut face_start: Vec<u32> = Vec::with_capacity(nf + ne + nv + 1);
+    let mut corners: Vec<u32> = Vec::with_capacity(2 * nh + 4 * ne + 2 * nb as usize + nc as usize);
+    face_start.extend_from_slice(mesh.face_starts());
+    corners.extend(0..h_count);
+    for e in 0..ne {
+        let h = mesh.edge_halfedge(e);
+        let quad = match mesh.he_twin(h) {
+            Some(t) => [mesh.he_next(h), h, mesh.he_next(t), t],
+            None => [
+                mesh.he_next(h),
+                h,
+                edge_point(e as u32, false),
+                edge_point(e as u32, true),
+            ],
+        };
+        corners.extend_from_slice(&quad);
+        face_start.push(corners.len() as u32);
+    }
+    for (v, &kept) in corner.iter().enumerate() {
+        let start = corners.len();
+        let boundary = mesh.is_boundary_vertex(v);
+        let h0 = mesh.vertex_halfedge(v);
+        if boundary {
+            corners.push(edge_point(mesh.he_edge(h0), false));
+        }
+        let mut last = h0;
+        for h in Outgoing::new(mesh, v) {
+            corners.push(h);
+            last = h;
+        }
+        if boundary {
+            corners.push(edge_point(mesh.he_edge(mesh.he_prev(last)), true));
+            if kept != NONE {
+                corners.push(h_count + 2 * nb + kept);
+            }
+        } else if corners.len() - start < 3 {
+            // Interior valence 2: drop the 2-sided V-face (see the module documentation).
+            corners.truncate(start);
+            continue;
+        }
+        face_start.push(corners.len() as u32);
+    }
+    finish_refinement(mesh, table, face_start, corners)
+}
+
+/// Limit points of the vertices of a net under a dual scheme with the given corner rule.
+fn dual_limit_stencils(
+    mesh: &PolyMesh,
+    name: &str,
+    rule: fn(usize) -> Vec<f64>,
+) -> Result<StencilTable> {
+    let nv = mesh.num_vertices();
+    let mut rules = RuleCache::new(rule);
+    let mut table = StencilTable::with_capacity(nv, nv, 9);
+    let mut row = RowBuf::default();
+    for v in 0..nv {
+        let vi = v as u32;
+        if !mesh.is_boundary_vertex(v) {
+            let k = Outgoing::new(mesh, v).count();
+            if k < 3 {
+                return Err(Error::Unsupported(format!(
+                    "vertex {v} is an interior vertex of valence 2, which has no closed-form \
+                     {name} limit point; refine the net once (the refined net has no such vertex)"
+                )));
+            }
+            // Centroid of the V-face: the mean of the new points of v's corners.
+            for h in Outgoing::new(mesh, v) {
+                add_corner_point(mesh, &mut rules, h, 1.0 / k as f64, &mut row);
+            }
+        } else if is_corner(mesh, v) {
+            row.add(vi, 1.0);
+        } else {
+            let (u, w) = boundary_neighbors(mesh, v);
+            row.add(vi, 0.75);
+            row.add(u, 0.125);
+            row.add(w, 0.125);
+        }
+        row.flush_into(&mut table);
+    }
+    Ok(table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quad_weights_are_the_bi2_mask() {
+        let expect = [9.0 / 16.0, 3.0 / 16.0, 1.0 / 16.0, 3.0 / 16.0];
+        assert_eq!(DooSabin::weights(4), expect);
+        assert_eq!(DooSabinCc::weights(4), expect);
+        for n in 3..12 {
+            for w in [DooSabin::weights(n), DooSabinCc::weights(n)] {
+                assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+            }
+        }
+        // DS^CC for a triangle: both other vertices are face neighbours.
+        let t = DooSabinCc::weights(3);
+        assert_eq!(t[1], t[2]);
+        assert!((t[0] - (0.5 + 1.0 / 12.0)).abs() < 1e-16);
+    }
+
+    #[test]
+    fn interior_valence_two_vertices_lose_their_v_face() {
+        // A pillow of two quads glued along all four edges: every vertex is interior of
+        // valence 2. One step drops the four 2-sided V-faces and gives a cube.
+        let pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.0, -1.0, 0.0],
+        ];
+        let m = PolyMesh::new(pos, &[vec![0, 3, 2, 1], vec![0, 1, 2, 3]]).unwrap();
+        let r = DooSabin.refine(&m).unwrap();
+        let c = &r.mesh;
+        assert_eq!((c.num_vertices(), c.num_edges(), c.num_faces()), (8, 12, 6));
+        assert!(c.is_all_quads() && c.boundary_loops().is_empty());
+        assert!((0..8).all(|v| c.valence(v) == 3));
+        let msg = DooSabin.limit_stencils(&m).unwrap_err().to_string();
+        assert!(
+            msg.contains("vertex 0") && msg.contains("valence 2"),
+            "{msg}"
+        );
+        assert!(DooSabin.limit_stencils(c).is_ok());
+    }
+}
