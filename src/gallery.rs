@@ -421,3 +421,18 @@ mod tests {
         assert_eq!(open_pipe().boundary_loops().len(), 2);
     }
 }
+
+#[cfg(test)]
+mod cnet_walk_tests {
+    use super::*;
+
+    #[test]
+    fn cnet_indices_reproduce_the_gallery_order() {
+        for n in 3..=8 {
+            let m = cnet(n, CnetShape::Saddle, 3);
+            let idx = m.cnet_indices(0, 3).unwrap();
+            let expect: Vec<u32> = (0..m.num_vertices() as u32).collect();
+            assert_eq!(idx, expect, "n = {n}");
+        }
+    }
+}

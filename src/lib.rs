@@ -12,6 +12,7 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod bezier;
 pub mod error;
 pub mod gallery;

@@ -520,6 +520,87 @@ impl PolyMesh {
         hs.into_iter().find(|&h| self.he_to(h) == b as u32)
     }
 
+    /// Walks a quad grid starting at cell `(0, 0)` whose corner `(0, 0)` is the start of
+    /// half-edge `h` and whose `+u` direction is `h`'s direction: returns `grid[i][j]`, the vertex
+    /// at chart point `(i, j)` for `0 <= i, j <= size`, or `None` when a needed cell is missing or
+    /// not a quad. The chart is oriented like the faces (`+v` is counter-clockwise from `+u`).
+    pub fn sector_grid(&self, h: u32, size: usize) -> Option<Vec<Vec<u32>>> {
+        // cell[i][j] = the half-edge of cell (i, j) leaving its (i, j) corner in +u direction.
+        let mut cell = vec![vec![NONE; size]; size];
+        for i in 0..size {
+            for j in 0..size {
+                let c = if i == 0 && j == 0 {
+                    h
+                } else if j == 0 {
+                    // Right neighbour of cell (i - 1, 0).
+                    let left = cell[i - 1][0];
+                    if self.face_size(self.he_face(left) as usize) != 4 {
+                        return None;
+                    }
+                    self.he_next(self.he_twin(self.he_next(left))?)
+                } else {
+                    // Upper neighbour of cell (i, j - 1).
+                    let below = cell[i][j - 1];
+                    if self.face_size(self.he_face(below) as usize) != 4 {
+                        return None;
+                    }
+                    self.he_twin(self.he_next(self.he_next(below)))?
+                };
+                if self.face_size(self.he_face(c) as usize) != 4 {
+                    return None;
+                }
+                cell[i][j] = c;
+            }
+        }
+        let mut grid = vec![vec![NONE; size + 1]; size + 1];
+        for i in 0..size {
+            for j in 0..size {
+                let c = cell[i][j];
+                let n1 = self.he_next(c);
+                let n2 = self.he_next(n1);
+                let n3 = self.he_next(n2);
+                grid[i][j] = self.he_from(c);
+                grid[i + 1][j] = self.he_from(n1);
+                grid[i + 1][j + 1] = self.he_from(n2);
+                grid[i][j + 1] = self.he_from(n3);
+            }
+        }
+        Some(grid)
+    }
+
+    /// The c-net of vertex `v` with `rings` rings of quads, in the canonical order of
+    /// [`crate::gallery::cnet`]: `v`, then for each sector `s` (counter-clockwise from
+    /// [`PolyMesh::vertex_halfedge`]) the chart points `(i, j)`, `i = 1..=rings`,
+    /// `j = 0..=rings`. `None` when `v` is on the boundary or the rings are not regular quads.
+    pub fn cnet_indices(&self, v: usize, rings: usize) -> Option<Vec<u32>> {
+        if self.is_boundary_vertex(v) {
+            return None;
+        }
+        self.cnet_indices_from(self.vertex_halfedge(v), rings)
+    }
+
+    /// Like [`PolyMesh::cnet_indices`] with sector 0 starting at the outgoing half-edge `h` of
+    /// an interior vertex.
+    pub fn cnet_indices_from(&self, h: u32, rings: usize) -> Option<Vec<u32>> {
+        let v = self.he_from(h);
+        let mut out = vec![v];
+        let mut hs = vec![h];
+        loop {
+            let t = self.he_twin(self.he_prev(*hs.last().expect("non-empty")))?;
+            if t == h {
+                break;
+            }
+            hs.push(t);
+        }
+        for h in hs {
+            let g = self.sector_grid(h, rings)?;
+            for row in g.iter().skip(1) {
+                out.extend_from_slice(row);
+            }
+        }
+        Some(out)
+    }
+
     /// Centroid of face `f`.
     pub fn face_centroid(&self, f: usize) -> Point {
         crate::geom::centroid(self.face(f).iter().map(|&v| self.positions[v as usize]))

@@ -1,0 +1,364 @@
+//! Analysis of subdivision schemes: local subdivision matrices, spectra, Fourier blocks,
+//! eigenvectors, limit and tangent stencils, characteristic maps and their certificates.
+//!
+//! Every matrix here is assembled by applying a scheme's own refinement stencils to its local
+//! net ([`local`]), never from a second copy of the rules, so the analysis proves properties of
+//! exactly the code that builds surfaces. Local nets are ordered `centre points`, then sector
+//! after sector with the same number of points each, which makes the discrete Fourier blocks of
+//! rotationally symmetric schemes directly available.
+
+pub mod local;
+
+use crate::error::{Error, Result};
+use nalgebra::{Complex, DMatrix, DVector};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Complex number type of the analysis.
+pub type C64 = Complex<f64>;
+
+/// A scheme's subdivision matrix at one valence, on its local net.
+#[derive(Debug, Clone)]
+pub struct LocalMatrix {
+    /// Scheme name.
+    pub scheme: String,
+    /// Valence (or facet size).
+    pub n: usize,
+    /// Number of central points (ordered first).
+    pub centre: usize,
+    /// Points per sector (sectors follow the centre, in rotation order).
+    pub sector: usize,
+    /// The square matrix: row `r` gives refined local-net point `r` in terms of the old ones.
+    pub matrix: DMatrix<f64>,
+}
+
+/// An eigenvalue with its multiplicity.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Eigenvalue {
+    /// Real part.
+    pub re: f64,
+    /// Imaginary part.
+    pub im: f64,
+    /// Modulus.
+    pub modulus: f64,
+    /// Algebraic multiplicity (eigenvalues grouped within a relative 1e-6).
+    pub multiplicity: usize,
+}
+
+/// The spectrum of a subdivision matrix.
+#[derive(Debug, Clone, Serialize)]
+pub struct Spectrum {
+    /// Distinct eigenvalues by decreasing modulus, with multiplicities.
+    pub eigenvalues: Vec<Eigenvalue>,
+    /// The dominant eigenvalue (1 for an affine scheme).
+    pub dominant: f64,
+    /// Subdominant eigenvalue lambda (largest modulus below the dominant one).
+    pub lambda: f64,
+    /// Multiplicity of lambda.
+    pub lambda_multiplicity: usize,
+    /// Subsubdominant eigenvalue mu (next modulus after lambda).
+    pub mu: f64,
+    /// mu / lambda^2 (1 for curvature-bounded schemes).
+    pub mu_over_lambda_squared: f64,
+}
+
+/// Groups sorted eigenvalues into distinct values with multiplicities.
+pub fn group_eigenvalues(values: &[C64], rel_tol: f64) -> Vec<Eigenvalue> {
+    let mut v: Vec<C64> = values.to_vec();
+    v.sort_by(|a, b| b.norm().total_cmp(&a.norm()).then(b.re.total_cmp(&a.re)).then(b.im.total_cmp(&a.im)));
+    let mut out: Vec<(C64, usize)> = Vec::new();
+    'outer: for z in v {
+        for (w, k) in out.iter_mut() {
+            if (*w - z).norm() <= rel_tol * w.norm().max(1e-3) {
+                // Running mean keeps clusters of a defective eigenvalue together.
+                *w = (*w * (*k as f64) + z) / ((*k + 1) as f64);
+                *k += 1;
+                continue 'outer;
+            }
+        }
+        out.push((z, 1));
+    }
+    out.into_iter()
+        .map(|(z, k)| Eigenvalue {
+            re: z.re,
+            im: if z.im.abs() < 1e-12 { 0.0 } else { z.im },
+            modulus: z.norm(),
+            multiplicity: k,
+        })
+        .collect()
+}
+
+/// All eigenvalues of a real square matrix.
+pub fn eigenvalues(m: &DMatrix<f64>) -> Vec<C64> {
+    m.clone().complex_eigenvalues().iter().copied().collect()
+}
+
+/// The spectrum of a subdivision matrix: grouped eigenvalues, lambda, mu and mu / lambda^2.
+pub fn spectrum(m: &DMatrix<f64>) -> Spectrum {
+    let ev = group_eigenvalues(&eigenvalues(m), 1e-6);
+    let dominant = ev.first().map(|e| e.re).unwrap_or(0.0);
+    let below: Vec<&Eigenvalue> = ev.iter().filter(|e| e.modulus < dominant.abs() - 1e-9).collect();
+    // Distinct moduli below the dominant one.
+    let mut moduli: Vec<(f64, usize)> = Vec::new();
+    for e in &below {
+        match moduli.last_mut() {
+            Some((m, k)) if (*m - e.modulus).abs() <= 1e-6 * m.max(1e-3) => *k += e.multiplicity,
+            _ => moduli.push((e.modulus, e.multiplicity)),
+        }
+    }
+    let (lambda, lambda_multiplicity) = moduli.first().copied().unwrap_or((0.0, 0));
+    let mu = moduli.get(1).map(|m| m.0).unwrap_or(0.0);
+    Spectrum {
+        eigenvalues: ev,
+        dominant,
+        lambda,
+        lambda_multiplicity,
+        mu,
+        mu_over_lambda_squared: if lambda > 0.0 { mu / (lambda * lambda) } else { f64::NAN },
+    }
+}
+
+/// A discrete Fourier block of a rotationally symmetric subdivision matrix.
+#[derive(Debug, Clone)]
+pub struct FourierBlock {
+    /// Frequency `w` (the block acts on vectors `x_(s, b) = v_b exp(2 pi i w s / n)`).
+    pub frequency: usize,
+    /// The block (`(centre + sector)` square for `w = 0`, `sector` square otherwise).
+    pub matrix: DMatrix<C64>,
+}
+
+impl FourierBlock {
+    /// Eigenvalues of the block.
+    pub fn eigenvalues(&self) -> Vec<C64> {
+        self.matrix.clone().eigenvalues().map(|v| v.iter().copied().collect()).unwrap_or_else(|| {
+            // nalgebra's complex Schur may refuse: fall back to the real embedding.
+            let k = self.matrix.nrows();
+            let mut r = DMatrix::<f64>::zeros(2 * k, 2 * k);
+            for i in 0..k {
+                for j in 0..k {
+                    let z = self.matrix[(i, j)];
+                    r[(i, j)] = z.re;
+                    r[(i, j + k)] = -z.im;
+                    r[(i + k, j)] = z.im;
+                    r[(i + k, j + k)] = z.re;
+                }
+            }
+            // Each eigenvalue appears with its conjugate; keep those of the block itself.
+            let all = eigenvalues(&r);
+            let mut keep = Vec::new();
+            let mut used = vec![false; all.len()];
+            for (i, &z) in all.iter().enumerate() {
+                if used[i] {
+                    continue;
+                }
+                let det = (DMatrix::<C64>::identity(k, k) * z - &self.matrix).determinant().norm();
+                if det < 1e-8 {
+                    keep.push(z);
+                    used[i] = true;
+                }
+                if keep.len() == k {
+                    break;
+                }
+            }
+            keep
+        })
+    }
+
+    /// Coefficients of the characteristic polynomial `det(x I - B)`, highest degree first.
+    pub fn characteristic_polynomial(&self) -> Vec<C64> {
+        poly_from_roots(&self.eigenvalues())
+    }
+}
+
+/// Coefficients (highest degree first, monic) of the polynomial with the given roots.
+pub fn poly_from_roots(roots: &[C64]) -> Vec<C64> {
+    let mut c = vec![C64::new(1.0, 0.0)];
+    for &r in roots {
+        let mut next = vec![C64::new(0.0, 0.0); c.len() + 1];
+        for (i, &a) in c.iter().enumerate() {
+            next[i] += a;
+            next[i + 1] -= a * r;
+        }
+        c = next;
+    }
+    c
+}
+
+impl LocalMatrix {
+    /// Largest deviation from rotational symmetry: `|A[(s,a),(s+r,b)] - A[(0,a),(r,b)]|`, and the
+    /// same for the centre rows and columns.
+    pub fn rotation_defect(&self) -> f64 {
+        let (c, m, n) = (self.centre, self.sector, self.n);
+        let idx = |s: usize, a: usize| c + (s % n) * m + a;
+        let a = &self.matrix;
+        let mut d: f64 = 0.0;
+        for s in 0..n {
+            for r in 0..n {
+                for x in 0..m {
+                    for y in 0..m {
+                        d = d.max((a[(idx(s, x), idx(s + r, y))] - a[(idx(0, x), idx(r, y))]).abs());
+                    }
+                }
+            }
+            for k in 0..c {
+                for x in 0..m {
+                    d = d.max((a[(idx(s, x), k)] - a[(idx(0, x), k)]).abs());
+                    d = d.max((a[(k, idx(s, x))] - a[(k, idx(0, x))]).abs());
+                }
+            }
+        }
+        d
+    }
+
+    /// The discrete Fourier blocks, frequencies `0..n`. Errors when the matrix is not
+    /// rotationally symmetric (defect above 1e-9).
+    pub fn fourier_blocks(&self) -> Result<Vec<FourierBlock>> {
+        let defect = self.rotation_defect();
+        if defect > 1e-9 {
+            return Err(Error::Unsupported(format!(
+                "{} at valence {} is not rotationally symmetric (defect {defect:.3e}); no Fourier blocks",
+                self.scheme, self.n
+            )));
+        }
+        let (c, m, n) = (self.centre, self.sector, self.n);
+        let a = &self.matrix;
+        let idx = |s: usize, x: usize| c + (s % n) * m + x;
+        let mut blocks = Vec::new();
+        for w in 0..n {
+            let zeta = |r: usize| C64::from_polar(1.0, 2.0 * PI * (w * r % n) as f64 / n as f64);
+            let off = if w == 0 { c } else { 0 };
+            let k = off + m;
+            let mut b = DMatrix::<C64>::zeros(k, k);
+            for x in 0..m {
+                for y in 0..m {
+                    let mut z = C64::new(0.0, 0.0);
+                    for r in 0..n {
+                        z += zeta(r) * a[(idx(0, x), idx(r, y))];
+                    }
+                    b[(off + x, off + y)] = z;
+                }
+            }
+            if w == 0 {
+                for i in 0..c {
+                    for j in 0..c {
+                        b[(i, j)] = C64::new(a[(i, j)], 0.0);
+                    }
+                    for y in 0..m {
+                        // Centre row: the sum over sectors of its weights.
+                        let mut z = 0.0;
+                        for r in 0..n {
+                            z += a[(i, idx(r, y))];
+                        }
+                        b[(i, c + y)] = C64::new(z, 0.0);
+                        b[(c + y, i)] = C64::new(a[(idx(0, y), i)], 0.0);
+                    }
+                }
+            }
+            blocks.push(FourierBlock { frequency: w, matrix: b });
+        }
+        Ok(blocks)
+    }
+
+    /// Left eigenvectors (as rows) for the real eigenvalue `value`: an orthonormal basis of the
+    /// null space of `A^T - value I` (singular values below `1e-8`).
+    pub fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
+        null_space(&(self.matrix.transpose() - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value))
+    }
+
+    /// Right eigenvectors for the real eigenvalue `value`.
+    pub fn right_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
+        null_space(&(self.matrix.clone() - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value))
+    }
+
+    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1.
+    pub fn limit_stencil(&self) -> Result<Vec<f64>> {
+        let v = self.left_eigenvectors(1.0);
+        if v.len() != 1 {
+            return Err(Error::Unsupported(format!(
+                "{} at valence {}: eigenvalue 1 has {} left eigenvectors, expected 1",
+                self.scheme,
+                self.n,
+                v.len()
+            )));
+        }
+        let s: f64 = v[0].iter().sum();
+        Ok(v[0].iter().map(|x| x / s).collect())
+    }
+
+    /// The characteristic map's control points on the local net: the real and imaginary parts
+    /// of the frequency-1 eigenvector of the subdominant eigenvalue, as `(x, y, 0)` points,
+    /// oriented so that the map preserves orientation. Returns the points and lambda.
+    pub fn characteristic_points(&self) -> Result<(Vec<[f64; 3]>, f64)> {
+        let spec = spectrum(&self.matrix);
+        let lambda = spec.lambda;
+        let blocks = self.fourier_blocks()?;
+        let b1 = &blocks[1 % self.n];
+        let k = b1.matrix.nrows();
+        let v = complex_null_space(&(b1.matrix.clone() - DMatrix::<C64>::identity(k, k) * C64::new(lambda, 0.0)));
+        let Some(v) = v.into_iter().next() else {
+            return Err(Error::Unsupported(format!(
+                "{} at valence {}: the subdominant eigenvalue {lambda} is not in the frequency-1 block",
+                self.scheme, self.n
+            )));
+        };
+        let (c, m, n) = (self.centre, self.sector, self.n);
+        let off = if self.n == 1 { c } else { 0 };
+        // Normalise the phase so that the largest entry is real and positive.
+        let big = (0..m).max_by(|&a, &b| v[off + a].norm().total_cmp(&v[off + b].norm())).unwrap_or(0);
+        let phase = v[off + big].conj() / v[off + big].norm();
+        let mut pts = vec![[0.0; 3]; c + n * m];
+        for s in 0..n {
+            let z = C64::from_polar(1.0, 2.0 * PI * s as f64 / n as f64);
+            for x in 0..m {
+                let p = v[off + x] * phase * z;
+                pts[c + s * m + x] = [p.re, p.im, 0.0];
+            }
+        }
+        Ok((pts, lambda))
+    }
+}
+
+/// Orthonormal basis of the numerical null space of a real matrix.
+pub fn null_space(a: &DMatrix<f64>) -> Vec<DVector<f64>> {
+    let n = a.ncols();
+    let svd = a.clone().svd(false, true);
+    let v_t = svd.v_t.expect("requested");
+    let smax = svd.singular_values.iter().copied().fold(0.0, f64::max).max(1.0);
+    let mut out = Vec::new();
+    for (i, &s) in svd.singular_values.iter().enumerate() {
+        if s <= 1e-8 * smax {
+            out.push(v_t.row(i).transpose().into_owned());
+        }
+    }
+    // A wide matrix has more null directions than singular values.
+    if svd.singular_values.len() < n {
+        let full = a.clone().transpose() * a;
+        let e = full.symmetric_eigen();
+        for (i, &l) in e.eigenvalues.iter().enumerate() {
+            if l.abs() <= 1e-14 * smax * smax && out.len() < n - svd.singular_values.len() {
+                out.push(e.eigenvectors.column(i).into_owned());
+            }
+        }
+    }
+    out
+}
+
+/// Basis of the numerical null space of a complex matrix.
+pub fn complex_null_space(a: &DMatrix<C64>) -> Vec<DVector<C64>> {
+    let svd = a.clone().svd(false, true);
+    let v_t = svd.v_t.expect("requested");
+    let smax = svd.singular_values.iter().copied().fold(0.0, f64::max).max(1.0);
+    let mut idx: Vec<usize> = (0..svd.singular_values.len()).collect();
+    idx.sort_by(|&x, &y| svd.singular_values[x].total_cmp(&svd.singular_values[y]));
+    idx.into_iter()
+        .filter(|&i| svd.singular_values[i] <= 1e-7 * smax)
+        .map(|i| v_t.row(i).adjoint().into_owned())
+        .collect()
+}
+
+/// Catmull-Clark's subdominant eigenvalue in closed form,
+/// `(c + 5 + sqrt((c + 1)(c + 9))) / 16` with `c = cos(2 pi / n)`.
+pub fn catmull_clark_lambda(n: usize) -> f64 {
+    let c = (2.0 * PI / n as f64).cos();
+    (c + 5.0 + ((c + 1.0) * (c + 9.0)).sqrt()) / 16.0
+}
