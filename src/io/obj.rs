@@ -32,7 +32,8 @@ pub fn read_obj(path: &Path) -> Result<LoadedMesh> {
 pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
     let mut positions: Vec<[f64; 3]> = Vec::new();
     let mut vertex_line: Vec<u32> = Vec::new();
-    let mut faces: Vec<Vec<usize>> = Vec::new();
+    let mut face_start: Vec<u32> = vec![0];
+    let mut corners: Vec<u32> = Vec::new();
     let mut face_line: Vec<u32> = Vec::new();
     let mut ignored: BTreeMap<String, usize> = BTreeMap::new();
     // Positive indices may refer to vertices defined later; check them at the end.
@@ -101,7 +102,7 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
                     vertex_line.push(line as u32);
                 }
                 "f" | "fo" => {
-                    let mut face = Vec::new();
+                    let before = corners.len();
                     for tok in tokens {
                         let vpart = tok.split('/').next().unwrap_or("");
                         let idx: i64 = vpart.parse().map_err(|_| {
@@ -112,6 +113,15 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
                             )
                         })?;
                         let v = if idx > 0 {
+                            if idx > u32::MAX as i64 {
+                                return Err(parse_error(
+                                    path,
+                                    line,
+                                    format!(
+                                        "vertex index {idx} is beyond fairsub's limit of 2^32 - 1 vertices"
+                                    ),
+                                ));
+                            }
                             let v = (idx - 1) as usize;
                             if max_index.is_none_or(|(m, _)| v > m) {
                                 max_index = Some((v, line));
@@ -137,16 +147,20 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
                                 "vertex index 0 in face: OBJ indices start at 1 (or are negative, counting back)",
                             ));
                         };
-                        face.push(v);
+                        corners.push(v as u32);
                     }
-                    if face.len() < 3 {
+                    let n = corners.len() - before;
+                    if n < 3 {
                         return Err(parse_error(
                             path,
                             line,
-                            format!("face has {} vertices; a face needs at least 3", face.len()),
+                            format!("face has {n} vertices; a face needs at least 3"),
                         ));
                     }
-                    faces.push(face);
+                    if corners.len() > u32::MAX as usize {
+                        return Err(parse_error(path, line, "more than 2^32 - 1 face corners"));
+                    }
+                    face_start.push(corners.len() as u32);
                     face_line.push(line as u32);
                 }
                 other => *ignored.entry(other.to_string()).or_insert(0) += 1,
@@ -171,7 +185,7 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
             ),
         ));
     }
-    if faces.is_empty() {
+    if face_line.is_empty() {
         return Err(parse_error(
             path,
             0,
@@ -184,8 +198,8 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
 
     let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
     let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-    let mesh =
-        PolyMesh::new(positions, &faces).map_err(|e| locate_mesh_error(path, e, &fl, &vl, NOTE))?;
+    let mesh = PolyMesh::from_flat(positions, face_start, corners)
+        .map_err(|e| locate_mesh_error(path, e, &fl, &vl, NOTE))?;
     let mut warnings = Vec::new();
     if let Some(w) = dropped_warning(&mesh, &vl, "counted from 0") {
         warnings.push(w);

@@ -107,6 +107,13 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
         })
     };
     let nv = count(0, "vertex")?;
+    if nv > u32::MAX as usize {
+        return Err(parse_error(
+            path,
+            counts_line,
+            format!("{nv} vertices are more than fairsub's limit of 2^32 - 1"),
+        ));
+    }
     let nf = count(1, "face")?;
 
     let mut positions = Vec::with_capacity(nv.min(1 << 24));
@@ -140,7 +147,9 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
         vertex_line.push(l as u32);
     }
 
-    let mut faces: Vec<Vec<usize>> = Vec::with_capacity(nf.min(1 << 24));
+    let mut face_start: Vec<u32> = Vec::with_capacity(nf.min(1 << 24) + 1);
+    face_start.push(0);
+    let mut corners: Vec<u32> = Vec::with_capacity(3 * nf.min(1 << 24));
     let mut face_line = Vec::with_capacity(nf.min(1 << 24));
     for k in 0..nf {
         let (l, t) = lines
@@ -158,7 +167,6 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
                 format!("face {k} has {n} corners; a face needs at least 3"),
             ));
         }
-        let mut face = Vec::with_capacity(n.min(1024));
         for c in 0..n {
             let tok = it.next().ok_or_else(|| {
                 parse_error(
@@ -180,9 +188,12 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
                     ),
                 ));
             }
-            face.push(v);
+            corners.push(v as u32);
         }
-        faces.push(face);
+        if corners.len() > u32::MAX as usize {
+            return Err(parse_error(path, l, "more than 2^32 - 1 face corners"));
+        }
+        face_start.push(corners.len() as u32);
         face_line.push(l as u32);
     }
     if let Some((l, _)) = lines.next() {
@@ -190,7 +201,7 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
             "ignored content after the last face, from line {l} on"
         ));
     }
-    if faces.is_empty() {
+    if face_line.is_empty() {
         return Err(parse_error(
             path,
             counts_line,
@@ -199,7 +210,7 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
     }
     let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
     let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-    let mesh = PolyMesh::new(positions, &faces).map_err(|e| {
+    let mesh = PolyMesh::from_flat(positions, face_start, corners).map_err(|e| {
         locate_mesh_error(
             path,
             e,

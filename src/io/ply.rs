@@ -16,12 +16,12 @@ use super::{
     ChunkedText, LoadedMesh, Polygons, dropped_warning, io_error, locate_mesh_error, parse_error,
     push_point,
 };
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{
-    ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType,
-    ScalarType,
+    BeginList, ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
+    PropertyType, ScalarType,
 };
 use std::io::{BufRead, Write};
 use std::path::Path;
@@ -62,9 +62,14 @@ impl PropertyAccess for Vertex {
     }
 }
 
-/// A face: vertex indices as read (negative values are caught after reading).
+/// A face: vertex indices as read. `int` and `uint` lists (the common ones) are filled in place
+/// by the parser; other integer types go through `set_property`.
 #[derive(Debug, Default)]
-struct Face(Vec<i64>);
+struct Face {
+    int: Vec<i32>,
+    uint: Vec<u32>,
+    other: Vec<i64>,
+}
 
 /// The name of the face index list this file uses (`vertex_indices` or `vertex_index`).
 const INDEX_NAMES: [&str; 2] = ["vertex_indices", "vertex_index"];
@@ -73,11 +78,25 @@ impl PropertyAccess for Face {
     fn new() -> Self {
         Face::default()
     }
+    fn begin_list_int(&mut self, name: &str, _len: usize) -> BeginList<'_, i32> {
+        if INDEX_NAMES.contains(&name) {
+            BeginList::Fill(&mut self.int)
+        } else {
+            BeginList::UseSetter
+        }
+    }
+    fn begin_list_uint(&mut self, name: &str, _len: usize) -> BeginList<'_, u32> {
+        if INDEX_NAMES.contains(&name) {
+            BeginList::Fill(&mut self.uint)
+        } else {
+            BeginList::UseSetter
+        }
+    }
     fn set_property(&mut self, name: &str, p: Property) -> PropertyAccessResult {
         if !INDEX_NAMES.contains(&name) {
             return PropertyAccessResult::Ignored;
         }
-        self.0 = match p {
+        self.other = match p {
             Property::ListChar(v) => v.into_iter().map(i64::from).collect(),
             Property::ListUChar(v) => v.into_iter().map(i64::from).collect(),
             Property::ListShort(v) => v.into_iter().map(i64::from).collect(),
@@ -87,6 +106,19 @@ impl PropertyAccess for Face {
             _ => return PropertyAccessResult::UnsupportedType,
         };
         PropertyAccessResult::Set
+    }
+}
+
+impl Face {
+    /// The indices, whatever list type carried them.
+    fn indices(&self) -> Box<dyn Iterator<Item = i64> + '_> {
+        if !self.int.is_empty() {
+            Box::new(self.int.iter().map(|&v| v as i64))
+        } else if !self.uint.is_empty() {
+            Box::new(self.uint.iter().map(|&v| v as i64))
+        } else {
+            Box::new(self.other.iter().copied())
+        }
     }
 }
 
@@ -230,10 +262,18 @@ pub fn read_ply_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
         None => (0, format!("face {f} (counted from 0)")),
     };
     let nv = verts.len();
-    let mut idx: Vec<Vec<usize>> = Vec::with_capacity(faces.len());
+    if nv > u32::MAX as usize {
+        return Err(Error::Unsupported(format!(
+            "{}: {nv} vertices are more than fairsub's limit of 2^32 - 1",
+            path.display()
+        )));
+    }
+    let mut face_start: Vec<u32> = Vec::with_capacity(faces.len() + 1);
+    face_start.push(0);
+    let mut corners: Vec<u32> = Vec::with_capacity(faces.len() * 4);
     for (f, face) in faces.iter().enumerate() {
-        let mut out = Vec::with_capacity(face.0.len());
-        for &v in &face.0 {
+        let before = corners.len();
+        for v in face.indices() {
             if v < 0 || v as u64 >= nv as u64 {
                 let (l, what) = where_face(f);
                 return Err(parse_error(
@@ -245,20 +285,27 @@ pub fn read_ply_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
                     ),
                 ));
             }
-            out.push(v as usize);
+            corners.push(v as u32);
         }
-        if out.len() < 3 {
+        let n = corners.len() - before;
+        if n < 3 {
             let (l, what) = where_face(f);
             return Err(parse_error(
                 path,
                 l,
-                format!("{what} has {} corners; a face needs at least 3", out.len()),
+                format!("{what} has {n} corners; a face needs at least 3"),
             ));
         }
-        idx.push(out);
+        if corners.len() > u32::MAX as usize {
+            return Err(Error::Unsupported(format!(
+                "{}: more than 2^32 - 1 face corners",
+                path.display()
+            )));
+        }
+        face_start.push(corners.len() as u32);
     }
     drop(faces);
-    if idx.is_empty() {
+    if face_start.len() == 1 {
         return Err(parse_error(
             path,
             0,
@@ -267,7 +314,7 @@ pub fn read_ply_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
     }
     let positions: Vec<[f64; 3]> = verts.into_iter().map(|v| v.0).collect();
     let vertex_line = |_v: usize| None;
-    let mesh = PolyMesh::new(positions, &idx).map_err(|e| {
+    let mesh = PolyMesh::from_flat(positions, face_start, corners).map_err(|e| {
         locate_mesh_error(
             path,
             e,
@@ -372,7 +419,6 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::error::Error;
     use ply_rs_bw::ply::{Addable, DefaultElement, Ply, PropertyDef};
     use ply_rs_bw::writer::Writer;
 
