@@ -10,10 +10,14 @@
 //! | [`obj`] | Wavefront OBJ reader (hand-written, for line numbers) and writer |
 //! | [`off`] | OFF / COFF / NOFF reader and writer |
 //! | [`ply`] | PLY reader (ascii, binary little and big endian, via `ply-rs-bw`) and writer |
+//! | [`bv`] | BezierView `.bv` writer and reader (tensor, triangular patches, polyhedra, groups) |
+//! | [`iges`] | IGES 5.3 writer (entity 128 per patch) and a validating reader |
 //!
 //! Mesh formats are chosen by [`read_mesh`] from the file extension; output formats by
 //! [`OutputFormat::choose`] from a `--format` name or the extension.
 
+pub mod bv;
+pub mod iges;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -25,6 +29,12 @@ use std::fs::File;
 use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+
+pub use bv::{
+    BvFile, BvGroup, BvPolyhedron, TriPatch, bv_to_string, parse_bv, read_bv, write_bv,
+    write_bv_mesh,
+};
+pub use iges::{iges_to_string, parse_iges, read_iges, write_iges};
 
 /// A mesh read from a file, with the notes a user should see (nothing in them is an error).
 #[derive(Debug, Clone)]
