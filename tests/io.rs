@@ -253,6 +253,61 @@ fn format_choice_matches_writers() {
     assert!(e.contains(".step") && e.contains("--format"), "{e}");
 }
 
+/// Deterministic mutation fuzzing: corrupted variants of valid files must give errors (or
+/// valid results), never panics.
+#[test]
+fn mutated_inputs_never_panic() {
+    let m = cube();
+    let mut samples: Vec<(&str, Vec<u8>)> = Vec::new();
+    for (ext, fmt) in [
+        ("obj", MeshFormat::Obj),
+        ("off", MeshFormat::Off),
+        ("ply", MeshFormat::PlyAscii),
+        ("ply", MeshFormat::PlyBinary),
+    ] {
+        let mut buf = Vec::new();
+        io::write_polygons_to(&mut buf, m.positions(), m.face_starts(), m.corners(), fmt).unwrap();
+        samples.push((ext, buf));
+    }
+    let c = complex();
+    samples.push(("bv", io::bv_to_string(&c).unwrap().into_bytes()));
+    samples.push(("igs", io::iges_to_string(&c, "f.igs").unwrap().into_bytes()));
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut rnd = move |n: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n as u64) as usize
+    };
+    let alphabet = b" 0123456789-.eE,;/#\n\rHxDfvPGST";
+    for (ext, base) in &samples {
+        for _ in 0..1500 {
+            let mut b = base.clone();
+            for _ in 0..1 + rnd(4) {
+                let k = rnd(b.len());
+                match rnd(3) {
+                    0 => b[k] = alphabet[rnd(alphabet.len())],
+                    1 => {
+                        b.remove(k);
+                    }
+                    _ => b.insert(k, alphabet[rnd(alphabet.len())]),
+                }
+            }
+            if rnd(10) == 0 {
+                b.truncate(rnd(b.len() + 1));
+            }
+            let path = Path::new("fuzz");
+            let _ = match *ext {
+                "obj" => io::obj::read_obj_from(&b[..], path).map(|_| ()),
+                "off" => io::off::read_off_from(&b[..], path).map(|_| ()),
+                "ply" => io::ply::read_ply_from(&b[..], path).map(|_| ()),
+                "bv" => io::parse_bv(&String::from_utf8_lossy(&b), path).map(|_| ()),
+                _ => io::parse_iges(&String::from_utf8_lossy(&b), path).map(|_| ()),
+            };
+        }
+    }
+}
+
 /// Writes about 270 MB of binary PLY and reports the rate (run with `--ignored --nocapture`
 /// in release mode).
 #[test]

@@ -562,7 +562,7 @@ pub fn parse_bv(text: &str, path: &Path) -> Result<BvFile> {
                             ),
                         ));
                     }
-                    let mut face = Vec::with_capacity(n);
+                    let mut face = Vec::with_capacity(n.min(cur.remaining()));
                     for c in 0..n {
                         let line = cur.peek().map_or(cur.last_line, |t| t.line);
                         let v = cur.int(&|| what(&format!("corner {c} of face {f}")))?;
@@ -895,6 +895,8 @@ mod tests {
         let (l, m) = err("hello\n");
         assert_eq!(l, 1);
         assert!(m.contains("'hello'"), "{m}");
+        let (_, m) = err("1\n4000000000 1\n0 0 0\n");
+        assert!(m.contains("file ends") && m.contains("vertex 1"), "{m}");
         let (l, m) = err("5 2 1000000\n");
         assert_eq!(l, 1);
         assert!(m.contains("1000000"), "{m}");

@@ -116,8 +116,11 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
     }
     let nf = count(1, "face")?;
 
-    let mut positions = Vec::with_capacity(nv.min(1 << 24));
-    let mut vertex_line = Vec::with_capacity(nv.min(1 << 24));
+    // Counts come from the file: never reserve more than its size can hold (a vertex or face
+    // line has at least 6 bytes), so a garbage count cannot trigger a huge allocation.
+    let cap = |n: usize| n.min(text.len() / 6 + 1);
+    let mut positions = Vec::with_capacity(cap(nv));
+    let mut vertex_line = Vec::with_capacity(cap(nv));
     for k in 0..nv {
         let (l, t) = lines
             .next()
@@ -147,10 +150,10 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
         vertex_line.push(l as u32);
     }
 
-    let mut face_start: Vec<u32> = Vec::with_capacity(nf.min(1 << 24) + 1);
+    let mut face_start: Vec<u32> = Vec::with_capacity(cap(nf) + 1);
     face_start.push(0);
-    let mut corners: Vec<u32> = Vec::with_capacity(3 * nf.min(1 << 24));
-    let mut face_line = Vec::with_capacity(nf.min(1 << 24));
+    let mut corners: Vec<u32> = Vec::with_capacity(3 * cap(nf));
+    let mut face_line = Vec::with_capacity(cap(nf));
     for k in 0..nf {
         let (l, t) = lines
             .next()
@@ -312,6 +315,9 @@ mod tests {
         assert_eq!(l, 6);
         assert!(m.contains("2 corners"), "{m}");
         assert!(matches!(read("4OFF\n"), Err(Error::Unsupported(_))));
+        // A huge count in a tiny file fails cleanly (and allocates nothing big).
+        let (_, m) = parse_err("OFF\n4000000000 4000000000 0\n0 0 0\n");
+        assert!(m.contains("after 1 of 4000000000 vertices"), "{m}");
         assert!(matches!(read("OFF BINARY\n"), Err(Error::Unsupported(_))));
         // Validation error mapped to the face line.
         let (l, m) = parse_err("OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n");
