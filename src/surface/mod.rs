@@ -4,6 +4,10 @@
 //! [`Provenance`] (regular region, ring `k` of an extraordinary element, cap / fill), so writers
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
 
+pub mod adjacency;
+#[cfg(test)]
+pub(crate) mod testing;
+
 use crate::bezier::BezierPatch;
 use serde::Serialize;
 
