@@ -43,16 +43,9 @@ fn with_scratch<const D: usize, R>(n: usize, f: impl FnOnce(&mut [[f64; D]]) -> 
 /// # Panics
 /// Panics when `out` is shorter than `d + 1`.
 pub fn bernstein(d: usize, t: f64, out: &mut [f64]) {
-    let s = 1.0 - t;
     out[0] = 1.0;
-    for k in 1..=d {
-        let mut saved = 0.0;
-        for o in out[..k].iter_mut() {
-            let tmp = *o;
-            *o = saved + s * tmp;
-            saved = t * tmp;
-        }
-        out[k] = saved;
+    for k in 0..d {
+        elevate_stage(k, t, out);
     }
 }
 
@@ -63,55 +56,49 @@ pub fn bernstein(d: usize, t: f64, out: &mut [f64]) {
 /// # Panics
 /// Panics when a buffer is shorter than `d + 1`.
 pub fn bernstein_derivs(d: usize, t: f64, b0: &mut [f64], b1: &mut [f64], b2: &mut [f64]) {
-    let s = 1.0 - t;
-    for i in 0..=d {
-        b1[i] = 0.0;
-        b2[i] = 0.0;
-    }
-    // b0 holds the values of the current stage k (degree k) of the recursion.
-    b0[0] = 1.0;
+    let (b0, b1, b2) = (&mut b0[..=d], &mut b1[..=d], &mut b2[..=d]);
+    b1.fill(0.0);
+    b2.fill(0.0);
     let df = d as f64;
-    let first_order = |b0: &[f64], b1: &mut [f64]| {
-        // derivative weights from degree d - 1 values: d (B_{i-1} - B_i)
-        for i in 0..=d {
-            let lo = if i >= 1 { b0[i - 1] } else { 0.0 };
-            let hi = if i < d { b0[i] } else { 0.0 };
-            b1[i] = df * (lo - hi);
-        }
-    };
-    let second_order = |b0: &[f64], b2: &mut [f64]| {
-        // second-derivative weights from degree d - 2 values:
-        // d (d - 1) (B_{i-2} - 2 B_{i-1} + B_i)
-        let m = d - 2;
+    // values of degree max(d - 2, 0), then scatter the second-derivative weights
+    // d (d - 1) (B_{i-2} - 2 B_{i-1} + B_i): each B_k^{d-2} adds to i = k, k + 1, k + 2
+    let m = d.saturating_sub(2);
+    bernstein(m, t, b0);
+    if d >= 2 {
         let c = df * (df - 1.0);
-        for i in 0..=d {
-            let a = if i >= 2 { b0[i - 2] } else { 0.0 };
-            let b = if i >= 1 && i - 1 <= m { b0[i - 1] } else { 0.0 };
-            let e = if i <= m { b0[i] } else { 0.0 };
-            b2[i] = c * (a - 2.0 * b + e);
-        }
-    };
-    if d == 1 {
-        first_order(b0, b1);
-    }
-    if d == 2 {
-        second_order(b0, b2);
-    }
-    for k in 1..=d {
-        let mut saved = 0.0;
-        for o in b0[..k].iter_mut() {
-            let tmp = *o;
-            *o = saved + s * tmp;
-            saved = t * tmp;
-        }
-        b0[k] = saved;
-        if d >= 1 && k == d - 1 {
-            first_order(b0, b1);
-        }
-        if d >= 2 && k == d - 2 {
-            second_order(b0, b2);
+        for k in 0..=m {
+            let w = c * b0[k];
+            b2[k] += w;
+            b2[k + 1] -= 2.0 * w;
+            b2[k + 2] += w;
         }
     }
+    // raise to degree d - 1 and scatter the first-derivative weights d (B_{i-1} - B_i)
+    if d >= 2 {
+        elevate_stage(m, t, b0);
+    }
+    if d >= 1 {
+        for k in 0..d {
+            let w = df * b0[k];
+            b1[k] -= w;
+            b1[k + 1] += w;
+        }
+        elevate_stage(d - 1, t, b0);
+    }
+}
+
+/// One step of the Bernstein recursion: `b[0..=k]` of degree `k` to `b[0..=k+1]` of degree
+/// `k + 1`.
+#[inline]
+fn elevate_stage(k: usize, t: f64, b: &mut [f64]) {
+    let s = 1.0 - t;
+    let mut saved = 0.0;
+    for o in b[..=k].iter_mut() {
+        let tmp = *o;
+        *o = saved + s * tmp;
+        saved = t * tmp;
+    }
+    b[k + 1] = saved;
 }
 
 /// Value of the curve with coefficients `cps` at `t` (de Casteljau; the origin for an empty

@@ -354,17 +354,21 @@ impl BezierPatch {
                 duv: [0.0; 3],
                 dvv: [0.0; 3],
             };
-            for i in 0..nu {
-                let row = &self.cps[i * nv..(i + 1) * nv];
+            for (row, ((&w0, &w1), &w2)) in self
+                .cps
+                .chunks_exact(nv)
+                .zip(bu0.iter().zip(bu1.iter()).zip(bu2.iter()))
+            {
                 let (mut q0, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-                for (j, c) in row.iter().enumerate() {
+                for (c, ((&v0, &v1), &v2)) in
+                    row.iter().zip(bv0.iter().zip(bv1.iter()).zip(bv2.iter()))
+                {
                     for k in 0..3 {
-                        q0[k] += bv0[j] * c[k];
-                        q1[k] += bv1[j] * c[k];
-                        q2[k] += bv2[j] * c[k];
+                        q0[k] += v0 * c[k];
+                        q1[k] += v1 * c[k];
+                        q2[k] += v2 * c[k];
                     }
                 }
-                let (w0, w1, w2) = (bu0[i], bu1[i], bu2[i]);
                 for k in 0..3 {
                     d.p[k] += w0 * q0[k];
                     d.du[k] += w1 * q0[k];
