@@ -25,6 +25,7 @@ use crate::bezier::{Side, curve};
 use crate::geom::{Point, dist};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Two boundary pieces that coincide: side parameter `t` of side `side_a` of patch `a`, for `t`
 /// in `[t[0], t[1]]`, is the same point as side parameter `s` of side `side_b` of patch `b`,
@@ -117,8 +118,8 @@ impl UnionFind {
 /// Welds points closer than `tol` (transitively): returns for every point the id of its
 /// cluster, ids numbered `0..` in order of first appearance, and the number of clusters.
 ///
-/// A spatial hash with cells of at least `2 tol` finds all neighbours of a point in at most 8
-/// cells, so welding is linear in the number of points. `tol <= 0` welds only equal points.
+/// A spatial hash with cells of `64 tol` finds the neighbours of a point in one cell, or in up to
+/// 8 near cell borders, so welding is linear in the number of points. `tol <= 0` welds only equal points.
 pub fn weld_points(points: &[Point], tol: f64) -> (Vec<u32>, usize) {
     let n = points.len();
     let mut uf = UnionFind::new(n);
@@ -128,10 +129,13 @@ pub fn weld_points(points: &[Point], tol: f64) -> (Vec<u32>, usize) {
         .filter(|x| x.is_finite())
         .fold(0.0f64, |m, x| m.max(x.abs()));
     let tol = if tol.is_finite() { tol.max(0.0) } else { 0.0 };
-    // cells never finer than the rounding level of the coordinates, so keys cannot overflow
-    let cell = (2.0 * tol).max(maxc * 1e-14).max(f64::MIN_POSITIVE);
+    // Cells much larger than `tol`, so the box `p +- tol` usually lies in one cell (one lookup
+    // per point), and never finer than the rounding level of the coordinates, so keys cannot
+    // overflow.
+    let cell = (64.0 * tol).max(maxc * 1e-14).max(f64::MIN_POSITIVE);
     let key = |x: f64| (x / cell).floor() as i64;
-    let mut head: HashMap<[i64; 3], u32> = HashMap::with_capacity(n);
+    let mut head: HashMap<[i64; 3], u32, BuildHasherDefault<CellHasher>> =
+        HashMap::with_capacity_and_hasher(n, BuildHasherDefault::default());
     let mut next = vec![u32::MAX; n];
     for (i, p) in points.iter().enumerate() {
         let lo = [key(p[0] - tol), key(p[1] - tol), key(p[2] - tol)];
@@ -166,6 +170,30 @@ pub fn weld_points(points: &[Point], tol: f64) -> (Vec<u32>, usize) {
         ids.push(id_of_root[r]);
     }
     (ids, count as usize)
+}
+
+/// A fast multiplicative hasher for integer cell keys (the default SipHash dominated welding).
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_i64(&mut self, x: i64) {
+        self.write_u64(x as u64);
+    }
 }
 
 /// Parameters closer than this count as equal.

@@ -5,6 +5,7 @@
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
 
 pub mod adjacency;
+pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;
 
