@@ -248,9 +248,9 @@ pub fn raise<const D: usize>(cps: &[[f64; D]]) -> Vec<[f64; D]> {
 }
 
 /// Degree raising to degree `d` (the coefficients unchanged when already of degree `d`);
-/// `None` when the curve's degree exceeds `d`.
+/// `None` when the curve's degree exceeds `d` or there are no coefficients.
 pub fn raise_to<const D: usize>(cps: &[[f64; D]], d: usize) -> Option<Vec<[f64; D]>> {
-    if cps.len() > d + 1 {
+    if cps.is_empty() || cps.len() > d + 1 {
         return None;
     }
     let mut c = cps.to_vec();
@@ -468,6 +468,11 @@ mod tests {
             assert!(dist(up.unwrap_or([f64::NAN; 3]), reference(s)) < 1e-13);
         }
         assert_eq!(raise_to(&c, 2), None);
+        assert_eq!(raise_to::<3>(&[], 2), None);
+        assert_eq!(coefficient_distance(&[], &c), f64::INFINITY);
+        assert!(subsegment::<3>(&[], 0.0, 1.0).is_empty() && split::<3>(&[], 0.5).0.is_empty());
+        assert_eq!(eval::<3>(&[], 0.5), [0.0; 3]);
+        assert_eq!(closest_param(&[], [0.0; 3]).1, f64::INFINITY);
         assert_eq!(coefficient_distance(&c, &raise(&raise(&c))), 0.0);
         assert!(coefficient_distance(&subsegment(&c, 0.0, 0.3), &l) < 1e-15);
         let (t, d) = closest_param(&c, reference(0.61));

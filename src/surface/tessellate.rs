@@ -113,8 +113,59 @@ fn merge_samples(n: usize, mut extra: Vec<f64>) -> SideSamples {
     SideSamples { params, own }
 }
 
+/// Whether all coefficients lie within `tol` of one line: the patch is a curve or a point and
+/// covers no area.
+fn is_degenerate(p: &crate::bezier::BezierPatch, tol: f64) -> bool {
+    use crate::geom::{dist, dot, sub};
+    let Some(&p0) = p.cps.first() else {
+        return true;
+    };
+    let far = p
+        .cps
+        .iter()
+        .copied()
+        .max_by(|a, b| dist(*a, p0).total_cmp(&dist(*b, p0)))
+        .unwrap_or(p0);
+    let l = dist(far, p0);
+    if l <= tol || l.is_nan() {
+        return true;
+    }
+    let e = scale(sub(far, p0), 1.0 / l);
+    p.cps.iter().all(|&q| {
+        let r = sub(q, p0);
+        let along = dot(r, e);
+        norm(sub(r, scale(e, along))) <= tol
+    })
+}
+
 /// [`tessellate`] with an explicit tolerance for shared boundaries and vertex welding.
+///
+/// Patches collapsed to a curve or a point (all coefficients within `tol` of a line) cover no
+/// area and are skipped.
 pub fn tessellate_with_tolerance(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
+    let keep: Vec<usize> = (0..c.len())
+        .filter(|&p| !is_degenerate(&c.patches[p], tol))
+        .collect();
+    if keep.len() == c.len() {
+        return tessellate_all(c, n, tol);
+    }
+    let sub = PatchComplex {
+        patches: keep.iter().map(|&p| c.patches[p].clone()).collect(),
+        provenance: keep.iter().map(|&p| c.provenance[p]).collect(),
+    };
+    let mut t = tessellate_all(&sub, n, tol);
+    for p in t
+        .patch_of_vertex
+        .iter_mut()
+        .chain(t.triangle_patch.iter_mut())
+    {
+        *p = keep[*p as usize] as u32;
+    }
+    t
+}
+
+/// [`tessellate_with_tolerance`] on a complex without degenerate patches.
+fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
     let n = n.max(1);
     let np = c.len();
     let shared = shared_boundaries(c, tol);

@@ -35,6 +35,17 @@ fn check_closed(t: &Tessellation) -> (usize, usize, usize) {
     (t.num_vertices(), directed.len() / 2, t.num_triangles())
 }
 
+/// Every edge used at most twice, once in each direction.
+fn check_closed_or_open(t: &Tessellation) {
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for tri in &t.triangles {
+        for k in 0..3 {
+            *directed.entry((tri[k], tri[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    assert!(directed.values().all(|&c| c == 1));
+}
+
 /// No two vertices within 1e-12, positions on their patches, triangles facing the normals.
 fn check_geometry(c: &PatchComplex, t: &Tessellation) {
     let (_, distinct) = weld_points(&t.positions, 1e-12);
@@ -119,6 +130,50 @@ fn sphere_of_lunes_with_collapsed_sides() {
         // poles are single vertices: 5 lunes x (n - 1) inner rows x n columns + 2
         assert_eq!(v, 5 * (n - 1) * n + 2);
     }
+}
+
+#[test]
+fn degenerate_input_does_not_panic() {
+    let empty = PatchComplex::new();
+    assert_eq!(tessellate(&empty, 4), Tessellation::default());
+    assert!(shared_boundaries(&empty, 1e-9).is_empty());
+    // a point patch, a curve patch and a flat square: only the square has area
+    let mut c = PatchComplex::new();
+    let prov = crate::surface::Provenance::Unknown;
+    c.push(crate::bezier::BezierPatch::new(0, 0, vec![[5.0; 3]]), prov);
+    c.push(
+        crate::bezier::BezierPatch::new(1, 0, vec![[3.0, 0.0, 0.0], [4.0, 0.0, 0.0]]),
+        prov,
+    );
+    c.push(
+        crate::bezier::BezierPatch::new(
+            1,
+            1,
+            vec![[0.0; 3], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+        ),
+        prov,
+    );
+    let t = tessellate(&c, 3);
+    let area = |t: &Tessellation, patch: u32| -> f64 {
+        t.triangles
+            .iter()
+            .zip(&t.triangle_patch)
+            .filter(|(_, p)| **p == patch)
+            .map(|(tri, _)| {
+                let [a, b, d] = tri.map(|v| t.positions[v as usize]);
+                0.5 * norm(cross(sub(b, a), sub(d, a)))
+            })
+            .sum()
+    };
+    // the point and curve patches are skipped: no vertices, no triangles
+    assert!(t.triangle_patch.iter().all(|&p| p == 2));
+    assert!(t.patch_of_vertex.iter().all(|&p| p == 2));
+    assert_eq!(t.num_vertices(), 16);
+    assert!((area(&t, 2) - 1.0).abs() < 1e-15);
+    assert_eq!(t.num_triangles(), 18);
+    check_closed_or_open(&t);
+    let t = tessellate(&c, 0);
+    assert_eq!(t.num_triangles(), 2);
 }
 
 #[test]
