@@ -25,8 +25,6 @@ pub mod curve;
 
 pub use curve::BezierCurve;
 
-#[cfg(test)]
-use crate::geom::normalize;
 use crate::geom::{Point, add, cross, dot, norm, scale};
 use curve::STACK_DEGREE;
 
