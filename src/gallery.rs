@@ -83,7 +83,7 @@ pub fn cnet(n: usize, shape: CnetShape, rings: usize) -> PolyMesh {
                     CnetShape::Convex => -0.15 * r2,
                     CnetShape::Saddle => 0.15 * r2 * (2.0 * y.atan2(x)).cos(),
                     CnetShape::PlanarSectors => {
-                        let h = |k: usize| if (k % n) % 2 == 0 { 0.5 } else { 0.0 };
+                        let h = |k: usize| if (k % n).is_multiple_of(2) { 0.5 } else { 0.0 };
                         fi * h(s) + fj * h(s + 1)
                     }
                     CnetShape::RaisedNode => {
@@ -102,7 +102,12 @@ pub fn cnet(n: usize, shape: CnetShape, rings: usize) -> PolyMesh {
     for s in 0..n {
         for i in 0..r {
             for j in 0..r {
-                faces.push(vec![idx(s, i, j), idx(s, i + 1, j), idx(s, i + 1, j + 1), idx(s, i, j + 1)]);
+                faces.push(vec![
+                    idx(s, i, j),
+                    idx(s, i + 1, j),
+                    idx(s, i + 1, j + 1),
+                    idx(s, i, j + 1),
+                ]);
             }
         }
     }
@@ -134,7 +139,12 @@ pub fn cube() -> PolyMesh {
 
 /// The regular tetrahedron (4 triangles).
 pub fn tetrahedron() -> PolyMesh {
-    let p = vec![[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]];
+    let p = vec![
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ];
     let f = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
     PolyMesh::new(p, &f).expect("tetrahedron")
 }
@@ -210,7 +220,10 @@ fn torus_grid(m: usize, k: usize) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
     let mut pos = Vec::new();
     for i in 0..m {
         for j in 0..k {
-            let (a, b) = (2.0 * PI * i as f64 / m as f64, 2.0 * PI * j as f64 / k as f64);
+            let (a, b) = (
+                2.0 * PI * i as f64 / m as f64,
+                2.0 * PI * j as f64 / k as f64,
+            );
             let rr = big + small * b.cos();
             pos.push([rr * a.cos(), rr * a.sin(), small * b.sin()]);
         }
@@ -409,14 +422,20 @@ mod tests {
         assert_eq!((v3, v5), (4, 4));
         assert!(m.boundary_loops().is_empty());
         // Euler characteristic of a torus.
-        assert_eq!(m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64, 0);
+        assert_eq!(
+            m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64,
+            0
+        );
     }
 
     #[test]
     fn closed_solids_are_closed() {
         for m in [cube(), tetrahedron(), octahedron(), icosahedron(), prism(5)] {
             assert!(m.boundary_loops().is_empty());
-            assert_eq!(m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64, 2);
+            assert_eq!(
+                m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64,
+                2
+            );
         }
         assert_eq!(open_pipe().boundary_loops().len(), 2);
     }

@@ -10,9 +10,18 @@ fn catmull_clark_lambda_matches_closed_form_n3_to_16() {
         let lm = local::catmull_clark(n).unwrap();
         assert!(lm.rotation_defect() < 1e-15);
         let s = analysis::spectrum(&lm.matrix);
-        assert!((s.dominant - 1.0).abs() < 1e-12, "n={n}: dominant {}", s.dominant);
+        assert!(
+            (s.dominant - 1.0).abs() < 1e-12,
+            "n={n}: dominant {}",
+            s.dominant
+        );
         let expect = analysis::catmull_clark_lambda(n);
-        assert!((s.lambda - expect).abs() < 1e-12, "n={n}: lambda {} vs {}", s.lambda, expect);
+        assert!(
+            (s.lambda - expect).abs() < 1e-12,
+            "n={n}: lambda {} vs {}",
+            s.lambda,
+            expect
+        );
         assert_eq!(s.lambda_multiplicity, 2, "n={n}");
     }
 }
@@ -32,7 +41,11 @@ fn catmull_clark_limit_stencil_is_the_published_formula() {
             assert!((at(1, 0) - 4.0 / d).abs() < 1e-12, "edge neighbour");
             assert!((at(1, 1) - 1.0 / d).abs() < 1e-12, "face neighbour");
             for (i, j) in [(1, 2), (2, 0), (2, 1), (2, 2)] {
-                assert!(at(i, j).abs() < 1e-12, "outer weight ({i},{j}) = {}", at(i, j));
+                assert!(
+                    at(i, j).abs() < 1e-12,
+                    "outer weight ({i},{j}) = {}",
+                    at(i, j)
+                );
             }
         }
     }
@@ -45,9 +58,15 @@ fn doo_sabin_facet_blocks() {
         let s = analysis::spectrum(&lm.matrix);
         let ev = &s.eigenvalues;
         assert!((ev[0].re - 1.0).abs() < 1e-12 && ev[0].multiplicity == 1);
-        assert!((ev[1].re - 0.5).abs() < 1e-12 && ev[1].multiplicity == 2, "n={n}: {ev:?}");
+        assert!(
+            (ev[1].re - 0.5).abs() < 1e-12 && ev[1].multiplicity == 2,
+            "n={n}: {ev:?}"
+        );
         if n > 3 {
-            assert!((ev[2].re - 0.25).abs() < 1e-12 && ev[2].multiplicity == n - 3, "n={n}: {ev:?}");
+            assert!(
+                (ev[2].re - 0.25).abs() < 1e-12 && ev[2].multiplicity == n - 3,
+                "n={n}: {ev:?}"
+            );
         }
     }
 }
@@ -63,7 +82,10 @@ fn loop_one_ring_spectrum() {
         for k in 1..n {
             expect.push(3.0 / 8.0 + (2.0 * PI * k as f64 / nf).cos() / 4.0);
         }
-        let mut got: Vec<f64> = analysis::eigenvalues(&lm.matrix).iter().map(|z| z.re).collect();
+        let mut got: Vec<f64> = analysis::eigenvalues(&lm.matrix)
+            .iter()
+            .map(|z| z.re)
+            .collect();
         for z in analysis::eigenvalues(&lm.matrix) {
             assert!(z.im.abs() < 1e-12);
         }
@@ -86,7 +108,10 @@ fn fourier_blocks_reassemble_the_spectrum() {
             all.extend(b.eigenvalues());
         }
         let mut a: Vec<f64> = all.iter().map(|z| z.norm()).collect();
-        let mut b: Vec<f64> = analysis::eigenvalues(&lm.matrix).iter().map(|z| z.norm()).collect();
+        let mut b: Vec<f64> = analysis::eigenvalues(&lm.matrix)
+            .iter()
+            .map(|z| z.norm())
+            .collect();
         a.sort_by(f64::total_cmp);
         b.sort_by(f64::total_cmp);
         assert_eq!(a.len(), b.len());
@@ -96,6 +121,11 @@ fn fourier_blocks_reassemble_the_spectrum() {
         // lambda lies in the frequency-1 block.
         let blocks = lm.fourier_blocks().unwrap();
         let lam = analysis::catmull_clark_lambda(n);
-        assert!(blocks[1].eigenvalues().iter().any(|z| (z.re - lam).abs() < 1e-10 && z.im.abs() < 1e-10));
+        assert!(
+            blocks[1]
+                .eigenvalues()
+                .iter()
+                .any(|z| (z.re - lam).abs() < 1e-10 && z.im.abs() < 1e-10)
+        );
     }
 }

@@ -19,7 +19,9 @@ fn dense(t: &StencilTable) -> DMatrix<f64> {
 
 fn check_valence(n: usize) -> Result<()> {
     if n < 3 {
-        return Err(Error::InvalidArgument(format!("valence {n}: a valence is at least 3")));
+        return Err(Error::InvalidArgument(format!(
+            "valence {n}: a valence is at least 3"
+        )));
     }
     Ok(())
 }
@@ -79,7 +81,11 @@ pub fn loop_net(n: usize, rings: usize) -> PolyMesh {
         for i in 1..=rings {
             for j in 0..=rings - i {
                 let (fi, fj) = (i as f64, j as f64);
-                pos[idx(s, i, j)] = [fi * a0.cos() + fj * a1.cos(), fi * a0.sin() + fj * a1.sin(), 0.0];
+                pos[idx(s, i, j)] = [
+                    fi * a0.cos() + fj * a1.cos(),
+                    fi * a0.sin() + fj * a1.sin(),
+                    0.0,
+                ];
             }
         }
     }

@@ -65,7 +65,12 @@ pub struct Spectrum {
 /// Groups sorted eigenvalues into distinct values with multiplicities.
 pub fn group_eigenvalues(values: &[C64], rel_tol: f64) -> Vec<Eigenvalue> {
     let mut v: Vec<C64> = values.to_vec();
-    v.sort_by(|a, b| b.norm().total_cmp(&a.norm()).then(b.re.total_cmp(&a.re)).then(b.im.total_cmp(&a.im)));
+    v.sort_by(|a, b| {
+        b.norm()
+            .total_cmp(&a.norm())
+            .then(b.re.total_cmp(&a.re))
+            .then(b.im.total_cmp(&a.im))
+    });
     let mut out: Vec<(C64, usize)> = Vec::new();
     'outer: for z in v {
         for (w, k) in out.iter_mut() {
@@ -88,16 +93,34 @@ pub fn group_eigenvalues(values: &[C64], rel_tol: f64) -> Vec<Eigenvalue> {
         .collect()
 }
 
-/// All eigenvalues of a real square matrix.
+/// All eigenvalues of a real square matrix (computed by `faer`, whose Schur iteration is robust
+/// on the highly defective matrices of subdivision; nalgebra's stalls on the regular ones).
 pub fn eigenvalues(m: &DMatrix<f64>) -> Vec<C64> {
-    m.clone().complex_eigenvalues().iter().copied().collect()
+    let f = faer::Mat::<f64>::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)]);
+    f.eigenvalues()
+        .map(|v| v.into_iter().map(|z| C64::new(z.re, z.im)).collect())
+        .unwrap_or_default()
+}
+
+/// All eigenvalues of a complex square matrix.
+pub fn complex_eigenvalues(m: &DMatrix<C64>) -> Vec<C64> {
+    let f = faer::Mat::<faer::c64>::from_fn(m.nrows(), m.ncols(), |i, j| {
+        let z = m[(i, j)];
+        faer::c64::new(z.re, z.im)
+    });
+    f.eigenvalues()
+        .map(|v| v.into_iter().map(|z| C64::new(z.re, z.im)).collect())
+        .unwrap_or_default()
 }
 
 /// The spectrum of a subdivision matrix: grouped eigenvalues, lambda, mu and mu / lambda^2.
 pub fn spectrum(m: &DMatrix<f64>) -> Spectrum {
     let ev = group_eigenvalues(&eigenvalues(m), 1e-6);
     let dominant = ev.first().map(|e| e.re).unwrap_or(0.0);
-    let below: Vec<&Eigenvalue> = ev.iter().filter(|e| e.modulus < dominant.abs() - 1e-9).collect();
+    let below: Vec<&Eigenvalue> = ev
+        .iter()
+        .filter(|e| e.modulus < dominant.abs() - 1e-9)
+        .collect();
     // Distinct moduli below the dominant one.
     let mut moduli: Vec<(f64, usize)> = Vec::new();
     for e in &below {
@@ -114,7 +137,11 @@ pub fn spectrum(m: &DMatrix<f64>) -> Spectrum {
         lambda,
         lambda_multiplicity,
         mu,
-        mu_over_lambda_squared: if lambda > 0.0 { mu / (lambda * lambda) } else { f64::NAN },
+        mu_over_lambda_squared: if lambda > 0.0 {
+            mu / (lambda * lambda)
+        } else {
+            f64::NAN
+        },
     }
 }
 
@@ -130,38 +157,7 @@ pub struct FourierBlock {
 impl FourierBlock {
     /// Eigenvalues of the block.
     pub fn eigenvalues(&self) -> Vec<C64> {
-        self.matrix.clone().eigenvalues().map(|v| v.iter().copied().collect()).unwrap_or_else(|| {
-            // nalgebra's complex Schur may refuse: fall back to the real embedding.
-            let k = self.matrix.nrows();
-            let mut r = DMatrix::<f64>::zeros(2 * k, 2 * k);
-            for i in 0..k {
-                for j in 0..k {
-                    let z = self.matrix[(i, j)];
-                    r[(i, j)] = z.re;
-                    r[(i, j + k)] = -z.im;
-                    r[(i + k, j)] = z.im;
-                    r[(i + k, j + k)] = z.re;
-                }
-            }
-            // Each eigenvalue appears with its conjugate; keep those of the block itself.
-            let all = eigenvalues(&r);
-            let mut keep = Vec::new();
-            let mut used = vec![false; all.len()];
-            for (i, &z) in all.iter().enumerate() {
-                if used[i] {
-                    continue;
-                }
-                let det = (DMatrix::<C64>::identity(k, k) * z - &self.matrix).determinant().norm();
-                if det < 1e-8 {
-                    keep.push(z);
-                    used[i] = true;
-                }
-                if keep.len() == k {
-                    break;
-                }
-            }
-            keep
-        })
+        complex_eigenvalues(&self.matrix)
     }
 
     /// Coefficients of the characteristic polynomial `det(x I - B)`, highest degree first.
@@ -196,7 +192,8 @@ impl LocalMatrix {
             for r in 0..n {
                 for x in 0..m {
                     for y in 0..m {
-                        d = d.max((a[(idx(s, x), idx(s + r, y))] - a[(idx(0, x), idx(r, y))]).abs());
+                        d = d
+                            .max((a[(idx(s, x), idx(s + r, y))] - a[(idx(0, x), idx(r, y))]).abs());
                     }
                 }
             }
@@ -254,7 +251,10 @@ impl LocalMatrix {
                     }
                 }
             }
-            blocks.push(FourierBlock { frequency: w, matrix: b });
+            blocks.push(FourierBlock {
+                frequency: w,
+                matrix: b,
+            });
         }
         Ok(blocks)
     }
@@ -262,12 +262,18 @@ impl LocalMatrix {
     /// Left eigenvectors (as rows) for the real eigenvalue `value`: an orthonormal basis of the
     /// null space of `A^T - value I` (singular values below `1e-8`).
     pub fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
-        null_space(&(self.matrix.transpose() - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value))
+        null_space(
+            &(self.matrix.transpose()
+                - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value),
+        )
     }
 
     /// Right eigenvectors for the real eigenvalue `value`.
     pub fn right_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
-        null_space(&(self.matrix.clone() - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value))
+        null_space(
+            &(self.matrix.clone()
+                - DMatrix::identity(self.matrix.nrows(), self.matrix.ncols()) * value),
+        )
     }
 
     /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1.
@@ -294,7 +300,9 @@ impl LocalMatrix {
         let blocks = self.fourier_blocks()?;
         let b1 = &blocks[1 % self.n];
         let k = b1.matrix.nrows();
-        let v = complex_null_space(&(b1.matrix.clone() - DMatrix::<C64>::identity(k, k) * C64::new(lambda, 0.0)));
+        let v = complex_null_space(
+            &(b1.matrix.clone() - DMatrix::<C64>::identity(k, k) * C64::new(lambda, 0.0)),
+        );
         let Some(v) = v.into_iter().next() else {
             return Err(Error::Unsupported(format!(
                 "{} at valence {}: the subdominant eigenvalue {lambda} is not in the frequency-1 block",
@@ -304,7 +312,9 @@ impl LocalMatrix {
         let (c, m, n) = (self.centre, self.sector, self.n);
         let off = if self.n == 1 { c } else { 0 };
         // Normalise the phase so that the largest entry is real and positive.
-        let big = (0..m).max_by(|&a, &b| v[off + a].norm().total_cmp(&v[off + b].norm())).unwrap_or(0);
+        let big = (0..m)
+            .max_by(|&a, &b| v[off + a].norm().total_cmp(&v[off + b].norm()))
+            .unwrap_or(0);
         let phase = v[off + big].conj() / v[off + big].norm();
         let mut pts = vec![[0.0; 3]; c + n * m];
         for s in 0..n {
@@ -323,7 +333,12 @@ pub fn null_space(a: &DMatrix<f64>) -> Vec<DVector<f64>> {
     let n = a.ncols();
     let svd = a.clone().svd(false, true);
     let v_t = svd.v_t.expect("requested");
-    let smax = svd.singular_values.iter().copied().fold(0.0, f64::max).max(1.0);
+    let smax = svd
+        .singular_values
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(1.0);
     let mut out = Vec::new();
     for (i, &s) in svd.singular_values.iter().enumerate() {
         if s <= 1e-8 * smax {
@@ -347,7 +362,12 @@ pub fn null_space(a: &DMatrix<f64>) -> Vec<DVector<f64>> {
 pub fn complex_null_space(a: &DMatrix<C64>) -> Vec<DVector<C64>> {
     let svd = a.clone().svd(false, true);
     let v_t = svd.v_t.expect("requested");
-    let smax = svd.singular_values.iter().copied().fold(0.0, f64::max).max(1.0);
+    let smax = svd
+        .singular_values
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(1.0);
     let mut idx: Vec<usize> = (0..svd.singular_values.len()).collect();
     idx.sort_by(|&x, &y| svd.singular_values[x].total_cmp(&svd.singular_values[y]));
     idx.into_iter()

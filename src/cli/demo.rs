@@ -32,7 +32,11 @@ pub fn run(out: &Path) -> Result<()> {
             continue;
         }
         let m = super::subdivide::refine(s.name, &net, 3, false)?;
-        fairsub::io::write_mesh(&put(&format!("demo-{}-level3.obj", s.name)), &m, MeshFormat::Obj)?;
+        fairsub::io::write_mesh(
+            &put(&format!("demo-{}-level3.obj", s.name)),
+            &m,
+            MeshFormat::Obj,
+        )?;
     }
     for s in fairsub::schemes::catalog().iter().filter(|s| s.rings) {
         let c = super::subdivide::build_complex(s.name, &net, 6, true)?;

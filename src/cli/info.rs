@@ -62,7 +62,11 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
     let regular = |v: usize| -> bool {
         if tri {
             let n = m.valence(v);
-            if m.is_boundary_vertex(v) { n == 4 || n == 3 } else { n == 6 }
+            if m.is_boundary_vertex(v) {
+                n == 4 || n == 3
+            } else {
+                n == 6
+            }
         } else {
             m.is_regular_quad_vertex(v)
         }
@@ -150,7 +154,10 @@ pub fn run(net: &str, json: bool) -> Result<()> {
     let loaded = super::load_net(net)?;
     let r = report(net, &loaded.mesh);
     if json {
-        println!("{}", serde_json::to_string_pretty(&r).expect("serialisable"));
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&r).expect("serialisable")
+        );
         return Ok(());
     }
     println!("{}", r.source);
@@ -159,7 +166,10 @@ pub fn run(net: &str, json: bool) -> Result<()> {
         r.vertices, r.edges, r.faces, r.euler_characteristic
     );
     let fmt = |m: &BTreeMap<usize, usize>| {
-        m.iter().map(|(k, c)| format!("{k}: {c}")).collect::<Vec<_>>().join(", ")
+        m.iter()
+            .map(|(k, c)| format!("{k}: {c}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     };
     println!("  face sizes:          {}", fmt(&r.face_sizes));
     println!("  interior valences:   {}", fmt(&r.interior_valences));
@@ -175,7 +185,14 @@ pub fn run(net: &str, json: bool) -> Result<()> {
         .extraordinary_vertices
         .iter()
         .take(20)
-        .map(|e| format!("{}(n={}{})", e.vertex, e.valence, if e.boundary { ",b" } else { "" }))
+        .map(|e| {
+            format!(
+                "{}(n={}{})",
+                e.vertex,
+                e.valence,
+                if e.boundary { ",b" } else { "" }
+            )
+        })
         .collect();
     println!(
         "  extraordinary vertices: {}{}{}",

@@ -123,7 +123,10 @@ pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
 fn schemes(json: bool) -> Result<()> {
     let cat = fairsub::schemes::catalog();
     if json {
-        println!("{}", serde_json::to_string_pretty(&cat).expect("serialisable"));
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&cat).expect("serialisable")
+        );
         return Ok(());
     }
     for s in cat {
@@ -146,7 +149,11 @@ fn gallery(out: Option<PathBuf>, list: bool) -> Result<()> {
     let all = fairsub::gallery::all();
     if list {
         for (name, m) in &all {
-            println!("{name:24} {:4} vertices {:4} faces", m.num_vertices(), m.num_faces());
+            println!(
+                "{name:24} {:4} vertices {:4} faces",
+                m.num_vertices(),
+                m.num_faces()
+            );
         }
         return Ok(());
     }

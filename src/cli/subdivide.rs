@@ -97,7 +97,8 @@ pub fn run(a: Args) -> Result<()> {
 pub fn refine(scheme: &str, mesh: &PolyMesh, levels: usize, limit: bool) -> Result<PolyMesh> {
     let s = fairsub::schemes::by_name(scheme)?;
     let pb = super::progress_bar(levels as u64, scheme);
-    let mut m = fairsub::schemes::refine_levels(s.as_ref(), mesh, levels, |l| pb.set_position(l as u64))?;
+    let mut m =
+        fairsub::schemes::refine_levels(s.as_ref(), mesh, levels, |l| pb.set_position(l as u64))?;
     pb.finish_and_clear();
     if limit {
         let lim = s.limit_stencils(&m)?.apply(m.positions());
@@ -107,7 +108,12 @@ pub fn refine(scheme: &str, mesh: &PolyMesh, levels: usize, limit: bool) -> Resu
 }
 
 /// Builds the patch complex with a progress bar.
-pub fn build_complex(scheme: &str, mesh: &PolyMesh, rings: usize, fill: bool) -> Result<PatchComplex> {
+pub fn build_complex(
+    scheme: &str,
+    mesh: &PolyMesh,
+    rings: usize,
+    fill: bool,
+) -> Result<PatchComplex> {
     let pb = super::progress_bar(rings as u64, &format!("{scheme} rings"));
     let c = fairsub::surface::complex(scheme, mesh, ComplexOptions { rings, fill }, |l| {
         pb.set_position(l as u64)
@@ -117,7 +123,12 @@ pub fn build_complex(scheme: &str, mesh: &PolyMesh, rings: usize, fill: bool) ->
 }
 
 /// Writes a patch complex in the chosen format (meshes get a watertight tessellation).
-pub fn write_complex(c: &PatchComplex, fmt: OutputFormat, path: &std::path::Path, tess: usize) -> Result<()> {
+pub fn write_complex(
+    c: &PatchComplex,
+    fmt: OutputFormat,
+    path: &std::path::Path,
+    tess: usize,
+) -> Result<()> {
     match fmt {
         OutputFormat::Bv => fairsub::io::write_bv(path, c),
         OutputFormat::Iges => fairsub::io::write_iges(path, c),

@@ -102,50 +102,51 @@ pub struct SchemeInfo {
 
 /// Every scheme fairsub knows, implemented or planned, with its properties.
 pub fn catalog() -> Vec<SchemeInfo> {
-    vec![SchemeInfo {
-        name: "catmull-clark",
-        family: "classic primal quad scheme [CC78]",
-        input: "any polygon mesh (one step makes it all quads); boundaries with edge-only interpolation",
-        patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
-        smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
-        valences: "all",
-        refine: true,
-        rings: true,
-        status: "available",
-    },
-    SchemeInfo {
-        name: "doo-sabin",
-        family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
-        input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
-        patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
-        smoothness: "C^1 (bi-2 on regular parts)",
-        valences: "all facet sizes",
-        refine: true,
-        rings: false,
-        status: "available (refinement)",
-    },
-    SchemeInfo {
-        name: "doo-sabin-cc",
-        family: "DS^CC: face-corner point = mean of vertex, face centroid and the two edge midpoints",
-        input: "any polygon mesh; boundaries as doo-sabin",
-        patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
-        smoothness: "C^1",
-        valences: "all facet sizes",
-        refine: true,
-        rings: false,
-        status: "available (refinement)",
-    },
-    SchemeInfo {
-        name: "loop",
-        family: "classic triangle scheme [Loo87], Loop's original beta",
-        input: "triangle meshes; boundaries as OpenSubdiv (corners stay put)",
-        patches: "quartic box-spline triangles (not yet: exact patch output pending)",
-        smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
-        valences: "all",
-        refine: true,
-        rings: false,
-        status: "available (refinement)",
-    },
+    vec![
+        SchemeInfo {
+            name: "catmull-clark",
+            family: "classic primal quad scheme [CC78]",
+            input: "any polygon mesh (one step makes it all quads); boundaries with edge-only interpolation",
+            patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
+            smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
+            valences: "all",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "doo-sabin",
+            family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
+            input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
+            patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
+            smoothness: "C^1 (bi-2 on regular parts)",
+            valences: "all facet sizes",
+            refine: true,
+            rings: false,
+            status: "available (refinement)",
+        },
+        SchemeInfo {
+            name: "doo-sabin-cc",
+            family: "DS^CC: face-corner point = mean of vertex, face centroid and the two edge midpoints",
+            input: "any polygon mesh; boundaries as doo-sabin",
+            patches: "bi-2 on regular vertices (not yet: exact patch output pending)",
+            smoothness: "C^1",
+            valences: "all facet sizes",
+            refine: true,
+            rings: false,
+            status: "available (refinement)",
+        },
+        SchemeInfo {
+            name: "loop",
+            family: "classic triangle scheme [Loo87], Loop's original beta",
+            input: "triangle meshes; boundaries as OpenSubdiv (corners stay put)",
+            patches: "quartic box-spline triangles (not yet: exact patch output pending)",
+            smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
+            valences: "all",
+            refine: true,
+            rings: false,
+            status: "available (refinement)",
+        },
     ]
 }
 
@@ -157,7 +158,11 @@ pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
         "doo-sabin-cc" | "ds-cc" => Ok(Box::new(DooSabinCc)),
         "loop" => Ok(Box::new(Loop)),
         _ => {
-            let names: Vec<&str> = catalog().iter().filter(|s| s.refine).map(|s| s.name).collect();
+            let names: Vec<&str> = catalog()
+                .iter()
+                .filter(|s| s.refine)
+                .map(|s| s.name)
+                .collect();
             Err(crate::error::Error::InvalidArgument(format!(
                 "unknown scheme '{name}' (available for refinement: {})",
                 names.join(", ")

@@ -182,7 +182,8 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
         return None;
     }
     let pts: Vec<Point> = net.iter().map(|s| s.apply(m.positions())).collect();
-    Some(bi3_from_net(&pts))
+    let m3 = crate::bezier::convert::cubic_bspline_matrix();
+    Some(crate::bezier::convert::tensor_apply(m3, m3, &pts))
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
@@ -515,32 +516,6 @@ fn fill(
         );
     }
     Ok(())
-}
-
-/// Cubic uniform B-spline segment to Bezier (temporary; replaced by `bezier::convert`).
-fn bi3_from_net(net: &[Point]) -> BezierPatch {
-    const M: [[f64; 4]; 4] = [
-        [1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0, 0.0],
-        [0.0, 4.0 / 6.0, 2.0 / 6.0, 0.0],
-        [0.0, 2.0 / 6.0, 4.0 / 6.0, 0.0],
-        [0.0, 1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0],
-    ];
-    let mut cps = vec![[0.0; 3]; 16];
-    for i in 0..4 {
-        for j in 0..4 {
-            let mut p = [0.0; 3];
-            for k in 0..4 {
-                for l in 0..4 {
-                    let w = M[i][k] * M[j][l];
-                    if w != 0.0 {
-                        p = geom::axpy(p, w, net[k * 4 + l]);
-                    }
-                }
-            }
-            cps[i * 4 + j] = p;
-        }
-    }
-    BezierPatch::new(3, 3, cps)
 }
 
 #[cfg(test)]

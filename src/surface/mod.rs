@@ -4,8 +4,12 @@
 //! [`Provenance`] (regular region, ring `k` of an extraordinary element, cap / fill), so writers
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
 
+pub mod adjacency;
 pub mod cc;
 pub mod regular;
+pub mod tessellate;
+#[cfg(test)]
+pub(crate) mod testing;
 
 use crate::bezier::BezierPatch;
 use serde::Serialize;
