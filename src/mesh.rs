@@ -520,11 +520,10 @@ impl PolyMesh {
         hs.into_iter().find(|&h| self.he_to(h) == b as u32)
     }
 
-    /// Walks a quad grid starting at cell `(0, 0)` whose corner `(0, 0)` is the start of
-    /// half-edge `h` and whose `+u` direction is `h`'s direction: returns `grid[i][j]`, the vertex
-    /// at chart point `(i, j)` for `0 <= i, j <= size`, or `None` when a needed cell is missing or
-    /// not a quad. The chart is oriented like the faces (`+v` is counter-clockwise from `+u`).
-    pub fn sector_grid(&self, h: u32, size: usize) -> Option<Vec<Vec<u32>>> {
+    /// The cells of the quad grid walked by [`PolyMesh::sector_grid`]: `cells[i][j]` is the
+    /// half-edge of cell `(i, j)` leaving its corner `(i, j)` in `+u` direction (its face is
+    /// `he_face`), `0 <= i, j < size`.
+    pub fn sector_cells(&self, h: u32, size: usize) -> Option<Vec<Vec<u32>>> {
         // cell[i][j] = the half-edge of cell (i, j) leaving its (i, j) corner in +u direction.
         let mut cell = vec![vec![NONE; size]; size];
         for i in 0..size {
@@ -552,6 +551,15 @@ impl PolyMesh {
                 cell[i][j] = c;
             }
         }
+        Some(cell)
+    }
+
+    /// Walks a quad grid starting at cell `(0, 0)` whose corner `(0, 0)` is the start of
+    /// half-edge `h` and whose `+u` direction is `h`'s direction: returns `grid[i][j]`, the vertex
+    /// at chart point `(i, j)` for `0 <= i, j <= size`, or `None` when a needed cell is missing or
+    /// not a quad. The chart is oriented like the faces (`+v` is counter-clockwise from `+u`).
+    pub fn sector_grid(&self, h: u32, size: usize) -> Option<Vec<Vec<u32>>> {
+        let cell = self.sector_cells(h, size)?;
         let mut grid = vec![vec![NONE; size + 1]; size + 1];
         for i in 0..size {
             for j in 0..size {

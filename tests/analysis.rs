@@ -129,3 +129,23 @@ fn fourier_blocks_reassemble_the_spectrum() {
         );
     }
 }
+
+#[test]
+fn catmull_clark_characteristic_maps_are_injective_n3_to_16() {
+    for n in 3..=16 {
+        let (ring, lambda) = local::characteristic_ring("catmull-clark", n).unwrap();
+        let cert = fairsub::analysis::certify::certify_ring(&ring, lambda);
+        assert!(cert.injective, "n={n}: {cert:?}");
+        assert!(cert.jacobian_min_coefficient > 0.0);
+        assert_eq!(cert.windings, vec![1, -1]);
+    }
+}
+
+#[test]
+fn a_folded_ring_is_refuted() {
+    // Mirror one patch of the ring: the Jacobian of that patch is negative.
+    let (mut ring, lambda) = local::characteristic_ring("catmull-clark", 5).unwrap();
+    ring[0] = ring[0].reversed_u();
+    let cert = fairsub::analysis::certify::certify_ring(&ring, lambda);
+    assert!(!cert.jacobian_positive && !cert.injective);
+}

@@ -169,3 +169,47 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         ))),
     }
 }
+
+/// The characteristic ring of a scheme at valence `n`: the planar patches of one ring built from
+/// the characteristic-map control points on the local net by the scheme's own patch code, and
+/// lambda.
+pub fn characteristic_ring(
+    scheme: &str,
+    n: usize,
+) -> Result<(Vec<crate::bezier::BezierPatch>, f64)> {
+    match scheme {
+        "catmull-clark" | "cc" => {
+            let lm = catmull_clark(n)?;
+            let (pts, lambda) = lm.characteristic_points()?;
+            let mut net = gallery::cnet(n, CnetShape::Convex, 2);
+            net.set_positions(pts);
+            // One step with Catmull-Clark's stencils; the ring is the level-1 faces of the 2-ring
+            // that do not touch the centre, each an exact bi-3 patch of its regular 4x4 net.
+            let r = CatmullClark.refine(&net)?;
+            let child = r.mesh;
+            let start = 4 * net.vertex_halfedge(0);
+            let mut ring = Vec::with_capacity(3 * n);
+            let m3 = crate::bezier::convert::cubic_bspline_matrix();
+            let mut h = start;
+            for _ in 0..n {
+                let cells = child
+                    .sector_cells(h, 2)
+                    .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
+                for (i, j) in [(1, 0), (1, 1), (0, 1)] {
+                    let f = child.he_face(cells[i][j]) as usize;
+                    let netp = crate::surface::regular::bi3_net(&child, f)
+                        .ok_or_else(|| Error::Unsupported("ring face is not regular".into()))?;
+                    let pts: Vec<_> = netp.iter().map(|s| s.apply(child.positions())).collect();
+                    ring.push(crate::bezier::convert::tensor_apply(m3, m3, &pts));
+                }
+                h = child
+                    .he_twin(child.he_prev(h))
+                    .ok_or_else(|| Error::Unsupported("centre on the boundary".into()))?;
+            }
+            Ok((ring, lambda))
+        }
+        other => Err(Error::InvalidArgument(format!(
+            "no characteristic map for scheme '{other}' (available: catmull-clark)"
+        ))),
+    }
+}

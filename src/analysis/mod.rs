@@ -7,6 +7,9 @@
 //! after sector with the same number of points each, which makes the discrete Fourier blocks of
 //! rotationally symmetric schemes directly available.
 
+pub mod certify;
+pub mod continuity;
+pub mod curvature;
 pub mod local;
 
 use crate::error::{Error, Result};

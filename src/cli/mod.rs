@@ -4,6 +4,7 @@
 //! reaches `main` as one error with a clear message (exit code 1); clap handles usage errors
 //! (exit code 2).
 
+mod analyze;
 mod demo;
 mod info;
 mod subdivide;
@@ -30,6 +31,10 @@ Examples:
   fairsub subdivide net.obj --scheme catmull-clark --rings 6 -o surface.bv
   fairsub subdivide gallery:cnet-5-saddle --scheme catmull-clark --rings 4 -o saddle.igs
   fairsub schemes
+  fairsub analyze --scheme catmull-clark --valence 5
+  fairsub charmap --scheme catmull-clark --valence 5 -o chi5.svg
+  fairsub check surface.bv
+  fairsub check gallery:cnet-5-saddle --scheme catmull-clark --rings 6
 
 A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the built-in gallery
 (`fairsub gallery --list`).";
@@ -64,6 +69,15 @@ as a polyhedron.")]
         #[arg(long, short, default_value = ".")]
         out: PathBuf,
     },
+    /// Spectrum, Fourier blocks, limit and tangent stencils and characteristic-map certificate of a
+    /// scheme at one valence.
+    Analyze(analyze::AnalyzeArgs),
+    /// Write a scheme's characteristic ring (and its lambda-scaled copy) with its injectivity
+    /// certificate.
+    Charmap(analyze::CharmapArgs),
+    /// Continuity report (C0/C1/C2/G1 defects per kind of join) and per-ring curvature ranges of a
+    /// BezierView file or of a net's surface under a scheme.
+    Check(analyze::CheckArgs),
     /// Write the built-in gallery of control nets as OBJ files (or list their names).
     Gallery {
         /// Folder to write into.
@@ -82,6 +96,9 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Subdivide(args) => subdivide::run(args),
         Command::Schemes { json } => schemes(json),
         Command::Demo { out } => demo::run(&out),
+        Command::Analyze(a) => analyze::analyze(a),
+        Command::Charmap(a) => analyze::charmap(a),
+        Command::Check(a) => analyze::check(a),
         Command::Gallery { out, list } => gallery(out, list),
     }
 }

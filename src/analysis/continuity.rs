@@ -1,0 +1,243 @@
+//! Continuity certificates of patch complexes: measured C^0, C^1, C^2 and G^1 defects across
+//! every shared boundary, grouped by the kind of join (regular-regular, ring k - ring k+1,
+//! ring - cap, ...), with the place of each maximum.
+//!
+//! Shared boundaries come from [`crate::surface::adjacency::shared_boundaries`] (T-junctions
+//! included). Along each shared piece the two patches are evaluated at matching points; the
+//! cross-boundary derivatives of order 1 and 2 are compared after matching the
+//! parameterizations: if the piece covers a parameter length `dt` of patch A and `ds` of patch
+//! B, B's transversal parameter is taken to scale by the same ratio `rho = dt / ds` (as between
+//! subdivision rings), so C^1 compares `D_A` with `D_B / rho` and C^2 `D2_A` with `D2_B / rho^2`,
+//! `D` the derivative across the boundary pointing from A into B. The G^1 defect is the angle
+//! between the unit normals. Defects are absolute (model units per unit of A's parameter);
+//! the report also gives them relative to the size of the complex.
+
+use crate::bezier::{BezierPatch, Side};
+use crate::geom::{self, Point};
+use crate::surface::adjacency::{SharedBoundary, default_tolerance, shared_boundaries};
+use crate::surface::{PatchComplex, Provenance};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Where a defect was measured.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Location {
+    /// First patch.
+    pub patch_a: usize,
+    /// Second patch.
+    pub patch_b: usize,
+    /// Provenance of the first patch.
+    pub provenance_a: Provenance,
+    /// Provenance of the second patch.
+    pub provenance_b: Provenance,
+    /// The point.
+    pub point: Point,
+}
+
+/// Maxima of the defects over a set of shared boundaries.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct Defects {
+    /// Number of shared pieces measured.
+    pub pieces: usize,
+    /// Largest positional gap.
+    pub c0: f64,
+    /// Largest first cross-derivative mismatch.
+    pub c1: f64,
+    /// Largest second cross-derivative mismatch.
+    pub c2: f64,
+    /// Largest angle between normals, radians.
+    pub g1: f64,
+    /// Where the largest C^0 defect sits.
+    pub c0_at: Option<Location>,
+    /// Where the largest C^1 defect sits.
+    pub c1_at: Option<Location>,
+    /// Where the largest C^2 defect sits.
+    pub c2_at: Option<Location>,
+    /// Where the largest G^1 defect sits.
+    pub g1_at: Option<Location>,
+}
+
+impl Defects {
+    fn merge(&mut self, o: &Defects) {
+        self.pieces += o.pieces;
+        if o.c0 > self.c0 {
+            self.c0 = o.c0;
+            self.c0_at = o.c0_at;
+        }
+        if o.c1 > self.c1 {
+            self.c1 = o.c1;
+            self.c1_at = o.c1_at;
+        }
+        if o.c2 > self.c2 {
+            self.c2 = o.c2;
+            self.c2_at = o.c2_at;
+        }
+        if o.g1 > self.g1 {
+            self.g1 = o.g1;
+            self.g1_at = o.g1_at;
+        }
+    }
+}
+
+/// A patch side that no other patch shares.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct OpenSide {
+    /// The patch.
+    pub patch: usize,
+    /// Its side (`U0`, `U1`, `V0`, `V1`).
+    pub side: &'static str,
+    /// Provenance of the patch.
+    pub provenance: Provenance,
+    /// Midpoint of the side.
+    pub midpoint: Point,
+}
+
+/// At most this many open sides are listed in a report.
+pub const MAX_LISTED_OPEN_SIDES: usize = 200;
+
+/// The continuity report of a complex.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContinuityReport {
+    /// Number of patches.
+    pub patches: usize,
+    /// Diagonal of the bounding box of all coefficients (the scale of "relative" defects).
+    pub size: f64,
+    /// Patch sides that no other patch shares (the complex's boundary, or a crack).
+    pub open_sides: usize,
+    /// The first [`MAX_LISTED_OPEN_SIDES`] open sides, where a crack would show.
+    pub open: Vec<OpenSide>,
+    /// All shared pieces.
+    pub all: Defects,
+    /// Per kind of join, e.g. `regular|regular`, `ring1|ring2`, `ring6|cap`.
+    pub by_kind: BTreeMap<String, Defects>,
+}
+
+/// Samples per shared piece.
+const SAMPLES: usize = 9;
+
+/// Derivatives across side `side` of `p` at side parameter `t`, pointing out of the patch:
+/// `(point, first, second, normal)`.
+fn across(p: &BezierPatch, side: Side, t: f64) -> (Point, Point, Point, Point) {
+    let [u, v] = side.domain_point(t);
+    let d = p.derivatives(u, v);
+    let n = p.normal_from(u, v, &d);
+    match side {
+        Side::U1 => (d.p, d.du, d.duu, n),
+        Side::U0 => (d.p, geom::scale(d.du, -1.0), d.duu, n),
+        Side::V1 => (d.p, d.dv, d.dvv, n),
+        Side::V0 => (d.p, geom::scale(d.dv, -1.0), d.dvv, n),
+    }
+}
+
+fn kind_name(p: &Provenance) -> String {
+    p.group_name()
+}
+
+/// Measures one shared piece.
+fn measure(c: &PatchComplex, sb: &SharedBoundary) -> Defects {
+    let (pa, pb) = (&c.patches[sb.a], &c.patches[sb.b]);
+    let rho = (sb.t[1] - sb.t[0]) / (sb.s[1] - sb.s[0]).abs();
+    let mut d = Defects {
+        pieces: 1,
+        ..Defects::default()
+    };
+    for k in 0..SAMPLES {
+        let t = sb.t[0] + (sb.t[1] - sb.t[0]) * k as f64 / (SAMPLES - 1) as f64;
+        let s = sb.map_to_b(t);
+        let (xa, da, dda, na) = across(pa, sb.side_a, t);
+        let (xb, db, ddb, nb) = across(pb, sb.side_b, s);
+        // B's outward derivative points back into A: the derivative from A into B is -db.
+        let c0 = geom::dist(xa, xb);
+        let c1 = geom::norm(geom::add(da, geom::scale(db, 1.0 / rho)));
+        let c2 = geom::norm(geom::sub(dda, geom::scale(ddb, 1.0 / (rho * rho))));
+        let g1 = if geom::norm(na) > 0.0 && geom::norm(nb) > 0.0 {
+            geom::norm(geom::cross(na, nb)).atan2(geom::dot(na, nb))
+        } else {
+            0.0
+        };
+        let loc = Location {
+            patch_a: sb.a,
+            patch_b: sb.b,
+            provenance_a: c.provenance[sb.a],
+            provenance_b: c.provenance[sb.b],
+            point: xa,
+        };
+        if c0 > d.c0 || d.c0_at.is_none() {
+            d.c0 = c0;
+            d.c0_at = Some(loc);
+        }
+        if c1 > d.c1 || d.c1_at.is_none() {
+            d.c1 = c1;
+            d.c1_at = Some(loc);
+        }
+        if c2 > d.c2 || d.c2_at.is_none() {
+            d.c2 = c2;
+            d.c2_at = Some(loc);
+        }
+        if g1 > d.g1 || d.g1_at.is_none() {
+            d.g1 = g1;
+            d.g1_at = Some(loc);
+        }
+    }
+    d
+}
+
+/// Measures the continuity of a patch complex across all its shared boundaries.
+pub fn check(c: &PatchComplex) -> ContinuityReport {
+    let tol = default_tolerance(c);
+    let shared = shared_boundaries(c, tol);
+    let size = geom::bounding_box(c.patches.iter().flat_map(|p| p.cps.iter().copied()))
+        .map(|(lo, hi)| geom::dist(lo, hi))
+        .unwrap_or(0.0);
+    // Open sides: non-collapsed sides whose parameter range is not fully covered.
+    let mut covered: Vec<[f64; 4]> = vec![[0.0; 4]; c.len()];
+    for sb in &shared {
+        covered[sb.a][sb.side_a.index()] += sb.t[1] - sb.t[0];
+        covered[sb.b][sb.side_b.index()] += 1.0;
+    }
+    let mut open_sides = 0;
+    let mut open = Vec::new();
+    for (i, p) in c.patches.iter().enumerate() {
+        for side in Side::ALL {
+            if !p.is_collapsed(side, tol) && covered[i][side.index()] < 1.0 - 1e-9 {
+                open_sides += 1;
+                if open.len() < MAX_LISTED_OPEN_SIDES {
+                    let [u, v] = side.domain_point(0.5);
+                    open.push(OpenSide {
+                        patch: i,
+                        side: match side {
+                            Side::U0 => "U0",
+                            Side::U1 => "U1",
+                            Side::V0 => "V0",
+                            Side::V1 => "V1",
+                        },
+                        provenance: c.provenance[i],
+                        midpoint: p.eval(u, v),
+                    });
+                }
+            }
+        }
+    }
+    let mut all = Defects::default();
+    let mut by_kind: BTreeMap<String, Defects> = BTreeMap::new();
+    for sb in &shared {
+        let d = measure(c, sb);
+        let (mut ka, mut kb) = (
+            kind_name(&c.provenance[sb.a]),
+            kind_name(&c.provenance[sb.b]),
+        );
+        if ka > kb {
+            std::mem::swap(&mut ka, &mut kb);
+        }
+        by_kind.entry(format!("{ka}|{kb}")).or_default().merge(&d);
+        all.merge(&d);
+    }
+    ContinuityReport {
+        patches: c.len(),
+        size,
+        open_sides,
+        open,
+        all,
+        by_kind,
+    }
+}
