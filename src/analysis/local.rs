@@ -158,14 +158,28 @@ pub fn doo_sabin_facet(n: usize) -> Result<LocalMatrix> {
     })
 }
 
+/// EG subdivision's matrix `A_n` on the local vector `(c0, d-net)` (`12 n + 1` points).
+pub fn eg(n: usize) -> Result<LocalMatrix> {
+    check_valence(n)?;
+    let st = crate::schemes::eg::Eg::new(n)?.step()?;
+    Ok(LocalMatrix {
+        scheme: "eg".into(),
+        n,
+        centre: 1,
+        sector: 12,
+        matrix: dense(&st.step),
+    })
+}
+
 /// The local matrix of a scheme by name.
 pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
     match scheme {
         "catmull-clark" | "cc" => catmull_clark(n),
         "loop" => loop_one_ring(n),
         "doo-sabin" | "ds" => doo_sabin_facet(n),
+        "eg" => eg(n),
         other => Err(Error::InvalidArgument(format!(
-            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin)"
+            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg)"
         ))),
     }
 }
@@ -208,8 +222,20 @@ pub fn characteristic_ring(
             }
             Ok((ring, lambda))
         }
+        "eg" => {
+            let lm = eg(n)?;
+            let (pts, lambda) = lm.characteristic_points()?;
+            let ring = crate::schemes::eg::Eg::new(n)?.step()?.ring.apply(&pts);
+            let patches = (0..3 * n)
+                .map(|k| {
+                    crate::bezier::BezierPatch::new(4, 4, ring[25 * k..25 * k + 25].to_vec())
+                        .transposed()
+                })
+                .collect();
+            Ok((patches, lambda))
+        }
         other => Err(Error::InvalidArgument(format!(
-            "no characteristic map for scheme '{other}' (available: catmull-clark)"
+            "no characteristic map for scheme '{other}' (available: catmull-clark, eg)"
         ))),
     }
 }

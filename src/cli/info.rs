@@ -110,6 +110,19 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
                 e.vertex, e.valence
             ));
         }
+        let no_eg: Vec<String> = evs
+            .iter()
+            .filter(|e| !e.boundary && ![3, 4, 5].contains(&e.valence))
+            .take(10)
+            .map(|e| format!("{} (n={})", e.vertex, e.valence))
+            .collect();
+        if !no_eg.is_empty() {
+            problems.push(format!(
+                "EG has published rules for valences 3 and 5 only; these vertices fall back to Catmull-Clark \
+                 (or stop with --fallback error): {}",
+                no_eg.join(", ")
+            ));
+        }
         if !quad && evs.iter().all(|e| !e.boundary) {
             let ngons = (0..m.num_faces()).filter(|&f| m.face_size(f) != 4).count();
             problems.push(format!(

@@ -34,6 +34,28 @@ pub struct Args {
     /// Output format (obj, off, ply, ply-ascii, bv, igs), instead of the extension.
     #[arg(long)]
     pub format: Option<String>,
+    /// At vertices whose valence has no rules (EG: all but 3, 4, 5): use Catmull-Clark there,
+    /// or stop with an error.
+    #[arg(long, value_enum, default_value_t = FallbackArg::CatmullClark)]
+    pub fallback: FallbackArg,
+}
+
+/// `--fallback` values.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum FallbackArg {
+    /// Catmull-Clark rings and fill at vertices without rules.
+    CatmullClark,
+    /// Stop with an error naming the vertex.
+    Error,
+}
+
+impl From<FallbackArg> for fairsub::surface::Fallback {
+    fn from(f: FallbackArg) -> Self {
+        match f {
+            FallbackArg::CatmullClark => fairsub::surface::Fallback::CatmullClark,
+            FallbackArg::Error => fairsub::surface::Fallback::Error,
+        }
+    }
 }
 
 /// Default rings of patch output when none are given.
@@ -47,8 +69,23 @@ pub fn run(a: Args) -> Result<()> {
             "give either --levels (refined net) or --rings (patch complex), not both".into(),
         ));
     }
+    let refinable = fairsub::schemes::catalog()
+        .iter()
+        .any(|s| s.name == a.scheme && s.refine)
+        || fairsub::schemes::by_name(&a.scheme).is_ok();
+    let has_patches = fairsub::schemes::catalog()
+        .iter()
+        .any(|s| s.name == a.scheme && s.rings);
+    if !refinable && has_patches && a.levels.is_some() {
+        return Err(Error::InvalidArgument(format!(
+            "scheme '{}' has no control net of its own to refine: write its patches with --rings K \
+             (.bv, .igs, or a tessellated .obj/.ply)",
+            a.scheme
+        )));
+    }
     let patches = match (fmt, a.levels, a.rings) {
         (_, _, Some(_)) => true,
+        (_, None, None) if !refinable && has_patches => true,
         (OutputFormat::Iges, Some(_), None) => {
             return Err(Error::InvalidArgument(
                 "IGES holds patches: use --rings K instead of --levels".into(),
@@ -64,7 +101,7 @@ pub fn run(a: Args) -> Result<()> {
     let mesh = loaded.mesh;
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
-        let complex = build_complex(&a.scheme, &mesh, rings, !a.no_fill)?;
+        let complex = build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?;
         write_complex(&complex, fmt, &a.output, a.tess)?;
         eprintln!(
             "wrote {} patches ({} rings, {}) to {}",
@@ -114,11 +151,35 @@ pub fn build_complex(
     rings: usize,
     fill: bool,
 ) -> Result<PatchComplex> {
+    build_complex_with(
+        scheme,
+        mesh,
+        rings,
+        fill,
+        fairsub::surface::Fallback::default(),
+    )
+}
+
+/// Builds the patch complex with a progress bar; prints the notes (fallbacks) on stderr.
+pub fn build_complex_with(
+    scheme: &str,
+    mesh: &PolyMesh,
+    rings: usize,
+    fill: bool,
+    fallback: fairsub::surface::Fallback,
+) -> Result<PatchComplex> {
     let pb = super::progress_bar(rings as u64, &format!("{scheme} rings"));
-    let c = fairsub::surface::complex(scheme, mesh, ComplexOptions { rings, fill }, |l| {
-        pb.set_position(l as u64)
-    })?;
+    let (c, notes) = fairsub::surface::complex_with_notes(
+        scheme,
+        mesh,
+        ComplexOptions { rings, fill },
+        fallback,
+        |l| pb.set_position(l as u64),
+    )?;
     pb.finish_and_clear();
+    for n in notes {
+        eprintln!("note: {n}");
+    }
     Ok(c)
 }
 

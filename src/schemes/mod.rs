@@ -8,6 +8,7 @@
 
 pub mod catmull_clark;
 pub mod doo_sabin;
+pub mod eg;
 pub mod loop_subdivision;
 
 mod common;

@@ -90,6 +90,38 @@ struct Level {
 pub fn catmull_clark_complex(
     mesh: &PolyMesh,
     opts: CcComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    adaptive_complex(mesh, opts, None, progress)
+}
+
+/// A scheme that replaces Catmull-Clark's rings around an extraordinary vertex by a cap built
+/// from the vertex's c-net (EG, QAS+, guided subdivision). The adaptive loop calls it wherever a
+/// vertex has a clean c-net (its one-ring regular) at the current level and every extraordinary
+/// vertex of that c-net is capped too; elsewhere it refines with Catmull-Clark first (the local
+/// Catmull-Clark step of the EG paper's pseudocode).
+pub trait CapBuilder {
+    /// Whether vertices of valence `n` get a cap; `Ok(false)` leaves them to Catmull-Clark (the
+    /// fallback), an error stops the whole construction (the user asked for no fallback).
+    fn accepts(&self, n: usize, element: Element) -> Result<bool>;
+
+    /// Appends the cap of one vertex: `cnet` holds its c-net positions in the order of
+    /// [`PolyMesh::cnet_indices`] with two rings; rings are numbered from `first_ring`.
+    fn build(
+        &self,
+        cnet: &[Point],
+        n: usize,
+        element: Element,
+        first_ring: u32,
+        out: &mut PatchComplex,
+    ) -> Result<()>;
+}
+
+/// The adaptive loop behind [`catmull_clark_complex`], with optional caps.
+pub fn adaptive_complex(
+    mesh: &PolyMesh,
+    opts: CcComplexOptions,
+    caps: Option<&dyn CapBuilder>,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
     let has_ngons = !mesh.is_all_quads();
@@ -152,6 +184,9 @@ pub fn catmull_clark_complex(
                 None => marked.push((f, tag_irregular(&level, f as usize, tag))),
             }
         }
+        if let Some(builder) = caps {
+            marked = apply_caps(&level, marked, builder, l as u32, &mut out)?;
+        }
         if marked.is_empty() {
             break;
         }
@@ -165,6 +200,81 @@ pub fn catmull_clark_complex(
         progress(l + 1);
     }
     Ok(out)
+}
+
+/// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
+fn apply_caps(
+    level: &Level,
+    marked: Vec<(u32, FaceTag)>,
+    builder: &dyn CapBuilder,
+    l: u32,
+    out: &mut PatchComplex,
+) -> Result<Vec<(u32, FaceTag)>> {
+    let m = &level.mesh;
+    let mut cand: HashMap<u32, Vec<u32>> = HashMap::new();
+    for &(f, _) in &marked {
+        for &v in m.face(f as usize) {
+            let vi = level.info[v as usize];
+            if cand.contains_key(&v)
+                || m.is_regular_quad_vertex(v as usize)
+                || m.is_boundary_vertex(v as usize)
+            {
+                continue;
+            }
+            let Some(element) = vi.origin else { continue };
+            if !vi.fan_ok || !vi.pos_ok {
+                continue;
+            }
+            let Some(idx) = m.cnet_indices(v as usize, 2) else {
+                continue;
+            };
+            let n = m.valence(v as usize);
+            // The one-ring (chart points (1, 0) and (1, 1) of each sector) must be regular and
+            // complete, and the whole c-net trusted.
+            let ring1_ok = (0..n).all(|s| {
+                [idx[1 + 6 * s], idx[2 + 6 * s]]
+                    .iter()
+                    .all(|&w| level.info[w as usize].fan_ok && m.is_regular_quad_vertex(w as usize))
+            });
+            if !ring1_ok || idx.iter().any(|&w| !level.info[w as usize].pos_ok) {
+                continue;
+            }
+            if !builder.accepts(n, element)? {
+                continue;
+            }
+            cand.insert(v, idx);
+        }
+    }
+    // Keep a vertex only if every extraordinary vertex of its c-net is capped too.
+    loop {
+        let drop: Vec<u32> = cand
+            .iter()
+            .filter(|(v, idx)| {
+                idx.iter().any(|&w| {
+                    w != **v && !m.is_regular_quad_vertex(w as usize) && !cand.contains_key(&w)
+                })
+            })
+            .map(|(&v, _)| v)
+            .collect();
+        if drop.is_empty() {
+            break;
+        }
+        for v in drop {
+            cand.remove(&v);
+        }
+    }
+    let mut capped: Vec<u32> = cand.keys().copied().collect();
+    capped.sort_unstable();
+    for &v in &capped {
+        let idx = &cand[&v];
+        let pts: Vec<Point> = idx.iter().map(|&w| m.position(w as usize)).collect();
+        let element = level.info[v as usize].origin.expect("checked above");
+        builder.build(&pts, m.valence(v as usize), element, l + 1, out)?;
+    }
+    Ok(marked
+        .into_iter()
+        .filter(|&(f, _)| !m.face(f as usize).iter().any(|w| cand.contains_key(w)))
+        .collect())
 }
 
 /// The bi-3 patch of face `f` if it is regular and all its net points are trusted.
@@ -481,34 +591,16 @@ fn fill(
             }
             sides[k] = c;
         }
-        let mut b = [[[0.0; 3]; 4]; 4];
-        for i in 0..4 {
-            b[i][0] = sides[0][i];
-            b[3][i] = sides[1][i];
-            b[3 - i][3] = sides[2][i];
-            b[0][3 - i] = sides[3][i];
-        }
-        for i in 1..3 {
-            for j in 1..3 {
-                let (s, t) = (i as f64 / 3.0, j as f64 / 3.0);
-                let mut p = [0.0; 3];
-                for d in 0..3 {
-                    p[d] = (1.0 - s) * b[0][j][d]
-                        + s * b[3][j][d]
-                        + (1.0 - t) * b[i][0][d]
-                        + t * b[i][3][d]
-                        - ((1.0 - s) * (1.0 - t) * b[0][0][d]
-                            + s * (1.0 - t) * b[3][0][d]
-                            + (1.0 - s) * t * b[0][3][d]
-                            + s * t * b[3][3][d]);
-                }
-                b[i][j] = p;
-            }
-        }
-        let cps = b.iter().flat_map(|r| r.iter().copied()).collect();
+        // sides: 0 = v0 (corner 0 -> 1), 1 = u1 (1 -> 2), 2 = v1 run backwards (2 -> 3), 3 = u0
+        // run backwards (3 -> 0).
+        let mut v1 = sides[2];
+        v1.reverse();
+        let mut u0 = sides[3];
+        u0.reverse();
+        let patch = BezierPatch::coons(3, &sides[0], &sides[1], &v1, &u0);
         let element = tag.element.unwrap_or(Element::Face(tag.input_face));
         out.push(
-            BezierPatch::new(3, 3, cps),
+            patch,
             Provenance::Cap {
                 element,
                 sector: tag.sector,

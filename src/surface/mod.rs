@@ -6,6 +6,7 @@
 
 pub mod adjacency;
 pub mod cc;
+pub mod eg;
 pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
@@ -113,6 +114,9 @@ pub struct ComplexOptions {
     pub fill: bool,
 }
 
+/// What schemes with rules for some valences only (EG, QAS+) do elsewhere.
+pub use eg::Fallback;
+
 /// The exact surface of `mesh` under the named scheme as a patch complex. `progress(level)` is
 /// called as rings are produced.
 pub fn complex(
@@ -121,15 +125,50 @@ pub fn complex(
     opts: ComplexOptions,
     progress: impl FnMut(usize),
 ) -> crate::error::Result<PatchComplex> {
+    complex_with_notes(scheme, mesh, opts, Fallback::default(), progress).map(|(c, _)| c)
+}
+
+/// Like [`complex`], with the fallback for valences without rules, and notes for the user (which
+/// elements fell back to which rules).
+pub fn complex_with_notes(
+    scheme: &str,
+    mesh: &crate::mesh::PolyMesh,
+    opts: ComplexOptions,
+    fallback: Fallback,
+    progress: impl FnMut(usize),
+) -> crate::error::Result<(PatchComplex, Vec<String>)> {
+    let plain = |c: crate::error::Result<PatchComplex>| c.map(|c| (c, Vec::new()));
     match scheme {
-        "catmull-clark" | "cc" => cc::catmull_clark_complex(
+        "eg" => {
+            let (c, fb) = eg::eg_complex(
+                mesh,
+                eg::EgOptions {
+                    rings: opts.rings,
+                    fill: opts.fill,
+                    fallback,
+                },
+                progress,
+            )?;
+            let notes = fb
+                .iter()
+                .map(|(e, n)| {
+                    let what = match e {
+                        Element::Vertex(v) => format!("vertex {v}"),
+                        Element::Face(f) => format!("centre of face {f}"),
+                    };
+                    format!("{what} (valence {n}) has no published EG rules: Catmull-Clark rings and fill there")
+                })
+                .collect();
+            Ok((c, notes))
+        }
+        "catmull-clark" | "cc" => plain(cc::catmull_clark_complex(
             mesh,
             cc::CcComplexOptions {
                 rings: opts.rings,
                 fill: opts.fill,
             },
             progress,
-        ),
+        )),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

@@ -1,0 +1,327 @@
+//! EG subdivision surfaces of whole meshes: bi-3 patches on regular faces, an EG cap of `K` bi-4
+//! rings at every extraordinary vertex with published rules, and the documented fill.
+//!
+//! Built on the adaptive loop of [`super::cc`]: every extraordinary vertex whose c-net is clean
+//! (one-ring regular, and every extraordinary vertex of the c-net capped too) gets an EG cap at
+//! the current level; the others are refined by one Catmull-Clark step first (the EG paper's
+//! "local Catmull-Clark step" where extraordinary vertices are not separated by a regular one).
+//! Vertices of a valence without published rules (the text lost the arrays for 6..10) get the
+//! fallback the user chose: Catmull-Clark rings and fill, or an error.
+//!
+//! A cap made at level `L` numbers its rings `L + 1 .. L + K`, so ring indices follow the
+//! geometric nesting also after a local Catmull-Clark step.
+//!
+//! # The EG fill (fairsub's own, documented construction)
+//!
+//! After `K` rings the hole of each sector is the square `[0, h]^2` of the last d-net's chart.
+//! Its fill is one bi-4 patch per sector:
+//!
+//! * the two outer rows of coefficients along each outer side continue the last ring's patches
+//!   C^1 (value and first cross derivative, equal parameter speed), so the fill joins the ring
+//!   C^1; the two constraints agree at the corner because the ring is one C^2 spline there;
+//! * each spoke (the side along a sector ray, shared by the two sectors there, so the fill is C^0
+//!   between sectors) is the cubic from `c0` through the EG surface's point at half the distance
+//!   (the corner of the next ring, computed and discarded) to the ring's corner `Q` with the
+//!   ring's derivative along the ray at `Q`, raised to degree 4; its last coefficients then
+//!   coincide with the C^1 rows above;
+//! * the four remaining inner coefficients minimise a discrete thin-plate energy (squared second
+//!   differences) of the net.
+//!
+//! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
+//! `n != 4`); `fairsub check` reports the measured defects. `--no-fill` leaves the hole open.
+
+use super::cc::{CapBuilder, CcComplexOptions, adaptive_complex};
+use super::{Element, PatchComplex, Provenance};
+use crate::bezier::{BezierPatch, curve};
+use crate::error::{Error, Result};
+use crate::geom::{self, Point};
+use crate::mesh::PolyMesh;
+use crate::schemes::eg::{Eg, EgStep, from_cnet};
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+/// What to do at a vertex whose valence has no EG rules.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Fallback {
+    /// Catmull-Clark rings and fill (the default).
+    #[default]
+    CatmullClark,
+    /// Stop with an error naming the vertex.
+    Error,
+}
+
+/// Options of [`eg_complex`].
+#[derive(Debug, Clone, Copy)]
+pub struct EgOptions {
+    /// Rings per cap.
+    pub rings: usize,
+    /// Close each cap's hole with the EG fill.
+    pub fill: bool,
+    /// Handling of valences without rules.
+    pub fallback: Fallback,
+}
+
+impl Default for EgOptions {
+    fn default() -> Self {
+        EgOptions {
+            rings: 8,
+            fill: true,
+            fallback: Fallback::CatmullClark,
+        }
+    }
+}
+
+/// The EG cap builder: rules per valence, built once.
+struct EgCaps {
+    opts: EgOptions,
+    steps: Mutex<HashMap<usize, Option<(EgStep, usize)>>>,
+    fell_back: Mutex<Vec<(Element, usize)>>,
+}
+
+impl EgCaps {
+    fn step(&self, n: usize) -> Result<Option<EgStep>> {
+        let mut map = self.steps.lock().expect("no poisoning");
+        if let Some(e) = map.get(&n) {
+            return Ok(e.as_ref().map(|(s, _)| s.clone()));
+        }
+        let e = match Eg::new(n) {
+            Ok(eg) => Some((eg.step()?, n)),
+            Err(Error::Unsupported(_)) => None,
+            Err(e) => return Err(e),
+        };
+        let out = e.as_ref().map(|(s, _)| s.clone());
+        map.insert(n, e);
+        Ok(out)
+    }
+}
+
+impl CapBuilder for EgCaps {
+    fn accepts(&self, n: usize, element: Element) -> Result<bool> {
+        if self.step(n)?.is_some() {
+            return Ok(true);
+        }
+        match self.opts.fallback {
+            Fallback::CatmullClark => {
+                let mut fb = self.fell_back.lock().expect("no poisoning");
+                if !fb.iter().any(|(e, _)| *e == element) {
+                    fb.push((element, n));
+                }
+                Ok(false)
+            }
+            Fallback::Error => Err(Error::Unsupported(format!(
+                "{} has valence {n}: EG subdivision has published rules for valences 3 and 5 only \
+                 (the paper's text lost the arrays for 6..10); use --fallback catmull-clark",
+                describe(element)
+            ))),
+        }
+    }
+
+    fn build(
+        &self,
+        cnet: &[Point],
+        n: usize,
+        element: Element,
+        first_ring: u32,
+        out: &mut PatchComplex,
+    ) -> Result<()> {
+        let step = self.step(n)?.expect("accepted valences have rules");
+        let mut x = from_cnet(n)?.apply(cnet);
+        let mut last = None;
+        for k in 0..self.opts.rings {
+            let ring = step.ring.apply(&x);
+            push_ring(&ring, n, element, first_ring + k as u32, out);
+            last = Some(ring);
+            x = step.step.apply(&x);
+        }
+        if self.opts.fill {
+            let ring = match last {
+                Some(r) => r,
+                None => {
+                    // Zero rings: the hole is bounded by the bi-3 surroundings; use the first ring's
+                    // outer data by taking one ring and filling inside it would change the surface,
+                    // so require a ring.
+                    return Err(Error::InvalidArgument(
+                        "the EG fill needs at least one ring (--rings 1)".into(),
+                    ));
+                }
+            };
+            let next = step.ring.apply(&x);
+            fill(&ring, &next, x[0], n, element, out);
+        }
+        Ok(())
+    }
+}
+
+fn describe(e: Element) -> String {
+    match e {
+        Element::Vertex(v) => format!("vertex {v}"),
+        Element::Face(f) => format!("the centre of face {f}"),
+    }
+}
+
+/// Patch `k` (0 = A, 1 = B, 2 = C) of sector `s` of a ring, in the EG chart's `(u, v)`.
+fn ring_patch(ring: &[Point], s: usize, k: usize) -> BezierPatch {
+    let base = 25 * (3 * s + k);
+    BezierPatch::new(4, 4, ring[base..base + 25].to_vec())
+}
+
+fn push_ring(ring: &[Point], n: usize, element: Element, ring_index: u32, out: &mut PatchComplex) {
+    for s in 0..n {
+        for k in 0..3 {
+            // The EG chart mirrors the mesh chart: transpose so the normal points outward.
+            out.push(
+                ring_patch(ring, s, k).transposed(),
+                Provenance::Ring {
+                    element,
+                    ring: ring_index,
+                    sector: s as u32,
+                },
+            );
+        }
+    }
+}
+
+/// The EG fill of the hole inside `ring` (see the module documentation); `next` is the ring after
+/// it (only its corner points are used), `c0` the limit point.
+fn fill(
+    ring: &[Point],
+    next: &[Point],
+    c0: Point,
+    n: usize,
+    element: Element,
+    out: &mut PatchComplex,
+) {
+    // Spoke s runs along the ray between sectors s and s + 1 (the EG chart's u axis of sector s):
+    // the cubic through c0, the next ring's corner at half the distance and the ring's corner Q
+    // with the ring's derivative there, raised to degree 4 (its last two coefficients are then
+    // exactly the C^1 continuation of the ring along the ray).
+    let spokes: Vec<Vec<Point>> = (0..n)
+        .map(|s| {
+            let a = ring_patch(ring, s, 0);
+            let q = a.cp(0, 0);
+            let d = a.derivatives(0.0, 0.0).du;
+            let mid = ring_patch(next, s, 0).cp(0, 0);
+            let b2 = geom::axpy(q, -1.0 / 3.0, d);
+            let mut b1 = [0.0; 3];
+            for k in 0..3 {
+                b1[k] = (8.0 * mid[k] - c0[k] - 3.0 * b2[k] - q[k]) / 3.0;
+            }
+            curve::raise(&[c0, b1, b2, q])
+        })
+        .collect();
+    for s in 0..n {
+        let a = ring_patch(ring, s, 0);
+        let c = ring_patch(ring, s, 2);
+        let mut b = [[[0.0; 3]; 5]; 5];
+        let mut fixed = [[false; 5]; 5];
+        for t in 0..5 {
+            // Spokes (C^0 between sectors).
+            b[t][0] = spokes[s][t];
+            b[0][t] = spokes[(s + n - 1) % n][t];
+            fixed[t][0] = true;
+            fixed[0][t] = true;
+        }
+        for t in 0..5 {
+            // C^0 and C^1 to patch A across u = 1 and to patch C across v = 1.
+            b[4][t] = a.cp(0, t);
+            b[3][t] = geom::sub(geom::scale(a.cp(0, t), 2.0), a.cp(1, t));
+            b[t][4] = c.cp(t, 0);
+            b[t][3] = geom::sub(geom::scale(c.cp(t, 0), 2.0), c.cp(t, 1));
+            fixed[4][t] = true;
+            fixed[3][t] = true;
+            fixed[t][4] = true;
+            fixed[t][3] = true;
+        }
+        fair_interior(&mut b, &fixed);
+        let p = BezierPatch::from_fn(4, 4, |i, j| b[i][j]);
+        out.push(
+            p.transposed(),
+            Provenance::Cap {
+                element,
+                sector: s as u32,
+            },
+        );
+    }
+}
+
+/// Sets the free coefficients of a 5 x 5 net to minimise the sum of squared second differences
+/// (`u u`, `v v` and twice the mixed ones): a discrete thin-plate energy, solved exactly by the
+/// normal equations.
+fn fair_interior(b: &mut [[Point; 5]; 5], fixed: &[[bool; 5]; 5]) {
+    let free: Vec<(usize, usize)> = (0..5)
+        .flat_map(|i| (0..5).map(move |j| (i, j)))
+        .filter(|&(i, j)| !fixed[i][j])
+        .collect();
+    if free.is_empty() {
+        return;
+    }
+    let col = |i: usize, j: usize| free.iter().position(|&f| f == (i, j));
+    // Each second difference is a row: sum_k w_k b_k; split into free (matrix) and fixed (rhs).
+    let mut stencils: Vec<Vec<((usize, usize), f64)>> = Vec::new();
+    for i in 0..5 {
+        for j in 0..5 {
+            if i + 2 < 5 {
+                stencils.push(vec![((i, j), 1.0), ((i + 1, j), -2.0), ((i + 2, j), 1.0)]);
+            }
+            if j + 2 < 5 {
+                stencils.push(vec![((i, j), 1.0), ((i, j + 1), -2.0), ((i, j + 2), 1.0)]);
+            }
+            if i + 1 < 5 && j + 1 < 5 {
+                let w = std::f64::consts::SQRT_2;
+                stencils.push(vec![
+                    ((i, j), w),
+                    ((i + 1, j), -w),
+                    ((i, j + 1), -w),
+                    ((i + 1, j + 1), w),
+                ]);
+            }
+        }
+    }
+    let k = free.len();
+    let mut m = nalgebra::DMatrix::<f64>::zeros(stencils.len(), k);
+    let mut rhs = nalgebra::DMatrix::<f64>::zeros(stencils.len(), 3);
+    for (r, st) in stencils.iter().enumerate() {
+        for &((i, j), w) in st {
+            match col(i, j) {
+                Some(c) => m[(r, c)] += w,
+                None => {
+                    for d in 0..3 {
+                        rhs[(r, d)] -= w * b[i][j][d];
+                    }
+                }
+            }
+        }
+    }
+    let ata = m.transpose() * &m;
+    let atb = m.transpose() * rhs;
+    if let Some(x) = ata.lu().solve(&atb) {
+        for (c, &(i, j)) in free.iter().enumerate() {
+            b[i][j] = [x[(c, 0)], x[(c, 1)], x[(c, 2)]];
+        }
+    }
+}
+
+/// The EG surface of a net as a patch complex. Also returns the vertices that fell back to
+/// Catmull-Clark (element and valence).
+pub fn eg_complex(
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    progress: impl FnMut(usize),
+) -> Result<(PatchComplex, Vec<(Element, usize)>)> {
+    let caps = EgCaps {
+        opts,
+        steps: Mutex::new(HashMap::new()),
+        fell_back: Mutex::new(Vec::new()),
+    };
+    let c = adaptive_complex(
+        mesh,
+        CcComplexOptions {
+            rings: opts.rings,
+            fill: opts.fill,
+        },
+        Some(&caps),
+        progress,
+    )?;
+    let fb = caps.fell_back.into_inner().expect("no poisoning");
+    Ok((c, fb))
+}
