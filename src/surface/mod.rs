@@ -6,6 +6,8 @@
 
 pub mod adjacency;
 pub mod cc;
+pub mod ds;
+pub mod loop_patches;
 pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
@@ -130,6 +132,9 @@ pub fn complex(
             },
             progress,
         ),
+        "doo-sabin" | "ds" => ds::doo_sabin_complex(mesh, opts, progress),
+        "doo-sabin-cc" | "ds-cc" => ds::doo_sabin_cc_complex(mesh, opts, progress),
+        "loop" => loop_patches::loop_complex(mesh, opts, progress),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()
