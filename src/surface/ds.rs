@@ -29,7 +29,8 @@
 //! corners) together with the faces around it only (the rules are that local); its children
 //! (one corner point per face, plus its Chaikin points and kept corner on the boundary) tile
 //! its patch's region. Children that are regular are emitted as ring `l` at level `l`, the
-//! others are refined again. After one step every vertex has four faces, and every non-quad
+//! others are refined again. After one step every interior vertex has four faces (boundary
+//! vertices two, corners one), and every non-quad
 //! face of level `l >= 1` descends from one input element: the F-face of an input n-gon
 //! (`Element::Face`) or the V-face of an input vertex (`Element::Vertex`).
 //!

@@ -31,7 +31,9 @@
 //! Bernstein collocation system in exact rational arithmetic expresses every Bezier coefficient
 //! in the 12 control points; all weights are multiples of 1/24 ([`BOX_SPLINE_BEZIER`]). The
 //! corner coefficients are Loop's limit mask, the coefficients sum to one and the table is
-//! invariant under the rotation of the triangle. The test `box_spline_matches_loop_limits`
+//! invariant under the rotation of the triangle. The test `table_is_loops_limit_interpolant`
+//! repeats the derivation in floating point (Loop's stencils, then an LU solve of the
+//! collocation system) and reproduces every weight to 1e-12; `box_spline_matches_loop_limits`
 //! (and the integration tests) compare the patches with Loop limit positions of refined nets.
 //!
 //! # Boundaries
@@ -41,8 +43,8 @@
 //! missing control points are phantoms `a + b - c` across each boundary edge `a b` of a triangle
 //! `a b c` (parallelogram completion). With them Loop's interior rules reproduce the boundary
 //! rules (`e + f = 2 v + a + b - c - d` turns the valence-6 vertex rule into `(1, 6, 1) / 8`, and
-//! the edge rule into the midpoint), so boundary triangles are exact box-spline pieces; an exact
-//! rational check at three levels found no difference. Corners and boundary vertices with other
+//! the edge rule into the midpoint), so boundary triangles are exact box-spline pieces (the
+//! tests compare them with Loop limit points of refined nets). Corners and boundary vertices with other
 //! numbers of triangles are extraordinary.
 //!
 //! # Layout
@@ -676,6 +678,86 @@ mod tests {
             BOX_SPLINE_BEZIER[0].1,
             [12, 2, 2, 2, 0, 2, 2, 2, 0, 0, 0, 0]
         );
+    }
+
+    /// The derivation of [`BOX_SPLINE_BEZIER`], repeated: on a planar three-direction lattice
+    /// (x, y = lattice coordinates, which Loop's rules reproduce) put height 1 on one of the 12
+    /// control points of a middle triangle, take Loop limit heights at the 15 degree-4 lattice
+    /// points of the triangle after two steps, and solve the Bernstein collocation system.
+    #[test]
+    fn table_is_loops_limit_interpolant() {
+        let n = 6;
+        let id = |i: usize, j: usize| j * (n + 1) + i;
+        let mut pos = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                pos.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                faces.push(vec![id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let m = PolyMesh::new(pos, &faces).unwrap();
+        // Triangle (2,2), (3,2), (3,3).
+        let f = 2 * (2 * n) + 2 * 2;
+        assert_eq!(
+            m.face(f),
+            [id(2, 2) as u32, id(3, 2) as u32, id(3, 3) as u32]
+        );
+        let net = box_spline_net(&m, f).unwrap();
+        let fine = Loop.refine(&Loop.refine(&m).unwrap().mesh).unwrap().mesh;
+        let (s1, s2) = (
+            Loop.refine(&m).unwrap().stencils,
+            Loop.refine(&Loop.refine(&m).unwrap().mesh)
+                .unwrap()
+                .stencils,
+        );
+        let lim = Loop.limit_stencils(&fine).unwrap();
+        let fact = [1.0, 1.0, 2.0, 6.0, 24.0];
+        let bary = |a: usize, b: usize, c: usize| [a as f64 / 4.0, b as f64 / 4.0, c as f64 / 4.0];
+        let bern = nalgebra::DMatrix::from_fn(15, 15, |r, k| {
+            let l = {
+                let m = BOX_SPLINE_BEZIER[r].0;
+                bary(m[0], m[1], m[2])
+            };
+            let e = BOX_SPLINE_BEZIER[k].0;
+            24.0 / (fact[e[0]] * fact[e[1]] * fact[e[2]])
+                * l[0].powi(e[0] as i32)
+                * l[1].powi(e[1] as i32)
+                * l[2].powi(e[2] as i32)
+        });
+        let lu = bern.lu();
+        for (slot, st) in net.iter().enumerate() {
+            let v = st.entries()[0].0 as usize;
+            let mut data = vec![[0.0f64; 1]; m.num_vertices()];
+            data[v] = [1.0];
+            let limits = lim.apply(&s2.apply(&s1.apply(&data)));
+            // Level-2 vertices sit on the quarter lattice: find each lattice point by position.
+            let values = nalgebra::DVector::from_fn(15, |r, _| {
+                let [a, b, c] = BOX_SPLINE_BEZIER[r].0;
+                let [l0, l1, l2] = bary(a, b, c);
+                let q = [2.0 * l0 + 3.0 * (l1 + l2), 2.0 * (l0 + l1) + 3.0 * l2];
+                let k = fine
+                    .positions()
+                    .iter()
+                    .position(|p| (p[0] - q[0]).abs() + (p[1] - q[1]).abs() < 1e-12)
+                    .unwrap();
+                limits[k][0]
+            });
+            let coef = lu.solve(&values).unwrap();
+            for (r, (_, w)) in BOX_SPLINE_BEZIER.iter().enumerate() {
+                assert!(
+                    (coef[r] * 24.0 - w[slot] as f64).abs() < 1e-12,
+                    "slot {slot} coefficient {r}: {} vs {}",
+                    coef[r] * 24.0,
+                    w[slot]
+                );
+            }
+        }
     }
 
     #[test]
