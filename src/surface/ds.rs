@@ -520,6 +520,8 @@ fn refine_around(
             }
         }
     }
+    // Children that could not be made (a cut the bookkeeping did not trust) stay out.
+    active.retain(|&(x, _)| x != UNSET);
     Ok(Level {
         mesh: child,
         info,
