@@ -39,6 +39,9 @@ pub fn run(out: &Path) -> Result<()> {
         )?;
     }
     for s in fairsub::schemes::catalog().iter().filter(|s| s.rings) {
+        if s.name == "loop" && !net.is_all_triangles() {
+            continue;
+        }
         let c = super::subdivide::build_complex(s.name, &net, 6, true)?;
         for (ext, fmt) in [
             ("bv", OutputFormat::Bv),

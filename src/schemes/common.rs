@@ -8,7 +8,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::stencil::StencilTable;
+use crate::stencil::{Stencil, StencilTable};
 
 /// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
 /// boundary half-edge. Same order as [`PolyMesh::outgoing_halfedges`], without allocating.
@@ -101,6 +101,13 @@ impl RowBuf {
     #[inline]
     pub(crate) fn add(&mut self, i: u32, w: f64) {
         self.pairs.push((i, w));
+    }
+
+    /// Takes the row out as a [`Stencil`] (duplicates merged, exact zeros dropped) and clears
+    /// the buffer: the single-row form of [`RowBuf::flush_into`], for callers that need one
+    /// rule at a time (adaptive refinement).
+    pub(crate) fn take_stencil(&mut self) -> Stencil {
+        Stencil::from_pairs(self.pairs.drain(..).map(|(i, w)| (i as usize, w)))
     }
 
     /// Sorts the row by source, merges duplicate sources (degenerate nets can name a vertex

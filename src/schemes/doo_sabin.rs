@@ -71,7 +71,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{NONE, PolyMesh};
-use crate::stencil::StencilTable;
+use crate::stencil::{Stencil, StencilTable};
 
 use super::common::{Outgoing, RowBuf, boundary_neighbors, check_child_size, cos_2pi, is_corner};
 use super::{Refinement, Scheme, finish_refinement};
@@ -166,6 +166,31 @@ pub fn face_limit_stencils(mesh: &PolyMesh) -> StencilTable {
     table
 }
 
+/// Weights `(w_a, w_b)` of the two Chaikin points of a boundary edge `a -> b`: the point near
+/// `a` first, then the point near `b` (see the module's boundary rules).
+pub const CHAIKIN: [(f64, f64); 2] = [(0.75, 0.25), (0.25, 0.75)];
+
+/// The new point of face corner `h` (a half-edge: the corner at its start vertex in its face)
+/// under the circulant corner rule `rule` ([`DooSabin::weights`] or [`DooSabinCc::weights`]),
+/// as a stencil over the mesh vertices. The same rule [`Scheme::refine`] applies, for adaptive
+/// refinement.
+pub fn corner_point_stencil(mesh: &PolyMesh, h: u32, rule: fn(usize) -> Vec<f64>) -> Stencil {
+    let mut rules = RuleCache::new(rule);
+    let mut row = RowBuf::default();
+    add_corner_point(mesh, &mut rules, h, 1.0, &mut row);
+    row.take_stencil()
+}
+
+/// The Chaikin point of boundary half-edge `h` (`a -> b`) near `a` (`near_to = false`) or near
+/// `b` (`near_to = true`), as a stencil: the boundary rule of [`Scheme::refine`].
+pub fn boundary_edge_point_stencil(mesh: &PolyMesh, h: u32, near_to: bool) -> Stencil {
+    let (wa, wb) = CHAIKIN[near_to as usize];
+    let mut s = Stencil::new();
+    s.add(mesh.he_from(h) as usize, wa)
+        .add(mesh.he_to(h) as usize, wb);
+    s.merged()
+}
+
 /// The circulant first rows of a corner rule, computed once per face size.
 struct RuleCache {
     rule: fn(usize) -> Vec<f64>,
@@ -249,7 +274,7 @@ pub(crate) fn refine_dual(
     for e in (0..ne).filter(|&e| mesh.is_boundary_edge(e)) {
         let h = mesh.edge_halfedge(e);
         let (a, b) = (mesh.he_from(h), mesh.he_to(h));
-        for (wa, wb) in [(0.75, 0.25), (0.25, 0.75)] {
+        for (wa, wb) in CHAIKIN {
             row.add(a, wa);
             row.add(b, wb);
             row.flush_into(&mut table);

@@ -35,7 +35,7 @@
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross, normalize};
 use crate::mesh::PolyMesh;
-use crate::stencil::StencilTable;
+use crate::stencil::{Stencil, StencilTable};
 
 use super::common::{
     Outgoing, RowBuf, boundary_neighbors, check_child_size, cos_2pi, is_corner, sin_2pi,
@@ -189,6 +189,47 @@ fn vertex_mask(mesh: &PolyMesh, v: usize, w: fn(usize) -> f64, b: f64, row: &mut
     }
 }
 
+/// Writes Loop's edge rule for edge `e` into `row`: `3/8, 3/8` for the end points and `1/8` for
+/// each opposite vertex; the midpoint on a boundary edge.
+fn edge_mask(mesh: &PolyMesh, e: usize, row: &mut RowBuf) {
+    let h = mesh.edge_halfedge(e);
+    let (a, b) = (mesh.he_from(h), mesh.he_to(h));
+    match mesh.he_twin(h) {
+        None => {
+            row.add(a, 0.5);
+            row.add(b, 0.5);
+        }
+        Some(t) => {
+            row.add(a, 0.375);
+            row.add(b, 0.375);
+            row.add(mesh.he_from(mesh.he_prev(h)), 0.125);
+            row.add(mesh.he_from(mesh.he_prev(t)), 0.125);
+        }
+    }
+}
+
+/// The refined position of vertex `v` under Loop's vertex rule, as a stencil over the mesh
+/// vertices (the rule [`Scheme::refine`] applies, for adaptive refinement).
+pub fn vertex_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
+    let mut row = RowBuf::default();
+    vertex_mask(mesh, v, Loop::vertex_beta, 0.125, &mut row);
+    row.take_stencil()
+}
+
+/// The new point of edge `e` under Loop's edge rule, as a stencil over the mesh vertices.
+pub fn edge_point_stencil(mesh: &PolyMesh, e: usize) -> Stencil {
+    let mut row = RowBuf::default();
+    edge_mask(mesh, e, &mut row);
+    row.take_stencil()
+}
+
+/// The limit position of vertex `v` ([`Scheme::limit_stencils`] for one vertex).
+pub fn limit_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
+    let mut row = RowBuf::default();
+    vertex_mask(mesh, v, Loop::limit_chi, 1.0 / 6.0, &mut row);
+    row.take_stencil()
+}
+
 impl Scheme for Loop {
     fn name(&self) -> &'static str {
         "loop"
@@ -205,20 +246,7 @@ impl Scheme for Loop {
             row.flush_into(&mut table);
         }
         for e in 0..ne {
-            let h = mesh.edge_halfedge(e);
-            let (a, b) = (mesh.he_from(h), mesh.he_to(h));
-            match mesh.he_twin(h) {
-                None => {
-                    row.add(a, 0.5);
-                    row.add(b, 0.5);
-                }
-                Some(t) => {
-                    row.add(a, 0.375);
-                    row.add(b, 0.375);
-                    row.add(mesh.he_from(mesh.he_prev(h)), 0.125);
-                    row.add(mesh.he_from(mesh.he_prev(t)), 0.125);
-                }
-            }
+            edge_mask(mesh, e, &mut row);
             row.flush_into(&mut table);
         }
         let nv32 = nv as u32;

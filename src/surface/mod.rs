@@ -6,7 +6,9 @@
 
 pub mod adjacency;
 pub mod cc;
+pub mod ds;
 pub mod eg;
+pub mod loop_patches;
 pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
@@ -169,6 +171,9 @@ pub fn complex_with_notes(
             },
             progress,
         )),
+        "doo-sabin" | "ds" => plain(ds::doo_sabin_complex(mesh, opts, progress)),
+        "doo-sabin-cc" | "ds-cc" => plain(ds::doo_sabin_cc_complex(mesh, opts, progress)),
+        "loop" => plain(loop_patches::loop_complex(mesh, opts, progress)),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

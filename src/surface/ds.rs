@@ -1,0 +1,660 @@
+//! Doo-Sabin and DS^CC surfaces as exact patch complexes, by adaptive refinement.
+//!
+//! Both dual schemes ([`crate::schemes::doo_sabin`]) are uniform bi-2 B-spline refinement where
+//! the net is a regular quad grid, so their limit there is the bi-2 B-spline surface of the net:
+//! every *regular vertex* is the centre of a 3x3 net and one exact bi-2 patch. A vertex is
+//! regular when it is an interior vertex with four quads, a boundary vertex with two quads, or a
+//! corner (a boundary vertex with one quad). The patch of a vertex spans the four faces around
+//! it: its corners are the faces' limit points (their centroids), the middle coefficients of its
+//! sides the midpoints of the vertex's edges, its centre coefficient the vertex itself. The
+//! coefficients come from the one B-spline to Bezier table,
+//! [`crate::bezier::convert::biquadratic_bspline_stencils`].
+//!
+//! # Boundaries
+//!
+//! The boundary rules of [`crate::schemes::doo_sabin`] are bi-2 refinement of the net whose
+//! boundary layer is doubled (a phantom copy of every boundary point, four copies of a corner).
+//! So a regular boundary vertex's 3x3 net gets its missing row (and a corner's missing row and
+//! column) as copies of the boundary row: the patch is the exact limit, its side on the boundary
+//! is the quadratic B-spline of the boundary polygon (Chaikin's limit), the cross-boundary
+//! derivative vanishes there (the doubled layer) and a corner patch interpolates its corner.
+//! `u` runs along the outgoing boundary edge of the vertex, `v` into the surface.
+//!
+//! # Extraordinary elements, rings and layout
+//!
+//! The extraordinary elements of a dual scheme are facets with `n != 4` sides and vertices whose
+//! neighbourhood is not regular (interior valence `n != 4`, boundary vertices with more than two
+//! faces). A vertex that is not regular is refined with the scheme's own rules
+//! ([`crate::schemes::doo_sabin::corner_point_stencil`], the Chaikin boundary points, kept
+//! corners) together with the faces around it only (the rules are that local); its children
+//! (one corner point per face, plus its Chaikin points and kept corner on the boundary) tile
+//! its patch's region. Children that are regular are emitted as ring `l` at level `l`, the
+//! others are refined again. After one step every interior vertex has four faces (boundary
+//! vertices two, corners one), and every non-quad
+//! face of level `l >= 1` descends from one input element: the F-face of an input n-gon
+//! (`Element::Face`) or the V-face of an input vertex (`Element::Vertex`).
+//!
+//! Layout (tested): the ring at level `l` consists of the bi-2 patches of the level-`l`
+//! vertices around the level-`l` n-gon that became regular at level `l`. Around an isolated
+//! n-gon facet every corner of the n-gon has three regular children, so ring `l` holds `3 n`
+//! patches for `l = 1 ..= K`, sector `s` (= corner `s` of the n-gon) three of them. An input
+//! vertex of valence `n` becomes the n-gon V-face at level 1 that covers the same region, so
+//! its ring 1 is empty and rings `2 ..= K` hold `3 n` patches each. Ring numbers equal
+//! refinement levels, so patches of ring `l` have parameter size `2^-l` for every element. A
+//! vertex next to several n-gons is attributed to the first one around it.
+//!
+//! # The centroid fill (fairsub's own, documented construction)
+//!
+//! After `K` levels each vertex still marked (a corner of a level-`K` n-gon) gets one bi-2
+//! patch: the bi-2 conversion of its 3x3 net with the corner coefficient of every non-quad face
+//! replaced by that face's centroid, which is the scheme's exact limit point of the facet
+//! ([`crate::schemes::doo_sabin::face_limit_stencils`]). On quads this is the exact patch, so a
+//! fill patch differs from the bi-2 B-spline only at the n-gon's centre. Every side of every
+//! patch (regular or fill) is `centroid, edge midpoint, centroid` of the edge it crosses, so the
+//! complex is C^0 by construction. Across the sides to the last ring the fill is C^1 (the
+//! B-spline identities hold there because the faces on both sides are quads); across the spokes
+//! between two fill patches the cross-derivatives agree at the outer end and differ by a term
+//! `B^2_0(t)` that is largest at the centre, where all fill patches meet at the limit point of
+//! the facet with tangents towards the n-gon's edge midpoints (a tangent plane exactly when the
+//! level-`K` n-gon is planar, always for `n = 3`). `--rings 0` fills an n-gon facet the same
+//! way but cannot fill an extraordinary vertex (its region is n-sided): that is an error naming
+//! the vertex. `--no-fill` leaves the holes open.
+
+use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use crate::bezier::BezierPatch;
+use crate::bezier::convert::biquadratic_bspline_stencils;
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::mesh::PolyMesh;
+use crate::schemes::doo_sabin::{
+    DooSabin, DooSabinCc, boundary_edge_point_stencil, corner_point_stencil,
+};
+use crate::stencil::{Stencil, StencilTable};
+
+/// The Doo-Sabin surface of `mesh` as a patch complex: bi-2 patches on regular vertices,
+/// `opts.rings` rings of bi-2 patches around every extraordinary element and, if `opts.fill`, the
+/// centroid fill (see the [module](self) documentation). `progress(level)` is called after each
+/// refinement level.
+///
+/// # Errors
+/// [`Error::Unsupported`] for an interior vertex of valence 2, and for an extraordinary vertex
+/// with `opts.rings == 0` and `opts.fill`; both name the vertex and the way out.
+pub fn doo_sabin_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    dual_complex(mesh, opts, DooSabin::weights, "doo-sabin", progress)
+}
+
+/// The DS^CC surface of `mesh` as a patch complex, laid out exactly like
+/// [`doo_sabin_complex`] (same topology, same regular patches, same fill; only the rings differ
+/// through the corner rule).
+///
+/// # Errors
+/// As [`doo_sabin_complex`].
+pub fn doo_sabin_cc_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    dual_complex(mesh, opts, DooSabinCc::weights, "doo-sabin-cc", progress)
+}
+
+/// Trust of a vertex of a partially refined level.
+#[derive(Debug, Clone, Copy)]
+struct Info {
+    /// Position equals the uniformly refined mesh's.
+    pos_ok: bool,
+    /// Faces around the vertex are those of the uniformly refined mesh.
+    fan_ok: bool,
+    /// The input vertex this one is (level 0 only): names the V-face of level 1.
+    origin: Option<Element>,
+}
+
+/// Which element and sector an active vertex belongs to, and an input face for regular patches.
+#[derive(Debug, Clone, Copy)]
+struct Tag {
+    element: Option<Element>,
+    sector: u32,
+    input_face: u32,
+}
+
+/// One level of the adaptive refinement.
+struct Level {
+    mesh: PolyMesh,
+    info: Vec<Info>,
+    /// Input element of every non-quad face.
+    face_origin: Vec<Option<Element>>,
+    /// Vertices whose patches are still to be produced, with their tags.
+    active: Vec<(u32, Tag)>,
+}
+
+fn dual_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    rule: fn(usize) -> Vec<f64>,
+    name: &str,
+    mut progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    for v in 0..mesh.num_vertices() {
+        if !mesh.is_boundary_vertex(v) && mesh.valence(v) < 3 {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} is an interior vertex of valence {}, which {name} patches do not \
+                 take; refine the net once (fairsub subdivide --scheme {name} --levels 1) and use \
+                 the refined net",
+                mesh.valence(v)
+            )));
+        }
+    }
+    let info = (0..mesh.num_vertices())
+        .map(|v| Info {
+            pos_ok: true,
+            fan_ok: true,
+            origin: Some(Element::Vertex(v as u32)),
+        })
+        .collect();
+    let face_origin = (0..mesh.num_faces())
+        .map(|f| (mesh.face_size(f) != 4).then_some(Element::Face(f as u32)))
+        .collect();
+    let active = (0..mesh.num_vertices() as u32)
+        .map(|v| {
+            let input_face = mesh.vertex_faces(v as usize).first().copied().unwrap_or(0);
+            (
+                v,
+                Tag {
+                    element: None,
+                    sector: 0,
+                    input_face,
+                },
+            )
+        })
+        .collect();
+    let mut level = Level {
+        mesh: mesh.clone(),
+        info,
+        face_origin,
+        active,
+    };
+    let mut out = PatchComplex::new();
+    for l in 0..=opts.rings {
+        let mut marked = Vec::new();
+        for &(v, tag) in &level.active {
+            match trusted_patch(&level, v as usize) {
+                Some(p) => {
+                    let prov = match (l, tag.element) {
+                        (0, _) | (_, None) => Provenance::Regular {
+                            face: tag.input_face,
+                        },
+                        (_, Some(element)) => Provenance::Ring {
+                            element,
+                            ring: l as u32,
+                            sector: tag.sector,
+                        },
+                    };
+                    out.push(p, prov);
+                }
+                None => marked.push((v, retag(&level, v as usize, tag, l == 0))),
+            }
+        }
+        if marked.is_empty() {
+            break;
+        }
+        if l == opts.rings {
+            if opts.fill {
+                fill(&level, &marked, &mut out)?;
+            }
+            break;
+        }
+        level = refine_around(&level, &marked, rule)?;
+        progress(l + 1);
+    }
+    Ok(out)
+}
+
+/// The 3x3 net of a vertex as vertex indices (`net[k][l]`, `k` along `u`), phantoms being
+/// copies of boundary points, and the coefficient slots whose face is not a quad.
+struct VertexNet {
+    net: [[usize; 3]; 3],
+    /// `(coefficient index i * 3 + j, face)` for every non-quad face around the vertex.
+    ngons: Vec<(usize, u32)>,
+}
+
+/// The 3x3 net of vertex `v`, or `None` unless `v` is interior with four faces, on the boundary
+/// with two faces, or a corner with one face (the face sizes may be anything). `u` runs along
+/// the first outgoing half-edge of `v` (its outgoing boundary edge on the boundary), `v`
+/// counter-clockwise from it.
+fn vertex_net(m: &PolyMesh, v: usize) -> Option<VertexNet> {
+    let hs = m.outgoing_halfedges(v);
+    let boundary = m.is_boundary_vertex(v);
+    let ok = if boundary {
+        hs.len() == 1 || hs.len() == 2
+    } else {
+        hs.len() == 4
+    };
+    if !ok {
+        return None;
+    }
+    const DIRS: [(i32, i32); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    let mut net = [[usize::MAX; 3]; 3];
+    let mut ngons = Vec::new();
+    let at = |d: (i32, i32)| ((1 + d.0) as usize, (1 + d.1) as usize);
+    net[1][1] = v;
+    for (k, &h) in hs.iter().enumerate() {
+        let (d, e) = (DIRS[k], DIRS[(k + 1) % 4]);
+        let (i, j) = at(d);
+        net[i][j] = m.he_to(h) as usize;
+        let f = m.he_face(h);
+        let (ci, cj) = at((d.0 + e.0, d.1 + e.1));
+        if m.face_size(f as usize) == 4 {
+            net[ci][cj] = m.he_from(m.he_next(m.he_next(h))) as usize;
+        } else {
+            // Placeholder: only the corner coefficient uses the diagonal node, and it is
+            // replaced by the face's centroid.
+            net[ci][cj] = v;
+            ngons.push((ci * 3 + cj, f));
+        }
+        if boundary && k + 1 == hs.len() {
+            // The incoming boundary edge's start.
+            let (i, j) = at(e);
+            net[i][j] = m.he_from(m.he_prev(h)) as usize;
+        }
+    }
+    if boundary {
+        // Phantom row j = 0 (and for a corner phantom column i = 0): copies of the boundary.
+        if hs.len() == 1 {
+            net[0] = net[1];
+        }
+        for row in &mut net {
+            row[0] = row[1];
+        }
+    }
+    Some(VertexNet { net, ngons })
+}
+
+/// The nine bi-2 coefficients of a vertex net as stencils: the B-spline conversion, with the
+/// corner coefficient of each non-quad face replaced by the face's centroid.
+fn coefficient_stencils(m: &PolyMesh, vn: &VertexNet) -> Vec<Stencil> {
+    let mut s = biquadratic_bspline_stencils(&vn.net);
+    for &(c, f) in &vn.ngons {
+        let face = m.face(f as usize);
+        let w = 1.0 / face.len() as f64;
+        s[c] = Stencil::from_pairs(face.iter().map(|&x| (x as usize, w)));
+    }
+    s
+}
+
+fn patch_from(m: &PolyMesh, stencils: &[Stencil]) -> BezierPatch {
+    let cps: Vec<Point> = stencils.iter().map(|s| s.apply(m.positions())).collect();
+    BezierPatch::new(2, 2, cps)
+}
+
+/// The exact bi-2 patch of vertex `v` if it is regular and its net is trusted.
+fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
+    let m = &level.mesh;
+    if !level.info[v].fan_ok {
+        return None;
+    }
+    let vn = vertex_net(m, v)?;
+    if !vn.ngons.is_empty() {
+        return None;
+    }
+    let s = coefficient_stencils(m, &vn);
+    let trusted = s.iter().all(|st| {
+        st.entries()
+            .iter()
+            .all(|&(x, _)| level.info[x as usize].pos_ok)
+    });
+    trusted.then(|| patch_from(m, &s))
+}
+
+/// The tag of a marked vertex: at level 0 the vertex itself if its neighbourhood is not regular,
+/// else its first non-quad face; later its first non-quad face with an input origin (the sector
+/// is the vertex's corner index in that face). Otherwise the inherited tag.
+fn retag(level: &Level, v: usize, tag: Tag, first: bool) -> Tag {
+    let m = &level.mesh;
+    if first && vertex_net(m, v).is_none() {
+        return Tag {
+            element: Some(Element::Vertex(v as u32)),
+            sector: 0,
+            ..tag
+        };
+    }
+    for f in m.vertex_faces(v) {
+        if let Some(element) = level.face_origin[f as usize] {
+            let sector = m
+                .face(f as usize)
+                .iter()
+                .position(|&x| x as usize == v)
+                .unwrap_or(0);
+            return Tag {
+                element: Some(element),
+                sector: sector as u32,
+                ..tag
+            };
+        }
+    }
+    tag
+}
+
+/// Refines the faces around the marked vertices with the scheme's rules; the next level's
+/// active vertices are the children of the marked vertices (they tile the marked patches'
+/// regions), each inheriting its parent's tag.
+fn refine_around(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    rule: fn(usize) -> Vec<f64>,
+) -> Result<Level> {
+    const UNSET: u32 = u32::MAX;
+    let m = &level.mesh;
+    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    let mut sel = vec![false; nf];
+    let mut sel_faces = Vec::new();
+    for &(v, _) in marked {
+        for f in m.vertex_faces(v as usize) {
+            if !sel[f as usize] {
+                sel[f as usize] = true;
+                sel_faces.push(f);
+            }
+        }
+    }
+    sel_faces.sort_unstable();
+    let whole_fan =
+        |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
+    // A boundary edge of the partial mesh is a true boundary edge when an end has its true fan.
+    let true_boundary = |h: u32| {
+        m.he_twin(h).is_none()
+            && (level.info[m.he_from(h) as usize].fan_ok || level.info[m.he_to(h) as usize].fan_ok)
+    };
+    let mut stencils: Vec<Stencil> = Vec::new();
+    let mut info: Vec<Info> = Vec::new();
+    let mut corner_pt = vec![UNSET; m.num_halfedges()];
+    let mut edge_pt = vec![[UNSET; 2]; ne];
+    let mut kept = vec![UNSET; nv];
+    fn push(s: Stencil, i: Info, stencils: &mut Vec<Stencil>, info: &mut Vec<Info>) -> u32 {
+        stencils.push(s);
+        info.push(i);
+        (stencils.len() - 1) as u32
+    }
+    for &f in &sel_faces {
+        let f = f as usize;
+        let pos = m.face(f).iter().all(|&x| level.info[x as usize].pos_ok);
+        let h0 = m.face_halfedge(f);
+        for h in h0..h0 + m.face_size(f) as u32 {
+            let v = m.he_from(h) as usize;
+            corner_pt[h as usize] = push(
+                corner_point_stencil(m, h, rule),
+                Info {
+                    pos_ok: pos,
+                    fan_ok: whole_fan(v),
+                    origin: None,
+                },
+                &mut stencils,
+                &mut info,
+            );
+            if true_boundary(h) {
+                let e = m.he_edge(h) as usize;
+                let (a, b) = (v, m.he_to(h) as usize);
+                let pos = level.info[a].pos_ok && level.info[b].pos_ok;
+                for (k, end) in [a, b].into_iter().enumerate() {
+                    edge_pt[e][k] = push(
+                        boundary_edge_point_stencil(m, h, k == 1),
+                        Info {
+                            pos_ok: pos,
+                            fan_ok: whole_fan(end),
+                            origin: None,
+                        },
+                        &mut stencils,
+                        &mut info,
+                    );
+                }
+            }
+        }
+        for &x in m.face(f) {
+            let x = x as usize;
+            if kept[x] == UNSET && level.info[x].fan_ok && is_corner(m, x) {
+                kept[x] = push(
+                    Stencil::point(x),
+                    Info {
+                        pos_ok: level.info[x].pos_ok,
+                        fan_ok: whole_fan(x),
+                        origin: None,
+                    },
+                    &mut stencils,
+                    &mut info,
+                );
+            }
+        }
+    }
+    // Faces: F-faces, E-faces, V-faces (the layout of `refine_dual`).
+    let mut face_start = vec![0u32];
+    let mut corners: Vec<u32> = Vec::new();
+    let mut face_origin = Vec::new();
+    for &f in &sel_faces {
+        let h0 = m.face_halfedge(f as usize);
+        for h in h0..h0 + m.face_size(f as usize) as u32 {
+            corners.push(corner_pt[h as usize]);
+        }
+        face_start.push(corners.len() as u32);
+        face_origin.push(level.face_origin[f as usize]);
+    }
+    for (e, pts) in edge_pt.iter().enumerate() {
+        let h = m.edge_halfedge(e);
+        let quad = match m.he_twin(h) {
+            Some(t) if sel[m.he_face(h) as usize] && sel[m.he_face(t) as usize] => [
+                corner_pt[m.he_next(h) as usize],
+                corner_pt[h as usize],
+                corner_pt[m.he_next(t) as usize],
+                corner_pt[t as usize],
+            ],
+            None if pts[0] != UNSET => [
+                corner_pt[m.he_next(h) as usize],
+                corner_pt[h as usize],
+                pts[0],
+                pts[1],
+            ],
+            _ => continue,
+        };
+        corners.extend_from_slice(&quad);
+        face_start.push(corners.len() as u32);
+        face_origin.push(None);
+    }
+    let mut done = vec![false; nv];
+    for &f in &sel_faces {
+        for &x in m.face(f as usize) {
+            let v = x as usize;
+            if done[v] || !whole_fan(v) {
+                continue;
+            }
+            done[v] = true;
+            let start = corners.len();
+            let hs = m.outgoing_halfedges(v);
+            let boundary = m.is_boundary_vertex(v);
+            if boundary {
+                corners.push(edge_pt[m.he_edge(hs[0]) as usize][0]);
+            }
+            corners.extend(hs.iter().map(|&h| corner_pt[h as usize]));
+            if boundary {
+                let last = *hs.last().expect("a vertex has a face");
+                corners.push(edge_pt[m.he_edge(m.he_prev(last)) as usize][1]);
+                if kept[v] != UNSET {
+                    corners.push(kept[v]);
+                }
+            }
+            let size = corners.len() - start;
+            face_start.push(corners.len() as u32);
+            face_origin.push(if size != 4 {
+                level.info[v].origin
+            } else {
+                None
+            });
+        }
+    }
+    if corners.contains(&UNSET) {
+        return Err(Error::Unsupported(
+            "adaptive Doo-Sabin refinement met an inconsistent neighbourhood (a boundary edge \
+             whose Chaikin points are unknown); refine the net once with --levels 1 and retry"
+                .into(),
+        ));
+    }
+    let mut table = StencilTable::with_capacity(nv, stencils.len(), 6);
+    for s in stencils {
+        table.push(s);
+    }
+    let positions = table.apply(m.positions());
+    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let mut active = Vec::new();
+    for &(v, tag) in marked {
+        let v = v as usize;
+        for h in m.outgoing_halfedges(v) {
+            active.push((corner_pt[h as usize], tag));
+        }
+        if m.is_boundary_vertex(v) {
+            let hs = m.outgoing_halfedges(v);
+            let first = hs[0];
+            let last = *hs.last().expect("a vertex has a face");
+            active.push((edge_pt[m.he_edge(first) as usize][0], tag));
+            active.push((edge_pt[m.he_edge(m.he_prev(last)) as usize][1], tag));
+            if kept[v] != UNSET {
+                active.push((kept[v], tag));
+            }
+        }
+    }
+    // Children that could not be made (a cut the bookkeeping did not trust) stay out.
+    active.retain(|&(x, _)| x != UNSET);
+    Ok(Level {
+        mesh: child,
+        info,
+        face_origin,
+        active,
+    })
+}
+
+/// Whether `v` is a boundary vertex with a single face (a corner, kept by the boundary rules).
+fn is_corner(m: &PolyMesh, v: usize) -> bool {
+    m.is_boundary_vertex(v) && m.vertex_faces(v).len() == 1
+}
+
+/// The centroid fill of the marked vertices of the last level.
+fn fill(level: &Level, marked: &[(u32, Tag)], out: &mut PatchComplex) -> Result<()> {
+    let m = &level.mesh;
+    for &(v, tag) in marked {
+        let vn = vertex_net(m, v as usize).ok_or_else(|| {
+            Error::Unsupported(format!(
+                "vertex {v} has {} faces{}; its n-sided region has no one-patch fill, so at \
+                 least one ring (--rings 1) is required",
+                m.vertex_faces(v as usize).len(),
+                if m.is_boundary_vertex(v as usize) {
+                    " on the boundary"
+                } else {
+                    ""
+                }
+            ))
+        })?;
+        let p = patch_from(m, &coefficient_stencils(m, &vn));
+        let element = tag.element.unwrap_or(Element::Vertex(v));
+        out.push(
+            p,
+            Provenance::Cap {
+                element,
+                sector: tag.sector,
+            },
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schemes::{DooSabin, Scheme};
+
+    fn opts(rings: usize) -> ComplexOptions {
+        ComplexOptions { rings, fill: true }
+    }
+
+    /// A regular quad grid: every vertex gives one patch (boundary and corner vertices
+    /// included), and the points `(a / 2, b / 2)` of every patch are limit points of the once
+    /// refined net: face centroids, or on the boundary the midpoints of boundary edges (knots of
+    /// the Chaikin limit curve).
+    #[test]
+    fn regular_grid_patches_are_limit_points() {
+        let m = crate::gallery::open_grid();
+        let c = doo_sabin_complex(&m, opts(3), |_| {}).unwrap();
+        assert_eq!(c.len(), m.num_vertices());
+        let fine = DooSabin.refine(&m).unwrap().mesh;
+        let mut lim = crate::schemes::doo_sabin::face_limit_stencils(&fine).apply(fine.positions());
+        lim.extend(
+            DooSabin
+                .limit_stencils(&fine)
+                .unwrap()
+                .apply(fine.positions()),
+        );
+        for e in 0..fine.num_edges() {
+            if fine.is_boundary_edge(e) {
+                let [a, b] = fine.edge(e);
+                lim.push(crate::geom::lerp(
+                    fine.position(a as usize),
+                    fine.position(b as usize),
+                    0.5,
+                ));
+            }
+        }
+        for p in &c.patches {
+            for a in 0..3 {
+                for b in 0..3 {
+                    let q = p.eval(a as f64 / 2.0, b as f64 / 2.0);
+                    let best = lim
+                        .iter()
+                        .map(|l| crate::geom::dist(*l, q))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(best < 1e-13, "({a}, {b}): {best}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cube_rings_and_fill() {
+        let m = crate::gallery::cube();
+        // Every vertex has valence 3: ring 1 is empty, ring 2 has 3 * 3 patches per vertex.
+        let c = doo_sabin_complex(&m, opts(2), |_| {}).unwrap();
+        let rings = |r: u32| {
+            c.provenance
+                .iter()
+                .filter(|p| matches!(p, Provenance::Ring { ring, .. } if *ring == r))
+                .count()
+        };
+        assert_eq!(rings(1), 0);
+        assert_eq!(rings(2), 8 * 9);
+        let caps = c
+            .provenance
+            .iter()
+            .filter(|p| matches!(p, Provenance::Cap { .. }))
+            .count();
+        assert_eq!(caps, 8 * 3);
+        // No regular patches: every input vertex is extraordinary.
+        assert_eq!(c.len(), 8 * 9 + 8 * 3);
+    }
+
+    #[test]
+    fn rings_zero_names_the_vertex() {
+        let m = crate::gallery::cube();
+        let e = doo_sabin_complex(&m, opts(0), |_| {})
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("vertex 0 has 3 faces"), "{e}");
+        assert!(e.contains("--rings 1"), "{e}");
+        // Without fill the same request is fine (and empty).
+        let c = doo_sabin_complex(
+            &m,
+            ComplexOptions {
+                rings: 0,
+                fill: false,
+            },
+            |_| {},
+        )
+        .unwrap();
+        assert!(c.is_empty());
+    }
+}

@@ -1,0 +1,820 @@
+//! Loop surfaces as exact patch complexes: quartic box-spline triangles, rings, and a fill.
+//!
+//! Where all three corners of a triangle are regular (interior valence 6, or boundary vertices
+//! with three triangles), Loop's limit over the triangle is one piece of the quartic
+//! three-direction box spline: a triangular Bezier patch of degree 4 (15 coefficients) computed
+//! from the 12 control points around the triangle with the weights [`BOX_SPLINE_BEZIER`]. Other
+//! triangles are refined with Loop's own rules ([`crate::schemes::loop_subdivision`]) together
+//! with the triangles around their corners; regular children are emitted as ring `l` at level
+//! `l`, the rest refined again; after `K` levels the hole is closed by the fill below.
+//!
+//! # Storage as tensor-product patches
+//!
+//! A [`PatchComplex`] holds tensor-product patches, so a triangle `T(s, t)` over the corners
+//! `P0 (s, t) = (0, 0)`, `P1 (1, 0)`, `P2 (0, 1)` is stored as the exactly equivalent patch of
+//! bi-degree (4, 4) `X(u, v) = T(u (1 - v), v)`. Its barycentric coordinates are bilinear in
+//! `(u, v)`: `(1 - u)(1 - v)`, `u (1 - v)`, `v`, so column `j` (`v`-index) of its coefficients is
+//! the degree-`4 - j` curve `b_{4-j-r, r, j}`, `r = 0 ..= 4 - j`, degree-raised to 4
+//! ([`triangle_to_tensor`]). Side `v = 0` is the edge `P0 P1`, `u = 0` the edge `P0 P2` and
+//! `u = 1` the edge `P1 P2` (each linearly parametrised, so the sides of neighbouring triangles
+//! match as curves); side `v = 1` is collapsed to `P2`. The normal `du x dv` points like the
+//! triangle's.
+//!
+//! # Derivation of the Bezier weights
+//!
+//! Loop's limit on a regular region is the quartic box spline (Loop 1987), a polynomial of total
+//! degree 4 on each triangle, determined by its values at the 15 points of the degree-4 lattice
+//! of the triangle. Loop's own rules give those values exactly: two refinement steps put a
+//! vertex on every lattice point (the corners, the level-1 edge points at the edge midpoints,
+//! the level-2 points at the quarter points and inside), and the valence-6 limit mask
+//! `v / 2 + (sum of the six neighbours) / 12` gives their limit positions. Solving the 15 x 15
+//! Bernstein collocation system in exact rational arithmetic expresses every Bezier coefficient
+//! in the 12 control points; all weights are multiples of 1/24 ([`BOX_SPLINE_BEZIER`]). The
+//! corner coefficients are Loop's limit mask, the coefficients sum to one and the table is
+//! invariant under the rotation of the triangle. The test `table_is_loops_limit_interpolant`
+//! repeats the derivation in floating point (Loop's stencils, then an LU solve of the
+//! collocation system) and reproduces every weight to 1e-12; `box_spline_matches_loop_limits`
+//! (and the integration tests) compare the patches with Loop limit positions of refined nets.
+//!
+//! # Boundaries
+//!
+//! With the OpenSubdiv boundary rules of [`crate::schemes::loop_subdivision`] (edge midpoints,
+//! boundary vertices `(1, 6, 1) / 8`) a boundary vertex with three triangles is regular: the
+//! missing control points are phantoms `a + b - c` across each boundary edge `a b` of a triangle
+//! `a b c` (parallelogram completion). With them Loop's interior rules reproduce the boundary
+//! rules (`e + f = 2 v + a + b - c - d` turns the valence-6 vertex rule into `(1, 6, 1) / 8`, and
+//! the edge rule into the midpoint), so boundary triangles are exact box-spline pieces (the
+//! tests compare them with Loop limit points of refined nets). Corners and boundary vertices with other
+//! numbers of triangles are extraordinary.
+//!
+//! # Layout
+//!
+//! Ring `l` lies at level `l`. A triangle at an isolated extraordinary vertex of valence `n`
+//! splits into one triangle at the vertex (refined again) and three regular ones, so every ring
+//! holds `3 n` triangles, three per sector (= triangle of the vertex's fan), and the fill `n`.
+//! A triangle touching several extraordinary vertices belongs to the first one among its
+//! corners; its children are re-attributed to the vertex they touch.
+//!
+//! # The Hermite fill (fairsub's own, documented construction)
+//!
+//! Each triangle left after the last ring becomes one quartic triangle. Its three edge curves
+//! are defined once per edge and shared by both triangles at the edge, so the fill is C^0: an
+//! edge shared with a triangle emitted at the same level takes that triangle's edge (exact); a
+//! boundary edge takes the exact limit boundary curve, the cubic B-spline of the boundary
+//! polygon (a corner stays put: ghost point `2 c - n`); any other edge is the cubic Hermite
+//! interpolant, degree-raised to 4, of the Loop limit positions of its end points and the
+//! derivatives along the edge: `(2 / n) sum_i cos(2 pi i / n) p_i` over the `n` neighbours
+//! counted from the edge's far end (Loop's cosine tangent; the exact box-spline derivative for
+//! `n = 6`, and with phantoms at regular boundary vertices), the chord at other boundary
+//! vertices. The spokes at an extraordinary vertex therefore lie in its limit tangent plane.
+//! The three interior coefficients are discrete harmonic (each the mean of its six neighbours
+//! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
+//! between fill triangles; it is not G^1 across its edges.
+
+use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use crate::bezier::BezierPatch;
+use crate::bezier::convert::cubic_bspline_to_bezier;
+use crate::error::{Error, Result};
+use crate::geom::{self, Point};
+use crate::mesh::PolyMesh;
+use crate::schemes::loop_subdivision::{
+    edge_point_stencil, limit_point_stencil, vertex_point_stencil,
+};
+use crate::stencil::{Stencil, StencilTable};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+/// Bezier coefficients of one triangle of the quartic box spline (Loop's regular limit), times
+/// 24. Entry `([i, j, k], w)`: the coefficient `b_ijk` of the Bernstein polynomial
+/// `4! / (i! j! k!) l0^i l1^j l2^k` (barycentric `l0, l1, l2` of the corners `P0, P1, P2`, which
+/// are counter-clockwise) is `sum_s w[s] q_s / 24` over the 12 control points
+/// `q = [P0, P1, P2, A01, A12, A20, X0a, X0b, X1a, X1b, X2a, X2b]`: `Aab` is the apex of the
+/// triangle across edge `Pa Pb`, and walking counter-clockwise around corner `Pk` from
+/// `P(k+1)`, its six neighbours are `P(k+1), P(k+2), A(k+2)k, Xka, Xkb, Ak(k+1)`. Derived in the
+/// [module](self) documentation.
+pub const BOX_SPLINE_BEZIER: [([usize; 3], [u32; 12]); 15] = [
+    ([4, 0, 0], [12, 2, 2, 2, 0, 2, 2, 2, 0, 0, 0, 0]),
+    ([3, 1, 0], [12, 4, 3, 3, 0, 1, 0, 1, 0, 0, 0, 0]),
+    ([3, 0, 1], [12, 3, 4, 1, 0, 3, 1, 0, 0, 0, 0, 0]),
+    ([2, 2, 0], [8, 8, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0]),
+    ([2, 1, 1], [10, 6, 6, 1, 0, 1, 0, 0, 0, 0, 0, 0]),
+    ([2, 0, 2], [8, 4, 8, 0, 0, 4, 0, 0, 0, 0, 0, 0]),
+    ([1, 3, 0], [4, 12, 3, 3, 1, 0, 0, 0, 1, 0, 0, 0]),
+    ([1, 2, 1], [6, 10, 6, 1, 1, 0, 0, 0, 0, 0, 0, 0]),
+    ([1, 1, 2], [6, 6, 10, 0, 1, 1, 0, 0, 0, 0, 0, 0]),
+    ([1, 0, 3], [4, 3, 12, 0, 1, 3, 0, 0, 0, 0, 0, 1]),
+    ([0, 4, 0], [2, 12, 2, 2, 2, 0, 0, 0, 2, 2, 0, 0]),
+    ([0, 3, 1], [3, 12, 4, 1, 3, 0, 0, 0, 0, 1, 0, 0]),
+    ([0, 2, 2], [4, 8, 8, 0, 4, 0, 0, 0, 0, 0, 0, 0]),
+    ([0, 1, 3], [3, 4, 12, 0, 3, 1, 0, 0, 0, 0, 1, 0]),
+    ([0, 0, 4], [2, 2, 12, 0, 2, 2, 0, 0, 0, 0, 2, 2]),
+];
+
+/// Position in [`BOX_SPLINE_BEZIER`] (and in a triangle net `[Point; 15]`) of `b_ijk`,
+/// `i + j + k = 4`.
+pub fn tri_index(i: usize, j: usize, k: usize) -> usize {
+    debug_assert_eq!(i + j + k, 4);
+    // Rows of decreasing i; within a row decreasing j.
+    let before: usize = (i + 1..=4).map(|a| 5 - a).sum();
+    before + (4 - i - j)
+}
+
+/// The quartic triangular Bezier patch with coefficients `tri` (order of
+/// [`BOX_SPLINE_BEZIER`]) as the equivalent degenerate tensor-product patch of bi-degree (4, 4),
+/// `X(u, v) = T(u (1 - v), v)` (see the [module](self) documentation; side `v = 1` collapses to
+/// the corner `P2`).
+pub fn triangle_to_tensor(tri: &[Point; 15]) -> BezierPatch {
+    let binom = |n: usize, k: usize| -> f64 {
+        if k > n {
+            0.0
+        } else {
+            (0..k).fold(1.0, |acc, r| acc * (n - r) as f64 / (r + 1) as f64)
+        }
+    };
+    BezierPatch::from_fn(4, 4, |i, j| {
+        let d = 4 - j;
+        let mut p = [0.0; 3];
+        for r in 0..=d.min(i) {
+            if i - r > 4 - d {
+                continue;
+            }
+            let w = binom(d, r) * binom(4 - d, i - r) / binom(4, i);
+            p = geom::axpy(p, w, tri[tri_index(d - r, r, j)]);
+        }
+        p
+    })
+}
+
+/// Evaluates the triangular patch `tri` at barycentric `(l0, l1, l2)` (an independent check of
+/// [`triangle_to_tensor`] and a convenience for tests).
+pub fn eval_triangle(tri: &[Point; 15], l: [f64; 3]) -> Point {
+    let fact = [1.0, 1.0, 2.0, 6.0, 24.0];
+    let mut p = [0.0; 3];
+    for (k, (m, _)) in BOX_SPLINE_BEZIER.iter().enumerate() {
+        let w = 24.0 / (fact[m[0]] * fact[m[1]] * fact[m[2]])
+            * l[0].powi(m[0] as i32)
+            * l[1].powi(m[1] as i32)
+            * l[2].powi(m[2] as i32);
+        p = geom::axpy(p, w, tri[k]);
+    }
+    p
+}
+
+/// The Loop surface of `mesh` (a triangle net) as a patch complex: one degenerate bi-4 patch per
+/// regular triangle, `opts.rings` rings around every extraordinary vertex and, if `opts.fill`,
+/// the Hermite fill (see the [module](self) documentation). `progress(level)` is called after
+/// each refinement level.
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the first face that is not a triangle.
+pub fn loop_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    mut progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    if let Some(f) = (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
+        return Err(Error::Unsupported(format!(
+            "Loop patches need a triangle net, but face {f} has {} corners; triangulate the net \
+             or use catmull-clark",
+            mesh.face_size(f)
+        )));
+    }
+    let info = (0..mesh.num_vertices())
+        .map(|v| Info {
+            pos_ok: true,
+            fan_ok: true,
+            origin: Some(Element::Vertex(v as u32)),
+        })
+        .collect();
+    let active = (0..mesh.num_faces() as u32)
+        .map(|f| {
+            (
+                f,
+                Tag {
+                    element: None,
+                    sector: 0,
+                    input_face: f,
+                },
+            )
+        })
+        .collect();
+    let mut level = Level {
+        mesh: mesh.clone(),
+        info,
+        active,
+    };
+    let mut out = PatchComplex::new();
+    for l in 0..=opts.rings {
+        let mut marked = Vec::new();
+        let mut curves: HashMap<(u32, u32), [Point; 5]> = HashMap::new();
+        for &(f, tag) in &level.active {
+            match trusted_net(&level, f as usize) {
+                Some(tri) => {
+                    record_curves(&level.mesh, f as usize, &tri, &mut curves);
+                    let prov = match (l, tag.element) {
+                        (0, _) | (_, None) => Provenance::Regular {
+                            face: tag.input_face,
+                        },
+                        (_, Some(element)) => Provenance::Ring {
+                            element,
+                            ring: l as u32,
+                            sector: tag.sector,
+                        },
+                    };
+                    out.push(triangle_to_tensor(&tri), prov);
+                }
+                None => marked.push((f, retag(&level, f as usize, tag))),
+            }
+        }
+        if marked.is_empty() {
+            break;
+        }
+        if l == opts.rings {
+            if opts.fill {
+                fill(&level, &marked, &mut curves, &mut out);
+            }
+            break;
+        }
+        level = refine_around(&level, &marked)?;
+        progress(l + 1);
+    }
+    Ok(out)
+}
+
+/// Trust of a vertex of a partially refined level.
+#[derive(Debug, Clone, Copy)]
+struct Info {
+    pos_ok: bool,
+    fan_ok: bool,
+    /// Input vertex this one descends from by vertex points.
+    origin: Option<Element>,
+}
+
+/// Extraordinary element and sector of an active triangle, and its input face.
+#[derive(Debug, Clone, Copy)]
+struct Tag {
+    element: Option<Element>,
+    sector: u32,
+    input_face: u32,
+}
+
+struct Level {
+    mesh: PolyMesh,
+    info: Vec<Info>,
+    active: Vec<(u32, Tag)>,
+}
+
+/// Whether `v` is a regular Loop vertex: interior of valence 6 or boundary with 3 triangles.
+fn is_regular(m: &PolyMesh, v: usize) -> bool {
+    let hs = m.outgoing_halfedges(v);
+    if m.is_boundary_vertex(v) {
+        hs.len() == 3
+    } else {
+        hs.len() == 6
+    }
+}
+
+/// The six neighbours of a regular vertex counter-clockwise from the end of its first outgoing
+/// half-edge, phantoms (`v + a - c`, see the module documentation) for the two missing ones of
+/// a boundary vertex. `None` for a vertex that is not regular.
+fn ring6(m: &PolyMesh, v: usize) -> Option<[Stencil; 6]> {
+    if !is_regular(m, v) {
+        return None;
+    }
+    let hs = m.outgoing_halfedges(v);
+    let mut ring: Vec<Stencil> = hs
+        .iter()
+        .map(|&h| Stencil::point(m.he_to(h) as usize))
+        .collect();
+    if m.is_boundary_vertex(v) {
+        let n: Vec<usize> = hs.iter().map(|&h| m.he_to(h) as usize).collect();
+        let n3 = m.he_from(m.he_prev(hs[2])) as usize;
+        let phantom = |a: usize, c: usize| Stencil::from_pairs([(v, 1.0), (a, 1.0), (c, -1.0)]);
+        ring.push(Stencil::point(n3));
+        ring.push(phantom(n3, n[2]));
+        ring.push(phantom(n[0], n[1]));
+    }
+    ring.try_into().ok()
+}
+
+/// The 12 control points of triangle `f` (order of [`BOX_SPLINE_BEZIER`]) as stencils, or
+/// `None` unless all its corners are regular.
+fn box_spline_net(m: &PolyMesh, f: usize) -> Option<[Stencil; 12]> {
+    let h0 = m.face_halfedge(f);
+    let mut rings: Vec<[Stencil; 6]> = Vec::with_capacity(3);
+    for k in 0..3u32 {
+        let h = h0 + k;
+        let v = m.he_from(h) as usize;
+        let ring = ring6(m, v)?;
+        let off = m.outgoing_halfedges(v).iter().position(|&g| g == h)?;
+        rings.push(std::array::from_fn(|i| ring[(off + i) % 6].clone()));
+    }
+    let corner = |k: usize| Stencil::point(m.face(f)[k] as usize);
+    Some([
+        corner(0),
+        corner(1),
+        corner(2),
+        rings[0][5].clone(),
+        rings[1][5].clone(),
+        rings[2][5].clone(),
+        rings[0][3].clone(),
+        rings[0][4].clone(),
+        rings[1][3].clone(),
+        rings[1][4].clone(),
+        rings[2][3].clone(),
+        rings[2][4].clone(),
+    ])
+}
+
+/// The 15 Bezier coefficients of a regular triangle as stencils over the mesh vertices.
+fn box_spline_stencils(net: &[Stencil; 12]) -> Vec<Stencil> {
+    BOX_SPLINE_BEZIER
+        .iter()
+        .map(|(_, w)| {
+            let mut s = Stencil::new();
+            for (q, &wq) in net.iter().zip(w) {
+                if wq != 0 {
+                    s.add_scaled(q, wq as f64 / 24.0);
+                }
+            }
+            s.merged()
+        })
+        .collect()
+}
+
+/// The triangular Bezier net of triangle `f` if it is regular and trusted.
+fn trusted_net(level: &Level, f: usize) -> Option<[Point; 15]> {
+    let m = &level.mesh;
+    if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
+        return None;
+    }
+    let s = box_spline_stencils(&box_spline_net(m, f)?);
+    if s.iter().any(|st| {
+        st.entries()
+            .iter()
+            .any(|&(x, _)| !level.info[x as usize].pos_ok)
+    }) {
+        return None;
+    }
+    let pts: Vec<Point> = s.iter().map(|st| st.apply(m.positions())).collect();
+    pts.try_into().ok()
+}
+
+/// Coefficients of the edge from corner `k` to corner `k + 1` of a triangular net.
+fn tri_edge(tri: &[Point; 15], k: usize) -> [Point; 5] {
+    std::array::from_fn(|r| {
+        let mut m = [0usize; 3];
+        m[k] = 4 - r;
+        m[(k + 1) % 3] = r;
+        tri[tri_index(m[0], m[1], m[2])]
+    })
+}
+
+/// Stores the edge curves of a triangle, keyed by its vertex pairs (oriented from the smaller).
+fn record_curves(
+    m: &PolyMesh,
+    f: usize,
+    tri: &[Point; 15],
+    curves: &mut HashMap<(u32, u32), [Point; 5]>,
+) {
+    let c = m.face(f);
+    for k in 0..3 {
+        let (a, b) = (c[k], c[(k + 1) % 3]);
+        let mut e = tri_edge(tri, k);
+        if a > b {
+            e.reverse();
+        }
+        curves.entry((a.min(b), a.max(b))).or_insert(e);
+    }
+}
+
+/// The tag of a marked triangle: its first extraordinary corner's input vertex, sector = the
+/// triangle's position in that vertex's fan; otherwise the inherited tag.
+fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
+    let m = &level.mesh;
+    for &v in m.face(f) {
+        let v = v as usize;
+        if let Some(origin) = level.info[v].origin
+            && !is_regular(m, v)
+        {
+            if tag.element == Some(origin) {
+                return tag;
+            }
+            let sector = m
+                .vertex_faces(v)
+                .iter()
+                .position(|&g| g as usize == f)
+                .unwrap_or(0);
+            return Tag {
+                element: Some(origin),
+                sector: sector as u32,
+                ..tag
+            };
+        }
+    }
+    tag
+}
+
+/// Refines the triangles around the corners of the marked triangles with Loop's rules; the
+/// next level's active triangles are the four children of each marked triangle.
+fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+    const UNSET: u32 = u32::MAX;
+    let m = &level.mesh;
+    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    let mut sel = vec![false; nf];
+    let mut sel_faces = Vec::new();
+    for &(f, _) in marked {
+        for &v in m.face(f as usize) {
+            for g in m.vertex_faces(v as usize) {
+                if !sel[g as usize] {
+                    sel[g as usize] = true;
+                    sel_faces.push(g);
+                }
+            }
+        }
+    }
+    sel_faces.sort_unstable();
+    let whole_fan =
+        |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
+    let sources_ok = |s: &Stencil| {
+        s.entries()
+            .iter()
+            .all(|&(x, _)| level.info[x as usize].pos_ok)
+    };
+    let mut vid = vec![UNSET; nv];
+    let mut eid = vec![UNSET; ne];
+    let mut stencils: Vec<Stencil> = Vec::new();
+    let mut info: Vec<Info> = Vec::new();
+    let mut face_start = vec![0u32];
+    let mut corners: Vec<u32> = Vec::new();
+    let mut children: HashMap<u32, u32> = HashMap::new();
+    for &f in &sel_faces {
+        let fu = f as usize;
+        let h0 = m.face_halfedge(fu);
+        for h in h0..h0 + 3 {
+            let v = m.he_from(h) as usize;
+            if vid[v] == UNSET {
+                vid[v] = stencils.len() as u32;
+                let s = vertex_point_stencil(m, v);
+                info.push(Info {
+                    pos_ok: level.info[v].fan_ok && sources_ok(&s),
+                    fan_ok: whole_fan(v),
+                    origin: level.info[v].origin,
+                });
+                stencils.push(s);
+            }
+            let e = m.he_edge(h) as usize;
+            if eid[e] == UNSET {
+                eid[e] = stencils.len() as u32;
+                let [a, b] = m.edge(e);
+                let known = m.he_twin(h).is_some()
+                    || level.info[a as usize].fan_ok
+                    || level.info[b as usize].fan_ok;
+                let both_selected = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
+                let s = edge_point_stencil(m, e);
+                info.push(Info {
+                    pos_ok: known && sources_ok(&s),
+                    fan_ok: known && both_selected,
+                    origin: None,
+                });
+                stencils.push(s);
+            }
+        }
+        let (a, b, c) = (
+            vid[m.he_from(h0) as usize],
+            vid[m.he_from(h0 + 1) as usize],
+            vid[m.he_from(h0 + 2) as usize],
+        );
+        let ab = eid[m.he_edge(h0) as usize];
+        let bc = eid[m.he_edge(h0 + 1) as usize];
+        let ca = eid[m.he_edge(h0 + 2) as usize];
+        children.insert(f, (face_start.len() - 1) as u32);
+        for tri in [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]] {
+            corners.extend_from_slice(&tri);
+            face_start.push(corners.len() as u32);
+        }
+    }
+    let mut table = StencilTable::with_capacity(nv, stencils.len(), 7);
+    for s in stencils {
+        table.push(s);
+    }
+    let positions = table.apply(m.positions());
+    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let mut active = Vec::with_capacity(4 * marked.len());
+    for &(f, tag) in marked {
+        let first = children[&f];
+        for k in 0..4 {
+            active.push((first + k, tag));
+        }
+    }
+    Ok(Level {
+        mesh: child,
+        info,
+        active,
+    })
+}
+
+/// Limit position of `a` and the derivative along the edge `a -> b` (unit edge parameter), for
+/// the Hermite edges of the fill.
+fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
+    let pos = m.positions();
+    let la = limit_point_stencil(m, a).apply(pos);
+    let chord = || geom::sub(limit_point_stencil(m, b).apply(pos), la);
+    let ring: Vec<Stencil> = if m.is_boundary_vertex(a) {
+        match ring6(m, a) {
+            Some(r) => r.to_vec(),
+            None => return (la, chord()),
+        }
+    } else {
+        m.outgoing_halfedges(a)
+            .iter()
+            .map(|&h| Stencil::point(m.he_to(h) as usize))
+            .collect()
+    };
+    let Some(j) = ring.iter().position(|s| s.entries() == [(b as u32, 1.0)]) else {
+        return (la, chord());
+    };
+    let n = ring.len();
+    let mut d = [0.0; 3];
+    for (i, s) in ring.iter().enumerate() {
+        let w = (2.0 / n as f64) * (2.0 * PI * (i as f64 - j as f64) / n as f64).cos();
+        d = geom::axpy(d, w, s.apply(pos));
+    }
+    (la, d)
+}
+
+/// The other boundary neighbour of boundary vertex `v` (not `w`), or the ghost `2 v - w` at a
+/// corner.
+fn boundary_continuation(m: &PolyMesh, v: usize, w: usize) -> Point {
+    let pos = m.positions();
+    let hs = m.outgoing_halfedges(v);
+    let first = m.he_to(hs[0]) as usize;
+    let last = m.he_from(m.he_prev(*hs.last().expect("a vertex has a face"))) as usize;
+    let other = if first == w { last } else { first };
+    if m.vertex_faces(v).len() == 1 {
+        geom::sub(geom::scale(pos[v], 2.0), pos[w])
+    } else {
+        pos[other]
+    }
+}
+
+/// The edge curve `a -> b` of the fill (see the module documentation), as a quartic.
+fn fill_edge(m: &PolyMesh, a: usize, b: usize) -> [Point; 5] {
+    let pos = m.positions();
+    let cubic = match m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a)) {
+        Some(h) if m.he_twin(h).is_none() => {
+            let d = [
+                boundary_continuation(m, a, b),
+                pos[a],
+                pos[b],
+                boundary_continuation(m, b, a),
+            ];
+            cubic_bspline_to_bezier(&d)
+        }
+        _ => {
+            let (p0, d0) = limit_and_derivative(m, a, b);
+            let (p3, d3) = limit_and_derivative(m, b, a);
+            [
+                p0,
+                geom::axpy(p0, 1.0 / 3.0, d0),
+                geom::axpy(p3, 1.0 / 3.0, d3),
+                p3,
+            ]
+        }
+    };
+    let q = crate::bezier::curve::raise(&cubic);
+    [q[0], q[1], q[2], q[3], q[4]]
+}
+
+/// The Hermite fill of the marked triangles of the last level.
+fn fill(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    curves: &mut HashMap<(u32, u32), [Point; 5]>,
+    out: &mut PatchComplex,
+) {
+    let m = &level.mesh;
+    for &(f, tag) in marked {
+        let c = m.face(f as usize);
+        let mut tri = [[0.0; 3]; 15];
+        for k in 0..3 {
+            let (a, b) = (c[k], c[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let mut e = *curves
+                .entry(key)
+                .or_insert_with(|| fill_edge(m, key.0 as usize, key.1 as usize));
+            if a > b {
+                e.reverse();
+            }
+            for (r, p) in e.iter().enumerate() {
+                let mut idx = [0usize; 3];
+                idx[k] = 4 - r;
+                idx[(k + 1) % 3] = r;
+                tri[tri_index(idx[0], idx[1], idx[2])] = *p;
+            }
+        }
+        // Discrete harmonic interior: x = (S_x + S / 4) / 7 with S_x the sum of the four
+        // boundary neighbours of x in the Bezier net and S the sum over the three.
+        let interior = [[2, 1, 1], [1, 2, 1], [1, 1, 2]];
+        let sums: Vec<Point> = interior
+            .iter()
+            .map(|&[i, j, k]| {
+                let mut s = [0.0; 3];
+                for d in [
+                    [1, 0, -1],
+                    [1, -1, 0],
+                    [0, 1, -1],
+                    [-1, 1, 0],
+                    [0, -1, 1],
+                    [-1, 0, 1],
+                ] {
+                    let (a, b, cc) = (i as i32 + d[0], j as i32 + d[1], k as i32 + d[2]);
+                    let n = [a as usize, b as usize, cc as usize];
+                    if !interior.contains(&n) {
+                        s = geom::add(s, tri[tri_index(n[0], n[1], n[2])]);
+                    }
+                }
+                s
+            })
+            .collect();
+        let total = geom::add(geom::add(sums[0], sums[1]), sums[2]);
+        for (x, s) in interior.iter().zip(&sums) {
+            tri[tri_index(x[0], x[1], x[2])] = geom::scale(geom::axpy(*s, 0.25, total), 1.0 / 7.0);
+        }
+        let element = tag.element.unwrap_or(Element::Vertex(c[0]));
+        out.push(
+            triangle_to_tensor(&tri),
+            Provenance::Cap {
+                element,
+                sector: tag.sector,
+            },
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schemes::{Loop, Scheme};
+
+    #[test]
+    fn table_is_affine_and_symmetric() {
+        for (m, w) in BOX_SPLINE_BEZIER {
+            assert_eq!(m.iter().sum::<usize>(), 4);
+            assert_eq!(w.iter().sum::<u32>(), 24);
+            assert_eq!(BOX_SPLINE_BEZIER[tri_index(m[0], m[1], m[2])].0, m);
+        }
+        // Rotation P0 -> P1 -> P2 maps slots [P0, P1, P2, A01, A12, A20, X0a, X0b, X1a, X1b,
+        // X2a, X2b] to [P1, P2, P0, A12, A20, A01, X1a, X1b, X2a, X2b, X0a, X0b].
+        let rot = [1, 2, 0, 4, 5, 3, 8, 9, 10, 11, 6, 7];
+        for (m, w) in BOX_SPLINE_BEZIER {
+            let r = BOX_SPLINE_BEZIER[tri_index(m[2], m[0], m[1])].1;
+            for s in 0..12 {
+                assert_eq!(w[s], r[rot[s]], "{m:?} slot {s}");
+            }
+        }
+        // Corner coefficient = Loop's valence-6 limit mask (1/2, 1/12 each neighbour).
+        assert_eq!(
+            BOX_SPLINE_BEZIER[0].1,
+            [12, 2, 2, 2, 0, 2, 2, 2, 0, 0, 0, 0]
+        );
+    }
+
+    /// The derivation of [`BOX_SPLINE_BEZIER`], repeated: on a planar three-direction lattice
+    /// (x, y = lattice coordinates, which Loop's rules reproduce) put height 1 on one of the 12
+    /// control points of a middle triangle, take Loop limit heights at the 15 degree-4 lattice
+    /// points of the triangle after two steps, and solve the Bernstein collocation system.
+    #[test]
+    fn table_is_loops_limit_interpolant() {
+        let n = 6;
+        let id = |i: usize, j: usize| j * (n + 1) + i;
+        let mut pos = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                pos.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                faces.push(vec![id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let m = PolyMesh::new(pos, &faces).unwrap();
+        // Triangle (2,2), (3,2), (3,3).
+        let f = 2 * (2 * n) + 2 * 2;
+        assert_eq!(
+            m.face(f),
+            [id(2, 2) as u32, id(3, 2) as u32, id(3, 3) as u32]
+        );
+        let net = box_spline_net(&m, f).unwrap();
+        let fine = Loop.refine(&Loop.refine(&m).unwrap().mesh).unwrap().mesh;
+        let (s1, s2) = (
+            Loop.refine(&m).unwrap().stencils,
+            Loop.refine(&Loop.refine(&m).unwrap().mesh)
+                .unwrap()
+                .stencils,
+        );
+        let lim = Loop.limit_stencils(&fine).unwrap();
+        let fact = [1.0, 1.0, 2.0, 6.0, 24.0];
+        let bary = |a: usize, b: usize, c: usize| [a as f64 / 4.0, b as f64 / 4.0, c as f64 / 4.0];
+        let bern = nalgebra::DMatrix::from_fn(15, 15, |r, k| {
+            let l = {
+                let m = BOX_SPLINE_BEZIER[r].0;
+                bary(m[0], m[1], m[2])
+            };
+            let e = BOX_SPLINE_BEZIER[k].0;
+            24.0 / (fact[e[0]] * fact[e[1]] * fact[e[2]])
+                * l[0].powi(e[0] as i32)
+                * l[1].powi(e[1] as i32)
+                * l[2].powi(e[2] as i32)
+        });
+        let lu = bern.lu();
+        for (slot, st) in net.iter().enumerate() {
+            let v = st.entries()[0].0 as usize;
+            let mut data = vec![[0.0f64; 1]; m.num_vertices()];
+            data[v] = [1.0];
+            let limits = lim.apply(&s2.apply(&s1.apply(&data)));
+            // Level-2 vertices sit on the quarter lattice: find each lattice point by position.
+            let values = nalgebra::DVector::from_fn(15, |r, _| {
+                let [a, b, c] = BOX_SPLINE_BEZIER[r].0;
+                let [l0, l1, l2] = bary(a, b, c);
+                let q = [2.0 * l0 + 3.0 * (l1 + l2), 2.0 * (l0 + l1) + 3.0 * l2];
+                let k = fine
+                    .positions()
+                    .iter()
+                    .position(|p| (p[0] - q[0]).abs() + (p[1] - q[1]).abs() < 1e-12)
+                    .unwrap();
+                limits[k][0]
+            });
+            let coef = lu.solve(&values).unwrap();
+            for (r, (_, w)) in BOX_SPLINE_BEZIER.iter().enumerate() {
+                assert!(
+                    (coef[r] * 24.0 - w[slot] as f64).abs() < 1e-12,
+                    "slot {slot} coefficient {r}: {} vs {}",
+                    coef[r] * 24.0,
+                    w[slot]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn tensor_form_equals_triangle() {
+        let tri: [Point; 15] = std::array::from_fn(|k| {
+            let x = k as f64;
+            [x.sin(), (1.3 * x).cos(), 0.1 * x * x]
+        });
+        let p = triangle_to_tensor(&tri);
+        for (u, v) in [(0.0, 0.0), (0.3, 0.2), (1.0, 0.5), (0.7, 0.9), (0.5, 1.0)] {
+            let (s, t) = (u * (1.0 - v), v);
+            let q = eval_triangle(&tri, [1.0 - s - t, s, t]);
+            assert!(geom::dist(p.eval(u, v), q) < 1e-14);
+        }
+    }
+
+    /// On the open triangle grid every regular triangle (boundary ones included) is a box-spline
+    /// piece: its corners are Loop limit points, its half-lattice points limit points of the
+    /// refined net and its quarter-lattice points those of the twice refined net.
+    #[test]
+    fn box_spline_matches_loop_limits() {
+        let m = crate::gallery::tri_grid();
+        let c = loop_complex(
+            &m,
+            ComplexOptions {
+                rings: 0,
+                fill: false,
+            },
+            |_| {},
+        )
+        .unwrap();
+        let fine = Loop.refine(&m).unwrap().mesh;
+        let lim0 = Loop.limit_stencils(&m).unwrap().apply(m.positions());
+        let lim1 = Loop.limit_stencils(&fine).unwrap().apply(fine.positions());
+        let finer = Loop.refine(&fine).unwrap().mesh;
+        let lim2 = Loop
+            .limit_stencils(&finer)
+            .unwrap()
+            .apply(finer.positions());
+        assert!(!c.is_empty());
+        for p in &c.patches {
+            let samples = [
+                (0.0, 0.0, &lim0),
+                (0.5, 0.0, &lim1),
+                (1.0, 0.5, &lim1),
+                (0.0, 0.5, &lim1),
+                (1.0 / 3.0, 0.25, &lim2),
+                (0.5, 0.5, &lim2),
+            ];
+            for (u, v, set) in samples {
+                let q = p.eval(u, v);
+                let best = set
+                    .iter()
+                    .map(|l| geom::dist(*l, q))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(best < 1e-13, "({u}, {v}): {best}");
+            }
+        }
+    }
+}
