@@ -460,12 +460,19 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
 }
 
 /// The panel of `fairsub demo`: every scheme with patch output x highlight lines, mean
-/// curvature and provenance, 320x320 cells, 6 rings.
+/// curvature and provenance, 320x320 cells, 6 rings, zoomed on the rings and cap of the net's
+/// extraordinary element as in the papers (the same as `fairsub compare NET --modes
+/// highlight,mean,provenance --size 320x320 --zoom-rings 1..7 --elevation 55`).
 pub fn demo_compare(net: &PolyMesh, path: &Path) -> Result<()> {
     let modes = [Mode::Highlight, Mode::Mean, Mode::Provenance];
     let opts = RenderOptions {
         width: 320,
         height: 320,
+        view: View {
+            elevation_deg: 55.0,
+            zoom_rings: Some((1, 7)),
+            ..View::default()
+        },
         ..RenderOptions::default()
     };
     let (panel, _) = compare_panel(net, &patch_schemes(), &modes, 6, true, &opts)?;

@@ -532,6 +532,8 @@ pub fn focus_point(c: &PatchComplex, e: Element) -> Result<Point> {
             element_name(e),
             if els.is_empty() {
                 "the surface has no rings of any extraordinary element".to_string()
+            } else if els == [BV_ELEMENT] {
+                "a .bv file does not record which vertex its rings surround; use --zoom-rings without --focus".to_string()
             } else {
                 format!("elements with rings: {}", list_elements(&els))
             }
