@@ -118,7 +118,7 @@ pub fn parse_element(s: &str) -> Result<Element> {
 }
 
 /// The framed region: the camera target and the radius of the disc the view shows there (the
-/// length scale of light-line spacing and curvature floors).
+/// length scale of the light plane's distance and of the curvature floors).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Region {
     /// Centre (the camera looks at it).
@@ -242,7 +242,7 @@ pub fn direction(azimuth_deg: f64, elevation_deg: f64) -> (Point, Point) {
 /// given, the target is then moved so the projected points are centred (not with a focus or a
 /// ring zoom: the limit point stays in the middle) and the distance is adjusted until they fill 92% of the
 /// image's width or height. The returned region is the target with the radius of the view's
-/// visible disc there, so light-line spacing and curvature floors follow the view.
+/// visible disc there, so the lights and curvature floors follow the view.
 pub fn fit(
     scenes: &[&Scene],
     view: &View,

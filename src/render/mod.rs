@@ -15,7 +15,7 @@
 //! 3. [`shade`]: one colour per sample for a [`Mode`], averaged over the `aa x aa` samples of a
 //!    pixel, plus optional overlays (patch boundaries, the control net);
 //! 4. [`text`] and [`panel`]: legends with numbers and labelled grids (scheme x mode) that
-//!    share one camera, one light set and one curvature range per mode.
+//!    share one camera, one light set and, per mode, one curvature range or stripe period.
 //!
 //! Plain polygon meshes ([`MeshSurface`]) go through the same pipeline with interpolated vertex
 //! normals (no curvature). Everything is deterministic: the same input gives the same bytes,
@@ -175,12 +175,12 @@ pub enum Mode {
     /// Plain shading (two lights and a highlight), for the overall shape.
     Shaded,
     /// Beier-Chen highlight lines: stripes of a family of parallel light lines, seen along the
-    /// surface normals ([`Lights::highlight_param`]).
+    /// surface normals ([`Lights::highlight_value`]).
     Highlight,
     /// Reflection lines: the reflection of a plane of parallel light lines in the surface, seen
-    /// from the camera ([`Lights::reflection_param`]).
+    /// from the camera ([`Lights::reflection_value`]).
     Reflection,
-    /// Isophotes: curves of equal light intensity `n . l` ([`Lights::isophote_param`]).
+    /// Isophotes: curves of equal light intensity `n . l` ([`Lights::isophote_value`]).
     Isophote,
     /// Gauss curvature `K` as a diverging colour map (blue negative, white 0, red positive).
     Gauss,
@@ -382,18 +382,6 @@ impl Scene {
         match &self.surface {
             Surface::Patches(c) => Some(c),
             Surface::Mesh(_) => None,
-        }
-    }
-
-    /// All points whose convex hull contains the surface (patch coefficients or mesh vertices).
-    pub fn hull_points(&self) -> Vec<Point> {
-        match &self.surface {
-            Surface::Patches(c) => c
-                .patches
-                .iter()
-                .flat_map(|p| p.cps.iter().copied())
-                .collect(),
-            Surface::Mesh(m) => m.positions.clone(),
         }
     }
 }
