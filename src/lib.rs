@@ -19,6 +19,7 @@ pub mod gallery;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod render;
 pub mod schemes;
 pub mod stencil;
 pub mod surface;
