@@ -653,7 +653,7 @@ fn the_cli_writes_pictures_and_json_and_reports_missing_patch_output() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1));
     let e = String::from_utf8_lossy(&out.stderr);
-    assert!(e.contains("'loop' has no exact patch output"), "{e}");
+    assert!(e.contains("Loop patches need a triangle net"), "{e}");
     assert!(!panel.exists(), "nothing written after an error");
 
     let out = std::process::Command::new(exe)

@@ -381,10 +381,11 @@ fn compare_panel(
 }
 
 /// The schemes that have exact patch output.
-fn patch_schemes() -> Vec<String> {
+/// The schemes with patch output that take this net (Loop only takes triangle nets).
+fn patch_schemes(net: &PolyMesh) -> Vec<String> {
     fairsub::schemes::catalog()
         .iter()
-        .filter(|s| s.rings)
+        .filter(|s| s.rings && (s.name != "loop" || net.is_all_triangles()))
         .map(|s| s.name.to_string())
         .collect()
 }
@@ -397,15 +398,15 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         ));
     }
     let modes: Vec<Mode> = a.modes.iter().map(|m| m.parse()).collect::<Result<_>>()?;
+    let net = super::load_net(&a.net)?.mesh;
     let schemes: Vec<String> = if a.schemes.is_empty() {
-        patch_schemes()
+        patch_schemes(&net)
     } else {
         a.schemes.iter().map(|s| s.trim().to_string()).collect()
     };
     let opts = a
         .look
         .options((400, 400), modes.first().copied().unwrap_or(Mode::Shaded))?;
-    let net = super::load_net(&a.net)?.mesh;
     let (panel, scenes) = compare_panel(&net, &schemes, &modes, a.rings, !a.no_fill, &opts)?;
     panel.image.write_png(&a.output)?;
     if a.json {
@@ -475,6 +476,6 @@ pub fn demo_compare(net: &PolyMesh, path: &Path) -> Result<()> {
         },
         ..RenderOptions::default()
     };
-    let (panel, _) = compare_panel(net, &patch_schemes(), &modes, 6, true, &opts)?;
+    let (panel, _) = compare_panel(net, &patch_schemes(net), &modes, 6, true, &opts)?;
     panel.image.write_png(path)
 }

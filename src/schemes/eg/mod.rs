@@ -339,7 +339,12 @@ impl Eg {
 
     /// The step and ring tables.
     pub fn step(&self) -> Result<EgStep> {
-        build_step(self.n(), 12 * self.n() + 1, &|s, k| Ok(self.special_node(s, k)), Vec::new())
+        build_step(
+            self.n(),
+            12 * self.n() + 1,
+            &|s, k| Ok(self.special_node(s, k)),
+            Vec::new(),
+        )
     }
 }
 
@@ -353,8 +358,12 @@ pub fn new_node(
     u: i32,
     v: i32,
 ) -> Result<Stencil> {
-    let (s, u, v) = normalize(n, s, u, v).ok_or_else(|| Error::Unsupported("no node at the centre".into()))?;
-    if let Some(k) = SPECIAL.iter().position(|&(h, kk)| (3 - kk as i32, 3 - h as i32) == (u, v)) {
+    let (s, u, v) =
+        normalize(n, s, u, v).ok_or_else(|| Error::Unsupported("no node at the centre".into()))?;
+    if let Some(k) = SPECIAL
+        .iter()
+        .position(|&(h, kk)| (3 - kk as i32, 3 - h as i32) == (u, v))
+    {
         return special(s, k);
     }
     regular_node(n, s, u, v)
