@@ -37,6 +37,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
 use crate::schemes::eg::{Eg, EgStep, from_cnet};
+use crate::stencil::StencilTable;
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -71,36 +72,138 @@ impl Default for EgOptions {
     }
 }
 
-/// The EG cap builder: rules per valence, built once.
-struct EgCaps {
-    opts: EgOptions,
-    steps: Mutex<HashMap<usize, Option<(EgStep, usize)>>>,
-    fell_back: Mutex<Vec<(Element, usize)>>,
+/// Rules of a d-net cap scheme (EG, QAS+) per valence.
+pub(crate) trait DnetRules: Sync {
+    /// Name of the scheme's own rules (`eg`, `qas-plus`).
+    fn primary(&self) -> &'static str;
+    /// Name of the rules used at valence `n` (`None` when there are none).
+    fn rules_name(&self, n: usize) -> Option<&'static str>;
+    /// Stencils of the local vector from the c-net (layout of [`from_cnet`]).
+    fn init(&self, n: usize) -> Result<StencilTable>;
+    /// The step and ring tables used to make ring `k` (0-based).
+    fn step(&self, n: usize, k: usize) -> Result<EgStep>;
+    /// The message of `--fallback error`.
+    fn no_rules(&self, n: usize) -> String;
 }
 
-impl EgCaps {
-    fn step(&self, n: usize) -> Result<Option<EgStep>> {
-        let mut map = self.steps.lock().expect("no poisoning");
-        if let Some(e) = map.get(&n) {
-            return Ok(e.as_ref().map(|(s, _)| s.clone()));
-        }
-        let e = match Eg::new(n) {
-            Ok(eg) => Some((eg.step()?, n)),
-            Err(Error::Unsupported(_)) => None,
-            Err(e) => return Err(e),
-        };
-        let out = e.as_ref().map(|(s, _)| s.clone());
-        map.insert(n, e);
-        Ok(out)
+/// EG's rules.
+pub(crate) struct EgRulesProvider;
+
+impl DnetRules for EgRulesProvider {
+    fn primary(&self) -> &'static str {
+        "eg"
+    }
+
+    fn rules_name(&self, n: usize) -> Option<&'static str> {
+        Eg::new(n).ok().map(|_| "eg")
+    }
+
+    fn init(&self, n: usize) -> Result<StencilTable> {
+        from_cnet(n)
+    }
+
+    fn step(&self, n: usize, _k: usize) -> Result<EgStep> {
+        Eg::new(n)?.step()
+    }
+
+    fn no_rules(&self, n: usize) -> String {
+        format!(
+            "valence {n}: EG subdivision has published rules for valences 3 and 5 only (the paper's text \
+             lost the arrays for 6..10); use --fallback catmull-clark"
+        )
     }
 }
 
-impl CapBuilder for EgCaps {
+/// A cap builder for any [`DnetRules`], caching tables per valence and ring.
+pub(crate) struct DnetCaps<'a> {
+    rules: &'a dyn DnetRules,
+    rings: usize,
+    fill: bool,
+    fallback: Fallback,
+    init: Mutex<HashMap<usize, StencilTable>>,
+    steps: Mutex<HashMap<(usize, usize), EgStep>>,
+    fell_back: Mutex<Vec<(Element, usize)>>,
+    substituted: Mutex<Vec<(Element, usize, &'static str)>>,
+}
+
+impl<'a> DnetCaps<'a> {
+    pub(crate) fn new(
+        rules: &'a dyn DnetRules,
+        rings: usize,
+        fill: bool,
+        fallback: Fallback,
+    ) -> Self {
+        DnetCaps {
+            rules,
+            rings,
+            fill,
+            fallback,
+            init: Mutex::new(HashMap::new()),
+            steps: Mutex::new(HashMap::new()),
+            fell_back: Mutex::new(Vec::new()),
+            substituted: Mutex::new(Vec::new()),
+        }
+    }
+
+    fn step(&self, n: usize, k: usize) -> Result<EgStep> {
+        let mut map = self.steps.lock().expect("no poisoning");
+        if let Some(s) = map.get(&(n, k)) {
+            return Ok(s.clone());
+        }
+        let s = self.rules.step(n, k)?;
+        map.insert((n, k), s.clone());
+        Ok(s)
+    }
+
+    fn init(&self, n: usize) -> Result<StencilTable> {
+        let mut map = self.init.lock().expect("no poisoning");
+        if let Some(t) = map.get(&n) {
+            return Ok(t.clone());
+        }
+        let t = self.rules.init(n)?;
+        map.insert(n, t.clone());
+        Ok(t)
+    }
+
+    /// Notes for the user: elements that fell back to Catmull-Clark or were capped by other
+    /// rules than the scheme's own.
+    pub(crate) fn notes(self) -> (Vec<(Element, usize)>, Vec<String>) {
+        let primary = self.rules.primary();
+        let mut notes: Vec<String> = self
+            .substituted
+            .into_inner()
+            .expect("no poisoning")
+            .into_iter()
+            .map(|(e, n, name)| {
+                format!(
+                    "{} (valence {n}) has no published {primary} rules: {name} rules there",
+                    describe(e)
+                )
+            })
+            .collect();
+        let fb = self.fell_back.into_inner().expect("no poisoning");
+        for (e, n) in &fb {
+            notes.push(format!(
+                "{} (valence {n}) has no published {primary} rules: Catmull-Clark rings and fill there",
+                describe(*e)
+            ));
+        }
+        (fb, notes)
+    }
+}
+
+impl CapBuilder for DnetCaps<'_> {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
-        if self.step(n)?.is_some() {
+        if let Some(name) = self.rules.rules_name(n) {
+            if name != self.rules.primary() {
+                let mut sub = self.substituted.lock().expect("no poisoning");
+                if !sub.iter().any(|(e, _, _)| *e == element) {
+                    sub.push((element, n, name));
+                }
+            }
             return Ok(true);
         }
-        match self.opts.fallback {
+        match self.fallback {
             Fallback::CatmullClark => {
                 let mut fb = self.fell_back.lock().expect("no poisoning");
                 if !fb.iter().any(|(e, _)| *e == element) {
@@ -109,9 +212,9 @@ impl CapBuilder for EgCaps {
                 Ok(false)
             }
             Fallback::Error => Err(Error::Unsupported(format!(
-                "{} has valence {n}: EG subdivision has published rules for valences 3 and 5 only \
-                 (the paper's text lost the arrays for 6..10); use --fallback catmull-clark",
-                describe(element)
+                "{} has {}",
+                describe(element),
+                self.rules.no_rules(n)
             ))),
         }
     }
@@ -124,28 +227,22 @@ impl CapBuilder for EgCaps {
         first_ring: u32,
         out: &mut PatchComplex,
     ) -> Result<()> {
-        let step = self.step(n)?.expect("accepted valences have rules");
-        let mut x = from_cnet(n)?.apply(cnet);
+        if self.fill && self.rings == 0 {
+            return Err(Error::InvalidArgument(
+                "the fill of a d-net cap needs at least one ring (--rings 1)".into(),
+            ));
+        }
+        let mut x = self.init(n)?.apply(cnet);
         let mut last = None;
-        for k in 0..self.opts.rings {
+        for k in 0..self.rings {
+            let step = self.step(n, k)?;
             let ring = step.ring.apply(&x);
             push_ring(&ring, n, element, first_ring + k as u32, out);
             last = Some(ring);
             x = step.step.apply(&x);
         }
-        if self.opts.fill {
-            let ring = match last {
-                Some(r) => r,
-                None => {
-                    // Zero rings: the hole is bounded by the bi-3 surroundings; use the first ring's
-                    // outer data by taking one ring and filling inside it would change the surface,
-                    // so require a ring.
-                    return Err(Error::InvalidArgument(
-                        "the EG fill needs at least one ring (--rings 1)".into(),
-                    ));
-                }
-            };
-            let next = step.ring.apply(&x);
+        if let (true, Some(ring)) = (self.fill, last) {
+            let next = self.step(n, self.rings)?.ring.apply(&x);
             fill(&ring, &next, x[0], n, element, out);
         }
         Ok(())
@@ -308,11 +405,28 @@ pub fn eg_complex(
     opts: EgOptions,
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<(Element, usize)>)> {
-    let caps = EgCaps {
-        opts,
-        steps: Mutex::new(HashMap::new()),
-        fell_back: Mutex::new(Vec::new()),
-    };
+    dnet_complex(&EgRulesProvider, mesh, opts, progress).map(|o| (o.complex, o.fell_back))
+}
+
+/// A patch complex with caps, and what the user should know about it.
+#[derive(Debug, Clone)]
+pub struct CapOutput {
+    /// The surface.
+    pub complex: PatchComplex,
+    /// Elements that fell back to Catmull-Clark, with their valences.
+    pub fell_back: Vec<(Element, usize)>,
+    /// Notes for the user (fallbacks and substitutions, per element).
+    pub notes: Vec<String>,
+}
+
+/// The surface of a net with caps of a d-net scheme (shared by EG and QAS+).
+pub(crate) fn dnet_complex(
+    rules: &dyn DnetRules,
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    progress: impl FnMut(usize),
+) -> Result<CapOutput> {
+    let caps = DnetCaps::new(rules, opts.rings, opts.fill, opts.fallback);
     let c = adaptive_complex(
         mesh,
         CcComplexOptions {
@@ -322,6 +436,10 @@ pub fn eg_complex(
         Some(&caps),
         progress,
     )?;
-    let fb = caps.fell_back.into_inner().expect("no poisoning");
-    Ok((c, fb))
+    let (fell_back, notes) = caps.notes();
+    Ok(CapOutput {
+        complex: c,
+        fell_back,
+        notes,
+    })
 }

@@ -251,6 +251,17 @@ fn old_node(n: usize, s: usize, u: i32, v: i32) -> Result<Stencil> {
     )))
 }
 
+/// Source index of the d-net node at chart point `(u, v)` (quarters of the d-net spacing, even)
+/// of sector `s`, resolved to its owning sector; `None` for the centre or points outside the
+/// d-net.
+pub fn dnet_node(n: usize, s: usize, u: i32, v: i32) -> Option<usize> {
+    let (s, u, v) = normalize(n, s, u, v)?;
+    if u % 2 != 0 || v % 2 != 0 || !(2..=6).contains(&u) || v > 6 {
+        return None;
+    }
+    Some(dnet_index(s, (3 - v / 2) as usize, (3 - u / 2) as usize))
+}
+
 /// Univariate regular bi-4 refinement weights of a new node at `x` (quarters of the old
 /// spacing): old positions and weights.
 fn univariate(x: i32) -> [(i32, f64); 3] {
