@@ -357,3 +357,49 @@ fn accelerated_variants_contract_faster() {
     assert!((Contraction::Gradual.at(4) - 0.45).abs() < 1e-15);
     assert!((Contraction::Gradual.at(6) - 0.4).abs() < 1e-15);
 }
+
+#[test]
+fn user_given_expansions_of_each_kind() {
+    use fairsub::schemes::qas::parse_q_file;
+    use fairsub::surface::qas::qas_complex_with;
+    let path = std::path::Path::new("q.txt");
+    let net = gallery::cnet(5, CnetShape::Convex, 3);
+    let opts = EgOptions {
+        rings: 10,
+        fill: false,
+        fallback: Fallback::Error,
+    };
+    // C^1-C^0: one free q_5 changed; the rings stay C^2 and the curvature bounded.
+    let q = parse_q_file("vertex 0\nkind c1-c0\nq 0 5 0.4 0.3 0.1\n", path).unwrap();
+    let o = qas_complex_with(&net, opts, Contraction::Half, q, |_| {}).unwrap();
+    let r = continuity::check(&o.complex);
+    for (kind, d) in &r.by_kind {
+        if !kind.contains("cap") {
+            assert!(d.c2 < 1e-9 * r.size, "{kind}: {}", d.c2);
+        }
+    }
+    let k = curvature::ring_curvature(&o.complex);
+    let growth: Vec<f64> = (2..=10).map(|r| kmax(&k, r)).collect();
+    // Bounded: the per-ring maxima converge geometrically (differences shrink by more than 1/3).
+    let d: Vec<f64> = growth.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    assert!(
+        d[7] < 0.75 * d[6] && d[6] < 0.75 * d[5],
+        "curvature does not converge: {growth:?}"
+    );
+    // A C^2 expansion cannot have one coefficient changed alone: the error names the place.
+    let q = parse_q_file("vertex 0\nkind c2\nq 0 5 0 0 1\n", path).unwrap();
+    let e = qas_complex_with(&net, opts, Contraction::Half, q, |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("vertex 0") && e.contains("q_5 of sector 1"),
+        "{e}"
+    );
+    // Syntax errors name the line.
+    let e = parse_q_file("vertex 0\nq 0 9 1 2 3\n", path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("q.txt:2"), "{e}");
+    let e = parse_q_file("p 1 2 3\n", path).unwrap_err().to_string();
+    assert!(e.contains(":1") && e.contains("vertex V"), "{e}");
+}

@@ -84,6 +84,10 @@ pub(crate) trait DnetRules: Sync {
     fn step(&self, n: usize, k: usize) -> Result<EgStep>;
     /// The message of `--fallback error`.
     fn no_rules(&self, n: usize) -> String;
+    /// Adjusts the initial local vector of one element (user-given data); the default keeps it.
+    fn adjust(&self, _n: usize, _element: Element, _x: &mut [Point]) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// EG's rules.
@@ -233,6 +237,7 @@ impl CapBuilder for DnetCaps<'_> {
             ));
         }
         let mut x = self.init(n)?.apply(cnet);
+        self.rules.adjust(n, element, &mut x)?;
         let mut last = None;
         for k in 0..self.rings {
             let step = self.step(n, k)?;

@@ -7,11 +7,15 @@
 //! The initial quadratic expansion is fairsub's `qas-fit` ([`crate::schemes::qas::fit_stencils`]).
 
 use super::eg::{CapOutput, DnetRules, EgOptions, EgRulesProvider, dnet_complex};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::geom::Point;
 use crate::mesh::PolyMesh;
 use crate::schemes::eg::{Eg, EgStep};
+use crate::schemes::qas::QSpec;
 use crate::schemes::qas::{self, Qas};
 use crate::stencil::StencilTable;
+use crate::surface::Element;
+use std::collections::BTreeMap;
 
 /// The contraction used by a QAS variant at ring `k` (0-based).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,6 +44,7 @@ impl Contraction {
 
 struct QasRulesProvider {
     contraction: Contraction,
+    overrides: BTreeMap<u32, QSpec>,
 }
 
 impl DnetRules for QasRulesProvider {
@@ -76,6 +81,46 @@ impl DnetRules for QasRulesProvider {
             "valence {n}: QAS+ has published rules for valences 5, 6, 7 (and EG's for 3); use --fallback catmull-clark"
         )
     }
+
+    fn adjust(&self, n: usize, element: Element, x: &mut [Point]) -> Result<()> {
+        let Element::Vertex(v) = element else {
+            return Ok(());
+        };
+        let Some(spec) = self.overrides.get(&v) else {
+            return Ok(());
+        };
+        if !qas::tables::COMPLETE_VALENCES.contains(&n) {
+            return Err(Error::InvalidArgument(format!(
+                "the q file gives an expansion for vertex {v}, which has valence {n}: QAS+ rules exist for 5, 6, 7"
+            )));
+        }
+        if let Some(p) = spec.p {
+            x[0] = p;
+        }
+        for &(s, k, val) in &spec.q {
+            if s >= n {
+                return Err(Error::InvalidArgument(format!(
+                    "the q file names sector {s} of vertex {v}, which has {n} sectors"
+                )));
+            }
+            x[qas::q_index(n, s, k)] = val;
+        }
+        let full: Vec<[[f64; 3]; 6]> = (0..n)
+            .map(|s| {
+                let mut q = [x[0]; 6];
+                for k in 2..=6 {
+                    q[k - 1] = x[qas::q_index(n, s, k)];
+                }
+                q
+            })
+            .collect();
+        let scale = x
+            .iter()
+            .flat_map(|p| p.iter())
+            .fold(1.0f64, |m, c| m.max(c.abs()));
+        qas::check_kind(n, &full, spec.kind, 1e-9 * scale)
+            .map_err(|e| Error::InvalidArgument(format!("q file, vertex {v}: {e}")))
+    }
 }
 
 /// The QAS+ surface of a net, with the elements that fell back and notes for the user.
@@ -85,5 +130,28 @@ pub fn qas_complex(
     contraction: Contraction,
     progress: impl FnMut(usize),
 ) -> Result<CapOutput> {
-    dnet_complex(&QasRulesProvider { contraction }, mesh, opts, progress)
+    qas_complex_with(mesh, opts, contraction, BTreeMap::new(), progress)
+}
+
+/// Like [`qas_complex`], with user-given expansions per input vertex
+/// ([`crate::schemes::qas::parse_q_file`]): given coefficients replace those of `qas-fit` and the
+/// result must be of the declared kind (C^2, C^1 or C^1-C^0), else an error names the vertex,
+/// sector and coefficient. Sectors are numbered as in [`PolyMesh::cnet_indices`] at the level where
+/// the cap is made.
+pub fn qas_complex_with(
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    contraction: Contraction,
+    overrides: BTreeMap<u32, QSpec>,
+    progress: impl FnMut(usize),
+) -> Result<CapOutput> {
+    dnet_complex(
+        &QasRulesProvider {
+            contraction,
+            overrides,
+        },
+        mesh,
+        opts,
+        progress,
+    )
 }

@@ -425,3 +425,166 @@ mod tests {
         }
     }
 }
+
+/// A user-given quadratic expansion for one extraordinary vertex (from a q file).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct QSpec {
+    /// The kind the coefficients must satisfy.
+    pub kind: QKind,
+    /// The central point, if given.
+    pub p: Option<[f64; 3]>,
+    /// Given coefficients `(sector, k, value)`, `k = 2..6`.
+    pub q: Vec<(usize, usize, [f64; 3])>,
+}
+
+/// Parses a q file: lines `vertex V` (starts the section of input vertex `V`), `kind c2|c1|c1-c0`,
+/// `p X Y Z`, `q SECTOR K X Y Z` (`K = 2..6`); `#` starts a comment. Coefficients not given keep
+/// the values of the `qas-fit` rule. Errors name the line.
+pub fn parse_q_file(
+    text: &str,
+    path: &std::path::Path,
+) -> Result<std::collections::BTreeMap<u32, QSpec>> {
+    let mut out: std::collections::BTreeMap<u32, QSpec> = std::collections::BTreeMap::new();
+    let mut cur: Option<u32> = None;
+    let err = |line: usize, msg: String| Error::Parse {
+        path: path.to_path_buf(),
+        line,
+        msg,
+    };
+    for (ln, raw) in text.lines().enumerate() {
+        let line = ln + 1;
+        let t = raw.split('#').next().unwrap_or("").trim();
+        if t.is_empty() {
+            continue;
+        }
+        let f: Vec<&str> = t.split_whitespace().collect();
+        let num = |s: &str| -> Result<f64> {
+            s.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| err(line, format!("'{s}' is not a finite number")))
+        };
+        let need_vertex = || -> Result<u32> {
+            cur.ok_or_else(|| err(line, "a 'vertex V' line must come first".into()))
+        };
+        match f[0] {
+            "vertex" if f.len() == 2 => {
+                let v: u32 = f[1]
+                    .parse()
+                    .map_err(|_| err(line, format!("'{}' is not a vertex index", f[1])))?;
+                out.entry(v).or_default();
+                cur = Some(v);
+            }
+            "kind" if f.len() == 2 => {
+                let k = match f[1] {
+                    "c2" => QKind::C2,
+                    "c1" => QKind::C1,
+                    "c1-c0" | "c1c0" => QKind::C1C0,
+                    other => {
+                        return Err(err(line, format!("unknown kind '{other}' (c2, c1, c1-c0)")));
+                    }
+                };
+                let v = need_vertex()?;
+                out.entry(v).or_default().kind = k;
+            }
+            "p" if f.len() == 4 => {
+                let p = [num(f[1])?, num(f[2])?, num(f[3])?];
+                let v = need_vertex()?;
+                out.entry(v).or_default().p = Some(p);
+            }
+            "q" if f.len() == 6 => {
+                let s: usize = f[1]
+                    .parse()
+                    .map_err(|_| err(line, format!("'{}' is not a sector", f[1])))?;
+                let k: usize = f[2]
+                    .parse()
+                    .map_err(|_| err(line, format!("'{}' is not a coefficient index", f[2])))?;
+                if !(2..=6).contains(&k) {
+                    return Err(err(
+                        line,
+                        format!("coefficient q_{k}: only q_2 .. q_6 are given (q_1 is p)"),
+                    ));
+                }
+                let x = [num(f[3])?, num(f[4])?, num(f[5])?];
+                let v = need_vertex()?;
+                out.entry(v).or_default().q.push((s, k, x));
+            }
+            _ => {
+                return Err(err(
+                    line,
+                    format!(
+                        "cannot read '{t}' (expected 'vertex V', 'kind c2|c1|c1-c0', 'p X Y Z' or 'q S K X Y Z')"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Checks that full per-sector coefficients `q[s][k - 1]` (`k = 1..6`, `q_1 = p`) form an
+/// expansion of the given kind: the constraints (3) (C^2), its first five rows and the C^1
+/// relation of the paper (C^1), or the tangent plane and C^0 between sectors (C^1-C^0). Returns
+/// the first violated relation, naming the sector and coefficient.
+pub fn check_kind(
+    n: usize,
+    q: &[[[f64; 3]; 6]],
+    kind: QKind,
+    tol: f64,
+) -> std::result::Result<(), String> {
+    let c = (2.0 * PI / n as f64).cos();
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() <= tol);
+    let lin = |terms: &[(f64, [f64; 3])]| {
+        let mut r = [0.0; 3];
+        for &(w, v) in terms {
+            for i in 0..3 {
+                r[i] += w * v[i];
+            }
+        }
+        r
+    };
+    for s in 0..n {
+        let (a, b) = (q[s], q[(s + 1) % n]);
+        let mut rules: Vec<(usize, [f64; 3], &str)> = vec![
+            (2, a[3], "q_2^(s+1) = q_4^s"),
+            (
+                4,
+                lin(&[(2.0 * (1.0 - c), a[0]), (-1.0, a[1]), (2.0 * c, a[3])]),
+                "tangent plane",
+            ),
+            (3, a[5], "C^0: q_3^(s+1) = q_6^s"),
+        ];
+        if kind != QKind::C1C0 {
+            rules.push((
+                5,
+                lin(&[(2.0 * (1.0 - c), a[3]), (-1.0, a[4]), (2.0 * c, a[5])]),
+                "C^1",
+            ));
+        }
+        if kind == QKind::C2 {
+            rules.push((
+                6,
+                lin(&[
+                    (4.0 * (1.0 - c).powi(2), a[0]),
+                    (4.0 * (c - 1.0), a[1]),
+                    (1.0, a[2]),
+                    (8.0 * c * (1.0 - c), a[3]),
+                    (-4.0 * c, a[4]),
+                    (4.0 * c * c, a[5]),
+                ]),
+                "C^2",
+            ));
+        }
+        for (k, expect, what) in rules {
+            if !close(b[k - 1], expect) {
+                return Err(format!(
+                    "q_{k} of sector {} violates {what} (from sector {s}): it is {:?}, the constraint asks {:?}",
+                    (s + 1) % n,
+                    b[k - 1],
+                    expect
+                ));
+            }
+        }
+    }
+    Ok(())
+}
