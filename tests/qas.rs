@@ -403,3 +403,57 @@ fn user_given_expansions_of_each_kind() {
     let e = parse_q_file("p 1 2 3\n", path).unwrap_err().to_string();
     assert!(e.contains(":1") && e.contains("vertex V"), "{e}");
 }
+
+#[test]
+fn bi3_variant_meets_the_published_bound_and_joins_c2() {
+    for (n, rho) in [(5, 0.136252), (6, 0.125485), (7, 0.124899)] {
+        let f = local::qas_bi3_facts(n, 0.5).unwrap();
+        assert!(
+            f.m_d_spectral_radius < 0.13626,
+            "n={n}: {}",
+            f.m_d_spectral_radius
+        );
+        assert!(
+            (f.m_d_spectral_radius - rho).abs() < 5e-7,
+            "n={n}: {}",
+            f.m_d_spectral_radius
+        );
+        assert_eq!(f.m_q_c2.len(), 6);
+    }
+    // T maps the degree-raised c-net (R c) to the knot-inserted one: the bi-3 d-net of a regular
+    // c-net equals the uniformly refined net at the d-net positions.
+    let net = gallery::cnet(5, CnetShape::Saddle, 3);
+    let idx = net.cnet_indices(0, 2).unwrap();
+    let pts: Vec<[f64; 3]> = idx.iter().map(|&v| net.position(v as usize)).collect();
+    let x = fairsub::schemes::qas::bi3::from_cnet(5)
+        .unwrap()
+        .apply(&pts);
+    // Node d_00 of sector s sits at (3/2, 3/2): uniform cubic refinement puts the face point of
+    // the c-net face [1, 2]^2 of that sector there.
+    for s in 0..5 {
+        let face = [(1, 1), (2, 1), (2, 2), (1, 2)].map(|(i, j)| pts[1 + 6 * s + (i - 1) * 3 + j]);
+        let fp = fairsub::geom::centroid(face);
+        assert!(fairsub::geom::dist(x[1 + 12 * s], fp) < 1e-12, "sector {s}");
+    }
+    let opts = EgOptions {
+        rings: 4,
+        fill: true,
+        fallback: Fallback::Error,
+    };
+    let o = fairsub::surface::qas::qas_bi3_complex(&net, opts, Contraction::Half, |_| {}).unwrap();
+    let rings = o
+        .complex
+        .provenance
+        .iter()
+        .filter(|p| matches!(p, Provenance::Ring { ring: 2, .. }))
+        .count();
+    assert_eq!(rings, 12 * 5);
+    let r = continuity::check(&o.complex);
+    for (kind, d) in &r.by_kind {
+        assert!(d.c0 < 1e-12 * r.size, "{kind}");
+        if !kind.contains("cap") {
+            assert!(d.c2 < 1e-9 * r.size, "{kind}: {}", d.c2);
+        }
+    }
+    assert_eq!(r.open_sides, 30, "only the net's outer boundary is open");
+}

@@ -180,6 +180,7 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         "eg" => eg(n),
         "qas-plus" => qas(n, 0.5),
         "qas-0.4" => qas(n, 0.4),
+        "qas-plus-bi3" => qas_bi3(n, 0.5),
         other => Err(Error::InvalidArgument(format!(
             "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, qas-plus, qas-0.4)"
         ))),
@@ -264,9 +265,23 @@ pub fn characteristic_ring(
 /// then per sector its 12 d-net nodes and its 5 expansion coefficients `q_2 .. q_6` (17 points),
 /// so that the Fourier blocks apply. `lambda` is the contraction of `S` (1/2 for QAS+).
 pub fn qas(n: usize, lambda: f64) -> Result<LocalMatrix> {
-    use crate::schemes::qas::{Qas, num_sources, q_index};
+    use crate::schemes::qas::Qas;
     check_valence(n)?;
-    let st = Qas::new(n)?.step(lambda)?.step;
+    qas_from_step(n, Qas::new(n)?.step(lambda)?.step, "qas-plus")
+}
+
+/// QAS+^3's matrix (bi-3 d-net through `T_3^4`), ordered like [`qas`].
+pub fn qas_bi3(n: usize, lambda: f64) -> Result<LocalMatrix> {
+    check_valence(n)?;
+    qas_from_step(
+        n,
+        crate::schemes::qas::bi3::QasBi3::new(n)?.step(lambda)?.step,
+        "qas-plus-bi3",
+    )
+}
+
+fn qas_from_step(n: usize, st: StencilTable, name: &str) -> Result<LocalMatrix> {
+    use crate::schemes::qas::{num_sources, q_index};
     let m = num_sources(n);
     let perm: Vec<usize> = std::iter::once(0)
         .chain((0..n).flat_map(|s| {
@@ -278,7 +293,7 @@ pub fn qas(n: usize, lambda: f64) -> Result<LocalMatrix> {
     let a = dense(&st);
     let b = DMatrix::from_fn(m, m, |i, j| a[(perm[i], perm[j])]);
     Ok(LocalMatrix {
-        scheme: "qas-plus".into(),
+        scheme: name.into(),
         n,
         centre: 1,
         sector: 17,
@@ -305,8 +320,19 @@ pub struct QasFacts {
 
 /// Computes [`QasFacts`] at valence `n` with contraction `lambda`.
 pub fn qas_facts(n: usize, lambda: f64) -> Result<QasFacts> {
-    use crate::schemes::qas::{Qas, num_sources, q_index, quadratic_bb};
-    let st = Qas::new(n)?.step(lambda)?.step;
+    qas_facts_of(n, crate::schemes::qas::Qas::new(n)?.step(lambda)?.step)
+}
+
+/// [`QasFacts`] of QAS+^3.
+pub fn qas_bi3_facts(n: usize, lambda: f64) -> Result<QasFacts> {
+    qas_facts_of(
+        n,
+        crate::schemes::qas::bi3::QasBi3::new(n)?.step(lambda)?.step,
+    )
+}
+
+fn qas_facts_of(n: usize, st: StencilTable) -> Result<QasFacts> {
+    use crate::schemes::qas::{num_sources, q_index, quadratic_bb};
     let m = num_sources(n);
     let a = dense(&st);
     let nd = 12 * n;

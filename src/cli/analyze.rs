@@ -109,6 +109,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
     let qas = match a.scheme.as_str() {
         "qas-plus" => Some(local::qas_facts(a.valence, 0.5)?),
         "qas-0.4" => Some(local::qas_facts(a.valence, 0.4)?),
+        "qas-plus-bi3" => Some(local::qas_bi3_facts(a.valence, 0.5)?),
         _ => None,
     };
     if let Some(q) = &qas {

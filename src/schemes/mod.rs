@@ -172,6 +172,17 @@ pub fn catalog() -> Vec<SchemeInfo> {
             status: "available (patches; valences 5..7)",
         },
         SchemeInfo {
+            name: "qas-plus-bi3",
+            family: "QAS+^3: bi-3 rings (2 x 2 macro-patches) through fairsub's derived bijection T_3^4",
+            input: "as qas-plus",
+            patches: "bi-3 on regular quads; K rings of 12n bi-3 patches; bi-3 fill (C^0, 2 x 2 Coons per sector)",
+            smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) = 0.136252 < 0.13626 at n = 5)",
+            valences: "as qas-plus",
+            refine: false,
+            rings: true,
+            status: "available (patches; T_3^4 derived: the earlier paper's formulas are not in the corpus)",
+        },
+        SchemeInfo {
             name: "qas-0.4",
             family: "QAS+^4 accelerated: lambda = 0.4 in the restriction S (tables unchanged)",
             input: "as qas-plus",

@@ -248,7 +248,11 @@ impl CapBuilder for DnetCaps<'_> {
         }
         if let (true, Some(ring)) = (self.fill, last) {
             let next = self.step(n, self.rings)?.ring.apply(&x);
-            fill(&ring, &next, x[0], n, element, out);
+            if is_bi3_ring(&ring, n) {
+                fill_bi3(&ring, &next, x[0], n, element, out);
+            } else {
+                fill(&ring, &next, x[0], n, element, out);
+            }
         }
         Ok(())
     }
@@ -268,14 +272,108 @@ fn ring_patch(ring: &[Point], s: usize, k: usize) -> BezierPatch {
 }
 
 fn push_ring(ring: &[Point], n: usize, element: Element, ring_index: u32, out: &mut PatchComplex) {
+    let bi3 = is_bi3_ring(ring, n);
     for s in 0..n {
-        for k in 0..3 {
+        for k in 0..if bi3 { 12 } else { 3 } {
             // The EG chart mirrors the mesh chart: transpose so the normal points outward.
+            let p = if bi3 {
+                ring_patch3(ring, s, k / 4, k % 4)
+            } else {
+                ring_patch(ring, s, k)
+            };
             out.push(
-                ring_patch(ring, s, k).transposed(),
+                p.transposed(),
                 Provenance::Ring {
                     element,
                     ring: ring_index,
+                    sector: s as u32,
+                },
+            );
+        }
+    }
+}
+
+/// Whether a ring table holds 12 bi-3 patches per sector (QAS+^3) rather than 3 bi-4 patches.
+fn is_bi3_ring(ring: &[Point], n: usize) -> bool {
+    ring.len() == 192 * n
+}
+
+/// Sub-patch `sub` ((0,0), (1,0), (0,1), (1,1) of the EG chart) of macro-patch `k` (A, B, C) of
+/// sector `s` of a bi-3 ring.
+fn ring_patch3(ring: &[Point], s: usize, k: usize, sub: usize) -> BezierPatch {
+    let base = 16 * (12 * s + 4 * k + sub);
+    BezierPatch::new(3, 3, ring[base..base + 16].to_vec())
+}
+
+/// The fill inside a bi-3 ring (QAS+^3): per sector 2 x 2 bi-3 Coons patches. The outer sides are
+/// the ring's inner sides (exact), the spokes cubics through `c0`, the next ring's corner at half
+/// the distance and the ring's corner with its derivative (split in two), the inner lines straight
+/// through a centre point set by the bilinear Coons rule. C^0 to the ring and between sectors.
+fn fill_bi3(
+    ring: &[Point],
+    next: &[Point],
+    c0: Point,
+    n: usize,
+    element: Element,
+    out: &mut PatchComplex,
+) {
+    let spokes: Vec<[Point; 4]> = (0..n)
+        .map(|s| {
+            let a = ring_patch3(ring, s, 0, 0);
+            let q = a.cp(0, 0);
+            // The sub-patch spans half the spoke's parameter: the spoke's derivative is twice.
+            let d = geom::scale(a.derivatives(0.0, 0.0).du, 2.0);
+            let mid = ring_patch3(next, s, 0, 0).cp(0, 0);
+            let b2 = geom::axpy(q, -1.0 / 3.0, d);
+            let mut b1 = [0.0; 3];
+            for k in 0..3 {
+                b1[k] = (8.0 * mid[k] - c0[k] - 3.0 * b2[k] - q[k]) / 3.0;
+            }
+            [c0, b1, b2, q]
+        })
+        .collect();
+    let halves = |c: &[Point; 4]| {
+        let (lo, hi) = curve::split(c, 0.5);
+        (lo, hi)
+    };
+    let line = |a: Point, b: Point| {
+        vec![
+            a,
+            geom::lerp(a, b, 1.0 / 3.0),
+            geom::lerp(a, b, 2.0 / 3.0),
+            b,
+        ]
+    };
+    for s in 0..n {
+        let (sp_lo, sp_hi) = halves(&spokes[s]);
+        let (sq_lo, sq_hi) = halves(&spokes[(s + n - 1) % n]);
+        let a00 = ring_patch3(ring, s, 0, 0).boundary(crate::bezier::Side::U0);
+        let a01 = ring_patch3(ring, s, 0, 2).boundary(crate::bezier::Side::U0);
+        let c00 = ring_patch3(ring, s, 2, 0).boundary(crate::bezier::Side::V0);
+        let c10 = ring_patch3(ring, s, 2, 1).boundary(crate::bezier::Side::V0);
+        let (m1, m3) = (sp_lo[3], sq_lo[3]);
+        let (m2, m4) = (c00[3], a00[3]);
+        let corner = a01[3];
+        let (q_s, q_p) = (sp_hi[3], sq_hi[3]);
+        let mut x = [0.0; 3];
+        for k in 0..3 {
+            x[k] = 0.5 * (m1[k] + m2[k] + m3[k] + m4[k])
+                - 0.25 * (c0[k] + q_s[k] + q_p[k] + corner[k]);
+        }
+        // Sub-patches of the sector fill over [0, 1/2]^2 etc. of its EG chart: (v0, u1, v1, u0).
+        // Each cell lists its sides (v0, u1, v1, u0).
+        let cells: [[Vec<Point>; 4]; 4] = [
+            [sp_lo.to_vec(), line(m1, x), line(m3, x), sq_lo.to_vec()],
+            [sp_hi.to_vec(), a00.clone(), line(x, m4), line(m1, x)],
+            [line(m3, x), line(x, m2), c00.clone(), sq_hi.to_vec()],
+            [line(x, m4), a01.clone(), c10.clone(), line(x, m2)],
+        ];
+        for [v0, u1, v1, u0] in cells.iter() {
+            let p = BezierPatch::coons(3, v0, u1, v1, u0);
+            out.push(
+                p.transposed(),
+                Provenance::Cap {
+                    element,
                     sector: s as u32,
                 },
             );

@@ -142,7 +142,7 @@ pub fn complex_with_notes(
 ) -> crate::error::Result<(PatchComplex, Vec<String>)> {
     let plain = |c: crate::error::Result<PatchComplex>| c.map(|c| (c, Vec::new()));
     match scheme {
-        "eg" | "qas-plus" | "qas-0.4" | "qas-0.5-0.4" => {
+        "eg" | "qas-plus" | "qas-0.4" | "qas-0.5-0.4" | "qas-plus-bi3" => {
             let eo = eg::EgOptions {
                 rings: opts.rings,
                 fill: opts.fill,
@@ -152,6 +152,7 @@ pub fn complex_with_notes(
                 "eg" => eg::dnet_complex(&eg::EgRulesProvider, mesh, eo, progress)?,
                 "qas-plus" => qas::qas_complex(mesh, eo, qas::Contraction::Half, progress)?,
                 "qas-0.4" => qas::qas_complex(mesh, eo, qas::Contraction::Fixed(0.4), progress)?,
+                "qas-plus-bi3" => qas::qas_bi3_complex(mesh, eo, qas::Contraction::Half, progress)?,
                 _ => qas::qas_complex(mesh, eo, qas::Contraction::Gradual, progress)?,
             };
             Ok((o.complex, o.notes))

@@ -45,6 +45,7 @@ impl Contraction {
 struct QasRulesProvider {
     contraction: Contraction,
     overrides: BTreeMap<u32, QSpec>,
+    bi3: bool,
 }
 
 impl DnetRules for QasRulesProvider {
@@ -61,7 +62,9 @@ impl DnetRules for QasRulesProvider {
     }
 
     fn init(&self, n: usize) -> Result<StencilTable> {
-        if qas::tables::COMPLETE_VALENCES.contains(&n) {
+        if qas::tables::COMPLETE_VALENCES.contains(&n) && self.bi3 {
+            qas::bi3::from_cnet(n)
+        } else if qas::tables::COMPLETE_VALENCES.contains(&n) {
             qas::from_cnet(n)
         } else {
             EgRulesProvider.init(n)
@@ -69,7 +72,9 @@ impl DnetRules for QasRulesProvider {
     }
 
     fn step(&self, n: usize, k: usize) -> Result<EgStep> {
-        if qas::tables::COMPLETE_VALENCES.contains(&n) {
+        if qas::tables::COMPLETE_VALENCES.contains(&n) && self.bi3 {
+            qas::bi3::QasBi3::new(n)?.step(self.contraction.at(k))
+        } else if qas::tables::COMPLETE_VALENCES.contains(&n) {
             Qas::new(n)?.step(self.contraction.at(k))
         } else {
             Eg::new(n)?.step()
@@ -133,6 +138,26 @@ pub fn qas_complex(
     qas_complex_with(mesh, opts, contraction, BTreeMap::new(), progress)
 }
 
+/// QAS+^3: like [`qas_complex`] with the bi-3 rings of [`crate::schemes::qas::bi3`] (12 n bi-3
+/// patches per ring) and the bi-3 fill.
+pub fn qas_bi3_complex(
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    contraction: Contraction,
+    progress: impl FnMut(usize),
+) -> Result<CapOutput> {
+    dnet_complex(
+        &QasRulesProvider {
+            contraction,
+            overrides: BTreeMap::new(),
+            bi3: true,
+        },
+        mesh,
+        opts,
+        progress,
+    )
+}
+
 /// Like [`qas_complex`], with user-given expansions per input vertex
 /// ([`crate::schemes::qas::parse_q_file`]): given coefficients replace those of `qas-fit` and the
 /// result must be of the declared kind (C^2, C^1 or C^1-C^0), else an error names the vertex,
@@ -149,6 +174,7 @@ pub fn qas_complex_with(
         &QasRulesProvider {
             contraction,
             overrides,
+            bi3: false,
         },
         mesh,
         opts,

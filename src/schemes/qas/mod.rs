@@ -28,6 +28,7 @@
 //! * `q~ = S q` by (8), with `lambda = 1/2` (QAS+) or another `lambda` (the accelerated variants
 //!   keep the tables and change only `S`, as the paper's Section 7 describes).
 
+pub mod bi3;
 pub mod chi;
 pub mod tables;
 
