@@ -60,6 +60,10 @@ pub struct AnalyzeArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Analyse the form with the central points replicated once per sector (as the bi-2 paper
+    /// writes its matrices): same non-zero spectrum, equal-size Fourier blocks.
+    #[arg(long)]
+    pub replicated_centre: bool,
 }
 
 fn c2(z: analysis::C64) -> [f64; 2] {
@@ -69,6 +73,11 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 /// Runs `fairsub analyze`.
 pub fn analyze(a: AnalyzeArgs) -> Result<()> {
     let lm = local::local_matrix(&a.scheme, a.valence)?;
+    let lm = if a.replicated_centre {
+        lm.replicated_centre()
+    } else {
+        lm
+    };
     let spectrum = analysis::spectrum(&lm.matrix);
     let blocks = lm.fourier_blocks().unwrap_or_default();
     let fourier_blocks = blocks
