@@ -114,6 +114,42 @@ pub fn cnet(n: usize, shape: CnetShape, rings: usize) -> PolyMesh {
     PolyMesh::new(pos, &faces).expect("gallery c-net is valid")
 }
 
+/// A regular `m x m` quad grid over the lattice points `(i, j)`, `0 <= i, j <= m` (vertex
+/// `j (m + 1) + i`), with heights `z(i, j)`: the basic regular net of tests and examples.
+pub fn quad_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
+    let id = |i: usize, j: usize| j * (m + 1) + i;
+    let mut pos = Vec::new();
+    for j in 0..=m {
+        for i in 0..=m {
+            pos.push([i as f64, j as f64, z(i as f64, j as f64)]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..m {
+        for i in 0..m {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    PolyMesh::new(pos, &faces).expect("grid is valid")
+}
+
+/// The cube `[0, 1]^3` (vertex `k` at `(k & 1, k >> 1 & 1, k >> 2 & 1)`), for hand-checked
+/// refinement values.
+pub fn unit_cube() -> PolyMesh {
+    let pos: Vec<[f64; 3]> = (0..8)
+        .map(|k| [(k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64])
+        .collect();
+    let faces = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    PolyMesh::new(pos, &faces).expect("cube is valid")
+}
+
 /// The unit cube (8 vertices of valence 3).
 pub fn cube() -> PolyMesh {
     let p = vec![
@@ -295,22 +331,17 @@ pub fn prism(n: usize) -> PolyMesh {
 
 /// An open 6 x 6 quad grid with a smooth bump (one boundary loop).
 pub fn open_grid() -> PolyMesh {
-    let n = 6;
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f64 - 3.0, j as f64 - 3.0);
-            pos.push([x, y, 1.2 * (-(x * x + y * y) / 4.0).exp()]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-        }
-    }
-    PolyMesh::new(pos, &faces).expect("grid")
+    let mut m = quad_grid(6, |_, _| 0.0);
+    let pos = m
+        .positions()
+        .iter()
+        .map(|p| {
+            let (x, y) = (p[0] - 3.0, p[1] - 3.0);
+            [x, y, 1.2 * (-(x * x + y * y) / 4.0).exp()]
+        })
+        .collect();
+    m.set_positions(pos);
+    m
 }
 
 /// An open pipe: a cylinder of 8 x 4 quads with two boundary loops.

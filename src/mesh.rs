@@ -780,26 +780,9 @@ mod tests {
     use super::*;
     use crate::error::Error;
 
-    fn quad_grid(n: usize) -> PolyMesh {
-        let mut pos = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                pos.push([i as f64, j as f64, 0.0]);
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                let a = j * (n + 1) + i;
-                faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-            }
-        }
-        PolyMesh::new(pos, &faces).unwrap()
-    }
-
     #[test]
     fn grid_connectivity() {
-        let m = quad_grid(3);
+        let m = crate::gallery::quad_grid(3, |_, _| 0.0);
         assert_eq!(m.num_vertices(), 16);
         assert_eq!(m.num_faces(), 9);
         assert_eq!(m.num_edges(), 24);

@@ -110,24 +110,6 @@ fn uniform_levels(scheme: &dyn Scheme, m: &PolyMesh, levels: usize) -> Vec<PolyM
 // ---------------------------------------------------------------------------------------------
 // Nets
 
-/// A regular quad grid over the lattice points (i, j), 0 <= i, j <= m, heights z(i, j).
-fn quad_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
-    let id = |i: usize, j: usize| j * (m + 1) + i;
-    let mut pos = Vec::new();
-    for j in 0..=m {
-        for i in 0..=m {
-            pos.push([i as f64, j as f64, z(i as f64, j as f64)]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..m {
-        for i in 0..m {
-            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    PolyMesh::new(pos, &faces).unwrap()
-}
-
 /// A closed fan of `n` triangles around vertex 0, refined twice with Loop: vertex 0 is an
 /// isolated extraordinary vertex of valence `n`.
 fn loop_fan(n: usize) -> PolyMesh {
@@ -164,7 +146,7 @@ fn n2(t: f64) -> f64 {
 fn dual_regular_patches_equal_the_bspline_basis_sum() {
     let m = 8;
     let z = |x: f64, y: f64| (0.7 * x).sin() * (0.4 * y).cos() + 0.05 * x * y;
-    let net = quad_grid(m, z);
+    let net = fairsub::gallery::quad_grid(m, z);
     for scheme in DUAL {
         let c = build(scheme, &net, 2);
         assert_eq!(

@@ -42,28 +42,6 @@ fn tri_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
     PolyMesh::new(pos, &faces).unwrap()
 }
 
-/// A regular quad grid over the lattice points (i, j), 0 <= i, j <= m, with heights `z`.
-fn quad_grid(m: usize, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
-    let mut pos = Vec::new();
-    for j in 0..=m {
-        for i in 0..=m {
-            pos.push([i as f64, j as f64, z(i as f64, j as f64)]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..m {
-        for i in 0..m {
-            faces.push(vec![
-                gid(m, i, j),
-                gid(m, i + 1, j),
-                gid(m, i + 1, j + 1),
-                gid(m, i, j + 1),
-            ]);
-        }
-    }
-    PolyMesh::new(pos, &faces).unwrap()
-}
-
 fn tetrahedron() -> PolyMesh {
     let pos = vec![
         [1.0, 1.0, 1.0],
@@ -92,22 +70,6 @@ fn octahedron() -> PolyMesh {
         [1, 2, 5],
         [3, 1, 5],
         [0, 3, 5],
-    ];
-    PolyMesh::new(pos, &faces).unwrap()
-}
-
-fn cube() -> PolyMesh {
-    let mut pos = Vec::new();
-    for k in 0..8 {
-        pos.push([(k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64]);
-    }
-    let faces = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
     ];
     PolyMesh::new(pos, &faces).unwrap()
 }
@@ -550,7 +512,7 @@ fn loop_topology_counts() {
 
 #[test]
 fn loop_rejects_non_triangles_naming_the_face() {
-    let err = Loop.refine(&cube()).unwrap_err();
+    let err = Loop.refine(&fairsub::gallery::unit_cube()).unwrap_err();
     let msg = err.to_string();
     assert!(matches!(err, fairsub::Error::Unsupported(_)));
     assert!(
@@ -627,7 +589,7 @@ fn doo_sabin_regular_grid_is_bi2_refinement() {
     let mask = bspline_mask(3);
     assert_eq!(mask, vec![0.25, 0.75, 0.75, 0.25]);
     let m = 4;
-    let mesh = quad_grid(m, |_, _| 0.0);
+    let mesh = fairsub::gallery::quad_grid(m, |_, _| 0.0);
     for (name, scheme) in dual_schemes() {
         let r = scheme.refine(&mesh).unwrap();
         assert_eq!(r.mesh.num_vertices(), (2 * m + 2) * (2 * m + 2));
@@ -662,7 +624,7 @@ fn doo_sabin_regular_grid_is_bi2_refinement() {
 #[test]
 fn doo_sabin_limit_is_the_bi2_spline_of_the_doubled_net() {
     let m = 4;
-    let mesh = quad_grid(m, |_, _| 0.0);
+    let mesh = fairsub::gallery::quad_grid(m, |_, _| 0.0);
     // Bi-2 spline of the doubled net at (s, t), as a stencil over the parent points.
     let spline = |s: f64, t: f64| {
         let mut w = vec![0.0; mesh.num_vertices()];
@@ -816,10 +778,10 @@ fn doo_sabin_cc_is_the_mean_of_vertex_centroid_and_edge_midpoints() {
 fn dual_topology_counts() {
     // (V, E, F) after one step.
     let nets: Vec<(PolyMesh, (usize, usize, usize))> = vec![
-        (cube(), (24, 48, 26)),
+        (fairsub::gallery::unit_cube(), (24, 48, 26)),
         (tetrahedron(), (12, 24, 14)),
         (prism(5), (30, 60, 32)),
-        (quad_grid(3, |_, _| 0.0), (64, 112, 49)),
+        (fairsub::gallery::quad_grid(3, |_, _| 0.0), (64, 112, 49)),
         // 54 corner points, 2 x 12 boundary points, 2 kept corners; 18 + 33 + 16 faces.
         (tri_grid(3, |_, _| 0.0), (80, 146, 67)),
     ];
@@ -850,7 +812,7 @@ fn dual_topology_counts() {
         }
     }
     // Orientation: every child face of a convex closed net faces outwards.
-    for mesh in [cube(), prism(7)] {
+    for mesh in [fairsub::gallery::unit_cube(), prism(7)] {
         let r = DooSabin.refine(&mesh).unwrap();
         let centre = fairsub::geom::centroid(mesh.positions().iter().copied());
         for f in 0..r.mesh.num_faces() {
@@ -954,7 +916,7 @@ fn doo_sabin_boundary_is_the_chaikin_curve_of_the_boundary_polygon() {
 fn doo_sabin_faces_shrink_to_their_limit_points() {
     let mut open = tri_grid(3, |x, y| 0.2 * x * y);
     jiggle(&mut open, 0.1);
-    let mut box_net = cube();
+    let mut box_net = fairsub::gallery::unit_cube();
     jiggle(&mut box_net, 0.1);
     for mesh in [box_net, open, prism(6)] {
         for (name, scheme) in dual_schemes() {
@@ -1008,10 +970,10 @@ fn doo_sabin_faces_shrink_to_their_limit_points() {
 #[test]
 fn every_child_net_is_valid_over_several_levels() {
     let mut nets = vec![
-        cube(),
+        fairsub::gallery::unit_cube(),
         tetrahedron(),
         prism(7),
-        quad_grid(2, |x, _| x),
+        fairsub::gallery::quad_grid(2, |x, _| x),
         tri_grid(2, |_, y| y),
     ];
     jiggle(&mut nets[0], 0.05);

@@ -329,31 +329,9 @@ impl Scheme for CatmullClark {
 mod tests {
     use super::*;
 
-    fn cube() -> PolyMesh {
-        let p = vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-            [0.0, 1.0, 1.0],
-        ];
-        let f = [
-            [0, 3, 2, 1],
-            [4, 5, 6, 7],
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-        ];
-        PolyMesh::new(p, &f).unwrap()
-    }
-
     #[test]
     fn cube_one_level_by_hand() {
-        let m = cube();
+        let m = crate::gallery::unit_cube();
         let r = CatmullClark.refine(&m).unwrap();
         assert_eq!(r.mesh.num_vertices(), 8 + 12 + 6);
         assert_eq!(r.mesh.num_faces(), 24);
@@ -385,7 +363,7 @@ mod tests {
     #[test]
     fn limit_is_fixed_under_refinement() {
         // Limit of a vertex equals the limit of its child (vertex points keep their index).
-        let m = cube();
+        let m = crate::gallery::unit_cube();
         let l0 = CatmullClark::limit_stencils(&m).apply(m.positions());
         let r = CatmullClark.refine(&m).unwrap();
         let l1 = CatmullClark::limit_stencils(&r.mesh).apply(r.mesh.positions());

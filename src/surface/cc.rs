@@ -614,28 +614,6 @@ fn fill(
 mod tests {
     use super::*;
 
-    fn cube() -> PolyMesh {
-        let p = vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-            [0.0, 1.0, 1.0],
-        ];
-        let f = [
-            [0, 3, 2, 1],
-            [4, 5, 6, 7],
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-        ];
-        PolyMesh::new(p, &f).unwrap()
-    }
-
     fn de_casteljau(c: &[Point; 4], t: f64) -> Point {
         let mut q = *c;
         for r in 1..4 {
@@ -709,7 +687,7 @@ mod tests {
 
     #[test]
     fn cube_rings_and_fill_are_closed() {
-        let m = cube();
+        let m = crate::gallery::unit_cube();
         for rings in [1, 2, 3] {
             let c =
                 catmull_clark_complex(&m, CcComplexOptions { rings, fill: true }, |_| {}).unwrap();

@@ -133,26 +133,9 @@ pub fn bi3_net(mesh: &PolyMesh, f: usize) -> Option<Vec<Stencil>> {
 mod tests {
     use super::*;
 
-    fn grid(n: usize) -> PolyMesh {
-        let mut pos = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                pos.push([i as f64, j as f64, 0.0]);
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                let a = j * (n + 1) + i;
-                faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-            }
-        }
-        PolyMesh::new(pos, &faces).unwrap()
-    }
-
     #[test]
     fn interior_and_boundary_nets() {
-        let m = grid(4);
+        let m = crate::gallery::quad_grid(4, |_, _| 0.0);
         // Interior face (1,1): its net is the grid points (0..4) x (0..4) - exact positions.
         let f = 4 + 1;
         let net = bi3_net(&m, f).unwrap();
