@@ -178,8 +178,11 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         "loop" => loop_one_ring(n),
         "doo-sabin" | "ds" => doo_sabin_facet(n),
         "eg" => eg(n),
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => super::bi2::local_matrix(scheme, n),
+        "polbs" => super::bi2::local_matrix("polar-bi2", n),
         other => Err(Error::InvalidArgument(format!(
-            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg)"
+            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, \
+             pgs, polar-bi2, tps, tps-adjustable)"
         ))),
     }
 }
@@ -234,8 +237,13 @@ pub fn characteristic_ring(
                 .collect();
             Ok((patches, lambda))
         }
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => {
+            super::bi2::characteristic_ring(scheme, n)
+        }
+        "polbs" => super::bi2::characteristic_ring("polar-bi2", n),
         other => Err(Error::InvalidArgument(format!(
-            "no characteristic map for scheme '{other}' (available: catmull-clark, eg)"
+            "no characteristic map for scheme '{other}' (available: catmull-clark, eg, pgs, \
+             polar-bi2, tps, tps-adjustable)"
         ))),
     }
 }
