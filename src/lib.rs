@@ -11,6 +11,8 @@
 //! [`bezier::BezierPatch`]es, written by [`io`].
 
 #![warn(missing_docs)]
+// Index loops mirror the papers' formulas (b_ij, K_lm[a][b], ...); iterator rewrites would hide them.
+#![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
 pub mod bezier;
@@ -19,6 +21,7 @@ pub mod gallery;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod render;
 pub mod schemes;
 pub mod stencil;
 pub mod surface;

@@ -149,3 +149,34 @@ fn a_folded_ring_is_refuted() {
     let cert = fairsub::analysis::certify::certify_ring(&ring, lambda);
     assert!(!cert.jacobian_positive && !cert.injective);
 }
+
+#[test]
+fn replicated_centre_form_keeps_the_spectrum() {
+    for n in [3, 5, 6] {
+        let lm = local::catmull_clark(n).unwrap();
+        let rep = lm.replicated_centre();
+        assert_eq!(rep.matrix.nrows(), n * 7);
+        assert!(rep.rotation_defect() < 1e-15);
+        let nonzero = |v: Vec<analysis::C64>| {
+            let mut m: Vec<f64> = v.iter().map(|z| z.norm()).filter(|&x| x > 1e-9).collect();
+            m.sort_by(f64::total_cmp);
+            m
+        };
+        let a = nonzero(analysis::eigenvalues(&lm.matrix));
+        let b = nonzero(analysis::eigenvalues(&rep.matrix));
+        assert_eq!(a.len(), b.len());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-9);
+        }
+        // Every Fourier block has the same size; lambda sits in block 1.
+        let blocks = rep.fourier_blocks().unwrap();
+        assert!(blocks.iter().all(|b| b.matrix.nrows() == 7));
+        let lam = analysis::catmull_clark_lambda(n);
+        assert!(
+            blocks[1]
+                .eigenvalues()
+                .iter()
+                .any(|z| (z.re - lam).abs() < 1e-10)
+        );
+    }
+}

@@ -263,6 +263,35 @@ impl LocalMatrix {
         Ok(blocks)
     }
 
+    /// The form with the central points replicated once per sector, as the bi-2 paper writes its
+    /// matrices (PGS, PolBS, TPS): sector `s` gets its own copy of every central point, a copy's
+    /// row is the central row, and each central column is split equally among the `n` copies.
+    /// The non-zero spectrum is unchanged (the copies add `(n - 1) * centre` zeros); the Fourier
+    /// blocks all have size `centre + sector` and match the paper's.
+    pub fn replicated_centre(&self) -> LocalMatrix {
+        let (c, m, n) = (self.centre, self.sector, self.n);
+        let k = c + m;
+        let old = |s: usize, x: usize| if x < c { x } else { c + s * m + (x - c) };
+        let mut a = DMatrix::<f64>::zeros(n * k, n * k);
+        for s in 0..n {
+            for x in 0..k {
+                for t in 0..n {
+                    for y in 0..k {
+                        let w = self.matrix[(old(s, x), old(t, y))];
+                        a[(s * k + x, t * k + y)] = if y < c { w / n as f64 } else { w };
+                    }
+                }
+            }
+        }
+        LocalMatrix {
+            scheme: format!("{} (replicated centre)", self.scheme),
+            n,
+            centre: 0,
+            sector: k,
+            matrix: a,
+        }
+    }
+
     /// Left eigenvectors (as rows) for the real eigenvalue `value`: an orthonormal basis of the
     /// null space of `A^T - value I` (singular values below `1e-8`).
     pub fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {

@@ -34,6 +34,9 @@ struct AnalyzeReport {
     tangent_stencils: Vec<Vec<f64>>,
     characteristic_map: Option<certify::InjectivityCertificate>,
     published: Vec<Published>,
+    /// QAS+: the spectral radius of M_d and the eigenvalues of M_q per kind of expansion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    qas: Option<local::QasFacts>,
 }
 
 /// A published value next to the computed one.
@@ -57,6 +60,10 @@ pub struct AnalyzeArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Analyse the form with the central points replicated once per sector (as the bi-2 paper
+    /// writes its matrices): same non-zero spectrum, equal-size Fourier blocks.
+    #[arg(long)]
+    pub replicated_centre: bool,
 }
 
 fn c2(z: analysis::C64) -> [f64; 2] {
@@ -66,6 +73,11 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 /// Runs `fairsub analyze`.
 pub fn analyze(a: AnalyzeArgs) -> Result<()> {
     let lm = local::local_matrix(&a.scheme, a.valence)?;
+    let lm = if a.replicated_centre {
+        lm.replicated_centre()
+    } else {
+        lm
+    };
     let spectrum = analysis::spectrum(&lm.matrix);
     let blocks = lm.fourier_blocks().unwrap_or_default();
     let fourier_blocks = blocks
@@ -103,6 +115,45 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             difference: (limit_stencil[0] - n / (n + 5.0)).abs(),
         });
     }
+    let qas = match a.scheme.as_str() {
+        "qas-plus" => Some(local::qas_facts(a.valence, 0.5)?),
+        "qas-0.4" => Some(local::qas_facts(a.valence, 0.4)?),
+        "qas-plus-bi3" => Some(local::qas_bi3_facts(a.valence, 0.5)?),
+        _ => None,
+    };
+    if let Some(q) = &qas {
+        let published_rho = match a.valence {
+            5 => Some(0.136208),
+            6 => Some(0.125485),
+            7 => Some(0.124899),
+            _ => None,
+        };
+        if let (Some(p), true) = (published_rho, a.scheme == "qas-plus") {
+            published.push(Published {
+                quantity:
+                    "spectral radius of M_d (papers README, from the K layout; paper: < 0.13621)"
+                        .into(),
+                published: p,
+                computed: q.m_d_spectral_radius,
+                difference: (q.m_d_spectral_radius - p).abs(),
+            });
+        }
+    }
+    if a.scheme == "eg" {
+        let ratio = match a.valence {
+            3 => Some(1.00015),
+            5 => Some(1.00016),
+            _ => None,
+        };
+        if let Some(p) = ratio {
+            published.push(Published {
+                quantity: "mu / lambda^2 (printed to 5 decimals)".into(),
+                published: p,
+                computed: spectrum.mu_over_lambda_squared,
+                difference: (spectrum.mu_over_lambda_squared - p).abs(),
+            });
+        }
+    }
     let r = AnalyzeReport {
         scheme: lm.scheme.clone(),
         valence: lm.n,
@@ -116,6 +167,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
         tangent_stencils,
         characteristic_map,
         published,
+        qas,
     };
     if a.json {
         println!(
@@ -175,6 +227,18 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             c.windings,
             c.boundaries_simple,
             c.scaled_copy_inside
+        );
+    }
+    if let Some(q) = &r.qas {
+        println!(
+            "QAS+: spectral radius of M_d {:.6}; M_q eigenvalues: C^2 {:?}, C^1 {} values, C^1-C^0 {} values (all 1, 1/2 x2, then 1/4)",
+            q.m_d_spectral_radius,
+            q.m_q_c2
+                .iter()
+                .map(|x| format!("{x:.4}"))
+                .collect::<Vec<_>>(),
+            q.m_q_c1.len(),
+            q.m_q_c1c0.len()
         );
     }
     for p in &r.published {

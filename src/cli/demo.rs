@@ -52,6 +52,7 @@ pub fn run(out: &Path) -> Result<()> {
         }
         println!("{}: {} patches (6 rings + fill)", s.name, c.len());
     }
+    super::render::demo_compare(&net, &put("demo-compare.png"))?;
     println!("wrote:");
     for w in &written {
         println!("  {w}");

@@ -7,6 +7,7 @@
 mod analyze;
 mod demo;
 mod info;
+mod render;
 mod subdivide;
 
 use clap::{Parser, Subcommand};
@@ -57,6 +58,10 @@ watertight tessellation of the patch complex (--tess samples per patch edge). .b
 the exact patch complex (default 6 rings); with --levels and no --rings, .bv gets the refined net
 as a polyhedron.")]
     Subdivide(subdivide::Args),
+    /// Draw highlight lines, reflection lines, isophotes, curvature or provenance as a PNG.
+    Render(render::RenderArgs),
+    /// A labelled PNG grid of schemes x modes with one camera, light set and curvature range.
+    Compare(render::CompareArgs),
     /// List the schemes with their properties and supported valences.
     Schemes {
         /// Print the list as JSON.
@@ -94,6 +99,8 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Info { net, json } => info::run(&net, json),
         Command::Subdivide(args) => subdivide::run(args),
+        Command::Render(args) => render::run_render(args),
+        Command::Compare(args) => render::run_compare(args),
         Command::Schemes { json } => schemes(json),
         Command::Demo { out } => demo::run(&out),
         Command::Analyze(a) => analyze::analyze(a),

@@ -38,6 +38,10 @@ pub struct Args {
     /// or stop with an error.
     #[arg(long, value_enum, default_value_t = FallbackArg::CatmullClark)]
     pub fallback: FallbackArg,
+    /// QAS+ only: quadratic expansions per vertex (lines `vertex V`, `kind c2|c1|c1-c0`,
+    /// `p X Y Z`, `q SECTOR K X Y Z`); they replace fairsub's qas-fit where given.
+    #[arg(long)]
+    pub q_file: Option<PathBuf>,
 }
 
 /// `--fallback` values.
@@ -101,7 +105,12 @@ pub fn run(a: Args) -> Result<()> {
     let mesh = loaded.mesh;
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
-        let complex = build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?;
+        let complex = match &a.q_file {
+            Some(qf) => {
+                build_qas_with_file(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into(), qf)?
+            }
+            None => build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?,
+        };
         write_complex(&complex, fmt, &a.output, a.tess)?;
         eprintln!(
             "wrote {} patches ({} rings, {}) to {}",
@@ -181,6 +190,47 @@ pub fn build_complex_with(
         eprintln!("note: {n}");
     }
     Ok(c)
+}
+
+/// QAS+ with user-given quadratic expansions.
+fn build_qas_with_file(
+    scheme: &str,
+    mesh: &PolyMesh,
+    rings: usize,
+    fill: bool,
+    fallback: fairsub::surface::Fallback,
+    path: &std::path::Path,
+) -> Result<PatchComplex> {
+    use fairsub::surface::qas::{Contraction, qas_complex_with};
+    let contraction = match scheme {
+        "qas-plus" => Contraction::Half,
+        "qas-0.4" => Contraction::Fixed(0.4),
+        "qas-0.5-0.4" => Contraction::Gradual,
+        other => {
+            return Err(Error::InvalidArgument(format!(
+                "--q-file applies to qas-plus, qas-0.4 and qas-0.5-0.4, not to '{other}'"
+            )));
+        }
+    };
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let overrides = fairsub::schemes::qas::parse_q_file(&text, path)?;
+    let opts = fairsub::surface::eg::EgOptions {
+        rings,
+        fill,
+        fallback,
+    };
+    let pb = super::progress_bar(rings as u64, &format!("{scheme} rings"));
+    let out = qas_complex_with(mesh, opts, contraction, overrides, |l| {
+        pb.set_position(l as u64)
+    })?;
+    pb.finish_and_clear();
+    for n in out.notes {
+        eprintln!("note: {n}");
+    }
+    Ok(out.complex)
 }
 
 /// Writes a patch complex in the chosen format (meshes get a watertight tessellation).

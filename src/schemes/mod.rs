@@ -11,6 +11,7 @@ pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod eg;
 pub mod loop_subdivision;
+pub mod qas;
 
 mod common;
 
@@ -171,6 +172,50 @@ pub fn catalog() -> Vec<SchemeInfo> {
             refine: false,
             rings: true,
             status: "available (patches; valences 3 and 5)",
+        },
+        SchemeInfo {
+            name: "qas-plus",
+            family: "QAS+^4 quadratic-attraction subdivision [Karciauskas-Peters], contraction 1/2",
+            input: "Catmull-Clark nets (as eg); initial quadratic expansion by fairsub's qas-fit",
+            patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
+            smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) < 0.13621 < 1/4)",
+            valences: "5, 6, 7 published; 3 uses eg; others fall back to Catmull-Clark or error",
+            refine: false,
+            rings: true,
+            status: "available (patches; valences 5..7)",
+        },
+        SchemeInfo {
+            name: "qas-plus-bi3",
+            family: "QAS+^3: bi-3 rings (2 x 2 macro-patches) through fairsub's derived bijection T_3^4",
+            input: "as qas-plus",
+            patches: "bi-3 on regular quads; K rings of 12n bi-3 patches; bi-3 fill (C^0, 2 x 2 Coons per sector)",
+            smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) = 0.136252 < 0.13626 at n = 5)",
+            valences: "as qas-plus",
+            refine: false,
+            rings: true,
+            status: "available (patches; T_3^4 derived: the earlier paper's formulas are not in the corpus)",
+        },
+        SchemeInfo {
+            name: "qas-0.4",
+            family: "QAS+^4 accelerated: lambda = 0.4 in the restriction S (tables unchanged)",
+            input: "as qas-plus",
+            patches: "as qas-plus",
+            smoothness: "curvature bounded (rho(M_d) < 0.16 = lambda^2)",
+            valences: "as qas-plus",
+            refine: false,
+            rings: true,
+            status: "available (patches)",
+        },
+        SchemeInfo {
+            name: "qas-0.5-0.4",
+            family: "QAS+^4 with the gradual schedule 0.5, 0.5, 0.475, 0.475, 0.45, 0.45, then 0.4",
+            input: "as qas-plus",
+            patches: "as qas-plus",
+            smoothness: "as qas-0.4",
+            valences: "as qas-plus",
+            refine: false,
+            rings: true,
+            status: "available (patches)",
         },
         SchemeInfo {
             name: "pgs",

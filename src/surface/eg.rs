@@ -37,6 +37,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
 use crate::schemes::eg::{Eg, EgStep, from_cnet};
+use crate::stencil::StencilTable;
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -71,36 +72,142 @@ impl Default for EgOptions {
     }
 }
 
-/// The EG cap builder: rules per valence, built once.
-struct EgCaps {
-    opts: EgOptions,
-    steps: Mutex<HashMap<usize, Option<(EgStep, usize)>>>,
-    fell_back: Mutex<Vec<(Element, usize)>>,
-}
-
-impl EgCaps {
-    fn step(&self, n: usize) -> Result<Option<EgStep>> {
-        let mut map = self.steps.lock().expect("no poisoning");
-        if let Some(e) = map.get(&n) {
-            return Ok(e.as_ref().map(|(s, _)| s.clone()));
-        }
-        let e = match Eg::new(n) {
-            Ok(eg) => Some((eg.step()?, n)),
-            Err(Error::Unsupported(_)) => None,
-            Err(e) => return Err(e),
-        };
-        let out = e.as_ref().map(|(s, _)| s.clone());
-        map.insert(n, e);
-        Ok(out)
+/// Rules of a d-net cap scheme (EG, QAS+) per valence.
+pub(crate) trait DnetRules: Sync {
+    /// Name of the scheme's own rules (`eg`, `qas-plus`).
+    fn primary(&self) -> &'static str;
+    /// Name of the rules used at valence `n` (`None` when there are none).
+    fn rules_name(&self, n: usize) -> Option<&'static str>;
+    /// Stencils of the local vector from the c-net (layout of [`from_cnet`]).
+    fn init(&self, n: usize) -> Result<StencilTable>;
+    /// The step and ring tables used to make ring `k` (0-based).
+    fn step(&self, n: usize, k: usize) -> Result<EgStep>;
+    /// The message of `--fallback error`.
+    fn no_rules(&self, n: usize) -> String;
+    /// Adjusts the initial local vector of one element (user-given data); the default keeps it.
+    fn adjust(&self, _n: usize, _element: Element, _x: &mut [Point]) -> Result<()> {
+        Ok(())
     }
 }
 
-impl CapBuilder for EgCaps {
+/// EG's rules.
+pub(crate) struct EgRulesProvider;
+
+impl DnetRules for EgRulesProvider {
+    fn primary(&self) -> &'static str {
+        "eg"
+    }
+
+    fn rules_name(&self, n: usize) -> Option<&'static str> {
+        Eg::new(n).ok().map(|_| "eg")
+    }
+
+    fn init(&self, n: usize) -> Result<StencilTable> {
+        from_cnet(n)
+    }
+
+    fn step(&self, n: usize, _k: usize) -> Result<EgStep> {
+        Eg::new(n)?.step()
+    }
+
+    fn no_rules(&self, n: usize) -> String {
+        format!(
+            "valence {n}: EG subdivision has published rules for valences 3 and 5 only (the paper's text \
+             lost the arrays for 6..10); use --fallback catmull-clark"
+        )
+    }
+}
+
+/// A cap builder for any [`DnetRules`], caching tables per valence and ring.
+pub(crate) struct DnetCaps<'a> {
+    rules: &'a dyn DnetRules,
+    rings: usize,
+    fill: bool,
+    fallback: Fallback,
+    init: Mutex<HashMap<usize, StencilTable>>,
+    steps: Mutex<HashMap<(usize, usize), EgStep>>,
+    fell_back: Mutex<Vec<(Element, usize)>>,
+    substituted: Mutex<Vec<(Element, usize, &'static str)>>,
+}
+
+impl<'a> DnetCaps<'a> {
+    pub(crate) fn new(
+        rules: &'a dyn DnetRules,
+        rings: usize,
+        fill: bool,
+        fallback: Fallback,
+    ) -> Self {
+        DnetCaps {
+            rules,
+            rings,
+            fill,
+            fallback,
+            init: Mutex::new(HashMap::new()),
+            steps: Mutex::new(HashMap::new()),
+            fell_back: Mutex::new(Vec::new()),
+            substituted: Mutex::new(Vec::new()),
+        }
+    }
+
+    fn step(&self, n: usize, k: usize) -> Result<EgStep> {
+        let mut map = self.steps.lock().expect("no poisoning");
+        if let Some(s) = map.get(&(n, k)) {
+            return Ok(s.clone());
+        }
+        let s = self.rules.step(n, k)?;
+        map.insert((n, k), s.clone());
+        Ok(s)
+    }
+
+    fn init(&self, n: usize) -> Result<StencilTable> {
+        let mut map = self.init.lock().expect("no poisoning");
+        if let Some(t) = map.get(&n) {
+            return Ok(t.clone());
+        }
+        let t = self.rules.init(n)?;
+        map.insert(n, t.clone());
+        Ok(t)
+    }
+
+    /// Notes for the user: elements that fell back to Catmull-Clark or were capped by other
+    /// rules than the scheme's own.
+    pub(crate) fn notes(self) -> (Vec<(Element, usize)>, Vec<String>) {
+        let primary = self.rules.primary();
+        let mut notes: Vec<String> = self
+            .substituted
+            .into_inner()
+            .expect("no poisoning")
+            .into_iter()
+            .map(|(e, n, name)| {
+                format!(
+                    "{} (valence {n}) has no published {primary} rules: {name} rules there",
+                    describe(e)
+                )
+            })
+            .collect();
+        let fb = self.fell_back.into_inner().expect("no poisoning");
+        for (e, n) in &fb {
+            notes.push(format!(
+                "{} (valence {n}) has no published {primary} rules: Catmull-Clark rings and fill there",
+                describe(*e)
+            ));
+        }
+        (fb, notes)
+    }
+}
+
+impl CapBuilder for DnetCaps<'_> {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
-        if self.step(n)?.is_some() {
+        if let Some(name) = self.rules.rules_name(n) {
+            if name != self.rules.primary() {
+                let mut sub = self.substituted.lock().expect("no poisoning");
+                if !sub.iter().any(|(e, _, _)| *e == element) {
+                    sub.push((element, n, name));
+                }
+            }
             return Ok(true);
         }
-        match self.opts.fallback {
+        match self.fallback {
             Fallback::CatmullClark => {
                 let mut fb = self.fell_back.lock().expect("no poisoning");
                 if !fb.iter().any(|(e, _)| *e == element) {
@@ -109,9 +216,9 @@ impl CapBuilder for EgCaps {
                 Ok(false)
             }
             Fallback::Error => Err(Error::Unsupported(format!(
-                "{} has valence {n}: EG subdivision has published rules for valences 3 and 5 only \
-                 (the paper's text lost the arrays for 6..10); use --fallback catmull-clark",
-                describe(element)
+                "{} has {}",
+                describe(element),
+                self.rules.no_rules(n)
             ))),
         }
     }
@@ -124,29 +231,28 @@ impl CapBuilder for EgCaps {
         first_ring: u32,
         out: &mut PatchComplex,
     ) -> Result<()> {
-        let step = self.step(n)?.expect("accepted valences have rules");
-        let mut x = from_cnet(n)?.apply(cnet);
+        if self.fill && self.rings == 0 {
+            return Err(Error::InvalidArgument(
+                "the fill of a d-net cap needs at least one ring (--rings 1)".into(),
+            ));
+        }
+        let mut x = self.init(n)?.apply(cnet);
+        self.rules.adjust(n, element, &mut x)?;
         let mut last = None;
-        for k in 0..self.opts.rings {
+        for k in 0..self.rings {
+            let step = self.step(n, k)?;
             let ring = step.ring.apply(&x);
             push_ring(&ring, n, element, first_ring + k as u32, out);
             last = Some(ring);
             x = step.step.apply(&x);
         }
-        if self.opts.fill {
-            let ring = match last {
-                Some(r) => r,
-                None => {
-                    // Zero rings: the hole is bounded by the bi-3 surroundings; use the first ring's
-                    // outer data by taking one ring and filling inside it would change the surface,
-                    // so require a ring.
-                    return Err(Error::InvalidArgument(
-                        "the EG fill needs at least one ring (--rings 1)".into(),
-                    ));
-                }
-            };
-            let next = step.ring.apply(&x);
-            fill(&ring, &next, x[0], n, element, out);
+        if let (true, Some(ring)) = (self.fill, last) {
+            let next = self.step(n, self.rings)?.ring.apply(&x);
+            if is_bi3_ring(&ring, n) {
+                fill_bi3(&ring, &next, x[0], n, element, out);
+            } else {
+                fill(&ring, &next, x[0], n, element, out);
+            }
         }
         Ok(())
     }
@@ -166,14 +272,108 @@ fn ring_patch(ring: &[Point], s: usize, k: usize) -> BezierPatch {
 }
 
 fn push_ring(ring: &[Point], n: usize, element: Element, ring_index: u32, out: &mut PatchComplex) {
+    let bi3 = is_bi3_ring(ring, n);
     for s in 0..n {
-        for k in 0..3 {
+        for k in 0..if bi3 { 12 } else { 3 } {
             // The EG chart mirrors the mesh chart: transpose so the normal points outward.
+            let p = if bi3 {
+                ring_patch3(ring, s, k / 4, k % 4)
+            } else {
+                ring_patch(ring, s, k)
+            };
             out.push(
-                ring_patch(ring, s, k).transposed(),
+                p.transposed(),
                 Provenance::Ring {
                     element,
                     ring: ring_index,
+                    sector: s as u32,
+                },
+            );
+        }
+    }
+}
+
+/// Whether a ring table holds 12 bi-3 patches per sector (QAS+^3) rather than 3 bi-4 patches.
+fn is_bi3_ring(ring: &[Point], n: usize) -> bool {
+    ring.len() == 192 * n
+}
+
+/// Sub-patch `sub` ((0,0), (1,0), (0,1), (1,1) of the EG chart) of macro-patch `k` (A, B, C) of
+/// sector `s` of a bi-3 ring.
+fn ring_patch3(ring: &[Point], s: usize, k: usize, sub: usize) -> BezierPatch {
+    let base = 16 * (12 * s + 4 * k + sub);
+    BezierPatch::new(3, 3, ring[base..base + 16].to_vec())
+}
+
+/// The fill inside a bi-3 ring (QAS+^3): per sector 2 x 2 bi-3 Coons patches. The outer sides are
+/// the ring's inner sides (exact), the spokes cubics through `c0`, the next ring's corner at half
+/// the distance and the ring's corner with its derivative (split in two), the inner lines straight
+/// through a centre point set by the bilinear Coons rule. C^0 to the ring and between sectors.
+fn fill_bi3(
+    ring: &[Point],
+    next: &[Point],
+    c0: Point,
+    n: usize,
+    element: Element,
+    out: &mut PatchComplex,
+) {
+    let spokes: Vec<[Point; 4]> = (0..n)
+        .map(|s| {
+            let a = ring_patch3(ring, s, 0, 0);
+            let q = a.cp(0, 0);
+            // The sub-patch spans half the spoke's parameter: the spoke's derivative is twice.
+            let d = geom::scale(a.derivatives(0.0, 0.0).du, 2.0);
+            let mid = ring_patch3(next, s, 0, 0).cp(0, 0);
+            let b2 = geom::axpy(q, -1.0 / 3.0, d);
+            let mut b1 = [0.0; 3];
+            for k in 0..3 {
+                b1[k] = (8.0 * mid[k] - c0[k] - 3.0 * b2[k] - q[k]) / 3.0;
+            }
+            [c0, b1, b2, q]
+        })
+        .collect();
+    let halves = |c: &[Point; 4]| {
+        let (lo, hi) = curve::split(c, 0.5);
+        (lo, hi)
+    };
+    let line = |a: Point, b: Point| {
+        vec![
+            a,
+            geom::lerp(a, b, 1.0 / 3.0),
+            geom::lerp(a, b, 2.0 / 3.0),
+            b,
+        ]
+    };
+    for s in 0..n {
+        let (sp_lo, sp_hi) = halves(&spokes[s]);
+        let (sq_lo, sq_hi) = halves(&spokes[(s + n - 1) % n]);
+        let a00 = ring_patch3(ring, s, 0, 0).boundary(crate::bezier::Side::U0);
+        let a01 = ring_patch3(ring, s, 0, 2).boundary(crate::bezier::Side::U0);
+        let c00 = ring_patch3(ring, s, 2, 0).boundary(crate::bezier::Side::V0);
+        let c10 = ring_patch3(ring, s, 2, 1).boundary(crate::bezier::Side::V0);
+        let (m1, m3) = (sp_lo[3], sq_lo[3]);
+        let (m2, m4) = (c00[3], a00[3]);
+        let corner = a01[3];
+        let (q_s, q_p) = (sp_hi[3], sq_hi[3]);
+        let mut x = [0.0; 3];
+        for k in 0..3 {
+            x[k] = 0.5 * (m1[k] + m2[k] + m3[k] + m4[k])
+                - 0.25 * (c0[k] + q_s[k] + q_p[k] + corner[k]);
+        }
+        // Sub-patches of the sector fill over [0, 1/2]^2 etc. of its EG chart: (v0, u1, v1, u0).
+        // Each cell lists its sides (v0, u1, v1, u0).
+        let cells: [[Vec<Point>; 4]; 4] = [
+            [sp_lo.to_vec(), line(m1, x), line(m3, x), sq_lo.to_vec()],
+            [sp_hi.to_vec(), a00.clone(), line(x, m4), line(m1, x)],
+            [line(m3, x), line(x, m2), c00.clone(), sq_hi.to_vec()],
+            [line(x, m4), a01.clone(), c10.clone(), line(x, m2)],
+        ];
+        for [v0, u1, v1, u0] in cells.iter() {
+            let p = BezierPatch::coons(3, v0, u1, v1, u0);
+            out.push(
+                p.transposed(),
+                Provenance::Cap {
+                    element,
                     sector: s as u32,
                 },
             );
@@ -308,11 +508,28 @@ pub fn eg_complex(
     opts: EgOptions,
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<(Element, usize)>)> {
-    let caps = EgCaps {
-        opts,
-        steps: Mutex::new(HashMap::new()),
-        fell_back: Mutex::new(Vec::new()),
-    };
+    dnet_complex(&EgRulesProvider, mesh, opts, progress).map(|o| (o.complex, o.fell_back))
+}
+
+/// A patch complex with caps, and what the user should know about it.
+#[derive(Debug, Clone)]
+pub struct CapOutput {
+    /// The surface.
+    pub complex: PatchComplex,
+    /// Elements that fell back to Catmull-Clark, with their valences.
+    pub fell_back: Vec<(Element, usize)>,
+    /// Notes for the user (fallbacks and substitutions, per element).
+    pub notes: Vec<String>,
+}
+
+/// The surface of a net with caps of a d-net scheme (shared by EG and QAS+).
+pub(crate) fn dnet_complex(
+    rules: &dyn DnetRules,
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    progress: impl FnMut(usize),
+) -> Result<CapOutput> {
+    let caps = DnetCaps::new(rules, opts.rings, opts.fill, opts.fallback);
     let c = adaptive_complex(
         mesh,
         CcComplexOptions {
@@ -322,6 +539,10 @@ pub fn eg_complex(
         Some(&caps),
         progress,
     )?;
-    let fb = caps.fell_back.into_inner().expect("no poisoning");
-    Ok((c, fb))
+    let (fell_back, notes) = caps.notes();
+    Ok(CapOutput {
+        complex: c,
+        fell_back,
+        notes,
+    })
 }

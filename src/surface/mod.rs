@@ -10,6 +10,7 @@ pub mod cc;
 pub mod ds;
 pub mod eg;
 pub mod loop_patches;
+pub mod qas;
 pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
@@ -142,27 +143,20 @@ pub fn complex_with_notes(
 ) -> crate::error::Result<(PatchComplex, Vec<String>)> {
     let plain = |c: crate::error::Result<PatchComplex>| c.map(|c| (c, Vec::new()));
     match scheme {
-        "eg" => {
-            let (c, fb) = eg::eg_complex(
-                mesh,
-                eg::EgOptions {
-                    rings: opts.rings,
-                    fill: opts.fill,
-                    fallback,
-                },
-                progress,
-            )?;
-            let notes = fb
-                .iter()
-                .map(|(e, n)| {
-                    let what = match e {
-                        Element::Vertex(v) => format!("vertex {v}"),
-                        Element::Face(f) => format!("centre of face {f}"),
-                    };
-                    format!("{what} (valence {n}) has no published EG rules: Catmull-Clark rings and fill there")
-                })
-                .collect();
-            Ok((c, notes))
+        "eg" | "qas-plus" | "qas-0.4" | "qas-0.5-0.4" | "qas-plus-bi3" => {
+            let eo = eg::EgOptions {
+                rings: opts.rings,
+                fill: opts.fill,
+                fallback,
+            };
+            let o = match scheme {
+                "eg" => eg::dnet_complex(&eg::EgRulesProvider, mesh, eo, progress)?,
+                "qas-plus" => qas::qas_complex(mesh, eo, qas::Contraction::Half, progress)?,
+                "qas-0.4" => qas::qas_complex(mesh, eo, qas::Contraction::Fixed(0.4), progress)?,
+                "qas-plus-bi3" => qas::qas_bi3_complex(mesh, eo, qas::Contraction::Half, progress)?,
+                _ => qas::qas_complex(mesh, eo, qas::Contraction::Gradual, progress)?,
+            };
+            Ok((o.complex, o.notes))
         }
         "catmull-clark" | "cc" => plain(cc::catmull_clark_complex(
             mesh,

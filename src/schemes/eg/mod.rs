@@ -251,6 +251,17 @@ fn old_node(n: usize, s: usize, u: i32, v: i32) -> Result<Stencil> {
     )))
 }
 
+/// Source index of the d-net node at chart point `(u, v)` (quarters of the d-net spacing, even)
+/// of sector `s`, resolved to its owning sector; `None` for the centre or points outside the
+/// d-net.
+pub fn dnet_node(n: usize, s: usize, u: i32, v: i32) -> Option<usize> {
+    let (s, u, v) = normalize(n, s, u, v)?;
+    if u % 2 != 0 || v % 2 != 0 || !(2..=6).contains(&u) || v > 6 {
+        return None;
+    }
+    Some(dnet_index(s, (3 - v / 2) as usize, (3 - u / 2) as usize))
+}
+
 /// Univariate regular bi-4 refinement weights of a new node at `x` (quarters of the old
 /// spacing): old positions and weights.
 fn univariate(x: i32) -> [(i32, f64); 3] {
@@ -321,73 +332,105 @@ impl Eg {
         self.rules.n
     }
 
-    /// Stencil of the new node at chart point `(u, v)` (quarters of the old spacing) of sector
-    /// `s`: one of the six special rules, or regular refinement.
-    pub fn new_node(&self, s: usize, u: i32, v: i32) -> Result<Stencil> {
+    /// Stencil of special node `SPECIAL[k]` of sector `s` by (7).
+    pub fn special_node(&self, s: usize, k: usize) -> Stencil {
         let n = self.n();
-        let (s, u, v) = normalize(n, s, u, v)
-            .ok_or_else(|| Error::Unsupported("no node at the centre".into()))?;
-        if let Some(k) = SPECIAL
-            .iter()
-            .position(|&(h, kk)| (3 - kk as i32, 3 - h as i32) == (u, v))
-        {
-            let mut st = Stencil::new();
-            st.add(0, self.rules.a0[k]);
-            for r in 0..n {
-                for e in 0..12 {
-                    let w = self.rules.weights[k][r][e];
-                    if w != 0.0 {
-                        st.add(1 + 12 * ((s + r) % n) + e, w);
-                    }
+        let mut st = Stencil::new();
+        st.add(0, self.rules.a0[k]);
+        for r in 0..n {
+            for e in 0..12 {
+                let w = self.rules.weights[k][r][e];
+                if w != 0.0 {
+                    st.add(1 + 12 * ((s + r) % n) + e, w);
                 }
             }
-            return Ok(st.merged());
         }
-        regular_node(n, s, u, v)
+        st.merged()
     }
 
     /// The step and ring tables.
     pub fn step(&self) -> Result<EgStep> {
-        let n = self.n();
-        let m = 12 * n + 1;
-        let mut step = StencilTable::with_capacity(m, m, 40);
-        step.push(Stencil::point(0));
-        for s in 0..n {
-            for j in 0..3 {
-                for i in 0..4 {
-                    step.push(self.new_node(s, 3 - j, 3 - i)?);
-                }
+        build_step(
+            self.n(),
+            12 * self.n() + 1,
+            &|s, k| Ok(self.special_node(s, k)),
+            Vec::new(),
+        )
+    }
+}
+
+/// Stencil of the new node at chart point `(u, v)` (quarters of the old spacing) of sector `s`:
+/// `special(s', k)` for the six inner nodes (after normalising to the owning sector `s'`),
+/// regular refinement otherwise.
+pub fn new_node(
+    n: usize,
+    special: &dyn Fn(usize, usize) -> Result<Stencil>,
+    s: usize,
+    u: i32,
+    v: i32,
+) -> Result<Stencil> {
+    let (s, u, v) =
+        normalize(n, s, u, v).ok_or_else(|| Error::Unsupported("no node at the centre".into()))?;
+    if let Some(k) = SPECIAL
+        .iter()
+        .position(|&(h, kk)| (3 - kk as i32, 3 - h as i32) == (u, v))
+    {
+        return special(s, k);
+    }
+    regular_node(n, s, u, v)
+}
+
+/// Builds the step and ring tables of a d-net scheme (EG, QAS+) over `m` sources whose first
+/// `12 n + 1` are `(c0 or p, d-net)`: row 0 keeps source 0, rows `1..=12 n` are the refined d-net
+/// (`special` gives the six inner nodes of a sector, regular bi-4 refinement the rest), then
+/// `tail` (further state, e.g. the quadratic expansion of QAS+). The ring has three bi-4 patches
+/// per sector from the refined nodes by B-to-BB conversion (6).
+pub fn build_step(
+    n: usize,
+    m: usize,
+    special: &dyn Fn(usize, usize) -> Result<Stencil>,
+    tail: Vec<Stencil>,
+) -> Result<EgStep> {
+    let mut step = StencilTable::with_capacity(m, m, 40);
+    step.push(Stencil::point(0));
+    for s in 0..n {
+        for j in 0..3 {
+            for i in 0..4 {
+                step.push(new_node(n, special, s, 3 - j, 3 - i)?);
             }
         }
-        let mut ring = StencilTable::with_capacity(m, 75 * n, 40);
-        let m4 = crate::bezier::convert::quartic_c2_matrix();
-        for s in 0..n {
-            // Cells of the three patches (lower-left corner in quarters): A, B, C.
-            for (cu, cv) in [(2, 0), (2, 2), (0, 2)] {
-                let mut net = Vec::with_capacity(25);
-                for a in 0..5 {
-                    for b in 0..5 {
-                        net.push(self.new_node(s, cu - 1 + a, cv - 1 + b)?);
-                    }
+    }
+    for t in tail {
+        step.push(t);
+    }
+    let mut ring = StencilTable::with_capacity(m, 75 * n, 40);
+    let m4 = crate::bezier::convert::quartic_c2_matrix();
+    for s in 0..n {
+        // Cells of the three patches (lower-left corner in quarters): A, B, C.
+        for (cu, cv) in [(2, 0), (2, 2), (0, 2)] {
+            let mut net = Vec::with_capacity(25);
+            for a in 0..5 {
+                for b in 0..5 {
+                    net.push(new_node(n, special, s, cu - 1 + a, cv - 1 + b)?);
                 }
-                for k in 0..5 {
-                    for l in 0..5 {
-                        let mut st = Stencil::new();
-                        for a in 0..5 {
-                            for b in 0..5 {
-                                let w = m4[(k, a)] * m4[(l, b)];
-                                if w != 0.0 {
-                                    st.add_scaled(&net[5 * a + b], w);
-                                }
+            }
+            for k in 0..5 {
+                for l in 0..5 {
+                    let mut st = Stencil::new();
+                    for a in 0..5 {
+                        for b in 0..5 {
+                            let w = m4[(k, a)] * m4[(l, b)];
+                            if w != 0.0 {
+                                st.add_scaled(&net[5 * a + b], w);
                             }
                         }
-                        ring.push(st);
                     }
+                    ring.push(st);
                 }
             }
         }
-        Ok(EgStep { step, ring })
     }
+    Ok(EgStep { step, ring })
 }
 
 /// Stencils of the EG local vector `(c0, d-net)` from the c-net of valence `n` in fairsub's

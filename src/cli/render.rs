@@ -1,0 +1,481 @@
+//! `fairsub render` and `fairsub compare`: shape-interrogation pictures as PNG files.
+//!
+//! `render` draws one surface (a scheme's patch complex, a refined or plain mesh, or the
+//! patches of a `.bv` file) in one mode; `compare` draws a labelled grid of schemes x modes with
+//! one camera, one light set and one curvature range per mode. Both can print the numbers
+//! behind the picture as JSON (camera, range used, per-ring curvature ranges).
+
+use fairsub::io::BvFile;
+use fairsub::render::{
+    self, Mode, Overlays, RenderOptions, Scene, ShadeOptions, View, camera, stats,
+};
+use fairsub::{Error, PolyMesh, Result};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// Camera, lights, stripes and range: the options `render` and `compare` share.
+#[derive(Debug, clap::Args)]
+pub struct LookArgs {
+    /// Image size WIDTHxHEIGHT in pixels (per cell for compare) [default: 800x800 for
+    /// render, 400x400 for compare].
+    #[arg(long)]
+    pub size: Option<String>,
+    /// Supersampling: AA x AA samples per pixel (1 = none).
+    #[arg(long, default_value_t = 2)]
+    pub aa: usize,
+    /// Eye angle around the z axis, degrees from +x (-90 puts +x to the right).
+    #[arg(long, default_value_t = -60.0, allow_negative_numbers = true)]
+    pub azimuth: f64,
+    /// Eye angle above the xy plane, degrees (90 looks straight down).
+    #[arg(long, default_value_t = 40.0, allow_negative_numbers = true)]
+    pub elevation: f64,
+    /// Eye distance from the centre in model units [default: fit the view].
+    #[arg(long)]
+    pub distance: Option<f64>,
+    /// Vertical field of view in degrees.
+    #[arg(long, default_value_t = 30.0)]
+    pub fov: f64,
+    /// Centre on the limit point of this input vertex (V, vertex:V or face:F).
+    #[arg(long, value_name = "V")]
+    pub focus: Option<String>,
+    /// Frame rings K..L (1 = outermost) of the focused (or only) extraordinary element; the cap
+    /// counts as the ring after the last.
+    #[arg(long, value_name = "K..L")]
+    pub zoom_rings: Option<String>,
+    /// Fixed symmetric curvature range [-R, R] [default: automatic, the 98th percentile of
+    /// |value| over the visible surface].
+    #[arg(long, value_name = "R")]
+    pub range: Option<f64>,
+    /// Overlays: net (control net), patches (patch boundaries); repeat or comma-separate.
+    #[arg(long, value_delimiter = ',')]
+    pub overlay: Vec<String>,
+    /// Stripe periods across the visible surface (highlight, reflection lines, isophotes).
+    #[arg(long, default_value_t = 12.0)]
+    pub stripes: f64,
+    /// Dark fraction of each stripe period, in (0, 1).
+    #[arg(long, default_value_t = 0.5)]
+    pub stripe_width: f64,
+    /// Direction of the light lines in the image, degrees from horizontal.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub light_angle: f64,
+    /// No legend strip under curvature pictures.
+    #[arg(long)]
+    pub no_legend: bool,
+}
+
+impl LookArgs {
+    fn options(&self, default_size: (usize, usize), mode: Mode) -> Result<RenderOptions> {
+        let (width, height) = match &self.size {
+            Some(s) => render::parse_size(s)?,
+            None => default_size,
+        };
+        let opts = RenderOptions {
+            width,
+            height,
+            supersample: self.aa,
+            mode,
+            view: View {
+                azimuth_deg: self.azimuth,
+                elevation_deg: self.elevation,
+                distance: self.distance,
+                fov_deg: self.fov,
+                focus: self
+                    .focus
+                    .as_deref()
+                    .map(camera::parse_element)
+                    .transpose()?,
+                zoom_rings: self
+                    .zoom_rings
+                    .as_deref()
+                    .map(camera::parse_rings)
+                    .transpose()?,
+            },
+            shade: ShadeOptions {
+                stripes: self.stripes,
+                stripe_width: self.stripe_width,
+                light_angle_deg: self.light_angle,
+                range: self.range,
+                ..ShadeOptions::default()
+            },
+            overlays: Overlays::parse(&self.overlay)?,
+            legend: !self.no_legend,
+        };
+        opts.validate()?;
+        Ok(opts)
+    }
+}
+
+/// Arguments of `fairsub render`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "\
+NET is a mesh file (.obj .off .ply), gallery:NAME, or a BezierView .bv file of patches (groups
+named regular, ringK and cap give the provenance). With --scheme the net's exact patch complex is
+drawn (--rings, default 6); with --scheme and --levels its refined net; without --scheme the net
+itself. Curvature and provenance modes need patches.
+
+Examples:
+  fairsub render gallery:cnet-5-convex --scheme catmull-clark --mode highlight -o hl.png
+  fairsub render net.obj -s catmull-clark -r 10 -m mean --zoom-rings 6..11 --json -o h.png
+  fairsub render surface.bv --mode provenance --overlay patches -o rings.png")]
+pub struct RenderArgs {
+    /// The control net (file or gallery:NAME) or a .bv file of patches.
+    pub net: String,
+    /// Scheme whose surface is drawn (see `fairsub schemes`); none: the net itself.
+    #[arg(long, short)]
+    pub scheme: Option<String>,
+    /// Rings per extraordinary element of the patch complex [default: 6].
+    #[arg(long, short)]
+    pub rings: Option<usize>,
+    /// Leave the hole inside the last ring open.
+    #[arg(long)]
+    pub no_fill: bool,
+    /// Draw the net refined this many times instead of the patches (interpolated normals).
+    #[arg(long, short)]
+    pub levels: Option<usize>,
+    /// shaded, highlight, reflection, isophote, gauss, mean or provenance.
+    #[arg(long, short, default_value = "shaded")]
+    pub mode: String,
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Print camera, range used and per-ring curvature ranges as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Output PNG file.
+    #[arg(long, short)]
+    pub output: PathBuf,
+}
+
+/// Arguments of `fairsub compare`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "\
+Rows are schemes, columns are modes. All cells share one camera (fitted to all surfaces), one
+light set and, per mode, one curvature range or stripe period, so the schemes are compared
+fairly.
+
+Example:
+  fairsub compare gallery:cnet-6-saddle --schemes catmull-clark --modes highlight,mean,provenance \\
+      --zoom-rings 1..7 --size 320x320 -o panel.png")]
+pub struct CompareArgs {
+    /// The control net (file or gallery:NAME).
+    pub net: String,
+    /// Schemes with patch output, comma-separated [default: all of them].
+    #[arg(long, value_delimiter = ',')]
+    pub schemes: Vec<String>,
+    /// Modes, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "highlight,mean")]
+    pub modes: Vec<String>,
+    /// Rings per extraordinary element.
+    #[arg(long, short, default_value_t = 6)]
+    pub rings: usize,
+    /// Leave the hole inside the last ring open.
+    #[arg(long)]
+    pub no_fill: bool,
+    #[command(flatten)]
+    pub look: LookArgs,
+    /// Print camera, ranges used and per-scheme per-ring curvature ranges as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Output PNG file.
+    #[arg(long, short)]
+    pub output: PathBuf,
+}
+
+/// Samples per patch edge for the per-ring curvature numbers.
+const GROUP_SAMPLES: usize = 8;
+
+fn is_bv(path: &str) -> bool {
+    Path::new(path)
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("bv"))
+}
+
+/// A `.bv` file as a scene: its tensor-product patches with provenance from the group names
+/// (its first polyhedron, if any, as the net); only polyhedra: the first one as a mesh.
+fn bv_scene(path: &str) -> Result<Scene> {
+    let file: BvFile = fairsub::io::read_bv(Path::new(path))?;
+    for w in &file.warnings {
+        eprintln!("warning: {path}: {w}");
+    }
+    if !file.tri_patches.is_empty() {
+        eprintln!(
+            "warning: {path}: {} triangular patches are not drawn (only tensor-product patches)",
+            file.tri_patches.len()
+        );
+    }
+    let poly = file.polyhedra.first().and_then(|p| {
+        PolyMesh::new(p.positions.clone(), &p.faces)
+            .map_err(|e| eprintln!("warning: {path}: polyhedron not usable as a net: {e}"))
+            .ok()
+    });
+    if file.patches.is_empty() {
+        return match poly {
+            Some(m) => Ok(Scene::mesh(&m)),
+            None => Err(Error::InvalidArgument(format!(
+                "{path}: no tensor-product patches or polyhedra to draw"
+            ))),
+        };
+    }
+    Ok(Scene::patches(render::complex_from_bv(&file), poly))
+}
+
+/// The patch complex of a scheme as a scene with its net.
+fn complex_scene(scheme: &str, net: &PolyMesh, rings: usize, fill: bool) -> Result<Scene> {
+    let c = super::subdivide::build_complex(scheme, net, rings, fill)?;
+    if c.is_empty() {
+        return Err(Error::InvalidArgument(format!(
+            "scheme '{scheme}' produced no patches for this net"
+        )));
+    }
+    Ok(Scene::patches(c, Some(net.clone())))
+}
+
+#[derive(Serialize)]
+struct RangeReport {
+    mode: Mode,
+    value: f64,
+    automatic: bool,
+}
+
+#[derive(Serialize)]
+struct RenderReport<'a> {
+    input: &'a str,
+    scheme: Option<&'a str>,
+    rings: Option<usize>,
+    mode: Mode,
+    output: String,
+    width: usize,
+    height: usize,
+    supersample: usize,
+    camera: &'a render::Camera,
+    region: &'a render::Region,
+    range: Option<RangeReport>,
+    stripe_period: Option<f64>,
+    frame: &'a render::FrameStats,
+    groups: Vec<stats::GroupCurvature>,
+}
+
+/// Runs `fairsub render`.
+pub fn run_render(a: RenderArgs) -> Result<()> {
+    let mode: Mode = a.mode.parse()?;
+    let opts = a.look.options((800, 800), mode)?;
+    let bv = is_bv(&a.net);
+    if bv && (a.scheme.is_some() || a.levels.is_some() || a.rings.is_some()) {
+        return Err(Error::InvalidArgument(
+            "a .bv file holds its patches already: drop --scheme, --levels and --rings".into(),
+        ));
+    }
+    if a.levels.is_some() && a.rings.is_some() {
+        return Err(Error::InvalidArgument(
+            "give either --levels (refined net) or --rings (patch complex), not both".into(),
+        ));
+    }
+    if a.scheme.is_none() && (a.levels.is_some() || a.rings.is_some()) {
+        return Err(Error::InvalidArgument(
+            "--levels and --rings need --scheme".into(),
+        ));
+    }
+    let mut rings = None;
+    let scene = if bv {
+        bv_scene(&a.net)?
+    } else {
+        let net = super::load_net(&a.net)?.mesh;
+        match (&a.scheme, a.levels) {
+            (None, _) => Scene::mesh(&net),
+            (Some(s), Some(levels)) => {
+                let fine = super::subdivide::refine(s, &net, levels, false)?;
+                let mut scene = Scene::mesh(&fine);
+                scene.net = Some(net);
+                scene
+            }
+            (Some(s), None) => {
+                let r = a.rings.unwrap_or(super::subdivide::DEFAULT_RINGS);
+                rings = Some(r);
+                complex_scene(s, &net, r, !a.no_fill)?
+            }
+        }
+    };
+    let out = render::render(&scene, &opts)?;
+    out.image.write_png(&a.output)?;
+    if a.json {
+        let report = RenderReport {
+            input: &a.net,
+            scheme: a.scheme.as_deref(),
+            rings,
+            mode,
+            output: a.output.display().to_string(),
+            width: out.image.width,
+            height: out.image.height,
+            supersample: opts.supersample,
+            camera: &out.camera,
+            region: &out.region,
+            range: out.range.map(|value| RangeReport {
+                mode,
+                value,
+                automatic: opts.shade.range.is_none(),
+            }),
+            stripe_period: out.stripe_period,
+            frame: &out.stats,
+            groups: scene
+                .complex()
+                .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
+                .unwrap_or_default(),
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("serialisable")
+        );
+    }
+    eprintln!(
+        "wrote {} ({}x{}, {}{})",
+        a.output.display(),
+        out.image.width,
+        out.image.height,
+        mode.name(),
+        out.range
+            .map(|r| format!(", range +-{}", render::text::format_number(r)))
+            .unwrap_or_default()
+    );
+    Ok(())
+}
+
+#[derive(Serialize)]
+struct SchemeReport {
+    scheme: String,
+    patches: usize,
+    frame: render::FrameStats,
+    groups: Vec<stats::GroupCurvature>,
+}
+
+#[derive(Serialize)]
+struct CompareReport<'a> {
+    input: &'a str,
+    rings: usize,
+    modes: Vec<Mode>,
+    output: String,
+    cell_width: usize,
+    cell_height: usize,
+    supersample: usize,
+    camera: &'a render::Camera,
+    region: &'a render::Region,
+    ranges: Vec<RangeReport>,
+    stripe_periods: Vec<(Mode, f64)>,
+    schemes: Vec<SchemeReport>,
+}
+
+/// Builds and renders a comparison panel; returns it with the scenes (for the report).
+fn compare_panel(
+    net: &PolyMesh,
+    schemes: &[String],
+    modes: &[Mode],
+    rings: usize,
+    fill: bool,
+    opts: &RenderOptions,
+) -> Result<(render::Panel, Vec<(String, Scene)>)> {
+    let mut scenes = Vec::new();
+    for s in schemes {
+        scenes.push((s.clone(), complex_scene(s, net, rings, fill)?));
+    }
+    let panel = render::compare(&scenes, modes, opts)?;
+    Ok((panel, scenes))
+}
+
+/// The schemes that have exact patch output.
+/// The schemes with patch output that take this net (Loop only takes triangle nets).
+fn patch_schemes(net: &PolyMesh) -> Vec<String> {
+    fairsub::schemes::catalog()
+        .iter()
+        .filter(|s| s.rings && (s.name != "loop" || net.is_all_triangles()))
+        .map(|s| s.name.to_string())
+        .collect()
+}
+
+/// Runs `fairsub compare`.
+pub fn run_compare(a: CompareArgs) -> Result<()> {
+    if is_bv(&a.net) {
+        return Err(Error::InvalidArgument(
+            "compare builds each scheme's surface from a control net; a .bv file holds finished patches (use `fairsub render` on it)".into(),
+        ));
+    }
+    let modes: Vec<Mode> = a.modes.iter().map(|m| m.parse()).collect::<Result<_>>()?;
+    let net = super::load_net(&a.net)?.mesh;
+    let schemes: Vec<String> = if a.schemes.is_empty() {
+        patch_schemes(&net)
+    } else {
+        a.schemes.iter().map(|s| s.trim().to_string()).collect()
+    };
+    let opts = a
+        .look
+        .options((400, 400), modes.first().copied().unwrap_or(Mode::Shaded))?;
+    let (panel, scenes) = compare_panel(&net, &schemes, &modes, a.rings, !a.no_fill, &opts)?;
+    panel.image.write_png(&a.output)?;
+    if a.json {
+        let report = CompareReport {
+            input: &a.net,
+            rings: a.rings,
+            modes: modes.clone(),
+            output: a.output.display().to_string(),
+            cell_width: opts.width,
+            cell_height: opts.height,
+            supersample: opts.supersample,
+            camera: &panel.camera,
+            region: &panel.region,
+            ranges: panel
+                .ranges
+                .iter()
+                .map(|&(mode, value)| RangeReport {
+                    mode,
+                    value,
+                    automatic: opts.shade.range.is_none(),
+                })
+                .collect(),
+            stripe_periods: panel.periods.clone(),
+            schemes: scenes
+                .iter()
+                .zip(&panel.stats)
+                .map(|((name, scene), st)| SchemeReport {
+                    scheme: name.clone(),
+                    patches: scene.complex().map_or(0, |c| c.len()),
+                    frame: st.clone(),
+                    groups: scene
+                        .complex()
+                        .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
+                        .unwrap_or_default(),
+                })
+                .collect(),
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("serialisable")
+        );
+    }
+    eprintln!(
+        "wrote {} ({}x{}: {} schemes x {} modes)",
+        a.output.display(),
+        panel.image.width,
+        panel.image.height,
+        schemes.len(),
+        modes.len()
+    );
+    Ok(())
+}
+
+/// The panel of `fairsub demo`: every scheme with patch output x highlight lines, mean
+/// curvature and provenance, 320x320 cells, 6 rings, zoomed on the rings and cap of the net's
+/// extraordinary element as in the papers (the same as `fairsub compare NET --modes
+/// highlight,mean,provenance --size 320x320 --zoom-rings 1..7 --elevation 55`).
+pub fn demo_compare(net: &PolyMesh, path: &Path) -> Result<()> {
+    let modes = [Mode::Highlight, Mode::Mean, Mode::Provenance];
+    let opts = RenderOptions {
+        width: 320,
+        height: 320,
+        view: View {
+            elevation_deg: 55.0,
+            zoom_rings: Some((1, 7)),
+            ..View::default()
+        },
+        ..RenderOptions::default()
+    };
+    let (panel, _) = compare_panel(net, &patch_schemes(net), &modes, 6, true, &opts)?;
+    panel.image.write_png(path)
+}
