@@ -563,3 +563,43 @@ fn errors_name_the_element_and_the_way_out() {
         .to_string();
     assert!(e.contains("(0, 1/2)"), "{e}");
 }
+
+#[test]
+fn adjustable_tps_for_other_split_ratios() {
+    for e in [0.15, 0.25, 0.3] {
+        for n in 3..=12 {
+            for c in bi2::published_with("tps-adjustable", n, e).unwrap() {
+                assert!(
+                    c.difference < 1e-12,
+                    "e={e} n={n}: {}: {} vs {}",
+                    c.quantity,
+                    c.published,
+                    c.computed
+                );
+            }
+            let (ring, lambda) = bi2::characteristic_ring_with("tps-adjustable", n, e).unwrap();
+            assert!(
+                certify::certify_ring(&ring, lambda).injective,
+                "e={e} n={n}"
+            );
+        }
+    }
+}
+
+#[test]
+fn pgs_dscc_preprocesses_twice() {
+    let m = gallery::prism(5);
+    let s = schemes::by_name("pgs-dscc").unwrap();
+    let a = schemes::refine_levels(s.as_ref(), &m, 3, |_| {}).unwrap();
+    let b = fairsub::schemes::bi2::Pgs::refine_levels_with(
+        &m,
+        3,
+        fairsub::schemes::bi2::PgsOptions { dscc_steps: 2 },
+    )
+    .unwrap();
+    assert_eq!(a.positions(), b.positions());
+    let c = fairsub::schemes::DooSabinCc.refine(&m).unwrap().mesh;
+    let c = fairsub::schemes::DooSabinCc.refine(&c).unwrap().mesh;
+    let c = Pgs.refine(&c).unwrap().mesh;
+    assert_eq!(a.positions(), c.positions());
+}

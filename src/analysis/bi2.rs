@@ -148,16 +148,14 @@ pub fn tps_adjustable(n: usize, e: f64) -> Result<LocalMatrix> {
 /// The default split ratio of `tps-adjustable`.
 pub const DEFAULT_E: f64 = 0.2;
 
-/// The local scheme and local-net size behind a scheme name.
-fn local_scheme(scheme: &str, n: usize) -> Result<(LocalScheme, usize)> {
+/// The local scheme and local-net size behind a scheme name (`e`: split ratio of
+/// `tps-adjustable`).
+fn local_scheme(scheme: &str, n: usize, e: f64) -> Result<(LocalScheme, usize)> {
     match scheme {
         "pgs" => Ok((LocalScheme::pgs(n)?, 9)),
         "polar-bi2" => Ok((LocalScheme::polar(n)?, 3)),
         "tps" => Ok((LocalScheme::ternary(n, TernaryRules::TPS)?, 6)),
-        "tps-adjustable" => Ok((
-            LocalScheme::ternary(n, TernaryRules::adjustable(DEFAULT_E)?)?,
-            6,
-        )),
+        "tps-adjustable" => Ok((LocalScheme::ternary(n, TernaryRules::adjustable(e)?)?, 6)),
         other => Err(Error::InvalidArgument(format!(
             "no bi-2 analysis for scheme '{other}'"
         ))),
@@ -167,11 +165,16 @@ fn local_scheme(scheme: &str, n: usize) -> Result<(LocalScheme, usize)> {
 /// The local matrix of a bi-2 scheme by name (`pgs`, `polar-bi2`, `tps`, `tps-adjustable` with
 /// `e = 0.2`).
 pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
+    local_matrix_with(scheme, n, DEFAULT_E)
+}
+
+/// [`local_matrix`] with the split ratio `e` of `tps-adjustable` (ignored by the others).
+pub fn local_matrix_with(scheme: &str, n: usize, e: f64) -> Result<LocalMatrix> {
     match scheme {
         "pgs" => pgs(n),
         "polar-bi2" => polar(n),
         "tps" => tps(n),
-        "tps-adjustable" => tps_adjustable(n, DEFAULT_E),
+        "tps-adjustable" => tps_adjustable(n, e),
         other => Err(Error::InvalidArgument(format!(
             "no bi-2 analysis for scheme '{other}'"
         ))),
@@ -183,8 +186,13 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
 /// pattern; PolBS: the `n` of `b`) built from the characteristic map's control points, and
 /// lambda.
 pub fn characteristic_ring(scheme: &str, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
-    let lm = local_matrix(scheme, n)?;
-    let (ls, per) = local_scheme(scheme, n)?;
+    characteristic_ring_with(scheme, n, DEFAULT_E)
+}
+
+/// [`characteristic_ring`] with the split ratio `e` of `tps-adjustable`.
+pub fn characteristic_ring_with(scheme: &str, n: usize, e: f64) -> Result<(Vec<BezierPatch>, f64)> {
+    let lm = local_matrix_with(scheme, n, e)?;
+    let (ls, per) = local_scheme(scheme, n, e)?;
     let (pts, lambda) = lm.characteristic_points()?;
     // Replicated layout (s, 0) copy, (s, 1 + x) point x of sector s; the local nets have the
     // centre first (TPS, PolBS) or no centre (PGS).
@@ -265,7 +273,12 @@ fn poly_difference(block: &FourierBlock, expect: &[f64]) -> f64 {
 /// # Errors
 /// For a scheme name that is not of the bi-2 family, or an invalid valence.
 pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
-    let lm = local_matrix(scheme, n)?;
+    published_with(scheme, n, DEFAULT_E)
+}
+
+/// [`published`] with the split ratio `e` of `tps-adjustable`.
+pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedCheck>> {
+    let lm = local_matrix_with(scheme, n, e)?;
     let spec = spectrum(&lm.matrix);
     let blocks = lm.fourier_blocks()?;
     let limit = lm.limit_stencil()?;
@@ -396,8 +409,8 @@ pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
                 }
             } else {
                 out.push(check(
-                    "subdominant eigenvalue (22), e = 0.2",
-                    adjustable_lambda(DEFAULT_E, c1),
+                    format!("subdominant eigenvalue (22), e = {e}"),
+                    adjustable_lambda(e, c1),
                     spec.lambda,
                 ));
                 out.push(check(
@@ -407,7 +420,7 @@ pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
                 ));
                 // The limit point of a surface from an input net: the stationary limit
                 // functional after the first step (uniform knots), over the input q-net.
-                let rules = TernaryRules::adjustable(DEFAULT_E)?;
+                let rules = TernaryRules::adjustable(e)?;
                 let ls = LocalScheme::ternary(n, rules)?;
                 let size = ls.size;
                 let mut lnon = vec![0.0; size];

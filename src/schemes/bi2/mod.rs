@@ -29,7 +29,7 @@ pub mod polar;
 pub mod ternary;
 
 pub use mixed::Bi2Mixed;
-pub use pgs::{Pgs, PgsParams};
+pub use pgs::{Pgs, PgsOptions, PgsParams, PgsPreprocessed};
 pub use polar::{PolarBi2, PolarParams};
 pub use ternary::{AdjustableTps, Tps, TpsParams};
 

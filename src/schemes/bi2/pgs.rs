@@ -293,6 +293,66 @@ impl Pgs {
     }
 }
 
+/// PGS after DS^CC pre-processing (scheme name `pgs-dscc`, two steps by default): the first
+/// `opts.dscc_steps` levels are DS^CC steps, the rest PGS, as in the paper's prism experiment.
+#[derive(Debug, Clone, Copy)]
+pub struct PgsPreprocessed {
+    /// The pre-processing.
+    pub opts: PgsOptions,
+}
+
+impl Default for PgsPreprocessed {
+    fn default() -> Self {
+        PgsPreprocessed {
+            opts: PgsOptions { dscc_steps: 2 },
+        }
+    }
+}
+
+impl Scheme for PgsPreprocessed {
+    fn name(&self) -> &'static str {
+        "pgs-dscc"
+    }
+
+    /// The first step of the sequence: DS^CC (PGS when no pre-processing is asked for).
+    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        if self.opts.dscc_steps > 0 {
+            DooSabinCc.refine(mesh)
+        } else {
+            Pgs.refine(mesh)
+        }
+    }
+
+    /// `levels` steps: the pre-processing steps first, then PGS.
+    fn refine_many(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        let mut m = mesh.clone();
+        for l in 0..levels {
+            m = if l < self.opts.dscc_steps {
+                DooSabinCc.refine(&m)?.mesh
+            } else {
+                Pgs.refine(&m)?.mesh
+            };
+            progress(l + 1);
+        }
+        Ok(m)
+    }
+
+    /// Refused: the limit of a net depends on how many pre-processing steps remain, which the
+    /// net does not record.
+    fn limit_stencils(&self, _mesh: &PolyMesh) -> Result<StencilTable> {
+        Err(Error::Unsupported(
+            "pgs-dscc limit positions depend on how many DS^CC steps remain; refine with \
+             --levels 2 or more and take the limit of the result with --scheme pgs"
+                .into(),
+        ))
+    }
+}
+
 /// Adds the PGS rule of corner `h` to `row` (see [`Pgs::corner_stencil`]).
 fn add_corner(mesh: &PolyMesh, h: u32, row: &mut RowBuf) {
     let f = mesh.he_face(h) as usize;
