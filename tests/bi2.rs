@@ -171,7 +171,7 @@ fn adjustable_steps_are_exact_knot_insertion() {
     // Two steps with e = 0.2 on a regular grid: the patch of the twice-refined vertex child is
     // the middle piece of the middle piece of its parent's patch.
     let grid = gallery::open_grid();
-    let adj = AdjustableTps { e: 0.2 };
+    let adj = AdjustableTps::new(0.2);
     let (fine, w) = adj.refine_levels_exact(&grid, 2, |_| {}).unwrap();
     let (e, s) = (0.2, 0.6);
     let lo = e + s * e;
@@ -185,7 +185,7 @@ fn adjustable_steps_are_exact_knot_insertion() {
         );
     }
     // e = 1/3 gives back TPS.
-    let a = AdjustableTps { e: 1.0 / 3.0 };
+    let a = AdjustableTps::new(1.0 / 3.0);
     let net = gallery::cnet(5, CnetShape::Saddle, 3);
     let x = a.refine(&net).unwrap().mesh;
     let y = Tps.refine(&net).unwrap().mesh;
@@ -557,7 +557,7 @@ fn errors_name_the_element_and_the_way_out() {
     assert!(e.contains("--rings"), "{e}");
     assert!(PgsParams::new(2).is_err() && TpsParams::new(2).is_err());
     assert!(bi2::local_matrix("tps", 2).is_err());
-    let e = AdjustableTps { e: 0.6 }
+    let e = AdjustableTps::new(0.6)
         .refine(&gallery::cnet(5, CnetShape::Convex, 2))
         .unwrap_err()
         .to_string();
@@ -602,4 +602,35 @@ fn pgs_dscc_preprocesses_twice() {
     let c = fairsub::schemes::DooSabinCc.refine(&c).unwrap().mesh;
     let c = Pgs.refine(&c).unwrap().mesh;
     assert_eq!(a.positions(), c.positions());
+}
+
+#[test]
+fn regular_spectrum_alphas_give_lambda_squared_and_fourth() {
+    use fairsub::schemes::bi2::AlphaRule;
+    use fairsub::schemes::bi2::ternary::{TernaryRules, adjustable_lambda};
+    // fairsub's alternative rule for adjustable TPS: the stationary frequency-0 block has the
+    // eigenvalues 1, lambda^2, lambda^4 (trace and determinant), unlike the paper's rule.
+    for n in 3..=12 {
+        let rules = TernaryRules::adjustable_with(0.2, AlphaRule::RegularSpectrum).unwrap();
+        let (a1, a2, fallback) = rules.stationary_alphas(n).unwrap();
+        assert!(!fallback, "n={n}");
+        let m = rules.frequency0_block(rules.ring_ratio(), a1, a2);
+        let tr = m[0][0] + m[1][1] + m[2][2];
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        let l = adjustable_lambda(0.2, (2.0 * std::f64::consts::PI / n as f64).cos());
+        assert!(
+            (tr - (1.0 + l * l + l.powi(4))).abs() < 1e-12,
+            "n={n}: {tr}"
+        );
+        assert!((det - l.powi(6)).abs() < 1e-12, "n={n}: {det}");
+        // The paper's rule (TPS's limit point) differs except where it falls back (n = 3).
+        let (b1, _, fb) = TernaryRules::adjustable(0.2)
+            .unwrap()
+            .stationary_alphas(n)
+            .unwrap();
+        assert_eq!(fb, n == 3, "n={n}");
+        assert!(fb || (a1 - b1).abs() > 1e-6, "n={n}: {a1} {b1}");
+    }
 }

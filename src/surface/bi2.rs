@@ -770,7 +770,8 @@ pub fn pgs_complex(
     super::ds::dual_complex_with(&pre, opts, &rules, "pgs", progress)
 }
 
-/// The TPS surface (`e = None`) or adjustable TPS surface (split ratio `e`) of a quad net:
+/// The TPS surface ([`TernaryRules::TPS`]) or adjustable TPS surface
+/// ([`TernaryRules::adjustable`]) of a quad net:
 /// regular bi-2 patches, `2 n` patches per ring around every extraordinary vertex, the fill.
 /// Extraordinary vertices too close to each other are separated by one or two whole-net steps
 /// of the scheme first (exact: the steps carry the knot widths, and the regular patches of the
@@ -782,12 +783,13 @@ pub fn pgs_complex(
 pub fn tps_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
-    e: Option<f64>,
+    rules: TernaryRules,
     mut progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
-    let (rules, name) = match e {
-        None => (TernaryRules::TPS, "tps"),
-        Some(e) => (TernaryRules::adjustable(e)?, "tps-adjustable"),
+    let name = if rules == TernaryRules::TPS {
+        "tps"
+    } else {
+        "tps-adjustable"
     };
     let mut m = mesh.clone();
     let mut w = uniform_widths(mesh);

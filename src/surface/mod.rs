@@ -182,10 +182,20 @@ pub fn complex_with_notes(
             progress,
         )),
         "polar-bi2" | "polbs" => bi2::polar_complex(mesh, opts, &[], progress),
-        "tps" => bi2::tps_complex(mesh, opts, None, progress),
-        "tps-adjustable" => {
-            bi2::tps_complex(mesh, opts, Some(crate::analysis::bi2::DEFAULT_E), progress)
-        }
+        "tps" => bi2::tps_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::ternary::TernaryRules::TPS,
+            progress,
+        ),
+        "tps-adjustable" => bi2::tps_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::ternary::TernaryRules::adjustable(
+                crate::analysis::bi2::DEFAULT_E,
+            )?,
+            progress,
+        ),
         "bi2-mixed" => plain(bi2::mixed_complex(mesh, opts, progress)),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()

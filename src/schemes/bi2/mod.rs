@@ -31,7 +31,7 @@ pub mod ternary;
 pub use mixed::Bi2Mixed;
 pub use pgs::{Pgs, PgsOptions, PgsParams, PgsPreprocessed};
 pub use polar::{PolarBi2, PolarParams};
-pub use ternary::{AdjustableTps, Tps, TpsParams};
+pub use ternary::{AdjustableTps, AlphaRule, Tps, TpsParams};
 
 use crate::stencil::Stencil;
 

@@ -147,37 +147,56 @@ pub fn adjustable_lambda(e: f64, c: f64) -> f64 {
     (1.0 - 2.0 * e) * (a + 2.0 * e * b.max(0.0).sqrt())
 }
 
+/// How rule (18)'s `alpha_1, alpha_2` are chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AlphaRule {
+    /// TPS's published values.
+    Published,
+    /// Adjustable TPS as the paper states it: the stationary limit point is TPS's (21) (with
+    /// the valence-3 fallback of [`TernaryRules::stationary_alphas`]).
+    #[default]
+    TpsLimitPoint,
+    /// fairsub's alternative for adjustable TPS: the stationary frequency-0 eigenvalues are
+    /// `lambda^2, lambda^4` as in the regular case (`mu / lambda^2 = 1` in that block); the
+    /// surface's limit point is still TPS's, through the first step's `alpha`s.
+    RegularSpectrum,
+}
+
 /// The rules of one ternary scheme: the split ratio and the rule at extraordinary vertices.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TernaryRules {
     /// Split ratio `e` (`1/3` for TPS).
     pub e: f64,
-    /// Whether `alpha_1, alpha_2` are TPS's published values (`false`: chosen for the knot
-    /// pattern so that the limit point is TPS's (21), the adjustable reconstruction).
-    pub published_alphas: bool,
+    /// The choice of `alpha_1, alpha_2`.
+    pub alphas: AlphaRule,
 }
 
 impl TernaryRules {
     /// TPS: `e = 1/3`, the paper's `alpha`s.
     pub const TPS: TernaryRules = TernaryRules {
         e: 1.0 / 3.0,
-        published_alphas: true,
+        alphas: AlphaRule::Published,
     };
 
-    /// Adjustable TPS with split ratio `e`.
+    /// Adjustable TPS with split ratio `e` and the paper's choice of `alpha`s.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] unless `0 < e < 1/2`.
     pub fn adjustable(e: f64) -> Result<TernaryRules> {
+        Self::adjustable_with(e, AlphaRule::TpsLimitPoint)
+    }
+
+    /// Adjustable TPS with split ratio `e` and the given choice of `alpha`s.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] unless `0 < e < 1/2`.
+    pub fn adjustable_with(e: f64, alphas: AlphaRule) -> Result<TernaryRules> {
         if !(e > 0.0 && e < 0.5) {
             return Err(Error::InvalidArgument(format!(
                 "the split ratio e of adjustable TPS must lie in (0, 1/2) (got {e})"
             )));
         }
-        Ok(TernaryRules {
-            e,
-            published_alphas: false,
-        })
+        Ok(TernaryRules { e, alphas })
     }
 
     /// `r = e / (1 - 2e)`: the stationary ring width relative to the centre (1 for TPS).
@@ -231,17 +250,19 @@ impl TernaryRules {
     /// frequency-0 eigenvalues to `lambda^2, lambda^4`, as in the regular case; the surface's
     /// limit point is then still TPS's, through the first step ([`TernaryRules::alphas`]).
     pub fn stationary_alphas(&self, n: usize) -> Result<(f64, f64, bool)> {
-        if self.published_alphas {
+        if self.alphas == AlphaRule::Published {
             let p = TpsParams::new(n)?;
             return Ok((p.alpha1, p.alpha2, false));
         }
         let r = self.ring_ratio();
-        let t = Self::tps_limit(n)?;
-        let (a1, a2) = self.alphas_for(r, t, t);
         let lambda = adjustable_lambda(self.e, super::cos_2pi(1, n as i64));
-        let m = self.frequency0_block(r, a1, a2);
-        if second_modulus(&m) < lambda * (1.0 - 1e-9) {
-            return Ok((a1, a2, false));
+        if self.alphas == AlphaRule::TpsLimitPoint {
+            let t = Self::tps_limit(n)?;
+            let (a1, a2) = self.alphas_for(r, t, t);
+            let m = self.frequency0_block(r, a1, a2);
+            if second_modulus(&m) < lambda * (1.0 - 1e-9) {
+                return Ok((a1, a2, false));
+            }
         }
         // Fallback: tr M = 1 + l^2 + l^4 and det M = l^6, linear in the alphas.
         let [ra, rb] = self.averaged_rows(r);
@@ -254,7 +275,7 @@ impl TernaryRules {
         // a1 (c12 - c11) + a2 (c13 - c11) = l^6 - c11, a2 = s - a1.
         let lhs = (c12 - c11) - (c13 - c11);
         let a1 = (l2 * l4 - c11 - s * (c13 - c11)) / lhs;
-        Ok((a1, s - a1, true))
+        Ok((a1, s - a1, self.alphas == AlphaRule::TpsLimitPoint))
     }
 
     /// `(alpha_1, alpha_2)` of rule (18) at valence `n` for ring width `h1` (relative to the
@@ -264,7 +285,7 @@ impl TernaryRules {
     pub fn alphas(&self, n: usize, h1: f64) -> Result<(f64, f64)> {
         let (a1, a2, _) = self.stationary_alphas(n)?;
         let r = self.ring_ratio();
-        if self.published_alphas || (h1 - r).abs() <= 1e-9 * r {
+        if self.alphas == AlphaRule::Published || (h1 - r).abs() <= 1e-9 * r {
             return Ok((a1, a2));
         }
         let l = left_fixed_vector(&self.frequency0_block(r, a1, a2));
@@ -313,11 +334,34 @@ pub struct Tps;
 pub struct AdjustableTps {
     /// The split ratio `e`, `0 < e < 1/2`.
     pub e: f64,
+    /// The choice of rule (18)'s `alpha`s.
+    pub alphas: AlphaRule,
 }
 
 impl Default for AdjustableTps {
     fn default() -> Self {
-        AdjustableTps { e: 0.2 }
+        AdjustableTps {
+            e: 0.2,
+            alphas: AlphaRule::TpsLimitPoint,
+        }
+    }
+}
+
+impl AdjustableTps {
+    /// Adjustable TPS with split ratio `e` and the paper's choice of `alpha`s.
+    pub fn new(e: f64) -> AdjustableTps {
+        AdjustableTps {
+            e,
+            alphas: AlphaRule::TpsLimitPoint,
+        }
+    }
+
+    /// The scheme's rules.
+    ///
+    /// # Errors
+    /// For `e` outside `(0, 1/2)`.
+    pub fn rules(&self) -> Result<TernaryRules> {
+        TernaryRules::adjustable_with(self.e, self.alphas)
     }
 }
 
@@ -333,7 +377,7 @@ impl AdjustableTps {
         levels: usize,
         mut progress: impl FnMut(usize),
     ) -> Result<(PolyMesh, Widths)> {
-        let rules = TernaryRules::adjustable(self.e)?;
+        let rules = self.rules()?;
         let mut m = mesh.clone();
         let mut w = uniform_widths(mesh);
         for l in 0..levels {
@@ -370,7 +414,7 @@ impl Scheme for AdjustableTps {
 
     /// One exact step from a uniform net (every input net is uniform).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        let rules = TernaryRules::adjustable(self.e)?;
+        let rules = self.rules()?;
         Ok(ternary_step(mesh, &uniform_widths(mesh), &rules, self.name())?.0)
     }
 
@@ -980,7 +1024,7 @@ mod tests {
         // The adjustable solve at e = 1/3, uniform widths, returns TPS's published alphas.
         let adj = TernaryRules {
             e: 1.0 / 3.0,
-            published_alphas: false,
+            alphas: AlphaRule::TpsLimitPoint,
         };
         for n in 3..=12 {
             let p = TpsParams::new(n).unwrap();
