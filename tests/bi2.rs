@@ -634,3 +634,174 @@ fn regular_spectrum_alphas_give_lambda_squared_and_fourth() {
         assert!(fb || (a1 - b1).abs() > 1e-6, "n={n}: {a1} {b1}");
     }
 }
+
+fn fairsub_cli(args: &[&str]) -> (bool, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn cli_subdivide_every_bi2_scheme_nets_and_patches() {
+    let dir = std::env::temp_dir().join(format!("fairsub-bi2-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let cases = [
+        ("pgs", "gallery:prism-5"),
+        ("pgs-dscc", "gallery:prism-5"),
+        ("polar-bi2", "gallery:prism-5"),
+        ("tps", "gallery:cnet-5-saddle"),
+        ("tps-adjustable", "gallery:cnet-5-saddle"),
+        ("bi2-mixed", "gallery:cnet-5-saddle"),
+        ("doo-sabin", "gallery:prism-5"),
+        ("doo-sabin-cc", "gallery:prism-5"),
+    ];
+    for (scheme, net) in cases {
+        let obj = out(&format!("{scheme}.obj"));
+        let (ok, _, err) = fairsub_cli(&[
+            "subdivide",
+            net,
+            "--scheme",
+            scheme,
+            "--levels",
+            "2",
+            "-o",
+            &obj,
+        ]);
+        assert!(ok, "{scheme} --levels: {err}");
+        let refined = fairsub::io::read_mesh(std::path::Path::new(&obj))
+            .unwrap()
+            .mesh;
+        assert!(refined.num_faces() > 50, "{scheme}");
+        for (ext, fill) in [("bv", true), ("igs", true), ("bv", false)] {
+            let file = out(&format!("{scheme}-{fill}.{ext}"));
+            let mut args = vec![
+                "subdivide",
+                net,
+                "--scheme",
+                scheme,
+                "--rings",
+                "3",
+                "-o",
+                &file,
+            ];
+            if !fill {
+                args.push("--no-fill");
+            }
+            let (ok, _, err) = fairsub_cli(&args);
+            assert!(ok, "{scheme} --rings .{ext}: {err}");
+            assert!(
+                std::fs::metadata(&file).unwrap().len() > 1000,
+                "{scheme} .{ext}"
+            );
+        }
+        // The filled surface is closed around the centre; without the fill it is not.
+        let filled = fairsub::io::read_bv(std::path::Path::new(&out(&format!("{scheme}-true.bv"))))
+            .unwrap()
+            .patches;
+        let open = fairsub::io::read_bv(std::path::Path::new(&out(&format!("{scheme}-false.bv"))))
+            .unwrap()
+            .patches;
+        assert!(filled.len() > open.len(), "{scheme}");
+    }
+    // Options of the adjustable and polar schemes.
+    let f = out("adj.bv");
+    let (ok, _, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:cnet-6-convex",
+        "--scheme",
+        "tps-adjustable",
+        "--split-ratio",
+        "0.25",
+        "--rings",
+        "3",
+        "-o",
+        &f,
+    ]);
+    assert!(ok, "{err}");
+    let f = out("pole.bv");
+    let (ok, _, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:prism-5",
+        "--scheme",
+        "polar-bi2",
+        "--pole",
+        "1:0,0,1.5",
+        "--rings",
+        "3",
+        "-o",
+        &f,
+    ]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:prism-5",
+        "--scheme",
+        "pgs",
+        "--split-ratio",
+        "0.25",
+        "--rings",
+        "3",
+        "-o",
+        &f,
+    ]);
+    assert!(
+        !ok && err.contains("--split-ratio applies to tps-adjustable"),
+        "{err}"
+    );
+    let (ok, _, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:prism-5",
+        "--scheme",
+        "polar-bi2",
+        "--pole",
+        "1:0,0",
+        "--rings",
+        "3",
+        "-o",
+        &f,
+    ]);
+    assert!(!ok && err.contains("FACE:X,Y,Z"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn cli_analyze_prints_the_published_numbers() {
+    for (scheme, formula) in [
+        ("pgs", "(5), (6)"),
+        ("polar-bi2", "(13), (14)"),
+        ("tps", "(19), (20)"),
+        ("tps-adjustable", "(22)"),
+    ] {
+        let (ok, out, err) =
+            fairsub_cli(&["analyze", "--scheme", scheme, "--valence", "7", "--json"]);
+        assert!(ok, "{scheme}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let published = v["published"].as_array().unwrap();
+        assert!(published.len() >= 4, "{scheme}");
+        assert!(
+            published
+                .iter()
+                .any(|p| p["quantity"].as_str().unwrap().contains(formula)),
+            "{scheme}: {published:?}"
+        );
+        assert_eq!(v["characteristic_map"]["injective"], true, "{scheme}");
+    }
+    let (ok, out, _) = fairsub_cli(&[
+        "analyze",
+        "--scheme",
+        "tps-adjustable",
+        "--valence",
+        "5",
+        "--split-ratio",
+        "0.3",
+    ]);
+    assert!(ok);
+    assert!(out.contains("(22), e = 0.3"), "{out}");
+}

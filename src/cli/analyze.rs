@@ -64,6 +64,9 @@ pub struct AnalyzeArgs {
     /// writes its matrices): same non-zero spectrum, equal-size Fourier blocks.
     #[arg(long)]
     pub replicated_centre: bool,
+    /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2).
+    #[arg(long)]
+    pub split_ratio: Option<f64>,
 }
 
 fn c2(z: analysis::C64) -> [f64; 2] {
@@ -72,7 +75,22 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 
 /// Runs `fairsub analyze`.
 pub fn analyze(a: AnalyzeArgs) -> Result<()> {
-    let lm = local::local_matrix(&a.scheme, a.valence)?;
+    if a.split_ratio.is_some() && a.scheme != "tps-adjustable" {
+        return Err(Error::InvalidArgument(format!(
+            "--split-ratio applies to tps-adjustable, not to '{}'",
+            a.scheme
+        )));
+    }
+    let e = a.split_ratio.unwrap_or(analysis::bi2::DEFAULT_E);
+    let bi2_name = match a.scheme.as_str() {
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => Some(a.scheme.as_str()),
+        "polbs" => Some("polar-bi2"),
+        _ => None,
+    };
+    let lm = match bi2_name {
+        Some(s) => analysis::bi2::local_matrix_with(s, a.valence, e)?,
+        None => local::local_matrix(&a.scheme, a.valence)?,
+    };
     let lm = if a.replicated_centre {
         lm.replicated_centre()
     } else {
@@ -95,10 +113,25 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
         .into_iter()
         .map(|v| v.iter().copied().collect())
         .collect();
-    let characteristic_map = local::characteristic_ring(&a.scheme, a.valence)
+    let ring = match bi2_name {
+        Some(s) => analysis::bi2::characteristic_ring_with(s, a.valence, e),
+        None => local::characteristic_ring(&a.scheme, a.valence),
+    };
+    let characteristic_map = ring
         .ok()
         .map(|(ring, lambda)| certify::certify_ring(&ring, lambda));
     let mut published = Vec::new();
+    if let Some(s) = bi2_name {
+        // The bi-2 paper's polynomials, eigenvalues and limit points (its own matrix layout).
+        for c in analysis::bi2::published_with(s, a.valence, e)? {
+            published.push(Published {
+                quantity: c.quantity,
+                published: c.published,
+                computed: c.computed,
+                difference: c.difference,
+            });
+        }
+    }
     if matches!(a.scheme.as_str(), "catmull-clark" | "cc") {
         let l = analysis::catmull_clark_lambda(a.valence);
         published.push(Published {
