@@ -334,69 +334,19 @@ fn polar_complexes_are_c1() {
     }
 }
 
-/// A ternary split of every face of a polygon mesh (an n-gon becomes a central n-gon, n corner
-/// quads and n edge quads): facets get DS-nets, vertices keep their valence.
-fn ternary_topology(m: &PolyMesh) -> PolyMesh {
-    let nh = m.num_halfedges();
-    let mut pos: Vec<Point> = m.positions().to_vec();
-    // Edge children per half-edge: next to from(h).
-    let mut ec = vec![0usize; nh];
-    for h in 0..nh as u32 {
-        if m.he_twin(h).is_some_and(|t| t < h) {
-            // The twin's pair serves this half-edge too (see `near`).
-            ec[h as usize] = usize::MAX;
-            continue;
-        }
-        let (a, b) = (
-            m.position(m.he_from(h) as usize),
-            m.position(m.he_to(h) as usize),
-        );
-        ec[h as usize] = pos.len();
-        pos.push(geom::lerp(a, b, 1.0 / 3.0));
-        pos.push(geom::lerp(a, b, 2.0 / 3.0));
-    }
-    let near = |h: u32, at_from: bool| -> usize {
-        match m.he_twin(h) {
-            Some(t) if t < h => ec[t as usize] + usize::from(at_from),
-            _ => ec[h as usize] + usize::from(!at_from),
-        }
-    };
-    let mut fc = vec![0usize; nh];
-    for f in 0..m.num_faces() {
-        let c = m.face_centroid(f);
-        let h0 = m.face_halfedge(f);
-        for h in h0..h0 + m.face_size(f) as u32 {
-            fc[h as usize] = pos.len();
-            pos.push(geom::lerp(m.position(m.he_from(h) as usize), c, 0.5));
-        }
-    }
-    let mut faces: Vec<Vec<usize>> = Vec::new();
-    for f in 0..m.num_faces() {
-        let h0 = m.face_halfedge(f);
-        let k = m.face_size(f) as u32;
-        faces.push((h0..h0 + k).map(|h| fc[h as usize]).collect());
-        for i in 0..k {
-            let h = h0 + i;
-            let hp = h0 + (i + k - 1) % k;
-            let hn = h0 + (i + 1) % k;
-            let v = m.he_from(h) as usize;
-            faces.push(vec![v, near(h, true), fc[h as usize], near(hp, false)]);
-            faces.push(vec![
-                near(h, true),
-                near(h, false),
-                fc[hn as usize],
-                fc[h as usize],
-            ]);
-        }
-    }
-    PolyMesh::new(pos, &faces).unwrap()
-}
-
 #[test]
 fn mixed_mesh_joins_binary_and_ternary_rings_c1() {
     // Two ternary splits of a pentagonal prism: two pentagon facets with DS-nets (PGS) and ten
     // separated vertices of valence 3 (TPS), the rest regular bi-2: the layout of Fig. 15.
-    let m = ternary_topology(&ternary_topology(&gallery::prism(5)));
+    let m = fairsub::schemes::bi2::mixed::fig15_like_net(5).unwrap();
+    assert_eq!(
+        m.num_faces(),
+        fairsub::schemes::bi2::mixed::ternary_split(
+            &fairsub::schemes::bi2::mixed::ternary_split(&gallery::prism(5)).unwrap()
+        )
+        .unwrap()
+        .num_faces()
+    );
     let els = fairsub::schemes::bi2::mixed::elements(&m);
     use fairsub::schemes::bi2::mixed::Bi2Element;
     assert_eq!(
@@ -548,7 +498,7 @@ fn errors_name_the_element_and_the_way_out() {
     let (_, notes) = build("polar-bi2", &dsnet(5), 2);
     assert!(notes[0].contains("face 0"), "{notes:?}");
     // A net mixing binary facets and ternary vertices has no refined net.
-    let mixed = ternary_topology(&ternary_topology(&gallery::prism(5)));
+    let mixed = fairsub::schemes::bi2::mixed::fig15_like_net(5).unwrap();
     let e = schemes::by_name("polar-bi2")
         .unwrap()
         .refine(&mixed)

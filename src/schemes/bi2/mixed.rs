@@ -21,6 +21,7 @@
 
 use super::{Pgs, PolarBi2, Tps};
 use crate::error::{Error, Result};
+use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::StencilTable;
@@ -138,4 +139,108 @@ impl Scheme for Bi2Mixed {
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         chosen(mesh)?.limit_stencils(mesh)
     }
+}
+
+/// A ternary split of every face of a polygon mesh: an `n`-gon becomes a central `n`-gon (its
+/// corners two thirds of the way to the centroid, so a quad splits uniformly), `n` corner quads and `n` edge quads; edges are split at
+/// thirds. Facets get DS-nets and vertices keep their valence, so two splits separate every
+/// extraordinary element from the others: the kind of net of the paper's Fig. 15 (see
+/// [`fig15_like_net`]). A topological construction for making test and demo nets, not a
+/// subdivision scheme (the positions are piecewise linear).
+///
+/// # Errors
+/// When the split net is invalid (cannot happen for a valid input mesh).
+pub fn ternary_split(m: &PolyMesh) -> Result<PolyMesh> {
+    let nh = m.num_halfedges();
+    let mut pos: Vec<Point> = m.positions().to_vec();
+    // Edge children per half-edge: next to from(h).
+    let mut ec = vec![0usize; nh];
+    for h in 0..nh as u32 {
+        if m.he_twin(h).is_some_and(|t| t < h) {
+            // The twin's pair serves this half-edge too (see `near`).
+            ec[h as usize] = usize::MAX;
+            continue;
+        }
+        let (a, b) = (
+            m.position(m.he_from(h) as usize),
+            m.position(m.he_to(h) as usize),
+        );
+        ec[h as usize] = pos.len();
+        pos.push(geom::lerp(a, b, 1.0 / 3.0));
+        pos.push(geom::lerp(a, b, 2.0 / 3.0));
+    }
+    let near = |h: u32, at_from: bool| -> usize {
+        match m.he_twin(h) {
+            Some(t) if t < h => ec[t as usize] + usize::from(at_from),
+            _ => ec[h as usize] + usize::from(!at_from),
+        }
+    };
+    let mut fc = vec![0usize; nh];
+    for f in 0..m.num_faces() {
+        let c = m.face_centroid(f);
+        let h0 = m.face_halfedge(f);
+        for h in h0..h0 + m.face_size(f) as u32 {
+            fc[h as usize] = pos.len();
+            pos.push(geom::lerp(m.position(m.he_from(h) as usize), c, 2.0 / 3.0));
+        }
+    }
+    let mut faces: Vec<Vec<usize>> = Vec::new();
+    for f in 0..m.num_faces() {
+        let h0 = m.face_halfedge(f);
+        let k = m.face_size(f) as u32;
+        faces.push((h0..h0 + k).map(|h| fc[h as usize]).collect());
+        for i in 0..k {
+            let h = h0 + i;
+            let hp = h0 + (i + k - 1) % k;
+            let hn = h0 + (i + 1) % k;
+            let v = m.he_from(h) as usize;
+            faces.push(vec![v, near(h, true), fc[h as usize], near(hp, false)]);
+            faces.push(vec![
+                near(h, true),
+                near(h, false),
+                fc[hn as usize],
+                fc[h as usize],
+            ]);
+        }
+    }
+    PolyMesh::new(pos, &faces)
+}
+
+/// A net in the spirit of the paper's Fig. 15 (whose mesh is lost with the figure): two ternary
+/// splits ([`ternary_split`]) of the `n`-sided prism of the gallery, its points then smoothed
+/// by 20 Taubin steps (Laplacian weights 0.5, -0.53) so that the net is rounded. Its
+/// two `n`-gons are PGS facets, its `2 n` cap corners of valence 3 are TPS vertices, everything
+/// else is regular bi-2: binary and ternary rings in one surface (`fairsub subdivide --scheme
+/// bi2-mixed`).
+///
+/// # Errors
+/// For `n < 3`.
+pub fn fig15_like_net(n: usize) -> Result<PolyMesh> {
+    if n < 3 {
+        return Err(Error::InvalidArgument(format!(
+            "a prism needs n >= 3 sides (got {n})"
+        )));
+    }
+    let mut m = ternary_split(&ternary_split(&crate::gallery::prism(n))?)?;
+    let nbrs: Vec<Vec<u32>> = (0..m.num_vertices())
+        .map(|v| m.vertex_neighbors(v))
+        .collect();
+    for step in 0..40 {
+        let w = if step % 2 == 0 { 0.5 } else { -0.53 };
+        let old = m.positions().to_vec();
+        let pos: Vec<Point> = old
+            .iter()
+            .zip(&nbrs)
+            .map(|(&p, nb)| {
+                let mut avg = [0.0; 3];
+                for &q in nb {
+                    avg = geom::add(avg, old[q as usize]);
+                }
+                let avg = geom::scale(avg, 1.0 / nb.len() as f64);
+                geom::lerp(p, avg, w)
+            })
+            .collect();
+        m.set_positions(pos);
+    }
+    Ok(m)
 }
