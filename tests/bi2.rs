@@ -582,6 +582,12 @@ fn regular_spectrum_alphas_give_lambda_squared_and_fourth() {
             .unwrap();
         assert_eq!(fb, n == 3, "n={n}");
         assert!(fb || (a1 - b1).abs() > 1e-6, "n={n}: {a1} {b1}");
+        // (22) and the limit point from an input net are unchanged; the map stays injective.
+        for c in bi2::published_rules("tps-adjustable", n, rules).unwrap() {
+            assert!(c.difference < 1e-12, "n={n}: {}", c.quantity);
+        }
+        let (ring, lambda) = bi2::characteristic_ring_rules("tps-adjustable", n, rules).unwrap();
+        assert!(certify::certify_ring(&ring, lambda).injective, "n={n}");
     }
 }
 
@@ -701,10 +707,7 @@ fn cli_subdivide_every_bi2_scheme_nets_and_patches() {
         "-o",
         &f,
     ]);
-    assert!(
-        !ok && err.contains("--split-ratio applies to tps-adjustable"),
-        "{err}"
-    );
+    assert!(!ok && err.contains("apply to tps-adjustable"), "{err}");
     let (ok, _, err) = fairsub_cli(&[
         "subdivide",
         "gallery:prism-5",
@@ -754,4 +757,33 @@ fn cli_analyze_prints_the_published_numbers() {
     ]);
     assert!(ok);
     assert!(out.contains("(22), e = 0.3"), "{out}");
+    // fairsub's alternative alphas: frequency 0 at lambda^2, so mu / lambda^2 drops (n = 5:
+    // from 1.389 to 1.085, the largest eigenvalue below lambda now of frequency 2).
+    let ratio = |rule: &str| -> f64 {
+        let (ok, out, err) = fairsub_cli(&[
+            "analyze",
+            "--scheme",
+            "tps-adjustable",
+            "--valence",
+            "5",
+            "--alpha-rule",
+            rule,
+            "--json",
+        ]);
+        assert!(ok, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        v["spectrum"]["mu_over_lambda_squared"].as_f64().unwrap()
+    };
+    assert!((ratio("tps-limit-point") - 1.389171).abs() < 1e-6);
+    assert!((ratio("regular-spectrum") - 1.085183).abs() < 1e-6);
+    let (ok, _, err) = fairsub_cli(&[
+        "analyze",
+        "--scheme",
+        "tps",
+        "--valence",
+        "5",
+        "--alpha-rule",
+        "regular-spectrum",
+    ]);
+    assert!(!ok && err.contains("apply to tps-adjustable"), "{err}");
 }

@@ -23,7 +23,7 @@ use crate::geom::{self, Point};
 use crate::schemes::Scheme;
 use crate::schemes::bi2::pgs::{PgsParams, ds_net};
 use crate::schemes::bi2::polar::PolarParams;
-use crate::schemes::bi2::ternary::{TernaryRules, TpsParams, adjustable_lambda};
+use crate::schemes::bi2::ternary::{AlphaRule, TernaryRules, TpsParams, adjustable_lambda};
 use crate::schemes::bi2::{Pgs, cos_2pi};
 use crate::stencil::Stencil;
 use crate::surface::PatchComplex;
@@ -137,12 +137,23 @@ pub fn tps(n: usize) -> Result<LocalMatrix> {
 /// Adjustable TPS with split ratio `e` at valence `n`: the stationary `7n x 7n` replicated
 /// matrix (knot pattern `1, r, r^2`).
 pub fn tps_adjustable(n: usize, e: f64) -> Result<LocalMatrix> {
+    tps_adjustable_rules(n, TernaryRules::adjustable(e)?)
+}
+
+/// [`tps_adjustable`] with the given rules (split ratio and [`AlphaRule`]).
+pub fn tps_adjustable_rules(n: usize, rules: TernaryRules) -> Result<LocalMatrix> {
     let _ = TpsParams::new(n)?;
-    from_local(
-        "tps-adjustable",
-        &LocalScheme::ternary(n, TernaryRules::adjustable(e)?)?,
-        6,
-    )
+    from_local("tps-adjustable", &LocalScheme::ternary(n, rules)?, 6)
+}
+
+/// The rules of `tps-adjustable` for a split ratio (the paper's [`AlphaRule`]); TPS's for the
+/// other schemes, which ignore them.
+fn rules_for(scheme: &str, e: f64) -> Result<TernaryRules> {
+    if scheme == "tps-adjustable" {
+        TernaryRules::adjustable(e)
+    } else {
+        Ok(TernaryRules::TPS)
+    }
 }
 
 /// The default split ratio of `tps-adjustable`.
@@ -150,12 +161,12 @@ pub const DEFAULT_E: f64 = 0.2;
 
 /// The local scheme and local-net size behind a scheme name (`e`: split ratio of
 /// `tps-adjustable`).
-fn local_scheme(scheme: &str, n: usize, e: f64) -> Result<(LocalScheme, usize)> {
+fn local_scheme(scheme: &str, n: usize, adj: TernaryRules) -> Result<(LocalScheme, usize)> {
     match scheme {
         "pgs" => Ok((LocalScheme::pgs(n)?, 9)),
         "polar-bi2" => Ok((LocalScheme::polar(n)?, 3)),
         "tps" => Ok((LocalScheme::ternary(n, TernaryRules::TPS)?, 6)),
-        "tps-adjustable" => Ok((LocalScheme::ternary(n, TernaryRules::adjustable(e)?)?, 6)),
+        "tps-adjustable" => Ok((LocalScheme::ternary(n, adj)?, 6)),
         other => Err(Error::InvalidArgument(format!(
             "no bi-2 analysis for scheme '{other}'"
         ))),
@@ -170,11 +181,16 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
 
 /// [`local_matrix`] with the split ratio `e` of `tps-adjustable` (ignored by the others).
 pub fn local_matrix_with(scheme: &str, n: usize, e: f64) -> Result<LocalMatrix> {
+    local_matrix_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`local_matrix`] with the rules `adj` of `tps-adjustable` (ignored by the others).
+pub fn local_matrix_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<LocalMatrix> {
     match scheme {
         "pgs" => pgs(n),
         "polar-bi2" => polar(n),
         "tps" => tps(n),
-        "tps-adjustable" => tps_adjustable(n, e),
+        "tps-adjustable" => tps_adjustable_rules(n, adj),
         other => Err(Error::InvalidArgument(format!(
             "no bi-2 analysis for scheme '{other}'"
         ))),
@@ -191,8 +207,17 @@ pub fn characteristic_ring(scheme: &str, n: usize) -> Result<(Vec<BezierPatch>, 
 
 /// [`characteristic_ring`] with the split ratio `e` of `tps-adjustable`.
 pub fn characteristic_ring_with(scheme: &str, n: usize, e: f64) -> Result<(Vec<BezierPatch>, f64)> {
-    let lm = local_matrix_with(scheme, n, e)?;
-    let (ls, per) = local_scheme(scheme, n, e)?;
+    characteristic_ring_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`characteristic_ring`] with the rules `adj` of `tps-adjustable`.
+pub fn characteristic_ring_rules(
+    scheme: &str,
+    n: usize,
+    adj: TernaryRules,
+) -> Result<(Vec<BezierPatch>, f64)> {
+    let lm = local_matrix_rules(scheme, n, adj)?;
+    let (ls, per) = local_scheme(scheme, n, adj)?;
     let (pts, lambda) = lm.characteristic_points()?;
     // Replicated layout (s, 0) copy, (s, 1 + x) point x of sector s; the local nets have the
     // centre first (TPS, PolBS) or no centre (PGS).
@@ -278,7 +303,15 @@ pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
 
 /// [`published`] with the split ratio `e` of `tps-adjustable`.
 pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedCheck>> {
-    let lm = local_matrix_with(scheme, n, e)?;
+    published_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`published`] with the rules `adj` of `tps-adjustable`. With
+/// [`AlphaRule::RegularSpectrum`] the stationary limit functional is not (21) (only the limit
+/// point from an input net is), so those checks are left out.
+pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<PublishedCheck>> {
+    let e = adj.e;
+    let lm = local_matrix_rules(scheme, n, adj)?;
     let spec = spectrum(&lm.matrix);
     let blocks = lm.fourier_blocks()?;
     let limit = lm.limit_stencil()?;
@@ -420,7 +453,7 @@ pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedChe
                 ));
                 // The limit point of a surface from an input net: the stationary limit
                 // functional after the first step (uniform knots), over the input q-net.
-                let rules = TernaryRules::adjustable(e)?;
+                let rules = adj;
                 let ls = LocalScheme::ternary(n, rules)?;
                 let size = ls.size;
                 let mut lnon = vec![0.0; size];
@@ -455,7 +488,7 @@ pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedChe
                     qb,
                 ));
                 let (_, _, fallback) = rules.stationary_alphas(n)?;
-                if fallback || n == 4 {
+                if fallback || n == 4 || rules.alphas == AlphaRule::RegularSpectrum {
                     // The stationary net has non-uniform knots; its own limit functional is
                     // not (21) (n = 4: the exact spline value; fallback: lambda^2, lambda^4).
                     return Ok(out);

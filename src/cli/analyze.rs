@@ -67,6 +67,9 @@ pub struct AnalyzeArgs {
     /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2).
     #[arg(long)]
     pub split_ratio: Option<f64>,
+    /// tps-adjustable only: how rule (18)'s alphas are chosen.
+    #[arg(long, value_enum)]
+    pub alpha_rule: Option<super::subdivide::AlphaRuleArg>,
 }
 
 fn c2(z: analysis::C64) -> [f64; 2] {
@@ -75,20 +78,17 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 
 /// Runs `fairsub analyze`.
 pub fn analyze(a: AnalyzeArgs) -> Result<()> {
-    if a.split_ratio.is_some() && a.scheme != "tps-adjustable" {
-        return Err(Error::InvalidArgument(format!(
-            "--split-ratio applies to tps-adjustable, not to '{}'",
-            a.scheme
-        )));
-    }
-    let e = a.split_ratio.unwrap_or(analysis::bi2::DEFAULT_E);
+    let adj = super::subdivide::adjustable_rules(&a.scheme, a.split_ratio, a.alpha_rule)?
+        .unwrap_or(fairsub::schemes::bi2::ternary::TernaryRules::adjustable(
+            analysis::bi2::DEFAULT_E,
+        )?);
     let bi2_name = match a.scheme.as_str() {
         "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => Some(a.scheme.as_str()),
         "polbs" => Some("polar-bi2"),
         _ => None,
     };
     let lm = match bi2_name {
-        Some(s) => analysis::bi2::local_matrix_with(s, a.valence, e)?,
+        Some(s) => analysis::bi2::local_matrix_rules(s, a.valence, adj)?,
         None => local::local_matrix(&a.scheme, a.valence)?,
     };
     let lm = if a.replicated_centre {
@@ -114,7 +114,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
         .map(|v| v.iter().copied().collect())
         .collect();
     let ring = match bi2_name {
-        Some(s) => analysis::bi2::characteristic_ring_with(s, a.valence, e),
+        Some(s) => analysis::bi2::characteristic_ring_rules(s, a.valence, adj),
         None => local::characteristic_ring(&a.scheme, a.valence),
     };
     let characteristic_map = ring
@@ -123,7 +123,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
     let mut published = Vec::new();
     if let Some(s) = bi2_name {
         // The bi-2 paper's polynomials, eigenvalues and limit points (its own matrix layout).
-        for c in analysis::bi2::published_with(s, a.valence, e)? {
+        for c in analysis::bi2::published_rules(s, a.valence, adj)? {
             published.push(Published {
                 quantity: c.quantity,
                 published: c.published,

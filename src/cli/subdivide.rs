@@ -45,6 +45,9 @@ pub struct Args {
     /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2; 1/3 is TPS).
     #[arg(long)]
     pub split_ratio: Option<f64>,
+    /// tps-adjustable only: how rule (18)'s alphas are chosen.
+    #[arg(long, value_enum)]
+    pub alpha_rule: Option<AlphaRuleArg>,
     /// polar-bi2 only: the pole of an n-gon cap, `FACE:X,Y,Z` (input face index; repeatable).
     /// Caps without one get their centroid.
     #[arg(long)]
@@ -67,6 +70,45 @@ impl From<FallbackArg> for fairsub::surface::Fallback {
             FallbackArg::Error => fairsub::surface::Fallback::Error,
         }
     }
+}
+
+/// `--alpha-rule` values.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum AlphaRuleArg {
+    /// The paper's: the stationary limit point is TPS's (21) (default).
+    TpsLimitPoint,
+    /// fairsub's alternative: stationary frequency-0 eigenvalues lambda^2, lambda^4 (bounded
+    /// curvature, mu / lambda^2 = 1); the limit point is still TPS's (21).
+    RegularSpectrum,
+}
+
+impl From<AlphaRuleArg> for fairsub::schemes::bi2::AlphaRule {
+    fn from(a: AlphaRuleArg) -> Self {
+        match a {
+            AlphaRuleArg::TpsLimitPoint => fairsub::schemes::bi2::AlphaRule::TpsLimitPoint,
+            AlphaRuleArg::RegularSpectrum => fairsub::schemes::bi2::AlphaRule::RegularSpectrum,
+        }
+    }
+}
+
+/// The rules of `tps-adjustable` from `--split-ratio` and `--alpha-rule` (`None` when neither
+/// is given); an error when they are given for another scheme.
+pub fn adjustable_rules(
+    scheme: &str,
+    split_ratio: Option<f64>,
+    alpha_rule: Option<AlphaRuleArg>,
+) -> Result<Option<fairsub::schemes::bi2::ternary::TernaryRules>> {
+    if split_ratio.is_none() && alpha_rule.is_none() {
+        return Ok(None);
+    }
+    if scheme != "tps-adjustable" {
+        return Err(Error::InvalidArgument(format!(
+            "--split-ratio and --alpha-rule apply to tps-adjustable, not to '{scheme}'"
+        )));
+    }
+    let e = split_ratio.unwrap_or(fairsub::analysis::bi2::DEFAULT_E);
+    let rule = alpha_rule.map(Into::into).unwrap_or_default();
+    fairsub::schemes::bi2::ternary::TernaryRules::adjustable_with(e, rule).map(Some)
 }
 
 /// Default rings of patch output when none are given.
@@ -155,8 +197,8 @@ pub fn run(a: Args) -> Result<()> {
 
 /// The bi-2 options of `subdivide` (`--split-ratio`, `--pole`), checked against the scheme.
 enum Bi2Options {
-    /// `tps-adjustable` with the given split ratio.
-    Adjustable(f64),
+    /// `tps-adjustable` with the given rules.
+    Adjustable(fairsub::schemes::bi2::ternary::TernaryRules),
     /// `polar-bi2` with user-given poles.
     Poles(Vec<(usize, fairsub::geom::Point)>),
 }
@@ -164,15 +206,8 @@ enum Bi2Options {
 impl Bi2Options {
     /// `None` when neither option is given.
     fn from_args(a: &Args) -> Result<Option<Bi2Options>> {
-        if let Some(e) = a.split_ratio {
-            if a.scheme != "tps-adjustable" {
-                return Err(Error::InvalidArgument(format!(
-                    "--split-ratio applies to tps-adjustable, not to '{}'",
-                    a.scheme
-                )));
-            }
-            fairsub::schemes::bi2::ternary::TernaryRules::adjustable(e)?;
-            return Ok(Some(Bi2Options::Adjustable(e)));
+        if let Some(r) = adjustable_rules(&a.scheme, a.split_ratio, a.alpha_rule)? {
+            return Ok(Some(Bi2Options::Adjustable(r)));
         }
         if a.pole.is_empty() {
             return Ok(None);
@@ -194,7 +229,10 @@ impl Bi2Options {
     fn scheme(&self) -> Box<dyn fairsub::schemes::Scheme> {
         use fairsub::schemes::bi2::{AdjustableTps, PolarBi2};
         match self {
-            Bi2Options::Adjustable(e) => Box::new(AdjustableTps::new(*e)),
+            Bi2Options::Adjustable(r) => Box::new(AdjustableTps {
+                e: r.e,
+                alphas: r.alphas,
+            }),
             Bi2Options::Poles(p) => Box::new(PolarBi2 { poles: p.clone() }),
         }
     }
@@ -206,12 +244,7 @@ impl Bi2Options {
         let pb = super::progress_bar(rings as u64, "bi-2 rings");
         let progress = |l: usize| pb.set_position(l as u64);
         let (c, notes) = match self {
-            Bi2Options::Adjustable(e) => bi2::tps_complex(
-                mesh,
-                opts,
-                fairsub::schemes::bi2::ternary::TernaryRules::adjustable(*e)?,
-                progress,
-            )?,
+            Bi2Options::Adjustable(r) => bi2::tps_complex(mesh, opts, *r, progress)?,
             Bi2Options::Poles(p) => bi2::polar_complex(mesh, opts, p, progress)?,
         };
         pb.finish_and_clear();
