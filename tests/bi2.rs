@@ -787,3 +787,29 @@ fn cli_analyze_prints_the_published_numbers() {
     ]);
     assert!(!ok && err.contains("apply to tps-adjustable"), "{err}");
 }
+
+#[test]
+fn cli_check_certifies_c1_up_to_scaling() {
+    for (net, scheme) in [
+        ("gallery:prism-5", "polar-bi2"),
+        ("gallery:cnet-6-saddle", "tps-adjustable"),
+        ("gallery:prism-6", "pgs"),
+    ] {
+        let (ok, out, err) =
+            fairsub_cli(&["check", net, "--scheme", scheme, "--rings", "3", "--json"]);
+        assert!(ok, "{scheme}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let kinds = v["c1_up_to_scaling"]["by_kind"].as_object().unwrap();
+        assert!(kinds.len() >= 5, "{scheme}");
+        for (kind, d) in kinds {
+            if kind == "cap|cap" {
+                continue; // the fill's spokes: C^0 by design
+            }
+            assert!(
+                d["c1_relative"].as_f64().unwrap() < 1e-10
+                    && d["kappa_min"].as_f64().unwrap() > 0.0,
+                "{scheme} {kind}: {d}"
+            );
+        }
+    }
+}

@@ -458,6 +458,10 @@ struct CheckReport {
     source: String,
     continuity: continuity::ContinuityReport,
     curvature: Vec<curvature::ElementCurvature>,
+    /// C^1 up to a per-piece affine reparametrisation (bi-2 schemes, whose polar and
+    /// adjustable rings shrink differently along and across their sides; `.bv` input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    c1_up_to_scaling: Option<analysis::bi2::ScaledContinuity>,
 }
 
 /// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
@@ -512,10 +516,18 @@ pub fn check(a: CheckArgs) -> Result<()> {
             c
         }
     };
+    let scaled = match a.scheme.as_deref() {
+        None => true,
+        Some(s) => matches!(
+            s,
+            "pgs" | "pgs-dscc" | "polar-bi2" | "polbs" | "tps" | "tps-adjustable" | "bi2-mixed"
+        ),
+    };
     let r = CheckReport {
         source: a.input.clone(),
         continuity: continuity::check(&complex),
         curvature: curvature::ring_curvature(&complex),
+        c1_up_to_scaling: scaled.then(|| analysis::bi2::continuity_up_to_scaling(&complex)),
     };
     if a.json {
         println!(
@@ -559,6 +571,19 @@ pub fn check(a: CheckArgs) -> Result<()> {
             "  ... {} open sides in all (the boundary of the surface, or cracks)",
             c.open_sides
         );
+    }
+    if let Some(sc) = &r.c1_up_to_scaling {
+        println!("  C1 up to per-piece scaling (D_A + kappa D_B = 0 across each piece):");
+        println!(
+            "  {:<22} {:>7} {:>12} {:>10} {:>10} {:>10}",
+            "join", "pieces", "C1 relative", "kappa min", "kappa max", "G1 (rad)"
+        );
+        for (k, d) in &sc.by_kind {
+            println!(
+                "  {:<22} {:>7} {:>12.2e} {:>10.4} {:>10.4} {:>10.2e}",
+                k, d.pieces, d.c1_relative, d.kappa_min, d.kappa_max, d.g1
+            );
+        }
     }
     for e in &r.curvature {
         println!("  curvature around {:?}:", e.element);
