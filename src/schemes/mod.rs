@@ -242,7 +242,7 @@ pub fn catalog() -> Vec<SchemeInfo> {
         SchemeInfo {
             name: "polar-bi2",
             family: "Polar Bi-2 Subdivision (PolBS) [Karciauskas-Peters]: radial bi-2 refinement around poles",
-            input: "polar layouts (poles with fans of triangles, rings of quads); prism-like n-gon caps become poles at their centroids; other elements as bi2-mixed",
+            input: "polar layouts (poles with fans of triangles, rings of quads); prism-like n-gon caps become poles at their centroids (or at --pole FACE:X,Y,Z); other elements as bi2-mixed",
             patches: "bi-2 per regular vertex; rings of n bi-2 patches per pole; collapsed bi-2 cap at the limit point (16)",
             smoothness: "C^1; subdominant 1/2, subsubdominant 1/4",
             valences: "all pole valences",
@@ -263,7 +263,7 @@ pub fn catalog() -> Vec<SchemeInfo> {
         },
         SchemeInfo {
             name: "tps-adjustable",
-            family: "adjustable TPS, split ratio e = 0.2 (fairsub's reconstruction of the stencils, tps-adjustable-derived: exact e : 1-2e : e knot insertion; reproduces (22))",
+            family: "adjustable TPS, split ratio e = 0.2 or --split-ratio E; alphas of (18) by --alpha-rule (fairsub's reconstruction of the stencils, tps-adjustable-derived: exact e : 1-2e : e knot insertion; reproduces (22))",
             input: "quad nets, as tps",
             patches: "bi-2 with non-uniform knots; rings of 2n patches per extraordinary vertex; fill as tps",
             smoothness: "C^1 (up to per-piece affine reparametrisation across ring sides); lambda from (22)",
