@@ -9,3 +9,13 @@ $F compare gallery:cnet-5-saddle --schemes catmull-clark,eg,qas-plus --zoom-ring
 $F compare gallery:cnet-6-convex --schemes catmull-clark,qas-plus --zoom-rings 3..11 "${common[@]}" -o docs/images/cc-qas-cnet-6-convex.png
 $F compare gallery:cnet-7-saddle --schemes catmull-clark,qas-plus --zoom-rings 3..11 "${common[@]}" -o docs/images/cc-qas-cnet-7-saddle.png
 $F compare gallery:cnet-5-planar --schemes catmull-clark,eg,qas-plus --zoom-rings 1..11 "${common[@]}" -o docs/images/cc-eg-qas-cnet-5-planar.png
+# The bi-2 family: Doo-Sabin against PGS on convex and saddle nets, a prism under Doo-Sabin,
+# PGS (plain and after two DS^CC steps) and PolBS, and the mixed net (example bi2_mixed).
+bi2=(--size 200x200 --stripes 20 --modes highlight,mean)
+$F compare gallery:cnet-5-convex --schemes doo-sabin,pgs --zoom-rings 1..6 --rings 10 --elevation 60 "${bi2[@]}" -o docs/images/ds-pgs-cnet-5-convex.png
+$F compare gallery:cnet-5-saddle --schemes doo-sabin,pgs --zoom-rings 1..6 --rings 10 --elevation 60 "${bi2[@]}" -o docs/images/ds-pgs-cnet-5-saddle.png
+$F compare gallery:prism-5 --schemes doo-sabin,pgs,pgs-dscc,polar-bi2 --rings 8 --elevation 50 --size 180x180 --stripes 16 --modes highlight,mean -o docs/images/prism-5-ds-pgs-polbs.png
+tmp=$(mktemp -d)
+cargo run --release --quiet --example bi2_mixed -- "$tmp" >/dev/null
+$F compare "$tmp/bi2-mixed-net.obj" --schemes bi2-mixed --rings 4 --size 200x200 --elevation 35 --stripes 16 --modes provenance,highlight,mean -o docs/images/bi2-mixed-prism.png
+rm -rf "$tmp"

@@ -181,8 +181,11 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         "qas-plus" => qas(n, 0.5),
         "qas-0.4" => qas(n, 0.4),
         "qas-plus-bi3" => qas_bi3(n, 0.5),
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => super::bi2::local_matrix(scheme, n),
+        "polbs" => super::bi2::local_matrix("polar-bi2", n),
         other => Err(Error::InvalidArgument(format!(
-            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, qas-plus, qas-0.4)"
+            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, \
+             qas-plus, qas-0.4, pgs, polar-bi2, tps, tps-adjustable)"
         ))),
     }
 }
@@ -255,8 +258,13 @@ pub fn characteristic_ring(
                 .collect();
             Ok((patches, 0.5))
         }
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => {
+            super::bi2::characteristic_ring(scheme, n)
+        }
+        "polbs" => super::bi2::characteristic_ring("polar-bi2", n),
         other => Err(Error::InvalidArgument(format!(
-            "no characteristic map for scheme '{other}' (available: catmull-clark, eg, qas-plus (Section 3), qas-plus-rules)"
+            "no characteristic map for scheme '{other}' (available: catmull-clark, eg, qas-plus \
+             (Section 3), qas-plus-rules, pgs, polar-bi2, tps, tps-adjustable)"
         ))),
     }
 }

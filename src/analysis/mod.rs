@@ -7,6 +7,7 @@
 //! after sector with the same number of points each, which makes the discrete Fourier blocks of
 //! rotationally symmetric schemes directly available.
 
+pub mod bi2;
 pub mod certify;
 pub mod continuity;
 pub mod curvature;

@@ -64,6 +64,12 @@ pub struct AnalyzeArgs {
     /// writes its matrices): same non-zero spectrum, equal-size Fourier blocks.
     #[arg(long)]
     pub replicated_centre: bool,
+    /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2).
+    #[arg(long)]
+    pub split_ratio: Option<f64>,
+    /// tps-adjustable only: how rule (18)'s alphas are chosen.
+    #[arg(long, value_enum)]
+    pub alpha_rule: Option<super::subdivide::AlphaRuleArg>,
 }
 
 fn c2(z: analysis::C64) -> [f64; 2] {
@@ -72,7 +78,19 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 
 /// Runs `fairsub analyze`.
 pub fn analyze(a: AnalyzeArgs) -> Result<()> {
-    let lm = local::local_matrix(&a.scheme, a.valence)?;
+    let adj = super::subdivide::adjustable_rules(&a.scheme, a.split_ratio, a.alpha_rule)?
+        .unwrap_or(fairsub::schemes::bi2::ternary::TernaryRules::adjustable(
+            analysis::bi2::DEFAULT_E,
+        )?);
+    let bi2_name = match a.scheme.as_str() {
+        "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => Some(a.scheme.as_str()),
+        "polbs" => Some("polar-bi2"),
+        _ => None,
+    };
+    let lm = match bi2_name {
+        Some(s) => analysis::bi2::local_matrix_rules(s, a.valence, adj)?,
+        None => local::local_matrix(&a.scheme, a.valence)?,
+    };
     let lm = if a.replicated_centre {
         lm.replicated_centre()
     } else {
@@ -95,10 +113,25 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
         .into_iter()
         .map(|v| v.iter().copied().collect())
         .collect();
-    let characteristic_map = local::characteristic_ring(&a.scheme, a.valence)
+    let ring = match bi2_name {
+        Some(s) => analysis::bi2::characteristic_ring_rules(s, a.valence, adj),
+        None => local::characteristic_ring(&a.scheme, a.valence),
+    };
+    let characteristic_map = ring
         .ok()
         .map(|(ring, lambda)| certify::certify_ring(&ring, lambda));
     let mut published = Vec::new();
+    if let Some(s) = bi2_name {
+        // The bi-2 paper's polynomials, eigenvalues and limit points (its own matrix layout).
+        for c in analysis::bi2::published_rules(s, a.valence, adj)? {
+            published.push(Published {
+                quantity: c.quantity,
+                published: c.published,
+                computed: c.computed,
+                difference: c.difference,
+            });
+        }
+    }
     if matches!(a.scheme.as_str(), "catmull-clark" | "cc") {
         let l = analysis::catmull_clark_lambda(a.valence);
         published.push(Published {
@@ -425,6 +458,10 @@ struct CheckReport {
     source: String,
     continuity: continuity::ContinuityReport,
     curvature: Vec<curvature::ElementCurvature>,
+    /// C^1 up to a per-piece affine reparametrisation (bi-2 schemes, whose polar and
+    /// adjustable rings shrink differently along and across their sides; `.bv` input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    c1_up_to_scaling: Option<analysis::bi2::ScaledContinuity>,
 }
 
 /// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
@@ -479,10 +516,18 @@ pub fn check(a: CheckArgs) -> Result<()> {
             c
         }
     };
+    let scaled = match a.scheme.as_deref() {
+        None => true,
+        Some(s) => matches!(
+            s,
+            "pgs" | "pgs-dscc" | "polar-bi2" | "polbs" | "tps" | "tps-adjustable" | "bi2-mixed"
+        ),
+    };
     let r = CheckReport {
         source: a.input.clone(),
         continuity: continuity::check(&complex),
         curvature: curvature::ring_curvature(&complex),
+        c1_up_to_scaling: scaled.then(|| analysis::bi2::continuity_up_to_scaling(&complex)),
     };
     if a.json {
         println!(
@@ -526,6 +571,19 @@ pub fn check(a: CheckArgs) -> Result<()> {
             "  ... {} open sides in all (the boundary of the surface, or cracks)",
             c.open_sides
         );
+    }
+    if let Some(sc) = &r.c1_up_to_scaling {
+        println!("  C1 up to per-piece scaling (D_A + kappa D_B = 0 across each piece):");
+        println!(
+            "  {:<22} {:>7} {:>12} {:>10} {:>10} {:>10}",
+            "join", "pieces", "C1 relative", "kappa min", "kappa max", "G1 (rad)"
+        );
+        for (k, d) in &sc.by_kind {
+            println!(
+                "  {:<22} {:>7} {:>12.2e} {:>10.4} {:>10.4} {:>10.2e}",
+                k, d.pieces, d.c1_relative, d.kappa_min, d.kappa_max, d.g1
+            );
+        }
     }
     for e in &r.curvature {
         println!("  curvature around {:?}:", e.element);

@@ -42,6 +42,16 @@ pub struct Args {
     /// `p X Y Z`, `q SECTOR K X Y Z`); they replace fairsub's qas-fit where given.
     #[arg(long)]
     pub q_file: Option<PathBuf>,
+    /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2; 1/3 is TPS).
+    #[arg(long)]
+    pub split_ratio: Option<f64>,
+    /// tps-adjustable only: how rule (18)'s alphas are chosen.
+    #[arg(long, value_enum)]
+    pub alpha_rule: Option<AlphaRuleArg>,
+    /// polar-bi2 only: the pole of an n-gon cap, `FACE:X,Y,Z` (input face index; repeatable).
+    /// Caps without one get their centroid.
+    #[arg(long)]
+    pub pole: Vec<String>,
 }
 
 /// `--fallback` values.
@@ -60,6 +70,45 @@ impl From<FallbackArg> for fairsub::surface::Fallback {
             FallbackArg::Error => fairsub::surface::Fallback::Error,
         }
     }
+}
+
+/// `--alpha-rule` values.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum AlphaRuleArg {
+    /// The paper's: the stationary limit point is TPS's (21) (default).
+    TpsLimitPoint,
+    /// fairsub's alternative: stationary frequency-0 eigenvalues lambda^2, lambda^4 (bounded
+    /// curvature, mu / lambda^2 = 1); the limit point is still TPS's (21).
+    RegularSpectrum,
+}
+
+impl From<AlphaRuleArg> for fairsub::schemes::bi2::AlphaRule {
+    fn from(a: AlphaRuleArg) -> Self {
+        match a {
+            AlphaRuleArg::TpsLimitPoint => fairsub::schemes::bi2::AlphaRule::TpsLimitPoint,
+            AlphaRuleArg::RegularSpectrum => fairsub::schemes::bi2::AlphaRule::RegularSpectrum,
+        }
+    }
+}
+
+/// The rules of `tps-adjustable` from `--split-ratio` and `--alpha-rule` (`None` when neither
+/// is given); an error when they are given for another scheme.
+pub fn adjustable_rules(
+    scheme: &str,
+    split_ratio: Option<f64>,
+    alpha_rule: Option<AlphaRuleArg>,
+) -> Result<Option<fairsub::schemes::bi2::ternary::TernaryRules>> {
+    if split_ratio.is_none() && alpha_rule.is_none() {
+        return Ok(None);
+    }
+    if scheme != "tps-adjustable" {
+        return Err(Error::InvalidArgument(format!(
+            "--split-ratio and --alpha-rule apply to tps-adjustable, not to '{scheme}'"
+        )));
+    }
+    let e = split_ratio.unwrap_or(fairsub::analysis::bi2::DEFAULT_E);
+    let rule = alpha_rule.map(Into::into).unwrap_or_default();
+    fairsub::schemes::bi2::ternary::TernaryRules::adjustable_with(e, rule).map(Some)
 }
 
 /// Default rings of patch output when none are given.
@@ -101,15 +150,19 @@ pub fn run(a: Args) -> Result<()> {
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
+    let bi2 = Bi2Options::from_args(&a)?;
     let loaded = super::load_net(&a.net)?;
     let mesh = loaded.mesh;
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
-        let complex = match &a.q_file {
-            Some(qf) => {
+        let complex = match (&a.q_file, &bi2) {
+            (Some(qf), _) => {
                 build_qas_with_file(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into(), qf)?
             }
-            None => build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?,
+            (None, Some(b)) => b.complex(&mesh, rings, !a.no_fill)?,
+            (None, None) => {
+                build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?
+            }
         };
         write_complex(&complex, fmt, &a.output, a.tess)?;
         eprintln!(
@@ -121,7 +174,10 @@ pub fn run(a: Args) -> Result<()> {
         );
     } else {
         let levels = a.levels.unwrap_or(1);
-        let refined = refine(&a.scheme, &mesh, levels, a.limit)?;
+        let refined = match &bi2 {
+            Some(b) => refine_with(b.scheme(), &mesh, levels, a.limit)?,
+            None => refine(&a.scheme, &mesh, levels, a.limit)?,
+        };
         match fmt {
             OutputFormat::Mesh(mf) => fairsub::io::write_mesh(&a.output, &refined, mf)?,
             OutputFormat::Bv => fairsub::io::write_bv_mesh(&a.output, &refined)?,
@@ -139,9 +195,99 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
+/// The bi-2 options of `subdivide` (`--split-ratio`, `--pole`), checked against the scheme.
+enum Bi2Options {
+    /// `tps-adjustable` with the given rules.
+    Adjustable(fairsub::schemes::bi2::ternary::TernaryRules),
+    /// `polar-bi2` with user-given poles.
+    Poles(Vec<(usize, fairsub::geom::Point)>),
+}
+
+impl Bi2Options {
+    /// `None` when neither option is given.
+    fn from_args(a: &Args) -> Result<Option<Bi2Options>> {
+        if let Some(r) = adjustable_rules(&a.scheme, a.split_ratio, a.alpha_rule)? {
+            return Ok(Some(Bi2Options::Adjustable(r)));
+        }
+        if a.pole.is_empty() {
+            return Ok(None);
+        }
+        if !matches!(a.scheme.as_str(), "polar-bi2" | "polbs") {
+            return Err(Error::InvalidArgument(format!(
+                "--pole applies to polar-bi2, not to '{}'",
+                a.scheme
+            )));
+        }
+        a.pole
+            .iter()
+            .map(|s| parse_pole(s))
+            .collect::<Result<Vec<_>>>()
+            .map(|p| Some(Bi2Options::Poles(p)))
+    }
+
+    /// The scheme for refined-net output.
+    fn scheme(&self) -> Box<dyn fairsub::schemes::Scheme> {
+        use fairsub::schemes::bi2::{AdjustableTps, PolarBi2};
+        match self {
+            Bi2Options::Adjustable(r) => Box::new(AdjustableTps {
+                e: r.e,
+                alphas: r.alphas,
+            }),
+            Bi2Options::Poles(p) => Box::new(PolarBi2 { poles: p.clone() }),
+        }
+    }
+
+    /// The patch complex, with a progress bar; notes on stderr.
+    fn complex(&self, mesh: &PolyMesh, rings: usize, fill: bool) -> Result<PatchComplex> {
+        use fairsub::surface::bi2;
+        let opts = ComplexOptions { rings, fill };
+        let pb = super::progress_bar(rings as u64, "bi-2 rings");
+        let progress = |l: usize| pb.set_position(l as u64);
+        let (c, notes) = match self {
+            Bi2Options::Adjustable(r) => bi2::tps_complex(mesh, opts, *r, progress)?,
+            Bi2Options::Poles(p) => bi2::polar_complex(mesh, opts, p, progress)?,
+        };
+        pb.finish_and_clear();
+        for n in notes {
+            eprintln!("note: {n}");
+        }
+        Ok(c)
+    }
+}
+
+/// Parses `FACE:X,Y,Z`.
+fn parse_pole(s: &str) -> Result<(usize, fairsub::geom::Point)> {
+    let bad = || {
+        Error::InvalidArgument(format!(
+            "--pole '{s}': expected FACE:X,Y,Z (input face index, then the pole's coordinates)"
+        ))
+    };
+    let (f, xyz) = s.split_once(':').ok_or_else(bad)?;
+    let f = f.trim().parse::<usize>().map_err(|_| bad())?;
+    let c = xyz
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<std::result::Result<Vec<_>, _>>()
+        .map_err(|_| bad())?;
+    if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
+        return Err(bad());
+    }
+    Ok((f, [c[0], c[1], c[2]]))
+}
+
 /// Refines `levels` times (with a progress bar) and optionally projects to the limit.
 pub fn refine(scheme: &str, mesh: &PolyMesh, levels: usize, limit: bool) -> Result<PolyMesh> {
-    let s = fairsub::schemes::by_name(scheme)?;
+    refine_with(fairsub::schemes::by_name(scheme)?, mesh, levels, limit)
+}
+
+/// [`refine`] with a scheme value.
+fn refine_with(
+    s: Box<dyn fairsub::schemes::Scheme>,
+    mesh: &PolyMesh,
+    levels: usize,
+    limit: bool,
+) -> Result<PolyMesh> {
+    let scheme = s.name();
     let pb = super::progress_bar(levels as u64, scheme);
     let mut m =
         fairsub::schemes::refine_levels(s.as_ref(), mesh, levels, |l| pb.set_position(l as u64))?;

@@ -236,6 +236,22 @@ pub(crate) fn refine_dual(
     name: &str,
     rule: fn(usize) -> Vec<f64>,
 ) -> Result<Refinement> {
+    let mut rules = RuleCache::new(rule);
+    refine_dual_with(mesh, name, |m, h, row| {
+        add_corner_point(m, &mut rules, h, 1.0, row)
+    })
+}
+
+/// One step of a dual scheme with Doo-Sabin topology whose corner rule is any stencil:
+/// `corner_rule(mesh, h, row)` adds the weights of the new point of face corner `h` (a half-edge) to
+/// `row`. The rule may reach beyond the face (the point-augmented bi-2 rules read the quads
+/// across the facet's edges). Boundary points, kept corners and the child layout are those of
+/// [`DooSabin`] (see the module documentation).
+pub(crate) fn refine_dual_with(
+    mesh: &PolyMesh,
+    name: &str,
+    mut corner_rule: impl FnMut(&PolyMesh, u32, &mut RowBuf),
+) -> Result<Refinement> {
     let (nv, ne, nf, nh) = (
         mesh.num_vertices(),
         mesh.num_edges(),
@@ -264,11 +280,10 @@ pub(crate) fn refine_dual(
     let edge_point = |e: u32, far: bool| h_count + 2 * bedge[e as usize] + far as u32;
 
     // Stencils, in child point order.
-    let mut rules = RuleCache::new(rule);
     let mut table = StencilTable::with_capacity(nv, nh + 2 * nb as usize + nc as usize, 4);
     let mut row = RowBuf::default();
     for h in 0..h_count {
-        add_corner_point(mesh, &mut rules, h, 1.0, &mut row);
+        corner_rule(mesh, h, &mut row);
         row.flush_into(&mut table);
     }
     for e in (0..ne).filter(|&e| mesh.is_boundary_edge(e)) {

@@ -6,6 +6,7 @@
 //! subdivision matrix for analysis or re-applying the step to moved points all reuse that one
 //! table, so every rule exists exactly once.
 
+pub mod bi2;
 pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod eg;
@@ -40,6 +41,23 @@ pub trait Scheme: Sync {
     /// (for example a non-triangle face for Loop).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement>;
 
+    /// `levels` refinement steps, calling `progress(level)` after each. The default applies
+    /// [`Scheme::refine`] repeatedly; schemes whose steps depend on more than the net (the
+    /// knot widths of adjustable TPS, the DS^CC pre-processing steps of PGS) override it.
+    fn refine_many(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        let mut m = mesh.clone();
+        for l in 0..levels {
+            m = self.refine(&m)?.mesh;
+            progress(l + 1);
+        }
+        Ok(m)
+    }
+
     /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
     /// scheme has closed-form limit masks.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
@@ -58,12 +76,7 @@ pub fn refine_levels(
     levels: usize,
     mut progress: impl FnMut(usize),
 ) -> Result<PolyMesh> {
-    let mut m = mesh.clone();
-    for l in 0..levels {
-        m = scheme.refine(&m)?.mesh;
-        progress(l + 1);
-    }
-    Ok(m)
+    scheme.refine_many(mesh, levels, &mut progress)
 }
 
 /// Builds the child mesh from topology and stencils: positions are the stencils applied to the
@@ -204,6 +217,72 @@ pub fn catalog() -> Vec<SchemeInfo> {
             rings: true,
             status: "available (patches)",
         },
+        SchemeInfo {
+            name: "pgs",
+            family: "Point-Augmented Bi-2 Subdivision [Karciauskas-Peters]: Doo-Sabin with an added central point p per extraordinary facet",
+            input: "any polygon mesh (p is added automatically by (1)); facets without a DS-net get one Doo-Sabin step first; boundaries as doo-sabin",
+            patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; fill centred at the limit point (7)",
+            smoothness: "C^1; lambda_sub from (10) (> 1/2 for n > 4)",
+            valences: "all facet sizes (n = 4 is uniform bi-2)",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "pgs-dscc",
+            family: "PGS after two steps of DS^CC (the paper's pre-processing of prisms)",
+            input: "any polygon mesh",
+            patches: "as pgs, on the twice DS^CC-refined net",
+            smoothness: "C^1",
+            valences: "all facet sizes",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "polar-bi2",
+            family: "Polar Bi-2 Subdivision (PolBS) [Karciauskas-Peters]: radial bi-2 refinement around poles",
+            input: "polar layouts (poles with fans of triangles, rings of quads); prism-like n-gon caps become poles at their centroids (or at --pole FACE:X,Y,Z); other elements as bi2-mixed",
+            patches: "bi-2 per regular vertex; rings of n bi-2 patches per pole; collapsed bi-2 cap at the limit point (16)",
+            smoothness: "C^1; subdominant 1/2, subsubdominant 1/4",
+            valences: "all pole valences",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "tps",
+            family: "Primal Bi-2 Subdivision (TPS) [Karciauskas-Peters]: ternary bi-2 on quad nets",
+            input: "quad nets (one Catmull-Clark step makes any mesh one); boundaries with a doubled layer (fairsub's rules)",
+            patches: "bi-2 per regular vertex; rings of 2n bi-2 patches per extraordinary vertex (ternary); quarter-piece fill at the limit point (21)",
+            smoothness: "C^1; lambda = (5 + 2c + 2 sqrt(c^2 + 5c + 4)) / 27",
+            valences: "all interior valences >= 3; extraordinary boundary vertices: error",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "tps-adjustable",
+            family: "adjustable TPS, split ratio e = 0.2 or --split-ratio E; alphas of (18) by --alpha-rule (fairsub's reconstruction of the stencils, tps-adjustable-derived: exact e : 1-2e : e knot insertion; reproduces (22))",
+            input: "quad nets, as tps",
+            patches: "bi-2 with non-uniform knots; rings of 2n patches per extraordinary vertex; fill as tps",
+            smoothness: "C^1 (up to per-piece affine reparametrisation across ring sides); lambda from (22)",
+            valences: "all interior valences >= 3",
+            refine: true,
+            rings: true,
+            status: "available (reconstruction)",
+        },
+        SchemeInfo {
+            name: "bi2-mixed",
+            family: "bi-2 family combined (Fig. 15): regular bi-2, PGS at facets, TPS at extraordinary vertices, PolBS at poles",
+            input: "polygon meshes with separated elements; net refinement only when all elements are of one kind",
+            patches: "bi-2 per regular vertex; per element its scheme's rings and fill",
+            smoothness: "C^1",
+            valences: "all",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
     ]
 }
 
@@ -214,6 +293,12 @@ pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
         "doo-sabin" | "ds" => Ok(Box::new(DooSabin)),
         "doo-sabin-cc" | "ds-cc" => Ok(Box::new(DooSabinCc)),
         "loop" => Ok(Box::new(Loop)),
+        "pgs" => Ok(Box::new(bi2::Pgs)),
+        "pgs-dscc" => Ok(Box::new(bi2::PgsPreprocessed::default())),
+        "polar-bi2" | "polbs" => Ok(Box::new(bi2::PolarBi2::default())),
+        "tps" => Ok(Box::new(bi2::Tps)),
+        "tps-adjustable" => Ok(Box::new(bi2::AdjustableTps::default())),
+        "bi2-mixed" => Ok(Box::new(bi2::Bi2Mixed)),
         _ => {
             let names: Vec<&str> = catalog()
                 .iter()

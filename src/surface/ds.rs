@@ -59,6 +59,13 @@
 //! level-`K` n-gon is planar, always for `n = 3`). `--rings 0` fills an n-gon facet the same
 //! way but cannot fill an extraordinary vertex (its region is n-sided): that is an error naming
 //! the vertex. `--no-fill` leaves the holes open.
+//!
+//! # Other dual bi-2 schemes
+//!
+//! The machinery takes the scheme's rules as a [`DualRules`] value (the stencil of a new corner
+//! point, which may read beyond its face, and the limit point of a facet for the fill), so the
+//! point-augmented scheme PGS ([`crate::schemes::bi2::pgs`]) reuses it unchanged through
+//! [`dual_complex_with`]: its surfaces are laid out exactly like Doo-Sabin's, patch for patch.
 
 use super::{ComplexOptions, Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
@@ -84,7 +91,12 @@ pub fn doo_sabin_complex(
     opts: ComplexOptions,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    dual_complex(mesh, opts, DooSabin::weights, "doo-sabin", progress)
+    let corner = |m: &PolyMesh, h: u32| corner_point_stencil(m, h, DooSabin::weights);
+    let rules = DualRules {
+        corner: &corner,
+        facet_limit: &centroid_stencil,
+    };
+    dual_complex_with(mesh, opts, &rules, "doo-sabin", progress)
 }
 
 /// The DS^CC surface of `mesh` as a patch complex, laid out exactly like
@@ -98,7 +110,61 @@ pub fn doo_sabin_cc_complex(
     opts: ComplexOptions,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    dual_complex(mesh, opts, DooSabinCc::weights, "doo-sabin-cc", progress)
+    let corner = |m: &PolyMesh, h: u32| corner_point_stencil(m, h, DooSabinCc::weights);
+    let rules = DualRules {
+        corner: &corner,
+        facet_limit: &centroid_stencil,
+    };
+    dual_complex_with(mesh, opts, &rules, "doo-sabin-cc", progress)
+}
+
+/// The rules of a dual (vertex-splitting) bi-2 scheme, as the adaptive refinement of this
+/// module needs them. Doo-Sabin, DS^CC and the point-augmented scheme PGS
+/// ([`crate::schemes::bi2::pgs`]) share the topology of one step and differ only here.
+pub struct DualRules<'a> {
+    /// The new point of face corner `h` (a half-edge) as a stencil over the mesh's vertices.
+    /// It may read beyond the face (PGS reads the quads across a facet's edges).
+    pub corner: &'a dyn Fn(&PolyMesh, u32) -> Stencil,
+    /// The limit point of a face that is not a quad (the centre of the fill): the centroid for
+    /// Doo-Sabin and DS^CC, the point-augmented limit point (7) for PGS.
+    pub facet_limit: &'a dyn Fn(&PolyMesh, usize) -> Stencil,
+}
+
+/// The centroid of face `f` as a stencil: the limit point of a facet under Doo-Sabin and
+/// DS^CC.
+pub fn centroid_stencil(m: &PolyMesh, f: usize) -> Stencil {
+    let face = m.face(f);
+    let w = 1.0 / face.len() as f64;
+    Stencil::from_pairs(face.iter().map(|&x| (x as usize, w)))
+}
+
+/// The nine bi-2 coefficients (row-major, `u` along the vertex's first outgoing half-edge, `v`
+/// counter-clockwise from it) of the exact patch of a regular vertex: interior with four quads,
+/// on the boundary with two quads, or a corner with one quad (missing rows are copies of the
+/// boundary, see the module documentation). `None` for any other vertex. This is the regular
+/// patch every bi-2 scheme of fairsub shares (Doo-Sabin, DS^CC, PGS, TPS, polar bi-2).
+pub fn regular_vertex_patch(m: &PolyMesh, v: usize) -> Option<Vec<Stencil>> {
+    let vn = vertex_net(m, v)?;
+    if !vn.ngons.is_empty() {
+        return None;
+    }
+    Some(biquadratic_bspline_stencils(&vn.net))
+}
+
+/// The dual-scheme surface of `mesh` under any corner rule: the machinery of
+/// [`doo_sabin_complex`] (regular patches, rings, fill) with the rules of `rules`. `name` is
+/// the scheme's command-line name, used in error messages.
+///
+/// # Errors
+/// As [`doo_sabin_complex`].
+pub fn dual_complex_with(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    rules: &DualRules<'_>,
+    name: &str,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    dual_complex(mesh, opts, rules, name, progress)
 }
 
 /// Trust of a vertex of a partially refined level.
@@ -133,7 +199,7 @@ struct Level {
 fn dual_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
-    rule: fn(usize) -> Vec<f64>,
+    rules: &DualRules<'_>,
     name: &str,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
@@ -202,11 +268,11 @@ fn dual_complex(
         }
         if l == opts.rings {
             if opts.fill {
-                fill(&level, &marked, &mut out)?;
+                fill(&level, &marked, rules, &mut out)?;
             }
             break;
         }
-        level = refine_around(&level, &marked, rule)?;
+        level = refine_around(&level, &marked, rules)?;
         progress(l + 1);
     }
     Ok(out)
@@ -273,13 +339,15 @@ fn vertex_net(m: &PolyMesh, v: usize) -> Option<VertexNet> {
 }
 
 /// The nine bi-2 coefficients of a vertex net as stencils: the B-spline conversion, with the
-/// corner coefficient of each non-quad face replaced by the face's centroid.
-fn coefficient_stencils(m: &PolyMesh, vn: &VertexNet) -> Vec<Stencil> {
+/// corner coefficient of each non-quad face replaced by the face's limit point.
+fn coefficient_stencils(
+    m: &PolyMesh,
+    vn: &VertexNet,
+    facet_limit: &dyn Fn(&PolyMesh, usize) -> Stencil,
+) -> Vec<Stencil> {
     let mut s = biquadratic_bspline_stencils(&vn.net);
     for &(c, f) in &vn.ngons {
-        let face = m.face(f as usize);
-        let w = 1.0 / face.len() as f64;
-        s[c] = Stencil::from_pairs(face.iter().map(|&x| (x as usize, w)));
+        s[c] = facet_limit(m, f as usize);
     }
     s
 }
@@ -299,7 +367,7 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
     if !vn.ngons.is_empty() {
         return None;
     }
-    let s = coefficient_stencils(m, &vn);
+    let s = biquadratic_bspline_stencils(&vn.net);
     let trusted = s.iter().all(|st| {
         st.entries()
             .iter()
@@ -340,11 +408,7 @@ fn retag(level: &Level, v: usize, tag: Tag, first: bool) -> Tag {
 /// Refines the faces around the marked vertices with the scheme's rules; the next level's
 /// active vertices are the children of the marked vertices (they tile the marked patches'
 /// regions), each inheriting its parent's tag.
-fn refine_around(
-    level: &Level,
-    marked: &[(u32, Tag)],
-    rule: fn(usize) -> Vec<f64>,
-) -> Result<Level> {
+fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) -> Result<Level> {
     const UNSET: u32 = u32::MAX;
     let m = &level.mesh;
     let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
@@ -378,12 +442,17 @@ fn refine_around(
     }
     for &f in &sel_faces {
         let f = f as usize;
-        let pos = m.face(f).iter().all(|&x| level.info[x as usize].pos_ok);
         let h0 = m.face_halfedge(f);
         for h in h0..h0 + m.face_size(f) as u32 {
             let v = m.he_from(h) as usize;
+            let st = (rules.corner)(m, h);
+            // Trusted when every point the rule reads is (the rule may reach beyond the face).
+            let pos = st
+                .entries()
+                .iter()
+                .all(|&(x, _)| level.info[x as usize].pos_ok);
             corner_pt[h as usize] = push(
-                corner_point_stencil(m, h, rule),
+                st,
                 Info {
                     pos_ok: pos,
                     fan_ok: whole_fan(v),
@@ -536,7 +605,12 @@ fn is_corner(m: &PolyMesh, v: usize) -> bool {
 }
 
 /// The centroid fill of the marked vertices of the last level.
-fn fill(level: &Level, marked: &[(u32, Tag)], out: &mut PatchComplex) -> Result<()> {
+fn fill(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    rules: &DualRules<'_>,
+    out: &mut PatchComplex,
+) -> Result<()> {
     let m = &level.mesh;
     for &(v, tag) in marked {
         let vn = vertex_net(m, v as usize).ok_or_else(|| {
@@ -551,7 +625,7 @@ fn fill(level: &Level, marked: &[(u32, Tag)], out: &mut PatchComplex) -> Result<
                 }
             ))
         })?;
-        let p = patch_from(m, &coefficient_stencils(m, &vn));
+        let p = patch_from(m, &coefficient_stencils(m, &vn, rules.facet_limit));
         let element = tag.element.unwrap_or(Element::Vertex(v));
         out.push(
             p,

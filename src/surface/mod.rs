@@ -5,6 +5,7 @@
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
 
 pub mod adjacency;
+pub mod bi2;
 pub mod cc;
 pub mod ds;
 pub mod eg;
@@ -168,6 +169,34 @@ pub fn complex_with_notes(
         "doo-sabin" | "ds" => plain(ds::doo_sabin_complex(mesh, opts, progress)),
         "doo-sabin-cc" | "ds-cc" => plain(ds::doo_sabin_cc_complex(mesh, opts, progress)),
         "loop" => plain(loop_patches::loop_complex(mesh, opts, progress)),
+        "pgs" => plain(bi2::pgs_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::pgs::PgsOptions::default(),
+            progress,
+        )),
+        "pgs-dscc" => plain(bi2::pgs_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::pgs::PgsOptions { dscc_steps: 2 },
+            progress,
+        )),
+        "polar-bi2" | "polbs" => bi2::polar_complex(mesh, opts, &[], progress),
+        "tps" => bi2::tps_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::ternary::TernaryRules::TPS,
+            progress,
+        ),
+        "tps-adjustable" => bi2::tps_complex(
+            mesh,
+            opts,
+            crate::schemes::bi2::ternary::TernaryRules::adjustable(
+                crate::analysis::bi2::DEFAULT_E,
+            )?,
+            progress,
+        ),
+        "bi2-mixed" => plain(bi2::mixed_complex(mesh, opts, progress)),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

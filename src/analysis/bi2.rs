@@ -1,0 +1,636 @@
+//! Analysis of the bi-2 family: local subdivision matrices in the paper's replicated-centre
+//! form, characteristic rings, the paper's published numbers beside the computed ones, and a
+//! C^1 certificate for ring complexes whose rings scale differently along and across their
+//! sides.
+//!
+//! # Local matrices
+//!
+//! Each matrix is read off the scheme's own stencils on its canonical local net (the same
+//! tables the rings of [`crate::surface::bi2`] use): PGS on the DS-net with the added point
+//! `p` kept independent (rules (3), (4) with `p` an extra point; otherwise the whole-mesh rules),
+//! PolBS on the polar net, TPS and adjustable TPS on the q-net (the latter with the stationary
+//! knot pattern). The paper analyses the `10n x 10n`, `4n x 4n` and `7n x 7n` circulant
+//! matrices "where `p/n` is replicated `n` times": [`replicate_centre`] builds that form (each
+//! sector holds a copy of the centre point, every rule's weight on the centre split evenly over
+//! the copies), whose Fourier blocks have exactly the printed characteristic polynomials
+//! (5), (6), (13), (14), (19), (20). Its limit stencil is affine over the replicated net, so the
+//! centre's weight is the sum of its copies' weights.
+
+use super::{FourierBlock, LocalMatrix, spectrum};
+use crate::bezier::BezierPatch;
+use crate::error::{Error, Result};
+use crate::geom::{self, Point};
+use crate::schemes::Scheme;
+use crate::schemes::bi2::pgs::{PgsParams, ds_net};
+use crate::schemes::bi2::polar::PolarParams;
+use crate::schemes::bi2::ternary::{AlphaRule, TernaryRules, TpsParams, adjustable_lambda};
+use crate::schemes::bi2::{Pgs, cos_2pi};
+use crate::stencil::Stencil;
+use crate::surface::PatchComplex;
+use crate::surface::bi2::{LocalScheme, pgs_rows, ring_patches};
+use nalgebra::DMatrix;
+use serde::Serialize;
+
+/// The replicated-centre form of a local matrix with one centre point: `n (1 + sector)`
+/// points, sector `s` holding a copy of the centre first, then its own points; every copy's row
+/// is the centre's row and every weight on the centre is split evenly over the `n` copies.
+/// Same spectrum plus `n - 1` zeros; its Fourier blocks all have size `1 + sector`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when `lm.centre != 1`.
+pub fn replicate_centre(lm: &LocalMatrix) -> Result<LocalMatrix> {
+    if lm.centre != 1 {
+        return Err(Error::InvalidArgument(format!(
+            "replicate_centre needs exactly one centre point (got {})",
+            lm.centre
+        )));
+    }
+    let (n, m) = (lm.n, lm.sector);
+    let k = 1 + m;
+    let old = |s: usize, x: usize| if x == 0 { 0 } else { 1 + s * m + x - 1 };
+    let a = &lm.matrix;
+    let big = DMatrix::from_fn(n * k, n * k, |i, j| {
+        let (s, x) = (i / k, i % k);
+        let (r, y) = (j / k, j % k);
+        let w = a[(old(s, x), old(r, y))];
+        if y == 0 { w / n as f64 } else { w }
+    });
+    Ok(LocalMatrix {
+        scheme: lm.scheme.clone(),
+        n,
+        centre: 0,
+        sector: k,
+        matrix: big,
+    })
+}
+
+fn dense(rows: &[Stencil], size: usize) -> DMatrix<f64> {
+    let mut m = DMatrix::zeros(rows.len(), size);
+    for (r, s) in rows.iter().enumerate() {
+        for &(c, w) in s.entries() {
+            m[(r, c as usize)] += w;
+        }
+    }
+    m
+}
+
+/// PGS at an `n`-gon facet: the `10n x 10n` replicated matrix on `(p, a, b, c, d, 5 .. 9)` per
+/// sector, `p` kept as an independent point.
+pub fn pgs(n: usize) -> Result<LocalMatrix> {
+    let _ = PgsParams::new(n)?;
+    let net = ds_net(n, |_, _| 0.0)?;
+    let r = Pgs.refine(&net)?;
+    let rows = pgs_rows(&net, n);
+    let p = Stencil::point(9 * n);
+    // Local order: p first, then the DS-net (index + 1).
+    let shift = |s: &Stencil| {
+        Stencil::from_pairs(s.entries().iter().map(|&(i, w)| {
+            let i = i as usize;
+            (if i == 9 * n { 0 } else { i + 1 }, w)
+        }))
+    };
+    let mut out = vec![shift(&Pgs::centre_update(&net, 0, &p))];
+    let facet_corners: Vec<usize> = (0..n).map(|s| net.face_halfedge(0) as usize + s).collect();
+    for &row in &rows {
+        let st = if facet_corners.contains(&row) {
+            Pgs::corner_stencil_with_centre(&net, row as u32, &p)
+        } else {
+            r.stencils.stencil(row)
+        };
+        out.push(shift(&st));
+    }
+    let lm = LocalMatrix {
+        scheme: "pgs".into(),
+        n,
+        centre: 1,
+        sector: 9,
+        matrix: dense(&out, 1 + 9 * n),
+    };
+    replicate_centre(&lm)
+}
+
+fn from_local(name: &str, ls: &LocalScheme, sector: usize) -> Result<LocalMatrix> {
+    let t = ls.step(1);
+    let rows: Vec<Stencil> = (0..t.num_rows()).map(|r| t.stencil(r)).collect();
+    let lm = LocalMatrix {
+        scheme: name.into(),
+        n: ls.n,
+        centre: 1,
+        sector,
+        matrix: dense(&rows, ls.size),
+    };
+    replicate_centre(&lm)
+}
+
+/// PolBS at a pole of valence `n`: the `4n x 4n` replicated matrix on `(p, a, b, c)`.
+pub fn polar(n: usize) -> Result<LocalMatrix> {
+    let _ = PolarParams::new(n)?;
+    from_local("polar-bi2", &LocalScheme::polar(n)?, 3)
+}
+
+/// TPS at a vertex of valence `n`: the `7n x 7n` replicated matrix on `(q, a, .., f)`.
+pub fn tps(n: usize) -> Result<LocalMatrix> {
+    let _ = TpsParams::new(n)?;
+    from_local("tps", &LocalScheme::ternary(n, TernaryRules::TPS)?, 6)
+}
+
+/// Adjustable TPS with split ratio `e` at valence `n`: the stationary `7n x 7n` replicated
+/// matrix (knot pattern `1, r, r^2`).
+pub fn tps_adjustable(n: usize, e: f64) -> Result<LocalMatrix> {
+    tps_adjustable_rules(n, TernaryRules::adjustable(e)?)
+}
+
+/// [`tps_adjustable`] with the given rules (split ratio and [`AlphaRule`]).
+pub fn tps_adjustable_rules(n: usize, rules: TernaryRules) -> Result<LocalMatrix> {
+    let _ = TpsParams::new(n)?;
+    from_local("tps-adjustable", &LocalScheme::ternary(n, rules)?, 6)
+}
+
+/// The rules of `tps-adjustable` for a split ratio (the paper's [`AlphaRule`]); TPS's for the
+/// other schemes, which ignore them.
+fn rules_for(scheme: &str, e: f64) -> Result<TernaryRules> {
+    if scheme == "tps-adjustable" {
+        TernaryRules::adjustable(e)
+    } else {
+        Ok(TernaryRules::TPS)
+    }
+}
+
+/// The default split ratio of `tps-adjustable`.
+pub const DEFAULT_E: f64 = 0.2;
+
+/// The local scheme and local-net size behind a scheme name (`e`: split ratio of
+/// `tps-adjustable`).
+fn local_scheme(scheme: &str, n: usize, adj: TernaryRules) -> Result<(LocalScheme, usize)> {
+    match scheme {
+        "pgs" => Ok((LocalScheme::pgs(n)?, 9)),
+        "polar-bi2" => Ok((LocalScheme::polar(n)?, 3)),
+        "tps" => Ok((LocalScheme::ternary(n, TernaryRules::TPS)?, 6)),
+        "tps-adjustable" => Ok((LocalScheme::ternary(n, adj)?, 6)),
+        other => Err(Error::InvalidArgument(format!(
+            "no bi-2 analysis for scheme '{other}'"
+        ))),
+    }
+}
+
+/// The local matrix of a bi-2 scheme by name (`pgs`, `polar-bi2`, `tps`, `tps-adjustable` with
+/// `e = 0.2`).
+pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
+    local_matrix_with(scheme, n, DEFAULT_E)
+}
+
+/// [`local_matrix`] with the split ratio `e` of `tps-adjustable` (ignored by the others).
+pub fn local_matrix_with(scheme: &str, n: usize, e: f64) -> Result<LocalMatrix> {
+    local_matrix_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`local_matrix`] with the rules `adj` of `tps-adjustable` (ignored by the others).
+pub fn local_matrix_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<LocalMatrix> {
+    match scheme {
+        "pgs" => pgs(n),
+        "polar-bi2" => polar(n),
+        "tps" => tps(n),
+        "tps-adjustable" => tps_adjustable_rules(n, adj),
+        other => Err(Error::InvalidArgument(format!(
+            "no bi-2 analysis for scheme '{other}'"
+        ))),
+    }
+}
+
+/// The characteristic ring of a bi-2 scheme: the ring patches of its local net (PGS: the `3n`
+/// patches of `b, c, d`; TPS: the `2n` of `a, b`, adjustable TPS in its stationary knot
+/// pattern; PolBS: the `n` of `b`) built from the characteristic map's control points, and
+/// lambda.
+pub fn characteristic_ring(scheme: &str, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+    characteristic_ring_with(scheme, n, DEFAULT_E)
+}
+
+/// [`characteristic_ring`] with the split ratio `e` of `tps-adjustable`.
+pub fn characteristic_ring_with(scheme: &str, n: usize, e: f64) -> Result<(Vec<BezierPatch>, f64)> {
+    characteristic_ring_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`characteristic_ring`] with the rules `adj` of `tps-adjustable`.
+pub fn characteristic_ring_rules(
+    scheme: &str,
+    n: usize,
+    adj: TernaryRules,
+) -> Result<(Vec<BezierPatch>, f64)> {
+    let lm = local_matrix_rules(scheme, n, adj)?;
+    let (ls, per) = local_scheme(scheme, n, adj)?;
+    let (pts, lambda) = lm.characteristic_points()?;
+    // Replicated layout (s, 0) copy, (s, 1 + x) point x of sector s; the local nets have the
+    // centre first (TPS, PolBS) or no centre (PGS).
+    let centre = usize::from(scheme != "pgs");
+    let mut local = vec![[0.0; 3]; ls.size];
+    for s in 0..n {
+        for x in 0..per {
+            local[centre + s * per + x] = pts[s * (per + 1) + 1 + x];
+        }
+    }
+    let level = if scheme == "tps-adjustable" { 2 } else { 0 };
+    Ok((ring_patches(&ls, level, &local), lambda))
+}
+
+/// A published number beside the computed one.
+#[derive(Debug, Clone, Serialize)]
+pub struct PublishedCheck {
+    /// What is compared (with the paper's formula number).
+    pub quantity: String,
+    /// The paper's value (0 for polynomial identities, whose difference is reported).
+    pub published: f64,
+    /// The value computed from the scheme's stencils.
+    pub computed: f64,
+    /// `|published - computed|`.
+    pub difference: f64,
+}
+
+fn check(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedCheck {
+    PublishedCheck {
+        quantity: quantity.into(),
+        published,
+        computed,
+        difference: (published - computed).abs(),
+    }
+}
+
+/// Coefficients (highest first) of `prod (x - r)` for real roots.
+fn poly(roots: &[f64]) -> Vec<f64> {
+    let mut c = vec![1.0];
+    for &r in roots {
+        let mut next = vec![0.0; c.len() + 1];
+        for (i, &a) in c.iter().enumerate() {
+            next[i] += a;
+            next[i + 1] -= a * r;
+        }
+        c = next;
+    }
+    c
+}
+
+/// Product of two polynomials (highest first).
+fn poly_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let mut c = vec![0.0; a.len() + b.len() - 1];
+    for (i, &x) in a.iter().enumerate() {
+        for (j, &y) in b.iter().enumerate() {
+            c[i + j] += x * y;
+        }
+    }
+    c
+}
+
+/// Largest coefficient difference between a block's characteristic polynomial and `expect`.
+fn poly_difference(block: &FourierBlock, expect: &[f64]) -> f64 {
+    let got = block.characteristic_polynomial();
+    if got.len() != expect.len() {
+        return f64::INFINITY;
+    }
+    got.iter()
+        .zip(expect)
+        .map(|(g, e)| (g - nalgebra::Complex::new(*e, 0.0)).norm())
+        .fold(0.0, f64::max)
+}
+
+/// The paper's numbers for a bi-2 scheme at valence `n` beside the ones computed from its
+/// stencils: characteristic polynomials (as the largest coefficient difference over the
+/// Fourier blocks), subdominant and subsubdominant eigenvalues, limit-point weights.
+///
+/// # Errors
+/// For a scheme name that is not of the bi-2 family, or an invalid valence.
+pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
+    published_with(scheme, n, DEFAULT_E)
+}
+
+/// [`published`] with the split ratio `e` of `tps-adjustable`.
+pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedCheck>> {
+    published_rules(scheme, n, rules_for(scheme, e)?)
+}
+
+/// [`published`] with the rules `adj` of `tps-adjustable`. With
+/// [`AlphaRule::RegularSpectrum`] the stationary limit functional is not (21) (only the limit
+/// point from an input net is), so those checks are left out.
+pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<PublishedCheck>> {
+    let e = adj.e;
+    let lm = local_matrix_rules(scheme, n, adj)?;
+    let spec = spectrum(&lm.matrix);
+    let blocks = lm.fourier_blocks()?;
+    let limit = lm.limit_stencil()?;
+    let k = lm.sector;
+    // Affine weights of the centre (sum of its copies) and of one first-ring point.
+    let centre_weight: f64 = (0..n).map(|s| limit[s * k]).sum();
+    let c1 = cos_2pi(1, n as i64);
+    let mut out = Vec::new();
+    match scheme {
+        "pgs" => {
+            let p = PgsParams::new(n)?;
+            let d = poly(&[0.25, 0.125, 0.0625, 0.0, 0.0, 0.0, 0.0, 0.0]);
+            let mut worst: f64 = 0.0;
+            for b in &blocks {
+                let expect = if b.frequency == 0 {
+                    poly_mul(&poly(&[1.0, p.w1 + 2.0 * p.w2 - p.alpha]), &d)
+                } else {
+                    let ck = cos_2pi(b.frequency as i64, n as i64);
+                    poly_mul(&poly(&[0.0, p.w1 + 2.0 * p.w2 * ck]), &d)
+                };
+                worst = worst.max(poly_difference(b, &expect));
+            }
+            out.push(check(
+                "characteristic polynomials (5), (6): largest coefficient difference",
+                0.0,
+                worst,
+            ));
+            out.push(check(
+                "subdominant eigenvalue lambda_sub (10)",
+                p.lambda,
+                spec.lambda,
+            ));
+            out.push(check(
+                "subsubdominant eigenvalue nu_n as stated in Section 2",
+                p.published_subsubdominant(),
+                spec.mu,
+            ));
+            out.push(check(
+                "limit point (7): weight of p, 1 - tau",
+                1.0 - p.tau,
+                centre_weight,
+            ));
+            out.push(check(
+                "limit point (7): weight of each a_i, tau / n",
+                p.tau / n as f64,
+                limit[1],
+            ));
+        }
+        "polar-bi2" => {
+            let p = PolarParams::new(n)?;
+            let mut worst: f64 = 0.0;
+            for b in &blocks {
+                let expect = if b.frequency == 0 {
+                    poly(&[1.0, 0.25, 0.0, p.beta - p.alpha])
+                } else {
+                    let gk: f64 = (0..n)
+                        .map(|j| p.gamma[j] * cos_2pi((b.frequency * j) as i64, n as i64))
+                        .sum();
+                    poly(&[0.25, 0.0, 0.0, gk])
+                };
+                worst = worst.max(poly_difference(b, &expect));
+            }
+            out.push(check(
+                "characteristic polynomials (13), (14): largest coefficient difference",
+                0.0,
+                worst,
+            ));
+            out.push(check("subdominant eigenvalue 1/2", 0.5, spec.lambda));
+            out.push(check("subsubdominant eigenvalue 1/4", 0.25, spec.mu));
+            out.push(check(
+                "limit point (16): weight of p",
+                2.0 / 3.0,
+                centre_weight,
+            ));
+            out.push(check(
+                "limit point (16): weight of each a_i",
+                1.0 / (3.0 * n as f64),
+                limit[1],
+            ));
+        }
+        "tps" | "tps-adjustable" => {
+            let t = TpsParams::new(n)?;
+            let adjustable = scheme == "tps-adjustable";
+            if !adjustable {
+                let mut worst: f64 = 0.0;
+                for b in &blocks {
+                    let expect = if b.frequency == 0 {
+                        let q = [
+                            1.0,
+                            t.alpha1 + t.alpha2 - 14.0 / 27.0,
+                            (1.0 - 3.0 * t.alpha1 + 3.0 * t.alpha2) / 81.0,
+                        ];
+                        poly_mul(&poly(&[1.0, 0.0, 0.0, 0.0, 0.0]), &q)
+                    } else {
+                        let ck = cos_2pi(b.frequency as i64, n as i64);
+                        let q = [1.0, -2.0 / 27.0 * (5.0 + 2.0 * ck), 1.0 / 81.0];
+                        poly_mul(&poly(&[0.0; 5]), &q)
+                    };
+                    worst = worst.max(poly_difference(b, &expect));
+                }
+                out.push(check(
+                    "characteristic polynomials (19), (20): largest coefficient difference",
+                    0.0,
+                    worst,
+                ));
+                out.push(check(
+                    "subdominant eigenvalue (5 + 2c + 2 sqrt(c^2 + 5c + 4)) / 27",
+                    t.lambda,
+                    spec.lambda,
+                ));
+                if n == 3 {
+                    out.push(check(
+                        "subsubdominant nu_3 = .082 (printed)",
+                        0.082,
+                        spec.mu,
+                    ));
+                } else {
+                    out.push(check(
+                        "subsubdominant with the printed c_2 = cos(pi / n)",
+                        t.printed_subsubdominant(),
+                        spec.mu,
+                    ));
+                    out.push(check(
+                        "subsubdominant with c_2 = cos(4 pi / n) (root of D_2 in (20))",
+                        t.corrected_subsubdominant(),
+                        spec.mu,
+                    ));
+                }
+            } else {
+                out.push(check(
+                    format!("subdominant eigenvalue (22), e = {e}"),
+                    adjustable_lambda(e, c1),
+                    spec.lambda,
+                ));
+                out.push(check(
+                    "multiplicity of the subdominant eigenvalue (frequencies 1, n - 1)",
+                    2.0,
+                    spec.lambda_multiplicity as f64,
+                ));
+                // The limit point of a surface from an input net: the stationary limit
+                // functional after the first step (uniform knots), over the input q-net.
+                let rules = adj;
+                let ls = LocalScheme::ternary(n, rules)?;
+                let size = ls.size;
+                let mut lnon = vec![0.0; size];
+                for s in 0..n {
+                    lnon[0] += limit[s * k];
+                    for x in 0..6 {
+                        lnon[1 + 6 * s + x] = limit[s * k + 1 + x];
+                    }
+                }
+                let mut w = vec![0.0; size];
+                for (r, &lr) in lnon.iter().enumerate() {
+                    let st = ls.first.stencil(r);
+                    for &(c, wc) in st.entries() {
+                        w[c as usize] += lr * wc;
+                    }
+                }
+                let qa: f64 = (0..n).map(|s| w[1 + 6 * s]).sum();
+                let qb: f64 = (0..n).map(|s| w[2 + 6 * s]).sum();
+                out.push(check(
+                    "limit point from an input net (first step, then stationary): weight of q",
+                    1.0 - t.tau1 - t.tau2,
+                    w[0],
+                ));
+                out.push(check(
+                    "limit point from an input net: weight of the a_i together, tau_1",
+                    t.tau1,
+                    qa,
+                ));
+                out.push(check(
+                    "limit point from an input net: weight of the b_i together, tau_2",
+                    t.tau2,
+                    qb,
+                ));
+                let (_, _, fallback) = rules.stationary_alphas(n)?;
+                if fallback || n == 4 || rules.alphas == AlphaRule::RegularSpectrum {
+                    // The stationary net has non-uniform knots; its own limit functional is
+                    // not (21) (n = 4: the exact spline value; fallback: lambda^2, lambda^4).
+                    return Ok(out);
+                }
+            }
+            out.push(check(
+                "limit point (21): weight of q, 1 - tau_1 - tau_2",
+                1.0 - t.tau1 - t.tau2,
+                centre_weight,
+            ));
+            out.push(check(
+                "limit point (21): weight of each a_i, tau_1 / n",
+                t.tau1 / n as f64,
+                limit[1],
+            ));
+            out.push(check(
+                "limit point (21): weight of each b_i, tau_2 / n",
+                t.tau2 / n as f64,
+                limit[2],
+            ));
+        }
+        other => {
+            return Err(Error::InvalidArgument(format!(
+                "no published numbers for scheme '{other}'"
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// The C^1 certificate of a complex whose patches may meet with different scalings along and
+/// across a shared side (polar rings halve radially only; adjustable TPS rings shrink by
+/// different factors along and across): per shared piece, the cross-boundary derivative of the
+/// second patch must be a constant multiple `-kappa D_A` of the first's, `kappa > 0`, which is C^1
+/// after an affine reparametrisation of the second patch.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct ScaledDefects {
+    /// Shared pieces measured.
+    pub pieces: usize,
+    /// Largest positional gap.
+    pub c0: f64,
+    /// Largest residual `|D_A + kappa D_B| / max |D_A|` over a piece, with the best `kappa`
+    /// of the piece (0 for a C^1 join).
+    pub c1_relative: f64,
+    /// Smallest fitted `kappa` (positive for a C^1 join).
+    pub kappa_min: f64,
+    /// Largest fitted `kappa`.
+    pub kappa_max: f64,
+    /// Largest angle between the normals, radians.
+    pub g1: f64,
+}
+
+impl ScaledDefects {
+    fn merge(&mut self, o: &ScaledDefects) {
+        if self.pieces == 0 {
+            *self = o.clone();
+            return;
+        }
+        self.pieces += o.pieces;
+        self.c0 = self.c0.max(o.c0);
+        self.c1_relative = self.c1_relative.max(o.c1_relative);
+        self.kappa_min = self.kappa_min.min(o.kappa_min);
+        self.kappa_max = self.kappa_max.max(o.kappa_max);
+        self.g1 = self.g1.max(o.g1);
+    }
+}
+
+/// [`ScaledDefects`] over a whole complex and per kind of join (`ring1|ring2`, `cap|cap`, ...).
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct ScaledContinuity {
+    /// All shared pieces.
+    pub all: ScaledDefects,
+    /// Per kind of join.
+    pub by_kind: std::collections::BTreeMap<String, ScaledDefects>,
+}
+
+/// Measures [`ScaledContinuity`] over all shared boundaries of a complex.
+pub fn continuity_up_to_scaling(c: &PatchComplex) -> ScaledContinuity {
+    use crate::bezier::Side;
+    use crate::surface::adjacency::{default_tolerance, shared_boundaries};
+    let tol = default_tolerance(c);
+    let across = |p: &BezierPatch, side: Side, t: f64| -> (Point, Point, Point) {
+        let [u, v] = side.domain_point(t);
+        let d = p.derivatives(u, v);
+        let n = p.normal_from(u, v, &d);
+        let out = match side {
+            Side::U1 => d.du,
+            Side::U0 => geom::scale(d.du, -1.0),
+            Side::V1 => d.dv,
+            Side::V0 => geom::scale(d.dv, -1.0),
+        };
+        (d.p, out, n)
+    };
+    const SAMPLES: usize = 9;
+    let mut out = ScaledContinuity::default();
+    for sb in shared_boundaries(c, tol) {
+        let (pa, pb) = (&c.patches[sb.a], &c.patches[sb.b]);
+        let mut d = ScaledDefects {
+            pieces: 1,
+            ..Default::default()
+        };
+        let mut da = Vec::with_capacity(SAMPLES);
+        let mut db = Vec::with_capacity(SAMPLES);
+        for k in 0..SAMPLES {
+            let t = sb.t[0] + (sb.t[1] - sb.t[0]) * k as f64 / (SAMPLES - 1) as f64;
+            let s = sb.map_to_b(t);
+            let (xa, a, na) = across(pa, sb.side_a, t);
+            let (xb, b, nb) = across(pb, sb.side_b, s);
+            d.c0 = d.c0.max(geom::dist(xa, xb));
+            if geom::norm(na) > 0.0 && geom::norm(nb) > 0.0 {
+                let g = geom::norm(geom::cross(na, nb)).atan2(geom::dot(na, nb));
+                d.g1 = d.g1.max(g);
+            }
+            da.push(a);
+            db.push(b);
+        }
+        let num: f64 = da.iter().zip(&db).map(|(a, b)| geom::dot(*a, *b)).sum();
+        let den: f64 = db.iter().map(|b| geom::dot(*b, *b)).sum();
+        let scale = da.iter().map(|a| geom::norm(*a)).fold(0.0, f64::max);
+        if den > 0.0 && scale > 0.0 {
+            let kappa = -num / den;
+            d.kappa_min = kappa;
+            d.kappa_max = kappa;
+            let res = da
+                .iter()
+                .zip(&db)
+                .map(|(a, b)| geom::norm(geom::add(*a, geom::scale(*b, kappa))))
+                .fold(0.0, f64::max);
+            d.c1_relative = res / scale;
+        }
+        let (mut ka, mut kb) = (
+            c.provenance[sb.a].group_name(),
+            c.provenance[sb.b].group_name(),
+        );
+        if ka > kb {
+            std::mem::swap(&mut ka, &mut kb);
+        }
+        out.by_kind
+            .entry(format!("{ka}|{kb}"))
+            .or_default()
+            .merge(&d);
+        out.all.merge(&d);
+    }
+    out
+}

@@ -1,0 +1,649 @@
+//! Polar Bi-2 Subdivision (PolBS), Section 3 of the bi-2 paper: bi-2 subdivision of polar
+//! nets, where a pole `p` is surrounded by a fan of triangles and rings of quads.
+//!
+//! # Polar nets and the conversion of caps
+//!
+//! A polar net around a pole `p` of valence `n` holds per sector `i` the points `a_i` (the
+//! fan's ring), `b_i` and `c_i` (the next two rings, along the spoke of `a_i`). (The paper's
+//! Fig. 9 is lost; this labelling is forced by the rules below.) A prism-like net has an
+//! `n`-gon cap instead: [`to_polar_layout`] replaces every facet that is not a quad by a pole at
+//! its centroid (or at a point the user gives) and the fan of triangles from it, which is the
+//! paper's redesign of prisms (Fig. 8) and keeps the cap's vertices at valence 4.
+//!
+//! # Rules (the paper's numbering)
+//!
+//! The circular direction is never refined; the radial direction is refined by binary bi-2
+//! (Chaikin) subdivision, except next to the pole:
+//! - `b^new = 3/4 a + 1/4 b`, `c^new = 1/4 a + 3/4 b` (the Chaikin points of the spoke segment
+//!   `a b`; every spoke segment farther out gets the same two points);
+//! - (11) `a_i^new = (1 - sum_j gamma_j) p + sum_j gamma_j a_(i+j)`;
+//! - (12) `p^new = (1 - alpha) p + alpha a_mean`, `alpha = 1/4`;
+//! - (15) `gamma_j = (1/2 + cos(2 pi j / n)) / n`, so `beta = sum gamma_j = 1/2`;
+//! - (16) the limit point `2/3 p + 1/3 a_mean`.
+//!
+//! One step is therefore Doo-Sabin's construction restricted to the radial direction: every
+//! face corner gets the point of its face's spoke edge next to it (`a^new` for the spoke to the
+//! pole, `p^new` for the pole), F-faces and the E-faces of circular edges are kept, the
+//! degenerate E-faces of spoke edges and V-faces are dropped. A circular boundary ring is kept
+//! (the doubled layer of the Doo-Sabin boundary rules, so the limit boundary is the ring's
+//! periodic quadratic B-spline). [`PolarBi2`] refines *polar layouts*: nets whose faces are
+//! pole fans and quads in rings around the poles (edge kinds are propagated from the poles);
+//! anything else is an error naming the element (way out: `bi2-mixed --rings K`).
+
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::mesh::PolyMesh;
+use crate::schemes::common::Outgoing;
+use crate::schemes::{Refinement, Scheme, finish_refinement};
+use crate::stencil::{Stencil, StencilTable};
+use crate::surface::Element;
+
+/// `alpha` of (12).
+pub const ALPHA: f64 = 0.25;
+
+/// The parameters of PolBS at valence `n`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PolarParams {
+    /// Valence of the pole.
+    pub n: usize,
+    /// `alpha = 1/4` of (12).
+    pub alpha: f64,
+    /// `gamma_0 .. gamma_(n-1)` of (15).
+    pub gamma: Vec<f64>,
+    /// `beta = sum gamma_j` (1/2).
+    pub beta: f64,
+}
+
+impl PolarParams {
+    /// The parameters at valence `n >= 3`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for `n < 3`.
+    pub fn new(n: usize) -> Result<PolarParams> {
+        if n < 3 {
+            return Err(Error::InvalidArgument(format!(
+                "a pole needs a valence of at least 3 (got {n})"
+            )));
+        }
+        let gamma: Vec<f64> = (0..n)
+            .map(|j| (0.5 + super::cos_2pi(j as i64, n as i64)) / n as f64)
+            .collect();
+        let beta = gamma.iter().sum();
+        Ok(PolarParams {
+            n,
+            alpha: ALPHA,
+            gamma,
+            beta,
+        })
+    }
+}
+
+/// The pole of a polar net and where it came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pole {
+    /// The pole's vertex in the polar net.
+    pub vertex: u32,
+    /// The input element it stands for: the cap face it replaced, or the input vertex that
+    /// already was a pole.
+    pub element: Element,
+}
+
+/// A polar net: the mesh and its poles.
+#[derive(Debug, Clone)]
+pub struct PolarNet {
+    /// The mesh (pole fans and quads).
+    pub mesh: PolyMesh,
+    /// Its poles.
+    pub poles: Vec<Pole>,
+}
+
+/// Interior vertices all of whose (at least 3) faces are triangles: the poles of a polar net.
+pub fn find_poles(mesh: &PolyMesh) -> Vec<u32> {
+    (0..mesh.num_vertices())
+        .filter(|&v| {
+            !mesh.is_boundary_vertex(v) && {
+                let fs = mesh.vertex_faces(v);
+                fs.len() >= 3 && fs.iter().all(|&f| mesh.face_size(f as usize) == 3)
+            }
+        })
+        .map(|v| v as u32)
+        .collect()
+}
+
+/// Whether face `f` is a prism-like cap: not a quad, every corner an interior vertex of valence
+/// 3 (one edge leaving the cap), so that each corner has valence 4 next to the pole that
+/// replaces the cap.
+pub fn is_cap(mesh: &PolyMesh, f: usize) -> bool {
+    mesh.face_size(f) != 4
+        && mesh
+            .face(f)
+            .iter()
+            .all(|&v| !mesh.is_boundary_vertex(v as usize) && mesh.valence(v as usize) == 3)
+}
+
+/// Converts every prism-like cap ([`is_cap`]) and every facet named in `poles` into a pole
+/// with its fan of triangles: the pole is the facet's centroid, or `poles[k].1` for the facet
+/// `poles[k].0` (input face index). Existing poles ([`find_poles`]) are kept; other facets stay
+/// (they are PGS facets for [`PolarBi2`]'s patches).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when a given face index is out of range or names a quad.
+pub fn to_polar_layout(mesh: &PolyMesh, poles: &[(usize, Point)]) -> Result<PolarNet> {
+    for &(f, _) in poles {
+        if f >= mesh.num_faces() {
+            return Err(Error::InvalidArgument(format!(
+                "pole for face {f}: the net has {} faces",
+                mesh.num_faces()
+            )));
+        }
+        if mesh.face_size(f) == 4 {
+            return Err(Error::InvalidArgument(format!(
+                "pole for face {f}: face {f} is a quad, not a cap (give poles for faces that are \
+                 not quads)"
+            )));
+        }
+    }
+    let existing = find_poles(mesh);
+    let mut in_fan = vec![false; mesh.num_faces()];
+    for &p in &existing {
+        for f in mesh.vertex_faces(p as usize) {
+            in_fan[f as usize] = true;
+        }
+    }
+    let mut pos: Vec<Point> = mesh.positions().to_vec();
+    let mut faces: Vec<Vec<usize>> = Vec::new();
+    let mut out_poles: Vec<Pole> = existing
+        .iter()
+        .map(|&v| Pole {
+            vertex: v,
+            element: Element::Vertex(v),
+        })
+        .collect();
+    for (f, &fan) in in_fan.iter().enumerate() {
+        let verts: Vec<usize> = mesh.face(f).iter().map(|&v| v as usize).collect();
+        let given = poles.iter().any(|x| x.0 == f);
+        if verts.len() == 4 || fan || !(given || is_cap(mesh, f)) {
+            faces.push(verts);
+            continue;
+        }
+        let p = poles
+            .iter()
+            .find(|x| x.0 == f)
+            .map(|x| x.1)
+            .unwrap_or_else(|| mesh.face_centroid(f));
+        let pv = pos.len();
+        pos.push(p);
+        out_poles.push(Pole {
+            vertex: pv as u32,
+            element: Element::Face(f as u32),
+        });
+        let n = verts.len();
+        for k in 0..n {
+            faces.push(vec![pv, verts[k], verts[(k + 1) % n]]);
+        }
+    }
+    Ok(PolarNet {
+        mesh: PolyMesh::new(pos, &faces)?,
+        poles: out_poles,
+    })
+}
+
+/// Kinds of edges of a polar layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeKind {
+    /// Along a spoke (towards or away from a pole).
+    Radial,
+    /// Around a pole.
+    Circular,
+}
+
+/// The edge kinds of a polar layout, propagated from the poles across quads (a quad's opposite
+/// edges have the same kind, adjacent edges different kinds).
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the face, edge or vertex that breaks the polar layout.
+pub fn edge_kinds(mesh: &PolyMesh, poles: &[u32]) -> Result<Vec<EdgeKind>> {
+    let not_polar = |what: String| {
+        Error::Unsupported(format!(
+            "{what}: polar-bi2 refines polar layouts (poles with fans of triangles and rings of \
+             quads around them); write the exact surface of other nets with bi2-mixed --rings K"
+        ))
+    };
+    if poles.is_empty() {
+        return Err(not_polar("the net has no pole and no cap".into()));
+    }
+    let mut is_pole = vec![false; mesh.num_vertices()];
+    for &p in poles {
+        is_pole[p as usize] = true;
+    }
+    let mut kind: Vec<Option<EdgeKind>> = vec![None; mesh.num_edges()];
+    let set = |e: usize, k: EdgeKind, kind: &mut Vec<Option<EdgeKind>>| -> Result<bool> {
+        match kind[e] {
+            Some(x) if x != k => Err(not_polar(format!(
+                "edge {e} would be both radial and circular"
+            ))),
+            Some(_) => Ok(false),
+            None => {
+                kind[e] = Some(k);
+                Ok(true)
+            }
+        }
+    };
+    for f in 0..mesh.num_faces() {
+        let n = mesh.face_size(f);
+        let h0 = mesh.face_halfedge(f);
+        if n == 3 {
+            let hs = [h0, h0 + 1, h0 + 2];
+            let pk: Vec<usize> = (0..3)
+                .filter(|&k| is_pole[mesh.he_from(hs[k]) as usize])
+                .collect();
+            if pk.len() != 1 {
+                return Err(not_polar(format!(
+                    "triangle {f} has {} poles (a fan triangle has exactly one)",
+                    pk.len()
+                )));
+            }
+            let k = pk[0];
+            set(mesh.he_edge(hs[k]) as usize, EdgeKind::Radial, &mut kind)?;
+            set(
+                mesh.he_edge(hs[(k + 2) % 3]) as usize,
+                EdgeKind::Radial,
+                &mut kind,
+            )?;
+            set(
+                mesh.he_edge(hs[(k + 1) % 3]) as usize,
+                EdgeKind::Circular,
+                &mut kind,
+            )?;
+        } else if n != 4 {
+            return Err(not_polar(format!("face {f} has {n} sides")));
+        }
+    }
+    // Propagate across quads until nothing changes.
+    loop {
+        let mut changed = false;
+        for f in 0..mesh.num_faces() {
+            if mesh.face_size(f) != 4 {
+                continue;
+            }
+            let h0 = mesh.face_halfedge(f);
+            let es: Vec<usize> = (0..4).map(|k| mesh.he_edge(h0 + k) as usize).collect();
+            let known = (0..4).find_map(|k| kind[es[k]].map(|x| (k, x)));
+            if let Some((k, x)) = known {
+                let other = match x {
+                    EdgeKind::Radial => EdgeKind::Circular,
+                    EdgeKind::Circular => EdgeKind::Radial,
+                };
+                for (j, &ej) in es.iter().enumerate() {
+                    let want = if (j + 4 - k) % 2 == 0 { x } else { other };
+                    changed |= set(ej, want, &mut kind)?;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut out = Vec::with_capacity(kind.len());
+    for (e, k) in kind.into_iter().enumerate() {
+        match k {
+            Some(k) => out.push(k),
+            None => {
+                return Err(not_polar(format!("edge {e} is not reachable from a pole")));
+            }
+        }
+    }
+    for (e, &k) in out.iter().enumerate() {
+        if mesh.is_boundary_edge(e) && k == EdgeKind::Radial {
+            return Err(not_polar(format!(
+                "boundary edge {e} runs along a spoke (only circular boundaries are supported)"
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// PolBS as a whole-mesh scheme (name `polar-bi2`): prism-like caps are converted to poles at
+/// their centroids (or at the given points) on the first step, then the net is refined
+/// radially. A net with no pole and no cap has nothing polar: it is refined as
+/// [`super::Bi2Mixed`] refines it (TPS at extraordinary vertices, PGS at facets). See the
+/// [module](self) documentation.
+#[derive(Debug, Clone, Default)]
+pub struct PolarBi2 {
+    /// User-given poles: `(input face, position)` for caps that should not use the centroid.
+    pub poles: Vec<(usize, Point)>,
+}
+
+impl PolarBi2 {
+    /// The spoke edge of face `f` at its corner `h` (the edge of `h` or of `prev(h)` that is
+    /// radial), or `None` at a pole corner.
+    fn corner_spoke(mesh: &PolyMesh, kinds: &[EdgeKind], is_pole: &[bool], h: u32) -> Option<u32> {
+        if is_pole[mesh.he_from(h) as usize] {
+            return None;
+        }
+        if kinds[mesh.he_edge(h) as usize] == EdgeKind::Radial {
+            Some(h)
+        } else {
+            Some(mesh.he_prev(h))
+        }
+    }
+}
+
+/// One radial step of a polar layout (see the [module](self) documentation).
+///
+/// # Errors
+/// [`Error::Unsupported`] when the net is not a polar layout.
+pub fn radial_step(mesh: &PolyMesh) -> Result<Refinement> {
+    Ok(radial_step_detailed(mesh)?.refinement)
+}
+
+/// A radial step with the child indices of its points.
+#[derive(Debug, Clone)]
+pub struct RadialStep {
+    /// The refinement.
+    pub refinement: Refinement,
+    /// Child point `p^new` of each pole (`u32::MAX` for other vertices).
+    pub pole_point: Vec<u32>,
+    /// For every edge: the child points on it next to the start and the end of its
+    /// [`PolyMesh::edge_halfedge`] (`u32::MAX` where there is none: circular edges, pole ends).
+    pub spoke_point: Vec<[u32; 2]>,
+}
+
+/// [`radial_step`] with the child indices of its points.
+///
+/// # Errors
+/// As [`radial_step`].
+pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
+    let poles = find_poles(mesh);
+    let kinds = edge_kinds(mesh, &poles)?;
+    let nv = mesh.num_vertices();
+    let mut is_pole = vec![false; nv];
+    for &p in &poles {
+        is_pole[p as usize] = true;
+    }
+    for (v, &pole) in is_pole.iter().enumerate() {
+        if pole {
+            continue;
+        }
+        let k = mesh.valence(v);
+        let ok = if mesh.is_boundary_vertex(v) {
+            k == 3
+        } else {
+            k == 4
+        };
+        if !ok {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} has valence {k}; in a polar layout every vertex but the poles has \
+                 valence 4 (3 on a circular boundary); write the exact surface of other nets \
+                 with bi2-mixed --rings K"
+            )));
+        }
+    }
+    const UNSET: u32 = u32::MAX;
+    let mut rows: Vec<Stencil> = Vec::new();
+    let mut pole_pt = vec![UNSET; nv];
+    for &p in &poles {
+        let hs: Vec<u32> = Outgoing::new(mesh, p as usize).collect();
+        let n = hs.len();
+        let mut s = Stencil::new();
+        s.add(p as usize, 1.0 - ALPHA);
+        for &h in &hs {
+            s.add(mesh.he_to(h) as usize, ALPHA / n as f64);
+        }
+        pole_pt[p as usize] = rows.len() as u32;
+        rows.push(s.merged());
+    }
+    // Points on spoke edges: [near from(edge half-edge), near to].
+    let mut spoke_pt = vec![[UNSET; 2]; mesh.num_edges()];
+    for e in 0..mesh.num_edges() {
+        if kinds[e] != EdgeKind::Radial {
+            continue;
+        }
+        let h = mesh.edge_halfedge(e);
+        let (a, b) = (mesh.he_from(h) as usize, mesh.he_to(h) as usize);
+        match (is_pole[a], is_pole[b]) {
+            (true, true) => {
+                return Err(Error::Unsupported(format!(
+                    "edge {e} joins two poles; poles must be separated by rings of quads"
+                )));
+            }
+            (false, false) => {
+                spoke_pt[e][0] = rows.len() as u32;
+                rows.push(Stencil::from_pairs([(a, 0.75), (b, 0.25)]));
+                spoke_pt[e][1] = rows.len() as u32;
+                rows.push(Stencil::from_pairs([(a, 0.25), (b, 0.75)]));
+            }
+            (pa, _) => {
+                let (p, v, k) = if pa { (a, b, 1) } else { (b, a, 0) };
+                spoke_pt[e][k] = rows.len() as u32;
+                rows.push(ring_point_stencil(mesh, p, v)?);
+            }
+        }
+    }
+    let mut kept = vec![UNSET; nv];
+    for (v, slot) in kept.iter_mut().enumerate() {
+        if mesh.is_boundary_vertex(v) {
+            *slot = rows.len() as u32;
+            rows.push(Stencil::point(v));
+        }
+    }
+    // The point of each face corner.
+    let corner_pt = |h: u32| -> u32 {
+        match PolarBi2::corner_spoke(mesh, &kinds, &is_pole, h) {
+            None => pole_pt[mesh.he_from(h) as usize],
+            Some(g) => {
+                let e = mesh.he_edge(g) as usize;
+                let v = mesh.he_from(h);
+                let first = mesh.he_from(mesh.edge_halfedge(e)) == v;
+                spoke_pt[e][if first { 0 } else { 1 }]
+            }
+        }
+    };
+    let mut face_start = vec![0u32];
+    let mut corners = Vec::new();
+    for f in 0..mesh.num_faces() {
+        let h0 = mesh.face_halfedge(f);
+        for h in h0..h0 + mesh.face_size(f) as u32 {
+            corners.push(corner_pt(h));
+        }
+        face_start.push(corners.len() as u32);
+    }
+    for (e, &kind) in kinds.iter().enumerate() {
+        if kind != EdgeKind::Circular {
+            continue;
+        }
+        let h = mesh.edge_halfedge(e);
+        let quad = match mesh.he_twin(h) {
+            Some(t) => [
+                corner_pt(mesh.he_next(h)),
+                corner_pt(h),
+                corner_pt(mesh.he_next(t)),
+                corner_pt(t),
+            ],
+            None => [
+                corner_pt(mesh.he_next(h)),
+                corner_pt(h),
+                kept[mesh.he_from(h) as usize],
+                kept[mesh.he_to(h) as usize],
+            ],
+        };
+        corners.extend_from_slice(&quad);
+        face_start.push(corners.len() as u32);
+    }
+    if corners.contains(&UNSET) {
+        return Err(Error::Unsupported(
+            "the polar layout is inconsistent (a face corner without a spoke point)".into(),
+        ));
+    }
+    let mut table = StencilTable::with_capacity(nv, rows.len(), 8);
+    for s in rows {
+        table.push(s);
+    }
+    Ok(RadialStep {
+        refinement: finish_refinement(mesh, table, face_start, corners)?,
+        pole_point: pole_pt,
+        spoke_point: spoke_pt,
+    })
+}
+
+/// Rule (11): the new ring point on the spoke from pole `p` to its fan vertex `v`.
+fn ring_point_stencil(mesh: &PolyMesh, p: usize, v: usize) -> Result<Stencil> {
+    let hs: Vec<u32> = Outgoing::new(mesh, p).collect();
+    let n = hs.len();
+    let prm = PolarParams::new(n)?;
+    let i = hs
+        .iter()
+        .position(|&h| mesh.he_to(h) as usize == v)
+        .ok_or_else(|| Error::Unsupported(format!("vertex {v} is not next to pole {p}")))?;
+    let mut s = Stencil::new();
+    s.add(p, 1.0 - prm.beta);
+    for (j, &g) in prm.gamma.iter().enumerate() {
+        s.add(mesh.he_to(hs[(i + j) % n]) as usize, g);
+    }
+    Ok(s.merged())
+}
+
+impl Scheme for PolarBi2 {
+    fn name(&self) -> &'static str {
+        "polar-bi2"
+    }
+
+    /// Converts caps to poles (no-op on a polar layout), then one radial step; a net without
+    /// poles is refined as `bi2-mixed` refines it.
+    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        let net = to_polar_layout(mesh, &self.poles)?;
+        if net.poles.is_empty() {
+            return super::Bi2Mixed.refine(mesh);
+        }
+        if net.mesh.num_vertices() == mesh.num_vertices() {
+            return radial_step(mesh);
+        }
+        // The conversion adds poles: compose its (trivial) stencils with the step.
+        let r = radial_step(&net.mesh)?;
+        let nv = mesh.num_vertices();
+        let mut conv = StencilTable::with_capacity(nv, net.mesh.num_vertices(), 4);
+        for v in 0..nv {
+            conv.push(Stencil::point(v));
+        }
+        for p in &net.poles {
+            if let Element::Face(f) = p.element {
+                let verts = mesh.face(f as usize);
+                let given = self.poles.iter().any(|x| x.0 == f as usize);
+                // A user-given pole is not an affine combination of the net: it becomes a
+                // constant, which stencils cannot hold. Refuse rather than lose it.
+                if given {
+                    return Err(Error::Unsupported(format!(
+                        "a user-given pole for face {f} cannot be expressed as refinement \
+                         stencils of the input net; use polar::to_polar_layout and refine the \
+                         polar net it returns"
+                    )));
+                }
+                let w = 1.0 / verts.len() as f64;
+                conv.push(Stencil::from_pairs(verts.iter().map(|&x| (x as usize, w))));
+            }
+        }
+        let stencils = r.stencils.compose(&conv);
+        Ok(Refinement {
+            mesh: r.mesh,
+            stencils,
+        })
+    }
+
+    /// Converts caps once (with the user's poles), then `levels` radial steps.
+    fn refine_many(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        let net = to_polar_layout(mesh, &self.poles)?;
+        if net.poles.is_empty() {
+            return super::Bi2Mixed.refine_many(mesh, levels, progress);
+        }
+        let mut m = net.mesh;
+        for l in 0..levels {
+            m = radial_step(&m)?.mesh;
+            progress(l + 1);
+        }
+        Ok(m)
+    }
+
+    /// Limit points: (16) at poles and at the ring next to a pole (the ring's points converge
+    /// to the pole's limit point under refinement: the cap contracts to it), the centre of the
+    /// bi-2 patch at vertices with four quads (and on circular boundaries with the doubled
+    /// layer).
+    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
+        let poles = find_poles(mesh);
+        let nv = mesh.num_vertices();
+        let mut pole_of = vec![u32::MAX; nv];
+        for &p in &poles {
+            pole_of[p as usize] = p;
+            for x in mesh.vertex_neighbors(p as usize) {
+                pole_of[x as usize] = p;
+            }
+        }
+        let mut table = StencilTable::with_capacity(nv, nv, 9);
+        for (v, &pv) in pole_of.iter().enumerate() {
+            if pv != u32::MAX {
+                let p = pv as usize;
+                let hs: Vec<u32> = Outgoing::new(mesh, p).collect();
+                let n = hs.len() as f64;
+                let mut s = Stencil::new();
+                s.add(p, 2.0 / 3.0);
+                for &h in &hs {
+                    s.add(mesh.he_to(h) as usize, 1.0 / (3.0 * n));
+                }
+                table.push(s.merged());
+                continue;
+            }
+            let Some(coef) = crate::surface::ds::regular_vertex_patch(mesh, v) else {
+                return Err(Error::Unsupported(format!(
+                    "vertex {v} is not in a polar layout (it has no regular bi-2 patch and is not \
+                     next to a pole): polar-bi2 has no limit position for it; write the exact \
+                     surface with --rings K"
+                )));
+            };
+            // The patch's centre value: Bernstein weights (1/4, 1/2, 1/4) in both directions.
+            let b = [0.25, 0.5, 0.25];
+            let mut s = Stencil::new();
+            for i in 0..3 {
+                for j in 0..3 {
+                    s.add_scaled(&coef[3 * i + j], b[i] * b[j]);
+                }
+            }
+            table.push(s.merged());
+        }
+        Ok(table)
+    }
+}
+
+/// The canonical polar net of valence `n` for analysis: the pole (vertex 0), then per sector
+/// `s` the points `a_s, b_s, c_s` (vertices `1 + 3s .. 3 + 3s`) on the spoke at angle
+/// `2 pi s / n`, radii 1, 2, 3, heights `height(x, y)`.
+pub fn polar_net(n: usize, height: impl Fn(f64, f64) -> f64) -> Result<PolyMesh> {
+    if n < 3 {
+        return Err(Error::InvalidArgument(format!(
+            "a polar net needs a valence of at least 3 (got {n})"
+        )));
+    }
+    let mut pos = vec![[0.0, 0.0, height(0.0, 0.0)]];
+    for s in 0..n {
+        let (c, sn) = (
+            super::cos_2pi(s as i64, n as i64),
+            super::cos_2pi(4 * s as i64 - n as i64, 4 * n as i64),
+        );
+        for r in 1..=3 {
+            let (x, y) = (r as f64 * c, r as f64 * sn);
+            pos.push([x, y, height(x, y)]);
+        }
+    }
+    let id = |s: usize, r: usize| 1 + 3 * (s % n) + r;
+    let mut faces: Vec<Vec<usize>> = Vec::new();
+    for s in 0..n {
+        faces.push(vec![0, id(s, 0), id(s + 1, 0)]);
+        for r in 0..2 {
+            faces.push(vec![id(s, r), id(s, r + 1), id(s + 1, r + 1), id(s + 1, r)]);
+        }
+    }
+    PolyMesh::new(pos, &faces)
+}
