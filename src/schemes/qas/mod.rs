@@ -64,7 +64,7 @@ pub enum QKind {
 pub struct QasRules {
     /// Valence.
     pub n: usize,
-    /// `tau[row][k - 2]`, rows in [`SPECIAL`] order (11, 22, 21, 12, 31, 32).
+    /// `tau[row][k - 2]`, rows in [`SPECIAL`](crate::schemes::eg::SPECIAL) order (11, 22, 21, 12, 31, 32).
     pub tau: [[f64; 5]; 6],
     /// `K_11, K_22, K_21, K_12` (5 x 5) and `K_31, K_32` (5 x 4, left half).
     pub k4: [[[f64; 5]; 5]; 4],
