@@ -178,8 +178,11 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         "loop" => loop_one_ring(n),
         "doo-sabin" | "ds" => doo_sabin_facet(n),
         "eg" => eg(n),
+        "nonbox" | "non-box" => super::nonbox::local_matrix(n),
+        "nonbox-4dir" | "non-box-4dir" => super::nonbox::local_matrix_4dir(n),
         other => Err(Error::InvalidArgument(format!(
-            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg)"
+            "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, \
+             nonbox, nonbox-4dir)"
         ))),
     }
 }
@@ -234,8 +237,12 @@ pub fn characteristic_ring(
                 .collect();
             Ok((patches, lambda))
         }
+        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir" => {
+            super::nonbox::characteristic_ring(n)
+        }
         other => Err(Error::InvalidArgument(format!(
-            "no characteristic map for scheme '{other}' (available: catmull-clark, eg)"
+            "no characteristic map for scheme '{other}' (available: catmull-clark, eg, nonbox, \
+             nonbox-4dir)"
         ))),
     }
 }
