@@ -861,3 +861,157 @@ fn types_of_triangle_meshes() {
         .is_err()
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Patch complexes
+
+use fairsub::surface::{ComplexOptions, Element, PatchComplex, Provenance};
+
+fn complex(scheme: &str, m: &PolyMesh, rings: usize) -> PatchComplex {
+    fairsub::surface::complex(scheme, m, ComplexOptions { rings, fill: true }, |_| {}).unwrap()
+}
+
+fn level_of(p: &Provenance) -> Option<usize> {
+    match p {
+        Provenance::Regular { .. } => Some(0),
+        Provenance::Ring { ring, .. } => Some(*ring as usize),
+        _ => None,
+    }
+}
+
+fn patch_nets() -> Vec<(&'static str, PolyMesh)> {
+    use fairsub::gallery::{self, CnetShape};
+    vec![
+        ("cnet-5", gallery::cnet(5, CnetShape::Convex, 3)),
+        ("cnet-3", gallery::cnet(3, CnetShape::Saddle, 3)),
+        ("prism-5", gallery::prism(5)),
+        ("cube", gallery::cube()),
+        ("tetrahedron", gallery::tetrahedron()),
+        ("open-pipe", gallery::open_pipe()),
+        ("torus-evs", gallery::torus_with_evs()),
+        ("open-grid", gallery::open_grid()),
+    ]
+}
+
+/// Every regular and ring patch of level `l` passes through limit points of the uniformly
+/// refined net: its corners and the centre (level `l`), edge midpoints (level `l + 1`) and the
+/// point `(1/2, 1/2)` (level `l + 2`).
+#[test]
+fn patches_are_exact_limits() {
+    for (name, m) in patch_nets() {
+        let rings = 2;
+        let c = complex("nonbox", &m, rings);
+        let mut net = FcvNet::barycentric(m.clone());
+        let mut sets = Vec::new();
+        for _ in 0..=rings + 2 {
+            sets.push(NonBox::limit_stencils(&net).apply(&net.points()));
+            net = NonBox::step(&net).unwrap().net;
+        }
+        let mut n = 0;
+        for (p, prov) in c.patches.iter().zip(&c.provenance) {
+            let Some(l) = level_of(prov) else { continue };
+            for (u, v) in [
+                (0.0, 0.0),
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (0.5, 0.0),
+                (0.0, 0.5),
+                (1.0, 0.5),
+                (0.5, 0.5),
+            ] {
+                let q = p.eval(u, v);
+                let d = sets[l + 2]
+                    .iter()
+                    .map(|s| geom::dist(*s, q))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d < 1e-12,
+                    "{name}: level {l} patch point ({u}, {v}) is {d} from the limit"
+                );
+                n += 1;
+            }
+        }
+        assert!(n > 0, "{name}");
+    }
+}
+
+/// Closed nets give closed complexes (every non-collapsed side is shared), all nets are C^0,
+/// and regular and ring patches meet with continuous normals (the spline is C^1); the fill is
+/// only C^0 to them.
+#[test]
+fn complexes_are_watertight_and_g1_outside_the_fill() {
+    for (name, m) in patch_nets() {
+        for scheme in ["nonbox", "nonbox-4dir"] {
+            if scheme == "nonbox-4dir" && name != "cube" && name != "tetrahedron" {
+                continue;
+            }
+            let c = complex(scheme, &m, 3);
+            let rep = fairsub::analysis::continuity::check(&c);
+            assert!(
+                rep.all.c0 < 1e-12,
+                "{scheme} {name}: C^0 gap {}",
+                rep.all.c0
+            );
+            if m.boundary_loops().is_empty() {
+                assert_eq!(rep.open_sides, 0, "{scheme} {name}: {:?}", rep.open);
+            }
+            for (kind, d) in &rep.by_kind {
+                if !kind.contains("cap") {
+                    assert!(d.g1 < 1e-8, "{scheme} {name} {kind}: normal jump {}", d.g1);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn ring_layout_at_an_isolated_extraordinary_vertex() {
+    for k in [3, 5, 6] {
+        let m = fairsub::gallery::cnet(k, fairsub::gallery::CnetShape::Convex, 3);
+        let c = complex("nonbox", &m, 4);
+        let mut per_ring = [0usize; 5];
+        let mut caps = 0;
+        for p in &c.provenance {
+            match *p {
+                Provenance::Ring {
+                    element: Element::Vertex(0),
+                    ring,
+                    ..
+                } => per_ring[ring as usize] += 1,
+                Provenance::Cap {
+                    element: Element::Vertex(0),
+                    ..
+                } => caps += 1,
+                _ => {}
+            }
+        }
+        // Three cells (twelve triangles) per sector and ring, one fill quad per sector.
+        assert_eq!(&per_ring[1..], &[12 * k; 4], "k = {k}");
+        assert_eq!(caps, k);
+    }
+    // An n-gon is an element of its own: its first ring is at level 1.
+    let c = complex("nonbox", &fairsub::gallery::prism(5), 2);
+    let caps = c
+        .provenance
+        .iter()
+        .filter(|p| {
+            matches!(
+                p,
+                Provenance::Cap {
+                    element: Element::Face(_),
+                    ..
+                }
+            )
+        })
+        .count();
+    assert_eq!(caps, 2 * 5);
+    // The two variants give the same complex.
+    let a = complex("nonbox", &fairsub::gallery::cube(), 2);
+    let b = complex("nonbox-4dir", &fairsub::gallery::cube(), 2);
+    assert_eq!(a.len(), b.len());
+    for (p, q) in a.patches.iter().zip(&b.patches) {
+        for (x, y) in p.cps.iter().zip(&q.cps) {
+            assert!(geom::dist(*x, *y) < 1e-12);
+        }
+    }
+}

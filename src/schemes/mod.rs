@@ -158,8 +158,8 @@ pub fn catalog() -> Vec<SchemeInfo> {
             smoothness: "C^1 with the convex hull property (all weights non-negative); C^1 at extraordinary vertices (lambda = 1/2 + cos(2 pi / k) / 4)",
             valences: "all",
             refine: true,
-            rings: false,
-            status: "available (refinement; patches in progress)",
+            rings: true,
+            status: "available",
         },
         SchemeInfo {
             name: "nonbox-4dir",
@@ -169,8 +169,8 @@ pub fn catalog() -> Vec<SchemeInfo> {
             smoothness: "as nonbox",
             valences: "all",
             refine: true,
-            rings: false,
-            status: "available (refinement; patches in progress)",
+            rings: true,
+            status: "available",
         },
         SchemeInfo {
             name: "eg",

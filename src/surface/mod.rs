@@ -9,6 +9,7 @@ pub mod cc;
 pub mod ds;
 pub mod eg;
 pub mod loop_patches;
+pub mod nonbox;
 pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
@@ -174,6 +175,10 @@ pub fn complex_with_notes(
         "doo-sabin" | "ds" => plain(ds::doo_sabin_complex(mesh, opts, progress)),
         "doo-sabin-cc" | "ds-cc" => plain(ds::doo_sabin_cc_complex(mesh, opts, progress)),
         "loop" => plain(loop_patches::loop_complex(mesh, opts, progress)),
+        "nonbox" | "non-box" => plain(nonbox::nonbox_mesh_complex(mesh, opts, progress)),
+        "nonbox-4dir" | "non-box-4dir" => {
+            plain(nonbox::nonbox_4dir_mesh_complex(mesh, opts, progress))
+        }
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

@@ -265,7 +265,7 @@ impl FourDirNet {
 /// FCVs), a triangle mesh with a consistent type assignment, or else any polygon mesh with its
 /// barycentres as FCVs (triangulated). Returns the net and, for the last case, the table that
 /// computes its points from the mesh's vertices.
-fn four_dir_of(mesh: &PolyMesh) -> Result<(FourDirNet, Option<StencilTable>)> {
+pub(crate) fn four_dir_of(mesh: &PolyMesh) -> Result<(FourDirNet, Option<StencilTable>)> {
     if layout_vertex_count(mesh).is_some()
         && let Some(net) = FcvNet::from_layout_mesh(mesh)
     {
