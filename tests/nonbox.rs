@@ -1015,3 +1015,23 @@ fn ring_layout_at_an_isolated_extraordinary_vertex() {
         }
     }
 }
+
+#[test]
+fn gallery_fcv_scale_series_is_the_scaled_cube() {
+    let all = fairsub::gallery::all();
+    let s4 = fairsub::schemes::by_name("nonbox-4dir").unwrap();
+    for (name, s) in [("0.5", 0.5), ("1", 1.0), ("1.5", 1.5)] {
+        let (_, m) = all
+            .iter()
+            .find(|(n, _)| *n == format!("nonbox-cube-fcv-{name}"))
+            .unwrap();
+        let a = fairsub::schemes::refine_levels(s4.as_ref(), m, 2, |_| {}).unwrap();
+        let b = NonBox::refine_levels(
+            &FcvNet::scaled(fairsub::gallery::cube(), s).unwrap(),
+            2,
+            |_| {},
+        )
+        .unwrap();
+        assert!(max_dist(a.positions(), &b.points()) < 1e-12, "scale {name}");
+    }
+}
