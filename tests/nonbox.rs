@@ -1035,3 +1035,31 @@ fn gallery_fcv_scale_series_is_the_scaled_cube() {
         assert!(max_dist(a.positions(), &b.points()) < 1e-12, "scale {name}");
     }
 }
+
+#[test]
+fn fcv_choice_for_the_cli() {
+    let cube = fairsub::gallery::cube();
+    let dir = std::env::temp_dir().join(format!("fairsub-nonbox-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("cube.fcv");
+    std::fs::write(&path, "*\n*\n0 0 9\n*\n*\n*\n").unwrap();
+    let net = FcvNet::choose(&cube, 0.5, Some(&path)).unwrap();
+    assert_eq!(net.fcv[2], [0.0, 0.0, 9.0]);
+    assert_eq!(net.fcv[0], geom::scale(cube.face_centroid(0), 0.5));
+    // A layout mesh keeps its own FCVs.
+    let lm = net.to_layout_mesh();
+    let back = FcvNet::choose(&lm, 1.0, None).unwrap();
+    assert_eq!(back.points(), net.points());
+    // A missing file is an I/O error naming it.
+    let e = FcvNet::choose(&cube, 1.0, Some(&dir.join("none.fcv")))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("none.fcv"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+    // Edge types of the four-directional net.
+    let t = triangulate(&net);
+    let n2 = (0..t.mesh.num_edges())
+        .filter(|&e| t.is_type2_edge(e))
+        .count();
+    assert_eq!(n2, 24); // one per corner of every face
+}

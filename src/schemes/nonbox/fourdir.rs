@@ -214,6 +214,13 @@ impl FourDirNet {
         Ok(FourDirNet { mesh, type2 })
     }
 
+    /// Whether edge `e` is of type 2 (joins a type-1 and a type-2 vertex); type-1 edges join two
+    /// type-1 vertices and are the edges of the polygon mesh.
+    pub fn is_type2_edge(&self, e: usize) -> bool {
+        let [a, b] = self.mesh.edge(e);
+        self.type2[a as usize] || self.type2[b as usize]
+    }
+
     /// The types found by [`classify`].
     pub fn classified(mesh: PolyMesh) -> Result<FourDirNet> {
         let t = classify(&mesh)?;

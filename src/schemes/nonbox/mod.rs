@@ -46,7 +46,7 @@
 //!
 //! Boundary V- and E-vertices follow the cubic B-spline rules of the boundary polygon
 //! (`(a + 6 v + b) / 8`, `(a + b) / 2`; a vertex with a single face is a corner and stays put),
-//! as the paper asks after [HDD*94]; the FCV rule needs no change. The boundary NFCV rule (its
+//! as the paper asks after Hoppe et al. \[HDD*94\]; the FCV rule needs no change. The boundary NFCV rule (its
 //! Fig. 8b is lost) is fairsub's reconstruction: a missing neighbour FCV across a boundary edge
 //! `V0 V1` of `F0` is replaced by the *ghost* `V0 + V1 - FCV_0`, the point reflection of `FCV_0`
 //! through the edge midpoint:
@@ -158,6 +158,23 @@ impl FcvNet {
             *p = geom::scale(*p, scale);
         }
         Ok(net)
+    }
+
+    /// The FCVs a user asked for: a [layout mesh](FcvNet::to_layout_mesh) keeps its own FCVs;
+    /// a plain mesh gets `scale` times its face barycentres, replaced face by face by the
+    /// positions of an FCV side file when `file` is given ([`fcv::load_fcv_file`]). This is the
+    /// library side of the CLI options `--fcv-scale S` and `--fcv-file F`.
+    pub fn choose(mesh: &PolyMesh, scale: f64, file: Option<&std::path::Path>) -> Result<FcvNet> {
+        if let Some(net) = Self::from_layout_mesh(mesh) {
+            if let Some(path) = file {
+                return fcv::load_fcv_file(net.mesh, path, scale);
+            }
+            return Ok(net);
+        }
+        match file {
+            Some(path) => fcv::load_fcv_file(mesh.clone(), path, scale),
+            None => FcvNet::scaled(mesh.clone(), scale),
+        }
     }
 
     /// Reads a net from a plain mesh: a [layout mesh](FcvNet::to_layout_mesh) gives its FCVs,
