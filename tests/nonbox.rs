@@ -1063,3 +1063,52 @@ fn fcv_choice_for_the_cli() {
         .count();
     assert_eq!(n2, 24); // one per corner of every face
 }
+
+#[test]
+fn notes_say_how_the_input_was_read() {
+    use fairsub::schemes::nonbox::input_notes;
+    assert!(input_notes("nonbox", &fairsub::gallery::cube()).is_empty());
+    let pipe = input_notes("nonbox", &fairsub::gallery::open_pipe());
+    assert!(
+        pipe.iter().any(|n| n.contains("reconstruction")),
+        "{pipe:?}"
+    );
+    let tet = input_notes("nonbox-4dir", &fairsub::gallery::tetrahedron());
+    assert!(tet[0].contains("not quasi-four-directional"), "{tet:?}");
+    let fcv = input_notes("nonbox-4dir", &fairsub::gallery::nonbox_cube_fcv(0.5));
+    assert!(
+        fcv[0].contains("6 type-2 vertices") && fcv[0].contains("type-2 vertices last"),
+        "{fcv:?}"
+    );
+    let oct = input_notes("nonbox-4dir", &fairsub::gallery::octahedron());
+    assert!(oct[0].contains("admits 3 type assignments"), "{oct:?}");
+    // Shuffled so that the FCVs are not last: the advice is given.
+    let net = triangulate(&FcvNet::barycentric(fairsub::gallery::cube()));
+    let n = net.mesh.num_vertices();
+    let pos: Vec<Point> = (0..n).rev().map(|v| net.mesh.position(v)).collect();
+    let faces: Vec<Vec<usize>> = net
+        .mesh
+        .faces()
+        .map(|f| f.iter().map(|&v| n - 1 - v as usize).collect())
+        .collect();
+    let shuffled = PolyMesh::new(pos, &faces).unwrap();
+    let t = classify(&shuffled).unwrap();
+    assert!((0..n).all(|v| t[n - 1 - v] == net.type2[v]));
+    let note = &input_notes("nonbox-4dir", &shuffled)[0];
+    assert!(
+        note.contains("most type-2 vertices") && note.contains("--scheme nonbox"),
+        "{note}"
+    );
+    let (_, notes) = fairsub::surface::complex_with_notes(
+        "nonbox",
+        &fairsub::gallery::open_pipe(),
+        ComplexOptions {
+            rings: 1,
+            fill: true,
+        },
+        fairsub::surface::Fallback::default(),
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(notes.len(), 1);
+}

@@ -175,10 +175,14 @@ pub fn complex_with_notes(
         "doo-sabin" | "ds" => plain(ds::doo_sabin_complex(mesh, opts, progress)),
         "doo-sabin-cc" | "ds-cc" => plain(ds::doo_sabin_cc_complex(mesh, opts, progress)),
         "loop" => plain(loop_patches::loop_complex(mesh, opts, progress)),
-        "nonbox" | "non-box" => plain(nonbox::nonbox_mesh_complex(mesh, opts, progress)),
-        "nonbox-4dir" | "non-box-4dir" => {
-            plain(nonbox::nonbox_4dir_mesh_complex(mesh, opts, progress))
-        }
+        "nonbox" | "non-box" => Ok((
+            nonbox::nonbox_mesh_complex(mesh, opts, progress)?,
+            crate::schemes::nonbox::input_notes(scheme, mesh),
+        )),
+        "nonbox-4dir" | "non-box-4dir" => Ok((
+            nonbox::nonbox_4dir_mesh_complex(mesh, opts, progress)?,
+            crate::schemes::nonbox::input_notes(scheme, mesh),
+        )),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

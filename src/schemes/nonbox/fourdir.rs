@@ -71,10 +71,16 @@ pub fn triangulate(net: &FcvNet) -> FourDirNet {
     FourDirNet { mesh, type2 }
 }
 
-/// The consistent type assignments of the triangle mesh (see the [module](self) documentation),
-/// the chosen one first; an error names a face that is not a triangle or a triangle where every
-/// choice conflicts.
+/// The vertex types of a triangle mesh: the chosen consistent assignment (see the
+/// [module](self) documentation); an error names a face that is not a triangle or a triangle
+/// where every choice conflicts.
 pub fn classify(mesh: &PolyMesh) -> Result<Vec<bool>> {
+    classify_counted(mesh).map(|(t, _)| t)
+}
+
+/// Like [`classify`], also returning the largest number of consistent assignments found in a
+/// connected component (1 when the types are unambiguous).
+pub fn classify_counted(mesh: &PolyMesh) -> Result<(Vec<bool>, usize)> {
     if let Some(f) = (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
         return Err(Error::Unsupported(format!(
             "face {f} has {} corners: a quasi-four-directional mesh has only triangles (use \
@@ -86,6 +92,7 @@ pub fn classify(mesh: &PolyMesh) -> Result<Vec<bool>> {
     let nv = mesh.num_vertices();
     let mut types: Vec<Option<bool>> = vec![None; nv];
     let mut visited = vec![false; nf];
+    let mut most = 0;
     for seed in 0..nf {
         if visited[seed] {
             continue;
@@ -103,6 +110,7 @@ pub fn classify(mesh: &PolyMesh) -> Result<Vec<bool>> {
                  exactly one type-2 vertex, inside the mesh): not quasi-four-directional"
             )));
         }
+        most = most.max(options.len());
         let trailing = |o: &Assignment| {
             let max1 = o.1.iter().filter(|x| !x.1).map(|x| x.0).max();
             let min2 = o.1.iter().filter(|x| x.1).map(|x| x.0).min();
@@ -123,7 +131,10 @@ pub fn classify(mesh: &PolyMesh) -> Result<Vec<bool>> {
             types[v] = Some(t);
         }
     }
-    Ok(types.into_iter().map(|t| t.unwrap_or(false)).collect())
+    Ok((
+        types.into_iter().map(|t| t.unwrap_or(false)).collect(),
+        most,
+    ))
 }
 
 /// A consistent type assignment of one connected component: its faces and its
@@ -285,6 +296,52 @@ pub(crate) fn four_dir_of(mesh: &PolyMesh) -> Result<(FourDirNet, Option<Stencil
     }
     let net = FcvNet::barycentric(mesh.clone());
     Ok((triangulate(&net), Some(fcv_insertion(mesh, 1.0))))
+}
+
+/// Whether the type-2 vertices are exactly the last vertices.
+fn trailing_type2(t: &[bool]) -> bool {
+    t.iter().skip_while(|&&x| !x).all(|&x| x)
+}
+
+/// How [`NonBox4Dir`] reads `mesh`, in one sentence for the user.
+pub fn describe_input(mesh: &PolyMesh) -> String {
+    if let Some(nv) = layout_vertex_count(mesh) {
+        return format!(
+            "nonbox-4dir: polygon net with {} FCVs (layout mesh), triangulated around them",
+            mesh.num_vertices() - nv
+        );
+    }
+    if mesh.is_all_triangles() {
+        let typed =
+            classify_counted(mesh).and_then(|(t, n)| FourDirNet::new(mesh.clone(), t).map(|_| n));
+        return match (classify(mesh), typed) {
+            (Ok(t), Ok(n)) => format!(
+                "nonbox-4dir: read as a quasi-four-directional mesh with {} type-2 vertices \
+                 (FCVs){}",
+                t.iter().filter(|&&x| x).count(),
+                if n == 1 {
+                    String::new()
+                } else if trailing_type2(&t) {
+                    format!(
+                        "; the topology admits {n} type assignments, fairsub took the one with \
+                         the type-2 vertices last"
+                    )
+                } else {
+                    format!(
+                        "; the topology admits {n} type assignments, fairsub took the one with \
+                         the most type-2 vertices (give the FCVs as the last vertices to fix \
+                         them, or use --scheme nonbox to treat the triangles as polygons)"
+                    )
+                }
+            ),
+            (Err(e), _) | (_, Err(e)) => format!(
+                "nonbox-4dir: not quasi-four-directional ({e}); the triangles are polygons with \
+                 their barycentres as FCVs"
+            ),
+        };
+    }
+    "nonbox-4dir: polygon net with its face barycentres as FCVs, triangulated around them"
+        .to_string()
 }
 
 /// Re-indexes a table whose rows and sources are points of an [`FcvNet`] to the vertices of the

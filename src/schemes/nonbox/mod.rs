@@ -580,6 +580,33 @@ impl NonBox {
     }
 }
 
+/// Notes for the user about how a non-box scheme (`nonbox` or `nonbox-4dir`) reads `mesh`:
+/// where the FCVs come from, how a triangle mesh was typed, and whether the reconstructed
+/// boundary NFCV rule is in use (it is fairsub's, not the paper's; see the [module](self)
+/// documentation). Empty for a closed polygon mesh under `nonbox`.
+pub fn input_notes(scheme: &str, mesh: &PolyMesh) -> Vec<String> {
+    let mut notes = Vec::new();
+    let four_dir = matches!(scheme, "nonbox-4dir" | "non-box-4dir");
+    if four_dir {
+        notes.push(fourdir::describe_input(mesh));
+    } else if let Some(nv) = layout_vertex_count(mesh) {
+        notes.push(format!(
+            "nonbox: the last {} vertices are the FCVs of the {} faces (layout mesh)",
+            mesh.num_vertices() - nv,
+            mesh.num_faces()
+        ));
+    }
+    if !mesh.boundary_loops().is_empty() {
+        notes.push(
+            "the net has a boundary: boundary V- and E-vertices follow the cubic B-spline rules \
+             of the paper, the boundary NFCV rule (ghost FCVs a + b - F) is fairsub's \
+             reconstruction (the paper's Fig. 8b is lost)"
+                .to_string(),
+        );
+    }
+    notes
+}
+
 impl Scheme for NonBox {
     fn name(&self) -> &'static str {
         "nonbox"
