@@ -1112,3 +1112,138 @@ fn notes_say_how_the_input_was_read() {
     .unwrap();
     assert_eq!(notes.len(), 1);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The command line
+
+fn fairsub_cli(args: &[&str]) -> (i32, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn cli_carries_fcvs_through_obj_files_and_writes_limit_meshes() {
+    let dir = std::env::temp_dir().join(format!("fairsub-nonbox-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    // Two steps in one call equal one step applied twice through an OBJ file with FCVs.
+    for (out, net, levels) in [
+        ("one.obj", "gallery:cube".to_string(), "1"),
+        ("two.obj", p("one.obj"), "1"),
+        ("direct.obj", "gallery:cube".to_string(), "2"),
+    ] {
+        let args = [
+            "subdivide",
+            &net,
+            "--scheme",
+            "nonbox",
+            "--fcv-scale",
+            "1.5",
+            "-l",
+            levels,
+            "-o",
+            &p(out),
+        ];
+        let (code, err) = fairsub_cli(&args);
+        assert_eq!(code, 0, "{err}");
+        if out == "two.obj" {
+            assert!(err.contains("--fcv-scale is ignored"), "{err}");
+        }
+    }
+    let read = |name: &str| {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        parse_fcv_obj(&text, &dir.join(name)).unwrap().0
+    };
+    let expect = NonBox::refine_levels(
+        &FcvNet::scaled(fairsub::gallery::cube(), 1.5).unwrap(),
+        2,
+        |_| {},
+    )
+    .unwrap();
+    for name in ["two.obj", "direct.obj"] {
+        let got = read(name);
+        assert_eq!(got.fcv.len(), 96);
+        assert!(max_dist(&got.points(), &expect.points()) < 1e-12, "{name}");
+    }
+    // The limit mesh: triangles around the face centres, every point at its limit.
+    let (code, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:cube",
+        "--scheme",
+        "nonbox",
+        "--fcv-scale",
+        "1.5",
+        "-l",
+        "2",
+        "--limit",
+        "-o",
+        &p("limit.ply"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lim = fairsub::io::read_mesh(&dir.join("limit.ply")).unwrap().mesh;
+    let want =
+        NonBox::limit_mesh(&FcvNet::scaled(fairsub::gallery::cube(), 1.5).unwrap(), 2).unwrap();
+    assert_eq!((lim.num_vertices(), lim.num_faces()), (194, 384));
+    assert!(max_dist(lim.positions(), want.positions()) < 1e-6);
+    // FCV options on another scheme, and a short FCV file, are clear errors.
+    let (code, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:cube",
+        "--scheme",
+        "catmull-clark",
+        "--fcv-scale",
+        "2",
+        "-o",
+        &p("x.obj"),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("only the non-box schemes"), "{err}");
+    std::fs::write(dir.join("short.fcv"), "*\n*\n").unwrap();
+    let (code, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:cube",
+        "--scheme",
+        "nonbox",
+        "--fcv-file",
+        &p("short.fcv"),
+        "-o",
+        &p("x.obj"),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("short.fcv:2") && err.contains("6 faces"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn cli_analyze_prints_the_published_numbers() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(["analyze", "--scheme", "nonbox", "--valence", "6", "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let published = v["published"].as_array().unwrap();
+    assert_eq!(published.len(), 8);
+    let lambda = &published[0];
+    assert!((lambda["computed"].as_f64().unwrap() - 0.625).abs() < 1e-12);
+    for c in published {
+        let q = c["quantity"].as_str().unwrap();
+        let d = c["difference"].as_f64().unwrap();
+        let allowed = if q.starts_with("sum of the printed") {
+            0.125 + 1e-12
+        } else {
+            1e-12
+        };
+        assert!(d < allowed, "{q}: {d}");
+    }
+    assert_eq!(v["characteristic_map"]["injective"], true);
+}

@@ -87,6 +87,19 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
         .ok()
         .map(|(ring, lambda)| certify::certify_ring(&ring, lambda));
     let mut published = Vec::new();
+    if matches!(
+        a.scheme.as_str(),
+        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir"
+    ) {
+        for c in analysis::nonbox::published_comparisons(a.valence)? {
+            published.push(Published {
+                quantity: c.quantity,
+                published: c.published,
+                computed: c.computed,
+                difference: c.difference,
+            });
+        }
+    }
     if matches!(a.scheme.as_str(), "catmull-clark" | "cc") {
         let l = analysis::catmull_clark_lambda(a.valence);
         published.push(Published {

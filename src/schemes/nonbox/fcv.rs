@@ -233,6 +233,23 @@ fn obj_vertex_lines(text: &str) -> Vec<(usize, Point)> {
 /// Parses OBJ text holding a net with FCVs (see [`read_fcv_obj`]); `path` names the file in
 /// messages. Returns the net and notes for the user.
 pub fn parse_fcv_obj(text: &str, path: &Path) -> Result<(FcvNet, Vec<String>)> {
+    let (mesh, fcv, mut notes) = parse_obj_fcvs(text, path)?;
+    match fcv {
+        Some(fcv) => Ok((FcvNet::new(mesh, fcv)?, notes)),
+        None => {
+            notes.push("no FCVs in the file: the face barycentres are the FCVs".to_string());
+            Ok((FcvNet::barycentric(mesh), notes))
+        }
+    }
+}
+
+/// Parses OBJ text that may hold a net with FCVs: the mesh, its FCVs when the file has them
+/// (layout in the [module](self) documentation), and notes for the user. Errors as
+/// [`parse_fcv_obj`].
+pub fn parse_obj_fcvs(
+    text: &str,
+    path: &Path,
+) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
     let LoadedMesh { mesh, warnings } = crate::io::obj::read_obj_from(text.as_bytes(), path)?;
     let marker = text.lines().enumerate().find_map(|(i, l)| {
         let rest = l.trim().strip_prefix('#')?.trim().strip_prefix("fcv ")?;
@@ -274,16 +291,22 @@ pub fn parse_fcv_obj(text: &str, path: &Path) -> Result<(FcvNet, Vec<String>)> {
     }
     if trailing && nf > 0 {
         let fcv = verts[total - nf..].iter().map(|&(_, p)| p).collect();
-        let net = FcvNet::new(mesh, fcv)?;
         let notes = warnings
             .into_iter()
             .filter(|w| !w.contains("used by no face"))
             .collect();
-        return Ok((net, notes));
+        return Ok((mesh, Some(fcv), notes));
     }
-    let mut notes = warnings;
-    notes.push("no FCVs in the file: the face barycentres are the FCVs".to_string());
-    Ok((FcvNet::barycentric(mesh), notes))
+    Ok((mesh, None, warnings))
+}
+
+/// Reads an OBJ file that may hold a net with FCVs (see [`parse_obj_fcvs`]).
+pub fn read_obj_fcvs(path: &Path) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_obj_fcvs(&text, path)
 }
 
 /// Reads an OBJ file holding a net with FCVs (layout in the [module](self) documentation); a
