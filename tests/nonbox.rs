@@ -1191,6 +1191,39 @@ fn cli_carries_fcvs_through_obj_files_and_writes_limit_meshes() {
         NonBox::limit_mesh(&FcvNet::scaled(fairsub::gallery::cube(), 1.5).unwrap(), 2).unwrap();
     assert_eq!((lim.num_vertices(), lim.num_faces()), (194, 384));
     assert!(max_dist(lim.positions(), want.positions()) < 1e-6);
+    // OBJ limit output carries one unit normal per vertex, outward on the closed surface.
+    let (code, err) = fairsub_cli(&[
+        "subdivide",
+        "gallery:cube",
+        "--scheme",
+        "nonbox",
+        "-l",
+        "2",
+        "--limit",
+        "-o",
+        &p("limit.obj"),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(dir.join("limit.obj")).unwrap();
+    let parse = |tag: &str| -> Vec<Point> {
+        text.lines()
+            .filter_map(|l| l.strip_prefix(tag))
+            .map(|l| {
+                let c: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+                [c[0], c[1], c[2]]
+            })
+            .collect()
+    };
+    let (vs, ns) = (parse("v "), parse("vn "));
+    assert_eq!((vs.len(), ns.len()), (194, 194));
+    let want = NonBox::limit_mesh(&FcvNet::barycentric(fairsub::gallery::cube()), 2).unwrap();
+    assert!(max_dist(&vs, want.positions()) < 1e-12);
+    for (v, n) in vs.iter().zip(&ns) {
+        assert!((geom::norm(*n) - 1.0).abs() < 1e-12);
+        // The cube is symmetric about the origin: the normal leans outward along the position.
+        assert!(geom::dot(*n, geom::normalize(*v)) > 0.9, "{v:?} {n:?}");
+    }
+    assert!(text.contains("f 1//1 "));
     // FCV options on another scheme, and a short FCV file, are clear errors.
     let (code, err) = fairsub_cli(&[
         "subdivide",

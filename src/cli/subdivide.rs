@@ -185,11 +185,14 @@ pub fn run(a: Args) -> Result<()> {
             }
         }
         let quad_nonbox = matches!(a.scheme.as_str(), "nonbox" | "non-box");
+        let mut limit_normals = None;
         let refined = if quad_nonbox && a.limit {
             // The limit mesh: the refined net's quads split into four triangles around their
-            // FCVs, every point at its limit (vertices, then face centres).
+            // FCVs, every point at its limit (vertices, then face centres); OBJ gets normals.
             let net = fairsub::schemes::nonbox::FcvNet::from_mesh(&mesh);
-            fairsub::schemes::NonBox::limit_mesh(&net, levels)?
+            let (m, n) = fairsub::schemes::NonBox::limit_mesh_with_normals(&net, levels)?;
+            limit_normals = Some(n);
+            m
         } else {
             refine(&a.scheme, &mesh, levels, a.limit)?
         };
@@ -200,6 +203,13 @@ pub fn run(a: Args) -> Result<()> {
             _ => None,
         };
         match fmt {
+            OutputFormat::Mesh(fairsub::io::MeshFormat::Obj) if limit_normals.is_some() => {
+                fairsub::schemes::nonbox::fcv::write_limit_obj(
+                    &a.output,
+                    &refined,
+                    limit_normals.as_deref().expect("checked"),
+                )?
+            }
             _ if fcv_net.is_some() => fairsub::schemes::nonbox::write_fcv_obj(
                 &a.output,
                 fcv_net.as_ref().expect("checked"),

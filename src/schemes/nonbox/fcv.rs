@@ -31,6 +31,11 @@
 //! f 1 4 3 2
 //! ```
 //!
+//! # OBJ limit mesh with normals
+//!
+//! [`write_limit_obj`] writes a [limit mesh](super::NonBox::limit_mesh_with_normals) with one
+//! `vn` line per `v` line (the exact limit normal of that point) and faces `f a//a b//b c//c`.
+//!
 //! [`read_fcv_obj`] reads it back: the vertices no face uses become the FCVs when they are the
 //! last `v` lines and there is exactly one per face (or a `# fcv N` line says so). The same
 //! layout in memory is [`FcvNet::to_layout_mesh`].
@@ -317,4 +322,58 @@ pub fn read_fcv_obj(path: &Path) -> Result<(FcvNet, Vec<String>)> {
         source,
     })?;
     parse_fcv_obj(&text, path)
+}
+
+/// The OBJ text of a limit mesh with one unit normal per vertex (`v`, then `vn` lines in the
+/// same order, faces `f a//a ...`). Errors when the counts differ or a value is not finite.
+pub fn limit_obj_string(mesh: &PolyMesh, normals: &[Point]) -> Result<String> {
+    use std::fmt::Write;
+    if normals.len() != mesh.num_vertices() {
+        return Err(Error::InvalidArgument(format!(
+            "{} normals given for a mesh of {} vertices",
+            normals.len(),
+            mesh.num_vertices()
+        )));
+    }
+    let bad = |p: &Point| !p.iter().all(|c| c.is_finite());
+    if let Some(v) = mesh.positions().iter().position(bad) {
+        return Err(Error::InvalidArgument(format!(
+            "vertex {v} of the limit mesh has a NaN or infinite coordinate"
+        )));
+    }
+    if let Some(v) = normals.iter().position(bad) {
+        return Err(Error::InvalidArgument(format!(
+            "the limit normal of vertex {v} is undefined (degenerate tangents there)"
+        )));
+    }
+    let mut s = format!(
+        "# fairsub non-box limit mesh: {} vertices with their limit normals, {} faces\n",
+        mesh.num_vertices(),
+        mesh.num_faces()
+    );
+    for p in mesh.positions() {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    for n in normals {
+        let _ = writeln!(s, "vn {} {} {}", n[0], n[1], n[2]);
+    }
+    for f in mesh.faces() {
+        s.push('f');
+        for &v in f {
+            let _ = write!(s, " {0}//{0}", v + 1);
+        }
+        s.push('\n');
+    }
+    Ok(s)
+}
+
+/// Writes a limit mesh with normals as OBJ (atomically; see [`limit_obj_string`]).
+pub fn write_limit_obj(path: &Path, mesh: &PolyMesh, normals: &[Point]) -> Result<()> {
+    let text = limit_obj_string(mesh, normals)?;
+    crate::io::write_atomically(path, |w| {
+        w.write_all(text.as_bytes()).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    })
 }

@@ -569,14 +569,22 @@ impl NonBox {
     /// around their FCVs, every point at its limit position (vertices first, then the face
     /// centres, as in the layout order).
     pub fn limit_mesh(net: &FcvNet, levels: usize) -> Result<PolyMesh> {
+        Ok(Self::limit_mesh_with_normals(net, levels)?.0)
+    }
+
+    /// The [limit mesh](Self::limit_mesh) after `levels` steps and the unit limit normal at
+    /// each of its vertices ([`Self::limit_normals`] of the refined net, in the same order).
+    pub fn limit_mesh_with_normals(net: &FcvNet, levels: usize) -> Result<(PolyMesh, Vec<Point>)> {
         let fine = Self::refine_levels(net, levels, |_| {})?;
         let lim = Self::limit_stencils(&fine).apply(&fine.points());
+        let normals = Self::limit_normals(&fine);
         let tri = fourdir::triangulate(&fine);
-        PolyMesh::from_refinement(
+        let mesh = PolyMesh::from_refinement(
             lim,
             tri.mesh.face_starts().to_vec(),
             tri.mesh.corners().to_vec(),
-        )
+        )?;
+        Ok((mesh, normals))
     }
 }
 
