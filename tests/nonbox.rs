@@ -334,7 +334,7 @@ fn characteristic_maps_are_certified_injective_for_k_3_to_12() {
 }
 
 #[test]
-fn all_weights_are_non_negative_for_k_3_to_20() {
+fn all_weights_are_non_negative_for_every_k() {
     for k in 3..=20 {
         let mut nets = vec![
             anb::local_fcv_net(k, 3),
@@ -354,6 +354,23 @@ fn all_weights_are_non_negative_for_k_3_to_20() {
         }
         let lm = anb::local_matrix(k).unwrap();
         assert!(lm.matrix.iter().all(|&x| x >= 0.0));
+    }
+    // Every larger k: the only weights that depend on k are 1 - a_k and a_k / k (V-vertex and
+    // FCV rules) and the limit weights 1 / (1 + 4 a_k), 4 a_k / (k (1 + 4 a_k)); the others are
+    // the constants 1/8 .. 1/2 checked above. Since (1/2 + cos(2 pi / k) / 4)^2 lies in
+    // [1/16, 9/16], a_k lies in [3/16, 11/16] for k >= 4 (a_3 = 3/4), so all are non-negative.
+    for k in 3..=100_000usize {
+        let a = a_k(k);
+        assert!((3.0 / 16.0..=0.75).contains(&a), "k = {k}: a_k = {a}");
+        let kf = k as f64;
+        for w in [
+            1.0 - a,
+            a / kf,
+            1.0 / (1.0 + 4.0 * a),
+            4.0 * a / (kf * (1.0 + 4.0 * a)),
+        ] {
+            assert!(w >= 0.0, "k = {k}");
+        }
     }
     // Boundary NFCV rules of every kind on an open grid (corner faces included).
     let net = open_grid(3, &mut Lcg(1));
@@ -569,9 +586,9 @@ fn cell_table_is_the_limit_of_the_rules() {
             checked += 1;
         }
     }
-    // The corner cells are not regular (corners with one face); all others are.
-    assert_eq!(regular_cells, 25 - 4);
-    assert!(checked > 21 * 200, "{checked}");
+    // Every cell is regular, the four at corners (one face, diagonal ghost) included.
+    assert_eq!(regular_cells, 25);
+    assert!(checked > 25 * 200, "{checked}");
 }
 
 #[test]
@@ -1279,4 +1296,34 @@ fn cli_analyze_prints_the_published_numbers() {
         assert!(d < allowed, "{q}: {d}");
     }
     assert_eq!(v["characteristic_map"]["injective"], true);
+}
+
+/// Boundary vertices with one face (corners) or two are regular: the c-net's only element is
+/// its centre and the open grid has none; the corner cells are exact (`patches_are_exact_limits`).
+#[test]
+fn corners_and_two_face_boundary_vertices_need_no_rings() {
+    use fairsub::surface::{Element, Provenance};
+    let elements = |c: &PatchComplex| {
+        let mut out: Vec<Element> = Vec::new();
+        for p in &c.provenance {
+            if let Provenance::Ring { element, .. } | Provenance::Cap { element, .. } = *p
+                && !out.contains(&element)
+            {
+                out.push(element);
+            }
+        }
+        out
+    };
+    let m = fairsub::gallery::cnet(5, fairsub::gallery::CnetShape::Convex, 3);
+    let centre = (0..m.num_vertices())
+        .find(|&v| !m.is_boundary_vertex(v) && m.vertex_faces(v).len() == 5)
+        .unwrap();
+    assert_eq!(
+        elements(&complex("nonbox", &m, 2)),
+        vec![Element::Vertex(centre as u32)]
+    );
+    let grid = fairsub::gallery::open_grid();
+    let c = complex("nonbox", &grid, 2);
+    assert!(elements(&c).is_empty());
+    assert_eq!(c.len(), 4 * grid.num_faces());
 }

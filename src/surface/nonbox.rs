@@ -1,11 +1,11 @@
 //! Non-box surfaces as exact patch complexes: S_3^1 cubic triangles, rings, and a fill.
 //!
 //! Where a quad cell of the net is regular (each corner an interior vertex of valence 4 or a
-//! boundary vertex with two faces), the limit over it is four cubic triangles of the S_3^1
+//! boundary vertex with one or two faces), the limit over it is four cubic triangles of the S_3^1
 //! spline ([`crate::schemes::nonbox::bezier`]), each stored as the degenerate bi-3 patch
 //! `T(u (1 - v), v)` (side `v = 1` collapsed to the cell centre; the layout of
 //! [`super::loop_patches`]). Other cells (at extraordinary vertices, at boundary vertices with
-//! one or more than two faces, and the non-quad faces of the input) are refined with the
+//! more than two faces, and the non-quad faces of the input) are refined with the
 //! scheme's own rules ([`crate::schemes::nonbox`]) together with the faces around their
 //! corners; their regular children are emitted as ring `l` at level `l` (three cells, twelve
 //! triangles, per sector of an isolated extraordinary vertex), the rest refined again. Points
@@ -181,11 +181,12 @@ pub fn nonbox_4dir_mesh_complex(
     nonbox_complex(&fcv, opts, progress)
 }
 
-/// Whether `v` is a regular vertex: interior of valence 4 or boundary with two faces.
+/// Whether `v` is a regular vertex: interior of valence 4, or boundary with two faces or one
+/// (a corner), where ghost FCVs complete the net.
 fn is_regular(m: &PolyMesh, v: usize) -> bool {
     let n = m.outgoing_halfedges(v).len();
     if m.is_boundary_vertex(v) {
-        n == 2
+        n <= 2
     } else {
         n == 4
     }

@@ -29,10 +29,16 @@
 //! # Regular cells and boundaries
 //!
 //! A cell is regular when it is a quad and each corner is an interior vertex of valence 4 or a
-//! boundary vertex with two faces. At a boundary corner the missing FCVs are the ghosts of the
-//! boundary NFCV rule (the reflection `a + b - F` of the FCV `F` of the face at the boundary edge
-//! `a b`), which turn the boundary rules into the interior ones, so boundary cells are exact
-//! pieces too.
+//! boundary vertex with one or two faces. At a boundary vertex the missing FCVs are the ghosts
+//! of the boundary NFCV rule (the reflection `a + b - F` of the FCV `F` of the face at the
+//! boundary edge `a b`), which turn the boundary rules into the interior ones, so boundary cells
+//! are exact pieces too. At a corner `w` (one face, boundary neighbours `a`, `b`, FCV `F`) the
+//! two edge ghosts are joined by the diagonal ghost `2 w - a - b + F` (`F` moved by both edge
+//! reflections): with these four FCVs the interior valence-4 rules give the corner rules (the
+//! corner stays put: `w / 2 + (F + (w + a - F) + (w + b - F) + (2 w - a - b + F)) / 8 = w`; the
+//! boundary E-vertices are midpoints; the NFCV at `w` is the corner NFCV rule), and the cell's
+//! corner coefficient `w / 3 + sum F / 6` is `w`. The test `patches_are_exact_limits` checks the
+//! corner cells of the c-nets and the open grid against the limit points of the refined net.
 //!
 //! # Storage as tensor-product patches
 //!
@@ -82,7 +88,8 @@ pub fn tri_index(i: usize, j: usize, k: usize) -> usize {
 
 /// The FCV stencils of the four faces around the start vertex `w` of half-edge `g`,
 /// counter-clockwise from `g`'s face; `None` unless `w` is an interior vertex of valence 4 or a
-/// boundary vertex with two faces (whose two missing faces get ghost FCVs).
+/// boundary vertex with two faces (whose two missing faces get ghost FCVs) or one face (three
+/// ghosts; see the [module](self) documentation).
 pub fn corner_fcvs(m: &PolyMesh, g: u32) -> Option<[Stencil; 4]> {
     let w = m.he_from(g) as usize;
     let nv = m.num_vertices();
@@ -97,6 +104,22 @@ pub fn corner_fcvs(m: &PolyMesh, g: u32) -> Option<[Stencil; 4]> {
         let g2 = rot(g1)?;
         let g3 = rot(g2)?;
         return Some([fcv(g), fcv(g1), fcv(g2), fcv(g3)]);
+    }
+    if hs.len() == 1 {
+        // A corner (one face): the two edge ghosts and, diagonally, the ghost `2 w - a - b + F`
+        // (the FCV `F` moved by both edge reflections), under which the interior rules give the
+        // corner rules (the corner stays put, boundary E-vertices are midpoints, the corner
+        // NFCV is fairsub's reconstruction).
+        let g0 = hs[0];
+        let a = m.he_to(g0) as usize;
+        let b = m.he_from(m.he_prev(g0)) as usize;
+        let f0 = nv + m.he_face(g0) as usize;
+        return Some([
+            fcv(g0),
+            Stencil::from_pairs([(w, 1.0), (b, 1.0), (f0, -1.0)]),
+            Stencil::from_pairs([(w, 2.0), (a, -1.0), (b, -1.0), (f0, 1.0)]),
+            Stencil::from_pairs([(w, 1.0), (a, 1.0), (f0, -1.0)]),
+        ]);
     }
     if hs.len() != 2 {
         return None;

@@ -61,7 +61,10 @@
 //! FCV equals the refined ghost), so near a boundary of vertices with two faces the surface is
 //! exactly the S_3^1 spline of the net extended by ghost FCVs, C^1 up to the boundary, whose
 //! boundary curve is the cubic B-spline of the boundary polygon; the weights are non-negative
-//! (convex hull property) and linear functions are reproduced. The tests check each claim.
+//! (convex hull property) and linear functions are reproduced. At a corner (one face) the two
+//! edge ghosts and the diagonal ghost `2 V0 - Va - Vb + FCV_0` turn the interior rules into the
+//! corner rules too, so the cells at corners are exact spline pieces as well
+//! ([`bezier`] documents the derivation). The tests check each claim.
 //!
 //! # Limit positions, tangents, normals (Section 4)
 //!
