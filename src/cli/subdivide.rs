@@ -5,6 +5,8 @@ use fairsub::surface::{ComplexOptions, PatchComplex};
 use fairsub::{Error, PolyMesh, Result};
 use std::path::PathBuf;
 
+mod nonbox;
+
 /// Arguments of `fairsub subdivide`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -28,6 +30,9 @@ pub struct Args {
     /// Samples per patch edge when a patch complex is written as a mesh.
     #[arg(long, default_value_t = 8)]
     pub tess: usize,
+    /// Face control vertices (non-box schemes).
+    #[command(flatten)]
+    pub fcv: nonbox::FcvArgs,
     /// Output file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -38,62 +43,6 @@ pub struct Args {
     /// or stop with an error.
     #[arg(long, value_enum, default_value_t = FallbackArg::CatmullClark)]
     pub fallback: FallbackArg,
-    /// Non-box schemes: the FCVs are S times the face barycentres, scaled about the origin (the
-    /// paper's Fig. 10 takes 0.5, 1, 1.5 on a cube). Default 1; ignored when an OBJ net lists
-    /// its FCVs.
-    #[arg(long, value_name = "S")]
-    pub fcv_scale: Option<f64>,
-    /// Non-box schemes: an FCV side file, one `x y z` line (or `*` for the default) per face in
-    /// face order; replaces the FCVs of the net.
-    #[arg(long, value_name = "FILE")]
-    pub fcv_file: Option<PathBuf>,
-}
-
-/// Whether `scheme` names a non-box scheme (nets with face control vertices).
-fn is_nonbox(scheme: &str) -> bool {
-    matches!(
-        scheme,
-        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir"
-    )
-}
-
-/// Loads the net of a non-box scheme: an OBJ file keeps the FCVs it lists (the layout of
-/// `fairsub::schemes::nonbox::fcv`), `--fcv-file` and `--fcv-scale` set them otherwise. Returns
-/// a layout mesh when FCVs were given, else the plain mesh (whose FCVs are its barycentres).
-fn load_nonbox_net(a: &Args) -> Result<PolyMesh> {
-    use fairsub::schemes::nonbox::{FcvNet, fcv};
-    let path = std::path::Path::new(&a.net);
-    let is_obj = !a.net.starts_with("gallery:")
-        && path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    let (mesh, fcvs) = if is_obj {
-        let (mesh, fcvs, warnings) = fcv::read_obj_fcvs(path)?;
-        for w in warnings {
-            eprintln!("warning: {}: {w}", a.net);
-        }
-        (mesh, fcvs)
-    } else {
-        (super::load_net(&a.net)?.mesh, None)
-    };
-    let scale = a.fcv_scale.unwrap_or(1.0);
-    match fcvs {
-        Some(fcvs) => {
-            let net = FcvNet::new(mesh, fcvs)?;
-            if a.fcv_scale.is_some() && a.fcv_file.is_none() {
-                eprintln!("note: --fcv-scale is ignored: {} lists its own FCVs", a.net);
-            }
-            let net = match &a.fcv_file {
-                Some(file) => fcv::load_fcv_file(net.mesh, file, scale)?,
-                None => net,
-            };
-            Ok(net.to_layout_mesh())
-        }
-        None if a.fcv_scale.is_some() || a.fcv_file.is_some() => {
-            Ok(FcvNet::choose(&mesh, scale, a.fcv_file.as_deref())?.to_layout_mesh())
-        }
-        None => Ok(mesh),
-    }
 }
 
 /// `--fallback` values.
@@ -153,19 +102,7 @@ pub fn run(a: Args) -> Result<()> {
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
-    let nonbox = is_nonbox(&a.scheme);
-    if !nonbox && (a.fcv_scale.is_some() || a.fcv_file.is_some()) {
-        return Err(Error::InvalidArgument(format!(
-            "--fcv-scale and --fcv-file set face control vertices, which only the non-box \
-             schemes (nonbox, nonbox-4dir) have, not '{}'",
-            a.scheme
-        )));
-    }
-    let mesh = if nonbox {
-        load_nonbox_net(&a)?
-    } else {
-        super::load_net(&a.net)?.mesh
-    };
+    let mesh = nonbox::load_net(&a.scheme, &a.net, &a.fcv)?;
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
         let complex = build_complex_with(&a.scheme, &mesh, rings, !a.no_fill, a.fallback.into())?;
@@ -179,41 +116,11 @@ pub fn run(a: Args) -> Result<()> {
         );
     } else {
         let levels = a.levels.unwrap_or(1);
-        if nonbox {
-            for n in fairsub::schemes::nonbox::input_notes(&a.scheme, &mesh) {
-                eprintln!("note: {n}");
-            }
+        if nonbox::is_nonbox(&a.scheme) {
+            return nonbox::write_net(&a.scheme, &mesh, levels, a.limit, fmt, &a.output);
         }
-        let quad_nonbox = matches!(a.scheme.as_str(), "nonbox" | "non-box");
-        let mut limit_normals = None;
-        let refined = if quad_nonbox && a.limit {
-            // The limit mesh: the refined net's quads split into four triangles around their
-            // FCVs, every point at its limit (vertices, then face centres); OBJ gets normals.
-            let net = fairsub::schemes::nonbox::FcvNet::from_mesh(&mesh);
-            let (m, n) = fairsub::schemes::NonBox::limit_mesh_with_normals(&net, levels)?;
-            limit_normals = Some(n);
-            m
-        } else {
-            refine(&a.scheme, &mesh, levels, a.limit)?
-        };
-        let fcv_net = match (quad_nonbox && !a.limit, fmt) {
-            (true, OutputFormat::Mesh(fairsub::io::MeshFormat::Obj)) => {
-                fairsub::schemes::nonbox::FcvNet::from_layout_mesh(&refined)
-            }
-            _ => None,
-        };
+        let refined = refine(&a.scheme, &mesh, levels, a.limit)?;
         match fmt {
-            OutputFormat::Mesh(fairsub::io::MeshFormat::Obj) if limit_normals.is_some() => {
-                fairsub::schemes::nonbox::fcv::write_limit_obj(
-                    &a.output,
-                    &refined,
-                    limit_normals.as_deref().expect("checked"),
-                )?
-            }
-            _ if fcv_net.is_some() => fairsub::schemes::nonbox::write_fcv_obj(
-                &a.output,
-                fcv_net.as_ref().expect("checked"),
-            )?,
             OutputFormat::Mesh(mf) => fairsub::io::write_mesh(&a.output, &refined, mf)?,
             OutputFormat::Bv => fairsub::io::write_bv_mesh(&a.output, &refined)?,
             OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
