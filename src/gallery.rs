@@ -4,8 +4,9 @@
 //! c-nets (three rings of quads around one extraordinary vertex) of valence 3 to 10 in convex,
 //! saddle, planar-sector and single-raised-node shapes, prisms with n-gon caps, closed solids
 //! (cube, tetrahedron, octahedron, icosahedron, a torus with extraordinary vertices), open meshes
-//! and triangle meshes. Every net here is built by a function, so the files in the repository's
-//! `gallery/` folder are reproducible (`fairsub gallery -o gallery` writes them; a test checks
+//! and triangle meshes, and the FCV-scale series of the non-box paper (the cube triangulated
+//! around scaled face control vertices). Every net here is built by a function, so the files in
+//! the repository's `gallery/` folder are reproducible (`fairsub gallery -o gallery` writes them; a test checks
 //! they are in sync).
 
 use crate::mesh::PolyMesh;
@@ -385,6 +386,18 @@ pub fn tri_grid() -> PolyMesh {
     PolyMesh::new(pos, &faces).expect("tri grid")
 }
 
+/// The cube of [`cube`] with face control vertices `scale` times the face barycentres (scaled
+/// about the origin; the non-box paper's Fig. 10 takes 0.5, 1 and 1.5), as the
+/// quasi-four-directional triangle net of non-box subdivision: the 8 corners, then the 6 FCVs
+/// (the type-2 vertices, last), each face fanned into four triangles around its FCV. For
+/// `--scheme nonbox-4dir`; the quad variant reaches the same surface from `gallery:cube` with an
+/// FCV scale ([`crate::schemes::nonbox::FcvNet::scaled`]).
+pub fn nonbox_cube_fcv(scale: f64) -> PolyMesh {
+    use crate::schemes::nonbox::{FcvNet, fourdir::triangulate};
+    let net = FcvNet::scaled(cube(), scale).expect("finite scale");
+    triangulate(&net).mesh
+}
+
 /// The default net of `fairsub demo`: the convex extended c-net of valence 5.
 pub fn default_net() -> PolyMesh {
     cnet(5, CnetShape::Convex, 3)
@@ -404,6 +417,9 @@ pub fn all() -> Vec<(String, PolyMesh)> {
     ];
     for n in [3, 5, 6, 8] {
         out.push((format!("prism-{n}"), prism(n)));
+    }
+    for (name, s) in [("0.5", 0.5), ("1", 1.0), ("1.5", 1.5)] {
+        out.push((format!("nonbox-cube-fcv-{name}"), nonbox_cube_fcv(s)));
     }
     for n in 3..=10 {
         for shape in CnetShape::ALL {

@@ -183,9 +183,11 @@ pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
         "qas-plus-bi3" => qas_bi3(n, 0.5),
         "pgs" | "polar-bi2" | "tps" | "tps-adjustable" => super::bi2::local_matrix(scheme, n),
         "polbs" => super::bi2::local_matrix("polar-bi2", n),
+        "nonbox" | "non-box" => super::nonbox::local_matrix(n),
+        "nonbox-4dir" | "non-box-4dir" => super::nonbox::local_matrix_4dir(n),
         other => Err(Error::InvalidArgument(format!(
             "no analysis for scheme '{other}' (available: catmull-clark, loop, doo-sabin, eg, \
-             qas-plus, qas-0.4, pgs, polar-bi2, tps, tps-adjustable)"
+             qas-plus, qas-0.4, pgs, polar-bi2, tps, tps-adjustable, nonbox, nonbox-4dir)"
         ))),
     }
 }
@@ -262,9 +264,12 @@ pub fn characteristic_ring(
             super::bi2::characteristic_ring(scheme, n)
         }
         "polbs" => super::bi2::characteristic_ring("polar-bi2", n),
+        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir" => {
+            super::nonbox::characteristic_ring(n)
+        }
         other => Err(Error::InvalidArgument(format!(
             "no characteristic map for scheme '{other}' (available: catmull-clark, eg, qas-plus \
-             (Section 3), qas-plus-rules, pgs, polar-bi2, tps, tps-adjustable)"
+             (Section 3), qas-plus-rules, pgs, polar-bi2, tps, tps-adjustable, nonbox, nonbox-4dir)"
         ))),
     }
 }

@@ -12,6 +12,7 @@ pub mod certify;
 pub mod continuity;
 pub mod curvature;
 pub mod local;
+pub mod nonbox;
 
 use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix, DVector};

@@ -132,6 +132,19 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             });
         }
     }
+    if matches!(
+        a.scheme.as_str(),
+        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir"
+    ) {
+        for c in analysis::nonbox::published_comparisons(a.valence)? {
+            published.push(Published {
+                quantity: c.quantity,
+                published: c.published,
+                computed: c.computed,
+                difference: c.difference,
+            });
+        }
+    }
     if matches!(a.scheme.as_str(), "catmull-clark" | "cc") {
         let l = analysis::catmull_clark_lambda(a.valence);
         published.push(Published {

@@ -5,6 +5,8 @@ use fairsub::surface::{ComplexOptions, PatchComplex};
 use fairsub::{Error, PolyMesh, Result};
 use std::path::PathBuf;
 
+mod nonbox;
+
 /// Arguments of `fairsub subdivide`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -28,6 +30,9 @@ pub struct Args {
     /// Samples per patch edge when a patch complex is written as a mesh.
     #[arg(long, default_value_t = 8)]
     pub tess: usize,
+    /// Face control vertices (non-box schemes).
+    #[command(flatten)]
+    pub fcv: nonbox::FcvArgs,
     /// Output file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -151,8 +156,7 @@ pub fn run(a: Args) -> Result<()> {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
     let bi2 = Bi2Options::from_args(&a)?;
-    let loaded = super::load_net(&a.net)?;
-    let mesh = loaded.mesh;
+    let mesh = nonbox::load_net(&a.scheme, &a.net, &a.fcv)?;
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
         let complex = match (&a.q_file, &bi2) {
@@ -174,6 +178,9 @@ pub fn run(a: Args) -> Result<()> {
         );
     } else {
         let levels = a.levels.unwrap_or(1);
+        if nonbox::is_nonbox(&a.scheme) {
+            return nonbox::write_net(&a.scheme, &mesh, levels, a.limit, fmt, &a.output);
+        }
         let refined = match &bi2 {
             Some(b) => refine_with(b.scheme(), &mesh, levels, a.limit)?,
             None => refine(&a.scheme, &mesh, levels, a.limit)?,

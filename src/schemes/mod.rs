@@ -11,6 +11,7 @@ pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod eg;
 pub mod loop_subdivision;
+pub mod nonbox;
 pub mod qas;
 
 mod common;
@@ -18,6 +19,7 @@ mod common;
 pub use catmull_clark::CatmullClark;
 pub use doo_sabin::{DooSabin, DooSabinCc};
 pub use loop_subdivision::Loop;
+pub use nonbox::{NonBox, NonBox4Dir};
 
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -163,6 +165,28 @@ pub fn catalog() -> Vec<SchemeInfo> {
             status: "available",
         },
         SchemeInfo {
+            name: "nonbox",
+            family: "non-box subdivision [Huang]: four-directional S_3^1 non-box splines, quad variant with face control vertices (FCVs)",
+            input: "any polygon mesh (FCVs: face barycentres, scaled barycentres or an FCV file); boundaries: cubic B-spline V/E rules, ghost-FCV NFCV rule (fairsub's reconstruction)",
+            patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; Hermite fill",
+            smoothness: "C^1 with the convex hull property (all weights non-negative); C^1 at extraordinary vertices (lambda = 1/2 + cos(2 pi / k) / 4)",
+            valences: "all",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
+            name: "nonbox-4dir",
+            family: "non-box subdivision [Huang], four-directional variant: 1-4 split of quasi-four-directional triangle meshes",
+            input: "quasi-four-directional triangle meshes (vertex types found from the topology), or any polygon mesh (triangulated around barycentric FCVs)",
+            patches: "as nonbox (the same limit surface)",
+            smoothness: "as nonbox",
+            valences: "all",
+            refine: true,
+            rings: true,
+            status: "available",
+        },
+        SchemeInfo {
             name: "eg",
             family: "Evolving Guide subdivision [Karciauskas-Peters]: bi-4 rings joining bi-3 surroundings C^2",
             input: "Catmull-Clark nets (quads; one local Catmull-Clark step where extraordinary vertices touch or n-gons occur)",
@@ -299,6 +323,8 @@ pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
         "tps" => Ok(Box::new(bi2::Tps)),
         "tps-adjustable" => Ok(Box::new(bi2::AdjustableTps::default())),
         "bi2-mixed" => Ok(Box::new(bi2::Bi2Mixed)),
+        "nonbox" | "non-box" => Ok(Box::new(NonBox::default())),
+        "nonbox-4dir" | "non-box-4dir" => Ok(Box::new(NonBox4Dir)),
         _ => {
             let names: Vec<&str> = catalog()
                 .iter()

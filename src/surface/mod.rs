@@ -10,6 +10,7 @@ pub mod cc;
 pub mod ds;
 pub mod eg;
 pub mod loop_patches;
+pub mod nonbox;
 pub mod qas;
 pub mod regular;
 pub mod tessellate;
@@ -197,6 +198,14 @@ pub fn complex_with_notes(
             progress,
         ),
         "bi2-mixed" => plain(bi2::mixed_complex(mesh, opts, progress)),
+        "nonbox" | "non-box" => Ok((
+            nonbox::nonbox_mesh_complex(mesh, opts, progress)?,
+            crate::schemes::nonbox::input_notes(scheme, mesh),
+        )),
+        "nonbox-4dir" | "non-box-4dir" => Ok((
+            nonbox::nonbox_4dir_mesh_complex(mesh, opts, progress)?,
+            crate::schemes::nonbox::input_notes(scheme, mesh),
+        )),
         other => {
             let names: Vec<&str> = crate::schemes::catalog()
                 .iter()

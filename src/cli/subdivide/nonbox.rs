@@ -1,0 +1,136 @@
+//! The non-box part of `fairsub subdivide`: the FCV options, reading nets with their FCVs, and
+//! writing refined nets with FCVs and limit meshes with normals. Kept apart from the generic
+//! command so that the non-box schemes' extra data stay out of the other schemes' paths.
+
+use fairsub::io::{MeshFormat, OutputFormat};
+use fairsub::schemes::NonBox;
+use fairsub::schemes::nonbox::{FcvNet, fcv, input_notes, write_fcv_obj};
+use fairsub::{Error, PolyMesh, Result};
+use std::path::{Path, PathBuf};
+
+/// Face-control-vertex options of `fairsub subdivide` (non-box schemes only).
+#[derive(Debug, Clone, clap::Args)]
+pub struct FcvArgs {
+    /// Non-box schemes: the FCVs are S times the face barycentres, scaled about the origin (the
+    /// paper's Fig. 10 takes 0.5, 1, 1.5 on a cube). Default 1; ignored when an OBJ net lists
+    /// its FCVs.
+    #[arg(long, value_name = "S")]
+    pub fcv_scale: Option<f64>,
+    /// Non-box schemes: an FCV side file, one `x y z` line (or `*` for the default) per face in
+    /// face order; replaces the FCVs of the net.
+    #[arg(long, value_name = "FILE")]
+    pub fcv_file: Option<PathBuf>,
+}
+
+/// Whether `scheme` names a non-box scheme (nets with face control vertices).
+pub fn is_nonbox(scheme: &str) -> bool {
+    matches!(
+        scheme,
+        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir"
+    )
+}
+
+/// Loads the net `arg` for `scheme`. For the non-box schemes an OBJ file keeps the FCVs it
+/// lists (the layout of `fairsub::schemes::nonbox::fcv`) and `--fcv-file` / `--fcv-scale` set
+/// them otherwise; the result is then a layout mesh (else the plain mesh, whose FCVs are its
+/// barycentres). Other schemes get the plain net, and an error if FCV options were given.
+pub fn load_net(scheme: &str, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
+    if !is_nonbox(scheme) {
+        if o.fcv_scale.is_some() || o.fcv_file.is_some() {
+            return Err(Error::InvalidArgument(format!(
+                "--fcv-scale and --fcv-file set face control vertices, which only the non-box \
+                 schemes (nonbox, nonbox-4dir) have, not '{scheme}'"
+            )));
+        }
+        return Ok(super::super::load_net(arg)?.mesh);
+    }
+    let path = Path::new(arg);
+    let is_obj = !arg.starts_with("gallery:")
+        && path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let (mesh, fcvs) = if is_obj {
+        let (mesh, fcvs, warnings) = fcv::read_obj_fcvs(path)?;
+        for w in warnings {
+            eprintln!("warning: {arg}: {w}");
+        }
+        (mesh, fcvs)
+    } else {
+        (super::super::load_net(arg)?.mesh, None)
+    };
+    let scale = o.fcv_scale.unwrap_or(1.0);
+    match fcvs {
+        Some(fcvs) => {
+            let net = FcvNet::new(mesh, fcvs)?;
+            if o.fcv_scale.is_some() && o.fcv_file.is_none() {
+                eprintln!("note: --fcv-scale is ignored: {arg} lists its own FCVs");
+            }
+            let net = match &o.fcv_file {
+                Some(file) => fcv::load_fcv_file(net.mesh, file, scale)?,
+                None => net,
+            };
+            Ok(net.to_layout_mesh())
+        }
+        None if o.fcv_scale.is_some() || o.fcv_file.is_some() => {
+            Ok(FcvNet::choose(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
+        }
+        None => Ok(mesh),
+    }
+}
+
+/// Refines `mesh` `levels` times under a non-box scheme and writes the net: OBJ gets the
+/// FCVs as the last `v` lines (`nonbox`); with `limit`, `nonbox` writes the limit mesh (the
+/// refined quads split into four triangles around their FCVs, every point at its limit; OBJ
+/// with the exact limit normals as `vn` lines) and `nonbox-4dir` its refined triangle mesh at
+/// the limit positions. Prints how the input was read.
+pub fn write_net(
+    scheme: &str,
+    mesh: &PolyMesh,
+    levels: usize,
+    limit: bool,
+    fmt: OutputFormat,
+    output: &Path,
+) -> Result<()> {
+    for n in input_notes(scheme, mesh) {
+        eprintln!("note: {n}");
+    }
+    let quad = matches!(scheme, "nonbox" | "non-box");
+    let obj = matches!(fmt, OutputFormat::Mesh(MeshFormat::Obj));
+    let refined = if quad && limit {
+        let net = FcvNet::from_mesh(mesh);
+        let (m, normals) = NonBox::limit_mesh_with_normals(&net, levels)?;
+        if obj {
+            fcv::write_limit_obj(output, &m, &normals)?;
+        } else {
+            write_plain(&m, fmt, output)?;
+        }
+        m
+    } else {
+        let m = super::refine(scheme, mesh, levels, limit)?;
+        match FcvNet::from_layout_mesh(&m) {
+            Some(net) if quad && !limit && obj => write_fcv_obj(output, &net)?,
+            _ => write_plain(&m, fmt, output)?,
+        }
+        m
+    };
+    eprintln!(
+        "wrote {} vertices, {} faces ({} x {}{}) to {}",
+        refined.num_vertices(),
+        refined.num_faces(),
+        levels,
+        scheme,
+        if limit { ", limit" } else { "" },
+        output.display()
+    );
+    Ok(())
+}
+
+fn write_plain(m: &PolyMesh, fmt: OutputFormat, output: &Path) -> Result<()> {
+    match fmt {
+        OutputFormat::Mesh(mf) => fairsub::io::write_mesh(output, m, mf),
+        OutputFormat::Bv => fairsub::io::write_bv_mesh(output, m),
+        OutputFormat::Iges => Err(Error::InvalidArgument(
+            "IGES holds patches: use --rings K instead of --levels".into(),
+        )),
+    }
+}

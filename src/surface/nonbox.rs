@@ -1,0 +1,508 @@
+//! Non-box surfaces as exact patch complexes: S_3^1 cubic triangles, rings, and a fill.
+//!
+//! Where a quad cell of the net is regular (each corner an interior vertex of valence 4 or a
+//! boundary vertex with one or two faces), the limit over it is four cubic triangles of the S_3^1
+//! spline ([`crate::schemes::nonbox::bezier`]), each stored as the degenerate bi-3 patch
+//! `T(u (1 - v), v)` (side `v = 1` collapsed to the cell centre; the layout of
+//! [`super::loop_patches`]). Other cells (at extraordinary vertices, at boundary vertices with
+//! more than two faces, and the non-quad faces of the input) are refined with the
+//! scheme's own rules ([`crate::schemes::nonbox`]) together with the faces around their
+//! corners; their regular children are emitted as ring `l` at level `l` (three cells, twelve
+//! triangles, per sector of an isolated extraordinary vertex), the rest refined again. Points
+//! near the cut of a partial refinement are flagged untrusted and never used.
+//!
+//! # The fill (fairsub's own, documented construction)
+//!
+//! After `K` rings each remaining cell becomes one bi-3 Coons patch of its four edge curves, each
+//! defined once per edge and shared by both cells at the edge, so the fill is C^0:
+//!
+//! - an edge of a cell emitted at the same level takes that cell's exact edge curve;
+//! - a boundary edge takes the exact limit boundary curve, the cubic B-spline of the boundary
+//!   polygon (a corner stays put: ghost point `2 c - n`);
+//! - any other edge is the cubic Hermite interpolant of the limit positions of its end points
+//!   and the derivatives along the edge: at a regular vertex the exact S_3^1 derivative
+//!   `(F_l + F_r - F_l' - F_r') / 2` (the FCVs of the two faces beside the edge minus the two
+//!   behind it), which makes such an edge the exact limit curve wherever both ends are regular;
+//!   at an interior extraordinary vertex of valence `k`, along its edge `j`,
+//!   `(2 sqrt 2 / k) (cos(t_j) u1 + sin(t_j) u2)`, `t_j = (2 j - 1) pi / k`, with the paper's
+//!   tangents `u1 = sum cos(2 pi i / k) F_i`, `u2 = sum sin(2 pi i / k) F_i` (exact for
+//!   `k = 4`), so the spokes lie in the limit tangent plane; at an irregular boundary vertex the
+//!   chord projected into the limit tangent plane.
+//!
+//! The fill is C^0 to the last ring and between fill patches, not G^1 across its edges; with
+//! `K` rings it covers a region of size about `lambda^K`.
+
+use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use crate::bezier::BezierPatch;
+use crate::bezier::convert::cubic_bspline_to_bezier;
+use crate::error::Result;
+use crate::geom::{self, Point};
+use crate::mesh::PolyMesh;
+use crate::schemes::nonbox::bezier::{
+    CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor,
+};
+use crate::schemes::nonbox::{
+    FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil,
+};
+use crate::stencil::{Stencil, StencilTable};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+/// Trust of a point of a partially refined level.
+#[derive(Debug, Clone, Copy)]
+struct Info {
+    /// The position equals the one of full refinement.
+    pos_ok: bool,
+    /// (Vertices) the faces around it are all present, so its one-ring is the true one.
+    fan_ok: bool,
+    /// Input element this vertex descends from (vertices by V-vertices, FCVs of non-quads).
+    origin: Option<Element>,
+}
+
+/// Extraordinary element and sector of an active cell, and its input face.
+#[derive(Debug, Clone, Copy)]
+struct Tag {
+    element: Option<Element>,
+    sector: u32,
+    input_face: u32,
+}
+
+struct Level {
+    net: FcvNet,
+    points: Vec<Point>,
+    info: Vec<Info>,
+    active: Vec<(u32, Tag)>,
+}
+
+/// The non-box surface of a net with FCVs as a patch complex: four degenerate bi-3 patches per
+/// regular cell, `opts.rings` rings around every extraordinary element and, if `opts.fill`, the
+/// fill of the [module](self) documentation. Non-quad faces are always refined once (they are
+/// extraordinary elements whose first ring is at level 1). `progress(level)` is called after
+/// each refinement level.
+pub fn nonbox_complex(
+    net: &FcvNet,
+    opts: ComplexOptions,
+    mut progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    let m = &net.mesh;
+    let mut info: Vec<Info> = (0..m.num_vertices())
+        .map(|v| Info {
+            pos_ok: true,
+            fan_ok: true,
+            origin: Some(Element::Vertex(v as u32)),
+        })
+        .collect();
+    info.extend((0..m.num_faces()).map(|_| Info {
+        pos_ok: true,
+        fan_ok: true,
+        origin: None,
+    }));
+    let active = (0..m.num_faces() as u32)
+        .map(|f| {
+            (
+                f,
+                Tag {
+                    element: None,
+                    sector: 0,
+                    input_face: f,
+                },
+            )
+        })
+        .collect();
+    let mut level = Level {
+        points: net.points(),
+        net: net.clone(),
+        info,
+        active,
+    };
+    let mut out = PatchComplex::new();
+    for l in 0.. {
+        let mut marked = Vec::new();
+        let mut curves: HashMap<(u32, u32), [Point; 4]> = HashMap::new();
+        for &(f, tag) in &level.active {
+            match trusted_cell(&level, f as usize) {
+                Some(tris) => {
+                    record_curves(&level.net.mesh, f as usize, &tris, &mut curves);
+                    let prov = match (l, tag.element) {
+                        (0, _) | (_, None) => Provenance::Regular {
+                            face: tag.input_face,
+                        },
+                        (_, Some(element)) => Provenance::Ring {
+                            element,
+                            ring: l as u32,
+                            sector: tag.sector,
+                        },
+                    };
+                    for t in &tris {
+                        out.push(triangle_to_tensor(t), prov);
+                    }
+                }
+                None => marked.push((f, retag(&level, f as usize, tag))),
+            }
+        }
+        if marked.is_empty() {
+            break;
+        }
+        let quads = marked
+            .iter()
+            .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4);
+        if l >= opts.rings && quads {
+            if opts.fill {
+                fill(&level, &marked, &mut curves, &mut out);
+            }
+            break;
+        }
+        level = refine_around(&level, &marked)?;
+        progress(l + 1);
+    }
+    Ok(out)
+}
+
+/// The complex of a plain mesh under `nonbox`: a [layout mesh](FcvNet::to_layout_mesh) gives
+/// its FCVs, any other mesh its face barycentres.
+pub fn nonbox_mesh_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    nonbox_complex(&FcvNet::from_mesh(mesh), opts, progress)
+}
+
+/// The complex of a plain mesh under `nonbox-4dir` (read as in
+/// [`crate::schemes::nonbox::NonBox4Dir`]; provenance faces number the polygons, i.e. the
+/// type-2 vertices in order).
+pub fn nonbox_4dir_mesh_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    let (net, _) = crate::schemes::nonbox::fourdir::four_dir_of(mesh)?;
+    let (fcv, _) = net.to_fcv_net()?;
+    nonbox_complex(&fcv, opts, progress)
+}
+
+/// Whether `v` is a regular vertex: interior of valence 4, or boundary with two faces or one
+/// (a corner), where ghost FCVs complete the net.
+fn is_regular(m: &PolyMesh, v: usize) -> bool {
+    let n = m.outgoing_halfedges(v).len();
+    if m.is_boundary_vertex(v) {
+        n <= 2
+    } else {
+        n == 4
+    }
+}
+
+/// The four cubic triangles of cell `f` if it is regular and all its data are trusted.
+fn trusted_cell(level: &Level, f: usize) -> Option<[CubicTriangle; 4]> {
+    let m = &level.net.mesh;
+    if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
+        return None;
+    }
+    let st = cell_stencils(m, f)?;
+    let ok = st.iter().flatten().all(|s| {
+        s.entries()
+            .iter()
+            .all(|&(x, _)| level.info[x as usize].pos_ok)
+    });
+    if !ok {
+        return None;
+    }
+    Some(std::array::from_fn(|k| {
+        std::array::from_fn(|i| st[k][i].apply(&level.points))
+    }))
+}
+
+/// Stores the four edge curves of an emitted cell, keyed by vertex pairs (from the smaller).
+fn record_curves(
+    m: &PolyMesh,
+    f: usize,
+    tris: &[CubicTriangle; 4],
+    curves: &mut HashMap<(u32, u32), [Point; 4]>,
+) {
+    let c = m.face(f);
+    for k in 0..4 {
+        let (a, b) = (c[k], c[(k + 1) % 4]);
+        let t = &tris[k];
+        let mut e = [
+            t[tri_index(3, 0, 0)],
+            t[tri_index(2, 1, 0)],
+            t[tri_index(1, 2, 0)],
+            t[tri_index(0, 3, 0)],
+        ];
+        if a > b {
+            e.reverse();
+        }
+        curves.entry((a.min(b), a.max(b))).or_insert(e);
+    }
+}
+
+/// The tag of a marked cell: its first irregular corner's input element (sector = the cell's
+/// position in that vertex's fan), or the input face of a non-quad; else the inherited tag.
+fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
+    let m = &level.net.mesh;
+    if m.face_size(f) != 4 && tag.element.is_none() {
+        return Tag {
+            element: Some(Element::Face(tag.input_face)),
+            sector: 0,
+            ..tag
+        };
+    }
+    for &v in m.face(f) {
+        let v = v as usize;
+        if let Some(origin) = level.info[v].origin
+            && !is_regular(m, v)
+        {
+            if tag.element == Some(origin) {
+                return tag;
+            }
+            let sector = m
+                .vertex_faces(v)
+                .iter()
+                .position(|&g| g as usize == f)
+                .unwrap_or(0);
+            return Tag {
+                element: Some(origin),
+                sector: sector as u32,
+                ..tag
+            };
+        }
+    }
+    tag
+}
+
+/// Refines the faces around the corners of the marked cells with the non-box rules; the next
+/// level's active cells are the children of the marked ones.
+fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+    const UNSET: u32 = u32::MAX;
+    let m = &level.net.mesh;
+    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    let mut sel = vec![false; nf];
+    let mut sel_faces = Vec::new();
+    for &(f, _) in marked {
+        for &v in m.face(f as usize) {
+            for g in m.vertex_faces(v as usize) {
+                if !sel[g as usize] {
+                    sel[g as usize] = true;
+                    sel_faces.push(g);
+                }
+            }
+        }
+    }
+    sel_faces.sort_unstable();
+    let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();
+    let info = &level.info;
+    let whole_fan = |v: usize| info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
+    let sources_ok = |s: &Stencil| s.entries().iter().all(|&(x, _)| info[x as usize].pos_ok);
+    // An edge's boundary status is known when it has a twin or one end has its whole fan.
+    let known = |h: u32| {
+        m.he_twin(h).is_some()
+            || info[m.he_from(h) as usize].fan_ok
+            || info[m.he_to(h) as usize].fan_ok
+    };
+    let mut vid = vec![UNSET; nv];
+    let mut eid = vec![UNSET; ne];
+    let mut stencils: Vec<Stencil> = Vec::new();
+    let mut child_info: Vec<Info> = Vec::new();
+    let mut face_start = vec![0u32];
+    let mut corners: Vec<u32> = Vec::new();
+    let mut fcv_stencils: Vec<Stencil> = Vec::new();
+    let mut fcv_info: Vec<Info> = Vec::new();
+    let mut children: HashMap<u32, (u32, u32)> = HashMap::new();
+    for &g in &sel_faces {
+        let gu = g as usize;
+        let h0 = m.face_halfedge(gu);
+        let k = m.face_size(gu) as u32;
+        for h in h0..h0 + k {
+            let v = m.he_from(h) as usize;
+            if vid[v] == UNSET {
+                vid[v] = stencils.len() as u32;
+                let s = v_vertex_stencil(m, v);
+                child_info.push(Info {
+                    pos_ok: info[v].fan_ok && sources_ok(&s),
+                    fan_ok: whole_fan(v),
+                    origin: info[v].origin,
+                });
+                stencils.push(s);
+            }
+            let e = m.he_edge(h) as usize;
+            if eid[e] == UNSET {
+                eid[e] = stencils.len() as u32;
+                let s = e_vertex_stencil(m, e);
+                let both = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
+                child_info.push(Info {
+                    pos_ok: known(h) && sources_ok(&s),
+                    fan_ok: known(h) && both,
+                    origin: None,
+                });
+                stencils.push(s);
+            }
+        }
+        let fc = stencils.len() as u32;
+        let s = fcv_rule_stencil(m, gu);
+        let origin = match marked_tag.get(&g) {
+            Some(t) if k != 4 => Some(Element::Face(t.input_face)),
+            _ => None,
+        };
+        child_info.push(Info {
+            pos_ok: sources_ok(&s),
+            fan_ok: true,
+            origin,
+        });
+        stencils.push(s);
+        let first = (face_start.len() - 1) as u32;
+        for h in h0..h0 + k {
+            let v = m.he_from(h) as usize;
+            let e_out = m.he_edge(h) as usize;
+            let e_in = m.he_edge(m.he_prev(h)) as usize;
+            corners.extend_from_slice(&[vid[v], eid[e_out], fc, eid[e_in]]);
+            face_start.push(corners.len() as u32);
+            let s = nfcv_stencil(m, h);
+            fcv_info.push(Info {
+                pos_ok: known(h) && known(m.he_prev(h)) && sources_ok(&s),
+                fan_ok: true,
+                origin: None,
+            });
+            fcv_stencils.push(s);
+        }
+        children.insert(g, (first, k));
+    }
+    let nc = stencils.len();
+    let mut table = StencilTable::with_capacity(nv + nf, nc + fcv_stencils.len(), 6);
+    for s in stencils.into_iter().chain(fcv_stencils) {
+        table.push(s);
+    }
+    let points = table.apply(&level.points);
+    let mesh = PolyMesh::from_partial_refinement(points[..nc].to_vec(), face_start, corners)?;
+    let net = FcvNet {
+        mesh,
+        fcv: points[nc..].to_vec(),
+    };
+    child_info.extend(fcv_info);
+    let mut active = Vec::new();
+    for &(f, tag) in marked {
+        let (first, k) = children[&f];
+        for c in first..first + k {
+            active.push((c, tag));
+        }
+    }
+    Ok(Level {
+        net,
+        points,
+        info: child_info,
+        active,
+    })
+}
+
+/// The derivative of the limit surface at vertex `a` along its edge to `b` (unit edge
+/// parameter), see the [module](self) documentation.
+fn edge_derivative(level: &Level, a: usize, b: usize) -> Point {
+    let m = &level.net.mesh;
+    let pts = &level.points;
+    let chord = || {
+        let la = NonBox::limit_stencil(&level.net, a).apply(pts);
+        let lb = NonBox::limit_stencil(&level.net, b).apply(pts);
+        geom::sub(lb, la)
+    };
+    let Some(g) = m.find_halfedge(a, b) else {
+        return chord();
+    };
+    if let Some(r) = corner_fcvs(m, g) {
+        let q: Vec<Point> = r.iter().map(|s| s.apply(pts)).collect();
+        return geom::scale(geom::sub(geom::add(q[0], q[3]), geom::add(q[1], q[2])), 0.5);
+    }
+    let hs = m.outgoing_halfedges(a);
+    let (t1, t2) = NonBox::tangent_stencils(&level.net, a);
+    let (u1, u2) = (t1.apply(pts), t2.apply(pts));
+    if !m.is_boundary_vertex(a) {
+        let k = hs.len();
+        let j = hs.iter().position(|&h| h == g).unwrap_or(0);
+        let t = (2.0 * j as f64 - 1.0) * PI / k as f64;
+        let s = 2.0 * 2f64.sqrt() / k as f64;
+        return geom::scale(
+            geom::add(geom::scale(u1, t.cos()), geom::scale(u2, t.sin())),
+            s,
+        );
+    }
+    let c = chord();
+    let n = geom::normalize(geom::cross(u1, u2));
+    geom::sub(c, geom::scale(n, geom::dot(c, n)))
+}
+
+/// The other boundary neighbour of boundary vertex `v` (not `w`), or the ghost `2 v - w` at a
+/// corner (a vertex with one face).
+fn boundary_continuation(level: &Level, v: usize, w: usize) -> Point {
+    let m = &level.net.mesh;
+    let pos = &level.points;
+    let nb = m.vertex_neighbors(v);
+    if m.vertex_faces(v).len() == 1 {
+        return geom::sub(geom::scale(pos[v], 2.0), pos[w]);
+    }
+    let (first, last) = (nb[0] as usize, nb[nb.len() - 1] as usize);
+    pos[if first == w { last } else { first }]
+}
+
+/// The fill curve of edge `a -> b` (see the [module](self) documentation).
+fn fill_edge(level: &Level, a: usize, b: usize) -> [Point; 4] {
+    let m = &level.net.mesh;
+    let pos = &level.points;
+    let h = m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a));
+    if let Some(h) = h
+        && m.he_twin(h).is_none()
+    {
+        let d = [
+            boundary_continuation(level, a, b),
+            pos[a],
+            pos[b],
+            boundary_continuation(level, b, a),
+        ];
+        return cubic_bspline_to_bezier(&d);
+    }
+    let p0 = NonBox::limit_stencil(&level.net, a).apply(pos);
+    let p3 = NonBox::limit_stencil(&level.net, b).apply(pos);
+    let d0 = edge_derivative(level, a, b);
+    let d3 = edge_derivative(level, b, a);
+    [
+        p0,
+        geom::axpy(p0, 1.0 / 3.0, d0),
+        geom::axpy(p3, 1.0 / 3.0, d3),
+        p3,
+    ]
+}
+
+/// The Coons fill of the marked cells of the last level.
+fn fill(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    curves: &mut HashMap<(u32, u32), [Point; 4]>,
+    out: &mut PatchComplex,
+) {
+    let m = &level.net.mesh;
+    for &(f, tag) in marked {
+        let c = m.face(f as usize);
+        let mut edge = |k: usize| -> [Point; 4] {
+            let (a, b) = (c[k], c[(k + 1) % 4]);
+            let key = (a.min(b), a.max(b));
+            let mut e = *curves
+                .entry(key)
+                .or_insert_with(|| fill_edge(level, key.0 as usize, key.1 as usize));
+            if a > b {
+                e.reverse();
+            }
+            e
+        };
+        let v0 = edge(0);
+        let u1 = edge(1);
+        let mut v1 = edge(2);
+        v1.reverse();
+        let mut u0 = edge(3);
+        u0.reverse();
+        let element = tag.element.unwrap_or(Element::Vertex(c[0]));
+        out.push(
+            BezierPatch::coons(3, &v0, &u1, &v1, &u0),
+            Provenance::Cap {
+                element,
+                sector: tag.sector,
+            },
+        );
+    }
+}
