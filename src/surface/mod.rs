@@ -8,6 +8,7 @@ pub mod adjacency;
 pub mod cc;
 pub mod ds;
 pub mod eg;
+pub mod guided;
 pub mod loop_patches;
 pub mod qas;
 pub mod regular;
@@ -154,6 +155,20 @@ pub fn complex_with_notes(
                 "qas-0.4" => qas::qas_complex(mesh, eo, qas::Contraction::Fixed(0.4), progress)?,
                 _ => qas::qas_complex(mesh, eo, qas::Contraction::Gradual, progress)?,
             };
+            Ok((o.complex, o.notes))
+        }
+        name if guided::parse_scheme(name).is_some() => {
+            let scheme = guided::parse_scheme(name).expect("checked");
+            let o = guided::guided_complex(
+                mesh,
+                guided::GuidedComplexOptions {
+                    rings: opts.rings,
+                    cap: opts.fill,
+                    scheme,
+                    fallback,
+                },
+                progress,
+            )?;
             Ok((o.complex, o.notes))
         }
         "catmull-clark" | "cc" => plain(cc::catmull_clark_complex(
