@@ -72,3 +72,88 @@ fn lower_degree_guides_have_the_paper_counts() {
         }
     }
 }
+
+use fairsub::analysis::{self, catmull_clark_lambda, certify, continuity, curvature, local};
+use fairsub::gallery::{self, CnetShape};
+use fairsub::surface::eg::Fallback;
+use fairsub::surface::guided::{GuidedComplexOptions, guided_complex, parse_scheme};
+
+/// Multiplicities of `lambda^s`, `s = 0..=10`, among the eigenvalues of `m`, and the number of
+/// eigenvalues that are none of them.
+fn multiplicities(m: &DMatrix<f64>, lambda: f64) -> (Vec<usize>, usize) {
+    let ev = analysis::eigenvalues(m);
+    let mut mult = vec![0; 11];
+    let mut other = 0;
+    for z in ev {
+        let hit = (0..=10).find(|&s| {
+            let t = lambda.powi(s as i32);
+            (z.re - t).abs() < 1e-6 * t.max(1e-4) + 1e-9 && z.im.abs() < 1e-7
+        });
+        match hit {
+            Some(s) => mult[s] += 1,
+            None => other += 1,
+        }
+    }
+    (mult, other)
+}
+
+fn table5(n: usize) -> Vec<usize> {
+    vec![1, 2, 3, n_star(n), 2 * n, 3 * n, 3 * n, 3 * n, 3 * n, 2 * n, n]
+}
+
+#[test]
+fn spectrum_has_the_multiplicities_of_table_5() {
+    for n in (3..=10).filter(|&n| n != 4) {
+        for (name, lambda) in [
+            ("guided-bi5", catmull_clark_lambda(n)),
+            ("guided-bi5-half", 0.5),
+        ] {
+            let lm = local::local_matrix(name, n).unwrap();
+            let (mult, other) = multiplicities(&lm.matrix, lambda);
+            assert_eq!(other, 0, "{name} n={n}: eigenvalues outside lambda^s");
+            assert_eq!(mult, table5(n), "{name} n={n}");
+            let spec = analysis::spectrum(&lm.matrix);
+            assert!((spec.lambda - lambda).abs() < 1e-9);
+            assert!((spec.mu_over_lambda_squared - 1.0).abs() < 1e-9);
+        }
+    }
+}
+
+fn opts(name: &str, rings: usize, cap: bool) -> GuidedComplexOptions {
+    GuidedComplexOptions {
+        rings,
+        cap,
+        scheme: parse_scheme(name).unwrap(),
+        fallback: Fallback::Error,
+    }
+}
+
+#[test]
+fn rings_are_c2_to_each_other_and_to_the_surroundings() {
+    for name in ["guided-bi5", "guided-bi6"] {
+        for n in [3, 5, 6, 8] {
+            for shape in [CnetShape::Convex, CnetShape::Saddle, CnetShape::RaisedNode] {
+                let net = gallery::cnet(n, shape, 3);
+                let o = guided_complex(&net, opts(name, 4, true), |_| {}).unwrap();
+                assert!(o.notes.is_empty());
+                let r = continuity::check(&o.complex);
+                let scale = r.size.max(1.0);
+                for (kind, d) in &r.by_kind {
+                    eprintln!("{name} n={n} {shape:?} {kind}: {:.2e} {:.2e} {:.2e} g1 {:.2e}", d.c0, d.c1, d.c2, d.g1);
+                    assert!(d.c0 < 1e-11 * scale, "{name} n={n} {shape:?} {kind}: C0 {}", d.c0);
+                    if kind == "cap|cap" {
+                        assert!(d.g1 < 1e-8, "{name} n={n} {shape:?}: cap G1 {}", d.g1);
+                        continue;
+                    }
+                    assert!(d.c1 < 1e-10 * scale, "{name} n={n} {shape:?} {kind}: C1 {}", d.c1);
+                    if !kind.contains("cap") {
+                        assert!(d.c2 < 1e-8 * scale, "{name} n={n} {shape:?} {kind}: C2 {}", d.c2);
+                    }
+                }
+                assert!(r.by_kind.contains_key("regular|ring1"));
+                assert!(r.by_kind.contains_key("ring1|ring2"));
+                assert!(r.by_kind.contains_key("cap|ring4"));
+            }
+        }
+    }
+}
