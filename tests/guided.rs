@@ -98,7 +98,19 @@ fn multiplicities(m: &DMatrix<f64>, lambda: f64) -> (Vec<usize>, usize) {
 }
 
 fn table5(n: usize) -> Vec<usize> {
-    vec![1, 2, 3, n_star(n), 2 * n, 3 * n, 3 * n, 3 * n, 3 * n, 2 * n, n]
+    vec![
+        1,
+        2,
+        3,
+        n_star(n),
+        2 * n,
+        3 * n,
+        3 * n,
+        3 * n,
+        3 * n,
+        2 * n,
+        n,
+    ]
 }
 
 #[test]
@@ -139,20 +151,99 @@ fn rings_are_c2_to_each_other_and_to_the_surroundings() {
                 let r = continuity::check(&o.complex);
                 let scale = r.size.max(1.0);
                 for (kind, d) in &r.by_kind {
-                    eprintln!("{name} n={n} {shape:?} {kind}: {:.2e} {:.2e} {:.2e} g1 {:.2e}", d.c0, d.c1, d.c2, d.g1);
-                    assert!(d.c0 < 1e-11 * scale, "{name} n={n} {shape:?} {kind}: C0 {}", d.c0);
+                    eprintln!(
+                        "{name} n={n} {shape:?} {kind}: {:.2e} {:.2e} {:.2e} g1 {:.2e}",
+                        d.c0, d.c1, d.c2, d.g1
+                    );
+                    assert!(
+                        d.c0 < 1e-11 * scale,
+                        "{name} n={n} {shape:?} {kind}: C0 {}",
+                        d.c0
+                    );
                     if kind == "cap|cap" {
                         assert!(d.g1 < 1e-8, "{name} n={n} {shape:?}: cap G1 {}", d.g1);
                         continue;
                     }
-                    assert!(d.c1 < 1e-10 * scale, "{name} n={n} {shape:?} {kind}: C1 {}", d.c1);
+                    assert!(
+                        d.c1 < 1e-10 * scale,
+                        "{name} n={n} {shape:?} {kind}: C1 {}",
+                        d.c1
+                    );
                     if !kind.contains("cap") {
-                        assert!(d.c2 < 1e-8 * scale, "{name} n={n} {shape:?} {kind}: C2 {}", d.c2);
+                        assert!(
+                            d.c2 < 1e-8 * scale,
+                            "{name} n={n} {shape:?} {kind}: C2 {}",
+                            d.c2
+                        );
                     }
                 }
                 assert!(r.by_kind.contains_key("regular|ring1"));
                 assert!(r.by_kind.contains_key("ring1|ring2"));
                 assert!(r.by_kind.contains_key("cap|ring4"));
+            }
+        }
+    }
+}
+
+/// Per ring: (largest |K|, largest |H|, width of the K range + width of the H range).
+fn ring_stats(c: &fairsub::surface::PatchComplex) -> Vec<(u32, f64, f64, f64)> {
+    let k = curvature::ring_curvature(c);
+    k[0].rings
+        .iter()
+        .filter(|r| r.ring > 0)
+        .map(|r| {
+            (
+                r.ring,
+                r.gauss_min.abs().max(r.gauss_max.abs()),
+                r.mean_min.abs().max(r.mean_max.abs()),
+                (r.gauss_max - r.gauss_min) + (r.mean_max - r.mean_min),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn curvature_is_bounded_and_converges() {
+    for name in ["guided-bi5", "guided-bi6"] {
+        for n in (3..=10).filter(|&n| n != 4) {
+            for shape in CnetShape::ALL {
+                let net = gallery::cnet(n, shape, 3);
+                let o = guided_complex(&net, opts(name, 10, false), |_| {}).unwrap();
+                let st = ring_stats(&o.complex);
+                assert_eq!(st.len(), 10);
+                let (k5, h5) = (st[4].1, st[4].2);
+                for &(ring, k, h, w) in &st[4..] {
+                    eprintln!(
+                        "{name} n={n} {shape:?} ring {ring}: |K| {k:.6} |H| {h:.6} width {w:.3e}"
+                    );
+                }
+                // Bounded: the later rings stay within 1.5 times the extremes of rings 1..5.
+                let early_k = st[..5].iter().map(|r| r.1).fold(0.0, f64::max);
+                let early_h = st[..5].iter().map(|r| r.2).fold(0.0, f64::max);
+                for &(ring, k, h, _) in &st[5..] {
+                    assert!(
+                        k <= 1.5 * early_k + 1e-9 && h <= 1.5 * early_h + 1e-9,
+                        "{name} n={n} {shape:?} ring {ring}: |K| {k} / {early_k}, |H| {h} / {early_h}"
+                    );
+                }
+                // Converging: the per-ring extremes settle (geometrically).
+                let diff =
+                    |a: usize, b: usize| (st[a].1 - st[b].1).abs() + (st[a].2 - st[b].2).abs();
+                let scale = k5 + h5;
+                let (d89, d910) = (diff(7, 8), diff(8, 9));
+                assert!(
+                    d910 <= (0.75 * d89).max(1e-4 * scale) + 1e-12,
+                    "{name} n={n} {shape:?}: extremes do not settle ({d89} -> {d910})"
+                );
+                // bi-6 reproduces Q o chi (bi-6) exactly: curvature continuous at the centre, the
+                // ranges shrink to a point; bi-5 keeps a bounded, converged range.
+                if name == "guided-bi6" {
+                    let (w6, w10) = (st[5].3, st[9].3);
+                    assert!(
+                        w10 <= 0.5 * w6 + 1e-9,
+                        "{name} n={n} {shape:?}: widths {w6} -> {w10}"
+                    );
+                }
             }
         }
     }

@@ -41,8 +41,12 @@
 //! i.e. the guide reproduces the second-order data of the surroundings along the cap boundary as
 //! well as a G^2 guide can; `F_4(g^k) = int_[0,1]^2 sum_(i+j=4) 4!/(i! j!) (d_u^i d_v^j g^k)^2`
 //! is the paper's fairness functional (Appendix B uses `F_5` for the cap's reparametrisation)
-//! with weight `w` = [`GuideFit::DEFAULT_WEIGHT`]. The centre point is free (fitted too). `P` is
-//! linear in the c-net, so the whole cap is.
+//! with weight `w` = [`GuideFit::DEFAULT_WEIGHT`] (`1e-6`; data in c-net units, `F_4` over the
+//! guide's unit square). The data alone leave a few directions of `P` nearly free (the fit is
+//! ill-conditioned without `F_4`); a small weight fixes them without pulling the guide off the
+//! surroundings: weights of `1e-4` and more make the guide miss the boundary data and show as a
+//! ripple in the first ring on the raised-node nets, `1e-9 .. 1e-6` give the same pictures.
+//! The centre point is free (fitted too). `P` is linear in the c-net, so the whole cap is.
 
 use super::bern::{bernstein_derivs, binom, gauss_legendre, kron, raise, subsegment};
 use super::chi::{CharRing, ChiKind};
@@ -299,7 +303,7 @@ pub struct GuideFit {
 
 impl GuideFit {
     /// The default weight of `F_4`.
-    pub const DEFAULT_WEIGHT: f64 = 1e-4;
+    pub const DEFAULT_WEIGHT: f64 = 1e-6;
 }
 
 impl Default for GuideFit {
