@@ -9,3 +9,12 @@ $F compare gallery:cnet-5-saddle --schemes catmull-clark,eg,qas-plus --zoom-ring
 $F compare gallery:cnet-6-convex --schemes catmull-clark,qas-plus --zoom-rings 3..11 "${common[@]}" -o docs/images/cc-qas-cnet-6-convex.png
 $F compare gallery:cnet-7-saddle --schemes catmull-clark,qas-plus --zoom-rings 3..11 "${common[@]}" -o docs/images/cc-qas-cnet-7-saddle.png
 $F compare gallery:cnet-5-planar --schemes catmull-clark,eg,qas-plus --zoom-rings 1..11 "${common[@]}" -o docs/images/cc-eg-qas-cnet-5-planar.png
+# Guided subdivision beside Catmull-Clark, EG and QAS+ (EG has rules for 3 and 5, QAS+ for 5..7;
+# elsewhere they fall back to Catmull-Clark, so those rows are left out).
+for shape in convex saddle planar raised; do
+  $F compare gallery:cnet-5-$shape --schemes catmull-clark,eg,qas-plus,guided-bi5,guided-bi6 --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-5-$shape.png
+done
+$F compare gallery:cnet-3-saddle --schemes catmull-clark,eg,guided-bi5,guided-bi6 --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-3-saddle.png
+$F compare gallery:cnet-7-planar --schemes catmull-clark,qas-plus,guided-bi5,guided-bi6-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-7-planar.png
+$F compare gallery:cnet-8-raised --schemes catmull-clark,guided-bi5,guided-bi6,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-8-raised.png
+$F compare gallery:cnet-10-convex --schemes catmull-clark,guided-bi5,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-10-convex.png

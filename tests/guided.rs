@@ -248,3 +248,82 @@ fn curvature_is_bounded_and_converges() {
         }
     }
 }
+
+#[test]
+fn variants_contraction_half_and_lower_degree_guides() {
+    // lambda = 1/2 through the QAS+ chi (n = 5..10), bi-4 and bi-3 guides: C^2 rings, G^1 cap.
+    for (name, n) in [
+        ("guided-bi5-half", 5),
+        ("guided-bi6-half", 7),
+        ("guided-bi5-g4", 5),
+        ("guided-bi5-g3", 6),
+        ("guided-bi6-g4-half", 9),
+    ] {
+        let net = gallery::cnet(n, CnetShape::Saddle, 3);
+        let o = guided_complex(&net, opts(name, 3, true), |_| {}).unwrap();
+        let r = continuity::check(&o.complex);
+        let scale = r.size.max(1.0);
+        for (kind, d) in &r.by_kind {
+            assert!(d.c0 < 1e-11 * scale, "{name} {kind}: C0 {}", d.c0);
+            if kind == "cap|cap" {
+                assert!(d.g1 < 1e-8, "{name}: cap G1 {}", d.g1);
+            } else {
+                assert!(d.c1 < 1e-10 * scale, "{name} {kind}: C1 {}", d.c1);
+                if !kind.contains("cap") {
+                    assert!(d.c2 < 1e-8 * scale, "{name} {kind}: C2 {}", d.c2);
+                }
+            }
+        }
+        let lm = local::local_matrix(name, n).unwrap();
+        let spec = analysis::spectrum(&lm.matrix);
+        let expect = if name.ends_with("half") {
+            0.5
+        } else {
+            catmull_clark_lambda(n)
+        };
+        assert!((spec.lambda - expect).abs() < 1e-9, "{name}");
+    }
+    // Outside 5..10 the contraction 1/2 has no chi: Catmull-Clark's chi with a note, or an
+    // error naming the vertex.
+    let net = gallery::cnet(3, CnetShape::Convex, 3);
+    let o = guided_complex(
+        &net,
+        GuidedComplexOptions {
+            fallback: Fallback::CatmullClark,
+            ..opts("guided-bi5-half", 2, true)
+        },
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(o.notes.len(), 1, "{:?}", o.notes);
+    let e = guided_complex(&net, opts("guided-bi5-half", 2, true), |_| {}).unwrap_err();
+    assert!(e.to_string().contains("vertex 0"), "{e}");
+}
+
+#[test]
+fn characteristic_ring_is_certified_and_whole_meshes_work() {
+    for n in [3, 5, 6, 9, 12, 16] {
+        let (ring, lambda) = local::characteristic_ring("guided-bi5", n).unwrap();
+        assert!((lambda - catmull_clark_lambda(n)).abs() < 1e-12);
+        let cert = certify::certify_ring(&ring, lambda);
+        assert!(cert.injective, "n={n}: {cert:?}");
+    }
+    // Closed meshes with several extraordinary vertices (cube: 8 of valence 3).
+    let o = guided_complex(&gallery::cube(), opts("guided-bi6", 3, true), |_| {}).unwrap();
+    let caps = o
+        .complex
+        .provenance
+        .iter()
+        .filter(|p| matches!(p, fairsub::surface::Provenance::Cap { .. }))
+        .count();
+    assert!(caps > 0);
+    let r = continuity::check(&o.complex);
+    assert_eq!(r.open_sides, 0);
+    for (kind, d) in &r.by_kind {
+        assert!(d.c0 < 1e-10 * r.size.max(1.0), "cube {kind}: {}", d.c0);
+    }
+    // A bad c-net length is an error, not a panic.
+    let g = fairsub::schemes::guided::rings::Guided::new(5, Default::default()).unwrap();
+    assert!(g.rings(&[[0.0; 3]; 7], 2).is_err());
+    assert!(fairsub::schemes::guided::rings::Guided::new(4, Default::default()).is_err());
+}
