@@ -57,6 +57,9 @@ pub struct AnalyzeArgs {
     /// Valence of the extraordinary vertex (or size of the extraordinary facet).
     #[arg(long, short = 'n')]
     pub valence: usize,
+    /// Contraction of a guided scheme (0.5; default Catmull-Clark's lambda).
+    #[arg(long)]
+    pub lambda: Option<f64>,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -67,7 +70,8 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 }
 
 /// Runs `fairsub analyze`.
-pub fn analyze(a: AnalyzeArgs) -> Result<()> {
+pub fn analyze(mut a: AnalyzeArgs) -> Result<()> {
+    a.scheme = fairsub::surface::guided::scheme_with_lambda(&a.scheme, a.lambda)?;
     let lm = local::local_matrix(&a.scheme, a.valence)?;
     let spectrum = analysis::spectrum(&lm.matrix);
     let blocks = lm.fourier_blocks().unwrap_or_default();

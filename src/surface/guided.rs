@@ -242,3 +242,28 @@ pub fn parse_scheme(name: &str) -> Option<GuidedOptions> {
     }
     rest.is_empty().then_some(o)
 }
+
+/// The scheme name that the command-line option `--lambda` selects: for a guided scheme,
+/// `lambda = 0.5` appends `-half` (the QAS+ characteristic map, Section 6.3 of the paper); no
+/// `--lambda` keeps the name (Catmull-Clark's chi and lambda, the paper's default). Any other
+/// value, or `--lambda` with a scheme that is not guided, is an error naming the way out.
+pub fn scheme_with_lambda(name: &str, lambda: Option<f64>) -> Result<String> {
+    let Some(l) = lambda else {
+        return Ok(name.to_string());
+    };
+    let Some(o) = parse_scheme(name) else {
+        return Err(Error::InvalidArgument(format!(
+            "--lambda {l}: only the guided schemes (guided-bi5, guided-bi6, ...) take a contraction; '{name}' has its own"
+        )));
+    };
+    if (l - 0.5).abs() > 1e-12 {
+        return Err(Error::InvalidArgument(format!(
+            "--lambda {l}: guided subdivision offers lambda = 0.5 (QAS+'s characteristic map, valences 5..10) or, without --lambda, Catmull-Clark's lambda"
+        )));
+    }
+    Ok(if o.chi == ChiKind::Half {
+        name.to_string()
+    } else {
+        format!("{name}-half")
+    })
+}
