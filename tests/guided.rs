@@ -327,3 +327,31 @@ fn characteristic_ring_is_certified_and_whole_meshes_work() {
     assert!(g.rings(&[[0.0; 3]; 7], 2).is_err());
     assert!(fairsub::schemes::guided::rings::Guided::new(4, Default::default()).is_err());
 }
+
+#[test]
+fn cap_reparametrisation_is_symmetric_g1_and_f5_minimal() {
+    use fairsub::schemes::guided::cap::reparametrisation;
+    use fairsub::schemes::guided::chi::{CharRing, ChiKind};
+    for n in (3..=16).filter(|&n| n != 4) {
+        let mut kinds = vec![ChiKind::CatmullClark];
+        if (5..=10).contains(&n) {
+            kinds.push(ChiKind::Half);
+        }
+        for kind in kinds {
+            let chi = CharRing::new(n, kind).unwrap();
+            let r = reparametrisation(&chi).unwrap();
+            eprintln!(
+                "n={n} {kind:?}: free {} residual {:.1e}",
+                r.free_parameters, r.residual
+            );
+            // The derived constraints leave 15 (the paper says 14: one condition of the lost
+            // Fig. 23b is not recoverable from the text).
+            assert_eq!(r.free_parameters, 15, "n={n} {kind:?}");
+            assert!(
+                r.residual < 1e-10,
+                "n={n} {kind:?}: residual {}",
+                r.residual
+            );
+        }
+    }
+}
