@@ -355,3 +355,73 @@ fn cap_reparametrisation_is_symmetric_g1_and_f5_minimal() {
         }
     }
 }
+
+#[test]
+fn macro_patch_variants_are_c2_and_curvature_bounded() {
+    // Section 6.2 as fairsub derives it: 2 x 2 bi-4 and 3 x 3 bi-3 macro patches whose outer
+    // layers C^2-prolong the previous ring's macro patch.
+    for (name, deg, pieces) in [("guided-bi4-macro", 4, 4), ("guided-bi3-macro", 3, 9)] {
+        for n in [3, 5, 8] {
+            for shape in [CnetShape::Saddle, CnetShape::RaisedNode] {
+                let net = gallery::cnet(n, shape, 3);
+                let o = guided_complex(&net, opts(name, 8, true), |_| {}).unwrap();
+                assert_eq!(o.notes.len(), 1, "the missing cap is named: {:?}", o.notes);
+                let rings: Vec<_> = o
+                    .complex
+                    .patches
+                    .iter()
+                    .zip(&o.complex.provenance)
+                    .filter(|(_, p)| matches!(p, fairsub::surface::Provenance::Ring { .. }))
+                    .collect();
+                assert_eq!(rings.len(), 8 * 3 * n * pieces, "{name} n={n}");
+                assert!(rings.iter().all(|(p, _)| p.deg_u == deg && p.deg_v == deg));
+                let r = continuity::check(&o.complex);
+                let scale = r.size.max(1.0);
+                for (kind, d) in &r.by_kind {
+                    assert!(
+                        d.c0 < 1e-11 * scale && d.c1 < 1e-10 * scale && d.c2 < 1e-8 * scale,
+                        "{name} n={n} {shape:?} {kind}: C0 {} C1 {} C2 {}",
+                        d.c0,
+                        d.c1,
+                        d.c2
+                    );
+                }
+                assert!(r.by_kind.contains_key("ring7|ring8"));
+                let st = ring_stats(&o.complex);
+                let early_k = st[..4].iter().map(|r| r.1).fold(0.0, f64::max);
+                let early_h = st[..4].iter().map(|r| r.2).fold(0.0, f64::max);
+                for &(ring, k, h, _) in &st[4..] {
+                    assert!(
+                        k <= 1.5 * early_k + 1e-9 && h <= 1.5 * early_h + 1e-9,
+                        "{name} n={n} {shape:?} ring {ring}: |K| {k} / {early_k}, |H| {h} / {early_h}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn whole_nets_of_valence_3_to_16() {
+    // One extraordinary vertex of each valence 3, 5..16 on the gallery's c-nets: C^2 rings and
+    // joins, G^1 cap; ring 1 also carries the n ring patches of each sector.
+    for n in (3..=16).filter(|&n| n != 4) {
+        let net = gallery::cnet(n, CnetShape::Convex, 3);
+        let o = guided_complex(&net, opts("guided-bi5", 3, true), |_| {}).unwrap();
+        assert!(o.notes.is_empty(), "n={n}: {:?}", o.notes);
+        let r = continuity::check(&o.complex);
+        let scale = r.size.max(1.0);
+        for (kind, d) in &r.by_kind {
+            assert!(d.c0 < 1e-10 * scale, "n={n} {kind}: C0 {}", d.c0);
+            if kind == "cap|cap" {
+                assert!(d.g1 < 1e-8, "n={n}: cap G1 {}", d.g1);
+            } else {
+                assert!(d.c1 < 1e-9 * scale, "n={n} {kind}: C1 {}", d.c1);
+                if !kind.contains("cap") {
+                    assert!(d.c2 < 1e-7 * scale, "n={n} {kind}: C2 {}", d.c2);
+                }
+            }
+        }
+        assert!(r.by_kind.contains_key("cap|ring3"), "n={n}");
+    }
+}

@@ -446,10 +446,21 @@ fn guided_characteristic_ring(
     for s in 0..n {
         let ring = &g.ring_table * l.rows(s * mg, mg);
         for x in 0..3 {
-            out.push(crate::bezier::BezierPatch::from_fn(d, d, |i, j| {
-                let r = x * m + i * (d + 1) + j;
-                [ring[(r, 0)] / lambda, ring[(r, 1)] / lambda, 0.0]
-            }));
+            let cps: Vec<[f64; 3]> = (0..m)
+                .map(|r| {
+                    let r = x * m + r;
+                    [ring[(r, 0)] / lambda, ring[(r, 1)] / lambda, 0.0]
+                })
+                .collect();
+            match o.ring.macro_kind() {
+                None => out.push(crate::bezier::BezierPatch::new(d, d, cps)),
+                // The macro variants: the pieces of the macro patch.
+                Some(k) => out.extend(
+                    k.pieces_of(&cps)
+                        .into_iter()
+                        .map(|p| crate::bezier::BezierPatch::new(k.degree(), k.degree(), p)),
+                ),
+            }
         }
     }
     Ok((out, lambda))

@@ -216,6 +216,28 @@ pub fn catalog() -> Vec<SchemeInfo> {
             rings: true,
             status: "available (patches)",
         },
+        SchemeInfo {
+            name: "guided-bi4-macro",
+            family: "guided subdivision, Section 6.2: rings of 2 x 2 bi-4 macro patches (C^3 inner knot), fairsub's derivation (figures lost)",
+            input: "as guided-bi5",
+            patches: "bi-3 on regular quads; K rings of 12n bi-4 patches; no cap (the hole stays open)",
+            smoothness: "C^2 rings and joins, curvature bounded at the centre",
+            valences: "as guided-bi5",
+            refine: false,
+            rings: true,
+            status: "reconstruction (rings only)",
+        },
+        SchemeInfo {
+            name: "guided-bi3-macro",
+            family: "guided subdivision, Section 6.2: rings of 3 x 3 bi-3 macro patches (C^2 knots), fairsub's derivation (figures lost)",
+            input: "as guided-bi5",
+            patches: "bi-3 on regular quads; K rings of 27n bi-3 patches; no cap (the hole stays open)",
+            smoothness: "C^2 rings and joins, curvature bounded at the centre",
+            valences: "as guided-bi5",
+            refine: false,
+            rings: true,
+            status: "reconstruction (rings only)",
+        },
     ]
 }
 

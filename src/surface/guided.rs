@@ -74,7 +74,7 @@ impl GuidedCaps {
             return Ok(t.clone());
         }
         let scheme = Guided::new(n, self.options_for(n))?;
-        let cap = if self.opts.cap {
+        let cap = if self.opts.cap && scheme.opts.ring.macro_kind().is_none() {
             Some(CapTables::new(
                 n,
                 scheme.degree(),
@@ -156,17 +156,31 @@ impl CapBuilder for GuidedCaps {
         }
         let t = self.tables(n)?;
         let d = t.scheme.degree();
+        let mk = t.scheme.opts.ring.macro_kind();
+        if mk.is_some() && self.opts.cap {
+            let mut notes = self.notes.lock().expect("no poisoning");
+            let msg = "the macro-patch variants have no cap (the paper's bi-3 / bi-4 caps are in the lost Fig. 17): the hole inside the last ring stays open".to_string();
+            if !notes.contains(&msg) {
+                notes.push(msg);
+            }
+        }
         let (rings, guide) = t.scheme.rings(cnet, self.opts.rings)?;
         for (l, ring) in rings.iter().enumerate() {
             for (k, p) in ring.iter().enumerate() {
-                out.push(
-                    BezierPatch::new(d, d, p.clone()),
-                    Provenance::Ring {
-                        element,
-                        ring: first_ring + l as u32,
-                        sector: (k / 3) as u32,
-                    },
-                );
+                let prov = Provenance::Ring {
+                    element,
+                    ring: first_ring + l as u32,
+                    sector: (k / 3) as u32,
+                };
+                match mk {
+                    None => out.push(BezierPatch::new(d, d, p.clone()), prov),
+                    Some(kind) => {
+                        let e = kind.degree();
+                        for piece in kind.pieces_of(p) {
+                            out.push(BezierPatch::new(e, e, piece), prov);
+                        }
+                    }
+                }
             }
         }
         if let (Some(cap), Some(last)) = (&t.cap, rings.last()) {
@@ -211,7 +225,8 @@ pub fn guided_complex(
     })
 }
 
-/// The scheme options named by a command-line scheme name: `guided-bi5`, `guided-bi6`, with the
+/// The scheme options named by a command-line scheme name: `guided-bi5`, `guided-bi6`,
+/// `guided-bi4-macro`, `guided-bi3-macro` (Section 6.2, rings only), with the
 /// suffixes `-half` (contraction 1/2, the QAS+ characteristic map) and `-g4` / `-g3` (guide of
 /// degree bi-4 / bi-3, Section 6.1), in that order (`guided-bi6-g4-half`).
 pub fn parse_scheme(name: &str) -> Option<GuidedOptions> {
@@ -222,6 +237,10 @@ pub fn parse_scheme(name: &str) -> Option<GuidedOptions> {
         (RingDegree::Bi5, r)
     } else if let Some(r) = rest.strip_prefix("bi6") {
         (RingDegree::Bi6, r)
+    } else if let Some(r) = rest.strip_prefix("bi4-macro") {
+        (RingDegree::Bi4Macro, r)
+    } else if let Some(r) = rest.strip_prefix("bi3-macro") {
+        (RingDegree::Bi3Macro, r)
     } else {
         return None;
     };

@@ -52,6 +52,7 @@ use super::bern::{bernstein_derivs, binom, gauss_legendre, kron, raise, subsegme
 use super::chi::{CharRing, ChiKind};
 use super::guide::{GuideDegree, GuideSpace, restriction};
 use super::jets::{block_entry, corner_block, patch_series};
+use super::macro_patch::MacroKind;
 use crate::error::{Error, Result};
 use nalgebra::DMatrix;
 
@@ -66,22 +67,36 @@ pub enum RingDegree {
     Bi5,
     /// Bi-6 from 4 x 4 corner jets averaged (Fig. 2b): C^2 rings.
     Bi6,
+    /// 2 x 2 bi-4 macro patches (Section 6.2, derived in [`super::macro_patch`]).
+    Bi4Macro,
+    /// 3 x 3 bi-3 macro patches (Section 6.2, derived in [`super::macro_patch`]).
+    Bi3Macro,
 }
 
 impl RingDegree {
-    /// Polynomial degree.
+    /// Polynomial degree of the ring tables: 5 or 6; the macro variants are tabulated as their
+    /// virtual bi-5 patches ([`super::macro_patch`]).
     pub fn degree(self) -> usize {
         match self {
-            RingDegree::Bi5 => 5,
             RingDegree::Bi6 => 6,
+            _ => 5,
         }
     }
 
     /// Jet size per variable.
     pub fn jet(self) -> usize {
         match self {
-            RingDegree::Bi5 => 3,
             RingDegree::Bi6 => 4,
+            _ => 3,
+        }
+    }
+
+    /// The macro-patch variant, if any.
+    pub fn macro_kind(self) -> Option<MacroKind> {
+        match self {
+            RingDegree::Bi4Macro => Some(MacroKind::Bi4),
+            RingDegree::Bi3Macro => Some(MacroKind::Bi3),
+            _ => None,
         }
     }
 }
@@ -169,6 +184,7 @@ fn assemble(
     prev_a: &DMatrix<f64>,
     prev_c: &DMatrix<f64>,
     e: usize,
+    mk: Option<MacroKind>,
 ) -> [DMatrix<f64>; 3] {
     let src = prev_a.ncols();
     let m = (d + 1) * (d + 1);
@@ -177,9 +193,15 @@ fn assemble(
         DMatrix::zeros(m, src),
         DMatrix::zeros(m, src),
     ];
+    // The previous ring is a macro spline (virtual bi-5) or a polynomial (bi-3 surroundings,
+    // bi-5/6 rings).
+    let pro = |b: [f64; 4]| match mk {
+        Some(k) if e == 5 => k.prolong(b),
+        _ => prolong(e, d, b),
+    };
     for x in 0..3 {
-        let pa = prolong(e, d, prolongation_box(x, true)) * prev_a;
-        let pc = prolong(e, d, prolongation_box(x, false)) * prev_c;
+        let pa = pro(prolongation_box(x, true)) * prev_a;
+        let pc = pro(prolongation_box(x, false)) * prev_c;
         let mut count = vec![0usize; m];
         let mut acc = DMatrix::<f64>::zeros(m, src);
         for (c, blk) in &inner[x] {
@@ -385,6 +407,7 @@ impl Guided {
                 &DMatrix::zeros((d + 1) * (d + 1), mg),
                 &DMatrix::zeros((d + 1) * (d + 1), mg),
                 d,
+                None,
             );
             let cur = assemble(
                 d,
@@ -393,6 +416,7 @@ impl Guided {
                 &prev[0],
                 &prev[2],
                 d,
+                opts.ring.macro_kind(),
             );
             let m = (d + 1) * (d + 1);
             let mut t = DMatrix::zeros(3 * m, mg);
@@ -408,7 +432,7 @@ impl Guided {
             let gs = guide0.rows(s * mg, mg).into_owned();
             let pa = surrounding_patch(n, s, 1, 0);
             let pc = surrounding_patch(n, s, 0, 1);
-            let cur = assemble(d, k, &apply_blocks(&inner, &gs), &pa, &pc, 3);
+            let cur = assemble(d, k, &apply_blocks(&inner, &gs), &pa, &pc, 3, None);
             let m = (d + 1) * (d + 1);
             let mut t = DMatrix::zeros(3 * m, 6 * n + 1);
             for x in 0..3 {
