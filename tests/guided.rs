@@ -425,3 +425,191 @@ fn whole_nets_of_valence_3_to_16() {
         assert!(r.by_kind.contains_key("cap|ring3"), "n={n}");
     }
 }
+
+#[test]
+fn command_line_subdivide_analyze_render_compare() {
+    use std::process::Command;
+    let dir = std::env::temp_dir().join(format!("fairsub-guided-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            o.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&o.stdout).into_owned(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    let bv = dir.join("g.bv");
+    let bv = bv.to_str().unwrap();
+    for scheme in ["guided-bi5", "guided-bi6"] {
+        let (code, _, err) = run(&[
+            "subdivide",
+            "gallery:cnet-6-saddle",
+            "--scheme",
+            scheme,
+            "--lambda",
+            "0.5",
+            "--cap",
+            "-o",
+            bv,
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(err.contains(&format!("{scheme}-half")), "{err}");
+        let (code, out, err) = run(&["check", bv, "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let by_kind = &v["continuity"]["by_kind"];
+        assert!(
+            by_kind["cap|cap"].is_object() && by_kind["cap|ring6"].is_object(),
+            "{by_kind}"
+        );
+        assert_eq!(
+            v["continuity"]["open_sides"].as_u64(),
+            Some(36),
+            "only the border is open"
+        );
+    }
+    // analyze: table (5) for both contractions, reported beside the computed multiplicities.
+    for n in ["3", "7"] {
+        for lambda in [None, Some("0.5")] {
+            let mut args = vec![
+                "analyze",
+                "--scheme",
+                "guided-bi5",
+                "--valence",
+                n,
+                "--json",
+            ];
+            if let Some(l) = lambda {
+                args.extend(["--lambda", l]);
+            }
+            let (code, out, err) = run(&args);
+            assert_eq!(code, 0, "{err}");
+            let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+            let p = v["published"].as_array().unwrap();
+            assert_eq!(p.len(), 12, "lambda and 11 multiplicities");
+            for e in p {
+                assert!(e["difference"].as_f64().unwrap() < 1e-9, "n={n} {e}");
+            }
+        }
+    }
+    // Bad values are errors naming the way out.
+    let (code, _, err) = run(&[
+        "analyze",
+        "--scheme",
+        "guided-bi5",
+        "--valence",
+        "5",
+        "--lambda",
+        "0.4",
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("lambda = 0.5"), "{err}");
+    let (code, _, err) = run(&[
+        "subdivide",
+        "gallery:cnet-5-convex",
+        "--scheme",
+        "catmull-clark",
+        "--lambda",
+        "0.5",
+        "-o",
+        bv,
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("only the guided schemes"), "{err}");
+    // render and compare draw the guided surfaces.
+    let png = dir.join("g.png");
+    let png = png.to_str().unwrap();
+    let (code, _, err) = run(&[
+        "render",
+        "gallery:cnet-5-raised",
+        "--scheme",
+        "guided-bi3-macro",
+        "--rings",
+        "3",
+        "--mode",
+        "highlight",
+        "--size",
+        "96x96",
+        "-o",
+        png,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("no cap"), "{err}");
+    let (code, _, err) = run(&[
+        "compare",
+        "gallery:cnet-5-raised",
+        "--schemes",
+        "catmull-clark,guided-bi5,guided-bi6",
+        "--lambda",
+        "0.5",
+        "--rings",
+        "3",
+        "--size",
+        "96x96",
+        "-o",
+        png,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::metadata(png).unwrap().len() > 1000);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn rings_are_tabulated_per_valence_as_stencils() {
+    use fairsub::schemes::guided::rings::{Guided, GuidedOptions, RingDegree};
+    for (ring, d) in [(RingDegree::Bi5, 5), (RingDegree::Bi6, 6)] {
+        for n in [3, 5, 9] {
+            let g = Guided::new(
+                n,
+                GuidedOptions {
+                    ring,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            // The paper's table sizes: 3 (6^2 x 6^2) for bi-5, 3 (7^2 x 6^2) for bi-6, and the
+            // 6^2 x 6^2 de Casteljau map.
+            assert_eq!(g.ring_table.shape(), (3 * (d + 1) * (d + 1), 36));
+            assert_eq!(g.restrict.shape(), (36, 36));
+            let net = gallery::cnet(n, CnetShape::Saddle, 3);
+            let cnet: Vec<[f64; 3]> = net
+                .cnet_indices(0, 2)
+                .unwrap()
+                .iter()
+                .map(|&i| net.positions()[i as usize])
+                .collect();
+            let (rings, _) = g.rings(&cnet, 4).unwrap();
+            for (l, ring) in rings.iter().enumerate() {
+                let st = g.ring_stencils(l);
+                let mut worst: f64 = 0.0;
+                for s in 0..n {
+                    assert_eq!(st[s].ncols(), 6 * n + 1);
+                    let m = (d + 1) * (d + 1);
+                    for x in 0..3 {
+                        for r in 0..m {
+                            for c in 0..3 {
+                                let v: f64 = (0..6 * n + 1)
+                                    .map(|k| st[s][(x * m + r, k)] * cnet[k][c])
+                                    .sum();
+                                worst = worst.max((v - ring[3 * s + x][r][c]).abs());
+                            }
+                        }
+                    }
+                    // Affine: every coefficient's weights sum to 1.
+                    for r in 0..st[s].nrows() {
+                        let sum: f64 = st[s].row(r).iter().sum();
+                        assert!(
+                            (sum - 1.0).abs() < 1e-11,
+                            "n={n} ring {l}: weights sum {sum}"
+                        );
+                    }
+                }
+                assert!(worst < 1e-10, "{ring:?} n={n} ring {l}: {worst}");
+            }
+        }
+    }
+}

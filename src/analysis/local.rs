@@ -465,3 +465,26 @@ fn guided_characteristic_ring(
     }
     Ok((out, lambda))
 }
+
+/// Table (5) of the guided paper against a computed matrix: for `s = 0..=10`, the published
+/// multiplicity of `lambda^s` (1, 2, 3, n*, 2n, 3n, 3n, 3n, 3n, 2n, n) and the number of
+/// eigenvalues of `m` within `1e-6` (relative) of `lambda^s`.
+pub fn guided_table5(
+    n: usize,
+    lambda: f64,
+    m: &nalgebra::DMatrix<f64>,
+) -> Vec<(usize, usize, usize)> {
+    let ns = crate::schemes::guided::guide::n_star(n);
+    let published = [1, 2, 3, ns, 2 * n, 3 * n, 3 * n, 3 * n, 3 * n, 2 * n, n];
+    let ev = super::eigenvalues(m);
+    (0..=10)
+        .map(|s| {
+            let t = lambda.powi(s as i32);
+            let count = ev
+                .iter()
+                .filter(|z| (z.re - t).abs() < 1e-6 * t.max(1e-4) + 1e-9 && z.im.abs() < 1e-7)
+                .count();
+            (s, published[s], count)
+        })
+        .collect()
+}

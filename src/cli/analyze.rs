@@ -110,6 +110,23 @@ pub fn analyze(mut a: AnalyzeArgs) -> Result<()> {
             difference: (limit_stencil[0] - n / (n + 5.0)).abs(),
         });
     }
+    if let Some(o) = fairsub::surface::guided::parse_scheme(&a.scheme) {
+        let l = local::guided_lambda(a.valence, o.chi);
+        published.push(Published {
+            quantity: "lambda (Catmull-Clark's, or 1/2 with --lambda 0.5)".into(),
+            published: l,
+            computed: spectrum.lambda,
+            difference: (spectrum.lambda - l).abs(),
+        });
+        for (s, p, c) in local::guided_table5(a.valence, l, &lm.matrix) {
+            published.push(Published {
+                quantity: format!("multiplicity of lambda^{s} (table (5))"),
+                published: p as f64,
+                computed: c as f64,
+                difference: (p as f64 - c as f64).abs(),
+            });
+        }
+    }
     let qas = match a.scheme.as_str() {
         "qas-plus" => Some(local::qas_facts(a.valence, 0.5)?),
         "qas-0.4" => Some(local::qas_facts(a.valence, 0.4)?),
