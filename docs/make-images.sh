@@ -18,3 +18,5 @@ $F compare gallery:cnet-3-saddle --schemes catmull-clark,eg,guided-bi5,guided-bi
 $F compare gallery:cnet-7-planar --schemes catmull-clark,qas-plus,guided-bi5,guided-bi6-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-7-planar.png
 $F compare gallery:cnet-8-raised --schemes catmull-clark,guided-bi5,guided-bi6,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-8-raised.png
 $F compare gallery:cnet-10-convex --schemes catmull-clark,guided-bi5,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-10-convex.png
+# The macro-patch variants (Section 6.2, fairsub's derivation; no cap: the hole stays open).
+$F compare gallery:cnet-5-raised --schemes guided-bi5,guided-bi4-macro,guided-bi3-macro --zoom-rings 1..11 --no-fill "${common[@]}" -o docs/images/guided-macro-cnet-5-raised.png
