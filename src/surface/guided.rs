@@ -1,6 +1,7 @@
 //! Guided subdivision surfaces of whole meshes: bi-3 patches on regular faces and, at every
 //! extraordinary vertex of valence 3 and 5..16, `K` guided rings of `3 n` bi-5 or bi-6 patches
-//! and the G^1 bi-6 cap of [`crate::schemes::guided::cap`] (or an open hole).
+//! and the G^1 bi-6 cap of [`crate::schemes::guided::cap`] (or an open hole). The macro-patch
+//! variants write each ring patch as its 2 x 2 bi-4 or 3 x 3 bi-3 pieces and have no cap.
 //!
 //! Built on the adaptive loop of [`super::cc`] exactly like EG and QAS+: vertices whose c-net is
 //! clean get a guided cap at the current level; the others are refined by one Catmull-Clark step

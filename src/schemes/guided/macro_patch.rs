@@ -28,7 +28,8 @@
 //! every space, so ring 0 is the bi-5 ring 0 in macro form.
 //!
 //! Converting the bi-5 rings patch by patch would not do: `T` of a restricted quintic is not the
-//! restriction of `T` of the quintic, so consecutive rings would be only C^0 there.
+//! restriction of `T` of the quintic, so consecutive rings would in general meet only at the
+//! patch corners (with matching 2-jets there) and leave gaps along the ring boundaries.
 //!
 //! Not derived: the variants' caps (the paper's G^1 bi-3 cap is "formally only C^0-connected" to
 //! the last ring; its construction is in the lost Fig. 17), so these variants leave the hole open.
