@@ -613,3 +613,54 @@ fn rings_are_tabulated_per_valence_as_stencils() {
         }
     }
 }
+
+#[test]
+fn cap_inherits_the_guides_centre_and_tangent_plane() {
+    use fairsub::schemes::guided::cap::CapTables;
+    use fairsub::schemes::guided::rings::{Guided, GuidedOptions, RingDegree};
+    for ring in [RingDegree::Bi5, RingDegree::Bi6] {
+        for n in [3, 5, 9] {
+            let g = Guided::new(
+                n,
+                GuidedOptions {
+                    ring,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let caps = CapTables::new(n, g.degree(), g.space.degree, &g.chi).unwrap();
+            let net = gallery::cnet(n, CnetShape::Saddle, 3);
+            let cnet: Vec<[f64; 3]> = net
+                .cnet_indices(0, 2)
+                .unwrap()
+                .iter()
+                .map(|&i| net.positions()[i as usize])
+                .collect();
+            let (rings, guide) = g.rings(&cnet, 3).unwrap();
+            let cap = caps.cap(&guide, rings.last().unwrap());
+            let at = |r: usize| [guide[(r, 0)], guide[(r, 1)], guide[(r, 2)]];
+            let c = at(g.space.coeff(0, 0, 0));
+            let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+            let du = sub(at(g.space.coeff(0, 1, 0)), c);
+            let dv = sub(at(g.space.coeff(0, 0, 1)), c);
+            let nrm = [
+                du[1] * dv[2] - du[2] * dv[1],
+                du[2] * dv[0] - du[0] * dv[2],
+                du[0] * dv[1] - du[1] * dv[0],
+            ];
+            let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
+            for (s, p) in cap.iter().enumerate() {
+                let e = sub(p[0], c).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!(e < 1e-12, "{ring:?} n={n} sector {s}: centre off by {e}");
+                for t in [sub(p[7], p[0]), sub(p[1], p[0])] {
+                    let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                    let cos = (t[0] * nrm[0] + t[1] * nrm[1] + t[2] * nrm[2]) / (tl * len);
+                    assert!(
+                        cos.abs() < 1e-10,
+                        "{ring:?} n={n} sector {s}: tangent {cos}"
+                    );
+                }
+            }
+        }
+    }
+}

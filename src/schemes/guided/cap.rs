@@ -23,9 +23,11 @@
 //! samples (the quadratic expansion at the centre from the guide). fairsub imposes C^0 and (6)
 //! numerically (rows at 9 points of every spoke; (6) is of degree 7 in `u`) and takes the cap
 //! of that space closest to all samples at once (minimum change of the free coefficients): the
-//! same space of caps, a different (global instead of per-coefficient) choice within it; the
-//! cap's central point and tangent plane are therefore fitted, not copied, from the guide. All of
-//! it is one linear map per valence, tabulated.
+//! same space of caps, a different (global instead of per-coefficient) choice within it. The
+//! coefficients `p_ij`, `i + j <= 2`, of every sector are copied from the samples: the cap
+//! inherits the guide's quadratic expansion as Appendix B says (its centre is the limit point of
+//! the rings, its tangent plane theirs); the samples satisfy (6) there, measured. All of it is
+//! one linear map per valence, tabulated.
 
 use super::bern::{bernstein_derivs, kron, raise, subsegment};
 use super::chi::CharRing;
@@ -64,6 +66,13 @@ pub struct CapTables {
 /// Whether cap coefficient `(i, j)` is fixed by the C^1 join to the ring.
 fn is_fixed(i: usize, j: usize) -> bool {
     i >= 5 || j >= 5
+}
+
+/// Whether cap coefficient `(i, j)` belongs to the central quadratic expansion, copied from
+/// the guide's samples ("the resulting cap inherits the unique quadratic expansion of the
+/// guide", Appendix B).
+fn is_central(i: usize, j: usize) -> bool {
+    i + j <= 2
 }
 
 impl CapTables {
@@ -113,8 +122,9 @@ impl CapTables {
                 }
             }
         }
-        let free: Vec<usize> = (0..49).filter(|&r| !is_fixed(r / 7, r % 7)).collect();
-        let fixed_idx: Vec<usize> = (0..49).filter(|&r| is_fixed(r / 7, r % 7)).collect();
+        let held = |r: usize| is_fixed(r / 7, r % 7) || is_central(r / 7, r % 7);
+        let free: Vec<usize> = (0..49).filter(|&r| !held(r)).collect();
+        let fixed_idx: Vec<usize> = (0..49).filter(|&r| held(r)).collect();
         let nf = free.len();
         let nx = fixed_idx.len();
         // Constraint rows over all n * 49 coefficients.
@@ -175,6 +185,12 @@ impl CapTables {
             let f = &self.fixed * rv;
             for (k, &r) in self.free.iter().enumerate() {
                 xhat.set_row(nf * s + k, &samples.row(r));
+            }
+            let mut f = f;
+            for r in 0..49 {
+                if is_central(r / 7, r % 7) {
+                    f.set_row(r, &samples.row(r));
+                }
             }
             for (k, &r) in self.fixed_idx.iter().enumerate() {
                 fix.set_row(nx * s + k, &f.row(r));
