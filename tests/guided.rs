@@ -491,6 +491,22 @@ fn command_line_subdivide_analyze_render_compare() {
             let v: serde_json::Value = serde_json::from_str(&out).unwrap();
             let p = v["published"].as_array().unwrap();
             assert_eq!(p.len(), 12, "lambda and 11 multiplicities");
+            // The limit-point stencil on the c-net (centre, then 6 points per sector): affine
+            // and rotationally symmetric.
+            let ls: Vec<f64> = v["limit_stencil"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let nn: usize = n.parse().unwrap();
+            if lambda.is_none() || nn >= 5 {
+                assert_eq!(ls.len(), 6 * nn + 1);
+                assert!((ls.iter().sum::<f64>() - 1.0).abs() < 1e-11);
+                for k in 1..7 {
+                    assert!((ls[k] - ls[6 * (nn - 1) + k]).abs() < 1e-9, "n={n}: {ls:?}");
+                }
+            }
             for e in p {
                 assert!(e["difference"].as_f64().unwrap() < 1e-9, "n={n} {e}");
             }

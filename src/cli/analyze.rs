@@ -84,7 +84,14 @@ pub fn analyze(mut a: AnalyzeArgs) -> Result<()> {
             characteristic_polynomial: b.characteristic_polynomial().into_iter().map(c2).collect(),
         })
         .collect();
-    let limit_stencil = lm.limit_stencil()?;
+    let mut limit_stencil = lm.limit_stencil()?;
+    // Guided: the matrix acts on the guide's free set P, whose first coordinate is the limit
+    // point; its stencil on the c-net (centre, then sector by sector) is the fit's first row.
+    if let Some(o) = fairsub::surface::guided::parse_scheme(&a.scheme)
+        && let Ok(g) = fairsub::schemes::guided::rings::Guided::new(a.valence, o)
+    {
+        limit_stencil = g.fit.row(0).iter().copied().collect();
+    }
     let tangent_stencils = lm
         .left_eigenvectors(spectrum.lambda)
         .into_iter()
