@@ -125,7 +125,14 @@ pub fn analyze(mut a: AnalyzeArgs) -> Result<()> {
             computed: spectrum.lambda,
             difference: (spectrum.lambda - l).abs(),
         });
-        for (s, p, c) in local::guided_table5(a.valence, l, &lm.matrix) {
+        // Table (5) is for extraordinary valences; at n = 4 (c = 0) the G^2 space is the larger
+        // C^2 one (81 coordinates: lambda^3 x6, lambda^4 x9).
+        let table = if a.valence == 4 {
+            Vec::new()
+        } else {
+            local::guided_table5(a.valence, l, &lm.matrix)
+        };
+        for (s, p, c) in table {
             published.push(Published {
                 quantity: format!("multiplicity of lambda^{s} (table (5))"),
                 published: p as f64,
