@@ -19,3 +19,14 @@ tmp=$(mktemp -d)
 cargo run --release --quiet --example bi2_mixed -- "$tmp" >/dev/null
 $F compare "$tmp/bi2-mixed-net.obj" --schemes bi2-mixed --rings 4 --size 200x200 --elevation 35 --stripes 16 --modes provenance,highlight,mean -o docs/images/bi2-mixed-prism.png
 rm -rf "$tmp"
+# Guided subdivision beside Catmull-Clark, EG and QAS+ (EG has rules for 3 and 5, QAS+ for 5..7;
+# elsewhere they fall back to Catmull-Clark, so those rows are left out).
+for shape in convex saddle planar raised; do
+  $F compare gallery:cnet-5-$shape --schemes catmull-clark,eg,qas-plus,guided-bi5,guided-bi6 --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-5-$shape.png
+done
+$F compare gallery:cnet-3-saddle --schemes catmull-clark,eg,guided-bi5,guided-bi6 --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-3-saddle.png
+$F compare gallery:cnet-7-planar --schemes catmull-clark,qas-plus,guided-bi5,guided-bi6-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-7-planar.png
+$F compare gallery:cnet-8-raised --schemes catmull-clark,guided-bi5,guided-bi6,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-8-raised.png
+$F compare gallery:cnet-10-convex --schemes catmull-clark,guided-bi5,guided-bi5-half --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-10-convex.png
+# The macro-patch variants (Section 6.2, fairsub's derivation; no cap: the hole stays open).
+$F compare gallery:cnet-5-raised --schemes guided-bi5,guided-bi4-macro,guided-bi3-macro --zoom-rings 1..11 --no-fill "${common[@]}" -o docs/images/guided-macro-cnet-5-raised.png

@@ -57,6 +57,9 @@ pub struct AnalyzeArgs {
     /// Valence of the extraordinary vertex (or size of the extraordinary facet).
     #[arg(long, short = 'n')]
     pub valence: usize,
+    /// Contraction of a guided scheme (0.5; default Catmull-Clark's lambda).
+    #[arg(long)]
+    pub lambda: Option<f64>,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -77,7 +80,8 @@ fn c2(z: analysis::C64) -> [f64; 2] {
 }
 
 /// Runs `fairsub analyze`.
-pub fn analyze(a: AnalyzeArgs) -> Result<()> {
+pub fn analyze(mut a: AnalyzeArgs) -> Result<()> {
+    a.scheme = fairsub::surface::guided::scheme_with_lambda(&a.scheme, a.lambda)?;
     let adj = super::subdivide::adjustable_rules(&a.scheme, a.split_ratio, a.alpha_rule)?
         .unwrap_or(fairsub::schemes::bi2::ternary::TernaryRules::adjustable(
             analysis::bi2::DEFAULT_E,
@@ -107,7 +111,14 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             characteristic_polynomial: b.characteristic_polynomial().into_iter().map(c2).collect(),
         })
         .collect();
-    let limit_stencil = lm.limit_stencil()?;
+    let mut limit_stencil = lm.limit_stencil()?;
+    // Guided: the matrix acts on the guide's free set P, whose first coordinate is the limit
+    // point; its stencil on the c-net (centre, then sector by sector) is the fit's first row.
+    if let Some(o) = fairsub::surface::guided::parse_scheme(&a.scheme)
+        && let Ok(g) = fairsub::schemes::guided::rings::Guided::new(a.valence, o)
+    {
+        limit_stencil = g.fit.row(0).iter().copied().collect();
+    }
     let tangent_stencils = lm
         .left_eigenvectors(spectrum.lambda)
         .into_iter()
@@ -160,6 +171,30 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             computed: limit_stencil[0],
             difference: (limit_stencil[0] - n / (n + 5.0)).abs(),
         });
+    }
+    if let Some(o) = fairsub::surface::guided::parse_scheme(&a.scheme) {
+        let l = local::guided_lambda(a.valence, o.chi);
+        published.push(Published {
+            quantity: "lambda (Catmull-Clark's, or 1/2 with --lambda 0.5)".into(),
+            published: l,
+            computed: spectrum.lambda,
+            difference: (spectrum.lambda - l).abs(),
+        });
+        // Table (5) is for extraordinary valences; at n = 4 (c = 0) the G^2 space is the larger
+        // C^2 one (81 coordinates: lambda^3 x6, lambda^4 x9).
+        let table = if a.valence == 4 {
+            Vec::new()
+        } else {
+            local::guided_table5(a.valence, l, &lm.matrix)
+        };
+        for (s, p, c) in table {
+            published.push(Published {
+                quantity: format!("multiplicity of lambda^{s} (table (5))"),
+                published: p as f64,
+                computed: c as f64,
+                difference: (p as f64 - c as f64).abs(),
+            });
+        }
     }
     let qas = match a.scheme.as_str() {
         "qas-plus" => Some(local::qas_facts(a.valence, 0.5)?),

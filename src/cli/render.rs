@@ -123,6 +123,9 @@ pub struct RenderArgs {
     /// Scheme whose surface is drawn (see `fairsub schemes`); none: the net itself.
     #[arg(long, short)]
     pub scheme: Option<String>,
+    /// Contraction of a guided scheme (0.5; default Catmull-Clark's lambda).
+    #[arg(long)]
+    pub lambda: Option<f64>,
     /// Rings per extraordinary element of the patch complex [default: 6].
     #[arg(long, short)]
     pub rings: Option<usize>,
@@ -161,6 +164,9 @@ pub struct CompareArgs {
     /// Schemes with patch output, comma-separated [default: all of them].
     #[arg(long, value_delimiter = ',')]
     pub schemes: Vec<String>,
+    /// Contraction of the guided schemes among them (0.5; default Catmull-Clark's lambda).
+    #[arg(long)]
+    pub lambda: Option<f64>,
     /// Modes, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "highlight,mean")]
     pub modes: Vec<String>,
@@ -256,7 +262,14 @@ struct RenderReport<'a> {
 }
 
 /// Runs `fairsub render`.
-pub fn run_render(a: RenderArgs) -> Result<()> {
+pub fn run_render(mut a: RenderArgs) -> Result<()> {
+    if let Some(s) = &a.scheme {
+        a.scheme = Some(fairsub::surface::guided::scheme_with_lambda(s, a.lambda)?);
+    } else if a.lambda.is_some() {
+        return Err(Error::InvalidArgument(
+            "--lambda needs a guided --scheme".into(),
+        ));
+    }
     let mode: Mode = a.mode.parse()?;
     let opts = a.look.options((800, 800), mode)?;
     let bv = is_bv(&a.net);
@@ -404,6 +417,16 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     } else {
         a.schemes.iter().map(|s| s.trim().to_string()).collect()
     };
+    let schemes: Vec<String> = schemes
+        .into_iter()
+        .map(|s| {
+            if fairsub::surface::guided::parse_scheme(&s).is_some() {
+                fairsub::surface::guided::scheme_with_lambda(&s, a.lambda)
+            } else {
+                Ok(s)
+            }
+        })
+        .collect::<Result<_>>()?;
     let opts = a
         .look
         .options((400, 400), modes.first().copied().unwrap_or(Mode::Shaded))?;

@@ -25,8 +25,16 @@ pub struct Args {
     #[arg(long)]
     pub limit: bool,
     /// Leave the hole inside the last ring open instead of filling it.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "cap")]
     pub no_fill: bool,
+    /// Close the hole inside the last ring with the scheme's cap (the default; guided schemes:
+    /// the G^1 bi-6 cap of Appendix B).
+    #[arg(long)]
+    pub cap: bool,
+    /// Contraction of a guided scheme: 0.5 samples through QAS+'s characteristic map (valences
+    /// 5..10); without it, Catmull-Clark's chi and lambda.
+    #[arg(long)]
+    pub lambda: Option<f64>,
     /// Samples per patch edge when a patch complex is written as a mesh.
     #[arg(long, default_value_t = 8)]
     pub tess: usize,
@@ -120,7 +128,8 @@ pub fn adjustable_rules(
 pub const DEFAULT_RINGS: usize = 6;
 
 /// Runs `fairsub subdivide`.
-pub fn run(a: Args) -> Result<()> {
+pub fn run(mut a: Args) -> Result<()> {
+    a.scheme = fairsub::surface::guided::scheme_with_lambda(&a.scheme, a.lambda)?;
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
     if a.levels.is_some() && a.rings.is_some() {
         return Err(Error::InvalidArgument(
@@ -133,7 +142,8 @@ pub fn run(a: Args) -> Result<()> {
         || fairsub::schemes::by_name(&a.scheme).is_ok();
     let has_patches = fairsub::schemes::catalog()
         .iter()
-        .any(|s| s.name == a.scheme && s.rings);
+        .any(|s| s.name == a.scheme && s.rings)
+        || fairsub::surface::guided::parse_scheme(&a.scheme).is_some();
     if !refinable && has_patches && a.levels.is_some() {
         return Err(Error::InvalidArgument(format!(
             "scheme '{}' has no control net of its own to refine: write its patches with --rings K \

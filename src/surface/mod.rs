@@ -9,6 +9,7 @@ pub mod bi2;
 pub mod cc;
 pub mod ds;
 pub mod eg;
+pub mod guided;
 pub mod loop_patches;
 pub mod nonbox;
 pub mod qas;
@@ -157,6 +158,20 @@ pub fn complex_with_notes(
                 "qas-plus-bi3" => qas::qas_bi3_complex(mesh, eo, qas::Contraction::Half, progress)?,
                 _ => qas::qas_complex(mesh, eo, qas::Contraction::Gradual, progress)?,
             };
+            Ok((o.complex, o.notes))
+        }
+        name if guided::parse_scheme(name).is_some() => {
+            let scheme = guided::parse_scheme(name).expect("checked");
+            let o = guided::guided_complex(
+                mesh,
+                guided::GuidedComplexOptions {
+                    rings: opts.rings,
+                    cap: opts.fill,
+                    scheme,
+                    fallback,
+                },
+                progress,
+            )?;
             Ok((o.complex, o.notes))
         }
         "catmull-clark" | "cc" => plain(cc::catmull_clark_complex(
