@@ -39,6 +39,24 @@ pub trait Scheme: Sync {
     /// (for example a non-triangle face for Loop).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement>;
 
+    /// `levels` refinement steps for output: the refined net only. Schemes with a direct kernel
+    /// override it to skip the stencil tables, drop each parent level as soon as its child
+    /// exists and keep the peak memory close to the size of the result; the default repeats
+    /// [`Scheme::refine`]. `progress(level)` is called after each step.
+    fn refine_uniform(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        let mut m: Option<PolyMesh> = None;
+        for l in 0..levels {
+            m = Some(self.refine(m.as_ref().unwrap_or(mesh))?.mesh);
+            progress(l + 1);
+        }
+        Ok(m.unwrap_or_else(|| mesh.clone()))
+    }
+
     /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
     /// scheme has closed-form limit masks.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
@@ -50,19 +68,15 @@ pub trait Scheme: Sync {
     }
 }
 
-/// Applies `levels` refinement steps, calling `progress(level)` after each.
+/// Applies `levels` refinement steps ([`Scheme::refine_uniform`]), calling `progress(level)`
+/// after each.
 pub fn refine_levels(
     scheme: &dyn Scheme,
     mesh: &PolyMesh,
     levels: usize,
     mut progress: impl FnMut(usize),
 ) -> Result<PolyMesh> {
-    let mut m = mesh.clone();
-    for l in 0..levels {
-        m = scheme.refine(&m)?.mesh;
-        progress(l + 1);
-    }
-    Ok(m)
+    scheme.refine_uniform(mesh, levels, &mut progress)
 }
 
 /// Builds the child mesh from topology and stencils: positions are the stencils applied to the
