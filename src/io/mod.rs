@@ -223,10 +223,11 @@ impl<'a> Polygons<'a> {
         face_start: &'a [u32],
         corners: &'a [u32],
     ) -> Result<Polygons<'a>> {
-        if let Some(v) = positions
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
+        use rayon::prelude::*;
+        // Checked in parallel: a refined net has millions of points.
+        if let Some(v) = first_index(positions.len(), |v| {
+            !positions[v].iter().all(|c| c.is_finite())
+        }) {
             return Err(Error::InvalidArgument(format!(
                 "cannot write vertex {v}: its coordinates {:?} are not all finite",
                 positions[v]
@@ -247,27 +248,34 @@ impl<'a> Polygons<'a> {
                     corners.len()
                 )));
             }
-            for (f, pair) in face_start.windows(2).enumerate() {
+            let nf = face_start.len() - 1;
+            if let Some(f) = first_index(nf, |f| {
+                face_start[f + 1] < face_start[f] || face_start[f + 1] - face_start[f] < 3
+            }) {
+                let pair = &face_start[f..f + 2];
                 if pair[1] < pair[0] {
                     return Err(Error::InvalidArgument(format!(
                         "face offsets decrease at face {f} ({} then {})",
                         pair[0], pair[1]
                     )));
                 }
-                let n = (pair[1] - pair[0]) as usize;
-                max_face = max_face.max(n);
-                if n < 3 {
-                    return Err(Error::InvalidArgument(format!(
-                        "face {f} has {n} corners; a face needs at least 3"
-                    )));
-                }
+                let n = pair[1] - pair[0];
+                return Err(Error::InvalidArgument(format!(
+                    "face {f} has {n} corners; a face needs at least 3"
+                )));
             }
+            max_face = (0..nf)
+                .into_par_iter()
+                .with_min_len(CHECK_CHUNK)
+                .map(|f| (face_start[f + 1] - face_start[f]) as usize)
+                .max()
+                .unwrap_or(0);
         } else if !corners.is_empty() {
             return Err(Error::InvalidArgument(
                 "corners given without face offsets".to_string(),
             ));
         }
-        if let Some(c) = corners.iter().position(|&v| v as usize >= positions.len()) {
+        if let Some(c) = first_index(corners.len(), |c| corners[c] as usize >= positions.len()) {
             let f = face_start.partition_point(|&s| s as usize <= c) - 1;
             return Err(Error::InvalidArgument(format!(
                 "face {f} refers to vertex {}, but there are only {} vertices",
@@ -292,6 +300,18 @@ impl<'a> Polygons<'a> {
     pub fn face(&self, f: usize) -> &'a [u32] {
         &self.corners[self.face_start[f] as usize..self.face_start[f + 1] as usize]
     }
+}
+
+/// Indices per parallel task in [`first_index`].
+const CHECK_CHUNK: usize = 1 << 16;
+
+/// The first index in `0..n` for which `bad` holds: blocks of indices are scanned in parallel,
+/// each sequentially (rayon's per-item `position_first` is far slower on tens of millions).
+fn first_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> Option<usize> {
+    use rayon::prelude::*;
+    (0..n.div_ceil(CHECK_CHUNK))
+        .into_par_iter()
+        .find_map_first(|c| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(n)).find(|&i| bad(i)))
 }
 
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
