@@ -49,7 +49,9 @@ pub struct Topology {
 #[derive(Debug, Clone)]
 pub struct PolyMesh {
     positions: Vec<Point>,
-    face_start: Vec<u32>,
+    /// Face offsets; for a mesh whose faces all have one size they are implicit (`k f`) and
+    /// only built if [`PolyMesh::face_starts`] is asked for.
+    face_start: OnceLock<Vec<u32>>,
     corners: Vec<u32>,
     /// The common face size, 0 when sizes differ.
     uniform: u32,
@@ -63,6 +65,7 @@ pub struct PolyMesh {
 #[derive(Debug)]
 pub(crate) struct MeshParts {
     pub positions: Vec<Point>,
+    /// Empty when the offsets were implicit.
     pub face_start: Vec<u32>,
     pub corners: Vec<u32>,
     pub uniform: u32,
@@ -217,7 +220,7 @@ impl PolyMesh {
             })?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
             uniform,
             topo: OnceLock::from(topo),
@@ -237,7 +240,7 @@ impl PolyMesh {
         let topo = Topology::build(positions.len(), &face_start, &corners, uniform, false)?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
             uniform,
             topo: OnceLock::from(topo),
@@ -258,7 +261,7 @@ impl PolyMesh {
         let topo = Topology::build(positions.len(), &face_start, &corners, uniform, true)?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
             uniform,
             topo: OnceLock::from(topo),
@@ -267,28 +270,50 @@ impl PolyMesh {
         })
     }
 
-    /// A mesh whose validity is guaranteed by construction (a refinement kernel's output), with
-    /// its topology when the kernel built it from the parent's, or `None` to build it on first
-    /// use. Nothing is checked: the caller guarantees a valid manifold mesh whose `topo` (if
-    /// given) is the one [`PolyMesh::from_refinement`] would build.
-    pub(crate) fn from_trusted(
+    /// A mesh whose validity is guaranteed by construction (a refinement kernel's output) and
+    /// whose faces all have `size` corners (the face offsets stay implicit), with its topology
+    /// when the kernel built it from the parent's, or `None` to build it on first use. Nothing
+    /// is checked: the caller guarantees a valid manifold mesh whose `topo` (if given) is the
+    /// one [`PolyMesh::from_refinement`] would build.
+    pub(crate) fn from_trusted_uniform(
         positions: Vec<Point>,
-        face_start: Vec<u32>,
+        size: u32,
         corners: Vec<u32>,
         topo: Option<Topology>,
     ) -> PolyMesh {
-        let uniform = uniform_size(&face_start);
+        debug_assert!(size >= 3 && corners.len().is_multiple_of(size as usize));
         debug_assert!(topo.as_ref().is_none_or(|t| t.twin.len() == corners.len()
             && t.vert_he.len() == positions.len()
-            && (uniform != 0 || t.he_face.len() == corners.len())));
+            && t.he_face.is_empty()));
         PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::new(),
             corners,
-            uniform,
+            uniform: size,
             topo: topo.map(OnceLock::from).unwrap_or_default(),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+        }
+    }
+
+    /// The face offsets (built now for a uniform mesh that did not have them).
+    #[inline]
+    fn offsets(&self) -> &[u32] {
+        self.face_start.get_or_init(|| {
+            let k = self.uniform;
+            (0..=(self.corners.len() as u32 / k))
+                .map(|f| k * f)
+                .collect()
+        })
+    }
+
+    /// The face offsets the arrays need: none for a uniform mesh.
+    #[inline]
+    fn stored_offsets(&self) -> &[u32] {
+        if self.uniform != 0 {
+            &[]
+        } else {
+            self.offsets()
         }
     }
 
@@ -296,7 +321,7 @@ impl PolyMesh {
     pub(crate) fn into_parts(self) -> MeshParts {
         MeshParts {
             positions: self.positions,
-            face_start: self.face_start,
+            face_start: self.face_start.into_inner().unwrap_or_default(),
             corners: self.corners,
             uniform: self.uniform,
             topo: self.topo.into_inner(),
@@ -309,7 +334,7 @@ impl PolyMesh {
         self.topo.get_or_init(|| {
             Topology::build(
                 self.positions.len(),
-                &self.face_start,
+                self.stored_offsets(),
                 &self.corners,
                 self.uniform,
                 false,
@@ -325,7 +350,7 @@ impl PolyMesh {
         MeshView {
             corners: &self.corners,
             faces: FaceIndex {
-                face_start: &self.face_start,
+                face_start: self.stored_offsets(),
                 he_face: &t.he_face,
                 uniform: self.uniform,
             },
@@ -356,7 +381,11 @@ impl PolyMesh {
     /// Number of faces.
     #[inline]
     pub fn num_faces(&self) -> usize {
-        self.face_start.len() - 1
+        if self.uniform != 0 {
+            self.corners.len() / self.uniform as usize
+        } else {
+            self.offsets().len() - 1
+        }
     }
 
     /// Number of undirected edges.
@@ -399,19 +428,31 @@ impl PolyMesh {
     /// Corner vertices of face `f`, counter-clockwise.
     #[inline]
     pub fn face(&self, f: usize) -> &[u32] {
-        &self.corners[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+        if self.uniform != 0 {
+            let k = self.uniform as usize;
+            &self.corners[k * f..k * f + k]
+        } else {
+            let fs = self.offsets();
+            &self.corners[fs[f] as usize..fs[f + 1] as usize]
+        }
     }
 
     /// Number of corners of face `f`.
     #[inline]
     pub fn face_size(&self, f: usize) -> usize {
-        (self.face_start[f + 1] - self.face_start[f]) as usize
+        if self.uniform != 0 {
+            assert!(f < self.num_faces(), "face {f} out of range");
+            self.uniform as usize
+        } else {
+            let fs = self.offsets();
+            (fs[f + 1] - fs[f]) as usize
+        }
     }
 
     /// Flat face offsets (`num_faces + 1` entries).
     #[inline]
     pub fn face_starts(&self) -> &[u32] {
-        &self.face_start
+        self.offsets()
     }
 
     /// Flat corner array (vertex of each corner, face after face).
@@ -428,7 +469,12 @@ impl PolyMesh {
     /// First half-edge (corner) of face `f`.
     #[inline]
     pub fn face_halfedge(&self, f: usize) -> u32 {
-        self.face_start[f]
+        if self.uniform != 0 {
+            assert!(f < self.num_faces(), "face {f} out of range");
+            self.uniform * f as u32
+        } else {
+            self.offsets()[f]
+        }
     }
 
     /// Vertex a half-edge starts at.
@@ -461,11 +507,8 @@ impl PolyMesh {
             4 => (h & !3) | ((h + 1) & 3),
             0 => {
                 let f = self.topology().he_face[h as usize] as usize;
-                if h + 1 < self.face_start[f + 1] {
-                    h + 1
-                } else {
-                    self.face_start[f]
-                }
+                let fs = self.offsets();
+                if h + 1 < fs[f + 1] { h + 1 } else { fs[f] }
             }
             k => {
                 if !(h + 1).is_multiple_of(k) {
@@ -484,11 +527,8 @@ impl PolyMesh {
             4 => (h & !3) | (h.wrapping_sub(1) & 3),
             0 => {
                 let f = self.topology().he_face[h as usize] as usize;
-                if h > self.face_start[f] {
-                    h - 1
-                } else {
-                    self.face_start[f + 1] - 1
-                }
+                let fs = self.offsets();
+                if h > fs[f] { h - 1 } else { fs[f + 1] - 1 }
             }
             k => {
                 if !h.is_multiple_of(k) {
@@ -816,7 +856,8 @@ impl PolyMesh {
 impl Topology {
     /// Builds half-edge connectivity and checks manifoldness and orientation (the first problem
     /// in half-edge order, then in vertex order, is reported). `uniform` is the common face size
-    /// or 0. Runs in parallel over blocks of half-edges and vertices.
+    /// or 0 (then `face_start` may be empty). Runs in parallel over blocks of half-edges and
+    /// vertices.
     fn build(
         nv: usize,
         face_start: &[u32],
@@ -824,8 +865,12 @@ impl Topology {
         uniform: u32,
         relaxed: bool,
     ) -> std::result::Result<Topology, MeshError> {
-        let nf = face_start.len() - 1;
         let nh = corners.len();
+        let nf = if uniform != 0 {
+            nh / uniform as usize
+        } else {
+            face_start.len() - 1
+        };
         let he_face = if uniform == 0 {
             let mut he_face = vec![0u32; nh];
             for f in 0..nf {
@@ -1005,8 +1050,13 @@ impl<'a> MeshView<'a> {
     /// Corner vertices of face `f`.
     #[inline]
     pub fn face_corners(&self, f: usize) -> &'a [u32] {
-        let fs = self.faces.face_start;
-        &self.corners[fs[f] as usize..fs[f + 1] as usize]
+        let k = self.faces.uniform as usize;
+        if k != 0 {
+            &self.corners[k * f..k * f + k]
+        } else {
+            let fs = self.faces.face_start;
+            &self.corners[fs[f] as usize..fs[f + 1] as usize]
+        }
     }
 
     /// Whether vertex `v` lies on the boundary.
@@ -1069,6 +1119,7 @@ impl Iterator for OutgoingIter<'_> {
 /// Face lookup on flat face arrays: `he_face` when sizes differ, arithmetic otherwise.
 #[derive(Clone, Copy)]
 pub(crate) struct FaceIndex<'a> {
+    /// Face offsets (may be empty when `uniform != 0`).
     pub face_start: &'a [u32],
     /// Face of each half-edge (empty when `uniform != 0`).
     pub he_face: &'a [u32],
@@ -1077,6 +1128,16 @@ pub(crate) struct FaceIndex<'a> {
 }
 
 impl FaceIndex<'_> {
+    /// First half-edge of face `f`.
+    #[inline]
+    pub fn start(&self, f: usize) -> u32 {
+        if self.uniform != 0 {
+            self.uniform * f as u32
+        } else {
+            self.face_start[f]
+        }
+    }
+
     /// Face of half-edge `h`.
     #[inline]
     pub fn face(&self, h: u32) -> u32 {

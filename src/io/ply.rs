@@ -384,10 +384,11 @@ pub(crate) fn write_ply_ascii_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io
     out.finish()
 }
 
-/// Bytes of output per encoding job of the binary writer.
-const JOB_BYTES: usize = 1 << 20;
+/// Bytes of output per encoding job of the binary writer (above the 1 MiB of the atomic
+/// writer's buffer, so jobs go straight to the file without another copy).
+const JOB_BYTES: usize = 2 << 20;
 /// Jobs encoded in parallel while the previous batch is written.
-const JOBS_PER_BATCH: usize = 8;
+const JOBS_PER_BATCH: usize = 4;
 
 /// Writes polygons as binary little-endian PLY (double coordinates).
 ///
@@ -412,8 +413,13 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
     let mut f = 0;
     while f < nf {
         // Cut face ranges by their encoded size (count byte(s) and 4 bytes per corner).
-        let target = p.face_start[f] as usize + JOB_BYTES / 5;
-        let g = (f + 1 + p.face_start[f + 1..].partition_point(|&s| (s as usize) < target)).min(nf);
+        let target = p.face_offset(f) + JOB_BYTES / 5;
+        let g = if p.uniform != 0 {
+            (f + (JOB_BYTES / 5).div_ceil(p.uniform)).min(nf)
+        } else {
+            let rest = &p.face_start[f + 1..];
+            (f + 1 + rest.partition_point(|&s| (s as usize) < target)).min(nf)
+        };
         jobs.push(Job::Faces(f, g));
         f = g;
     }
@@ -429,7 +435,7 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
                 buf
             }
             Job::Faces(a, b) => {
-                let corners = (p.face_start[b] - p.face_start[a]) as usize;
+                let corners = p.face_offset(b) - p.face_offset(a);
                 let count = if wide_count { 4 } else { 1 };
                 let mut buf = Vec::with_capacity(count * (b - a) + 4 * corners);
                 for f in a..b {

@@ -184,10 +184,10 @@ fn child_corners(
     he_edge: &[u32],
     nv: usize,
     ne: usize,
-) -> (Vec<u32>, Vec<u32>) {
+) -> Vec<u32> {
     let nh = corners.len();
     let (nv, nve) = (nv as u32, (nv + ne) as u32);
-    let child = (0..4 * nh)
+    (0..4 * nh)
         .into_par_iter()
         .with_min_len(4 * BLOCK)
         .map(|c| {
@@ -199,9 +199,7 @@ fn child_corners(
                 _ => nv + he_edge[faces.prev(h) as usize],
             }
         })
-        .collect();
-    let face_start = (0..nh + 1).into_par_iter().map(|h| 4 * h as u32).collect();
-    (face_start, child)
+        .collect()
 }
 
 impl CatmullClark {
@@ -238,37 +236,48 @@ impl CatmullClark {
         let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
         assert!(src.len() >= nv, "one point per parent vertex is needed");
         let m = mesh.view();
-        let faces: Vec<[f64; D]> = (0..nf)
-            .into_par_iter()
-            .with_min_len(BLOCK)
-            .map(|f| {
-                let mut ev = Eval::new(src, &[]);
-                face_rule(&m, f, 1.0, &mut ev);
-                ev.acc
-            })
-            .collect();
-        let mut out = Vec::with_capacity(nv + ne + nf);
-        let faces_ref = &faces;
-        out.par_extend(
-            (0..nv + ne)
-                .into_par_iter()
-                .with_min_len(BLOCK)
-                .map(|i| {
-                    let mut ev = Eval::new(src, faces_ref);
+        // Zeroed output (fresh pages, touched once); face points first, in place.
+        let mut out = vec![[0.0; D]; nv + ne + nf];
+        let (head, faces) = out.split_at_mut(nv + ne);
+        faces
+            .par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let mut ev = Eval::new(src, &[]);
+                    face_rule(&m, c * BLOCK + k, 1.0, &mut ev);
+                    *o = ev.acc;
+                }
+            });
+        let faces: &[[f64; D]] = faces;
+        head.par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let i = c * BLOCK + k;
+                    let mut ev = Eval::new(src, faces);
                     if i < nv {
                         vertex_rule(&m, i, &mut ev);
                     } else {
                         edge_rule(&m, i - nv, &mut ev);
                     }
-                    ev.acc
-                })
-                .chain(faces.par_iter().copied()),
-        );
+                    *o = ev.acc;
+                }
+            });
         out
     }
 
     /// Child topology of one step: `(face_start, corners)` of the all-quad child net.
     pub fn child_topology(mesh: &PolyMesh) -> (Vec<u32>, Vec<u32>) {
+        let face_start = (0..mesh.num_halfedges() + 1)
+            .into_par_iter()
+            .map(|h| 4 * h as u32)
+            .collect();
+        (face_start, Self::child_corners(mesh))
+    }
+
+    /// The corners of the child faces (four per parent corner).
+    fn child_corners(mesh: &PolyMesh) -> Vec<u32> {
         let m = mesh.view();
         child_corners(
             m.faces,
@@ -290,8 +299,7 @@ impl CatmullClark {
         let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
         assert_eq!(positions.len(), nv + ne + nf, "one point per child vertex");
         let topo = Self::child_halfedges(mesh);
-        let (face_start, corners) = Self::child_topology(mesh);
-        PolyMesh::from_trusted(positions, face_start, corners, Some(topo))
+        PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), Some(topo))
     }
 
     /// Half-edge topology of the child net from the parent's. Child half-edge `4h + k` is side
@@ -338,7 +346,7 @@ impl CatmullClark {
                         t => a.min(4 * h + 1).min(4 * t + 1).min(4 * m.faces.next(t) + 3),
                     }
                 } else {
-                    4 * m.faces.face_start[i - nv - ne] + 2
+                    4 * m.faces.start(i - nv - ne) + 2
                 }
             })
             .collect();
@@ -374,8 +382,7 @@ impl CatmullClark {
             let child = if l + 1 < levels {
                 Self::child_mesh(parent, positions)
             } else if owned.is_none() {
-                let (face_start, corners) = Self::child_topology(mesh);
-                PolyMesh::from_trusted(positions, face_start, corners, None)
+                PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), None)
             } else {
                 let parent = owned.take().expect("checked above");
                 Self::last_child(parent, positions)
@@ -407,9 +414,9 @@ impl CatmullClark {
             he_face: &he_face,
             uniform,
         };
-        let (child_start, child_corners) = child_corners(faces, &corners, &he_edge, nv, ne);
+        let child = child_corners(faces, &corners, &he_edge, nv, ne);
         drop((face_start, corners, he_face, he_edge));
-        PolyMesh::from_trusted(positions, child_start, child_corners, None)
+        PolyMesh::from_trusted_uniform(positions, 4, child, None)
     }
 
     /// Limit-position stencils of every vertex of `mesh` (row `v` for vertex `v`).

@@ -244,7 +244,7 @@ fn corner_face(h: u32) -> u32 {
 
 /// Child corners of one step from the parent's arrays: parent triangle `f = (a, b, c)` becomes
 /// `(a, ab, ca)`, `(b, bc, ab)`, `(c, ca, bc)`, `(ab, bc, ca)`.
-fn child_corners(corners: &[u32], he_edge: &[u32], nv: usize) -> (Vec<u32>, Vec<u32>) {
+fn child_corners(corners: &[u32], he_edge: &[u32], nv: usize) -> Vec<u32> {
     let nf = corners.len() / 3;
     let nv = nv as u32;
     let mut child = vec![0u32; 12 * nf];
@@ -261,11 +261,7 @@ fn child_corners(corners: &[u32], he_edge: &[u32], nv: usize) -> (Vec<u32>, Vec<
                 out.copy_from_slice(&[a, ab, ca, b, bc, ab, cc, ca, bc, ab, bc, ca]);
             }
         });
-    let face_start = (0..4 * nf + 1)
-        .into_par_iter()
-        .map(|i| 3 * i as u32)
-        .collect();
-    (face_start, child)
+    child
 }
 
 impl Loop {
@@ -339,10 +335,10 @@ impl Loop {
         assert_eq!(positions.len(), nv + ne, "one point per child vertex");
         let topo = Self::child_halfedges(mesh);
         let m = mesh.view();
-        let (face_start, corners) = child_corners(m.corners, m.he_edge, nv);
-        Ok(PolyMesh::from_trusted(
+        let corners = child_corners(m.corners, m.he_edge, nv);
+        Ok(PolyMesh::from_trusted_uniform(
             positions,
-            face_start,
+            3,
             corners,
             Some(topo),
         ))
@@ -440,9 +436,8 @@ impl Loop {
                 Self::child_mesh(parent, positions)?
             } else if owned.is_none() {
                 let m = parent.view();
-                let (face_start, corners) =
-                    child_corners(m.corners, m.he_edge, parent.num_vertices());
-                PolyMesh::from_trusted(positions, face_start, corners, None)
+                let corners = child_corners(m.corners, m.he_edge, parent.num_vertices());
+                PolyMesh::from_trusted_uniform(positions, 3, corners, None)
             } else {
                 // Keep only what the child faces need from the parent.
                 let parent = owned.take().expect("checked above");
@@ -450,9 +445,9 @@ impl Loop {
                 let MeshParts { corners, topo, .. } = parent.into_parts();
                 let Topology { he_edge, .. } =
                     topo.expect("an intermediate level has its topology");
-                let (face_start, child) = child_corners(&corners, &he_edge, nv);
+                let child = child_corners(&corners, &he_edge, nv);
                 drop((corners, he_edge));
-                PolyMesh::from_trusted(positions, face_start, child, None)
+                PolyMesh::from_trusted_uniform(positions, 3, child, None)
             };
             owned = Some(child);
             progress(l + 1);
