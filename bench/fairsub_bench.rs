@@ -6,6 +6,7 @@
 //! fairsub-bench phases IN.obj SCHEME LEVELS OUT.ply
 //! fairsub-bench reapply IN.obj SCHEME LEVELS REPS
 //! fairsub-bench compare A.ply B.ply
+//! fairsub-bench caps VALENCE RINGS REPS
 //! ```
 //!
 //! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...).
@@ -17,6 +18,10 @@
 //! - `compare` checks that two binary PLY outputs describe the same refined mesh: counts,
 //!   bounding boxes, the largest distance between each point and the nearest point of the other
 //!   file, and, with vertices matched that way, the same faces.
+//! - `caps` times the EG surface against the Catmull-Clark surface of the gallery's convex
+//!   c-net of the given valence (one extraordinary vertex, three rings of quads), both with
+//!   RINGS rings and the fill: the two complexes differ only in the cap, so the ratio of the
+//!   times is the cost of an EG cap against a Catmull-Clark cap (minimum over REPS runs).
 //!
 //! Run through cargo: `cargo run --release --example fairsub-bench -- gen quad-torus 100k t.obj`.
 
@@ -26,7 +31,6 @@ mod meshes;
 use fairsub::geom::Point;
 use fairsub::io::MeshFormat;
 use fairsub::schemes;
-use fairsub::stencil::StencilTable;
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
@@ -43,11 +47,11 @@ fn main() {
             reapply(input, scheme, levels.parse().ok(), reps.parse().ok())
         }
         ["compare", x, y] => compare(x, y),
-        ["kernel", faces, levels] => kernel(faces, levels.parse().ok()),
-        ["write", faces, levels, out] => write_only(faces, levels.parse().ok(), out),
+        ["caps", valence, rings, reps] => caps(valence.parse().ok(), rings.parse().ok(), reps),
         _ => Err(
             "usage: fairsub-bench gen quad-torus|tri-torus FACES OUT.obj | phases IN SCHEME \
-                  LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply"
+                  LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply | caps \
+                  VALENCE RINGS REPS"
                 .into(),
         ),
     };
@@ -106,17 +110,10 @@ fn reapply(input: &str, scheme: &str, levels: Option<usize>, reps: Option<usize>
     let mesh = fairsub::io::read_mesh(Path::new(input))?.mesh;
     let s = schemes::by_name(scheme)?;
     let t0 = Instant::now();
-    let mut m = mesh.clone();
-    let mut table: Option<StencilTable> = None;
-    for _ in 0..levels {
-        let r = s.refine(&m)?;
-        table = Some(match table {
-            None => r.stencils,
-            Some(t) => r.stencils.compose(&t),
-        });
-        m = r.mesh;
+    if levels == 0 {
+        return Err("LEVELS must be at least 1".into());
     }
-    let table = table.ok_or("LEVELS must be at least 1")?;
+    let (m, table) = schemes::level_stencils(s.as_ref(), &mesh, levels)?;
     let build = t0.elapsed().as_secs_f64();
     let src: Vec<Point> = mesh.positions().to_vec();
     let mut out = vec![[0.0; 3]; table.num_rows()];
@@ -302,38 +299,37 @@ fn compare(a: &str, b: &str) -> Res<()> {
     Ok(())
 }
 
-fn kernel(faces: &str, levels: Option<usize>) -> Res<()> {
-    use fairsub::schemes::CatmullClark;
-    let mesh = meshes::quad_torus(meshes::parse_count(faces).ok_or("bad count")?);
-    let m = CatmullClark::refine_uniform(&mesh, levels.ok_or("bad levels")?, |_| {})?;
-    let _ = m.num_edges();
-    for _ in 0..3 {
-        let t = Instant::now();
-        let p = CatmullClark::refine_points(&m, m.positions());
-        let t1 = t.elapsed();
-        let t = Instant::now();
-        let (fs, c) = CatmullClark::child_topology(&m);
-        let t2 = t.elapsed();
-        drop((fs, c));
-        let t = Instant::now();
-        let child = CatmullClark::child_mesh(&m, p);
-        let t3 = t.elapsed();
-        let t = Instant::now();
-        drop(child);
-        let t4 = t.elapsed();
-        println!("points {t1:?} corners {t2:?} child_mesh {t3:?} drop {t4:?}");
-    }
-    Ok(())
-}
-
-fn write_only(faces: &str, levels: Option<usize>, out: &str) -> Res<()> {
-    use fairsub::schemes::CatmullClark;
-    let mesh = meshes::quad_torus(meshes::parse_count(faces).ok_or("bad count")?);
-    let m = CatmullClark::refine_uniform(&mesh, levels.ok_or("bad levels")?, |_| {})?;
-    for _ in 0..3 {
-        let t = Instant::now();
-        fairsub::io::write_mesh(Path::new(out), &m, MeshFormat::PlyBinary)?;
-        println!("write {:?}", t.elapsed());
-    }
+fn caps(valence: Option<usize>, rings: Option<usize>, reps: &str) -> Res<()> {
+    use fairsub::gallery::{CnetShape, cnet};
+    use fairsub::surface::cc::{CcComplexOptions, catmull_clark_complex};
+    use fairsub::surface::eg::{EgOptions, Fallback, eg_complex};
+    let (n, rings) = (valence.ok_or("bad valence")?, rings.ok_or("bad rings")?);
+    let reps: usize = reps.parse::<usize>()?.max(1);
+    let net = cnet(n, CnetShape::Convex, 3);
+    let best = |f: &dyn Fn() -> Res<usize>| -> Res<(f64, usize)> {
+        let mut t_min = f64::INFINITY;
+        let mut patches = 0;
+        for _ in 0..reps {
+            let t = Instant::now();
+            patches = f()?;
+            t_min = t_min.min(t.elapsed().as_secs_f64());
+        }
+        Ok((t_min, patches))
+    };
+    let eg_opts = EgOptions {
+        rings,
+        fill: true,
+        fallback: Fallback::Error,
+    };
+    let cc_opts = CcComplexOptions { rings, fill: true };
+    let (te, pe) = best(&|| Ok(eg_complex(&net, eg_opts, |_| {})?.0.len()))?;
+    let (tc, pc) = best(&|| Ok(catmull_clark_complex(&net, cc_opts, |_| {})?.len()))?;
+    println!(
+        "valence {n}, {rings} rings + fill: EG {:.3} ms ({pe} patches), Catmull-Clark {:.3} ms \
+         ({pc} patches), EG / CC = {:.2}",
+        te * 1e3,
+        tc * 1e3,
+        te / tc
+    );
     Ok(())
 }

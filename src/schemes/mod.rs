@@ -79,6 +79,37 @@ pub fn refine_levels(
     scheme.refine_uniform(mesh, levels, &mut progress)
 }
 
+/// The stencil table from the control points of `mesh` to the points of its `levels`-th uniform
+/// refinement (each step's table composed with the previous ones), with that refined net.
+///
+/// This is the precomputed form for animation: the topology stays, the control points move, and
+/// [`StencilTable::apply_into`] maps new control positions (or any per-point data) straight to
+/// the refined level, in parallel over rows and without allocating. `levels = 0` gives the
+/// identity.
+///
+/// # Errors
+/// Whatever [`Scheme::refine`] reports (for example a face the scheme cannot handle).
+pub fn level_stencils(
+    scheme: &dyn Scheme,
+    mesh: &PolyMesh,
+    levels: usize,
+) -> Result<(PolyMesh, StencilTable)> {
+    let mut fine: Option<PolyMesh> = None;
+    let mut table: Option<StencilTable> = None;
+    for _ in 0..levels {
+        let r = scheme.refine(fine.as_ref().unwrap_or(mesh))?;
+        table = Some(match table {
+            None => r.stencils,
+            Some(t) => r.stencils.compose(&t),
+        });
+        fine = Some(r.mesh);
+    }
+    Ok(match (fine, table) {
+        (Some(m), Some(t)) => (m, t),
+        _ => (mesh.clone(), StencilTable::identity(mesh.num_vertices())),
+    })
+}
+
 /// Builds the child mesh from topology and stencils: positions are the stencils applied to the
 /// parent positions.
 pub(crate) fn finish_refinement(
