@@ -25,6 +25,7 @@ use ply_rs_bw::ply::{
     BeginList, ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
     PropertyType, ScalarType,
 };
+use std::borrow::Cow;
 use std::io::{BufRead, Write};
 use std::path::Path;
 
@@ -390,6 +391,14 @@ const JOB_BYTES: usize = 2 << 20;
 /// Jobs encoded in parallel while the previous batch is written.
 const JOBS_PER_BATCH: usize = 4;
 
+/// The bytes of points (`3 x f64` each, no padding), in memory order.
+#[cfg(target_endian = "little")]
+fn point_bytes(points: &[crate::geom::Point]) -> &[u8] {
+    // SAFETY: `[f64; 3]` has size 24, no padding and no invalid bit patterns as bytes; the
+    // returned slice borrows `points` for its whole length, with byte alignment.
+    unsafe { std::slice::from_raw_parts(points.as_ptr().cast::<u8>(), size_of_val(points)) }
+}
+
 /// Writes polygons as binary little-endian PLY (double coordinates).
 ///
 /// The body is cut into jobs of about [`JOB_BYTES`]; batches of jobs are encoded in parallel
@@ -423,8 +432,13 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
         jobs.push(Job::Faces(f, g));
         f = g;
     }
-    let encode = |job: &Job| -> Vec<u8> {
+    let encode = |job: &Job| -> Cow<'_, [u8]> {
         match *job {
+            // On a little-endian machine the points are already the file's bytes: written
+            // straight from the mesh, no copy.
+            #[cfg(target_endian = "little")]
+            Job::Vertices(a, b) => Cow::Borrowed(point_bytes(&p.positions[a..b])),
+            #[cfg(not(target_endian = "little"))]
             Job::Vertices(a, b) => {
                 let mut buf = Vec::with_capacity(24 * (b - a));
                 for q in &p.positions[a..b] {
@@ -432,7 +446,7 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
                     buf.extend_from_slice(&q[1].to_le_bytes());
                     buf.extend_from_slice(&q[2].to_le_bytes());
                 }
-                buf
+                Cow::Owned(buf)
             }
             Job::Faces(a, b) => {
                 let corners = p.face_offset(b) - p.face_offset(a);
@@ -451,11 +465,12 @@ pub(crate) fn write_ply_binary_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::i
                         buf.extend_from_slice(&v.to_le_bytes());
                     }
                 }
-                buf
+                Cow::Owned(buf)
             }
         }
     };
-    let encode_batch = |batch: &[Job]| -> Vec<Vec<u8>> { batch.par_iter().map(encode).collect() };
+    let encode_batch =
+        |batch: &[Job]| -> Vec<Cow<'_, [u8]>> { batch.par_iter().map(encode).collect() };
     let mut batches = jobs.chunks(JOBS_PER_BATCH);
     let mut ready = batches.next().map(encode_batch).unwrap_or_default();
     loop {

@@ -187,19 +187,23 @@ fn child_corners(
 ) -> Vec<u32> {
     let nh = corners.len();
     let (nv, nve) = (nv as u32, (nv + ne) as u32);
-    (0..4 * nh)
-        .into_par_iter()
-        .with_min_len(4 * BLOCK)
-        .map(|c| {
-            let h = (c / 4) as u32;
-            match c % 4 {
-                0 => corners[h as usize],
-                1 => nv + he_edge[h as usize],
-                2 => nve + faces.face(h),
-                _ => nv + he_edge[faces.prev(h) as usize],
+    let mut child = crate::buffers::zeroed(4 * nh, 0u32);
+    child
+        .par_chunks_mut(4 * BLOCK)
+        .enumerate()
+        .for_each(|(b, chunk)| {
+            let h0 = b * BLOCK;
+            for (k, quad) in chunk.chunks_exact_mut(4).enumerate() {
+                let h = (h0 + k) as u32;
+                quad.copy_from_slice(&[
+                    corners[h as usize],
+                    nv + he_edge[h as usize],
+                    nve + faces.face(h),
+                    nv + he_edge[faces.prev(h) as usize],
+                ]);
             }
-        })
-        .collect()
+        });
+    child
 }
 
 impl CatmullClark {
@@ -237,7 +241,7 @@ impl CatmullClark {
         assert!(src.len() >= nv, "one point per parent vertex is needed");
         let m = mesh.view();
         // Zeroed output (fresh pages, touched once); face points first, in place.
-        let mut out = vec![[0.0; D]; nv + ne + nf];
+        let mut out = crate::buffers::zeroed(nv + ne + nf, [0.0; D]);
         let (head, faces) = out.split_at_mut(nv + ne);
         faces
             .par_chunks_mut(BLOCK)

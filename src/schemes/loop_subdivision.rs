@@ -247,7 +247,7 @@ fn corner_face(h: u32) -> u32 {
 fn child_corners(corners: &[u32], he_edge: &[u32], nv: usize) -> Vec<u32> {
     let nf = corners.len() / 3;
     let nv = nv as u32;
-    let mut child = vec![0u32; 12 * nf];
+    let mut child = crate::buffers::zeroed(12 * nf, 0u32);
     child
         .par_chunks_mut(12 * BLOCK)
         .enumerate()
@@ -304,19 +304,22 @@ impl Loop {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         assert!(src.len() >= nv, "one point per parent vertex is needed");
         let m = mesh.view();
-        Ok((0..nv + ne)
-            .into_par_iter()
-            .with_min_len(BLOCK)
-            .map(|i| {
-                let mut acc = Accumulator::new(src);
-                if i < nv {
-                    vertex_mask(&m, i, Self::vertex_beta, 0.125, &mut acc);
-                } else {
-                    edge_mask(&m, i - nv, &mut acc);
+        let mut out = crate::buffers::zeroed(nv + ne, [0.0; D]);
+        out.par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let i = c * BLOCK + k;
+                    let mut acc = Accumulator::new(src);
+                    if i < nv {
+                        vertex_mask(&m, i, Self::vertex_beta, 0.125, &mut acc);
+                    } else {
+                        edge_mask(&m, i - nv, &mut acc);
+                    }
+                    *o = acc.value();
                 }
-                acc.value()
-            })
-            .collect())
+            });
+        Ok(out)
     }
 
     /// The child net of one step with the given child points (from [`Loop::refine_points`] or
