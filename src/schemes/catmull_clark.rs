@@ -429,20 +429,20 @@ impl CatmullClark {
     /// neighbours `e_j` and diagonal neighbours `f_j`; boundary vertex: `(a + 4 v + b) / 6`;
     /// corner: `v`. A vertex next to a non-quad face takes the limit of its child after one
     /// step (composed with that step's stencils), which is the same limit point.
+    ///
+    /// Rows are built in parallel blocks.
     pub fn limit_stencils(mesh: &PolyMesh) -> StencilTable {
         let nv = mesh.num_vertices();
-        let mut t = StencilTable::with_capacity(nv, nv, 9);
-        let mut child: Option<(PolyMesh, StencilTable)> = None;
-        for v in 0..nv {
-            match Self::direct_limit_stencil(mesh, v) {
-                Some(s) => t.push(s),
-                None => {
-                    let (cm, cs) = child.get_or_insert_with(|| Self::child(mesh));
-                    t.push(Self::limit_through_child(cm, cs, v));
-                }
+        // Only a vertex next to a non-quad face needs the child.
+        let child = (!mesh.is_all_quads()).then(|| Self::child(mesh));
+        StencilTable::build_par(nv, nv, 9, |rows, t| {
+            for v in rows {
+                t.push(Self::direct_limit_stencil(mesh, v).unwrap_or_else(|| {
+                    let (cm, cs) = child.as_ref().expect("a non-quad face is next to v");
+                    Self::limit_through_child(cm, cs, v)
+                }));
             }
-        }
-        t
+        })
     }
 
     /// Limit-position stencil of one vertex (see [`CatmullClark::limit_stencils`]).
