@@ -14,7 +14,8 @@
 //!   time.
 //! - `reapply` builds the factorized stencil table from the control points to the points of
 //!   level LEVELS (the tables of each step, composed) and times its application to the control
-//!   points, on one thread and on two (minimum over REPS runs).
+//!   points, plain and packed ([`PackedStencilTable`]), on one thread and on two (minimum over
+//!   REPS runs).
 //! - `compare` checks that two binary PLY outputs describe the same refined mesh: counts,
 //!   bounding boxes, the largest distance between each point and the nearest point of the other
 //!   file, and, with vertices matched that way, the same faces.
@@ -31,6 +32,7 @@ mod meshes;
 use fairsub::geom::Point;
 use fairsub::io::MeshFormat;
 use fairsub::schemes;
+use fairsub::stencil::PackedStencilTable;
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
@@ -115,22 +117,29 @@ fn reapply(input: &str, scheme: &str, levels: Option<usize>, reps: Option<usize>
     }
     let (m, table) = schemes::level_stencils(s.as_ref(), &mesh, levels)?;
     let build = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let packed = PackedStencilTable::new(&table);
+    let pack = t0.elapsed().as_secs_f64();
     let src: Vec<Point> = mesh.positions().to_vec();
     let mut out = vec![[0.0; 3]; table.num_rows()];
-    let mut time = |threads: usize| -> Res<f64> {
+    let mut time = |threads: usize, packed_form: bool| -> Res<f64> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()?;
         let mut best = f64::INFINITY;
         for _ in 0..reps {
             let t = Instant::now();
-            pool.install(|| table.apply_into(&src, &mut out));
+            if packed_form {
+                pool.install(|| packed.apply_into(&src, &mut out));
+            } else {
+                pool.install(|| table.apply_into(&src, &mut out));
+            }
             best = best.min(t.elapsed().as_secs_f64());
         }
         Ok(best)
     };
-    let t1 = time(1)?;
-    let t2 = time(2)?;
+    let (t1, t2) = (time(1, false)?, time(2, false)?);
+    let (p1, p2) = (time(1, true)?, time(2, true)?);
     // The applied table must reproduce the refined points.
     let err = out
         .iter()
@@ -147,14 +156,25 @@ fn reapply(input: &str, scheme: &str, levels: Option<usize>, reps: Option<usize>
         build * 1e3
     );
     println!(
-        "apply 1 thread: {:.2} ms ({:.1} M points/s); 2 threads: {:.2} ms ({:.1} M points/s, \
-         {:.2}x)",
-        t1 * 1e3,
-        rows / t1 / 1e6,
-        t2 * 1e3,
-        rows / t2 / 1e6,
-        t1 / t2
+        "packed: {} distinct weights stored for {} entries, {:.0} MB against {:.0} MB, packed in \
+         {:.0} ms",
+        packed.num_stored_weights(),
+        table.num_entries(),
+        packed.heap_bytes() as f64 / 1e6,
+        table.heap_bytes() as f64 / 1e6,
+        pack * 1e3
     );
+    for (name, one, two) in [("table", t1, t2), ("packed", p1, p2)] {
+        println!(
+            "{name} apply 1 thread: {:.2} ms ({:.1} M points/s); 2 threads: {:.2} ms ({:.1} M \
+             points/s, {:.2}x)",
+            one * 1e3,
+            rows / one / 1e6,
+            two * 1e3,
+            rows / two / 1e6,
+            one / two
+        );
+    }
     Ok(())
 }
 

@@ -15,7 +15,7 @@
 #   2. stencil re-application (animation: same topology, new points): the factorized table from
 #      the control points of a 10k-quad torus to its level 3, applied once per run, best of
 #      STENCIL_REPS: OpenSubdiv's Osd::CpuEvaluator (one thread, float) against fairsub's
-#      StencilTable::apply_into (one thread, then two; double).
+#      StencilTable::apply_into and PackedStencilTable::apply_into (one thread, then two; double).
 #   3. an EG cap against a Catmull-Clark cap with the same rings (8 + fill) at valences 3 and 5.
 #
 # Environment: REPS (default 3), STENCIL_REPS (20), FACES (100k), LEVELS (3), STENCIL_FACES (10k),
@@ -105,12 +105,16 @@ osd_st=$("$PEER" stencils catmark "$OUT/stencil.obj" 3 "$STENCIL_REPS")
 fs_st=$("$TOOL" reapply "$OUT/stencil.obj" catmull-clark 3 "$STENCIL_REPS")
 echo "$osd_st" >"$OUT/stencils-osd.txt"
 echo "$fs_st" >"$OUT/stencils-fairsub.txt"
+num() { sed -n "s/.*$1 apply 1 thread: \([0-9.]*\) ms.*2 threads: \([0-9.]*\) ms.*/\\$2/p" <<<"$fs_st"; }
 osd1=$(sed -n 's/.*apply 1 thread: \([0-9.]*\) ms.*/\1/p' <<<"$osd_st")
-fs1=$(sed -n 's/.*apply 1 thread: \([0-9.]*\) ms.*/\1/p' <<<"$fs_st")
-fs2=$(sed -n 's/.*2 threads: \([0-9.]*\) ms.*/\1/p' <<<"$fs_st")
-row "stencils CC $STENCIL_FACES -> L3: ms, 1 thread" "$osd1" "$fs1" "$(ratio "$osd1" "$fs1")x"
-row "stencils CC $STENCIL_FACES -> L3: ms, fairsub 2 threads" "-" "$fs2" \
-    "$(ratio "$fs1" "$fs2")x/1t"
+fs1=$(num table 1)
+fs2=$(num table 2)
+pk1=$(num packed 1)
+pk2=$(num packed 2)
+row "stencils CC $STENCIL_FACES -> L3: ms, 1 thread, table" "$osd1" "$fs1" "$(ratio "$osd1" "$fs1")x"
+row "stencils CC $STENCIL_FACES -> L3: ms, 1 thread, packed" "$osd1" "$pk1" "$(ratio "$osd1" "$pk1")x"
+row "stencils: fairsub 2 threads table (ratio: vs 1 thread)" "-" "$fs2" "$(ratio "$fs1" "$fs2")x"
+row "stencils: fairsub 2 threads packed (ratio: vs 1 thread)" "-" "$pk2" "$(ratio "$pk1" "$pk2")x"
 
 # --- 3. caps (fairsub only: OpenSubdiv has no EG) --------------------------------------------
 caps=()

@@ -6,7 +6,7 @@
 use fairsub::PolyMesh;
 use fairsub::geom::{Point, dist};
 use fairsub::schemes::{self, CatmullClark, Loop, Scheme};
-use fairsub::stencil::StencilTable;
+use fairsub::stencil::{PackedStencilTable, StencilTable};
 
 /// The net with every control point moved (a smooth, non-affine deformation: an animation
 /// frame).
@@ -24,6 +24,27 @@ fn moved(mesh: &PolyMesh, t: f64) -> PolyMesh {
         .collect();
     PolyMesh::from_flat(pos, mesh.face_starts().to_vec(), mesh.corners().to_vec())
         .expect("same topology")
+}
+
+/// An `m x n` quad torus (all vertices regular).
+fn quad_torus(m: usize, n: usize) -> PolyMesh {
+    let mut pos = Vec::new();
+    for i in 0..m {
+        let u = std::f64::consts::TAU * i as f64 / m as f64;
+        for j in 0..n {
+            let v = std::f64::consts::TAU * j as f64 / n as f64;
+            let r = 3.0 + v.cos();
+            pos.push([r * u.cos(), r * u.sin(), v.sin()]);
+        }
+    }
+    let id = |i: usize, j: usize| (i % m) * n + j % n;
+    let faces: Vec<[usize; 4]> = (0..m * n)
+        .map(|f| {
+            let (i, j) = (f / n, f % n);
+            [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]
+        })
+        .collect();
+    PolyMesh::new(pos, &faces).unwrap()
 }
 
 fn max_dist(a: &[Point], b: &[Point]) -> f64 {
@@ -85,6 +106,31 @@ fn parallel_application_is_deterministic() {
         out
     };
     assert_eq!(run(1), run(2));
+    // The packed form gives the same bits, on one thread and on two; on a net with large regular
+    // regions it stores a small fraction of the weights.
+    let packed = PackedStencilTable::new(&table);
+    let run_packed = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut out = vec![[0.0; 3]; table.num_rows()];
+        pool.install(|| packed.apply_into(mesh.positions(), &mut out));
+        out
+    };
+    assert_eq!(run_packed(1), run(1));
+    assert_eq!(run_packed(2), run(1));
+    let big = quad_torus(60, 40);
+    let (_, table) = schemes::level_stencils(&CatmullClark, &big, 3).unwrap();
+    let packed = PackedStencilTable::new(&table);
+    let share = packed.num_stored_weights() as f64 / table.num_entries() as f64;
+    println!(
+        "packed: {} of {} weights stored ({:.1} %)",
+        packed.num_stored_weights(),
+        table.num_entries(),
+        100.0 * share
+    );
+    assert!(share < 0.01, "packed table keeps {share} of its weights");
 }
 
 #[test]
