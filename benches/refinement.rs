@@ -6,7 +6,8 @@
 //! - `geometry`: the points of every level by the fused rule kernels, on the prebuilt levels
 //!   (what `Far::PrimvarRefiner::Interpolate` does, level after level);
 //! - `stencils`: one application of the precomputed table from the control points to the last
-//!   level ([`fairsub::schemes::level_stencils`], the animation path; `Osd::CpuEvaluator`);
+//!   level ([`fairsub::schemes::level_stencils`], the animation path; `Osd::CpuEvaluator`),
+//!   plain and packed (`-packed`, [`PackedStencilTable`]);
 //! - `one_shot`: [`fairsub::schemes::refine_levels`], topology and points together, as the
 //!   `subdivide` command runs it.
 //!
@@ -21,6 +22,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use fairsub::PolyMesh;
 use fairsub::geom::Point;
 use fairsub::schemes::{self, CatmullClark, Loop, Scheme};
+use fairsub::stencil::PackedStencilTable;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -158,9 +160,14 @@ fn bench_scheme(c: &mut Criterion, k: &dyn Kernel) {
         }
         let mesh = input(n);
         let (_, table) = schemes::level_stencils(k.scheme(), mesh, level).expect("refines");
+        let packed = PackedStencilTable::new(&table);
         let mut out = vec![[0.0; 3]; table.num_rows()];
         g.bench_with_input(id(n, level), &level, |b, _| {
             b.iter(|| table.apply_into(black_box(mesh.positions()), &mut out))
+        });
+        let packed_id = BenchmarkId::new(format!("{}k-packed", n / 1000), level);
+        g.bench_with_input(packed_id, &level, |b, _| {
+            b.iter(|| packed.apply_into(black_box(mesh.positions()), &mut out))
         });
     }
     g.finish();
