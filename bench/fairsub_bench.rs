@@ -122,24 +122,24 @@ fn reapply(input: &str, scheme: &str, levels: Option<usize>, reps: Option<usize>
     let pack = t0.elapsed().as_secs_f64();
     let src: Vec<Point> = mesh.positions().to_vec();
     let mut out = vec![[0.0; 3]; table.num_rows()];
-    let mut time = |threads: usize, packed_form: bool| -> Res<f64> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()?;
-        let mut best = f64::INFINITY;
-        for _ in 0..reps {
+    // The four variants take turns, so a change of load on the machine hits them alike.
+    let pools = [1, 2].map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build());
+    let [one, two] = pools;
+    let pools = [one?, two?];
+    let mut best = [f64::INFINITY; 4];
+    for _ in 0..reps {
+        for (k, b) in best.iter_mut().enumerate() {
+            let pool = &pools[k % 2];
             let t = Instant::now();
-            if packed_form {
-                pool.install(|| packed.apply_into(&src, &mut out));
-            } else {
+            if k < 2 {
                 pool.install(|| table.apply_into(&src, &mut out));
+            } else {
+                pool.install(|| packed.apply_into(&src, &mut out));
             }
-            best = best.min(t.elapsed().as_secs_f64());
+            *b = b.min(t.elapsed().as_secs_f64());
         }
-        Ok(best)
-    };
-    let (t1, t2) = (time(1, false)?, time(2, false)?);
-    let (p1, p2) = (time(1, true)?, time(2, true)?);
+    }
+    let [t1, t2, p1, p2] = best;
     // The applied table must reproduce the refined points.
     let err = out
         .iter()

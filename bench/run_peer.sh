@@ -8,7 +8,7 @@
 #
 #   1. whole process, OBJ in -> binary PLY out (fsync'ed, renamed into place on both sides):
 #      Catmull-Clark, 100k quads, level 3 (and Loop, 100k triangles, level 3): best wall time of
-#      REPS runs, peak RSS (/usr/bin/time), output bytes; the outputs are checked to be the same
+#      REPS runs (the programs take turns), peak RSS (/usr/bin/time), output bytes; the outputs are checked to be the same
 #      mesh (same faces, points within 1e-9 of the bounding box diagonal).
 #      fairsub uses all cores (RAYON_NUM_THREADS unset) and is also run on one thread; the
 #      OpenSubdiv Far refiner is single-threaded.
@@ -55,24 +55,17 @@ PEER=$OUT/osd_peer
 "$TOOL" gen tri-torus "$FACES" "$OUT/tris.obj"
 "$TOOL" gen quad-torus "$STENCIL_FACES" "$OUT/stencil.obj"
 
-# Runs a command REPS times; prints "best_seconds peak_rss_bytes" (best wall time, largest RSS).
-measure() {
-    local best="" rss=0
-    for _ in $(seq "$REPS"); do
-        local t0 t1
-        t0=$(date +%s%N)
-        /usr/bin/time -f "%M" -o "$OUT/rss.txt" "$@" >/dev/null 2>&1
-        t1=$(date +%s%N)
-        local s kb
-        s=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", (b - a) / 1e9 }')
-        kb=$(tail -n 1 "$OUT/rss.txt")
-        if [ -z "$best" ] || awk -v x="$s" -v y="$best" 'BEGIN { exit !(x < y) }'; then
-            best=$s
-        fi
-        [ "$kb" -gt "$rss" ] && rss=$kb
-    done
-    echo "$best $((rss * 1024))"
+# Runs a command once; prints "wall_seconds peak_rss_bytes".
+run_once() {
+    local t0 t1 kb
+    t0=$(date +%s%N)
+    /usr/bin/time -f "%M" -o "$OUT/rss.txt" "$@" >/dev/null 2>&1
+    t1=$(date +%s%N)
+    kb=$(tail -n 1 "$OUT/rss.txt")
+    awk -v a="$t0" -v b="$t1" -v kb="$kb" 'BEGIN { printf "%.3f %d\n", (b - a) / 1e9, kb * 1024 }'
 }
+min() { awk -v a="$1" -v b="$2" 'BEGIN { print (b == "" || a < b) ? a : b }'; }
+max() { awk -v a="$1" -v b="$2" 'BEGIN { print (b == "" || a > b) ? a : b }'; }
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 mb() { awk -v a="$1" 'BEGIN { printf "%.0f MB", a / 1e6 }'; }
@@ -85,10 +78,20 @@ echo "load before measuring: $(uptime)"
 # --- 1. whole process ---------------------------------------------------------------------------
 whole() { # scheme-name osd-scheme mesh label
     local fs_ply="$OUT/fairsub-$1.ply" osd_ply="$OUT/osd-$1.ply"
-    read -r t_osd rss_osd < <(measure "$PEER" refine "$2" "$3" "$LEVELS" "$osd_ply")
-    read -r t_fs rss_fs < <(measure "$FAIRSUB" subdivide -s "$1" -l "$LEVELS" -o "$fs_ply" "$3")
-    read -r t_fs1 _ < <(RAYON_NUM_THREADS=1 measure "$FAIRSUB" subdivide -s "$1" -l "$LEVELS" \
-        -o "$fs_ply" "$3")
+    local t_osd="" rss_osd="" t_fs="" rss_fs="" t_fs1="" t rss
+    # The programs take turns, so a change of load on the machine hits both alike; best wall
+    # time and largest peak RSS over REPS turns.
+    for _ in $(seq "$REPS"); do
+        read -r t rss < <(run_once "$PEER" refine "$2" "$3" "$LEVELS" "$osd_ply")
+        t_osd=$(min "$t" "$t_osd")
+        rss_osd=$(max "$rss" "$rss_osd")
+        read -r t rss < <(run_once "$FAIRSUB" subdivide -s "$1" -l "$LEVELS" -o "$fs_ply" "$3")
+        t_fs=$(min "$t" "$t_fs")
+        rss_fs=$(max "$rss" "$rss_fs")
+        read -r t _ < <(RAYON_NUM_THREADS=1 run_once "$FAIRSUB" subdivide -s "$1" -l "$LEVELS" \
+            -o "$fs_ply" "$3")
+        t_fs1=$(min "$t" "$t_fs1")
+    done
     "$TOOL" compare "$fs_ply" "$osd_ply" >"$OUT/compare-$1.txt"
     local bytes
     bytes=$(stat -c %s "$fs_ply")
