@@ -18,7 +18,7 @@
 #[path = "../bench/meshes.rs"]
 mod meshes;
 
-use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, SamplingMode, criterion_group, criterion_main};
 use fairsub::PolyMesh;
 use fairsub::geom::Point;
 use fairsub::schemes::{self, CatmullClark, Loop, Scheme};
@@ -127,6 +127,8 @@ fn bench_scheme(c: &mut Criterion, k: &dyn Kernel) {
     let id = |n: usize, level: usize| BenchmarkId::new(format!("{}k", n / 1000), level);
 
     let mut g = c.benchmark_group(format!("{}/topology", k.name()));
+    // Equal iterations per sample: a large case runs 10 times, not the 55 of linear sampling.
+    g.sampling_mode(SamplingMode::Flat);
     for &(n, level) in &cases {
         g.bench_with_input(id(n, level), &level, |b, &level| {
             b.iter(|| black_box(topology(k, input(n), level)))
@@ -135,6 +137,8 @@ fn bench_scheme(c: &mut Criterion, k: &dyn Kernel) {
     g.finish();
 
     let mut g = c.benchmark_group(format!("{}/geometry", k.name()));
+    // Equal iterations per sample: a large case runs 10 times, not the 55 of linear sampling.
+    g.sampling_mode(SamplingMode::Flat);
     for &(n, level) in &cases {
         let mesh = input(n);
         // Levels 0..level-1 prebuilt; the measured loop computes the points of levels 1..level.
@@ -153,6 +157,8 @@ fn bench_scheme(c: &mut Criterion, k: &dyn Kernel) {
     g.finish();
 
     let mut g = c.benchmark_group(format!("{}/stencils", k.name()));
+    // Equal iterations per sample: a large case runs 10 times, not the 55 of linear sampling.
+    g.sampling_mode(SamplingMode::Flat);
     for &(n, level) in &cases {
         // Tables of the largest cases would need gigabytes: keep to results of 1M faces.
         if n << (2 * level) > 1_100_000 {
@@ -173,6 +179,8 @@ fn bench_scheme(c: &mut Criterion, k: &dyn Kernel) {
     g.finish();
 
     let mut g = c.benchmark_group(format!("{}/one_shot", k.name()));
+    // Equal iterations per sample: a large case runs 10 times, not the 55 of linear sampling.
+    g.sampling_mode(SamplingMode::Flat);
     for &(n, level) in &cases {
         g.bench_with_input(id(n, level), &level, |b, &level| {
             b.iter(|| {

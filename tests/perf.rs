@@ -151,3 +151,27 @@ fn one_shot_kernels_match_the_tables() {
     assert_eq!(a.corners(), b.corners());
     assert_eq!(a.num_faces(), 20 * 64);
 }
+
+#[test]
+fn limit_points_are_the_same_from_every_level() {
+    // The limit point of a vertex does not depend on the level it is computed from: a check of
+    // the (allocation-free, parallel) limit stencils independent of their formulas. Nets with
+    // boundary and corners, extraordinary vertices, and an n-gon (limits through the child).
+    for mesh in [
+        fairsub::gallery::open_grid(),
+        fairsub::gallery::torus_with_evs(),
+        fairsub::gallery::prism(5),
+    ] {
+        let coarse = CatmullClark::limit_stencils(&mesh).apply(mesh.positions());
+        let fine = schemes::refine_levels(&CatmullClark, &mesh, 3, |_| {}).unwrap();
+        let limits = CatmullClark::limit_stencils(&fine).apply(fine.positions());
+        let d = max_dist(&coarse, &limits[..coarse.len()]);
+        assert!(d < 1e-12, "limit points move by {d} under refinement");
+        // And the refined points approach them.
+        let far = max_dist(&coarse, &fine.positions()[..coarse.len()]);
+        assert!(
+            far > 1e-6 && far < 0.1,
+            "level 3 points are {far} from their limits"
+        );
+    }
+}

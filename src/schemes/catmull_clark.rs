@@ -206,6 +206,37 @@ fn child_corners(
     child
 }
 
+/// The limit-position rule of vertex `v` (see [`CatmullClark::limit_stencils`]) when all faces
+/// at `v` are quads or `v` is on the boundary; returns `false`, writing nothing, otherwise.
+/// Walks the connectivity in place (no allocation per vertex).
+fn limit_terms(m: &MeshView<'_>, v: usize, t: &mut impl Terms) -> bool {
+    let vv = v as u32;
+    if m.is_boundary_vertex(v) {
+        if m.is_corner(v) {
+            t.add(vv, 1.0);
+        } else {
+            let (a, b) = m.boundary_neighbors(v);
+            t.add(vv, 4.0 / 6.0);
+            t.add(a, 1.0 / 6.0);
+            t.add(b, 1.0 / 6.0);
+        }
+        return true;
+    }
+    if m.outgoing(v)
+        .any(|h| m.face_corners(m.face(h) as usize).len() != 4)
+    {
+        return false;
+    }
+    let n = m.outgoing(v).count() as f64;
+    let d = n * (n + 5.0);
+    t.add(vv, n * n / d);
+    for h in m.outgoing(v) {
+        t.add(m.to(h), 4.0 / d);
+        t.add(m.from(m.faces.next(m.faces.next(h))), 1.0 / d);
+    }
+    true
+}
+
 impl CatmullClark {
     /// The refinement stencils of one step (child vertex order as in the module doc), built in
     /// parallel without per-row allocation.
@@ -435,12 +466,16 @@ impl CatmullClark {
         let nv = mesh.num_vertices();
         // Only a vertex next to a non-quad face needs the child.
         let child = (!mesh.is_all_quads()).then(|| Self::child(mesh));
+        let m = mesh.view();
         StencilTable::build_par(nv, nv, 9, |rows, t| {
+            let mut row = RowWriter::new();
             for v in rows {
-                t.push(Self::direct_limit_stencil(mesh, v).unwrap_or_else(|| {
+                if limit_terms(&m, v, &mut row) {
+                    row.push_into(t);
+                } else {
                     let (cm, cs) = child.as_ref().expect("a non-quad face is next to v");
-                    Self::limit_through_child(cm, cs, v)
-                }));
+                    t.push(Self::limit_through_child(cm, cs, v));
+                }
             }
         })
     }
@@ -472,35 +507,7 @@ impl CatmullClark {
     /// Limit stencil when all faces at `v` are quads (or `v` is on the boundary).
     fn direct_limit_stencil(mesh: &PolyMesh, v: usize) -> Option<Stencil> {
         let mut s = Stencil::new();
-        if mesh.is_boundary_vertex(v) {
-            let nb = mesh.vertex_neighbors(v);
-            if nb.len() == 2 {
-                s.add(v, 1.0);
-            } else {
-                s.add(v, 4.0 / 6.0);
-                s.add(nb[0] as usize, 1.0 / 6.0);
-                s.add(*nb.last()? as usize, 1.0 / 6.0);
-            }
-            return Some(s.merged());
-        }
-        let hs = mesh.outgoing_halfedges(v);
-        if hs
-            .iter()
-            .any(|&h| mesh.face_size(mesh.he_face(h) as usize) != 4)
-        {
-            return None;
-        }
-        let n = hs.len() as f64;
-        let d = n * (n + 5.0);
-        s.add(v, n * n / d);
-        for &h in &hs {
-            s.add(mesh.he_to(h) as usize, 4.0 / d);
-            s.add(
-                mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize,
-                1.0 / d,
-            );
-        }
-        Some(s.merged())
+        limit_terms(&mesh.view(), v, &mut s).then(|| s.merged())
     }
 
     /// Limit tangent stencils `(t1, t2)` at vertex `v` when all faces at `v` are quads: for an
