@@ -16,6 +16,7 @@
 
 pub mod analysis;
 pub mod bezier;
+pub(crate) mod buffers;
 pub mod error;
 pub mod gallery;
 pub mod geom;

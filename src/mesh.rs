@@ -13,29 +13,79 @@
 
 use crate::error::{MeshError, Result};
 use crate::geom::Point;
+use rayon::prelude::*;
+use std::sync::OnceLock;
 
 /// Marks a missing half-edge (no twin on a boundary edge).
 pub const NONE: u32 = u32::MAX;
 
 /// Half-edge connectivity of a [`PolyMesh`].
+///
+/// Flat arrays indexed by half-edge, edge or vertex. The face of a half-edge is stored only when
+/// the faces differ in size (otherwise it is `h / size`), and edge end points are derived from
+/// `edge_he`, so a quad mesh costs 8 bytes per half-edge plus 4 per edge and per vertex.
 #[derive(Debug, Clone, Default)]
 pub struct Topology {
-    he_face: Vec<u32>,
-    twin: Vec<u32>,
-    he_edge: Vec<u32>,
-    edges: Vec<[u32; 2]>,
-    edge_he: Vec<u32>,
-    vert_he: Vec<u32>,
+    /// Face of each half-edge; empty when all faces have the same size.
+    pub(crate) he_face: Vec<u32>,
+    /// Opposite half-edge, [`NONE`] on the boundary.
+    pub(crate) twin: Vec<u32>,
+    /// Edge of each half-edge.
+    pub(crate) he_edge: Vec<u32>,
+    /// First half-edge of each edge (the one with the smaller index; the only one on the
+    /// boundary).
+    pub(crate) edge_he: Vec<u32>,
+    /// One outgoing half-edge per vertex: the boundary one for a boundary vertex, else the one
+    /// with the smallest index.
+    pub(crate) vert_he: Vec<u32>,
 }
 
 /// A validated manifold polygon mesh (a control net).
+///
+/// The half-edge [`Topology`] of a mesh read from a file is built (and checked) at construction;
+/// a mesh produced by refinement may carry a topology built directly from its parent's, or none,
+/// in which case it is built on first use (a refined net that is only written out never needs
+/// it).
 #[derive(Debug, Clone)]
 pub struct PolyMesh {
     positions: Vec<Point>,
-    face_start: Vec<u32>,
+    /// Face offsets; for a mesh whose faces all have one size they are implicit (`k f`) and
+    /// only built if [`PolyMesh::face_starts`] is asked for.
+    face_start: OnceLock<Vec<u32>>,
     corners: Vec<u32>,
-    topo: Topology,
+    /// The common face size, 0 when sizes differ.
+    uniform: u32,
+    topo: OnceLock<Topology>,
+    edges: OnceLock<Vec<[u32; 2]>>,
     dropped: Vec<usize>,
+}
+
+/// The parts of a [`PolyMesh`], for refinement kernels that consume their parent level and free
+/// what they no longer need as early as possible.
+#[derive(Debug)]
+pub(crate) struct MeshParts {
+    pub positions: Vec<Point>,
+    /// Empty when the offsets were implicit.
+    pub face_start: Vec<u32>,
+    pub corners: Vec<u32>,
+    pub uniform: u32,
+    pub topo: Option<Topology>,
+}
+
+/// Half-edges (or vertices) per parallel task in topology passes.
+const CHUNK: usize = 1 << 14;
+
+/// The common size of the faces given by `face_start`, or 0 when sizes differ.
+fn uniform_size(face_start: &[u32]) -> u32 {
+    if face_start.len() < 2 {
+        return 0;
+    }
+    let k = face_start[1] - face_start[0];
+    if face_start.windows(2).all(|w| w[1] - w[0] == k) {
+        k
+    } else {
+        0
+    }
 }
 
 impl PolyMesh {
@@ -142,35 +192,39 @@ impl PolyMesh {
             let corners = corners.iter().map(|&v| new_of_old[v as usize]).collect();
             (pos, corners, Some(old_of_new))
         };
-        let topo = Topology::build(positions.len(), &face_start, &corners, false).map_err(|e| {
-            // Report vertices in input numbering.
-            match (&old_of_new, e) {
-                (Some(map), MeshError::NonManifoldEdge { edge, faces }) => {
-                    MeshError::NonManifoldEdge {
-                        edge: [map[edge[0]], map[edge[1]]],
-                        faces,
+        let uniform = uniform_size(&face_start);
+        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, false)
+            .map_err(|e| {
+                // Report vertices in input numbering.
+                match (&old_of_new, e) {
+                    (Some(map), MeshError::NonManifoldEdge { edge, faces }) => {
+                        MeshError::NonManifoldEdge {
+                            edge: [map[edge[0]], map[edge[1]]],
+                            faces,
+                        }
                     }
-                }
-                (Some(map), MeshError::InconsistentOrientation { edge, faces }) => {
-                    MeshError::InconsistentOrientation {
-                        edge: [map[edge[0]], map[edge[1]]],
-                        faces,
+                    (Some(map), MeshError::InconsistentOrientation { edge, faces }) => {
+                        MeshError::InconsistentOrientation {
+                            edge: [map[edge[0]], map[edge[1]]],
+                            faces,
+                        }
                     }
-                }
-                (Some(map), MeshError::NonManifoldVertex { vertex, fans }) => {
-                    MeshError::NonManifoldVertex {
-                        vertex: map[vertex],
-                        fans,
+                    (Some(map), MeshError::NonManifoldVertex { vertex, fans }) => {
+                        MeshError::NonManifoldVertex {
+                            vertex: map[vertex],
+                            fans,
+                        }
                     }
+                    (_, e) => e,
                 }
-                (_, e) => e,
-            }
-        })?;
+            })?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
-            topo,
+            uniform,
+            topo: OnceLock::from(topo),
+            edges: OnceLock::new(),
             dropped,
         })
     }
@@ -182,12 +236,15 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let topo = Topology::build(positions.len(), &face_start, &corners, false)?;
+        let uniform = uniform_size(&face_start);
+        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, false)?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
-            topo,
+            uniform,
+            topo: OnceLock::from(topo),
+            edges: OnceLock::new(),
             dropped: Vec::new(),
         })
     }
@@ -200,14 +257,114 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let topo = Topology::build(positions.len(), &face_start, &corners, true)?;
+        let uniform = uniform_size(&face_start);
+        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, true)?;
         Ok(PolyMesh {
             positions,
-            face_start,
+            face_start: OnceLock::from(face_start),
             corners,
-            topo,
+            uniform,
+            topo: OnceLock::from(topo),
+            edges: OnceLock::new(),
             dropped: Vec::new(),
         })
+    }
+
+    /// A mesh whose validity is guaranteed by construction (a refinement kernel's output) and
+    /// whose faces all have `size` corners (the face offsets stay implicit), with its topology
+    /// when the kernel built it from the parent's, or `None` to build it on first use. Nothing
+    /// is checked: the caller guarantees a valid manifold mesh whose `topo` (if given) is the
+    /// one [`PolyMesh::from_refinement`] would build.
+    pub(crate) fn from_trusted_uniform(
+        positions: Vec<Point>,
+        size: u32,
+        corners: Vec<u32>,
+        topo: Option<Topology>,
+    ) -> PolyMesh {
+        debug_assert!(size >= 3 && corners.len().is_multiple_of(size as usize));
+        debug_assert!(topo.as_ref().is_none_or(|t| t.twin.len() == corners.len()
+            && t.vert_he.len() == positions.len()
+            && t.he_face.is_empty()));
+        PolyMesh {
+            positions,
+            face_start: OnceLock::new(),
+            corners,
+            uniform: size,
+            topo: topo.map(OnceLock::from).unwrap_or_default(),
+            edges: OnceLock::new(),
+            dropped: Vec::new(),
+        }
+    }
+
+    /// The face offsets (built now for a uniform mesh that did not have them).
+    #[inline]
+    fn offsets(&self) -> &[u32] {
+        self.face_start.get_or_init(|| {
+            let k = self.uniform;
+            (0..=(self.corners.len() as u32 / k))
+                .map(|f| k * f)
+                .collect()
+        })
+    }
+
+    /// The face offsets the arrays need: none for a uniform mesh.
+    #[inline]
+    fn stored_offsets(&self) -> &[u32] {
+        if self.uniform != 0 {
+            &[]
+        } else {
+            self.offsets()
+        }
+    }
+
+    /// Splits the mesh into its arrays (the topology only if it was built).
+    pub(crate) fn into_parts(self) -> MeshParts {
+        MeshParts {
+            positions: self.positions,
+            face_start: self.face_start.into_inner().unwrap_or_default(),
+            corners: self.corners,
+            uniform: self.uniform,
+            topo: self.topo.into_inner(),
+        }
+    }
+
+    /// The half-edge topology (built now if this refined mesh did not have it yet).
+    #[inline]
+    pub(crate) fn topology(&self) -> &Topology {
+        self.topo.get_or_init(|| {
+            Topology::build(
+                self.positions.len(),
+                self.stored_offsets(),
+                &self.corners,
+                self.uniform,
+                false,
+            )
+            .expect("a refinement kernel produced an invalid mesh")
+        })
+    }
+
+    /// A view of the arrays for hot loops (builds the topology if needed).
+    #[inline]
+    pub(crate) fn view(&self) -> MeshView<'_> {
+        let t = self.topology();
+        MeshView {
+            corners: &self.corners,
+            faces: FaceIndex {
+                face_start: self.stored_offsets(),
+                he_face: &t.he_face,
+                uniform: self.uniform,
+            },
+            twin: &t.twin,
+            he_edge: &t.he_edge,
+            edge_he: &t.edge_he,
+            vert_he: &t.vert_he,
+        }
+    }
+
+    /// The size shared by all faces (4 for an all-quad mesh, 3 for a triangle mesh), or `None`
+    /// when face sizes differ.
+    pub fn uniform_face_size(&self) -> Option<usize> {
+        (self.uniform != 0).then_some(self.uniform as usize)
     }
 
     /// Input indices of the vertices that no face used and that were dropped.
@@ -216,26 +373,35 @@ impl PolyMesh {
     }
 
     /// Number of vertices.
+    #[inline]
     pub fn num_vertices(&self) -> usize {
         self.positions.len()
     }
 
     /// Number of faces.
+    #[inline]
     pub fn num_faces(&self) -> usize {
-        self.face_start.len() - 1
+        if self.uniform != 0 {
+            self.corners.len() / self.uniform as usize
+        } else {
+            self.offsets().len() - 1
+        }
     }
 
     /// Number of undirected edges.
+    #[inline]
     pub fn num_edges(&self) -> usize {
-        self.topo.edges.len()
+        self.topology().edge_he.len()
     }
 
     /// Number of half-edges (= face corners).
+    #[inline]
     pub fn num_halfedges(&self) -> usize {
         self.corners.len()
     }
 
     /// Vertex positions.
+    #[inline]
     pub fn positions(&self) -> &[Point] {
         &self.positions
     }
@@ -254,26 +420,43 @@ impl PolyMesh {
     }
 
     /// Position of vertex `v`.
+    #[inline]
     pub fn position(&self, v: usize) -> Point {
         self.positions[v]
     }
 
     /// Corner vertices of face `f`, counter-clockwise.
+    #[inline]
     pub fn face(&self, f: usize) -> &[u32] {
-        &self.corners[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+        if self.uniform != 0 {
+            let k = self.uniform as usize;
+            &self.corners[k * f..k * f + k]
+        } else {
+            let fs = self.offsets();
+            &self.corners[fs[f] as usize..fs[f + 1] as usize]
+        }
     }
 
     /// Number of corners of face `f`.
+    #[inline]
     pub fn face_size(&self, f: usize) -> usize {
-        (self.face_start[f + 1] - self.face_start[f]) as usize
+        if self.uniform != 0 {
+            assert!(f < self.num_faces(), "face {f} out of range");
+            self.uniform as usize
+        } else {
+            let fs = self.offsets();
+            (fs[f + 1] - fs[f]) as usize
+        }
     }
 
     /// Flat face offsets (`num_faces + 1` entries).
+    #[inline]
     pub fn face_starts(&self) -> &[u32] {
-        &self.face_start
+        self.offsets()
     }
 
     /// Flat corner array (vertex of each corner, face after face).
+    #[inline]
     pub fn corners(&self) -> &[u32] {
         &self.corners
     }
@@ -284,92 +467,141 @@ impl PolyMesh {
     }
 
     /// First half-edge (corner) of face `f`.
+    #[inline]
     pub fn face_halfedge(&self, f: usize) -> u32 {
-        self.face_start[f]
+        if self.uniform != 0 {
+            assert!(f < self.num_faces(), "face {f} out of range");
+            self.uniform * f as u32
+        } else {
+            self.offsets()[f]
+        }
     }
 
     /// Vertex a half-edge starts at.
+    #[inline]
     pub fn he_from(&self, h: u32) -> u32 {
         self.corners[h as usize]
     }
 
     /// Vertex a half-edge ends at.
+    #[inline]
     pub fn he_to(&self, h: u32) -> u32 {
         self.corners[self.he_next(h) as usize]
     }
 
     /// Face of a half-edge.
+    #[inline]
     pub fn he_face(&self, h: u32) -> u32 {
-        self.topo.he_face[h as usize]
+        match self.uniform {
+            4 => h >> 2,
+            3 => h / 3,
+            0 => self.topology().he_face[h as usize],
+            k => h / k,
+        }
     }
 
     /// Next half-edge in the same face.
+    #[inline]
     pub fn he_next(&self, h: u32) -> u32 {
-        let f = self.topo.he_face[h as usize] as usize;
-        if h + 1 < self.face_start[f + 1] {
-            h + 1
-        } else {
-            self.face_start[f]
+        match self.uniform {
+            4 => (h & !3) | ((h + 1) & 3),
+            0 => {
+                let f = self.topology().he_face[h as usize] as usize;
+                let fs = self.offsets();
+                if h + 1 < fs[f + 1] { h + 1 } else { fs[f] }
+            }
+            k => {
+                if !(h + 1).is_multiple_of(k) {
+                    h + 1
+                } else {
+                    h + 1 - k
+                }
+            }
         }
     }
 
     /// Previous half-edge in the same face.
+    #[inline]
     pub fn he_prev(&self, h: u32) -> u32 {
-        let f = self.topo.he_face[h as usize] as usize;
-        if h > self.face_start[f] {
-            h - 1
-        } else {
-            self.face_start[f + 1] - 1
+        match self.uniform {
+            4 => (h & !3) | (h.wrapping_sub(1) & 3),
+            0 => {
+                let f = self.topology().he_face[h as usize] as usize;
+                let fs = self.offsets();
+                if h > fs[f] { h - 1 } else { fs[f + 1] - 1 }
+            }
+            k => {
+                if !h.is_multiple_of(k) {
+                    h - 1
+                } else {
+                    h + k - 1
+                }
+            }
         }
     }
 
     /// Opposite half-edge, `None` on the boundary.
+    #[inline]
     pub fn he_twin(&self, h: u32) -> Option<u32> {
-        let t = self.topo.twin[h as usize];
+        let t = self.topology().twin[h as usize];
         (t != NONE).then_some(t)
     }
 
     /// Undirected edge of a half-edge.
+    #[inline]
     pub fn he_edge(&self, h: u32) -> u32 {
-        self.topo.he_edge[h as usize]
+        self.topology().he_edge[h as usize]
     }
 
     /// End points of edge `e`.
     pub fn edge(&self, e: usize) -> [u32; 2] {
-        self.topo.edges[e]
+        let h = self.topology().edge_he[e];
+        [self.he_from(h), self.he_to(h)]
     }
 
     /// All edges as vertex pairs.
     pub fn edges(&self) -> &[[u32; 2]] {
-        &self.topo.edges
+        self.edges.get_or_init(|| {
+            self.topology()
+                .edge_he
+                .iter()
+                .map(|&h| [self.he_from(h), self.he_to(h)])
+                .collect()
+        })
     }
 
     /// One half-edge of edge `e` (the one with a face on the boundary).
+    #[inline]
     pub fn edge_halfedge(&self, e: usize) -> u32 {
-        self.topo.edge_he[e]
+        self.topology().edge_he[e]
     }
 
     /// Whether edge `e` lies on the boundary.
+    #[inline]
     pub fn is_boundary_edge(&self, e: usize) -> bool {
-        self.topo.twin[self.topo.edge_he[e] as usize] == NONE
+        let t = self.topology();
+        t.twin[t.edge_he[e] as usize] == NONE
     }
 
     /// One outgoing half-edge of vertex `v`: for a boundary vertex the one whose counter-clockwise
     /// rotation visits all faces around it.
+    #[inline]
     pub fn vertex_halfedge(&self, v: usize) -> u32 {
-        self.topo.vert_he[v]
+        self.topology().vert_he[v]
     }
 
     /// Whether vertex `v` lies on the boundary.
+    #[inline]
     pub fn is_boundary_vertex(&self, v: usize) -> bool {
-        self.topo.twin[self.topo.vert_he[v] as usize] == NONE
+        let t = self.topology();
+        t.twin[t.vert_he[v] as usize] == NONE
     }
 
     /// Outgoing half-edges of `v`, counter-clockwise; for a boundary vertex starting at its
     /// boundary half-edge. The last edge of a boundary vertex (the incoming boundary edge) has no
     /// outgoing half-edge and is not listed; see [`PolyMesh::vertex_neighbors`].
     pub fn outgoing_halfedges(&self, v: usize) -> Vec<u32> {
-        let start = self.topo.vert_he[v];
+        let start = self.topology().vert_he[v];
         let mut out = vec![start];
         let mut h = start;
         loop {
@@ -453,7 +685,7 @@ impl PolyMesh {
         let mut seen = vec![false; nh];
         let mut loops = Vec::new();
         for h0 in 0..nh as u32 {
-            if self.topo.twin[h0 as usize] != NONE || seen[h0 as usize] {
+            if self.topology().twin[h0 as usize] != NONE || seen[h0 as usize] {
                 continue;
             }
             let mut lp = Vec::new();
@@ -463,7 +695,7 @@ impl PolyMesh {
                 lp.push(self.he_from(h));
                 // The next boundary half-edge starts where h ends: the boundary half-edge of that
                 // vertex.
-                h = self.topo.vert_he[self.he_to(h) as usize];
+                h = self.topology().vert_he[self.he_to(h) as usize];
                 if h == h0 || seen[h as usize] {
                     break;
                 }
@@ -622,30 +854,38 @@ impl PolyMesh {
 }
 
 impl Topology {
-    /// Builds half-edge connectivity and checks manifoldness and orientation.
+    /// Builds half-edge connectivity and checks manifoldness and orientation (the first problem
+    /// in half-edge order, then in vertex order, is reported). `uniform` is the common face size
+    /// or 0 (then `face_start` may be empty). Runs in parallel over blocks of half-edges and
+    /// vertices.
     fn build(
         nv: usize,
         face_start: &[u32],
         corners: &[u32],
+        uniform: u32,
         relaxed: bool,
     ) -> std::result::Result<Topology, MeshError> {
-        let nf = face_start.len() - 1;
         let nh = corners.len();
-        let mut he_face = vec![0u32; nh];
-        for f in 0..nf {
-            for h in face_start[f]..face_start[f + 1] {
-                he_face[h as usize] = f as u32;
-            }
-        }
-        let next = |h: usize| -> usize {
-            let f = he_face[h] as usize;
-            if h + 1 < face_start[f + 1] as usize {
-                h + 1
-            } else {
-                face_start[f] as usize
-            }
+        let nf = if uniform != 0 {
+            nh / uniform as usize
+        } else {
+            face_start.len() - 1
         };
-        // Outgoing half-edges bucketed per vertex (CSR).
+        let he_face = if uniform == 0 {
+            let mut he_face = vec![0u32; nh];
+            for f in 0..nf {
+                he_face[face_start[f] as usize..face_start[f + 1] as usize].fill(f as u32);
+            }
+            he_face
+        } else {
+            Vec::new()
+        };
+        let faces = FaceIndex {
+            face_start,
+            he_face: &he_face,
+            uniform,
+        };
+        // Outgoing half-edges bucketed per vertex (CSR), in increasing half-edge order.
         let mut out_start = vec![0u32; nv + 1];
         for &v in corners {
             out_start[v as usize + 1] += 1;
@@ -659,119 +899,384 @@ impl Topology {
             out_he[fill[v as usize] as usize] = h as u32;
             fill[v as usize] += 1;
         }
-        let to = |h: usize| corners[next(h)];
+        drop(fill);
+        let outs =
+            |v: u32| &out_he[out_start[v as usize] as usize..out_start[v as usize + 1] as usize];
+        let to = |h: u32| corners[faces.next(h) as usize];
         let mut twin = vec![NONE; nh];
-        for h in 0..nh {
-            let (a, b) = (corners[h], to(h));
-            // Same-direction duplicates: orientation conflict or a non-manifold edge.
-            let outs_a =
-                &out_he[out_start[a as usize] as usize..out_start[a as usize + 1] as usize];
-            let outs_b =
-                &out_he[out_start[b as usize] as usize..out_start[b as usize + 1] as usize];
-            let n_same = outs_a.iter().filter(|&&g| to(g as usize) == b).count();
-            let mut n_opp = 0;
-            for &g in outs_b {
-                if to(g as usize) == a {
-                    if n_opp == 0 {
-                        twin[h] = g;
+        let bad_edge = twin
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .filter_map(|(c, chunk)| {
+                for (k, slot) in chunk.iter_mut().enumerate() {
+                    let h = (c * CHUNK + k) as u32;
+                    let (a, b) = (corners[h as usize], to(h));
+                    // Same-direction duplicates: orientation conflict or a non-manifold edge.
+                    let n_same = outs(a).iter().filter(|&&g| to(g) == b).count();
+                    let mut n_opp = 0;
+                    for &g in outs(b) {
+                        if to(g) == a {
+                            if n_opp == 0 {
+                                *slot = g;
+                            }
+                            n_opp += 1;
+                        }
                     }
-                    n_opp += 1;
+                    if n_same + n_opp > 2 {
+                        let mut faces: Vec<usize> = outs(a)
+                            .iter()
+                            .filter(|&&g| to(g) == b)
+                            .chain(outs(b).iter().filter(|&&g| to(g) == a))
+                            .map(|&g| faces.face(g) as usize)
+                            .collect();
+                        faces.sort_unstable();
+                        let edge = [a.min(b) as usize, a.max(b) as usize];
+                        return Some((h, MeshError::NonManifoldEdge { edge, faces }));
+                    }
+                    if n_same == 2 {
+                        let mut faces: Vec<usize> = outs(a)
+                            .iter()
+                            .filter(|&&g| to(g) == b)
+                            .map(|&g| faces.face(g) as usize)
+                            .collect();
+                        faces.sort_unstable();
+                        let e = MeshError::InconsistentOrientation {
+                            edge: [a as usize, b as usize],
+                            faces: [faces[0], faces[1]],
+                        };
+                        return Some((h, e));
+                    }
                 }
-            }
-            if n_same + n_opp > 2 {
-                let mut faces: Vec<usize> = outs_a
-                    .iter()
-                    .filter(|&&g| to(g as usize) == b)
-                    .chain(outs_b.iter().filter(|&&g| to(g as usize) == a))
-                    .map(|&g| he_face[g as usize] as usize)
-                    .collect();
-                faces.sort_unstable();
-                return Err(MeshError::NonManifoldEdge {
-                    edge: [a.min(b) as usize, a.max(b) as usize],
-                    faces,
-                });
-            }
-            if n_same == 2 {
-                let mut faces: Vec<usize> = outs_a
-                    .iter()
-                    .filter(|&&g| to(g as usize) == b)
-                    .map(|&g| he_face[g as usize] as usize)
-                    .collect();
-                faces.sort_unstable();
-                return Err(MeshError::InconsistentOrientation {
-                    edge: [a as usize, b as usize],
-                    faces: [faces[0], faces[1]],
-                });
-            }
+                None
+            })
+            .min_by_key(|(h, _)| *h);
+        if let Some((_, e)) = bad_edge {
+            return Err(e);
         }
-        // Edges.
-        let mut he_edge = vec![NONE; nh];
-        let mut edges = Vec::with_capacity(nh / 2 + 1);
-        let mut edge_he = Vec::with_capacity(nh / 2 + 1);
-        for h in 0..nh {
-            if he_edge[h] != NONE {
-                continue;
-            }
-            let e = edges.len() as u32;
-            he_edge[h] = e;
-            let t = twin[h];
-            if t != NONE {
-                he_edge[t as usize] = e;
-            }
-            edges.push([corners[h], to(h)]);
-            edge_he.push(h as u32);
-        }
-        // Vertex half-edges: prefer a boundary outgoing half-edge; check single fans.
-        let prev = |h: usize| -> usize {
-            let f = he_face[h] as usize;
-            if h > face_start[f] as usize {
-                h - 1
-            } else {
-                face_start[f + 1] as usize - 1
-            }
-        };
+        let (he_edge, edge_he) = number_edges(&twin);
+        // Vertex half-edges: the boundary outgoing half-edge, else the first; check single fans.
         let mut vert_he = vec![NONE; nv];
-        for v in 0..nv {
-            let outs = &out_he[out_start[v] as usize..out_start[v + 1] as usize];
-            let Some(&first) = outs.first() else {
-                continue; // unreferenced vertex (only in refinement output; never queried)
-            };
-            let mut start = first;
-            let mut boundary_starts = 0;
-            for &h in outs {
-                if twin[h as usize] == NONE {
-                    boundary_starts += 1;
-                    start = h;
+        let bad_vertex = vert_he
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .filter_map(|(c, chunk)| {
+                for (k, slot) in chunk.iter_mut().enumerate() {
+                    let v = c * CHUNK + k;
+                    let outs = outs(v as u32);
+                    let Some(&first) = outs.first() else {
+                        continue; // unreferenced vertex (only in refinement output; never queried)
+                    };
+                    let mut start = first;
+                    let mut boundary_starts = 0;
+                    for &h in outs {
+                        if twin[h as usize] == NONE {
+                            boundary_starts += 1;
+                            start = h;
+                        }
+                    }
+                    // Count faces reached by counter-clockwise rotation from `start`.
+                    let mut count = 1;
+                    let mut h = start;
+                    loop {
+                        let t = twin[faces.prev(h) as usize];
+                        if t == NONE || t == start {
+                            break;
+                        }
+                        h = t;
+                        count += 1;
+                        if count > outs.len() {
+                            break;
+                        }
+                    }
+                    if !relaxed && (count != outs.len() || boundary_starts > 1) {
+                        let fans = boundary_starts.max(2);
+                        return Some((v, MeshError::NonManifoldVertex { vertex: v, fans }));
+                    }
+                    *slot = start;
                 }
-            }
-            // Count faces reached by counter-clockwise rotation from `start`.
-            let mut count = 1;
-            let mut h = start as usize;
-            loop {
-                let t = twin[prev(h)];
-                if t == NONE || t == start {
-                    break;
-                }
-                h = t as usize;
-                count += 1;
-                if count > outs.len() {
-                    break;
-                }
-            }
-            if !relaxed && (count != outs.len() || boundary_starts > 1) {
-                let fans = boundary_starts.max(2);
-                return Err(MeshError::NonManifoldVertex { vertex: v, fans });
-            }
-            vert_he[v] = start;
+                None
+            })
+            .min_by_key(|(v, _)| *v);
+        if let Some((_, e)) = bad_vertex {
+            return Err(e);
         }
         Ok(Topology {
             he_face,
             twin,
             he_edge,
-            edges,
             edge_he,
             vert_he,
         })
+    }
+}
+
+/// A borrowed view of a mesh's arrays for hot loops: the same walks as the [`PolyMesh`]
+/// accessors, without re-fetching the topology on every call.
+#[derive(Clone, Copy)]
+pub(crate) struct MeshView<'a> {
+    pub corners: &'a [u32],
+    pub faces: FaceIndex<'a>,
+    pub twin: &'a [u32],
+    pub he_edge: &'a [u32],
+    pub edge_he: &'a [u32],
+    pub vert_he: &'a [u32],
+}
+
+impl<'a> MeshView<'a> {
+    /// Vertex half-edge `h` starts at.
+    #[inline]
+    pub fn from(&self, h: u32) -> u32 {
+        self.corners[h as usize]
+    }
+
+    /// Vertex half-edge `h` ends at.
+    #[inline]
+    pub fn to(&self, h: u32) -> u32 {
+        self.corners[self.faces.next(h) as usize]
+    }
+
+    /// Opposite half-edge or [`NONE`].
+    #[inline]
+    pub fn twin(&self, h: u32) -> u32 {
+        self.twin[h as usize]
+    }
+
+    /// Face of half-edge `h`.
+    #[inline]
+    pub fn face(&self, h: u32) -> u32 {
+        self.faces.face(h)
+    }
+
+    /// Corner vertices of face `f`.
+    #[inline]
+    pub fn face_corners(&self, f: usize) -> &'a [u32] {
+        let k = self.faces.uniform as usize;
+        if k != 0 {
+            &self.corners[k * f..k * f + k]
+        } else {
+            let fs = self.faces.face_start;
+            &self.corners[fs[f] as usize..fs[f + 1] as usize]
+        }
+    }
+
+    /// Whether vertex `v` lies on the boundary.
+    #[inline]
+    pub fn is_boundary_vertex(&self, v: usize) -> bool {
+        self.twin[self.vert_he[v] as usize] == NONE
+    }
+
+    /// Whether boundary vertex `v` has a single face (a corner, valence 2).
+    #[inline]
+    pub fn is_corner(&self, v: usize) -> bool {
+        let h = self.vert_he[v];
+        self.twin[h as usize] == NONE && self.twin[self.faces.prev(h) as usize] == NONE
+    }
+
+    /// Outgoing half-edges of `v`, counter-clockwise from [`PolyMesh::vertex_halfedge`]
+    /// (the order of [`PolyMesh::outgoing_halfedges`]).
+    #[inline]
+    pub fn outgoing(&self, v: usize) -> OutgoingIter<'a> {
+        let start = self.vert_he[v];
+        OutgoingIter {
+            view: *self,
+            start,
+            next: start,
+        }
+    }
+
+    /// The two boundary neighbours of boundary vertex `v`: the end of its outgoing boundary
+    /// half-edge and the start of its incoming one.
+    #[inline]
+    pub fn boundary_neighbors(&self, v: usize) -> (u32, u32) {
+        let out = self.vert_he[v];
+        let last = self.outgoing(v).last().unwrap_or(out);
+        (self.to(out), self.from(self.faces.prev(last)))
+    }
+}
+
+/// Iterator of [`MeshView::outgoing`].
+pub(crate) struct OutgoingIter<'a> {
+    view: MeshView<'a>,
+    start: u32,
+    next: u32,
+}
+
+impl Iterator for OutgoingIter<'_> {
+    type Item = u32;
+
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        let h = self.next;
+        if h == NONE {
+            return None;
+        }
+        let t = self.view.twin[self.view.faces.prev(h) as usize];
+        self.next = if t == self.start { NONE } else { t };
+        Some(h)
+    }
+}
+
+/// Face lookup on flat face arrays: `he_face` when sizes differ, arithmetic otherwise.
+#[derive(Clone, Copy)]
+pub(crate) struct FaceIndex<'a> {
+    /// Face offsets (may be empty when `uniform != 0`).
+    pub face_start: &'a [u32],
+    /// Face of each half-edge (empty when `uniform != 0`).
+    pub he_face: &'a [u32],
+    /// Common face size or 0.
+    pub uniform: u32,
+}
+
+impl FaceIndex<'_> {
+    /// First half-edge of face `f`.
+    #[inline]
+    pub fn start(&self, f: usize) -> u32 {
+        if self.uniform != 0 {
+            self.uniform * f as u32
+        } else {
+            self.face_start[f]
+        }
+    }
+
+    /// Face of half-edge `h`.
+    #[inline]
+    pub fn face(&self, h: u32) -> u32 {
+        match self.uniform {
+            4 => h >> 2,
+            3 => h / 3,
+            0 => self.he_face[h as usize],
+            k => h / k,
+        }
+    }
+
+    /// Next half-edge in the same face.
+    #[inline]
+    pub fn next(&self, h: u32) -> u32 {
+        match self.uniform {
+            4 => (h & !3) | ((h + 1) & 3),
+            0 => {
+                let f = self.he_face[h as usize] as usize;
+                if h + 1 < self.face_start[f + 1] {
+                    h + 1
+                } else {
+                    self.face_start[f]
+                }
+            }
+            k => {
+                if !(h + 1).is_multiple_of(k) {
+                    h + 1
+                } else {
+                    h + 1 - k
+                }
+            }
+        }
+    }
+
+    /// Previous half-edge in the same face.
+    #[inline]
+    pub fn prev(&self, h: u32) -> u32 {
+        match self.uniform {
+            4 => (h & !3) | (h.wrapping_sub(1) & 3),
+            0 => {
+                let f = self.he_face[h as usize] as usize;
+                if h > self.face_start[f] {
+                    h - 1
+                } else {
+                    self.face_start[f + 1] - 1
+                }
+            }
+            k => {
+                if !h.is_multiple_of(k) {
+                    h - 1
+                } else {
+                    h + k - 1
+                }
+            }
+        }
+    }
+}
+
+/// Numbers the edges of a half-edge mesh from its twins, in the order of their first half-edge
+/// (`h` with no twin or `h < twin[h]`): returns `(he_edge, edge_he)`. Runs in parallel (a count,
+/// a scan and two fill passes).
+pub(crate) fn number_edges(twin: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+    let nh = twin.len();
+    let first = |h: usize| {
+        let t = twin[h];
+        t == NONE || (h as u32) < t
+    };
+    let blocks = nh.div_ceil(CHUNK);
+    let block = |c: usize| c * CHUNK..((c + 1) * CHUNK).min(nh);
+    let counts: Vec<usize> = (0..blocks)
+        .into_par_iter()
+        .map(|c| block(c).filter(|&h| first(h)).count())
+        .collect();
+    let ne: usize = counts.iter().sum();
+    let he_edge: Vec<AtomicU32> = (0..nh)
+        .into_par_iter()
+        .map(|_| AtomicU32::new(NONE))
+        .collect();
+    let mut edge_he = vec![0u32; ne];
+    let mut parts = Vec::with_capacity(blocks);
+    let mut rest = &mut edge_he[..];
+    let mut base = 0;
+    for &n in &counts {
+        let (part, tail) = rest.split_at_mut(n);
+        parts.push((base, part));
+        base += n;
+        rest = tail;
+    }
+    parts
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(c, (base, part))| {
+            let mut k = 0;
+            for h in block(c) {
+                if first(h) {
+                    he_edge[h].store((base + k) as u32, Relaxed);
+                    part[k] = h as u32;
+                    k += 1;
+                }
+            }
+        });
+    (0..blocks).into_par_iter().for_each(|c| {
+        for h in block(c) {
+            if !first(h) {
+                he_edge[h].store(he_edge[twin[h] as usize].load(Relaxed), Relaxed);
+            }
+        }
+    });
+    let he_edge = he_edge.into_iter().map(AtomicU32::into_inner).collect();
+    (he_edge, edge_he)
+}
+
+/// Asserts that two meshes have the same faces and the same half-edge connectivity, edge
+/// numbering and vertex half-edges (for tests of refinement kernels that build the child's
+/// connectivity directly).
+#[cfg(test)]
+pub(crate) fn assert_same_topology(a: &PolyMesh, b: &PolyMesh, what: &str) {
+    assert_eq!(a.face_starts(), b.face_starts(), "{what}: face offsets");
+    assert_eq!(a.corners(), b.corners(), "{what}: corners");
+    assert_eq!(a.num_vertices(), b.num_vertices(), "{what}: vertices");
+    assert_eq!(a.num_edges(), b.num_edges(), "{what}: edges");
+    for h in 0..a.num_halfedges() as u32 {
+        assert_eq!(a.he_twin(h), b.he_twin(h), "{what}: twin of {h}");
+        assert_eq!(a.he_edge(h), b.he_edge(h), "{what}: edge of {h}");
+        assert_eq!(a.he_face(h), b.he_face(h), "{what}: face of {h}");
+        assert_eq!(a.he_next(h), b.he_next(h), "{what}: next of {h}");
+        assert_eq!(a.he_prev(h), b.he_prev(h), "{what}: prev of {h}");
+    }
+    for e in 0..a.num_edges() {
+        assert_eq!(a.edge_halfedge(e), b.edge_halfedge(e), "{what}: edge {e}");
+    }
+    assert_eq!(a.edges(), b.edges(), "{what}: edge end points");
+    for v in 0..a.num_vertices() {
+        assert_eq!(
+            a.vertex_halfedge(v),
+            b.vertex_halfedge(v),
+            "{what}: vertex {v}"
+        );
     }
 }
 
@@ -878,6 +1383,51 @@ mod tests {
             ),
             "{e}"
         );
+    }
+
+    #[test]
+    fn parallel_build_reports_the_first_problem() {
+        // A grid with more half-edges than one parallel block, with two flipped faces: the
+        // error names the first one in half-edge order, as a sequential scan would.
+        let n = 150;
+        let m = crate::gallery::quad_grid(n, |_, _| 0.0);
+        let mut faces: Vec<Vec<usize>> = m
+            .faces()
+            .map(|f| f.iter().map(|&v| v as usize).collect())
+            .collect();
+        let (f1, f2) = (9000, 20000);
+        faces[f1].reverse();
+        faces[f2].reverse();
+        let e = PolyMesh::new(m.positions().to_vec(), &faces).unwrap_err();
+        match e {
+            Error::Mesh(MeshError::InconsistentOrientation { faces, .. }) => {
+                // Every conflicting edge lies between a flipped face and a neighbour.
+                assert!(faces.contains(&f1), "{faces:?}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // Uniform meshes store no face per half-edge and agree with arithmetic.
+        assert_eq!(m.uniform_face_size(), Some(4));
+        assert!(m.topology().he_face.is_empty());
+        assert_eq!(m.num_edges(), 2 * n * (n + 1));
+        let g = gallery_mixed();
+        assert_eq!(g.uniform_face_size(), None);
+        for h in 0..g.num_halfedges() as u32 {
+            let f = g.he_face(h) as usize;
+            assert!(g.face_starts()[f] <= h && h < g.face_starts()[f + 1]);
+        }
+    }
+
+    /// A quad and a triangle sharing an edge.
+    fn gallery_mixed() -> PolyMesh {
+        let p = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.5, 0.0],
+        ];
+        PolyMesh::new(p, &[vec![0, 1, 2, 3], vec![1, 4, 2]]).unwrap()
     }
 
     #[test]

@@ -5,8 +5,128 @@
 //! [`StencilTable`]; refinement, patch output and analysis all apply or compose those same tables.
 //! A table can be applied to any per-point data of fixed width (`[f64; D]`: positions, colours,
 //! 2D parameters) and re-applied to new positions without rebuilding (animation).
+//!
+//! Rules are written against the [`Terms`] trait, so one rule function both fills a table row
+//! (through a [`RowWriter`]) and evaluates a point directly (through an [`Accumulator`]): the
+//! one-shot refinement kernels and the tables share their weights. Tables are stored flat
+//! (compressed rows: offsets, source indices, weights), built in parallel blocks
+//! ([`StencilTable::build_par`]) and applied in parallel over blocks of rows
+//! ([`StencilTable::apply_into`]).
 
 use rayon::prelude::*;
+use std::ops::Range;
+
+/// `acc += w * p`, coordinate by coordinate: the one multiply-add of every kernel.
+#[inline(always)]
+pub(crate) fn axpy<const D: usize>(acc: &mut [f64; D], w: f64, p: &[f64; D]) {
+    for (a, x) in acc.iter_mut().zip(p) {
+        *a += w * x;
+    }
+}
+
+/// Receives the terms `w * source i` of one affine rule. Schemes write each rule once against
+/// this trait; a [`RowWriter`] turns the terms into a table row, an [`Accumulator`] evaluates
+/// them on point data.
+pub trait Terms {
+    /// Adds `w` times source `i`.
+    fn add(&mut self, i: u32, w: f64);
+}
+
+/// Evaluates a rule on point data: accumulates `sum w * src[i]` over the terms it receives.
+#[derive(Debug, Clone, Copy)]
+pub struct Accumulator<'a, const D: usize> {
+    src: &'a [[f64; D]],
+    acc: [f64; D],
+}
+
+impl<'a, const D: usize> Accumulator<'a, D> {
+    /// A zero accumulator over the source points `src`.
+    #[inline]
+    pub fn new(src: &'a [[f64; D]]) -> Self {
+        Accumulator { src, acc: [0.0; D] }
+    }
+
+    /// The accumulated value.
+    #[inline]
+    pub fn value(&self) -> [f64; D] {
+        self.acc
+    }
+
+    /// Adds `w * p` for a point that is not one of the sources (an intermediate result).
+    #[inline]
+    pub fn add_point(&mut self, p: &[f64; D], w: f64) {
+        axpy(&mut self.acc, w, p);
+    }
+}
+
+impl<const D: usize> Terms for Accumulator<'_, D> {
+    #[inline]
+    fn add(&mut self, i: u32, w: f64) {
+        axpy(&mut self.acc, w, &self.src[i as usize]);
+    }
+}
+
+impl Terms for Stencil {
+    #[inline]
+    fn add(&mut self, i: u32, w: f64) {
+        self.entries.push((i, w));
+    }
+}
+
+/// Sorts `(source, weight)` pairs by source (stable: duplicates are summed in the order they were
+/// added), merges duplicates and drops exact zeros, in place.
+fn merge_pairs(pairs: &mut Vec<(u32, f64)>) {
+    pairs.sort_by_key(|e| e.0);
+    let mut k = 0;
+    for r in 0..pairs.len() {
+        if k > 0 && pairs[k - 1].0 == pairs[r].0 {
+            pairs[k - 1].1 += pairs[r].1;
+        } else {
+            pairs[k] = pairs[r];
+            k += 1;
+        }
+    }
+    pairs.truncate(k);
+    pairs.retain(|e| e.1 != 0.0);
+}
+
+/// A reusable buffer for one table row: collects terms, then merges duplicate sources (as
+/// [`Stencil::merged`] does) and appends the row to a table, without allocating per row.
+#[derive(Debug, Clone, Default)]
+pub struct RowWriter {
+    pairs: Vec<(u32, f64)>,
+}
+
+impl RowWriter {
+    /// An empty row.
+    pub fn new() -> Self {
+        RowWriter::default()
+    }
+
+    /// Merges the collected terms, appends them to `table` as one row and clears the buffer.
+    pub fn push_into(&mut self, table: &mut StencilTable) {
+        merge_pairs(&mut self.pairs);
+        table.push_pairs(&self.pairs);
+        self.pairs.clear();
+    }
+
+    /// Takes the collected terms out as a merged [`Stencil`] and clears the buffer.
+    pub fn take_stencil(&mut self) -> Stencil {
+        merge_pairs(&mut self.pairs);
+        let s = Stencil {
+            entries: self.pairs.clone(),
+        };
+        self.pairs.clear();
+        s
+    }
+}
+
+impl Terms for RowWriter {
+    #[inline]
+    fn add(&mut self, i: u32, w: f64) {
+        self.pairs.push((i, w));
+    }
+}
 
 /// One affine combination: a list of `(source index, weight)` pairs.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -59,18 +179,11 @@ impl Stencil {
         self
     }
 
-    /// Sorts by source index, merges duplicates and drops exact zeros.
+    /// Sorts by source index, merges duplicates (summing them in the order they were added) and
+    /// drops exact zeros.
     pub fn merged(mut self) -> Self {
-        self.entries.sort_by_key(|e| e.0);
-        let mut out: Vec<(u32, f64)> = Vec::with_capacity(self.entries.len());
-        for (i, w) in self.entries {
-            match out.last_mut() {
-                Some(last) if last.0 == i => last.1 += w,
-                _ => out.push((i, w)),
-            }
-        }
-        out.retain(|e| e.1 != 0.0);
-        Stencil { entries: out }
+        merge_pairs(&mut self.entries);
+        self
     }
 
     /// The `(source, weight)` pairs.
@@ -109,6 +222,9 @@ pub struct StencilTable {
 /// Rows per parallel task when applying a table.
 const PAR_CHUNK: usize = 2048;
 
+/// Rows per parallel task when building a table.
+const BUILD_BLOCK: usize = 4096;
+
 impl StencilTable {
     /// An empty table over `num_sources` source points.
     pub fn new(num_sources: usize) -> Self {
@@ -130,6 +246,50 @@ impl StencilTable {
             indices: Vec::with_capacity(rows * per_row),
             weights: Vec::with_capacity(rows * per_row),
         }
+    }
+
+    /// Builds a table of `rows` rows over `num_sources` sources in parallel: `fill(range, table)`
+    /// appends the rows of `range`, in order, to an empty `table` (one call per block of rows,
+    /// each on its own table); the blocks are then joined. `per_row` is the expected number of
+    /// entries per row (a capacity hint).
+    ///
+    /// # Panics
+    /// Panics when `fill` appends a different number of rows than asked, or when the table would
+    /// have more than `u32::MAX` entries.
+    pub fn build_par<F>(num_sources: usize, rows: usize, per_row: usize, fill: F) -> StencilTable
+    where
+        F: Fn(Range<usize>, &mut StencilTable) + Sync,
+    {
+        let blocks: Vec<StencilTable> = (0..rows.div_ceil(BUILD_BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let range = b * BUILD_BLOCK..((b + 1) * BUILD_BLOCK).min(rows);
+                let mut t = StencilTable::with_capacity(num_sources, range.len(), per_row);
+                fill(range.clone(), &mut t);
+                assert_eq!(t.num_rows(), range.len(), "a block filled the wrong rows");
+                t
+            })
+            .collect();
+        Self::concat(num_sources, rows, blocks)
+    }
+
+    /// Joins tables over the same sources, row after row, freeing each block once copied.
+    fn concat(num_sources: usize, rows: usize, blocks: Vec<StencilTable>) -> StencilTable {
+        let entries: usize = blocks.iter().map(|b| b.num_entries()).sum();
+        assert!(
+            entries <= u32::MAX as usize,
+            "a stencil table with {entries} entries exceeds 32-bit offsets"
+        );
+        let mut t = StencilTable::with_capacity(num_sources, rows, 0);
+        t.indices.reserve_exact(entries);
+        t.weights.reserve_exact(entries);
+        for b in blocks {
+            let base = t.indices.len() as u32;
+            t.offsets.extend(b.offsets[1..].iter().map(|&o| o + base));
+            t.indices.extend_from_slice(&b.indices);
+            t.weights.extend_from_slice(&b.weights);
+        }
+        t
     }
 
     /// The identity map on `n` points.
@@ -247,27 +407,33 @@ impl StencilTable {
             self.num_sources
         );
         assert_eq!(out.len(), self.num_rows());
-        let kernel = |r0: usize, chunk: &mut [[f64; D]]| {
-            for (k, o) in chunk.iter_mut().enumerate() {
-                let r = r0 + k;
-                let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
-                let mut acc = [0.0; D];
-                for e in a..b {
-                    let w = self.weights[e];
-                    let p = &src[self.indices[e] as usize];
-                    for d in 0..D {
-                        acc[d] += w * p[d];
-                    }
-                }
-                *o = acc;
-            }
-        };
         if out.len() >= 2 * PAR_CHUNK {
             out.par_chunks_mut(PAR_CHUNK)
                 .enumerate()
-                .for_each(|(c, chunk)| kernel(c * PAR_CHUNK, chunk));
+                .for_each(|(c, chunk)| self.apply_rows(src, c * PAR_CHUNK, chunk));
         } else {
-            kernel(0, out);
+            self.apply_rows(src, 0, out);
+        }
+    }
+
+    /// The kernel: rows `r0..r0 + out.len()` into `out`, one pass over their entries.
+    #[inline]
+    fn apply_rows<const D: usize>(&self, src: &[[f64; D]], r0: usize, out: &mut [[f64; D]]) {
+        let offsets = &self.offsets[r0..=r0 + out.len()];
+        let (first, last) = (offsets[0] as usize, offsets[out.len()] as usize);
+        let mut idx = &self.indices[first..last];
+        let mut wts = &self.weights[first..last];
+        for (o, pair) in out.iter_mut().zip(offsets.windows(2)) {
+            let n = (pair[1] - pair[0]) as usize;
+            let (ri, rest_i) = idx.split_at(n);
+            let (rw, rest_w) = wts.split_at(n);
+            let mut acc = [0.0; D];
+            for (&i, &w) in ri.iter().zip(rw) {
+                axpy(&mut acc, w, &src[i as usize]);
+            }
+            *o = acc;
+            idx = rest_i;
+            wts = rest_w;
         }
     }
 
@@ -281,23 +447,19 @@ impl StencilTable {
             inner.num_rows(),
             "composition size mismatch"
         );
-        let rows: Vec<Vec<(u32, f64)>> = (0..self.num_rows())
-            .into_par_iter()
-            .map(|r| {
-                let mut acc: Vec<(u32, f64)> = Vec::new();
+        StencilTable::build_par(inner.num_sources, self.num_rows(), 16, |range, t| {
+            let mut acc: Vec<(u32, f64)> = Vec::new();
+            for r in range {
                 let (idx, w) = self.row(r);
                 for (&i, &wi) in idx.iter().zip(w) {
                     let (jdx, wj) = inner.row(i as usize);
                     acc.extend(jdx.iter().zip(wj).map(|(&j, &w2)| (j, wi * w2)));
                 }
-                Stencil { entries: acc }.merged().entries
-            })
-            .collect();
-        let mut t = StencilTable::with_capacity(inner.num_sources, rows.len(), 16);
-        for r in rows {
-            t.push_pairs(&r);
-        }
-        t
+                merge_pairs(&mut acc);
+                t.push_pairs(&acc);
+                acc.clear();
+            }
+        })
     }
 
     /// The sub-table of the given rows, in that order.
@@ -353,6 +515,132 @@ impl StencilTable {
     }
 }
 
+/// A stencil table packed for repeated application (animation: the topology stays, the points
+/// move every frame): the rows of a [`StencilTable`] with every distinct weight vector stored
+/// once.
+///
+/// Applying a table is bound by memory traffic: 12 bytes per entry (index and weight) against
+/// one multiply-add. The rows of a refined net repeat a few weight vectors (every regular
+/// neighbourhood of one level has the same stencil), so the packed form reads about 4 bytes
+/// per entry plus a small, cache-resident dictionary of weights. A row's weights are reused
+/// only when they are bitwise equal, so [`PackedStencilTable::apply_into`] gives exactly the
+/// bits of [`StencilTable::apply_into`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PackedStencilTable {
+    num_sources: usize,
+    /// Row `r`'s sources are `indices[offsets[r]..offsets[r + 1]]`.
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    /// Row `r`'s weights are `weights[weight_start[r]..]`, as many as its sources.
+    weight_start: Vec<u32>,
+    weights: Vec<f64>,
+}
+
+impl PackedStencilTable {
+    /// Packs a table (one pass over its rows, hashing each weight vector).
+    pub fn new(table: &StencilTable) -> Self {
+        use std::collections::HashMap;
+        let rows = table.num_rows();
+        let mut first: HashMap<u64, u32> = HashMap::new();
+        let mut weights: Vec<f64> = Vec::new();
+        let mut weight_start = Vec::with_capacity(rows);
+        for r in 0..rows {
+            let w = table.row(r).1;
+            // FNV-style mix of the weights' bits and the length.
+            let h = w
+                .iter()
+                .fold(0xcbf2_9ce4_8422_2325 ^ w.len() as u64, |h, x| {
+                    (h ^ x.to_bits()).wrapping_mul(0x0000_0100_0000_01b3)
+                });
+            let same = |s: u32| {
+                let s = s as usize;
+                weights
+                    .get(s..s + w.len())
+                    .is_some_and(|d| d.iter().zip(w).all(|(a, b)| a.to_bits() == b.to_bits()))
+            };
+            let start = match first.get(&h) {
+                Some(&s) if same(s) => s,
+                found => {
+                    let s = weights.len() as u32;
+                    weights.extend_from_slice(w);
+                    if found.is_none() {
+                        first.insert(h, s);
+                    }
+                    s
+                }
+            };
+            weight_start.push(start);
+        }
+        assert!(
+            weights.len() <= u32::MAX as usize,
+            "packed weights exceed 32-bit offsets"
+        );
+        weights.shrink_to_fit();
+        PackedStencilTable {
+            num_sources: table.num_sources,
+            offsets: table.offsets.clone(),
+            indices: table.indices.clone(),
+            weight_start,
+            weights,
+        }
+    }
+
+    /// Number of rows (new points).
+    pub fn num_rows(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Number of distinct weights stored (against [`StencilTable::num_entries`]).
+    pub fn num_stored_weights(&self) -> usize {
+        self.weights.len()
+    }
+
+    /// Bytes held by the packed table.
+    pub fn heap_bytes(&self) -> usize {
+        4 * (self.offsets.len() + self.indices.len() + self.weight_start.len())
+            + 8 * self.weights.len()
+    }
+
+    /// Applies the table into an existing buffer of `num_rows` points (no allocation), in
+    /// parallel over blocks of rows on large tables; the result equals
+    /// [`StencilTable::apply_into`] bit for bit.
+    ///
+    /// # Panics
+    /// Panics when the buffer sizes do not match the table.
+    pub fn apply_into<const D: usize>(&self, src: &[[f64; D]], out: &mut [[f64; D]]) {
+        assert!(
+            src.len() >= self.num_sources,
+            "source has {} points, table needs {}",
+            src.len(),
+            self.num_sources
+        );
+        assert_eq!(out.len(), self.num_rows());
+        if out.len() >= 2 * PAR_CHUNK {
+            out.par_chunks_mut(PAR_CHUNK)
+                .enumerate()
+                .for_each(|(c, chunk)| self.apply_rows(src, c * PAR_CHUNK, chunk));
+        } else {
+            self.apply_rows(src, 0, out);
+        }
+    }
+
+    /// The kernel: rows `r0..r0 + out.len()` into `out`.
+    #[inline]
+    fn apply_rows<const D: usize>(&self, src: &[[f64; D]], r0: usize, out: &mut [[f64; D]]) {
+        let offsets = &self.offsets[r0..=r0 + out.len()];
+        let starts = &self.weight_start[r0..r0 + out.len()];
+        for ((o, pair), &ws) in out.iter_mut().zip(offsets.windows(2)).zip(starts) {
+            let ri = &self.indices[pair[0] as usize..pair[1] as usize];
+            let rw = &self.weights[ws as usize..ws as usize + ri.len()];
+            let mut acc = [0.0; D];
+            for (&i, &w) in ri.iter().zip(rw) {
+                axpy(&mut acc, w, &src[i as usize]);
+            }
+            *o = acc;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -373,6 +661,26 @@ mod tests {
         assert_eq!(sub, None);
         let s = Stencil::from_pairs([(2, 1.0), (0, 0.25), (2, -1.0), (0, 0.75)]);
         assert_eq!(s.entries(), &[(0, 1.0)]);
+    }
+
+    #[test]
+    fn packed_tables_share_weights_and_give_the_same_bits() {
+        // Rows 0..n repeat one weight vector, except row 5 (its own weights).
+        let n = 10_000;
+        let mut t = StencilTable::new(n);
+        for r in 0..n {
+            let w = if r == 5 { 0.5 } else { 0.25 };
+            t.push(Stencil::from_pairs([(r, w), ((r + 1) % n, 1.0 - w)]));
+        }
+        let p = PackedStencilTable::new(&t);
+        // The wrap-around row sorts its sources the other way: a third weight vector.
+        assert_eq!(p.num_stored_weights(), 6);
+        let src: Vec<[f64; 2]> = (0..n).map(|i| [i as f64, (i * i) as f64 * 0.1]).collect();
+        let mut a = vec![[0.0; 2]; n];
+        let mut b = vec![[0.0; 2]; n];
+        t.apply_into(&src, &mut a);
+        p.apply_into(&src, &mut b);
+        assert_eq!(a, b);
     }
 
     #[test]

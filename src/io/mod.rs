@@ -154,13 +154,12 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
 
 /// Writes a mesh in the given format (atomically).
 pub fn write_mesh(path: &Path, mesh: &PolyMesh, format: MeshFormat) -> Result<()> {
-    write_polygons(
-        path,
-        mesh.positions(),
-        mesh.face_starts(),
-        mesh.corners(),
-        format,
-    )
+    let polys = match mesh.uniform_face_size() {
+        // A refined net: faces of one size, no offsets needed (nor built).
+        Some(k) => Polygons::uniform(mesh.positions(), k, mesh.corners())?,
+        None => Polygons::new(mesh.positions(), mesh.face_starts(), mesh.corners())?,
+    };
+    write_polygons_checked(path, &polys, format)
 }
 
 /// Writes plain polygons (atomically): face `f` has corners
@@ -175,12 +174,17 @@ pub fn write_polygons(
     format: MeshFormat,
 ) -> Result<()> {
     let polys = Polygons::new(positions, face_start, corners)?;
+    write_polygons_checked(path, &polys, format)
+}
+
+/// Writes checked polygons (atomically).
+fn write_polygons_checked(path: &Path, polys: &Polygons<'_>, format: MeshFormat) -> Result<()> {
     write_atomically(path, |w| {
         let r = match format {
-            MeshFormat::Obj => obj::write_obj_to(w, &polys),
-            MeshFormat::Off => off::write_off_to(w, &polys),
-            MeshFormat::PlyAscii => ply::write_ply_ascii_to(w, &polys),
-            MeshFormat::PlyBinary => ply::write_ply_binary_to(w, &polys),
+            MeshFormat::Obj => obj::write_obj_to(w, polys),
+            MeshFormat::Off => off::write_off_to(w, polys),
+            MeshFormat::PlyAscii => ply::write_ply_ascii_to(w, polys),
+            MeshFormat::PlyBinary => ply::write_ply_binary_to(w, polys),
         };
         r.map_err(|e| io_error(path, e))
     })
@@ -209,29 +213,52 @@ pub fn write_polygons_to(
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Polygons<'a> {
     pub positions: &'a [Point],
-    /// `num_faces + 1` offsets (or empty for no faces).
+    /// `num_faces + 1` offsets (or empty for no faces, or when `uniform != 0`).
     pub face_start: &'a [u32],
     pub corners: &'a [u32],
+    /// The common face size when the offsets are implicit, else 0.
+    pub uniform: usize,
     /// Largest face size.
     pub max_face: usize,
 }
 
 impl<'a> Polygons<'a> {
+    /// Faces of `size` corners each (implicit offsets), from a mesh whose connectivity is
+    /// valid by construction; only the coordinates are checked.
+    pub fn uniform(positions: &'a [Point], size: usize, corners: &'a [u32]) -> Result<Self> {
+        Self::check_finite(positions)?;
+        debug_assert!(size >= 3 && corners.len().is_multiple_of(size));
+        Ok(Polygons {
+            positions,
+            face_start: &[],
+            corners,
+            uniform: size,
+            max_face: size,
+        })
+    }
+
+    /// Fails when a coordinate is not finite, naming the first such vertex.
+    fn check_finite(positions: &[Point]) -> Result<()> {
+        // Checked in parallel: a refined net has millions of points.
+        match first_index(positions.len(), |v| {
+            !positions[v].iter().all(|c| c.is_finite())
+        }) {
+            Some(v) => Err(Error::InvalidArgument(format!(
+                "cannot write vertex {v}: its coordinates {:?} are not all finite",
+                positions[v]
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Checks offsets, indices and coordinates; errors name the face or vertex.
     pub fn new(
         positions: &'a [Point],
         face_start: &'a [u32],
         corners: &'a [u32],
     ) -> Result<Polygons<'a>> {
-        if let Some(v) = positions
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(Error::InvalidArgument(format!(
-                "cannot write vertex {v}: its coordinates {:?} are not all finite",
-                positions[v]
-            )));
-        }
+        use rayon::prelude::*;
+        Self::check_finite(positions)?;
         let mut max_face = 0;
         if !face_start.is_empty() {
             if face_start[0] != 0 {
@@ -247,27 +274,34 @@ impl<'a> Polygons<'a> {
                     corners.len()
                 )));
             }
-            for (f, pair) in face_start.windows(2).enumerate() {
+            let nf = face_start.len() - 1;
+            if let Some(f) = first_index(nf, |f| {
+                face_start[f + 1] < face_start[f] || face_start[f + 1] - face_start[f] < 3
+            }) {
+                let pair = &face_start[f..f + 2];
                 if pair[1] < pair[0] {
                     return Err(Error::InvalidArgument(format!(
                         "face offsets decrease at face {f} ({} then {})",
                         pair[0], pair[1]
                     )));
                 }
-                let n = (pair[1] - pair[0]) as usize;
-                max_face = max_face.max(n);
-                if n < 3 {
-                    return Err(Error::InvalidArgument(format!(
-                        "face {f} has {n} corners; a face needs at least 3"
-                    )));
-                }
+                let n = pair[1] - pair[0];
+                return Err(Error::InvalidArgument(format!(
+                    "face {f} has {n} corners; a face needs at least 3"
+                )));
             }
+            max_face = (0..nf)
+                .into_par_iter()
+                .with_min_len(CHECK_CHUNK)
+                .map(|f| (face_start[f + 1] - face_start[f]) as usize)
+                .max()
+                .unwrap_or(0);
         } else if !corners.is_empty() {
             return Err(Error::InvalidArgument(
                 "corners given without face offsets".to_string(),
             ));
         }
-        if let Some(c) = corners.iter().position(|&v| v as usize >= positions.len()) {
+        if let Some(c) = first_index(corners.len(), |c| corners[c] as usize >= positions.len()) {
             let f = face_start.partition_point(|&s| s as usize <= c) - 1;
             return Err(Error::InvalidArgument(format!(
                 "face {f} refers to vertex {}, but there are only {} vertices",
@@ -279,19 +313,44 @@ impl<'a> Polygons<'a> {
             positions,
             face_start,
             corners,
+            uniform: 0,
             max_face,
         })
     }
 
     /// Number of faces.
     pub fn num_faces(&self) -> usize {
-        self.face_start.len().saturating_sub(1)
+        self.corners
+            .len()
+            .checked_div(self.uniform)
+            .unwrap_or_else(|| self.face_start.len().saturating_sub(1))
+    }
+
+    /// Offset of face `f`'s first corner (`f = num_faces` gives the end).
+    pub fn face_offset(&self, f: usize) -> usize {
+        if self.uniform != 0 {
+            self.uniform * f
+        } else {
+            self.face_start[f] as usize
+        }
     }
 
     /// Corners of face `f`.
     pub fn face(&self, f: usize) -> &'a [u32] {
-        &self.corners[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+        &self.corners[self.face_offset(f)..self.face_offset(f + 1)]
     }
+}
+
+/// Indices per parallel task in [`first_index`].
+const CHECK_CHUNK: usize = 1 << 16;
+
+/// The first index in `0..n` for which `bad` holds: blocks of indices are scanned in parallel,
+/// each sequentially (rayon's per-item `position_first` is far slower on tens of millions).
+fn first_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> Option<usize> {
+    use rayon::prelude::*;
+    (0..n.div_ceil(CHECK_CHUNK))
+        .into_par_iter()
+        .find_map_first(|c| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(n)).find(|&i| bad(i)))
 }
 
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);

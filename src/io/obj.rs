@@ -28,149 +28,300 @@ pub fn read_obj(path: &Path) -> Result<LoadedMesh> {
     read_obj_from(std::io::BufReader::with_capacity(1 << 16, file), path)
 }
 
-/// Reads OBJ from any buffered reader; `path` is used in messages only.
-pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut vertex_line: Vec<u32> = Vec::new();
-    let mut face_start: Vec<u32> = vec![0];
-    let mut corners: Vec<u32> = Vec::new();
-    let mut face_line: Vec<u32> = Vec::new();
-    let mut ignored: BTreeMap<String, usize> = BTreeMap::new();
-    // Positive indices may refer to vertices defined later; check them at the end.
-    let mut max_index: Option<(usize, usize)> = None; // (0-based index, line)
+/// The state of the OBJ reader between statements.
+struct ObjState {
+    positions: Vec<[f64; 3]>,
+    vertex_line: Vec<u32>,
+    face_start: Vec<u32>,
+    corners: Vec<u32>,
+    face_line: Vec<u32>,
+    ignored: BTreeMap<String, usize>,
+    /// Largest positive index seen: (0-based index, line). Positive indices may refer to
+    /// vertices defined later, so they are checked at the end.
+    max_index: Option<(usize, usize)>,
+    /// Token ranges of the current statement (reused).
+    tokens: Vec<(usize, usize)>,
+}
 
-    let mut raw = Vec::new();
-    let mut logical = String::new();
-    let mut line_no = 0usize;
-    let mut start_line = 0usize;
-    loop {
-        raw.clear();
-        let n = reader
-            .read_until(b'\n', &mut raw)
-            .map_err(|e| io_error(path, e))?;
-        if n == 0 {
-            if logical.is_empty() {
-                break;
-            }
-        } else {
-            line_no += 1;
-            if logical.is_empty() {
-                start_line = line_no;
-            }
-            let text = String::from_utf8_lossy(&raw);
-            let text = text.trim_end_matches(['\n', '\r']);
-            if let Some(head) = text.strip_suffix('\\') {
-                logical.push_str(head);
-                logical.push(' ');
-                continue;
-            }
-            logical.push_str(text);
+/// Whether `b` is an ASCII character with the Unicode `White_Space` property (what
+/// `str::split_whitespace` splits on).
+#[inline]
+fn is_space(b: u8) -> bool {
+    matches!(b, b' ' | b'\t'..=b'\r')
+}
+
+/// Parses an integer the way `str::parse::<i64>` does (optional sign, decimal digits, no
+/// overflow), directly on bytes.
+#[inline]
+fn parse_i64(s: &[u8]) -> Option<i64> {
+    let (neg, digits) = match s.first()? {
+        b'-' => (true, &s[1..]),
+        b'+' => (false, &s[1..]),
+        _ => (false, s),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut x: i64 = 0;
+    for &d in digits {
+        let d = d.wrapping_sub(b'0');
+        if d > 9 {
+            return None;
         }
-        let line = start_line;
-        let content = match logical.find('#') {
-            Some(i) => &logical[..i],
-            None => &logical[..],
+        x = x.checked_mul(10)?;
+        x = if neg {
+            x.checked_sub(d as i64)?
+        } else {
+            x.checked_add(d as i64)?
         };
-        let mut tokens = content.split_whitespace();
-        if let Some(keyword) = tokens.next() {
-            match keyword {
-                "v" => {
-                    let mut p = [0.0; 3];
-                    for (k, c) in p.iter_mut().enumerate() {
-                        let tok = tokens.next().ok_or_else(|| {
-                            parse_error(
-                                path,
-                                line,
-                                format!(
-                                    "vertex has {k} coordinate{}; a 'v' line needs x y z",
-                                    if k == 1 { "" } else { "s" }
-                                ),
-                            )
-                        })?;
-                        *c = tok.parse::<f64>().map_err(|_| {
-                            parse_error(
-                                path,
-                                line,
-                                format!(
-                                    "bad number '{tok}' for the {} coordinate of a vertex",
-                                    ["x", "y", "z"][k]
-                                ),
-                            )
-                        })?;
-                    }
-                    positions.push(p);
-                    vertex_line.push(line as u32);
+    }
+    Some(x)
+}
+
+impl ObjState {
+    /// Handles one logical line (continuations joined, line ending removed) that starts on
+    /// physical line `line`.
+    fn statement(&mut self, bytes: &[u8], line: usize, path: &Path) -> Result<()> {
+        if bytes.is_ascii() {
+            // Fast path: bytes are characters; split on the same whitespace as below.
+            let end = bytes.iter().position(|&b| b == b'#').unwrap_or(bytes.len());
+            let mut tokens = std::mem::take(&mut self.tokens);
+            tokens.clear();
+            let mut i = 0;
+            while i < end {
+                while i < end && is_space(bytes[i]) {
+                    i += 1;
                 }
-                "f" | "fo" => {
-                    let before = corners.len();
-                    for tok in tokens {
-                        let vpart = tok.split('/').next().unwrap_or("");
-                        let idx: i64 = vpart.parse().map_err(|_| {
-                            parse_error(
-                                path,
-                                line,
-                                format!("bad vertex reference '{tok}' in face (expected v, v/vt, v//vn or v/vt/vn)"),
-                            )
-                        })?;
-                        let v = if idx > 0 {
-                            if idx > u32::MAX as i64 {
-                                return Err(parse_error(
-                                    path,
-                                    line,
-                                    format!(
-                                        "vertex index {idx} is beyond fairsub's limit of 2^32 - 1 vertices"
-                                    ),
-                                ));
-                            }
-                            let v = (idx - 1) as usize;
-                            if max_index.is_none_or(|(m, _)| v > m) {
-                                max_index = Some((v, line));
-                            }
-                            v
-                        } else if idx < 0 {
-                            let back = idx.unsigned_abs() as usize;
-                            if back > positions.len() {
-                                return Err(parse_error(
-                                    path,
-                                    line,
-                                    format!(
-                                        "relative vertex index {idx} reaches before the first vertex ({} vertices are defined above this face)",
-                                        positions.len()
-                                    ),
-                                ));
-                            }
-                            positions.len() - back
-                        } else {
-                            return Err(parse_error(
-                                path,
-                                line,
-                                "vertex index 0 in face: OBJ indices start at 1 (or are negative, counting back)",
-                            ));
-                        };
-                        corners.push(v as u32);
-                    }
-                    let n = corners.len() - before;
-                    if n < 3 {
+                let start = i;
+                while i < end && !is_space(bytes[i]) {
+                    i += 1;
+                }
+                if i > start {
+                    tokens.push((start, i));
+                }
+            }
+            let text = std::str::from_utf8(bytes).expect("ASCII is UTF-8");
+            let r = self.tokens_statement(text, &tokens, line, path);
+            self.tokens = tokens;
+            r
+        } else {
+            // Other text: invalid UTF-8 replaced, Unicode whitespace.
+            let text = String::from_utf8_lossy(bytes);
+            let content = match text.find('#') {
+                Some(i) => &text[..i],
+                None => &text[..],
+            };
+            let base = content.as_ptr() as usize;
+            let tokens: Vec<(usize, usize)> = content
+                .split_whitespace()
+                .map(|t| {
+                    let s = t.as_ptr() as usize - base;
+                    (s, s + t.len())
+                })
+                .collect();
+            self.tokens_statement(content, &tokens, line, path)
+        }
+    }
+
+    /// Handles a statement given as token ranges into `text`.
+    fn tokens_statement(
+        &mut self,
+        text: &str,
+        tokens: &[(usize, usize)],
+        line: usize,
+        path: &Path,
+    ) -> Result<()> {
+        let tok = |k: usize| &text[tokens[k].0..tokens[k].1];
+        let Some(&(ks, ke)) = tokens.first() else {
+            return Ok(());
+        };
+        match &text[ks..ke] {
+            "v" => {
+                let mut p = [0.0; 3];
+                for (k, c) in p.iter_mut().enumerate() {
+                    if k + 1 >= tokens.len() {
                         return Err(parse_error(
                             path,
                             line,
-                            format!("face has {n} vertices; a face needs at least 3"),
+                            format!(
+                                "vertex has {k} coordinate{}; a 'v' line needs x y z",
+                                if k == 1 { "" } else { "s" }
+                            ),
                         ));
                     }
-                    if corners.len() > u32::MAX as usize {
-                        return Err(parse_error(path, line, "more than 2^32 - 1 face corners"));
-                    }
-                    face_start.push(corners.len() as u32);
-                    face_line.push(line as u32);
+                    let t = tok(k + 1);
+                    *c = t.parse::<f64>().map_err(|_| {
+                        parse_error(
+                            path,
+                            line,
+                            format!(
+                                "bad number '{t}' for the {} coordinate of a vertex",
+                                ["x", "y", "z"][k]
+                            ),
+                        )
+                    })?;
                 }
-                other => *ignored.entry(other.to_string()).or_insert(0) += 1,
+                self.positions.push(p);
+                self.vertex_line.push(line as u32);
             }
+            "f" | "fo" => {
+                let before = self.corners.len();
+                for k in 1..tokens.len() {
+                    let t = tok(k);
+                    let vpart = t.as_bytes().split(|&b| b == b'/').next().unwrap_or(b"");
+                    let idx = parse_i64(vpart).ok_or_else(|| {
+                        parse_error(
+                            path,
+                            line,
+                            format!(
+                                "bad vertex reference '{t}' in face (expected v, v/vt, v//vn or v/vt/vn)"
+                            ),
+                        )
+                    })?;
+                    let v = if idx > 0 {
+                        if idx > u32::MAX as i64 {
+                            return Err(parse_error(
+                                path,
+                                line,
+                                format!(
+                                    "vertex index {idx} is beyond fairsub's limit of 2^32 - 1 vertices"
+                                ),
+                            ));
+                        }
+                        let v = (idx - 1) as usize;
+                        if self.max_index.is_none_or(|(m, _)| v > m) {
+                            self.max_index = Some((v, line));
+                        }
+                        v
+                    } else if idx < 0 {
+                        let back = idx.unsigned_abs() as usize;
+                        if back > self.positions.len() {
+                            return Err(parse_error(
+                                path,
+                                line,
+                                format!(
+                                    "relative vertex index {idx} reaches before the first vertex ({} vertices are defined above this face)",
+                                    self.positions.len()
+                                ),
+                            ));
+                        }
+                        self.positions.len() - back
+                    } else {
+                        return Err(parse_error(
+                            path,
+                            line,
+                            "vertex index 0 in face: OBJ indices start at 1 (or are negative, counting back)",
+                        ));
+                    };
+                    self.corners.push(v as u32);
+                }
+                let n = self.corners.len() - before;
+                if n < 3 {
+                    return Err(parse_error(
+                        path,
+                        line,
+                        format!("face has {n} vertices; a face needs at least 3"),
+                    ));
+                }
+                if self.corners.len() > u32::MAX as usize {
+                    return Err(parse_error(path, line, "more than 2^32 - 1 face corners"));
+                }
+                self.face_start.push(self.corners.len() as u32);
+                self.face_line.push(line as u32);
+            }
+            other => match self.ignored.get_mut(other) {
+                Some(n) => *n += 1,
+                None => {
+                    self.ignored.insert(other.to_string(), 1);
+                }
+            },
         }
-        logical.clear();
-        if n == 0 {
+        Ok(())
+    }
+}
+
+/// Reads OBJ from any buffered reader; `path` is used in messages only.
+///
+/// Lines are parsed in place in the reader's buffer (no copy or allocation per line); a line
+/// that straddles the end of the buffer, or continues with a trailing backslash, is collected
+/// first.
+pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
+    let mut st = ObjState {
+        positions: Vec::new(),
+        vertex_line: Vec::new(),
+        face_start: vec![0],
+        corners: Vec::new(),
+        face_line: Vec::new(),
+        ignored: BTreeMap::new(),
+        max_index: None,
+        tokens: Vec::new(),
+    };
+    // A logical line being continued (trailing backslash), and the line it started on.
+    let mut logical: Vec<u8> = Vec::new();
+    let mut start_line = 0usize;
+    let mut line_no = 0usize;
+    let mut raw = Vec::new();
+    // One physical line, without its line feed.
+    let mut physical = |st: &mut ObjState, text: &[u8], logical: &mut Vec<u8>| -> Result<()> {
+        line_no += 1;
+        let text = match text.iter().rposition(|&b| b != b'\r') {
+            Some(i) => &text[..=i],
+            None => &text[..0],
+        };
+        if logical.is_empty() {
+            start_line = line_no;
+        }
+        if let Some(head) = text.strip_suffix(b"\\") {
+            logical.extend_from_slice(head);
+            logical.push(b' ');
+            return Ok(());
+        }
+        if logical.is_empty() {
+            st.statement(text, start_line, path)
+        } else {
+            logical.extend_from_slice(text);
+            let r = st.statement(logical, start_line, path);
+            logical.clear();
+            r
+        }
+    };
+    loop {
+        let buf = reader.fill_buf().map_err(|e| io_error(path, e))?;
+        if buf.is_empty() {
             break;
         }
+        // Every complete line in the buffer, in place.
+        let mut used = 0;
+        while let Some(i) = buf[used..].iter().position(|&b| b == b'\n') {
+            physical(&mut st, &buf[used..used + i], &mut logical)?;
+            used += i + 1;
+        }
+        if used > 0 {
+            reader.consume(used);
+            continue;
+        }
+        // A line longer than the rest of the buffer: collect it.
+        raw.clear();
+        reader
+            .read_until(b'\n', &mut raw)
+            .map_err(|e| io_error(path, e))?;
+        let text = raw.strip_suffix(b"\n").unwrap_or(&raw);
+        physical(&mut st, text, &mut logical)?;
     }
+    if !logical.is_empty() {
+        // The file ended inside a continued line.
+        st.statement(&logical, start_line, path)?;
+    }
+    let ObjState {
+        positions,
+        vertex_line,
+        face_start,
+        corners,
+        face_line,
+        ignored,
+        max_index,
+        ..
+    } = st;
 
     if let Some((m, line)) = max_index
         && m >= positions.len()
@@ -392,5 +543,33 @@ mod tests {
         assert_eq!(m.mesh.positions(), &pos[..]);
         assert_eq!(m.mesh.face(0), &[0, 1, 2, 3]);
         assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    }
+
+    #[test]
+    fn lines_across_buffer_ends_and_unicode_whitespace() {
+        // A tiny reader buffer splits most lines; continuations, CRLF and comments survive.
+        let src = "# x\nv 0 0 0\r\nv 1 0 0 # c\nv 0 \\\n1 0\nvt 1 1\nvt 2 2\nf 1 2 3\n";
+        let m = read_obj_from(
+            std::io::BufReader::with_capacity(5, src.as_bytes()),
+            Path::new("b"),
+        )
+        .unwrap();
+        assert_eq!(
+            m.mesh.positions(),
+            &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        );
+        assert!(m.warnings[0].contains("2 'vt'"), "{:?}", m.warnings);
+        // Non-ASCII lines split on Unicode whitespace (no-break space), as `split_whitespace`.
+        let m = read("v 0\u{a0}0 0\nv 1 0 0\nv 0 1 0\nf 1 2\u{2003}3\n").unwrap();
+        assert_eq!(m.mesh.face(0), &[0, 1, 2]);
+        let (l, msg) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \u{e9}3\n");
+        assert_eq!(l, 4);
+        assert!(msg.contains("'\u{e9}3'"), "{msg}");
+        // Integer forms accepted like `str::parse::<i64>`.
+        assert_eq!(parse_i64(b"+12"), Some(12));
+        assert_eq!(parse_i64(b"-9223372036854775808"), Some(i64::MIN));
+        assert_eq!(parse_i64(b"9223372036854775808"), None);
+        assert_eq!(parse_i64(b"-"), None);
+        assert_eq!(parse_i64(b"1x"), None);
     }
 }

@@ -13,109 +13,445 @@
 //! (edge index order), then one face point per parent face. Child face `h` is the quad of parent
 //! corner (half-edge) `h`: (vertex point, edge point of the outgoing edge, face point, edge point
 //! of the incoming edge), so child faces inherit the parent orientation.
+//!
+//! # One source of truth, two ways to apply it
+//!
+//! The rules are written once (`face_rule`, `edge_rule`, `vertex_rule`) against `CcTerms`:
+//! terms on parent vertices and on parent face points. A stencil table
+//! ([`CatmullClark::stencils`]) expands each face-point term into the face's corners; the direct
+//! kernel ([`CatmullClark::refine_points`]) computes the face points first and reads them back,
+//! as OpenSubdiv's primvar refiner does. The child connectivity is derived from the parent's
+//! combinatorially ([`CatmullClark::child_mesh`]): no search, every pass parallel. One-shot
+//! refinement to several levels ([`CatmullClark::refine_uniform`]) keeps no tables, drops each
+//! parent level as soon as its child exists, and does not build the last level's half-edges.
 
-use super::{Refinement, Scheme, finish_refinement};
+use super::common::check_child_size;
+use super::{Refinement, Scheme};
 use crate::error::Result;
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
-use crate::stencil::{Stencil, StencilTable};
+use crate::mesh::{FaceIndex, MeshParts, MeshView, NONE, PolyMesh, Topology, number_edges};
+use crate::stencil::{RowWriter, Stencil, StencilTable, Terms, axpy};
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// The Catmull-Clark scheme.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CatmullClark;
 
-/// Appends the face-point stencil of face `f` scaled by `s`.
-fn add_face_point(mesh: &PolyMesh, f: usize, s: f64, out: &mut Stencil) {
-    let face = mesh.face(f);
-    let w = s / face.len() as f64;
+/// Receives the terms of a Catmull-Clark rule: weights on parent vertices and on parent face
+/// points (see the module documentation).
+pub(crate) trait CcTerms {
+    /// Adds `w` times parent vertex `v`.
+    fn vertex(&mut self, v: u32, w: f64);
+    /// Adds `w` times the face point of parent face `f` ([`face_rule`]).
+    fn face_point(&mut self, f: u32, w: f64);
+}
+
+/// Face point of face `f`, scaled by `scale`: `scale / k` times each of its `k` corners.
+#[inline]
+fn face_rule(m: &MeshView<'_>, f: usize, scale: f64, out: &mut impl CcTerms) {
+    let face = m.face_corners(f);
+    let w = scale / face.len() as f64;
     for &v in face {
-        out.add(v as usize, w);
+        out.vertex(v, w);
+    }
+}
+
+/// Edge point of edge `e`: `(a + b + F1 + F2) / 4` inside, the midpoint on the boundary.
+#[inline]
+fn edge_rule(m: &MeshView<'_>, e: usize, out: &mut impl CcTerms) {
+    let h = m.edge_he[e];
+    let (a, b) = (m.from(h), m.to(h));
+    let t = m.twin(h);
+    if t == NONE {
+        out.vertex(a, 0.5);
+        out.vertex(b, 0.5);
+    } else {
+        out.vertex(a, 0.25);
+        out.vertex(b, 0.25);
+        out.face_point(m.face(h), 0.25);
+        out.face_point(m.face(t), 0.25);
+    }
+}
+
+/// Vertex point of `v`: `(n - 2)/n v + 1/n^2 sum(edge neighbours) + 1/n^2 sum(face points)`
+/// inside; `3/4 v + 1/8 (a + b)` on the boundary; a corner stays put.
+#[inline]
+fn vertex_rule(m: &MeshView<'_>, v: usize, out: &mut impl CcTerms) {
+    if m.is_boundary_vertex(v) {
+        if m.is_corner(v) {
+            out.vertex(v as u32, 1.0);
+        } else {
+            let (a, b) = m.boundary_neighbors(v);
+            out.vertex(v as u32, 0.75);
+            out.vertex(a, 0.125);
+            out.vertex(b, 0.125);
+        }
+        return;
+    }
+    let n = m.outgoing(v).count() as f64;
+    out.vertex(v as u32, (n - 2.0) / n);
+    let w = 1.0 / (n * n);
+    for h in m.outgoing(v) {
+        out.vertex(m.to(h), w);
+        out.face_point(m.face(h), w);
+    }
+}
+
+/// Expands face-point terms into the face's corners: the table form of a rule.
+struct Expand<'a, T> {
+    m: MeshView<'a>,
+    row: &'a mut T,
+}
+
+impl<T: Terms> CcTerms for Expand<'_, T> {
+    #[inline]
+    fn vertex(&mut self, v: u32, w: f64) {
+        self.row.add(v, w);
+    }
+
+    #[inline]
+    fn face_point(&mut self, f: u32, w: f64) {
+        let m = self.m;
+        face_rule(&m, f as usize, w, self);
+    }
+}
+
+/// Evaluates a rule on point data, reading face points from the already computed child points.
+struct Eval<'a, const D: usize> {
+    src: &'a [[f64; D]],
+    faces: &'a [[f64; D]],
+    acc: [f64; D],
+}
+
+impl<'a, const D: usize> Eval<'a, D> {
+    #[inline]
+    fn new(src: &'a [[f64; D]], faces: &'a [[f64; D]]) -> Self {
+        Eval {
+            src,
+            faces,
+            acc: [0.0; D],
+        }
+    }
+}
+
+impl<const D: usize> CcTerms for Eval<'_, D> {
+    #[inline]
+    fn vertex(&mut self, v: u32, w: f64) {
+        axpy(&mut self.acc, w, &self.src[v as usize]);
+    }
+
+    #[inline]
+    fn face_point(&mut self, f: u32, w: f64) {
+        axpy(&mut self.acc, w, &self.faces[f as usize]);
     }
 }
 
 /// Stencil of the Catmull-Clark vertex point of `v`.
 pub(crate) fn vertex_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
     let mut s = Stencil::new();
-    if mesh.is_boundary_vertex(v) {
-        let nb = mesh.vertex_neighbors(v);
-        if nb.len() == 2 {
-            // Corner: stays put.
-            s.add(v, 1.0);
-        } else {
-            s.add(v, 0.75);
-            s.add(nb[0] as usize, 0.125);
-            s.add(
-                *nb.last().expect("boundary vertex has neighbours") as usize,
-                0.125,
-            );
-        }
-        return s.merged();
-    }
-    let hs = mesh.outgoing_halfedges(v);
-    let n = hs.len() as f64;
-    s.add(v, (n - 2.0) / n);
-    let w = 1.0 / (n * n);
-    for &h in &hs {
-        s.add(mesh.he_to(h) as usize, w);
-        add_face_point(mesh, mesh.he_face(h) as usize, w, &mut s);
-    }
+    let m = mesh.view();
+    vertex_rule(&m, v, &mut Expand { m, row: &mut s });
     s.merged()
 }
 
 /// Stencil of the Catmull-Clark edge point of edge `e`.
 pub(crate) fn edge_point_stencil(mesh: &PolyMesh, e: usize) -> Stencil {
-    let [a, b] = mesh.edge(e);
     let mut s = Stencil::new();
-    let h = mesh.edge_halfedge(e);
-    match mesh.he_twin(h) {
-        None => {
-            s.add(a as usize, 0.5);
-            s.add(b as usize, 0.5);
-        }
-        Some(t) => {
-            s.add(a as usize, 0.25);
-            s.add(b as usize, 0.25);
-            add_face_point(mesh, mesh.he_face(h) as usize, 0.25, &mut s);
-            add_face_point(mesh, mesh.he_face(t) as usize, 0.25, &mut s);
-        }
-    }
+    let m = mesh.view();
+    edge_rule(&m, e, &mut Expand { m, row: &mut s });
     s.merged()
 }
 
+/// Child points (or parent half-edges) per parallel task.
+const BLOCK: usize = 4096;
+
+/// Fails when a child net would not fit fairsub's 32-bit indices.
+fn check_sizes(mesh: &PolyMesh) -> Result<()> {
+    check_child_size(
+        "catmull-clark",
+        mesh.num_vertices() + mesh.num_edges() + mesh.num_faces(),
+    )?;
+    // Child half-edges (4 per parent corner) are indexed by u32 below NONE.
+    check_child_size("catmull-clark", 4 * mesh.num_halfedges() + 1)
+}
+
+/// Child corners of one step from the parent's arrays: child face `h` is
+/// `(from(h), edge point of h, face point of h, edge point of prev(h))`.
+fn child_corners(
+    faces: FaceIndex<'_>,
+    corners: &[u32],
+    he_edge: &[u32],
+    nv: usize,
+    ne: usize,
+) -> Vec<u32> {
+    let nh = corners.len();
+    let (nv, nve) = (nv as u32, (nv + ne) as u32);
+    let mut child = crate::buffers::zeroed(4 * nh, 0u32);
+    child
+        .par_chunks_mut(4 * BLOCK)
+        .enumerate()
+        .for_each(|(b, chunk)| {
+            let h0 = b * BLOCK;
+            for (k, quad) in chunk.chunks_exact_mut(4).enumerate() {
+                let h = (h0 + k) as u32;
+                quad.copy_from_slice(&[
+                    corners[h as usize],
+                    nv + he_edge[h as usize],
+                    nve + faces.face(h),
+                    nv + he_edge[faces.prev(h) as usize],
+                ]);
+            }
+        });
+    child
+}
+
+/// The limit-position rule of vertex `v` (see [`CatmullClark::limit_stencils`]) when all faces
+/// at `v` are quads or `v` is on the boundary; returns `false`, writing nothing, otherwise.
+/// Walks the connectivity in place (no allocation per vertex).
+fn limit_terms(m: &MeshView<'_>, v: usize, t: &mut impl Terms) -> bool {
+    let vv = v as u32;
+    if m.is_boundary_vertex(v) {
+        if m.is_corner(v) {
+            t.add(vv, 1.0);
+        } else {
+            let (a, b) = m.boundary_neighbors(v);
+            t.add(vv, 4.0 / 6.0);
+            t.add(a, 1.0 / 6.0);
+            t.add(b, 1.0 / 6.0);
+        }
+        return true;
+    }
+    if m.outgoing(v)
+        .any(|h| m.face_corners(m.face(h) as usize).len() != 4)
+    {
+        return false;
+    }
+    let n = m.outgoing(v).count() as f64;
+    let d = n * (n + 5.0);
+    t.add(vv, n * n / d);
+    for h in m.outgoing(v) {
+        t.add(m.to(h), 4.0 / d);
+        t.add(m.from(m.faces.next(m.faces.next(h))), 1.0 / d);
+    }
+    true
+}
+
 impl CatmullClark {
-    /// The refinement stencils of one step (child vertex order as in the module doc).
+    /// The refinement stencils of one step (child vertex order as in the module doc), built in
+    /// parallel without per-row allocation.
     pub fn stencils(mesh: &PolyMesh) -> StencilTable {
         let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
-        let mut t = StencilTable::with_capacity(nv, nv + ne + nf, 9);
-        for v in 0..nv {
-            t.push(vertex_point_stencil(mesh, v));
-        }
-        for e in 0..ne {
-            t.push(edge_point_stencil(mesh, e));
-        }
-        for f in 0..nf {
-            let mut s = Stencil::new();
-            add_face_point(mesh, f, 1.0, &mut s);
-            t.push(s);
-        }
-        t
+        let m = mesh.view();
+        StencilTable::build_par(nv, nv + ne + nf, 9, |rows, t| {
+            let mut row = RowWriter::new();
+            for r in rows {
+                let mut x = Expand { m, row: &mut row };
+                if r < nv {
+                    vertex_rule(&m, r, &mut x);
+                } else if r < nv + ne {
+                    edge_rule(&m, r - nv, &mut x);
+                } else {
+                    face_rule(&m, r - nv - ne, 1.0, &mut x);
+                }
+                row.push_into(t);
+            }
+        })
+    }
+
+    /// The child points of one step computed directly by the rules (no table): face points
+    /// first, then edge and vertex points reading them, in parallel. Works on any per-point
+    /// data (`src` has one entry per parent vertex): positions, colours, texture coordinates.
+    /// Row `i` of the result equals row `i` of [`CatmullClark::stencils`] applied to `src` up
+    /// to rounding.
+    ///
+    /// # Panics
+    /// Panics when `src` has fewer entries than the mesh has vertices.
+    pub fn refine_points<const D: usize>(mesh: &PolyMesh, src: &[[f64; D]]) -> Vec<[f64; D]> {
+        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
+        assert!(src.len() >= nv, "one point per parent vertex is needed");
+        let m = mesh.view();
+        // Zeroed output (fresh pages, touched once); face points first, in place.
+        let mut out = crate::buffers::zeroed(nv + ne + nf, [0.0; D]);
+        let (head, faces) = out.split_at_mut(nv + ne);
+        faces
+            .par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let mut ev = Eval::new(src, &[]);
+                    face_rule(&m, c * BLOCK + k, 1.0, &mut ev);
+                    *o = ev.acc;
+                }
+            });
+        let faces: &[[f64; D]] = faces;
+        head.par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let i = c * BLOCK + k;
+                    let mut ev = Eval::new(src, faces);
+                    if i < nv {
+                        vertex_rule(&m, i, &mut ev);
+                    } else {
+                        edge_rule(&m, i - nv, &mut ev);
+                    }
+                    *o = ev.acc;
+                }
+            });
+        out
     }
 
     /// Child topology of one step: `(face_start, corners)` of the all-quad child net.
     pub fn child_topology(mesh: &PolyMesh) -> (Vec<u32>, Vec<u32>) {
-        let (nv, ne) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
+        let face_start = (0..mesh.num_halfedges() + 1)
+            .into_par_iter()
+            .map(|h| 4 * h as u32)
+            .collect();
+        (face_start, Self::child_corners(mesh))
+    }
+
+    /// The corners of the child faces (four per parent corner).
+    fn child_corners(mesh: &PolyMesh) -> Vec<u32> {
+        let m = mesh.view();
+        child_corners(
+            m.faces,
+            m.corners,
+            m.he_edge,
+            mesh.num_vertices(),
+            mesh.num_edges(),
+        )
+    }
+
+    /// The child net of one step with the given child points (from
+    /// [`CatmullClark::refine_points`] or [`CatmullClark::stencils`]), its half-edge
+    /// connectivity derived from the parent's without any search: the same connectivity, edge
+    /// numbering and vertex half-edges as [`PolyMesh::from_refinement`] would build.
+    ///
+    /// # Panics
+    /// Panics when `positions` does not have one point per child vertex.
+    pub fn child_mesh(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
+        assert_eq!(positions.len(), nv + ne + nf, "one point per child vertex");
+        let topo = Self::child_halfedges(mesh);
+        PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), Some(topo))
+    }
+
+    /// Half-edge topology of the child net from the parent's. Child half-edge `4h + k` is side
+    /// `k` of child face `h` (`k = 0`: vertex point to outgoing edge point, `1`: to the face
+    /// point, `2`: to the incoming edge point, `3`: back to the vertex point), so twins are
+    /// known combinatorially: `4h` and `4 next(twin h) + 3`, `4h + 1` and `4 next(h) + 2`.
+    fn child_halfedges(mesh: &PolyMesh) -> Topology {
+        let m = mesh.view();
+        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
         let nh = mesh.num_halfedges();
-        let face_start: Vec<u32> = (0..=nh as u32).map(|h| 4 * h).collect();
-        let mut corners = Vec::with_capacity(4 * nh);
-        for h in 0..nh as u32 {
-            let v = mesh.he_from(h);
-            let e_out = nv + mesh.he_edge(h);
-            let e_in = nv + mesh.he_edge(mesh.he_prev(h));
-            let f = nv + ne + mesh.he_face(h);
-            corners.extend_from_slice(&[v, e_out, f, e_in]);
+        let twin: Vec<u32> = (0..4 * nh)
+            .into_par_iter()
+            .with_min_len(4 * BLOCK)
+            .map(|c| {
+                let h = (c / 4) as u32;
+                match c % 4 {
+                    0 => match m.twin(h) {
+                        NONE => NONE,
+                        t => 4 * m.faces.next(t) + 3,
+                    },
+                    1 => 4 * m.faces.next(h) + 2,
+                    2 => 4 * m.faces.prev(h) + 1,
+                    _ => match m.twin(m.faces.prev(h)) {
+                        NONE => NONE,
+                        t => 4 * t,
+                    },
+                }
+            })
+            .collect();
+        let (he_edge, edge_he) = number_edges(&twin);
+        // Vertex half-edges by the rule of the generic build: the boundary outgoing half-edge,
+        // else the smallest outgoing one.
+        let vert_he = (0..nv + ne + nf)
+            .into_par_iter()
+            .with_min_len(BLOCK)
+            .map(|i| {
+                if i < nv {
+                    4 * m.vert_he[i]
+                } else if i < nv + ne {
+                    let h = m.edge_he[i - nv];
+                    let a = 4 * m.faces.next(h) + 3;
+                    match m.twin(h) {
+                        NONE => a,
+                        t => a.min(4 * h + 1).min(4 * t + 1).min(4 * m.faces.next(t) + 3),
+                    }
+                } else {
+                    4 * m.faces.start(i - nv - ne) + 2
+                }
+            })
+            .collect();
+        Topology {
+            he_face: Vec::new(),
+            twin,
+            he_edge,
+            edge_he,
+            vert_he,
         }
-        (face_start, corners)
+    }
+
+    /// `levels` steps of one-shot refinement: the refined net only. Points come from the direct
+    /// kernel ([`CatmullClark::refine_points`]), connectivity from the parent's; no stencil
+    /// table is built, each parent level is dropped as soon as its child exists, and the last
+    /// step frees the parent's points and most of its connectivity before allocating the child
+    /// faces and does not build the last level's half-edges (built on first use, if ever). So
+    /// the peak memory stays close to the size of the result. `progress(level)` is called after
+    /// each step.
+    ///
+    /// # Errors
+    /// When a level would exceed fairsub's 32-bit indices.
+    pub fn refine_uniform(
+        mesh: &PolyMesh,
+        levels: usize,
+        mut progress: impl FnMut(usize),
+    ) -> Result<PolyMesh> {
+        let mut owned: Option<PolyMesh> = None;
+        for l in 0..levels {
+            let parent = owned.as_ref().unwrap_or(mesh);
+            check_sizes(parent)?;
+            let positions = Self::refine_points(parent, parent.positions());
+            let child = if l + 1 < levels {
+                Self::child_mesh(parent, positions)
+            } else if owned.is_none() {
+                PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), None)
+            } else {
+                let parent = owned.take().expect("checked above");
+                Self::last_child(parent, positions)
+            };
+            owned = Some(child);
+            progress(l + 1);
+        }
+        Ok(owned.unwrap_or_else(|| mesh.clone()))
+    }
+
+    /// The last step of [`CatmullClark::refine_uniform`]: consumes the parent, keeping only
+    /// what the child faces need (its corners, face offsets and edge numbers).
+    fn last_child(parent: PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        let nv = parent.num_vertices();
+        let ne = parent.num_edges();
+        let MeshParts {
+            positions: parent_positions,
+            face_start,
+            corners,
+            uniform,
+            topo,
+        } = parent.into_parts();
+        drop(parent_positions);
+        let Topology {
+            he_face, he_edge, ..
+        } = topo.expect("an intermediate level has its topology");
+        let faces = FaceIndex {
+            face_start: &face_start,
+            he_face: &he_face,
+            uniform,
+        };
+        let child = child_corners(faces, &corners, &he_edge, nv, ne);
+        drop((face_start, corners, he_face, he_edge));
+        PolyMesh::from_trusted_uniform(positions, 4, child, None)
     }
 
     /// Limit-position stencils of every vertex of `mesh` (row `v` for vertex `v`).
@@ -124,20 +460,24 @@ impl CatmullClark {
     /// neighbours `e_j` and diagonal neighbours `f_j`; boundary vertex: `(a + 4 v + b) / 6`;
     /// corner: `v`. A vertex next to a non-quad face takes the limit of its child after one
     /// step (composed with that step's stencils), which is the same limit point.
+    ///
+    /// Rows are built in parallel blocks.
     pub fn limit_stencils(mesh: &PolyMesh) -> StencilTable {
         let nv = mesh.num_vertices();
-        let mut t = StencilTable::with_capacity(nv, nv, 9);
-        let mut child: Option<(PolyMesh, StencilTable)> = None;
-        for v in 0..nv {
-            match Self::direct_limit_stencil(mesh, v) {
-                Some(s) => t.push(s),
-                None => {
-                    let (cm, cs) = child.get_or_insert_with(|| Self::child(mesh));
+        // Only a vertex next to a non-quad face needs the child.
+        let child = (!mesh.is_all_quads()).then(|| Self::child(mesh));
+        let m = mesh.view();
+        StencilTable::build_par(nv, nv, 9, |rows, t| {
+            let mut row = RowWriter::new();
+            for v in rows {
+                if limit_terms(&m, v, &mut row) {
+                    row.push_into(t);
+                } else {
+                    let (cm, cs) = child.as_ref().expect("a non-quad face is next to v");
                     t.push(Self::limit_through_child(cm, cs, v));
                 }
             }
-        }
-        t
+        })
     }
 
     /// Limit-position stencil of one vertex (see [`CatmullClark::limit_stencils`]).
@@ -150,9 +490,7 @@ impl CatmullClark {
 
     fn child(mesh: &PolyMesh) -> (PolyMesh, StencilTable) {
         let st = Self::stencils(mesh);
-        let (fs, cn) = Self::child_topology(mesh);
-        let m = PolyMesh::from_refinement(st.apply(mesh.positions()), fs, cn)
-            .expect("Catmull-Clark child of a valid mesh is valid");
+        let m = Self::child_mesh(mesh, st.apply(mesh.positions()));
         (m, st)
     }
 
@@ -169,35 +507,7 @@ impl CatmullClark {
     /// Limit stencil when all faces at `v` are quads (or `v` is on the boundary).
     fn direct_limit_stencil(mesh: &PolyMesh, v: usize) -> Option<Stencil> {
         let mut s = Stencil::new();
-        if mesh.is_boundary_vertex(v) {
-            let nb = mesh.vertex_neighbors(v);
-            if nb.len() == 2 {
-                s.add(v, 1.0);
-            } else {
-                s.add(v, 4.0 / 6.0);
-                s.add(nb[0] as usize, 1.0 / 6.0);
-                s.add(*nb.last()? as usize, 1.0 / 6.0);
-            }
-            return Some(s.merged());
-        }
-        let hs = mesh.outgoing_halfedges(v);
-        if hs
-            .iter()
-            .any(|&h| mesh.face_size(mesh.he_face(h) as usize) != 4)
-        {
-            return None;
-        }
-        let n = hs.len() as f64;
-        let d = n * (n + 5.0);
-        s.add(v, n * n / d);
-        for &h in &hs {
-            s.add(mesh.he_to(h) as usize, 4.0 / d);
-            s.add(
-                mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize,
-                1.0 / d,
-            );
-        }
-        Some(s.merged())
+        limit_terms(&mesh.view(), v, &mut s).then(|| s.merged())
     }
 
     /// Limit tangent stencils `(t1, t2)` at vertex `v` when all faces at `v` are quads: for an
@@ -282,9 +592,7 @@ impl CatmullClark {
         if missing.is_empty() {
             return out;
         }
-        let st = Self::stencils(mesh);
-        let (fs, cn) = Self::child_topology(mesh);
-        let child = PolyMesh::from_refinement(st.apply(pos), fs, cn).expect("valid child");
+        let child = Self::child_mesh(mesh, Self::refine_points(mesh, pos));
         let child_normals = if depth > 0 {
             Self::normals_rec(&child, depth - 1)
         } else {
@@ -315,9 +623,19 @@ impl Scheme for CatmullClark {
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        let st = Self::stencils(mesh);
-        let (fs, cn) = Self::child_topology(mesh);
-        finish_refinement(mesh, st, fs, cn)
+        check_sizes(mesh)?;
+        let stencils = Self::stencils(mesh);
+        let mesh = Self::child_mesh(mesh, stencils.apply(mesh.positions()));
+        Ok(Refinement { mesh, stencils })
+    }
+
+    fn refine_uniform(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        Self::refine_uniform(mesh, levels, progress)
     }
 
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
@@ -370,5 +688,70 @@ mod tests {
         for v in 0..8 {
             assert!(geom::dist(l0[v], l1[v]) < 1e-14);
         }
+    }
+
+    fn max_dist(a: &[Point], b: &[Point]) -> f64 {
+        assert_eq!(a.len(), b.len());
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| geom::dist(*p, *q))
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn direct_child_equals_generic_build_and_kernel_equals_table() {
+        for (name, mesh) in crate::gallery::all() {
+            let mut m = mesh;
+            for level in 0..2 {
+                let what = format!("{name} level {level}");
+                let st = CatmullClark::stencils(&m);
+                let pts = st.apply(m.positions());
+                let direct = CatmullClark::child_mesh(&m, pts.clone());
+                let (fs, c) = CatmullClark::child_topology(&m);
+                let generic = PolyMesh::from_refinement(pts.clone(), fs, c).unwrap();
+                crate::mesh::assert_same_topology(&direct, &generic, &what);
+                let fused = CatmullClark::refine_points(&m, m.positions());
+                assert!(max_dist(&fused, &pts) < 1e-13, "{what}");
+                // Rows built by the rules equal the single-point stencils.
+                for v in 0..m.num_vertices() {
+                    assert_eq!(st.stencil(v), vertex_point_stencil(&m, v), "{what}");
+                }
+                for e in 0..m.num_edges() {
+                    let r = m.num_vertices() + e;
+                    assert_eq!(st.stencil(r), edge_point_stencil(&m, e), "{what}");
+                }
+                m = direct;
+            }
+        }
+    }
+
+    #[test]
+    fn one_shot_levels_equal_repeated_steps() {
+        for (name, mesh) in crate::gallery::all() {
+            for levels in 0..=3 {
+                let what = format!("{name}, {levels} levels");
+                let mut calls = Vec::new();
+                let fast = CatmullClark::refine_uniform(&mesh, levels, |l| calls.push(l)).unwrap();
+                assert_eq!(calls, (1..=levels).collect::<Vec<_>>());
+                let mut slow = mesh.clone();
+                for _ in 0..levels {
+                    slow = CatmullClark.refine(&slow).unwrap().mesh;
+                }
+                assert!(
+                    max_dist(fast.positions(), slow.positions()) < 1e-12,
+                    "{what}"
+                );
+                // The last level's connectivity is built on first use and agrees.
+                crate::mesh::assert_same_topology(&fast, &slow, &what);
+            }
+        }
+        // Through the trait, as the CLI calls it; other data widths through the kernel.
+        let m = crate::gallery::unit_cube();
+        let r = super::super::refine_levels(&CatmullClark, &m, 2, |_| {}).unwrap();
+        assert_eq!(r.num_faces(), 96);
+        let colours: Vec<[f64; 1]> = (0..8).map(|v| [v as f64]).collect();
+        let c1 = CatmullClark::refine_points(&m, &colours);
+        let t = CatmullClark::stencils(&m).apply(&colours);
+        assert!(c1.iter().zip(&t).all(|(a, b)| (a[0] - b[0]).abs() < 1e-14));
     }
 }

@@ -8,7 +8,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::stencil::{Stencil, StencilTable};
+use crate::stencil::{Stencil, StencilTable, Terms};
 
 /// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
 /// boundary half-edge. Same order as [`PolyMesh::outgoing_halfedges`], without allocating.
@@ -127,6 +127,13 @@ impl RowBuf {
         self.pairs.retain(|p| p.1 != 0.0);
         table.push_pairs(&self.pairs);
         self.pairs.clear();
+    }
+}
+
+impl Terms for RowBuf {
+    #[inline]
+    fn add(&mut self, i: u32, w: f64) {
+        self.pairs.push((i, w));
     }
 }
 

@@ -34,13 +34,14 @@
 
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross, normalize};
-use crate::mesh::PolyMesh;
-use crate::stencil::{Stencil, StencilTable};
+use crate::mesh::{MeshParts, MeshView, NONE, PolyMesh, Topology, number_edges};
+use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
+use rayon::prelude::*;
 
 use super::common::{
     Outgoing, RowBuf, boundary_neighbors, check_child_size, cos_2pi, is_corner, sin_2pi,
 };
-use super::{Refinement, Scheme, finish_refinement};
+use super::{Refinement, Scheme};
 
 /// Loop subdivision of triangle nets (scheme name `loop`). See the [module](self) documentation
 /// for the rules and the layout of the child net.
@@ -170,19 +171,20 @@ fn check_triangles(mesh: &PolyMesh) -> Result<()> {
 /// keeps `1 - n w(n)` and gives `w(n)` to each edge neighbour; a boundary vertex keeps
 /// `1 - 2 b` and gives `b` to each boundary neighbour; a corner keeps itself. Both the
 /// refinement rule and the limit mask have this shape.
-fn vertex_mask(mesh: &PolyMesh, v: usize, w: fn(usize) -> f64, b: f64, row: &mut RowBuf) {
+#[inline]
+fn vertex_mask(m: &MeshView<'_>, v: usize, w: fn(usize) -> f64, b: f64, row: &mut impl Terms) {
     let vi = v as u32;
-    if !mesh.is_boundary_vertex(v) {
-        let n = Outgoing::new(mesh, v).count();
+    if !m.is_boundary_vertex(v) {
+        let n = m.outgoing(v).count();
         let wn = w(n);
         row.add(vi, 1.0 - n as f64 * wn);
-        for h in Outgoing::new(mesh, v) {
-            row.add(mesh.he_to(h), wn);
+        for h in m.outgoing(v) {
+            row.add(m.to(h), wn);
         }
-    } else if is_corner(mesh, v) {
+    } else if m.is_corner(v) {
         row.add(vi, 1.0);
     } else {
-        let (p, q) = boundary_neighbors(mesh, v);
+        let (p, q) = m.boundary_neighbors(v);
         row.add(vi, 1.0 - 2.0 * b);
         row.add(p, b);
         row.add(q, b);
@@ -191,19 +193,20 @@ fn vertex_mask(mesh: &PolyMesh, v: usize, w: fn(usize) -> f64, b: f64, row: &mut
 
 /// Writes Loop's edge rule for edge `e` into `row`: `3/8, 3/8` for the end points and `1/8` for
 /// each opposite vertex; the midpoint on a boundary edge.
-fn edge_mask(mesh: &PolyMesh, e: usize, row: &mut RowBuf) {
-    let h = mesh.edge_halfedge(e);
-    let (a, b) = (mesh.he_from(h), mesh.he_to(h));
-    match mesh.he_twin(h) {
-        None => {
+#[inline]
+fn edge_mask(m: &MeshView<'_>, e: usize, row: &mut impl Terms) {
+    let h = m.edge_he[e];
+    let (a, b) = (m.from(h), m.to(h));
+    match m.twin(h) {
+        NONE => {
             row.add(a, 0.5);
             row.add(b, 0.5);
         }
-        Some(t) => {
+        t => {
             row.add(a, 0.375);
             row.add(b, 0.375);
-            row.add(mesh.he_from(mesh.he_prev(h)), 0.125);
-            row.add(mesh.he_from(mesh.he_prev(t)), 0.125);
+            row.add(m.from(m.faces.prev(h)), 0.125);
+            row.add(m.from(m.faces.prev(t)), 0.125);
         }
     }
 }
@@ -212,22 +215,248 @@ fn edge_mask(mesh: &PolyMesh, e: usize, row: &mut RowBuf) {
 /// vertices (the rule [`Scheme::refine`] applies, for adaptive refinement).
 pub fn vertex_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
     let mut row = RowBuf::default();
-    vertex_mask(mesh, v, Loop::vertex_beta, 0.125, &mut row);
+    vertex_mask(&mesh.view(), v, Loop::vertex_beta, 0.125, &mut row);
     row.take_stencil()
 }
 
 /// The new point of edge `e` under Loop's edge rule, as a stencil over the mesh vertices.
 pub fn edge_point_stencil(mesh: &PolyMesh, e: usize) -> Stencil {
     let mut row = RowBuf::default();
-    edge_mask(mesh, e, &mut row);
+    edge_mask(&mesh.view(), e, &mut row);
     row.take_stencil()
 }
 
 /// The limit position of vertex `v` ([`Scheme::limit_stencils`] for one vertex).
 pub fn limit_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
     let mut row = RowBuf::default();
-    vertex_mask(mesh, v, Loop::limit_chi, 1.0 / 6.0, &mut row);
+    vertex_mask(&mesh.view(), v, Loop::limit_chi, 1.0 / 6.0, &mut row);
     row.take_stencil()
+}
+
+/// Child points (or parent half-edges) per parallel task.
+const BLOCK: usize = 4096;
+
+/// Child face of the corner where parent half-edge `h` starts: `4f + i` for `h = 3f + i`.
+#[inline]
+fn corner_face(h: u32) -> u32 {
+    h + h / 3
+}
+
+/// Child corners of one step from the parent's arrays: parent triangle `f = (a, b, c)` becomes
+/// `(a, ab, ca)`, `(b, bc, ab)`, `(c, ca, bc)`, `(ab, bc, ca)`.
+fn child_corners(corners: &[u32], he_edge: &[u32], nv: usize) -> Vec<u32> {
+    let nf = corners.len() / 3;
+    let nv = nv as u32;
+    let mut child = crate::buffers::zeroed(12 * nf, 0u32);
+    child
+        .par_chunks_mut(12 * BLOCK)
+        .enumerate()
+        .for_each(|(c, chunk)| {
+            for (k, out) in chunk.chunks_exact_mut(12).enumerate() {
+                let h0 = 3 * (c * BLOCK + k);
+                let [a, b, cc] = [corners[h0], corners[h0 + 1], corners[h0 + 2]];
+                let ab = nv + he_edge[h0];
+                let bc = nv + he_edge[h0 + 1];
+                let ca = nv + he_edge[h0 + 2];
+                out.copy_from_slice(&[a, ab, ca, b, bc, ab, cc, ca, bc, ab, bc, ca]);
+            }
+        });
+    child
+}
+
+impl Loop {
+    /// The refinement stencils of one step (child vertex `v < V` from parent vertex `v`, then
+    /// one edge point per parent edge), built in parallel without per-row allocation.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] for a face that is not a triangle.
+    pub fn stencils(mesh: &PolyMesh) -> Result<StencilTable> {
+        check_triangles(mesh)?;
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        let m = mesh.view();
+        Ok(StencilTable::build_par(nv, nv + ne, 6, |rows, t| {
+            let mut row = RowBuf::default();
+            for r in rows {
+                if r < nv {
+                    vertex_mask(&m, r, Self::vertex_beta, 0.125, &mut row);
+                } else {
+                    edge_mask(&m, r - nv, &mut row);
+                }
+                row.flush_into(t);
+            }
+        }))
+    }
+
+    /// The child points of one step computed directly by the rules (no table), in parallel, for
+    /// any per-point data (`src` has one entry per parent vertex). Row `i` equals row `i` of
+    /// [`Loop::stencils`] applied to `src` up to rounding.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] for a face that is not a triangle.
+    ///
+    /// # Panics
+    /// Panics when `src` has fewer entries than the mesh has vertices.
+    pub fn refine_points<const D: usize>(
+        mesh: &PolyMesh,
+        src: &[[f64; D]],
+    ) -> Result<Vec<[f64; D]>> {
+        check_triangles(mesh)?;
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        assert!(src.len() >= nv, "one point per parent vertex is needed");
+        let m = mesh.view();
+        let mut out = crate::buffers::zeroed(nv + ne, [0.0; D]);
+        out.par_chunks_mut(BLOCK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, o) in chunk.iter_mut().enumerate() {
+                    let i = c * BLOCK + k;
+                    let mut acc = Accumulator::new(src);
+                    if i < nv {
+                        vertex_mask(&m, i, Self::vertex_beta, 0.125, &mut acc);
+                    } else {
+                        edge_mask(&m, i - nv, &mut acc);
+                    }
+                    *o = acc.value();
+                }
+            });
+        Ok(out)
+    }
+
+    /// The child net of one step with the given child points (from [`Loop::refine_points`] or
+    /// [`Loop::stencils`]); its connectivity is derived from the parent's without search: the
+    /// same connectivity, edge numbering and vertex half-edges as [`PolyMesh::from_refinement`]
+    /// would build.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] for a face that is not a triangle.
+    ///
+    /// # Panics
+    /// Panics when `positions` does not have one point per child vertex.
+    pub fn child_mesh(mesh: &PolyMesh, positions: Vec<Point>) -> Result<PolyMesh> {
+        check_triangles(mesh)?;
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        assert_eq!(positions.len(), nv + ne, "one point per child vertex");
+        let topo = Self::child_halfedges(mesh);
+        let m = mesh.view();
+        let corners = child_corners(m.corners, m.he_edge, nv);
+        Ok(PolyMesh::from_trusted_uniform(
+            positions,
+            3,
+            corners,
+            Some(topo),
+        ))
+    }
+
+    /// Half-edge topology of the child net. Child face `4f + i` (`i < 3`) is the corner
+    /// triangle at the start of parent half-edge `h = 3f + i`; its sides are `3(4f + i) + k`:
+    /// `k = 0` from the vertex along `h`, `1` across the parent face, `2` back along `prev(h)`.
+    /// The middle face `4f + 3` has side `k` from the point of edge `3f + k` to the next. Twins
+    /// follow: side 0 of `h` pairs with side 2 at `next(twin h)`, side 1 with a side of the
+    /// middle face.
+    fn child_halfedges(mesh: &PolyMesh) -> Topology {
+        let m = mesh.view();
+        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
+        let twin: Vec<u32> = (0..12 * nf)
+            .into_par_iter()
+            .with_min_len(12 * BLOCK)
+            .map(|c| {
+                let f = (c / 12) as u32;
+                let r = (c % 12) as u32;
+                if r >= 9 {
+                    // Middle face side k: pairs with side 1 of corner face k + 1.
+                    let k = r - 9;
+                    return 12 * f + 3 * ((k + 1) % 3) + 1;
+                }
+                let (i, side) = (r / 3, r % 3);
+                let h = 3 * f + i;
+                match side {
+                    0 => match m.twin(h) {
+                        NONE => NONE,
+                        t => 3 * corner_face(m.faces.next(t)) + 2,
+                    },
+                    1 => 12 * f + 9 + (i + 2) % 3,
+                    _ => match m.twin(m.faces.prev(h)) {
+                        NONE => NONE,
+                        t => 3 * corner_face(t),
+                    },
+                }
+            })
+            .collect();
+        let (he_edge, edge_he) = number_edges(&twin);
+        // Vertex half-edges by the rule of the generic build: the boundary outgoing half-edge,
+        // else the smallest outgoing one.
+        let vert_he = (0..nv + ne)
+            .into_par_iter()
+            .with_min_len(BLOCK)
+            .map(|i| {
+                if i < nv {
+                    return 3 * corner_face(m.vert_he[i]);
+                }
+                let h = m.edge_he[i - nv];
+                let side = |h: u32| {
+                    let f = h / 3;
+                    (3 * corner_face(h) + 1)
+                        .min(12 * f + 9 + h % 3)
+                        .min(3 * corner_face(m.faces.next(h)) + 2)
+                };
+                let last = 3 * corner_face(m.faces.next(h)) + 2;
+                match m.twin(h) {
+                    NONE => last,
+                    t => side(h).min(side(t)),
+                }
+            })
+            .collect();
+        Topology {
+            he_face: Vec::new(),
+            twin,
+            he_edge,
+            edge_he,
+            vert_he,
+        }
+    }
+
+    /// `levels` steps of one-shot refinement: the refined net only, points from the direct
+    /// kernel ([`Loop::refine_points`]), connectivity from the parent's; no stencil table, each
+    /// parent dropped as soon as its child exists, and the last level's half-edges built only
+    /// on first use (see [`crate::schemes::CatmullClark::refine_uniform`]).
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] for a face that is not a triangle; when a level would exceed
+    /// fairsub's 32-bit indices.
+    pub fn refine_uniform(
+        mesh: &PolyMesh,
+        levels: usize,
+        mut progress: impl FnMut(usize),
+    ) -> Result<PolyMesh> {
+        check_triangles(mesh)?;
+        let mut owned: Option<PolyMesh> = None;
+        for l in 0..levels {
+            let parent = owned.as_ref().unwrap_or(mesh);
+            check_child_size("loop", parent.num_vertices() + parent.num_edges())?;
+            check_child_size("loop", 4 * parent.num_halfedges() + 1)?;
+            let positions = Self::refine_points(parent, parent.positions())?;
+            let child = if l + 1 < levels {
+                Self::child_mesh(parent, positions)?
+            } else if owned.is_none() {
+                let m = parent.view();
+                let corners = child_corners(m.corners, m.he_edge, parent.num_vertices());
+                PolyMesh::from_trusted_uniform(positions, 3, corners, None)
+            } else {
+                // Keep only what the child faces need from the parent.
+                let parent = owned.take().expect("checked above");
+                let nv = parent.num_vertices();
+                let MeshParts { corners, topo, .. } = parent.into_parts();
+                let Topology { he_edge, .. } =
+                    topo.expect("an intermediate level has its topology");
+                let child = child_corners(&corners, &he_edge, nv);
+                drop((corners, he_edge));
+                PolyMesh::from_trusted_uniform(positions, 3, child, None)
+            };
+            owned = Some(child);
+            progress(l + 1);
+        }
+        Ok(owned.unwrap_or_else(|| mesh.clone()))
+    }
 }
 
 impl Scheme for Loop {
@@ -236,32 +465,20 @@ impl Scheme for Loop {
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        check_triangles(mesh)?;
-        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         check_child_size(self.name(), nv + ne)?;
-        let mut table = StencilTable::with_capacity(nv, nv + ne, 6);
-        let mut row = RowBuf::default();
-        for v in 0..nv {
-            vertex_mask(mesh, v, Self::vertex_beta, 0.125, &mut row);
-            row.flush_into(&mut table);
-        }
-        for e in 0..ne {
-            edge_mask(mesh, e, &mut row);
-            row.flush_into(&mut table);
-        }
-        let nv32 = nv as u32;
-        let mut corners = Vec::with_capacity(12 * nf);
-        for f in 0..nf {
-            let h0 = mesh.face_halfedge(f);
-            let tri = mesh.face(f);
-            let (a, b, c) = (tri[0], tri[1], tri[2]);
-            let ab = nv32 + mesh.he_edge(h0);
-            let bc = nv32 + mesh.he_edge(h0 + 1);
-            let ca = nv32 + mesh.he_edge(h0 + 2);
-            corners.extend_from_slice(&[a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca]);
-        }
-        let face_start = (0..=4 * nf as u32).map(|i| 3 * i).collect();
-        finish_refinement(mesh, table, face_start, corners)
+        let stencils = Self::stencils(mesh)?;
+        let mesh = Self::child_mesh(mesh, stencils.apply(mesh.positions()))?;
+        Ok(Refinement { mesh, stencils })
+    }
+
+    fn refine_uniform(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<PolyMesh> {
+        Self::refine_uniform(mesh, levels, progress)
     }
 
     /// Limit positions: interior `(1 - n chi) v + chi sum p_i` ([`Loop::limit_chi`]), boundary
@@ -269,13 +486,14 @@ impl Scheme for Loop {
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         check_triangles(mesh)?;
         let nv = mesh.num_vertices();
-        let mut table = StencilTable::with_capacity(nv, nv, 7);
-        let mut row = RowBuf::default();
-        for v in 0..nv {
-            vertex_mask(mesh, v, Self::limit_chi, 1.0 / 6.0, &mut row);
-            row.flush_into(&mut table);
-        }
-        Ok(table)
+        let m = mesh.view();
+        Ok(StencilTable::build_par(nv, nv, 7, |rows, t| {
+            let mut row = RowBuf::default();
+            for v in rows {
+                vertex_mask(&m, v, Self::limit_chi, 1.0 / 6.0, &mut row);
+                row.flush_into(t);
+            }
+        }))
     }
 }
 
@@ -315,5 +533,45 @@ mod tests {
         );
         assert!(Loop.limit_stencils(&m).is_err());
         assert!(Loop.limit_tangent_stencils(&m).is_err());
+    }
+
+    #[test]
+    fn direct_child_and_one_shot_levels_equal_the_generic_path() {
+        let dist = |a: &[Point], b: &[Point]| {
+            a.iter()
+                .zip(b)
+                .map(|(p, q)| crate::geom::dist(*p, *q))
+                .fold(0.0, f64::max)
+        };
+        let nets: Vec<(String, PolyMesh)> = crate::gallery::all()
+            .into_iter()
+            .filter(|(_, m)| m.is_all_triangles())
+            .collect();
+        assert!(nets.len() >= 4);
+        for (name, mesh) in nets {
+            let mut m = mesh.clone();
+            for level in 0..2 {
+                let what = format!("{name} level {level}");
+                let st = Loop::stencils(&m).unwrap();
+                let pts = st.apply(m.positions());
+                let direct = Loop::child_mesh(&m, pts.clone()).unwrap();
+                let (fs, c) = (direct.face_starts().to_vec(), direct.corners().to_vec());
+                let generic = PolyMesh::from_refinement(pts.clone(), fs, c).unwrap();
+                crate::mesh::assert_same_topology(&direct, &generic, &what);
+                let fused = Loop::refine_points(&m, m.positions()).unwrap();
+                assert!(dist(&fused, &pts) < 1e-13, "{what}");
+                m = direct;
+            }
+            for levels in 0..=3 {
+                let what = format!("{name}, {levels} levels");
+                let fast = Loop::refine_uniform(&mesh, levels, |_| {}).unwrap();
+                let mut slow = mesh.clone();
+                for _ in 0..levels {
+                    slow = Loop.refine(&slow).unwrap().mesh;
+                }
+                assert!(dist(fast.positions(), slow.positions()) < 1e-12, "{what}");
+                crate::mesh::assert_same_topology(&fast, &slow, &what);
+            }
+        }
     }
 }

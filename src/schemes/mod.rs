@@ -44,21 +44,24 @@ pub trait Scheme: Sync {
     /// (for example a non-triangle face for Loop).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement>;
 
-    /// `levels` refinement steps, calling `progress(level)` after each. The default applies
-    /// [`Scheme::refine`] repeatedly; schemes whose steps depend on more than the net (the
-    /// knot widths of adjustable TPS, the DS^CC pre-processing steps of PGS) override it.
-    fn refine_many(
+    /// `levels` refinement steps for output: the refined net only. Schemes with a direct kernel
+    /// override it to skip the stencil tables, drop each parent level as soon as its child
+    /// exists and keep the peak memory close to the size of the result; the default repeats
+    /// [`Scheme::refine`]. `progress(level)` is called after each step. Schemes whose steps
+    /// depend on more than the net (the knot widths of adjustable TPS, the DS^CC pre-processing
+    /// steps of PGS) override it too.
+    fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
         progress: &mut dyn FnMut(usize),
     ) -> Result<PolyMesh> {
-        let mut m = mesh.clone();
+        let mut m: Option<PolyMesh> = None;
         for l in 0..levels {
-            m = self.refine(&m)?.mesh;
+            m = Some(self.refine(m.as_ref().unwrap_or(mesh))?.mesh);
             progress(l + 1);
         }
-        Ok(m)
+        Ok(m.unwrap_or_else(|| mesh.clone()))
     }
 
     /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
@@ -72,14 +75,46 @@ pub trait Scheme: Sync {
     }
 }
 
-/// Applies `levels` refinement steps, calling `progress(level)` after each.
+/// Applies `levels` refinement steps ([`Scheme::refine_uniform`]), calling `progress(level)`
+/// after each.
 pub fn refine_levels(
     scheme: &dyn Scheme,
     mesh: &PolyMesh,
     levels: usize,
     mut progress: impl FnMut(usize),
 ) -> Result<PolyMesh> {
-    scheme.refine_many(mesh, levels, &mut progress)
+    scheme.refine_uniform(mesh, levels, &mut progress)
+}
+
+/// The stencil table from the control points of `mesh` to the points of its `levels`-th uniform
+/// refinement (each step's table composed with the previous ones), with that refined net.
+///
+/// This is the precomputed form for animation: the topology stays, the control points move, and
+/// [`StencilTable::apply_into`] maps new control positions (or any per-point data) straight to
+/// the refined level, in parallel over rows and without allocating. `levels = 0` gives the
+/// identity.
+///
+/// # Errors
+/// Whatever [`Scheme::refine`] reports (for example a face the scheme cannot handle).
+pub fn level_stencils(
+    scheme: &dyn Scheme,
+    mesh: &PolyMesh,
+    levels: usize,
+) -> Result<(PolyMesh, StencilTable)> {
+    let mut fine: Option<PolyMesh> = None;
+    let mut table: Option<StencilTable> = None;
+    for _ in 0..levels {
+        let r = scheme.refine(fine.as_ref().unwrap_or(mesh))?;
+        table = Some(match table {
+            None => r.stencils,
+            Some(t) => r.stencils.compose(&t),
+        });
+        fine = Some(r.mesh);
+    }
+    Ok(match (fine, table) {
+        (Some(m), Some(t)) => (m, t),
+        _ => (mesh.clone(), StencilTable::identity(mesh.num_vertices())),
+    })
 }
 
 /// Builds the child mesh from topology and stencils: positions are the stencils applied to the

@@ -126,13 +126,13 @@ impl Scheme for Bi2Mixed {
     }
 
     /// `levels` steps of the scheme chosen for the input net.
-    fn refine_many(
+    fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
         progress: &mut dyn FnMut(usize),
     ) -> Result<PolyMesh> {
-        chosen(mesh)?.refine_many(mesh, levels, progress)
+        chosen(mesh)?.refine_uniform(mesh, levels, progress)
     }
 
     /// The limit stencils of the chosen scheme.

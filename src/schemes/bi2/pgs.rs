@@ -324,7 +324,7 @@ impl Scheme for PgsPreprocessed {
     }
 
     /// `levels` steps: the pre-processing steps first, then PGS.
-    fn refine_many(
+    fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,

@@ -550,7 +550,7 @@ impl Scheme for PolarBi2 {
     }
 
     /// Converts caps once (with the user's poles), then `levels` radial steps.
-    fn refine_many(
+    fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
@@ -558,7 +558,7 @@ impl Scheme for PolarBi2 {
     ) -> Result<PolyMesh> {
         let net = to_polar_layout(mesh, &self.poles)?;
         if net.poles.is_empty() {
-            return super::Bi2Mixed.refine_many(mesh, levels, progress);
+            return super::Bi2Mixed.refine_uniform(mesh, levels, progress);
         }
         let mut m = net.mesh;
         for l in 0..levels {

@@ -45,7 +45,7 @@
 //! ([`TernaryRules::stationary_alphas`]).
 //!
 //! Because the knots are not uniform, a refined adjustable net is only meaningful with its
-//! widths: [`AdjustableTps::refine_levels_exact`] (and `Scheme::refine_many`, which the CLI's
+//! widths: [`AdjustableTps::refine_levels_exact`] (and `Scheme::refine_uniform`, which the CLI's
 //! `--levels` uses) carry them from step to step; a single `refine` assumes the input net is
 //! uniform (true for every input net).
 //!
@@ -419,7 +419,7 @@ impl Scheme for AdjustableTps {
     }
 
     /// Several exact steps, carrying the knot widths ([`AdjustableTps::refine_levels_exact`]).
-    fn refine_many(
+    fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
