@@ -222,6 +222,36 @@ pub struct StencilTable {
 /// Rows per parallel task when applying a table.
 const PAR_CHUNK: usize = 2048;
 
+/// The driver both table kinds share: checks the buffer sizes against a table of `num_rows`
+/// rows over `num_sources` points, then runs `rows(r0, chunk)` on the output, in parallel blocks
+/// of [`PAR_CHUNK`] rows when the table is large (each row is written by one block only, so the
+/// result does not depend on the thread count).
+///
+/// # Panics
+/// Panics when the buffer sizes do not match the table.
+fn apply_in_blocks<const D: usize>(
+    num_sources: usize,
+    num_rows: usize,
+    src: &[[f64; D]],
+    out: &mut [[f64; D]],
+    rows: impl Fn(usize, &mut [[f64; D]]) + Sync,
+) {
+    assert!(
+        src.len() >= num_sources,
+        "source has {} points, table needs {}",
+        src.len(),
+        num_sources
+    );
+    assert_eq!(out.len(), num_rows);
+    if out.len() >= 2 * PAR_CHUNK {
+        out.par_chunks_mut(PAR_CHUNK)
+            .enumerate()
+            .for_each(|(c, chunk)| rows(c * PAR_CHUNK, chunk));
+    } else {
+        rows(0, out);
+    }
+}
+
 /// Rows per parallel task when building a table.
 const BUILD_BLOCK: usize = 4096;
 
@@ -400,20 +430,9 @@ impl StencilTable {
     /// # Panics
     /// Panics when the buffer sizes do not match the table.
     pub fn apply_into<const D: usize>(&self, src: &[[f64; D]], out: &mut [[f64; D]]) {
-        assert!(
-            src.len() >= self.num_sources,
-            "source has {} points, table needs {}",
-            src.len(),
-            self.num_sources
-        );
-        assert_eq!(out.len(), self.num_rows());
-        if out.len() >= 2 * PAR_CHUNK {
-            out.par_chunks_mut(PAR_CHUNK)
-                .enumerate()
-                .for_each(|(c, chunk)| self.apply_rows(src, c * PAR_CHUNK, chunk));
-        } else {
-            self.apply_rows(src, 0, out);
-        }
+        apply_in_blocks(self.num_sources, self.num_rows(), src, out, |r0, chunk| {
+            self.apply_rows(src, r0, chunk)
+        });
     }
 
     /// The kernel: rows `r0..r0 + out.len()` into `out`, one pass over their entries.
@@ -608,20 +627,9 @@ impl PackedStencilTable {
     /// # Panics
     /// Panics when the buffer sizes do not match the table.
     pub fn apply_into<const D: usize>(&self, src: &[[f64; D]], out: &mut [[f64; D]]) {
-        assert!(
-            src.len() >= self.num_sources,
-            "source has {} points, table needs {}",
-            src.len(),
-            self.num_sources
-        );
-        assert_eq!(out.len(), self.num_rows());
-        if out.len() >= 2 * PAR_CHUNK {
-            out.par_chunks_mut(PAR_CHUNK)
-                .enumerate()
-                .for_each(|(c, chunk)| self.apply_rows(src, c * PAR_CHUNK, chunk));
-        } else {
-            self.apply_rows(src, 0, out);
-        }
+        apply_in_blocks(self.num_sources, self.num_rows(), src, out, |r0, chunk| {
+            self.apply_rows(src, r0, chunk)
+        });
     }
 
     /// The kernel: rows `r0..r0 + out.len()` into `out`.

@@ -409,23 +409,24 @@ impl CatmullClark {
         levels: usize,
         mut progress: impl FnMut(usize),
     ) -> Result<PolyMesh> {
-        let mut owned: Option<PolyMesh> = None;
-        for l in 0..levels {
-            let parent = owned.as_ref().unwrap_or(mesh);
-            check_sizes(parent)?;
-            let positions = Self::refine_points(parent, parent.positions());
-            let child = if l + 1 < levels {
-                Self::child_mesh(parent, positions)
-            } else if owned.is_none() {
-                PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), None)
-            } else {
-                let parent = owned.take().expect("checked above");
-                Self::last_child(parent, positions)
-            };
-            owned = Some(child);
-            progress(l + 1);
-        }
-        Ok(owned.unwrap_or_else(|| mesh.clone()))
+        use super::common::{OneShotStep, one_shot_levels};
+        one_shot_levels(mesh, levels, &mut progress, check_sizes, |s| {
+            Ok(match s {
+                OneShotStep::Middle(p) => {
+                    Self::child_mesh(p, Self::refine_points(p, p.positions()))
+                }
+                OneShotStep::OnlyStep(p) => PolyMesh::from_trusted_uniform(
+                    Self::refine_points(p, p.positions()),
+                    4,
+                    Self::child_corners(p),
+                    None,
+                ),
+                OneShotStep::Last(p) => {
+                    let positions = Self::refine_points(&p, p.positions());
+                    Self::last_child(p, positions)
+                }
+            })
+        })
     }
 
     /// The last step of [`CatmullClark::refine_uniform`]: consumes the parent, keeping only

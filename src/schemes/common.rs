@@ -137,6 +137,45 @@ impl Terms for RowBuf {
     }
 }
 
+/// Which step of a one-shot refinement a kernel is asked for (see [`one_shot_levels`]).
+// Built once per level and matched at once: boxing the owned mesh would buy nothing.
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum OneShotStep<'a> {
+    /// An intermediate level: the child keeps its full connectivity.
+    Middle(&'a PolyMesh),
+    /// A single step from the caller's net, which stays borrowed.
+    OnlyStep(&'a PolyMesh),
+    /// The last of several steps: the parent is owned and may be taken apart to save memory.
+    Last(PolyMesh),
+}
+
+/// The level loop of the one-shot kernels (Catmull-Clark, Loop): `levels` calls of `step`, each
+/// parent dropped as soon as its child exists, `progress(level)` after each step. `check` runs
+/// on every parent before its step (size limits).
+pub(crate) fn one_shot_levels(
+    mesh: &PolyMesh,
+    levels: usize,
+    mut progress: impl FnMut(usize),
+    check: impl Fn(&PolyMesh) -> Result<()>,
+    mut step: impl FnMut(OneShotStep<'_>) -> Result<PolyMesh>,
+) -> Result<PolyMesh> {
+    let mut owned: Option<PolyMesh> = None;
+    for l in 0..levels {
+        check(owned.as_ref().unwrap_or(mesh))?;
+        let child = if l + 1 < levels {
+            step(OneShotStep::Middle(owned.as_ref().unwrap_or(mesh)))?
+        } else {
+            match owned.take() {
+                None => step(OneShotStep::OnlyStep(mesh))?,
+                Some(parent) => step(OneShotStep::Last(parent))?,
+            }
+        };
+        owned = Some(child);
+        progress(l + 1);
+    }
+    Ok(owned.unwrap_or_else(|| mesh.clone()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

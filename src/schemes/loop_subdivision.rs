@@ -429,33 +429,31 @@ impl Loop {
         mut progress: impl FnMut(usize),
     ) -> Result<PolyMesh> {
         check_triangles(mesh)?;
-        let mut owned: Option<PolyMesh> = None;
-        for l in 0..levels {
-            let parent = owned.as_ref().unwrap_or(mesh);
-            check_child_size("loop", parent.num_vertices() + parent.num_edges())?;
-            check_child_size("loop", 4 * parent.num_halfedges() + 1)?;
-            let positions = Self::refine_points(parent, parent.positions())?;
-            let child = if l + 1 < levels {
-                Self::child_mesh(parent, positions)?
-            } else if owned.is_none() {
-                let m = parent.view();
-                let corners = child_corners(m.corners, m.he_edge, parent.num_vertices());
-                PolyMesh::from_trusted_uniform(positions, 3, corners, None)
-            } else {
+        use super::common::{OneShotStep, one_shot_levels};
+        let check = |p: &PolyMesh| {
+            check_child_size("loop", p.num_vertices() + p.num_edges())?;
+            check_child_size("loop", 4 * p.num_halfedges() + 1)
+        };
+        one_shot_levels(mesh, levels, &mut progress, check, |s| match s {
+            OneShotStep::Middle(p) => Self::child_mesh(p, Self::refine_points(p, p.positions())?),
+            OneShotStep::OnlyStep(p) => {
+                let positions = Self::refine_points(p, p.positions())?;
+                let m = p.view();
+                let corners = child_corners(m.corners, m.he_edge, p.num_vertices());
+                Ok(PolyMesh::from_trusted_uniform(positions, 3, corners, None))
+            }
+            OneShotStep::Last(p) => {
                 // Keep only what the child faces need from the parent.
-                let parent = owned.take().expect("checked above");
-                let nv = parent.num_vertices();
-                let MeshParts { corners, topo, .. } = parent.into_parts();
+                let positions = Self::refine_points(&p, p.positions())?;
+                let nv = p.num_vertices();
+                let MeshParts { corners, topo, .. } = p.into_parts();
                 let Topology { he_edge, .. } =
                     topo.expect("an intermediate level has its topology");
                 let child = child_corners(&corners, &he_edge, nv);
                 drop((corners, he_edge));
-                PolyMesh::from_trusted_uniform(positions, 3, child, None)
-            };
-            owned = Some(child);
-            progress(l + 1);
-        }
-        Ok(owned.unwrap_or_else(|| mesh.clone()))
+                Ok(PolyMesh::from_trusted_uniform(positions, 3, child, None))
+            }
+        })
     }
 }
 
