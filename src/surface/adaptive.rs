@@ -1,8 +1,8 @@
-//! Bookkeeping shared by the adaptive patch-complex builders of [`super::loop_patches`] and
-//! [`super::nonbox`]: the trust of the points of a partially refined level, the tags of active
-//! cells, the selection of the faces refined around marked cells, and the edge curves shared by
-//! neighbouring cells. The scheme-specific parts (regularity, stencils, patches, fill) stay in
-//! the builders.
+//! Bookkeeping shared by the adaptive patch-complex builders ([`super::loop_patches`],
+//! [`super::nonbox`], [`super::cc`], [`super::ds`]): the trust of the points of a partially
+//! refined level, the tags of active cells, the selection of the faces refined around marked
+//! cells, and the edge curves shared by neighbouring cells. The scheme-specific parts
+//! (regularity, stencils, patches, fill) stay in the builders.
 
 use super::{Element, Provenance};
 use crate::geom::Point;
@@ -16,8 +16,9 @@ pub(crate) struct Info {
     pub pos_ok: bool,
     /// (Vertices) the faces around it are all present, so its one-ring is the true one.
     pub fan_ok: bool,
-    /// Input element this point descends from (vertices by vertex points; in non-box also the
-    /// FCVs of non-quads).
+    /// Input element this point descends from: an input vertex by vertex points, or an
+    /// extraordinary face by its centre (Catmull-Clark) or FCV (non-box); Doo-Sabin sets it at
+    /// level 0 only, where it names the V-face of level 1.
     pub origin: Option<Element>,
 }
 
