@@ -128,25 +128,7 @@ pub fn tri_index(i: usize, j: usize, k: usize) -> usize {
 /// `X(u, v) = T(u (1 - v), v)` (see the [module](self) documentation; side `v = 1` collapses to
 /// the corner `P2`).
 pub fn triangle_to_tensor(tri: &[Point; 15]) -> BezierPatch {
-    let binom = |n: usize, k: usize| -> f64 {
-        if k > n {
-            0.0
-        } else {
-            (0..k).fold(1.0, |acc, r| acc * (n - r) as f64 / (r + 1) as f64)
-        }
-    };
-    BezierPatch::from_fn(4, 4, |i, j| {
-        let d = 4 - j;
-        let mut p = [0.0; 3];
-        for r in 0..=d.min(i) {
-            if i - r > 4 - d {
-                continue;
-            }
-            let w = binom(d, r) * binom(4 - d, i - r) / binom(4, i);
-            p = geom::axpy(p, w, tri[tri_index(d - r, r, j)]);
-        }
-        p
-    })
+    crate::bezier::convert::triangle_to_tensor(4, tri)
 }
 
 /// Evaluates the triangular patch `tri` at barycentric `(l0, l1, l2)` (an independent check of
