@@ -273,15 +273,7 @@ fn box_spline_net(m: &PolyMesh, f: usize) -> Option<[Stencil; 12]> {
 fn box_spline_stencils(net: &[Stencil; 12]) -> Vec<Stencil> {
     BOX_SPLINE_BEZIER
         .iter()
-        .map(|(_, w)| {
-            let mut s = Stencil::new();
-            for (q, &wq) in net.iter().zip(w) {
-                if wq != 0 {
-                    s.add_scaled(q, wq as f64 / 24.0);
-                }
-            }
-            s.merged()
-        })
+        .map(|(_, w)| Stencil::integer_combination(net, w.iter().copied(), 24.0))
         .collect()
 }
 

@@ -172,15 +172,7 @@ pub fn cell_net(m: &PolyMesh, h: u32) -> Option<[Stencil; 13]> {
 pub fn triangle_stencils(net: &[Stencil; 13]) -> Vec<Stencil> {
     CELL_TRIANGLE_BEZIER
         .iter()
-        .map(|(_, w)| {
-            let mut s = Stencil::new();
-            for (q, &wq) in net.iter().zip(w) {
-                if wq != 0 {
-                    s.add_scaled(q, wq as f64 / 24.0);
-                }
-            }
-            s.merged()
-        })
+        .map(|(_, w)| Stencil::integer_combination(net, w.iter().map(|&x| u32::from(x)), 24.0))
         .collect()
 }
 
