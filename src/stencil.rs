@@ -179,6 +179,23 @@ impl Stencil {
         self
     }
 
+    /// The [merged](Self::merged) combination `sum_k (weights[k] / denominator) terms[k]` of
+    /// stencils with integer weights (zero weights skipped), as used by Bezier coefficient
+    /// tables with a common denominator.
+    pub fn integer_combination(
+        terms: &[Stencil],
+        weights: impl IntoIterator<Item = u32>,
+        denominator: f64,
+    ) -> Self {
+        let mut s = Stencil::new();
+        for (q, wq) in terms.iter().zip(weights) {
+            if wq != 0 {
+                s.add_scaled(q, wq as f64 / denominator);
+            }
+        }
+        s.merged()
+    }
+
     /// Sorts by source index, merges duplicates (summing them in the order they were added) and
     /// drops exact zeros.
     pub fn merged(mut self) -> Self {

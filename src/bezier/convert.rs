@@ -15,6 +15,9 @@
 //!   formula (5)), segment from `d0..d4` where `d2` is the segment's middle coefficient
 //!   ([`QUARTIC_C2`]). Tensored it gives formula (6) of the paper; see
 //!   [`biquartic_c2_to_bezier`] for the index convention.
+//!
+//! Besides: a triangular Bezier patch of degree `n` as the equivalent degenerate tensor-product
+//! patch `X(u, v) = T(u (1 - v), v)` ([`triangle_to_tensor`]).
 
 use super::BezierPatch;
 use crate::geom::Point;
@@ -235,6 +238,38 @@ pub fn biquartic_c2_to_bezier(net: &[[Point; 5]; 5]) -> BezierPatch {
 pub fn biquartic_c2_stencils(net: &[[usize; 5]; 5]) -> Vec<Stencil> {
     let m = quartic_c2_matrix();
     tensor_stencils(m, m, &flatten(net))
+}
+
+/// The triangular Bezier patch of degree `n` with coefficients `tri` as the equivalent
+/// degenerate tensor-product patch of bi-degree `(n, n)`, `X(u, v) = T(u (1 - v), v)` (side
+/// `v = 1` collapsed to the corner `P2`). `tri` lists `b_ijk`, `i + j + k = n`, in rows of
+/// decreasing `i`, within a row decreasing `j`. Column `j` (`v`-index) of the result is the
+/// degree-`n - j` curve `b_(n-j-r, r, j)`, degree-raised to `n`.
+pub fn triangle_to_tensor(n: usize, tri: &[Point]) -> BezierPatch {
+    debug_assert_eq!(tri.len(), (n + 1) * (n + 2) / 2);
+    let index = |i: usize, j: usize| -> usize {
+        let before: usize = (i + 1..=n).map(|a| n + 1 - a).sum();
+        before + (n - i - j)
+    };
+    let binom = |n: usize, k: usize| -> f64 {
+        if k > n {
+            0.0
+        } else {
+            (0..k).fold(1.0, |acc, r| acc * (n - r) as f64 / (r + 1) as f64)
+        }
+    };
+    BezierPatch::from_fn(n, n, |i, j| {
+        let d = n - j;
+        let mut p = [0.0; 3];
+        for r in 0..=d.min(i) {
+            if i - r > n - d {
+                continue;
+            }
+            let w = binom(d, r) * binom(n - d, i - r) / binom(n, i);
+            p = crate::geom::axpy(p, w, tri[index(d - r, r)]);
+        }
+        p
+    })
 }
 
 #[cfg(test)]

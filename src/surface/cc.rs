@@ -28,6 +28,9 @@
 //! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
 //! own boundaries. `fairsub check` measures its defects.
 
+use super::adaptive::{
+    Curves, Info, Tag, input_active, input_vertex_info, provenance, record_edge,
+};
 use super::regular::bi3_net;
 use super::{Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
@@ -57,31 +60,12 @@ impl Default for CcComplexOptions {
     }
 }
 
-/// Per-vertex bookkeeping of a (partially refined) level.
-#[derive(Debug, Clone, Copy)]
-struct VertexInfo {
-    /// Position equals the uniformly refined mesh's.
-    pos_ok: bool,
-    /// The vertex's fan of faces is complete (as in the uniformly refined mesh).
-    fan_ok: bool,
-    /// Input element this vertex descends from by vertex points (or a facet's centre).
-    origin: Option<Element>,
-}
-
-/// Per-face tag of an active face: which extraordinary element and sector it belongs to.
-#[derive(Debug, Clone, Copy)]
-struct FaceTag {
-    input_face: u32,
-    element: Option<Element>,
-    sector: u32,
-}
-
 /// One level of the adaptive refinement.
 struct Level {
     mesh: PolyMesh,
-    info: Vec<VertexInfo>,
+    info: Vec<Info>,
     /// Faces to process at this level, with their tags.
-    active: Vec<(u32, FaceTag)>,
+    active: Vec<(u32, Tag)>,
 }
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
@@ -133,53 +117,21 @@ pub fn adaptive_complex(
         )));
     }
     let mut out = PatchComplex::new();
-    let info = vec![
-        VertexInfo {
-            pos_ok: true,
-            fan_ok: true,
-            origin: None,
-        };
-        mesh.num_vertices()
-    ];
-    let mut info = info;
-    for (v, i) in info.iter_mut().enumerate() {
-        i.origin = Some(Element::Vertex(v as u32));
-    }
-    let active = (0..mesh.num_faces() as u32)
-        .map(|f| {
-            (
-                f,
-                FaceTag {
-                    input_face: f,
-                    element: None,
-                    sector: 0,
-                },
-            )
-        })
-        .collect();
+    let info = input_vertex_info(mesh.num_vertices());
+    let active = input_active(mesh.num_faces());
     let mut level = Level {
         mesh: mesh.clone(),
         info,
         active,
     };
     for l in 0..=opts.rings {
-        let mut marked: Vec<(u32, FaceTag)> = Vec::new();
-        let mut curves: HashMap<(u32, u32), [Point; 4]> = HashMap::new();
+        let mut marked: Vec<(u32, Tag)> = Vec::new();
+        let mut curves: Curves<4> = HashMap::new();
         for &(f, tag) in &level.active {
             match regular_patch(&level, f as usize) {
                 Some(p) => {
                     record_curves(&level.mesh, f as usize, &p, &mut curves);
-                    let prov = match (l, tag.element) {
-                        (0, _) | (_, None) => Provenance::Regular {
-                            face: tag.input_face,
-                        },
-                        (_, Some(element)) => Provenance::Ring {
-                            element,
-                            ring: l as u32,
-                            sector: tag.sector,
-                        },
-                    };
-                    out.push(p, prov);
+                    out.push(p, provenance(l, tag));
                 }
                 None => marked.push((f, tag_irregular(&level, f as usize, tag))),
             }
@@ -205,11 +157,11 @@ pub fn adaptive_complex(
 /// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
 fn apply_caps(
     level: &Level,
-    marked: Vec<(u32, FaceTag)>,
+    marked: Vec<(u32, Tag)>,
     builder: &dyn CapBuilder,
     l: u32,
     out: &mut PatchComplex,
-) -> Result<Vec<(u32, FaceTag)>> {
+) -> Result<Vec<(u32, Tag)>> {
     let m = &level.mesh;
     let mut cand: HashMap<u32, Vec<u32>> = HashMap::new();
     for &(f, _) in &marked {
@@ -298,10 +250,10 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
 /// for a non-quad input face); faces without one inherit their parent's tag.
-fn tag_irregular(level: &Level, f: usize, tag: FaceTag) -> FaceTag {
+fn tag_irregular(level: &Level, f: usize, tag: Tag) -> Tag {
     let m = &level.mesh;
     if m.face_size(f) != 4 {
-        return FaceTag {
+        return Tag {
             element: Some(Element::Face(tag.input_face)),
             ..tag
         };
@@ -314,7 +266,7 @@ fn tag_irregular(level: &Level, f: usize, tag: FaceTag) -> FaceTag {
                 .iter()
                 .position(|&g| g == f as u32)
                 .unwrap_or(0);
-            return FaceTag {
+            return Tag {
                 element: origin,
                 sector: sector as u32,
                 ..tag
@@ -326,12 +278,7 @@ fn tag_irregular(level: &Level, f: usize, tag: FaceTag) -> FaceTag {
 
 /// Stores the boundary curves of an emitted patch of face `f`, keyed by the edge's vertices
 /// (oriented from the smaller index).
-fn record_curves(
-    m: &PolyMesh,
-    f: usize,
-    p: &BezierPatch,
-    curves: &mut HashMap<(u32, u32), [Point; 4]>,
-) {
+fn record_curves(m: &PolyMesh, f: usize, p: &BezierPatch, curves: &mut Curves<4>) {
     let c = m.face(f);
     // Face corners 0..3 sit at (u, v) = (0,0), (1,0), (1,1), (0,1).
     let sides: [[(usize, usize); 4]; 4] = [
@@ -341,18 +288,13 @@ fn record_curves(
         [(0, 3), (0, 2), (0, 1), (0, 0)],
     ];
     for (k, side) in sides.iter().enumerate() {
-        let (a, b) = (c[k], c[(k + 1) % 4]);
-        let mut pts = side.map(|(i, j)| p.cp(i, j));
-        if a > b {
-            pts.reverse();
-        }
-        curves.entry((a.min(b), a.max(b))).or_insert(pts);
+        record_edge(curves, c[k], c[(k + 1) % 4], side.map(|(i, j)| p.cp(i, j)));
     }
 }
 
 /// Refines the marked faces and two rings of faces around them; returns the next level, whose
 /// active faces are the children of the marked faces.
-fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
+fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let m = &level.mesh;
     let nf = m.num_faces();
     // Faces within two vertex-rings of the marked faces.
@@ -383,7 +325,7 @@ fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
     let mut eid = vec![UNSET; ne];
     let mut fid = vec![UNSET; nf];
     let mut stencils: Vec<Stencil> = Vec::new();
-    let mut info: Vec<VertexInfo> = Vec::new();
+    let mut info: Vec<Info> = Vec::new();
     let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let face_pos_ok = |g: u32| {
         m.face(g as usize)
@@ -393,7 +335,7 @@ fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
     let mut face_start = vec![0u32];
     let mut corners = Vec::new();
     let mut child_faces_of: HashMap<u32, Vec<u32>> = HashMap::new();
-    let marked_set: HashMap<u32, FaceTag> = marked.iter().copied().collect();
+    let marked_set: HashMap<u32, Tag> = marked.iter().copied().collect();
     for f in 0..nf {
         if !sel[f] {
             continue;
@@ -407,7 +349,7 @@ fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
                     s.add(x as usize, 1.0 / face.len() as f64);
                 }
                 stencils.push(s.merged());
-                info.push(VertexInfo {
+                info.push(Info {
                     pos_ok: face_pos_ok(f as u32),
                     fan_ok: true,
                     origin: None,
@@ -425,7 +367,7 @@ fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
                 let fan = vi.fan_ok && all_faces_selected(v);
                 let pos = vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g));
                 stencils.push(vertex_point_stencil(m, v));
-                info.push(VertexInfo {
+                info.push(Info {
                     pos_ok: pos,
                     fan_ok: fan,
                     origin: vi.origin,
@@ -443,7 +385,7 @@ fn refine_around(level: &Level, marked: &[(u32, FaceTag)]) -> Result<Level> {
                         faces.push(m.he_face(t));
                     }
                     stencils.push(edge_point_stencil(m, e));
-                    info.push(VertexInfo {
+                    info.push(Info {
                         pos_ok: known && faces.iter().all(|&g| face_pos_ok(g)),
                         fan_ok: known && faces.iter().all(|&g| sel[g as usize]),
                         origin: None,
@@ -557,7 +499,7 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
 /// The Hermite-Coons fill of the marked faces of the last level.
 fn fill(
     level: &Level,
-    marked: &[(u32, FaceTag)],
+    marked: &[(u32, Tag)],
     curves: &mut HashMap<(u32, u32), [Point; 4]>,
     out: &mut PatchComplex,
 ) -> Result<()> {

@@ -67,6 +67,7 @@
 //! point-augmented scheme PGS ([`crate::schemes::bi2::pgs`]) reuses it unchanged through
 //! [`dual_complex_with`]: its surfaces are laid out exactly like Doo-Sabin's, patch for patch.
 
+use super::adaptive::{Info, Tag, input_vertex_info, provenance};
 use super::{ComplexOptions, Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
 use crate::bezier::convert::biquadratic_bspline_stencils;
@@ -167,25 +168,6 @@ pub fn dual_complex_with(
     dual_complex(mesh, opts, rules, name, progress)
 }
 
-/// Trust of a vertex of a partially refined level.
-#[derive(Debug, Clone, Copy)]
-struct Info {
-    /// Position equals the uniformly refined mesh's.
-    pos_ok: bool,
-    /// Faces around the vertex are those of the uniformly refined mesh.
-    fan_ok: bool,
-    /// The input vertex this one is (level 0 only): names the V-face of level 1.
-    origin: Option<Element>,
-}
-
-/// Which element and sector an active vertex belongs to, and an input face for regular patches.
-#[derive(Debug, Clone, Copy)]
-struct Tag {
-    element: Option<Element>,
-    sector: u32,
-    input_face: u32,
-}
-
 /// One level of the adaptive refinement.
 struct Level {
     mesh: PolyMesh,
@@ -213,13 +195,8 @@ fn dual_complex(
             )));
         }
     }
-    let info = (0..mesh.num_vertices())
-        .map(|v| Info {
-            pos_ok: true,
-            fan_ok: true,
-            origin: Some(Element::Vertex(v as u32)),
-        })
-        .collect();
+    // An input vertex's origin names the V-face of level 1.
+    let info = input_vertex_info(mesh.num_vertices());
     let face_origin = (0..mesh.num_faces())
         .map(|f| (mesh.face_size(f) != 4).then_some(Element::Face(f as u32)))
         .collect();
@@ -248,17 +225,7 @@ fn dual_complex(
         for &(v, tag) in &level.active {
             match trusted_patch(&level, v as usize) {
                 Some(p) => {
-                    let prov = match (l, tag.element) {
-                        (0, _) | (_, None) => Provenance::Regular {
-                            face: tag.input_face,
-                        },
-                        (_, Some(element)) => Provenance::Ring {
-                            element,
-                            ring: l as u32,
-                            sector: tag.sector,
-                        },
-                    };
-                    out.push(p, prov);
+                    out.push(p, provenance(l, tag));
                 }
                 None => marked.push((v, retag(&level, v as usize, tag, l == 0))),
             }

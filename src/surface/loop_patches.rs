@@ -71,6 +71,10 @@
 //! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
 //! between fill triangles; it is not G^1 across its edges.
 
+use super::adaptive::{
+    Curves, Info, Tag, child_active, edge_curve, input_active, input_vertex_info, provenance,
+    record_edge, retag_by_corners, select_around,
+};
 use super::{ComplexOptions, Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
 use crate::bezier::convert::cubic_bspline_to_bezier;
@@ -124,25 +128,7 @@ pub fn tri_index(i: usize, j: usize, k: usize) -> usize {
 /// `X(u, v) = T(u (1 - v), v)` (see the [module](self) documentation; side `v = 1` collapses to
 /// the corner `P2`).
 pub fn triangle_to_tensor(tri: &[Point; 15]) -> BezierPatch {
-    let binom = |n: usize, k: usize| -> f64 {
-        if k > n {
-            0.0
-        } else {
-            (0..k).fold(1.0, |acc, r| acc * (n - r) as f64 / (r + 1) as f64)
-        }
-    };
-    BezierPatch::from_fn(4, 4, |i, j| {
-        let d = 4 - j;
-        let mut p = [0.0; 3];
-        for r in 0..=d.min(i) {
-            if i - r > 4 - d {
-                continue;
-            }
-            let w = binom(d, r) * binom(4 - d, i - r) / binom(4, i);
-            p = geom::axpy(p, w, tri[tri_index(d - r, r, j)]);
-        }
-        p
-    })
+    crate::bezier::convert::triangle_to_tensor(4, tri)
 }
 
 /// Evaluates the triangular patch `tri` at barycentric `(l0, l1, l2)` (an independent check of
@@ -179,25 +165,8 @@ pub fn loop_complex(
             mesh.face_size(f)
         )));
     }
-    let info = (0..mesh.num_vertices())
-        .map(|v| Info {
-            pos_ok: true,
-            fan_ok: true,
-            origin: Some(Element::Vertex(v as u32)),
-        })
-        .collect();
-    let active = (0..mesh.num_faces() as u32)
-        .map(|f| {
-            (
-                f,
-                Tag {
-                    element: None,
-                    sector: 0,
-                    input_face: f,
-                },
-            )
-        })
-        .collect();
+    let info = input_vertex_info(mesh.num_vertices());
+    let active = input_active(mesh.num_faces());
     let mut level = Level {
         mesh: mesh.clone(),
         info,
@@ -206,21 +175,12 @@ pub fn loop_complex(
     let mut out = PatchComplex::new();
     for l in 0..=opts.rings {
         let mut marked = Vec::new();
-        let mut curves: HashMap<(u32, u32), [Point; 5]> = HashMap::new();
+        let mut curves: Curves<5> = HashMap::new();
         for &(f, tag) in &level.active {
             match trusted_net(&level, f as usize) {
                 Some(tri) => {
                     record_curves(&level.mesh, f as usize, &tri, &mut curves);
-                    let prov = match (l, tag.element) {
-                        (0, _) | (_, None) => Provenance::Regular {
-                            face: tag.input_face,
-                        },
-                        (_, Some(element)) => Provenance::Ring {
-                            element,
-                            ring: l as u32,
-                            sector: tag.sector,
-                        },
-                    };
+                    let prov = provenance(l, tag);
                     out.push(triangle_to_tensor(&tri), prov);
                 }
                 None => marked.push((f, retag(&level, f as usize, tag))),
@@ -239,23 +199,6 @@ pub fn loop_complex(
         progress(l + 1);
     }
     Ok(out)
-}
-
-/// Trust of a vertex of a partially refined level.
-#[derive(Debug, Clone, Copy)]
-struct Info {
-    pos_ok: bool,
-    fan_ok: bool,
-    /// Input vertex this one descends from by vertex points.
-    origin: Option<Element>,
-}
-
-/// Extraordinary element and sector of an active triangle, and its input face.
-#[derive(Debug, Clone, Copy)]
-struct Tag {
-    element: Option<Element>,
-    sector: u32,
-    input_face: u32,
 }
 
 struct Level {
@@ -330,15 +273,7 @@ fn box_spline_net(m: &PolyMesh, f: usize) -> Option<[Stencil; 12]> {
 fn box_spline_stencils(net: &[Stencil; 12]) -> Vec<Stencil> {
     BOX_SPLINE_BEZIER
         .iter()
-        .map(|(_, w)| {
-            let mut s = Stencil::new();
-            for (q, &wq) in net.iter().zip(w) {
-                if wq != 0 {
-                    s.add_scaled(q, wq as f64 / 24.0);
-                }
-            }
-            s.merged()
-        })
+        .map(|(_, w)| Stencil::integer_combination(net, w.iter().copied(), 24.0))
         .collect()
 }
 
@@ -371,48 +306,17 @@ fn tri_edge(tri: &[Point; 15], k: usize) -> [Point; 5] {
 }
 
 /// Stores the edge curves of a triangle, keyed by its vertex pairs (oriented from the smaller).
-fn record_curves(
-    m: &PolyMesh,
-    f: usize,
-    tri: &[Point; 15],
-    curves: &mut HashMap<(u32, u32), [Point; 5]>,
-) {
+fn record_curves(m: &PolyMesh, f: usize, tri: &[Point; 15], curves: &mut Curves<5>) {
     let c = m.face(f);
     for k in 0..3 {
-        let (a, b) = (c[k], c[(k + 1) % 3]);
-        let mut e = tri_edge(tri, k);
-        if a > b {
-            e.reverse();
-        }
-        curves.entry((a.min(b), a.max(b))).or_insert(e);
+        record_edge(curves, c[k], c[(k + 1) % 3], tri_edge(tri, k));
     }
 }
 
 /// The tag of a marked triangle: its first extraordinary corner's input vertex, sector = the
 /// triangle's position in that vertex's fan; otherwise the inherited tag.
 fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
-    let m = &level.mesh;
-    for &v in m.face(f) {
-        let v = v as usize;
-        if let Some(origin) = level.info[v].origin
-            && !is_regular(m, v)
-        {
-            if tag.element == Some(origin) {
-                return tag;
-            }
-            let sector = m
-                .vertex_faces(v)
-                .iter()
-                .position(|&g| g as usize == f)
-                .unwrap_or(0);
-            return Tag {
-                element: Some(origin),
-                sector: sector as u32,
-                ..tag
-            };
-        }
-    }
-    tag
+    retag_by_corners(&level.mesh, &level.info, f, tag, is_regular)
 }
 
 /// Refines the triangles around the corners of the marked triangles with Loop's rules; the
@@ -420,20 +324,8 @@ fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     const UNSET: u32 = u32::MAX;
     let m = &level.mesh;
-    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
-    let mut sel = vec![false; nf];
-    let mut sel_faces = Vec::new();
-    for &(f, _) in marked {
-        for &v in m.face(f as usize) {
-            for g in m.vertex_faces(v as usize) {
-                if !sel[g as usize] {
-                    sel[g as usize] = true;
-                    sel_faces.push(g);
-                }
-            }
-        }
-    }
-    sel_faces.sort_unstable();
+    let (nv, ne) = (m.num_vertices(), m.num_edges());
+    let (sel, sel_faces) = select_around(m, marked);
     let whole_fan =
         |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let sources_ok = |s: &Stencil| {
@@ -500,13 +392,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let mut active = Vec::with_capacity(4 * marked.len());
-    for &(f, tag) in marked {
-        let first = children[&f];
-        for k in 0..4 {
-            active.push((first + k, tag));
-        }
-    }
+    let active = child_active(marked, |f| (children[&f], 4));
     Ok(Level {
         mesh: child,
         info,
@@ -587,25 +473,13 @@ fn fill_edge(m: &PolyMesh, a: usize, b: usize) -> [Point; 5] {
 }
 
 /// The Hermite fill of the marked triangles of the last level.
-fn fill(
-    level: &Level,
-    marked: &[(u32, Tag)],
-    curves: &mut HashMap<(u32, u32), [Point; 5]>,
-    out: &mut PatchComplex,
-) {
+fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<5>, out: &mut PatchComplex) {
     let m = &level.mesh;
     for &(f, tag) in marked {
         let c = m.face(f as usize);
         let mut tri = [[0.0; 3]; 15];
         for k in 0..3 {
-            let (a, b) = (c[k], c[(k + 1) % 3]);
-            let key = (a.min(b), a.max(b));
-            let mut e = *curves
-                .entry(key)
-                .or_insert_with(|| fill_edge(m, key.0 as usize, key.1 as usize));
-            if a > b {
-                e.reverse();
-            }
+            let e = edge_curve(curves, c[k], c[(k + 1) % 3], |a, b| fill_edge(m, a, b));
             for (r, p) in e.iter().enumerate() {
                 let mut idx = [0usize; 3];
                 idx[k] = 4 - r;

@@ -4,6 +4,7 @@
 //! [`Provenance`] (regular region, ring `k` of an extraordinary element, cap / fill), so writers
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
 
+pub(crate) mod adaptive;
 pub mod adjacency;
 pub mod bi2;
 pub mod cc;

@@ -32,6 +32,10 @@
 //! The fill is C^0 to the last ring and between fill patches, not G^1 across its edges; with
 //! `K` rings it covers a region of size about `lambda^K`.
 
+use super::adaptive::{
+    Curves, Info, Tag, child_active, edge_curve, input_active, input_vertex_info, provenance,
+    record_edge, retag_by_corners, select_around,
+};
 use super::{ComplexOptions, Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
 use crate::bezier::convert::cubic_bspline_to_bezier;
@@ -47,25 +51,6 @@ use crate::schemes::nonbox::{
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 use std::f64::consts::PI;
-
-/// Trust of a point of a partially refined level.
-#[derive(Debug, Clone, Copy)]
-struct Info {
-    /// The position equals the one of full refinement.
-    pos_ok: bool,
-    /// (Vertices) the faces around it are all present, so its one-ring is the true one.
-    fan_ok: bool,
-    /// Input element this vertex descends from (vertices by V-vertices, FCVs of non-quads).
-    origin: Option<Element>,
-}
-
-/// Extraordinary element and sector of an active cell, and its input face.
-#[derive(Debug, Clone, Copy)]
-struct Tag {
-    element: Option<Element>,
-    sector: u32,
-    input_face: u32,
-}
 
 struct Level {
     net: FcvNet,
@@ -85,30 +70,13 @@ pub fn nonbox_complex(
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
     let m = &net.mesh;
-    let mut info: Vec<Info> = (0..m.num_vertices())
-        .map(|v| Info {
-            pos_ok: true,
-            fan_ok: true,
-            origin: Some(Element::Vertex(v as u32)),
-        })
-        .collect();
+    let mut info = input_vertex_info(m.num_vertices());
     info.extend((0..m.num_faces()).map(|_| Info {
         pos_ok: true,
         fan_ok: true,
         origin: None,
     }));
-    let active = (0..m.num_faces() as u32)
-        .map(|f| {
-            (
-                f,
-                Tag {
-                    element: None,
-                    sector: 0,
-                    input_face: f,
-                },
-            )
-        })
-        .collect();
+    let active = input_active(m.num_faces());
     let mut level = Level {
         points: net.points(),
         net: net.clone(),
@@ -118,21 +86,12 @@ pub fn nonbox_complex(
     let mut out = PatchComplex::new();
     for l in 0.. {
         let mut marked = Vec::new();
-        let mut curves: HashMap<(u32, u32), [Point; 4]> = HashMap::new();
+        let mut curves: Curves<4> = HashMap::new();
         for &(f, tag) in &level.active {
             match trusted_cell(&level, f as usize) {
                 Some(tris) => {
                     record_curves(&level.net.mesh, f as usize, &tris, &mut curves);
-                    let prov = match (l, tag.element) {
-                        (0, _) | (_, None) => Provenance::Regular {
-                            face: tag.input_face,
-                        },
-                        (_, Some(element)) => Provenance::Ring {
-                            element,
-                            ring: l as u32,
-                            sector: tag.sector,
-                        },
-                    };
+                    let prov = provenance(l, tag);
                     for t in &tris {
                         out.push(triangle_to_tensor(t), prov);
                     }
@@ -213,26 +172,17 @@ fn trusted_cell(level: &Level, f: usize) -> Option<[CubicTriangle; 4]> {
 }
 
 /// Stores the four edge curves of an emitted cell, keyed by vertex pairs (from the smaller).
-fn record_curves(
-    m: &PolyMesh,
-    f: usize,
-    tris: &[CubicTriangle; 4],
-    curves: &mut HashMap<(u32, u32), [Point; 4]>,
-) {
+fn record_curves(m: &PolyMesh, f: usize, tris: &[CubicTriangle; 4], curves: &mut Curves<4>) {
     let c = m.face(f);
     for k in 0..4 {
-        let (a, b) = (c[k], c[(k + 1) % 4]);
         let t = &tris[k];
-        let mut e = [
+        let e = [
             t[tri_index(3, 0, 0)],
             t[tri_index(2, 1, 0)],
             t[tri_index(1, 2, 0)],
             t[tri_index(0, 3, 0)],
         ];
-        if a > b {
-            e.reverse();
-        }
-        curves.entry((a.min(b), a.max(b))).or_insert(e);
+        record_edge(curves, c[k], c[(k + 1) % 4], e);
     }
 }
 
@@ -247,27 +197,7 @@ fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
             ..tag
         };
     }
-    for &v in m.face(f) {
-        let v = v as usize;
-        if let Some(origin) = level.info[v].origin
-            && !is_regular(m, v)
-        {
-            if tag.element == Some(origin) {
-                return tag;
-            }
-            let sector = m
-                .vertex_faces(v)
-                .iter()
-                .position(|&g| g as usize == f)
-                .unwrap_or(0);
-            return Tag {
-                element: Some(origin),
-                sector: sector as u32,
-                ..tag
-            };
-        }
-    }
-    tag
+    retag_by_corners(m, &level.info, f, tag, is_regular)
 }
 
 /// Refines the faces around the corners of the marked cells with the non-box rules; the next
@@ -276,19 +206,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     const UNSET: u32 = u32::MAX;
     let m = &level.net.mesh;
     let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
-    let mut sel = vec![false; nf];
-    let mut sel_faces = Vec::new();
-    for &(f, _) in marked {
-        for &v in m.face(f as usize) {
-            for g in m.vertex_faces(v as usize) {
-                if !sel[g as usize] {
-                    sel[g as usize] = true;
-                    sel_faces.push(g);
-                }
-            }
-        }
-    }
-    sel_faces.sort_unstable();
+    let (sel, sel_faces) = select_around(m, marked);
     let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();
     let info = &level.info;
     let whole_fan = |v: usize| info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
@@ -378,13 +296,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         fcv: points[nc..].to_vec(),
     };
     child_info.extend(fcv_info);
-    let mut active = Vec::new();
-    for &(f, tag) in marked {
-        let (first, k) = children[&f];
-        for c in first..first + k {
-            active.push((c, tag));
-        }
-    }
+    let active = child_active(marked, |f| children[&f]);
     Ok(Level {
         net,
         points,
@@ -470,25 +382,12 @@ fn fill_edge(level: &Level, a: usize, b: usize) -> [Point; 4] {
 }
 
 /// The Coons fill of the marked cells of the last level.
-fn fill(
-    level: &Level,
-    marked: &[(u32, Tag)],
-    curves: &mut HashMap<(u32, u32), [Point; 4]>,
-    out: &mut PatchComplex,
-) {
+fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<4>, out: &mut PatchComplex) {
     let m = &level.net.mesh;
     for &(f, tag) in marked {
         let c = m.face(f as usize);
         let mut edge = |k: usize| -> [Point; 4] {
-            let (a, b) = (c[k], c[(k + 1) % 4]);
-            let key = (a.min(b), a.max(b));
-            let mut e = *curves
-                .entry(key)
-                .or_insert_with(|| fill_edge(level, key.0 as usize, key.1 as usize));
-            if a > b {
-                e.reverse();
-            }
-            e
+            edge_curve(curves, c[k], c[(k + 1) % 4], |a, b| fill_edge(level, a, b))
         };
         let v0 = edge(0);
         let u1 = edge(1);

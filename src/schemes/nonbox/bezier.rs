@@ -172,15 +172,7 @@ pub fn cell_net(m: &PolyMesh, h: u32) -> Option<[Stencil; 13]> {
 pub fn triangle_stencils(net: &[Stencil; 13]) -> Vec<Stencil> {
     CELL_TRIANGLE_BEZIER
         .iter()
-        .map(|(_, w)| {
-            let mut s = Stencil::new();
-            for (q, &wq) in net.iter().zip(w) {
-                if wq != 0 {
-                    s.add_scaled(q, wq as f64 / 24.0);
-                }
-            }
-            s.merged()
-        })
+        .map(|(_, w)| Stencil::integer_combination(net, w.iter().map(|&x| u32::from(x)), 24.0))
         .collect()
 }
 
@@ -223,26 +215,7 @@ pub fn eval_triangle(tri: &CubicTriangle, l: [f64; 3]) -> Point {
 /// The cubic triangle as the degenerate bi-3 patch `X(u, v) = T(u (1 - v), v)` (side `v = 1`
 /// collapsed to `P2`).
 pub fn triangle_to_tensor(tri: &CubicTriangle) -> BezierPatch {
-    let binom = |n: usize, k: usize| -> f64 {
-        if k > n {
-            0.0
-        } else {
-            (0..k).fold(1.0, |acc, r| acc * (n - r) as f64 / (r + 1) as f64)
-        }
-    };
-    BezierPatch::from_fn(3, 3, |i, j| {
-        // Column j: the degree-(3 - j) curve b_(3-j-r, r, j), raised to degree 3.
-        let d = 3 - j;
-        let mut p = [0.0; 3];
-        for r in 0..=d.min(i) {
-            if i - r > 3 - d {
-                continue;
-            }
-            let w = binom(d, r) * binom(3 - d, i - r) / binom(3, i);
-            p = geom::axpy(p, w, tri[tri_index(d - r, r, j)]);
-        }
-        p
-    })
+    crate::bezier::convert::triangle_to_tensor(3, tri)
 }
 
 /// The inverse of the cubic Bernstein collocation matrix at `0, 1/3, 2/3, 1`.
