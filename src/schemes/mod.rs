@@ -94,6 +94,11 @@ pub fn refine_levels(
 /// the refined level, in parallel over rows and without allocating. `levels = 0` gives the
 /// identity.
 ///
+/// The steps are repeated [`Scheme::refine`] calls, so for schemes whose
+/// [`Scheme::refine_uniform`] carries state from step to step (the knot widths of adjustable
+/// TPS, the DS^CC pre-processing of `pgs-dscc`) the table follows the repeated single step,
+/// not that override.
+///
 /// # Errors
 /// Whatever [`Scheme::refine`] reports (for example a face the scheme cannot handle).
 pub fn level_stencils(
