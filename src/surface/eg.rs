@@ -82,6 +82,11 @@ pub(crate) trait DnetRules: Sync {
     fn init(&self, n: usize) -> Result<StencilTable>;
     /// The step and ring tables used to make ring `k` (0-based).
     fn step(&self, n: usize, k: usize) -> Result<EgStep>;
+    /// Whether [`DnetRules::step`] is the same for every ring (stationary rules): then one
+    /// table per valence is built and reused for all rings.
+    fn stationary(&self) -> bool {
+        false
+    }
     /// The message of `--fallback error`.
     fn no_rules(&self, n: usize) -> String;
     /// Adjusts the initial local vector of one element (user-given data); the default keeps it.
@@ -108,6 +113,10 @@ impl DnetRules for EgRulesProvider {
 
     fn step(&self, n: usize, _k: usize) -> Result<EgStep> {
         Eg::new(n)?.step()
+    }
+
+    fn stationary(&self) -> bool {
+        true
     }
 
     fn no_rules(&self, n: usize) -> String {
@@ -150,6 +159,8 @@ impl<'a> DnetCaps<'a> {
     }
 
     fn step(&self, n: usize, k: usize) -> Result<EgStep> {
+        // Stationary rules: one table per valence (building one costs about a millisecond).
+        let k = if self.rules.stationary() { 0 } else { k };
         let mut map = self.steps.lock().expect("no poisoning");
         if let Some(s) = map.get(&(n, k)) {
             return Ok(s.clone());

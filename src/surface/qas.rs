@@ -81,6 +81,10 @@ impl DnetRules for QasRulesProvider {
         }
     }
 
+    fn stationary(&self) -> bool {
+        !matches!(self.contraction, Contraction::Gradual)
+    }
+
     fn no_rules(&self, n: usize) -> String {
         format!(
             "valence {n}: QAS+ has published rules for valences 5, 6, 7 (and EG's for 3); use --fallback catmull-clark"
