@@ -343,6 +343,21 @@ impl PolyMesh {
         })
     }
 
+    /// The face lookup of the half-edge arrays ([`FaceIndex`], the one place the face walks
+    /// are written); builds the topology only for meshes with mixed face sizes.
+    #[inline]
+    fn face_index(&self) -> FaceIndex<'_> {
+        FaceIndex {
+            face_start: self.stored_offsets(),
+            he_face: if self.uniform == 0 {
+                &self.topology().he_face
+            } else {
+                &[]
+            },
+            uniform: self.uniform,
+        }
+    }
+
     /// A view of the arrays for hot loops (builds the topology if needed).
     #[inline]
     pub(crate) fn view(&self) -> MeshView<'_> {
@@ -492,52 +507,19 @@ impl PolyMesh {
     /// Face of a half-edge.
     #[inline]
     pub fn he_face(&self, h: u32) -> u32 {
-        match self.uniform {
-            4 => h >> 2,
-            3 => h / 3,
-            0 => self.topology().he_face[h as usize],
-            k => h / k,
-        }
+        self.face_index().face(h)
     }
 
     /// Next half-edge in the same face.
     #[inline]
     pub fn he_next(&self, h: u32) -> u32 {
-        match self.uniform {
-            4 => (h & !3) | ((h + 1) & 3),
-            0 => {
-                let f = self.topology().he_face[h as usize] as usize;
-                let fs = self.offsets();
-                if h + 1 < fs[f + 1] { h + 1 } else { fs[f] }
-            }
-            k => {
-                if !(h + 1).is_multiple_of(k) {
-                    h + 1
-                } else {
-                    h + 1 - k
-                }
-            }
-        }
+        self.face_index().next(h)
     }
 
     /// Previous half-edge in the same face.
     #[inline]
     pub fn he_prev(&self, h: u32) -> u32 {
-        match self.uniform {
-            4 => (h & !3) | (h.wrapping_sub(1) & 3),
-            0 => {
-                let f = self.topology().he_face[h as usize] as usize;
-                let fs = self.offsets();
-                if h > fs[f] { h - 1 } else { fs[f + 1] - 1 }
-            }
-            k => {
-                if !h.is_multiple_of(k) {
-                    h - 1
-                } else {
-                    h + k - 1
-                }
-            }
-        }
+        self.face_index().prev(h)
     }
 
     /// Opposite half-edge, `None` on the boundary.
