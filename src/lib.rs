@@ -21,6 +21,7 @@ pub mod error;
 pub mod gallery;
 pub mod geom;
 pub mod io;
+pub mod linalg;
 pub mod mesh;
 pub mod render;
 pub mod schemes;

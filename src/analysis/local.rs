@@ -7,8 +7,8 @@
 
 use super::LocalMatrix;
 use crate::error::{Error, Result};
-use crate::gallery::{self, CnetShape};
 use crate::mesh::PolyMesh;
+use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::{CatmullClark, DooSabin, Loop, Scheme};
 use crate::stencil::StencilTable;
 use nalgebra::DMatrix;
@@ -30,7 +30,7 @@ fn check_valence(n: usize) -> Result<()> {
 /// chart points `(i, j)`, `i = 1, 2`, `j = 0, 1, 2`).
 pub fn catmull_clark(n: usize) -> Result<LocalMatrix> {
     check_valence(n)?;
-    let net = gallery::cnet(n, CnetShape::Convex, 2);
+    let net = nets::cnet(n, CnetShape::Convex, 2);
     let st = CatmullClark::stencils(&net);
     let (fs, cn) = CatmullClark::child_topology(&net);
     let child = PolyMesh::from_refinement(st.apply(net.positions()), fs, cn)?;
@@ -135,7 +135,7 @@ pub fn loop_one_ring(n: usize) -> Result<LocalMatrix> {
 /// terms of its corners (the facet of a prism cap).
 pub fn doo_sabin_facet(n: usize) -> Result<LocalMatrix> {
     check_valence(n)?;
-    let net = gallery::prism(n);
+    let net = nets::prism(n);
     let f = (0..net.num_faces())
         .find(|&f| net.face_size(f) == n && n != 4 || (n == 4 && f == 0))
         .unwrap_or(0);
@@ -208,7 +208,7 @@ pub fn characteristic_ring(
         "catmull-clark" | "cc" => {
             let lm = catmull_clark(n)?;
             let (pts, lambda) = lm.characteristic_points()?;
-            let mut net = gallery::cnet(n, CnetShape::Convex, 2);
+            let mut net = nets::cnet(n, CnetShape::Convex, 2);
             net.set_positions(pts);
             // One step with Catmull-Clark's stencils; the ring is the level-1 faces of the 2-ring
             // that do not touch the centre, each an exact bi-3 patch of its regular 4x4 net.

@@ -39,8 +39,8 @@
 use super::{C64, LocalMatrix};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::gallery::{self, CnetShape};
 use crate::mesh::PolyMesh;
+use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::nonbox::bezier::{cell_stencils, triangle_to_quads};
 use crate::schemes::nonbox::fourdir::{NonBox4Dir, triangulate};
 use crate::schemes::nonbox::{FcvNet, NonBox, a_k, subdominant_eigenvalue};
@@ -62,7 +62,7 @@ fn check_valence(k: usize) -> Result<()> {
 
 /// The c-net of valence `k` with `rings` rings of quads and barycentric FCVs.
 pub fn local_fcv_net(k: usize, rings: usize) -> FcvNet {
-    FcvNet::barycentric(gallery::cnet(k, CnetShape::Convex, rings))
+    FcvNet::barycentric(nets::cnet(k, CnetShape::Convex, rings))
 }
 
 /// The `10 k + 1` point indices (vertices, then FCVs, as in [`FcvNet::points`]) of the local net

@@ -11,6 +11,7 @@ pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod eg;
 pub mod guided;
+pub mod local;
 pub mod loop_subdivision;
 pub mod nonbox;
 pub mod qas;

@@ -50,9 +50,9 @@
 use super::{ComplexOptions, Element, PatchComplex, Provenance};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::gallery::{self, CnetShape};
 use crate::geom::Point;
 use crate::mesh::PolyMesh;
+use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::Scheme;
 use crate::schemes::bi2::pgs::{PgsOptions, PgsParams, ds_net, ds_net_chart, ds_net_index};
 use crate::schemes::bi2::polar::{polar_net, radial_step_detailed};
@@ -92,7 +92,7 @@ pub struct LocalScheme {
 }
 
 /// Canonical local-net index of q-net chart point `(i, j)` (`i = 1, 2`, `j = 0, 1, 2`) of
-/// sector `s`: the layout of [`gallery::cnet`] with two rings.
+/// sector `s`: the layout of [`nets::cnet`] with two rings.
 pub fn qnet_index(s: usize, i: usize, j: usize) -> usize {
     1 + 6 * s + 3 * (i - 1) + j
 }
@@ -128,7 +128,7 @@ pub fn qnet_chart(n: usize, s: usize, x: i64, y: i64) -> Option<usize> {
     ))
 }
 
-/// Knot widths of the canonical q-net ([`gallery::cnet`] with 2 rings) in a pattern: a vertex
+/// Knot widths of the canonical q-net ([`nets::cnet`] with 2 rings) in a pattern: a vertex
 /// at chart `(i, j)` has width `pattern[i]` along its sector's first axis and `pattern[j]`
 /// along the second (the centre `pattern[0]` in every direction).
 pub fn qnet_widths(net: &PolyMesh, n: usize, pattern: [f64; 3]) -> Widths {
@@ -203,7 +203,7 @@ impl LocalScheme {
     /// [`ternary_step`] on the q-net with uniform widths (first step) and with the stationary
     /// pattern `1, r, r^2` (later steps).
     pub fn ternary(n: usize, rules: TernaryRules) -> Result<LocalScheme> {
-        let net = gallery::cnet(n, CnetShape::Convex, 2);
+        let net = nets::cnet(n, CnetShape::Convex, 2);
         let rows = ternary_rows(&net, n);
         let size = 1 + 6 * n;
         let (r0, _) = ternary_step(&net, &uniform_widths(&net), &rules, "tps")?;

@@ -629,7 +629,7 @@ mod tests {
 
     #[test]
     fn cube_rings_and_fill_are_closed() {
-        let m = crate::gallery::unit_cube();
+        let m = crate::mesh::nets::unit_cube();
         for rings in [1, 2, 3] {
             let c =
                 catmull_clark_complex(&m, CcComplexOptions { rings, fill: true }, |_| {}).unwrap();

@@ -620,7 +620,7 @@ mod tests {
     /// the Chaikin limit curve).
     #[test]
     fn regular_grid_patches_are_limit_points() {
-        let m = crate::gallery::open_grid();
+        let m = crate::mesh::nets::open_grid();
         let c = doo_sabin_complex(&m, opts(3), |_| {}).unwrap();
         assert_eq!(c.len(), m.num_vertices());
         let fine = DooSabin.refine(&m).unwrap().mesh;
@@ -657,7 +657,7 @@ mod tests {
 
     #[test]
     fn cube_rings_and_fill() {
-        let m = crate::gallery::cube();
+        let m = crate::mesh::nets::cube();
         // Every vertex has valence 3: ring 1 is empty, ring 2 has 3 * 3 patches per vertex.
         let c = doo_sabin_complex(&m, opts(2), |_| {}).unwrap();
         let rings = |r: u32| {
@@ -680,7 +680,7 @@ mod tests {
 
     #[test]
     fn rings_zero_names_the_vertex() {
-        let m = crate::gallery::cube();
+        let m = crate::mesh::nets::cube();
         let e = doo_sabin_complex(&m, opts(0), |_| {})
             .unwrap_err()
             .to_string();

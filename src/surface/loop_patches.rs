@@ -653,7 +653,7 @@ mod tests {
     /// refined net and its quarter-lattice points those of the twice refined net.
     #[test]
     fn box_spline_matches_loop_limits() {
-        let m = crate::gallery::tri_grid();
+        let m = crate::mesh::nets::tri_grid();
         let c = loop_complex(
             &m,
             ComplexOptions {

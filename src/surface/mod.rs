@@ -1,8 +1,9 @@
-//! Patch complexes: the exact piecewise-polynomial surfaces fairsub produces.
+//! Exact surfaces of whole nets: the patch complexes of every scheme (regular patches, rings
+//! around extraordinary elements, caps), built by the scheme's rules, and what is computed from
+//! them (tessellations, adjacency of patch sides).
 //!
-//! A [`PatchComplex`] holds the Bezier patches of a whole surface, each tagged with its
-//! [`Provenance`] (regular region, ring `k` of an extraordinary element, cap / fill), so writers
-//! can group them, the renderer can colour them and analysis can report where a defect sits.
+//! The complex itself ([`PatchComplex`], [`Provenance`]) lives in [`crate::bezier::complex`] and
+//! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
 
 pub(crate) mod adaptive;
 pub mod adjacency;
@@ -19,98 +20,8 @@ pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;
 
-use crate::bezier::BezierPatch;
-use serde::Serialize;
-
-/// Where a patch comes from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Provenance {
-    /// A patch of a regular region of the input net (`face` numbers the input face it lies in,
-    /// when known).
-    Regular {
-        /// Input face the patch lies in.
-        face: u32,
-    },
-    /// A patch of ring `ring` (1 = outermost) around an extraordinary element.
-    Ring {
-        /// The extraordinary element (vertex or facet of the input net).
-        element: Element,
-        /// Ring index, 1-based.
-        ring: u32,
-        /// Sector of the element the patch lies in.
-        sector: u32,
-    },
-    /// A patch of the cap or fill closing the hole left inside the last ring.
-    Cap {
-        /// The extraordinary element.
-        element: Element,
-        /// Sector of the element the patch lies in.
-        sector: u32,
-    },
-    /// A patch of unknown origin (read from a file).
-    Unknown,
-}
-
-/// An extraordinary element of an input net.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(tag = "type", content = "index", rename_all = "snake_case")]
-pub enum Element {
-    /// A vertex (extraordinary vertex / node, or a pole).
-    Vertex(u32),
-    /// A face (extraordinary facet).
-    Face(u32),
-}
-
-impl Provenance {
-    /// A short group name used by writers (`regular`, `ring3`, `cap`, ...).
-    pub fn group_name(&self) -> String {
-        match self {
-            Provenance::Regular { .. } => "regular".to_string(),
-            Provenance::Ring { ring, .. } => format!("ring{ring}"),
-            Provenance::Cap { .. } => "cap".to_string(),
-            Provenance::Unknown => "patches".to_string(),
-        }
-    }
-}
-
-/// The patches of a surface with their provenance.
-#[derive(Debug, Clone, Default)]
-pub struct PatchComplex {
-    /// The patches.
-    pub patches: Vec<BezierPatch>,
-    /// Provenance of each patch (same length as `patches`).
-    pub provenance: Vec<Provenance>,
-}
-
-impl PatchComplex {
-    /// An empty complex.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Adds a patch.
-    pub fn push(&mut self, patch: BezierPatch, provenance: Provenance) {
-        self.patches.push(patch);
-        self.provenance.push(provenance);
-    }
-
-    /// Number of patches.
-    pub fn len(&self) -> usize {
-        self.patches.len()
-    }
-
-    /// Whether the complex has no patches.
-    pub fn is_empty(&self) -> bool {
-        self.patches.is_empty()
-    }
-
-    /// Appends all patches of another complex.
-    pub fn extend(&mut self, other: PatchComplex) {
-        self.patches.extend(other.patches);
-        self.provenance.extend(other.provenance);
-    }
-}
+pub use crate::bezier::complex::{PatchComplex, Provenance};
+pub use crate::mesh::Element;
 
 /// Options for exact patch output of any scheme.
 #[derive(Debug, Clone, Copy)]

@@ -135,7 +135,7 @@ mod tests {
 
     #[test]
     fn interior_and_boundary_nets() {
-        let m = crate::gallery::quad_grid(4, |_, _| 0.0);
+        let m = crate::mesh::nets::quad_grid(4, |_, _| 0.0);
         // Interior face (1,1): its net is the grid points (0..4) x (0..4) - exact positions.
         let f = 4 + 1;
         let net = bi3_net(&m, f).unwrap();

@@ -221,7 +221,7 @@ pub fn fig15_like_net(n: usize) -> Result<PolyMesh> {
             "a prism needs n >= 3 sides (got {n})"
         )));
     }
-    let mut m = ternary_split(&ternary_split(&crate::gallery::prism(n))?)?;
+    let mut m = ternary_split(&ternary_split(&crate::mesh::nets::prism(n))?)?;
     let nbrs: Vec<Vec<u32>> = (0..m.num_vertices())
         .map(|v| m.vertex_neighbors(v))
         .collect();

@@ -1036,7 +1036,7 @@ mod tests {
 
     #[test]
     fn uniform_rules_are_17() {
-        let m = crate::gallery::cnet(5, crate::gallery::CnetShape::Convex, 2);
+        let m = crate::mesh::nets::cnet(5, crate::mesh::nets::CnetShape::Convex, 2);
         let r = Tps.refine(&m).unwrap();
         // The edge child next to the centre along its first edge: (14 q + 7 a + 2 (..) + ..)/27.
         let h = m.vertex_halfedge(0);

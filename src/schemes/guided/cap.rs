@@ -370,7 +370,7 @@ pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
         }
         b[r] = *rhs;
     }
-    let ns = super::guide::null_space(&a);
+    let ns = crate::linalg::null_space(&a, 1e-9);
     let free_parameters = ns.len();
     if free_parameters == 0 {
         return Err(Error::Unsupported(format!(

@@ -18,8 +18,8 @@
 use crate::analysis::{catmull_clark_lambda, local};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::gallery::{self, CnetShape};
 use crate::mesh::PolyMesh;
+use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::CatmullClark;
 use std::f64::consts::PI;
 
@@ -80,7 +80,7 @@ impl CharRing {
 fn catmull_clark(n: usize) -> Result<CharRing> {
     let lm = local::catmull_clark(n)?;
     let (pts, _) = lm.characteristic_points()?;
-    let mut net = gallery::cnet(n, CnetShape::Convex, 2);
+    let mut net = nets::cnet(n, CnetShape::Convex, 2);
     net.set_positions(pts);
     let st = CatmullClark::stencils(&net);
     let (fs, cn) = CatmullClark::child_topology(&net);

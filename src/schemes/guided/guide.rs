@@ -152,7 +152,7 @@ impl GuideSpace {
     /// An orthonormal basis of all guides of degree `d` satisfying (1)-(2) at every ray.
     pub fn numeric(n: usize, d: usize) -> Result<GuideSpace> {
         let a = constraint_matrix(n, d);
-        let ns = null_space(&a);
+        let ns = crate::linalg::null_space(&a, 1e-9);
         if ns.is_empty() {
             return Err(Error::Unsupported(format!(
                 "no G^2 guide of degree {d} at valence {n}"
@@ -545,26 +545,4 @@ pub fn g2_defect(n: usize, d: usize, g: &DMatrix<f64>) -> f64 {
         }
     }
     worst / scale
-}
-
-/// Orthonormal basis of the null space of `a` (singular values below `1e-9` of the largest),
-/// from the SVD of `a` padded to a square matrix so that every right singular vector is there.
-pub fn null_space(a: &DMatrix<f64>) -> Vec<DVector<f64>> {
-    let (r, c) = a.shape();
-    let mut p = DMatrix::zeros(r.max(c), c);
-    p.view_mut((0, 0), (r, c)).copy_from(a);
-    let svd = p.svd(false, true);
-    let v_t = svd.v_t.expect("requested");
-    let smax = svd
-        .singular_values
-        .iter()
-        .copied()
-        .fold(0.0, f64::max)
-        .max(1e-300);
-    svd.singular_values
-        .iter()
-        .enumerate()
-        .filter(|&(_, &s)| s <= 1e-9 * smax)
-        .map(|(i, _)| v_t.row(i).transpose())
-        .collect()
 }

@@ -644,13 +644,20 @@ impl Scheme for CatmullClark {
     }
 }
 
+/// Catmull-Clark's subdominant eigenvalue in closed form,
+/// `(c + 5 + sqrt((c + 1)(c + 9))) / 16` with `c = cos(2 pi / n)`.
+pub fn catmull_clark_lambda(n: usize) -> f64 {
+    let c = (2.0 * PI / n as f64).cos();
+    (c + 5.0 + ((c + 1.0) * (c + 9.0)).sqrt()) / 16.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn cube_one_level_by_hand() {
-        let m = crate::gallery::unit_cube();
+        let m = crate::mesh::nets::unit_cube();
         let r = CatmullClark.refine(&m).unwrap();
         assert_eq!(r.mesh.num_vertices(), 8 + 12 + 6);
         assert_eq!(r.mesh.num_faces(), 24);
@@ -682,7 +689,7 @@ mod tests {
     #[test]
     fn limit_is_fixed_under_refinement() {
         // Limit of a vertex equals the limit of its child (vertex points keep their index).
-        let m = crate::gallery::unit_cube();
+        let m = crate::mesh::nets::unit_cube();
         let l0 = CatmullClark::limit_stencils(&m).apply(m.positions());
         let r = CatmullClark.refine(&m).unwrap();
         let l1 = CatmullClark::limit_stencils(&r.mesh).apply(r.mesh.positions());
@@ -747,7 +754,7 @@ mod tests {
             }
         }
         // Through the trait, as the CLI calls it; other data widths through the kernel.
-        let m = crate::gallery::unit_cube();
+        let m = crate::mesh::nets::unit_cube();
         let r = super::super::refine_levels(&CatmullClark, &m, 2, |_| {}).unwrap();
         assert_eq!(r.num_faces(), 96);
         let colours: Vec<[f64; 1]> = (0..8).map(|v| [v as f64]).collect();

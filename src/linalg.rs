@@ -1,0 +1,69 @@
+//! Dense linear algebra shared by every layer: eigenvalues (by `faer`, whose Schur iteration
+//! stays robust on the highly defective matrices of subdivision), numerical null spaces (one
+//! function, by SVD, for real and complex matrices) and polynomials from their roots.
+
+use nalgebra::{Complex, ComplexField, DMatrix, DVector};
+
+/// Complex numbers of the eigen computations.
+pub type C64 = Complex<f64>;
+
+/// All eigenvalues of a real square matrix (computed by `faer`, whose Schur iteration is robust
+/// on the highly defective matrices of subdivision; nalgebra's stalls on the regular ones).
+pub fn eigenvalues(m: &DMatrix<f64>) -> Vec<C64> {
+    let f = faer::Mat::<f64>::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)]);
+    f.eigenvalues()
+        .map(|v| v.into_iter().map(|z| C64::new(z.re, z.im)).collect())
+        .unwrap_or_default()
+}
+
+/// All eigenvalues of a complex square matrix.
+pub fn complex_eigenvalues(m: &DMatrix<C64>) -> Vec<C64> {
+    let f = faer::Mat::<faer::c64>::from_fn(m.nrows(), m.ncols(), |i, j| {
+        let z = m[(i, j)];
+        faer::c64::new(z.re, z.im)
+    });
+    f.eigenvalues()
+        .map(|v| v.into_iter().map(|z| C64::new(z.re, z.im)).collect())
+        .unwrap_or_default()
+}
+
+/// Coefficients (highest degree first, monic) of the polynomial with the given roots.
+pub fn poly_from_roots(roots: &[C64]) -> Vec<C64> {
+    let mut c = vec![C64::new(1.0, 0.0)];
+    for &r in roots {
+        let mut next = vec![C64::new(0.0, 0.0); c.len() + 1];
+        for (i, &a) in c.iter().enumerate() {
+            next[i] += a;
+            next[i + 1] -= a * r;
+        }
+        c = next;
+    }
+    c
+}
+
+/// Orthonormal basis of the numerical null space of `a` (real or complex): the right singular
+/// vectors whose singular values are at most `rel_tol` times the largest, in the order of the
+/// SVD. A wide matrix is padded with zero rows first, so that every right singular vector is
+/// computed.
+pub fn null_space<T: ComplexField<RealField = f64>>(
+    a: &DMatrix<T>,
+    rel_tol: f64,
+) -> Vec<DVector<T>> {
+    let (r, c) = a.shape();
+    let padded;
+    let a = if r < c {
+        let mut p = DMatrix::<T>::zeros(c, c);
+        p.view_mut((0, 0), (r, c)).copy_from(a);
+        padded = p;
+        &padded
+    } else {
+        a
+    };
+    let svd = a.clone().svd(false, true);
+    let v_t = svd.v_t.expect("requested");
+    let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
+    (0..svd.singular_values.len())
+        .filter(|&i| svd.singular_values[i] <= rel_tol * smax)
+        .map(|i| v_t.row(i).adjoint())
+        .collect()
+}

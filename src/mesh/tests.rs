@@ -1,0 +1,158 @@
+//! Unit tests of the mesh: connectivity, validation errors, dropped vertices.
+
+use super::*;
+use crate::error::Error;
+
+#[test]
+fn grid_connectivity() {
+    let m = crate::mesh::nets::quad_grid(3, |_, _| 0.0);
+    assert_eq!(m.num_vertices(), 16);
+    assert_eq!(m.num_faces(), 9);
+    assert_eq!(m.num_edges(), 24);
+    assert_eq!(m.valence(5), 4);
+    assert!(!m.is_boundary_vertex(5));
+    assert_eq!(m.valence(0), 2);
+    assert_eq!(m.valence(1), 3);
+    assert_eq!(m.boundary_loops().len(), 1);
+    assert_eq!(m.boundary_loops()[0].len(), 12);
+    assert_eq!(m.one_ring(5).len(), 8);
+    assert_eq!(m.two_ring(5).len(), 7);
+    assert!(m.extraordinary_vertices().is_empty());
+    // Counter-clockwise neighbours of interior vertex 5 (at (1,1)).
+    let nb = m.vertex_neighbors(5);
+    assert_eq!(nb.len(), 4);
+    let p5 = m.position(5);
+    let ang: Vec<f64> = nb
+        .iter()
+        .map(|&w| {
+            let p = m.position(w as usize);
+            (p[1] - p5[1]).atan2(p[0] - p5[0])
+        })
+        .collect();
+    for k in 0..4 {
+        let d = (ang[(k + 1) % 4] - ang[k]).rem_euclid(2.0 * std::f64::consts::PI);
+        assert!(
+            (d - std::f64::consts::FRAC_PI_2).abs() < 1e-12,
+            "not counter-clockwise"
+        );
+    }
+    // Boundary vertex neighbours run from one boundary neighbour to the other.
+    let nb1 = m.vertex_neighbors(1);
+    assert_eq!(nb1.len(), 3);
+    assert!(m.is_boundary_vertex(nb1[0] as usize) && m.is_boundary_vertex(nb1[2] as usize));
+}
+
+#[test]
+fn errors_name_the_element() {
+    let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
+    let e = PolyMesh::new(p.clone(), &[vec![0, 1]]).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::Mesh(MeshError::FaceTooSmall { face: 0, len: 2 })
+    ));
+    let e = PolyMesh::new(p.clone(), &[vec![0, 1, 7]]).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::Mesh(MeshError::IndexOutOfRange {
+            face: 0,
+            index: 7,
+            ..
+        })
+    ));
+    let e = PolyMesh::new(p.clone(), &[vec![0, 1, 1]]).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::Mesh(MeshError::RepeatedVertex { face: 0, vertex: 1 })
+    ));
+    let e = PolyMesh::new(p.clone(), &[vec![0, 1, 2], vec![0, 1, 3]]).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::Mesh(MeshError::InconsistentOrientation { .. })
+    ));
+    let mut q = p.clone();
+    q[2][1] = f64::NAN;
+    let e = PolyMesh::new(q, &[vec![0, 1, 2]]).unwrap_err();
+    assert!(matches!(
+        e,
+        Error::Mesh(MeshError::NonFiniteCoordinate { vertex: 2 })
+    ));
+    let e = PolyMesh::new(p.clone(), &Vec::<Vec<usize>>::new()).unwrap_err();
+    assert!(matches!(e, Error::Mesh(MeshError::Empty)));
+    // Three triangles on edge 0-1.
+    let mut r = p.clone();
+    r.push([0.0, 0.0, 1.0]);
+    let e = PolyMesh::new(r, &[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::Mesh(MeshError::NonManifoldEdge { edge: [0, 1], .. })
+        ),
+        "{e}"
+    );
+    // Bow-tie: two triangles sharing only vertex 0.
+    let mut s = p.clone();
+    s.push([-1.0, 0.0, 0.0]);
+    s.push([0.0, -1.0, 0.0]);
+    let e = PolyMesh::new(s, &[vec![0, 1, 2], vec![0, 4, 5]]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::Mesh(MeshError::NonManifoldVertex { vertex: 0, .. })
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn parallel_build_reports_the_first_problem() {
+    // A grid with more half-edges than one parallel block, with two flipped faces: the
+    // error names the first one in half-edge order, as a sequential scan would.
+    let n = 150;
+    let m = crate::mesh::nets::quad_grid(n, |_, _| 0.0);
+    let mut faces: Vec<Vec<usize>> = m
+        .faces()
+        .map(|f| f.iter().map(|&v| v as usize).collect())
+        .collect();
+    let (f1, f2) = (9000, 20000);
+    faces[f1].reverse();
+    faces[f2].reverse();
+    let e = PolyMesh::new(m.positions().to_vec(), &faces).unwrap_err();
+    match e {
+        Error::Mesh(MeshError::InconsistentOrientation { faces, .. }) => {
+            // Every conflicting edge lies between a flipped face and a neighbour.
+            assert!(faces.contains(&f1), "{faces:?}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Uniform meshes store no face per half-edge and agree with arithmetic.
+    assert_eq!(m.uniform_face_size(), Some(4));
+    assert!(m.topology().he_face.is_empty());
+    assert_eq!(m.num_edges(), 2 * n * (n + 1));
+    let g = gallery_mixed();
+    assert_eq!(g.uniform_face_size(), None);
+    for h in 0..g.num_halfedges() as u32 {
+        let f = g.he_face(h) as usize;
+        assert!(g.face_starts()[f] <= h && h < g.face_starts()[f + 1]);
+    }
+}
+
+/// A quad and a triangle sharing an edge.
+fn gallery_mixed() -> PolyMesh {
+    let p = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 0.5, 0.0],
+    ];
+    PolyMesh::new(p, &[vec![0, 1, 2, 3], vec![1, 4, 2]]).unwrap()
+}
+
+#[test]
+fn unused_vertices_dropped() {
+    let p = vec![[0.0; 3], [9.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let m = PolyMesh::new(p, &[vec![0, 2, 3]]).unwrap();
+    assert_eq!(m.dropped_vertices(), &[1]);
+    assert_eq!(m.num_vertices(), 3);
+    assert_eq!(m.face(0), &[0, 1, 2]);
+}

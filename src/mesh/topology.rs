@@ -1,0 +1,218 @@
+//! Building half-edge connectivity: twins, edge numbering, manifoldness and orientation
+//! checks.
+
+use super::{CHUNK, FaceIndex, NONE, Topology};
+use crate::error::MeshError;
+use rayon::prelude::*;
+
+impl Topology {
+    /// Builds half-edge connectivity and checks manifoldness and orientation (the first problem
+    /// in half-edge order, then in vertex order, is reported). `uniform` is the common face size
+    /// or 0 (then `face_start` may be empty). Runs in parallel over blocks of half-edges and
+    /// vertices.
+    pub(super) fn build(
+        nv: usize,
+        face_start: &[u32],
+        corners: &[u32],
+        uniform: u32,
+        relaxed: bool,
+    ) -> std::result::Result<Topology, MeshError> {
+        let nh = corners.len();
+        let nf = if uniform != 0 {
+            nh / uniform as usize
+        } else {
+            face_start.len() - 1
+        };
+        let he_face = if uniform == 0 {
+            let mut he_face = vec![0u32; nh];
+            for f in 0..nf {
+                he_face[face_start[f] as usize..face_start[f + 1] as usize].fill(f as u32);
+            }
+            he_face
+        } else {
+            Vec::new()
+        };
+        let faces = FaceIndex {
+            face_start,
+            he_face: &he_face,
+            uniform,
+        };
+        // Outgoing half-edges bucketed per vertex (CSR), in increasing half-edge order.
+        let mut out_start = vec![0u32; nv + 1];
+        for &v in corners {
+            out_start[v as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            out_start[v + 1] += out_start[v];
+        }
+        let mut fill = out_start.clone();
+        let mut out_he = vec![0u32; nh];
+        for (h, &v) in corners.iter().enumerate() {
+            out_he[fill[v as usize] as usize] = h as u32;
+            fill[v as usize] += 1;
+        }
+        drop(fill);
+        let outs =
+            |v: u32| &out_he[out_start[v as usize] as usize..out_start[v as usize + 1] as usize];
+        let to = |h: u32| corners[faces.next(h) as usize];
+        let mut twin = vec![NONE; nh];
+        let bad_edge = twin
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .filter_map(|(c, chunk)| {
+                for (k, slot) in chunk.iter_mut().enumerate() {
+                    let h = (c * CHUNK + k) as u32;
+                    let (a, b) = (corners[h as usize], to(h));
+                    // Same-direction duplicates: orientation conflict or a non-manifold edge.
+                    let n_same = outs(a).iter().filter(|&&g| to(g) == b).count();
+                    let mut n_opp = 0;
+                    for &g in outs(b) {
+                        if to(g) == a {
+                            if n_opp == 0 {
+                                *slot = g;
+                            }
+                            n_opp += 1;
+                        }
+                    }
+                    if n_same + n_opp > 2 {
+                        let mut faces: Vec<usize> = outs(a)
+                            .iter()
+                            .filter(|&&g| to(g) == b)
+                            .chain(outs(b).iter().filter(|&&g| to(g) == a))
+                            .map(|&g| faces.face(g) as usize)
+                            .collect();
+                        faces.sort_unstable();
+                        let edge = [a.min(b) as usize, a.max(b) as usize];
+                        return Some((h, MeshError::NonManifoldEdge { edge, faces }));
+                    }
+                    if n_same == 2 {
+                        let mut faces: Vec<usize> = outs(a)
+                            .iter()
+                            .filter(|&&g| to(g) == b)
+                            .map(|&g| faces.face(g) as usize)
+                            .collect();
+                        faces.sort_unstable();
+                        let e = MeshError::InconsistentOrientation {
+                            edge: [a as usize, b as usize],
+                            faces: [faces[0], faces[1]],
+                        };
+                        return Some((h, e));
+                    }
+                }
+                None
+            })
+            .min_by_key(|(h, _)| *h);
+        if let Some((_, e)) = bad_edge {
+            return Err(e);
+        }
+        let (he_edge, edge_he) = number_edges(&twin);
+        // Vertex half-edges: the boundary outgoing half-edge, else the first; check single fans.
+        let mut vert_he = vec![NONE; nv];
+        let bad_vertex = vert_he
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .filter_map(|(c, chunk)| {
+                for (k, slot) in chunk.iter_mut().enumerate() {
+                    let v = c * CHUNK + k;
+                    let outs = outs(v as u32);
+                    let Some(&first) = outs.first() else {
+                        continue; // unreferenced vertex (only in refinement output; never queried)
+                    };
+                    let mut start = first;
+                    let mut boundary_starts = 0;
+                    for &h in outs {
+                        if twin[h as usize] == NONE {
+                            boundary_starts += 1;
+                            start = h;
+                        }
+                    }
+                    // Count faces reached by counter-clockwise rotation from `start`.
+                    let mut count = 1;
+                    let mut h = start;
+                    loop {
+                        let t = twin[faces.prev(h) as usize];
+                        if t == NONE || t == start {
+                            break;
+                        }
+                        h = t;
+                        count += 1;
+                        if count > outs.len() {
+                            break;
+                        }
+                    }
+                    if !relaxed && (count != outs.len() || boundary_starts > 1) {
+                        let fans = boundary_starts.max(2);
+                        return Some((v, MeshError::NonManifoldVertex { vertex: v, fans }));
+                    }
+                    *slot = start;
+                }
+                None
+            })
+            .min_by_key(|(v, _)| *v);
+        if let Some((_, e)) = bad_vertex {
+            return Err(e);
+        }
+        Ok(Topology {
+            he_face,
+            twin,
+            he_edge,
+            edge_he,
+            vert_he,
+        })
+    }
+}
+
+/// Numbers the edges of a half-edge mesh from its twins, in the order of their first half-edge
+/// (`h` with no twin or `h < twin[h]`): returns `(he_edge, edge_he)`. Runs in parallel (a count,
+/// a scan and two fill passes).
+pub(crate) fn number_edges(twin: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+    let nh = twin.len();
+    let first = |h: usize| {
+        let t = twin[h];
+        t == NONE || (h as u32) < t
+    };
+    let blocks = nh.div_ceil(CHUNK);
+    let block = |c: usize| c * CHUNK..((c + 1) * CHUNK).min(nh);
+    let counts: Vec<usize> = (0..blocks)
+        .into_par_iter()
+        .map(|c| block(c).filter(|&h| first(h)).count())
+        .collect();
+    let ne: usize = counts.iter().sum();
+    let he_edge: Vec<AtomicU32> = (0..nh)
+        .into_par_iter()
+        .map(|_| AtomicU32::new(NONE))
+        .collect();
+    let mut edge_he = vec![0u32; ne];
+    let mut parts = Vec::with_capacity(blocks);
+    let mut rest = &mut edge_he[..];
+    let mut base = 0;
+    for &n in &counts {
+        let (part, tail) = rest.split_at_mut(n);
+        parts.push((base, part));
+        base += n;
+        rest = tail;
+    }
+    parts
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(c, (base, part))| {
+            let mut k = 0;
+            for h in block(c) {
+                if first(h) {
+                    he_edge[h].store((base + k) as u32, Relaxed);
+                    part[k] = h as u32;
+                    k += 1;
+                }
+            }
+        });
+    (0..blocks).into_par_iter().for_each(|c| {
+        for h in block(c) {
+            if !first(h) {
+                he_edge[h].store(he_edge[twin[h] as usize].load(Relaxed), Relaxed);
+            }
+        }
+    });
+    let he_edge = he_edge.into_iter().map(AtomicU32::into_inner).collect();
+    (he_edge, edge_he)
+}
