@@ -321,8 +321,10 @@ fn compare(a: &str, b: &str) -> Res<()> {
 
 fn caps(valence: Option<usize>, rings: Option<usize>, reps: &str) -> Res<()> {
     use fairsub::gallery::{CnetShape, cnet};
-    use fairsub::surface::cc::{CcComplexOptions, catmull_clark_complex};
-    use fairsub::surface::eg::{EgOptions, Fallback, eg_complex};
+    use fairsub::schemes::catmull_clark::surface::catmull_clark_complex;
+    use fairsub::schemes::eg::surface::{EgOptions, eg_complex};
+    use fairsub::surface::ComplexOptions as CcComplexOptions;
+    use fairsub::surface::Fallback;
     let (n, rings) = (valence.ok_or("bad valence")?, rings.ok_or("bad rings")?);
     let reps: usize = reps.parse::<usize>()?.max(1);
     let net = cnet(n, CnetShape::Convex, 3);

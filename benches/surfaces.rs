@@ -16,9 +16,11 @@ mod meshes;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use fairsub::gallery::{CnetShape, cnet};
+use fairsub::schemes::catmull_clark::surface::catmull_clark_complex;
+use fairsub::schemes::eg::surface::{EgOptions, eg_complex};
 use fairsub::schemes::{CatmullClark, Loop, Scheme};
-use fairsub::surface::cc::{CcComplexOptions, catmull_clark_complex};
-use fairsub::surface::eg::{EgOptions, Fallback, eg_complex};
+use fairsub::surface::ComplexOptions as CcComplexOptions;
+use fairsub::surface::Fallback;
 use fairsub::surface::tessellate::tessellate;
 use std::hint::black_box;
 use std::time::Duration;
@@ -49,7 +51,10 @@ fn limit(c: &mut Criterion) {
 
 fn patches(c: &mut Criterion) {
     let torus = meshes::quad_torus(10_000);
-    let opts = CcComplexOptions::default();
+    let opts = CcComplexOptions {
+        rings: 6,
+        fill: true,
+    };
     let mut g = c.benchmark_group("bezier");
     g.bench_function("cc-10k", |b| {
         b.iter(|| black_box(catmull_clark_complex(&torus, opts, |_| {}).expect("ok")))

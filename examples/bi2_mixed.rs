@@ -6,7 +6,7 @@
 //! Run: `cargo run --release --example bi2_mixed [OUT_DIR]`, then for instance
 //! `fairsub render OUT_DIR/bi2-mixed-net.obj --scheme bi2-mixed --mode provenance -o p.png`.
 
-use fairsub::analysis::{bi2, continuity};
+use fairsub::analysis::continuity;
 use fairsub::io::{self, MeshFormat};
 use fairsub::schemes::bi2::mixed::{Bi2Element, elements, fig15_like_net};
 use fairsub::surface::{ComplexOptions, complex};
@@ -52,7 +52,7 @@ fn main() -> fairsub::Result<()> {
         "C0 {:.1e} over {} shared pieces, {} open sides",
         plain.all.c0, plain.all.pieces, plain.open_sides
     );
-    for (kind, d) in bi2::continuity_up_to_scaling(&surface).by_kind {
+    for (kind, d) in fairsub::analysis::scaled::continuity_up_to_scaling(&surface).by_kind {
         println!(
             "  {kind:<16} {:>5} pieces  C1 (relative) {:.1e}  G1 {:.1e} rad",
             d.pieces, d.c1_relative, d.g1

@@ -5,8 +5,9 @@
 //! Run: `cargo run --release --example nonbox -- [OUT_DIR]` (default `nonbox-out`).
 
 use fairsub::analysis::{certify, nonbox as anb};
+use fairsub::schemes::nonbox::surface::nonbox_complex;
 use fairsub::schemes::nonbox::{FcvNet, NonBox, a_k, write_fcv_obj};
-use fairsub::surface::{ComplexOptions, nonbox::nonbox_complex};
+use fairsub::surface::ComplexOptions;
 use std::path::PathBuf;
 
 fn main() -> fairsub::Result<()> {

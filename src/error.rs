@@ -134,6 +134,34 @@ pub enum Error {
     /// An argument is out of its range or inconsistent.
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
+    /// A scheme name that the registry does not know (for the purpose named, e.g. " for
+    /// refinement"), with the names that would do.
+    #[error("invalid argument: unknown scheme '{name}' (available{purpose}: {})", available.join(", "))]
+    UnknownScheme {
+        /// The name given.
+        name: String,
+        /// What the scheme was wanted for (`""`, `" for refinement"`, ...).
+        purpose: &'static str,
+        /// The names that offer it.
+        available: Vec<&'static str>,
+    },
+    /// A scheme has no rules at this valence (or element size); the message names the element
+    /// and the way out. Callers that fall back to other rules branch on this variant.
+    #[error("unsupported: {msg}")]
+    UnsupportedValence {
+        /// The valence (or facet size).
+        valence: usize,
+        /// What is unsupported and what to do.
+        msg: String,
+    },
+    /// A scheme cannot take a face of the net (its size or its neighbourhood).
+    #[error("unsupported: {msg}")]
+    UnsupportedFace {
+        /// The face (input numbering).
+        face: usize,
+        /// What is unsupported and what to do.
+        msg: String,
+    },
 }
 
 impl From<MeshError> for Error {

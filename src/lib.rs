@@ -5,10 +5,14 @@
 //! subdivision) beside the classic Catmull-Clark, Doo-Sabin and Loop schemes, on whole meshes,
 //! with exact Bezier-patch output, analysis and shape interrogation.
 //!
-//! Architecture (see `DESIGN.md` of the project): a control net ([`mesh::PolyMesh`]) is refined
-//! by a scheme ([`schemes`]) whose rules are written once as stencils ([`stencil`]); the one
-//! geometry kernel applies them; exact surfaces are [`surface::PatchComplex`]es of
-//! [`bezier::BezierPatch`]es, written by [`io`].
+//! Architecture (`ARCHITECTURE.md` in the repository): a control net ([`mesh::PolyMesh`]) is
+//! refined by a scheme ([`schemes`]) whose rules are written once as stencils ([`stencil`]);
+//! every scheme has one folder under [`schemes`] and one row in the registry
+//! ([`schemes::registry`]), through which the front ends ([`cli`]) find its rules; exact
+//! surfaces are [`surface::PatchComplex`]es of [`bezier::BezierPatch`]es, built by the
+//! schemes on the adaptive host ([`host`]) and written by [`io`]. Layers only point down:
+//! core ([`geom`], [`error`], [`stencil`], [`linalg`]) < [`mesh`] < [`bezier`] < [`host`] <
+//! [`schemes`] < [`surface`] < [`analysis`] < [`io`], [`gallery`] < [`render`] < [`cli`].
 
 #![warn(missing_docs)]
 // Index loops mirror the papers' formulas (b_ij, K_lm[a][b], ...); iterator rewrites would hide them.
@@ -17,9 +21,11 @@
 pub mod analysis;
 pub mod bezier;
 pub(crate) mod buffers;
+pub mod cli;
 pub mod error;
 pub mod gallery;
 pub mod geom;
+pub mod host;
 pub mod io;
 pub mod linalg;
 pub mod mesh;

@@ -3,9 +3,6 @@
 //! Exit codes: 0 success, 1 bad input (message on stderr), 2 usage error. Outputs are written
 //! atomically: on any error no output file is created or left half-written.
 
-mod cli;
-
-use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -16,12 +13,5 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let args = cli::Cli::parse();
-    match cli::run(args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(1)
-        }
-    }
+    fairsub::cli::main()
 }

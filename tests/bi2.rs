@@ -14,7 +14,14 @@ use fairsub::schemes::bi2::{AdjustableTps, Pgs, Tps, polar};
 use fairsub::schemes::{self, DooSabin, Scheme};
 use fairsub::surface::{self, ComplexOptions, PatchComplex, Provenance};
 
-const SCHEMES: [&str; 4] = ["pgs", "polar-bi2", "tps", "tps-adjustable"];
+use fairsub::schemes::bi2::descriptor::Bi2Kind;
+
+const SCHEMES: [Bi2Kind; 4] = [
+    Bi2Kind::Pgs,
+    Bi2Kind::Polar,
+    Bi2Kind::Tps,
+    Bi2Kind::TpsAdjustable,
+];
 
 #[test]
 fn published_numbers_n3_to_12() {
@@ -25,14 +32,14 @@ fn published_numbers_n3_to_12() {
                 if q.contains("printed c_2") {
                     // The printed c_2 = cos(pi / n) does not give the subsubdominant eigenvalue
                     // (it even exceeds the subdominant one); cos(4 pi / n) does (checked below).
-                    assert!(c.difference > 1e-2, "{scheme} n={n}: {q}");
+                    assert!(c.difference > 1e-2, "{scheme:?} n={n}: {q}");
                 } else if q.contains(".082") {
                     // nu_3 = 0.0820418..., printed truncated.
-                    assert!(c.difference < 5e-5, "{scheme} n={n}: {q}: {}", c.computed);
+                    assert!(c.difference < 5e-5, "{scheme:?} n={n}: {q}: {}", c.computed);
                 } else {
                     assert!(
                         c.difference < 1e-12,
-                        "{scheme} n={n}: {q}: published {} computed {}",
+                        "{scheme:?} n={n}: {q}: published {} computed {}",
                         c.published,
                         c.computed
                     );
@@ -57,14 +64,14 @@ fn characteristic_maps_are_injective_n3_to_12() {
         for n in 3..=12 {
             let (ring, lambda) = bi2::characteristic_ring(scheme, n).unwrap();
             let c = certify::certify_ring(&ring, lambda);
-            assert!(c.injective, "{scheme} n={n}: {c:?}");
+            assert!(c.injective, "{scheme:?} n={n}: {c:?}");
         }
     }
 }
 
 #[test]
 fn analysis_is_reachable_through_local_matrix() {
-    for scheme in SCHEMES {
+    for scheme in ["pgs", "polar-bi2", "tps", "tps-adjustable"] {
         let lm = fairsub::analysis::local::local_matrix(scheme, 5).unwrap();
         assert!(lm.rotation_defect() < 1e-14, "{scheme}");
         assert!(fairsub::analysis::local::characteristic_ring(scheme, 5).is_ok());
@@ -149,7 +156,7 @@ fn tps_reduces_to_ternary_refinement_at_n4() {
     let mut checked = 0;
     for v in 0..grid.num_vertices() {
         let (Some(pc), Some(cc)) = (
-            surface::ds::regular_vertex_patch(&grid, v),
+            fairsub::schemes::doo_sabin::surface::regular_vertex_patch(&grid, v),
             regular_patch(&fine, &w, v),
         ) else {
             continue;
@@ -176,7 +183,10 @@ fn adjustable_steps_are_exact_knot_insertion() {
     let (e, s) = (0.2, 0.6);
     let lo = e + s * e;
     for v in 0..grid.num_vertices() {
-        let parent = patch_of(&grid, &surface::ds::regular_vertex_patch(&grid, v).unwrap());
+        let parent = patch_of(
+            &grid,
+            &fairsub::schemes::doo_sabin::surface::regular_vertex_patch(&grid, v).unwrap(),
+        );
         let child = patch_of(&fine, &regular_patch(&fine, &w, v).unwrap());
         let mid = parent.subpatch(lo, 1.0 - lo, lo, 1.0 - lo);
         assert!(
@@ -227,7 +237,7 @@ fn assert_c1(scheme: &str, name: &str, c: &PatchComplex, conformal: bool) {
         "{scheme} {name}: C0 {}",
         r.all.c0
     );
-    let sc = bi2::continuity_up_to_scaling(c);
+    let sc = fairsub::analysis::scaled::continuity_up_to_scaling(c);
     for (kind, d) in &sc.by_kind {
         if kind == "cap|cap" {
             continue;
@@ -324,7 +334,7 @@ fn polar_complexes_are_c1() {
         let m = gallery::prism(n);
         let (c, _) = build("polar-bi2", &m, 4);
         assert_eq!(continuity::check(&c).open_sides, 0, "n={n}");
-        let sc = bi2::continuity_up_to_scaling(&c);
+        let sc = fairsub::analysis::scaled::continuity_up_to_scaling(&c);
         // The polar cap is C^1 across its spokes too (a periodic spline circularly).
         assert!(
             sc.all.c1_relative < 1e-10 && sc.all.g1 < 1e-9,
@@ -513,7 +523,7 @@ fn errors_name_the_element_and_the_way_out() {
         .to_string();
     assert!(e.contains("--rings"), "{e}");
     assert!(PgsParams::new(2).is_err() && TpsParams::new(2).is_err());
-    assert!(bi2::local_matrix("tps", 2).is_err());
+    assert!(bi2::local_matrix(Bi2Kind::Tps, 2).is_err());
     let e = AdjustableTps::new(0.6)
         .refine(&gallery::cnet(5, CnetShape::Convex, 2))
         .unwrap_err()
@@ -525,7 +535,7 @@ fn errors_name_the_element_and_the_way_out() {
 fn adjustable_tps_for_other_split_ratios() {
     for e in [0.15, 0.25, 0.3] {
         for n in 3..=12 {
-            for c in bi2::published_with("tps-adjustable", n, e).unwrap() {
+            for c in bi2::published_with(Bi2Kind::TpsAdjustable, n, e).unwrap() {
                 assert!(
                     c.difference < 1e-12,
                     "e={e} n={n}: {}: {} vs {}",
@@ -534,7 +544,8 @@ fn adjustable_tps_for_other_split_ratios() {
                     c.computed
                 );
             }
-            let (ring, lambda) = bi2::characteristic_ring_with("tps-adjustable", n, e).unwrap();
+            let (ring, lambda) =
+                bi2::characteristic_ring_with(Bi2Kind::TpsAdjustable, n, e).unwrap();
             assert!(
                 certify::certify_ring(&ring, lambda).injective,
                 "e={e} n={n}"
@@ -590,10 +601,11 @@ fn regular_spectrum_alphas_give_lambda_squared_and_fourth() {
         assert_eq!(fb, n == 3, "n={n}");
         assert!(fb || (a1 - b1).abs() > 1e-6, "n={n}: {a1} {b1}");
         // (22) and the limit point from an input net are unchanged; the map stays injective.
-        for c in bi2::published_rules("tps-adjustable", n, rules).unwrap() {
+        for c in bi2::published_rules(Bi2Kind::TpsAdjustable, n, rules).unwrap() {
             assert!(c.difference < 1e-12, "n={n}: {}", c.quantity);
         }
-        let (ring, lambda) = bi2::characteristic_ring_rules("tps-adjustable", n, rules).unwrap();
+        let (ring, lambda) =
+            bi2::characteristic_ring_rules(Bi2Kind::TpsAdjustable, n, rules).unwrap();
         assert!(certify::certify_ring(&ring, lambda).injective, "n={n}");
     }
 }
@@ -852,7 +864,7 @@ fn gallery_surfaces_are_c1_under_every_bi2_scheme() {
                 "{scheme} {name}: C0 {}",
                 r.all.c0
             );
-            for (kind, d) in bi2::continuity_up_to_scaling(&c).by_kind {
+            for (kind, d) in fairsub::analysis::scaled::continuity_up_to_scaling(&c).by_kind {
                 if kind == "cap|cap" {
                     continue;
                 }

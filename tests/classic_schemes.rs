@@ -514,7 +514,10 @@ fn loop_topology_counts() {
 fn loop_rejects_non_triangles_naming_the_face() {
     let err = Loop.refine(&fairsub::gallery::unit_cube()).unwrap_err();
     let msg = err.to_string();
-    assert!(matches!(err, fairsub::Error::Unsupported(_)));
+    assert!(matches!(
+        err,
+        fairsub::Error::UnsupportedFace { face: 0, .. }
+    ));
     assert!(
         msg.contains("face 0 has 4 corners") && msg.contains("catmull-clark"),
         "{msg}"

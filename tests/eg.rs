@@ -3,8 +3,9 @@
 
 use fairsub::analysis::{self, certify, continuity, curvature, local};
 use fairsub::gallery::{self, CnetShape};
+use fairsub::schemes::eg::surface::{EgOptions, eg_complex};
 use fairsub::schemes::eg::{self, Eg, EgRules, tables};
-use fairsub::surface::eg::{EgOptions, Fallback, eg_complex};
+use fairsub::surface::Fallback;
 use fairsub::surface::{ComplexOptions, Element, Provenance, complex};
 
 /// Parses the verbatim paper lines into (n, array, rows).

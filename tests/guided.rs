@@ -75,8 +75,9 @@ fn lower_degree_guides_have_the_paper_counts() {
 
 use fairsub::analysis::{self, catmull_clark_lambda, certify, continuity, curvature, local};
 use fairsub::gallery::{self, CnetShape};
-use fairsub::surface::eg::Fallback;
-use fairsub::surface::guided::{GuidedComplexOptions, guided_complex, parse_scheme};
+use fairsub::schemes::guided::descriptor::options_of as parse_scheme;
+use fairsub::schemes::guided::surface::{GuidedComplexOptions, guided_complex};
+use fairsub::surface::Fallback;
 
 /// Multiplicities of `lambda^s`, `s = 0..=10`, among the eigenvalues of `m`, and the number of
 /// eigenvalues that are none of them.

@@ -1084,20 +1084,20 @@ fn fcv_choice_for_the_cli() {
 #[test]
 fn notes_say_how_the_input_was_read() {
     use fairsub::schemes::nonbox::input_notes;
-    assert!(input_notes("nonbox", &fairsub::gallery::cube()).is_empty());
-    let pipe = input_notes("nonbox", &fairsub::gallery::open_pipe());
+    assert!(input_notes(false, &fairsub::gallery::cube()).is_empty());
+    let pipe = input_notes(false, &fairsub::gallery::open_pipe());
     assert!(
         pipe.iter().any(|n| n.contains("reconstruction")),
         "{pipe:?}"
     );
-    let tet = input_notes("nonbox-4dir", &fairsub::gallery::tetrahedron());
+    let tet = input_notes(true, &fairsub::gallery::tetrahedron());
     assert!(tet[0].contains("not quasi-four-directional"), "{tet:?}");
-    let fcv = input_notes("nonbox-4dir", &fairsub::gallery::nonbox_cube_fcv(0.5));
+    let fcv = input_notes(true, &fairsub::gallery::nonbox_cube_fcv(0.5));
     assert!(
         fcv[0].contains("6 type-2 vertices") && fcv[0].contains("type-2 vertices last"),
         "{fcv:?}"
     );
-    let oct = input_notes("nonbox-4dir", &fairsub::gallery::octahedron());
+    let oct = input_notes(true, &fairsub::gallery::octahedron());
     assert!(oct[0].contains("admits 3 type assignments"), "{oct:?}");
     // Shuffled so that the FCVs are not last: the advice is given.
     let net = triangulate(&FcvNet::barycentric(fairsub::gallery::cube()));
@@ -1111,7 +1111,7 @@ fn notes_say_how_the_input_was_read() {
     let shuffled = PolyMesh::new(pos, &faces).unwrap();
     let t = classify(&shuffled).unwrap();
     assert!((0..n).all(|v| t[n - 1 - v] == net.type2[v]));
-    let note = &input_notes("nonbox-4dir", &shuffled)[0];
+    let note = &input_notes(true, &shuffled)[0];
     assert!(
         note.contains("most type-2 vertices") && note.contains("--scheme nonbox"),
         "{note}"

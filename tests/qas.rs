@@ -3,9 +3,10 @@
 
 use fairsub::analysis::{certify, continuity, curvature, local};
 use fairsub::gallery::{self, CnetShape};
+use fairsub::schemes::eg::surface::EgOptions;
+use fairsub::schemes::qas::surface::{Contraction, qas_complex};
 use fairsub::schemes::qas::{chi, tables};
-use fairsub::surface::eg::{EgOptions, Fallback};
-use fairsub::surface::qas::{Contraction, qas_complex};
+use fairsub::surface::Fallback;
 use fairsub::surface::{ComplexOptions, Element, PatchComplex, Provenance, complex};
 
 /// Parses the verbatim paper lines: (name, rows).
@@ -213,7 +214,7 @@ fn rules_characteristic_map_matches_section3_chi() {
     // The QAS+^4 rules' own characteristic map (eigenvectors, 5-digit tables) is certified
     // injective and nearly identical to chi: the scale-free Jacobian measure agrees to 1e-4.
     for n in 5..=7 {
-        let (rules, l) = local::characteristic_ring("qas-plus-rules", n).unwrap();
+        let (rules, l) = fairsub::schemes::qas::local::rules_characteristic_ring(n).unwrap();
         let (chi_ring, _) = local::characteristic_ring("qas-plus", n).unwrap();
         let a = certify::certify_ring(&rules, l);
         let b = certify::certify_ring(&chi_ring, 0.5);
@@ -361,7 +362,7 @@ fn accelerated_variants_contract_faster() {
 #[test]
 fn user_given_expansions_of_each_kind() {
     use fairsub::schemes::qas::parse_q_file;
-    use fairsub::surface::qas::qas_complex_with;
+    use fairsub::schemes::qas::surface::qas_complex_with;
     let path = std::path::Path::new("q.txt");
     let net = gallery::cnet(5, CnetShape::Convex, 3);
     let opts = EgOptions {
@@ -440,7 +441,8 @@ fn bi3_variant_meets_the_published_bound_and_joins_c2() {
         fill: true,
         fallback: Fallback::Error,
     };
-    let o = fairsub::surface::qas::qas_bi3_complex(&net, opts, Contraction::Half, |_| {}).unwrap();
+    let o = fairsub::schemes::qas::surface::qas_bi3_complex(&net, opts, Contraction::Half, |_| {})
+        .unwrap();
     let rings = o
         .complex
         .provenance

@@ -7,15 +7,17 @@
 //! after sector with the same number of points each, which makes the discrete Fourier blocks of
 //! rotationally symmetric schemes directly available.
 
-pub mod bi2;
 pub mod certify;
 pub mod continuity;
 pub mod curvature;
 pub mod local;
-pub mod nonbox;
+pub mod report;
+pub mod scaled;
 
 pub use crate::linalg::{C64, complex_eigenvalues, eigenvalues, null_space, poly_from_roots};
+pub use crate::schemes::bi2::local as bi2;
 pub use crate::schemes::catmull_clark::catmull_clark_lambda;
 pub use crate::schemes::local::{
     Eigenvalue, FourierBlock, LocalMatrix, Spectrum, group_eigenvalues, spectrum,
 };
+pub use crate::schemes::nonbox::local as nonbox;

@@ -1,7 +1,7 @@
 //! `fairsub info`: what a control net consists of and what stands in the way of each scheme.
 
-use fairsub::PolyMesh;
-use fairsub::Result;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -167,16 +167,19 @@ pub fn run(net: &str, json: bool) -> Result<()> {
     let loaded = super::load_net(net)?;
     let r = report(net, &loaded.mesh);
     if json {
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&r).expect("serialisable")
         );
         return Ok(());
     }
-    println!("{}", r.source);
-    println!(
+    say!("{}", r.source);
+    say!(
         "  {} vertices, {} edges, {} faces (Euler characteristic {})",
-        r.vertices, r.edges, r.faces, r.euler_characteristic
+        r.vertices,
+        r.edges,
+        r.faces,
+        r.euler_characteristic
     );
     let fmt = |m: &BTreeMap<usize, usize>| {
         m.iter()
@@ -184,12 +187,12 @@ pub fn run(net: &str, json: bool) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    println!("  face sizes:          {}", fmt(&r.face_sizes));
-    println!("  interior valences:   {}", fmt(&r.interior_valences));
+    say!("  face sizes:          {}", fmt(&r.face_sizes));
+    say!("  interior valences:   {}", fmt(&r.interior_valences));
     if !r.boundary_valences.is_empty() {
-        println!("  boundary valences:   {}", fmt(&r.boundary_valences));
+        say!("  boundary valences:   {}", fmt(&r.boundary_valences));
     }
-    println!(
+    say!(
         "  boundary loops:      {} {:?}",
         r.boundary_loops.len(),
         r.boundary_loops
@@ -207,7 +210,7 @@ pub fn run(net: &str, json: bool) -> Result<()> {
             )
         })
         .collect();
-    println!(
+    say!(
         "  extraordinary vertices: {}{}{}",
         r.extraordinary_vertices.len(),
         if evs.is_empty() { "" } else { ": " },
@@ -220,21 +223,22 @@ pub fn run(net: &str, json: bool) -> Result<()> {
             .take(20)
             .map(|f| format!("{}({}-gon)", f.face, f.sides))
             .collect();
-        println!(
+        say!(
             "  extraordinary faces: {}: {}",
             r.extraordinary_faces.len(),
             fs.join(" ")
         );
     }
-    println!(
+    say!(
         "  bounding box: {:?} .. {:?}",
-        r.bounding_box[0], r.bounding_box[1]
+        r.bounding_box[0],
+        r.bounding_box[1]
     );
     if !r.dropped_vertices.is_empty() {
-        println!("  dropped unused vertices: {:?}", r.dropped_vertices);
+        say!("  dropped unused vertices: {:?}", r.dropped_vertices);
     }
     for p in &r.problems {
-        println!("  note: {p}");
+        say!("  note: {p}");
     }
     Ok(())
 }

@@ -1,44 +1,113 @@
-//! Command-line interface: argument definitions and the subcommands.
+//! The `fairsub` command line: argument definitions and the subcommands, a thin front end over
+//! the registry of schemes and the library.
 //!
-//! Each subcommand lives in its own module and returns `fairsub::Result`, so every failure
-//! reaches `main` as one error with a clear message (exit code 1); clap handles usage errors
-//! (exit code 2).
+//! Each subcommand lives in its own module and returns [`crate::Result`], so every failure
+//! reaches [`main`] as one error with a clear message (exit code 1); clap handles usage errors
+//! (exit code 2). What a command prints goes through `say!`, so [`capture`] can collect it (a
+//! test runs a command in-process and reads its report).
+
+/// Writes one line of a command's report (standard output, or the [`capture`] buffer).
+macro_rules! say {
+    ($($arg:tt)*) => {
+        $crate::cli::say_line(format!($($arg)*))
+    };
+}
 
 mod analyze;
+mod check;
 mod demo;
 mod info;
 mod render;
+mod spec;
 mod subdivide;
 
+use crate::error::Result;
+use crate::io::LoadedMesh;
+use crate::schemes::registry::ids;
 use clap::{Parser, Subcommand};
-use fairsub::Result;
-use fairsub::io::LoadedMesh;
 use indicatif::{ProgressBar, ProgressStyle};
+use std::cell::RefCell;
 use std::path::PathBuf;
+use std::process::ExitCode;
+
+thread_local! {
+    /// Where `say!` writes on this thread: `None` is standard output.
+    static SINK: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+/// Writes a line to this thread's sink.
+pub(crate) fn say_line(line: String) {
+    SINK.with(|s| match s.borrow_mut().as_mut() {
+        Some(buf) => {
+            buf.push_str(&line);
+            buf.push('\n');
+        }
+        None => println!("{line}"),
+    });
+}
+
+/// Runs `f` with the reports of commands collected instead of printed; returns them.
+pub fn capture<T>(f: impl FnOnce() -> T) -> (T, String) {
+    let old = SINK.with(|s| s.replace(Some(String::new())));
+    let r = f();
+    let out = SINK.with(|s| s.replace(old)).unwrap_or_default();
+    (r, out)
+}
+
+/// The binary's entry point: parses the process's arguments and runs the command; exit code 0,
+/// 1 with the error on stderr, or clap's 2 for usage errors.
+pub fn main() -> ExitCode {
+    let args = Cli::parse();
+    match run(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Runs a command line given as words (`["fairsub", "schemes"]`), as [`main`] would; usage
+/// errors become [`crate::Error::InvalidArgument`] with clap's message.
+pub fn run_words<I, T>(words: I) -> Result<()>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = Cli::try_parse_from(words)
+        .map_err(|e| crate::error::Error::InvalidArgument(e.to_string()))?;
+    run(cli)
+}
+
+/// The examples after `fairsub --help`.
+fn examples() -> String {
+    let cat = ids::CATMULL_CLARK;
+    format!(
+        "\
+Examples:
+  fairsub demo                                   run everything on the embedded default net
+  fairsub info net.obj --json                    counts, valences, extraordinary elements
+  fairsub subdivide net.obj --scheme {cat} --levels 3 -o fine.ply
+  fairsub subdivide net.obj --scheme {cat} --rings 6 -o surface.bv
+  fairsub subdivide gallery:cnet-5-saddle --scheme {cat} --rings 4 -o saddle.igs
+  fairsub schemes
+  fairsub analyze --scheme {cat} --valence 5
+  fairsub charmap --scheme {cat} --valence 5 -o chi5.svg
+  fairsub check surface.bv
+  fairsub check gallery:cnet-5-saddle --scheme {cat} --rings 6
+
+A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the built-in gallery
+(`fairsub gallery --list`)."
+    )
+}
 
 /// fairsub: subdivision surfaces of high shape quality.
 #[derive(Debug, Parser)]
-#[command(name = "fairsub", version, about, long_about = None, after_help = EXAMPLES)]
+#[command(name = "fairsub", version, about, long_about = None, after_help = examples())]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
 }
-
-const EXAMPLES: &str = "\
-Examples:
-  fairsub demo                                   run everything on the embedded default net
-  fairsub info net.obj --json                    counts, valences, extraordinary elements
-  fairsub subdivide net.obj --scheme catmull-clark --levels 3 -o fine.ply
-  fairsub subdivide net.obj --scheme catmull-clark --rings 6 -o surface.bv
-  fairsub subdivide gallery:cnet-5-saddle --scheme catmull-clark --rings 4 -o saddle.igs
-  fairsub schemes
-  fairsub analyze --scheme catmull-clark --valence 5
-  fairsub charmap --scheme catmull-clark --valence 5 -o chi5.svg
-  fairsub check surface.bv
-  fairsub check gallery:cnet-5-saddle --scheme catmull-clark --rings 6
-
-A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the built-in gallery
-(`fairsub gallery --list`).";
 
 #[derive(Debug, Subcommand)]
 enum Command {
@@ -82,7 +151,7 @@ as a polyhedron.")]
     Charmap(analyze::CharmapArgs),
     /// Continuity report (C0/C1/C2/G1 defects per kind of join) and per-ring curvature ranges of a
     /// BezierView file or of a net's surface under a scheme.
-    Check(analyze::CheckArgs),
+    Check(check::CheckArgs),
     /// Write the built-in gallery of control nets as OBJ files (or list their names).
     Gallery {
         /// Folder to write into.
@@ -105,7 +174,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Demo { out } => demo::run(&out),
         Command::Analyze(a) => analyze::analyze(a),
         Command::Charmap(a) => analyze::charmap(a),
-        Command::Check(a) => analyze::check(a),
+        Command::Check(a) => check::check(a),
         Command::Gallery { out, list } => gallery(out, list),
     }
 }
@@ -113,20 +182,20 @@ pub fn run(cli: Cli) -> Result<()> {
 /// Loads a net from a file or from the gallery (`gallery:NAME`); prints its warnings.
 pub fn load_net(arg: &str) -> Result<LoadedMesh> {
     let loaded = if let Some(name) = arg.strip_prefix("gallery:") {
-        let all = fairsub::gallery::all();
+        let all = crate::gallery::all();
         match all.into_iter().find(|(n, _)| n == name) {
             Some((_, mesh)) => LoadedMesh {
                 mesh,
                 warnings: Vec::new(),
             },
             None => {
-                return Err(fairsub::Error::InvalidArgument(format!(
+                return Err(crate::Error::InvalidArgument(format!(
                     "no gallery net named '{name}' (see `fairsub gallery --list`)"
                 )));
             }
         }
     } else {
-        fairsub::io::read_mesh(std::path::Path::new(arg))?
+        crate::io::read_mesh(std::path::Path::new(arg))?
     };
     for w in &loaded.warnings {
         eprintln!("warning: {arg}: {w}");
@@ -145,22 +214,22 @@ pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
 }
 
 fn schemes(json: bool) -> Result<()> {
-    let cat = fairsub::schemes::catalog();
+    let cat = crate::schemes::catalog();
     if json {
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&cat).expect("serialisable")
         );
         return Ok(());
     }
     for s in cat {
-        println!("{} [{}]", s.name, s.status);
-        println!("  family:     {}", s.family);
-        println!("  input:      {}", s.input);
-        println!("  patches:    {}", s.patches);
-        println!("  smoothness: {}", s.smoothness);
-        println!("  valences:   {}", s.valences);
-        println!(
+        say!("{} [{}]", s.name, s.status);
+        say!("  family:     {}", s.family);
+        say!("  input:      {}", s.input);
+        say!("  patches:    {}", s.patches);
+        say!("  smoothness: {}", s.smoothness);
+        say!("  valences:   {}", s.valences);
+        say!(
             "  commands:   {}{}",
             if s.refine { "subdivide --levels " } else { "" },
             if s.rings { "subdivide --rings" } else { "" }
@@ -170,10 +239,10 @@ fn schemes(json: bool) -> Result<()> {
 }
 
 fn gallery(out: Option<PathBuf>, list: bool) -> Result<()> {
-    let all = fairsub::gallery::all();
+    let all = crate::gallery::all();
     if list {
         for (name, m) in &all {
-            println!(
+            say!(
                 "{name:24} {:4} vertices {:4} faces",
                 m.num_vertices(),
                 m.num_faces()
@@ -182,14 +251,14 @@ fn gallery(out: Option<PathBuf>, list: bool) -> Result<()> {
         return Ok(());
     }
     let dir = out.expect("clap requires --out without --list");
-    std::fs::create_dir_all(&dir).map_err(|source| fairsub::Error::Io {
+    std::fs::create_dir_all(&dir).map_err(|source| crate::Error::Io {
         path: dir.clone(),
         source,
     })?;
     for (name, m) in &all {
         let path = dir.join(format!("{name}.obj"));
-        fairsub::io::write_mesh(&path, m, fairsub::io::MeshFormat::Obj)?;
+        crate::io::write_mesh(&path, m, crate::io::MeshFormat::Obj)?;
     }
-    println!("wrote {} nets to {}", all.len(), dir.display());
+    say!("wrote {} nets to {}", all.len(), dir.display());
     Ok(())
 }

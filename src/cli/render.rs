@@ -5,11 +5,15 @@
 //! one camera, one light set and one curvature range per mode. Both can print the numbers
 //! behind the picture as JSON (camera, range used, per-ring curvature ranges).
 
-use fairsub::io::BvFile;
-use fairsub::render::{
+use super::spec::{self, SchemeOptions};
+use crate::error::{Error, Result};
+use crate::io::BvFile;
+use crate::mesh::PolyMesh;
+use crate::render::{
     self, Mode, Overlays, RenderOptions, Scene, ShadeOptions, View, camera, stats,
 };
-use fairsub::{Error, PolyMesh, Result};
+use crate::schemes::Spec;
+use crate::schemes::registry::ids;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -105,18 +109,41 @@ impl LookArgs {
     }
 }
 
-/// Arguments of `fairsub render`.
-#[derive(Debug, clap::Args)]
-#[command(after_help = "\
+/// The help after `fairsub render --help`.
+fn render_help() -> String {
+    let cat = ids::CATMULL_CLARK;
+    format!(
+        "\
 NET is a mesh file (.obj .off .ply), gallery:NAME, or a BezierView .bv file of patches (groups
 named regular, ringK and cap give the provenance). With --scheme the net's exact patch complex is
 drawn (--rings, default 6); with --scheme and --levels its refined net; without --scheme the net
 itself. Curvature and provenance modes need patches.
 
 Examples:
-  fairsub render gallery:cnet-5-convex --scheme catmull-clark --mode highlight -o hl.png
-  fairsub render net.obj -s catmull-clark -r 10 -m mean --zoom-rings 6..11 --json -o h.png
-  fairsub render surface.bv --mode provenance --overlay patches -o rings.png")]
+  fairsub render gallery:cnet-5-convex --scheme {cat} --mode highlight -o hl.png
+  fairsub render net.obj -s {cat} -r 10 -m mean --zoom-rings 6..11 --json -o h.png
+  fairsub render surface.bv --mode provenance --overlay patches -o rings.png"
+    )
+}
+
+/// The help after `fairsub compare --help`.
+fn compare_help() -> String {
+    let cat = ids::CATMULL_CLARK;
+    format!(
+        "\
+Rows are schemes, columns are modes. All cells share one camera (fitted to all surfaces), one
+light set and, per mode, one curvature range or stripe period, so the schemes are compared
+fairly.
+
+Example:
+  fairsub compare gallery:cnet-6-saddle --schemes {cat} --modes highlight,mean,provenance \\
+      --zoom-rings 1..7 --size 320x320 -o panel.png"
+    )
+}
+
+/// Arguments of `fairsub render`.
+#[derive(Debug, clap::Args)]
+#[command(after_help = render_help())]
 pub struct RenderArgs {
     /// The control net (file or gallery:NAME) or a .bv file of patches.
     pub net: String,
@@ -150,14 +177,7 @@ pub struct RenderArgs {
 
 /// Arguments of `fairsub compare`.
 #[derive(Debug, clap::Args)]
-#[command(after_help = "\
-Rows are schemes, columns are modes. All cells share one camera (fitted to all surfaces), one
-light set and, per mode, one curvature range or stripe period, so the schemes are compared
-fairly.
-
-Example:
-  fairsub compare gallery:cnet-6-saddle --schemes catmull-clark --modes highlight,mean,provenance \\
-      --zoom-rings 1..7 --size 320x320 -o panel.png")]
+#[command(after_help = compare_help())]
 pub struct CompareArgs {
     /// The control net (file or gallery:NAME).
     pub net: String,
@@ -199,7 +219,7 @@ fn is_bv(path: &str) -> bool {
 /// A `.bv` file as a scene: its tensor-product patches with provenance from the group names
 /// (its first polyhedron, if any, as the net); only polyhedra: the first one as a mesh.
 fn bv_scene(path: &str) -> Result<Scene> {
-    let file: BvFile = fairsub::io::read_bv(Path::new(path))?;
+    let file: BvFile = crate::io::read_bv(Path::new(path))?;
     for w in &file.warnings {
         eprintln!("warning: {path}: {w}");
     }
@@ -226,11 +246,12 @@ fn bv_scene(path: &str) -> Result<Scene> {
 }
 
 /// The patch complex of a scheme as a scene with its net.
-fn complex_scene(scheme: &str, net: &PolyMesh, rings: usize, fill: bool) -> Result<Scene> {
+fn complex_scene(scheme: &Spec, net: &PolyMesh, rings: usize, fill: bool) -> Result<Scene> {
     let c = super::subdivide::build_complex(scheme, net, rings, fill)?;
     if c.is_empty() {
         return Err(Error::InvalidArgument(format!(
-            "scheme '{scheme}' produced no patches for this net"
+            "scheme '{}' produced no patches for this net",
+            scheme.name()
         )));
     }
     Ok(Scene::patches(c, Some(net.clone())))
@@ -263,13 +284,25 @@ struct RenderReport<'a> {
 
 /// Runs `fairsub render`.
 pub fn run_render(mut a: RenderArgs) -> Result<()> {
-    if let Some(s) = &a.scheme {
-        a.scheme = Some(fairsub::surface::guided::scheme_with_lambda(s, a.lambda)?);
-    } else if a.lambda.is_some() {
-        return Err(Error::InvalidArgument(
-            "--lambda needs a guided --scheme".into(),
-        ));
-    }
+    let spec = match &a.scheme {
+        Some(s) => {
+            let spec = spec::resolve(
+                s,
+                &SchemeOptions {
+                    lambda: a.lambda,
+                    ..SchemeOptions::default()
+                },
+            )?;
+            a.scheme = Some(spec::label(s, &spec));
+            Some(spec)
+        }
+        None if a.lambda.is_some() => {
+            return Err(Error::InvalidArgument(
+                "--lambda needs a guided --scheme".into(),
+            ));
+        }
+        None => None,
+    };
     let mode: Mode = a.mode.parse()?;
     let opts = a.look.options((800, 800), mode)?;
     let bv = is_bv(&a.net);
@@ -293,10 +326,11 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
         bv_scene(&a.net)?
     } else {
         let net = super::load_net(&a.net)?.mesh;
-        match (&a.scheme, a.levels) {
+        match (&spec, a.levels) {
             (None, _) => Scene::mesh(&net),
             (Some(s), Some(levels)) => {
-                let fine = super::subdivide::refine(s, &net, levels, false)?;
+                let rules = super::subdivide::mesh_rules(s)?;
+                let fine = super::subdivide::refine_with(rules.as_ref(), &net, levels, false)?;
                 let mut scene = Scene::mesh(&fine);
                 scene.net = Some(net);
                 scene
@@ -334,7 +368,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
                 .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
                 .unwrap_or_default(),
         };
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         );
@@ -387,19 +421,20 @@ fn compare_panel(
 ) -> Result<(render::Panel, Vec<(String, Scene)>)> {
     let mut scenes = Vec::new();
     for s in schemes {
-        scenes.push((s.clone(), complex_scene(s, net, rings, fill)?));
+        let spec = spec::resolve(s, &SchemeOptions::default())?;
+        scenes.push((s.clone(), complex_scene(&spec, net, rings, fill)?));
     }
     let panel = render::compare(&scenes, modes, opts)?;
     Ok((panel, scenes))
 }
 
-/// The schemes that have exact patch output.
 /// The schemes with patch output that take this net (Loop only takes triangle nets).
 fn patch_schemes(net: &PolyMesh) -> Vec<String> {
-    fairsub::schemes::catalog()
+    crate::schemes::registry()
+        .entries()
         .iter()
-        .filter(|s| s.rings && (s.name != "loop" || net.is_all_triangles()))
-        .map(|s| s.name.to_string())
+        .filter(|e| e.capabilities().patches && e.descriptor.check_input(net).is_ok())
+        .map(|e| e.name.to_string())
         .collect()
 }
 
@@ -417,14 +452,24 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     } else {
         a.schemes.iter().map(|s| s.trim().to_string()).collect()
     };
+    // With --lambda, the guided schemes among them take the contraction; the others keep theirs.
     let schemes: Vec<String> = schemes
         .into_iter()
         .map(|s| {
-            if fairsub::surface::guided::parse_scheme(&s).is_some() {
-                fairsub::surface::guided::scheme_with_lambda(&s, a.lambda)
-            } else {
-                Ok(s)
-            }
+            let plain = spec::resolve(&s, &SchemeOptions::default())?;
+            let takes = crate::schemes::registry()
+                .descriptor(plain.id)
+                .params()
+                .contains(&crate::schemes::descriptor::ParamKind::Contraction);
+            let lambda = if takes { a.lambda } else { None };
+            let spec = spec::resolve(
+                &s,
+                &SchemeOptions {
+                    lambda,
+                    ..SchemeOptions::default()
+                },
+            )?;
+            Ok(spec::label(&s, &spec))
         })
         .collect::<Result<_>>()?;
     let opts = a
@@ -467,7 +512,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
                 })
                 .collect(),
         };
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         );

@@ -379,3 +379,55 @@ pub fn tri_grid() -> PolyMesh {
     }
     PolyMesh::new(pos, &faces).expect("tri grid")
 }
+
+/// A triangle fan of valence `n` with `rings` rings of regular triangles: centre 0, then per
+/// sector the chart points `(i, j)`, `i >= 1`, `j >= 0`, `i + j <= rings`.
+pub fn loop_net(n: usize, rings: usize) -> PolyMesh {
+    let per = rings * (rings + 1) / 2;
+    let local = |i: usize, j: usize| -> usize {
+        // Position of (i, j) within a sector, rows by i.
+        let mut k = 0;
+        for a in 1..i {
+            k += rings + 1 - a;
+        }
+        k + j
+    };
+    let idx = |s: usize, i: usize, j: usize| -> usize {
+        if i == 0 && j == 0 {
+            0
+        } else if i == 0 {
+            1 + ((s + 1) % n) * per + local(j, 0)
+        } else {
+            1 + (s % n) * per + local(i, j)
+        }
+    };
+    let mut pos = vec![[0.0; 3]; 1 + n * per];
+    for s in 0..n {
+        let (a0, a1) = (
+            2.0 * std::f64::consts::PI * s as f64 / n as f64,
+            2.0 * std::f64::consts::PI * (s + 1) as f64 / n as f64,
+        );
+        for i in 1..=rings {
+            for j in 0..=rings - i {
+                let (fi, fj) = (i as f64, j as f64);
+                pos[idx(s, i, j)] = [
+                    fi * a0.cos() + fj * a1.cos(),
+                    fi * a0.sin() + fj * a1.sin(),
+                    0.0,
+                ];
+            }
+        }
+    }
+    let mut faces = Vec::new();
+    for s in 0..n {
+        for i in 0..rings {
+            for j in 0..rings - i {
+                faces.push([idx(s, i, j), idx(s, i + 1, j), idx(s, i, j + 1)]);
+                if i + j + 2 <= rings {
+                    faces.push([idx(s, i + 1, j), idx(s, i + 1, j + 1), idx(s, i, j + 1)]);
+                }
+            }
+        }
+    }
+    PolyMesh::new(pos, &faces).expect("triangle fan is valid")
+}

@@ -6,6 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::linalg::{C64, complex_eigenvalues, eigenvalues, null_space, poly_from_roots};
+use crate::stencil::StencilTable;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -317,4 +318,19 @@ impl LocalMatrix {
         }
         Ok((pts, lambda))
     }
+}
+
+/// A stencil table as a dense matrix (rows = its rows, columns = its sources).
+pub fn dense(t: &StencilTable) -> DMatrix<f64> {
+    DMatrix::from_row_slice(t.num_rows(), t.num_sources(), &t.to_dense())
+}
+
+/// The error for a valence below 3.
+pub fn check_valence(n: usize) -> Result<()> {
+    if n < 3 {
+        return Err(Error::InvalidArgument(format!(
+            "valence {n}: a valence is at least 3"
+        )));
+    }
+    Ok(())
 }

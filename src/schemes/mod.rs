@@ -8,6 +8,7 @@
 
 pub mod bi2;
 pub mod catmull_clark;
+pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;
 pub mod guided;
@@ -15,6 +16,7 @@ pub mod local;
 pub mod loop_subdivision;
 pub mod nonbox;
 pub mod qas;
+pub mod registry;
 
 mod common;
 
@@ -65,6 +67,32 @@ pub trait Scheme: Sync {
         Ok(m.unwrap_or_else(|| mesh.clone()))
     }
 
+    /// How the scheme's nets carry face control vertices (the non-box schemes): their input is
+    /// read, and their refined nets and limit meshes are written, with the FCVs.
+    fn fcv_layout(&self) -> FcvLayout {
+        FcvLayout::None
+    }
+
+    /// Notes for the user on how the scheme reads `mesh` (where FCVs come from, reconstructed
+    /// boundary rules, ...).
+    fn input_notes(&self, mesh: &PolyMesh) -> Vec<String> {
+        let _ = mesh;
+        Vec::new()
+    }
+
+    /// The limit surface after `levels` steps as a mesh with exact normals per vertex, for
+    /// schemes whose limit is not the refined net's own layout (non-box: the refined quads
+    /// split into triangles around their FCVs); `None` where the limit positions of the refined
+    /// net are the limit mesh.
+    fn limit_mesh_with_normals(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+    ) -> Option<Result<(PolyMesh, Vec<crate::geom::Point>)>> {
+        let _ = (mesh, levels);
+        None
+    }
+
     /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
     /// scheme has closed-form limit masks.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
@@ -74,6 +102,17 @@ pub trait Scheme: Sync {
             self.name()
         )))
     }
+}
+
+/// How a scheme's nets carry face control vertices (FCVs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FcvLayout {
+    /// No FCVs.
+    None,
+    /// Quad nets with one FCV per face, stored after the vertices (non-box).
+    Quads,
+    /// Triangle nets whose type-2 vertices are the FCVs (four-directional non-box).
+    Triangles,
 }
 
 /// Applies `levels` refinement steps ([`Scheme::refine_uniform`]), calling `progress(level)`
@@ -159,268 +198,28 @@ pub struct SchemeInfo {
     pub status: &'static str,
 }
 
-/// Every scheme fairsub knows, implemented or planned, with its properties.
+/// Every scheme fairsub knows, with its properties (the registry's catalogue).
 pub fn catalog() -> Vec<SchemeInfo> {
-    vec![
-        SchemeInfo {
-            name: "catmull-clark",
-            family: "classic primal quad scheme [CC78]",
-            input: "any polygon mesh (one step makes it all quads); boundaries with edge-only interpolation",
-            patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
-            smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
-            valences: "all",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "doo-sabin",
-            family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
-            input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
-            patches: "bi-2 per regular vertex (Chaikin boundaries via doubled boundary layer); rings of 3n bi-2 patches per n-gon (from level 2 for an n-valent vertex); centroid fill",
-            smoothness: "C^1 (bi-2 on regular parts)",
-            valences: "all facet sizes",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "doo-sabin-cc",
-            family: "DS^CC: face-corner point = mean of vertex, face centroid and the two edge midpoints",
-            input: "any polygon mesh; boundaries as doo-sabin",
-            patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; centroid fill",
-            smoothness: "C^1",
-            valences: "all facet sizes",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "loop",
-            family: "classic triangle scheme [Loo87], Loop's original beta",
-            input: "triangle meshes; boundaries as OpenSubdiv (corners stay put)",
-            patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; Hermite fill",
-            smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
-            valences: "all",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "nonbox",
-            family: "non-box subdivision [Huang]: four-directional S_3^1 non-box splines, quad variant with face control vertices (FCVs)",
-            input: "any polygon mesh (FCVs: face barycentres, scaled barycentres or an FCV file); boundaries: cubic B-spline V/E rules, ghost-FCV NFCV rule (fairsub's reconstruction)",
-            patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; Hermite fill",
-            smoothness: "C^1 with the convex hull property (all weights non-negative); C^1 at extraordinary vertices (lambda = 1/2 + cos(2 pi / k) / 4)",
-            valences: "all",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "nonbox-4dir",
-            family: "non-box subdivision [Huang], four-directional variant: 1-4 split of quasi-four-directional triangle meshes",
-            input: "quasi-four-directional triangle meshes (vertex types found from the topology), or any polygon mesh (triangulated around barycentric FCVs)",
-            patches: "as nonbox (the same limit surface)",
-            smoothness: "as nonbox",
-            valences: "all",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "eg",
-            family: "Evolving Guide subdivision [Karciauskas-Peters]: bi-4 rings joining bi-3 surroundings C^2",
-            input: "Catmull-Clark nets (quads; one local Catmull-Clark step where extraordinary vertices touch or n-gons occur)",
-            patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
-            smoothness: "C^2 rings and joins, C^1 at the extraordinary point; mu/lambda^2 = 1.00015 (n=3), 1.00016 (n=5)",
-            valences: "3, 5 published (4 = bi-4 refinement); 6..10 lost in the text: Catmull-Clark fallback or error",
-            refine: false,
-            rings: true,
-            status: "available (patches; valences 3 and 5)",
-        },
-        SchemeInfo {
-            name: "qas-plus",
-            family: "QAS+^4 quadratic-attraction subdivision [Karciauskas-Peters], contraction 1/2",
-            input: "Catmull-Clark nets (as eg); initial quadratic expansion by fairsub's qas-fit",
-            patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
-            smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) < 0.13621 < 1/4)",
-            valences: "5, 6, 7 published; 3 uses eg; others fall back to Catmull-Clark or error",
-            refine: false,
-            rings: true,
-            status: "available (patches; valences 5..7)",
-        },
-        SchemeInfo {
-            name: "qas-plus-bi3",
-            family: "QAS+^3: bi-3 rings (2 x 2 macro-patches) through fairsub's derived bijection T_3^4",
-            input: "as qas-plus",
-            patches: "bi-3 on regular quads; K rings of 12n bi-3 patches; bi-3 fill (C^0, 2 x 2 Coons per sector)",
-            smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) = 0.136252 < 0.13626 at n = 5)",
-            valences: "as qas-plus",
-            refine: false,
-            rings: true,
-            status: "available (patches; T_3^4 derived: the earlier paper's formulas are not in the corpus)",
-        },
-        SchemeInfo {
-            name: "qas-0.4",
-            family: "QAS+^4 accelerated: lambda = 0.4 in the restriction S (tables unchanged)",
-            input: "as qas-plus",
-            patches: "as qas-plus",
-            smoothness: "curvature bounded (rho(M_d) < 0.16 = lambda^2)",
-            valences: "as qas-plus",
-            refine: false,
-            rings: true,
-            status: "available (patches)",
-        },
-        SchemeInfo {
-            name: "qas-0.5-0.4",
-            family: "QAS+^4 with the gradual schedule 0.5, 0.5, 0.475, 0.475, 0.45, 0.45, then 0.4",
-            input: "as qas-plus",
-            patches: "as qas-plus",
-            smoothness: "as qas-0.4",
-            valences: "as qas-plus",
-            refine: false,
-            rings: true,
-            status: "available (patches)",
-        },
-        SchemeInfo {
-            name: "pgs",
-            family: "Point-Augmented Bi-2 Subdivision [Karciauskas-Peters]: Doo-Sabin with an added central point p per extraordinary facet",
-            input: "any polygon mesh (p is added automatically by (1)); facets without a DS-net get one Doo-Sabin step first; boundaries as doo-sabin",
-            patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; fill centred at the limit point (7)",
-            smoothness: "C^1; lambda_sub from (10) (> 1/2 for n > 4)",
-            valences: "all facet sizes (n = 4 is uniform bi-2)",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "pgs-dscc",
-            family: "PGS after two steps of DS^CC (the paper's pre-processing of prisms)",
-            input: "any polygon mesh",
-            patches: "as pgs, on the twice DS^CC-refined net",
-            smoothness: "C^1",
-            valences: "all facet sizes",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "polar-bi2",
-            family: "Polar Bi-2 Subdivision (PolBS) [Karciauskas-Peters]: radial bi-2 refinement around poles",
-            input: "polar layouts (poles with fans of triangles, rings of quads); prism-like n-gon caps become poles at their centroids (or at --pole FACE:X,Y,Z); other elements as bi2-mixed",
-            patches: "bi-2 per regular vertex; rings of n bi-2 patches per pole; collapsed bi-2 cap at the limit point (16)",
-            smoothness: "C^1; subdominant 1/2, subsubdominant 1/4",
-            valences: "all pole valences",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "tps",
-            family: "Primal Bi-2 Subdivision (TPS) [Karciauskas-Peters]: ternary bi-2 on quad nets",
-            input: "quad nets (one Catmull-Clark step makes any mesh one); boundaries with a doubled layer (fairsub's rules)",
-            patches: "bi-2 per regular vertex; rings of 2n bi-2 patches per extraordinary vertex (ternary); quarter-piece fill at the limit point (21)",
-            smoothness: "C^1; lambda = (5 + 2c + 2 sqrt(c^2 + 5c + 4)) / 27",
-            valences: "all interior valences >= 3; extraordinary boundary vertices: error",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "tps-adjustable",
-            family: "adjustable TPS, split ratio e = 0.2 or --split-ratio E; alphas of (18) by --alpha-rule (fairsub's reconstruction of the stencils, tps-adjustable-derived: exact e : 1-2e : e knot insertion; reproduces (22))",
-            input: "quad nets, as tps",
-            patches: "bi-2 with non-uniform knots; rings of 2n patches per extraordinary vertex; fill as tps",
-            smoothness: "C^1 (up to per-piece affine reparametrisation across ring sides); lambda from (22)",
-            valences: "all interior valences >= 3",
-            refine: true,
-            rings: true,
-            status: "available (reconstruction)",
-        },
-        SchemeInfo {
-            name: "bi2-mixed",
-            family: "bi-2 family combined (Fig. 15): regular bi-2, PGS at facets, TPS at extraordinary vertices, PolBS at poles",
-            input: "polygon meshes with separated elements; net refinement only when all elements are of one kind",
-            patches: "bi-2 per regular vertex; per element its scheme's rings and fill",
-            smoothness: "C^1",
-            valences: "all",
-            refine: true,
-            rings: true,
-            status: "available",
-        },
-        SchemeInfo {
-            name: "guided-bi5",
-            family: "guided subdivision [Karciauskas-Peters]: bi-5 rings sampled from a G^2 bi-5 guide through L^-1 o lambda^l chi (Catmull-Clark's chi and lambda; suffix -half: QAS+'s chi, lambda 1/2; -g4/-g3: bi-4/bi-3 guide)",
-            input: "Catmull-Clark nets (as eg); guide target: fairsub's guide-fit F_4 (the paper's [KP15] target is not in the corpus)",
-            patches: "bi-3 on regular quads; K rings of 3n bi-5 patches per extraordinary vertex; G^1 bi-6 cap C^1 to the last ring",
-            smoothness: "C^2 rings and joins, curvature bounded at the centre; spectrum lambda^s, s = 0..10, multiplicities of table (5)",
-            valences: "3, 5..16 (4 is regular); -half: 5..10 (others use Catmull-Clark's chi)",
-            refine: false,
-            rings: true,
-            status: "available (patches)",
-        },
-        SchemeInfo {
-            name: "guided-bi6",
-            family: "guided subdivision: bi-6 rings from 4 x 4 corner jets averaged (Fig. 2b), otherwise as guided-bi5",
-            input: "as guided-bi5",
-            patches: "bi-3 on regular quads; K rings of 3n bi-6 patches; G^1 bi-6 cap C^1 to the last ring",
-            smoothness: "C^2 rings and joins (C^2 at the centre in the limit)",
-            valences: "as guided-bi5",
-            refine: false,
-            rings: true,
-            status: "available (patches)",
-        },
-        SchemeInfo {
-            name: "guided-bi4-macro",
-            family: "guided subdivision, Section 6.2: rings of 2 x 2 bi-4 macro patches (C^3 inner knot), fairsub's derivation (figures lost)",
-            input: "as guided-bi5",
-            patches: "bi-3 on regular quads; K rings of 12n bi-4 patches; no cap (the hole stays open)",
-            smoothness: "C^2 rings and joins, curvature bounded at the centre",
-            valences: "as guided-bi5",
-            refine: false,
-            rings: true,
-            status: "reconstruction (rings only)",
-        },
-        SchemeInfo {
-            name: "guided-bi3-macro",
-            family: "guided subdivision, Section 6.2: rings of 3 x 3 bi-3 macro patches (C^2 knots), fairsub's derivation (figures lost)",
-            input: "as guided-bi5",
-            patches: "bi-3 on regular quads; K rings of 27n bi-3 patches; no cap (the hole stays open)",
-            smoothness: "C^2 rings and joins, curvature bounded at the centre",
-            valences: "as guided-bi5",
-            refine: false,
-            rings: true,
-            status: "reconstruction (rings only)",
-        },
-    ]
+    registry::registry().catalog()
 }
 
-/// The refinement scheme of a command-line name; the error lists the available names.
+/// The refinement scheme of a command-line name (default parameters); the error lists the
+/// names available for refinement.
 pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
-    match name {
-        "catmull-clark" | "cc" => Ok(Box::new(CatmullClark)),
-        "doo-sabin" | "ds" => Ok(Box::new(DooSabin)),
-        "doo-sabin-cc" | "ds-cc" => Ok(Box::new(DooSabinCc)),
-        "loop" => Ok(Box::new(Loop)),
-        "pgs" => Ok(Box::new(bi2::Pgs)),
-        "pgs-dscc" => Ok(Box::new(bi2::PgsPreprocessed::default())),
-        "polar-bi2" | "polbs" => Ok(Box::new(bi2::PolarBi2::default())),
-        "tps" => Ok(Box::new(bi2::Tps)),
-        "tps-adjustable" => Ok(Box::new(bi2::AdjustableTps::default())),
-        "bi2-mixed" => Ok(Box::new(bi2::Bi2Mixed)),
-        "nonbox" | "non-box" => Ok(Box::new(NonBox::default())),
-        "nonbox-4dir" | "non-box-4dir" => Ok(Box::new(NonBox4Dir)),
-        _ => {
-            let names: Vec<&str> = catalog()
-                .iter()
-                .filter(|s| s.refine)
-                .map(|s| s.name)
-                .collect();
-            Err(crate::error::Error::InvalidArgument(format!(
-                "unknown scheme '{name}' (available for refinement: {})",
-                names.join(", ")
-            )))
-        }
-    }
+    let r = registry::registry();
+    let spec = r.lookup_for(name, " for refinement", |c| c.refine)?;
+    r.descriptor(spec.id)
+        .mesh_rules(&spec)?
+        .ok_or_else(|| unreachable_rules(&spec))
 }
+
+/// The error of a descriptor that claims a capability it does not deliver.
+fn unreachable_rules(spec: &descriptor::Spec) -> crate::error::Error {
+    crate::error::Error::InvalidArgument(format!(
+        "scheme '{}' has no rules for this operation",
+        spec.name()
+    ))
+}
+
+pub use descriptor::{Descriptor, SchemeId, Spec};
+pub use registry::{Registry, registry};

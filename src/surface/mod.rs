@@ -5,17 +5,7 @@
 //! The complex itself ([`PatchComplex`], [`Provenance`]) lives in [`crate::bezier::complex`] and
 //! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
 
-pub(crate) mod adaptive;
 pub mod adjacency;
-pub mod bi2;
-pub mod cc;
-pub mod ds;
-pub mod eg;
-pub mod guided;
-pub mod loop_patches;
-pub mod nonbox;
-pub mod qas;
-pub mod regular;
 pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;
@@ -23,26 +13,47 @@ pub(crate) mod testing;
 pub use crate::bezier::complex::{PatchComplex, Provenance};
 pub use crate::mesh::Element;
 
-/// Options for exact patch output of any scheme.
-#[derive(Debug, Clone, Copy)]
-pub struct ComplexOptions {
-    /// Rings per extraordinary element.
-    pub rings: usize,
-    /// Close the central hole (each scheme documents its fill).
-    pub fill: bool,
+pub use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
+
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::schemes::{Spec, registry};
+
+/// The exact surface of `mesh` under a scheme with its parameters: the registry's descriptor
+/// builds it. `progress(ring)` is called as rings are produced.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for a scheme without patch output (listing those with one);
+/// whatever the scheme reports for the net.
+pub fn build(
+    spec: &Spec,
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: &mut dyn FnMut(usize),
+) -> Result<SurfaceOutput> {
+    let rules = registry().descriptor(spec.id).patch_rules(spec)?;
+    match rules {
+        Some(r) => r.build(mesh, opts, progress),
+        None => Err(no_patch_output(spec.name())),
+    }
 }
 
-/// What schemes with rules for some valences only (EG, QAS+) do elsewhere.
-pub use eg::Fallback;
+/// The error for a scheme name without patch output, listing the schemes that have it.
+pub fn no_patch_output(name: &str) -> Error {
+    Error::InvalidArgument(format!(
+        "scheme '{name}' has no exact patch output (available: {})",
+        registry().names_with(|c| c.patches).join(", ")
+    ))
+}
 
 /// The exact surface of `mesh` under the named scheme as a patch complex. `progress(level)` is
 /// called as rings are produced.
 pub fn complex(
     scheme: &str,
-    mesh: &crate::mesh::PolyMesh,
+    mesh: &PolyMesh,
     opts: ComplexOptions,
     progress: impl FnMut(usize),
-) -> crate::error::Result<PatchComplex> {
+) -> Result<PatchComplex> {
     complex_with_notes(scheme, mesh, opts, Fallback::default(), progress).map(|(c, _)| c)
 }
 
@@ -50,99 +61,15 @@ pub fn complex(
 /// elements fell back to which rules).
 pub fn complex_with_notes(
     scheme: &str,
-    mesh: &crate::mesh::PolyMesh,
+    mesh: &PolyMesh,
     opts: ComplexOptions,
     fallback: Fallback,
-    progress: impl FnMut(usize),
-) -> crate::error::Result<(PatchComplex, Vec<String>)> {
-    let plain = |c: crate::error::Result<PatchComplex>| c.map(|c| (c, Vec::new()));
-    match scheme {
-        "eg" | "qas-plus" | "qas-0.4" | "qas-0.5-0.4" | "qas-plus-bi3" => {
-            let eo = eg::EgOptions {
-                rings: opts.rings,
-                fill: opts.fill,
-                fallback,
-            };
-            let o = match scheme {
-                "eg" => eg::dnet_complex(&eg::EgRulesProvider, mesh, eo, progress)?,
-                "qas-plus" => qas::qas_complex(mesh, eo, qas::Contraction::Half, progress)?,
-                "qas-0.4" => qas::qas_complex(mesh, eo, qas::Contraction::Fixed(0.4), progress)?,
-                "qas-plus-bi3" => qas::qas_bi3_complex(mesh, eo, qas::Contraction::Half, progress)?,
-                _ => qas::qas_complex(mesh, eo, qas::Contraction::Gradual, progress)?,
-            };
-            Ok((o.complex, o.notes))
-        }
-        name if guided::parse_scheme(name).is_some() => {
-            let scheme = guided::parse_scheme(name).expect("checked");
-            let o = guided::guided_complex(
-                mesh,
-                guided::GuidedComplexOptions {
-                    rings: opts.rings,
-                    cap: opts.fill,
-                    scheme,
-                    fallback,
-                },
-                progress,
-            )?;
-            Ok((o.complex, o.notes))
-        }
-        "catmull-clark" | "cc" => plain(cc::catmull_clark_complex(
-            mesh,
-            cc::CcComplexOptions {
-                rings: opts.rings,
-                fill: opts.fill,
-            },
-            progress,
-        )),
-        "doo-sabin" | "ds" => plain(ds::doo_sabin_complex(mesh, opts, progress)),
-        "doo-sabin-cc" | "ds-cc" => plain(ds::doo_sabin_cc_complex(mesh, opts, progress)),
-        "loop" => plain(loop_patches::loop_complex(mesh, opts, progress)),
-        "pgs" => plain(bi2::pgs_complex(
-            mesh,
-            opts,
-            crate::schemes::bi2::pgs::PgsOptions::default(),
-            progress,
-        )),
-        "pgs-dscc" => plain(bi2::pgs_complex(
-            mesh,
-            opts,
-            crate::schemes::bi2::pgs::PgsOptions { dscc_steps: 2 },
-            progress,
-        )),
-        "polar-bi2" | "polbs" => bi2::polar_complex(mesh, opts, &[], progress),
-        "tps" => bi2::tps_complex(
-            mesh,
-            opts,
-            crate::schemes::bi2::ternary::TernaryRules::TPS,
-            progress,
-        ),
-        "tps-adjustable" => bi2::tps_complex(
-            mesh,
-            opts,
-            crate::schemes::bi2::ternary::TernaryRules::adjustable(
-                crate::analysis::bi2::DEFAULT_E,
-            )?,
-            progress,
-        ),
-        "bi2-mixed" => plain(bi2::mixed_complex(mesh, opts, progress)),
-        "nonbox" | "non-box" => Ok((
-            nonbox::nonbox_mesh_complex(mesh, opts, progress)?,
-            crate::schemes::nonbox::input_notes(scheme, mesh),
-        )),
-        "nonbox-4dir" | "non-box-4dir" => Ok((
-            nonbox::nonbox_4dir_mesh_complex(mesh, opts, progress)?,
-            crate::schemes::nonbox::input_notes(scheme, mesh),
-        )),
-        other => {
-            let names: Vec<&str> = crate::schemes::catalog()
-                .iter()
-                .filter(|s| s.rings)
-                .map(|s| s.name)
-                .collect();
-            Err(crate::error::Error::InvalidArgument(format!(
-                "scheme '{other}' has no exact patch output (available: {})",
-                names.join(", ")
-            )))
-        }
-    }
+    mut progress: impl FnMut(usize),
+) -> Result<(PatchComplex, Vec<String>)> {
+    let mut spec = registry()
+        .lookup(scheme)
+        .map_err(|_| no_patch_output(scheme))?;
+    spec.params.fallback = fallback;
+    let o = build(&spec, mesh, opts, &mut progress)?;
+    Ok((o.complex, o.notes))
 }

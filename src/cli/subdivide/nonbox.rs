@@ -2,10 +2,12 @@
 //! writing refined nets with FCVs and limit meshes with normals. Kept apart from the generic
 //! command so that the non-box schemes' extra data stay out of the other schemes' paths.
 
-use fairsub::io::{MeshFormat, OutputFormat};
-use fairsub::schemes::NonBox;
-use fairsub::schemes::nonbox::{FcvNet, fcv, input_notes, write_fcv_obj};
-use fairsub::{Error, PolyMesh, Result};
+use crate::error::{Error, Result};
+use crate::io::{MeshFormat, OutputFormat};
+use crate::mesh::PolyMesh;
+use crate::schemes::descriptor::ParamKind;
+use crate::schemes::nonbox::{FcvNet, fcv, write_fcv_obj};
+use crate::schemes::{FcvLayout, Scheme, Spec};
 use std::path::{Path, PathBuf};
 
 /// Face-control-vertex options of `fairsub subdivide` (non-box schemes only).
@@ -22,26 +24,17 @@ pub struct FcvArgs {
     pub fcv_file: Option<PathBuf>,
 }
 
-/// Whether `scheme` names a non-box scheme (nets with face control vertices).
-pub fn is_nonbox(scheme: &str) -> bool {
-    matches!(
-        scheme,
-        "nonbox" | "non-box" | "nonbox-4dir" | "non-box-4dir"
-    )
-}
-
 /// Loads the net `arg` for `scheme`. For the non-box schemes an OBJ file keeps the FCVs it
-/// lists (the layout of `fairsub::schemes::nonbox::fcv`) and `--fcv-file` / `--fcv-scale` set
+/// lists (the layout of `crate::schemes::nonbox::fcv`) and `--fcv-file` / `--fcv-scale` set
 /// them otherwise; the result is then a layout mesh (else the plain mesh, whose FCVs are its
 /// barycentres). Other schemes get the plain net, and an error if FCV options were given.
-pub fn load_net(scheme: &str, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
-    if !is_nonbox(scheme) {
-        if o.fcv_scale.is_some() || o.fcv_file.is_some() {
-            return Err(Error::InvalidArgument(format!(
-                "--fcv-scale and --fcv-file set face control vertices, which only the non-box \
-                 schemes (nonbox, nonbox-4dir) have, not '{scheme}'"
-            )));
-        }
+pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
+    // FCV options for other schemes were refused when the options were resolved.
+    if !crate::schemes::registry()
+        .descriptor(spec.id)
+        .params()
+        .contains(&ParamKind::Fcv)
+    {
         return Ok(super::super::load_net(arg)?.mesh);
     }
     let path = Path::new(arg);
@@ -84,21 +77,25 @@ pub fn load_net(scheme: &str, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
 /// with the exact limit normals as `vn` lines) and `nonbox-4dir` its refined triangle mesh at
 /// the limit positions. Prints how the input was read.
 pub fn write_net(
-    scheme: &str,
+    scheme: &dyn Scheme,
     mesh: &PolyMesh,
     levels: usize,
     limit: bool,
     fmt: OutputFormat,
     output: &Path,
 ) -> Result<()> {
-    for n in input_notes(scheme, mesh) {
+    for n in scheme.input_notes(mesh) {
         eprintln!("note: {n}");
     }
-    let quad = matches!(scheme, "nonbox" | "non-box");
     let obj = matches!(fmt, OutputFormat::Mesh(MeshFormat::Obj));
-    let refined = if quad && limit {
-        let net = FcvNet::from_mesh(mesh);
-        let (m, normals) = NonBox::limit_mesh_with_normals(&net, levels)?;
+    let limit_mesh = if limit {
+        scheme.limit_mesh_with_normals(mesh, levels)
+    } else {
+        None
+    };
+    let quad_net = scheme.fcv_layout() == FcvLayout::Quads;
+    let refined = if let Some(r) = limit_mesh {
+        let (m, normals) = r?;
         if obj {
             fcv::write_limit_obj(output, &m, &normals)?;
         } else {
@@ -106,9 +103,9 @@ pub fn write_net(
         }
         m
     } else {
-        let m = super::refine(scheme, mesh, levels, limit)?;
+        let m = super::refine_with(scheme, mesh, levels, limit)?;
         match FcvNet::from_layout_mesh(&m) {
-            Some(net) if quad && !limit && obj => write_fcv_obj(output, &net)?,
+            Some(net) if quad_net && !limit && obj => write_fcv_obj(output, &net)?,
             _ => write_plain(&m, fmt, output)?,
         }
         m
@@ -118,7 +115,7 @@ pub fn write_net(
         refined.num_vertices(),
         refined.num_faces(),
         levels,
-        scheme,
+        scheme.name(),
         if limit { ", limit" } else { "" },
         output.display()
     );
@@ -127,8 +124,8 @@ pub fn write_net(
 
 fn write_plain(m: &PolyMesh, fmt: OutputFormat, output: &Path) -> Result<()> {
     match fmt {
-        OutputFormat::Mesh(mf) => fairsub::io::write_mesh(output, m, mf),
-        OutputFormat::Bv => fairsub::io::write_bv_mesh(output, m),
+        OutputFormat::Mesh(mf) => crate::io::write_mesh(output, m, mf),
+        OutputFormat::Bv => crate::io::write_bv_mesh(output, m),
         OutputFormat::Iges => Err(Error::InvalidArgument(
             "IGES holds patches: use --rings K instead of --levels".into(),
         )),

@@ -23,6 +23,7 @@ use super::{Pgs, PolarBi2, Tps};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
+use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::StencilTable;
 
@@ -104,11 +105,15 @@ fn chosen(mesh: &PolyMesh) -> Result<Box<dyn Scheme>> {
                 kinds.push("poles (PolBS, radial only)");
             }
             Err(Error::Unsupported(format!(
-                "bi2-mixed: this net has {}; no single net refinement holds binary, ternary and \
+                "{}: this net has {}; no single net refinement holds binary, ternary and \
                  radial rules at once (the bi-2 paper, Section 5), so there is no refined net: \
-                 write the exact surface with --rings K, or refine with pgs, tps or polar-bi2 \
+                 write the exact surface with --rings K, or refine with {}, {} or {} \
                  alone",
-                kinds.join(" and ")
+                ids::BI2_MIXED,
+                kinds.join(" and "),
+                ids::PGS,
+                ids::TPS,
+                ids::POLAR_BI2,
             )))
         }
     }
@@ -116,7 +121,7 @@ fn chosen(mesh: &PolyMesh) -> Result<Box<dyn Scheme>> {
 
 impl Scheme for Bi2Mixed {
     fn name(&self) -> &'static str {
-        "bi2-mixed"
+        crate::schemes::registry::ids::BI2_MIXED.name()
     }
 
     /// One step of the net's single kind of scheme (PGS when there is no element); an error

@@ -23,9 +23,13 @@
 //! *piece*); a piece of width `w` is the interval `[-w/2, w/2]` around its own point; its
 //! neighbours' pieces have widths `wl` (left) and `wr` (right).
 
+pub mod descriptor;
+pub mod local;
+pub mod local_scheme;
 pub mod mixed;
 pub mod pgs;
 pub mod polar;
+pub mod surface;
 pub mod ternary;
 
 pub use mixed::Bi2Mixed;

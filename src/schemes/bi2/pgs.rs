@@ -57,6 +57,7 @@ use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::schemes::common::{Outgoing, RowBuf, boundary_neighbors, is_corner};
 use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, refine_dual_with};
+use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -267,7 +268,7 @@ impl Pgs {
                 }
                 s.merged()
             }
-            None => crate::surface::ds::centroid_stencil(mesh, f),
+            None => crate::schemes::doo_sabin::surface::centroid_stencil(mesh, f),
         }
     }
 
@@ -311,7 +312,7 @@ impl Default for PgsPreprocessed {
 
 impl Scheme for PgsPreprocessed {
     fn name(&self) -> &'static str {
-        "pgs-dscc"
+        crate::schemes::registry::ids::PGS_DSCC.name()
     }
 
     /// The first step of the sequence: DS^CC (PGS when no pre-processing is asked for).
@@ -345,11 +346,12 @@ impl Scheme for PgsPreprocessed {
     /// Refused: the limit of a net depends on how many pre-processing steps remain, which the
     /// net does not record.
     fn limit_stencils(&self, _mesh: &PolyMesh) -> Result<StencilTable> {
-        Err(Error::Unsupported(
-            "pgs-dscc limit positions depend on how many DS^CC steps remain; refine with \
-             --levels 2 or more and take the limit of the result with --scheme pgs"
-                .into(),
-        ))
+        Err(Error::Unsupported(format!(
+            "{} limit positions depend on how many DS^CC steps remain; refine with \
+             --levels 2 or more and take the limit of the result with --scheme {}",
+            ids::PGS_DSCC,
+            ids::PGS
+        )))
     }
 }
 
@@ -382,7 +384,7 @@ fn add_corner(mesh: &PolyMesh, h: u32, row: &mut RowBuf) {
 
 impl Scheme for Pgs {
     fn name(&self) -> &'static str {
-        "pgs"
+        crate::schemes::registry::ids::PGS.name()
     }
 
     /// One PGS step: Doo-Sabin topology and boundary rules, rule (4) at every facet with a
@@ -417,8 +419,9 @@ impl Scheme for Pgs {
             let k = hs.len();
             if k < 3 {
                 return Err(Error::Unsupported(format!(
-                    "vertex {v} is an interior vertex of valence 2, which has no closed-form pgs \
-                     limit point; refine the net once (the refined net has no such vertex)"
+                    "vertex {v} is an interior vertex of valence 2, which has no closed-form {} \
+                     limit point; refine the net once (the refined net has no such vertex)",
+                    ids::PGS
                 )));
             }
             let corner = |h: u32| Pgs::corner_stencil(mesh, h);

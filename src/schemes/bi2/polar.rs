@@ -32,11 +32,12 @@
 
 use crate::error::{Error, Result};
 use crate::geom::Point;
+use crate::mesh::Element;
 use crate::mesh::PolyMesh;
 use crate::schemes::common::Outgoing;
+use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme, finish_refinement};
 use crate::stencil::{Stencil, StencilTable};
-use crate::surface::Element;
 
 /// `alpha` of (12).
 pub const ALPHA: f64 = 0.25;
@@ -205,8 +206,10 @@ pub enum EdgeKind {
 pub fn edge_kinds(mesh: &PolyMesh, poles: &[u32]) -> Result<Vec<EdgeKind>> {
     let not_polar = |what: String| {
         Error::Unsupported(format!(
-            "{what}: polar-bi2 refines polar layouts (poles with fans of triangles and rings of \
-             quads around them); write the exact surface of other nets with bi2-mixed --rings K"
+            "{what}: {} refines polar layouts (poles with fans of triangles and rings of \
+             quads around them); write the exact surface of other nets with {} --rings K",
+            ids::POLAR_BI2,
+            ids::BI2_MIXED
         ))
     };
     if poles.is_empty() {
@@ -375,7 +378,8 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
             return Err(Error::Unsupported(format!(
                 "vertex {v} has valence {k}; in a polar layout every vertex but the poles has \
                  valence 4 (3 on a circular boundary); write the exact surface of other nets \
-                 with bi2-mixed --rings K"
+                 with {} --rings K",
+                ids::BI2_MIXED
             )));
         }
     }
@@ -505,7 +509,7 @@ fn ring_point_stencil(mesh: &PolyMesh, p: usize, v: usize) -> Result<Stencil> {
 
 impl Scheme for PolarBi2 {
     fn name(&self) -> &'static str {
-        "polar-bi2"
+        crate::schemes::registry::ids::POLAR_BI2.name()
     }
 
     /// Converts caps to poles (no-op on a polar layout), then one radial step; a net without
@@ -596,11 +600,13 @@ impl Scheme for PolarBi2 {
                 table.push(s.merged());
                 continue;
             }
-            let Some(coef) = crate::surface::ds::regular_vertex_patch(mesh, v) else {
+            let Some(coef) = crate::schemes::doo_sabin::surface::regular_vertex_patch(mesh, v)
+            else {
                 return Err(Error::Unsupported(format!(
                     "vertex {v} is not in a polar layout (it has no regular bi-2 patch and is not \
-                     next to a pole): polar-bi2 has no limit position for it; write the exact \
-                     surface with --rings K"
+                     next to a pole): {} has no limit position for it; write the exact \
+                     surface with --rings K",
+                    ids::POLAR_BI2
                 )));
             };
             // The patch's centre value: Bernstein weights (1/4, 1/2, 1/4) in both directions.

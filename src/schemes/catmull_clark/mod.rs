@@ -25,6 +25,12 @@
 //! refinement to several levels ([`CatmullClark::refine_uniform`]) keeps no tables, drops each
 //! parent level as soon as its child exists, and does not build the last level's half-edges.
 
+pub mod descriptor;
+pub mod local;
+pub mod regular;
+pub mod surface;
+pub use descriptor::DESCRIPTOR;
+
 use super::common::check_child_size;
 use super::{Refinement, Scheme};
 use crate::error::Result;
@@ -169,11 +175,14 @@ const BLOCK: usize = 4096;
 /// Fails when a child net would not fit fairsub's 32-bit indices.
 fn check_sizes(mesh: &PolyMesh) -> Result<()> {
     check_child_size(
-        "catmull-clark",
+        crate::schemes::registry::ids::CATMULL_CLARK.name(),
         mesh.num_vertices() + mesh.num_edges() + mesh.num_faces(),
     )?;
     // Child half-edges (4 per parent corner) are indexed by u32 below NONE.
-    check_child_size("catmull-clark", 4 * mesh.num_halfedges() + 1)
+    check_child_size(
+        crate::schemes::registry::ids::CATMULL_CLARK.name(),
+        4 * mesh.num_halfedges() + 1,
+    )
 }
 
 /// Child corners of one step from the parent's arrays: child face `h` is
@@ -524,7 +533,6 @@ impl CatmullClark {
         {
             return None;
         }
-        let diag = |h: u32| mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize;
         if mesh.is_boundary_vertex(v) {
             let nb = mesh.vertex_neighbors(v);
             let (a, b) = (nb[0] as usize, *nb.last()? as usize);
@@ -538,38 +546,57 @@ impl CatmullClark {
                 }
                 3 => {
                     // Regular boundary vertex: nb = [a, c, b] counter-clockwise.
-                    let c = nb[1] as usize;
-                    let d1 = diag(hs[0]);
-                    let d2 = diag(hs[1]);
                     along.add(a, 1.0).add(b, -1.0);
-                    across
-                        .add(d1, 1.0)
-                        .add(c, 4.0)
-                        .add(d2, 1.0)
-                        .add(a, -1.0)
-                        .add(v, -4.0)
-                        .add(b, -1.0);
+                    across = Self::boundary_cross_stencil(mesh, v, &hs, &nb);
                 }
                 _ => return None,
             }
             return Some((along.merged(), across.merged()));
         }
-        let n = hs.len();
-        let nf = n as f64;
+        Some((
+            Self::eigen_tangent(mesh, &hs, 0).merged(),
+            Self::eigen_tangent(mesh, &hs, 1).merged(),
+        ))
+    }
+
+    /// Halstead et al.'s eigenvector tangent mask at an interior vertex of valence `n` with only
+    /// quads around it (`hs` its outgoing half-edges), phased to its `j`-th edge:
+    /// `sum_i a_n cos(2 pi (i - j) / n) e_i + (cos(2 pi (i - j) / n) + cos(2 pi (i + 1 - j) / n)) f_i`
+    /// over the edge neighbours `e_i` and face neighbours `f_i`, `a_n = 1 + c + cos(pi / n)
+    /// sqrt(2 (9 + c))`. It points along the limit tangent of edge `j`; divided by `3 n` it is the
+    /// derivative along that edge in its unit parameter (exact for `n = 4`).
+    pub fn eigen_tangent(mesh: &PolyMesh, hs: &[u32], j: usize) -> Stencil {
+        let nf = hs.len() as f64;
         let c = (2.0 * PI / nf).cos();
         let a_n = 1.0 + c + (PI / nf).cos() * (2.0 * (9.0 + c)).sqrt();
-        let mut t1 = Stencil::new();
-        let mut t2 = Stencil::new();
-        for (j, &h) in hs.iter().enumerate() {
-            let cj = |k: isize| (2.0 * PI * k as f64 / nf).cos();
-            let (e, f) = (mesh.he_to(h) as usize, diag(h));
-            let j = j as isize;
-            t1.add(e, a_n * cj(j));
-            t1.add(f, cj(j) + cj(j + 1));
-            t2.add(e, a_n * cj(j - 1));
-            t2.add(f, cj(j - 1) + cj(j));
+        let j = j as isize;
+        let cj = |k: isize| (2.0 * PI * (k - j) as f64 / nf).cos();
+        let diag = |h: u32| mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize;
+        let mut t = Stencil::new();
+        for (i, &h) in hs.iter().enumerate() {
+            let i = i as isize;
+            t.add(mesh.he_to(h) as usize, a_n * cj(i));
+            t.add(diag(h), cj(i) + cj(i + 1));
         }
-        Some((t1.merged(), t2.merged()))
+        t
+    }
+
+    /// Six times the derivative across the boundary, in the unit edge parameter, at a regular
+    /// boundary vertex `v` (two quads; `hs` its outgoing half-edges, `nb = [a, c, b]` its
+    /// neighbours counter-clockwise): `d1 + 4 c + d2 - a - 4 v - b`, the exact derivative of the
+    /// regular boundary patch with ghost points mirrored across the boundary.
+    pub fn boundary_cross_stencil(mesh: &PolyMesh, v: usize, hs: &[u32], nb: &[u32]) -> Stencil {
+        let diag = |h: u32| mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize;
+        let (a, c, b) = (nb[0] as usize, nb[1] as usize, nb[2] as usize);
+        let mut across = Stencil::new();
+        across
+            .add(diag(hs[0]), 1.0)
+            .add(c, 4.0)
+            .add(diag(hs[1]), 1.0)
+            .add(a, -1.0)
+            .add(v, -4.0)
+            .add(b, -1.0);
+        across
     }
 
     /// Unit limit normals of every vertex (outward for counter-clockwise faces). Vertices whose
@@ -620,7 +647,7 @@ impl CatmullClark {
 
 impl Scheme for CatmullClark {
     fn name(&self) -> &'static str {
-        "catmull-clark"
+        crate::schemes::registry::ids::CATMULL_CLARK.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

@@ -69,6 +69,11 @@
 //! with neighbours `u`, `w` on the boundary, the boundary curve's point `(u + 6v + w) / 8`; of a
 //! corner, the corner.
 
+pub mod descriptor;
+pub mod local;
+pub mod surface;
+pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};
+
 use crate::error::{Error, Result};
 use crate::mesh::{NONE, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
@@ -121,7 +126,7 @@ impl DooSabinCc {
 
 impl Scheme for DooSabin {
     fn name(&self) -> &'static str {
-        "doo-sabin"
+        crate::schemes::registry::ids::DOO_SABIN.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
@@ -136,7 +141,7 @@ impl Scheme for DooSabin {
 
 impl Scheme for DooSabinCc {
     fn name(&self) -> &'static str {
-        "doo-sabin-cc"
+        crate::schemes::registry::ids::DOO_SABIN_CC.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

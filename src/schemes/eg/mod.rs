@@ -31,6 +31,11 @@
 //! * **Ring output (6)**: three bi-4 patches per sector and step, each from the 5 x 5 new nodes of
 //!   its cell by B-to-BB conversion (the shared conversion tables of [`crate::bezier::convert`]).
 
+pub mod descriptor;
+pub mod local;
+pub mod surface;
+pub use descriptor::DESCRIPTOR;
+
 pub mod tables;
 
 use crate::error::{Error, Result};
@@ -495,23 +500,18 @@ pub fn from_cnet(n: usize) -> Result<StencilTable> {
 /// The limit point `c0` from a c-net (3): Catmull-Clark's limit for `n > 4`, the corrected
 /// weights `11/32, 1/6, 5/96` for `n = 3` (over the c-net layout of [`from_cnet`]).
 pub fn c0_from_cnet(n: usize) -> Stencil {
-    let nf = n as f64;
-    let (we, w6, w5) = if n == 3 {
-        (11.0 / 32.0, 1.0 / 6.0, 5.0 / 96.0)
-    } else {
-        (
-            nf / (nf + 5.0),
-            4.0 / (nf * (nf + 5.0)),
-            1.0 / (nf * (nf + 5.0)),
-        )
-    };
-    let mut st = Stencil::new();
-    st.add(0, we);
-    for s in 0..n {
-        st.add(1 + 6 * s, w6); // edge neighbour (1, 0)
-        st.add(1 + 6 * s + 1, w5); // face neighbour (1, 1)
+    if n == 3 {
+        let mut st = Stencil::new();
+        st.add(0, 11.0 / 32.0);
+        for s in 0..n {
+            st.add(1 + 6 * s, 1.0 / 6.0); // edge neighbour (1, 0)
+            st.add(1 + 6 * s + 1, 5.0 / 96.0); // face neighbour (1, 1)
+        }
+        return st.merged();
     }
-    st.merged()
+    // Catmull-Clark's own limit rule on the canonical c-net, whose numbering is [`from_cnet`]'s.
+    let net = crate::mesh::nets::cnet(n, crate::mesh::nets::CnetShape::Convex, 2);
+    crate::schemes::CatmullClark::limit_stencil(&net, 0)
 }
 
 /// The limit point `c0` from a bare d-net (4), as weights of the d-net sources (index 0 unused).

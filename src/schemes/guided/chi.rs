@@ -15,12 +15,9 @@
 //!   [`crate::schemes::qas::chi`], valences 5..10), lambda = 1/2; the paper's Section 6.3 uses the
 //!   map of [KP09], which is not in the corpus and has the same role.
 
-use crate::analysis::{catmull_clark_lambda, local};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
-use crate::mesh::nets::{self, CnetShape};
-use crate::schemes::CatmullClark;
+use crate::schemes::catmull_clark::catmull_clark_lambda;
 use std::f64::consts::PI;
 
 /// Which characteristic map the rings are sampled through.
@@ -76,64 +73,11 @@ impl CharRing {
     }
 }
 
-/// Catmull-Clark's characteristic ring.
+/// Catmull-Clark's characteristic ring: sector 0 of the one ring builder
+/// ([`crate::schemes::catmull_clark::local::characteristic_sector`]), normalised below.
 fn catmull_clark(n: usize) -> Result<CharRing> {
-    let lm = local::catmull_clark(n)?;
-    let (pts, _) = lm.characteristic_points()?;
-    let mut net = nets::cnet(n, CnetShape::Convex, 2);
-    net.set_positions(pts);
-    let st = CatmullClark::stencils(&net);
-    let (fs, cn) = CatmullClark::child_topology(&net);
-    let child = PolyMesh::from_refinement(st.apply(net.positions()), fs, cn)?;
-    let h0 = net.vertex_halfedge(0);
-    let idx = child
-        .cnet_indices_from(4 * h0, 3)
-        .ok_or_else(|| Error::Unsupported("refined characteristic net is not regular".into()))?;
-    // Level-1 chart point (i, j) of sector s, normalised into its owning sector.
-    let point = |s: usize, i: i32, j: i32| -> [f64; 3] {
-        let (mut s, mut i, mut j) = (s, i, j);
-        for _ in 0..4 {
-            if i == 0 && j == 0 {
-                return child.position(idx[0] as usize);
-            }
-            if i >= 1 && j >= 0 {
-                break;
-            }
-            if j < 0 {
-                (s, i, j) = (s + n - 1, -j, i);
-            } else if i == 0 {
-                (s, i, j) = (s + 1, j, 0);
-            } else {
-                (s, i, j) = (s + 1, j, -i);
-            }
-        }
-        let k = 1 + (s % n) * 12 + (i as usize - 1) * 4 + j as usize;
-        child.position(idx[k] as usize)
-    };
-    let b = [
-        [1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0, 0.0],
-        [0.0, 2.0 / 3.0, 1.0 / 3.0, 0.0],
-        [0.0, 1.0 / 3.0, 2.0 / 3.0, 0.0],
-        [0.0, 1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0],
-    ];
-    let cell = |ci: i32, cj: i32| -> BezierPatch {
-        BezierPatch::from_fn(3, 3, |x, y| {
-            let mut q = [0.0; 3];
-            for p in 0..4 {
-                for r in 0..4 {
-                    let w = b[x][p] * b[y][r];
-                    if w != 0.0 {
-                        let v = point(0, ci - 1 + p as i32, cj - 1 + r as i32);
-                        for d in 0..2 {
-                            q[d] += w * v[d];
-                        }
-                    }
-                }
-            }
-            q
-        })
-    };
-    let mut sector = [cell(1, 0), cell(1, 1), cell(0, 1)];
+    let (cells, _) = crate::schemes::catmull_clark::local::characteristic_sector(n)?;
+    let mut sector = cells;
     // Normalise: outer ray corner of A at e_0, sector counter-clockwise.
     let q = sector[0].eval(1.0, 0.0);
     let (r, th) = ((q[0] * q[0] + q[1] * q[1]).sqrt(), q[1].atan2(q[0]));

@@ -10,7 +10,10 @@
 pub mod bern;
 pub mod cap;
 pub mod chi;
+pub mod descriptor;
 pub mod guide;
 pub mod jets;
+pub mod local;
 pub mod macro_patch;
 pub mod rings;
+pub mod surface;

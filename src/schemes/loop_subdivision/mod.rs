@@ -32,6 +32,11 @@
 //! becomes child faces `4f .. 4f + 3` = `(a, ab, ca)`, `(b, bc, ab)`, `(c, ca, bc)`,
 //! `(ab, bc, ca)`, oriented like the parent.
 
+pub mod descriptor;
+pub mod local;
+pub mod surface;
+pub use descriptor::DESCRIPTOR;
+
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross, normalize};
 use crate::mesh::{MeshParts, MeshView, NONE, PolyMesh, Topology, number_edges};
@@ -157,13 +162,22 @@ impl Loop {
 
 /// Loop needs a pure triangle net: the first face that is not a triangle is named.
 fn check_triangles(mesh: &PolyMesh) -> Result<()> {
+    require_triangles(mesh, "Loop subdivision needs")
+}
+
+/// The error naming the first face of `mesh` that is not a triangle (`what` says who needs
+/// triangles: "Loop subdivision needs", "Loop patches need").
+pub(crate) fn require_triangles(mesh: &PolyMesh, what: &str) -> Result<()> {
     match (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
         None => Ok(()),
-        Some(f) => Err(Error::Unsupported(format!(
-            "Loop subdivision needs a triangle net, but face {f} has {} corners; triangulate the \
-             net or use catmull-clark",
-            mesh.face_size(f)
-        ))),
+        Some(f) => Err(Error::UnsupportedFace {
+            face: f,
+            msg: format!(
+                "{what} a triangle net, but face {f} has {} corners; triangulate the net or use {}",
+                mesh.face_size(f),
+                crate::schemes::registry::ids::CATMULL_CLARK
+            ),
+        }),
     }
 }
 
@@ -431,8 +445,14 @@ impl Loop {
         check_triangles(mesh)?;
         use super::common::{OneShotStep, one_shot_levels};
         let check = |p: &PolyMesh| {
-            check_child_size("loop", p.num_vertices() + p.num_edges())?;
-            check_child_size("loop", 4 * p.num_halfedges() + 1)
+            check_child_size(
+                crate::schemes::registry::ids::LOOP.name(),
+                p.num_vertices() + p.num_edges(),
+            )?;
+            check_child_size(
+                crate::schemes::registry::ids::LOOP.name(),
+                4 * p.num_halfedges() + 1,
+            )
         };
         one_shot_levels(mesh, levels, &mut progress, check, |s| match s {
             OneShotStep::Middle(p) => Self::child_mesh(p, Self::refine_points(p, p.positions())?),
@@ -459,7 +479,7 @@ impl Loop {
 
 impl Scheme for Loop {
     fn name(&self) -> &'static str {
-        "loop"
+        crate::schemes::registry::ids::LOOP.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

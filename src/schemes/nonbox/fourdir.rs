@@ -35,6 +35,7 @@
 use super::{FcvNet, NonBox, fcv_insertion, layout_vertex_count};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
+use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -84,8 +85,9 @@ pub fn classify_counted(mesh: &PolyMesh) -> Result<(Vec<bool>, usize)> {
     if let Some(f) = (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
         return Err(Error::Unsupported(format!(
             "face {f} has {} corners: a quasi-four-directional mesh has only triangles (use \
-             --scheme nonbox for polygon meshes)",
-            mesh.face_size(f)
+             --scheme {} for polygon meshes)",
+            mesh.face_size(f),
+            ids::NONBOX
         )));
     }
     let nf = mesh.num_faces();
@@ -307,7 +309,8 @@ fn trailing_type2(t: &[bool]) -> bool {
 pub fn describe_input(mesh: &PolyMesh) -> String {
     if let Some(nv) = layout_vertex_count(mesh) {
         return format!(
-            "nonbox-4dir: polygon net with {} FCVs (layout mesh), triangulated around them",
+            "{}: polygon net with {} FCVs (layout mesh), triangulated around them",
+            ids::NONBOX_4DIR,
             mesh.num_vertices() - nv
         );
     }
@@ -316,8 +319,9 @@ pub fn describe_input(mesh: &PolyMesh) -> String {
             classify_counted(mesh).and_then(|(t, n)| FourDirNet::new(mesh.clone(), t).map(|_| n));
         return match (classify(mesh), typed) {
             (Ok(t), Ok(n)) => format!(
-                "nonbox-4dir: read as a quasi-four-directional mesh with {} type-2 vertices \
+                "{}: read as a quasi-four-directional mesh with {} type-2 vertices \
                  (FCVs){}",
+                ids::NONBOX_4DIR,
                 t.iter().filter(|&&x| x).count(),
                 if n == 1 {
                     String::new()
@@ -330,18 +334,22 @@ pub fn describe_input(mesh: &PolyMesh) -> String {
                     format!(
                         "; the topology admits {n} type assignments, fairsub took the one with \
                          the most type-2 vertices (give the FCVs as the last vertices to fix \
-                         them, or use --scheme nonbox to treat the triangles as polygons)"
+                         them, or use --scheme {} to treat the triangles as polygons)",
+                        ids::NONBOX
                     )
                 }
             ),
             (Err(e), _) | (_, Err(e)) => format!(
-                "nonbox-4dir: not quasi-four-directional ({e}); the triangles are polygons with \
-                 their barycentres as FCVs"
+                "{}: not quasi-four-directional ({e}); the triangles are polygons with \
+                 their barycentres as FCVs",
+                ids::NONBOX_4DIR
             ),
         };
     }
-    "nonbox-4dir: polygon net with its face barycentres as FCVs, triangulated around them"
-        .to_string()
+    format!(
+        "{}: polygon net with its face barycentres as FCVs, triangulated around them",
+        ids::NONBOX_4DIR
+    )
 }
 
 /// Re-indexes a table whose rows and sources are points of an [`FcvNet`] to the vertices of the
@@ -389,8 +397,16 @@ impl NonBox4Dir {
 }
 
 impl Scheme for NonBox4Dir {
+    fn fcv_layout(&self) -> crate::schemes::FcvLayout {
+        crate::schemes::FcvLayout::Triangles
+    }
+
+    fn input_notes(&self, mesh: &PolyMesh) -> Vec<String> {
+        super::input_notes(true, mesh)
+    }
+
     fn name(&self) -> &'static str {
-        "nonbox-4dir"
+        crate::schemes::registry::ids::NONBOX_4DIR.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

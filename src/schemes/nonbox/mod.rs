@@ -77,6 +77,11 @@
 //! limit at an FCV's parameter point (the face centre) is the limit of the face vertex it
 //! becomes after one step.
 
+pub mod descriptor;
+pub mod local;
+pub mod surface;
+pub use descriptor::{DESCRIPTOR, DESCRIPTOR_4DIR};
+
 pub mod bezier;
 pub mod fcv;
 pub mod fourdir;
@@ -595,14 +600,14 @@ impl NonBox {
 /// where the FCVs come from, how a triangle mesh was typed, and whether the reconstructed
 /// boundary NFCV rule is in use (it is fairsub's, not the paper's; see the [module](self)
 /// documentation). Empty for a closed polygon mesh under `nonbox`.
-pub fn input_notes(scheme: &str, mesh: &PolyMesh) -> Vec<String> {
+pub fn input_notes(four_dir: bool, mesh: &PolyMesh) -> Vec<String> {
     let mut notes = Vec::new();
-    let four_dir = matches!(scheme, "nonbox-4dir" | "non-box-4dir");
     if four_dir {
         notes.push(fourdir::describe_input(mesh));
     } else if let Some(nv) = layout_vertex_count(mesh) {
         notes.push(format!(
-            "nonbox: the last {} vertices are the FCVs of the {} faces (layout mesh)",
+            "{}: the last {} vertices are the FCVs of the {} faces (layout mesh)",
+            crate::schemes::registry::ids::NONBOX,
             mesh.num_vertices() - nv,
             mesh.num_faces()
         ));
@@ -619,8 +624,27 @@ pub fn input_notes(scheme: &str, mesh: &PolyMesh) -> Vec<String> {
 }
 
 impl Scheme for NonBox {
+    fn fcv_layout(&self) -> crate::schemes::FcvLayout {
+        crate::schemes::FcvLayout::Quads
+    }
+
+    fn input_notes(&self, mesh: &PolyMesh) -> Vec<String> {
+        input_notes(false, mesh)
+    }
+
+    fn limit_mesh_with_normals(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+    ) -> Option<Result<(PolyMesh, Vec<Point>)>> {
+        Some(NonBox::limit_mesh_with_normals(
+            &FcvNet::from_mesh(mesh),
+            levels,
+        ))
+    }
+
     fn name(&self) -> &'static str {
-        "nonbox"
+        crate::schemes::registry::ids::NONBOX.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

@@ -28,6 +28,11 @@
 //! * `q~ = S q` by (8), with `lambda = 1/2` (QAS+) or another `lambda` (the accelerated variants
 //!   keep the tables and change only `S`, as the paper's Section 7 describes).
 
+pub mod descriptor;
+pub mod local;
+pub mod surface;
+pub use descriptor::{DESCRIPTOR, DESCRIPTOR_04, DESCRIPTOR_05_04, DESCRIPTOR_BI3};
+
 pub mod bi3;
 pub mod chi;
 pub mod tables;

@@ -1,20 +1,21 @@
 //! QAS+ surfaces of whole meshes: bi-3 patches on regular faces and a QAS+^4 cap of `K` bi-4
 //! rings at every extraordinary vertex of valence 5, 6 or 7, on the machinery of EG caps
-//! ([`super::eg`]: the same d-net, local Catmull-Clark step, fill and fallback).
+//! ([`crate::schemes::eg::surface`]: the same d-net, local Catmull-Clark step, fill and fallback).
 //!
 //! Valence 3 uses EG's rules (QAS keeps the earlier QAS paper's rules there, which are not in the
 //! corpus); other valences fall back to Catmull-Clark or stop with an error, as the user chooses.
 //! The initial quadratic expansion is fairsub's `qas-fit` ([`crate::schemes::qas::fit_stencils`]).
 
-use super::eg::{CapOutput, DnetRules, EgOptions, EgRulesProvider, dnet_complex};
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::mesh::PolyMesh;
+use crate::host::SurfaceOutput;
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::eg::surface::{DnetRules, EgOptions, EgRulesProvider, dnet_complex};
 use crate::schemes::eg::{Eg, EgStep};
 use crate::schemes::qas::QSpec;
 use crate::schemes::qas::{self, Qas};
+use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
-use crate::surface::Element;
 use std::collections::BTreeMap;
 
 /// The contraction used by a QAS variant at ring `k` (0-based).
@@ -50,12 +51,12 @@ struct QasRulesProvider {
 
 impl DnetRules for QasRulesProvider {
     fn primary(&self) -> &'static str {
-        "qas-plus"
+        ids::QAS_PLUS.name()
     }
 
     fn rules_name(&self, n: usize) -> Option<&'static str> {
         if qas::tables::COMPLETE_VALENCES.contains(&n) {
-            Some("qas-plus")
+            Some(ids::QAS_PLUS.name())
         } else {
             EgRulesProvider.rules_name(n)
         }
@@ -87,7 +88,8 @@ impl DnetRules for QasRulesProvider {
 
     fn no_rules(&self, n: usize) -> String {
         format!(
-            "valence {n}: QAS+ has published rules for valences 5, 6, 7 (and EG's for 3); use --fallback catmull-clark"
+            "valence {n}: QAS+ has published rules for valences 5, 6, 7 (and EG's for 3); use --fallback {}",
+            ids::CATMULL_CLARK
         )
     }
 
@@ -138,7 +140,7 @@ pub fn qas_complex(
     opts: EgOptions,
     contraction: Contraction,
     progress: impl FnMut(usize),
-) -> Result<CapOutput> {
+) -> Result<SurfaceOutput> {
     qas_complex_with(mesh, opts, contraction, BTreeMap::new(), progress)
 }
 
@@ -149,7 +151,7 @@ pub fn qas_bi3_complex(
     opts: EgOptions,
     contraction: Contraction,
     progress: impl FnMut(usize),
-) -> Result<CapOutput> {
+) -> Result<SurfaceOutput> {
     dnet_complex(
         &QasRulesProvider {
             contraction,
@@ -165,7 +167,7 @@ pub fn qas_bi3_complex(
 /// Like [`qas_complex`], with user-given expansions per input vertex
 /// ([`crate::schemes::qas::parse_q_file`]): given coefficients replace those of `qas-fit` and the
 /// result must be of the declared kind (C^2, C^1 or C^1-C^0), else an error names the vertex,
-/// sector and coefficient. Sectors are numbered as in [`PolyMesh::cnet_indices`] at the level where
+/// sector and coefficient. Sectors are numbered as in [`crate::mesh::PolyMesh::cnet_indices`] at the level where
 /// the cap is made.
 pub fn qas_complex_with(
     mesh: &PolyMesh,
@@ -173,7 +175,7 @@ pub fn qas_complex_with(
     contraction: Contraction,
     overrides: BTreeMap<u32, QSpec>,
     progress: impl FnMut(usize),
-) -> Result<CapOutput> {
+) -> Result<SurfaceOutput> {
     dnet_complex(
         &QasRulesProvider {
             contraction,

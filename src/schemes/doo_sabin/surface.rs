@@ -67,16 +67,16 @@
 //! point-augmented scheme PGS ([`crate::schemes::bi2::pgs`]) reuses it unchanged through
 //! [`dual_complex_with`]: its surfaces are laid out exactly like Doo-Sabin's, patch for patch.
 
-use super::adaptive::{Info, Tag, input_vertex_info, provenance};
-use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use super::{DooSabin, DooSabinCc, boundary_edge_point_stencil, corner_point_stencil};
 use crate::bezier::BezierPatch;
+use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::convert::biquadratic_bspline_stencils;
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::mesh::PolyMesh;
-use crate::schemes::doo_sabin::{
-    DooSabin, DooSabinCc, boundary_edge_point_stencil, corner_point_stencil,
-};
+use crate::host::ComplexOptions;
+use crate::host::adaptive::{self, AdaptiveRules, Info, Tag, input_vertex_info};
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::registry::ids;
 use crate::stencil::{Stencil, StencilTable};
 
 /// The Doo-Sabin surface of `mesh` as a patch complex: bi-2 patches on regular vertices,
@@ -97,7 +97,7 @@ pub fn doo_sabin_complex(
         corner: &corner,
         facet_limit: &centroid_stencil,
     };
-    dual_complex_with(mesh, opts, &rules, "doo-sabin", progress)
+    dual_complex_with(mesh, opts, &rules, ids::DOO_SABIN.name(), progress)
 }
 
 /// The DS^CC surface of `mesh` as a patch complex, laid out exactly like
@@ -116,7 +116,7 @@ pub fn doo_sabin_cc_complex(
         corner: &corner,
         facet_limit: &centroid_stencil,
     };
-    dual_complex_with(mesh, opts, &rules, "doo-sabin-cc", progress)
+    dual_complex_with(mesh, opts, &rules, ids::DOO_SABIN_CC.name(), progress)
 }
 
 /// The rules of a dual (vertex-splitting) bi-2 scheme, as the adaptive refinement of this
@@ -169,7 +169,7 @@ pub fn dual_complex_with(
 }
 
 /// One level of the adaptive refinement.
-struct Level {
+pub struct Level {
     mesh: PolyMesh,
     info: Vec<Info>,
     /// Input element of every non-quad face.
@@ -185,64 +185,96 @@ fn dual_complex(
     name: &str,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    for v in 0..mesh.num_vertices() {
-        if !mesh.is_boundary_vertex(v) && mesh.valence(v) < 3 {
-            return Err(Error::Unsupported(format!(
-                "vertex {v} is an interior vertex of valence {}, which {name} patches do not \
-                 take; refine the net once (fairsub subdivide --scheme {name} --levels 1) and use \
-                 the refined net",
-                mesh.valence(v)
-            )));
+    adaptive::run(&DualHost { rules, name }, mesh, opts, &mut progress)
+}
+
+/// A dual scheme's rules for the adaptive loop: cells are vertices (each regular vertex is one
+/// bi-2 patch).
+struct DualHost<'a, 'b> {
+    rules: &'a DualRules<'b>,
+    name: &'a str,
+}
+
+impl AdaptiveRules for DualHost<'_, '_> {
+    type Level = Level;
+    type Curves = ();
+
+    fn start(&self, mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
+        let name = self.name;
+        for v in 0..mesh.num_vertices() {
+            if !mesh.is_boundary_vertex(v) && mesh.valence(v) < 3 {
+                return Err(Error::Unsupported(format!(
+                    "vertex {v} is an interior vertex of valence {}, which {name} patches do not \
+                     take; refine the net once (fairsub subdivide --scheme {name} --levels 1) and use \
+                     the refined net",
+                    mesh.valence(v)
+                )));
+            }
         }
-    }
-    // An input vertex's origin names the V-face of level 1.
-    let info = input_vertex_info(mesh.num_vertices());
-    let face_origin = (0..mesh.num_faces())
-        .map(|f| (mesh.face_size(f) != 4).then_some(Element::Face(f as u32)))
-        .collect();
-    let active = (0..mesh.num_vertices() as u32)
-        .map(|v| {
-            let input_face = mesh.vertex_faces(v as usize).first().copied().unwrap_or(0);
-            (
-                v,
-                Tag {
-                    element: None,
-                    sector: 0,
-                    input_face,
-                },
-            )
+        // An input vertex's origin names the V-face of level 1.
+        let info = input_vertex_info(mesh.num_vertices());
+        let face_origin = (0..mesh.num_faces())
+            .map(|f| (mesh.face_size(f) != 4).then_some(Element::Face(f as u32)))
+            .collect();
+        let active = (0..mesh.num_vertices() as u32)
+            .map(|v| {
+                let input_face = mesh.vertex_faces(v as usize).first().copied().unwrap_or(0);
+                (
+                    v,
+                    Tag {
+                        element: None,
+                        sector: 0,
+                        input_face,
+                    },
+                )
+            })
+            .collect();
+        Ok(Level {
+            mesh: mesh.clone(),
+            info,
+            face_origin,
+            active,
         })
-        .collect();
-    let mut level = Level {
-        mesh: mesh.clone(),
-        info,
-        face_origin,
-        active,
-    };
-    let mut out = PatchComplex::new();
-    for l in 0..=opts.rings {
-        let mut marked = Vec::new();
-        for &(v, tag) in &level.active {
-            match trusted_patch(&level, v as usize) {
-                Some(p) => {
-                    out.push(p, provenance(l, tag));
-                }
-                None => marked.push((v, retag(&level, v as usize, tag, l == 0))),
-            }
-        }
-        if marked.is_empty() {
-            break;
-        }
-        if l == opts.rings {
-            if opts.fill {
-                fill(&level, &marked, rules, &mut out)?;
-            }
-            break;
-        }
-        level = refine_around(&level, &marked, rules)?;
-        progress(l + 1);
     }
-    Ok(out)
+
+    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
+        &level.active
+    }
+
+    fn emit(
+        &self,
+        level: &Level,
+        v: u32,
+        prov: Provenance,
+        _curves: &mut (),
+        out: &mut PatchComplex,
+    ) -> bool {
+        match trusted_patch(level, v as usize) {
+            Some(p) => {
+                out.push(p, prov);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn retag(&self, level: &Level, v: u32, tag: Tag, l: usize) -> Tag {
+        retag(level, v as usize, tag, l == 0)
+    }
+
+    fn fill(
+        &self,
+        level: &Level,
+        marked: &[(u32, Tag)],
+        _curves: &mut (),
+        out: &mut PatchComplex,
+    ) -> Result<()> {
+        fill(level, marked, self.rules, out)
+    }
+
+    fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+        refine_around(level, marked, self.rules)
+    }
 }
 
 /// The 3x3 net of a vertex as vertex indices (`net[k][l]`, `k` along `u`), phantoms being

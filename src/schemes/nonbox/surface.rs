@@ -32,27 +32,25 @@
 //! The fill is C^0 to the last ring and between fill patches, not G^1 across its edges; with
 //! `K` rings it covers a region of size about `lambda^K`.
 
-use super::adaptive::{
-    Curves, Info, Tag, child_active, edge_curve, input_active, input_vertex_info, provenance,
-    record_edge, retag_by_corners, select_around,
-};
-use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use super::bezier::{CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor};
+use super::{FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil};
 use crate::bezier::BezierPatch;
+use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::convert::cubic_bspline_to_bezier;
 use crate::error::Result;
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
-use crate::schemes::nonbox::bezier::{
-    CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor,
+use crate::host::ComplexOptions;
+use crate::host::adaptive::{
+    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active,
+    input_vertex_info, record_edge, retag_by_corners, select_around,
 };
-use crate::schemes::nonbox::{
-    FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil,
-};
+use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-struct Level {
+/// One level of the adaptive refinement: the net with its FCVs.
+pub struct Level {
     net: FcvNet,
     points: Vec<Point>,
     info: Vec<Info>,
@@ -69,52 +67,85 @@ pub fn nonbox_complex(
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    let m = &net.mesh;
-    let mut info = input_vertex_info(m.num_vertices());
-    info.extend((0..m.num_faces()).map(|_| Info {
-        pos_ok: true,
-        fan_ok: true,
-        origin: None,
-    }));
-    let active = input_active(m.num_faces());
-    let mut level = Level {
-        points: net.points(),
-        net: net.clone(),
-        info,
-        active,
-    };
-    let mut out = PatchComplex::new();
-    for l in 0.. {
-        let mut marked = Vec::new();
-        let mut curves: Curves<4> = HashMap::new();
-        for &(f, tag) in &level.active {
-            match trusted_cell(&level, f as usize) {
-                Some(tris) => {
-                    record_curves(&level.net.mesh, f as usize, &tris, &mut curves);
-                    let prov = provenance(l, tag);
-                    for t in &tris {
-                        out.push(triangle_to_tensor(t), prov);
-                    }
-                }
-                None => marked.push((f, retag(&level, f as usize, tag))),
-            }
-        }
-        if marked.is_empty() {
-            break;
-        }
-        let quads = marked
-            .iter()
-            .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4);
-        if l >= opts.rings && quads {
-            if opts.fill {
-                fill(&level, &marked, &mut curves, &mut out);
-            }
-            break;
-        }
-        level = refine_around(&level, &marked)?;
-        progress(l + 1);
+    adaptive::run(&NonBoxRules { net }, &net.mesh, opts, &mut progress)
+}
+
+/// The non-box rules for the adaptive loop: cells are quads with their FCV, each regular cell
+/// four cubic triangles.
+struct NonBoxRules<'a> {
+    net: &'a FcvNet,
+}
+
+impl AdaptiveRules for NonBoxRules<'_> {
+    type Level = Level;
+    type Curves = Curves<4>;
+
+    fn start(&self, _mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
+        let m = &self.net.mesh;
+        let mut info = input_vertex_info(m.num_vertices());
+        info.extend((0..m.num_faces()).map(|_| Info {
+            pos_ok: true,
+            fan_ok: true,
+            origin: None,
+        }));
+        Ok(Level {
+            points: self.net.points(),
+            net: self.net.clone(),
+            info,
+            active: input_active(m.num_faces()),
+        })
     }
-    Ok(out)
+
+    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
+        &level.active
+    }
+
+    fn emit(
+        &self,
+        level: &Level,
+        f: u32,
+        prov: Provenance,
+        curves: &mut Curves<4>,
+        out: &mut PatchComplex,
+    ) -> bool {
+        match trusted_cell(level, f as usize) {
+            Some(tris) => {
+                record_curves(&level.net.mesh, f as usize, &tris, curves);
+                for t in &tris {
+                    out.push(triangle_to_tensor(t), prov);
+                }
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
+        retag(level, f as usize, tag)
+    }
+
+    /// Non-quad faces are always refined (their first ring is at level 1).
+    fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
+        l >= rings
+            && marked
+                .iter()
+                .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
+    }
+
+    fn fill(
+        &self,
+        level: &Level,
+        marked: &[(u32, Tag)],
+        curves: &mut Curves<4>,
+        out: &mut PatchComplex,
+    ) -> Result<()> {
+        fill(level, marked, curves, out);
+        Ok(())
+    }
+
+    fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+        refine_around(level, marked)
+    }
 }
 
 /// The complex of a plain mesh under `nonbox`: a [layout mesh](FcvNet::to_layout_mesh) gives

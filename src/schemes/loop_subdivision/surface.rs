@@ -71,19 +71,18 @@
 //! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
 //! between fill triangles; it is not G^1 across its edges.
 
-use super::adaptive::{
-    Curves, Info, Tag, child_active, edge_curve, input_active, input_vertex_info, provenance,
-    record_edge, retag_by_corners, select_around,
-};
-use super::{ComplexOptions, Element, PatchComplex, Provenance};
+use super::{edge_point_stencil, limit_point_stencil, vertex_point_stencil};
 use crate::bezier::BezierPatch;
+use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::convert::cubic_bspline_to_bezier;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
-use crate::schemes::loop_subdivision::{
-    edge_point_stencil, limit_point_stencil, vertex_point_stencil,
+use crate::host::ComplexOptions;
+use crate::host::adaptive::{
+    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active,
+    input_vertex_info, record_edge, retag_by_corners, select_around,
 };
+use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 use std::f64::consts::PI;
@@ -158,47 +157,65 @@ pub fn loop_complex(
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    if let Some(f) = (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
-        return Err(Error::Unsupported(format!(
-            "Loop patches need a triangle net, but face {f} has {} corners; triangulate the net \
-             or use catmull-clark",
-            mesh.face_size(f)
-        )));
+    adaptive::run(&LoopRules, mesh, opts, &mut progress)
+}
+
+/// Loop's rules for the adaptive loop: cells are triangles.
+struct LoopRules;
+
+impl AdaptiveRules for LoopRules {
+    type Level = Level;
+    type Curves = Curves<5>;
+
+    fn start(&self, mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
+        super::require_triangles(mesh, "Loop patches need")?;
+        Ok(Level {
+            mesh: mesh.clone(),
+            info: input_vertex_info(mesh.num_vertices()),
+            active: input_active(mesh.num_faces()),
+        })
     }
-    let info = input_vertex_info(mesh.num_vertices());
-    let active = input_active(mesh.num_faces());
-    let mut level = Level {
-        mesh: mesh.clone(),
-        info,
-        active,
-    };
-    let mut out = PatchComplex::new();
-    for l in 0..=opts.rings {
-        let mut marked = Vec::new();
-        let mut curves: Curves<5> = HashMap::new();
-        for &(f, tag) in &level.active {
-            match trusted_net(&level, f as usize) {
-                Some(tri) => {
-                    record_curves(&level.mesh, f as usize, &tri, &mut curves);
-                    let prov = provenance(l, tag);
-                    out.push(triangle_to_tensor(&tri), prov);
-                }
-                None => marked.push((f, retag(&level, f as usize, tag))),
-            }
-        }
-        if marked.is_empty() {
-            break;
-        }
-        if l == opts.rings {
-            if opts.fill {
-                fill(&level, &marked, &mut curves, &mut out);
-            }
-            break;
-        }
-        level = refine_around(&level, &marked)?;
-        progress(l + 1);
+
+    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
+        &level.active
     }
-    Ok(out)
+
+    fn emit(
+        &self,
+        level: &Level,
+        f: u32,
+        prov: Provenance,
+        curves: &mut Curves<5>,
+        out: &mut PatchComplex,
+    ) -> bool {
+        match trusted_net(level, f as usize) {
+            Some(tri) => {
+                record_curves(&level.mesh, f as usize, &tri, curves);
+                out.push(triangle_to_tensor(&tri), prov);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
+        retag(level, f as usize, tag)
+    }
+
+    fn fill(
+        &self,
+        level: &Level,
+        marked: &[(u32, Tag)],
+        curves: &mut Curves<5>,
+        out: &mut PatchComplex,
+    ) -> Result<()> {
+        fill(level, marked, curves, out);
+        Ok(())
+    }
+
+    fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+        refine_around(level, marked)
+    }
 }
 
 struct Level {

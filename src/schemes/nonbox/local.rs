@@ -36,11 +36,12 @@
 //! and each triangle is stored as three non-degenerate bi-3 patches, so that
 //! [`crate::analysis::certify::certify_ring`] certifies the map exactly as for Catmull-Clark.
 
-use super::{C64, LocalMatrix};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
+use crate::linalg::C64;
 use crate::mesh::PolyMesh;
 use crate::mesh::nets::{self, CnetShape};
+use crate::schemes::local::LocalMatrix;
 use crate::schemes::nonbox::bezier::{cell_stencils, triangle_to_quads};
 use crate::schemes::nonbox::fourdir::{NonBox4Dir, triangulate};
 use crate::schemes::nonbox::{FcvNet, NonBox, a_k, subdominant_eigenvalue};
@@ -126,7 +127,7 @@ pub fn local_matrix(k: usize) -> Result<LocalMatrix> {
     let rows = labelled_points(&step.net.mesh, 4 * h0)
         .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
     Ok(LocalMatrix {
-        scheme: "nonbox".into(),
+        scheme: crate::schemes::registry::ids::NONBOX.name().into(),
         n: k,
         centre: 1,
         sector: SECTOR,
@@ -148,7 +149,7 @@ pub fn local_matrix_4dir(k: usize) -> Result<LocalMatrix> {
     let rows = labelled_points(&child.mesh, 4 * h0)
         .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
     Ok(LocalMatrix {
-        scheme: "nonbox-4dir".into(),
+        scheme: crate::schemes::registry::ids::NONBOX_4DIR.name().into(),
         n: k,
         centre: 1,
         sector: SECTOR,
@@ -270,26 +271,11 @@ pub fn tangent_formulas(k: usize) -> (Vec<f64>, Vec<f64>) {
     (l1, l2)
 }
 
-/// A published number next to the computed one.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct PublishedValue {
-    /// What is compared.
-    pub quantity: String,
-    /// The paper's value.
-    pub published: f64,
-    /// fairsub's value.
-    pub computed: f64,
-    /// `|published - computed|`.
-    pub difference: f64,
-}
+/// A published value next to the computed one.
+pub use crate::schemes::descriptor::Published as PublishedValue;
 
 fn pv(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedValue {
-    PublishedValue {
-        quantity: quantity.into(),
-        published,
-        computed,
-        difference: (published - computed).abs(),
-    }
+    PublishedValue::new(quantity, published, computed)
 }
 
 /// The paper's numbers at valence `k` beside fairsub's: `lambda`, `a_k`, the largest deviation
@@ -298,7 +284,7 @@ fn pv(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedVa
 /// eigenvectors.
 pub fn published_comparisons(k: usize) -> Result<Vec<PublishedValue>> {
     let lm = local_matrix(k)?;
-    let spec = super::spectrum(&lm.matrix);
+    let spec = crate::schemes::local::spectrum(&lm.matrix);
     let lambda = subdominant_eigenvalue(k);
     let mut out = vec![pv("lambda = 1/2 + cos(2 pi / k) / 4", lambda, spec.lambda)];
     out.push(pv(
@@ -324,7 +310,7 @@ pub fn published_comparisons(k: usize) -> Result<Vec<PublishedValue>> {
             .into_iter()
             .map(|x| C64::new(x, 0.0))
             .collect();
-        let q = super::poly_from_roots(&roots);
+        let q = crate::linalg::poly_from_roots(&roots);
         for (x, y) in p.iter().zip(&q) {
             poly_dev = poly_dev.max((x - y).norm());
         }

@@ -1,12 +1,12 @@
-//! Analysis of the bi-2 family: local subdivision matrices in the paper's replicated-centre
-//! form, characteristic rings, the paper's published numbers beside the computed ones, and a
-//! C^1 certificate for ring complexes whose rings scale differently along and across their
-//! sides.
+//! Local analysis of the bi-2 family: local subdivision matrices in the paper's
+//! replicated-centre form, characteristic rings, and the paper's published numbers beside the
+//! computed ones. (The C^1-up-to-scaling certificate of their rings is in
+//! [`crate::analysis::scaled`].)
 //!
 //! # Local matrices
 //!
 //! Each matrix is read off the scheme's own stencils on its canonical local net (the same
-//! tables the rings of [`crate::surface::bi2`] use): PGS on the DS-net with the added point
+//! tables the rings of [`super::surface`] use): PGS on the DS-net with the added point
 //! `p` kept independent (rules (3), (4) with `p` an extra point; otherwise the whole-mesh rules),
 //! PolBS on the polar net, TPS and adjustable TPS on the q-net (the latter with the stationary
 //! knot pattern). The paper analyses the `10n x 10n`, `4n x 4n` and `7n x 7n` circulant
@@ -16,20 +16,20 @@
 //! (5), (6), (13), (14), (19), (20). Its limit stencil is affine over the replicated net, so the
 //! centre's weight is the sum of its copies' weights.
 
-use super::{FourierBlock, LocalMatrix, spectrum};
+use super::descriptor::{Bi2Kind, DEFAULT_E};
+use super::local_scheme::{LocalScheme, pgs_rows};
+use super::pgs::{PgsParams, ds_net};
+use super::polar::PolarParams;
+use super::surface::ring_patches;
+use super::ternary::{AlphaRule, TernaryRules, TpsParams, adjustable_lambda};
+use super::{Pgs, cos_2pi};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::geom::{self, Point};
 use crate::schemes::Scheme;
-use crate::schemes::bi2::pgs::{PgsParams, ds_net};
-use crate::schemes::bi2::polar::PolarParams;
-use crate::schemes::bi2::ternary::{AlphaRule, TernaryRules, TpsParams, adjustable_lambda};
-use crate::schemes::bi2::{Pgs, cos_2pi};
+use crate::schemes::local::{FourierBlock, LocalMatrix, spectrum};
+use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
-use crate::surface::PatchComplex;
-use crate::surface::bi2::{LocalScheme, pgs_rows, ring_patches};
 use nalgebra::DMatrix;
-use serde::Serialize;
 
 /// The replicated-centre form of a local matrix with one centre point: `n (1 + sector)`
 /// points, sector `s` holding a copy of the centre first, then its own points; every copy's row
@@ -100,7 +100,7 @@ pub fn pgs(n: usize) -> Result<LocalMatrix> {
         out.push(shift(&st));
     }
     let lm = LocalMatrix {
-        scheme: "pgs".into(),
+        scheme: ids::PGS.name().into(),
         n,
         centre: 1,
         sector: 9,
@@ -125,13 +125,17 @@ fn from_local(name: &str, ls: &LocalScheme, sector: usize) -> Result<LocalMatrix
 /// PolBS at a pole of valence `n`: the `4n x 4n` replicated matrix on `(p, a, b, c)`.
 pub fn polar(n: usize) -> Result<LocalMatrix> {
     let _ = PolarParams::new(n)?;
-    from_local("polar-bi2", &LocalScheme::polar(n)?, 3)
+    from_local(ids::POLAR_BI2.name(), &LocalScheme::polar(n)?, 3)
 }
 
 /// TPS at a vertex of valence `n`: the `7n x 7n` replicated matrix on `(q, a, .., f)`.
 pub fn tps(n: usize) -> Result<LocalMatrix> {
     let _ = TpsParams::new(n)?;
-    from_local("tps", &LocalScheme::ternary(n, TernaryRules::TPS)?, 6)
+    from_local(
+        ids::TPS.name(),
+        &LocalScheme::ternary(n, TernaryRules::TPS)?,
+        6,
+    )
 }
 
 /// Adjustable TPS with split ratio `e` at valence `n`: the stationary `7n x 7n` replicated
@@ -143,57 +147,58 @@ pub fn tps_adjustable(n: usize, e: f64) -> Result<LocalMatrix> {
 /// [`tps_adjustable`] with the given rules (split ratio and [`AlphaRule`]).
 pub fn tps_adjustable_rules(n: usize, rules: TernaryRules) -> Result<LocalMatrix> {
     let _ = TpsParams::new(n)?;
-    from_local("tps-adjustable", &LocalScheme::ternary(n, rules)?, 6)
+    from_local(
+        ids::TPS_ADJUSTABLE.name(),
+        &LocalScheme::ternary(n, rules)?,
+        6,
+    )
 }
 
-/// The rules of `tps-adjustable` for a split ratio (the paper's [`AlphaRule`]); TPS's for the
+/// The rules of adjustable TPS for a split ratio (the paper's [`AlphaRule`]); TPS's for the
 /// other schemes, which ignore them.
-fn rules_for(scheme: &str, e: f64) -> Result<TernaryRules> {
-    if scheme == "tps-adjustable" {
+fn rules_for(scheme: Bi2Kind, e: f64) -> Result<TernaryRules> {
+    if scheme == Bi2Kind::TpsAdjustable {
         TernaryRules::adjustable(e)
     } else {
         Ok(TernaryRules::TPS)
     }
 }
 
-/// The default split ratio of `tps-adjustable`.
-pub const DEFAULT_E: f64 = 0.2;
-
-/// The local scheme and local-net size behind a scheme name (`e`: split ratio of
-/// `tps-adjustable`).
-fn local_scheme(scheme: &str, n: usize, adj: TernaryRules) -> Result<(LocalScheme, usize)> {
+/// The local scheme and local-net size of a member of the family (`adj`: the rules of
+/// adjustable TPS).
+fn local_scheme(scheme: Bi2Kind, n: usize, adj: TernaryRules) -> Result<(LocalScheme, usize)> {
     match scheme {
-        "pgs" => Ok((LocalScheme::pgs(n)?, 9)),
-        "polar-bi2" => Ok((LocalScheme::polar(n)?, 3)),
-        "tps" => Ok((LocalScheme::ternary(n, TernaryRules::TPS)?, 6)),
-        "tps-adjustable" => Ok((LocalScheme::ternary(n, adj)?, 6)),
-        other => Err(Error::InvalidArgument(format!(
-            "no bi-2 analysis for scheme '{other}'"
-        ))),
+        Bi2Kind::Pgs => Ok((LocalScheme::pgs(n)?, 9)),
+        Bi2Kind::Polar => Ok((LocalScheme::polar(n)?, 3)),
+        Bi2Kind::Tps => Ok((LocalScheme::ternary(n, TernaryRules::TPS)?, 6)),
+        Bi2Kind::TpsAdjustable => Ok((LocalScheme::ternary(n, adj)?, 6)),
+        other => Err(no_analysis(other)),
     }
 }
 
-/// The local matrix of a bi-2 scheme by name (`pgs`, `polar-bi2`, `tps`, `tps-adjustable` with
-/// `e = 0.2`).
-pub fn local_matrix(scheme: &str, n: usize) -> Result<LocalMatrix> {
+/// The error for a member without local analysis (the preprocessed and mixed schemes).
+fn no_analysis(kind: Bi2Kind) -> Error {
+    Error::InvalidArgument(format!("no bi-2 analysis for {kind:?}"))
+}
+
+/// The local matrix of a bi-2 scheme (adjustable TPS with `e = 0.2`).
+pub fn local_matrix(scheme: Bi2Kind, n: usize) -> Result<LocalMatrix> {
     local_matrix_with(scheme, n, DEFAULT_E)
 }
 
-/// [`local_matrix`] with the split ratio `e` of `tps-adjustable` (ignored by the others).
-pub fn local_matrix_with(scheme: &str, n: usize, e: f64) -> Result<LocalMatrix> {
+/// [`local_matrix`] with the split ratio `e` of adjustable TPS (ignored by the others).
+pub fn local_matrix_with(scheme: Bi2Kind, n: usize, e: f64) -> Result<LocalMatrix> {
     local_matrix_rules(scheme, n, rules_for(scheme, e)?)
 }
 
-/// [`local_matrix`] with the rules `adj` of `tps-adjustable` (ignored by the others).
-pub fn local_matrix_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<LocalMatrix> {
+/// [`local_matrix`] with the rules `adj` of adjustable TPS (ignored by the others).
+pub fn local_matrix_rules(scheme: Bi2Kind, n: usize, adj: TernaryRules) -> Result<LocalMatrix> {
     match scheme {
-        "pgs" => pgs(n),
-        "polar-bi2" => polar(n),
-        "tps" => tps(n),
-        "tps-adjustable" => tps_adjustable_rules(n, adj),
-        other => Err(Error::InvalidArgument(format!(
-            "no bi-2 analysis for scheme '{other}'"
-        ))),
+        Bi2Kind::Pgs => pgs(n),
+        Bi2Kind::Polar => polar(n),
+        Bi2Kind::Tps => tps(n),
+        Bi2Kind::TpsAdjustable => tps_adjustable_rules(n, adj),
+        other => Err(no_analysis(other)),
     }
 }
 
@@ -201,18 +206,22 @@ pub fn local_matrix_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<L
 /// patches of `b, c, d`; TPS: the `2n` of `a, b`, adjustable TPS in its stationary knot
 /// pattern; PolBS: the `n` of `b`) built from the characteristic map's control points, and
 /// lambda.
-pub fn characteristic_ring(scheme: &str, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+pub fn characteristic_ring(scheme: Bi2Kind, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
     characteristic_ring_with(scheme, n, DEFAULT_E)
 }
 
-/// [`characteristic_ring`] with the split ratio `e` of `tps-adjustable`.
-pub fn characteristic_ring_with(scheme: &str, n: usize, e: f64) -> Result<(Vec<BezierPatch>, f64)> {
+/// [`characteristic_ring`] with the split ratio `e` of adjustable TPS.
+pub fn characteristic_ring_with(
+    scheme: Bi2Kind,
+    n: usize,
+    e: f64,
+) -> Result<(Vec<BezierPatch>, f64)> {
     characteristic_ring_rules(scheme, n, rules_for(scheme, e)?)
 }
 
-/// [`characteristic_ring`] with the rules `adj` of `tps-adjustable`.
+/// [`characteristic_ring`] with the rules `adj` of adjustable TPS.
 pub fn characteristic_ring_rules(
-    scheme: &str,
+    scheme: Bi2Kind,
     n: usize,
     adj: TernaryRules,
 ) -> Result<(Vec<BezierPatch>, f64)> {
@@ -221,37 +230,27 @@ pub fn characteristic_ring_rules(
     let (pts, lambda) = lm.characteristic_points()?;
     // Replicated layout (s, 0) copy, (s, 1 + x) point x of sector s; the local nets have the
     // centre first (TPS, PolBS) or no centre (PGS).
-    let centre = usize::from(scheme != "pgs");
+    let centre = usize::from(scheme != Bi2Kind::Pgs);
     let mut local = vec![[0.0; 3]; ls.size];
     for s in 0..n {
         for x in 0..per {
             local[centre + s * per + x] = pts[s * (per + 1) + 1 + x];
         }
     }
-    let level = if scheme == "tps-adjustable" { 2 } else { 0 };
+    let level = if scheme == Bi2Kind::TpsAdjustable {
+        2
+    } else {
+        0
+    };
     Ok((ring_patches(&ls, level, &local), lambda))
 }
 
-/// A published number beside the computed one.
-#[derive(Debug, Clone, Serialize)]
-pub struct PublishedCheck {
-    /// What is compared (with the paper's formula number).
-    pub quantity: String,
-    /// The paper's value (0 for polynomial identities, whose difference is reported).
-    pub published: f64,
-    /// The value computed from the scheme's stencils.
-    pub computed: f64,
-    /// `|published - computed|`.
-    pub difference: f64,
-}
+/// A published number beside the computed one (the paper's value is 0 for polynomial
+/// identities, whose difference is reported).
+pub use crate::schemes::descriptor::Published as PublishedCheck;
 
 fn check(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedCheck {
-    PublishedCheck {
-        quantity: quantity.into(),
-        published,
-        computed,
-        difference: (published - computed).abs(),
-    }
+    PublishedCheck::new(quantity, published, computed)
 }
 
 /// Coefficients (highest first) of `prod (x - r)` for real roots.
@@ -297,19 +296,23 @@ fn poly_difference(block: &FourierBlock, expect: &[f64]) -> f64 {
 ///
 /// # Errors
 /// For a scheme name that is not of the bi-2 family, or an invalid valence.
-pub fn published(scheme: &str, n: usize) -> Result<Vec<PublishedCheck>> {
+pub fn published(scheme: Bi2Kind, n: usize) -> Result<Vec<PublishedCheck>> {
     published_with(scheme, n, DEFAULT_E)
 }
 
-/// [`published`] with the split ratio `e` of `tps-adjustable`.
-pub fn published_with(scheme: &str, n: usize, e: f64) -> Result<Vec<PublishedCheck>> {
+/// [`published`] with the split ratio `e` of adjustable TPS.
+pub fn published_with(scheme: Bi2Kind, n: usize, e: f64) -> Result<Vec<PublishedCheck>> {
     published_rules(scheme, n, rules_for(scheme, e)?)
 }
 
-/// [`published`] with the rules `adj` of `tps-adjustable`. With
+/// [`published`] with the rules `adj` of adjustable TPS. With
 /// [`AlphaRule::RegularSpectrum`] the stationary limit functional is not (21) (only the limit
 /// point from an input net is), so those checks are left out.
-pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<PublishedCheck>> {
+pub fn published_rules(
+    scheme: Bi2Kind,
+    n: usize,
+    adj: TernaryRules,
+) -> Result<Vec<PublishedCheck>> {
     let e = adj.e;
     let lm = local_matrix_rules(scheme, n, adj)?;
     let spec = spectrum(&lm.matrix);
@@ -321,7 +324,7 @@ pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<
     let c1 = cos_2pi(1, n as i64);
     let mut out = Vec::new();
     match scheme {
-        "pgs" => {
+        Bi2Kind::Pgs => {
             let p = PgsParams::new(n)?;
             let d = poly(&[0.25, 0.125, 0.0625, 0.0, 0.0, 0.0, 0.0, 0.0]);
             let mut worst: f64 = 0.0;
@@ -360,7 +363,7 @@ pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<
                 limit[1],
             ));
         }
-        "polar-bi2" => {
+        Bi2Kind::Polar => {
             let p = PolarParams::new(n)?;
             let mut worst: f64 = 0.0;
             for b in &blocks {
@@ -392,9 +395,9 @@ pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<
                 limit[1],
             ));
         }
-        "tps" | "tps-adjustable" => {
+        Bi2Kind::Tps | Bi2Kind::TpsAdjustable => {
             let t = TpsParams::new(n)?;
-            let adjustable = scheme == "tps-adjustable";
+            let adjustable = scheme == Bi2Kind::TpsAdjustable;
             if !adjustable {
                 let mut worst: f64 = 0.0;
                 for b in &blocks {
@@ -510,127 +513,7 @@ pub fn published_rules(scheme: &str, n: usize, adj: TernaryRules) -> Result<Vec<
                 limit[2],
             ));
         }
-        other => {
-            return Err(Error::InvalidArgument(format!(
-                "no published numbers for scheme '{other}'"
-            )));
-        }
+        other => return Err(no_analysis(other)),
     }
     Ok(out)
-}
-
-/// The C^1 certificate of a complex whose patches may meet with different scalings along and
-/// across a shared side (polar rings halve radially only; adjustable TPS rings shrink by
-/// different factors along and across): per shared piece, the cross-boundary derivative of the
-/// second patch must be a constant multiple `-kappa D_A` of the first's, `kappa > 0`, which is C^1
-/// after an affine reparametrisation of the second patch.
-#[derive(Debug, Clone, Serialize, Default)]
-pub struct ScaledDefects {
-    /// Shared pieces measured.
-    pub pieces: usize,
-    /// Largest positional gap.
-    pub c0: f64,
-    /// Largest residual `|D_A + kappa D_B| / max |D_A|` over a piece, with the best `kappa`
-    /// of the piece (0 for a C^1 join).
-    pub c1_relative: f64,
-    /// Smallest fitted `kappa` (positive for a C^1 join).
-    pub kappa_min: f64,
-    /// Largest fitted `kappa`.
-    pub kappa_max: f64,
-    /// Largest angle between the normals, radians.
-    pub g1: f64,
-}
-
-impl ScaledDefects {
-    fn merge(&mut self, o: &ScaledDefects) {
-        if self.pieces == 0 {
-            *self = o.clone();
-            return;
-        }
-        self.pieces += o.pieces;
-        self.c0 = self.c0.max(o.c0);
-        self.c1_relative = self.c1_relative.max(o.c1_relative);
-        self.kappa_min = self.kappa_min.min(o.kappa_min);
-        self.kappa_max = self.kappa_max.max(o.kappa_max);
-        self.g1 = self.g1.max(o.g1);
-    }
-}
-
-/// [`ScaledDefects`] over a whole complex and per kind of join (`ring1|ring2`, `cap|cap`, ...).
-#[derive(Debug, Clone, Serialize, Default)]
-pub struct ScaledContinuity {
-    /// All shared pieces.
-    pub all: ScaledDefects,
-    /// Per kind of join.
-    pub by_kind: std::collections::BTreeMap<String, ScaledDefects>,
-}
-
-/// Measures [`ScaledContinuity`] over all shared boundaries of a complex.
-pub fn continuity_up_to_scaling(c: &PatchComplex) -> ScaledContinuity {
-    use crate::bezier::Side;
-    use crate::surface::adjacency::{default_tolerance, shared_boundaries};
-    let tol = default_tolerance(c);
-    let across = |p: &BezierPatch, side: Side, t: f64| -> (Point, Point, Point) {
-        let [u, v] = side.domain_point(t);
-        let d = p.derivatives(u, v);
-        let n = p.normal_from(u, v, &d);
-        let out = match side {
-            Side::U1 => d.du,
-            Side::U0 => geom::scale(d.du, -1.0),
-            Side::V1 => d.dv,
-            Side::V0 => geom::scale(d.dv, -1.0),
-        };
-        (d.p, out, n)
-    };
-    const SAMPLES: usize = 9;
-    let mut out = ScaledContinuity::default();
-    for sb in shared_boundaries(c, tol) {
-        let (pa, pb) = (&c.patches[sb.a], &c.patches[sb.b]);
-        let mut d = ScaledDefects {
-            pieces: 1,
-            ..Default::default()
-        };
-        let mut da = Vec::with_capacity(SAMPLES);
-        let mut db = Vec::with_capacity(SAMPLES);
-        for k in 0..SAMPLES {
-            let t = sb.t[0] + (sb.t[1] - sb.t[0]) * k as f64 / (SAMPLES - 1) as f64;
-            let s = sb.map_to_b(t);
-            let (xa, a, na) = across(pa, sb.side_a, t);
-            let (xb, b, nb) = across(pb, sb.side_b, s);
-            d.c0 = d.c0.max(geom::dist(xa, xb));
-            if geom::norm(na) > 0.0 && geom::norm(nb) > 0.0 {
-                let g = geom::norm(geom::cross(na, nb)).atan2(geom::dot(na, nb));
-                d.g1 = d.g1.max(g);
-            }
-            da.push(a);
-            db.push(b);
-        }
-        let num: f64 = da.iter().zip(&db).map(|(a, b)| geom::dot(*a, *b)).sum();
-        let den: f64 = db.iter().map(|b| geom::dot(*b, *b)).sum();
-        let scale = da.iter().map(|a| geom::norm(*a)).fold(0.0, f64::max);
-        if den > 0.0 && scale > 0.0 {
-            let kappa = -num / den;
-            d.kappa_min = kappa;
-            d.kappa_max = kappa;
-            let res = da
-                .iter()
-                .zip(&db)
-                .map(|(a, b)| geom::norm(geom::add(*a, geom::scale(*b, kappa))))
-                .fold(0.0, f64::max);
-            d.c1_relative = res / scale;
-        }
-        let (mut ka, mut kb) = (
-            c.provenance[sb.a].group_name(),
-            c.provenance[sb.b].group_name(),
-        );
-        if ka > kb {
-            std::mem::swap(&mut ka, &mut kb);
-        }
-        out.by_kind
-            .entry(format!("{ka}|{kb}"))
-            .or_default()
-            .merge(&d);
-        out.all.merge(&d);
-    }
-    out
 }

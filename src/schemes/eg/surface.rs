@@ -1,7 +1,7 @@
 //! EG subdivision surfaces of whole meshes: bi-3 patches on regular faces, an EG cap of `K` bi-4
 //! rings at every extraordinary vertex with published rules, and the documented fill.
 //!
-//! Built on the adaptive loop of [`super::cc`]: every extraordinary vertex whose c-net is clean
+//! Built on Catmull-Clark's adaptive loop ([`crate::schemes::catmull_clark::surface`]): every extraordinary vertex whose c-net is clean
 //! (one-ring regular, and every extraordinary vertex of the c-net capped too) gets an EG cap at
 //! the current level; the others are refined by one Catmull-Clark step first (the EG paper's
 //! "local Catmull-Clark step" where extraordinary vertices are not separated by a regular one).
@@ -30,26 +30,19 @@
 //! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
 //! `n != 4`); `fairsub check` reports the measured defects. `--no-fill` leaves the hole open.
 
-use super::cc::{CapBuilder, CcComplexOptions, adaptive_complex};
-use super::{Element, PatchComplex, Provenance};
+use super::{Eg, EgStep, from_cnet};
+use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::{BezierPatch, curve};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
-use crate::schemes::eg::{Eg, EgStep, from_cnet};
+use crate::host::caps::{CapBuilder, CapNotes};
+use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::surface::capped_complex;
+use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::HashMap;
 use std::sync::Mutex;
-
-/// What to do at a vertex whose valence has no EG rules.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Fallback {
-    /// Catmull-Clark rings and fill (the default).
-    #[default]
-    CatmullClark,
-    /// Stop with an error naming the vertex.
-    Error,
-}
 
 /// Options of [`eg_complex`].
 #[derive(Debug, Clone, Copy)]
@@ -74,7 +67,7 @@ impl Default for EgOptions {
 
 /// Rules of a d-net cap scheme (EG, QAS+) per valence.
 pub(crate) trait DnetRules: Sync {
-    /// Name of the scheme's own rules (`eg`, `qas-plus`).
+    /// Name of the scheme's own rules (EG's, QAS+'s).
     fn primary(&self) -> &'static str;
     /// Name of the rules used at valence `n` (`None` when there are none).
     fn rules_name(&self, n: usize) -> Option<&'static str>;
@@ -100,11 +93,11 @@ pub(crate) struct EgRulesProvider;
 
 impl DnetRules for EgRulesProvider {
     fn primary(&self) -> &'static str {
-        "eg"
+        ids::EG.name()
     }
 
     fn rules_name(&self, n: usize) -> Option<&'static str> {
-        Eg::new(n).ok().map(|_| "eg")
+        Eg::new(n).ok().map(|_| ids::EG.name())
     }
 
     fn init(&self, n: usize) -> Result<StencilTable> {
@@ -122,7 +115,8 @@ impl DnetRules for EgRulesProvider {
     fn no_rules(&self, n: usize) -> String {
         format!(
             "valence {n}: EG subdivision has published rules for valences 3 and 5 only (the paper's text \
-             lost the arrays for 6..10); use --fallback catmull-clark"
+             lost the arrays for 6..10); use --fallback {}",
+            ids::CATMULL_CLARK
         )
     }
 }
@@ -135,8 +129,7 @@ pub(crate) struct DnetCaps<'a> {
     fallback: Fallback,
     init: Mutex<HashMap<usize, StencilTable>>,
     steps: Mutex<HashMap<(usize, usize), EgStep>>,
-    fell_back: Mutex<Vec<(Element, usize)>>,
-    substituted: Mutex<Vec<(Element, usize, &'static str)>>,
+    notes: CapNotes,
 }
 
 impl<'a> DnetCaps<'a> {
@@ -153,8 +146,7 @@ impl<'a> DnetCaps<'a> {
             fallback,
             init: Mutex::new(HashMap::new()),
             steps: Mutex::new(HashMap::new()),
-            fell_back: Mutex::new(Vec::new()),
-            substituted: Mutex::new(Vec::new()),
+            notes: CapNotes::default(),
         }
     }
 
@@ -184,26 +176,7 @@ impl<'a> DnetCaps<'a> {
     /// rules than the scheme's own.
     pub(crate) fn notes(self) -> (Vec<(Element, usize)>, Vec<String>) {
         let primary = self.rules.primary();
-        let mut notes: Vec<String> = self
-            .substituted
-            .into_inner()
-            .expect("no poisoning")
-            .into_iter()
-            .map(|(e, n, name)| {
-                format!(
-                    "{} (valence {n}) has no published {primary} rules: {name} rules there",
-                    describe(e)
-                )
-            })
-            .collect();
-        let fb = self.fell_back.into_inner().expect("no poisoning");
-        for (e, n) in &fb {
-            notes.push(format!(
-                "{} (valence {n}) has no published {primary} rules: Catmull-Clark rings and fill there",
-                describe(*e)
-            ));
-        }
-        (fb, notes)
+        self.notes.finish(primary)
     }
 }
 
@@ -211,27 +184,13 @@ impl CapBuilder for DnetCaps<'_> {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
         if let Some(name) = self.rules.rules_name(n) {
             if name != self.rules.primary() {
-                let mut sub = self.substituted.lock().expect("no poisoning");
-                if !sub.iter().any(|(e, _, _)| *e == element) {
-                    sub.push((element, n, name));
-                }
+                self.notes.substitute(element, n, name);
             }
             return Ok(true);
         }
-        match self.fallback {
-            Fallback::CatmullClark => {
-                let mut fb = self.fell_back.lock().expect("no poisoning");
-                if !fb.iter().any(|(e, _)| *e == element) {
-                    fb.push((element, n));
-                }
-                Ok(false)
-            }
-            Fallback::Error => Err(Error::Unsupported(format!(
-                "{} has {}",
-                describe(element),
-                self.rules.no_rules(n)
-            ))),
-        }
+        self.notes
+            .fall_back(self.fallback, element, n, || self.rules.no_rules(n))?;
+        Ok(false)
     }
 
     fn build(
@@ -266,13 +225,6 @@ impl CapBuilder for DnetCaps<'_> {
             }
         }
         Ok(())
-    }
-}
-
-fn describe(e: Element) -> String {
-    match e {
-        Element::Vertex(v) => format!("vertex {v}"),
-        Element::Face(f) => format!("the centre of face {f}"),
     }
 }
 
@@ -522,36 +474,25 @@ pub fn eg_complex(
     dnet_complex(&EgRulesProvider, mesh, opts, progress).map(|o| (o.complex, o.fell_back))
 }
 
-/// A patch complex with caps, and what the user should know about it.
-#[derive(Debug, Clone)]
-pub struct CapOutput {
-    /// The surface.
-    pub complex: PatchComplex,
-    /// Elements that fell back to Catmull-Clark, with their valences.
-    pub fell_back: Vec<(Element, usize)>,
-    /// Notes for the user (fallbacks and substitutions, per element).
-    pub notes: Vec<String>,
-}
-
 /// The surface of a net with caps of a d-net scheme (shared by EG and QAS+).
 pub(crate) fn dnet_complex(
     rules: &dyn DnetRules,
     mesh: &PolyMesh,
     opts: EgOptions,
-    progress: impl FnMut(usize),
-) -> Result<CapOutput> {
+    mut progress: impl FnMut(usize),
+) -> Result<SurfaceOutput> {
     let caps = DnetCaps::new(rules, opts.rings, opts.fill, opts.fallback);
-    let c = adaptive_complex(
+    let c = capped_complex(
         mesh,
-        CcComplexOptions {
+        ComplexOptions {
             rings: opts.rings,
             fill: opts.fill,
         },
-        Some(&caps),
-        progress,
+        &caps,
+        &mut progress,
     )?;
     let (fell_back, notes) = caps.notes();
-    Ok(CapOutput {
+    Ok(SurfaceOutput {
         complex: c,
         fell_back,
         notes,

@@ -28,40 +28,23 @@
 //! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
 //! own boundaries. `fairsub check` measures its defects.
 
-use super::adaptive::{
-    Curves, Info, Tag, input_active, input_vertex_info, provenance, record_edge,
-};
 use super::regular::bi3_net;
-use super::{Element, PatchComplex, Provenance};
+use super::{CatmullClark, edge_point_stencil, vertex_point_stencil};
 use crate::bezier::BezierPatch;
+use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
-use crate::schemes::catmull_clark::{CatmullClark, edge_point_stencil, vertex_point_stencil};
+use crate::host::ComplexOptions;
+use crate::host::adaptive::{
+    self, AdaptiveRules, Curves, Info, Tag, input_active, input_vertex_info, record_edge,
+};
+use crate::host::caps::CapBuilder;
+use crate::mesh::{Element, PolyMesh};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
-use std::f64::consts::PI;
-
-/// Options of [`catmull_clark_complex`].
-#[derive(Debug, Clone, Copy)]
-pub struct CcComplexOptions {
-    /// Number of rings around each extraordinary element (refinement levels).
-    pub rings: usize,
-    /// Close the hole inside the last ring with the Hermite-Coons fill.
-    pub fill: bool,
-}
-
-impl Default for CcComplexOptions {
-    fn default() -> Self {
-        CcComplexOptions {
-            rings: 6,
-            fill: true,
-        }
-    }
-}
 
 /// One level of the adaptive refinement.
-struct Level {
+pub struct Level {
     mesh: PolyMesh,
     info: Vec<Info>,
     /// Faces to process at this level, with their tags.
@@ -73,85 +56,101 @@ struct Level {
 /// Hermite-Coons fill. `progress(level)` is called after each level.
 pub fn catmull_clark_complex(
     mesh: &PolyMesh,
-    opts: CcComplexOptions,
-    progress: impl FnMut(usize),
-) -> Result<PatchComplex> {
-    adaptive_complex(mesh, opts, None, progress)
-}
-
-/// A scheme that replaces Catmull-Clark's rings around an extraordinary vertex by a cap built
-/// from the vertex's c-net (EG, QAS+, guided subdivision). The adaptive loop calls it wherever a
-/// vertex has a clean c-net (its one-ring regular) at the current level and every extraordinary
-/// vertex of that c-net is capped too; elsewhere it refines with Catmull-Clark first (the local
-/// Catmull-Clark step of the EG paper's pseudocode).
-pub trait CapBuilder {
-    /// Whether vertices of valence `n` get a cap; `Ok(false)` leaves them to Catmull-Clark (the
-    /// fallback), an error stops the whole construction (the user asked for no fallback).
-    fn accepts(&self, n: usize, element: Element) -> Result<bool>;
-
-    /// Appends the cap of one vertex: `cnet` holds its c-net positions in the order of
-    /// [`PolyMesh::cnet_indices`] with two rings; rings are numbered from `first_ring`.
-    fn build(
-        &self,
-        cnet: &[Point],
-        n: usize,
-        element: Element,
-        first_ring: u32,
-        out: &mut PatchComplex,
-    ) -> Result<()>;
-}
-
-/// The adaptive loop behind [`catmull_clark_complex`], with optional caps.
-pub fn adaptive_complex(
-    mesh: &PolyMesh,
-    opts: CcComplexOptions,
-    caps: Option<&dyn CapBuilder>,
+    opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    let has_ngons = !mesh.is_all_quads();
-    if opts.rings == 0 && has_ngons {
-        let f = mesh.extraordinary_faces()[0];
-        return Err(Error::InvalidArgument(format!(
-            "face {f} has {} sides; the fill needs quads, so at least one ring (--rings 1) is required",
-            mesh.face_size(f)
-        )));
+    adaptive::run(&CcRules { caps: None }, mesh, opts, &mut progress)
+}
+
+/// The Catmull-Clark surface of `mesh` with the caps of `caps` around every extraordinary vertex
+/// it takes (the adaptive loop with [`CcRules`]).
+pub fn capped_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    caps: &dyn CapBuilder,
+    progress: &mut dyn FnMut(usize),
+) -> Result<PatchComplex> {
+    adaptive::run(&CcRules { caps: Some(caps) }, mesh, opts, progress)
+}
+
+/// Catmull-Clark's rules for the adaptive loop, with the caps of a scheme that replaces its
+/// rings around extraordinary vertices (EG, QAS+, guided) or none.
+pub struct CcRules<'a> {
+    /// The cap builder, if any.
+    pub caps: Option<&'a dyn CapBuilder>,
+}
+
+impl AdaptiveRules for CcRules<'_> {
+    type Level = Level;
+    type Curves = Curves<4>;
+
+    fn start(&self, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Level> {
+        if opts.rings == 0 && !mesh.is_all_quads() {
+            let f = mesh.extraordinary_faces()[0];
+            return Err(Error::InvalidArgument(format!(
+                "face {f} has {} sides; the fill needs quads, so at least one ring (--rings 1) is required",
+                mesh.face_size(f)
+            )));
+        }
+        Ok(Level {
+            mesh: mesh.clone(),
+            info: input_vertex_info(mesh.num_vertices()),
+            active: input_active(mesh.num_faces()),
+        })
     }
-    let mut out = PatchComplex::new();
-    let info = input_vertex_info(mesh.num_vertices());
-    let active = input_active(mesh.num_faces());
-    let mut level = Level {
-        mesh: mesh.clone(),
-        info,
-        active,
-    };
-    for l in 0..=opts.rings {
-        let mut marked: Vec<(u32, Tag)> = Vec::new();
-        let mut curves: Curves<4> = HashMap::new();
-        for &(f, tag) in &level.active {
-            match regular_patch(&level, f as usize) {
-                Some(p) => {
-                    record_curves(&level.mesh, f as usize, &p, &mut curves);
-                    out.push(p, provenance(l, tag));
-                }
-                None => marked.push((f, tag_irregular(&level, f as usize, tag))),
-            }
-        }
-        if let Some(builder) = caps {
-            marked = apply_caps(&level, marked, builder, l as u32, &mut out)?;
-        }
-        if marked.is_empty() {
-            break;
-        }
-        if l == opts.rings {
-            if opts.fill {
-                fill(&level, &marked, &mut curves, &mut out)?;
-            }
-            break;
-        }
-        level = refine_around(&level, &marked)?;
-        progress(l + 1);
+
+    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
+        &level.active
     }
-    Ok(out)
+
+    fn emit(
+        &self,
+        level: &Level,
+        f: u32,
+        prov: Provenance,
+        curves: &mut Curves<4>,
+        out: &mut PatchComplex,
+    ) -> bool {
+        match regular_patch(level, f as usize) {
+            Some(p) => {
+                record_curves(&level.mesh, f as usize, &p, curves);
+                out.push(p, prov);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
+        tag_irregular(level, f as usize, tag)
+    }
+
+    fn caps(
+        &self,
+        level: &Level,
+        marked: Vec<(u32, Tag)>,
+        l: usize,
+        out: &mut PatchComplex,
+    ) -> Result<Vec<(u32, Tag)>> {
+        match self.caps {
+            Some(b) => apply_caps(level, marked, b, l as u32, out),
+            None => Ok(marked),
+        }
+    }
+
+    fn fill(
+        &self,
+        level: &Level,
+        marked: &[(u32, Tag)],
+        curves: &mut Curves<4>,
+        out: &mut PatchComplex,
+    ) -> Result<()> {
+        fill(level, marked, curves, out)
+    }
+
+    fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+        refine_around(level, marked)
+    }
 }
 
 /// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
@@ -444,7 +443,6 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
         .vertex_faces(a)
         .iter()
         .all(|&f| m.face_size(f as usize) == 4);
-    let diag = |h: u32| m.he_from(m.he_next(m.he_next(h))) as usize;
     if m.is_boundary_vertex(a) {
         let nb = m.vertex_neighbors(a);
         let (first, last) = (nb[0] as usize, *nb.last().expect("neighbours") as usize);
@@ -460,15 +458,7 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
         }
         if nb.len() == 3 && quads {
             // Regular boundary vertex, interior edge: derivative of the ghost-extended patch.
-            let d1 = diag(hs[0]);
-            let d2 = diag(hs[1]);
-            let mut s = Stencil::new();
-            s.add(d1, 1.0)
-                .add(b, 4.0)
-                .add(d2, 1.0)
-                .add(first, -1.0)
-                .add(a, -4.0)
-                .add(last, -1.0);
+            let s = CatmullClark::boundary_cross_stencil(m, a, &hs, &nb);
             return (lim, geom::scale(s.apply(pos), 1.0 / 6.0));
         }
         let lb = CatmullClark::limit_stencil(m, b).apply(pos);
@@ -478,22 +468,15 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
         let lb = CatmullClark::limit_stencil(m, b).apply(pos);
         return (lim, geom::sub(lb, lim));
     }
-    let n = hs.len();
-    let nf = n as f64;
     let j = hs
         .iter()
         .position(|&h| m.he_to(h) as usize == b)
-        .unwrap_or(0) as isize;
-    let c = (2.0 * PI / nf).cos();
-    let a_n = 1.0 + c + (PI / nf).cos() * (2.0 * (9.0 + c)).sqrt();
-    let cj = |k: isize| (2.0 * PI * (k - j) as f64 / nf).cos();
-    let mut t = Stencil::new();
-    for (i, &h) in hs.iter().enumerate() {
-        let i = i as isize;
-        t.add(m.he_to(h) as usize, a_n * cj(i));
-        t.add(diag(h), cj(i) + cj(i + 1));
-    }
-    (lim, geom::scale(t.apply(pos), 1.0 / (3.0 * nf)))
+        .unwrap_or(0);
+    let t = CatmullClark::eigen_tangent(m, &hs, j);
+    (
+        lim,
+        geom::scale(t.apply(pos), 1.0 / (3.0 * hs.len() as f64)),
+    )
 }
 
 /// The Hermite-Coons fill of the marked faces of the last level.
@@ -632,7 +615,7 @@ mod tests {
         let m = crate::mesh::nets::unit_cube();
         for rings in [1, 2, 3] {
             let c =
-                catmull_clark_complex(&m, CcComplexOptions { rings, fill: true }, |_| {}).unwrap();
+                catmull_clark_complex(&m, ComplexOptions { rings, fill: true }, |_| {}).unwrap();
             // 8 vertices of valence 3: the cube's faces all touch extraordinary vertices.
             let caps = c
                 .provenance

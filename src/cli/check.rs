@@ -1,0 +1,213 @@
+//! `fairsub check`: continuity defects per kind of join and curvature per ring, of a BezierView
+//! file or of a net's surface under a scheme.
+
+use super::spec::{self, SchemeOptions};
+use crate::analysis::{continuity, curvature, scaled};
+use crate::error::{Error, Result};
+use crate::surface::Provenance;
+use serde::Serialize;
+use std::path::Path;
+
+/// Arguments of `fairsub check`.
+#[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    /// A BezierView file (any tool's), or a control net (file or gallery:NAME) with --scheme.
+    pub input: String,
+    /// Build the surface of a net with this scheme.
+    #[arg(long, short)]
+    pub scheme: Option<String>,
+    /// Rings for --scheme.
+    #[arg(long, short, default_value_t = 4)]
+    pub rings: usize,
+    /// Leave the centre open (check the rings only).
+    #[arg(long)]
+    pub no_fill: bool,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The `check` report.
+#[derive(Debug, Serialize)]
+struct CheckReport {
+    source: String,
+    continuity: continuity::ContinuityReport,
+    curvature: Vec<curvature::ElementCurvature>,
+    /// C^1 up to a per-piece affine reparametrisation (bi-2 schemes, whose polar and
+    /// adjustable rings shrink differently along and across their sides; `.bv` input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    c1_up_to_scaling: Option<scaled::ScaledContinuity>,
+}
+
+/// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
+fn provenance_of_group(name: Option<&str>) -> Provenance {
+    let e = crate::mesh::Element::Vertex(0);
+    match name {
+        Some("regular") => Provenance::Regular { face: 0 },
+        Some("cap") => Provenance::Cap {
+            element: e,
+            sector: 0,
+        },
+        Some(g) if g.starts_with("ring") => match g[4..].parse::<u32>() {
+            Ok(ring) => Provenance::Ring {
+                element: e,
+                ring,
+                sector: 0,
+            },
+            Err(_) => Provenance::Unknown,
+        },
+        _ => Provenance::Unknown,
+    }
+}
+
+/// Runs `fairsub check`.
+pub fn check(a: CheckArgs) -> Result<()> {
+    let spec = match &a.scheme {
+        Some(s) => Some(spec::resolve(s, &SchemeOptions::default())?),
+        None => None,
+    };
+    let complex = match &spec {
+        Some(s) => {
+            let net = super::load_net(&a.input)?.mesh;
+            super::subdivide::build_complex(s, &net, a.rings, !a.no_fill)?
+        }
+        None => {
+            let path = Path::new(&a.input);
+            let is_bv = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("bv"));
+            if !is_bv {
+                return Err(Error::InvalidArgument(format!(
+                    "'{}' is not a .bv file: give a BezierView file, or a net with --scheme",
+                    a.input
+                )));
+            }
+            let f = crate::io::read_bv(path)?;
+            for w in &f.warnings {
+                eprintln!("warning: {}: {w}", a.input);
+            }
+            let mut c = f.patches;
+            for (k, g) in f.patch_groups.iter().enumerate() {
+                let name = g.and_then(|g| f.groups.get(g)).map(|g| g.name.as_str());
+                c.provenance[k] = provenance_of_group(name);
+            }
+            c
+        }
+    };
+    // The bi-2 schemes (whose polar and adjustable rings shrink differently along and across
+    // their sides) and .bv input get the certificate up to per-piece scaling.
+    let scaled = match &spec {
+        None => true,
+        Some(s) => crate::schemes::registry()
+            .descriptor(s.id)
+            .joins_up_to_scaling(),
+    };
+    let r = CheckReport {
+        source: a.input.clone(),
+        continuity: continuity::check(&complex),
+        curvature: curvature::ring_curvature(&complex),
+        c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(&complex)),
+    };
+    if a.json {
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&r).expect("serialisable")
+        );
+        return Ok(());
+    }
+    let c = &r.continuity;
+    say!(
+        "{}: {} patches, {} shared pieces, {} open sides, size {:.4}",
+        r.source,
+        c.patches,
+        c.all.pieces,
+        c.open_sides,
+        c.size
+    );
+    say!(
+        "  {:<22} {:>7} {:>10} {:>10} {:>10} {:>10}",
+        "join",
+        "pieces",
+        "C0",
+        "C1",
+        "C2",
+        "G1 (rad)"
+    );
+    for (k, d) in &c.by_kind {
+        say!(
+            "  {:<22} {:>7} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e}",
+            k,
+            d.pieces,
+            d.c0,
+            d.c1,
+            d.c2,
+            d.g1
+        );
+    }
+    if let Some(l) = &c.all.c0_at {
+        say!(
+            "  largest C0 gap {:.3e} between patches {} and {} at {:?}",
+            c.all.c0,
+            l.patch_a,
+            l.patch_b,
+            l.point
+        );
+    }
+    for o in c.open.iter().take(8) {
+        say!(
+            "  open side {} of patch {} ({}) at {:?}",
+            o.side,
+            o.patch,
+            o.provenance.group_name(),
+            o.midpoint
+        );
+    }
+    if c.open_sides > 8 {
+        say!(
+            "  ... {} open sides in all (the boundary of the surface, or cracks)",
+            c.open_sides
+        );
+    }
+    if let Some(sc) = &r.c1_up_to_scaling {
+        say!("  C1 up to per-piece scaling (D_A + kappa D_B = 0 across each piece):");
+        say!(
+            "  {:<22} {:>7} {:>12} {:>10} {:>10} {:>10}",
+            "join",
+            "pieces",
+            "C1 relative",
+            "kappa min",
+            "kappa max",
+            "G1 (rad)"
+        );
+        for (k, d) in &sc.by_kind {
+            say!(
+                "  {:<22} {:>7} {:>12.2e} {:>10.4} {:>10.4} {:>10.2e}",
+                k,
+                d.pieces,
+                d.c1_relative,
+                d.kappa_min,
+                d.kappa_max,
+                d.g1
+            );
+        }
+    }
+    for e in &r.curvature {
+        say!("  curvature around {:?}:", e.element);
+        for ring in &e.rings {
+            say!(
+                "    {:<6} K [{:+.4e}, {:+.4e}]  H [{:+.4e}, {:+.4e}]",
+                if ring.ring == 0 {
+                    "cap".to_string()
+                } else {
+                    format!("ring{}", ring.ring)
+                },
+                ring.gauss_min,
+                ring.gauss_max,
+                ring.mean_min,
+                ring.mean_max
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,151 @@
+//! From command-line words to a scheme with typed parameters: the registry looks the name up,
+//! and every scheme option given is checked against the [`ParamKind`]s the scheme's descriptor
+//! takes, so an option for another scheme is an error naming the schemes it applies to.
+
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::schemes::descriptor::{AlphaRule, ChiKind, Fallback, ParamKind};
+use crate::schemes::{Spec, registry};
+use std::path::Path;
+
+/// The scheme options of a command line, before they are checked against the scheme.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct SchemeOptions<'a> {
+    /// `--lambda`.
+    pub lambda: Option<f64>,
+    /// `--fallback`.
+    pub fallback: Option<Fallback>,
+    /// `--split-ratio`.
+    pub split_ratio: Option<f64>,
+    /// `--alpha-rule`.
+    pub alpha_rule: Option<AlphaRule>,
+    /// `--pole` values.
+    pub poles: &'a [String],
+    /// `--q-file`.
+    pub q_file: Option<&'a Path>,
+    /// Whether `--fcv-scale` or `--fcv-file` was given.
+    pub fcv: bool,
+}
+
+/// The names of the schemes that take `kind`, in catalogue order.
+fn takers(kind: ParamKind) -> Vec<&'static str> {
+    registry()
+        .entries()
+        .iter()
+        .filter(|e| e.descriptor.params().contains(&kind))
+        .map(|e| e.name)
+        .collect()
+}
+
+/// `a, b and c`.
+fn and_list(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// Whether the scheme takes `kind`.
+fn takes(spec: &Spec, kind: ParamKind) -> bool {
+    registry().descriptor(spec.id).params().contains(&kind)
+}
+
+/// The scheme `name` with the options `o`. Errors: an unknown name ([`Error::UnknownScheme`]),
+/// an option the scheme does not take, a value out of range, an unreadable q file.
+pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
+    let mut spec = registry().lookup(name)?;
+    if let Some(l) = o.lambda {
+        if !takes(&spec, ParamKind::Contraction) {
+            return Err(Error::InvalidArgument(format!(
+                "--lambda {l}: only the guided schemes ({}) take a contraction; '{name}' has its own",
+                takers(ParamKind::Contraction).join(", ")
+            )));
+        }
+        if (l - 0.5).abs() > 1e-12 {
+            return Err(Error::InvalidArgument(format!(
+                "--lambda {l}: guided subdivision offers lambda = 0.5 (QAS+'s characteristic map, valences 5..10) or, without --lambda, Catmull-Clark's lambda"
+            )));
+        }
+        spec.params.chi = Some(ChiKind::Half);
+    }
+    if o.split_ratio.is_some() || o.alpha_rule.is_some() {
+        if !takes(&spec, ParamKind::SplitRatio) {
+            return Err(Error::InvalidArgument(format!(
+                "--split-ratio and --alpha-rule apply to {}, not to '{name}'",
+                and_list(&takers(ParamKind::SplitRatio))
+            )));
+        }
+        spec.params.split_ratio = o.split_ratio;
+        spec.params.alpha_rule = o.alpha_rule;
+        // The range of e is checked here, before any net is read.
+        crate::schemes::bi2::descriptor::Bi2Descriptor::ternary_rules(&spec)?;
+    }
+    if !o.poles.is_empty() {
+        if !takes(&spec, ParamKind::Poles) {
+            return Err(Error::InvalidArgument(format!(
+                "--pole applies to {}, not to '{name}'",
+                and_list(&takers(ParamKind::Poles))
+            )));
+        }
+        spec.params.poles = o
+            .poles
+            .iter()
+            .map(|s| parse_pole(s))
+            .collect::<Result<_>>()?;
+    }
+    if o.fcv && !takes(&spec, ParamKind::Fcv) {
+        return Err(Error::InvalidArgument(format!(
+            "--fcv-scale and --fcv-file set face control vertices, which only the non-box \
+             schemes ({}) have, not '{name}'",
+            takers(ParamKind::Fcv).join(", ")
+        )));
+    }
+    if let Some(path) = o.q_file {
+        if !takes(&spec, ParamKind::QFile) {
+            return Err(Error::InvalidArgument(format!(
+                "--q-file applies to {}, not to '{name}'",
+                and_list(&takers(ParamKind::QFile))
+            )));
+        }
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        spec.params.q_overrides = crate::schemes::qas::parse_q_file(&text, path)?;
+    }
+    if let Some(f) = o.fallback {
+        spec.params.fallback = f;
+    }
+    Ok(spec)
+}
+
+/// The name a report shows for `spec` given as `name`: with `--lambda 0.5` a guided scheme is
+/// shown with the `-half` suffix that names the same scheme.
+pub fn label(name: &str, spec: &Spec) -> String {
+    if spec.params.chi == Some(ChiKind::Half) && !name.ends_with("-half") {
+        format!("{name}-half")
+    } else {
+        name.to_string()
+    }
+}
+
+/// Parses `FACE:X,Y,Z`.
+fn parse_pole(s: &str) -> Result<(usize, Point)> {
+    let bad = || {
+        Error::InvalidArgument(format!(
+            "--pole '{s}': expected FACE:X,Y,Z (input face index, then the pole's coordinates)"
+        ))
+    };
+    let (f, xyz) = s.split_once(':').ok_or_else(bad)?;
+    let f = f.trim().parse::<usize>().map_err(|_| bad())?;
+    let c = xyz
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<std::result::Result<Vec<_>, _>>()
+        .map_err(|_| bad())?;
+    if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
+        return Err(bad());
+    }
+    Ok((f, [c[0], c[1], c[2]]))
+}

@@ -1,0 +1,276 @@
+//! The one adaptive level loop behind every scheme whose exact surface is read off a partially
+//! refined net (Catmull-Clark with or without caps, Doo-Sabin, Loop, non-box), and the
+//! bookkeeping those schemes share: the trust of the points of a partially refined level, the
+//! tags of active cells, the selection of the faces refined around marked cells, and the edge
+//! curves shared by neighbouring cells.
+//!
+//! A scheme plugs in through [`AdaptiveRules`]: which cells are regular and what their patches
+//! are, how a marked cell is tagged, how the faces around marked cells are refined, and how the
+//! hole left after the last level is filled. [`run`] is the loop: at level `l` every active
+//! cell that is regular and trusted becomes patches of ring `l` (regular at level 0), the rest
+//! is refined with its neighbourhood, until the rings are done.
+
+use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::error::Result;
+use crate::geom::Point;
+use crate::mesh::{Element, PolyMesh};
+use std::collections::HashMap;
+
+pub use super::ComplexOptions;
+
+/// A scheme's rules for the adaptive loop ([`run`]).
+pub trait AdaptiveRules {
+    /// One level: the partially refined net, the trust of its points, its active cells.
+    type Level;
+    /// The edge curves of the cells emitted at one level, which the fill shares.
+    type Curves: Default;
+
+    /// Level 0 from the input net (errors name what the scheme cannot take).
+    fn start(&self, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Self::Level>;
+
+    /// The cells still to be made patches at this level, with their tags.
+    fn active<'a>(&self, level: &'a Self::Level) -> &'a [(u32, Tag)];
+
+    /// Pushes the patches of `cell` with provenance `prov` (recording its edge curves) when the
+    /// cell is regular and all its control points are trusted; `false` otherwise.
+    fn emit(
+        &self,
+        level: &Self::Level,
+        cell: u32,
+        prov: Provenance,
+        curves: &mut Self::Curves,
+        out: &mut PatchComplex,
+    ) -> bool;
+
+    /// The tag of a cell that is not emitted at level `l`.
+    fn retag(&self, level: &Self::Level, cell: u32, tag: Tag, l: usize) -> Tag;
+
+    /// Replaces marked cells by caps built from local nets (Catmull-Clark's caps of EG, QAS+ and
+    /// guided subdivision); returns the cells left. The default caps nothing.
+    fn caps(
+        &self,
+        level: &Self::Level,
+        marked: Vec<(u32, Tag)>,
+        l: usize,
+        out: &mut PatchComplex,
+    ) -> Result<Vec<(u32, Tag)>> {
+        let _ = (level, l, out);
+        Ok(marked)
+    }
+
+    /// Whether level `l` is the last (default: `l == rings`).
+    fn is_last(&self, l: usize, rings: usize, level: &Self::Level, marked: &[(u32, Tag)]) -> bool {
+        let _ = (level, marked);
+        l == rings
+    }
+
+    /// Closes the hole of the marked cells of the last level.
+    fn fill(
+        &self,
+        level: &Self::Level,
+        marked: &[(u32, Tag)],
+        curves: &mut Self::Curves,
+        out: &mut PatchComplex,
+    ) -> Result<()>;
+
+    /// Refines the marked cells with their neighbourhood: the next level, whose active cells are
+    /// the children of the marked ones.
+    fn refine_around(&self, level: &Self::Level, marked: &[(u32, Tag)]) -> Result<Self::Level>;
+}
+
+/// The adaptive loop: the patch complex of `mesh` under `rules`. `progress(level)` is called
+/// after each refinement.
+pub fn run<R: AdaptiveRules + ?Sized>(
+    rules: &R,
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    progress: &mut dyn FnMut(usize),
+) -> Result<PatchComplex> {
+    let mut out = PatchComplex::new();
+    let mut level = rules.start(mesh, opts)?;
+    for l in 0.. {
+        let mut marked: Vec<(u32, Tag)> = Vec::new();
+        let mut curves = R::Curves::default();
+        for &(f, tag) in rules.active(&level) {
+            if !rules.emit(&level, f, provenance(l, tag), &mut curves, &mut out) {
+                marked.push((f, rules.retag(&level, f, tag, l)));
+            }
+        }
+        marked = rules.caps(&level, marked, l, &mut out)?;
+        if marked.is_empty() {
+            break;
+        }
+        if rules.is_last(l, opts.rings, &level, &marked) {
+            if opts.fill {
+                rules.fill(&level, &marked, &mut curves, &mut out)?;
+            }
+            break;
+        }
+        level = rules.refine_around(&level, &marked)?;
+        progress(l + 1);
+    }
+    Ok(out)
+}
+
+/// Trust of a point of a partially refined level.
+#[derive(Debug, Clone, Copy)]
+pub struct Info {
+    /// The position equals the one of full refinement.
+    pub pos_ok: bool,
+    /// (Vertices) the faces around it are all present, so its one-ring is the true one.
+    pub fan_ok: bool,
+    /// Input element this point descends from: an input vertex by vertex points, or an
+    /// extraordinary face by its centre (Catmull-Clark) or FCV (non-box); Doo-Sabin sets it at
+    /// level 0 only, where it names the V-face of level 1.
+    pub origin: Option<Element>,
+}
+
+/// Extraordinary element and sector of an active cell, and its input face.
+#[derive(Debug, Clone, Copy)]
+pub struct Tag {
+    /// The extraordinary element the cell belongs to, if any.
+    pub element: Option<Element>,
+    /// The cell's sector around that element.
+    pub sector: u32,
+    /// The input face the cell descends from.
+    pub input_face: u32,
+}
+
+/// The trust of the `n` vertices of an input net: all trusted, each its own origin.
+pub fn input_vertex_info(n: usize) -> Vec<Info> {
+    (0..n)
+        .map(|v| Info {
+            pos_ok: true,
+            fan_ok: true,
+            origin: Some(Element::Vertex(v as u32)),
+        })
+        .collect()
+}
+
+/// The active cells of an input net with `n` faces: every face, untagged.
+pub fn input_active(n: usize) -> Vec<(u32, Tag)> {
+    (0..n as u32)
+        .map(|f| {
+            (
+                f,
+                Tag {
+                    element: None,
+                    sector: 0,
+                    input_face: f,
+                },
+            )
+        })
+        .collect()
+}
+
+/// The provenance of a cell with tag `tag` emitted at level `l`: regular at level 0 or without
+/// an element, otherwise ring `l` of its element.
+pub fn provenance(l: usize, tag: Tag) -> Provenance {
+    match (l, tag.element) {
+        (0, _) | (_, None) => Provenance::Regular {
+            face: tag.input_face,
+        },
+        (_, Some(element)) => Provenance::Ring {
+            element,
+            ring: l as u32,
+            sector: tag.sector,
+        },
+    }
+}
+
+/// The tag of a marked cell `f`: its first corner that descends from an input element and is
+/// not regular (by `is_regular`) gives the element, sector = the cell's position in that
+/// vertex's fan; otherwise (or if the element is already the tag's) the inherited tag.
+pub fn retag_by_corners(
+    m: &PolyMesh,
+    info: &[Info],
+    f: usize,
+    tag: Tag,
+    is_regular: impl Fn(&PolyMesh, usize) -> bool,
+) -> Tag {
+    for &v in m.face(f) {
+        let v = v as usize;
+        if let Some(origin) = info[v].origin
+            && !is_regular(m, v)
+        {
+            if tag.element == Some(origin) {
+                return tag;
+            }
+            let sector = m
+                .vertex_faces(v)
+                .iter()
+                .position(|&g| g as usize == f)
+                .unwrap_or(0);
+            return Tag {
+                element: Some(origin),
+                sector: sector as u32,
+                ..tag
+            };
+        }
+    }
+    tag
+}
+
+/// The faces around the corners of the marked cells: a selection flag per face and the
+/// selected faces in increasing order.
+pub fn select_around(m: &PolyMesh, marked: &[(u32, Tag)]) -> (Vec<bool>, Vec<u32>) {
+    let mut sel = vec![false; m.num_faces()];
+    let mut sel_faces = Vec::new();
+    for &(f, _) in marked {
+        for &v in m.face(f as usize) {
+            for g in m.vertex_faces(v as usize) {
+                if !sel[g as usize] {
+                    sel[g as usize] = true;
+                    sel_faces.push(g);
+                }
+            }
+        }
+    }
+    sel_faces.sort_unstable();
+    (sel, sel_faces)
+}
+
+/// The active cells of the next level: the children `first .. first + count` of every marked
+/// cell (`children(f) = (first, count)`), each with its parent's tag.
+pub fn child_active(
+    marked: &[(u32, Tag)],
+    children: impl Fn(u32) -> (u32, u32),
+) -> Vec<(u32, Tag)> {
+    let mut active = Vec::new();
+    for &(f, tag) in marked {
+        let (first, count) = children(f);
+        for c in first..first + count {
+            active.push((c, tag));
+        }
+    }
+    active
+}
+
+/// Edge curves keyed by vertex pairs `(min, max)`, oriented from the smaller vertex.
+pub type Curves<const N: usize> = HashMap<(u32, u32), [Point; N]>;
+
+/// Stores the curve `e` of edge `a -> b` unless the edge already has one.
+pub fn record_edge<const N: usize>(curves: &mut Curves<N>, a: u32, b: u32, mut e: [Point; N]) {
+    if a > b {
+        e.reverse();
+    }
+    curves.entry((a.min(b), a.max(b))).or_insert(e);
+}
+
+/// The curve of edge `a -> b`: the stored one, else `make(min, max)` (oriented from the smaller
+/// vertex), which is then stored.
+pub fn edge_curve<const N: usize>(
+    curves: &mut Curves<N>,
+    a: u32,
+    b: u32,
+    make: impl FnOnce(usize, usize) -> [Point; N],
+) -> [Point; N] {
+    let key = (a.min(b), a.max(b));
+    let mut e = *curves
+        .entry(key)
+        .or_insert_with(|| make(key.0 as usize, key.1 as usize));
+    if a > b {
+        e.reverse();
+    }
+    e
+}

@@ -1,0 +1,194 @@
+//! The descriptors of the bi-2 family: PGS (plain and after DS^CC steps), PolBS, TPS,
+//! adjustable TPS and the mixed net, with their mesh rules, exact patches and local analysis.
+
+use super::pgs::PgsOptions;
+use super::ternary::TernaryRules;
+use super::{AdjustableTps, Bi2Mixed, Pgs, PgsPreprocessed, PolarBi2, Tps};
+use crate::bezier::BezierPatch;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
+use crate::schemes::Scheme;
+use crate::schemes::descriptor::{
+    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
+    Published, Spec, SurfaceOutput,
+};
+use crate::schemes::local::LocalMatrix;
+
+/// The default split ratio of adjustable TPS (the paper's figures use 0.2).
+pub const DEFAULT_E: f64 = 0.2;
+
+/// Which member of the family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bi2Kind {
+    /// PGS.
+    Pgs,
+    /// PGS after two DS^CC steps.
+    PgsDscc,
+    /// Polar bi-2.
+    Polar,
+    /// Ternary TPS.
+    Tps,
+    /// Adjustable TPS.
+    TpsAdjustable,
+    /// The mixed net.
+    Mixed,
+}
+
+/// A bi-2 scheme.
+#[derive(Debug)]
+pub struct Bi2Descriptor {
+    /// The member of the family.
+    pub kind: Bi2Kind,
+}
+
+/// The registry's PGS row.
+pub static PGS: Bi2Descriptor = Bi2Descriptor { kind: Bi2Kind::Pgs };
+/// The registry's PGS-after-DS^CC row.
+pub static PGS_DSCC: Bi2Descriptor = Bi2Descriptor {
+    kind: Bi2Kind::PgsDscc,
+};
+/// The registry's PolBS row.
+pub static POLAR: Bi2Descriptor = Bi2Descriptor {
+    kind: Bi2Kind::Polar,
+};
+/// The registry's TPS row.
+pub static TPS: Bi2Descriptor = Bi2Descriptor { kind: Bi2Kind::Tps };
+/// The registry's adjustable-TPS row.
+pub static TPS_ADJUSTABLE: Bi2Descriptor = Bi2Descriptor {
+    kind: Bi2Kind::TpsAdjustable,
+};
+/// The registry's mixed-net row.
+pub static MIXED: Bi2Descriptor = Bi2Descriptor {
+    kind: Bi2Kind::Mixed,
+};
+
+impl Bi2Descriptor {
+    /// Adjustable TPS's rules from the parameters (`--split-ratio`, `--alpha-rule`).
+    pub fn ternary_rules(spec: &Spec) -> Result<TernaryRules> {
+        TernaryRules::adjustable_with(
+            spec.params.split_ratio.unwrap_or(DEFAULT_E),
+            spec.params.alpha_rule.unwrap_or_default(),
+        )
+    }
+}
+
+impl Descriptor for Bi2Descriptor {
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            refine: true,
+            patches: true,
+        }
+    }
+
+    fn joins_up_to_scaling(&self) -> bool {
+        true
+    }
+
+    fn params(&self) -> &'static [ParamKind] {
+        match self.kind {
+            Bi2Kind::Polar => &[ParamKind::Poles],
+            Bi2Kind::TpsAdjustable => &[ParamKind::SplitRatio, ParamKind::AlphaRule],
+            _ => &[],
+        }
+    }
+
+    fn mesh_rules(&self, spec: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        Ok(Some(match self.kind {
+            Bi2Kind::Pgs => Box::new(Pgs),
+            Bi2Kind::PgsDscc => Box::new(PgsPreprocessed {
+                opts: PgsOptions { dscc_steps: 2 },
+            }),
+            Bi2Kind::Polar => Box::new(PolarBi2 {
+                poles: spec.params.poles.clone(),
+            }),
+            Bi2Kind::Tps => Box::new(Tps),
+            Bi2Kind::TpsAdjustable => {
+                let r = Self::ternary_rules(spec)?;
+                Box::new(AdjustableTps {
+                    e: r.e,
+                    alphas: r.alphas,
+                })
+            }
+            Bi2Kind::Mixed => Box::new(Bi2Mixed),
+        }))
+    }
+
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        Ok(Some(Box::new(Bi2Patches {
+            kind: self.kind,
+            rules: Self::ternary_rules(spec)?,
+            poles: spec.params.poles.clone(),
+        })))
+    }
+
+    fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+        if matches!(self.kind, Bi2Kind::PgsDscc | Bi2Kind::Mixed) {
+            return Ok(None);
+        }
+        Ok(Some(Box::new(Bi2Local {
+            kind: self.kind,
+            rules: Self::ternary_rules(spec)?,
+        })))
+    }
+}
+
+/// The local analysis of a member of the bi-2 family (`rules`: adjustable TPS's, ignored by
+/// the others).
+struct Bi2Local {
+    kind: Bi2Kind,
+    rules: TernaryRules,
+}
+
+impl LocalRules for Bi2Local {
+    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
+        super::local::local_matrix_rules(self.kind, n, self.rules)
+    }
+
+    fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+        super::local::characteristic_ring_rules(self.kind, n, self.rules)
+    }
+
+    /// The bi-2 paper's polynomials, eigenvalues and limit points (its own matrix layout).
+    fn published(&self, n: usize, _: &Computed<'_>) -> Result<Vec<Published>> {
+        super::local::published_rules(self.kind, n, self.rules)
+    }
+}
+
+/// The exact surface of a member of the family: regular bi-2 patches, the member's rings and
+/// fill per element.
+struct Bi2Patches {
+    kind: Bi2Kind,
+    rules: TernaryRules,
+    poles: Vec<(usize, crate::geom::Point)>,
+}
+
+impl PatchRules for Bi2Patches {
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        use super::surface as s;
+        let with_notes = |(complex, notes)| SurfaceOutput {
+            complex,
+            fell_back: Vec::new(),
+            notes,
+        };
+        Ok(match self.kind {
+            Bi2Kind::Pgs => {
+                SurfaceOutput::plain(s::pgs_complex(mesh, opts, PgsOptions::default(), progress)?)
+            }
+            Bi2Kind::PgsDscc => SurfaceOutput::plain(s::pgs_complex(
+                mesh,
+                opts,
+                PgsOptions { dscc_steps: 2 },
+                progress,
+            )?),
+            Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &self.poles, progress)?),
+            Bi2Kind::Tps => with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?),
+            Bi2Kind::TpsAdjustable => with_notes(s::tps_complex(mesh, opts, self.rules, progress)?),
+            Bi2Kind::Mixed => SurfaceOutput::plain(s::mixed_complex(mesh, opts, progress)?),
+        })
+    }
+}

@@ -1,0 +1,83 @@
+//! Catmull-Clark's descriptor: mesh rules, exact patches, local analysis.
+
+use super::CatmullClark;
+use crate::bezier::BezierPatch;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
+use crate::schemes::Scheme;
+use crate::schemes::descriptor::{
+    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, PatchRules, Published, Spec,
+    SurfaceOutput,
+};
+use crate::schemes::local::LocalMatrix;
+
+/// Catmull-Clark.
+#[derive(Debug)]
+pub struct CcDescriptor;
+
+/// The registry's Catmull-Clark row.
+pub static DESCRIPTOR: CcDescriptor = CcDescriptor;
+
+impl Descriptor for CcDescriptor {
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            refine: true,
+            patches: true,
+        }
+    }
+
+    fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        Ok(Some(Box::new(CatmullClark)))
+    }
+
+    fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        Ok(Some(Box::new(CcPatchRules)))
+    }
+
+    fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+        Ok(Some(Box::new(CcLocal)))
+    }
+}
+
+/// Catmull-Clark's exact surface: the adaptive loop with bi-3 patches and the Hermite-Coons fill.
+struct CcPatchRules;
+
+impl PatchRules for CcPatchRules {
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        super::surface::catmull_clark_complex(mesh, opts, progress).map(SurfaceOutput::plain)
+    }
+}
+
+/// Catmull-Clark's local analysis on the c-net.
+struct CcLocal;
+
+impl LocalRules for CcLocal {
+    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
+        super::local::local_matrix(n)
+    }
+
+    fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+        super::local::characteristic_ring(n)
+    }
+
+    fn published(&self, n: usize, c: &Computed<'_>) -> Result<Vec<Published>> {
+        let nf = n as f64;
+        Ok(vec![
+            Published::new(
+                "lambda = (c + 5 + sqrt((c+1)(c+9))) / 16",
+                super::catmull_clark_lambda(n),
+                c.spectrum.lambda,
+            ),
+            Published::new(
+                "limit weight of the centre n / (n + 5)",
+                nf / (nf + 5.0),
+                c.limit_stencil[0],
+            ),
+        ])
+    }
+}

@@ -1,0 +1,309 @@
+//! What the rest of fairsub needs to know about a scheme, in one trait per scheme.
+//!
+//! A scheme is named by a [`SchemeId`] (its canonical command-line name, spelled once, in the
+//! [registry](super::registry)) and configured by typed [`Params`]; the two together are a
+//! [`Spec`]. Its registry row carries the catalogue text ([`About`]); its [`Descriptor`] says
+//! which typed options it takes ([`ParamKind`]) and hands out its rules:
+//!
+//! * mesh rules ([`super::Scheme`]: whole-net refinement, limit masks) for `--levels`;
+//! * patch rules ([`PatchRules`]: the exact surface as a patch complex) for `--rings`;
+//! * local rules ([`LocalRules`]: the subdivision matrix at one valence on the scheme's local
+//!   net, the characteristic ring, the published numbers) for `analyze` and `charmap`.
+//!
+//! The front ends (CLI, demo, Python) and the surface and analysis layers only ever look a
+//! scheme up in the registry and ask its descriptor; nothing matches on scheme names.
+
+use super::Scheme;
+use super::local::LocalMatrix;
+use crate::bezier::BezierPatch;
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::mesh::PolyMesh;
+
+pub use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
+use serde::Serialize;
+
+/// A scheme's identity: its canonical command-line name. The built-in ids are the constants of
+/// [`super::registry::ids`]; a scheme defined outside fairsub makes its own with
+/// [`SchemeId::new`] and adds a registry row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SchemeId(&'static str);
+
+impl SchemeId {
+    /// The id of the scheme with this canonical name.
+    pub const fn new(name: &'static str) -> SchemeId {
+        SchemeId(name)
+    }
+
+    /// The canonical command-line name.
+    pub const fn name(self) -> &'static str {
+        self.0
+    }
+}
+
+impl std::fmt::Display for SchemeId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
+impl Serialize for SchemeId {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.0)
+    }
+}
+
+/// The typed options that some schemes take (the front ends check that an option given applies
+/// to the scheme chosen).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamKind {
+    /// `--fallback`: what happens at valences without rules.
+    Fallback,
+    /// `--lambda` / the `-half` suffix: the contraction of guided subdivision.
+    Contraction,
+    /// `--split-ratio`: adjustable TPS's `e`.
+    SplitRatio,
+    /// `--alpha-rule`: how adjustable TPS's alphas are chosen.
+    AlphaRule,
+    /// `--pole FACE:X,Y,Z`: poles of polar bi-2 caps.
+    Poles,
+    /// `--q-file`: user-given quadratic expansions of QAS+.
+    QFile,
+    /// `--fcv-scale`, `--fcv-file`: the face control vertices of the non-box schemes.
+    Fcv,
+}
+
+impl ParamKind {
+    /// The command-line option that sets it.
+    pub fn option(self) -> &'static str {
+        match self {
+            ParamKind::Fallback => "--fallback",
+            ParamKind::Contraction => "--lambda",
+            ParamKind::SplitRatio => "--split-ratio",
+            ParamKind::AlphaRule => "--alpha-rule",
+            ParamKind::Poles => "--pole",
+            ParamKind::QFile => "--q-file",
+            ParamKind::Fcv => "--fcv-scale / --fcv-file",
+        }
+    }
+}
+
+/// How adjustable TPS chooses rule (18)'s alphas.
+pub use super::bi2::ternary::AlphaRule;
+/// The characteristic map a guided scheme samples through (`-half` suffix, `--lambda 0.5`).
+pub use super::guided::chi::ChiKind;
+/// The degree of a guided scheme's guide (`-g4`, `-g3` name suffixes).
+pub use super::guided::guide::GuideDegree;
+/// A user-given quadratic expansion of QAS+ (`--q-file`).
+pub use super::qas::QSpec;
+
+/// Typed parameters of a scheme. Each field applies to the schemes whose descriptor lists its
+/// [`ParamKind`]; `None` / empty means the scheme's default.
+#[derive(Debug, Clone, Default)]
+pub struct Params {
+    /// Valences without rules.
+    pub fallback: Fallback,
+    /// Guided: degree of the guide.
+    pub guide: Option<GuideDegree>,
+    /// Guided: the characteristic map (and so the contraction).
+    pub chi: Option<ChiKind>,
+    /// Adjustable TPS: the split ratio `e`.
+    pub split_ratio: Option<f64>,
+    /// Adjustable TPS: the alpha rule.
+    pub alpha_rule: Option<AlphaRule>,
+    /// Polar bi-2: poles given by the user (input face, position).
+    pub poles: Vec<(usize, Point)>,
+    /// QAS+: quadratic expansions given by the user, per input vertex.
+    pub q_overrides: std::collections::BTreeMap<u32, QSpec>,
+}
+
+/// A scheme with its parameters: what a front end passes down.
+#[derive(Debug, Clone)]
+pub struct Spec {
+    /// The scheme.
+    pub id: SchemeId,
+    /// Its parameters.
+    pub params: Params,
+}
+
+impl Spec {
+    /// The scheme with default parameters.
+    pub fn new(id: SchemeId) -> Spec {
+        Spec {
+            id,
+            params: Params::default(),
+        }
+    }
+
+    /// The canonical name.
+    pub fn name(&self) -> &'static str {
+        self.id.name()
+    }
+}
+
+/// The catalogue row of a scheme (`fairsub schemes`): what it takes, what it gives, what its
+/// paper proves, where it applies, and how complete fairsub's implementation is.
+#[derive(Debug, Clone, Copy)]
+pub struct About {
+    /// Family and paper.
+    pub family: &'static str,
+    /// Input nets it accepts.
+    pub input: &'static str,
+    /// Patches it outputs (degree and layout), if it has exact patch output.
+    pub patches: &'static str,
+    /// Smoothness claimed by its paper (or the classical result).
+    pub smoothness: &'static str,
+    /// Valences / element sizes with rules.
+    pub valences: &'static str,
+    /// Implementation status.
+    pub status: &'static str,
+}
+
+/// What a scheme offers, known without building anything.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Capabilities {
+    /// Whole-net refinement (`--levels`).
+    pub refine: bool,
+    /// Exact patch output (`--rings`).
+    pub patches: bool,
+}
+
+/// A scheme's exact surfaces of whole nets.
+pub trait PatchRules: Sync {
+    /// The patch complex of `mesh`: regular patches, `opts.rings` rings around every
+    /// extraordinary element and the scheme's fill (or the hole left open). `progress(ring)` is
+    /// called as rings are produced.
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput>;
+}
+
+/// A published value next to the computed one.
+#[derive(Debug, Clone, Serialize)]
+pub struct Published {
+    /// What is compared (with its source in the paper).
+    pub quantity: String,
+    /// The paper's value.
+    pub published: f64,
+    /// fairsub's value.
+    pub computed: f64,
+    /// `|published - computed|`.
+    pub difference: f64,
+}
+
+impl Published {
+    /// A comparison.
+    pub fn new(quantity: impl Into<String>, published: f64, computed: f64) -> Published {
+        Published {
+            quantity: quantity.into(),
+            published,
+            computed,
+            difference: (published - computed).abs(),
+        }
+    }
+}
+
+/// What the analysis computed from a local matrix, handed to [`LocalRules::published`].
+#[derive(Debug, Clone)]
+pub struct Computed<'a> {
+    /// The matrix.
+    pub matrix: &'a LocalMatrix,
+    /// Its spectrum.
+    pub spectrum: &'a super::local::Spectrum,
+    /// The limit-point stencil reported.
+    pub limit_stencil: &'a [f64],
+}
+
+/// Extra facts a scheme reports beside its spectrum (for example QAS+'s `M_d` and `M_q`):
+/// a JSON value under `key` and lines for the text report.
+#[derive(Debug, Clone)]
+pub struct ExtraFacts {
+    /// Key in the JSON report.
+    pub key: &'static str,
+    /// The facts.
+    pub value: serde_json::Value,
+    /// The text report's lines.
+    pub lines: Vec<String>,
+}
+
+/// A scheme's local rules at one valence, for analysis.
+pub trait LocalRules: Sync {
+    /// The subdivision matrix at valence `n` on the scheme's local net (centre points first,
+    /// then sector by sector), from the scheme's own stencils.
+    fn matrix(&self, n: usize) -> Result<LocalMatrix>;
+
+    /// The planar characteristic ring at valence `n` (patches of one ring of the
+    /// characteristic map) and its contraction lambda.
+    fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+        Err(Error::Unsupported(format!(
+            "valence {n}: this scheme has no characteristic map"
+        )))
+    }
+
+    /// The limit-point stencil reported beside the matrix (default: the left eigenvector of 1
+    /// of `m`).
+    fn limit_stencil(&self, n: usize, m: &LocalMatrix) -> Result<Vec<f64>> {
+        let _ = n;
+        m.limit_stencil()
+    }
+
+    /// The paper's numbers at valence `n` beside fairsub's.
+    fn published(&self, n: usize, c: &Computed<'_>) -> Result<Vec<Published>> {
+        let _ = (n, c);
+        Ok(Vec::new())
+    }
+
+    /// Extra facts beside the spectrum.
+    fn extra(&self, n: usize) -> Result<Option<ExtraFacts>> {
+        let _ = n;
+        Ok(None)
+    }
+}
+
+/// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`About`],
+/// is in its registry row).
+pub trait Descriptor: Sync + Send {
+    /// What it offers.
+    fn capabilities(&self) -> Capabilities;
+
+    /// Whether the scheme takes the net at all (for front ends that try every scheme on one
+    /// net, like the demo); the error names the element it cannot take.
+    fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
+        let _ = mesh;
+        Ok(())
+    }
+
+    /// The typed options it takes.
+    fn params(&self) -> &'static [ParamKind] {
+        &[]
+    }
+
+    /// Whole-net refinement with these parameters (`None`: the scheme has no net of its own to
+    /// refine).
+    fn mesh_rules(&self, spec: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        let _ = spec;
+        Ok(None)
+    }
+
+    /// Exact patch output with these parameters (`None`: no patch output).
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        let _ = spec;
+        Ok(None)
+    }
+
+    /// Whether the scheme's patches join C^1 only up to a per-piece affine reparametrisation
+    /// (the bi-2 family, whose polar and adjustable rings shrink differently along and across
+    /// their sides), so `check` reports that certificate too.
+    fn joins_up_to_scaling(&self) -> bool {
+        false
+    }
+
+    /// Local rules for analysis with these parameters (`None`: no analysis).
+    fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+        let _ = spec;
+        Ok(None)
+    }
+}

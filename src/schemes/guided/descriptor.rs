@@ -1,0 +1,164 @@
+//! The descriptors of guided subdivision's ring variants: exact patches (caps of rings sampled
+//! from a guide, on Catmull-Clark nets) and local analysis. The guide degree and the contraction
+//! are typed parameters (name suffixes `-g4`, `-g3`, `-half`; `--lambda 0.5`).
+
+use super::rings::{GuidedOptions, RingDegree};
+use super::surface::{GuidedComplexOptions, guided_complex};
+use crate::bezier::BezierPatch;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
+use crate::schemes::descriptor::{
+    Capabilities, ComplexOptions, Computed, Descriptor, Fallback, LocalRules, ParamKind,
+    PatchRules, Published, Spec, SurfaceOutput,
+};
+use crate::schemes::local::LocalMatrix;
+
+/// A guided scheme of one ring degree.
+#[derive(Debug)]
+pub struct GuidedDescriptor {
+    /// Degree (or macro-patch layout) of the rings.
+    pub ring: RingDegree,
+}
+
+/// The registry's guided bi-5 row.
+pub static BI5: GuidedDescriptor = GuidedDescriptor {
+    ring: RingDegree::Bi5,
+};
+/// The registry's guided bi-6 row.
+pub static BI6: GuidedDescriptor = GuidedDescriptor {
+    ring: RingDegree::Bi6,
+};
+/// The registry's guided bi-4 macro-patch row.
+pub static BI4_MACRO: GuidedDescriptor = GuidedDescriptor {
+    ring: RingDegree::Bi4Macro,
+};
+/// The registry's guided bi-3 macro-patch row.
+pub static BI3_MACRO: GuidedDescriptor = GuidedDescriptor {
+    ring: RingDegree::Bi3Macro,
+};
+
+impl Descriptor for GuidedDescriptor {
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            refine: false,
+            patches: true,
+        }
+    }
+
+    fn params(&self) -> &'static [ParamKind] {
+        &[ParamKind::Fallback, ParamKind::Contraction]
+    }
+
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        Ok(Some(Box::new(GuidedPatchRules {
+            scheme: self.options(spec),
+            fallback: spec.params.fallback,
+        })))
+    }
+
+    fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+        Ok(Some(Box::new(GuidedLocal {
+            options: self.options(spec),
+        })))
+    }
+}
+
+impl GuidedDescriptor {
+    /// The guided options a spec selects: this row's ring degree, the guide degree and
+    /// characteristic map of the parameters.
+    pub fn options(&self, spec: &Spec) -> GuidedOptions {
+        GuidedOptions {
+            ring: self.ring,
+            guide: spec.params.guide.unwrap_or_default(),
+            chi: spec.params.chi.unwrap_or_default(),
+            ..GuidedOptions::default()
+        }
+    }
+}
+
+/// Guided subdivision's exact surface: Catmull-Clark's adaptive loop with guided caps.
+struct GuidedPatchRules {
+    scheme: GuidedOptions,
+    fallback: Fallback,
+}
+
+impl PatchRules for GuidedPatchRules {
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        guided_complex(
+            mesh,
+            GuidedComplexOptions {
+                rings: opts.rings,
+                cap: opts.fill,
+                scheme: self.scheme,
+                fallback: self.fallback,
+            },
+            progress,
+        )
+    }
+}
+
+/// Guided subdivision's local analysis: the matrix on the guide's free set `P`.
+struct GuidedLocal {
+    options: GuidedOptions,
+}
+
+impl LocalRules for GuidedLocal {
+    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
+        let o = self.options;
+        super::local::local_matrix(n, o.guide, super::local::lambda(n, o.chi))
+    }
+
+    fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+        super::local::characteristic_ring(n, self.options)
+    }
+
+    /// The matrix acts on the guide's free set `P`, whose first coordinate is the limit point;
+    /// its stencil on the c-net (centre, then sector by sector) is the fit's first row.
+    fn limit_stencil(&self, n: usize, m: &LocalMatrix) -> Result<Vec<f64>> {
+        match super::rings::Guided::new(n, self.options) {
+            Ok(g) => Ok(g.fit.row(0).iter().copied().collect()),
+            Err(_) => m.limit_stencil(),
+        }
+    }
+
+    fn published(&self, n: usize, c: &Computed<'_>) -> Result<Vec<Published>> {
+        let l = super::local::lambda(n, self.options.chi);
+        let mut out = vec![Published::new(
+            "lambda (Catmull-Clark's, or 1/2 with --lambda 0.5)",
+            l,
+            c.spectrum.lambda,
+        )];
+        // Table (5) is for extraordinary valences; at n = 4 (c = 0) the G^2 space is the larger
+        // C^2 one (81 coordinates: lambda^3 x6, lambda^4 x9).
+        if n != 4 {
+            for (s, p, k) in super::local::table5(n, l, &c.matrix.matrix) {
+                out.push(Published::new(
+                    format!("multiplicity of lambda^{s} (table (5))"),
+                    p as f64,
+                    k as f64,
+                ));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The guided options a scheme name selects (`guided-bi6-g4-half`), or `None` for a name that
+/// is not a guided scheme.
+pub fn options_of(name: &str) -> Option<GuidedOptions> {
+    use crate::schemes::registry::{ids, registry};
+    let spec = registry().lookup(name).ok()?;
+    let d = match spec.id {
+        ids::GUIDED_BI5 => &BI5,
+        ids::GUIDED_BI6 => &BI6,
+        ids::GUIDED_BI4_MACRO => &BI4_MACRO,
+        ids::GUIDED_BI3_MACRO => &BI3_MACRO,
+        _ => return None,
+    };
+    Some(d.options(&spec))
+}

@@ -1,0 +1,109 @@
+//! The descriptors of the non-box schemes: mesh rules (on nets with FCVs), exact patches, local
+//! analysis.
+
+use super::{NonBox, NonBox4Dir};
+use crate::bezier::BezierPatch;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
+use crate::schemes::Scheme;
+use crate::schemes::descriptor::{
+    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
+    Published, Spec, SurfaceOutput,
+};
+use crate::schemes::local::LocalMatrix;
+
+/// Non-box subdivision: the quad variant with FCVs (`four_dir = false`) or the
+/// four-directional triangle variant.
+#[derive(Debug)]
+pub struct NonBoxDescriptor {
+    /// The four-directional variant.
+    pub four_dir: bool,
+}
+
+/// The registry's non-box row.
+pub static DESCRIPTOR: NonBoxDescriptor = NonBoxDescriptor { four_dir: false };
+/// The registry's four-directional non-box row.
+pub static DESCRIPTOR_4DIR: NonBoxDescriptor = NonBoxDescriptor { four_dir: true };
+
+impl Descriptor for NonBoxDescriptor {
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            refine: true,
+            patches: true,
+        }
+    }
+
+    fn params(&self) -> &'static [ParamKind] {
+        &[ParamKind::Fcv]
+    }
+
+    fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        Ok(Some(if self.four_dir {
+            Box::new(NonBox4Dir)
+        } else {
+            Box::new(NonBox::default())
+        }))
+    }
+
+    fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        Ok(Some(Box::new(NonBoxPatchRules {
+            four_dir: self.four_dir,
+        })))
+    }
+
+    fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+        Ok(Some(Box::new(NonBoxLocal {
+            four_dir: self.four_dir,
+        })))
+    }
+}
+
+/// The exact surface of a non-box scheme: four cubic triangles per regular cell, rings, fill;
+/// the notes say how the input's FCVs were read.
+struct NonBoxPatchRules {
+    four_dir: bool,
+}
+
+impl PatchRules for NonBoxPatchRules {
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        let complex = if self.four_dir {
+            super::surface::nonbox_4dir_mesh_complex(mesh, opts, progress)?
+        } else {
+            super::surface::nonbox_mesh_complex(mesh, opts, progress)?
+        };
+        Ok(SurfaceOutput {
+            complex,
+            fell_back: Vec::new(),
+            notes: super::input_notes(self.four_dir, mesh),
+        })
+    }
+}
+
+/// Non-box local analysis (the published numbers and the characteristic ring are the same for
+/// both variants: they have the same limit surface).
+struct NonBoxLocal {
+    four_dir: bool,
+}
+
+impl LocalRules for NonBoxLocal {
+    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
+        if self.four_dir {
+            super::local::local_matrix_4dir(n)
+        } else {
+            super::local::local_matrix(n)
+        }
+    }
+
+    fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
+        super::local::characteristic_ring(n)
+    }
+
+    fn published(&self, n: usize, _: &Computed<'_>) -> Result<Vec<Published>> {
+        super::local::published_comparisons(n)
+    }
+}
