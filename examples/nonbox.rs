@@ -5,7 +5,8 @@
 //! Run: `cargo run --release --example nonbox -- [OUT_DIR]` (default `nonbox-out`).
 
 use fairsub::analysis::{certify, nonbox as anb};
-use fairsub::schemes::nonbox::{FcvNet, NonBox, a_k, write_fcv_obj};
+use fairsub::io::fcv::write_fcv_obj;
+use fairsub::schemes::nonbox::{FcvNet, NonBox, a_k};
 use fairsub::surface::{ComplexOptions, nonbox::nonbox_complex};
 use std::path::PathBuf;
 

@@ -434,10 +434,18 @@ fn every_reader_allows_invalid_utf8_in_comments_only() {
         let p = dir.join(name);
         std::fs::write(&p, ok).unwrap();
         assert_eq!(io::read_mesh(&p).unwrap().mesh.num_faces(), 6, "{name}");
+        if name == "c.obj" {
+            let (_, fcvs, _) = io::fcv::read_obj_fcvs(&p).unwrap();
+            assert!(fcvs.is_none());
+        }
         std::fs::write(&p, bad).unwrap();
         let e = io::read_mesh(&p).unwrap_err().to_string();
         let want = format!("{}:{line}: invalid UTF-8 at column ", p.display());
         assert!(e.starts_with(&want) && e.contains("(byte 0xE9)"), "{e}");
+        if name == "c.obj" {
+            let e = io::fcv::read_obj_fcvs(&p).unwrap_err().to_string();
+            assert!(e.starts_with(&want), "{e}");
+        }
     }
     let (ok, bad) = with(&bv, b"# caf\xe9", 3);
     let p = dir.join("s.bv");
@@ -447,6 +455,18 @@ fn every_reader_allows_invalid_utf8_in_comments_only() {
     let e = io::read_bv(&p).unwrap_err().to_string();
     assert!(
         e.starts_with(&format!("{}:3: invalid UTF-8", p.display())),
+        "{e}"
+    );
+    let p = dir.join("c.fcv");
+    std::fs::write(&p, b"# caf\xe9\n*\n*\n*\n*\n*\n0 0 9\n").unwrap();
+    let net = io::fcv::load_fcv_file(cube.clone(), &p, 1.0).unwrap();
+    assert_eq!(net.fcv[5], [0.0, 0.0, 9.0]);
+    std::fs::write(&p, b"*\n*\n*\n*\n*\n0 0 \xe9\n").unwrap();
+    let e = io::fcv::load_fcv_file(cube, &p, 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!("{}:6: invalid UTF-8 at column 5", p.display())),
         "{e}"
     );
     std::fs::remove_dir_all(dir).unwrap();

@@ -1,4 +1,5 @@
-//! Readers and writers: OBJ, OFF, PLY meshes in and out; BezierView `.bv` and IGES patch output.
+//! Readers and writers: OBJ, OFF, PLY meshes in and out; BezierView `.bv` and IGES patch output;
+//! the FCV side file and OBJ layouts of the non-box schemes.
 //!
 //! Every reader reports bad input as an [`Error`] that names the file, the line (where the format
 //! has lines) and the element, and never panics; every text reader decodes by one rule (the
@@ -13,6 +14,7 @@
 //! | [`ply`] | PLY reader (ascii, binary little and big endian; header and binary data via `ply-rs-bw`) and writers |
 //! | [`bv`] | BezierView `.bv` writer and reader (tensor, triangular patches, polyhedra, groups) |
 //! | [`iges`] | IGES 5.3 writer (entity 128 per patch) and a validating reader |
+//! | [`fcv`] | FCV side files, OBJ nets with FCVs and OBJ limit meshes with normals (non-box schemes) |
 //! | `format` | [`MeshFormat`], [`OutputFormat`] and the choice by name or extension |
 //! | `text`, `textout` | the text rule and errors of the readers; number formatting and line sinks of the writers |
 //! | `atomic`, `polygons`, `groups` | atomic file output; checked polygon arrays; numbering names by first appearance |
@@ -22,6 +24,7 @@
 
 mod atomic;
 pub mod bv;
+pub mod fcv;
 mod format;
 mod groups;
 pub mod iges;

@@ -251,6 +251,11 @@ pub(crate) struct ObjData {
 }
 
 impl ObjData {
+    /// Number of `f` lines.
+    pub fn num_faces(&self) -> usize {
+        self.face_line.len()
+    }
+
     /// Builds and validates the mesh; errors name the line of the face or vertex concerned.
     pub fn into_mesh(self, path: &Path) -> Result<LoadedMesh> {
         let ObjData {

@@ -2,9 +2,9 @@
 //! writing refined nets with FCVs and limit meshes with normals. Kept apart from the generic
 //! command so that the non-box schemes' extra data stay out of the other schemes' paths.
 
-use fairsub::io::{MeshFormat, OutputFormat};
+use fairsub::io::{MeshFormat, OutputFormat, fcv};
 use fairsub::schemes::NonBox;
-use fairsub::schemes::nonbox::{FcvNet, fcv, input_notes, write_fcv_obj};
+use fairsub::schemes::nonbox::{FcvNet, input_notes};
 use fairsub::{Error, PolyMesh, Result};
 use std::path::{Path, PathBuf};
 
@@ -31,7 +31,7 @@ pub fn is_nonbox(scheme: &str) -> bool {
 }
 
 /// Loads the net `arg` for `scheme`. For the non-box schemes an OBJ file keeps the FCVs it
-/// lists (the layout of `fairsub::schemes::nonbox::fcv`) and `--fcv-file` / `--fcv-scale` set
+/// lists (the layout of `fairsub::io::fcv`) and `--fcv-file` / `--fcv-scale` set
 /// them otherwise; the result is then a layout mesh (else the plain mesh, whose FCVs are its
 /// barycentres). Other schemes get the plain net, and an error if FCV options were given.
 pub fn load_net(scheme: &str, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
@@ -72,7 +72,7 @@ pub fn load_net(scheme: &str, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
             Ok(net.to_layout_mesh())
         }
         None if o.fcv_scale.is_some() || o.fcv_file.is_some() => {
-            Ok(FcvNet::choose(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
+            Ok(fcv::choose_fcv_net(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
         }
         None => Ok(mesh),
     }
@@ -108,7 +108,7 @@ pub fn write_net(
     } else {
         let m = super::refine(scheme, mesh, levels, limit)?;
         match FcvNet::from_layout_mesh(&m) {
-            Some(net) if quad && !limit && obj => write_fcv_obj(output, &net)?,
+            Some(net) if quad && !limit && obj => fcv::write_fcv_obj(output, &net)?,
             _ => write_plain(&m, fmt, output)?,
         }
         m
