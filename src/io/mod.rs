@@ -3,9 +3,10 @@
 //!
 //! Every reader reports bad input as an [`Error`] that names the file, the line (where the format
 //! has lines) and the element, and never panics; every text reader decodes by one rule (the
-//! `text` module: invalid UTF-8 only inside comments). Every writer is atomic: it writes a
-//! temporary file beside the target and renames it into place only when everything was written,
-//! so a failure never leaves a half-written output (see [`write_atomically`]).
+//! `text` module: invalid UTF-8 only inside comments), which [`read_text`] offers to side files
+//! parsed elsewhere. Every writer is atomic: it writes a temporary file beside the target and
+//! renames it into place only when everything was written, so a failure never leaves a
+//! half-written output (see [`write_atomically`]).
 //!
 //! | module | holds |
 //! | --- | --- |
@@ -51,6 +52,7 @@ pub use bv::{
 };
 pub use format::{FORMAT_NAMES, MeshFormat, OutputFormat};
 pub use iges::{iges_to_string, parse_iges, read_iges, write_iges};
+pub use text::read_text;
 
 pub(crate) use atomic::write_bytes_atomically;
 pub(crate) use polygons::Polygons;

@@ -56,6 +56,28 @@ pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>> {
     std::fs::read(path).map_err(|e| io_error(path, e))
 }
 
+/// Reads a text file by the text rule, for side files that other layers parse from text (the
+/// q-files of the QAS schemes, for example): invalid UTF-8 inside a `#` comment is replaced
+/// by U+FFFD (the line structure stays), anywhere else it is an error naming the file, line
+/// and column.
+pub fn read_text(path: &Path) -> Result<String> {
+    decode_text(read_file(path)?, path)
+}
+
+/// `bytes` as text by the text rule (see [`read_text`]).
+pub(crate) fn decode_text(bytes: Vec<u8>, path: &Path) -> Result<String> {
+    match String::from_utf8(bytes) {
+        Ok(s) => Ok(s),
+        Err(e) => {
+            let bytes = e.into_bytes();
+            for l in Lines::new(&bytes, path) {
+                l?;
+            }
+            Ok(String::from_utf8_lossy(&bytes).into_owned())
+        }
+    }
+}
+
 /// Where the `#` comment of `line` starts (its length when it has none).
 #[inline]
 pub(crate) fn hash_comment(line: &[u8]) -> usize {
@@ -204,6 +226,19 @@ mod tests {
         assert_eq!(it.next_content().unwrap(), None);
         assert_eq!(it.end_line(), 5);
         assert_eq!(Lines::new(b"", Path::new("t")).end_line(), 1);
+    }
+
+    #[test]
+    fn whole_texts_follow_the_rule() {
+        let p = Path::new("q.txt");
+        let t = decode_text(b"vertex 3 # caf\xe9\np 1 2 3\n".to_vec(), p).unwrap();
+        assert_eq!(t, "vertex 3 # caf\u{fffd}\np 1 2 3\n");
+        let e = decode_text(b"vertex 3\np 1 \xe92 3\n".to_vec(), p).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("q.txt:2: invalid UTF-8 at column 5"),
+            "{e}"
+        );
     }
 
     #[test]
