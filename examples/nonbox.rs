@@ -5,8 +5,9 @@
 //! Run: `cargo run --release --example nonbox -- [OUT_DIR]` (default `nonbox-out`).
 
 use fairsub::analysis::{certify, nonbox as anb};
+use fairsub::io::fcv::write_fcv_obj;
 use fairsub::schemes::nonbox::surface::nonbox_complex;
-use fairsub::schemes::nonbox::{FcvNet, NonBox, a_k, write_fcv_obj};
+use fairsub::schemes::nonbox::{FcvNet, NonBox, a_k};
 use fairsub::surface::ComplexOptions;
 use std::path::PathBuf;
 

@@ -376,3 +376,135 @@ fn large_binary_ply_write_speed() {
     assert_eq!(back.mesh.num_vertices(), all_pos.len());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// One text rule for every reader (issue 20): a byte that is not UTF-8 is fine inside a
+/// comment and an error naming the file, line and column elsewhere, through the public readers
+/// the commands use (also the non-box OBJ and FCV readers, which used to reject the first case
+/// without a line).
+#[test]
+fn every_reader_allows_invalid_utf8_in_comments_only() {
+    let dir = scratch("utf8");
+    let cube = fairsub::gallery::cube();
+    let mut obj = Vec::new();
+    io::write_polygons_to(
+        &mut obj,
+        cube.positions(),
+        cube.face_starts(),
+        cube.corners(),
+        MeshFormat::Obj,
+    )
+    .unwrap();
+    let mut off = Vec::new();
+    io::write_polygons_to(
+        &mut off,
+        cube.positions(),
+        cube.face_starts(),
+        cube.corners(),
+        MeshFormat::Off,
+    )
+    .unwrap();
+    let mut ply = Vec::new();
+    io::write_polygons_to(
+        &mut ply,
+        cube.positions(),
+        cube.face_starts(),
+        cube.corners(),
+        MeshFormat::PlyAscii,
+    )
+    .unwrap();
+    let bv = io::bv_to_string(&complex()).unwrap().into_bytes();
+    // A Latin-1 comment line inserted as line 3 (`ok`), or the byte put into a digit of line
+    // `at_line` of the text (`bad`).
+    let with = |text: &[u8], comment: &[u8], at_line: usize| -> (Vec<u8>, Vec<u8>) {
+        let mut lines: Vec<Vec<u8>> = text.split(|&b| b == b'\n').map(|l| l.to_vec()).collect();
+        let mut ok = lines.clone();
+        ok.insert(2, comment.to_vec());
+        let target = &mut lines[at_line - 1];
+        let k = target.iter().position(|b| b.is_ascii_digit()).unwrap();
+        target[k] = 0xE9;
+        (ok.join(&b'\n'), lines.join(&b'\n'))
+    };
+    let mesh_cases: [(&str, &[u8], &[u8], usize); 3] = [
+        ("c.obj", &obj, b"# caf\xe9", 2),
+        ("c.off", &off, b"# caf\xe9", 3),
+        ("c.ply", &ply, b"comment caf\xe9", 11),
+    ];
+    for (name, text, comment, line) in mesh_cases {
+        let (ok, bad) = with(text, comment, line);
+        let p = dir.join(name);
+        std::fs::write(&p, ok).unwrap();
+        assert_eq!(io::read_mesh(&p).unwrap().mesh.num_faces(), 6, "{name}");
+        if name == "c.obj" {
+            let (_, fcvs, _) = io::fcv::read_obj_fcvs(&p).unwrap();
+            assert!(fcvs.is_none());
+        }
+        std::fs::write(&p, bad).unwrap();
+        let e = io::read_mesh(&p).unwrap_err().to_string();
+        let want = format!("{}:{line}: invalid UTF-8 at column ", p.display());
+        assert!(e.starts_with(&want) && e.contains("(byte 0xE9)"), "{e}");
+        if name == "c.obj" {
+            let e = io::fcv::read_obj_fcvs(&p).unwrap_err().to_string();
+            assert!(e.starts_with(&want), "{e}");
+        }
+    }
+    let (ok, bad) = with(&bv, b"# caf\xe9", 3);
+    let p = dir.join("s.bv");
+    std::fs::write(&p, ok).unwrap();
+    assert_eq!(io::read_bv(&p).unwrap().patches.len(), 4);
+    std::fs::write(&p, bad).unwrap();
+    let e = io::read_bv(&p).unwrap_err().to_string();
+    assert!(
+        e.starts_with(&format!("{}:3: invalid UTF-8", p.display())),
+        "{e}"
+    );
+    let p = dir.join("c.fcv");
+    std::fs::write(&p, b"# caf\xe9\n*\n*\n*\n*\n*\n0 0 9\n").unwrap();
+    let net = io::fcv::load_fcv_file(cube.clone(), &p, 1.0).unwrap();
+    assert_eq!(net.fcv[5], [0.0, 0.0, 9.0]);
+    std::fs::write(&p, b"*\n*\n*\n*\n*\n0 0 \xe9\n").unwrap();
+    let e = io::fcv::load_fcv_file(cube, &p, 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!("{}:6: invalid UTF-8 at column 5", p.display())),
+        "{e}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// Binary PLY errors name the file and say in words what was expected (issue 20): no line 0,
+/// no raw "failed to fill whole buffer".
+#[test]
+fn truncated_binary_ply_names_the_file_and_the_element() {
+    let dir = scratch("trunc");
+    let p = dir.join("m.ply");
+    io::write_mesh(&p, &cube(), MeshFormat::PlyBinary).unwrap();
+    let bytes = std::fs::read(&p).unwrap();
+    let header_end = bytes
+        .windows(11)
+        .position(|w| w == b"end_header\n")
+        .unwrap()
+        + 11;
+    // 5.5 of the 8 vertices (24 bytes each), then inside the faces.
+    for (cut, want) in [
+        (
+            header_end + 5 * 24 + 12,
+            "binary 'vertex' data ends after 5 of the 8 elements",
+        ),
+        (
+            bytes.len() - 1,
+            "binary 'face' data ends after 6 of the 7 elements",
+        ),
+    ] {
+        std::fs::write(&p, &bytes[..cut]).unwrap();
+        let e = io::read_mesh(&p).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{}: {want} the header announces (the file is truncated)",
+                p.display()
+            )
+        );
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -5,8 +5,8 @@
 use fairsub::PolyMesh;
 use fairsub::analysis::nonbox as anb;
 use fairsub::geom::{self, Point};
+use fairsub::io::fcv::{choose_fcv_net, fcv_net_from_file, fcv_obj_string, parse_fcv_obj};
 use fairsub::schemes::nonbox::bezier::{cell_triangles, eval_triangle};
-use fairsub::schemes::nonbox::fcv::{fcv_net_from_file, fcv_obj_string, parse_fcv_obj};
 use fairsub::schemes::nonbox::fourdir::{FourDirNet, classify, triangulate};
 use fairsub::schemes::nonbox::mask::{
     PeriodicGrid, derived_block, printed_block, vector_subdivide,
@@ -1060,15 +1060,15 @@ fn fcv_choice_for_the_cli() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("cube.fcv");
     std::fs::write(&path, "*\n*\n0 0 9\n*\n*\n*\n").unwrap();
-    let net = FcvNet::choose(&cube, 0.5, Some(&path)).unwrap();
+    let net = choose_fcv_net(&cube, 0.5, Some(&path)).unwrap();
     assert_eq!(net.fcv[2], [0.0, 0.0, 9.0]);
     assert_eq!(net.fcv[0], geom::scale(cube.face_centroid(0), 0.5));
     // A layout mesh keeps its own FCVs.
     let lm = net.to_layout_mesh();
-    let back = FcvNet::choose(&lm, 1.0, None).unwrap();
+    let back = choose_fcv_net(&lm, 1.0, None).unwrap();
     assert_eq!(back.points(), net.points());
     // A missing file is an I/O error naming it.
-    let e = FcvNet::choose(&cube, 1.0, Some(&dir.join("none.fcv")))
+    let e = choose_fcv_net(&cube, 1.0, Some(&dir.join("none.fcv")))
         .unwrap_err()
         .to_string();
     assert!(e.contains("none.fcv"), "{e}");

@@ -108,10 +108,7 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
                 and_list(&takers(ParamKind::QFile))
             )));
         }
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::io::read_text(path)?;
         spec.params.q_overrides = crate::schemes::qas::parse_q_file(&text, path)?;
     }
     if let Some(f) = o.fallback {

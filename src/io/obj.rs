@@ -5,20 +5,20 @@
 //! the forms `v`, `v/vt`, `v//vn`, `v/vt/vn`, with positive or negative, i.e. relative, indices),
 //! joins lines continued with a trailing backslash, skips `#` comments and ignores every other
 //! statement (`vt vn vp g o s usemtl mtllib l p ...`), counting them for one summary warning.
-//! Faces are then validated by [`PolyMesh::new`]; its errors are reported at the line of the face
-//! or vertex they concern.
+//! Text follows the rule of every reader: invalid UTF-8 only inside comments. The faces are
+//! then validated as a [`PolyMesh`](crate::mesh::PolyMesh); its errors are reported at the
+//! line of the face or vertex they concern.
 
-use super::{
-    ChunkedText, LoadedMesh, Polygons, dropped_warning, io_error, locate_mesh_error, parse_error,
-    push_point,
-};
+use super::text::{hash_comment, io_error, line_text, parse_error};
+use super::textout::ChunkedText;
+use super::{FileLines, LoadedMesh, Polygons, finish_mesh};
 use crate::error::Result;
-use crate::mesh::PolyMesh;
+use crate::geom::Point;
 use std::collections::BTreeMap;
 use std::io::{BufRead, Write};
 use std::path::Path;
 
-/// How OBJ numbers vertices, for messages about [`PolyMesh`] validation errors.
+/// How OBJ numbers vertices, for messages about mesh validation errors.
 const NOTE: &str =
     " (faces and vertices are counted from 0 in file order; OBJ vertex numbers are 1 higher)";
 
@@ -30,12 +30,8 @@ pub fn read_obj(path: &Path) -> Result<LoadedMesh> {
 
 /// The state of the OBJ reader between statements.
 struct ObjState {
-    positions: Vec<[f64; 3]>,
-    vertex_line: Vec<u32>,
-    face_start: Vec<u32>,
-    corners: Vec<u32>,
-    face_line: Vec<u32>,
-    ignored: BTreeMap<String, usize>,
+    /// What was read so far.
+    data: ObjData,
     /// Largest positive index seen: (0-based index, line). Positive indices may refer to
     /// vertices defined later, so they are checked at the end.
     max_index: Option<(usize, usize)>,
@@ -105,12 +101,8 @@ impl ObjState {
             self.tokens = tokens;
             r
         } else {
-            // Other text: invalid UTF-8 replaced, Unicode whitespace.
-            let text = String::from_utf8_lossy(bytes);
-            let content = match text.find('#') {
-                Some(i) => &text[..i],
-                None => &text[..],
-            };
+            // Other text: UTF-8 by the text rule (anything in the comment), Unicode whitespace.
+            let content = line_text(bytes, hash_comment(bytes), path, line)?;
             let base = content.as_ptr() as usize;
             let tokens: Vec<(usize, usize)> = content
                 .split_whitespace()
@@ -161,11 +153,11 @@ impl ObjState {
                         )
                     })?;
                 }
-                self.positions.push(p);
-                self.vertex_line.push(line as u32);
+                self.data.positions.push(p);
+                self.data.vertex_line.push(line as u32);
             }
             "f" | "fo" => {
-                let before = self.corners.len();
+                let before = self.data.corners.len();
                 for k in 1..tokens.len() {
                     let t = tok(k);
                     let vpart = t.as_bytes().split(|&b| b == b'/').next().unwrap_or(b"");
@@ -195,17 +187,17 @@ impl ObjState {
                         v
                     } else if idx < 0 {
                         let back = idx.unsigned_abs() as usize;
-                        if back > self.positions.len() {
+                        if back > self.data.positions.len() {
                             return Err(parse_error(
                                 path,
                                 line,
                                 format!(
                                     "relative vertex index {idx} reaches before the first vertex ({} vertices are defined above this face)",
-                                    self.positions.len()
+                                    self.data.positions.len()
                                 ),
                             ));
                         }
-                        self.positions.len() - back
+                        self.data.positions.len() - back
                     } else {
                         return Err(parse_error(
                             path,
@@ -213,9 +205,9 @@ impl ObjState {
                             "vertex index 0 in face: OBJ indices start at 1 (or are negative, counting back)",
                         ));
                     };
-                    self.corners.push(v as u32);
+                    self.data.corners.push(v as u32);
                 }
-                let n = self.corners.len() - before;
+                let n = self.data.corners.len() - before;
                 if n < 3 {
                     return Err(parse_error(
                         path,
@@ -223,16 +215,16 @@ impl ObjState {
                         format!("face has {n} vertices; a face needs at least 3"),
                     ));
                 }
-                if self.corners.len() > u32::MAX as usize {
+                if self.data.corners.len() > u32::MAX as usize {
                     return Err(parse_error(path, line, "more than 2^32 - 1 face corners"));
                 }
-                self.face_start.push(self.corners.len() as u32);
-                self.face_line.push(line as u32);
+                self.data.face_start.push(self.data.corners.len() as u32);
+                self.data.face_line.push(line as u32);
             }
-            other => match self.ignored.get_mut(other) {
+            other => match self.data.ignored.get_mut(other) {
                 Some(n) => *n += 1,
                 None => {
-                    self.ignored.insert(other.to_string(), 1);
+                    self.data.ignored.insert(other.to_string(), 1);
                 }
             },
         }
@@ -241,18 +233,86 @@ impl ObjState {
 }
 
 /// Reads OBJ from any buffered reader; `path` is used in messages only.
+pub fn read_obj_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
+    parse_obj(reader, path)?.into_mesh(path)
+}
+
+/// The statements of an OBJ file, before the mesh is built from them.
+pub(crate) struct ObjData {
+    /// Every `v` line's point, in file order (also those no face uses).
+    pub positions: Vec<Point>,
+    vertex_line: Vec<u32>,
+    face_start: Vec<u32>,
+    corners: Vec<u32>,
+    face_line: Vec<u32>,
+    ignored: BTreeMap<String, usize>,
+    /// The number of physical lines.
+    lines: usize,
+}
+
+impl ObjData {
+    /// Number of `f` lines.
+    pub fn num_faces(&self) -> usize {
+        self.face_line.len()
+    }
+
+    /// Builds and validates the mesh; errors name the line of the face or vertex concerned.
+    pub fn into_mesh(self, path: &Path) -> Result<LoadedMesh> {
+        let ObjData {
+            positions,
+            vertex_line,
+            face_start,
+            corners,
+            face_line,
+            ignored,
+            lines,
+        } = self;
+        if face_line.is_empty() {
+            return Err(parse_error(
+                path,
+                lines.max(1),
+                format!(
+                    "no faces ('f' lines) found ({} vertices read); fairsub needs a polygon mesh",
+                    positions.len()
+                ),
+            ));
+        }
+        let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
+        let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
+        let at = FileLines {
+            face: &fl,
+            vertex: &vl,
+            note: NOTE,
+        };
+        let mut warnings = Vec::new();
+        let mesh = finish_mesh(path, positions, face_start, corners, &at, &mut warnings)?;
+        if !ignored.is_empty() {
+            let list: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} '{k}'")).collect();
+            warnings.push(format!(
+                "ignored statements: {} (fairsub reads only 'v' and 'f')",
+                list.join(", ")
+            ));
+        }
+        Ok(LoadedMesh { mesh, warnings })
+    }
+}
+
+/// Reads the statements of an OBJ file (see [`read_obj_from`]); the mesh is not built yet.
 ///
 /// Lines are parsed in place in the reader's buffer (no copy or allocation per line); a line
 /// that straddles the end of the buffer, or continues with a trailing backslash, is collected
 /// first.
-pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
+pub(crate) fn parse_obj<R: BufRead>(mut reader: R, path: &Path) -> Result<ObjData> {
     let mut st = ObjState {
-        positions: Vec::new(),
-        vertex_line: Vec::new(),
-        face_start: vec![0],
-        corners: Vec::new(),
-        face_line: Vec::new(),
-        ignored: BTreeMap::new(),
+        data: ObjData {
+            positions: Vec::new(),
+            vertex_line: Vec::new(),
+            face_start: vec![0],
+            corners: Vec::new(),
+            face_line: Vec::new(),
+            ignored: BTreeMap::new(),
+            lines: 0,
+        },
         max_index: None,
         tokens: Vec::new(),
     };
@@ -312,19 +372,9 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
         // The file ended inside a continued line.
         st.statement(&logical, start_line, path)?;
     }
-    let ObjState {
-        positions,
-        vertex_line,
-        face_start,
-        corners,
-        face_line,
-        ignored,
-        max_index,
-        ..
-    } = st;
-
-    if let Some((m, line)) = max_index
-        && m >= positions.len()
+    let mut data = st.data;
+    if let Some((m, line)) = st.max_index
+        && m >= data.positions.len()
     {
         return Err(parse_error(
             path,
@@ -332,37 +382,12 @@ pub fn read_obj_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
             format!(
                 "face refers to vertex {}, but the file defines only {} vertices",
                 m + 1,
-                positions.len()
+                data.positions.len()
             ),
         ));
     }
-    if face_line.is_empty() {
-        return Err(parse_error(
-            path,
-            0,
-            format!(
-                "no faces ('f' lines) found ({} vertices read); fairsub needs a polygon mesh",
-                positions.len()
-            ),
-        ));
-    }
-
-    let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
-    let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-    let mesh = PolyMesh::from_flat(positions, face_start, corners)
-        .map_err(|e| locate_mesh_error(path, e, &fl, &vl, NOTE))?;
-    let mut warnings = Vec::new();
-    if let Some(w) = dropped_warning(&mesh, &vl, "counted from 0") {
-        warnings.push(w);
-    }
-    if !ignored.is_empty() {
-        let list: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} '{k}'")).collect();
-        warnings.push(format!(
-            "ignored statements: {} (fairsub reads only 'v' and 'f')",
-            list.join(", ")
-        ));
-    }
-    Ok(LoadedMesh { mesh, warnings })
+    data.lines = line_no;
+    Ok(data)
 }
 
 /// Writes polygons as OBJ (`v x y z` lines with round-trip precision, `f` lines 1-based).
@@ -375,15 +400,10 @@ pub(crate) fn write_obj_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io::Resu
         p.positions.len(),
         p.num_faces()
     );
-    for &q in p.positions {
-        out.buf.push_str("v ");
-        push_point(&mut out.buf, q);
-        out.buf.push('\n');
-        out.maybe_flush()?;
-    }
-    for f in 0..p.num_faces() {
+    out.point_lines("v ", p.positions)?;
+    for face in p.faces() {
         out.buf.push('f');
-        for &v in p.face(f) {
+        for &v in face {
             let _ = write!(out.buf, " {}", v as u64 + 1);
         }
         out.buf.push('\n');
@@ -393,183 +413,4 @@ pub(crate) fn write_obj_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io::Resu
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::error::Error;
-
-    fn read(s: &str) -> Result<LoadedMesh> {
-        read_obj_from(s.as_bytes(), Path::new("t.obj"))
-    }
-
-    fn parse_err(s: &str) -> (usize, String) {
-        match read(s) {
-            Err(Error::Parse { line, msg, path }) => {
-                assert_eq!(path, Path::new("t.obj"));
-                (line, msg)
-            }
-            other => panic!("expected a parse error, got {other:?}"),
-        }
-    }
-
-    #[test]
-    fn reads_ngons_slash_forms_and_negative_indices() {
-        let src = "# a quad and a pentagon sharing an edge\n\
-                   mtllib x.mtl\n\
-                   o thing\n\
-                   v 0 0 0\n\
-                   v 1 0 0 1.0\n\
-                   v 1 1 0 0.5 0.5 0.5\n\
-                   v 0 1 0\n\
-                   vt 0 0\n\
-                   vn 0 0 1\n\
-                   f 1/1 2/1/1 3//1 4\n\
-                   v 2 0 0\n\
-                   v 2.5 0.5 0\n\
-                   v 2 1 0\n\
-                   g g1\n\
-                   s off\n\
-                   usemtl m\n\
-                   f -6 -3 -2 -1 -5   # relative: 2 5 6 7 3 (1-based)\n";
-        let m = read(src).unwrap();
-        assert_eq!(m.mesh.num_vertices(), 7);
-        assert_eq!(m.mesh.num_faces(), 2);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2, 3]);
-        assert_eq!(m.mesh.face(1), &[1, 4, 5, 6, 2]);
-        assert_eq!(m.mesh.position(5), [2.5, 0.5, 0.0]);
-        assert_eq!(m.mesh.position(1), [1.0, 0.0, 0.0]);
-        assert_eq!(m.warnings.len(), 1, "{:?}", m.warnings);
-        let w = &m.warnings[0];
-        for part in [
-            "1 'vt'",
-            "1 'vn'",
-            "1 'g'",
-            "1 'o'",
-            "1 's'",
-            "1 'usemtl'",
-            "1 'mtllib'",
-        ] {
-            assert!(w.contains(part), "{w}");
-        }
-    }
-
-    #[test]
-    fn line_continuation_and_crlf() {
-        let src = "v 0 0 0\r\nv 1 \\\r\n 0 0\r\nv 0 1 0\r\nf 1 2 \\\n3\r\nf 1 2 x\n";
-        let (line, msg) = parse_err(src);
-        // Physical lines count: the bad face is on line 7.
-        assert_eq!(line, 7, "{msg}");
-        assert!(msg.contains("'x'"), "{msg}");
-        let m = read("v 0 0 0\r\nv 1 \\\r\n 0 0\r\nv 0 1 0\r\nf 1 2 \\\n3\r\n").unwrap();
-        assert_eq!(m.mesh.position(1), [1.0, 0.0, 0.0]);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2]);
-    }
-
-    #[test]
-    fn dropped_vertex_is_reported() {
-        let m = read("v 0 0 0\nv 9 9 9\nv 1 0 0\nv 0 1 0\nf 1 3 4\n").unwrap();
-        assert_eq!(m.mesh.num_vertices(), 3);
-        assert_eq!(m.mesh.position(1), [1.0, 0.0, 0.0]);
-        assert_eq!(m.warnings.len(), 1);
-        assert!(
-            m.warnings[0].contains("1 vertices are used by no face"),
-            "{}",
-            m.warnings[0]
-        );
-        assert!(
-            m.warnings[0].contains("vertex 1 on line 2"),
-            "{}",
-            m.warnings[0]
-        );
-    }
-
-    #[test]
-    fn errors_name_lines() {
-        let (l, m) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1.x 0\n");
-        assert_eq!(l, 3);
-        assert!(m.contains("'1.x'") && m.contains("y coordinate"), "{m}");
-        let (l, m) = parse_err("v 0 0 0\nv 1 0\n");
-        assert_eq!(l, 2);
-        assert!(m.contains("2 coordinates"), "{m}");
-        let (l, m) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 0\n");
-        assert_eq!(l, 5);
-        assert!(m.contains("index 0"), "{m}");
-        let (l, m) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\nf 1 2 3\n");
-        assert_eq!(l, 5);
-        assert!(
-            m.contains("vertex 9") && m.contains("only 3 vertices"),
-            "{m}"
-        );
-        let (l, m) = parse_err("v 0 0 0\nv 1 0 0\nf 1 -3 2\n");
-        assert_eq!(l, 3);
-        assert!(m.contains("-3"), "{m}");
-        let (l, m) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n");
-        assert_eq!(l, 4);
-        assert!(m.contains("2 vertices"), "{m}");
-        let (l, m) = parse_err("v 0 0 0\n");
-        assert_eq!(l, 0);
-        assert!(m.contains("no faces"), "{m}");
-    }
-
-    #[test]
-    fn mesh_validation_errors_point_at_the_face_line() {
-        // Third face repeats a vertex.
-        let src = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n# c\nf 1 1 2\n";
-        let (l, m) = parse_err(src);
-        assert_eq!(l, 8);
-        assert!(m.contains("face 2 uses vertex 0 more than once"), "{m}");
-        // Second face uses edge 1->2 in the same direction as the first.
-        let src = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n";
-        let (l, m) = parse_err(src);
-        assert_eq!(l, 6);
-        assert!(m.contains("inconsistent orientation"), "{m}");
-        // A NaN coordinate names the vertex line.
-        let (l, m) = parse_err("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-        assert_eq!(l, 2);
-        assert!(m.contains("vertex 1"), "{m}");
-    }
-
-    #[test]
-    fn writer_roundtrips_exactly() {
-        let pos = vec![
-            [0.1, -2.0 / 3.0, 1e-300],
-            [1.0, 0.0, 12345.678901234567],
-            [1.0, 1.0, -0.0],
-            [0.0, 1.0, 3.0e20],
-        ];
-        let p = Polygons::new(&pos, &[0, 4], &[0, 1, 2, 3]).unwrap();
-        let mut buf = Vec::new();
-        write_obj_to(&mut buf, &p).unwrap();
-        let m = read_obj_from(&buf[..], Path::new("w.obj")).unwrap();
-        assert_eq!(m.mesh.positions(), &pos[..]);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2, 3]);
-        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
-    }
-
-    #[test]
-    fn lines_across_buffer_ends_and_unicode_whitespace() {
-        // A tiny reader buffer splits most lines; continuations, CRLF and comments survive.
-        let src = "# x\nv 0 0 0\r\nv 1 0 0 # c\nv 0 \\\n1 0\nvt 1 1\nvt 2 2\nf 1 2 3\n";
-        let m = read_obj_from(
-            std::io::BufReader::with_capacity(5, src.as_bytes()),
-            Path::new("b"),
-        )
-        .unwrap();
-        assert_eq!(
-            m.mesh.positions(),
-            &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
-        );
-        assert!(m.warnings[0].contains("2 'vt'"), "{:?}", m.warnings);
-        // Non-ASCII lines split on Unicode whitespace (no-break space), as `split_whitespace`.
-        let m = read("v 0\u{a0}0 0\nv 1 0 0\nv 0 1 0\nf 1 2\u{2003}3\n").unwrap();
-        assert_eq!(m.mesh.face(0), &[0, 1, 2]);
-        let (l, msg) = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \u{e9}3\n");
-        assert_eq!(l, 4);
-        assert!(msg.contains("'\u{e9}3'"), "{msg}");
-        // Integer forms accepted like `str::parse::<i64>`.
-        assert_eq!(parse_i64(b"+12"), Some(12));
-        assert_eq!(parse_i64(b"-9223372036854775808"), Some(i64::MIN));
-        assert_eq!(parse_i64(b"9223372036854775808"), None);
-        assert_eq!(parse_i64(b"-"), None);
-        assert_eq!(parse_i64(b"1x"), None);
-    }
-}
+mod tests;

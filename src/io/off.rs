@@ -5,14 +5,13 @@
 //! colour after the indices), `#` comments, blank lines, counts on the header line or the next
 //! one, and a file without header keyword that starts with the counts. It reads line by line (one
 //! vertex or face per line, as every OFF writer does), so errors name the line. `4OFF`, `nOFF`
-//! (other dimensions) and `OFF BINARY` are rejected as unsupported.
+//! (other dimensions) and `OFF BINARY` are rejected as unsupported. Text follows the rule of
+//! every reader: invalid UTF-8 only inside comments.
 
-use super::{
-    ChunkedText, LoadedMesh, Polygons, dropped_warning, io_error, locate_mesh_error, parse_error,
-    push_point, read_to_string_lossy,
-};
+use super::text::{Lines, io_error, parse_error, read_all};
+use super::textout::ChunkedText;
+use super::{FileLines, LoadedMesh, Polygons, finish_mesh};
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
 use std::io::{Read, Write};
 use std::path::Path;
 
@@ -24,20 +23,11 @@ pub fn read_off(path: &Path) -> Result<LoadedMesh> {
 
 /// Reads OFF from any reader; `path` is used in messages only.
 pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
-    let text = read_to_string_lossy(reader, path)?;
-    // Non-empty content lines (comments stripped) with their 1-based numbers.
-    let mut lines = text.lines().enumerate().filter_map(|(i, l)| {
-        let l = match l.find('#') {
-            Some(k) => &l[..k],
-            None => l,
-        };
-        let l = l.trim();
-        (!l.is_empty()).then_some((i + 1, l))
-    });
-
-    let (first_line, first) = lines
-        .next()
-        .ok_or_else(|| parse_error(path, 0, "empty file: expected an 'OFF' header"))?;
+    let bytes = read_all(reader, path)?;
+    // Non-empty content lines (comments stripped, trimmed) with their 1-based numbers.
+    let mut lines = Lines::new(&bytes, path);
+    let (first_line, first) =
+        lines.require(|| "empty file: expected an 'OFF' header".to_string())?;
     let mut toks: Vec<&str> = first.split_whitespace().collect();
     let mut warnings = Vec::new();
     let mut counts_line = first_line;
@@ -74,12 +64,9 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
             )));
         }
         if toks.is_empty() {
-            let (l, t) = lines.next().ok_or_else(|| {
-                parse_error(
-                    path,
-                    first_line,
-                    "file ends after the header: expected the counts line 'vertices faces edges'",
-                )
+            let (l, t) = lines.require(|| {
+                "file ends after the header: expected the counts line 'vertices faces edges'"
+                    .to_string()
             })?;
             counts_line = l;
             toks = t.split_whitespace().collect();
@@ -118,13 +105,11 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
 
     // Counts come from the file: never reserve more than its size can hold (a vertex or face
     // line has at least 6 bytes), so a garbage count cannot trigger a huge allocation.
-    let cap = |n: usize| n.min(text.len() / 6 + 1);
+    let cap = |n: usize| n.min(bytes.len() / 6 + 1);
     let mut positions = Vec::with_capacity(cap(nv));
     let mut vertex_line = Vec::with_capacity(cap(nv));
     for k in 0..nv {
-        let (l, t) = lines
-            .next()
-            .ok_or_else(|| parse_error(path, 0, format!("file ends after {k} of {nv} vertices")))?;
+        let (l, t) = lines.require(|| format!("file ends after {k} of {nv} vertices"))?;
         let mut it = t.split_whitespace();
         let mut p = [0.0; 3];
         for (c, slot) in p.iter_mut().enumerate() {
@@ -155,9 +140,7 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
     let mut corners: Vec<u32> = Vec::with_capacity(3 * cap(nf));
     let mut face_line = Vec::with_capacity(cap(nf));
     for k in 0..nf {
-        let (l, t) = lines
-            .next()
-            .ok_or_else(|| parse_error(path, 0, format!("file ends after {k} of {nf} faces")))?;
+        let (l, t) = lines.require(|| format!("file ends after {k} of {nf} faces"))?;
         let mut it = t.split_whitespace();
         let n_tok = it.next().unwrap_or("");
         let n: usize = n_tok
@@ -199,7 +182,7 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
         face_start.push(corners.len() as u32);
         face_line.push(l as u32);
     }
-    if let Some((l, _)) = lines.next() {
+    if let Some((l, _)) = lines.next_content()? {
         warnings.push(format!(
             "ignored content after the last face, from line {l} on"
         ));
@@ -213,18 +196,12 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
     }
     let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
     let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-    let mesh = PolyMesh::from_flat(positions, face_start, corners).map_err(|e| {
-        locate_mesh_error(
-            path,
-            e,
-            &fl,
-            &vl,
-            " (faces and vertices counted from 0 in file order)",
-        )
-    })?;
-    if let Some(w) = dropped_warning(&mesh, &vl, "counted from 0") {
-        warnings.push(w);
-    }
+    let at = FileLines {
+        face: &fl,
+        vertex: &vl,
+        note: " (faces and vertices counted from 0 in file order)",
+    };
+    let mesh = finish_mesh(path, positions, face_start, corners, &at, &mut warnings)?;
     Ok(LoadedMesh { mesh, warnings })
 }
 
@@ -233,114 +210,10 @@ pub(crate) fn write_off_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io::Resu
     use std::fmt::Write as _;
     let mut out = ChunkedText::new(w);
     let _ = writeln!(out.buf, "OFF\n{} {} 0", p.positions.len(), p.num_faces());
-    for &q in p.positions {
-        push_point(&mut out.buf, q);
-        out.buf.push('\n');
-        out.maybe_flush()?;
-    }
-    for f in 0..p.num_faces() {
-        let face = p.face(f);
-        let _ = write!(out.buf, "{}", face.len());
-        for &v in face {
-            let _ = write!(out.buf, " {v}");
-        }
-        out.buf.push('\n');
-        out.maybe_flush()?;
-    }
+    out.point_lines("", p.positions)?;
+    out.counted_face_lines(p.faces())?;
     out.finish()
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn read(s: &str) -> Result<LoadedMesh> {
-        read_off_from(s.as_bytes(), Path::new("t.off"))
-    }
-
-    fn parse_err(s: &str) -> (usize, String) {
-        match read(s) {
-            Err(Error::Parse { line, msg, .. }) => (line, msg),
-            other => panic!("expected a parse error, got {other:?}"),
-        }
-    }
-
-    #[test]
-    fn reads_off_with_comments_and_ngons() {
-        let src = "OFF # header\n# a comment\n\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0.25\n\
-                   4 0 1 2 3\n3 3 2 4\n";
-        let m = read(src).unwrap();
-        assert_eq!(m.mesh.num_faces(), 2);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2, 3]);
-        assert_eq!(m.mesh.face(1), &[3, 2, 4]);
-        assert_eq!(m.mesh.position(4), [0.5, 2.0, 0.25]);
-        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
-    }
-
-    #[test]
-    fn reads_coff_noff_and_counts_on_header_line() {
-        let src = "COFF 3 1 3\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n";
-        let m = read(src).unwrap();
-        assert_eq!(m.mesh.position(1), [1.0, 0.0, 0.0]);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2]);
-        let src = "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
-        let m = read(src).unwrap();
-        assert_eq!(m.mesh.position(2), [0.0, 1.0, 0.0]);
-        let m = read("3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 2 0 1\n").unwrap();
-        assert_eq!(m.mesh.face(0), &[2, 0, 1]);
-        assert_eq!(m.warnings.len(), 1);
-        assert!(m.warnings[0].contains("no 'OFF' header"));
-    }
-
-    #[test]
-    fn errors_name_lines() {
-        let (l, m) = parse_err("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n");
-        assert_eq!(l, 4);
-        assert!(m.contains("'zz'") && m.contains("vertex 1"), "{m}");
-        let (l, m) = parse_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-        assert_eq!(l, 6);
-        assert!(m.contains("vertex 3") && m.contains("3 vertices"), "{m}");
-        let (l, m) = parse_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n");
-        assert_eq!(l, 6);
-        assert!(m.contains("announces 4 corners but lists 3"), "{m}");
-        let (_, m) = parse_err("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n");
-        assert!(m.contains("after 3 of 4 vertices"), "{m}");
-        let (l, m) = parse_err("OFF\n3 x 0\n");
-        assert_eq!(l, 2);
-        assert!(m.contains("face count 'x'"), "{m}");
-        let (l, m) = parse_err("PLY\n");
-        assert_eq!(l, 1);
-        assert!(m.contains("'PLY'"), "{m}");
-        let (l, m) = parse_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n");
-        assert_eq!(l, 6);
-        assert!(m.contains("2 corners"), "{m}");
-        assert!(matches!(read("4OFF\n"), Err(Error::Unsupported(_))));
-        // A huge count in a tiny file fails cleanly (and allocates nothing big).
-        let (_, m) = parse_err("OFF\n4000000000 4000000000 0\n0 0 0\n");
-        assert!(m.contains("after 1 of 4000000000 vertices"), "{m}");
-        assert!(matches!(read("OFF BINARY\n"), Err(Error::Unsupported(_))));
-        // Validation error mapped to the face line.
-        let (l, m) = parse_err("OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n");
-        assert_eq!(l, 8);
-        assert!(m.contains("inconsistent orientation"), "{m}");
-    }
-
-    #[test]
-    fn writer_roundtrips_exactly() {
-        let pos = vec![
-            [0.1, -2.0 / 3.0, 1e-300],
-            [1.0, 0.0, 12345.678901234567],
-            [1.0, 1.0, -7.5],
-            [0.0, 1.0, 3.0e20],
-            [0.5, 2.0, 0.0],
-        ];
-        let p = Polygons::new(&pos, &[0, 4, 7], &[0, 1, 2, 3, 3, 2, 4]).unwrap();
-        let mut buf = Vec::new();
-        write_off_to(&mut buf, &p).unwrap();
-        let m = read_off_from(&buf[..], Path::new("w.off")).unwrap();
-        assert_eq!(m.mesh.positions(), &pos[..]);
-        assert_eq!(m.mesh.face(0), &[0, 1, 2, 3]);
-        assert_eq!(m.mesh.face(1), &[3, 2, 4]);
-        assert!(m.warnings.is_empty());
-    }
-}
+mod tests;

@@ -3,10 +3,10 @@
 //! command so that the non-box schemes' extra data stay out of the other schemes' paths.
 
 use crate::error::{Error, Result};
-use crate::io::{MeshFormat, OutputFormat};
+use crate::io::{MeshFormat, OutputFormat, fcv};
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::ParamKind;
-use crate::schemes::nonbox::{FcvNet, fcv, write_fcv_obj};
+use crate::schemes::nonbox::FcvNet;
 use crate::schemes::{FcvLayout, Scheme, Spec};
 use std::path::{Path, PathBuf};
 
@@ -25,7 +25,7 @@ pub struct FcvArgs {
 }
 
 /// Loads the net `arg` for `scheme`. For the non-box schemes an OBJ file keeps the FCVs it
-/// lists (the layout of `crate::schemes::nonbox::fcv`) and `--fcv-file` / `--fcv-scale` set
+/// lists (the layout of `crate::io::fcv`) and `--fcv-file` / `--fcv-scale` set
 /// them otherwise; the result is then a layout mesh (else the plain mesh, whose FCVs are its
 /// barycentres). Other schemes get the plain net, and an error if FCV options were given.
 pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
@@ -65,7 +65,7 @@ pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
             Ok(net.to_layout_mesh())
         }
         None if o.fcv_scale.is_some() || o.fcv_file.is_some() => {
-            Ok(FcvNet::choose(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
+            Ok(fcv::choose_fcv_net(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
         }
         None => Ok(mesh),
     }
@@ -105,7 +105,7 @@ pub fn write_net(
     } else {
         let m = super::refine_with(scheme, mesh, levels, limit)?;
         match FcvNet::from_layout_mesh(&m) {
-            Some(net) if quad_net && !limit && obj => write_fcv_obj(output, &net)?,
+            Some(net) if quad_net && !limit && obj => fcv::write_fcv_obj(output, &net)?,
             _ => write_plain(&m, fmt, output)?,
         }
         m

@@ -38,9 +38,10 @@
 //! ([`FcvNet::to_layout_mesh`]): the mesh's vertices followed by one extra vertex per face (its
 //! FCV, in face order) that no face uses. [`NonBox`]'s `refine` reads that layout (a mesh
 //! without it gets its face barycentres as FCVs) and writes it, so several levels of `refine`
-//! carry the FCVs, and an OBJ file written from it lists the FCVs as the last `v` lines
-//! ([`fcv`] documents the file formats). The layout mesh is only for the non-box schemes: its
-//! FCV vertices have no faces, so other schemes must be given [`FcvNet::mesh`] instead.
+//! carry the FCVs, and an OBJ file written from it lists the FCVs as the last `v` lines (the
+//! file formats and their readers and writers are in `io::fcv`). The layout mesh is only for the
+//! non-box schemes: its FCV vertices have no faces, so other schemes must be given
+//! [`FcvNet::mesh`] instead.
 //!
 //! # Boundaries
 //!
@@ -83,11 +84,9 @@ pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_4DIR};
 
 pub mod bezier;
-pub mod fcv;
 pub mod fourdir;
 pub mod mask;
 
-pub use fcv::{parse_fcv_file, read_fcv_obj, write_fcv_file, write_fcv_obj};
 pub use fourdir::{FourDirNet, NonBox4Dir};
 
 use super::{Refinement, Scheme};
@@ -166,23 +165,6 @@ impl FcvNet {
             *p = geom::scale(*p, scale);
         }
         Ok(net)
-    }
-
-    /// The FCVs a user asked for: a [layout mesh](FcvNet::to_layout_mesh) keeps its own FCVs;
-    /// a plain mesh gets `scale` times its face barycentres, replaced face by face by the
-    /// positions of an FCV side file when `file` is given ([`fcv::load_fcv_file`]). This is the
-    /// library side of the CLI options `--fcv-scale S` and `--fcv-file F`.
-    pub fn choose(mesh: &PolyMesh, scale: f64, file: Option<&std::path::Path>) -> Result<FcvNet> {
-        if let Some(net) = Self::from_layout_mesh(mesh) {
-            if let Some(path) = file {
-                return fcv::load_fcv_file(net.mesh, path, scale);
-            }
-            return Ok(net);
-        }
-        match file {
-            Some(path) => fcv::load_fcv_file(mesh.clone(), path, scale),
-            None => FcvNet::scaled(mesh.clone(), scale),
-        }
     }
 
     /// Reads a net from a plain mesh: a [layout mesh](FcvNet::to_layout_mesh) gives its FCVs,

@@ -1,4 +1,7 @@
-//! File formats of nets with face control vertices: the FCV side file and the OBJ layout.
+//! File formats of the non-box schemes' nets with face control vertices (FCVs): the FCV side
+//! file, the OBJ layout of a net with FCVs, and the OBJ limit mesh with normals. The net itself,
+//! [`FcvNet`], and its logic live with the scheme in [`crate::schemes::nonbox`]; this module
+//! only reads and writes files.
 //!
 //! # FCV side file (`.fcv`)
 //!
@@ -13,6 +16,7 @@
 //!
 //! `#` starts a comment, blank lines are ignored, numbers may be separated by spaces, tabs or
 //! commas. The number of FCV lines must equal the number of faces. Errors name the file line.
+//! The text rule of [`crate::io`] applies (invalid UTF-8 is allowed only in comments).
 //!
 //! # OBJ layout of a net with FCVs
 //!
@@ -33,38 +37,35 @@
 //!
 //! # OBJ limit mesh with normals
 //!
-//! [`write_limit_obj`] writes a [limit mesh](super::NonBox::limit_mesh_with_normals) with one
+//! [`write_limit_obj`] writes a [limit mesh](crate::schemes::NonBox::limit_mesh_with_normals) with one
 //! `vn` line per `v` line (the exact limit normal of that point) and faces `f a//a b//b c//c`.
 //!
 //! [`read_fcv_obj`] reads it back: the vertices no face uses become the FCVs when they are the
 //! last `v` lines and there is exactly one per face (or a `# fcv N` line says so). The same
 //! layout in memory is [`FcvNet::to_layout_mesh`].
 
-use super::FcvNet;
+use super::text::{Lines, parse_error, read_file};
+use super::{LoadedMesh, MeshFormat, obj, write_bytes_atomically};
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::io::{LoadedMesh, MeshFormat};
 use crate::mesh::PolyMesh;
+use crate::schemes::nonbox::FcvNet;
 use std::path::Path;
 
-fn parse_err(path: &Path, line: usize, msg: String) -> Error {
-    Error::Parse {
-        path: path.to_path_buf(),
-        line,
-        msg,
-    }
-}
+/// The entries of an FCV side file (see [`parse_fcv_file`]) and its number of lines.
+type Entries = (Vec<(usize, Option<Point>)>, usize);
 
 /// Parses an FCV side file: one entry per FCV line (`None` for `*`, the default), with the
 /// 1-based line number of each. Errors name the line.
 pub fn parse_fcv_file(text: &str, path: &Path) -> Result<Vec<(usize, Option<Point>)>> {
+    Ok(parse_entries(text.as_bytes(), path)?.0)
+}
+
+/// The entries of an FCV side file, and its number of lines (for messages at its end).
+fn parse_entries(bytes: &[u8], path: &Path) -> Result<Entries> {
     let mut out = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let content = raw.split('#').next().unwrap_or("").trim();
-        if content.is_empty() {
-            continue;
-        }
+    let mut lines = Lines::new(bytes, path);
+    while let Some((line, content)) = lines.next_content()? {
         if content == "*" {
             out.push((line, None));
             continue;
@@ -74,7 +75,7 @@ pub fn parse_fcv_file(text: &str, path: &Path) -> Result<Vec<(usize, Option<Poin
             .filter(|t| !t.is_empty())
             .collect();
         if toks.len() != 3 {
-            return Err(parse_err(
+            return Err(parse_error(
                 path,
                 line,
                 format!(
@@ -87,14 +88,14 @@ pub fn parse_fcv_file(text: &str, path: &Path) -> Result<Vec<(usize, Option<Poin
         let mut p = [0.0; 3];
         for (k, t) in toks.iter().enumerate() {
             let x: f64 = t.parse().map_err(|_| {
-                parse_err(
+                parse_error(
                     path,
                     line,
                     format!("'{t}' is not a number (coordinate {} of the FCV)", k + 1),
                 )
             })?;
             if !x.is_finite() {
-                return Err(parse_err(
+                return Err(parse_error(
                     path,
                     line,
                     format!("coordinate {} of the FCV is not finite ('{t}')", k + 1),
@@ -104,17 +105,22 @@ pub fn parse_fcv_file(text: &str, path: &Path) -> Result<Vec<(usize, Option<Poin
         }
         out.push((line, Some(p)));
     }
-    Ok(out)
+    Ok((out, lines.end_line()))
 }
 
 /// The net of `mesh` with the FCVs of an FCV side file (`text`, read from `path`); faces marked
 /// `*` get `scale` times their barycentre. Errors name the file line, or say how many lines are
 /// missing.
 pub fn fcv_net_from_file(mesh: PolyMesh, text: &str, path: &Path, scale: f64) -> Result<FcvNet> {
-    let entries = parse_fcv_file(text, path)?;
+    fcv_net_from_bytes(mesh, text.as_bytes(), path, scale)
+}
+
+/// [`fcv_net_from_file`] on the bytes of the file.
+fn fcv_net_from_bytes(mesh: PolyMesh, bytes: &[u8], path: &Path, scale: f64) -> Result<FcvNet> {
+    let (entries, end_line) = parse_entries(bytes, path)?;
     let nf = mesh.num_faces();
     if entries.len() > nf {
-        return Err(parse_err(
+        return Err(parse_error(
             path,
             entries[nf].0,
             format!(
@@ -125,8 +131,8 @@ pub fn fcv_net_from_file(mesh: PolyMesh, text: &str, path: &Path, scale: f64) ->
         ));
     }
     if entries.len() < nf {
-        let last = entries.last().map(|e| e.0).unwrap_or(0);
-        return Err(parse_err(
+        let last = entries.last().map_or(end_line, |e| e.0);
+        return Err(parse_error(
             path,
             last,
             format!(
@@ -147,11 +153,24 @@ pub fn fcv_net_from_file(mesh: PolyMesh, text: &str, path: &Path, scale: f64) ->
 
 /// Reads an FCV side file from disk for `mesh` (see [`fcv_net_from_file`]).
 pub fn load_fcv_file(mesh: PolyMesh, path: &Path, scale: f64) -> Result<FcvNet> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    fcv_net_from_file(mesh, &text, path, scale)
+    fcv_net_from_bytes(mesh, &read_file(path)?, path, scale)
+}
+
+/// The FCVs a user asked for: a [layout mesh](FcvNet::to_layout_mesh) keeps its own FCVs;
+/// a plain mesh gets `scale` times its face barycentres, replaced face by face by the
+/// positions of an FCV side file when `file` is given ([`load_fcv_file`]). This is the
+/// library side of the CLI options `--fcv-scale S` and `--fcv-file F`.
+pub fn choose_fcv_net(mesh: &PolyMesh, scale: f64, file: Option<&Path>) -> Result<FcvNet> {
+    if let Some(net) = FcvNet::from_layout_mesh(mesh) {
+        if let Some(path) = file {
+            return load_fcv_file(net.mesh, path, scale);
+        }
+        return Ok(net);
+    }
+    match file {
+        Some(path) => load_fcv_file(mesh.clone(), path, scale),
+        None => FcvNet::scaled(mesh.clone(), scale),
+    }
 }
 
 /// The FCV side file of a net (one `x y z` line per face).
@@ -168,13 +187,7 @@ pub fn fcv_file_string(net: &FcvNet) -> String {
 
 /// Writes the FCV side file of a net (atomically).
 pub fn write_fcv_file(path: &Path, net: &FcvNet) -> Result<()> {
-    let text = fcv_file_string(net);
-    crate::io::write_atomically(path, |w| {
-        w.write_all(text.as_bytes()).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
+    write_bytes_atomically(path, fcv_file_string(net).as_bytes())
 }
 
 /// The OBJ text of a net with FCVs (layout in the [module](self) documentation).
@@ -185,7 +198,7 @@ pub fn fcv_obj_string(net: &FcvNet) -> Result<String> {
          lines are the FCVs, one per face in face order; no face uses them\n"
     )
     .into_bytes();
-    crate::io::write_polygons_to(
+    super::write_polygons_to(
         &mut buf,
         &net.points(),
         net.mesh.face_starts(),
@@ -197,48 +210,22 @@ pub fn fcv_obj_string(net: &FcvNet) -> Result<String> {
 
 /// Writes a net with FCVs as OBJ (atomically; layout in the [module](self) documentation).
 pub fn write_fcv_obj(path: &Path, net: &FcvNet) -> Result<()> {
-    let text = fcv_obj_string(net)?;
-    crate::io::write_atomically(path, |w| {
-        w.write_all(text.as_bytes()).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
-}
-
-/// Coordinates of every `v` line of an OBJ text, in file order (continued lines joined).
-fn obj_vertex_lines(text: &str) -> Vec<(usize, Point)> {
-    let mut out = Vec::new();
-    let mut logical = String::new();
-    let mut start = 0;
-    for (i, raw) in text.lines().enumerate() {
-        if logical.is_empty() {
-            start = i + 1;
-        }
-        if let Some(head) = raw.strip_suffix('\\') {
-            logical.push_str(head);
-            logical.push(' ');
-            continue;
-        }
-        logical.push_str(raw);
-        let content = logical.split('#').next().unwrap_or("");
-        let mut toks = content.split_whitespace();
-        if toks.next() == Some("v") {
-            let mut p = [f64::NAN; 3];
-            for c in &mut p {
-                *c = toks.next().and_then(|t| t.parse().ok()).unwrap_or(f64::NAN);
-            }
-            out.push((start, p));
-        }
-        logical.clear();
-    }
-    out
+    write_bytes_atomically(path, fcv_obj_string(net)?.as_bytes())
 }
 
 /// Parses OBJ text holding a net with FCVs (see [`read_fcv_obj`]); `path` names the file in
 /// messages. Returns the net and notes for the user.
 pub fn parse_fcv_obj(text: &str, path: &Path) -> Result<(FcvNet, Vec<String>)> {
-    let (mesh, fcv, mut notes) = parse_obj_fcvs(text, path)?;
+    let (mesh, fcv, notes) = parse_obj_fcvs(text, path)?;
+    with_fcvs(mesh, fcv, notes)
+}
+
+/// The net of `mesh` with the FCVs read (or its face barycentres, with a note).
+fn with_fcvs(
+    mesh: PolyMesh,
+    fcv: Option<Vec<Point>>,
+    mut notes: Vec<String>,
+) -> Result<(FcvNet, Vec<String>)> {
     match fcv {
         Some(fcv) => Ok((FcvNet::new(mesh, fcv)?, notes)),
         None => {
@@ -255,30 +242,30 @@ pub fn parse_obj_fcvs(
     text: &str,
     path: &Path,
 ) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
-    let LoadedMesh { mesh, warnings } = crate::io::obj::read_obj_from(text.as_bytes(), path)?;
-    let marker = text.lines().enumerate().find_map(|(i, l)| {
-        let rest = l.trim().strip_prefix('#')?.trim().strip_prefix("fcv ")?;
-        let n: usize = rest
-            .split(|c: char| !c.is_ascii_digit())
-            .next()?
-            .parse()
-            .ok()?;
-        Some((i + 1, n))
-    });
-    let nf = mesh.num_faces();
-    let verts = obj_vertex_lines(text);
+    obj_fcvs_from_bytes(text.as_bytes(), path)
+}
+
+/// [`parse_obj_fcvs`] on the bytes of the file.
+fn obj_fcvs_from_bytes(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
+    let data = obj::parse_obj(bytes, path)?;
+    let nf = data.num_faces();
+    let total = data.positions.len();
+    // The last nf `v` lines, candidates for the FCVs (the mesh drops them as unused).
+    let tail: Vec<Point> = data.positions[total.saturating_sub(nf)..].to_vec();
+    let LoadedMesh { mesh, warnings } = data.into_mesh(path)?;
+    let marker = fcv_marker(bytes);
     let dropped = mesh.dropped_vertices().to_vec();
-    let total = verts.len();
     let trailing = dropped.len() == nf
         && total >= nf
         && dropped.iter().copied().eq(total - nf..total)
-        && verts[total - nf..]
-            .iter()
-            .all(|(_, p)| p.iter().all(|c| c.is_finite()));
+        && tail.iter().all(|p| p.iter().all(|c| c.is_finite()));
     if let Some((line, n)) = marker
         && (n != nf || !trailing)
     {
-        return Err(parse_err(
+        return Err(parse_error(
             path,
             line,
             format!(
@@ -295,33 +282,36 @@ pub fn parse_obj_fcvs(
         ));
     }
     if trailing && nf > 0 {
-        let fcv = verts[total - nf..].iter().map(|&(_, p)| p).collect();
         let notes = warnings
             .into_iter()
             .filter(|w| !w.contains("used by no face"))
             .collect();
-        return Ok((mesh, Some(fcv), notes));
+        return Ok((mesh, Some(tail), notes));
     }
     Ok((mesh, None, warnings))
 }
 
+/// The first `# fcv N` comment of an OBJ file: its line and `N`.
+fn fcv_marker(bytes: &[u8]) -> Option<(usize, usize)> {
+    bytes.split(|&b| b == b'\n').enumerate().find_map(|(i, l)| {
+        let rest = l.trim_ascii().strip_prefix(b"#")?.trim_ascii_start();
+        let rest = rest.strip_prefix(b"fcv ")?;
+        let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
+        let n = std::str::from_utf8(&rest[..digits]).ok()?.parse().ok()?;
+        Some((i + 1, n))
+    })
+}
+
 /// Reads an OBJ file that may hold a net with FCVs (see [`parse_obj_fcvs`]).
 pub fn read_obj_fcvs(path: &Path) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse_obj_fcvs(&text, path)
+    obj_fcvs_from_bytes(&read_file(path)?, path)
 }
 
 /// Reads an OBJ file holding a net with FCVs (layout in the [module](self) documentation); a
 /// plain OBJ net gets its face barycentres as FCVs (with a note). Returns the net and notes.
 pub fn read_fcv_obj(path: &Path) -> Result<(FcvNet, Vec<String>)> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse_fcv_obj(&text, path)
+    let (mesh, fcv, notes) = read_obj_fcvs(path)?;
+    with_fcvs(mesh, fcv, notes)
 }
 
 /// The OBJ text of a limit mesh with one unit normal per vertex (`v`, then `vn` lines in the
@@ -369,11 +359,58 @@ pub fn limit_obj_string(mesh: &PolyMesh, normals: &[Point]) -> Result<String> {
 
 /// Writes a limit mesh with normals as OBJ (atomically; see [`limit_obj_string`]).
 pub fn write_limit_obj(path: &Path, mesh: &PolyMesh, normals: &[Point]) -> Result<()> {
-    let text = limit_obj_string(mesh, normals)?;
-    crate::io::write_atomically(path, |w| {
-        w.write_all(text.as_bytes()).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    })
+    write_bytes_atomically(path, limit_obj_string(mesh, normals)?.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::testutil;
+
+    #[test]
+    fn side_file_follows_the_text_rule_and_names_lines() {
+        let cube = crate::gallery::cube();
+        let p = Path::new("c.fcv");
+        let net = testutil::assert_text_rule(
+            |b| fcv_net_from_bytes(cube.clone(), b, p, 1.0),
+            b"# caf\xe9\n*\n*\n0 0 9 # \xff\n*\n*\n*\n",
+            b"*\n*\n0 0 \xe99\n*\n*\n*\n",
+            "c.fcv:3: invalid UTF-8 at column 5 (byte 0xE9)",
+        );
+        assert_eq!(net.fcv[2], [0.0, 0.0, 9.0]);
+        // Too few lines: at the last line of the file, also when it has no FCV line at all.
+        let e = fcv_net_from_bytes(cube.clone(), b"# nothing\n\n", p, 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "c.fcv:2: the file has 0 FCV lines but the net has 6 faces: add one line per missing \
+             face (three numbers, or '*' for the default)"
+        );
+        let e = fcv_net_from_bytes(cube, b"", p, 1.0).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("c.fcv:1: the file has 0 FCV lines"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn obj_net_with_fcvs_tolerates_invalid_utf8_in_comments() {
+        let net = FcvNet::barycentric(crate::gallery::cube());
+        let mut text = fcv_obj_string(&net).unwrap().into_bytes();
+        text.extend_from_slice(b"# written on a Latin-1 machine: caf\xe9\n");
+        let (mesh, fcv, notes) = obj_fcvs_from_bytes(&text, Path::new("n.obj")).unwrap();
+        assert_eq!(mesh.num_faces(), 6);
+        assert_eq!(fcv.unwrap(), net.fcv);
+        assert!(notes.is_empty(), "{notes:?}");
+        // In a coordinate the byte is an error with its line (the first `v` line is line 4).
+        let mut bad = fcv_obj_string(&net).unwrap().into_bytes();
+        let k = bad.windows(3).position(|w| w == b"\nv ").unwrap();
+        bad[k + 3] = 0xE9;
+        let e = obj_fcvs_from_bytes(&bad, Path::new("n.obj")).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("n.obj:4: invalid UTF-8 at column 3"),
+            "{e}"
+        );
+    }
 }

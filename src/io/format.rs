@@ -1,0 +1,145 @@
+//! The output formats and how they are chosen: by a `--format` name or by the file extension.
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// The mesh file formats fairsub writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (`v` and `f` lines, 1-based indices).
+    Obj,
+    /// Geomview OFF (ascii).
+    Off,
+    /// PLY, ascii encoding.
+    PlyAscii,
+    /// PLY, binary little endian (double coordinates, `list uchar int` faces).
+    PlyBinary,
+}
+
+impl MeshFormat {
+    /// The usual file extension (without the dot).
+    pub fn extension(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "obj",
+            MeshFormat::Off => "off",
+            MeshFormat::PlyAscii | MeshFormat::PlyBinary => "ply",
+        }
+    }
+}
+
+/// What an output file holds: a mesh (tessellation, refined net) or exact patches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// A polygon mesh in one of the [`MeshFormat`]s.
+    Mesh(MeshFormat),
+    /// BezierView `.bv` patches.
+    Bv,
+    /// IGES 5.3, one entity 128 per patch.
+    Iges,
+}
+
+/// The `--format` names [`OutputFormat::choose`] accepts, for help texts and errors.
+pub const FORMAT_NAMES: &str = "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges";
+
+impl OutputFormat {
+    /// Chooses the output format: by `format` (a `--format` name, case-insensitive) when given,
+    /// else by the extension of `path` (`.obj .off .ply .bv .igs .iges`). PLY is binary unless
+    /// `ply-ascii` is asked for. Unknown names or extensions give an error listing the choices.
+    pub fn choose(path: &Path, format: Option<&str>) -> Result<OutputFormat> {
+        if let Some(name) = format {
+            return match name.trim().to_ascii_lowercase().as_str() {
+                "obj" => Ok(OutputFormat::Mesh(MeshFormat::Obj)),
+                "off" => Ok(OutputFormat::Mesh(MeshFormat::Off)),
+                "ply" | "ply-binary" | "ply_binary" => {
+                    Ok(OutputFormat::Mesh(MeshFormat::PlyBinary))
+                }
+                "ply-ascii" | "ply_ascii" => Ok(OutputFormat::Mesh(MeshFormat::PlyAscii)),
+                "bv" => Ok(OutputFormat::Bv),
+                "igs" | "iges" => Ok(OutputFormat::Iges),
+                _ => Err(Error::InvalidArgument(format!(
+                    "unknown output format '{name}' (choose one of: {FORMAT_NAMES})"
+                ))),
+            };
+        }
+        match extension_lowercase(path).as_deref() {
+            Some("obj") => Ok(OutputFormat::Mesh(MeshFormat::Obj)),
+            Some("off") => Ok(OutputFormat::Mesh(MeshFormat::Off)),
+            Some("ply") => Ok(OutputFormat::Mesh(MeshFormat::PlyBinary)),
+            Some("bv") => Ok(OutputFormat::Bv),
+            Some("igs") | Some("iges") => Ok(OutputFormat::Iges),
+            Some(ext) => Err(Error::InvalidArgument(format!(
+                "cannot tell the output format of '{}' from its extension '.{ext}': use .obj, .off, \
+                 .ply, .bv, .igs or .iges, or give --format ({FORMAT_NAMES})",
+                path.display()
+            ))),
+            None => Err(Error::InvalidArgument(format!(
+                "'{}' has no extension to tell the output format: use .obj, .off, .ply, .bv, .igs \
+                 or .iges, or give --format ({FORMAT_NAMES})",
+                path.display()
+            ))),
+        }
+    }
+}
+
+/// The extension of `path`, lower-cased, when it has one that is valid UTF-8.
+pub(crate) fn extension_lowercase(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn output_format_by_name_and_extension() {
+        use MeshFormat::*;
+        let p = Path::new("out.PLY");
+        assert_eq!(
+            OutputFormat::choose(p, None).unwrap(),
+            OutputFormat::Mesh(PlyBinary)
+        );
+        assert_eq!(
+            OutputFormat::choose(p, Some("ply-ascii")).unwrap(),
+            OutputFormat::Mesh(PlyAscii)
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.obj"), None).unwrap(),
+            OutputFormat::Mesh(Obj)
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.Off"), None).unwrap(),
+            OutputFormat::Mesh(Off)
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.bv"), None).unwrap(),
+            OutputFormat::Bv
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.igs"), None).unwrap(),
+            OutputFormat::Iges
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.IGES"), None).unwrap(),
+            OutputFormat::Iges
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x.txt"), Some("IGES")).unwrap(),
+            OutputFormat::Iges
+        );
+        assert_eq!(
+            OutputFormat::choose(Path::new("x"), Some("bv")).unwrap(),
+            OutputFormat::Bv
+        );
+        let e = OutputFormat::choose(Path::new("x.stl"), None).unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains(".stl") && m.contains(".iges") && m.contains("ply-ascii"),
+            "{m}"
+        );
+        let e = OutputFormat::choose(Path::new("x.obj"), Some("stl")).unwrap_err();
+        assert!(e.to_string().contains("'stl'"), "{e}");
+        assert!(OutputFormat::choose(Path::new("noext"), None).is_err());
+    }
+}

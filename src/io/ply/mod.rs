@@ -1,0 +1,79 @@
+//! PLY (Stanford polygon format): a reader for every encoding and hand-written writers.
+//!
+//! Reading: the header is read line by line by the text rule (any bytes in `comment` and
+//! `obj_info` lines) and parsed by the crate `ply-rs-bw`, a maintained fork of `ply-rs` (it
+//! replaced the unsound `linked-hash-map`, forbids `unsafe`, is fuzzed in CI) that knows the
+//! header grammar and every scalar type (`header`). The payload (`payload`): binary
+//! elements (little and big endian) are read one at a time by the crate; ascii lines are parsed
+//! here by the declared property types, so that errors name the file line and the property.
+//! `vertex` elements give `x y z` (any scalar type: float, double or integer), `face` elements
+//! give `vertex_indices` (or `vertex_index`) lists of any integer type; every other element and
+//! property is skipped. Missing elements or properties are named in the error, at the header
+//! line that declares the element; binary errors name the element and how many were read.
+//!
+//! Writing (`write`) is done by hand: ascii, and binary little endian (`double` coordinates,
+//! `property list uchar int vertex_indices`) encoded in parallel.
+
+mod header;
+mod payload;
+mod write;
+
+use super::text::io_error;
+use super::{FileLines, LoadedMesh, finish_mesh, parse_error};
+use crate::error::Result;
+use std::io::BufRead;
+use std::path::Path;
+
+pub(crate) use write::{write_ply_ascii_to, write_ply_binary_to};
+
+/// Reads a PLY file.
+pub fn read_ply(path: &Path) -> Result<LoadedMesh> {
+    let file = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
+    read_ply_from(std::io::BufReader::with_capacity(1 << 16, file), path)
+}
+
+/// Reads PLY (any encoding) from a buffered reader; `path` is used in messages only.
+pub fn read_ply_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
+    let head = header::read_header(&mut reader, path)?;
+    let data = payload::read_payload(&mut reader, &head, path)?;
+    let nv = data.positions.len();
+    if data.face_start.len() == 1 {
+        return Err(parse_error(
+            path,
+            head.element_line("face"),
+            format!("the 'face' element is empty ({nv} vertices); fairsub needs a polygon mesh"),
+        ));
+    }
+    // In an ascii file, element k is on the line of the first element plus k.
+    let lines = data.first_lines;
+    let face_line = |f: usize| lines.map(|(_, l)| l + f);
+    let vertex_line = |v: usize| lines.map(|(l, _)| l + v);
+    let at = FileLines {
+        face: &face_line,
+        vertex: &vertex_line,
+        note: " (faces and vertices counted from 0 in file order)",
+    };
+    let mut warnings = Vec::new();
+    let mesh = finish_mesh(
+        path,
+        data.positions,
+        data.face_start,
+        data.corners,
+        &at,
+        &mut warnings,
+    )?;
+    let others: Vec<&str> = head
+        .header
+        .elements
+        .keys()
+        .map(|k| k.as_str())
+        .filter(|k| *k != "vertex" && *k != "face")
+        .collect();
+    if !others.is_empty() {
+        warnings.push(format!("ignored PLY elements: {}", others.join(", ")));
+    }
+    Ok(LoadedMesh { mesh, warnings })
+}
+
+#[cfg(test)]
+mod tests;
