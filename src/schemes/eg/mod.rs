@@ -31,6 +31,8 @@
 //! * **Ring output (6)**: three bi-4 patches per sector and step, each from the 5 x 5 new nodes of
 //!   its cell by B-to-BB conversion (the shared conversion tables of [`crate::bezier::convert`]).
 
+pub mod derive;
+pub mod facts;
 pub mod tables;
 
 use crate::error::{Error, Result};

@@ -30,6 +30,8 @@
 
 pub mod bi3;
 pub mod chi;
+pub mod derive;
+pub mod facts;
 pub mod tables;
 
 use crate::error::{Error, Result};
@@ -206,6 +208,11 @@ impl Qas {
         Ok(Qas {
             rules: QasRules::new(n)?,
         })
+    }
+
+    /// The scheme with given tables (e.g. [`derive::derived_rules`]).
+    pub fn with_rules(rules: QasRules) -> Qas {
+        Qas { rules }
     }
 
     /// Valence.
