@@ -92,6 +92,9 @@ fn derived_eg_is_bi4_refinement_at_valence_4_and_errs_outside_its_range() {
         assert!(egd::derived_rules(n).is_err());
         assert!(qd::derived_rules(n).is_err());
     }
+    // QAS+ at 4 is regular bi-4 refinement, not a QAS+ table.
+    assert!(qd::derived_rules(4).is_err());
+    assert!(qd::derive_tables(4, 4).is_ok());
     // Cached: the same table twice.
     assert!(std::ptr::eq(
         egd::derived_rules(7).unwrap(),
@@ -432,5 +435,49 @@ fn derived_qas_deviations_from_the_printed_tables() {
             "n={n}: T median {}",
             c.t_median_e5
         );
+    }
+}
+
+#[test]
+fn derived_qas_rules_have_an_injective_characteristic_map() {
+    // The derived rules' own characteristic map: the eigenvectors of 1/2 whose expansion parts
+    // are the linear functions x, y, by the scheme's ring code, certified injective.
+    for n in [3, 5, 8, 12, 16] {
+        let r = qd::derived_rules(n).unwrap();
+        let scheme = Qas::with_rules(r.clone());
+        let a = qas_step(r);
+        let (nd, m) = (12 * n, qas::num_sources(n));
+        let mdd = a.view((1, 1), (nd, nd)).into_owned() - DMatrix::<f64>::identity(nd, nd) * 0.5;
+        let lu = mdd.lu();
+        let mut pts = vec![[0.0; 3]; m];
+        for (comp, lin) in [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].iter().enumerate() {
+            let q = [lin[0], lin[1], lin[2], 0.0, 0.0, 0.0];
+            let qs = quadratic::quadratic_q(n, &q);
+            let mut v = nalgebra::DVector::zeros(m);
+            for (s, qq) in qs.iter().enumerate() {
+                for k in 2..=6 {
+                    v[qas::q_index(n, s, k)] = qq[k - 1];
+                }
+            }
+            let rhs = -(a.view((1, 0), (nd, m)) * &v);
+            let d = lu.solve(&rhs).unwrap();
+            for i in 0..nd {
+                v[1 + i] = d[i];
+            }
+            // An eigenvector of the whole step.
+            assert!((&a * &v - &v * 0.5).amax() < 1e-10, "n={n}");
+            for (p, x) in pts.iter_mut().zip(v.iter()) {
+                p[comp] = *x;
+            }
+        }
+        let ring = scheme.step(0.5).unwrap().ring.apply(&pts);
+        let patches: Vec<_> = (0..3 * n)
+            .map(|k| {
+                fairsub::bezier::BezierPatch::new(4, 4, ring[25 * k..25 * k + 25].to_vec())
+                    .transposed()
+            })
+            .collect();
+        let cert = certify::certify_ring(&patches, 0.5);
+        assert!(cert.injective, "n={n}: {cert:?}");
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! The paper tabulates complete rules only for n = 3 and 5; the Appendix lost all but one row
 //! per array for n = 6..10 (papers README). Section 4 describes how the rules were obtained; the
-//! step that fixes the guide's free coefficients is in [KP18, Appendix], outside the corpus. This
+//! step that fixes the guide's free coefficients is in \[KP18, Appendix\], outside the corpus. This
 //! module rebuilds the whole construction and tabulates the result as an [`EgRules`], so that
 //! [`super::Eg::with_rules`] runs it with the scheme's own step and ring code. The derived rules
 //! are a reconstruction: they are never presented as the published ones, and
@@ -40,7 +40,7 @@
 //! fairness integrated over the image of the cap were tried against the printed n = 3, 5 tables
 //! (see the crate's report `examples/derived_rules.rs`); the kept defaults
 //! ([`EgDeriveOptions::default`]) come closest. None reproduces the printed weights to
-//! truncation: the guide's free coefficients are fixed differently in [KP18].
+//! truncation: the guide's free coefficients are fixed differently in \[KP18\].
 
 pub mod cc_chi;
 pub mod compare;

@@ -143,7 +143,7 @@ pub fn lnet(jets: &[Jet; 3]) -> [[f64; 5]; 5] {
 }
 
 /// The 21 node values of an L-net, in [`LNET_KEYS`] order (the inverse of (6) restricted to the
-/// L-net, univariately [`INV_HI`] on indices 2..4 and [`INV_LO`] on 0..2).
+/// L-net, univariately `INV_HI` on indices 2..4 and `INV_LO` on 0..2).
 pub fn lnet_nodes(h: &[[f64; 5]; 5]) -> [f64; 21] {
     let mut out = [0.0; 21];
     // Rows a = 2..4 (all b): u nodes 1/2, 1, 3/2.

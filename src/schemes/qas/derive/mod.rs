@@ -212,9 +212,18 @@ pub fn derive_tables(n: usize, k: usize) -> Result<QasRules> {
     quadratic::t_from_k(&tables_from_local(n, &local_maps(n, k)?))
 }
 
-/// The cached default derivation of valence `n` (3..=16, `F_4`): derived once per process.
+/// The cached default derivation of valence `n` (3 and 5..=16, `F_4`): derived once per
+/// process. Valence 4 is an error: there QAS+ is plain bi-4 refinement (module docs).
 pub fn derived_rules(n: usize) -> Result<&'static QasRules> {
     check_valence(n)?;
+    if n == 4 {
+        return Err(Error::Unsupported(
+            "QAS+ at valence 4 is plain bi-4 refinement (EG's regular rules with p as c0), which \
+             QAS+ tables cannot express; derive_tables(4, k) gives the construction's tables for \
+             comparison only"
+                .into(),
+        ));
+    }
     static CACHE: [OnceLock<std::result::Result<QasRules, String>>; MAX_VALENCE + 1] =
         [const { OnceLock::new() }; MAX_VALENCE + 1];
     CACHE[n]
