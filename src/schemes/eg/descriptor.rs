@@ -76,11 +76,8 @@ impl LocalRules for EgLocal {
     }
 
     fn published(&self, n: usize, c: &Computed<'_>) -> Result<Vec<Published>> {
-        let ratio = match n {
-            3 => Some(1.00015),
-            5 => Some(1.00016),
-            _ => None,
-        };
+        // The printed rules are complete at 3 and 5 only.
+        let ratio = super::facts::mu_over_lambda2(n).filter(|_| matches!(n, 3 | 5));
         Ok(ratio
             .map(|p| {
                 Published::new(

@@ -31,7 +31,9 @@
 //! * **Ring output (6)**: three bi-4 patches per sector and step, each from the 5 x 5 new nodes of
 //!   its cell by B-to-BB conversion (the shared conversion tables of [`crate::bezier::convert`]).
 
+pub mod derive;
 pub mod descriptor;
+pub mod facts;
 pub mod local;
 pub mod surface;
 pub use descriptor::DESCRIPTOR;

@@ -150,12 +150,7 @@ impl LocalRules for QasLocal {
     }
 
     fn published(&self, n: usize, _: &Computed<'_>) -> Result<Vec<Published>> {
-        let rho = match (self.variant, n) {
-            (QasVariant::Bi4, 5) => Some(0.136208),
-            (QasVariant::Bi4, 6) => Some(0.125485),
-            (QasVariant::Bi4, 7) => Some(0.124899),
-            _ => None,
-        };
+        let rho = super::facts::rho_md_of_printed(n).filter(|_| self.variant == QasVariant::Bi4);
         let Some(p) = rho else {
             return Ok(Vec::new());
         };

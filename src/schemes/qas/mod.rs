@@ -35,6 +35,8 @@ pub use descriptor::{DESCRIPTOR, DESCRIPTOR_04, DESCRIPTOR_05_04, DESCRIPTOR_BI3
 
 pub mod bi3;
 pub mod chi;
+pub mod derive;
+pub mod facts;
 pub mod tables;
 
 use crate::error::{Error, Result};
@@ -211,6 +213,11 @@ impl Qas {
         Ok(Qas {
             rules: QasRules::new(n)?,
         })
+    }
+
+    /// The scheme with given tables (e.g. [`derive::derived_rules`]).
+    pub fn with_rules(rules: QasRules) -> Qas {
+        Qas { rules }
     }
 
     /// Valence.
