@@ -22,6 +22,7 @@
 
 pub mod convert;
 pub mod curve;
+pub mod g1;
 
 pub use curve::BezierCurve;
 
