@@ -12,15 +12,27 @@ use nalgebra::DMatrix;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// Relative singular-value threshold for ranks, pseudo-inverses and null spaces.
-const RANK_TOL: f64 = 1e-10;
+/// Relative eigenvalue threshold (of `a^T a`) for ranks, pseudo-inverses and null spaces.
+const EIG_TOL: f64 = 1e-9;
 
-/// Weight of the `F_3` term added to the thin-plate energy `F_2` (see [`super`]).
-pub const F3_WEIGHT: f64 = 0.0;
+/// Order `k` of the fairness functional `F_k` whose sum over the cap patches the free
+/// coefficients minimise (see [`super`] for the measured comparison of `F_2`, `F_3`, `F_4`).
+pub const FAIRNESS_ORDER: usize = 4;
 
 /// Certificate level below which a map counts as certified (consistent conditions measure
 /// about 1e-14, inconsistent ones 1e-2 and more).
 pub const CERTIFIED: f64 = 1e-10;
+
+/// What the cap satisfies at the centre besides G^1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Centre {
+    /// Only the centre point and the tangent plane (spoke tangents) are prescribed.
+    TangentPlane,
+    /// In addition, one quadratic expansion for all sectors (curvature continuous at the
+    /// centre), its Hessian a free parameter (see [`super`]).
+    #[default]
+    QuadraticJet,
+}
 
 /// A certified G^1 cap map.
 #[derive(Debug, Clone)]
@@ -35,6 +47,8 @@ pub struct CapMap {
     pub degree: usize,
     /// Spoke-end twist of the G^1 weight.
     pub kappa: f64,
+    /// The condition at the centre.
+    pub centre: Centre,
     /// Consistency certificate: the largest residual of the cap conditions over a basis of all
     /// data that satisfy the ring's compatibility conditions (0 up to rounding when the cap
     /// exists for every compatible ring; see [`super`]).
@@ -48,25 +62,29 @@ pub struct CapMap {
     compat_labels: Vec<String>,
 }
 
-/// SVD-based pseudo-inverse and null space of `a` (`rows x cols`), by `faer`'s full SVD
-/// (nalgebra's is markedly less accurate on these systems: residuals of 1e-10 where faer and
-/// LAPACK give 1e-15).
+/// Pseudo-inverse and null space of `a` (`rows x cols`) from the symmetric eigen-decomposition
+/// of `a^T a` by `faer`. (Both SVDs at hand were found wanting on these systems: nalgebra's
+/// leaves residuals of 1e-10, faer's reports a spurious singular value `2^-13` for
+/// `n = 8, d = 5` where LAPACK finds none; the eigenvalues of `a^T a` agree with LAPACK's
+/// squared singular values.) The conditions are well scaled (singular values between about
+/// 0.1 and 30), so squaring costs little: a gap of at least 1e-3 separates the zero eigenvalues
+/// (below `1e-12` of the largest) from the others, tested.
 fn pinv_and_null(a: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-    let (r, c) = a.shape();
-    let fa = faer::Mat::<f64>::from_fn(r, c, |i, j| a[(i, j)]);
-    let svd = fa
-        .svd()
-        .map_err(|e| Error::Unsupported(format!("SVD of the cap conditions failed: {e:?}")))?;
-    let (u, v, sv) = (svd.U(), svd.V(), svd.S().column_vector());
-    let k = r.min(c);
-    let smax = if k > 0 { sv[0] } else { 0.0 };
-    let tol = RANK_TOL * smax.max(1.0);
-    let rank = (0..k).filter(|&l| sv[l] > tol).count();
-    let pinv = DMatrix::from_fn(c, r, |i, j| {
-        (0..rank).map(|l| v[(i, l)] * u[(j, l)] / sv[l]).sum()
-    });
-    let null = DMatrix::from_fn(c, c - rank, |i, l| v[(i, rank + l)]);
-    Ok((pinv, null))
+    let c = a.ncols();
+    let ata = a.transpose() * a;
+    let fa = faer::Mat::<f64>::from_fn(c, c, |i, j| ata[(i, j)]);
+    let eig = fa.self_adjoint_eigen(faer::Side::Lower).map_err(|e| {
+        Error::Unsupported(format!("eigen-decomposition of the cap conditions: {e:?}"))
+    })?;
+    let (v, ev) = (eig.U(), eig.S().column_vector());
+    let emax = (0..c).map(|l| ev[l].abs()).fold(0.0, f64::max);
+    let tol = EIG_TOL * emax.max(1.0);
+    let (keep, null): (Vec<usize>, Vec<usize>) = (0..c).partition(|&l| ev[l] > tol);
+    let vk = DMatrix::from_fn(c, keep.len(), |i, k| v[(i, keep[k])] / ev[keep[k]]);
+    let vk2 = DMatrix::from_fn(c, keep.len(), |i, k| v[(i, keep[k])]);
+    let pinv = vk * vk2.transpose() * a.transpose();
+    let z = DMatrix::from_fn(c, null.len(), |i, k| v[(i, null[k])]);
+    Ok((pinv, z))
 }
 
 /// The matrix that raises every canonical curve from degree `from` to degree `to`.
@@ -108,7 +126,13 @@ fn raise_canonical(n: usize, from: usize, to: usize) -> DMatrix<f64> {
 impl CapMap {
     /// Builds the map for valence `n`, layout, input segment degrees and cap bi-degree `degree`
     /// (at least the degree of the quad data, see [`Hole::to_quad_layout`], and at least 3).
-    pub fn new(n: usize, layout: Layout, degrees: Degrees, degree: usize) -> Result<CapMap> {
+    pub fn new(
+        n: usize,
+        layout: Layout,
+        degrees: Degrees,
+        degree: usize,
+        centre: Centre,
+    ) -> Result<CapMap> {
         if n < 3 {
             return Err(Error::InvalidArgument(format!(
                 "a G^1 cap needs at least 3 sectors, got {n}"
@@ -127,26 +151,55 @@ impl CapMap {
         let qd = QuadData { d };
         let nq = qd.len(n);
         let nx = n * (d + 1) * (d + 1);
-        let cond = conditions(n, d, conv.kappa);
-        let e = dense(&cond.e, nx);
-        let f = dense(&cond.f, nq);
-        let (e_pinv, z) = pinv_and_null(&e)?;
-        // Energy: thin plate F_2 (+ F3_WEIGHT F_3) of every patch.
-        let mut hp = patch_energy(d, 2);
-        if F3_WEIGHT > 0.0 {
-            hp += patch_energy(d, 3) * F3_WEIGHT;
+        let jet = centre == Centre::QuadraticJet;
+        let nu = nx + if jet { 3 } else { 0 };
+        let cond = conditions(n, d, conv.kappa, jet);
+        // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
+        // are eliminated exactly: their value is the mean of their defining rows (all equal for
+        // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
+        // the remaining rows `E_y y = F_r q - E_r x_fixed(q)`.
+        let mut def: Vec<Vec<usize>> = vec![Vec::new(); nu];
+        let mut rest = Vec::new();
+        for (r, row) in cond.e.iter().enumerate() {
+            match row.as_slice() {
+                [(x, w)] if *w == 1.0 => def[*x].push(r),
+                _ => rest.push(r),
+            }
         }
+        let fixed: Vec<usize> = (0..nu).filter(|&x| !def[x].is_empty()).collect();
+        let free: Vec<usize> = (0..nu).filter(|&x| def[x].is_empty()).collect();
+        let fdense = dense(&cond.f, nq);
+        let mut a_fixed = DMatrix::zeros(nu, nq); // rows of fixed unknowns only
+        for &x in &fixed {
+            let k = def[x].len() as f64;
+            for &r in &def[x] {
+                let row = fdense.row(r) / k;
+                let add = a_fixed.row(x) + row;
+                a_fixed.set_row(x, &add);
+            }
+        }
+        let e_rest = dense(
+            &rest.iter().map(|&r| cond.e[r].clone()).collect::<Vec<_>>(),
+            nu,
+        );
+        let f_rest = DMatrix::from_fn(rest.len(), nq, |r, c| fdense[(rest[r], c)]);
+        let b = &f_rest - &e_rest * &a_fixed;
+        let e_y = DMatrix::from_fn(rest.len(), free.len(), |r, k| e_rest[(r, free[k])]);
+        let (e_pinv, z) = pinv_and_null(&e_y)?;
+        // Fairness energy of every patch.
+        let hp = patch_energy(d, FAIRNESS_ORDER);
         let m = (d + 1) * (d + 1);
-        let mut h = DMatrix::zeros(nx, nx);
+        let mut h = DMatrix::zeros(nu, nu);
         for s in 0..n {
             h.view_mut((s * m, s * m), (m, m)).copy_from(&hp);
         }
-        let x_p = &e_pinv * &f; // nx x nq
+        let h_yy = DMatrix::from_fn(free.len(), free.len(), |a, c| h[(free[a], free[c])]);
+        let h_yf = DMatrix::from_fn(free.len(), nu, |a, c| h[(free[a], c)]);
+        let y_p = &e_pinv * &b; // free x nq
         let free_parameters = z.ncols();
-        let map = if free_parameters > 0 {
-            let zh = z.transpose() * &h;
-            let mut zhz = &zh * &z;
-            // A tiny ridge keeps the minimiser unique if F_2 vanishes on some free direction.
+        let y = if free_parameters > 0 {
+            let mut zhz = z.transpose() * &h_yy * &z;
+            // A tiny ridge keeps the minimiser unique if the energy vanishes on a free direction.
             let ridge = 1e-12 * zhz.diagonal().amax().max(1e-300);
             for k in 0..free_parameters {
                 zhz[(k, k)] += ridge;
@@ -156,16 +209,21 @@ impl CapMap {
                     "valence {n}, degree {d}: the cap energy is not positive definite"
                 ))
             })?;
-            let y = chol.solve(&(zh * &x_p));
-            &x_p - &z * y
+            let g = z.transpose() * (&h_yy * &y_p + &h_yf * &a_fixed);
+            &y_p - &z * chol.solve(&g)
         } else {
-            x_p
+            y_p
         };
+        let mut map = a_fixed;
+        for (k, &x) in free.iter().enumerate() {
+            map.set_row(x, &y.row(k));
+        }
         // Certificate over the data satisfying the ring's compatibility conditions.
         let g = compatibility(n, d, conv.kappa);
         let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
         let (_, admissible) = pinv_and_null(&gm)?;
-        let resid = (DMatrix::identity(e.nrows(), e.nrows()) - &e * &e_pinv) * &f * admissible;
+        let resid =
+            (DMatrix::identity(e_y.nrows(), e_y.nrows()) - &e_y * &e_pinv) * &b * admissible;
         let certificate = resid.amax();
         Ok(CapMap {
             n,
@@ -175,7 +233,8 @@ impl CapMap {
             kappa: conv.kappa,
             certificate,
             free_parameters,
-            matrix: map * &q,
+            centre,
+            matrix: map.rows(0, nx) * &q,
             compat: gm * q,
             compat_labels: g.into_iter().map(|(l, _)| l).collect(),
         })
@@ -260,17 +319,23 @@ pub(crate) fn hole_size(hole: &Hole) -> f64 {
         .fold(f64::MIN_POSITIVE, f64::max)
 }
 
-type Key = (usize, Layout, Degrees, usize);
+type Key = (usize, Layout, Degrees, usize, Centre);
 
 /// The cap map for the given shape, built once per process and shared.
-pub fn cap_map(n: usize, layout: Layout, degrees: Degrees, degree: usize) -> Result<Arc<CapMap>> {
+pub fn cap_map(
+    n: usize,
+    layout: Layout,
+    degrees: Degrees,
+    degree: usize,
+    centre: Centre,
+) -> Result<Arc<CapMap>> {
     static CACHE: OnceLock<Mutex<HashMap<Key, Arc<CapMap>>>> = OnceLock::new();
     let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
-    let key = (n, layout, degrees, degree);
+    let key = (n, layout, degrees, degree, centre);
     if let Some(m) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(m.clone());
     }
-    let m = Arc::new(CapMap::new(n, layout, degrees, degree)?);
+    let m = Arc::new(CapMap::new(n, layout, degrees, degree, centre)?);
     cache.lock().map_err(poisoned)?.insert(key, m.clone());
     Ok(m)
 }
@@ -281,10 +346,15 @@ fn poisoned<T>(_: T) -> Error {
 
 /// The lowest cap degree certified for this shape, searched from the degree of the quad data
 /// (at least 3) up to that plus 4.
-pub fn lowest_certified_degree(n: usize, layout: Layout, degrees: Degrees) -> Result<usize> {
+pub fn lowest_certified_degree(
+    n: usize,
+    layout: Layout,
+    degrees: Degrees,
+    centre: Centre,
+) -> Result<usize> {
     let lo = Conversion::new(n, layout, degrees).degree.max(3);
     for d in lo..=lo + 4 {
-        if cap_map(n, layout, degrees, d)?.is_certified() {
+        if cap_map(n, layout, degrees, d, centre)?.is_certified() {
             return Ok(d);
         }
     }
@@ -294,6 +364,15 @@ pub fn lowest_certified_degree(n: usize, layout: Layout, degrees: Degrees) -> Re
     )))
 }
 
+/// Options of [`g1_cap_with`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CapOptions {
+    /// The cap's bi-degree; `None`: the lowest certified one.
+    pub degree: Option<usize>,
+    /// The condition at the centre.
+    pub centre: Centre,
+}
+
 /// A cap and what was measured while building it.
 #[derive(Debug, Clone)]
 pub struct Cap {
@@ -301,6 +380,8 @@ pub struct Cap {
     pub patches: Vec<BezierPatch>,
     /// The cap's bi-degree.
     pub degree: usize,
+    /// The map's certificate (see [`CapMap::certificate`]).
+    pub certificate: f64,
     /// Largest relative violation of the ring's compatibility conditions by the hole's data
     /// (rounding level for a ring that is C^1 in the layout's charts) and where it is.
     pub compatibility: (f64, String),
@@ -312,14 +393,14 @@ pub const MAX_COMPATIBILITY_DEFECT: f64 = 1e-7;
 /// The G^1 cap of a hole at the lowest certified degree (or at `degree` if given).
 ///
 /// Errors name the sector or spoke end whose data are not compatible with a C^1 ring.
-pub fn g1_cap_with(hole: &Hole, degree: Option<usize>) -> Result<Cap> {
+pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
     let (layout, degrees) = hole.layout()?;
     let n = hole.valence();
-    let d = match degree {
+    let d = match opts.degree {
         Some(d) => d,
-        None => lowest_certified_degree(n, layout, degrees)?,
+        None => lowest_certified_degree(n, layout, degrees, opts.centre)?,
     };
-    let map = cap_map(n, layout, degrees, d)?;
+    let map = cap_map(n, layout, degrees, d, opts.centre)?;
     let compat = map.compatibility_defect(hole);
     if compat.0 > MAX_COMPATIBILITY_DEFECT {
         return Err(Error::InvalidArgument(format!(
@@ -331,11 +412,12 @@ pub fn g1_cap_with(hole: &Hole, degree: Option<usize>) -> Result<Cap> {
     Ok(Cap {
         patches: map.apply(hole)?,
         degree: d,
+        certificate: map.certificate,
         compatibility: compat,
     })
 }
 
 /// The G^1 cap of a hole: one patch per (quad) sector, at the lowest certified degree.
 pub fn g1_cap(hole: &Hole) -> Result<Vec<BezierPatch>> {
-    g1_cap_with(hole, None).map(|c| c.patches)
+    g1_cap_with(hole, CapOptions::default()).map(|c| c.patches)
 }

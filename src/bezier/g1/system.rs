@@ -103,8 +103,10 @@ pub(crate) fn spoke_rows(n: usize, d: usize, kappa: f64, s: usize) -> Vec<Row> {
     rows
 }
 
-/// The conditions of the cap of valence `n`, degree `d`, spoke-end twist `kappa`.
-pub(crate) fn conditions(n: usize, d: usize, kappa: f64) -> Conditions {
+/// The conditions of the cap of valence `n`, degree `d`, spoke-end twist `kappa`; with `jet`
+/// also the quadratic-jet conditions at the centre over three extra unknowns
+/// ([`jet_rows`]).
+pub(crate) fn conditions(n: usize, d: usize, kappa: f64, jet: bool) -> Conditions {
     let qd = QuadData { d };
     let df = d as f64;
     let mut e: Vec<Row> = Vec::new();
@@ -155,6 +157,11 @@ pub(crate) fn conditions(n: usize, d: usize, kappa: f64) -> Conditions {
             e.push(r);
             f.push(Vec::new());
         }
+    }
+    if jet {
+        let (je, jf) = jet_rows(n, d, kappa);
+        e.extend(je);
+        f.extend(jf);
     }
     Conditions { e, f }
 }
@@ -295,4 +302,49 @@ pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
         }
     }
     m
+}
+
+/// The centre's quadratic jet: every cap patch's second derivatives at the centre are those of
+/// one quadratic `q` composed with the planar sector maps `phi_s`, whose 2-jets are
+/// `phi_s(u, v) = u e_s + v e_(s+1) + k u v (e_s + e_(s+1))` (spokes straight to second order),
+/// `k = w'(0) / (2 (1 + c))`, the symmetric solution of the spoke relation's `u`-derivative at the
+/// centre for the planar map. With `H` the Hessian of `q` on the tangent plane, three vectors
+/// `H00 = H(T0, T0)`, `H01 = H(T0, T1)`, `H11 = H(T1, T1)` (extra unknowns `n (d + 1)^2 + 0..3`):
+/// `d_uu P_s(0,0) = H(t_s, t_s)`, `d_uv P_s(0,0) = k (t_s + t_(s+1)) + H(t_s, t_(s+1))`. These
+/// satisfy that derivative of the relation identically (the quadratic part cancels because
+/// `t_(s+1) + t_(s-1) = 2 c t_s`), so the cap has one quadratic expansion at the centre:
+/// curvature continuous there.
+pub(crate) fn jet_rows(n: usize, d: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
+    let c = (2.0 * std::f64::consts::PI / n as f64).cos();
+    let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c));
+    let df = d as f64;
+    let h0 = n * (d + 1) * (d + 1);
+    let th = |s: usize| 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+    let (mut e, mut f) = (Vec::new(), Vec::new());
+    for s in 0..n {
+        let (a, b) = (th(s), th(s + 1));
+        let (ca, sa, cb, sb) = (a.cos(), a.sin(), b.cos(), b.sin());
+        // d(d-1)(b20 - 2 b10 + b00) - H(t_s, t_s) = 0
+        e.push(vec![
+            (cidx(d, s, 2, 0), df * (df - 1.0)),
+            (cidx(d, s, 1, 0), -2.0 * df * (df - 1.0)),
+            (cidx(d, s, 0, 0), df * (df - 1.0)),
+            (h0, -ca * ca),
+            (h0 + 1, -2.0 * ca * sa),
+            (h0 + 2, -sa * sa),
+        ]);
+        f.push(Vec::new());
+        // d^2 (b11 - b10 - b01 + b00) - H(t_s, t_(s+1)) = k (t_s + t_(s+1))
+        e.push(vec![
+            (cidx(d, s, 1, 1), df * df),
+            (cidx(d, s, 1, 0), -df * df),
+            (cidx(d, s, 0, 1), -df * df),
+            (cidx(d, s, 0, 0), df * df),
+            (h0, -ca * cb),
+            (h0 + 1, -(ca * sb + sa * cb)),
+            (h0 + 2, -sa * sb),
+        ]);
+        f.push(vec![(1, k * (ca + cb)), (2, k * (sa + sb))]);
+    }
+    (e, f)
 }

@@ -82,7 +82,14 @@ fn random_compatible_data_give_g1_caps() {
     for n in [3, 4, 5, 6, 7, 8] {
         for d in [5, 6] {
             let hole = random_quad_hole(n, d, 0.0, &mut rng);
-            let cap = g1_cap_with(&hole, Some(d)).unwrap();
+            let cap = g1_cap_with(
+                &hole,
+                CapOptions {
+                    degree: Some(d),
+                    centre: Centre::TangentPlane,
+                },
+            )
+            .unwrap();
             let p = &cap.patches;
             // the spoke relation, exactly, as polynomial identity (random data have no
             // meaningful normals; the real rings of tests/g1cap.rs check the angles)
@@ -125,9 +132,9 @@ fn certificates_per_degree() {
             boundary: 3,
             cross: 3,
         };
-        let m4 = CapMap::new(n, Layout::Quad, deg, 4).unwrap();
-        let m5 = CapMap::new(n, Layout::Quad, deg, 5).unwrap();
-        let m3 = CapMap::new(n, Layout::Quad, deg, 3).unwrap();
+        let m4 = CapMap::new(n, Layout::Quad, deg, 4, Centre::TangentPlane).unwrap();
+        let m5 = CapMap::new(n, Layout::Quad, deg, 5, Centre::TangentPlane).unwrap();
+        let m3 = CapMap::new(n, Layout::Quad, deg, 3, Centre::TangentPlane).unwrap();
         assert!(m5.is_certified(), "n {n}: bi-5 {:e}", m5.certificate);
         assert_eq!(m4.is_certified(), !even, "n {n}: bi-4 {:e}", m4.certificate);
         assert_eq!(
@@ -136,5 +143,42 @@ fn certificates_per_degree() {
             "n {n}: bi-3 {:e}",
             m3.certificate
         );
+    }
+}
+
+/// The lowest certified degree for every valence 3..=16, per layout and centre condition
+/// (segment degrees 3 / 3; a triangle hole's quad data then have degree 4).
+#[test]
+fn lowest_certified_degrees() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    for layout in [Layout::Quad, Layout::Triangle] {
+        for centre in [Centre::TangentPlane, Centre::QuadraticJet] {
+            let mut row = Vec::new();
+            for n in 3..=16 {
+                let d = lowest_certified_degree(n, layout, deg, centre).unwrap();
+                let m = cap_map(n, layout, deg, d, centre).unwrap();
+                assert!(
+                    m.matrix().amax() < 5.0,
+                    "n {n} d {d}: weights {:e}",
+                    m.matrix().amax()
+                );
+                // the expected degrees (derivation in the module documentation)
+                let even = n % 2 == 0;
+                let want = match (layout, centre) {
+                    (Layout::Quad, Centre::TangentPlane) if n == 4 => 3,
+                    (Layout::Quad, Centre::TangentPlane) if !even => 4,
+                    (Layout::Quad, Centre::QuadraticJet) if n <= 4 => 4,
+                    (Layout::Triangle, Centre::TangentPlane) if !even || n == 4 || n == 6 => 4,
+                    (Layout::Triangle, Centre::QuadraticJet) if n == 3 || n == 6 => 4,
+                    _ => 5,
+                };
+                assert_eq!(d, want, "{layout:?} {centre:?} n {n}");
+                row.push(format!("{n}:{d}({})", m.free_parameters));
+            }
+            eprintln!("{layout:?} {centre:?}: {}", row.join(" "));
+        }
     }
 }
