@@ -1,6 +1,6 @@
 //! G^1 caps (`fairsub::bezier::g1`) on the real last rings of today's schemes: the hole data are
-//! read off the `--no-fill` complex of a c-net (Catmull-Clark, EG, QAS+, Doo-Sabin) or a
-//! triangle fan (Loop), the cap is added, and the project's `check` measures every join. Asserted:
+//! read off the `--no-fill` complex of a c-net (Catmull-Clark, EG, QAS+, Doo-Sabin, guided bi-5
+//! and bi-6) or a triangle fan (Loop), the cap is added, and the project's `check` measures every join. Asserted:
 //! C^1 to the ring data (1e-12), G^1 below 1e-8 rad across spokes, at the centre and between ring
 //! and cap (`check`), the centre and tangent plane as given; printed: the curvature range of the
 //! cap and the G^1 defect of today's fill for comparison (`cargo test --release --test g1cap --
@@ -467,7 +467,22 @@ fn doo_sabin_caps() {
     for n in VALENCES {
         for shape in [CnetShape::Saddle, CnetShape::Convex] {
             let net = gallery::cnet(n, shape, 3);
-            let m = run("doo-sabin", &net, 3, false, None);
+            // Exact limit tangent plane of the n-gon: the centre coefficient of sector s's bi-2
+            // patch is the n-gon's vertex a_s = b_1 + cross_1 / 2 of segment a; the n-gon's
+            // vertices map among themselves by a circulant, so their Fourier mode 1 spans the
+            // subdominant eigenspace's tangent plane at every level.
+            let open = build("doo-sabin", &net, 3, false);
+            let h = hole_of(&open, false, [0.0; 3], [0.0, 0.0, 1.0]);
+            let mut t = [[0.0; 3]; 2];
+            for (s, sec) in h.sectors.iter().enumerate() {
+                let a = &sec[0];
+                assert_eq!(a.boundary.len(), 3, "bi-2 ring");
+                let vtx = geom::axpy(a.boundary[1], 0.5, a.cross[1]);
+                let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+                t[0] = geom::axpy(t[0], th.cos(), vtx);
+                t[1] = geom::axpy(t[1], th.sin(), vtx);
+            }
+            let m = run("doo-sabin", &net, 3, false, Some(cross(t[0], t[1])));
             report("doo-sabin", shape.name(), n, &m);
             assert!(m.ring_cap_c1 < 1e-10, "C^1 ring|cap {:e}", m.ring_cap_c1);
         }
@@ -583,6 +598,18 @@ fn regular_hole_reproduction() {
             assert!(worst < 1e-12, "{name}: {worst:e}");
         } else {
             assert!(worst > 1e-6 && worst < 0.05, "{name}: {worst:e}");
+        }
+    }
+}
+
+#[test]
+fn guided_caps() {
+    for scheme in ["guided-bi6", "guided-bi5"] {
+        for n in [3, 5, 6] {
+            let net = gallery::cnet(n, CnetShape::Saddle, 3);
+            let m = run(scheme, &net, 2, false, None);
+            report(scheme, "saddle", n, &m);
+            assert!(m.ring_cap_c1 < 1e-10, "C^1 ring|cap {:e}", m.ring_cap_c1);
         }
     }
 }

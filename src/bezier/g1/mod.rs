@@ -52,8 +52,7 @@
 //! the sum over the cap patches of the fairness functional
 //! `F_k(P) = int_[0,1]^2 sum_(a+b=k) C(k, a) |d_u^a d_v^b P|^2`, `k = FAIRNESS_ORDER = 4`
 //! (plus a ridge of `1e-12` of the largest diagonal entry, to keep the minimiser unique). On the
-//! real rings of
-//! `tests/g1cap.rs` `F_4` gave the smallest cap curvature ranges of `F_2`, `F_3`, `F_4` (for
+//! real rings of `tests/g1cap.rs` `F_4` gave the smallest cap curvature ranges of `F_2`, `F_3`, `F_4` (for
 //! example Catmull-Clark, saddle c-net, `n = 8`: Gauss curvature down to -4.4, -2.2, -1.5 against
 //! the last ring's -0.22), and `F_4` vanishes on surfaces of total degree 3, which a regular
 //! hole therefore reproduces exactly. The solve: the remaining rows `E y = B q` over the

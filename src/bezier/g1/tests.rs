@@ -182,3 +182,24 @@ fn lowest_certified_degrees() {
         }
     }
 }
+
+#[test]
+fn bad_holes_are_refused_with_the_place_named() {
+    let mut rng = Lcg(11);
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[2][1].boundary[5][0] += 0.1; // corner of sector 2 no longer shared
+    let err = g1_cap(&hole).unwrap_err().to_string();
+    assert!(err.contains("corner of sector 2"), "{err}");
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[3][0].cross[0][1] += 0.1; // spoke tangent at the end of spoke 3 differs
+    let err = g1_cap(&hole).unwrap_err().to_string();
+    assert!(err.contains("end of spoke 3"), "{err}");
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[1].pop();
+    assert!(g1_cap(&hole).unwrap_err().to_string().contains("sector 1"));
+    hole.sectors.truncate(2);
+    assert!(g1_cap(&hole).is_err());
+    let mut hole = random_quad_hole(4, 5, 0.0, &mut rng);
+    hole.centre[2] = f64::NAN;
+    assert!(g1_cap(&hole).is_err());
+}
