@@ -379,6 +379,8 @@ fn run(
         }
     }
     assert!(rep.all.g1 < 1e-8, "{scheme} n {n}: G^1 {:e}", rep.all.g1);
+    // the cap closes the hole: as many open sides as with today's fill (the net's boundary)
+    assert_eq!(rep.open_sides, check(&filled).open_sides, "{scheme} n {n}: open sides");
     let k = last_ring(&open);
     let ring: Vec<BezierPatch> = open
         .patches
