@@ -280,6 +280,7 @@ fn fill_centre(c: &PatchComplex) -> Point {
 /// Result of one case.
 struct Measured {
     degree: usize,
+    centre: fairsub::bezier::g1::Centre,
     g1_before: f64,
     g1_after: f64,
     ring_cap_c1: f64,
@@ -380,7 +381,11 @@ fn run(
     }
     assert!(rep.all.g1 < 1e-8, "{scheme} n {n}: G^1 {:e}", rep.all.g1);
     // the cap closes the hole: as many open sides as with today's fill (the net's boundary)
-    assert_eq!(rep.open_sides, check(&filled).open_sides, "{scheme} n {n}: open sides");
+    assert_eq!(
+        rep.open_sides,
+        check(&filled).open_sides,
+        "{scheme} n {n}: open sides"
+    );
     let k = last_ring(&open);
     let ring: Vec<BezierPatch> = open
         .patches
@@ -393,6 +398,7 @@ fn run(
     let k_range = gauss_range(&cap.patches);
     Measured {
         degree: cap.degree,
+        centre: cap.centre,
         g1_before: g1_of(&filled),
         g1_after: rep.all.g1,
         ring_cap_c1,
@@ -421,10 +427,11 @@ fn gauss_range(patches: &[BezierPatch]) -> (f64, f64) {
 
 fn report(scheme: &str, net: &str, n: usize, m: &Measured) {
     eprintln!(
-        "{scheme:14} {net:8} n {n}: bi-{} cap, G^1 before {:.3e} deg, after {:.3e} deg; \
+        "{scheme:14} {net:8} n {n}: bi-{} cap ({:?}), G^1 before {:.3e} deg, after {:.3e} deg; \
          ring|cap C^1 (check) {:.1e}; Gauss curvature: cap [{:.3e}, {:.3e}], last ring \
          [{:.3e}, {:.3e}]",
         m.degree,
+        m.centre,
         m.g1_before.to_degrees(),
         m.g1_after.to_degrees(),
         m.ring_cap_c1,

@@ -26,11 +26,15 @@ pub const CERTIFIED: f64 = 1e-10;
 /// What the cap satisfies at the centre besides G^1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Centre {
+    /// [`Centre::QuadraticJet`] where it is certified at the lowest degree certified for
+    /// [`Centre::TangentPlane`] (or at the requested degree), else [`Centre::TangentPlane`]: the
+    /// lowest degree first, curvature continuity at the centre when it costs no degree.
+    #[default]
+    Auto,
     /// Only the centre point and the tangent plane (spoke tangents) are prescribed.
     TangentPlane,
     /// In addition, one quadratic expansion for all sectors (curvature continuous at the
     /// centre), its Hessian a free parameter (see [`super`]).
-    #[default]
     QuadraticJet,
 }
 
@@ -151,6 +155,12 @@ impl CapMap {
         let qd = QuadData { d };
         let nq = qd.len(n);
         let nx = n * (d + 1) * (d + 1);
+        if centre == Centre::Auto {
+            return Err(Error::InvalidArgument(
+                "a cap map needs a definite centre condition (Auto is resolved by g1_cap_with)"
+                    .into(),
+            ));
+        }
         let jet = centre == Centre::QuadraticJet;
         let nu = nx + if jet { 3 } else { 0 };
         let cond = conditions(n, d, conv.kappa, jet);
@@ -345,13 +355,18 @@ fn poisoned<T>(_: T) -> Error {
 }
 
 /// The lowest cap degree certified for this shape, searched from the degree of the quad data
-/// (at least 3) up to that plus 4.
+/// (at least 3) up to that plus 4 (`Auto` counts as `TangentPlane`).
 pub fn lowest_certified_degree(
     n: usize,
     layout: Layout,
     degrees: Degrees,
     centre: Centre,
 ) -> Result<usize> {
+    let centre = if centre == Centre::Auto {
+        Centre::TangentPlane
+    } else {
+        centre
+    };
     let lo = Conversion::new(n, layout, degrees).degree.max(3);
     for d in lo..=lo + 4 {
         if cap_map(n, layout, degrees, d, centre)?.is_certified() {
@@ -380,6 +395,8 @@ pub struct Cap {
     pub patches: Vec<BezierPatch>,
     /// The cap's bi-degree.
     pub degree: usize,
+    /// The centre condition used (never `Auto`).
+    pub centre: Centre,
     /// The map's certificate (see [`CapMap::certificate`]).
     pub certificate: f64,
     /// Largest relative violation of the ring's compatibility conditions by the hole's data
@@ -396,11 +413,26 @@ pub const MAX_COMPATIBILITY_DEFECT: f64 = 1e-7;
 pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
     let (layout, degrees) = hole.layout()?;
     let n = hole.valence();
-    let d = match opts.degree {
-        Some(d) => d,
-        None => lowest_certified_degree(n, layout, degrees, opts.centre)?,
+    let (d, centre) = match opts.centre {
+        Centre::Auto => {
+            let d = match opts.degree {
+                Some(d) => d,
+                None => lowest_certified_degree(n, layout, degrees, Centre::TangentPlane)?,
+            };
+            let jet = cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
+            let c = if jet {
+                Centre::QuadraticJet
+            } else {
+                Centre::TangentPlane
+            };
+            (d, c)
+        }
+        c => match opts.degree {
+            Some(d) => (d, c),
+            None => (lowest_certified_degree(n, layout, degrees, c)?, c),
+        },
     };
-    let map = cap_map(n, layout, degrees, d, opts.centre)?;
+    let map = cap_map(n, layout, degrees, d, centre)?;
     let compat = map.compatibility_defect(hole);
     if compat.0 > MAX_COMPATIBILITY_DEFECT {
         return Err(Error::InvalidArgument(format!(
@@ -412,6 +444,7 @@ pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
     Ok(Cap {
         patches: map.apply(hole)?,
         degree: d,
+        centre,
         certificate: map.certificate,
         compatibility: compat,
     })
