@@ -3,7 +3,6 @@
 //! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
 //! fairness energy. All rows are scalar and the same for x, y, z.
 
-use super::hole::bern;
 use nalgebra::DMatrix;
 
 /// Index of coefficient `(i, j)` of sector `s` among the unknowns.
@@ -278,19 +277,6 @@ pub(crate) fn patch_energy(d: usize, k: usize) -> DMatrix<f64> {
         h += gu.kronecker(&gv) * binom(k, a);
     }
     h
-}
-
-/// Values of `P_s(u, v)` as a row over the unknowns (for tests and evaluation of maps).
-#[allow(dead_code)]
-pub(crate) fn value_row(d: usize, s: usize, u: f64, v: f64) -> Row {
-    let (bu, bv) = (bern(d, u), bern(d, v));
-    let mut r = Vec::new();
-    for i in 0..=d {
-        for j in 0..=d {
-            r.push((cidx(d, s, i, j), bu[i] * bv[j]));
-        }
-    }
-    r
 }
 
 /// Dense matrix of sparse rows over `cols` columns.
