@@ -1,0 +1,363 @@
+//! The scheme-independent description of a hole ([`Hole`]) and its conventions, and the data
+//! vector the cap's linear map acts on.
+//!
+//! # Conventions
+//!
+//! A hole has `n >= 3` sectors numbered counterclockwise around the normal `T0 x T1` of the
+//! given tangent plane. Sector `s` lies between spoke `s` and spoke `s + 1` (indices mod `n`);
+//! spoke `s` starts at the centre `C` with the derivative
+//! `t_s = cos(2 pi s / n) T0 + sin(2 pi s / n) T1` (per unit of the cap's parameter) and ends at
+//! the spoke end `E_s` on the outer boundary. So `T0` is the derivative along spoke 0 and `T1`
+//! the derivative a quarter turn further, both at the cap's parameter speed: the provider scales
+//! them (e.g. by the characteristic map of the scheme), and the cap's shape depends on it.
+//!
+//! **Quad layout** (two segments per sector: Catmull-Clark, EG, QAS+, guided, Doo-Sabin, PGS,
+//! TPS, non-box cells). Sector `s` is one cap patch `P_s(u, v)` on `[0, 1]^2` with
+//! `P_s(0, 0) = C`, spoke `s` its side `v = 0` and spoke `s + 1` its side `u = 0`
+//! (`P_s(u, 0) = P_(s-1)(0, u)`). Its outer boundary is
+//! * segment 0 (`a`): the side `u = 1`, parametrised by `v`, from `E_s` (`v = 0`) to the corner
+//!   `K_s` (`v = 1`);
+//! * segment 1 (`b`): the side `v = 1`, parametrised by `u`, from `E_(s+1)` (`u = 0`) to `K_s`.
+//!
+//! Each segment carries `boundary` (the ring's boundary curve) and `cross`, the ring's first
+//! derivative across the segment pointing *into* the hole, per unit of the cap's transversal
+//! parameter, as a Bezier curve in the segment's parameter: `cross_a(v) = -dP_s/du (1, v)`,
+//! `cross_b(u) = -dP_s/dv (u, 1)`. For a ring patch of the same parameter size as the cap piece
+//! (the usual case: the hole of a sector is one face of the last level) this is just the ring
+//! patch's own derivative off that side, continued.
+//!
+//! **Triangle layout** (one segment per sector: Loop; a fan of triangles `C, E_s, E_(s+1)`).
+//! Segment `s` runs from `E_s` (`t = 0`) to `E_(s+1)` (`t = 1`), `cross` is the derivative of
+//! the ring in the direction of the chart vector from the segment's midpoint `M_s` to the centre,
+//! in the affine chart of the sector triangle in which the segment has unit speed (for a ring
+//! triangle `E_(s+1) E_s X` across the segment: the direction `(E_s + E_(s+1)) / 2 - X`). The
+//! ring must be a three-direction lattice at every spoke end (valence 6 there, as Loop's rings
+//! are), so that in the chart at `E_(s+1)` the next segment's direction is `C - E_s`. Such a
+//! hole is converted to a quad hole ([`Hole::to_quad_layout`]) by splitting every segment at its
+//! midpoint: quad sector `j` is the kite `C, M_j, E_(j+1), M_(j+1)` under the bilinear map of the
+//! unit square, its spoke `j` ends at `M_j` (so `t_j` is the derivative towards `M_j`). The
+//! kites' cross derivatives are the ring's derivatives in the bilinear map's varying direction;
+//! their spoke-end twist is `kappa = 1` ([`QuadHole::kappa`], derivation in [`super`]).
+
+use crate::error::{Error, Result};
+use crate::geom::{Point, axpy, scale};
+
+/// One outer boundary segment of a sector: the ring's boundary curve and its cross-boundary
+/// derivative into the hole (conventions in the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// Bezier coefficients of the boundary curve.
+    pub boundary: Vec<Point>,
+    /// Bezier coefficients of the first cross-boundary derivative, pointing into the hole.
+    pub cross: Vec<Point>,
+}
+
+/// A hole inside the last ring of a patch complex (conventions in the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hole {
+    /// The centre: the scheme's limit point.
+    pub centre: Point,
+    /// `[T0, T1]`: spoke `s` leaves the centre with derivative
+    /// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1`. They span the limit tangent plane.
+    pub tangents: [Point; 2],
+    /// Per sector (counterclockwise about `T0 x T1`), its one or two outer segments.
+    pub sectors: Vec<Vec<Segment>>,
+}
+
+/// Layout of a hole.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Layout {
+    /// Two segments per sector meeting at a corner.
+    Quad,
+    /// One segment per sector (a fan of triangles on a three-direction lattice).
+    Triangle,
+}
+
+/// The degrees of a hole's segments: every boundary has degree `boundary`, every cross
+/// derivative degree `cross`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Degrees {
+    /// Degree of the boundary curves.
+    pub boundary: usize,
+    /// Degree of the cross-derivative curves.
+    pub cross: usize,
+}
+
+impl Hole {
+    /// Number of sectors.
+    pub fn valence(&self) -> usize {
+        self.sectors.len()
+    }
+
+    /// Checks the shape of the hole and returns its layout and segment degrees.
+    pub fn layout(&self) -> Result<(Layout, Degrees)> {
+        let n = self.sectors.len();
+        if n < 3 {
+            return Err(Error::InvalidArgument(format!(
+                "a G^1 cap needs at least 3 sectors, the hole has {n}"
+            )));
+        }
+        let segs = self.sectors[0].len();
+        let layout = match segs {
+            1 => Layout::Triangle,
+            2 => Layout::Quad,
+            k => {
+                return Err(Error::InvalidArgument(format!(
+                    "sector 0 of the hole has {k} segments; a sector has one or two"
+                )));
+            }
+        };
+        let first = &self.sectors[0][0];
+        let deg = Degrees {
+            boundary: first.boundary.len().saturating_sub(1),
+            cross: first.cross.len().saturating_sub(1),
+        };
+        for (s, sec) in self.sectors.iter().enumerate() {
+            if sec.len() != segs {
+                return Err(Error::InvalidArgument(format!(
+                    "sector {s} of the hole has {} segments, sector 0 has {segs}",
+                    sec.len()
+                )));
+            }
+            for (k, seg) in sec.iter().enumerate() {
+                if seg.boundary.is_empty() || seg.cross.is_empty() {
+                    return Err(Error::InvalidArgument(format!(
+                        "segment {k} of sector {s} has no coefficients"
+                    )));
+                }
+                if seg.boundary.len() != deg.boundary + 1 || seg.cross.len() != deg.cross + 1 {
+                    return Err(Error::InvalidArgument(format!(
+                        "segment {k} of sector {s} has degrees ({}, {}), segment 0 of sector 0 \
+                         ({}, {}); all segments of a hole share their degrees",
+                        seg.boundary.len() - 1,
+                        seg.cross.len() - 1,
+                        deg.boundary,
+                        deg.cross
+                    )));
+                }
+                let finite = seg
+                    .boundary
+                    .iter()
+                    .chain(&seg.cross)
+                    .all(|p| p.iter().all(|x| x.is_finite()));
+                if !finite {
+                    return Err(Error::InvalidArgument(format!(
+                        "segment {k} of sector {s} has a non-finite coefficient"
+                    )));
+                }
+            }
+        }
+        let pts = [self.centre, self.tangents[0], self.tangents[1]];
+        if !pts.iter().all(|p| p.iter().all(|x| x.is_finite())) {
+            return Err(Error::InvalidArgument(
+                "the hole's centre or tangents are not finite".into(),
+            ));
+        }
+        Ok((layout, deg))
+    }
+
+    /// The data vector of the hole, the input of [`super::CapMap`]: the centre, `T0`, `T1`, then
+    /// per sector and segment the boundary coefficients followed by the cross coefficients.
+    pub fn data(&self) -> Vec<Point> {
+        let mut d = vec![self.centre, self.tangents[0], self.tangents[1]];
+        for sec in &self.sectors {
+            for seg in sec {
+                d.extend_from_slice(&seg.boundary);
+                d.extend_from_slice(&seg.cross);
+            }
+        }
+        d
+    }
+
+    /// The quad-layout hole a triangle hole stands for (kites, see the module documentation);
+    /// a quad hole is returned as it is, with `kappa = 0`. Its segments have degree
+    /// `max(boundary, cross + 1)` for a triangle hole.
+    pub fn to_quad_layout(&self) -> Result<QuadHole> {
+        let (layout, deg) = self.layout()?;
+        let data = self.data();
+        let conv = Conversion::new(self.valence(), layout, deg);
+        let q = conv.apply(&data);
+        let per = 4 * (conv.degree + 1);
+        let m = conv.degree + 1;
+        let sectors: Vec<[Segment; 2]> = (0..self.valence())
+            .map(|s| {
+                let b = 3 + s * per;
+                [0, 1].map(|k| Segment {
+                    boundary: q[b + 2 * k * m..b + (2 * k + 1) * m].to_vec(),
+                    cross: q[b + (2 * k + 1) * m..b + (2 * k + 2) * m].to_vec(),
+                })
+            })
+            .collect();
+        Ok(QuadHole {
+            hole: Hole {
+                centre: self.centre,
+                tangents: self.tangents,
+                sectors: sectors.into_iter().map(|[a, b]| vec![a, b]).collect(),
+            },
+            kappa: conv.kappa,
+        })
+    }
+}
+
+/// A hole in quad layout with the spoke-end twist `kappa` of its G^1 weight (0 for rings that
+/// are a tensor-product grid at the spoke ends, 1 for kites split from a triangle fan).
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuadHole {
+    /// The hole (two segments per sector).
+    pub hole: Hole,
+    /// `-w'(1)` of the spoke weight `w(u) = 2 cos(2 pi / n) (1 - u)^2 + kappa u (1 - u)`.
+    pub kappa: f64,
+}
+
+/// The linear map from a hole's data vector ([`Hole::data`]) to the canonical quad data: centre,
+/// `T0`, `T1`, then per quad sector `a.boundary, a.cross, b.boundary, b.cross`, each with
+/// `degree + 1` coefficients.
+#[derive(Debug, Clone)]
+pub(crate) struct Conversion {
+    /// Degree of the canonical curves.
+    pub degree: usize,
+    /// Spoke-end twist of the layout.
+    pub kappa: f64,
+    /// `rows x cols` weights, row-major.
+    pub rows: usize,
+    pub cols: usize,
+    pub w: Vec<f64>,
+}
+
+/// Bernstein polynomial values `B_i^d(t)`, `i = 0..=d`.
+pub(crate) fn bern(d: usize, t: f64) -> Vec<f64> {
+    let mut out = vec![0.0; d + 1];
+    crate::bezier::curve::bernstein(d, t, &mut out);
+    out
+}
+
+/// Bernstein first derivatives `d/dt B_i^d(t)`.
+pub(crate) fn bern_d1(d: usize, t: f64) -> Vec<f64> {
+    let (mut b0, mut b1, mut b2) = (vec![0.0; d + 1], vec![0.0; d + 1], vec![0.0; d + 1]);
+    crate::bezier::curve::bernstein_derivs(d, t, &mut b0, &mut b1, &mut b2);
+    b1
+}
+
+/// The `(d + 1) x (d + 1)` inverse of the Bernstein collocation matrix at the points
+/// `(k + 1/2) / (d + 1)`: maps values at those points to the coefficients of the interpolant.
+pub(crate) fn collocation_inverse(d: usize) -> nalgebra::DMatrix<f64> {
+    let m = nalgebra::DMatrix::from_fn(d + 1, d + 1, |k, i| {
+        bern(d, (k as f64 + 0.5) / (d as f64 + 1.0))[i]
+    });
+    m.try_inverse()
+        .expect("Bernstein collocation at distinct points is invertible")
+}
+
+impl Conversion {
+    pub(crate) fn new(n: usize, layout: Layout, deg: Degrees) -> Conversion {
+        let (db, dc) = (deg.boundary, deg.cross);
+        let seg_len = db + dc + 2;
+        let (degree, kappa, nseg) = match layout {
+            Layout::Quad => (db.max(dc), 0.0, 2),
+            Layout::Triangle => (db.max(dc + 1), 1.0, 1),
+        };
+        let cols = 3 + n * nseg * seg_len;
+        let m = degree + 1;
+        let rows = 3 + n * 4 * m;
+        let mut w = vec![0.0; rows * cols];
+        for k in 0..3 {
+            w[k * cols + k] = 1.0;
+        }
+        let inv = collocation_inverse(degree);
+        // Each canonical curve is given by its values at the collocation points as linear
+        // functionals of the data; `curve(row0, f)` converts them into coefficient rows.
+        let mut put = |row0: usize, f: &dyn Fn(f64, &mut [f64])| {
+            let mut vals = nalgebra::DMatrix::zeros(m, cols);
+            let mut buf = vec![0.0; cols];
+            for k in 0..m {
+                buf.fill(0.0);
+                f((k as f64 + 0.5) / m as f64, &mut buf);
+                for (c, &x) in buf.iter().enumerate() {
+                    vals[(k, c)] = x;
+                }
+            }
+            let coef = &inv * vals;
+            for i in 0..m {
+                for c in 0..cols {
+                    w[(row0 + i) * cols + c] = coef[(i, c)];
+                }
+            }
+        };
+        // Offsets of boundary / cross coefficients of input segment `k` of sector `s`.
+        let off = |s: usize, k: usize| 3 + (s * nseg + k) * seg_len;
+        for s in 0..n {
+            let r = 3 + s * 4 * m;
+            match layout {
+                Layout::Quad => {
+                    for k in 0..2 {
+                        let o = off(s, k);
+                        put(r + 2 * k * m, &|t, out| {
+                            for (i, b) in bern(db, t).into_iter().enumerate() {
+                                out[o + i] += b;
+                            }
+                        });
+                        put(r + (2 * k + 1) * m, &|t, out| {
+                            for (i, b) in bern(dc, t).into_iter().enumerate() {
+                                out[o + db + 1 + i] += b;
+                            }
+                        });
+                    }
+                }
+                Layout::Triangle => {
+                    // Quad sector s is the kite at E_(s+1): a = second half of segment s,
+                    // b = first half of segment s + 1, reversed.
+                    let (oa, ob) = (off(s, 0), off((s + 1) % n, 0));
+                    // value, tangent T = d/dt, and median derivative X at segment parameter t
+                    // of the segment at offset o, added with weights (wv, wt, wx).
+                    let add = |o: usize, t: f64, wv: f64, wt: f64, wx: f64, out: &mut [f64]| {
+                        let (b, b1) = (bern(db, t), bern_d1(db, t));
+                        for i in 0..=db {
+                            out[o + i] += wv * b[i] + wt * b1[i];
+                        }
+                        for (i, x) in bern(dc, t).into_iter().enumerate() {
+                            out[o + db + 1 + i] += wx * x;
+                        }
+                    };
+                    put(r, &|v, out| add(oa, 0.5 * (1.0 + v), 1.0, 0.0, 0.0, out));
+                    // cross_a(v) = (1 - v) X + v (T / 4 + X / 2) at t = (1 + v) / 2
+                    put(r + m, &|v, out| {
+                        add(oa, 0.5 * (1.0 + v), 0.0, v / 4.0, 1.0 - v / 2.0, out)
+                    });
+                    put(r + 2 * m, &|u, out| {
+                        add(ob, 0.5 * (1.0 - u), 1.0, 0.0, 0.0, out)
+                    });
+                    // cross_b(u) = (1 - u) X + u (-T / 4 + X / 2) at t = (1 - u) / 2
+                    put(r + 3 * m, &|u, out| {
+                        add(ob, 0.5 * (1.0 - u), 0.0, -u / 4.0, 1.0 - u / 2.0, out)
+                    });
+                }
+            }
+        }
+        Conversion {
+            degree,
+            kappa,
+            rows,
+            cols,
+            w,
+        }
+    }
+
+    /// Applies the conversion to a data vector.
+    pub(crate) fn apply(&self, data: &[Point]) -> Vec<Point> {
+        (0..self.rows)
+            .map(|r| {
+                let row = &self.w[r * self.cols..(r + 1) * self.cols];
+                row.iter()
+                    .zip(data)
+                    .filter(|(w, _)| **w != 0.0)
+                    .fold([0.0; 3], |acc, (&w, &p)| axpy(acc, w, p))
+            })
+            .collect()
+    }
+}
+
+/// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1`.
+pub fn spoke_tangent(tangents: &[Point; 2], n: usize, s: usize) -> Point {
+    let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+    axpy(scale(tangents[0], th.cos()), th.sin(), tangents[1])
+}

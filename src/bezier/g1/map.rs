@@ -1,0 +1,456 @@
+//! The cap as one fixed linear map per `(n, layout, segment degrees, cap degree)`: built once
+//! ([`CapMap::new`], cached by [`cap_map`]), applied to a hole's data vector
+//! ([`CapMap::apply`]), and exposed as a matrix ([`CapMap::matrix`]) so that a stencil table can
+//! express every cap coefficient in the ring's coefficients.
+
+use super::hole::{Conversion, Degrees, Hole, Layout};
+use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_energy};
+use crate::bezier::BezierPatch;
+use crate::error::{Error, Result};
+use crate::geom::axpy;
+use nalgebra::DMatrix;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// Relative eigenvalue threshold (of `a^T a`) for ranks, pseudo-inverses and null spaces.
+const EIG_TOL: f64 = 1e-9;
+
+/// Order `k` of the fairness functional `F_k` whose sum over the cap patches the free
+/// coefficients minimise (see [`super`] for the measured comparison of `F_2`, `F_3`, `F_4`).
+pub const FAIRNESS_ORDER: usize = 4;
+
+/// Certificate level below which a map counts as certified (consistent conditions measure
+/// about 1e-14, inconsistent ones 1e-2 and more).
+pub const CERTIFIED: f64 = 1e-10;
+
+/// What the cap satisfies at the centre besides G^1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Centre {
+    /// [`Centre::QuadraticJet`] where it is certified at the lowest degree certified for
+    /// [`Centre::TangentPlane`] (or at the requested degree), else [`Centre::TangentPlane`]: the
+    /// lowest degree first, curvature continuity at the centre when it costs no degree.
+    #[default]
+    Auto,
+    /// Only the centre point and the tangent plane (spoke tangents) are prescribed.
+    TangentPlane,
+    /// In addition, one quadratic expansion for all sectors (curvature continuous at the
+    /// centre), its Hessian a free parameter (see [`super`]).
+    QuadraticJet,
+}
+
+/// A certified G^1 cap map.
+#[derive(Debug, Clone)]
+pub struct CapMap {
+    /// Valence.
+    pub n: usize,
+    /// Layout of the input holes.
+    pub layout: Layout,
+    /// Degrees of the input segments.
+    pub degrees: Degrees,
+    /// Bi-degree of the cap patches.
+    pub degree: usize,
+    /// Spoke-end twist of the G^1 weight.
+    pub kappa: f64,
+    /// The condition at the centre.
+    pub centre: Centre,
+    /// Consistency certificate: the largest residual of the cap conditions over a basis of all
+    /// data that satisfy the ring's compatibility conditions (0 up to rounding when the cap
+    /// exists for every compatible ring; see [`super`]).
+    pub certificate: f64,
+    /// Number of free parameters left after all conditions (fixed by the energy).
+    pub free_parameters: usize,
+    /// `n (d + 1)^2 x data` weights: cap coefficient `cidx(s, i, j)` from the hole's data vector.
+    matrix: DMatrix<f64>,
+    /// Compatibility rows over the hole's data vector and their labels.
+    compat: DMatrix<f64>,
+    compat_labels: Vec<String>,
+}
+
+/// Pseudo-inverse and null space of `a` (`rows x cols`) from the symmetric eigen-decomposition
+/// of `a^T a` by `faer`. (Both SVDs at hand were found wanting on these systems: nalgebra's
+/// leaves residuals of 1e-10, faer's reports a spurious singular value `2^-13` for
+/// `n = 8, d = 5` where LAPACK finds none; the eigenvalues of `a^T a` agree with LAPACK's
+/// squared singular values.) The conditions are well scaled (singular values between about
+/// 0.1 and 30), so squaring costs little: a gap of at least 1e-3 separates the zero eigenvalues
+/// (below `1e-12` of the largest) from the others, tested.
+fn pinv_and_null(a: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let c = a.ncols();
+    let ata = a.transpose() * a;
+    let fa = faer::Mat::<f64>::from_fn(c, c, |i, j| ata[(i, j)]);
+    let eig = fa.self_adjoint_eigen(faer::Side::Lower).map_err(|e| {
+        Error::Unsupported(format!("eigen-decomposition of the cap conditions: {e:?}"))
+    })?;
+    let (v, ev) = (eig.U(), eig.S().column_vector());
+    let emax = (0..c).map(|l| ev[l].abs()).fold(0.0, f64::max);
+    let tol = EIG_TOL * emax.max(1.0);
+    let (keep, null): (Vec<usize>, Vec<usize>) = (0..c).partition(|&l| ev[l] > tol);
+    let vk = DMatrix::from_fn(c, keep.len(), |i, k| v[(i, keep[k])] / ev[keep[k]]);
+    let vk2 = DMatrix::from_fn(c, keep.len(), |i, k| v[(i, keep[k])]);
+    let pinv = vk * vk2.transpose() * a.transpose();
+    let z = DMatrix::from_fn(c, null.len(), |i, k| v[(i, null[k])]);
+    Ok((pinv, z))
+}
+
+/// The matrix that raises every canonical curve from degree `from` to degree `to`.
+fn raise_canonical(n: usize, from: usize, to: usize) -> DMatrix<f64> {
+    let (qf, qt) = (QuadData { d: from }, QuadData { d: to });
+    let mut m = DMatrix::zeros(qt.len(n), qf.len(n));
+    for k in 0..3 {
+        m[(k, k)] = 1.0;
+    }
+    // univariate raising from -> to
+    let mut r = DMatrix::<f64>::identity(from + 1, from + 1);
+    for p in from..to {
+        let step = DMatrix::from_fn(p + 2, p + 1, |i, j| {
+            let pf = (p + 1) as f64;
+            if j == i {
+                1.0 - i as f64 / pf
+            } else if j + 1 == i {
+                i as f64 / pf
+            } else {
+                0.0
+            }
+        });
+        r = step * r;
+    }
+    for s in 0..n {
+        for (to_off, from_off) in [
+            (qt.a(s, 0), qf.a(s, 0)),
+            (qt.ca(s, 0), qf.ca(s, 0)),
+            (qt.b(s, 0), qf.b(s, 0)),
+            (qt.cb(s, 0), qf.cb(s, 0)),
+        ] {
+            m.view_mut((to_off, from_off), (to + 1, from + 1))
+                .copy_from(&r);
+        }
+    }
+    m
+}
+
+impl CapMap {
+    /// Builds the map for valence `n`, layout, input segment degrees and cap bi-degree `degree`
+    /// (at least the degree of the quad data, see [`Hole::to_quad_layout`], and at least 3).
+    pub fn new(
+        n: usize,
+        layout: Layout,
+        degrees: Degrees,
+        degree: usize,
+        centre: Centre,
+    ) -> Result<CapMap> {
+        if n < 3 {
+            return Err(Error::InvalidArgument(format!(
+                "a G^1 cap needs at least 3 sectors, got {n}"
+            )));
+        }
+        let conv = Conversion::new(n, layout, degrees);
+        if degree < conv.degree.max(3) {
+            return Err(Error::InvalidArgument(format!(
+                "cap degree {degree} is below the degree {} of the hole's quad data (or 3)",
+                conv.degree
+            )));
+        }
+        let d = degree;
+        let wconv = DMatrix::from_row_slice(conv.rows, conv.cols, &conv.w);
+        let q = raise_canonical(n, conv.degree, d) * wconv;
+        let qd = QuadData { d };
+        let nq = qd.len(n);
+        let nx = n * (d + 1) * (d + 1);
+        if centre == Centre::Auto {
+            return Err(Error::InvalidArgument(
+                "a cap map needs a definite centre condition (Auto is resolved by g1_cap_with)"
+                    .into(),
+            ));
+        }
+        let jet = centre == Centre::QuadraticJet;
+        let nu = nx + if jet { 3 } else { 0 };
+        let cond = conditions(n, d, conv.kappa, jet);
+        // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
+        // are eliminated exactly: their value is the mean of their defining rows (all equal for
+        // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
+        // the remaining rows `E_y y = F_r q - E_r x_fixed(q)`.
+        let mut def: Vec<Vec<usize>> = vec![Vec::new(); nu];
+        let mut rest = Vec::new();
+        for (r, row) in cond.e.iter().enumerate() {
+            match row.as_slice() {
+                [(x, w)] if *w == 1.0 => def[*x].push(r),
+                _ => rest.push(r),
+            }
+        }
+        let fixed: Vec<usize> = (0..nu).filter(|&x| !def[x].is_empty()).collect();
+        let free: Vec<usize> = (0..nu).filter(|&x| def[x].is_empty()).collect();
+        let fdense = dense(&cond.f, nq);
+        let mut a_fixed = DMatrix::zeros(nu, nq); // rows of fixed unknowns only
+        for &x in &fixed {
+            let k = def[x].len() as f64;
+            for &r in &def[x] {
+                let row = fdense.row(r) / k;
+                let add = a_fixed.row(x) + row;
+                a_fixed.set_row(x, &add);
+            }
+        }
+        let e_rest = dense(
+            &rest.iter().map(|&r| cond.e[r].clone()).collect::<Vec<_>>(),
+            nu,
+        );
+        let f_rest = DMatrix::from_fn(rest.len(), nq, |r, c| fdense[(rest[r], c)]);
+        let b = &f_rest - &e_rest * &a_fixed;
+        let e_y = DMatrix::from_fn(rest.len(), free.len(), |r, k| e_rest[(r, free[k])]);
+        let (e_pinv, z) = pinv_and_null(&e_y)?;
+        // Fairness energy of every patch.
+        let hp = patch_energy(d, FAIRNESS_ORDER);
+        let m = (d + 1) * (d + 1);
+        let mut h = DMatrix::zeros(nu, nu);
+        for s in 0..n {
+            h.view_mut((s * m, s * m), (m, m)).copy_from(&hp);
+        }
+        let h_yy = DMatrix::from_fn(free.len(), free.len(), |a, c| h[(free[a], free[c])]);
+        let h_yf = DMatrix::from_fn(free.len(), nu, |a, c| h[(free[a], c)]);
+        let y_p = &e_pinv * &b; // free x nq
+        let free_parameters = z.ncols();
+        let y = if free_parameters > 0 {
+            let mut zhz = z.transpose() * &h_yy * &z;
+            // A tiny ridge keeps the minimiser unique if the energy vanishes on a free direction.
+            let ridge = 1e-12 * zhz.diagonal().amax().max(1e-300);
+            for k in 0..free_parameters {
+                zhz[(k, k)] += ridge;
+            }
+            let chol = zhz.cholesky().ok_or_else(|| {
+                Error::Unsupported(format!(
+                    "valence {n}, degree {d}: the cap energy is not positive definite"
+                ))
+            })?;
+            let g = z.transpose() * (&h_yy * &y_p + &h_yf * &a_fixed);
+            &y_p - &z * chol.solve(&g)
+        } else {
+            y_p
+        };
+        let mut map = a_fixed;
+        for (k, &x) in free.iter().enumerate() {
+            map.set_row(x, &y.row(k));
+        }
+        // Certificate over the data satisfying the ring's compatibility conditions.
+        let g = compatibility(n, d, conv.kappa);
+        let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
+        let (_, admissible) = pinv_and_null(&gm)?;
+        let resid =
+            (DMatrix::identity(e_y.nrows(), e_y.nrows()) - &e_y * &e_pinv) * &b * admissible;
+        let certificate = resid.amax();
+        Ok(CapMap {
+            n,
+            layout,
+            degrees,
+            degree: d,
+            kappa: conv.kappa,
+            certificate,
+            free_parameters,
+            centre,
+            matrix: map.rows(0, nx) * &q,
+            compat: gm * q,
+            compat_labels: g.into_iter().map(|(l, _)| l).collect(),
+        })
+    }
+
+    /// Whether the certificate shows that the cap exists for every compatible ring.
+    pub fn is_certified(&self) -> bool {
+        self.certificate < CERTIFIED
+    }
+
+    /// The weights: row `s (d + 1)^2 + i (d + 1) + j` gives coefficient `b_ij` of cap patch `s`
+    /// as a combination of the entries of the hole's data vector ([`Hole::data`]); the same
+    /// weights apply to x, y and z.
+    pub fn matrix(&self) -> &DMatrix<f64> {
+        &self.matrix
+    }
+
+    /// The largest violation of the ring's compatibility conditions by `hole`, relative to the
+    /// hole's size, and the label of the condition.
+    pub fn compatibility_defect(&self, hole: &Hole) -> (f64, String) {
+        let data = hole.data();
+        let size = hole_size(hole);
+        let mut worst = (0.0, String::new());
+        for (r, label) in self.compat_labels.iter().enumerate() {
+            let mut acc = [0.0; 3];
+            for (c, p) in data.iter().enumerate() {
+                let w = self.compat[(r, c)];
+                if w != 0.0 {
+                    acc = axpy(acc, w, *p);
+                }
+            }
+            let v = crate::geom::norm(acc) / size;
+            if v > worst.0 {
+                worst = (v, label.clone());
+            }
+        }
+        worst
+    }
+
+    /// The cap patches of a hole of this map's shape (one bi-`degree` patch per quad sector, in
+    /// the conventions of [`super::hole`]).
+    pub fn apply(&self, hole: &Hole) -> Result<Vec<BezierPatch>> {
+        let (layout, degrees) = hole.layout()?;
+        if hole.valence() != self.n || layout != self.layout || degrees != self.degrees {
+            return Err(Error::InvalidArgument(format!(
+                "hole of valence {} ({layout:?}, degrees {degrees:?}) given to the cap map of \
+                 valence {} ({:?}, {:?})",
+                hole.valence(),
+                self.n,
+                self.layout,
+                self.degrees
+            )));
+        }
+        let data = hole.data();
+        let d = self.degree;
+        let m = (d + 1) * (d + 1);
+        Ok((0..self.n)
+            .map(|s| {
+                let cps = (0..m)
+                    .map(|k| {
+                        let row = self.matrix.row(cidx(d, s, 0, 0) + k);
+                        row.iter()
+                            .zip(&data)
+                            .filter(|(w, _)| **w != 0.0)
+                            .fold([0.0; 3], |acc, (&w, &p)| axpy(acc, w, p))
+                    })
+                    .collect();
+                BezierPatch::new(d, d, cps)
+            })
+            .collect())
+    }
+}
+
+/// The largest distance of a boundary coefficient from the centre (at least the smallest
+/// positive normal number).
+pub(crate) fn hole_size(hole: &Hole) -> f64 {
+    hole.sectors
+        .iter()
+        .flatten()
+        .flat_map(|s| s.boundary.iter())
+        .map(|p| crate::geom::dist(*p, hole.centre))
+        .fold(f64::MIN_POSITIVE, f64::max)
+}
+
+type Key = (usize, Layout, Degrees, usize, Centre);
+
+/// The cap map for the given shape, built once per process and shared.
+pub fn cap_map(
+    n: usize,
+    layout: Layout,
+    degrees: Degrees,
+    degree: usize,
+    centre: Centre,
+) -> Result<Arc<CapMap>> {
+    static CACHE: OnceLock<Mutex<HashMap<Key, Arc<CapMap>>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let key = (n, layout, degrees, degree, centre);
+    if let Some(m) = cache.lock().map_err(poisoned)?.get(&key) {
+        return Ok(m.clone());
+    }
+    let m = Arc::new(CapMap::new(n, layout, degrees, degree, centre)?);
+    cache.lock().map_err(poisoned)?.insert(key, m.clone());
+    Ok(m)
+}
+
+fn poisoned<T>(_: T) -> Error {
+    Error::Unsupported("the cap map cache was poisoned by a panic".into())
+}
+
+/// The lowest cap degree certified for this shape, searched from the degree of the quad data
+/// (at least 3) up to that plus 4 (`Auto` counts as `TangentPlane`).
+pub fn lowest_certified_degree(
+    n: usize,
+    layout: Layout,
+    degrees: Degrees,
+    centre: Centre,
+) -> Result<usize> {
+    let centre = if centre == Centre::Auto {
+        Centre::TangentPlane
+    } else {
+        centre
+    };
+    let lo = Conversion::new(n, layout, degrees).degree.max(3);
+    for d in lo..=lo + 4 {
+        if cap_map(n, layout, degrees, d, centre)?.is_certified() {
+            return Ok(d);
+        }
+    }
+    Err(Error::Unsupported(format!(
+        "no G^1 cap of degree {lo}..{} is certified for valence {n} ({layout:?})",
+        lo + 4
+    )))
+}
+
+/// Options of [`g1_cap_with`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CapOptions {
+    /// The cap's bi-degree; `None`: the lowest certified one.
+    pub degree: Option<usize>,
+    /// The condition at the centre.
+    pub centre: Centre,
+}
+
+/// A cap and what was measured while building it.
+#[derive(Debug, Clone)]
+pub struct Cap {
+    /// One bi-`degree` patch per quad sector.
+    pub patches: Vec<BezierPatch>,
+    /// The cap's bi-degree.
+    pub degree: usize,
+    /// The centre condition used (never `Auto`).
+    pub centre: Centre,
+    /// The map's certificate (see [`CapMap::certificate`]).
+    pub certificate: f64,
+    /// Largest relative violation of the ring's compatibility conditions by the hole's data
+    /// (rounding level for a ring that is C^1 in the layout's charts) and where it is.
+    pub compatibility: (f64, String),
+}
+
+/// Relative compatibility defect above which [`g1_cap`] refuses a hole.
+pub const MAX_COMPATIBILITY_DEFECT: f64 = 1e-7;
+
+/// The G^1 cap of a hole at the lowest certified degree (or at `degree` if given).
+///
+/// Errors name the sector or spoke end whose data are not compatible with a C^1 ring.
+pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
+    let (layout, degrees) = hole.layout()?;
+    let n = hole.valence();
+    let (d, centre) = match opts.centre {
+        Centre::Auto => {
+            let d = match opts.degree {
+                Some(d) => d,
+                None => lowest_certified_degree(n, layout, degrees, Centre::TangentPlane)?,
+            };
+            let jet = cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
+            let c = if jet {
+                Centre::QuadraticJet
+            } else {
+                Centre::TangentPlane
+            };
+            (d, c)
+        }
+        c => match opts.degree {
+            Some(d) => (d, c),
+            None => (lowest_certified_degree(n, layout, degrees, c)?, c),
+        },
+    };
+    let map = cap_map(n, layout, degrees, d, centre)?;
+    let compat = map.compatibility_defect(hole);
+    if compat.0 > MAX_COMPATIBILITY_DEFECT {
+        return Err(Error::InvalidArgument(format!(
+            "the hole's ring data are not C^1-compatible at the {} (relative defect {:.3e}); \
+             no C^1 + G^1 cap exists for them",
+            compat.1, compat.0
+        )));
+    }
+    Ok(Cap {
+        patches: map.apply(hole)?,
+        degree: d,
+        centre,
+        certificate: map.certificate,
+        compatibility: compat,
+    })
+}
+
+/// The G^1 cap of a hole: one patch per (quad) sector, at the lowest certified degree.
+pub fn g1_cap(hole: &Hole) -> Result<Vec<BezierPatch>> {
+    g1_cap_with(hole, CapOptions::default()).map(|c| c.patches)
+}

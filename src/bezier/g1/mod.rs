@@ -1,0 +1,120 @@
+//! G^1 caps: close the hole inside the last ring of a patch complex with `n` tensor-product
+//! patches that join the ring C^1 and each other G^1, centred at a given point with a given
+//! tangent plane, for every scheme that writes patches.
+//!
+//! The hole is described scheme-independently by [`Hole`] (conventions: [`hole`]); the cap is
+//! one fixed linear map of the hole's data vector ([`Hole::data`]) per (valence, layout, segment
+//! degrees, cap degree, centre condition), [`CapMap`], built once and cached ([`cap_map`]); its
+//! [`CapMap::matrix`] is what a stencil table composes with the ring's own stencils.
+//!
+//! # Conditions
+//!
+//! Sector `s` is one bi-`d` patch `P_s` (quad layout; a triangle hole is first turned into
+//! kites, [`Hole::to_quad_layout`]). All conditions are linear, scalar and the same for x, y, z:
+//!
+//! * **C^1 to the ring**: the two outer layers of coefficients along each outer side are the
+//!   segment's boundary curve and boundary + cross / d (degree-raised). They are set exactly
+//!   (eliminated before the solve), so value and first cross derivative match the data to
+//!   rounding, with the parameter speed of the data.
+//! * **centre and tangent plane**: `b_00 = C`, `b_10 = C + t_s / d`, `b_01 = C + t_(s+1) / d`
+//!   with `t_s = cos(2 pi s / n) T0 + sin(2 pi s / n) T1`: every patch's normal at the centre is
+//!   `T0 x T1`, so the cap is G^1 at the centre and the first-order vertex-enclosure condition
+//!   `t_(s+1) + t_(s-1) = 2 cos(2 pi / n) t_s` holds by construction.
+//! * **C^0 and G^1 across spoke `s`** (`P_s(u, 0) = P_(s-1)(0, u)`): the standard relation with
+//!   scalar weights `a = b = 1`, `c = -w`:
+//!   `d_v P_s(u, 0) + d_u P_(s-1)(0, u) = w(u) d_u P_s(u, 0)`,
+//!   `w(u) = 2 cos(2 pi / n) (1 - u)^2 + kappa u (1 - u)`, imposed as a polynomial identity of
+//!   degree `d + 1` (all its Bernstein coefficients). Since both weights of the cross
+//!   derivatives are 1 > 0 the normals agree in orientation, not only in direction.
+//!   `w(0) = 2 cos(2 pi / n)` is forced by the centre; `w(1) = 0` makes the relation the plain
+//!   C^1 join of the ring's chart at the spoke end, and `w'(1) = -kappa` is forced by the ring:
+//!   for a tensor-grid ring at the spoke end (Catmull-Clark, EG, QAS+, guided, Doo-Sabin, PGS,
+//!   TPS) the two cap pieces beside a spoke end are two unit squares of one affine chart, whose
+//!   twists cancel: `kappa = 0`; for kites on a three-direction lattice (Loop) the bilinear kite
+//!   maps' twists add up to `-(M_s - C)` in the chart, the spoke direction: `kappa = 1` (the
+//!   regular `n = 6` fan has exactly `w = 1 - u`). A quadratic `w` is the lowest degree meeting
+//!   these three conditions.
+//! * **centre jet** ([`Centre::QuadraticJet`]): all patches share one quadratic
+//!   expansion at the centre, `P_s = q o phi_s + O(3)` with planar 2-jets
+//!   `phi_s = u e_s + v e_(s+1) + k u v (e_s + e_(s+1))`, `k = w'(0) / (2 (1 + cos(2 pi / n)))`
+//!   (the symmetric solution of the relation's derivative at the centre for the planar map) and
+//!   the Hessian of `q` (three vectors) free. This is the second-order vertex-enclosure
+//!   condition made explicit: for even `n` the relation's derivative at the centre is a circulant
+//!   system `tau_s + tau_(s-1) = rhs_s` (twists `tau_s`) that is singular and needs
+//!   `sum (-1)^s rhs_s = 0`, i.e. `sum (-1)^s d_uu P_s(0, 0) = 0` for `n != 4`; a common
+//!   quadratic satisfies it identically. The cap is then curvature continuous at the centre
+//!   (like the guided cap of Appendix B). [`Centre::TangentPlane`] leaves the second
+//!   derivatives to the solve (the enclosure condition is then one of the solved rows). The
+//!   default, [`Centre::Auto`], takes the lowest degree certified for the tangent plane and adds
+//!   the jet where that degree allows it: bi-3 / bi-4 caps keep the plane (`n = 4`, odd `n`),
+//!   the bi-5 caps of even `n` and all bi-4 caps of `n = 3` get the jet. On the real rings the
+//!   jet removes spurious sign changes of the Gauss curvature at equal degree (Catmull-Clark,
+//!   saddle, `n = 6`: cap `K` in `[-0.73, -0.11]` with the jet, `[-0.73, -0.011]` without), and
+//!   the bi-4 plane caps of odd `n` are as fair as bi-5 jet caps (QAS+, convex, `n = 7`:
+//!   `[0.097, 0.125]` against `[0.065, 0.127]`, the ring `[0.086, 0.125]`).
+//!
+//! # Free parameters and how they are fixed
+//!
+//! What the conditions leave ([`CapMap::free_parameters`], per coordinate) is fixed by minimising
+//! the sum over the cap patches of the fairness functional
+//! `F_k(P) = int_[0,1]^2 sum_(a+b=k) C(k, a) |d_u^a d_v^b P|^2`, `k = FAIRNESS_ORDER = 4`
+//! (plus a ridge of `1e-12` of the largest diagonal entry, to keep the minimiser unique). On the
+//! real rings of `tests/g1cap.rs` `F_4` gave the smallest cap curvature ranges of `F_2`, `F_3`, `F_4` (for
+//! example Catmull-Clark, saddle c-net, `n = 8`: Gauss curvature down to -4.4, -2.2, -1.5 against
+//! the last ring's -0.22), and `F_4` vanishes on surfaces of total degree 3, which a regular
+//! hole therefore reproduces exactly. The solve: the remaining rows `E y = B q` over the
+//! non-eliminated coefficients `y`, `y = E^+ B q + Z z` (`Z` a null-space basis), `z` the energy
+//! minimiser; pseudo-inverse and null space from the symmetric eigen-decomposition of `E^T E`
+//! (see `map.rs` for why not an SVD). The result is one matrix: cap coefficients = matrix x data.
+//!
+//! # Which degree, and why it is the lowest certified
+//!
+//! A map is *certified* when the conditions are consistent for every ring: the residual
+//! `(I - E E^+) B` vanishes (below [`CERTIFIED`]) on a basis of all data that satisfy the
+//! ring's local compatibility conditions (both segments define the corner block alike; at a
+//! spoke end the two sectors share the point and the spoke tangent, their boundary tangents are
+//! opposite, and their cross twists satisfy the relation's derivative at `u = 1`, which involves
+//! data only). Any ring that is C^1 in the layout's chart satisfies them (and [`g1_cap_with`]
+//! checks a given hole against them, naming the corner or spoke end that fails).
+//! [`lowest_certified_degree`] tries `d = max(3, data degree), ...` and takes the first
+//! certified one. The measured table (test `lowest_certified_degrees`, valences 3..=16):
+//!
+//! | layout, centre | bi-3 | bi-4 | bi-5 |
+//! | --- | --- | --- | --- |
+//! | quad, tangent plane | `n = 4` only | odd `n` and 4 | all |
+//! | quad, quadratic jet | none | `n = 3, 4` | all |
+//! | triangle (kites), tangent plane | (data degree 4) | odd `n`, 4, 6 | all |
+//! | triangle (kites), quadratic jet | (data degree 4) | `n = 3, 6` | all |
+//!
+//! Why bi-4 fails for even `n` (tangent plane): with the outer two layers fixed the unknowns of
+//! spoke `s` enter the relation only through the spoke coefficient `b_20` and the sums
+//! `S_i = b^s_(i1) + b^(s-1)_(1i)`, `i = 1, 2`; the three middle coefficients of the degree-5
+//! relation determine `S_2`, then `S_1` twice (so `b_20` is fixed by the data), and the
+//! circulant `S_1 = b^s_11 + b^(s-1)_11` is singular for even `n`: a condition on the data that
+//! a ring does not satisfy (certificate 1e-2). At bi-5 each spoke keeps one free vector and the
+//! enclosure condition is met. The jet ties `b_20` and `S_1` to the common Hessian, which bi-4
+//! cannot afford beyond `n = 3, 4`. Splitting a sector into macro-patches would allow lower
+//! degree but each internal join needs its own G^1 relation and vertex enclosure at the new
+//! inner vertices; a single bi-5 patch per sector is the smallest certified construction found.
+//! A cap is never of lower degree than the ring's segments (bi-6 for guided bi-6 rings).
+//!
+//! # Data that are not enough
+//!
+//! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
+//! at every spoke end and corner. Polar rings (PolBS: one segment per sector whose boundary is
+//! smooth through the spoke ends, collapsed patches at the pole) do not fit either layout: their
+//! spoke ends are flat points of the boundary, where a quad or kite corner would be degenerate;
+//! they need a polar cap (collapsed side at the centre), not built here. Triangle rings must be
+//! a three-direction lattice at the spoke ends (valence 6), as Loop's are.
+
+pub mod hole;
+mod map;
+mod system;
+#[cfg(test)]
+mod tests;
+
+pub use hole::{Degrees, Hole, Layout, QuadHole, Segment, spoke_tangent};
+pub use map::{
+    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_COMPATIBILITY_DEFECT, cap_map,
+    g1_cap, g1_cap_with, lowest_certified_degree,
+};

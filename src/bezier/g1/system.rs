@@ -1,0 +1,336 @@
+//! The linear system of the cap: its unknowns (all Bezier coefficients of the `n` bi-`d` cap
+//! patches, one coordinate at a time), its conditions (fixed coefficients from the data, C^0 and
+//! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
+//! fairness energy. All rows are scalar and the same for x, y, z.
+
+use nalgebra::DMatrix;
+
+/// Index of coefficient `(i, j)` of sector `s` among the unknowns.
+#[inline]
+pub(crate) fn cidx(d: usize, s: usize, i: usize, j: usize) -> usize {
+    s * (d + 1) * (d + 1) + i * (d + 1) + j
+}
+
+/// Offsets in the canonical quad data vector (centre, T0, T1, then per sector
+/// `a.boundary, a.cross, b.boundary, b.cross` of `d + 1` coefficients each).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct QuadData {
+    pub d: usize,
+}
+
+impl QuadData {
+    pub fn len(&self, n: usize) -> usize {
+        3 + n * 4 * (self.d + 1)
+    }
+    fn base(&self, s: usize) -> usize {
+        3 + s * 4 * (self.d + 1)
+    }
+    pub fn a(&self, s: usize, j: usize) -> usize {
+        self.base(s) + j
+    }
+    pub fn ca(&self, s: usize, j: usize) -> usize {
+        self.base(s) + (self.d + 1) + j
+    }
+    pub fn b(&self, s: usize, i: usize) -> usize {
+        self.base(s) + 2 * (self.d + 1) + i
+    }
+    pub fn cb(&self, s: usize, i: usize) -> usize {
+        self.base(s) + 3 * (self.d + 1) + i
+    }
+}
+
+/// A sparse row.
+pub(crate) type Row = Vec<(usize, f64)>;
+
+/// The conditions `E x = F q` on the unknowns `x` for canonical data `q`.
+pub(crate) struct Conditions {
+    /// Rows of `E` (over the unknowns).
+    pub e: Vec<Row>,
+    /// Rows of `F` (over the canonical data), one per row of `e`.
+    pub f: Vec<Row>,
+}
+
+/// `w(u) = 2 c (1 - u)^2 + kappa u (1 - u)` in Bernstein form of degree 2.
+pub(crate) fn weight(n: usize, kappa: f64) -> [f64; 3] {
+    let c = (2.0 * std::f64::consts::PI / n as f64).cos();
+    [2.0 * c, kappa / 2.0, 0.0]
+}
+
+/// Binomial coefficient as f64.
+pub(crate) fn binom(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// The degree-`d + 1` Bernstein coefficients of the spoke relation of spoke `s` (between
+/// sector `s`, side `v = 0`, and sector `s - 1`, side `u = 0`):
+/// `R(u) = d/dv P_s(u, 0) + d/du P_(s-1)(0, u) - w(u) d/du P_s(u, 0)`, as rows over the unknowns.
+pub(crate) fn spoke_rows(n: usize, d: usize, kappa: f64, s: usize) -> Vec<Row> {
+    let q = (s + n - 1) % n;
+    let w = weight(n, kappa);
+    let df = d as f64;
+    let mut rows = vec![Vec::new(); d + 2];
+    // Degree raising d -> d + 1 of a coefficient at index i: to k = i (weight 1 - i/(d+1)) and
+    // k = i + 1 (weight (i+1)/(d+1)).
+    let raise = |i: usize| {
+        [
+            (i, 1.0 - i as f64 / (df + 1.0)),
+            (i + 1, (i as f64 + 1.0) / (df + 1.0)),
+        ]
+    };
+    for i in 0..=d {
+        for (k, r) in raise(i) {
+            // d/dv P_s(u, 0): coefficient i is d (b_i1 - b_i0).
+            rows[k].push((cidx(d, s, i, 1), df * r));
+            rows[k].push((cidx(d, s, i, 0), -df * r));
+            // d/du P_q(0, u): coefficient i is d (b_1i - b_0i).
+            rows[k].push((cidx(d, q, 1, i), df * r));
+            rows[k].push((cidx(d, q, 0, i), -df * r));
+        }
+    }
+    // w(u) d/du P_s(u, 0): B_i^(d-1) B_l^2 = C(d-1,i) C(2,l) / C(d+1,i+l) B_(i+l)^(d+1).
+    for i in 0..d {
+        for (l, &wl) in w.iter().enumerate() {
+            if wl == 0.0 {
+                continue;
+            }
+            let k = i + l;
+            let f = wl * binom(d - 1, i) * binom(2, l) / binom(d + 1, k) * df;
+            rows[k].push((cidx(d, s, i + 1, 0), -f));
+            rows[k].push((cidx(d, s, i, 0), f));
+        }
+    }
+    rows
+}
+
+/// The conditions of the cap of valence `n`, degree `d`, spoke-end twist `kappa`; with `jet`
+/// also the quadratic-jet conditions at the centre over three extra unknowns
+/// ([`jet_rows`]).
+pub(crate) fn conditions(n: usize, d: usize, kappa: f64, jet: bool) -> Conditions {
+    let qd = QuadData { d };
+    let df = d as f64;
+    let mut e: Vec<Row> = Vec::new();
+    let mut f: Vec<Row> = Vec::new();
+    let mut fix = |e: &mut Vec<Row>, x: usize, row: Row| {
+        e.push(vec![(x, 1.0)]);
+        f.push(row);
+    };
+    for s in 0..n {
+        for j in 0..=d {
+            // side u = 1: b_dj = a_j, b_(d-1)j = a_j + cross_a_j / d
+            fix(&mut e, cidx(d, s, d, j), vec![(qd.a(s, j), 1.0)]);
+            fix(
+                &mut e,
+                cidx(d, s, d - 1, j),
+                vec![(qd.a(s, j), 1.0), (qd.ca(s, j), 1.0 / df)],
+            );
+            // side v = 1: b_id = b_i, b_i(d-1) = b_i + cross_b_i / d
+            fix(&mut e, cidx(d, s, j, d), vec![(qd.b(s, j), 1.0)]);
+            fix(
+                &mut e,
+                cidx(d, s, j, d - 1),
+                vec![(qd.b(s, j), 1.0), (qd.cb(s, j), 1.0 / df)],
+            );
+        }
+        // the centre and the spoke tangents
+        let th = |k: usize| 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+        fix(&mut e, cidx(d, s, 0, 0), vec![(0, 1.0)]);
+        let (a0, a1) = (th(s), th(s + 1));
+        fix(
+            &mut e,
+            cidx(d, s, 1, 0),
+            vec![(0, 1.0), (1, a0.cos() / df), (2, a0.sin() / df)],
+        );
+        fix(
+            &mut e,
+            cidx(d, s, 0, 1),
+            vec![(0, 1.0), (1, a1.cos() / df), (2, a1.sin() / df)],
+        );
+    }
+    for s in 0..n {
+        let q = (s + n - 1) % n;
+        for i in 0..=d {
+            e.push(vec![(cidx(d, s, i, 0), 1.0), (cidx(d, q, 0, i), -1.0)]);
+            f.push(Vec::new());
+        }
+        for r in spoke_rows(n, d, kappa, s) {
+            e.push(r);
+            f.push(Vec::new());
+        }
+    }
+    if jet {
+        let (je, jf) = jet_rows(n, d, kappa);
+        e.extend(je);
+        f.extend(jf);
+    }
+    Conditions { e, f }
+}
+
+/// The ring's compatibility conditions on canonical data, `G q = 0`: the corner block of each
+/// sector is defined consistently by both segments, and at each spoke end the two sectors agree
+/// on the end point and the spoke tangent, their boundary tangents are opposite (the ring's
+/// boundary is C^1 there) and their cross-derivative twists satisfy the spoke relation's
+/// derivative at `u = 1` (see [`super`]). Each row is labelled with the sector or spoke.
+pub(crate) fn compatibility(n: usize, d: usize, kappa: f64) -> Vec<(String, Row)> {
+    let qd = QuadData { d };
+    let df = d as f64;
+    let mut g = Vec::new();
+    for s in 0..n {
+        let (a, ca, b, cb) = (
+            |j| qd.a(s, j),
+            |j| qd.ca(s, j),
+            |j| qd.b(s, j),
+            |j| qd.cb(s, j),
+        );
+        let corner = format!("corner of sector {s}");
+        g.push((corner.clone(), vec![(a(d), 1.0), (b(d), -1.0)]));
+        g.push((
+            corner.clone(),
+            vec![(a(d - 1), 1.0), (b(d), -1.0), (cb(d), -1.0 / df)],
+        ));
+        g.push((
+            corner.clone(),
+            vec![(a(d), 1.0), (ca(d), 1.0 / df), (b(d - 1), -1.0)],
+        ));
+        g.push((
+            corner,
+            vec![
+                (a(d - 1), 1.0),
+                (ca(d - 1), 1.0 / df),
+                (b(d - 1), -1.0),
+                (cb(d - 1), -1.0 / df),
+            ],
+        ));
+        let q = (s + n - 1) % n;
+        let end = format!("end of spoke {s} (sectors {q}, {s})");
+        g.push((end.clone(), vec![(qd.a(s, 0), 1.0), (qd.b(q, 0), -1.0)]));
+        g.push((
+            end.clone(),
+            vec![
+                (qd.a(s, 0), 1.0),
+                (qd.ca(s, 0), 1.0 / df),
+                (qd.b(q, 0), -1.0),
+                (qd.cb(q, 0), -1.0 / df),
+            ],
+        ));
+        g.push((
+            end.clone(),
+            vec![
+                (qd.a(s, 1), 1.0),
+                (qd.a(s, 0), -1.0),
+                (qd.b(q, 1), 1.0),
+                (qd.b(q, 0), -1.0),
+            ],
+        ));
+        // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
+        g.push((
+            end,
+            vec![
+                (qd.ca(s, 1), -df),
+                (qd.ca(s, 0), df - kappa),
+                (qd.cb(q, 1), -df),
+                (qd.cb(q, 0), df),
+            ],
+        ));
+    }
+    g
+}
+
+/// Gram matrix `int_0^1 B_i^p B_j^p`.
+fn gram(p: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(p + 1, p + 1, |i, j| {
+        binom(p, i) * binom(p, j) / ((2 * p + 1) as f64 * binom(2 * p, i + j))
+    })
+}
+
+/// `k`-th derivative matrix: degree-`d` coefficients to degree-`d - k` coefficients.
+fn deriv(d: usize, k: usize) -> DMatrix<f64> {
+    let mut m = DMatrix::identity(d + 1, d + 1);
+    for l in 0..k {
+        let p = d - l;
+        let step = DMatrix::from_fn(p, p + 1, |i, j| {
+            if j == i + 1 {
+                p as f64
+            } else if j == i {
+                -(p as f64)
+            } else {
+                0.0
+            }
+        });
+        m = step * m;
+    }
+    m
+}
+
+/// The energy `F_k(P) = int sum_(a+b=k) C(k,a) |d_u^a d_v^b P|^2` of one bi-`d` patch as a
+/// quadratic form on its `(d + 1)^2` coefficients (row-major, `i` along `u`).
+pub(crate) fn patch_energy(d: usize, k: usize) -> DMatrix<f64> {
+    let m = (d + 1) * (d + 1);
+    let mut h = DMatrix::zeros(m, m);
+    for a in 0..=k.min(d) {
+        let b = k - a;
+        if b > d {
+            continue;
+        }
+        let (du, dv) = (deriv(d, a), deriv(d, b));
+        let gu = du.transpose() * gram(d - a) * &du;
+        let gv = dv.transpose() * gram(d - b) * &dv;
+        h += gu.kronecker(&gv) * binom(k, a);
+    }
+    h
+}
+
+/// Dense matrix of sparse rows over `cols` columns.
+pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
+    let mut m = DMatrix::zeros(rows.len(), cols);
+    for (r, row) in rows.iter().enumerate() {
+        for &(c, w) in row {
+            m[(r, c)] += w;
+        }
+    }
+    m
+}
+
+/// The centre's quadratic jet: every cap patch's second derivatives at the centre are those of
+/// one quadratic `q` composed with the planar sector maps `phi_s`, whose 2-jets are
+/// `phi_s(u, v) = u e_s + v e_(s+1) + k u v (e_s + e_(s+1))` (spokes straight to second order),
+/// `k = w'(0) / (2 (1 + c))`, the symmetric solution of the spoke relation's `u`-derivative at the
+/// centre for the planar map. With `H` the Hessian of `q` on the tangent plane, three vectors
+/// `H00 = H(T0, T0)`, `H01 = H(T0, T1)`, `H11 = H(T1, T1)` (extra unknowns `n (d + 1)^2 + 0..3`):
+/// `d_uu P_s(0,0) = H(t_s, t_s)`, `d_uv P_s(0,0) = k (t_s + t_(s+1)) + H(t_s, t_(s+1))`. These
+/// satisfy that derivative of the relation identically (the quadratic part cancels because
+/// `t_(s+1) + t_(s-1) = 2 c t_s`), so the cap has one quadratic expansion at the centre:
+/// curvature continuous there.
+pub(crate) fn jet_rows(n: usize, d: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
+    let c = (2.0 * std::f64::consts::PI / n as f64).cos();
+    let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c));
+    let df = d as f64;
+    let h0 = n * (d + 1) * (d + 1);
+    let th = |s: usize| 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+    let (mut e, mut f) = (Vec::new(), Vec::new());
+    for s in 0..n {
+        let (a, b) = (th(s), th(s + 1));
+        let (ca, sa, cb, sb) = (a.cos(), a.sin(), b.cos(), b.sin());
+        // d(d-1)(b20 - 2 b10 + b00) - H(t_s, t_s) = 0
+        e.push(vec![
+            (cidx(d, s, 2, 0), df * (df - 1.0)),
+            (cidx(d, s, 1, 0), -2.0 * df * (df - 1.0)),
+            (cidx(d, s, 0, 0), df * (df - 1.0)),
+            (h0, -ca * ca),
+            (h0 + 1, -2.0 * ca * sa),
+            (h0 + 2, -sa * sa),
+        ]);
+        f.push(Vec::new());
+        // d^2 (b11 - b10 - b01 + b00) - H(t_s, t_(s+1)) = k (t_s + t_(s+1))
+        e.push(vec![
+            (cidx(d, s, 1, 1), df * df),
+            (cidx(d, s, 1, 0), -df * df),
+            (cidx(d, s, 0, 1), -df * df),
+            (cidx(d, s, 0, 0), df * df),
+            (h0, -ca * cb),
+            (h0 + 1, -(ca * sb + sa * cb)),
+            (h0 + 2, -sa * sb),
+        ]);
+        f.push(vec![(1, k * (ca + cb)), (2, k * (sa + sb))]);
+    }
+    (e, f)
+}

@@ -1,0 +1,205 @@
+//! The cap on random data that satisfy the ring's compatibility conditions: conditions met,
+//! normals continuous across spokes and at the centre, C^1 to the data, certificates.
+
+use super::system::{QuadData, compatibility, dense};
+use super::*;
+use crate::bezier::BezierCurve;
+use crate::geom::{Point, norm, sub};
+use nalgebra::DMatrix;
+
+pub(crate) struct Lcg(pub u64);
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
+    }
+}
+
+/// A random quad hole of degree `d` whose data satisfy the compatibility conditions (random
+/// combination of a basis of their null space).
+pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) -> Hole {
+    let qd = QuadData { d };
+    let g = compatibility(n, d, kappa);
+    let gm = dense(
+        &g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(),
+        qd.len(n),
+    );
+    let svd = gm.clone().svd(false, true);
+    let vt = svd.v_t.unwrap();
+    let mut basis = Vec::new();
+    let smax = svd.singular_values.max();
+    for l in 0..vt.nrows() {
+        if svd.singular_values[l] < 1e-10 * smax {
+            basis.push(vt.row(l).transpose());
+        }
+    }
+    // rows of vt beyond the rank (if gm has more columns than rows the thin SVD misses them)
+    let full = {
+        let mut p = DMatrix::zeros(qd.len(n), qd.len(n));
+        p.view_mut((0, 0), gm.shape()).copy_from(&gm);
+        p.svd(false, true)
+    };
+    basis.clear();
+    let vt = full.v_t.unwrap();
+    for l in 0..vt.nrows() {
+        if full.singular_values[l] < 1e-10 * smax {
+            basis.push(vt.row(l).transpose());
+        }
+    }
+    let mut q = vec![[0.0; 3]; qd.len(n)];
+    for b in &basis {
+        let c = [rng.next(), rng.next(), rng.next()];
+        for (k, p) in q.iter_mut().enumerate() {
+            for x in 0..3 {
+                p[x] += c[x] * b[k];
+            }
+        }
+    }
+    let seg = |s: usize, k: usize| {
+        let (b0, c0) = if k == 0 {
+            (qd.a(s, 0), qd.ca(s, 0))
+        } else {
+            (qd.b(s, 0), qd.cb(s, 0))
+        };
+        Segment {
+            boundary: q[b0..b0 + d + 1].to_vec(),
+            cross: q[c0..c0 + d + 1].to_vec(),
+        }
+    };
+    Hole {
+        centre: q[0],
+        tangents: [q[1], q[2]],
+        sectors: (0..n).map(|s| vec![seg(s, 0), seg(s, 1)]).collect(),
+    }
+}
+
+#[test]
+fn random_compatible_data_give_g1_caps() {
+    let mut rng = Lcg(7);
+    for n in [3, 4, 5, 6, 7, 8] {
+        for d in [5, 6] {
+            let hole = random_quad_hole(n, d, 0.0, &mut rng);
+            let cap = g1_cap_with(
+                &hole,
+                CapOptions {
+                    degree: Some(d),
+                    centre: Centre::TangentPlane,
+                },
+            )
+            .unwrap();
+            let p = &cap.patches;
+            // the spoke relation, exactly, as polynomial identity (random data have no
+            // meaningful normals; the real rings of tests/g1cap.rs check the angles)
+            let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
+            let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+            for s in 0..n {
+                for r in super::system::spoke_rows(n, d, 0.0, s) {
+                    let v = r
+                        .iter()
+                        .fold([0.0; 3], |a, &(c, w)| crate::geom::axpy(a, w, x[c]));
+                    assert!(
+                        norm(v) < 1e-11 * size,
+                        "n {n} d {d} spoke {s}: {:e}",
+                        norm(v)
+                    );
+                }
+            }
+            // C^0 along spokes, C^1 to the data
+            for s in 0..n {
+                let q = (s + n - 1) % n;
+                for k in 0..=10 {
+                    let t = k as f64 / 10.0;
+                    assert!(norm(sub(p[s].eval(t, 0.0), p[q].eval(0.0, t))) < 1e-10);
+                    let a = &hole.sectors[s][0];
+                    let dd = p[s].derivatives(1.0, t);
+                    let want = BezierCurve::new(a.cross.clone()).eval(t);
+                    assert!(norm(crate::geom::add(dd.du, want)) < 1e-10);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn certificates_per_degree() {
+    // quad layout, kappa = 0: bi-4 fails for even n != 4, bi-5 passes everywhere.
+    for n in 3..=10 {
+        let even = n % 2 == 0 && n != 4;
+        let deg = Degrees {
+            boundary: 3,
+            cross: 3,
+        };
+        let m4 = CapMap::new(n, Layout::Quad, deg, 4, Centre::TangentPlane).unwrap();
+        let m5 = CapMap::new(n, Layout::Quad, deg, 5, Centre::TangentPlane).unwrap();
+        let m3 = CapMap::new(n, Layout::Quad, deg, 3, Centre::TangentPlane).unwrap();
+        assert!(m5.is_certified(), "n {n}: bi-5 {:e}", m5.certificate);
+        assert_eq!(m4.is_certified(), !even, "n {n}: bi-4 {:e}", m4.certificate);
+        assert_eq!(
+            m3.is_certified(),
+            n == 4,
+            "n {n}: bi-3 {:e}",
+            m3.certificate
+        );
+    }
+}
+
+/// The lowest certified degree for every valence 3..=16, per layout and centre condition
+/// (segment degrees 3 / 3; a triangle hole's quad data then have degree 4).
+#[test]
+fn lowest_certified_degrees() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    for layout in [Layout::Quad, Layout::Triangle] {
+        for centre in [Centre::TangentPlane, Centre::QuadraticJet] {
+            let mut row = Vec::new();
+            for n in 3..=16 {
+                let d = lowest_certified_degree(n, layout, deg, centre).unwrap();
+                let m = cap_map(n, layout, deg, d, centre).unwrap();
+                assert!(
+                    m.matrix().amax() < 5.0,
+                    "n {n} d {d}: weights {:e}",
+                    m.matrix().amax()
+                );
+                // the expected degrees (derivation in the module documentation)
+                let even = n % 2 == 0;
+                let want = match (layout, centre) {
+                    (Layout::Quad, Centre::TangentPlane) if n == 4 => 3,
+                    (Layout::Quad, Centre::TangentPlane) if !even => 4,
+                    (Layout::Quad, Centre::QuadraticJet) if n <= 4 => 4,
+                    (Layout::Triangle, Centre::TangentPlane) if !even || n == 4 || n == 6 => 4,
+                    (Layout::Triangle, Centre::QuadraticJet) if n == 3 || n == 6 => 4,
+                    _ => 5,
+                };
+                assert_eq!(d, want, "{layout:?} {centre:?} n {n}");
+                row.push(format!("{n}:{d}({})", m.free_parameters));
+            }
+            eprintln!("{layout:?} {centre:?}: {}", row.join(" "));
+        }
+    }
+}
+
+#[test]
+fn bad_holes_are_refused_with_the_place_named() {
+    let mut rng = Lcg(11);
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[2][1].boundary[5][0] += 0.1; // corner of sector 2 no longer shared
+    let err = g1_cap(&hole).unwrap_err().to_string();
+    assert!(err.contains("corner of sector 2"), "{err}");
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[3][0].cross[0][1] += 0.1; // spoke tangent at the end of spoke 3 differs
+    let err = g1_cap(&hole).unwrap_err().to_string();
+    assert!(err.contains("end of spoke 3"), "{err}");
+    let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    hole.sectors[1].pop();
+    assert!(g1_cap(&hole).unwrap_err().to_string().contains("sector 1"));
+    hole.sectors.truncate(2);
+    assert!(g1_cap(&hole).is_err());
+    let mut hole = random_quad_hole(4, 5, 0.0, &mut rng);
+    hole.centre[2] = f64::NAN;
+    assert!(g1_cap(&hole).is_err());
+}
