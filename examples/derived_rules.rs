@@ -2,7 +2,9 @@
 //! derived tables from every printed one, the spectra side by side with the published numbers,
 //! the injectivity certificates, the constructions explored, and the cost of one derivation.
 //!
-//! Run: `cargo run --release --example derived_rules`.
+//! Run: `cargo run --release --example derived_rules`. With `nets DIR N... ` it instead writes
+//! the extended c-nets of the given valences in all four gallery shapes as OBJ files into `DIR`
+//! (the gallery stops at 10; `docs/make-derived-images.sh` draws valences 12 and 16).
 
 use fairsub::analysis::{self, LocalMatrix, certify};
 use fairsub::schemes::eg::derive::{self as egd, EgDeriveOptions, Fit, Join, compare};
@@ -51,7 +53,25 @@ fn rho_md(r: &QasRules) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Writes `cnet-N-SHAPE.obj` for the valences given after `nets DIR`.
+fn write_nets(args: &[String]) {
+    let dir = std::path::Path::new(&args[0]);
+    std::fs::create_dir_all(dir).unwrap();
+    for n in &args[1..] {
+        let n: usize = n.parse().expect("a valence");
+        for shape in fairsub::gallery::CnetShape::ALL {
+            let net = fairsub::gallery::cnet(n, shape, 3);
+            let path = dir.join(format!("cnet-{n}-{}.obj", shape.name()));
+            fairsub::io::write_mesh(&path, &net, fairsub::io::MeshFormat::Obj).unwrap();
+        }
+    }
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("nets") {
+        return write_nets(&args[1..]);
+    }
     println!(
         "# Derived EG rules ({})\n",
         compare::describe(&EgDeriveOptions::default())

@@ -3,7 +3,8 @@
 
 use fairsub::analysis::{self, certify, continuity, curvature, local};
 use fairsub::gallery::{self, CnetShape};
-use fairsub::schemes::eg::surface::{EgOptions, eg_complex};
+use fairsub::schemes::descriptor::RulesChoice;
+use fairsub::schemes::eg::surface::{EgOptions, eg_complex, eg_complex_with};
 use fairsub::schemes::eg::{self, Eg, EgRules, tables};
 use fairsub::surface::Fallback;
 use fairsub::surface::{ComplexOptions, Element, Provenance, complex};
@@ -321,10 +322,23 @@ fn whole_meshes_join_c2_and_fill_c1() {
 }
 
 #[test]
-fn fallback_is_reported_or_refused() {
+fn derived_rules_where_the_text_lost_them_fallback_only_above_16() {
+    // Valence 6: the derived rules, named in the notes, no fallback.
     let net = gallery::cnet(6, CnetShape::Convex, 3);
+    let o = eg_complex_with(&net, EgOptions::default(), RulesChoice::Printed, |_| {}).unwrap();
+    assert!(o.fell_back.is_empty());
+    assert_eq!(
+        o.notes,
+        vec![
+            "vertex 0 (valence 6): eg (derived rules, n = 6), fairsub's reconstruction; the paper \
+             prints no complete eg rules for this valence"
+                .to_string()
+        ]
+    );
+    // Valence 17: no construction; Catmull-Clark or an error.
+    let net = gallery::cnet(17, CnetShape::Convex, 3);
     let (_, fb) = eg_complex(&net, EgOptions::default(), |_| {}).unwrap();
-    assert_eq!(fb, vec![(Element::Vertex(0), 6)]);
+    assert_eq!(fb, vec![(Element::Vertex(0), 17)]);
     let e = eg_complex(
         &net,
         EgOptions {
@@ -334,7 +348,7 @@ fn fallback_is_reported_or_refused() {
         |_| {},
     )
     .unwrap_err();
-    assert!(e.to_string().contains("vertex 0 has valence 6"), "{e}");
+    assert!(e.to_string().contains("vertex 0 has valence 17"), "{e}");
 }
 
 /// Max |K| over a ring.

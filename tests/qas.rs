@@ -319,8 +319,9 @@ fn curvature_converges_where_catmull_clark_does_not() {
 }
 
 #[test]
-fn valences_without_rules_are_reported() {
-    // Valence 3 gets EG's rules, valence 8 Catmull-Clark (or an error).
+fn valences_without_printed_tables_are_reported() {
+    // Valence 3 gets EG's rules, valence 8 the derived tables, valence 17 Catmull-Clark (or an
+    // error).
     let net3 = gallery::cnet(3, CnetShape::Convex, 3);
     let o = qas_complex(&net3, EgOptions::default(), Contraction::Half, |_| {}).unwrap();
     let (fb, notes) = (o.fell_back, o.notes);
@@ -331,11 +332,18 @@ fn valences_without_rules_are_reported() {
     );
     let net8 = gallery::cnet(8, CnetShape::Convex, 3);
     let o = qas_complex(&net8, EgOptions::default(), Contraction::Half, |_| {}).unwrap();
-    let (fb, notes) = (o.fell_back, o.notes);
-    assert_eq!(fb, vec![(Element::Vertex(0), 8)]);
-    assert!(notes[0].contains("Catmull-Clark"));
+    assert!(o.fell_back.is_empty());
+    assert!(
+        o.notes[0].contains("qas-plus (derived rules, n = 8)"),
+        "{:?}",
+        o.notes
+    );
+    let net17 = gallery::cnet(17, CnetShape::Convex, 3);
+    let o = qas_complex(&net17, EgOptions::default(), Contraction::Half, |_| {}).unwrap();
+    assert_eq!(o.fell_back, vec![(Element::Vertex(0), 17)]);
+    assert!(o.notes[0].contains("Catmull-Clark"));
     let e = qas_complex(
-        &net8,
+        &net17,
         EgOptions {
             fallback: Fallback::Error,
             ..EgOptions::default()
@@ -344,7 +352,7 @@ fn valences_without_rules_are_reported() {
         |_| {},
     )
     .unwrap_err();
-    assert!(e.to_string().contains("vertex 0 has valence 8"), "{e}");
+    assert!(e.to_string().contains("vertex 0 has valence 17"), "{e}");
 }
 
 #[test]

@@ -7,7 +7,7 @@
 use super::certify::{self, InjectivityCertificate};
 use crate::error::{Error, Result};
 use crate::linalg::C64;
-use crate::schemes::descriptor::{Computed, LocalRules, Published};
+use crate::schemes::descriptor::{Computed, LocalRules, Published, ValenceRules};
 use crate::schemes::local::{LocalMatrix, Spectrum, spectrum};
 use crate::schemes::{Spec, registry};
 use serde::Serialize;
@@ -51,6 +51,10 @@ pub struct AnalyzeReport {
     pub tangent_stencils: Vec<Vec<f64>>,
     /// The injectivity certificate of the characteristic map, if the scheme has one.
     pub characteristic_map: Option<InjectivityCertificate>,
+    /// Which rules were analysed (printed, derived, regular, another scheme's), for schemes
+    /// whose rules differ in origin by valence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rules: Option<ValenceRules>,
     /// The paper's numbers beside the computed ones.
     pub published: Vec<Published>,
     /// The scheme's extra facts (for example QAS+'s `M_d` and `M_q`), by key.
@@ -99,7 +103,9 @@ pub fn analyze(spec: &Spec, n: usize, replicated_centre: bool) -> Result<Analyze
     } else {
         lm
     };
-    report(rules.as_ref(), n, &lm)
+    let mut r = report(rules.as_ref(), n, &lm)?;
+    r.rules = registry().descriptor(spec.id).valence_rules(spec, n);
+    Ok(r)
 }
 
 fn report(rules: &dyn LocalRules, n: usize, lm: &LocalMatrix) -> Result<AnalyzeReport> {
@@ -134,9 +140,9 @@ fn report(rules: &dyn LocalRules, n: usize, lm: &LocalMatrix) -> Result<AnalyzeR
     )?;
     let mut extra = BTreeMap::new();
     let mut extra_lines = Vec::new();
-    if let Some(x) = rules.extra(n)? {
+    for x in rules.extras(n)? {
         extra.insert(x.key, x.value);
-        extra_lines = x.lines;
+        extra_lines.extend(x.lines);
     }
     Ok(AnalyzeReport {
         scheme: lm.scheme.clone(),
@@ -150,6 +156,7 @@ fn report(rules: &dyn LocalRules, n: usize, lm: &LocalMatrix) -> Result<AnalyzeR
         limit_stencil,
         tangent_stencils,
         characteristic_map,
+        rules: None,
         published,
         extra,
         extra_lines,

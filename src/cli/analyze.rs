@@ -33,6 +33,10 @@ pub struct AnalyzeArgs {
     /// tps-adjustable only: how rule (18)'s alphas are chosen.
     #[arg(long, value_enum)]
     pub alpha_rule: Option<super::subdivide::AlphaRuleArg>,
+    /// EG and QAS+ only: analyse the printed rules where they exist (default) or the derived
+    /// ones.
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
 }
 
 /// Runs `fairsub analyze`.
@@ -43,6 +47,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             lambda: a.lambda,
             split_ratio: a.split_ratio,
             alpha_rule: a.alpha_rule.map(Into::into),
+            rules: a.rules.map(Into::into),
             ..SchemeOptions::default()
         },
     )?;
@@ -53,6 +58,9 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             serde_json::to_string_pretty(&r).expect("serialisable")
         );
         return Ok(());
+    }
+    if let Some(v) = &r.rules {
+        say!("rules at valence {}: {}", v.valence, v.rules);
     }
     say!(
         "{} at valence {}: {}x{} local matrix ({} centre + {} x {} points), rotation defect {:.1e}",
@@ -138,11 +146,20 @@ pub struct CharmapArgs {
     /// Print the certificate as JSON.
     #[arg(long)]
     pub json: bool,
+    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
 }
 
 /// Runs `fairsub charmap`.
 pub fn charmap(a: CharmapArgs) -> Result<()> {
-    let spec = spec::resolve(&a.scheme, &SchemeOptions::default())?;
+    let spec = spec::resolve(
+        &a.scheme,
+        &SchemeOptions {
+            rules: a.rules.map(Into::into),
+            ..SchemeOptions::default()
+        },
+    )?;
     let (ring, lambda) = report::characteristic_ring(&spec, a.valence)?;
     let cert = certify::certify_ring(&ring, lambda);
     let mut c = PatchComplex::new();

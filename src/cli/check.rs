@@ -25,6 +25,9 @@ pub struct CheckArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
 }
 
 /// The `check` report.
@@ -37,6 +40,9 @@ struct CheckReport {
     /// adjustable rings shrink differently along and across their sides; `.bv` input).
     #[serde(skip_serializing_if = "Option::is_none")]
     c1_up_to_scaling: Option<scaled::ScaledContinuity>,
+    /// The scheme's notes: elements that fell back, caps with derived or borrowed rules.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    notes: Vec<String>,
 }
 
 /// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
@@ -63,13 +69,28 @@ fn provenance_of_group(name: Option<&str>) -> Provenance {
 /// Runs `fairsub check`.
 pub fn check(a: CheckArgs) -> Result<()> {
     let spec = match &a.scheme {
-        Some(s) => Some(spec::resolve(s, &SchemeOptions::default())?),
+        Some(s) => Some(spec::resolve(
+            s,
+            &SchemeOptions {
+                rules: a.rules.map(Into::into),
+                ..SchemeOptions::default()
+            },
+        )?),
+        None if a.rules.is_some() => {
+            return Err(Error::InvalidArgument(
+                "--rules chooses the rules of a --scheme; a .bv file holds its patches already"
+                    .into(),
+            ));
+        }
         None => None,
     };
+    let mut notes = Vec::new();
     let complex = match &spec {
         Some(s) => {
             let net = super::load_net(&a.input)?.mesh;
-            super::subdivide::build_complex(s, &net, a.rings, !a.no_fill)?
+            let (c, n) = super::subdivide::build_complex_noted(s, &net, a.rings, !a.no_fill)?;
+            notes = n;
+            c
         }
         None => {
             let path = Path::new(&a.input);
@@ -108,6 +129,7 @@ pub fn check(a: CheckArgs) -> Result<()> {
         continuity: continuity::check(&complex),
         curvature: curvature::ring_curvature(&complex),
         c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(&complex)),
+        notes,
     };
     if a.json {
         say!(

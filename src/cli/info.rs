@@ -2,6 +2,8 @@
 
 use crate::error::Result;
 use crate::mesh::PolyMesh;
+use crate::schemes::descriptor::{RulesOrigin, Spec, ValenceRules};
+use crate::schemes::registry;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -37,8 +39,85 @@ pub struct InfoReport {
     extraordinary_vertices: Vec<ExtraordinaryVertex>,
     extraordinary_faces: Vec<ExtraordinaryFace>,
     bounding_box: [[f64; 3]; 2],
+    /// Per scheme whose rules differ by valence (EG, QAS+): the rules it uses at each
+    /// extraordinary valence of the net (vertices, and face centres after a Catmull-Clark step).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    rules_by_valence: BTreeMap<&'static str, Vec<ValenceRules>>,
     problems: Vec<String>,
     dropped_vertices: Vec<usize>,
+}
+
+/// The valences a quad scheme's caps meet: interior vertices of valence other than 4, and the
+/// centres of non-quad faces (valence = size) after a Catmull-Clark step; with an example
+/// element of each.
+fn cap_valences(m: &PolyMesh) -> BTreeMap<usize, Vec<String>> {
+    let mut out: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    for v in 0..m.num_vertices() {
+        let n = m.valence(v);
+        if !m.is_boundary_vertex(v) && n != 4 {
+            out.entry(n).or_default().push(format!("vertex {v}"));
+        }
+    }
+    for f in 0..m.num_faces() {
+        let n = m.face_size(f);
+        if n != 4 {
+            out.entry(n).or_default().push(format!("face {f}"));
+        }
+    }
+    out
+}
+
+/// The rules each scheme with per-valence rules uses at the valences of the net, and the
+/// problems: valences no construction covers, where the scheme falls back.
+fn rules_by_valence(
+    m: &PolyMesh,
+    problems: &mut Vec<String>,
+) -> BTreeMap<&'static str, Vec<ValenceRules>> {
+    let valences = cap_valences(m);
+    let mut out = BTreeMap::new();
+    let mut fallback: BTreeMap<Vec<usize>, Vec<&'static str>> = BTreeMap::new();
+    for e in registry().entries() {
+        let spec = Spec::new(e.id);
+        let rows: Vec<ValenceRules> = valences
+            .keys()
+            .filter_map(|&n| e.descriptor.valence_rules(&spec, n))
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let missing: Vec<usize> = rows
+            .iter()
+            .filter(|r| r.origin == RulesOrigin::Fallback)
+            .map(|r| r.valence)
+            .collect();
+        if !missing.is_empty() {
+            fallback.entry(missing).or_default().push(e.name);
+        }
+        out.insert(e.name, rows);
+    }
+    for (ns, schemes) in fallback {
+        let at: Vec<String> = ns
+            .iter()
+            .flat_map(|n| {
+                valences[n]
+                    .iter()
+                    .take(5)
+                    .map(move |el| format!("{el} (n={n})"))
+            })
+            .take(10)
+            .collect();
+        problems.push(format!(
+            "{} have no rules at valence {}: Catmull-Clark rings and fill there (or stop with \
+             --fallback error): {}",
+            schemes.join(", "),
+            ns.iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            at.join(", ")
+        ));
+    }
+    out
 }
 
 /// Builds the report of a net.
@@ -110,19 +189,6 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
                 e.vertex, e.valence
             ));
         }
-        let no_eg: Vec<String> = evs
-            .iter()
-            .filter(|e| !e.boundary && ![3, 4, 5].contains(&e.valence))
-            .take(10)
-            .map(|e| format!("{} (n={})", e.vertex, e.valence))
-            .collect();
-        if !no_eg.is_empty() {
-            problems.push(format!(
-                "EG has published rules for valences 3 and 5 only; these vertices fall back to Catmull-Clark \
-                 (or stop with --fallback error): {}",
-                no_eg.join(", ")
-            ));
-        }
         if !quad && evs.iter().all(|e| !e.boundary) {
             let ngons = (0..m.num_faces()).filter(|&f| m.face_size(f) != 4).count();
             problems.push(format!(
@@ -135,6 +201,7 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
             e.vertex, e.valence
         ));
     }
+    let rules_by_valence = rules_by_valence(m, &mut problems);
     let (lo, hi) = m.bounding_box();
     InfoReport {
         source: source.to_string(),
@@ -157,6 +224,7 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
             .collect(),
         extraordinary_vertices: evs,
         bounding_box: [lo, hi],
+        rules_by_valence,
         problems,
         dropped_vertices: m.dropped_vertices().to_vec(),
     }
@@ -236,6 +304,13 @@ pub fn run(net: &str, json: bool) -> Result<()> {
     );
     if !r.dropped_vertices.is_empty() {
         say!("  dropped unused vertices: {:?}", r.dropped_vertices);
+    }
+    for (scheme, rows) in &r.rules_by_valence {
+        let words: Vec<String> = rows
+            .iter()
+            .map(|v| format!("n={}: {}", v.valence, v.rules))
+            .collect();
+        say!("  {scheme} rules: {}", words.join("; "));
     }
     for p in &r.problems {
         say!("  note: {p}");

@@ -213,22 +213,125 @@ pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
     pb
 }
 
+/// Valences the catalogue asks a scheme about: a range that reaches the end is shown as
+/// "and above" (the schemes answer alike for every valence past their last construction).
+const CATALOGUE_VALENCES: std::ops::RangeInclusive<usize> = 3..=64;
+
+/// Consecutive valences with rules of one origin.
+#[derive(serde::Serialize)]
+struct RulesRange {
+    /// First valence.
+    from: usize,
+    /// Last valence (`None`: and every valence above).
+    to: Option<usize>,
+    /// Where the rules come from.
+    origin: crate::schemes::descriptor::RulesOrigin,
+    /// The rules at the first valence of the range, in words.
+    rules: String,
+}
+
+/// The rules of a scheme by valence ranges, if its rules differ by valence.
+fn rules_ranges(spec: &crate::schemes::Spec) -> Option<Vec<RulesRange>> {
+    let d = crate::schemes::registry().descriptor(spec.id);
+    let mut out: Vec<RulesRange> = Vec::new();
+    for n in CATALOGUE_VALENCES {
+        let v = d.valence_rules(spec, n)?;
+        match out.last_mut() {
+            Some(r) if r.origin == v.origin && r.to == Some(n - 1) => r.to = Some(n),
+            _ => out.push(RulesRange {
+                from: n,
+                to: Some(n),
+                origin: v.origin,
+                rules: v.rules,
+            }),
+        }
+    }
+    if let Some(last) = out.last_mut()
+        && last.to == Some(*CATALOGUE_VALENCES.end())
+    {
+        last.to = None;
+    }
+    Some(out)
+}
+
+/// A catalogue row with the rules by valence.
+#[derive(serde::Serialize)]
+struct CatalogueRow {
+    #[serde(flatten)]
+    info: crate::schemes::SchemeInfo,
+    /// Rules by valence (default options), for schemes whose rules differ by valence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rules_by_valence: Option<Vec<RulesRange>>,
+    /// The same with `--rules derived`, where that changes them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rules_by_valence_derived: Option<Vec<RulesRange>>,
+}
+
+/// `3 printed, 4 regular, 6..16 derived, 17+ fallback (...)`.
+fn ranges_words(rs: &[RulesRange]) -> String {
+    use crate::schemes::descriptor::RulesOrigin;
+    rs.iter()
+        .map(|r| {
+            let at = match r.to {
+                None => format!("{}+", r.from),
+                Some(t) if t == r.from => t.to_string(),
+                Some(t) => format!("{}..{t}", r.from),
+            };
+            let what = match r.origin {
+                RulesOrigin::Printed => "printed".to_string(),
+                RulesOrigin::Derived => "derived (fairsub's reconstruction)".to_string(),
+                RulesOrigin::Regular => "regular".to_string(),
+                RulesOrigin::Borrowed | RulesOrigin::Fallback => r.rules.clone(),
+            };
+            format!("{at} {what}")
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 fn schemes(json: bool) -> Result<()> {
-    let cat = crate::schemes::catalog();
+    let reg = crate::schemes::registry();
+    let rows: Vec<CatalogueRow> = crate::schemes::catalog()
+        .into_iter()
+        .zip(reg.entries())
+        .map(|(info, e)| {
+            let plain = crate::schemes::Spec::new(e.id);
+            let mut derived = plain.clone();
+            derived.params.rules = crate::schemes::descriptor::RulesChoice::Derived;
+            let a = rules_ranges(&plain);
+            let b = rules_ranges(&derived);
+            let changed = match (&a, &b) {
+                (Some(x), Some(y)) => ranges_words(x) != ranges_words(y),
+                _ => false,
+            };
+            CatalogueRow {
+                info,
+                rules_by_valence: a,
+                rules_by_valence_derived: b.filter(|_| changed),
+            }
+        })
+        .collect();
     if json {
         say!(
             "{}",
-            serde_json::to_string_pretty(&cat).expect("serialisable")
+            serde_json::to_string_pretty(&rows).expect("serialisable")
         );
         return Ok(());
     }
-    for s in cat {
+    for row in rows {
+        let s = &row.info;
         say!("{} [{}]", s.name, s.status);
         say!("  family:     {}", s.family);
         say!("  input:      {}", s.input);
         say!("  patches:    {}", s.patches);
         say!("  smoothness: {}", s.smoothness);
         say!("  valences:   {}", s.valences);
+        if let Some(r) = &row.rules_by_valence {
+            say!("  rules:      {}", ranges_words(r));
+        }
+        if let Some(r) = &row.rules_by_valence_derived {
+            say!("  --rules derived: {}", ranges_words(r));
+        }
         say!(
             "  commands:   {}{}",
             if s.refine { "subdivide --levels " } else { "" },

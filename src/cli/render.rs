@@ -170,6 +170,9 @@ pub struct RenderArgs {
     /// Print camera, range used and per-ring curvature ranges as JSON on stdout.
     #[arg(long)]
     pub json: bool,
+    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
     /// Output PNG file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -201,6 +204,10 @@ pub struct CompareArgs {
     /// Print camera, ranges used and per-scheme per-ring curvature ranges as JSON on stdout.
     #[arg(long)]
     pub json: bool,
+    /// The EG and QAS+ schemes among them: printed rules where they exist (default) or derived
+    /// ones (a single scheme also by its `-derived` suffix, e.g. `eg,eg-derived`).
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
     /// Output PNG file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -290,6 +297,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
                 s,
                 &SchemeOptions {
                     lambda: a.lambda,
+                    rules: a.rules.map(Into::into),
                     ..SchemeOptions::default()
                 },
             )?;
@@ -299,6 +307,11 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
         None if a.lambda.is_some() => {
             return Err(Error::InvalidArgument(
                 "--lambda needs a guided --scheme".into(),
+            ));
+        }
+        None if a.rules.is_some() => {
+            return Err(Error::InvalidArgument(
+                "--rules needs an EG or QAS+ --scheme".into(),
             ));
         }
         None => None,
@@ -457,15 +470,20 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         .into_iter()
         .map(|s| {
             let plain = spec::resolve(&s, &SchemeOptions::default())?;
-            let takes = crate::schemes::registry()
-                .descriptor(plain.id)
-                .params()
-                .contains(&crate::schemes::descriptor::ParamKind::Contraction);
-            let lambda = if takes { a.lambda } else { None };
+            let takes = |kind| {
+                crate::schemes::registry()
+                    .descriptor(plain.id)
+                    .params()
+                    .contains(&kind)
+            };
+            use crate::schemes::descriptor::ParamKind;
+            let lambda = a.lambda.filter(|_| takes(ParamKind::Contraction));
+            let rules = a.rules.filter(|_| takes(ParamKind::Rules));
             let spec = spec::resolve(
                 &s,
                 &SchemeOptions {
                     lambda,
+                    rules: rules.map(Into::into),
                     ..SchemeOptions::default()
                 },
             )?;

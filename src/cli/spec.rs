@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::schemes::descriptor::{AlphaRule, ChiKind, Fallback, ParamKind};
+use crate::schemes::descriptor::{AlphaRule, ChiKind, Fallback, ParamKind, RulesChoice};
 use crate::schemes::{Spec, registry};
 use std::path::Path;
 
@@ -25,6 +25,8 @@ pub struct SchemeOptions<'a> {
     pub q_file: Option<&'a Path>,
     /// Whether `--fcv-scale` or `--fcv-file` was given.
     pub fcv: bool,
+    /// `--rules`.
+    pub rules: Option<RulesChoice>,
 }
 
 /// The names of the schemes that take `kind`, in catalogue order.
@@ -111,6 +113,15 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
         let text = crate::io::read_text(path)?;
         spec.params.q_overrides = crate::schemes::qas::parse_q_file(&text, path)?;
     }
+    if let Some(r) = o.rules {
+        if !takes(&spec, ParamKind::Rules) {
+            return Err(Error::InvalidArgument(format!(
+                "--rules chooses between printed and derived rules, which only {} have, not '{name}'",
+                and_list(&takers(ParamKind::Rules))
+            )));
+        }
+        spec.params.rules = r;
+    }
     if let Some(f) = o.fallback {
         spec.params.fallback = f;
     }
@@ -118,12 +129,34 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
 }
 
 /// The name a report shows for `spec` given as `name`: with `--lambda 0.5` a guided scheme is
-/// shown with the `-half` suffix that names the same scheme.
+/// shown with the `-half` suffix, with `--rules derived` an EG or QAS+ scheme with the
+/// `-derived` suffix, each naming the same scheme.
 pub fn label(name: &str, spec: &Spec) -> String {
-    if spec.params.chi == Some(ChiKind::Half) && !name.ends_with("-half") {
-        format!("{name}-half")
-    } else {
-        name.to_string()
+    let mut out = name.to_string();
+    if spec.params.chi == Some(ChiKind::Half) && !out.ends_with("-half") {
+        out.push_str("-half");
+    }
+    if spec.params.rules == RulesChoice::Derived && !out.ends_with("-derived") {
+        out.push_str("-derived");
+    }
+    out
+}
+
+/// `--rules` values.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum RulesArg {
+    /// The paper's printed rules where they exist (EG: 3, 5; QAS+: 5, 6, 7), derived elsewhere.
+    Printed,
+    /// fairsub's derived rules wherever they exist (EG and QAS+: 3..16; QAS+ uses EG's at 3).
+    Derived,
+}
+
+impl From<RulesArg> for RulesChoice {
+    fn from(r: RulesArg) -> Self {
+        match r {
+            RulesArg::Printed => RulesChoice::Printed,
+            RulesArg::Derived => RulesChoice::Derived,
+        }
     }
 }
 

@@ -51,7 +51,7 @@ pub struct Args {
     /// Output format (obj, off, ply, ply-ascii, bv, igs), instead of the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// At vertices whose valence has no rules (EG: all but 3, 4, 5): use Catmull-Clark there,
+    /// At vertices whose valence no rules cover (EG, QAS+: above 16): use Catmull-Clark there,
     /// or stop with an error.
     #[arg(long, value_enum, default_value_t = FallbackArg::CatmullClark)]
     pub fallback: FallbackArg,
@@ -69,6 +69,10 @@ pub struct Args {
     /// Caps without one get their centroid.
     #[arg(long)]
     pub pole: Vec<String>,
+    /// EG and QAS+ only: the paper's printed rules where they exist (default; derived rules at
+    /// the other valences), or fairsub's derived rules everywhere (to compare).
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
 }
 
 /// `--fallback` values.
@@ -121,6 +125,7 @@ impl Args {
                 poles: &self.pole,
                 q_file: self.q_file.as_deref(),
                 fcv: self.fcv.fcv_scale.is_some() || self.fcv.fcv_file.is_some(),
+                rules: self.rules.map(Into::into),
             },
         )
     }
@@ -244,22 +249,33 @@ pub fn refine_with(
     Ok(m)
 }
 
-/// Builds the patch complex with a progress bar; prints the notes (fallbacks) on stderr.
+/// Builds the patch complex with a progress bar; prints the notes (fallbacks, derived rules)
+/// on stderr.
 pub fn build_complex(
     spec: &Spec,
     mesh: &PolyMesh,
     rings: usize,
     fill: bool,
 ) -> Result<PatchComplex> {
+    build_complex_noted(spec, mesh, rings, fill).map(|(c, _)| c)
+}
+
+/// Like [`build_complex`], also returning the notes.
+pub fn build_complex_noted(
+    spec: &Spec,
+    mesh: &PolyMesh,
+    rings: usize,
+    fill: bool,
+) -> Result<(PatchComplex, Vec<String>)> {
     let pb = super::progress_bar(rings as u64, &format!("{} rings", spec.name()));
     let o = crate::surface::build(spec, mesh, ComplexOptions { rings, fill }, &mut |l| {
         pb.set_position(l as u64)
     })?;
     pb.finish_and_clear();
-    for n in o.notes {
+    for n in &o.notes {
         eprintln!("note: {n}");
     }
-    Ok(o.complex)
+    Ok((o.complex, o.notes))
 }
 
 /// Writes a patch complex in the chosen format (meshes get a watertight tessellation).

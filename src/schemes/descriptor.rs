@@ -71,6 +71,9 @@ pub enum ParamKind {
     QFile,
     /// `--fcv-scale`, `--fcv-file`: the face control vertices of the non-box schemes.
     Fcv,
+    /// `--rules printed|derived` (or the `-derived` name suffix): the paper's printed rules or
+    /// fairsub's derived ones where both exist (EG, QAS+).
+    Rules,
 }
 
 impl ParamKind {
@@ -84,6 +87,7 @@ impl ParamKind {
             ParamKind::Poles => "--pole",
             ParamKind::QFile => "--q-file",
             ParamKind::Fcv => "--fcv-scale / --fcv-file",
+            ParamKind::Rules => "--rules",
         }
     }
 }
@@ -96,6 +100,45 @@ pub use super::guided::chi::ChiKind;
 pub use super::guided::guide::GuideDegree;
 /// A user-given quadratic expansion of QAS+ (`--q-file`).
 pub use super::qas::QSpec;
+
+/// Which rules a scheme with printed and derived rules uses where the paper prints them
+/// (`--rules`); elsewhere it uses its derived rules either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RulesChoice {
+    /// The paper's printed rules where they exist (the default).
+    #[default]
+    Printed,
+    /// fairsub's derived rules also where printed ones exist (to compare the two).
+    Derived,
+}
+
+/// Where the rules a scheme uses at one valence come from ([`Descriptor::valence_rules`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RulesOrigin {
+    /// The paper's printed rules.
+    Printed,
+    /// fairsub's derivation (a reconstruction, measured against the paper).
+    Derived,
+    /// The regular rules (valence 4: uniform refinement).
+    Regular,
+    /// Another scheme's rules (QAS+ uses EG's at valence 3).
+    Borrowed,
+    /// No construction covers the valence: the fallback (`--fallback`).
+    Fallback,
+}
+
+/// The rules a scheme uses at one valence, as `fairsub info` and `fairsub schemes` report them.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ValenceRules {
+    /// Valence.
+    pub valence: usize,
+    /// Where the rules come from.
+    pub origin: RulesOrigin,
+    /// The rules in words (e.g. `eg (derived rules, n = 7)`, `Catmull-Clark rings and fill`).
+    pub rules: String,
+}
 
 /// Typed parameters of a scheme. Each field applies to the schemes whose descriptor lists its
 /// [`ParamKind`]; `None` / empty means the scheme's default.
@@ -115,6 +158,8 @@ pub struct Params {
     pub poles: Vec<(usize, Point)>,
     /// QAS+: quadratic expansions given by the user, per input vertex.
     pub q_overrides: std::collections::BTreeMap<u32, QSpec>,
+    /// EG, QAS+: printed or derived rules where both exist.
+    pub rules: RulesChoice,
 }
 
 /// A scheme with its parameters: what a front end passes down.
@@ -261,6 +306,11 @@ pub trait LocalRules: Sync {
         let _ = n;
         Ok(None)
     }
+
+    /// All extra facts (several keys); the default is [`LocalRules::extra`]'s one.
+    fn extras(&self, n: usize) -> Result<Vec<ExtraFacts>> {
+        Ok(self.extra(n)?.into_iter().collect())
+    }
 }
 
 /// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`About`],
@@ -305,5 +355,13 @@ pub trait Descriptor: Sync + Send {
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         let _ = spec;
         Ok(None)
+    }
+
+    /// Which rules the scheme uses at valence `n` with these parameters, for schemes whose
+    /// rules differ in origin from valence to valence (printed, derived, regular, fallback);
+    /// `None`: the scheme has one kind of rules for every valence it takes.
+    fn valence_rules(&self, spec: &Spec, n: usize) -> Option<ValenceRules> {
+        let _ = (spec, n);
+        None
     }
 }

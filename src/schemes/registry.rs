@@ -10,7 +10,7 @@
 
 use super::SchemeInfo;
 use super::descriptor::{
-    About, Capabilities, ChiKind, Descriptor, GuideDegree, Params, SchemeId, Spec,
+    About, Capabilities, ChiKind, Descriptor, GuideDegree, Params, RulesChoice, SchemeId, Spec,
 };
 use super::{bi2, catmull_clark, doo_sabin, eg, guided, loop_subdivision, nonbox, qas};
 use crate::error::{Error, Result};
@@ -152,6 +152,13 @@ const GUIDED_SUFFIXES: &[Suffix] = &[
     },
 ];
 
+/// The `-derived` suffix of EG and the QAS+ schemes (`eg-derived`, `qas-plus-derived`): fairsub's
+/// derived rules also where the paper prints rules, as `--rules derived`.
+const DERIVED_SUFFIX: &[Suffix] = &[Suffix {
+    text: "-derived",
+    set: |p| p.rules = RulesChoice::Derived,
+}];
+
 /// The schemes, in catalogue order.
 #[derive(Debug, Clone)]
 pub struct Registry {
@@ -280,12 +287,13 @@ impl Registry {
                         family: "Evolving Guide subdivision [Karciauskas-Peters]: bi-4 rings joining bi-3 surroundings C^2",
                         input: "Catmull-Clark nets (quads; one local Catmull-Clark step where extraordinary vertices touch or n-gons occur)",
                         patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
-                        smoothness: "C^2 rings and joins, C^1 at the extraordinary point; mu/lambda^2 = 1.00015 (n=3), 1.00016 (n=5)",
-                        valences: "3, 5 published (4 = bi-4 refinement); 6..10 lost in the text: Catmull-Clark fallback or error",
-                        status: "available (patches; valences 3 and 5)",
+                        smoothness: "C^2 rings and joins, C^1 at the extraordinary point; mu/lambda^2 = 1.00015 (n=3), 1.00016 (n=5); derived rules: Catmull-Clark's lambda, mu/lambda^2 0.997..1.0006",
+                        valences: "3, 5 printed; 4 = bi-4 refinement; 6..16 fairsub's derived rules (eg-derived; the text lost 6..10; --rules derived or suffix -derived: also at 3, 5); above 16: Catmull-Clark fallback or error",
+                        status: "available (patches; printed 3, 5; derived 6..16, a reconstruction approximating the printed arrays)",
                     },
                     &eg::DESCRIPTOR,
-                ),
+                )
+                .with_suffixes(DERIVED_SUFFIX),
                 Entry::new(
                     QAS_PLUS,
                     &["qas-plus-chi"],
@@ -293,12 +301,13 @@ impl Registry {
                         family: "QAS+^4 quadratic-attraction subdivision [Karciauskas-Peters], contraction 1/2",
                         input: "Catmull-Clark nets (as eg); initial quadratic expansion by fairsub's qas-fit",
                         patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
-                        smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) < 0.13621 < 1/4)",
-                        valences: "5, 6, 7 published; 3 uses eg; others fall back to Catmull-Clark or error",
-                        status: "available (patches; valences 5..7)",
+                        smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) < 0.13621 < 1/4; derived tables 0.1253..0.1297)",
+                        valences: "5, 6, 7 printed; 8..16 fairsub's derived tables (qas-plus-derived; --rules derived or suffix -derived: also at 5..7); 3 uses eg's rules, 4 bi-4 refinement; above 16: Catmull-Clark fallback or error",
+                        status: "available (patches; printed 5..7; derived 8..16, a reconstruction approximating the printed tables)",
                     },
                     &qas::DESCRIPTOR,
-                ),
+                )
+                .with_suffixes(DERIVED_SUFFIX),
                 Entry::new(
                     QAS_PLUS_BI3,
                     &[],
@@ -311,7 +320,8 @@ impl Registry {
                         status: "available (patches; T_3^4 derived: the earlier paper's formulas are not in the corpus)",
                     },
                     &qas::DESCRIPTOR_BI3,
-                ),
+                )
+                .with_suffixes(DERIVED_SUFFIX),
                 Entry::new(
                     QAS_04,
                     &[],
@@ -324,7 +334,8 @@ impl Registry {
                         status: "available (patches)",
                     },
                     &qas::DESCRIPTOR_04,
-                ),
+                )
+                .with_suffixes(DERIVED_SUFFIX),
                 Entry::new(
                     QAS_05_04,
                     &[],
@@ -337,7 +348,8 @@ impl Registry {
                         status: "available (patches)",
                     },
                     &qas::DESCRIPTOR_05_04,
-                ),
+                )
+                .with_suffixes(DERIVED_SUFFIX),
                 Entry::new(
                     PGS,
                     &[],

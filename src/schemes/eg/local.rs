@@ -1,33 +1,45 @@
 //! EG's local analysis: the subdivision matrix `A_n` on the local vector `(c0, d-net)` and the
-//! characteristic ring.
+//! characteristic ring, of the printed rules or of any given [`EgRules`] (the derived ones).
 
-use super::Eg;
+use super::{Eg, EgRules};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::geom::Point;
 use crate::schemes::local::{LocalMatrix, check_valence, dense};
 use crate::schemes::registry::ids;
 
-/// EG subdivision's matrix `A_n` on the local vector `(c0, d-net)` (`12 n + 1` points).
+/// EG subdivision's matrix `A_n` of the printed rules on the local vector `(c0, d-net)`
+/// (`12 n + 1` points).
 pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
     check_valence(n)?;
-    let st = Eg::new(n)?.step()?;
+    local_matrix_of(&EgRules::new(n)?, ids::EG.name())
+}
+
+/// The matrix `A_n` of given rules, labelled `label` in reports.
+pub fn local_matrix_of(rules: &EgRules, label: &str) -> Result<LocalMatrix> {
+    check_valence(rules.n)?;
+    let st = Eg::with_rules(rules.clone()).step()?;
     Ok(LocalMatrix {
-        scheme: ids::EG.name().into(),
-        n,
+        scheme: label.into(),
+        n: rules.n,
         centre: 1,
         sector: 12,
         matrix: dense(&st.step),
     })
 }
 
-/// EG's characteristic ring at valence `n`: the ring patches of the characteristic map's
-/// control points on the local vector, and lambda.
+/// EG's characteristic ring at valence `n` (printed rules): the ring patches of the
+/// characteristic map's control points on the local vector, and lambda.
 pub fn characteristic_ring(n: usize) -> Result<(Vec<BezierPatch>, f64)> {
-    let lm = local_matrix(n)?;
+    characteristic_ring_of(&EgRules::new(n)?)
+}
+
+/// The characteristic ring of given rules, and lambda.
+pub fn characteristic_ring_of(rules: &EgRules) -> Result<(Vec<BezierPatch>, f64)> {
+    let lm = local_matrix_of(rules, ids::EG.name())?;
     let (pts, lambda) = lm.characteristic_points()?;
-    let ring = Eg::new(n)?.step()?.ring.apply(&pts);
-    Ok((dnet_ring_patches(&ring, n), lambda))
+    let ring = Eg::with_rules(rules.clone()).step()?.ring.apply(&pts);
+    Ok((dnet_ring_patches(&ring, rules.n), lambda))
 }
 
 /// The `3 n` bi-4 patches of a d-net ring table's output, sector by sector (`A, B, C`),

@@ -35,6 +35,7 @@ pub mod derive;
 pub mod descriptor;
 pub mod facts;
 pub mod local;
+pub mod select;
 pub mod surface;
 pub use descriptor::DESCRIPTOR;
 

@@ -5,8 +5,11 @@
 //! (one-ring regular, and every extraordinary vertex of the c-net capped too) gets an EG cap at
 //! the current level; the others are refined by one Catmull-Clark step first (the EG paper's
 //! "local Catmull-Clark step" where extraordinary vertices are not separated by a regular one).
-//! Vertices of a valence without published rules (the text lost the arrays for 6..10) get the
-//! fallback the user chose: Catmull-Clark rings and fill, or an error.
+//! The rules of each valence are chosen by [`super::select`]: the printed ones at 3 and 5,
+//! regular bi-4 refinement at 4, fairsub's derived rules at 6..=16 (and at 3, 5 with
+//! `--rules derived`), each derived cap named in the notes (`eg (derived rules, n = 7)`). Only
+//! valences above 16, which no construction covers, get the fallback the user chose:
+//! Catmull-Clark rings and fill, or an error.
 //!
 //! A cap made at level `L` numbers its rings `L + 1 .. L + K`, so ring indices follow the
 //! geometric nesting also after a local Catmull-Clark step.
@@ -30,15 +33,17 @@
 //! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
 //! `n != 4`); `fairsub check` reports the measured defects. `--no-fill` leaves the hole open.
 
+use super::select::{self, Selected};
 use super::{Eg, EgStep, from_cnet};
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::{BezierPatch, curve};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
-use crate::host::caps::{CapBuilder, CapNotes};
+use crate::host::caps::{CapBuilder, CapNotes, describe};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
+use crate::schemes::descriptor::{RulesChoice, RulesOrigin};
 use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::HashMap;
@@ -65,12 +70,29 @@ impl Default for EgOptions {
     }
 }
 
+/// The rules a d-net cap scheme uses at one valence, as its notes name them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum Used {
+    /// The scheme's own printed (or regular) rules: no note.
+    Own,
+    /// fairsub's derived rules, named (`eg (derived rules, n = 7)`); `chosen` when printed
+    /// rules exist at the valence and `--rules derived` picked the derived ones.
+    Derived {
+        /// The name in notes and reports.
+        label: String,
+        /// Whether printed rules exist here (the user chose the derived ones).
+        chosen: bool,
+    },
+    /// Another scheme's rules (QAS+ at valence 3 uses EG's), by that scheme's name.
+    Borrowed(String),
+}
+
 /// Rules of a d-net cap scheme (EG, QAS+) per valence.
 pub(crate) trait DnetRules: Sync {
     /// Name of the scheme's own rules (EG's, QAS+'s).
     fn primary(&self) -> &'static str;
-    /// Name of the rules used at valence `n` (`None` when there are none).
-    fn rules_name(&self, n: usize) -> Option<&'static str>;
+    /// The rules used at valence `n` (`None` when no construction covers it).
+    fn used(&self, n: usize) -> Result<Option<Used>>;
     /// Stencils of the local vector from the c-net (layout of [`from_cnet`]).
     fn init(&self, n: usize) -> Result<StencilTable>;
     /// The step and ring tables used to make ring `k` (0-based).
@@ -88,16 +110,32 @@ pub(crate) trait DnetRules: Sync {
     }
 }
 
-/// EG's rules.
-pub(crate) struct EgRulesProvider;
+/// EG's rules: printed, regular or derived by valence ([`super::select`]).
+pub(crate) struct EgRulesProvider {
+    /// Printed or derived rules where both exist.
+    pub(crate) choice: RulesChoice,
+}
+
+impl EgRulesProvider {
+    /// The rules of valence `n` (an error where none exist).
+    fn rules(&self, n: usize) -> Result<Selected> {
+        select::select(n, self.choice)?.ok_or_else(|| Error::Unsupported(select::no_rules(n)))
+    }
+}
 
 impl DnetRules for EgRulesProvider {
     fn primary(&self) -> &'static str {
         ids::EG.name()
     }
 
-    fn rules_name(&self, n: usize) -> Option<&'static str> {
-        Eg::new(n).ok().map(|_| ids::EG.name())
+    fn used(&self, n: usize) -> Result<Option<Used>> {
+        Ok(select::origin(n, self.choice).map(|o| match o {
+            RulesOrigin::Derived => Used::Derived {
+                label: select::label(n, o),
+                chosen: select::printed_exists(n),
+            },
+            _ => Used::Own,
+        }))
     }
 
     fn init(&self, n: usize) -> Result<StencilTable> {
@@ -105,7 +143,7 @@ impl DnetRules for EgRulesProvider {
     }
 
     fn step(&self, n: usize, _k: usize) -> Result<EgStep> {
-        Eg::new(n)?.step()
+        Eg::with_rules(self.rules(n)?.rules).step()
     }
 
     fn stationary(&self) -> bool {
@@ -113,11 +151,7 @@ impl DnetRules for EgRulesProvider {
     }
 
     fn no_rules(&self, n: usize) -> String {
-        format!(
-            "valence {n}: EG subdivision has published rules for valences 3 and 5 only (the paper's text \
-             lost the arrays for 6..10); use --fallback {}",
-            ids::CATMULL_CLARK
-        )
+        select::no_rules(n)
     }
 }
 
@@ -180,17 +214,42 @@ impl<'a> DnetCaps<'a> {
     }
 }
 
+/// The note of a cap made with derived rules.
+fn derived_note(element: Element, n: usize, label: &str, chosen: bool, primary: &str) -> String {
+    let why = if chosen {
+        format!("chosen by --rules derived (the paper prints {primary} rules here)")
+    } else {
+        format!(
+            "fairsub's reconstruction; the paper prints no complete {primary} rules for this valence"
+        )
+    };
+    format!("{} (valence {n}): {label}, {why}", describe(element))
+}
+
 impl CapBuilder for DnetCaps<'_> {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
-        if let Some(name) = self.rules.rules_name(n) {
-            if name != self.rules.primary() {
-                self.notes.substitute(element, n, name);
+        match self.rules.used(n)? {
+            Some(Used::Own) => Ok(true),
+            Some(Used::Borrowed(name)) => {
+                self.notes.substitute(element, n, &name);
+                Ok(true)
             }
-            return Ok(true);
+            Some(Used::Derived { label, chosen }) => {
+                self.notes.note(derived_note(
+                    element,
+                    n,
+                    &label,
+                    chosen,
+                    self.rules.primary(),
+                ));
+                Ok(true)
+            }
+            None => {
+                self.notes
+                    .fall_back(self.fallback, element, n, || self.rules.no_rules(n))?;
+                Ok(false)
+            }
         }
-        self.notes
-            .fall_back(self.fallback, element, n, || self.rules.no_rules(n))?;
-        Ok(false)
     }
 
     fn build(
@@ -464,14 +523,25 @@ fn fair_interior(b: &mut [[Point; 5]; 5], fixed: &[[bool; 5]; 5]) {
     }
 }
 
-/// The EG surface of a net as a patch complex. Also returns the vertices that fell back to
-/// Catmull-Clark (element and valence).
+/// The EG surface of a net as a patch complex (printed rules where they exist, derived ones
+/// elsewhere). Also returns the vertices that fell back to Catmull-Clark (element and valence).
 pub fn eg_complex(
     mesh: &PolyMesh,
     opts: EgOptions,
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<(Element, usize)>)> {
-    dnet_complex(&EgRulesProvider, mesh, opts, progress).map(|o| (o.complex, o.fell_back))
+    eg_complex_with(mesh, opts, RulesChoice::Printed, progress).map(|o| (o.complex, o.fell_back))
+}
+
+/// The EG surface of a net with the rules `choice` (printed or derived where both exist), with
+/// the elements that fell back and the notes (which caps use derived rules).
+pub fn eg_complex_with(
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    choice: RulesChoice,
+    progress: impl FnMut(usize),
+) -> Result<SurfaceOutput> {
+    dnet_complex(&EgRulesProvider { choice }, mesh, opts, progress)
 }
 
 /// The surface of a net with caps of a d-net scheme (shared by EG and QAS+).

@@ -98,6 +98,11 @@ impl QasBi3 {
         Ok(QasBi3 { qas: Qas::new(n)? })
     }
 
+    /// QAS+^3 on given QAS+^4 tables (e.g. the derived ones).
+    pub fn with_qas(qas: Qas) -> QasBi3 {
+        QasBi3 { qas }
+    }
+
     /// Valence.
     pub fn n(&self) -> usize {
         self.qas.n()
@@ -206,7 +211,13 @@ impl QasBi3 {
 /// Stencils of the QAS+^3 local vector `(p, bi-3 d-net, q)` from the c-net: the QAS+^4 vector
 /// with the d-net mapped by `T` (which equals uniform bi-3 knot insertion of the c-net).
 pub fn from_cnet(n: usize) -> Result<StencilTable> {
-    let four = super::from_cnet(n)?;
+    from_cnet_of(&Qas::new(n)?)
+}
+
+/// Like [`from_cnet`], with the QAS+^4 vector (and its `qas-fit`) of given tables.
+pub fn from_cnet_of(qas: &Qas) -> Result<StencilTable> {
+    let n = qas.n();
+    let four = qas.from_cnet()?;
     let mut t = StencilTable::with_capacity(four.num_sources(), four.num_rows(), 40);
     for r in 0..four.num_rows() {
         if (1..=12 * n).contains(&r) {

@@ -1,16 +1,25 @@
 //! The descriptors of QAS+ and its variants: exact patches (caps of bi-4 or bi-3 rings on
-//! Catmull-Clark nets) and local analysis. QAS+ has no control net of its own to refine.
+//! Catmull-Clark nets) and local analysis, with the printed tables where the paper has them and
+//! fairsub's derived ones elsewhere ([`super::select`]). QAS+ has no control net of its own to
+//! refine.
 
-use super::surface::{Contraction, qas_bi3_complex, qas_complex_with};
+use super::Qas;
+use super::derive::compare::QasComparison;
+use super::local::QasFacts;
+use super::select::{self, QasSelected};
+use super::surface::{Contraction, QasSurface, qas_surface};
 use crate::bezier::BezierPatch;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::{
     Capabilities, ComplexOptions, Computed, Descriptor, ExtraFacts, LocalRules, ParamKind,
-    PatchRules, Published, Spec, SurfaceOutput,
+    PatchRules, Published, RulesChoice, RulesOrigin, SchemeId, Spec, SurfaceOutput, ValenceRules,
 };
+use crate::schemes::eg::derive::MAX_VALENCE;
+use crate::schemes::eg::select as eg_select;
 use crate::schemes::eg::surface::EgOptions;
 use crate::schemes::local::LocalMatrix;
+use crate::schemes::registry::ids;
 
 /// Which QAS+ variant.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,8 +68,8 @@ impl Descriptor for QasDescriptor {
 
     fn params(&self) -> &'static [ParamKind] {
         match self.variant {
-            QasVariant::Bi3 => &[ParamKind::Fallback],
-            _ => &[ParamKind::Fallback, ParamKind::QFile],
+            QasVariant::Bi3 => &[ParamKind::Fallback, ParamKind::Rules],
+            _ => &[ParamKind::Fallback, ParamKind::QFile, ParamKind::Rules],
         }
     }
 
@@ -71,12 +80,22 @@ impl Descriptor for QasDescriptor {
         })))
     }
 
-    fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
+    fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         Ok((self.variant != QasVariant::Gradual).then(|| {
             Box::new(QasLocal {
                 variant: self.variant,
+                choice: spec.params.rules,
             }) as Box<dyn LocalRules>
         }))
+    }
+
+    fn valence_rules(&self, spec: &Spec, n: usize) -> Option<ValenceRules> {
+        Some(select::valence_rules(
+            self.variant.id(),
+            n,
+            spec.params.rules,
+            spec.params.fallback,
+        ))
     }
 }
 
@@ -87,6 +106,16 @@ impl QasVariant {
             QasVariant::Bi4 | QasVariant::Bi3 => Contraction::Half,
             QasVariant::Fixed04 => Contraction::Fixed(0.4),
             QasVariant::Gradual => Contraction::Gradual,
+        }
+    }
+
+    /// The variant's registry id.
+    pub fn id(self) -> SchemeId {
+        match self {
+            QasVariant::Bi4 => ids::QAS_PLUS,
+            QasVariant::Bi3 => ids::QAS_PLUS_BI3,
+            QasVariant::Fixed04 => ids::QAS_04,
+            QasVariant::Gradual => ids::QAS_05_04,
         }
     }
 }
@@ -109,17 +138,24 @@ impl PatchRules for QasPatchRules {
             fill: opts.fill,
             fallback: self.spec.params.fallback,
         };
-        let c = self.variant.contraction();
-        match self.variant {
-            QasVariant::Bi3 => qas_bi3_complex(mesh, o, c, progress),
-            _ => qas_complex_with(mesh, o, c, self.spec.params.q_overrides.clone(), progress),
-        }
+        let q = QasSurface {
+            id: self.variant.id(),
+            contraction: self.variant.contraction(),
+            bi3: self.variant == QasVariant::Bi3,
+            rules: self.spec.params.rules,
+            overrides: self.spec.params.q_overrides.clone(),
+        };
+        qas_surface(mesh, o, &q, progress)
     }
 }
 
-/// QAS+'s local analysis (the gradual schedule has no stationary matrix).
+/// QAS+'s local analysis (the gradual schedule has no stationary matrix): the matrix of the
+/// rules in use, the Section 5 facts, rho(M_d) beside the printed tables' and the bound (for
+/// the printed and the derived tables), and the deviation of the derived tables from the
+/// printed ones.
 struct QasLocal {
     variant: QasVariant,
+    choice: RulesChoice,
 }
 
 impl QasLocal {
@@ -129,58 +165,176 @@ impl QasLocal {
             _ => 0.5,
         }
     }
+
+    fn selected(&self, n: usize, choice: RulesChoice) -> Result<QasSelected> {
+        select::select(n, choice)?.ok_or_else(|| {
+            Error::Unsupported(format!(
+                "valence {n}: {} has rules for valences 3..={MAX_VALENCE} (EG's at 3, regular bi-4 \
+                 at 4, printed tables 5..7, derived elsewhere)",
+                self.variant.id()
+            ))
+        })
+    }
+
+    /// The Section 5 facts of given tables.
+    fn facts(&self, qas: &Qas) -> Result<QasFacts> {
+        match self.variant {
+            QasVariant::Bi3 => super::local::facts_bi3_of(qas, self.lambda()),
+            _ => super::local::facts_of(qas, self.lambda()),
+        }
+    }
 }
 
 impl LocalRules for QasLocal {
     fn matrix(&self, n: usize) -> Result<LocalMatrix> {
-        match self.variant {
-            QasVariant::Bi3 => super::local::local_matrix_bi3(n, self.lambda()),
-            _ => super::local::local_matrix(n, self.lambda()),
+        let id = self.variant.id();
+        match self.selected(n, self.choice)? {
+            QasSelected::Eg(e) => crate::schemes::eg::local::local_matrix_of(
+                &e.rules,
+                &format!(
+                    "{} (used by {id} at n = {n})",
+                    eg_select::label(n, e.origin)
+                ),
+            ),
+            sel @ QasSelected::Qas { .. } => {
+                let label = select::label(id, n, &sel);
+                let QasSelected::Qas { qas, .. } = sel else {
+                    unreachable!("matched above")
+                };
+                match self.variant {
+                    QasVariant::Bi3 => {
+                        super::local::local_matrix_bi3_of(&qas, self.lambda(), &label)
+                    }
+                    _ => super::local::local_matrix_of(&qas, self.lambda(), &label),
+                }
+            }
         }
     }
 
-    /// The paper's chi of Section 3 (n = 5..10), for QAS+^4.
+    /// QAS+^4's: the paper's chi of Section 3 for the printed tables, the derived rules' own
+    /// characteristic map for the derived ones, EG's at valences 3 and 4.
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
-        match self.variant {
-            QasVariant::Bi4 => super::local::characteristic_ring(n),
-            _ => Err(crate::error::Error::Unsupported(format!(
+        match self.selected(n, self.choice)? {
+            QasSelected::Eg(e) => crate::schemes::eg::local::characteristic_ring_of(&e.rules),
+            _ if self.variant != QasVariant::Bi4 => Err(Error::Unsupported(format!(
                 "valence {n}: the characteristic map of Section 3 is QAS+^4's"
             ))),
+            QasSelected::Qas {
+                origin: RulesOrigin::Printed,
+                ..
+            } => super::local::characteristic_ring(n),
+            QasSelected::Qas { qas, .. } => super::local::rules_characteristic_ring_of(&qas),
         }
     }
 
+    /// rho(M_d) beside the printed tables' (5, 6, 7) and beside the bound of Section 5 (QAS+^4)
+    /// or 6 (QAS+^3) for n = 5..10, for the printed and for the derived tables.
     fn published(&self, n: usize, _: &Computed<'_>) -> Result<Vec<Published>> {
-        let rho = super::facts::rho_md_of_printed(n).filter(|_| self.variant == QasVariant::Bi4);
-        let Some(p) = rho else {
-            return Ok(Vec::new());
+        let bound = match self.variant {
+            QasVariant::Bi4 => super::facts::RHO_MD_BOUND,
+            QasVariant::Bi3 => super::facts::RHO_MD_BOUND_BI3,
+            _ => return Ok(Vec::new()),
         };
-        let f = super::local::facts(n, self.lambda())?;
-        Ok(vec![Published::new(
-            "spectral radius of M_d (papers README, from the K layout; paper: < 0.13621)",
-            p,
-            f.m_d_spectral_radius,
-        )])
+        let in_use = select::origin(n, self.choice);
+        let mut out = Vec::new();
+        for choice in [RulesChoice::Printed, RulesChoice::Derived] {
+            let Some(QasSelected::Qas { qas, origin }) = select::select(n, choice)? else {
+                continue;
+            };
+            if (choice == RulesChoice::Printed) != (origin == RulesOrigin::Printed) {
+                continue; // each kind of table once
+            }
+            let rho = self.facts(&qas)?.m_d_spectral_radius;
+            let tag = format!(
+                "{}{}",
+                if origin == RulesOrigin::Printed {
+                    "printed tables"
+                } else {
+                    "derived tables"
+                },
+                if in_use == Some(origin) {
+                    " (in use)"
+                } else {
+                    ""
+                }
+            );
+            let of_printed =
+                super::facts::rho_md_of_printed(n).filter(|_| self.variant == QasVariant::Bi4);
+            if let Some(p) = of_printed {
+                out.push(Published::new(
+                    format!(
+                        "spectral radius of M_d of the printed tables (computed from Appendix C with \
+                         the papers README's K layout; the paper states the bound), {tag}"
+                    ),
+                    p,
+                    rho,
+                ));
+            }
+            if super::facts::BOUND_VALENCES.contains(&n) {
+                out.push(Published::new(
+                    format!(
+                        "bound on the spectral radius of M_d (Section {}, n = 5..10: below {bound}), {tag}",
+                        if self.variant == QasVariant::Bi4 { 5 } else { 6 }
+                    ),
+                    bound,
+                    rho,
+                ));
+            }
+        }
+        Ok(out)
     }
 
-    fn extra(&self, n: usize) -> Result<Option<ExtraFacts>> {
-        let q = match self.variant {
-            QasVariant::Bi3 => super::local::facts_bi3(n, self.lambda())?,
-            _ => super::local::facts(n, self.lambda())?,
-        };
-        let lines = vec![format!(
-            "QAS+: spectral radius of M_d {:.6}; M_q eigenvalues: C^2 {:?}, C^1 {} values, C^1-C^0 {} values (all 1, 1/2 x2, then 1/4)",
-            q.m_d_spectral_radius,
-            q.m_q_c2
-                .iter()
-                .map(|x| format!("{x:.4}"))
-                .collect::<Vec<_>>(),
-            q.m_q_c1.len(),
-            q.m_q_c1c0.len()
-        )];
-        Ok(Some(ExtraFacts {
-            key: "qas",
-            value: serde_json::to_value(&q).expect("serialisable"),
-            lines,
-        }))
+    fn extras(&self, n: usize) -> Result<Vec<ExtraFacts>> {
+        let mut out = Vec::new();
+        if let QasSelected::Qas { qas, .. } = self.selected(n, self.choice)? {
+            let q = self.facts(&qas)?;
+            let lines = vec![format!(
+                "QAS+: spectral radius of M_d {:.6}; M_q eigenvalues: C^2 {:?}, C^1 {} values, C^1-C^0 {} values (all 1, 1/2 x2, then 1/4)",
+                q.m_d_spectral_radius,
+                q.m_q_c2
+                    .iter()
+                    .map(|x| format!("{x:.4}"))
+                    .collect::<Vec<_>>(),
+                q.m_q_c1.len(),
+                q.m_q_c1c0.len()
+            )];
+            out.push(ExtraFacts {
+                key: "qas",
+                value: serde_json::to_value(&q).expect("serialisable"),
+                lines,
+            });
+        }
+        if (5..=MAX_VALENCE).contains(&n) {
+            let c = super::derive::compare::qas_comparison(n)?;
+            out.push(ExtraFacts {
+                key: "derivation",
+                lines: comparison_lines(&c),
+                value: serde_json::to_value(&c).expect("serialisable"),
+            });
+        }
+        Ok(out)
     }
+}
+
+/// The text report's lines of a comparison.
+fn comparison_lines(c: &QasComparison) -> Vec<String> {
+    let mut lines = vec![format!("derived tables: {}", c.construction)];
+    if c.tables.is_empty() {
+        lines.push(format!(
+            "derived vs printed: the paper prints no QAS+ tables for n = {}",
+            c.n
+        ));
+        return lines;
+    }
+    lines.push(format!(
+        "derived vs printed tables (units of 1e-5): K max {:.0}, median {:.1}; T max {:.0}, median {:.1} (the printed tables are approximated, not reproduced)",
+        c.k_max_e5, c.k_median_e5, c.t_max_e5, c.t_median_e5
+    ));
+    for t in &c.tables {
+        lines.push(format!(
+            "  {}: {} entries, max {:.0}, median {:.1}",
+            t.table, t.entries, t.max_e5, t.median_e5
+        ));
+    }
+    lines
 }

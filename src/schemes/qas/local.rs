@@ -1,7 +1,9 @@
 //! QAS+'s local analysis: the subdivision matrices of QAS+^4 and QAS+^3 on `(p, d-net, q)`,
-//! the facts of Section 5 (`M_d`, `M_q`) and the characteristic maps.
+//! the facts of Section 5 (`M_d`, `M_q`) and the characteristic maps, of the printed tables or
+//! of any given ones (the derived tables).
 
 use super::Qas;
+use super::bi3::QasBi3;
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::eg::local::dnet_ring_patches;
@@ -14,18 +16,27 @@ use nalgebra::DMatrix;
 /// then per sector its 12 d-net nodes and its 5 expansion coefficients `q_2 .. q_6` (17 points),
 /// so that the Fourier blocks apply. `lambda` is the contraction of `S` (1/2 for QAS+).
 pub fn local_matrix(n: usize, lambda: f64) -> Result<LocalMatrix> {
-    use crate::schemes::qas::Qas;
     check_valence(n)?;
-    qas_from_step(n, Qas::new(n)?.step(lambda)?.step, ids::QAS_PLUS.name())
+    local_matrix_of(&Qas::new(n)?, lambda, ids::QAS_PLUS.name())
 }
 
-/// QAS+^3's matrix (bi-3 d-net through `T_3^4`), ordered like [`qas`].
+/// QAS+^4's matrix of given tables, labelled `label`.
+pub fn local_matrix_of(qas: &Qas, lambda: f64, label: &str) -> Result<LocalMatrix> {
+    qas_from_step(qas.n(), qas.step(lambda)?.step, label)
+}
+
+/// QAS+^3's matrix (bi-3 d-net through `T_3^4`), ordered like [`local_matrix`].
 pub fn local_matrix_bi3(n: usize, lambda: f64) -> Result<LocalMatrix> {
     check_valence(n)?;
+    local_matrix_bi3_of(&Qas::new(n)?, lambda, ids::QAS_PLUS_BI3.name())
+}
+
+/// QAS+^3's matrix of given QAS+^4 tables, labelled `label`.
+pub fn local_matrix_bi3_of(qas: &Qas, lambda: f64, label: &str) -> Result<LocalMatrix> {
     qas_from_step(
-        n,
-        crate::schemes::qas::bi3::QasBi3::new(n)?.step(lambda)?.step,
-        ids::QAS_PLUS_BI3.name(),
+        qas.n(),
+        QasBi3::with_qas(qas.clone()).step(lambda)?.step,
+        label,
     )
 }
 
@@ -67,17 +78,24 @@ pub struct QasFacts {
     pub invariance_defect: f64,
 }
 
-/// Computes [`QasFacts`] at valence `n` with contraction `lambda`.
+/// Computes [`QasFacts`] of the printed tables at valence `n` with contraction `lambda`.
 pub fn facts(n: usize, lambda: f64) -> Result<QasFacts> {
-    qas_facts_of(n, crate::schemes::qas::Qas::new(n)?.step(lambda)?.step)
+    facts_of(&Qas::new(n)?, lambda)
 }
 
-/// [`QasFacts`] of QAS+^3.
+/// [`QasFacts`] of given tables.
+pub fn facts_of(qas: &Qas, lambda: f64) -> Result<QasFacts> {
+    qas_facts_of(qas.n(), qas.step(lambda)?.step)
+}
+
+/// [`QasFacts`] of QAS+^3 (printed tables).
 pub fn facts_bi3(n: usize, lambda: f64) -> Result<QasFacts> {
-    qas_facts_of(
-        n,
-        crate::schemes::qas::bi3::QasBi3::new(n)?.step(lambda)?.step,
-    )
+    facts_bi3_of(&Qas::new(n)?, lambda)
+}
+
+/// [`QasFacts`] of QAS+^3 on given QAS+^4 tables.
+pub fn facts_bi3_of(qas: &Qas, lambda: f64) -> Result<QasFacts> {
+    qas_facts_of(qas.n(), QasBi3::with_qas(qas.clone()).step(lambda)?.step)
 }
 
 fn qas_facts_of(n: usize, st: StencilTable) -> Result<QasFacts> {
@@ -171,8 +189,14 @@ pub fn characteristic_ring(n: usize) -> Result<(Vec<BezierPatch>, f64)> {
 /// ring of bi-4 patches, with its contraction 1/2; compared with [`characteristic_ring`] by the
 /// tests.
 pub fn rules_characteristic_ring(n: usize) -> Result<(Vec<BezierPatch>, f64)> {
-    let [cx, cy] = super::characteristic_vectors(n)?;
+    rules_characteristic_ring_of(&Qas::new(n)?)
+}
+
+/// The characteristic map of given QAS+^4 tables as a ring of bi-4 patches, with its
+/// contraction 1/2.
+pub fn rules_characteristic_ring_of(qas: &Qas) -> Result<(Vec<BezierPatch>, f64)> {
+    let [cx, cy] = qas.characteristic_vectors()?;
     let pts: Vec<_> = cx.iter().zip(&cy).map(|(&x, &y)| [x, y, 0.0]).collect();
-    let ring = Qas::new(n)?.step(0.5)?.ring.apply(&pts);
-    Ok((dnet_ring_patches(&ring, n), 0.5))
+    let ring = qas.step(0.5)?.ring.apply(&pts);
+    Ok((dnet_ring_patches(&ring, qas.n()), 0.5))
 }

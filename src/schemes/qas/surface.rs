@@ -1,19 +1,26 @@
 //! QAS+ surfaces of whole meshes: bi-3 patches on regular faces and a QAS+^4 cap of `K` bi-4
-//! rings at every extraordinary vertex of valence 5, 6 or 7, on the machinery of EG caps
+//! rings at every extraordinary vertex, on the machinery of EG caps
 //! ([`crate::schemes::eg::surface`]: the same d-net, local Catmull-Clark step, fill and fallback).
 //!
-//! Valence 3 uses EG's rules (QAS keeps the earlier QAS paper's rules there, which are not in the
-//! corpus); other valences fall back to Catmull-Clark or stop with an error, as the user chooses.
+//! The tables of each valence are chosen by [`super::select`]: printed at 5, 6, 7, fairsub's
+//! derived ones at 8..=16 (and at 5..7 with `--rules derived`), named in the notes
+//! (`qas-plus (derived rules, n = 8)`). Valence 3 uses EG's rules (QAS keeps the earlier QAS
+//! paper's rules there, which are not in the corpus), 4 regular bi-4 refinement; valences above
+//! 16 fall back to Catmull-Clark or stop with an error, as the user chooses.
 //! The initial quadratic expansion is fairsub's `qas-fit` ([`crate::schemes::qas::fit_stencils`]).
 
+use super::bi3::QasBi3;
+use super::select::{self, QasSelected};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::SurfaceOutput;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::eg::surface::{DnetRules, EgOptions, EgRulesProvider, dnet_complex};
+use crate::schemes::descriptor::{RulesChoice, RulesOrigin, SchemeId};
+use crate::schemes::eg::derive::MAX_VALENCE;
+use crate::schemes::eg::surface::{DnetRules, EgOptions, Used, dnet_complex};
 use crate::schemes::eg::{Eg, EgStep};
+use crate::schemes::qas;
 use crate::schemes::qas::QSpec;
-use crate::schemes::qas::{self, Qas};
 use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::BTreeMap;
@@ -43,42 +50,65 @@ impl Contraction {
     }
 }
 
-struct QasRulesProvider {
-    contraction: Contraction,
-    overrides: BTreeMap<u32, QSpec>,
-    bi3: bool,
+/// The rules of a QAS+ variant per valence ([`super::select`]).
+pub(crate) struct QasRulesProvider {
+    /// The variant's name (in notes).
+    pub(crate) id: SchemeId,
+    /// The contraction schedule.
+    pub(crate) contraction: Contraction,
+    /// User-given expansions per input vertex.
+    pub(crate) overrides: BTreeMap<u32, QSpec>,
+    /// QAS+^3 (bi-3 rings) instead of QAS+^4.
+    pub(crate) bi3: bool,
+    /// Printed or derived tables where both exist.
+    pub(crate) choice: RulesChoice,
+}
+
+impl QasRulesProvider {
+    /// The rules of valence `n` (an error where none exist).
+    fn rules(&self, n: usize) -> Result<QasSelected> {
+        select::select(n, self.choice)?
+            .ok_or_else(|| Error::Unsupported(select::no_rules(self.id, n)))
+    }
 }
 
 impl DnetRules for QasRulesProvider {
     fn primary(&self) -> &'static str {
-        ids::QAS_PLUS.name()
+        self.id.name()
     }
 
-    fn rules_name(&self, n: usize) -> Option<&'static str> {
-        if qas::tables::COMPLETE_VALENCES.contains(&n) {
-            Some(ids::QAS_PLUS.name())
-        } else {
-            EgRulesProvider.rules_name(n)
-        }
+    fn used(&self, n: usize) -> Result<Option<Used>> {
+        let Some(origin) = select::origin(n, self.choice) else {
+            return Ok(None);
+        };
+        Ok(Some(match origin {
+            RulesOrigin::Printed => Used::Own,
+            RulesOrigin::Derived => Used::Derived {
+                label: format!("{} (derived rules, n = {n})", self.id),
+                chosen: select::printed_exists(n),
+            },
+            // EG's rules at 3 (printed or derived), regular bi-4 at 4.
+            _ => {
+                let sel = self.rules(n)?;
+                Used::Borrowed(select::label(self.id, n, &sel))
+            }
+        }))
     }
 
     fn init(&self, n: usize) -> Result<StencilTable> {
-        if qas::tables::COMPLETE_VALENCES.contains(&n) && self.bi3 {
-            qas::bi3::from_cnet(n)
-        } else if qas::tables::COMPLETE_VALENCES.contains(&n) {
-            qas::from_cnet(n)
-        } else {
-            EgRulesProvider.init(n)
+        match self.rules(n)? {
+            QasSelected::Qas { qas, .. } if self.bi3 => qas::bi3::from_cnet_of(&qas),
+            QasSelected::Qas { qas, .. } => qas.from_cnet(),
+            QasSelected::Eg(_) => crate::schemes::eg::from_cnet(n),
         }
     }
 
     fn step(&self, n: usize, k: usize) -> Result<EgStep> {
-        if qas::tables::COMPLETE_VALENCES.contains(&n) && self.bi3 {
-            qas::bi3::QasBi3::new(n)?.step(self.contraction.at(k))
-        } else if qas::tables::COMPLETE_VALENCES.contains(&n) {
-            Qas::new(n)?.step(self.contraction.at(k))
-        } else {
-            Eg::new(n)?.step()
+        let lambda = self.contraction.at(k);
+        match self.rules(n)? {
+            QasSelected::Qas { qas, .. } if self.bi3 => QasBi3::with_qas(qas).step(lambda),
+            QasSelected::Qas { qas, .. } => qas.step(lambda),
+            QasSelected::Eg(e) => Eg::with_rules(e.rules).step(),
         }
     }
 
@@ -87,10 +117,7 @@ impl DnetRules for QasRulesProvider {
     }
 
     fn no_rules(&self, n: usize) -> String {
-        format!(
-            "valence {n}: QAS+ has published rules for valences 5, 6, 7 (and EG's for 3); use --fallback {}",
-            ids::CATMULL_CLARK
-        )
+        select::no_rules(self.id, n)
     }
 
     fn adjust(&self, n: usize, element: Element, x: &mut [Point]) -> Result<()> {
@@ -100,9 +127,11 @@ impl DnetRules for QasRulesProvider {
         let Some(spec) = self.overrides.get(&v) else {
             return Ok(());
         };
-        if !qas::tables::COMPLETE_VALENCES.contains(&n) {
+        if !matches!(self.rules(n)?, QasSelected::Qas { .. }) {
             return Err(Error::InvalidArgument(format!(
-                "the q file gives an expansion for vertex {v}, which has valence {n}: QAS+ rules exist for 5, 6, 7"
+                "the q file gives an expansion for vertex {v}, which has valence {n}: QAS+ tables \
+                 (with a quadratic expansion) are used at valences 5..={MAX_VALENCE}; valence 3 \
+                 uses EG's rules and 4 regular bi-4 refinement"
             )));
         }
         if let Some(p) = spec.p {
@@ -134,14 +163,69 @@ impl DnetRules for QasRulesProvider {
     }
 }
 
-/// The QAS+ surface of a net, with the elements that fell back and notes for the user.
+/// What selects a QAS variant's rules on a whole mesh.
+#[derive(Debug, Clone)]
+pub struct QasSurface {
+    /// The variant (its name appears in the notes).
+    pub id: SchemeId,
+    /// The contraction schedule.
+    pub contraction: Contraction,
+    /// QAS+^3 (bi-3 rings and fill) instead of QAS+^4.
+    pub bi3: bool,
+    /// Printed or derived tables where both exist.
+    pub rules: RulesChoice,
+    /// User-given expansions per input vertex ([`crate::schemes::qas::parse_q_file`]): given
+    /// coefficients replace those of `qas-fit` and the result must be of the declared kind
+    /// (C^2, C^1 or C^1-C^0), else an error names the vertex, sector and coefficient. Sectors
+    /// are numbered as in [`crate::mesh::PolyMesh::cnet_indices`] at the level where the cap is
+    /// made.
+    pub overrides: BTreeMap<u32, QSpec>,
+}
+
+impl QasSurface {
+    /// QAS+^4 (`qas-plus`) with `contraction`, printed tables where they exist.
+    pub fn new(contraction: Contraction) -> QasSurface {
+        QasSurface {
+            id: ids::QAS_PLUS,
+            contraction,
+            bi3: false,
+            rules: RulesChoice::Printed,
+            overrides: BTreeMap::new(),
+        }
+    }
+}
+
+/// The surface of a net under a QAS variant, with the elements that fell back and the notes
+/// (caps with EG's, regular or derived rules).
+pub fn qas_surface(
+    mesh: &PolyMesh,
+    opts: EgOptions,
+    q: &QasSurface,
+    progress: impl FnMut(usize),
+) -> Result<SurfaceOutput> {
+    dnet_complex(
+        &QasRulesProvider {
+            id: q.id,
+            contraction: q.contraction,
+            overrides: q.overrides.clone(),
+            bi3: q.bi3,
+            choice: q.rules,
+        },
+        mesh,
+        opts,
+        progress,
+    )
+}
+
+/// The QAS+ surface of a net (printed tables where they exist, derived ones elsewhere), with
+/// the elements that fell back and notes for the user.
 pub fn qas_complex(
     mesh: &PolyMesh,
     opts: EgOptions,
     contraction: Contraction,
     progress: impl FnMut(usize),
 ) -> Result<SurfaceOutput> {
-    qas_complex_with(mesh, opts, contraction, BTreeMap::new(), progress)
+    qas_surface(mesh, opts, &QasSurface::new(contraction), progress)
 }
 
 /// QAS+^3: like [`qas_complex`] with the bi-3 rings of [`crate::schemes::qas::bi3`] (12 n bi-3
@@ -152,23 +236,16 @@ pub fn qas_bi3_complex(
     contraction: Contraction,
     progress: impl FnMut(usize),
 ) -> Result<SurfaceOutput> {
-    dnet_complex(
-        &QasRulesProvider {
-            contraction,
-            overrides: BTreeMap::new(),
-            bi3: true,
-        },
-        mesh,
-        opts,
-        progress,
-    )
+    let q = QasSurface {
+        id: ids::QAS_PLUS_BI3,
+        bi3: true,
+        ..QasSurface::new(contraction)
+    };
+    qas_surface(mesh, opts, &q, progress)
 }
 
 /// Like [`qas_complex`], with user-given expansions per input vertex
-/// ([`crate::schemes::qas::parse_q_file`]): given coefficients replace those of `qas-fit` and the
-/// result must be of the declared kind (C^2, C^1 or C^1-C^0), else an error names the vertex,
-/// sector and coefficient. Sectors are numbered as in [`crate::mesh::PolyMesh::cnet_indices`] at the level where
-/// the cap is made.
+/// ([`QasSurface::overrides`]).
 pub fn qas_complex_with(
     mesh: &PolyMesh,
     opts: EgOptions,
@@ -176,14 +253,9 @@ pub fn qas_complex_with(
     overrides: BTreeMap<u32, QSpec>,
     progress: impl FnMut(usize),
 ) -> Result<SurfaceOutput> {
-    dnet_complex(
-        &QasRulesProvider {
-            contraction,
-            overrides,
-            bi3: false,
-        },
-        mesh,
-        opts,
-        progress,
-    )
+    let q = QasSurface {
+        overrides,
+        ..QasSurface::new(contraction)
+    };
+    qas_surface(mesh, opts, &q, progress)
 }
