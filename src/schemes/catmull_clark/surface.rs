@@ -569,28 +569,22 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bezier::Side;
 
-    fn de_casteljau(c: &[Point; 4], t: f64) -> Point {
-        let mut q = *c;
-        for r in 1..4 {
-            for i in 0..4 - r {
-                q[i] = geom::lerp(q[i], q[i + 1], t);
-            }
-        }
-        q[0]
+    fn de_casteljau(c: &[Point], t: f64) -> Point {
+        crate::bezier::curve::eval(c, t)
     }
 
-    fn sides(p: &BezierPatch) -> [[Point; 4]; 4] {
-        [
-            [p.cp(0, 0), p.cp(1, 0), p.cp(2, 0), p.cp(3, 0)],
-            [p.cp(3, 0), p.cp(3, 1), p.cp(3, 2), p.cp(3, 3)],
-            [p.cp(0, 3), p.cp(1, 3), p.cp(2, 3), p.cp(3, 3)],
-            [p.cp(0, 0), p.cp(0, 1), p.cp(0, 2), p.cp(0, 3)],
-        ]
+    /// The four sides of a patch of any degree (the G^1 caps are bi-4 or bi-5).
+    fn sides(p: &BezierPatch) -> Vec<Vec<Point>> {
+        [Side::V0, Side::U1, Side::V1, Side::U0]
+            .into_iter()
+            .map(|s| p.boundary(s))
+            .collect()
     }
 
-    /// Distance from `p` to a cubic curve (dense sampling, then ternary search).
-    fn dist_to_curve(p: Point, c: &[Point; 4]) -> f64 {
+    /// Distance from `p` to a Bezier curve (dense sampling, then ternary search).
+    fn dist_to_curve(p: Point, c: &[Point]) -> f64 {
         let d = |t: f64| geom::dist(p, de_casteljau(c, t));
         let k = (0..=32)
             .min_by(|&a, &b| d(a as f64 / 32.0).total_cmp(&d(b as f64 / 32.0)))
@@ -609,7 +603,7 @@ mod tests {
     /// Largest distance from a boundary sample of a patch to the nearest side curve of another
     /// patch: 0 for a closed C^0 complex (T-junctions included).
     pub(crate) fn max_gap(c: &PatchComplex) -> f64 {
-        let all: Vec<[[Point; 4]; 4]> = c.patches.iter().map(sides).collect();
+        let all: Vec<Vec<Vec<Point>>> = c.patches.iter().map(sides).collect();
         let mut worst: f64 = 0.0;
         for (a, sa) in all.iter().enumerate() {
             for side in sa {
