@@ -46,6 +46,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             ..SchemeOptions::default()
         },
     )?;
+    super::limits::check_analysis(&spec, a.valence, a.replicated_centre)?;
     let r = report::analyze(&spec, a.valence, a.replicated_centre)?;
     if a.json {
         say!(
@@ -143,6 +144,7 @@ pub struct CharmapArgs {
 /// Runs `fairsub charmap`.
 pub fn charmap(a: CharmapArgs) -> Result<()> {
     let spec = spec::resolve(&a.scheme, &SchemeOptions::default())?;
+    super::limits::check_analysis(&spec, a.valence, false)?;
     let (ring, lambda) = report::characteristic_ring(&spec, a.valence)?;
     let cert = certify::certify_ring(&ring, lambda);
     let mut c = PatchComplex::new();

@@ -17,6 +17,7 @@ mod analyze;
 mod check;
 mod demo;
 mod info;
+pub mod limits;
 mod render;
 mod spec;
 mod subdivide;
@@ -105,6 +106,11 @@ A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the bui
 #[derive(Debug, Parser)]
 #[command(name = "fairsub", version, about, long_about = None, after_help = examples())]
 pub struct Cli {
+    /// Memory budget of the command (e.g. 4G, 512M; binary units). Jobs whose estimated size
+    /// exceeds it are refused before anything is allocated. Default: half of the memory the
+    /// process may use (physical memory, ulimit -v / -d, cgroup limit; see `fairsub --help`).
+    #[arg(long, global = true, value_name = "SIZE")]
+    max_memory: Option<String>,
     #[command(subcommand)]
     command: Command,
 }
@@ -163,9 +169,18 @@ as a polyhedron.")]
     },
 }
 
-/// Runs a parsed command line.
+/// Runs a parsed command line (within its memory budget, see [`Cli`]'s `--max-memory`).
 pub fn run(cli: Cli) -> Result<()> {
-    match cli.command {
+    let budget = cli
+        .max_memory
+        .as_deref()
+        .map(limits::parse_memory)
+        .transpose()?;
+    limits::with_budget(budget, || run_command(cli.command))
+}
+
+fn run_command(command: Command) -> Result<()> {
+    match command {
         Command::Info { net, json } => info::run(&net, json),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Render(args) => render::run_render(args),

@@ -178,6 +178,10 @@ pub fn run(a: Args) -> Result<()> {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
     let mesh = nonbox::load_net(&spec, &a.net, &a.fcv)?;
+    if let Some(q) = &a.q_file {
+        // the expansions name vertices of this net: check them against it, at their lines
+        crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
+    }
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
         let complex = build_complex(&spec, &mesh, rings, !a.no_fill)?;
@@ -193,8 +197,10 @@ pub fn run(a: Args) -> Result<()> {
         let levels = a.levels.unwrap_or(1);
         let scheme = mesh_rules(&spec)?;
         if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
+            super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
             return nonbox::write_net(scheme.as_ref(), &mesh, levels, a.limit, fmt, &a.output);
         }
+        super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
         let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?;
         match fmt {
             OutputFormat::Mesh(mf) => crate::io::write_mesh(&a.output, &refined, mf)?,
@@ -251,6 +257,7 @@ pub fn build_complex(
     rings: usize,
     fill: bool,
 ) -> Result<PatchComplex> {
+    super::limits::check_complex(spec, mesh, rings, fill)?;
     let pb = super::progress_bar(rings as u64, &format!("{} rings", spec.name()));
     let o = crate::surface::build(spec, mesh, ComplexOptions { rings, fill }, &mut |l| {
         pb.set_position(l as u64)
@@ -262,20 +269,27 @@ pub fn build_complex(
     Ok(o.complex)
 }
 
-/// Writes a patch complex in the chosen format (meshes get a watertight tessellation).
+/// Writes a patch complex in the chosen format (meshes get a watertight tessellation), after
+/// checking that the output will be valid: finite coefficients, a tessellation within the
+/// budget that is a valid mesh.
 pub fn write_complex(
     c: &PatchComplex,
     fmt: OutputFormat,
     path: &std::path::Path,
     tess: usize,
 ) -> Result<()> {
+    crate::surface::validate::check_finite(c)?;
     match fmt {
         OutputFormat::Bv => crate::io::write_bv(path, c),
         OutputFormat::Iges => crate::io::write_iges(path, c),
         OutputFormat::Mesh(mf) => {
+            super::limits::check_tessellation(c, tess)?;
             let t = crate::surface::tessellate::tessellate(c, tess);
-            let (pos, fs, corners) = t.to_polygons();
-            crate::io::write_polygons(path, &pos, &fs, &corners, mf)
+            // Written only as the mesh a reader would read back (validated, or an error that
+            // names the patch).
+            let mesh = t.to_mesh(c)?;
+            drop(t);
+            crate::io::write_mesh(path, &mesh, mf)
         }
     }
 }

@@ -84,6 +84,31 @@ pub(crate) struct MeshParts {
 /// Half-edges (or vertices) per parallel task in topology passes.
 pub(crate) const CHUNK: usize = 1 << 14;
 
+/// The first vertex that face `f` (corners `face`, all in range) lists twice. Small faces
+/// compare pairs; large faces mark the vertices in `last_face` (face index + 1 per vertex,
+/// sized on first use), so the check is linear in the face size.
+fn repeated_corner(face: &[u32], f: u32, last_face: &mut Vec<u32>) -> Option<usize> {
+    if face.len() <= 16 {
+        for i in 0..face.len() {
+            if face[i + 1..].contains(&face[i]) {
+                return Some(face[i] as usize);
+            }
+        }
+        return None;
+    }
+    let need = face.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
+    if last_face.len() < need {
+        last_face.resize(need, 0);
+    }
+    for &v in face {
+        if last_face[v as usize] == f + 1 {
+            return Some(v as usize);
+        }
+        last_face[v as usize] = f + 1;
+    }
+    None
+}
+
 /// The common size of the faces given by `face_start`, or 0 when sizes differ.
 fn uniform_size(face_start: &[u32]) -> u32 {
     if face_start.len() < 2 {
@@ -142,6 +167,9 @@ impl PolyMesh {
             return Err(MeshError::Empty.into());
         }
         let nv = positions.len();
+        // For large faces: the last face that used each vertex (so a repeat is found in time
+        // linear in the face size); allocated only when a large face appears.
+        let mut last_face: Vec<u32> = Vec::new();
         for f in 0..nf {
             let (a, b) = (face_start[f] as usize, face_start[f + 1] as usize);
             let face = &corners[a..b];
@@ -162,16 +190,8 @@ impl PolyMesh {
                     .into());
                 }
             }
-            for i in 0..face.len() {
-                for j in i + 1..face.len() {
-                    if face[i] == face[j] {
-                        return Err(MeshError::RepeatedVertex {
-                            face: f,
-                            vertex: face[i] as usize,
-                        }
-                        .into());
-                    }
-                }
+            if let Some(vertex) = repeated_corner(face, f as u32, &mut last_face) {
+                return Err(MeshError::RepeatedVertex { face: f, vertex }.into());
             }
         }
         for (i, p) in positions.iter().enumerate() {

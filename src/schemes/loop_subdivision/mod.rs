@@ -478,6 +478,10 @@ impl Loop {
 }
 
 impl Scheme for Loop {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::triangle(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::LOOP.name()
     }

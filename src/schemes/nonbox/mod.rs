@@ -456,6 +456,10 @@ pub fn input_notes(four_dir: bool, mesh: &PolyMesh) -> Vec<String> {
 }
 
 impl Scheme for NonBox {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::primal_quad_with_face_points(s)
+    }
+
     fn fcv_layout(&self) -> crate::schemes::FcvLayout {
         crate::schemes::FcvLayout::Quads
     }

@@ -37,6 +37,7 @@ pub mod bi3;
 pub mod chi;
 pub mod derive;
 pub mod facts;
+pub mod qfile;
 pub mod tables;
 
 use crate::error::{Error, Result};

@@ -285,6 +285,10 @@ fn ring_point_stencil(mesh: &PolyMesh, p: usize, v: usize) -> Result<Stencil> {
 }
 
 impl Scheme for PolarBi2 {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::ternary(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::POLAR_BI2.name()
     }
