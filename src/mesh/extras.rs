@@ -272,7 +272,7 @@ impl PolyMesh {
             let faces: Vec<u32> = nm.edge_sides(e).iter().map(|&h| self.he_face(h)).collect();
             return Err(Error::Unsupported(format!(
                 "{what} a manifold net, but edge {a}-{b} is non-manifold (used by faces {faces:?}); \
-                 only catmull-clark and loop refine such nets (--levels)"
+                 only the schemes with OpenSubdiv's rules (Catmull-Clark, Loop) refine such nets (--levels)"
             )));
         }
         let v = nm.vertices.first().copied().unwrap_or(0);
@@ -282,8 +282,8 @@ impl PolyMesh {
             "joins separate fans of faces"
         };
         Err(Error::Unsupported(format!(
-            "{what} a manifold net, but vertex {v} {why} (non-manifold); only catmull-clark and \
-             loop refine such nets (--levels)"
+            "{what} a manifold net, but vertex {v} {why} (non-manifold); only the schemes with \
+             OpenSubdiv's rules (Catmull-Clark, Loop) refine such nets (--levels)"
         )))
     }
 

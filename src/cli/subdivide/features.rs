@@ -134,7 +134,7 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
     if ex.has_features() {
         return Err(Error::Unsupported(format!(
             "{arg} tags sharp features ({} sharp edges, {} sharp vertices, {} holes), which {what}; \
-             refine it with --levels and catmull-clark or loop (OpenSubdiv's rules), or remove \
+             refine it with --levels and a scheme with OpenSubdiv's rules (Catmull-Clark, Loop), or remove \
              the tags",
             ex.sharp_edges.len(),
             ex.sharp_vertices.len(),

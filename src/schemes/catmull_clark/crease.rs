@@ -647,6 +647,3 @@ pub(crate) enum ChildEdge {
     /// Its end points.
     Pair([u32; 2]),
 }
-
-#[cfg(test)]
-mod tests;
