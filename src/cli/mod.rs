@@ -196,6 +196,11 @@ fn run_command(command: Command) -> Result<()> {
 
 /// Loads a net from a file or from the gallery (`gallery:NAME`); prints its warnings.
 pub fn load_net(arg: &str) -> Result<LoadedMesh> {
+    load_net_as(arg, false)
+}
+
+/// [`load_net`], tolerantly with `tolerant` (see [`crate::io::read_mesh_as`]).
+pub fn load_net_as(arg: &str, tolerant: bool) -> Result<LoadedMesh> {
     let loaded = if let Some(name) = arg.strip_prefix("gallery:") {
         let all = crate::gallery::all();
         match all.into_iter().find(|(n, _)| n == name) {
@@ -210,7 +215,7 @@ pub fn load_net(arg: &str) -> Result<LoadedMesh> {
             }
         }
     } else {
-        crate::io::read_mesh(std::path::Path::new(arg))?
+        crate::io::read_mesh_as(std::path::Path::new(arg), tolerant)?
     };
     for w in &loaded.warnings {
         eprintln!("warning: {arg}: {w}");

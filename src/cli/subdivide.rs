@@ -9,7 +9,10 @@ use crate::schemes::{Scheme, Spec, registry};
 use crate::surface::{ComplexOptions, PatchComplex};
 use std::path::PathBuf;
 
+mod features;
 mod nonbox;
+
+pub use features::FeatureArgs;
 
 /// Arguments of `fairsub subdivide`.
 #[derive(Debug, clap::Args)]
@@ -45,6 +48,9 @@ pub struct Args {
     /// Face control vertices (non-box schemes).
     #[command(flatten)]
     pub fcv: nonbox::FcvArgs,
+    /// OpenSubdiv's sharp features and options (Catmull-Clark, Loop).
+    #[command(flatten)]
+    pub features: FeatureArgs,
     /// Output file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -121,6 +127,8 @@ impl Args {
                 poles: &self.pole,
                 q_file: self.q_file.as_deref(),
                 fcv: self.fcv.fcv_scale.is_some() || self.fcv.fcv_file.is_some(),
+                subd: self.features.options(),
+                creases: self.features.creases.is_some(),
             },
         )
     }
@@ -132,7 +140,7 @@ pub const DEFAULT_RINGS: usize = 6;
 /// Runs `fairsub subdivide`.
 pub fn run(a: Args) -> Result<()> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
-    let spec = match a.spec() {
+    let mut spec = match a.spec() {
         Ok(s) => s,
         // An unknown name: the error lists the schemes for what was asked.
         Err(Error::UnknownScheme { name, .. }) => {
@@ -177,10 +185,24 @@ pub fn run(a: Args) -> Result<()> {
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
-    let mesh = nonbox::load_net(&spec, &a.net, &a.fcv)?;
+    let mesh = if features::takes_features(&spec) {
+        features::load_net(&mut spec, &a.features, &a.net, !patches)?
+    } else {
+        nonbox::load_net(&spec, &a.net, &a.fcv)?
+    };
     if let Some(q) = &a.q_file {
         // the expansions name vertices of this net: check them against it, at their lines
         crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
+    }
+    if patches {
+        features::refuse_features(
+            &spec,
+            &mesh,
+            &a.net,
+            "patch output (--rings) does not take yet",
+        )?;
+    } else if !features::takes_features(&spec) {
+        features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
     }
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
@@ -201,7 +223,7 @@ pub fn run(a: Args) -> Result<()> {
             return nonbox::write_net(scheme.as_ref(), &mesh, levels, a.limit, fmt, &a.output);
         }
         super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
-        let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?;
+        let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?.without_holes();
         match fmt {
             OutputFormat::Mesh(mf) => crate::io::write_mesh(&a.output, &refined, mf)?,
             OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,

@@ -12,12 +12,17 @@
 //! `twin(prev(h))`.
 
 mod element;
+mod extras;
+mod general;
 pub mod nets;
+pub mod tags;
 mod topology;
 mod view;
 mod walk;
 
 pub use element::Element;
+pub use extras::{Extras, FaceVarying, ScalarKind, SharpEdges, VertexData};
+pub(crate) use general::NonManifold;
 pub(crate) use topology::number_edges;
 pub(crate) use view::{FaceIndex, MeshView};
 
@@ -45,8 +50,11 @@ pub struct Topology {
     /// boundary).
     pub(crate) edge_he: Vec<u32>,
     /// One outgoing half-edge per vertex: the boundary one for a boundary vertex, else the one
-    /// with the smallest index.
+    /// with the smallest index ([`NONE`] for a vertex no face uses).
     pub(crate) vert_he: Vec<u32>,
+    /// The non-manifold edges and vertices of a net built by the tolerant constructor
+    /// ([`PolyMesh::from_flat_general`]); `None` for a manifold net.
+    pub(crate) nm: Option<Box<NonManifold>>,
 }
 
 /// A validated manifold polygon mesh (a control net).
@@ -67,6 +75,8 @@ pub struct PolyMesh {
     topo: OnceLock<Topology>,
     edges: OnceLock<Vec<[u32; 2]>>,
     dropped: Vec<usize>,
+    /// Sharp features, face-varying and per-vertex data (`None` for a plain net).
+    extras: Option<Box<Extras>>,
 }
 
 /// The parts of a [`PolyMesh`], for refinement kernels that consume their parent level and free
@@ -255,6 +265,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped,
+            extras: None,
         })
     }
 
@@ -275,6 +286,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         })
     }
 
@@ -296,6 +308,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         })
     }
 
@@ -322,6 +335,7 @@ impl PolyMesh {
             topo: topo.map(OnceLock::from).unwrap_or_default(),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         }
     }
 
@@ -357,18 +371,24 @@ impl PolyMesh {
         }
     }
 
-    /// The half-edge topology (built now if this refined mesh did not have it yet).
+    /// The half-edge topology (built now if this refined mesh did not have it yet: strictly,
+    /// or tolerantly where the net is not manifold or has unused vertices).
     #[inline]
     pub(crate) fn topology(&self) -> &Topology {
         self.topo.get_or_init(|| {
+            let nv = self.positions.len();
             Topology::build(
-                self.positions.len(),
+                nv,
                 self.stored_offsets(),
                 &self.corners,
                 self.uniform,
                 false,
             )
-            .expect("a refinement kernel produced an invalid mesh")
+            .ok()
+            .filter(|t| !t.vert_he.contains(&NONE))
+            .unwrap_or_else(|| {
+                Self::general_topology(nv, self.offsets(), &self.corners, self.uniform)
+            })
         })
     }
 

@@ -71,6 +71,11 @@ pub enum ParamKind {
     QFile,
     /// `--fcv-scale`, `--fcv-file`: the face control vertices of the non-box schemes.
     Fcv,
+    /// OpenSubdiv's sharp features and options: `--boundary`, `--crease-method`, `--fvar`,
+    /// `--creases`, the net's crease, corner and hole tags, non-manifold nets.
+    SharpFeatures,
+    /// `--smooth-triangles`: OpenSubdiv's smooth triangle option (Catmull-Clark).
+    SmoothTriangles,
 }
 
 impl ParamKind {
@@ -84,6 +89,8 @@ impl ParamKind {
             ParamKind::Poles => "--pole",
             ParamKind::QFile => "--q-file",
             ParamKind::Fcv => "--fcv-scale / --fcv-file",
+            ParamKind::SharpFeatures => "--boundary / --crease-method / --fvar / --creases",
+            ParamKind::SmoothTriangles => "--smooth-triangles",
         }
     }
 }
@@ -115,6 +122,10 @@ pub struct Params {
     pub poles: Vec<(usize, Point)>,
     /// QAS+: quadratic expansions given by the user, per input vertex.
     pub q_overrides: std::collections::BTreeMap<u32, QSpec>,
+    /// Catmull-Clark, Loop: OpenSubdiv's options (boundary interpolation, crease method,
+    /// triangle subdivision, face-varying interpolation); unset ones fall to the net's tags,
+    /// then to the defaults.
+    pub subd: crate::mesh::tags::SubdOptions,
 }
 
 /// A scheme with its parameters: what a front end passes down.
