@@ -109,12 +109,13 @@ pub enum Error {
     /// The control net is not a valid manifold polygon mesh.
     #[error("invalid mesh: {0}")]
     Mesh(MeshError),
-    /// A file could not be parsed; `line` is 1-based (0 when the position is unknown).
-    #[error("{}:{line}: {msg}", path.display())]
+    /// A file could not be parsed; `line` is 1-based. Shown as `path:line: msg`, or as
+    /// `path: msg` when `line` is 0 (no line known, e.g. binary data).
+    #[error("{}", parse_message(path, *line, msg))]
     Parse {
         /// The file.
         path: PathBuf,
-        /// 1-based line (0 if not applicable, e.g. binary data).
+        /// 1-based line (0 if not applicable, e.g. binary data: then no line is shown).
         line: usize,
         /// What is wrong.
         msg: String,
@@ -154,6 +155,15 @@ pub enum Error {
         /// What is unsupported and what to do.
         msg: String,
     },
+    /// The job would need more memory (or produce more elements) than the budget allows: the
+    /// message gives the estimate, the budget and the options that lower the estimate or raise
+    /// the budget (`--max-memory`). Nothing was allocated for it.
+    #[error("too large: {0}")]
+    TooLarge(String),
+    /// An output would not be valid (geometry that cannot be represented, a tessellation that
+    /// fairsub's own reader would reject); the message names the element. Nothing was written.
+    #[error("invalid output: {0}")]
+    InvalidOutput(String),
     /// A scheme cannot take a face of the net (its size or its neighbourhood).
     #[error("unsupported: {msg}")]
     UnsupportedFace {
@@ -164,6 +174,15 @@ pub enum Error {
     },
 }
 
+/// The text of [`Error::Parse`]: `path:line: msg`, without the line when it is 0.
+fn parse_message(path: &std::path::Path, line: usize, msg: &str) -> String {
+    if line == 0 {
+        format!("{}: {msg}", path.display())
+    } else {
+        format!("{}:{line}: {msg}", path.display())
+    }
+}
+
 impl From<MeshError> for Error {
     fn from(e: MeshError) -> Self {
         Error::Mesh(e)
@@ -172,3 +191,19 @@ impl From<MeshError> for Error {
 
 /// Result alias used throughout the crate.
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_errors_show_a_line_only_when_known() {
+        let at = |line| Error::Parse {
+            path: PathBuf::from("net.obj"),
+            line,
+            msg: "bad".into(),
+        };
+        assert_eq!(at(7).to_string(), "net.obj:7: bad");
+        assert_eq!(at(0).to_string(), "net.obj: bad");
+    }
+}

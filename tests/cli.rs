@@ -241,12 +241,14 @@ fn bad_input_gives_clear_errors_and_exit_code_1() {
             "missing.obj",
         ),
     ];
+    // Doo-Sabin: Catmull-Clark and Loop accept non-manifold nets and repeated vertices as
+    // OpenSubdiv does (tests/osd_peer.rs); the other schemes refuse them.
     for (input, needle) in cases {
         let (code, _, err) = run(&[
             "subdivide",
             &input,
             "--scheme",
-            "catmull-clark",
+            "doo-sabin",
             "--levels",
             "1",
             "-o",

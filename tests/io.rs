@@ -134,7 +134,7 @@ fn failed_writes_leave_no_file() {
         MeshFormat::PlyBinary,
     ] {
         let e = io::write_polygons(&dir.join("x.out"), &bad, &[0, 3], &[0, 1, 2], fmt).unwrap_err();
-        assert!(matches!(e, Error::InvalidArgument(_)), "{e}");
+        assert!(matches!(e, Error::InvalidOutput(_)), "{e}");
     }
     let mut c = PatchComplex::new();
     c.push(

@@ -48,7 +48,8 @@ fn a_plane_has_zero_curvature_at_every_covered_pixel() {
     // three rings: the coefficients of a patch carry rounding errors of the complex's
     // construction, which curvature divides by the patch's squared size (max |H| measured:
     // 1.0e-13 with 3 rings, 4.5e-13 with 4, 1.2e-12 with 6: the input's noise, not the
-    // renderer's)
+    // renderer's). The G^1 cap is the solution of a linear system (its fairness minimisation),
+    // which adds its own rounding: max |H| on the cap measured 1.6e-10, so the bound is 1e-9.
     let net = tilted_plane_net();
     let scene = Scene::patches(cc(&net, 3), Some(net));
     for mode in [Mode::Gauss, Mode::Mean] {
@@ -63,8 +64,8 @@ fn a_plane_has_zero_curvature_at_every_covered_pixel() {
             .collect();
         assert!(covered.len() > 10_000, "{} samples", covered.len());
         for s in &covered {
-            assert!(s.gauss.abs() < 1e-12, "K = {}", s.gauss);
-            assert!(s.mean.abs() < 1e-12, "H = {}", s.mean);
+            assert!(s.gauss.abs() < 1e-9, "K = {}", s.gauss);
+            assert!(s.mean.abs() < 1e-9, "H = {}", s.mean);
         }
         // the automatic range falls back to its floor and the plane is drawn white
         let r = out.range.unwrap();
@@ -551,7 +552,9 @@ fn per_ring_curvature_ranges() {
     let plane = cc(&tilted_plane_net(), 3);
     for g in render::stats::curvature_by_group(&plane, 4) {
         let [lo, hi] = g.mean.unwrap();
-        assert!(lo.abs() < 1e-12 && hi.abs() < 1e-12);
+        // 1e-12 on the rings; the cap's linear solve adds rounding (measured 1.6e-10)
+        let tol = if g.group == "cap" { 1e-9 } else { 1e-12 };
+        assert!(lo.abs() < tol && hi.abs() < tol, "{}: {lo} {hi}", g.group);
     }
 }
 

@@ -22,6 +22,9 @@ use crate::surface::PatchComplex;
 use crate::surface::adjacency::{default_tolerance, shared_boundaries};
 use serde::Serialize;
 
+mod strips;
+use strips::Strips;
+
 /// Deepest de Casteljau splitting of a Jacobian polynomial.
 pub const MAX_DEPTH: usize = 8;
 
@@ -196,18 +199,6 @@ fn side_polyline(p: &BezierPatch, side: Side, k: usize) -> Vec<Point> {
     pts
 }
 
-fn winding(poly: &[Point], o: [f64; 2]) -> i64 {
-    let mut total = 0.0;
-    for k in 0..poly.len() {
-        let a = poly[k];
-        let b = poly[(k + 1) % poly.len()];
-        let (a0, a1) = (a[0] - o[0], a[1] - o[1]);
-        let (b0, b1) = (b[0] - o[0], b[1] - o[1]);
-        total += (a0 * b1 - a1 * b0).atan2(a0 * b0 + a1 * b1);
-    }
-    (total / (2.0 * std::f64::consts::PI)).round() as i64
-}
-
 fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
     let orient = |p: Point, q: Point, r: Point| {
         (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
@@ -215,21 +206,6 @@ fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
     let (d1, d2) = (orient(a, b, c), orient(a, b, d));
     let (d3, d4) = (orient(c, d, a), orient(c, d, b));
     d1 * d2 < 0.0 && d3 * d4 < 0.0
-}
-
-fn is_simple(poly: &[Point]) -> bool {
-    let n = poly.len();
-    for i in 0..n {
-        for j in i + 2..n {
-            if i == 0 && j == n - 1 {
-                continue;
-            }
-            if segments_cross(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n]) {
-                return false;
-            }
-        }
-    }
-    true
 }
 
 /// Chains the open (unshared) sides of a planar ring into closed polylines.
@@ -306,16 +282,17 @@ pub fn certify_ring(ring: &[BezierPatch], lambda: f64) -> InjectivityCertificate
     // Outer first: by largest mean radius.
     let radius = |l: &Vec<Point>| l.iter().map(|p| p[0].hypot(p[1])).sum::<f64>() / l.len() as f64;
     loops.sort_by(|a, b| radius(b).total_cmp(&radius(a)));
-    let windings: Vec<i64> = loops.iter().map(|l| winding(l, [0.0, 0.0])).collect();
-    let simple = loops.iter().all(|l| is_simple(l));
+    let indexed: Vec<Strips<'_>> = loops.iter().map(|l| Strips::new(l)).collect();
+    let windings: Vec<i64> = indexed.iter().map(|l| l.winding([0.0, 0.0])).collect();
+    let simple = indexed.iter().all(|l| l.is_simple());
     let scaled_inside = if loops.len() == 2 {
-        let inner = &loops[1];
+        let inner = &indexed[1];
         ring.iter().all(|p| {
             (1..8).all(|i| {
                 (1..8).all(|j| {
                     let q = p.eval(i as f64 / 8.0, j as f64 / 8.0);
-                    winding(inner, [lambda * q[0], lambda * q[1]]).abs() == 1
-                        && winding(inner, [q[0], q[1]]) == 0
+                    inner.winding([lambda * q[0], lambda * q[1]]).abs() == 1
+                        && inner.winding([q[0], q[1]]) == 0
                 })
             })
         })

@@ -130,13 +130,33 @@ pub fn curve_stencils(m: &Matrix, nodes: &[usize]) -> Vec<Stencil> {
 /// # Panics
 /// Panics when `net.len() != mu.ncols() * mv.ncols()`.
 pub fn tensor_stencils(mu: &Matrix, mv: &Matrix, net: &[usize]) -> Vec<Stencil> {
-    let (nk, nl) = (mu.ncols(), mv.ncols());
-    assert_eq!(net.len(), nk * nl, "net size does not match matrices");
-    let mut out = Vec::with_capacity(mu.nrows() * mv.nrows());
+    assert_eq!(
+        net.len(),
+        mu.ncols() * mv.ncols(),
+        "net size does not match matrices"
+    );
+    let mut rows: Vec<Vec<(usize, f64)>> = Vec::with_capacity(mu.nrows() * mv.nrows());
+    tensor_weights(mu, mv, |first, node, w| {
+        if first {
+            rows.push(Vec::new());
+        }
+        if let (Some(w), Some(row)) = (w, rows.last_mut()) {
+            row.push((net[node], w));
+        }
+    });
+    rows.into_iter().map(Stencil::from_pairs).collect()
+}
+
+/// Visits the weights of the tensor-product conversion in patch order: for every coefficient
+/// `(i, j)` (row-major) first a call `(true, 0, None)`, then `(false, k * mv.ncols() + l, Some(w))`
+/// for every non-zero `w = mu[i][k] mv[j][l]`, `k` then `l` increasing. The one definition of
+/// the weights behind [`tensor_stencils`] and [`tensor_apply`].
+fn tensor_weights(mu: &Matrix, mv: &Matrix, mut f: impl FnMut(bool, usize, Option<f64>)) {
+    let nl = mv.ncols();
     for i in 0..mu.nrows() {
         for j in 0..mv.nrows() {
-            let mut pairs = Vec::new();
-            for k in 0..nk {
+            f(true, 0, None);
+            for k in 0..mu.ncols() {
                 let a = mu[(i, k)];
                 if a == 0.0 {
                     continue;
@@ -144,29 +164,39 @@ pub fn tensor_stencils(mu: &Matrix, mv: &Matrix, net: &[usize]) -> Vec<Stencil> 
                 for l in 0..nl {
                     let b = mv[(j, l)];
                     if b != 0.0 {
-                        pairs.push((net[k * nl + l], a * b));
+                        f(false, k * nl + l, Some(a * b));
                     }
                 }
             }
-            out.push(Stencil::from_pairs(pairs));
         }
     }
-    out
 }
 
 /// The tensor-product conversion applied to points: `net[k * mv.ncols() + l]` is `d[k][l]`
 /// (`k` along `u`); returns the patch of bi-degree `(mu.nrows() - 1, mv.nrows() - 1)`.
-/// Computed by applying the stencils of [`tensor_stencils`], so both forms share one set of
-/// weights.
+/// The weights are those of [`tensor_stencils`] (the same products, summed in the same order).
 ///
 /// # Panics
 /// Panics when `net.len() != mu.ncols() * mv.ncols()` or a matrix has no rows.
 pub fn tensor_apply(mu: &Matrix, mv: &Matrix, net: &[Point]) -> BezierPatch {
-    let idx: Vec<usize> = (0..net.len()).collect();
-    let cps = tensor_stencils(mu, mv, &idx)
-        .iter()
-        .map(|s| s.apply(net))
-        .collect();
+    assert_eq!(
+        net.len(),
+        mu.ncols() * mv.ncols(),
+        "net size does not match matrices"
+    );
+    // Applied directly, without building stencils: this is the hot path of every regular patch.
+    let mut cps: Vec<Point> = Vec::with_capacity(mu.nrows() * mv.nrows());
+    tensor_weights(mu, mv, |first, node, w| {
+        if first {
+            cps.push([0.0; 3]);
+        }
+        if let (Some(w), Some(acc)) = (w, cps.last_mut()) {
+            let p = &net[node];
+            for d in 0..3 {
+                acc[d] += w * p[d];
+            }
+        }
+    });
     BezierPatch::new(mu.nrows() - 1, mv.nrows() - 1, cps)
 }
 

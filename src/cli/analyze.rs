@@ -51,6 +51,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
             ..SchemeOptions::default()
         },
     )?;
+    super::limits::check_analysis(&spec, a.valence, a.replicated_centre)?;
     let r = report::analyze(&spec, a.valence, a.replicated_centre)?;
     if a.json {
         say!(
@@ -160,6 +161,7 @@ pub fn charmap(a: CharmapArgs) -> Result<()> {
             ..SchemeOptions::default()
         },
     )?;
+    super::limits::check_analysis(&spec, a.valence, false)?;
     let (ring, lambda) = report::characteristic_ring(&spec, a.valence)?;
     let cert = certify::certify_ring(&ring, lambda);
     let mut c = PatchComplex::new();

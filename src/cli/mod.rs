@@ -17,6 +17,7 @@ mod analyze;
 mod check;
 mod demo;
 mod info;
+pub mod limits;
 mod render;
 mod spec;
 mod subdivide;
@@ -105,6 +106,11 @@ A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the bui
 #[derive(Debug, Parser)]
 #[command(name = "fairsub", version, about, long_about = None, after_help = examples())]
 pub struct Cli {
+    /// Memory budget of the command (e.g. 4G, 512M; binary units). Jobs whose estimated size
+    /// exceeds it are refused before anything is allocated. Default: half of the memory the
+    /// process may use (physical memory, ulimit -v / -d, cgroup limit; see `fairsub --help`).
+    #[arg(long, global = true, value_name = "SIZE")]
+    max_memory: Option<String>,
     #[command(subcommand)]
     command: Command,
 }
@@ -163,9 +169,18 @@ as a polyhedron.")]
     },
 }
 
-/// Runs a parsed command line.
+/// Runs a parsed command line (within its memory budget, see [`Cli`]'s `--max-memory`).
 pub fn run(cli: Cli) -> Result<()> {
-    match cli.command {
+    let budget = cli
+        .max_memory
+        .as_deref()
+        .map(limits::parse_memory)
+        .transpose()?;
+    limits::with_budget(budget, || run_command(cli.command))
+}
+
+fn run_command(command: Command) -> Result<()> {
+    match command {
         Command::Info { net, json } => info::run(&net, json),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Render(args) => render::run_render(args),
@@ -181,6 +196,11 @@ pub fn run(cli: Cli) -> Result<()> {
 
 /// Loads a net from a file or from the gallery (`gallery:NAME`); prints its warnings.
 pub fn load_net(arg: &str) -> Result<LoadedMesh> {
+    load_net_as(arg, false)
+}
+
+/// [`load_net`], tolerantly with `tolerant` (see [`crate::io::read_mesh_as`]).
+pub fn load_net_as(arg: &str, tolerant: bool) -> Result<LoadedMesh> {
     let loaded = if let Some(name) = arg.strip_prefix("gallery:") {
         let all = crate::gallery::all();
         match all.into_iter().find(|(n, _)| n == name) {
@@ -195,7 +215,7 @@ pub fn load_net(arg: &str) -> Result<LoadedMesh> {
             }
         }
     } else {
-        crate::io::read_mesh(std::path::Path::new(arg))?
+        crate::io::read_mesh_as(std::path::Path::new(arg), tolerant)?
     };
     for w in &loaded.warnings {
         eprintln!("warning: {arg}: {w}");

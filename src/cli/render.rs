@@ -334,6 +334,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
             "--levels and --rings need --scheme".into(),
         ));
     }
+    super::limits::check_render(opts.width, opts.height, opts.supersample, 1)?;
     let mut rings = None;
     let scene = if bv {
         bv_scene(&a.net)?
@@ -343,6 +344,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
             (None, _) => Scene::mesh(&net),
             (Some(s), Some(levels)) => {
                 let rules = super::subdivide::mesh_rules(s)?;
+                super::limits::check_levels(rules.as_ref(), &net, levels)?;
                 let fine = super::subdivide::refine_with(rules.as_ref(), &net, levels, false)?;
                 let mut scene = Scene::mesh(&fine);
                 scene.net = Some(net);
@@ -493,6 +495,12 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     let opts = a
         .look
         .options((400, 400), modes.first().copied().unwrap_or(Mode::Shaded))?;
+    super::limits::check_render(
+        opts.width,
+        opts.height,
+        opts.supersample,
+        schemes.len() * modes.len(),
+    )?;
     let (panel, scenes) = compare_panel(&net, &schemes, &modes, a.rings, !a.no_fill, &opts)?;
     panel.image.write_png(&a.output)?;
     if a.json {

@@ -27,6 +27,10 @@ pub struct SchemeOptions<'a> {
     pub fcv: bool,
     /// `--rules`.
     pub rules: Option<RulesChoice>,
+    /// `--boundary`, `--crease-method`, `--smooth-triangles`, `--fvar`.
+    pub subd: crate::mesh::tags::SubdOptions,
+    /// Whether `--creases` was given.
+    pub creases: bool,
 }
 
 /// The names of the schemes that take `kind`, in catalogue order.
@@ -122,6 +126,28 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
         }
         spec.params.rules = r;
     }
+    let s = o.subd;
+    if (s.boundary.is_some() || s.crease_method.is_some() || s.fvar.is_some() || o.creases)
+        && !takes(&spec, ParamKind::SharpFeatures)
+    {
+        return Err(Error::InvalidArgument(format!(
+            "{} set OpenSubdiv's sharp features and options, which {} take, not '{name}'",
+            ParamKind::SharpFeatures.option(),
+            and_list(&takers(ParamKind::SharpFeatures))
+        )));
+    }
+    if s.triangles.is_some() && !takes(&spec, ParamKind::SmoothTriangles) {
+        return Err(Error::InvalidArgument(format!(
+            "--smooth-triangles is OpenSubdiv's Catmark option, which {} take{}, not '{name}'",
+            and_list(&takers(ParamKind::SmoothTriangles)),
+            if takers(ParamKind::SmoothTriangles).len() == 1 {
+                "s"
+            } else {
+                ""
+            }
+        )));
+    }
+    spec.params.subd = s;
     if let Some(f) = o.fallback {
         spec.params.fallback = f;
     }

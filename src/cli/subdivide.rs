@@ -9,7 +9,10 @@ use crate::schemes::{Scheme, Spec, registry};
 use crate::surface::{ComplexOptions, PatchComplex};
 use std::path::PathBuf;
 
+mod features;
 mod nonbox;
+
+pub use features::FeatureArgs;
 
 /// Arguments of `fairsub subdivide`.
 #[derive(Debug, clap::Args)]
@@ -45,6 +48,9 @@ pub struct Args {
     /// Face control vertices (non-box schemes).
     #[command(flatten)]
     pub fcv: nonbox::FcvArgs,
+    /// OpenSubdiv's sharp features and options (Catmull-Clark, Loop).
+    #[command(flatten)]
+    pub features: FeatureArgs,
     /// Output file.
     #[arg(long, short)]
     pub output: PathBuf,
@@ -126,6 +132,8 @@ impl Args {
                 q_file: self.q_file.as_deref(),
                 fcv: self.fcv.fcv_scale.is_some() || self.fcv.fcv_file.is_some(),
                 rules: self.rules.map(Into::into),
+                subd: self.features.options(),
+                creases: self.features.creases.is_some(),
             },
         )
     }
@@ -137,7 +145,7 @@ pub const DEFAULT_RINGS: usize = 6;
 /// Runs `fairsub subdivide`.
 pub fn run(a: Args) -> Result<()> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
-    let spec = match a.spec() {
+    let mut spec = match a.spec() {
         Ok(s) => s,
         // An unknown name: the error lists the schemes for what was asked.
         Err(Error::UnknownScheme { name, .. }) => {
@@ -182,7 +190,25 @@ pub fn run(a: Args) -> Result<()> {
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
-    let mesh = nonbox::load_net(&spec, &a.net, &a.fcv)?;
+    let mesh = if features::takes_features(&spec) {
+        features::load_net(&mut spec, &a.features, &a.net, !patches)?
+    } else {
+        nonbox::load_net(&spec, &a.net, &a.fcv)?
+    };
+    if let Some(q) = &a.q_file {
+        // the expansions name vertices of this net: check them against it, at their lines
+        crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
+    }
+    if patches {
+        features::refuse_features(
+            &spec,
+            &mesh,
+            &a.net,
+            "patch output (--rings) does not take yet",
+        )?;
+    } else if !features::takes_features(&spec) {
+        features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
+    }
     if patches {
         let rings = a.rings.unwrap_or(DEFAULT_RINGS);
         let complex = build_complex(&spec, &mesh, rings, !a.no_fill)?;
@@ -198,9 +224,11 @@ pub fn run(a: Args) -> Result<()> {
         let levels = a.levels.unwrap_or(1);
         let scheme = mesh_rules(&spec)?;
         if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
+            super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
             return nonbox::write_net(scheme.as_ref(), &mesh, levels, a.limit, fmt, &a.output);
         }
-        let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?;
+        super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
+        let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?.without_holes();
         match fmt {
             OutputFormat::Mesh(mf) => crate::io::write_mesh(&a.output, &refined, mf)?,
             OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
@@ -267,6 +295,7 @@ pub fn build_complex_noted(
     rings: usize,
     fill: bool,
 ) -> Result<(PatchComplex, Vec<String>)> {
+    super::limits::check_complex(spec, mesh, rings, fill)?;
     let pb = super::progress_bar(rings as u64, &format!("{} rings", spec.name()));
     let o = crate::surface::build(spec, mesh, ComplexOptions { rings, fill }, &mut |l| {
         pb.set_position(l as u64)
@@ -278,20 +307,27 @@ pub fn build_complex_noted(
     Ok((o.complex, o.notes))
 }
 
-/// Writes a patch complex in the chosen format (meshes get a watertight tessellation).
+/// Writes a patch complex in the chosen format (meshes get a watertight tessellation), after
+/// checking that the output will be valid: finite coefficients, a tessellation within the
+/// budget that is a valid mesh.
 pub fn write_complex(
     c: &PatchComplex,
     fmt: OutputFormat,
     path: &std::path::Path,
     tess: usize,
 ) -> Result<()> {
+    crate::surface::validate::check_finite(c)?;
     match fmt {
         OutputFormat::Bv => crate::io::write_bv(path, c),
         OutputFormat::Iges => crate::io::write_iges(path, c),
         OutputFormat::Mesh(mf) => {
+            super::limits::check_tessellation(c, tess)?;
             let t = crate::surface::tessellate::tessellate(c, tess);
-            let (pos, fs, corners) = t.to_polygons();
-            crate::io::write_polygons(path, &pos, &fs, &corners, mf)
+            // Written only as the mesh a reader would read back (validated, or an error that
+            // names the patch).
+            let mesh = t.to_mesh(c)?;
+            drop(t);
+            crate::io::write_mesh(path, &mesh, mf)
         }
     }
 }

@@ -69,11 +69,19 @@ pub struct LoadedMesh {
 
 /// Reads a mesh, choosing the format by extension (`.obj`, `.off`, `.ply`, case-insensitive).
 pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
+    read_mesh_as(path, false)
+}
+
+/// Reads a mesh like [`read_mesh`]; with `tolerant` it accepts every net OpenSubdiv accepts
+/// (non-manifold edges and vertices, faces that repeat a vertex, unused vertices kept: see
+/// [`PolyMesh::from_flat_general`]), for the schemes that refine them (Catmull-Clark, Loop).
+/// OBJ tags and texture coordinates and PLY vertex properties are read in both modes.
+pub fn read_mesh_as(path: &Path, tolerant: bool) -> Result<LoadedMesh> {
     let ext = format::extension_lowercase(path);
     let reader = match ext.as_deref() {
-        Some("obj") => obj::read_obj_from,
-        Some("off") => off::read_off_from,
-        Some("ply") => ply::read_ply_from,
+        Some("obj") => obj::read_obj_with,
+        Some("off") => off::read_off_with,
+        Some("ply") => ply::read_ply_with,
         other => {
             let what = match other {
                 Some(e) => format!("unknown mesh extension '.{e}'"),
@@ -86,7 +94,11 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
         }
     };
     let file = File::open(path).map_err(|e| io_error(path, e))?;
-    reader(std::io::BufReader::with_capacity(1 << 16, file), path)
+    reader(
+        std::io::BufReader::with_capacity(1 << 16, file),
+        path,
+        tolerant,
+    )
 }
 
 /// Writes a mesh in the given format (atomically).
@@ -155,6 +167,8 @@ pub(crate) struct FileLines<'a> {
 /// The end of every mesh reader: validates the flat arrays as a [`PolyMesh`] and appends the
 /// warning about vertices no face uses to `warnings`. A validation error is reported at the file
 /// line of the face or vertex it names, or, where that line is not known, with the file name.
+/// With `tolerant` the mesh is built by [`PolyMesh::from_flat_general`] (see [`read_mesh_as`])
+/// and a note names its first non-manifold element.
 pub(crate) fn finish_mesh(
     path: &Path,
     positions: Vec<Point>,
@@ -162,7 +176,25 @@ pub(crate) fn finish_mesh(
     corners: Vec<u32>,
     at: &FileLines<'_>,
     warnings: &mut Vec<String>,
+    tolerant: bool,
 ) -> Result<PolyMesh> {
+    if tolerant {
+        let mesh = PolyMesh::from_flat_general(positions, face_start, corners)
+            .map_err(|e| locate_mesh_error(path, e, at))?;
+        if let Err(e) = mesh.require_manifold("fairsub's other schemes need") {
+            let msg = e.to_string();
+            let what = msg
+                .split(", but ")
+                .nth(1)
+                .and_then(|r| r.split(';').next())
+                .unwrap_or("");
+            warnings.push(format!(
+                "the net is not manifold ({what}); it is refined as OpenSubdiv refines such \
+                 nets (non-manifold edges and vertices become infinitely sharp)"
+            ));
+        }
+        return Ok(mesh);
+    }
     let mesh = PolyMesh::from_flat(positions, face_start, corners)
         .map_err(|e| locate_mesh_error(path, e, at))?;
     let d = mesh.dropped_vertices();
@@ -280,6 +312,7 @@ mod tests {
             vec![0, 1, 2, 0, 1, 2],
             &at,
             &mut w,
+            false,
         )
         .unwrap_err();
         assert!(

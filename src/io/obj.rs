@@ -1,19 +1,28 @@
 //! Wavefront OBJ: a hand-written reader and a writer.
 //!
 //! The reader is hand-written (rather than `tobj`) so that every error names the file line. It
-//! reads `v` lines (x y z; an optional w or vertex colour is ignored) and `f` lines (n-gons, in
-//! the forms `v`, `v/vt`, `v//vn`, `v/vt/vn`, with positive or negative, i.e. relative, indices),
-//! joins lines continued with a trailing backslash, skips `#` comments and ignores every other
-//! statement (`vt vn vp g o s usemtl mtllib l p ...`), counting them for one summary warning.
+//! reads `v` lines (x y z; an optional w or vertex colour is ignored), `vt` lines (u v, an
+//! optional w ignored), `f` lines (n-gons, in the forms `v`, `v/vt`, `v//vn`, `v/vt/vn`, with
+//! positive or negative, i.e. relative, indices; the `vt` indices make the net's face-varying
+//! texture coordinates when every face has them) and OpenSubdiv's tag lines `t` (creases,
+//! corners, holes and options: `obj/tags.rs`), joins lines continued with a trailing
+//! backslash, skips `#` comments and ignores every other statement (`vn vp g o s usemtl mtllib
+//! l p ...`), counting them for one summary warning.
 //! Text follows the rule of every reader: invalid UTF-8 only inside comments. The faces are
 //! then validated as a [`PolyMesh`](crate::mesh::PolyMesh); its errors are reported at the
 //! line of the face or vertex they concern.
+
+mod tags;
+
+pub use tags::read_tag_file;
 
 use super::text::{hash_comment, io_error, line_text, parse_error};
 use super::textout::ChunkedText;
 use super::{FileLines, LoadedMesh, Polygons, finish_mesh};
 use crate::error::Result;
 use crate::geom::Point;
+use crate::mesh::FaceVarying;
+use crate::mesh::tags::Tags;
 use std::collections::BTreeMap;
 use std::io::{BufRead, Write};
 use std::path::Path;
@@ -28,6 +37,9 @@ pub fn read_obj(path: &Path) -> Result<LoadedMesh> {
     read_obj_from(std::io::BufReader::with_capacity(1 << 16, file), path)
 }
 
+/// Marks a face corner without a `vt` index.
+const NO_UV: u32 = u32::MAX;
+
 /// The state of the OBJ reader between statements.
 struct ObjState {
     /// What was read so far.
@@ -35,6 +47,8 @@ struct ObjState {
     /// Largest positive index seen: (0-based index, line). Positive indices may refer to
     /// vertices defined later, so they are checked at the end.
     max_index: Option<(usize, usize)>,
+    /// Largest positive `vt` index seen, as for `max_index`.
+    max_uv: Option<(usize, usize)>,
     /// Token ranges of the current statement (reused).
     tokens: Vec<(usize, usize)>,
 }
@@ -75,6 +89,35 @@ fn parse_i64(s: &[u8]) -> Option<i64> {
 }
 
 impl ObjState {
+    /// The 0-based value of a `vt` index of face corner `t` (positive or relative).
+    fn uv_index(&mut self, u: &str, t: &str, line: usize, path: &Path) -> Result<u32> {
+        let idx = parse_i64(u.as_bytes()).ok_or_else(|| {
+            parse_error(
+                path,
+                line,
+                format!("bad texture index in face corner '{t}'"),
+            )
+        })?;
+        let n = self.data.uvs.len();
+        if idx > 0 && idx < u32::MAX as i64 {
+            let k = (idx - 1) as usize;
+            if self.max_uv.is_none_or(|(m, _)| k > m) {
+                self.max_uv = Some((k, line));
+            }
+            Ok(k as u32)
+        } else if idx < 0 && (idx.unsigned_abs() as usize) <= n {
+            Ok((n - idx.unsigned_abs() as usize) as u32)
+        } else {
+            Err(parse_error(
+                path,
+                line,
+                format!(
+                    "texture index {idx} in face corner '{t}' is out of range ({n} 'vt' lines above)"
+                ),
+            ))
+        }
+    }
+
     /// Handles one logical line (continuations joined, line ending removed) that starts on
     /// physical line `line`.
     fn statement(&mut self, bytes: &[u8], line: usize, path: &Path) -> Result<()> {
@@ -156,8 +199,43 @@ impl ObjState {
                 self.data.positions.push(p);
                 self.data.vertex_line.push(line as u32);
             }
+            "vt" => {
+                let mut t = [0.0; 2];
+                for (k, c) in t.iter_mut().enumerate() {
+                    if k + 1 >= tokens.len() {
+                        if k == 1 {
+                            break; // `vt u`: v = 0
+                        }
+                        return Err(parse_error(path, line, "a 'vt' line needs u [v]"));
+                    }
+                    let s = tok(k + 1);
+                    *c = s
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| {
+                            parse_error(
+                                path,
+                                line,
+                                format!("bad texture coordinate '{s}' in a 'vt' line"),
+                            )
+                        })?;
+                }
+                self.data.uvs.push(t);
+            }
+            "t" => {
+                let toks: Vec<&str> = (0..tokens.len()).map(tok).collect();
+                tags::parse_tag(
+                    &toks,
+                    line,
+                    path,
+                    &mut self.data.tags,
+                    &mut self.data.tag_warnings,
+                )?;
+            }
             "f" | "fo" => {
                 let before = self.data.corners.len();
+                let uv_before = self.data.uv_corners.len();
                 for k in 1..tokens.len() {
                     let t = tok(k);
                     let vpart = t.as_bytes().split(|&b| b == b'/').next().unwrap_or(b"");
@@ -206,8 +284,25 @@ impl ObjState {
                         ));
                     };
                     self.data.corners.push(v as u32);
+                    let uv = match t.split('/').nth(1).filter(|u| !u.is_empty()) {
+                        None => NO_UV,
+                        Some(u) => self.uv_index(u, t, line, path)?,
+                    };
+                    self.data.uv_corners.push(uv);
                 }
                 let n = self.data.corners.len() - before;
+                let with_uv = self.data.uv_corners[uv_before..]
+                    .iter()
+                    .filter(|&&u| u != NO_UV)
+                    .count();
+                if with_uv != 0 && with_uv != n {
+                    self.data.uv_mixed.get_or_insert(line);
+                }
+                if with_uv == n {
+                    self.data.faces_with_uv += 1;
+                } else if self.data.faces_with_uv > 0 {
+                    self.data.uv_mixed.get_or_insert(line);
+                }
                 if n < 3 {
                     return Err(parse_error(
                         path,
@@ -234,7 +329,12 @@ impl ObjState {
 
 /// Reads OBJ from any buffered reader; `path` is used in messages only.
 pub fn read_obj_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
-    parse_obj(reader, path)?.into_mesh(path)
+    read_obj_with(reader, path, false)
+}
+
+/// [`read_obj_from`], tolerantly with `tolerant` (see [`super::read_mesh_as`]).
+pub fn read_obj_with<R: BufRead>(reader: R, path: &Path, tolerant: bool) -> Result<LoadedMesh> {
+    parse_obj(reader, path)?.into_mesh_with(path, tolerant)
 }
 
 /// The statements of an OBJ file, before the mesh is built from them.
@@ -248,6 +348,18 @@ pub(crate) struct ObjData {
     ignored: BTreeMap<String, usize>,
     /// The number of physical lines.
     lines: usize,
+    /// `vt` values.
+    uvs: Vec<[f64; 2]>,
+    /// The `vt` index of every face corner ([`NO_UV`] where none is given).
+    uv_corners: Vec<u32>,
+    /// Faces whose every corner has a `vt` index.
+    faces_with_uv: usize,
+    /// The first line of a face whose corners do not all have `vt` indices while others do.
+    uv_mixed: Option<usize>,
+    /// OpenSubdiv's tags (`t` lines).
+    tags: Tags,
+    /// Warnings about tags.
+    tag_warnings: Vec<String>,
 }
 
 impl ObjData {
@@ -258,6 +370,12 @@ impl ObjData {
 
     /// Builds and validates the mesh; errors name the line of the face or vertex concerned.
     pub fn into_mesh(self, path: &Path) -> Result<LoadedMesh> {
+        self.into_mesh_with(path, false)
+    }
+
+    /// [`ObjData::into_mesh`], tolerantly with `tolerant` (see [`super::read_mesh_as`]); the
+    /// tags and texture coordinates are attached to the mesh.
+    pub fn into_mesh_with(self, path: &Path, tolerant: bool) -> Result<LoadedMesh> {
         let ObjData {
             positions,
             vertex_line,
@@ -266,6 +384,12 @@ impl ObjData {
             face_line,
             ignored,
             lines,
+            uvs,
+            uv_corners,
+            faces_with_uv,
+            uv_mixed,
+            tags,
+            tag_warnings,
         } = self;
         if face_line.is_empty() {
             return Err(parse_error(
@@ -284,12 +408,36 @@ impl ObjData {
             vertex: &vl,
             note: NOTE,
         };
-        let mut warnings = Vec::new();
-        let mesh = finish_mesh(path, positions, face_start, corners, &at, &mut warnings)?;
+        let mut warnings = tag_warnings;
+        let nf = face_line.len();
+        let mesh = finish_mesh(
+            path,
+            positions,
+            face_start,
+            corners,
+            &at,
+            &mut warnings,
+            tolerant,
+        )?;
+        let mut mesh = mesh.with_tags(&tags, path)?;
+        if let Some(line) = uv_mixed {
+            warnings.push(format!(
+                "texture coordinates ignored: the face on line {line} has corners without 'vt' \
+                 indices while other faces have them"
+            ));
+        } else if faces_with_uv == nf && nf > 0 {
+            let mut ex = mesh.take_extras().unwrap_or_default();
+            ex.uv = Some(FaceVarying {
+                values: uvs,
+                corners: uv_corners,
+                names: ["u".into(), "v".into()],
+            });
+            mesh.set_extras(Some(ex));
+        }
         if !ignored.is_empty() {
             let list: Vec<String> = ignored.iter().map(|(k, n)| format!("{n} '{k}'")).collect();
             warnings.push(format!(
-                "ignored statements: {} (fairsub reads only 'v' and 'f')",
+                "ignored statements: {} (fairsub reads only 'v', 'vt', 'f' and 't')",
                 list.join(", ")
             ));
         }
@@ -312,8 +460,15 @@ pub(crate) fn parse_obj<R: BufRead>(mut reader: R, path: &Path) -> Result<ObjDat
             face_line: Vec::new(),
             ignored: BTreeMap::new(),
             lines: 0,
+            uvs: Vec::new(),
+            uv_corners: Vec::new(),
+            faces_with_uv: 0,
+            uv_mixed: None,
+            tags: Tags::default(),
+            tag_warnings: Vec::new(),
         },
         max_index: None,
+        max_uv: None,
         tokens: Vec::new(),
     };
     // A logical line being continued (trailing backslash), and the line it started on.
@@ -373,6 +528,19 @@ pub(crate) fn parse_obj<R: BufRead>(mut reader: R, path: &Path) -> Result<ObjDat
         st.statement(&logical, start_line, path)?;
     }
     let mut data = st.data;
+    if let Some((m, line)) = st.max_uv
+        && m >= data.uvs.len()
+    {
+        return Err(parse_error(
+            path,
+            line,
+            format!(
+                "face refers to texture coordinate {}, but the file defines only {} 'vt' lines",
+                m + 1,
+                data.uvs.len()
+            ),
+        ));
+    }
     if let Some((m, line)) = st.max_index
         && m >= data.positions.len()
     {

@@ -23,6 +23,11 @@ pub fn read_off(path: &Path) -> Result<LoadedMesh> {
 
 /// Reads OFF from any reader; `path` is used in messages only.
 pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
+    read_off_with(reader, path, false)
+}
+
+/// [`read_off_from`], tolerantly with `tolerant` (see [`super::read_mesh_as`]).
+pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<LoadedMesh> {
     let bytes = read_all(reader, path)?;
     // Non-empty content lines (comments stripped, trimmed) with their 1-based numbers.
     let mut lines = Lines::new(&bytes, path);
@@ -201,7 +206,15 @@ pub fn read_off_from<R: Read>(reader: R, path: &Path) -> Result<LoadedMesh> {
         vertex: &vl,
         note: " (faces and vertices counted from 0 in file order)",
     };
-    let mesh = finish_mesh(path, positions, face_start, corners, &at, &mut warnings)?;
+    let mesh = finish_mesh(
+        path,
+        positions,
+        face_start,
+        corners,
+        &at,
+        &mut warnings,
+        tolerant,
+    )?;
     Ok(LoadedMesh { mesh, warnings })
 }
 

@@ -40,8 +40,9 @@ impl<'a> Polygons<'a> {
         match first_index(positions.len(), |v| {
             !positions[v].iter().all(|c| c.is_finite())
         }) {
-            Some(v) => Err(Error::InvalidArgument(format!(
-                "cannot write vertex {v}: its coordinates {:?} are not all finite",
+            Some(v) => Err(Error::InvalidOutput(format!(
+                "cannot write vertex {v}: its coordinates {:?} are not all finite (the \
+                 computation overflowed: the input's coordinates are too large; scale them down)",
                 positions[v]
             ))),
             None => Ok(()),

@@ -12,12 +12,17 @@
 //! `twin(prev(h))`.
 
 mod element;
+mod extras;
+mod general;
 pub mod nets;
+pub mod tags;
 mod topology;
 mod view;
 mod walk;
 
 pub use element::Element;
+pub use extras::{Extras, FaceVarying, ScalarKind, SharpEdges, VertexData};
+pub(crate) use general::NonManifold;
 pub(crate) use topology::number_edges;
 pub(crate) use view::{FaceIndex, MeshView};
 
@@ -45,8 +50,11 @@ pub struct Topology {
     /// boundary).
     pub(crate) edge_he: Vec<u32>,
     /// One outgoing half-edge per vertex: the boundary one for a boundary vertex, else the one
-    /// with the smallest index.
+    /// with the smallest index ([`NONE`] for a vertex no face uses).
     pub(crate) vert_he: Vec<u32>,
+    /// The non-manifold edges and vertices of a net built by the tolerant constructor
+    /// ([`PolyMesh::from_flat_general`]); `None` for a manifold net.
+    pub(crate) nm: Option<Box<NonManifold>>,
 }
 
 /// A validated manifold polygon mesh (a control net).
@@ -67,6 +75,8 @@ pub struct PolyMesh {
     topo: OnceLock<Topology>,
     edges: OnceLock<Vec<[u32; 2]>>,
     dropped: Vec<usize>,
+    /// Sharp features, face-varying and per-vertex data (`None` for a plain net).
+    extras: Option<Box<Extras>>,
 }
 
 /// The parts of a [`PolyMesh`], for refinement kernels that consume their parent level and free
@@ -83,6 +93,31 @@ pub(crate) struct MeshParts {
 
 /// Half-edges (or vertices) per parallel task in topology passes.
 pub(crate) const CHUNK: usize = 1 << 14;
+
+/// The first vertex that face `f` (corners `face`, all in range) lists twice. Small faces
+/// compare pairs; large faces mark the vertices in `last_face` (face index + 1 per vertex,
+/// sized on first use), so the check is linear in the face size.
+fn repeated_corner(face: &[u32], f: u32, last_face: &mut Vec<u32>) -> Option<usize> {
+    if face.len() <= 16 {
+        for i in 0..face.len() {
+            if face[i + 1..].contains(&face[i]) {
+                return Some(face[i] as usize);
+            }
+        }
+        return None;
+    }
+    let need = face.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
+    if last_face.len() < need {
+        last_face.resize(need, 0);
+    }
+    for &v in face {
+        if last_face[v as usize] == f + 1 {
+            return Some(v as usize);
+        }
+        last_face[v as usize] = f + 1;
+    }
+    None
+}
 
 /// The common size of the faces given by `face_start`, or 0 when sizes differ.
 fn uniform_size(face_start: &[u32]) -> u32 {
@@ -142,6 +177,9 @@ impl PolyMesh {
             return Err(MeshError::Empty.into());
         }
         let nv = positions.len();
+        // For large faces: the last face that used each vertex (so a repeat is found in time
+        // linear in the face size); allocated only when a large face appears.
+        let mut last_face: Vec<u32> = Vec::new();
         for f in 0..nf {
             let (a, b) = (face_start[f] as usize, face_start[f + 1] as usize);
             let face = &corners[a..b];
@@ -162,16 +200,8 @@ impl PolyMesh {
                     .into());
                 }
             }
-            for i in 0..face.len() {
-                for j in i + 1..face.len() {
-                    if face[i] == face[j] {
-                        return Err(MeshError::RepeatedVertex {
-                            face: f,
-                            vertex: face[i] as usize,
-                        }
-                        .into());
-                    }
-                }
+            if let Some(vertex) = repeated_corner(face, f as u32, &mut last_face) {
+                return Err(MeshError::RepeatedVertex { face: f, vertex }.into());
             }
         }
         for (i, p) in positions.iter().enumerate() {
@@ -235,6 +265,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped,
+            extras: None,
         })
     }
 
@@ -255,6 +286,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         })
     }
 
@@ -276,6 +308,7 @@ impl PolyMesh {
             topo: OnceLock::from(topo),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         })
     }
 
@@ -302,6 +335,7 @@ impl PolyMesh {
             topo: topo.map(OnceLock::from).unwrap_or_default(),
             edges: OnceLock::new(),
             dropped: Vec::new(),
+            extras: None,
         }
     }
 
@@ -337,18 +371,24 @@ impl PolyMesh {
         }
     }
 
-    /// The half-edge topology (built now if this refined mesh did not have it yet).
+    /// The half-edge topology (built now if this refined mesh did not have it yet: strictly,
+    /// or tolerantly where the net is not manifold or has unused vertices).
     #[inline]
     pub(crate) fn topology(&self) -> &Topology {
         self.topo.get_or_init(|| {
+            let nv = self.positions.len();
             Topology::build(
-                self.positions.len(),
+                nv,
                 self.stored_offsets(),
                 &self.corners,
                 self.uniform,
                 false,
             )
-            .expect("a refinement kernel produced an invalid mesh")
+            .ok()
+            .filter(|t| !t.vert_he.contains(&NONE))
+            .unwrap_or_else(|| {
+                Self::general_topology(nv, self.offsets(), &self.corners, self.uniform)
+            })
         })
     }
 

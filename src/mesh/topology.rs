@@ -158,6 +158,7 @@ impl Topology {
             he_edge,
             edge_he,
             vert_he,
+            nm: None,
         })
     }
 }

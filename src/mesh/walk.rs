@@ -54,11 +54,14 @@ impl PolyMesh {
     /// counter-clockwise order, without repetition.
     pub fn one_ring(&self, v: usize) -> Vec<u32> {
         let mut out = Vec::new();
+        // Linear in the size of the ring (a high-valence fan would be quadratic with
+        // `Vec::contains`).
+        let mut seen = std::collections::HashSet::new();
         for h in self.outgoing_halfedges(v) {
             let mut g = self.he_next(h);
             while self.he_from(g) != v as u32 {
                 let w = self.he_from(g);
-                if !out.contains(&w) {
+                if seen.insert(w) {
                     out.push(w);
                 }
                 g = self.he_next(g);
@@ -70,18 +73,19 @@ impl PolyMesh {
     /// The two-ring of `v`: vertices of faces around one-ring vertices that are neither `v` nor in
     /// its one-ring (sorted by index).
     pub fn two_ring(&self, v: usize) -> Vec<u32> {
-        let ring1 = self.one_ring(v);
+        let ring1: std::collections::HashSet<u32> = self.one_ring(v).into_iter().collect();
         let mut out = Vec::new();
         for &w in &ring1 {
             for f in self.vertex_faces(w as usize) {
                 for &x in self.face(f as usize) {
-                    if x != v as u32 && !ring1.contains(&x) && !out.contains(&x) {
+                    if x != v as u32 && !ring1.contains(&x) {
                         out.push(x);
                     }
                 }
             }
         }
         out.sort_unstable();
+        out.dedup();
         out
     }
 
@@ -125,17 +129,22 @@ impl PolyMesh {
     /// Whether `v` is regular in a quad mesh: interior of valence 4, boundary of valence 3, or a
     /// boundary corner of valence 2, with only quads around it.
     pub fn is_regular_quad_vertex(&self, v: usize) -> bool {
-        let faces_ok = self
-            .vertex_faces(v)
-            .iter()
-            .all(|&f| self.face_size(f as usize) == 4);
-        let n = self.valence(v);
-        faces_ok
-            && if self.is_boundary_vertex(v) {
-                n == 2 || n == 3
-            } else {
-                n == 4
+        // At most five outgoing half-edges are looked at, so the test costs O(1) also at a
+        // vertex of high valence (callers ask it for every cell around such a vertex).
+        let view = self.view();
+        let mut n = 0;
+        for h in view.outgoing(v) {
+            n += 1;
+            if n > 4 || self.face_size(view.face(h) as usize) != 4 {
+                return false;
             }
+        }
+        if self.is_boundary_vertex(v) {
+            // the incoming boundary edge has no outgoing half-edge
+            n == 1 || n == 2
+        } else {
+            n == 4
+        }
     }
 
     /// Extraordinary vertices of a quad-dominant net: vertices that are not

@@ -74,6 +74,11 @@ pub enum ParamKind {
     /// `--rules printed|derived` (or the `-derived` name suffix): the paper's printed rules or
     /// fairsub's derived ones where both exist (EG, QAS+).
     Rules,
+    /// OpenSubdiv's sharp features and options: `--boundary`, `--crease-method`, `--fvar`,
+    /// `--creases`, the net's crease, corner and hole tags, non-manifold nets.
+    SharpFeatures,
+    /// `--smooth-triangles`: OpenSubdiv's smooth triangle option (Catmull-Clark).
+    SmoothTriangles,
 }
 
 impl ParamKind {
@@ -88,6 +93,8 @@ impl ParamKind {
             ParamKind::QFile => "--q-file",
             ParamKind::Fcv => "--fcv-scale / --fcv-file",
             ParamKind::Rules => "--rules",
+            ParamKind::SharpFeatures => "--boundary / --crease-method / --fvar / --creases",
+            ParamKind::SmoothTriangles => "--smooth-triangles",
         }
     }
 }
@@ -160,6 +167,10 @@ pub struct Params {
     pub q_overrides: std::collections::BTreeMap<u32, QSpec>,
     /// EG, QAS+: printed or derived rules where both exist.
     pub rules: RulesChoice,
+    /// Catmull-Clark, Loop: OpenSubdiv's options (boundary interpolation, crease method,
+    /// triangle subdivision, face-varying interpolation); unset ones fall to the net's tags,
+    /// then to the defaults.
+    pub subd: crate::mesh::tags::SubdOptions,
 }
 
 /// A scheme with its parameters: what a front end passes down.

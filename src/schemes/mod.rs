@@ -11,6 +11,7 @@ pub mod catmull_clark;
 pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;
+pub mod growth;
 pub mod guided;
 pub mod local;
 pub mod loop_subdivision;
@@ -65,6 +66,14 @@ pub trait Scheme: Sync {
             progress(l + 1);
         }
         Ok(m.unwrap_or_else(|| mesh.clone()))
+    }
+
+    /// The size of the child of a net of size `s` after one step, with the entries of the
+    /// step's stencil table: what a front end checks against its memory budget before
+    /// refining (see [`growth`]). The default is Catmull-Clark's primal quad split
+    /// ([`growth::primal_quad`]); schemes of other topologies override it.
+    fn step_size(&self, s: &growth::NetSize) -> growth::NetSize {
+        growth::primal_quad(s)
     }
 
     /// How the scheme's nets carry face control vertices (the non-box schemes): their input is

@@ -119,7 +119,11 @@ impl UnionFind {
 /// cluster, ids numbered `0..` in order of first appearance, and the number of clusters.
 ///
 /// A spatial hash with cells of `64 tol` finds the neighbours of a point in one cell, or in up to
-/// 8 near cell borders, so welding is linear in the number of points. `tol <= 0` welds only equal points.
+/// 8 near cell borders. A point within `tol / 64` of a point already kept is welded to it and
+/// not kept itself (kept points are compared with `tol + tol / 64`, so no pair closer than
+/// `tol` is missed), so many coincident points (identical patches, the corners of thousands of
+/// sectors meeting at one centre) cost one comparison each: welding stays linear in the number
+/// of points. `tol <= 0` welds only equal points.
 pub fn weld_points(points: &[Point], tol: f64) -> (Vec<u32>, usize) {
     let n = points.len();
     let mut uf = UnionFind::new(n);
@@ -129,34 +133,41 @@ pub fn weld_points(points: &[Point], tol: f64) -> (Vec<u32>, usize) {
         .filter(|x| x.is_finite())
         .fold(0.0f64, |m, x| m.max(x.abs()));
     let tol = if tol.is_finite() { tol.max(0.0) } else { 0.0 };
-    // Cells much larger than `tol`, so the box `p +- tol` usually lies in one cell (one lookup
-    // per point), and never finer than the rounding level of the coordinates, so keys cannot
-    // overflow.
+    let absorb = tol / 64.0;
+    let reach = tol + absorb;
+    // Cells much larger than `tol`, so the box `p +- reach` usually lies in one cell (one
+    // lookup per point), and never finer than the rounding level of the coordinates, so keys
+    // cannot overflow.
     let cell = (64.0 * tol).max(maxc * 1e-14).max(f64::MIN_POSITIVE);
     let key = |x: f64| (x / cell).floor() as i64;
     let mut head: HashMap<[i64; 3], u32, BuildHasherDefault<CellHasher>> =
         HashMap::with_capacity_and_hasher(n, BuildHasherDefault::default());
     let mut next = vec![u32::MAX; n];
     for (i, p) in points.iter().enumerate() {
-        let lo = [key(p[0] - tol), key(p[1] - tol), key(p[2] - tol)];
-        let hi = [key(p[0] + tol), key(p[1] + tol), key(p[2] + tol)];
+        let lo = [key(p[0] - reach), key(p[1] - reach), key(p[2] - reach)];
+        let hi = [key(p[0] + reach), key(p[1] + reach), key(p[2] + reach)];
+        let mut absorbed = false;
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
                     let mut j = head.get(&[x, y, z]).copied().unwrap_or(u32::MAX);
                     while j != u32::MAX {
-                        if dist(*p, points[j as usize]) <= tol {
+                        let d = dist(*p, points[j as usize]);
+                        if d <= reach || d <= tol {
                             uf.union(i as u32, j);
+                            absorbed |= d <= absorb;
                         }
                         j = next[j as usize];
                     }
                 }
             }
         }
-        let k = [key(p[0]), key(p[1]), key(p[2])];
-        let e = head.entry(k).or_insert(u32::MAX);
-        next[i] = *e;
-        *e = i as u32;
+        if !absorbed {
+            let k = [key(p[0]), key(p[1]), key(p[2])];
+            let e = head.entry(k).or_insert(u32::MAX);
+            next[i] = *e;
+            *e = i as u32;
+        }
     }
     let mut id_of_root = vec![u32::MAX; n];
     let mut ids = Vec::with_capacity(n);
@@ -287,10 +298,19 @@ pub fn shared_boundaries(c: &PatchComplex, tol: f64) -> Vec<SharedBoundary> {
             fill[v as usize] += 1;
         }
     }
+    // non-collapsed sides by their (unordered) pair of end vertices, for edge-to-edge lookups
+    let mut by_ends: Vec<([u32; 2], u32)> = sides
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.collapsed)
+        .map(|(k, s)| (end_pair(s.ends[0], s.ends[1]), k as u32))
+        .collect();
+    by_ends.par_sort_unstable();
     let walker = Walker {
         sides: &sides,
         start: &start,
         incident: &incident,
+        by_ends: &by_ends,
         tol,
     };
     let mut out: Vec<SharedBoundary> = (0..sides.len())
@@ -321,7 +341,22 @@ struct Walker<'a> {
     sides: &'a [SideRec],
     start: &'a [u32],
     incident: &'a [u32],
+    /// Non-collapsed sides sorted by [`end_pair`] of their ends.
+    by_ends: &'a [([u32; 2], u32)],
     tol: f64,
+}
+
+/// The unordered pair of vertices `a`, `b` as a sort key.
+fn end_pair(a: u32, b: u32) -> [u32; 2] {
+    [a.min(b), a.max(b)]
+}
+
+/// The orientations in which side `y` leaves vertex `v`: `(s at v, s at the far end, far
+/// vertex)` (two for a closed side whose ends are both `v`).
+fn orientations(y: &SideRec, v: u32) -> impl Iterator<Item = (f64, f64, u32)> {
+    let a = (y.ends[0] == v).then_some((0.0, 1.0, y.ends[1]));
+    let b = (y.ends[1] == v).then_some((1.0, 0.0, y.ends[0]));
+    a.into_iter().chain(b)
 }
 
 impl Walker<'_> {
@@ -395,25 +430,20 @@ impl Walker<'_> {
         let goal_v = x.ends[if forward { 1 } else { 0 }];
         let cands =
             &self.incident[self.start[v as usize] as usize..self.start[v as usize + 1] as usize];
-        // orientations of a candidate: (s at v, s at the far end, far vertex)
-        let orient = |y: &SideRec| {
-            let mut o = Vec::with_capacity(2);
-            if y.ends[0] == v {
-                o.push((0.0, 1.0, y.ends[1]));
+        // first pass: sides ending where side k ends (edge-to-edge or the last piece), looked
+        // up by their pair of ends, so a vertex shared by thousands of sides costs no scan
+        let pair = end_pair(v, goal_v);
+        let lo = self.by_ends.partition_point(|(p, _)| *p < pair);
+        for &(p, yk) in &self.by_ends[lo..] {
+            if p != pair {
+                break;
             }
-            if y.ends[1] == v {
-                o.push((1.0, 0.0, y.ends[0]));
-            }
-            o
-        };
-        // first pass: sides ending where side k ends (edge-to-edge or the last piece)
-        for &yk in cands {
             let yk = yk as usize;
             if yk == k {
                 continue;
             }
             let y = &self.sides[yk];
-            for (sc, sf, far) in orient(y) {
+            for (sc, sf, far) in orientations(y, v) {
                 if far == goal_v && self.coincide(x, t, goal_t, y, sc, sf) {
                     return Some(Piece {
                         y: yk,
@@ -433,7 +463,7 @@ impl Walker<'_> {
                 continue;
             }
             let y = &self.sides[yk];
-            for (sc, sf, far) in orient(y) {
+            for (sc, sf, far) in orientations(y, v) {
                 if far == goal_v {
                     continue;
                 }

@@ -1,6 +1,6 @@
 //! Exact surfaces of whole nets: the patch complexes of every scheme (regular patches, rings
 //! around extraordinary elements, caps), built by the scheme's rules, and what is computed from
-//! them (tessellations, adjacency of patch sides).
+//! them (tessellations, adjacency of patch sides, the validity checks before output).
 //!
 //! The complex itself ([`PatchComplex`], [`Provenance`]) lives in [`crate::bezier::complex`] and
 //! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
@@ -9,6 +9,7 @@ pub mod adjacency;
 pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;
+pub mod validate;
 
 pub use crate::bezier::complex::{PatchComplex, Provenance};
 pub use crate::mesh::Element;

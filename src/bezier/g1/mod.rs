@@ -109,6 +109,7 @@
 
 pub mod hole;
 mod map;
+pub mod ring;
 mod system;
 #[cfg(test)]
 mod tests;

@@ -33,7 +33,12 @@ pub fn read_ply(path: &Path) -> Result<LoadedMesh> {
 }
 
 /// Reads PLY (any encoding) from a buffered reader; `path` is used in messages only.
-pub fn read_ply_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMesh> {
+pub fn read_ply_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
+    read_ply_with(reader, path, false)
+}
+
+/// [`read_ply_from`], tolerantly with `tolerant` (see [`super::read_mesh_as`]).
+pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> Result<LoadedMesh> {
     let head = header::read_header(&mut reader, path)?;
     let data = payload::read_payload(&mut reader, &head, path)?;
     let nv = data.positions.len();
@@ -61,6 +66,7 @@ pub fn read_ply_from<R: BufRead>(mut reader: R, path: &Path) -> Result<LoadedMes
         data.corners,
         &at,
         &mut warnings,
+        tolerant,
     )?;
     let others: Vec<&str> = head
         .header

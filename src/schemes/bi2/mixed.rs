@@ -120,6 +120,12 @@ fn chosen(mesh: &PolyMesh) -> Result<Box<dyn Scheme>> {
 }
 
 impl Scheme for Bi2Mixed {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        use crate::schemes::growth;
+        // one kind of element per net: the larger of the binary (PGS) and ternary splits
+        growth::larger(&growth::dual(s), &growth::ternary(s))
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::BI2_MIXED.name()
     }

@@ -311,6 +311,10 @@ impl Default for PgsPreprocessed {
 }
 
 impl Scheme for PgsPreprocessed {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::dual(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::PGS_DSCC.name()
     }
@@ -383,6 +387,10 @@ fn add_corner(mesh: &PolyMesh, h: u32, row: &mut RowBuf) {
 }
 
 impl Scheme for Pgs {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::dual(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::PGS.name()
     }

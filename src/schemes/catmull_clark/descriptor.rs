@@ -1,13 +1,12 @@
 //! Catmull-Clark's descriptor: mesh rules, exact patches, local analysis.
 
-use super::CatmullClark;
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, PatchRules, Published, Spec,
-    SurfaceOutput,
+    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
+    Published, Spec, SurfaceOutput,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -26,8 +25,14 @@ impl Descriptor for CcDescriptor {
         }
     }
 
-    fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
-        Ok(Some(Box::new(CatmullClark)))
+    fn params(&self) -> &'static [ParamKind] {
+        &[ParamKind::SharpFeatures, ParamKind::SmoothTriangles]
+    }
+
+    fn mesh_rules(&self, spec: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        Ok(Some(Box::new(super::Configured {
+            options: spec.params.subd,
+        })))
     }
 
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {

@@ -6,13 +6,21 @@
 //! the two rings of faces around them; the children that have become regular are emitted as
 //! ring `l` (the papers' layout: ring `l` lies at refinement level `l`, `3n` patches around an
 //! isolated vertex of valence `n`), the rest is refined again. After `rings` levels the faces
-//! still touching an extraordinary element are closed by the *Hermite-Coons fill* below, or left
-//! open.
+//! still touching an extraordinary element are closed by a G^1 cap or the *Hermite-Coons fill*
+//! below, or left open.
 //!
 //! Only a neighbourhood of the irregular faces is refined, so the cost per level stays
 //! proportional to the number of extraordinary elements. A vertex of a partially refined level is
 //! trusted only where its position and its whole fan of faces are known to equal those of the
 //! uniformly refined mesh; regular patches are emitted only from trusted vertices.
+//!
+//! # Caps
+//!
+//! After `rings` levels every extraordinary element whose hole is surrounded by patches of the
+//! last level gets the G^1 cap of [`g1`] (the module documents its conditions, free parameters
+//! and the extra levels where two holes still touch). The others (extraordinary boundary
+//! vertices, and elements whose holes do not separate) are closed by the Hermite-Coons fill
+//! below, or left open (`--no-fill`).
 //!
 //! # The Hermite-Coons fill (fairsub's own, documented construction)
 //!
@@ -27,6 +35,8 @@
 //! coefficients are those of the bilinearly blended Coons patch of the four curves. The fill is
 //! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
 //! own boundaries. `fairsub check` measures its defects.
+
+mod g1;
 
 use super::regular::bi3_net;
 use super::{CatmullClark, edge_point_stencil, vertex_point_stencil};
@@ -59,7 +69,7 @@ pub fn catmull_clark_complex(
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&CcRules { caps: None }, mesh, opts, &mut progress)
+    adaptive::run(&CcRules { caps: None, opts }, mesh, opts, &mut progress)
 }
 
 /// The Catmull-Clark surface of `mesh` with the caps of `caps` around every extraordinary vertex
@@ -70,7 +80,15 @@ pub fn capped_complex(
     caps: &dyn CapBuilder,
     progress: &mut dyn FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&CcRules { caps: Some(caps) }, mesh, opts, progress)
+    adaptive::run(
+        &CcRules {
+            caps: Some(caps),
+            opts,
+        },
+        mesh,
+        opts,
+        progress,
+    )
 }
 
 /// Catmull-Clark's rules for the adaptive loop, with the caps of a scheme that replaces its
@@ -78,6 +96,8 @@ pub fn capped_complex(
 pub struct CcRules<'a> {
     /// The cap builder, if any.
     pub caps: Option<&'a dyn CapBuilder>,
+    /// Rings and fill (the G^1 caps of [`g1`] come after `opts.rings` levels when filling).
+    pub opts: ComplexOptions,
 }
 
 impl AdaptiveRules for CcRules<'_> {
@@ -132,10 +152,21 @@ impl AdaptiveRules for CcRules<'_> {
         l: usize,
         out: &mut PatchComplex,
     ) -> Result<Vec<(u32, Tag)>> {
-        match self.caps {
-            Some(b) => apply_caps(level, marked, b, l as u32, out),
-            None => Ok(marked),
+        let marked = match self.caps {
+            Some(b) => apply_caps(level, marked, b, l as u32, out)?,
+            None => marked,
+        };
+        if self.opts.fill && l >= self.opts.rings {
+            Ok(g1::g1_caps(level, &marked, out))
+        } else {
+            Ok(marked)
         }
+    }
+
+    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still touch.
+    fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
+        l >= rings
+            && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
     }
 
     fn fill(
@@ -538,28 +569,22 @@ fn fill(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bezier::Side;
 
-    fn de_casteljau(c: &[Point; 4], t: f64) -> Point {
-        let mut q = *c;
-        for r in 1..4 {
-            for i in 0..4 - r {
-                q[i] = geom::lerp(q[i], q[i + 1], t);
-            }
-        }
-        q[0]
+    fn de_casteljau(c: &[Point], t: f64) -> Point {
+        crate::bezier::curve::eval(c, t)
     }
 
-    fn sides(p: &BezierPatch) -> [[Point; 4]; 4] {
-        [
-            [p.cp(0, 0), p.cp(1, 0), p.cp(2, 0), p.cp(3, 0)],
-            [p.cp(3, 0), p.cp(3, 1), p.cp(3, 2), p.cp(3, 3)],
-            [p.cp(0, 3), p.cp(1, 3), p.cp(2, 3), p.cp(3, 3)],
-            [p.cp(0, 0), p.cp(0, 1), p.cp(0, 2), p.cp(0, 3)],
-        ]
+    /// The four sides of a patch of any degree (the G^1 caps are bi-4 or bi-5).
+    fn sides(p: &BezierPatch) -> Vec<Vec<Point>> {
+        [Side::V0, Side::U1, Side::V1, Side::U0]
+            .into_iter()
+            .map(|s| p.boundary(s))
+            .collect()
     }
 
-    /// Distance from `p` to a cubic curve (dense sampling, then ternary search).
-    fn dist_to_curve(p: Point, c: &[Point; 4]) -> f64 {
+    /// Distance from `p` to a Bezier curve (dense sampling, then ternary search).
+    fn dist_to_curve(p: Point, c: &[Point]) -> f64 {
         let d = |t: f64| geom::dist(p, de_casteljau(c, t));
         let k = (0..=32)
             .min_by(|&a, &b| d(a as f64 / 32.0).total_cmp(&d(b as f64 / 32.0)))
@@ -578,7 +603,7 @@ mod tests {
     /// Largest distance from a boundary sample of a patch to the nearest side curve of another
     /// patch: 0 for a closed C^0 complex (T-junctions included).
     pub(crate) fn max_gap(c: &PatchComplex) -> f64 {
-        let all: Vec<[[Point; 4]; 4]> = c.patches.iter().map(sides).collect();
+        let all: Vec<Vec<Vec<Point>>> = c.patches.iter().map(sides).collect();
         let mut worst: f64 = 0.0;
         for (a, sa) in all.iter().enumerate() {
             for side in sa {

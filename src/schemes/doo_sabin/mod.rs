@@ -125,6 +125,10 @@ impl DooSabinCc {
 }
 
 impl Scheme for DooSabin {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::dual(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::DOO_SABIN.name()
     }
@@ -140,6 +144,10 @@ impl Scheme for DooSabin {
 }
 
 impl Scheme for DooSabinCc {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::dual(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::DOO_SABIN_CC.name()
     }

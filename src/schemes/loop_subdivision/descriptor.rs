@@ -1,11 +1,11 @@
 //! Loop's descriptor: mesh rules, exact patches, local analysis.
 
-use super::Loop;
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput,
+    Capabilities, ComplexOptions, Descriptor, LocalRules, ParamKind, PatchRules, Spec,
+    SurfaceOutput,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -28,8 +28,14 @@ impl Descriptor for LoopDescriptor {
         super::require_triangles(mesh, "Loop subdivision needs")
     }
 
-    fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
-        Ok(Some(Box::new(Loop)))
+    fn params(&self) -> &'static [ParamKind] {
+        &[ParamKind::SharpFeatures]
+    }
+
+    fn mesh_rules(&self, spec: &Spec) -> Result<Option<Box<dyn Scheme>>> {
+        Ok(Some(Box::new(super::Configured {
+            options: spec.params.subd,
+        })))
     }
 
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {

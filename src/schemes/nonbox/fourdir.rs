@@ -397,6 +397,10 @@ impl NonBox4Dir {
 }
 
 impl Scheme for NonBox4Dir {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::four_directional(s)
+    }
+
     fn fcv_layout(&self) -> crate::schemes::FcvLayout {
         crate::schemes::FcvLayout::Triangles
     }

@@ -40,6 +40,7 @@ pub mod fit;
 pub use fit::{characteristic_vectors, expansion_eigenvectors, fit_stencils, from_cnet};
 pub mod derive;
 pub mod facts;
+pub mod qfile;
 pub mod tables;
 
 use crate::error::{Error, Result};

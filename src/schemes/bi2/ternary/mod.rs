@@ -392,6 +392,10 @@ impl AdjustableTps {
 }
 
 impl Scheme for Tps {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::ternary(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::TPS.name()
     }
@@ -409,6 +413,10 @@ impl Scheme for Tps {
 }
 
 impl Scheme for AdjustableTps {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::ternary(s)
+    }
+
     fn name(&self) -> &'static str {
         crate::schemes::registry::ids::TPS_ADJUSTABLE.name()
     }

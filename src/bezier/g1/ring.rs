@@ -1,0 +1,144 @@
+//! Reading a [`Hole`] off the last ring of a scheme: segments from the sides of ring patches
+//! (or of patches that continue the ring C^1 into the hole), and the spoke tangents `T0, T1`
+//! from the ring's chart in a given limit tangent plane. Every scheme's provider uses these, so
+//! the conventions of [`super::hole`] are implemented once.
+//!
+//! # Tangent scale ([`chart_tangents`])
+//!
+//! The cap's centre conditions prescribe the spoke derivatives `t_s` per unit of the cap's
+//! parameter, so their length shapes the cap. Near the centre a subdivision surface is, to first
+//! order, `c + chi_1 T'_0 + chi_2 T'_1` with the scheme's characteristic map `chi` (its
+//! subdominant eigenvector components) and the limit tangent vectors `T'` (the left
+//! eigenvectors / tangent masks applied to the control points): the last ring, projected into
+//! the limit tangent plane, *is* the characteristic map of that ring up to terms that vanish
+//! like `mu^k / lambda^k`. The provider's plane gives the projection; in it, spoke `s` of the
+//! hole runs from the centre (chart origin) to the spoke end `e_s` (the projected `E_s - C`),
+//! where the ring's derivative along the spoke is `f_s` (the projected `-cross_a(0)` of
+//! segment `a` of sector `s`, per unit of the cap's parameter). The spoke of the cap in the
+//! chart is taken to be the quadratic with these three values, `q(0) = 0`, `q(1) = e_s`,
+//! `q'(1) = f_s`, so its derivative at the centre is `q'(0) = 2 e_s - f_s`; `T0, T1` are the
+//! Fourier mode 1 of these `n` vectors (least squares):
+//! `T0 = (2/n) sum cos(2 pi s / n) (2 e_s - f_s)`, `T1 = (2/n) sum sin(2 pi s / n) (2 e_s - f_s)`.
+//! For a power-law spoke `|x|^a` of the characteristic map (`a = log lambda / log (1/2)` for a
+//! binary scheme) this is `(2 - a)` times the chord; for a regular ring (`a = 1`) it is the
+//! exact derivative.
+
+use super::hole::{Hole, Segment};
+use super::map::{Cap, CapOptions, g1_cap_with};
+use crate::bezier::{BezierPatch, Side, curve};
+use crate::error::{Error, Result};
+use crate::geom::{Point, axpy, cross, dot, norm, normalize, scale, sub};
+
+/// The side `side` of `p` as Bezier coefficients in the side's parameter, and the derivative off
+/// that side pointing out of `p` (`-du` on `U0`, `du` on `U1`, `-dv` on `V0`, `dv` on `V1`).
+fn side_and_outward(p: &BezierPatch, side: Side) -> (Vec<Point>, Vec<Point>) {
+    let b = p.boundary(side);
+    let (du, dv) = (p.deg_u, p.deg_v);
+    let cross: Vec<Point> = match side {
+        Side::U0 => (0..=dv)
+            .map(|j| scale(sub(p.cp(0, j), p.cp(1, j)), du as f64))
+            .collect(),
+        Side::U1 => (0..=dv)
+            .map(|j| scale(sub(p.cp(du, j), p.cp(du - 1, j)), du as f64))
+            .collect(),
+        Side::V0 => (0..=du)
+            .map(|i| scale(sub(p.cp(i, 0), p.cp(i, 1)), dv as f64))
+            .collect(),
+        Side::V1 => (0..=du)
+            .map(|i| scale(sub(p.cp(i, dv), p.cp(i, dv - 1)), dv as f64))
+            .collect(),
+    };
+    (b, cross)
+}
+
+/// The hole's segment along side `side` of a ring patch `p` that borders the hole: the side
+/// restricted to the side parameters `range[0] -> range[1]` (`[1, 0]` reverses it, `[0.5, 1]`
+/// takes half of it) and the derivative out of `p` (into the hole) times the ratio of
+/// the cap's transversal parameter length to `p`'s (1 when the hole sector and the ring patch
+/// have the same parameter size).
+///
+/// `factor` is that ratio.
+pub fn segment_from_ring(p: &BezierPatch, side: Side, range: [f64; 2], factor: f64) -> Segment {
+    let (b, c) = side_and_outward(p, side);
+    Segment {
+        boundary: curve::subsegment(&b, range[0], range[1]),
+        cross: curve::subsegment(&c, range[0], range[1])
+            .into_iter()
+            .map(|x| scale(x, factor))
+            .collect(),
+    }
+}
+
+/// The hole's segment along side `side` of a patch `p` that lies *inside* the hole and joins the
+/// ring C^1 across that side (a scheme's C^1-to-the-ring fill, whose outer layers are the
+/// ring's): the side over `range` and the derivative from the ring into the hole, which is `p`'s
+/// derivative pointing away from the side, times `factor`.
+pub fn segment_from_inside(p: &BezierPatch, side: Side, range: [f64; 2], factor: f64) -> Segment {
+    segment_from_ring(p, side, range, -factor)
+}
+
+/// Projection of `x` onto the plane through the origin with unit normal `nrm`.
+fn project(x: Point, nrm: Point) -> Point {
+    axpy(x, -dot(x, nrm), nrm)
+}
+
+/// The spoke tangents `[T0, T1]` of a hole in the plane through its centre with normal
+/// `normal` (the scheme's limit tangent plane), scaled by the ring's chart (see the
+/// [module](self) documentation). The hole's own `tangents` are not read.
+///
+/// # Errors
+/// When the fitted tangents are degenerate (parallel or vanishing), naming the hole's valence.
+pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
+    let nrm = normalize(normal);
+    if !nrm.iter().all(|x| x.is_finite()) || norm(normal) == 0.0 {
+        return Err(Error::InvalidArgument(
+            "the limit normal of the hole is not defined".into(),
+        ));
+    }
+    let q = hole.to_quad_layout()?;
+    let n = q.hole.valence();
+    let mut t = [[0.0; 3]; 2];
+    let mut size: f64 = 0.0;
+    for (s, sec) in q.hole.sectors.iter().enumerate() {
+        let a = &sec[0];
+        let e = project(sub(a.boundary[0], hole.centre), nrm);
+        let f = project(scale(a.cross[0], -1.0), nrm);
+        let ts = axpy(scale(e, 2.0), -1.0, f);
+        size = size.max(norm(e));
+        let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+        t[0] = axpy(t[0], 2.0 * th.cos() / n as f64, ts);
+        t[1] = axpy(t[1], 2.0 * th.sin() / n as f64, ts);
+    }
+    let area = norm(cross(t[0], t[1]));
+    if area.is_nan() || area <= 1e-6 * size * size {
+        return Err(Error::Unsupported(format!(
+            "the spoke tangents of the hole of valence {n} are degenerate in its tangent plane \
+             (|T0 x T1| = {area:.3e} for spoke ends at distance {size:.3e})"
+        )));
+    }
+    Ok(t)
+}
+
+/// The G^1 cap of `hole` (its centre set by the provider) in the tangent plane with normal
+/// `normal`: the tangents from [`chart_tangents`], then [`g1_cap_with`] with `opts`.
+pub fn cap_in_plane(mut hole: Hole, normal: Point, opts: CapOptions) -> Result<Cap> {
+    hole.tangents = chart_tangents(&hole, normal)?;
+    g1_cap_with(&hole, opts)
+}
+
+/// The side of a quad patch whose corners `0, 1, 2, 3` of its face sit at `(u, v) = (0, 0),
+/// (1, 0), (1, 1), (0, 1)` that runs along the face's edge from corner `k` to corner `k + 1`, and
+/// the side-parameter range of that edge from corner `k` to `k + 1` (`forward`) or back.
+pub fn quad_edge_side(k: usize, forward: bool) -> (Side, [f64; 2]) {
+    let (side, range) = match k % 4 {
+        0 => (Side::V0, [0.0, 1.0]),
+        1 => (Side::U1, [0.0, 1.0]),
+        2 => (Side::V1, [1.0, 0.0]),
+        _ => (Side::U0, [1.0, 0.0]),
+    };
+    if forward {
+        (side, range)
+    } else {
+        (side, [range[1], range[0]])
+    }
+}

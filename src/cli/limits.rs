@@ -1,0 +1,579 @@
+//! Resource limits of the command line: every command estimates what it will allocate and
+//! refuses up front, with the estimate and the way out, instead of running until the allocator
+//! aborts.
+//!
+//! # The memory budget
+//!
+//! `--max-memory SIZE` (a global option: `4G`, `512M`, `2.5GiB`, `100000000`; binary units)
+//! sets it. The default is **half of the memory the process may use**: the smallest of the
+//! machine's physical memory, the address-space limit (`ulimit -v`), the data-segment limit
+//! (`ulimit -d`) and the cgroup's memory limit (`/sys/fs/cgroup/memory.max`). Half, because
+//! the estimates count the large arrays only, and the process needs room for its code,
+//! threads, allocator arenas and the smaller arrays beside them.
+//!
+//! | command | estimate |
+//! | --- | --- |
+//! | `subdivide --levels`, `render --levels` | the net after each level from the scheme's own growth rule ([`crate::schemes::Scheme::step_size`]): parent, child and the step's stencil table ([`crate::schemes::growth`]) |
+//! | `--rings` (`subdivide`, `check`, `render`, `compare`) | the patches: regular patches per input corner and ring patches per unit of element size per ring, measured by building one ring of the scheme on small canonical nets; plus one refinement step of the net (dense face rules) |
+//! | tessellated `.obj`/`.off`/`.ply` | `(tess + 1)^2` points and `2 tess^2` triangles per patch with the arrays of the tessellation and of the validated mesh |
+//! | `analyze`, `charmap` | the local matrix, `centre + n x points per sector` rows, from the scheme's local rules at a small valence |
+//! | `render`, `compare` | the samples (`width x height x aa^2` per cell) |
+//!
+//! Besides the budget, bounds that hold on every machine: outputs have fewer than 2^31
+//! vertices and corners (fairsub's meshes index with 32 bits), `--rings` is at most
+//! [`MAX_RINGS`] (beyond about 70 rings every scheme's rings are smaller than the welding
+//! tolerance of double precision), and dense analysis at most [`MAX_ANALYSIS_DIMENSION`] rows
+//! (its eigen-decomposition costs the cube of that).
+
+use crate::error::{Error, Result};
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::growth::{self, NetSize};
+use crate::schemes::{Scheme, Spec, registry};
+use crate::surface::{ComplexOptions, PatchComplex, Provenance};
+use std::cell::Cell;
+
+/// Most rings per extraordinary element.
+pub const MAX_RINGS: usize = 100;
+
+/// Most rows of a local matrix that `analyze` and `charmap` decompose.
+pub const MAX_ANALYSIS_DIMENSION: usize = 1500;
+
+/// Largest count of vertices or corners of an output (32-bit indices, one bit to spare).
+pub const MAX_ELEMENTS: f64 = 2147483648.0;
+
+/// Bytes per sample of a rendered frame (the sample record, the z-buffer and the triangles
+/// that cover it), measured: 3.29 GB peak for 8192 x 8192 samples is 49 bytes per sample.
+const BYTES_PER_SAMPLE: f64 = 56.0;
+
+thread_local! {
+    /// The budget set by `--max-memory` for the command running on this thread.
+    static BUDGET: Cell<Option<u64>> = const { Cell::new(None) };
+}
+
+/// A memory budget with where it comes from.
+#[derive(Debug, Clone)]
+pub struct Budget {
+    /// Bytes.
+    pub bytes: f64,
+    /// How it was chosen (for messages).
+    pub source: String,
+}
+
+/// Runs `f` with the budget `max` (bytes; `None`: the default) for the commands on this thread.
+pub(super) fn with_budget<T>(max: Option<u64>, f: impl FnOnce() -> T) -> T {
+    let old = BUDGET.with(|b| b.replace(max));
+    let r = f();
+    BUDGET.with(|b| b.set(old));
+    r
+}
+
+/// The budget of the command running on this thread.
+pub fn budget() -> Budget {
+    match BUDGET.with(Cell::get) {
+        Some(b) => Budget {
+            bytes: b as f64,
+            source: "set by --max-memory".into(),
+        },
+        None => default_budget(),
+    }
+}
+
+/// The default budget: half of the smallest memory limit of the process (see the module
+/// documentation).
+pub fn default_budget() -> Budget {
+    let (limit, what) = process_memory_limit();
+    Budget {
+        bytes: limit / 2.0,
+        source: format!("half of {what}, {}", human(limit)),
+    }
+}
+
+/// The smallest memory limit that applies to this process, with its name.
+fn process_memory_limit() -> (f64, &'static str) {
+    let mut best = (f64::INFINITY, "the memory of the machine");
+    let mut take = |bytes: f64, what: &'static str| {
+        if bytes > 0.0 && bytes < best.0 {
+            best = (bytes, what);
+        }
+    };
+    #[cfg(unix)]
+    {
+        // SAFETY: sysconf and getrlimit only read process and system parameters.
+        let (pages, page) = unsafe {
+            (
+                libc::sysconf(libc::_SC_PHYS_PAGES),
+                libc::sysconf(libc::_SC_PAGESIZE),
+            )
+        };
+        if pages > 0 && page > 0 {
+            take(pages as f64 * page as f64, "the physical memory");
+        }
+        for (res, what) in [
+            (libc::RLIMIT_AS, "the address-space limit (ulimit -v)"),
+            (libc::RLIMIT_DATA, "the data-segment limit (ulimit -d)"),
+        ] {
+            let mut r = libc::rlimit {
+                rlim_cur: 0,
+                rlim_max: 0,
+            };
+            // SAFETY: `r` is a valid rlimit to fill.
+            if unsafe { libc::getrlimit(res, &mut r) } == 0 && r.rlim_cur != libc::RLIM_INFINITY {
+                take(r.rlim_cur as f64, what);
+            }
+        }
+    }
+    if let Ok(s) = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
+        && let Ok(b) = s.trim().parse::<f64>()
+    {
+        take(b, "the cgroup memory limit");
+    }
+    if !best.0.is_finite() {
+        // Nothing known: assume a small machine.
+        best = (8.0 * GIB, "an assumed 8 GiB (no limit could be read)");
+    }
+    best
+}
+
+const GIB: f64 = 1073741824.0;
+
+/// Parses a memory size: a number with an optional binary unit (`K`, `M`, `G`, `T`, with or
+/// without `B` / `iB`; case-insensitive).
+pub fn parse_memory(s: &str) -> Result<u64> {
+    let bad = || {
+        Error::InvalidArgument(format!(
+            "bad --max-memory '{s}': expected a size such as 4G, 512M or 2.5GiB (binary units)"
+        ))
+    };
+    let t = s.trim().to_ascii_lowercase();
+    let t = t
+        .strip_suffix("ib")
+        .or_else(|| t.strip_suffix('b'))
+        .unwrap_or(&t);
+    let (num, unit) = match t.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => (&t[..i], c),
+        _ => (t, ' '),
+    };
+    let scale = match unit {
+        ' ' => 1.0,
+        'k' => 1024.0,
+        'm' => 1024.0 * 1024.0,
+        'g' => GIB,
+        't' => 1024.0 * GIB,
+        _ => return Err(bad()),
+    };
+    let x: f64 = num.trim().parse().map_err(|_| bad())?;
+    let bytes = x * scale;
+    if !bytes.is_finite() || !(1.0..=1.8e19).contains(&bytes) {
+        return Err(bad());
+    }
+    Ok(bytes as u64)
+}
+
+/// A size in bytes for messages (`3.2 GiB`).
+pub fn human(bytes: f64) -> String {
+    let units = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut x = bytes;
+    let mut u = 0;
+    while x >= 1024.0 && u + 1 < units.len() {
+        x /= 1024.0;
+        u += 1;
+    }
+    if u + 1 == units.len() && x >= 1024.0 {
+        return format!("{bytes:.1e} bytes");
+    }
+    if u == 0 {
+        format!("{x:.0} bytes")
+    } else {
+        format!("{x:.1} {}", units[u])
+    }
+}
+
+/// A count for messages: exact below a million, else `1.6e9`.
+fn count(x: f64) -> String {
+    if x < 1e6 {
+        format!("{x:.0}")
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// The error for an estimate over the budget: `what` is what would be made, `lower` the
+/// options that make it smaller.
+fn over_budget(what: &str, bytes: f64, b: &Budget, lower: &str) -> Error {
+    let want = (bytes * 1.5).max(b.bytes * 2.0);
+    let suggest = if want < GIB {
+        format!("{}M", (want / 1048576.0).ceil())
+    } else if want < 1e6 * GIB {
+        format!("{}G", (want / GIB).ceil())
+    } else {
+        "SIZE".to_string()
+    };
+    Error::TooLarge(format!(
+        "{what} would need about {}, more than the memory budget of {} ({}); {lower}, or \
+         raise the budget with --max-memory SIZE (e.g. --max-memory {suggest})",
+        human(bytes),
+        human(b.bytes),
+        b.source,
+    ))
+}
+
+/// Checks `bytes` against the budget.
+fn within_budget(what: impl FnOnce() -> String, bytes: f64, lower: &str) -> Result<()> {
+    let b = budget();
+    if bytes.is_nan() || bytes > b.bytes {
+        return Err(over_budget(&what(), bytes, &b, lower));
+    }
+    Ok(())
+}
+
+/// Checks that counts fit fairsub's 32-bit indices.
+fn within_indices(
+    what: impl FnOnce() -> String,
+    vertices: f64,
+    corners: f64,
+    lower: &str,
+) -> Result<()> {
+    if vertices >= MAX_ELEMENTS || corners >= MAX_ELEMENTS || vertices.is_nan() {
+        return Err(Error::TooLarge(format!(
+            "{} would have about {} vertices and {} corners; fairsub's meshes index with 32 \
+             bits and take fewer than 2^31 of each: {lower}",
+            what(),
+            count(vertices),
+            count(corners)
+        )));
+    }
+    Ok(())
+}
+
+/// `levels` refinement steps of `scheme` on `mesh`: the largest level in memory at once (the
+/// parent, the child and the step's stencils) within the budget, the result within the index
+/// range. The error says which `--levels` would fit.
+pub fn check_levels(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> Result<()> {
+    let start = NetSize::of(mesh);
+    let sizes = growth::levels(start, levels, |s| scheme.step_size(s));
+    let peak_after = |k: usize| -> f64 {
+        let mut parent = start;
+        let mut peak: f64 = 0.0;
+        for s in &sizes[..k] {
+            let parent_bytes = NetSize {
+                stencil: 0.0,
+                ..parent
+            }
+            .bytes();
+            peak = peak.max(parent_bytes + s.bytes());
+            parent = *s;
+        }
+        peak
+    };
+    let Some(last) = sizes.last() else {
+        return Ok(());
+    };
+    let b = budget();
+    let fits = |k: usize| {
+        let s = sizes[k - 1];
+        peak_after(k) <= b.bytes && s.vertices < MAX_ELEMENTS && s.corners < MAX_ELEMENTS
+    };
+    let what = || {
+        format!(
+            "{levels} refinement step(s) of {} on this net ({} vertices, {} faces) would make \
+             about {} vertices and {} faces; that",
+            scheme.name(),
+            mesh.num_vertices(),
+            mesh.num_faces(),
+            count(last.vertices),
+            count(last.faces)
+        )
+    };
+    if sizes.len() == levels && fits(levels) {
+        return Ok(());
+    }
+    let best = (1..sizes.len().min(levels)).rev().find(|&k| fits(k));
+    let lower = match best {
+        Some(k) => format!("lower --levels (--levels {k} fits)"),
+        None => "even one step does not fit: use a smaller net".to_string(),
+    };
+    within_indices(what, last.vertices, last.corners, &lower)?;
+    within_budget(what, peak_after(sizes.len()), &lower)
+}
+
+/// How many patches a scheme makes, measured on canonical nets: regular patches per corner of
+/// the input, ring patches per unit of element size (valence or facet size) and ring, and the
+/// bytes of its largest patch.
+#[derive(Debug, Clone, Copy)]
+struct PatchRate {
+    regular_per_corner: f64,
+    ring_per_size: f64,
+    bytes_per_patch: f64,
+}
+
+/// The nets a scheme's rate is measured on, tried in turn until the scheme takes one: an
+/// extended c-net of valence 5 (quad schemes), a pentagonal prism (facet schemes), an
+/// icosahedron (triangle schemes).
+fn probe_nets() -> [PolyMesh; 3] {
+    use crate::mesh::nets;
+    [
+        nets::cnet(5, nets::CnetShape::Convex, 3),
+        nets::prism(5),
+        nets::icosahedron(),
+    ]
+}
+
+/// Measures [`PatchRate`] by building one ring without fill on the first probe net the
+/// scheme takes; `None` when it takes none (the real build then fails with its own message).
+fn patch_rate(spec: &Spec) -> Option<PatchRate> {
+    let rules = registry().descriptor(spec.id).patch_rules(spec).ok()??;
+    for net in probe_nets() {
+        let opts = ComplexOptions {
+            rings: 1,
+            fill: false,
+        };
+        let Ok(out) = rules.build(&net, opts, &mut |_| {}) else {
+            continue;
+        };
+        let c = out.complex;
+        let mut regular = 0usize;
+        let mut ring = 0usize;
+        let mut elements = std::collections::HashSet::new();
+        for p in &c.provenance {
+            match p {
+                Provenance::Ring { element, .. } | Provenance::Cap { element, .. } => {
+                    ring += 1;
+                    elements.insert(*element);
+                }
+                _ => regular += 1,
+            }
+        }
+        let size: usize = elements
+            .iter()
+            .map(|e| match *e {
+                Element::Vertex(v) if (v as usize) < net.num_vertices() => net.valence(v as usize),
+                Element::Face(f) if (f as usize) < net.num_faces() => net.face_size(f as usize),
+                // an element of a refined net (schemes that refine before building, e.g. a
+                // Doo-Sabin step): every extraordinary element of the probe nets has size 5
+                _ => 5,
+            })
+            .sum();
+        let largest = c.patches.iter().map(|p| p.cps.len()).max().unwrap_or(16);
+        return Some(PatchRate {
+            regular_per_corner: regular as f64 / net.corners().len() as f64,
+            ring_per_size: ring as f64 / size.max(1) as f64,
+            bytes_per_patch: 24.0 * largest as f64 + 64.0,
+        });
+    }
+    None
+}
+
+/// The total size of the elements any scheme may treat as extraordinary: vertices whose
+/// valence is not regular (4; 6 in a triangle net) and faces that are not quads (in a net
+/// that is not all triangles).
+fn element_size(mesh: &PolyMesh) -> f64 {
+    let triangles = mesh.is_all_triangles();
+    let regular = if triangles { 6 } else { 4 };
+    let mut valence = vec![0usize; mesh.num_vertices()];
+    for e in mesh.edges() {
+        valence[e[0] as usize] += 1;
+        valence[e[1] as usize] += 1;
+    }
+    let mut s: f64 = valence
+        .iter()
+        .filter(|&&d| d != regular)
+        .map(|&d| d as f64)
+        .sum();
+    if !triangles {
+        let st = mesh.face_starts();
+        s += (0..mesh.num_faces())
+            .map(|f| (st[f + 1] - st[f]) as usize)
+            .filter(|&k| k != 4)
+            .map(|k| k as f64)
+            .sum::<f64>();
+    }
+    s
+}
+
+/// The patch complex of `mesh` under `spec` with `rings` rings: the ring count within
+/// [`MAX_RINGS`], the patches and one refinement step of the net (the adaptive levels refine
+/// the neighbourhoods of the elements with the scheme's rules) within the budget.
+pub fn check_complex(spec: &Spec, mesh: &PolyMesh, rings: usize, fill: bool) -> Result<()> {
+    if rings > MAX_RINGS {
+        return Err(Error::InvalidArgument(format!(
+            "--rings {rings}: at most {MAX_RINGS} rings per extraordinary element (ring k \
+             shrinks like lambda^k, lambda <= 0.75 for every scheme: beyond about 70 rings the \
+             patches are smaller than the welding tolerance of double precision and add \
+             nothing)"
+        )));
+    }
+    let desc = registry().descriptor(spec.id);
+    if let Ok(Some(scheme)) = desc.mesh_rules(spec) {
+        let step = scheme.step_size(&NetSize::of(mesh));
+        within_budget(
+            || {
+                format!(
+                    "the rings of {} refine the net's elements with its rules; one step on \
+                     this net ({} faces, the largest with {} corners) makes {} stencil entries \
+                     and",
+                    spec.name(),
+                    mesh.num_faces(),
+                    largest_face(mesh),
+                    count(step.stencil)
+                )
+            },
+            step.bytes() + NetSize::of(mesh).bytes(),
+            "use a net with smaller faces",
+        )?;
+    }
+    let Some(rate) = patch_rate(spec) else {
+        return Ok(());
+    };
+    let ring_units = (rings as f64 + f64::from(u8::from(fill))) * element_size(mesh);
+    let patches =
+        rate.regular_per_corner * mesh.corners().len() as f64 + rate.ring_per_size * ring_units;
+    // the complex, and about as much again for what is computed from it (adjacency, output)
+    let bytes = 2.0 * patches * rate.bytes_per_patch;
+    within_budget(
+        || {
+            format!(
+                "the surface of {} with {rings} rings on this net would have about {} patches; it",
+                spec.name(),
+                count(patches)
+            )
+        },
+        bytes,
+        "lower --rings",
+    )
+}
+
+/// The largest face size of `mesh`.
+fn largest_face(mesh: &PolyMesh) -> usize {
+    let st = mesh.face_starts();
+    (0..mesh.num_faces())
+        .map(|f| (st[f + 1] - st[f]) as usize)
+        .max()
+        .unwrap_or(0)
+}
+
+/// Bytes per point of a tessellation written as a mesh: position, normal, domain point and
+/// patch (68), the copy handed to the mesh and its vertex half-edge (28), welding slots (16).
+const TESS_BYTES_PER_POINT: f64 = 112.0;
+/// Bytes per triangle: corners and patch (16), face offsets and corners of the copy (16), the
+/// topology of the validated mesh (twins, edges: 28).
+const TESS_BYTES_PER_TRIANGLE: f64 = 60.0;
+
+/// A tessellation of `c` with `tess` samples per patch edge within the index range and the
+/// budget.
+pub fn check_tessellation(c: &PatchComplex, tess: usize) -> Result<()> {
+    let n = tess.max(1) as f64;
+    let p = c.len() as f64;
+    let points = p * (n + 1.0) * (n + 1.0);
+    let triangles = p * 2.0 * n * n;
+    let what = || {
+        format!(
+            "a tessellation of {} patches with --tess {tess} ({} points, {} triangles)",
+            c.len(),
+            count(points),
+            count(triangles)
+        )
+    };
+    within_indices(what, points, 3.0 * triangles, "lower --tess")?;
+    within_budget(
+        what,
+        points * TESS_BYTES_PER_POINT + triangles * TESS_BYTES_PER_TRIANGLE,
+        "lower --tess, or write the patches themselves (.bv, .igs)",
+    )
+}
+
+/// The local matrix of `analyze` / `charmap` at valence `n`: its size, measured from the
+/// scheme's local rules at small valences (`centre + n x sector` rows), within
+/// [`MAX_ANALYSIS_DIMENSION`] and the budget. Schemes whose rules refuse the valence refuse it
+/// themselves afterwards.
+pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<()> {
+    let Ok(rules) = crate::analysis::report::local_rules(spec) else {
+        return Ok(());
+    };
+    if (3..=8).contains(&n) {
+        return Ok(());
+    }
+    let Some(lm) = [5, 6, 7, 3, 8].iter().find_map(|&k| rules.matrix(k).ok()) else {
+        return Ok(());
+    };
+    let centre = if replicated_centre {
+        lm.centre * n
+    } else {
+        lm.centre
+    };
+    let dim = centre + n.saturating_mul(lm.sector);
+    if dim > MAX_ANALYSIS_DIMENSION {
+        let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm.centre)) / lm.sector.max(1);
+        return Err(Error::TooLarge(format!(
+            "valence {n}: the local matrix of {} would have {dim} rows ({} centre + {n} x {} \
+             points); fairsub decomposes dense local matrices of at most \
+             {MAX_ANALYSIS_DIMENSION} rows (the cost grows with the cube of the size): take a \
+             valence of at most {max_n}",
+            spec.name(),
+            centre,
+            lm.sector
+        )));
+    }
+    // the matrix, its eigen-decomposition (complex Schur form and vectors) and the Fourier
+    // blocks: about 8 dense copies
+    let d = dim as f64;
+    within_budget(
+        || format!("the local matrix at valence {n} ({dim} x {dim})"),
+        8.0 * 8.0 * d * d,
+        "take a smaller valence",
+    )
+}
+
+/// A picture of `cells` cells of `width x height` pixels with `aa x aa` samples each.
+pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Result<()> {
+    let samples = width as f64 * height as f64 * (aa * aa) as f64 * cells.max(1) as f64;
+    within_budget(
+        || {
+            format!(
+                "{} cell(s) of {width}x{height} pixels with {aa}x{aa} samples each ({} samples)",
+                cells.max(1),
+                count(samples)
+            )
+        },
+        samples * BYTES_PER_SAMPLE,
+        "lower --size or --aa",
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_in_binary_units() {
+        assert_eq!(parse_memory("4G").unwrap(), 4 << 30);
+        assert_eq!(parse_memory("512m").unwrap(), 512 << 20);
+        assert_eq!(parse_memory("2.5GiB").unwrap(), 5 << 29);
+        assert_eq!(parse_memory("1000").unwrap(), 1000);
+        assert_eq!(parse_memory("3kb").unwrap(), 3072);
+        for bad in ["", "G", "-1G", "4X", "nan", "1e30T"] {
+            assert!(parse_memory(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn sizes_print_readably() {
+        assert_eq!(human(512.0), "512 bytes");
+        assert_eq!(human(3.0 * GIB + 0.2 * GIB), "3.2 GiB");
+    }
+
+    #[test]
+    fn the_default_budget_is_half_a_known_limit() {
+        let b = default_budget();
+        assert!(b.bytes > 0.0 && b.bytes.is_finite(), "{b:?}");
+        assert!(b.source.starts_with("half of"), "{b:?}");
+    }
+
+    #[test]
+    fn a_budget_set_on_one_thread_is_used_there_only() {
+        with_budget(Some(1 << 20), || {
+            assert_eq!(budget().bytes, 1048576.0);
+            assert_eq!(budget().source, "set by --max-memory");
+        });
+        assert!(budget().source.starts_with("half of"));
+    }
+}

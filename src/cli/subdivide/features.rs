@@ -1,0 +1,152 @@
+//! OpenSubdiv's sharp features on the command line of `fairsub subdivide`: the options
+//! (`--boundary`, `--crease-method`, `--smooth-triangles`, `--fvar`, named as OpenSubdiv names
+//! them), the `--creases` side file, and loading a net for a scheme that takes them
+//! (Catmull-Clark, Loop): tolerantly (non-manifold nets, unused vertices kept), with the file's
+//! tags, a command-line option overriding a tag.
+
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::mesh::tags::{
+    BoundaryInterpolation, CreaseMethod, FvarInterpolation, Named, SubdOptions, TriangleSubdivision,
+};
+use crate::schemes::Spec;
+use crate::schemes::descriptor::ParamKind;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use std::path::PathBuf;
+
+/// A parser of one of OpenSubdiv's option names (the possible values are listed by `--help`).
+fn named<T: Named + Clone + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(T::ALL.iter().map(|v| v.name()))
+        .map(|s| T::parse(&s).expect("a possible value"))
+}
+
+/// OpenSubdiv's options of `fairsub subdivide` (Catmull-Clark and Loop).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct FeatureArgs {
+    /// Catmull-Clark, Loop: how boundaries are interpolated (OpenSubdiv's
+    /// VtxBoundaryInterpolation): edge-and-corner (the default: boundary edges are infinitely
+    /// sharp creases, a vertex with one face is a corner and stays), edge-only (such a vertex
+    /// follows the boundary crease), none (the faces at the boundary become holes, refined for
+    /// support but not written). Overrides the net's `interpolateboundary` tag.
+    #[arg(long, value_parser = named::<BoundaryInterpolation>())]
+    pub boundary: Option<BoundaryInterpolation>,
+    /// Catmull-Clark, Loop: how semi-sharp creases decay (OpenSubdiv's CreasingMethod):
+    /// uniform (the default; the OBJ tag calls it normal) or chaikin. Overrides the
+    /// `creasemethod` tag.
+    #[arg(long, value_parser = named::<CreaseMethod>())]
+    pub crease_method: Option<CreaseMethod>,
+    /// Catmull-Clark: OpenSubdiv's smooth triangle option (TRI_SUB_SMOOTH: edge points next to
+    /// triangles weigh the triangle's face point 0.47). Overrides the `smoothtriangles` tag.
+    #[arg(long)]
+    pub smooth_triangles: bool,
+    /// Catmull-Clark, Loop: how texture coordinates (OBJ `vt`) are interpolated (OpenSubdiv's
+    /// FVarLinearInterpolation): none, corners-only, corners-plus1, corners-plus2, boundaries,
+    /// all (the default: linear). Overrides the `facevaryinginterpolateboundary` tag. Not
+    /// implemented yet: refused with an error (texture coordinates are not refined).
+    #[arg(long, value_parser = named::<FvarInterpolation>())]
+    pub fvar: Option<FvarInterpolation>,
+    /// Catmull-Clark, Loop: a side file of OpenSubdiv tag lines for OFF and PLY nets (or in
+    /// addition to an OBJ net's own): `t crease 2/1/0 A B SHARPNESS`, `t corner 1/1/0 V
+    /// SHARPNESS`, `t hole 1/0/0 F`, `t interpolateboundary 1/0/0 N`, ... (vertices and faces
+    /// counted from 0; see the README).
+    #[arg(long, value_name = "FILE")]
+    pub creases: Option<PathBuf>,
+}
+
+impl FeatureArgs {
+    /// The options as given on the command line.
+    pub fn options(&self) -> SubdOptions {
+        SubdOptions {
+            boundary: self.boundary,
+            crease_method: self.crease_method,
+            triangles: self.smooth_triangles.then_some(TriangleSubdivision::Smooth),
+            fvar: self.fvar,
+        }
+    }
+}
+
+/// Whether the scheme takes OpenSubdiv's sharp features.
+pub fn takes_features(spec: &Spec) -> bool {
+    crate::schemes::registry()
+        .descriptor(spec.id)
+        .params()
+        .contains(&ParamKind::SharpFeatures)
+}
+
+/// Loads `arg` for a scheme that takes sharp features: tolerantly when `tolerant` (refinement:
+/// non-manifold nets are accepted, unused vertices kept), with the `--creases` file's tags on
+/// top of the net's own; the file's options fill the ones the command line leaves unset.
+pub fn load_net(spec: &mut Spec, a: &FeatureArgs, arg: &str, tolerant: bool) -> Result<PolyMesh> {
+    if a.fvar.is_some() {
+        return Err(Error::Unsupported(
+            "--fvar: face-varying refinement (OBJ vt, PLY texture coordinates) is not \
+             implemented yet; leave --fvar out (the output then has no texture coordinates)"
+                .into(),
+        ));
+    }
+    let mut mesh = super::super::load_net_as(arg, tolerant)?.mesh;
+    if let Some(ex) = mesh.extras() {
+        if ex.uv.is_some() {
+            eprintln!(
+                "warning: {arg}: texture coordinates are read but not refined yet (face-varying \
+                 refinement is not implemented); the output has none"
+            );
+        }
+        if ex.vertex_data.is_some() {
+            eprintln!(
+                "warning: {arg}: per-vertex properties are read but not refined yet; the output \
+                 has positions only"
+            );
+        }
+    }
+    if let Some(file) = &a.creases {
+        let (tags, warnings) = crate::io::obj::read_tag_file(file)?;
+        for w in warnings {
+            eprintln!("warning: {}: {w}", file.display());
+        }
+        mesh = mesh.with_tags(&tags, file)?;
+    }
+    let mut file_opts = mesh.extras().map(|e| e.options).unwrap_or_default();
+    if file_opts.triangles.is_some() && !takes(spec, ParamKind::SmoothTriangles) {
+        eprintln!(
+            "warning: {arg}: the smoothtriangles tag applies to Catmull-Clark only; ignored by {}",
+            spec.name()
+        );
+        file_opts.triangles = None;
+    }
+    spec.params.subd = spec.params.subd.or(file_opts);
+    Ok(mesh)
+}
+
+fn takes(spec: &Spec, kind: ParamKind) -> bool {
+    crate::schemes::registry()
+        .descriptor(spec.id)
+        .params()
+        .contains(&kind)
+}
+
+/// For a scheme without OpenSubdiv's sharp features (or for patch output, which does not take
+/// them yet): fails when the net tags sharp features, warns about option tags.
+pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> Result<()> {
+    let Some(ex) = mesh.extras() else {
+        return Ok(());
+    };
+    if ex.has_features() {
+        return Err(Error::Unsupported(format!(
+            "{arg} tags sharp features ({} sharp edges, {} sharp vertices, {} holes), which {what}; \
+             refine it with --levels and a scheme with OpenSubdiv's rules (Catmull-Clark, Loop), or remove \
+             the tags",
+            ex.sharp_edges.len(),
+            ex.sharp_vertices.len(),
+            ex.holes.len()
+        )));
+    }
+    if !ex.options.is_empty() && !takes_features(spec) {
+        eprintln!(
+            "warning: {arg}: OpenSubdiv option tags (interpolateboundary, creasemethod, ...) are \
+             ignored by {}",
+            spec.name()
+        );
+    }
+    Ok(())
+}

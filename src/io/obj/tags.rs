@@ -1,0 +1,234 @@
+//! OpenSubdiv's OBJ tag lines, `t NAME nints/nfloats/nstrings ints... floats... strings...`,
+//! read into [`Tags`] (`crate::mesh::tags`). The same lines make the `--creases` side file of
+//! OFF and PLY nets ([`read_tag_file`]).
+//!
+//! | tag | arguments | meaning |
+//! | --- | --- | --- |
+//! | `crease` | vertex pairs `a0 b0 a1 b1 ...`; one sharpness, or one per pair | edge sharpness |
+//! | `corner` | vertices; one sharpness, or one per vertex | vertex sharpness |
+//! | `hole` | faces | hole faces |
+//! | `interpolateboundary` | 1 integer: 0 none, 1 edge-and-corner, 2 edge-only | boundary option |
+//! | `facevaryinginterpolateboundary` | 1 integer: 0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all | face-varying option |
+//! | `creasemethod` | 1 string: `normal` (uniform) or `chaikin` | crease method |
+//! | `smoothtriangles` | 1 string: `catmark` or `smooth` (or 1 integer 0 / 1) | triangle option (Catmull-Clark) |
+//!
+//! Vertex and face indices count from 0 (as in OpenSubdiv's shapes); sharpness values below 0
+//! count as 0, 10 and more are infinitely sharp. `facevaryingpropagatecorners` (no counterpart
+//! in OpenSubdiv 3) and the hierarchical edits (`vertexedit`, `edgeedit`, `faceedit`, which
+//! OpenSubdiv 3 does not support either) are ignored with a warning, as is any other tag.
+
+use crate::error::{Error, Result};
+use crate::mesh::tags::{
+    BoundaryInterpolation, CornerTag, CreaseMethod, CreaseTag, FvarInterpolation, HoleTag, Named,
+    Tags, TriangleSubdivision, sharpness_value,
+};
+use std::path::Path;
+
+/// Parses the arguments of one tag line (`tok[0]` is `t`) into `tags`; unsupported tags add a
+/// warning. Errors name the line.
+pub(crate) fn parse_tag(
+    tok: &[&str],
+    line: usize,
+    path: &Path,
+    tags: &mut Tags,
+    warnings: &mut Vec<String>,
+) -> Result<()> {
+    let err = |msg: String| super::parse_error(path, line, msg);
+    if tok.len() < 3 {
+        return Err(err(
+            "a tag line needs a name and counts: t NAME ints/floats/strings ...".into(),
+        ));
+    }
+    let name = tok[1];
+    let counts: Vec<Option<usize>> = tok[2].split('/').map(|c| c.parse().ok()).collect();
+    let (ni, nf, ns) = match counts[..] {
+        [Some(i), Some(f), Some(s)] => (i, f, s),
+        [Some(i), Some(f)] => (i, f, 0),
+        _ => {
+            return Err(err(format!(
+                "bad tag counts '{}' (expected ints/floats/strings, such as 2/1/0)",
+                tok[2]
+            )));
+        }
+    };
+    let args = &tok[3..];
+    if args.len() != ni + nf + ns {
+        return Err(err(format!(
+            "tag '{name}' announces {} arguments ({}), but has {}",
+            ni + nf + ns,
+            tok[2],
+            args.len()
+        )));
+    }
+    let mut ints = Vec::with_capacity(ni);
+    for t in &args[..ni] {
+        ints.push(
+            t.parse::<i64>()
+                .map_err(|_| err(format!("bad integer '{t}' in tag '{name}'")))?,
+        );
+    }
+    let mut floats = Vec::with_capacity(nf);
+    for t in &args[ni..ni + nf] {
+        floats.push(
+            t.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| err(format!("bad number '{t}' in tag '{name}'")))?,
+        );
+    }
+    let strings = &args[ni + nf..];
+    let index = |i: i64, what: &str| {
+        u32::try_from(i).map_err(|_| {
+            err(format!(
+                "tag '{name}': {what} index {i} (indices count from 0)"
+            ))
+        })
+    };
+    // One value for all elements, or one per element.
+    let value = |k: usize, n: usize| -> Result<f32> {
+        match floats.len() {
+            1 => Ok(sharpness_value(floats[0])),
+            m if m == n => Ok(sharpness_value(floats[k])),
+            m => Err(err(format!(
+                "tag '{name}' gives {m} sharpness values for {n} elements (give 1, or one each)"
+            ))),
+        }
+    };
+    let one_int = || match ints[..] {
+        [i] if floats.is_empty() && strings.is_empty() => Ok(i),
+        _ => Err(err(format!("tag '{name}' expects 1 integer (1/0/0)"))),
+    };
+    let one_string = || match (strings, ints.is_empty() && floats.is_empty()) {
+        ([s], true) => Ok(*s),
+        _ => Err(err(format!("tag '{name}' expects 1 string (0/0/1)"))),
+    };
+    match name {
+        "crease" => {
+            if ints.is_empty() || ints.len() % 2 != 0 {
+                return Err(err(
+                    "a crease tag lists vertex pairs (an even number of integers)".into(),
+                ));
+            }
+            let pairs = ints.len() / 2;
+            for k in 0..pairs {
+                tags.creases.push(CreaseTag {
+                    a: index(ints[2 * k], "vertex")?,
+                    b: index(ints[2 * k + 1], "vertex")?,
+                    sharpness: value(k, pairs)?,
+                    line,
+                });
+            }
+            tags.note_line(line);
+        }
+        "corner" => {
+            if ints.is_empty() {
+                return Err(err("a corner tag lists vertices".into()));
+            }
+            for (k, &v) in ints.iter().enumerate() {
+                tags.corners.push(CornerTag {
+                    vertex: index(v, "vertex")?,
+                    sharpness: value(k, ints.len())?,
+                    line,
+                });
+            }
+            tags.note_line(line);
+        }
+        "hole" => {
+            for &f in &ints {
+                tags.holes.push(HoleTag {
+                    face: index(f, "face")?,
+                    line,
+                });
+            }
+            tags.note_line(line);
+        }
+        "interpolateboundary" => {
+            tags.options.boundary = Some(match one_int()? {
+                0 => BoundaryInterpolation::None,
+                1 => BoundaryInterpolation::EdgeAndCorner,
+                2 => BoundaryInterpolation::EdgeOnly,
+                v => {
+                    return Err(err(format!(
+                        "interpolateboundary {v}: expected 0 (none), 1 (edge-and-corner) or 2 \
+                         (edge-only)"
+                    )));
+                }
+            });
+        }
+        "facevaryinginterpolateboundary" => {
+            let v = one_int()?;
+            let all = FvarInterpolation::ALL;
+            tags.options.fvar = Some(
+                *usize::try_from(v)
+                    .ok()
+                    .and_then(|i| all.get(i))
+                    .ok_or_else(|| {
+                        err(format!(
+                            "facevaryinginterpolateboundary {v}: expected 0..5 ({})",
+                            FvarInterpolation::choices()
+                        ))
+                    })?,
+            );
+        }
+        "creasemethod" => {
+            tags.options.crease_method = Some(match one_string()? {
+                "normal" | "uniform" => CreaseMethod::Uniform,
+                "chaikin" => CreaseMethod::Chaikin,
+                s => {
+                    return Err(err(format!(
+                        "creasemethod '{s}': expected normal (uniform) or chaikin"
+                    )));
+                }
+            });
+        }
+        "smoothtriangles" => {
+            let v = match (&ints[..], strings) {
+                ([0], []) => Some(TriangleSubdivision::Catmark),
+                ([1], []) => Some(TriangleSubdivision::Smooth),
+                ([], [s]) => TriangleSubdivision::parse(s),
+                _ => None,
+            };
+            tags.options.triangles = Some(
+                v.ok_or_else(|| err("smoothtriangles expects catmark or smooth".to_string()))?,
+            );
+        }
+        "facevaryingpropagatecorners" => warnings.push(format!(
+            "line {line}: tag 'facevaryingpropagatecorners' ignored (OpenSubdiv 3 has no such \
+             option; corners-plus2 propagates corners)"
+        )),
+        "vertexedit" | "edgeedit" | "faceedit" => warnings.push(format!(
+            "line {line}: hierarchical edit tag '{name}' ignored (OpenSubdiv 3 does not support \
+             hierarchical edits either)"
+        )),
+        other => warnings.push(format!("line {line}: unknown tag '{other}' ignored")),
+    }
+    Ok(())
+}
+
+/// Reads a `--creases` side file: OpenSubdiv tag lines (`t ...`, as in OBJ files, indices
+/// from 0), `#` comments and blank lines; anything else is an error naming the line.
+pub fn read_tag_file(path: &Path) -> Result<(Tags, Vec<String>)> {
+    let text = crate::io::read_text(path)?;
+    let mut tags = Tags::default();
+    let mut warnings = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("");
+        let tok: Vec<&str> = line.split_whitespace().collect();
+        match tok.first() {
+            None => {}
+            Some(&"t") => parse_tag(&tok, i + 1, path, &mut tags, &mut warnings)?,
+            Some(other) => {
+                return Err(Error::Parse {
+                    path: path.to_path_buf(),
+                    line: i + 1,
+                    msg: format!(
+                        "'{other}': a creases file holds OpenSubdiv tag lines \
+                         ('t crease 2/1/0 A B SHARPNESS', 't corner 1/1/0 V SHARPNESS', \
+                         't hole 1/0/0 F', 't interpolateboundary 1/0/0 N', ...)"
+                    ),
+                });
+            }
+        }
+    }
+    Ok((tags, warnings))
+}

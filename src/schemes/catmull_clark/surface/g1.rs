@@ -1,0 +1,197 @@
+//! The G^1 cap of Catmull-Clark's last ring (and of the fallback vertices of the cap schemes
+//! EG, QAS+ and guided subdivision, which run on this loop).
+//!
+//! # The cap
+//!
+//! An extraordinary element whose faces at the last level are the `n` quads around one interior
+//! vertex `x` (an input vertex of valence `n`, or the centre of an input `n`-gon from level 1
+//! on), every one of whose two outer edges is shared with an emitted (ring or regular) bi-3
+//! patch of the same level, is closed by the G^1 cap of [`crate::bezier::g1`]:
+//!
+//! * **hole data**: sector `s` is the face `[x, p, K, q]`, spoke `s` its edge `x -> p`; segment
+//!   `a` is the side `p -> K` of the ring patch across that edge and its derivative out of that
+//!   patch, segment `b` the side `q -> K` of the ring patch across it. The ring patches are the
+//!   exact bi-3 limit patches of faces of the same level, so the data are exact and C^2
+//!   compatible at every spoke end and corner (all of them are regular vertices of the limit);
+//! * **centre**: Catmull-Clark's limit point of `x` ([`CatmullClark::limit_stencil`]);
+//! * **tangent plane**: spanned by the two eigen tangents of Halstead et al.
+//!   ([`CatmullClark::tangent_stencils`]); the spoke tangents' scale from the ring's chart in
+//!   that plane ([`crate::bezier::g1::ring::chart_tangents`]);
+//! * **conditions, free parameters**: those of [`crate::bezier::g1`]: C^1 to the ring (the two
+//!   outer layers exact), the centre and tangent plane, C^0 and the G^1 relation along every
+//!   spoke, the quadratic jet at the centre where the degree allows it; the remaining
+//!   coefficients minimise the fairness functional `F_4`. Degree: the lowest certified, bi-4
+//!   for odd `n`, bi-5 for even `n != 4` (bi-4 at `n = 4`, where the cap is the regular case).
+//!
+//! Elements whose hole does not have these data after the requested rings (the faces of two
+//! elements still touch, as the cube's after one ring) get up to [`MAX_EXTRA_LEVELS`] more
+//! levels: their rings continue until the holes are separated by ring patches. Elements that
+//! never have them (extraordinary boundary vertices, `--rings 0` around an n-gon) keep the
+//! Hermite-Coons fill of [`super`] (C^0).
+
+use super::{Level, regular_patch};
+use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::g1::ring::{cap_in_plane, quad_edge_side, segment_from_ring};
+use crate::bezier::g1::{CapOptions, Hole, Segment};
+use crate::geom::{Point, cross};
+use crate::host::adaptive::Tag;
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::CatmullClark;
+use std::collections::BTreeMap;
+
+/// Levels computed beyond the requested rings, at most, so that touching holes separate.
+pub const MAX_EXTRA_LEVELS: usize = 2;
+
+/// Why an element has no G^1 cap at this level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum NoCap {
+    /// More levels would give the data (the element's faces touch another element's).
+    Later,
+    /// The element's hole never gets the data (boundary, non-quad faces, no single centre).
+    Never,
+}
+
+/// Marked faces of one element.
+type Group = (Option<Element>, Vec<(u32, Tag)>);
+
+/// The marked faces grouped by element, in order of first appearance.
+fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
+    let mut order: Vec<Option<Element>> = Vec::new();
+    let mut groups: BTreeMap<usize, Vec<(u32, Tag)>> = BTreeMap::new();
+    for &(f, tag) in marked {
+        let k = match order.iter().position(|e| *e == tag.element) {
+            Some(k) => k,
+            None => {
+                order.push(tag.element);
+                order.len() - 1
+            }
+        };
+        groups.entry(k).or_default().push((f, tag));
+    }
+    groups.into_iter().map(|(k, g)| (order[k], g)).collect()
+}
+
+/// Corner index of `v` in face `f`.
+fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
+    m.face(f).iter().position(|&w| w == v)
+}
+
+/// The segment of the hole along the edge `from -> to` of the hole face `hole_face`: the side of
+/// the emitted patch of the face across that edge, from `from` to `to`, with its outward
+/// derivative (`None` while that face has no trusted regular patch).
+fn segment_across(level: &Level, hole_face: u32, from: u32, to: u32) -> Option<Segment> {
+    let m = &level.mesh;
+    // The face across holds whichever half-edge of the edge is not the hole face's.
+    let (h, forward) = [(to, from, false), (from, to, true)]
+        .into_iter()
+        .filter_map(|(a, b, fwd)| Some((m.find_halfedge(a as usize, b as usize)?, fwd)))
+        .find(|&(h, _)| m.he_face(h) != hole_face)?;
+    let g = m.he_face(h) as usize;
+    let ring = regular_patch(level, g)?;
+    let k = corner_of(m, g, m.he_from(h))?;
+    let (side, range) = quad_edge_side(k, forward);
+    Some(segment_from_ring(&ring, side, range, 1.0))
+}
+
+/// The hole of one element: its centre vertex and the sectors in counter-clockwise order with
+/// the marked face (and tag) of each, or why there is none.
+fn hole_of(
+    level: &Level,
+    element: Element,
+    faces: &[(u32, Tag)],
+) -> Result<(Hole, Point, Vec<Tag>), NoCap> {
+    let m = &level.mesh;
+    let (f0, _) = faces[0];
+    let x = m
+        .face(f0 as usize)
+        .iter()
+        .copied()
+        .find(|&v| level.info[v as usize].origin == Some(element))
+        .ok_or(NoCap::Never)?;
+    let xu = x as usize;
+    let n = m.valence(xu);
+    if m.is_boundary_vertex(xu) || n < 3 || faces.len() != n {
+        return Err(NoCap::Never);
+    }
+    let tag_of = |f: u32| faces.iter().find(|(g, _)| *g == f).map(|(_, t)| *t);
+    let mut sectors = Vec::with_capacity(n);
+    let mut tags = Vec::with_capacity(n);
+    let mut f = f0;
+    let mut later = false;
+    for _ in 0..n {
+        let face = m.face(f as usize);
+        if face.len() != 4 {
+            return Err(NoCap::Never);
+        }
+        let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
+        let (p, kk, q) = (face[(k + 1) % 4], face[(k + 2) % 4], face[(k + 3) % 4]);
+        tags.push(tag_of(f).ok_or(NoCap::Never)?);
+        match (
+            segment_across(level, f, p, kk),
+            segment_across(level, f, q, kk),
+        ) {
+            (Some(a), Some(b)) => sectors.push(vec![a, b]),
+            _ => later = true,
+        }
+        // The next sector counter-clockwise contains the half-edge x -> q.
+        let h = m.find_halfedge(xu, q as usize).ok_or(NoCap::Never)?;
+        f = m.he_face(h);
+    }
+    if f != f0 {
+        return Err(NoCap::Never);
+    }
+    if later {
+        return Err(NoCap::Later);
+    }
+    let pos = m.positions();
+    let centre = CatmullClark::limit_stencil(m, xu).apply(pos);
+    let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
+    let normal = cross(t1.apply(pos), t2.apply(pos));
+    let hole = Hole {
+        centre,
+        tangents: [[0.0; 3]; 2],
+        sectors,
+    };
+    Ok((hole, normal, tags))
+}
+
+/// Whether some marked element would get its G^1 cap after more levels (its faces still touch
+/// another element's): the adaptive loop then goes on.
+pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+    by_element(marked).iter().any(|(e, faces)| match e {
+        Some(e) => hole_of(level, *e, faces).err() == Some(NoCap::Later),
+        None => false,
+    })
+}
+
+/// Caps every element of the marked faces that has its hole data (see the [module](self)
+/// documentation); returns the faces left for the C^0 fill.
+pub(super) fn g1_caps(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    out: &mut PatchComplex,
+) -> Vec<(u32, Tag)> {
+    let mut left = Vec::new();
+    for (element, faces) in by_element(marked) {
+        let capped = element.and_then(|e| {
+            let (hole, normal, tags) = hole_of(level, e, &faces).ok()?;
+            let cap = cap_in_plane(hole, normal, CapOptions::default()).ok()?;
+            Some((e, cap, tags))
+        });
+        match capped {
+            Some((element, cap, tags)) => {
+                for (p, tag) in cap.patches.into_iter().zip(tags) {
+                    out.push(
+                        p,
+                        Provenance::Cap {
+                            element,
+                            sector: tag.sector,
+                        },
+                    );
+                }
+            }
+            None => left.extend(faces),
+        }
+    }
+    left
+}

@@ -1,0 +1,101 @@
+//! Every scheme's own G^1 cap, as `subdivide --rings` writes it, measured by `check` over the
+//! gallery: G^1 below 1e-8 rad at every join (caps included), C^1 between the last ring and the
+//! cap (or the scheme's continuity), the hole closed, and the cap's curvature printed beside the
+//! last ring's (`cargo test --release --test g1cap_schemes -- --nocapture`).
+
+use fairsub::PolyMesh;
+use fairsub::analysis::continuity::{ContinuityReport, check};
+use fairsub::analysis::curvature::ring_curvature;
+use fairsub::gallery::{self, CnetShape};
+use fairsub::surface::{ComplexOptions, PatchComplex, Provenance, complex};
+
+fn build(scheme: &str, net: &PolyMesh, rings: usize) -> PatchComplex {
+    complex(scheme, net, ComplexOptions { rings, fill: true }, |_| {})
+        .unwrap_or_else(|e| panic!("{scheme}: {e}"))
+}
+
+/// Asserts G^1 everywhere and C^1 (relative to the size) between the last ring and the cap;
+/// returns the report.
+fn assert_g1(scheme: &str, name: &str, c: &PatchComplex, c1: Option<f64>) -> ContinuityReport {
+    let r = check(c);
+    let caps = c
+        .provenance
+        .iter()
+        .filter(|p| matches!(p, Provenance::Cap { .. }))
+        .count();
+    assert!(caps > 0, "{scheme} {name}: no cap");
+    for (kind, d) in &r.by_kind {
+        assert!(
+            d.g1 < 1e-8,
+            "{scheme} {name} {kind}: G^1 {:e} at {:?}",
+            d.g1,
+            d.g1_at
+        );
+        if let Some(tol) = c1
+            && kind.contains("cap")
+            && kind.contains("ring")
+        {
+            assert!(
+                d.c1 < tol * r.size.max(1.0),
+                "{scheme} {name} {kind}: C^1 {:e}",
+                d.c1
+            );
+        }
+    }
+    r
+}
+
+fn print_curvature(scheme: &str, name: &str, c: &PatchComplex) {
+    for e in ring_curvature(c) {
+        let (Some(last), Some(cap)) = (
+            e.rings.iter().rev().find(|r| r.ring != 0),
+            e.rings.iter().find(|r| r.ring == 0),
+        ) else {
+            continue;
+        };
+        eprintln!(
+            "{scheme:16} {name:16} {:?}: cap K [{:+.3e}, {:+.3e}] H [{:+.3e}, {:+.3e}]; ring {} K [{:+.3e}, {:+.3e}] H [{:+.3e}, {:+.3e}]",
+            e.element,
+            cap.gauss_min,
+            cap.gauss_max,
+            cap.mean_min,
+            cap.mean_max,
+            last.ring,
+            last.gauss_min,
+            last.gauss_max,
+            last.mean_min,
+            last.mean_max
+        );
+    }
+}
+
+/// c-nets of valences 3, 5, 6, 8 in the four shapes, the prisms, the cube and the torus.
+fn quad_gallery() -> Vec<(String, PolyMesh)> {
+    let mut nets = Vec::new();
+    for n in [3, 5, 6, 8] {
+        for shape in CnetShape::ALL {
+            nets.push((
+                format!("cnet-{n}-{}", shape.name()),
+                gallery::cnet(n, shape, 3),
+            ));
+        }
+    }
+    for n in [3, 5, 6] {
+        nets.push((format!("prism-{n}"), gallery::prism(n)));
+    }
+    nets.push(("cube".into(), gallery::cube()));
+    nets.push(("torus-evs".into(), gallery::torus_with_evs()));
+    nets
+}
+
+#[test]
+fn catmull_clark() {
+    for (name, net) in quad_gallery() {
+        let c = build("catmull-clark", &net, 3);
+        let r = assert_g1("catmull-clark", &name, &c, Some(1e-10));
+        if net.boundary_loops().is_empty() {
+            assert_eq!(r.open_sides, 0, "{name}");
+        }
+        print_curvature("catmull-clark", &name, &c);
+    }
+}
