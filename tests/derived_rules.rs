@@ -5,7 +5,7 @@
 //! (`analyze --json`, `info`, `schemes`) that name the rules used.
 
 use fairsub::analysis::{continuity, curvature};
-use fairsub::bezier::complex::PatchComplex;
+use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::gallery::{self, CnetShape};
 use fairsub::mesh::{Element, PolyMesh};
 use fairsub::schemes::descriptor::{Fallback, RulesChoice, Spec};
@@ -41,7 +41,17 @@ fn build(
 fn assert_c2(label: &str, c: &PatchComplex) {
     let r = continuity::check(c);
     let scale = r.size.max(1.0);
-    assert!(r.by_kind.contains_key("regular|ring1"), "{label}");
+    // Where the complex has regular patches, their joins to the first rings are measured too
+    // (drum-7 has none: after its Catmull-Clark step every face lies in some element's rings).
+    let has_regular = c
+        .provenance
+        .iter()
+        .any(|p| matches!(p, Provenance::Regular { .. }));
+    assert_eq!(
+        r.by_kind.contains_key("regular|ring1"),
+        has_regular,
+        "{label}"
+    );
     for (kind, d) in &r.by_kind {
         assert!(d.c0 < 1e-12 * scale, "{label} {kind}: C0 {}", d.c0);
         if !kind.contains("cap") {
@@ -63,7 +73,7 @@ fn derived_note(notes: &[String], label: &str) -> bool {
 }
 
 #[test]
-#[ignore = "open: derived EG n = 6 saddle |K| grows 1.12 over rings 3..last (bound 1.05 untuned to mu/lambda^2); see report"]
+#[ignore = "open: derived EG n = 7 saddle still grows 5.3% on ring 6 (increments contract by about 0.65 per ring, so 6 rings are not enough to see it settle); needs more rings or a spectral bound"]
 fn one_vertex_of_each_valence_3_to_16_is_c2_with_bounded_curvature() {
     const RINGS: usize = 6;
     println!("scheme     n  shape   rules                          |K| max per ring 1..{RINGS}");
@@ -108,10 +118,17 @@ fn one_vertex_of_each_valence_3_to_16_is_c2_with_bounded_curvature() {
                     },
                     per_ring.join(" ")
                 );
-                // Curvature bounded: no growth over the last rings (Catmull-Clark's grows by
-                // more than 1.3 over the same rings, tests/eg.rs).
-                let growth = kmax(&k, RINGS as u32) / kmax(&k, 3).max(1e-12);
-                assert!(growth < 1.05, "{label}: |K| grows by {growth}");
+                // Curvature bounded: |K| settles geometrically. mu / lambda^2 is within 1e-3 of
+                // 1 for every rule in use (tests/derive.rs), so the last ring may grow by that
+                // plus the decaying transient of the next eigenvalues (about 0.59^k of ring 1's
+                // deviation; on the n = 6 saddle the ring-to-ring increments halve: 0.31, 0.15,
+                // 0.07, 0.03 in units of 0.1). Catmull-Clark grows by more than 1.3 over rings 5
+                // to 9 on the same nets (tests/eg.rs), about 1.07 per ring.
+                let growth = kmax(&k, RINGS as u32) / kmax(&k, RINGS as u32 - 1).max(1e-12);
+                assert!(
+                    growth < 1.02,
+                    "{label}: |K| grows by {growth} on the last ring"
+                );
             }
         }
     }
@@ -141,7 +158,6 @@ fn drum(n: usize) -> PolyMesh {
 }
 
 #[test]
-#[ignore = "open: eg drum-7 complex has no regular|ring1 join kind; cause not yet found; see report"]
 fn meshes_with_several_extraordinary_vertices_are_c2_without_fallback() {
     // Valences of the extraordinary vertices after the Catmull-Clark step of the n-gons.
     let nets = [
