@@ -276,18 +276,7 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let uniform = uniform_size(&face_start);
-        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, false)?;
-        Ok(PolyMesh {
-            positions,
-            face_start: OnceLock::from(face_start),
-            corners,
-            uniform,
-            topo: OnceLock::from(topo),
-            edges: OnceLock::new(),
-            dropped: Vec::new(),
-            extras: None,
-        })
+        Self::from_refined_faces(positions, face_start, corners, false)
     }
 
     /// Like [`PolyMesh::from_refinement`], but tolerates non-manifold ("bow-tie") vertices, as
@@ -298,8 +287,20 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
+        Self::from_refined_faces(positions, face_start, corners, true)
+    }
+
+    /// The one builder of [`PolyMesh::from_refinement`] and
+    /// [`PolyMesh::from_partial_refinement`]: the topology is built (and checked), bow-tie
+    /// vertices tolerated when `bow_ties`.
+    fn from_refined_faces(
+        positions: Vec<Point>,
+        face_start: Vec<u32>,
+        corners: Vec<u32>,
+        bow_ties: bool,
+    ) -> Result<PolyMesh> {
         let uniform = uniform_size(&face_start);
-        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, true)?;
+        let topo = Topology::build(positions.len(), &face_start, &corners, uniform, bow_ties)?;
         Ok(PolyMesh {
             positions,
             face_start: OnceLock::from(face_start),
