@@ -299,8 +299,15 @@ fn mq_eigenvalues(a: &DMatrix<f64>, n: usize, basis: &[Vec<f64>]) -> Vec<f64> {
     let mq = DMatrix::from_fn(src.len(), src.len(), |i, j| a[(src[i], src[j])]);
     let b = DMatrix::from_fn(src.len(), basis.len(), |i, j| basis[j][i]);
     let mb = &mq * &b;
-    let r = b.clone().pseudo_inverse(1e-12).unwrap() * &mb;
-    assert!((&b * &r - &mb).amax() < 1e-10, "subspace not invariant");
+    // Least squares by the normal equations (B has full rank; nalgebra's pseudo-inverse left a
+    // residual of 1.8e-9 at n = 6 where this leaves rounding).
+    let bt = b.transpose();
+    let r = (&bt * &b).cholesky().unwrap().solve(&(&bt * &mb));
+    let defect = (&b * &r - &mb).amax();
+    assert!(
+        defect < 1e-10,
+        "n={n}: subspace not invariant ({defect:.2e})"
+    );
     let mut ev: Vec<f64> = analysis::eigenvalues(&r).iter().map(|z| z.re).collect();
     ev.sort_by(|x, y| y.total_cmp(x));
     ev
@@ -308,7 +315,7 @@ fn mq_eigenvalues(a: &DMatrix<f64>, n: usize, basis: &[Vec<f64>]) -> Vec<f64> {
 
 #[test]
 fn derived_qas_m_q_has_the_eigenvalues_of_section_5() {
-    for n in [5, 8, 12] {
+    for n in 5..=16 {
         let a = qas_step(qd::derived_rules(n).unwrap());
         let col = |p: f64, f: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
             let mut v = vec![p];
@@ -363,7 +370,7 @@ fn derived_qas_m_q_has_the_eigenvalues_of_section_5() {
 
 #[test]
 fn derived_qas_reproduces_quadratics_exactly() {
-    for n in [3, 5, 6, 7, 8, 10, 16] {
+    for n in (3..=16).filter(|&n| n != 4) {
         let r = qd::derived_rules(n).unwrap();
         let a = qas_step(r);
         let mut worst: f64 = 0.0;
@@ -442,7 +449,7 @@ fn derived_qas_deviations_from_the_printed_tables() {
 fn derived_qas_rules_have_an_injective_characteristic_map() {
     // The derived rules' own characteristic map: the eigenvectors of 1/2 whose expansion parts
     // are the linear functions x, y, by the scheme's ring code, certified injective.
-    for n in [3, 5, 8, 12, 16] {
+    for n in (3..=16).filter(|&n| n != 4) {
         let r = qd::derived_rules(n).unwrap();
         let scheme = Qas::with_rules(r.clone());
         let a = qas_step(r);
