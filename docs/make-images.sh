@@ -19,8 +19,8 @@ tmp=$(mktemp -d)
 cargo run --release --quiet --example bi2_mixed -- "$tmp" >/dev/null
 $F compare "$tmp/bi2-mixed-net.obj" --schemes bi2-mixed --rings 4 --size 200x200 --elevation 35 --stripes 16 --modes provenance,highlight,mean -o docs/images/bi2-mixed-prism.png
 rm -rf "$tmp"
-# Guided subdivision beside Catmull-Clark, EG and QAS+ (EG has rules for 3 and 5, QAS+ for 5..7;
-# elsewhere they fall back to Catmull-Clark, so those rows are left out).
+# Guided subdivision beside Catmull-Clark, EG and QAS+ (rows chosen when EG had rules for 3 and 5
+# only and QAS+ for 5..7; the derived rules at other valences are in make-derived-images.sh).
 for shape in convex saddle planar raised; do
   $F compare gallery:cnet-5-$shape --schemes catmull-clark,eg,qas-plus,guided-bi5,guided-bi6 --zoom-rings 1..11 "${common[@]}" -o docs/images/guided-cnet-5-$shape.png
 done
