@@ -560,3 +560,64 @@ fn info_and_schemes_name_the_rules_per_valence() {
     assert_eq!(ranges[3]["to"], 16);
     assert!(ranges[4]["to"].is_null());
 }
+
+#[test]
+fn check_command_reports_c2_joins_and_curvature_per_ring_with_derived_rules() {
+    let nets = [
+        ("eg", "gallery:cnet-7-saddle".to_string(), 7),
+        ("qas-plus", "gallery:cnet-8-convex".to_string(), 8),
+        (
+            "eg",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/docs/nets/cnet-16-saddle.obj").to_string(),
+            16,
+        ),
+        (
+            "qas-plus",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/docs/nets/cnet-12-saddle.obj").to_string(),
+            12,
+        ),
+    ];
+    for (scheme, net, n) in nets {
+        let out = command(&["check", &net, "--scheme", scheme, "--rings", "4", "--json"]);
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let label = format!("{scheme} n={n}");
+        let derived = format!("{scheme} (derived rules, n = {n})");
+        assert!(
+            v["notes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|m| m.as_str().unwrap().contains(&derived)),
+            "{label}: {}",
+            v["notes"]
+        );
+        let c = &v["continuity"];
+        let size = c["size"].as_f64().unwrap().max(1.0);
+        let kinds = c["by_kind"].as_object().unwrap();
+        assert!(kinds.contains_key("regular|ring1") && kinds.contains_key("ring3|ring4"));
+        for (kind, d) in kinds {
+            assert!(d["c0"].as_f64().unwrap() < 1e-12 * size, "{label} {kind}");
+            if !kind.contains("cap") {
+                assert!(d["c1"].as_f64().unwrap() < 1e-10 * size, "{label} {kind}");
+                assert!(d["c2"].as_f64().unwrap() < 1e-9 * size, "{label} {kind}");
+            }
+        }
+        // The per-ring curvature ranges are the library's.
+        let mesh = fairsub::cli::load_net(&net).unwrap().mesh;
+        let lib =
+            curvature::ring_curvature(&build(scheme, &mesh, RulesChoice::Printed, 4, true).complex);
+        let rings = v["curvature"][0]["rings"].as_array().unwrap();
+        for r in 1..=4u32 {
+            let j = rings.iter().find(|x| x["ring"] == r).unwrap();
+            let (lo, hi) = (
+                j["gauss_min"].as_f64().unwrap(),
+                j["gauss_max"].as_f64().unwrap(),
+            );
+            let l = lib[0].rings.iter().find(|x| x.ring == r).unwrap();
+            assert!(
+                (lo - l.gauss_min).abs() < 1e-12 && (hi - l.gauss_max).abs() < 1e-12,
+                "{label} ring {r}"
+            );
+        }
+    }
+}
