@@ -24,6 +24,7 @@ pub use element::Element;
 pub use extras::{Extras, FaceVarying, ScalarKind, SharpEdges, VertexData};
 pub(crate) use general::NonManifold;
 pub(crate) use topology::number_edges;
+pub use view::Outgoing;
 pub(crate) use view::{FaceIndex, MeshView};
 
 use crate::error::{MeshError, Result};

@@ -55,7 +55,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::schemes::common::{Outgoing, RowBuf, boundary_neighbors, is_corner};
+use crate::schemes::common::RowBuf;
 use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, refine_dual_with};
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
@@ -412,10 +412,10 @@ impl Scheme for Pgs {
         for v in 0..nv {
             let vi = v as u32;
             if mesh.is_boundary_vertex(v) {
-                if is_corner(mesh, v) {
+                if mesh.is_corner(v) {
                     row.add(vi, 1.0);
                 } else {
-                    let (u, w) = boundary_neighbors(mesh, v);
+                    let (u, w) = mesh.boundary_neighbors(v);
                     row.add(vi, 0.75);
                     row.add(u, 0.125);
                     row.add(w, 0.125);
@@ -423,7 +423,7 @@ impl Scheme for Pgs {
                 row.flush_into(&mut table);
                 continue;
             }
-            let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+            let hs: Vec<u32> = mesh.outgoing(v).collect();
             let k = hs.len();
             if k < 3 {
                 return Err(Error::Unsupported(format!(

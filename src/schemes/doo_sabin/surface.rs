@@ -480,7 +480,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
         }
         for &x in m.face(f) {
             let x = x as usize;
-            if kept[x] == UNSET && level.info[x].fan_ok && is_corner(m, x) {
+            if kept[x] == UNSET && level.info[x].fan_ok && m.is_corner(x) {
                 kept[x] = push(
                     Stencil::point(x),
                     Info {
@@ -596,11 +596,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
         face_origin,
         active,
     })
-}
-
-/// Whether `v` is a boundary vertex with a single face (a corner, kept by the boundary rules).
-fn is_corner(m: &PolyMesh, v: usize) -> bool {
-    m.is_boundary_vertex(v) && m.vertex_faces(v).len() == 1
 }
 
 /// The centroid fill of the marked vertices of the last level.
