@@ -156,3 +156,36 @@ fn unused_vertices_dropped() {
     assert_eq!(m.num_vertices(), 3);
     assert_eq!(m.face(0), &[0, 1, 2]);
 }
+
+#[test]
+fn one_walker_around_fan_vertices() {
+    // Three triangles fanned around vertex 0 (a boundary vertex); vertex 1 lies in one face only.
+    let pos = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+    ];
+    let m = PolyMesh::new(pos, &[vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 4]]).unwrap();
+    // Half-edge h is corner h: 0->1, 1->2, 2->0 | 0->2, 2->3, 3->0 | 0->3, 3->4, 4->0.
+    assert_eq!(m.outgoing(0).collect::<Vec<_>>(), vec![0, 3, 6]);
+    assert_eq!(m.outgoing_halfedges(0), vec![0, 3, 6]);
+    assert_eq!(m.outgoing(2).collect::<Vec<_>>(), vec![4, 2]);
+    assert_eq!(m.vertex_neighbors(0), vec![1, 2, 3, 4]);
+    assert_eq!(m.boundary_neighbors(0), (1, 4));
+    assert_eq!(m.boundary_neighbors(2), (3, 1));
+    assert_eq!(m.valence(0), 4);
+    assert!(m.is_corner(1) && m.is_corner(4) && !m.is_corner(0) && !m.is_corner(2));
+    assert_eq!(m.view().outgoing(3).count(), 2);
+}
+
+#[test]
+fn interior_rings_close_or_fail() {
+    let m = crate::mesh::nets::quad_grid(3, |_, _| 0.0);
+    let hs = m.outgoing_halfedges(5);
+    assert_eq!(hs.len(), 4);
+    let ring = m.interior_ring_from(hs[1]).unwrap();
+    assert_eq!(ring, vec![hs[1], hs[2], hs[3], hs[0]]);
+    assert_eq!(m.interior_ring_from(m.vertex_halfedge(1)), None);
+}

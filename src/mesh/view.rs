@@ -1,4 +1,7 @@
-//! Borrowed views of a mesh's arrays for hot loops, and the face index of half-edges.
+//! Borrowed views of a mesh's arrays for hot loops, the face index of half-edges, and the one
+//! vertex-ring walker ([`Outgoing`]): every walk around a vertex in the crate (the
+//! [`PolyMesh`](super::PolyMesh) accessors, the schemes' refinement and surface code) goes through
+//! [`MeshView::outgoing`], [`MeshView::boundary_neighbors`] and [`MeshView::is_corner`].
 
 use super::NONE;
 
@@ -67,9 +70,15 @@ impl<'a> MeshView<'a> {
     /// Outgoing half-edges of `v`, counter-clockwise from [`PolyMesh::vertex_halfedge`]
     /// (the order of [`PolyMesh::outgoing_halfedges`]).
     #[inline]
-    pub fn outgoing(&self, v: usize) -> OutgoingIter<'a> {
-        let start = self.vert_he[v];
-        OutgoingIter {
+    pub fn outgoing(&self, v: usize) -> Outgoing<'a> {
+        self.outgoing_from(self.vert_he[v])
+    }
+
+    /// Outgoing half-edges of the start vertex of `h`, counter-clockwise from `h` (up to the
+    /// boundary, or once around).
+    #[inline]
+    pub fn outgoing_from(&self, start: u32) -> Outgoing<'a> {
+        Outgoing {
             view: *self,
             start,
             next: start,
@@ -86,14 +95,16 @@ impl<'a> MeshView<'a> {
     }
 }
 
-/// Iterator of [`MeshView::outgoing`].
-pub(crate) struct OutgoingIter<'a> {
+/// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
+/// boundary half-edge (rotating from `h` to `twin(prev(h))`). Built by [`MeshView::outgoing`] or
+/// [`PolyMesh::outgoing`](super::PolyMesh::outgoing); walks without allocating.
+pub struct Outgoing<'a> {
     view: MeshView<'a>,
     start: u32,
     next: u32,
 }
 
-impl Iterator for OutgoingIter<'_> {
+impl Iterator for Outgoing<'_> {
     type Item = u32;
 
     #[inline]

@@ -1,27 +1,41 @@
 //! Walks around vertices and over quad grids: fans, rings, boundary loops, sector charts
 //! and c-nets.
 
-use super::{NONE, PolyMesh};
+use super::{NONE, Outgoing, PolyMesh};
 
 impl PolyMesh {
+    /// The outgoing half-edges of `v` as an iterator (the one vertex-ring walker,
+    /// [`Outgoing`]), counter-clockwise; for a boundary vertex starting at its boundary
+    /// half-edge. Does not allocate.
+    #[inline]
+    pub fn outgoing(&self, v: usize) -> Outgoing<'_> {
+        self.view().outgoing(v)
+    }
+
     /// Outgoing half-edges of `v`, counter-clockwise; for a boundary vertex starting at its
     /// boundary half-edge. The last edge of a boundary vertex (the incoming boundary edge) has no
     /// outgoing half-edge and is not listed; see [`PolyMesh::vertex_neighbors`].
     pub fn outgoing_halfedges(&self, v: usize) -> Vec<u32> {
-        let start = self.topology().vert_he[v];
-        let mut out = vec![start];
-        let mut h = start;
-        loop {
-            let p = self.he_prev(h);
-            match self.he_twin(p) {
-                Some(t) if t != start => {
-                    out.push(t);
-                    h = t;
-                }
-                _ => break,
-            }
-        }
-        out
+        self.outgoing(v).collect()
+    }
+
+    /// The outgoing half-edges of the interior vertex `h` starts at, counter-clockwise from `h`;
+    /// `None` when the walk meets the boundary (the vertex is not interior).
+    pub fn interior_ring_from(&self, h: u32) -> Option<Vec<u32>> {
+        let hs: Vec<u32> = self.view().outgoing_from(h).collect();
+        let closed = self.he_twin(self.he_prev(*hs.last()?)) == Some(h);
+        closed.then_some(hs)
+    }
+
+    /// The two boundary neighbours of boundary vertex `v`: the end of its outgoing boundary
+    /// half-edge and the start of its incoming one.
+    pub fn boundary_neighbors(&self, v: usize) -> (u32, u32) {
+        self.view().boundary_neighbors(v)
+    }
+
+    /// Whether `v` is a boundary vertex with a single incident face (valence 2): a corner.
+    pub fn is_corner(&self, v: usize) -> bool {
+        self.view().is_corner(v)
     }
 
     /// Faces around `v`, counter-clockwise (from the boundary for a boundary vertex).
@@ -240,15 +254,7 @@ impl PolyMesh {
     pub fn cnet_indices_from(&self, h: u32, rings: usize) -> Option<Vec<u32>> {
         let v = self.he_from(h);
         let mut out = vec![v];
-        let mut hs = vec![h];
-        loop {
-            let t = self.he_twin(self.he_prev(*hs.last().expect("non-empty")))?;
-            if t == h {
-                break;
-            }
-            hs.push(t);
-        }
-        for h in hs {
+        for h in self.interior_ring_from(h)? {
             let g = self.sector_grid(h, rings)?;
             for row in g.iter().skip(1) {
                 out.extend_from_slice(row);

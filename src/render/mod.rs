@@ -22,6 +22,8 @@
 //! whatever the number of threads (work is split by image rows, never reduced in thread order).
 
 pub mod camera;
+mod image;
+mod options;
 pub mod panel;
 pub mod raster;
 pub mod shade;
@@ -29,6 +31,8 @@ pub mod stats;
 pub mod text;
 
 pub use camera::{Camera, Region, View};
+pub use image::{BACKGROUND, Image};
+pub use options::{MAX_SAMPLES, MAX_SIZE, RenderOptions, parse_size};
 pub use raster::{Frame, Sample};
 pub use shade::{Lights, ShadeOptions, StripePeriods};
 pub use stats::{FrameStats, GroupCurvature};
@@ -38,135 +42,6 @@ use crate::geom::{Point, add, cross, norm, normalize, scale, sub};
 use crate::io::BvFile;
 use crate::mesh::PolyMesh;
 use crate::surface::{Element, PatchComplex, Provenance};
-use std::path::Path;
-
-/// A flat RGB8 image, row-major, top row first.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Image {
-    /// Width in pixels.
-    pub width: usize,
-    /// Height in pixels.
-    pub height: usize,
-    /// `3 * width * height` bytes, `r, g, b` per pixel.
-    pub data: Vec<u8>,
-}
-
-/// White, the background of every picture.
-pub const BACKGROUND: [u8; 3] = [255, 255, 255];
-
-impl Image {
-    /// An image filled with one colour.
-    pub fn filled(width: usize, height: usize, colour: [u8; 3]) -> Image {
-        let mut data = Vec::with_capacity(3 * width * height);
-        for _ in 0..width * height {
-            data.extend_from_slice(&colour);
-        }
-        Image {
-            width,
-            height,
-            data,
-        }
-    }
-
-    /// The colour at `(x, y)`; `None` outside the image.
-    pub fn get(&self, x: usize, y: usize) -> Option<[u8; 3]> {
-        if x >= self.width || y >= self.height {
-            return None;
-        }
-        let k = 3 * (y * self.width + x);
-        Some([self.data[k], self.data[k + 1], self.data[k + 2]])
-    }
-
-    /// Sets the colour at `(x, y)`; ignored outside the image.
-    pub fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
-        if x < self.width && y < self.height {
-            let k = 3 * (y * self.width + x);
-            self.data[k..k + 3].copy_from_slice(&c);
-        }
-    }
-
-    /// Sets the colour at signed coordinates; ignored outside the image.
-    pub fn set_i(&mut self, x: i64, y: i64, c: [u8; 3]) {
-        if x >= 0 && y >= 0 {
-            self.set(x as usize, y as usize, c);
-        }
-    }
-
-    /// Fills the rectangle `[x, x + w) x [y, y + h)` (clipped to the image).
-    pub fn fill_rect(&mut self, x: usize, y: usize, w: usize, h: usize, c: [u8; 3]) {
-        for yy in y..(y + h).min(self.height) {
-            for xx in x..(x + w).min(self.width) {
-                self.set(xx, yy, c);
-            }
-        }
-    }
-
-    /// Copies `src` with its top-left corner at `(x, y)` (clipped to the image).
-    pub fn blit(&mut self, src: &Image, x: usize, y: usize) {
-        for sy in 0..src.height {
-            let ty = y + sy;
-            if ty >= self.height {
-                break;
-            }
-            let w = src.width.min(self.width.saturating_sub(x));
-            if w == 0 {
-                break;
-            }
-            let s = 3 * sy * src.width;
-            let t = 3 * (ty * self.width + x);
-            self.data[t..t + 3 * w].copy_from_slice(&src.data[s..s + 3 * w]);
-        }
-    }
-
-    /// The image stacked on top of `below` (widths padded with the background colour).
-    pub fn stacked(&self, below: &Image) -> Image {
-        let mut out = Image::filled(
-            self.width.max(below.width),
-            self.height + below.height,
-            BACKGROUND,
-        );
-        out.blit(self, 0, 0);
-        out.blit(below, 0, self.height);
-        out
-    }
-
-    /// The image as PNG bytes (8-bit RGB, fixed compression and filter, no metadata: the same
-    /// image always gives the same bytes).
-    pub fn to_png(&self) -> Result<Vec<u8>> {
-        let mut out = Vec::new();
-        self.write_png_to(&mut out)?;
-        Ok(out)
-    }
-
-    fn write_png_to(&self, w: &mut dyn std::io::Write) -> Result<()> {
-        let png_err = |e: png::EncodingError| {
-            Error::InvalidArgument(format!(
-                "PNG encoding of a {}x{} image failed: {e}",
-                self.width, self.height
-            ))
-        };
-        if self.width == 0 || self.height == 0 || self.width > u32::MAX as usize {
-            return Err(Error::InvalidArgument(format!(
-                "cannot encode an image of {}x{} pixels",
-                self.width, self.height
-            )));
-        }
-        let mut enc = png::Encoder::new(w, self.width as u32, self.height as u32);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        enc.set_compression(png::Compression::Balanced);
-        enc.set_filter(png::Filter::Adaptive);
-        let mut writer = enc.write_header().map_err(png_err)?;
-        writer.write_image_data(&self.data).map_err(png_err)?;
-        writer.finish().map_err(png_err)?;
-        Ok(())
-    }
-
-    /// Writes the image as a PNG file, atomically (see [`crate::io::write_atomically`]).
-    pub fn write_png(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomically(path, |w| self.write_png_to(w))
-    }
-}
 
 /// What a picture shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -434,92 +309,6 @@ pub fn element_name(e: Element) -> String {
         Element::Vertex(v) => format!("vertex {v}"),
         Element::Face(f) => format!("face {f}"),
     }
-}
-
-/// Everything that decides a picture besides the surface.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RenderOptions {
-    /// Image width in pixels (of one cell for panels).
-    pub width: usize,
-    /// Image height in pixels (without the legend strip).
-    pub height: usize,
-    /// Samples per pixel along each axis (`aa x aa` samples, box-filtered).
-    pub supersample: usize,
-    /// What to show.
-    pub mode: Mode,
-    /// Camera placement.
-    pub view: View,
-    /// Light lines, stripes and curvature range.
-    pub shade: ShadeOptions,
-    /// Patch boundaries and control net.
-    pub overlays: Overlays,
-    /// Append a legend strip with the numbers under curvature pictures.
-    pub legend: bool,
-}
-
-impl Default for RenderOptions {
-    fn default() -> Self {
-        RenderOptions {
-            width: 800,
-            height: 800,
-            supersample: 2,
-            mode: Mode::Shaded,
-            view: View::default(),
-            shade: ShadeOptions::default(),
-            overlays: Overlays::default(),
-            legend: true,
-        }
-    }
-}
-
-/// Largest width or height accepted.
-pub const MAX_SIZE: usize = 16384;
-/// Largest number of samples (`width * height * aa^2`) of one picture (about 3 GB of buffers).
-pub const MAX_SAMPLES: usize = 1 << 26;
-
-impl RenderOptions {
-    /// Checks sizes and numeric options; the error names the option and the reason.
-    pub fn validate(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::InvalidArgument(m));
-        if self.width < 8 || self.height < 8 || self.width > MAX_SIZE || self.height > MAX_SIZE {
-            return bad(format!(
-                "bad size {}x{}: width and height must be between 8 and {MAX_SIZE} pixels",
-                self.width, self.height
-            ));
-        }
-        if !(1..=8).contains(&self.supersample) {
-            return bad(format!(
-                "bad --aa {}: samples per pixel axis must be 1 to 8",
-                self.supersample
-            ));
-        }
-        let samples = self.width * self.height * self.supersample * self.supersample;
-        if samples > MAX_SAMPLES {
-            return bad(format!(
-                "{}x{} pixels with {}x{} samples each is {samples} samples, more than {MAX_SAMPLES}: lower --aa or the size",
-                self.width, self.height, self.supersample, self.supersample
-            ));
-        }
-        self.view.validate()?;
-        self.shade.validate()
-    }
-}
-
-/// Parses `WxH` (or a single number for a square).
-pub fn parse_size(s: &str) -> Result<(usize, usize)> {
-    let bad = || {
-        Error::InvalidArgument(format!(
-            "bad size '{s}': expected WIDTHxHEIGHT in pixels, e.g. 800x600"
-        ))
-    };
-    let t = s.trim().to_ascii_lowercase();
-    let (w, h) = match t.split_once('x') {
-        Some((w, h)) => (w.trim(), h.trim()),
-        None => (t.as_str(), t.as_str()),
-    };
-    let w: usize = w.parse().map_err(|_| bad())?;
-    let h: usize = h.parse().map_err(|_| bad())?;
-    Ok((w, h))
 }
 
 /// A rendered picture with the data behind it.

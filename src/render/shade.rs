@@ -38,6 +38,12 @@ use crate::geom::{Point, add, cross, dot, normalize, scale, sub};
 use crate::surface::Provenance;
 use rayon::prelude::*;
 
+mod overlay;
+
+#[cfg(test)]
+use overlay::clip_segment;
+use overlay::{draw_net, patch_lines};
+
 /// Stripes, light placement and curvature range.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShadeOptions {
@@ -500,132 +506,6 @@ pub fn shade(
     Ok(downsample(&cols, w, h, frame.supersample))
 }
 
-/// Darkens samples where the patch changes to the right or below (both sides, so the line is
-/// one pixel wide after filtering at 2x2 supersampling).
-fn patch_lines(frame: &Frame, cols: &mut [[u8; 3]]) {
-    let (w, h) = (frame.width, frame.height);
-    let both = frame.supersample > 1;
-    let mut mark = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            let a = frame.get(x, y).prim;
-            if a == NONE {
-                continue;
-            }
-            for (nx, ny) in [(x + 1, y), (x, y + 1)] {
-                if nx < w && ny < h {
-                    let b = frame.get(nx, ny).prim;
-                    if b != NONE && b != a {
-                        mark[y * w + x] = true;
-                        if both {
-                            mark[ny * w + nx] = true;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    for (c, m) in cols.iter_mut().zip(mark) {
-        if m {
-            *c = c.map(|x| (x as f64 * 0.3).round() as u8);
-        }
-    }
-}
-
-/// Draws the control net's edges and vertices on top (no depth test), clipped to the near
-/// plane and the image.
-fn draw_net(
-    net: &crate::mesh::PolyMesh,
-    cam: &Camera,
-    ss: usize,
-    cols: &mut [[u8; 3]],
-    w: usize,
-    h: usize,
-) {
-    const EDGE: [u8; 3] = [28, 62, 170];
-    const VERTEX: [u8; 3] = [10, 25, 90];
-    let view: Vec<Point> = net.positions().iter().map(|&p| cam.to_view(p)).collect();
-    let focal = cam.focal();
-    let (cx, cy) = (0.5 * w as f64, 0.5 * h as f64);
-    let proj = |v: Point| [cx + focal * v[0] / v[2], cy - focal * v[1] / v[2]];
-    let mut stamp = |x: f64, y: f64, size: usize, c: [u8; 3]| {
-        let half = size as f64 / 2.0;
-        let (x0, y0) = ((x - half).round(), (y - half).round());
-        for dy in 0..size {
-            for dx in 0..size {
-                let (px, py) = (x0 + dx as f64, y0 + dy as f64);
-                if px >= 0.0 && py >= 0.0 && (px as usize) < w && (py as usize) < h {
-                    cols[py as usize * w + px as usize] = c;
-                }
-            }
-        }
-    };
-    for e in net.edges() {
-        let (mut a, mut b) = (view[e[0] as usize], view[e[1] as usize]);
-        if a[2] <= cam.near && b[2] <= cam.near {
-            continue;
-        }
-        if a[2] <= cam.near || b[2] <= cam.near {
-            let t = (cam.near - a[2]) / (b[2] - a[2]);
-            let q = add(a, scale(sub(b, a), t));
-            if a[2] <= cam.near {
-                a = q;
-            } else {
-                b = q;
-            }
-        }
-        let Some((p, q)) = clip_segment(proj(a), proj(b), w as f64, h as f64) else {
-            continue;
-        };
-        let len = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
-        let steps = (2.0 * len).ceil().max(1.0) as usize;
-        for k in 0..=steps {
-            let t = k as f64 / steps as f64;
-            stamp(p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), ss, EDGE);
-        }
-    }
-    for v in &view {
-        if v[2] > cam.near {
-            let [x, y] = proj(*v);
-            if x.is_finite() && y.is_finite() {
-                stamp(x, y, 3 * ss, VERTEX);
-            }
-        }
-    }
-}
-
-/// Liang-Barsky clipping of a segment to `[-1, w + 1] x [-1, h + 1]`.
-fn clip_segment(p: [f64; 2], q: [f64; 2], w: f64, h: f64) -> Option<([f64; 2], [f64; 2])> {
-    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (pk, qk) in [
-        (-dx, p[0] + 1.0),
-        (dx, w + 1.0 - p[0]),
-        (-dy, p[1] + 1.0),
-        (dy, h + 1.0 - p[1]),
-    ] {
-        if pk == 0.0 {
-            if qk < 0.0 {
-                return None;
-            }
-        } else {
-            let r = qk / pk;
-            if pk < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    if t0.is_nan() || t1.is_nan() || t0 > t1 {
-        return None;
-    }
-    Some((
-        [p[0] + t0 * dx, p[1] + t0 * dy],
-        [p[0] + t1 * dx, p[1] + t1 * dy],
-    ))
-}
-
 /// Box filter of `ss x ss` samples per pixel (integer mean, rounded).
 fn downsample(cols: &[[u8; 3]], w: usize, h: usize, ss: usize) -> Image {
     let (pw, ph) = (w / ss, h / ss);
@@ -654,46 +534,4 @@ fn downsample(cols: &[[u8; 3]], w: usize, h: usize, ss: usize) -> Image {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn diverging_map_is_blue_white_red() {
-        let b = diverging(-1.0);
-        let w = diverging(0.0);
-        let r = diverging(1.0);
-        assert!(b[2] > b[0] && r[0] > r[2]);
-        assert!(w.iter().all(|&x| x > 0.95));
-        assert_eq!(diverging(5.0), r);
-        assert_eq!(diverging(f64::NAN), w);
-    }
-
-    #[test]
-    fn highlight_parameter_matches_plane_intersection() {
-        let cam = Camera::look_at([0.3, -4.0, 2.0], [0.0; 3], [0.0, 0.0, 1.0], 30.0, 100, 100);
-        let region = Region {
-            centre: [0.0; 3],
-            radius: 1.0,
-        };
-        let l = Lights::new(&cam, &region, &ShadeOptions::default());
-        let p = [0.2, 0.1, -0.3];
-        let n = normalize([0.1, -0.5, 0.8]);
-        let c = l.stripe_param(Mode::Highlight, p, n, n).unwrap();
-        // intersect the normal line with the plane, take the coordinate across the lines
-        let s = dot(sub(l.plane_point, p), l.plane_normal) / dot(n, l.plane_normal);
-        let q = add(p, scale(n, s));
-        let c2 = dot(sub(q, l.plane_point), l.across) / l.periods.highlight;
-        assert!((c - c2).abs() < 1e-12, "{c} {c2}");
-        // and the normal line meets the light line with that parameter
-        let a = add(l.plane_point, scale(l.across, c * l.periods.highlight));
-        let m = cross(n, l.line_dir);
-        assert!(dot(sub(a, p), m).abs() < 1e-12);
-    }
-
-    #[test]
-    fn segments_clip_to_the_image() {
-        let (p, q) = clip_segment([-100.0, 5.0], [200.0, 5.0], 50.0, 50.0).unwrap();
-        assert_eq!((p[0], q[0]), (-1.0, 51.0));
-        assert!(clip_segment([-100.0, -5.0], [200.0, -5.0], 50.0, 50.0).is_none());
-    }
-}
+mod tests;

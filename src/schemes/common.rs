@@ -1,61 +1,13 @@
 //! Small helpers shared by the scheme modules.
 //!
-//! Refinement visits every vertex ring and writes one stencil row per child point, so these two
-//! operations must not allocate per element: [`Outgoing`] walks the outgoing half-edges of a
-//! vertex without building a `Vec` (the same order as [`PolyMesh::outgoing_halfedges`]), and
-//! [`RowBuf`] collects one stencil row in a reused buffer, merges duplicate sources and appends it
-//! to a [`StencilTable`].
+//! Refinement visits every vertex ring and writes one stencil row per child point, so it must not
+//! allocate per element: rings are walked with the mesh's one walker
+//! ([`PolyMesh::outgoing`](crate::mesh::PolyMesh::outgoing)), and [`RowBuf`] collects one stencil
+//! row in a reused buffer, merges duplicate sources and appends it to a [`StencilTable`].
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::stencil::{Stencil, StencilTable, Terms};
-
-/// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
-/// boundary half-edge. Same order as [`PolyMesh::outgoing_halfedges`], without allocating.
-pub(crate) struct Outgoing<'a> {
-    mesh: &'a PolyMesh,
-    start: u32,
-    next: Option<u32>,
-}
-
-impl<'a> Outgoing<'a> {
-    /// Starts the walk around vertex `v`.
-    pub(crate) fn new(mesh: &'a PolyMesh, v: usize) -> Self {
-        let start = mesh.vertex_halfedge(v);
-        Outgoing {
-            mesh,
-            start,
-            next: Some(start),
-        }
-    }
-}
-
-impl Iterator for Outgoing<'_> {
-    type Item = u32;
-
-    fn next(&mut self) -> Option<u32> {
-        let h = self.next?;
-        self.next = self
-            .mesh
-            .he_twin(self.mesh.he_prev(h))
-            .filter(|&t| t != self.start);
-        Some(h)
-    }
-}
-
-/// The two boundary neighbours of boundary vertex `v`: the end of its outgoing boundary
-/// half-edge and the start of its incoming one.
-pub(crate) fn boundary_neighbors(mesh: &PolyMesh, v: usize) -> (u32, u32) {
-    let out = mesh.vertex_halfedge(v);
-    let last = Outgoing::new(mesh, v).last().unwrap_or(out);
-    (mesh.he_to(out), mesh.he_from(mesh.he_prev(last)))
-}
-
-/// Whether `v` is a boundary vertex with a single incident face (valence 2): a corner.
-pub(crate) fn is_corner(mesh: &PolyMesh, v: usize) -> bool {
-    let h = mesh.vertex_halfedge(v);
-    mesh.he_twin(h).is_none() && mesh.he_twin(mesh.he_prev(h)).is_none()
-}
 
 /// `cos(2 pi k / n)`, exact at the multiples of 30 degrees where the value is rational (so that
 /// regular weights such as 1/16 or 9/16 come out exactly).
@@ -181,23 +133,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn walk_matches_mesh_and_rows_merge() {
-        let pos = vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [-1.0, 0.0, 0.0],
-        ];
-        let m = PolyMesh::new(pos, &[vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 4]]).unwrap();
-        for v in 0..m.num_vertices() {
-            let walk: Vec<u32> = Outgoing::new(&m, v).collect();
-            assert_eq!(walk, m.outgoing_halfedges(v));
-            if m.is_boundary_vertex(v) {
-                let nb = m.vertex_neighbors(v);
-                assert_eq!(boundary_neighbors(&m, v), (nb[0], *nb.last().unwrap()));
-            }
-        }
+    fn rows_merge() {
         let mut t = StencilTable::new(3);
         let mut row = RowBuf::default();
         row.add(2, 0.25);
@@ -206,7 +142,6 @@ mod tests {
         row.add(1, 0.0);
         row.flush_into(&mut t);
         assert_eq!(t.row(0), (&[0u32, 2][..], &[0.5, 0.5][..]));
-        assert!(is_corner(&m, 1) && !is_corner(&m, 0) && !is_corner(&m, 2));
     }
 
     #[test]

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::Scheme;
-use crate::schemes::bi2::pgs::{PgsParams, ds_net, ds_net_chart, ds_net_index};
+use crate::schemes::bi2::pgs::{FacetNet, PgsParams, ds_net, ds_net_chart, ds_net_index};
 use crate::schemes::bi2::polar::{polar_net, radial_step_detailed};
 use crate::schemes::bi2::ternary::{
     TernaryRules, TpsParams, Widths, edge_child_index, face_child_index, ternary_step,
@@ -270,20 +270,14 @@ impl LocalScheme {
         match self.kind {
             LocalKind::Pgs => {
                 let prm = PgsParams::new(n)?;
-                let mut s = Stencil::new();
-                for k in 0..n {
-                    let (a, b, d) = (
-                        ds_net_index(k, 0, 0),
-                        ds_net_index(k, 1, 0),
-                        ds_net_index(k, 0, 1),
-                    );
-                    let nf = n as f64;
-                    // p from (1), then (1 - tau) p + tau a_mean.
-                    s.add(a, (1.0 - prm.tau) * prm.mu / nf + prm.tau / nf);
-                    s.add(b, (1.0 - prm.tau) * (1.0 - prm.mu) / (2.0 * nf));
-                    s.add(d, (1.0 - prm.tau) * (1.0 - prm.mu) / (2.0 * nf));
-                }
-                Ok(s.merged())
+                let at = |i, j| (0..n).map(|k| ds_net_index(k, i, j) as u32).collect();
+                let net = FacetNet {
+                    a: at(0, 0),
+                    b: at(1, 0),
+                    d: at(0, 1),
+                };
+                // p from (1), then (1 - tau) p + tau a_mean.
+                Ok(prm.limit_point(&prm.centre(&net), &net.a))
             }
             LocalKind::Ternary(_) => {
                 let p = TpsParams::new(n)?;

@@ -55,7 +55,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::schemes::common::{Outgoing, RowBuf, boundary_neighbors, is_corner};
+use crate::schemes::common::RowBuf;
 use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, refine_dual_with};
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
@@ -116,6 +116,26 @@ impl PgsParams {
         })
     }
 
+    /// Formula (1), the centre `p` of the facet with DS-net `net`, over the net's point indices.
+    pub fn centre(&self, net: &FacetNet) -> Stencil {
+        let n = self.n as f64;
+        let wa = self.mu / n;
+        let wbd = (1.0 - self.mu) / (2.0 * n);
+        let mut s = Stencil::new();
+        for i in 0..net.a.len() {
+            s.add(net.a[i] as usize, wa);
+            s.add(net.b[i] as usize, wbd);
+            s.add(net.d[i] as usize, wbd);
+        }
+        s.merged()
+    }
+
+    /// Formula (7), the limit point `(1 - tau) p + tau a_mean` of the facet with centre `p` and
+    /// corners `a`.
+    pub fn limit_point(&self, p: &Stencil, a: &[u32]) -> Stencil {
+        blend_with_mean(p, self.tau, a)
+    }
+
     /// The subsubdominant eigenvalue as the paper states it: `1/4` for `n = 3`,
     /// `w1 + 2 w2 - alpha` (a root of (5)) for `n = 5, 6`, `w1 + 2 w2 c_2` (a root of (6) for
     /// `k = 2`) for `n > 6`; `1/4` for `n = 4` (uniform bi-2).
@@ -126,6 +146,17 @@ impl PgsParams {
             n => self.w1 + 2.0 * self.w2 * super::cos_2pi(2, n as i64),
         }
     }
+}
+
+/// `(1 - t) p + t a_mean` over the corners `a`: the shape of formulas (3) (`t = alpha`) and (7)
+/// (`t = tau`).
+fn blend_with_mean(p: &Stencil, t: f64, a: &[u32]) -> Stencil {
+    let mut s = Stencil::new();
+    s.add_scaled(p, 1.0 - t);
+    for &v in a {
+        s.add(v as usize, t / a.len() as f64);
+    }
+    s.merged()
 }
 
 /// Formula (10): `lambda_sub` as a cubic Bernstein polynomial in `c = cos(2 pi / n)`.
@@ -199,17 +230,7 @@ impl Pgs {
     /// applies there.
     pub fn centre_stencil(mesh: &PolyMesh, f: usize) -> Option<Stencil> {
         let net = Self::facet_net(mesh, f)?;
-        let n = net.a.len();
-        let prm = PgsParams::new(n).ok()?;
-        let mut s = Stencil::new();
-        let wa = prm.mu / n as f64;
-        let wbd = (1.0 - prm.mu) / (2.0 * n as f64);
-        for i in 0..n {
-            s.add(net.a[i] as usize, wa);
-            s.add(net.b[i] as usize, wbd);
-            s.add(net.d[i] as usize, wbd);
-        }
-        Some(s.merged())
+        Some(PgsParams::new(net.a.len()).ok()?.centre(&net))
     }
 
     /// Formula (4): the new point of corner `h` of a facet with a DS-net, for the centre `p`
@@ -233,14 +254,8 @@ impl Pgs {
     /// the independent point).
     pub fn centre_update(mesh: &PolyMesh, f: usize, p: &Stencil) -> Stencil {
         let verts = mesh.face(f);
-        let n = verts.len();
-        let prm = PgsParams::new(n).expect("a face has at least 3 sides");
-        let mut s = Stencil::new();
-        s.add_scaled(p, 1.0 - prm.alpha);
-        for &v in verts {
-            s.add(v as usize, prm.alpha / n as f64);
-        }
-        s.merged()
+        let prm = PgsParams::new(verts.len()).expect("a face has at least 3 sides");
+        blend_with_mean(p, prm.alpha, verts)
     }
 
     /// The new point of face corner `h` under PGS: (4) with `p` from (1) at a facet with a
@@ -260,13 +275,8 @@ impl Pgs {
         match Self::centre_stencil(mesh, f) {
             Some(p) => {
                 let verts = mesh.face(f);
-                let n = verts.len();
-                let prm = PgsParams::new(n).expect("a face has at least 3 sides");
-                let mut s = p.scaled(1.0 - prm.tau);
-                for &v in verts {
-                    s.add(v as usize, prm.tau / n as f64);
-                }
-                s.merged()
+                let prm = PgsParams::new(verts.len()).expect("a face has at least 3 sides");
+                prm.limit_point(&p, verts)
             }
             None => crate::schemes::doo_sabin::surface::centroid_stencil(mesh, f),
         }
@@ -412,10 +422,10 @@ impl Scheme for Pgs {
         for v in 0..nv {
             let vi = v as u32;
             if mesh.is_boundary_vertex(v) {
-                if is_corner(mesh, v) {
+                if mesh.is_corner(v) {
                     row.add(vi, 1.0);
                 } else {
-                    let (u, w) = boundary_neighbors(mesh, v);
+                    let (u, w) = mesh.boundary_neighbors(v);
                     row.add(vi, 0.75);
                     row.add(u, 0.125);
                     row.add(w, 0.125);
@@ -423,7 +433,7 @@ impl Scheme for Pgs {
                 row.flush_into(&mut table);
                 continue;
             }
-            let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+            let hs: Vec<u32> = mesh.outgoing(v).collect();
             let k = hs.len();
             if k < 3 {
                 return Err(Error::Unsupported(format!(

@@ -78,7 +78,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{NONE, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
 
-use super::common::{Outgoing, RowBuf, boundary_neighbors, check_child_size, cos_2pi, is_corner};
+use super::common::{RowBuf, check_child_size, cos_2pi};
 use super::{Refinement, Scheme, finish_refinement};
 
 /// Doo-Sabin subdivision (scheme name `doo-sabin`). See the [module](self) documentation for
@@ -283,7 +283,7 @@ pub(crate) fn refine_dual_with(
     let mut corner = vec![NONE; nv];
     let mut nc = 0u32;
     for (v, slot) in corner.iter_mut().enumerate() {
-        if is_corner(mesh, v) {
+        if mesh.is_corner(v) {
             *slot = nc;
             nc += 1;
         }
@@ -340,7 +340,7 @@ pub(crate) fn refine_dual_with(
             corners.push(edge_point(mesh.he_edge(h0), false));
         }
         let mut last = h0;
-        for h in Outgoing::new(mesh, v) {
+        for h in mesh.outgoing(v) {
             corners.push(h);
             last = h;
         }
@@ -372,7 +372,7 @@ fn dual_limit_stencils(
     for v in 0..nv {
         let vi = v as u32;
         if !mesh.is_boundary_vertex(v) {
-            let k = Outgoing::new(mesh, v).count();
+            let k = mesh.outgoing(v).count();
             if k < 3 {
                 return Err(Error::Unsupported(format!(
                     "vertex {v} is an interior vertex of valence 2, which has no closed-form \
@@ -380,13 +380,13 @@ fn dual_limit_stencils(
                 )));
             }
             // Centroid of the V-face: the mean of the new points of v's corners.
-            for h in Outgoing::new(mesh, v) {
+            for h in mesh.outgoing(v) {
                 add_corner_point(mesh, &mut rules, h, 1.0 / k as f64, &mut row);
             }
-        } else if is_corner(mesh, v) {
+        } else if mesh.is_corner(v) {
             row.add(vi, 1.0);
         } else {
-            let (u, w) = boundary_neighbors(mesh, v);
+            let (u, w) = mesh.boundary_neighbors(v);
             row.add(vi, 0.75);
             row.add(u, 0.125);
             row.add(w, 0.125);

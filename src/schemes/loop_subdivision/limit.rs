@@ -4,7 +4,7 @@ use super::{Loop, check_triangles};
 use crate::error::Result;
 use crate::geom::{Point, cross, normalize};
 use crate::mesh::PolyMesh;
-use crate::schemes::common::{Outgoing, RowBuf, boundary_neighbors, cos_2pi, is_corner, sin_2pi};
+use crate::schemes::common::{RowBuf, cos_2pi, sin_2pi};
 use crate::stencil::StencilTable;
 
 impl Loop {
@@ -63,23 +63,23 @@ impl Loop {
         for v in 0..nv {
             let vi = v as u32;
             if !mesh.is_boundary_vertex(v) {
-                let n = Outgoing::new(mesh, v).count() as i64;
-                for (i, h) in Outgoing::new(mesh, v).enumerate() {
+                let n = mesh.outgoing(v).count() as i64;
+                for (i, h) in mesh.outgoing(v).enumerate() {
                     let p = mesh.he_to(h);
                     r1.add(p, cos_2pi(i as i64, n));
                     r2.add(p, sin_2pi(i as i64, n));
                 }
-            } else if is_corner(mesh, v) {
-                let (p0, p1) = boundary_neighbors(mesh, v);
+            } else if mesh.is_corner(v) {
+                let (p0, p1) = mesh.boundary_neighbors(v);
                 r1.add(p0, 1.0);
                 r1.add(vi, -1.0);
                 r2.add(p1, 1.0);
                 r2.add(vi, -1.0);
             } else {
-                let (p0, pk) = boundary_neighbors(mesh, v);
+                let (p0, pk) = mesh.boundary_neighbors(v);
                 r1.add(p0, 1.0);
                 r1.add(pk, -1.0);
-                let k = Outgoing::new(mesh, v).count() as i64;
+                let k = mesh.outgoing(v).count() as i64;
                 let sin_t = sin_2pi(1, 2 * k);
                 let s: f64 = (1..k).map(|i| sin_2pi(i, 2 * k)).sum();
                 let l = 0.375 + 0.25 * cos_2pi(1, 2 * k);
@@ -89,7 +89,7 @@ impl Loop {
                 r2.add(p0, b);
                 r2.add(pk, b);
                 // The interior neighbours p_1 .. p_{k-1} end the outgoing half-edges 1 .. k-1.
-                for (i, h) in Outgoing::new(mesh, v).enumerate().skip(1) {
+                for (i, h) in mesh.outgoing(v).enumerate().skip(1) {
                     r2.add(mesh.he_to(h), sin_2pi(i as i64, 2 * k));
                 }
             }

@@ -72,15 +72,7 @@ pub fn local_fcv_net(k: usize, rings: usize) -> FcvNet {
 pub fn labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
     let nv = m.num_vertices();
     let mut out = vec![m.he_from(h) as usize];
-    let mut hs = vec![h];
-    loop {
-        let t = m.he_twin(m.he_prev(*hs.last()?))?;
-        if t == h {
-            break;
-        }
-        hs.push(t);
-    }
-    for g in hs {
+    for g in m.interior_ring_from(h)? {
         let grid = m.sector_grid(g, 2)?;
         let cells = m.sector_cells(g, 2)?;
         let v = |i: usize, j: usize| grid[i][j] as usize;
@@ -390,17 +382,9 @@ pub fn characteristic_ring(k: usize) -> Result<(Vec<BezierPatch>, f64)> {
         .ok_or_else(|| Error::Unsupported("c-net is not regular".into()))?;
     let step = NonBox::step(&net)?;
     let child = &step.net.mesh;
-    let mut sectors = vec![4 * h0];
-    loop {
-        let last = *sectors.last().expect("non-empty");
-        let t = child
-            .he_twin(child.he_prev(last))
-            .ok_or_else(|| Error::Unsupported("centre on the boundary".into()))?;
-        if t == 4 * h0 {
-            break;
-        }
-        sectors.push(t);
-    }
+    let sectors = child
+        .interior_ring_from(4 * h0)
+        .ok_or_else(|| Error::Unsupported("centre on the boundary".into()))?;
     let pull = |s: &Stencil| -> Result<Stencil> {
         let mut parent = Stencil::new();
         for &(i, w) in s.entries() {

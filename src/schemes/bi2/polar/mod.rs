@@ -34,7 +34,6 @@ use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::Element;
 use crate::mesh::PolyMesh;
-use crate::schemes::common::Outgoing;
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme, finish_refinement};
 use crate::stencil::{Stencil, StencilTable};
@@ -164,7 +163,7 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
     let mut rows: Vec<Stencil> = Vec::new();
     let mut pole_pt = vec![UNSET; nv];
     for &p in &poles {
-        let hs: Vec<u32> = Outgoing::new(mesh, p as usize).collect();
+        let hs: Vec<u32> = mesh.outgoing(p as usize).collect();
         let n = hs.len();
         let mut s = Stencil::new();
         s.add(p as usize, 1.0 - ALPHA);
@@ -269,7 +268,7 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
 
 /// Rule (11): the new ring point on the spoke from pole `p` to its fan vertex `v`.
 fn ring_point_stencil(mesh: &PolyMesh, p: usize, v: usize) -> Result<Stencil> {
-    let hs: Vec<u32> = Outgoing::new(mesh, p).collect();
+    let hs: Vec<u32> = mesh.outgoing(p).collect();
     let n = hs.len();
     let prm = PolarParams::new(n)?;
     let i = hs
@@ -371,7 +370,7 @@ impl Scheme for PolarBi2 {
         for (v, &pv) in pole_of.iter().enumerate() {
             if pv != u32::MAX {
                 let p = pv as usize;
-                let hs: Vec<u32> = Outgoing::new(mesh, p).collect();
+                let hs: Vec<u32> = mesh.outgoing(p).collect();
                 let n = hs.len() as f64;
                 let mut s = Stencil::new();
                 s.add(p, 2.0 / 3.0);

@@ -62,7 +62,7 @@
 use super::{end_child_weight, middle_child_weights};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::schemes::common::{Outgoing, check_child_size};
+use crate::schemes::common::check_child_size;
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme, finish_refinement};
 use crate::stencil::{Stencil, StencilTable};

@@ -33,7 +33,7 @@ fn classify(mesh: &PolyMesh, name: &str) -> Result<Vec<VKind>> {
     }
     (0..mesh.num_vertices())
         .map(|v| {
-            let k = Outgoing::new(mesh, v).count();
+            let k = mesh.outgoing(v).count();
             if mesh.is_boundary_vertex(v) {
                 match k {
                     1 => Ok(VKind::Corner),
@@ -83,7 +83,7 @@ fn vertex_grid(
     v: usize,
     kind: VKind,
 ) -> ([[u32; 3]; 3], [f64; 3], [f64; 3]) {
-    let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+    let hs: Vec<u32> = mesh.outgoing(v).collect();
     let to = |h: u32| mesh.he_to(h);
     let diag = |h: u32| mesh.he_to(mesh.he_next(h));
     let vi = v as u32;
@@ -154,7 +154,7 @@ pub fn regular_patch(mesh: &PolyMesh, w: &Widths, v: usize) -> Option<Vec<Stenci
     {
         return None;
     }
-    let k = Outgoing::new(mesh, v).count();
+    let k = mesh.outgoing(v).count();
     let kind = match (mesh.is_boundary_vertex(v), k) {
         (false, 4) => VKind::Regular,
         (true, 2) => VKind::Boundary,
@@ -174,7 +174,7 @@ fn vertex_child_extraordinary(
     v: usize,
     rules: &TernaryRules,
 ) -> Result<Stencil> {
-    let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+    let hs: Vec<u32> = mesh.outgoing(v).collect();
     let n = hs.len();
     let h1 = w[hs[0] as usize][1] / w[hs[0] as usize][0];
     let (a1, a2) = rules.alphas(n, h1)?;
@@ -306,7 +306,7 @@ pub fn ternary_step(
     for (v, &kind) in kinds.iter().enumerate() {
         match kind {
             VKind::Boundary => {
-                let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+                let hs: Vec<u32> = mesh.outgoing(v).collect();
                 let p1 = mesh.he_prev(hs[1]);
                 let (bl, br) = (mesh.he_from(p1), mesh.he_to(hs[0]));
                 let m = middle_child_weights(
@@ -563,7 +563,7 @@ pub(super) fn ternary_limit_stencils(mesh: &PolyMesh, name: &str) -> Result<Sten
     for (v, &kind) in kinds.iter().enumerate() {
         let s = match kind {
             VKind::Extraordinary => {
-                let hs: Vec<u32> = Outgoing::new(mesh, v).collect();
+                let hs: Vec<u32> = mesh.outgoing(v).collect();
                 let n = hs.len();
                 let p = TpsParams::new(n)?;
                 let mut s = Stencil::new();
