@@ -37,6 +37,7 @@
 //! own boundaries. `fairsub check` measures its defects.
 
 mod g1;
+mod jets;
 
 use super::regular::bi3_net;
 use super::{CatmullClark, edge_point_stencil, vertex_point_stencil};
@@ -518,6 +519,7 @@ fn fill(
     out: &mut PatchComplex,
 ) -> Result<()> {
     let m = &level.mesh;
+    let mut jets = jets::Jets::new(m);
     for &(f, tag) in marked {
         let face = m.face(f as usize);
         if face.len() != 4 {
@@ -532,8 +534,8 @@ fn fill(
             let key = (a.min(b), a.max(b));
             let c = *curves.entry(key).or_insert_with(|| {
                 let (lo, hi) = key;
-                let (p0, d0) = limit_and_derivative(m, lo as usize, hi as usize);
-                let (p3, d3) = limit_and_derivative(m, hi as usize, lo as usize);
+                let (p0, d0) = jets.limit_and_derivative(lo as usize, hi as usize);
+                let (p3, d3) = jets.limit_and_derivative(hi as usize, lo as usize);
                 [
                     p0,
                     geom::axpy(p0, 1.0 / 3.0, d0),
