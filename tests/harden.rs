@@ -25,6 +25,20 @@ fn run(args: &[&str]) -> (i32, String) {
     )
 }
 
+/// `subdivide NET --scheme SCHEME MODE N -o OUT`.
+fn sub<'a>(net: &'a str, scheme: &'a str, mode: [&'a str; 2], out: &'a str) -> [&'a str; 8] {
+    [
+        "subdivide",
+        net,
+        "--scheme",
+        scheme,
+        mode[0],
+        mode[1],
+        "-o",
+        out,
+    ]
+}
+
 /// Runs a command that must be refused with exit code 1, a message containing `expect` and
 /// no output file at `out`.
 fn refused(args: &[&str], expect: &str, out: &Path) {
@@ -67,16 +81,7 @@ fn jobs_over_the_budget_are_refused_with_the_estimate_and_the_option() {
     let obj = d.join("out.obj");
     let o = obj.to_str().unwrap();
     refused(
-        &[
-            "subdivide",
-            "gallery:cube",
-            "--scheme",
-            "catmull-clark",
-            "--levels",
-            "30",
-            "-o",
-            o,
-        ],
+        &sub("gallery:cube", "catmull-clark", ["--levels", "30"], o),
         "too large: 30 refinement step(s) of catmull-clark",
         &obj,
     );
@@ -240,32 +245,14 @@ fn a_200k_gon_under_doo_sabin_is_refused_up_front() {
     let out = d.join("out.ply");
     let (net, o) = (p.to_str().unwrap(), out.to_str().unwrap());
     refused(
-        &[
-            "subdivide",
-            net,
-            "--scheme",
-            "doo-sabin",
-            "--levels",
-            "1",
-            "-o",
-            o,
-        ],
+        &sub(net, "doo-sabin", ["--levels", "1"], o),
         "1 refinement step(s) of doo-sabin on this net (200000 vertices, 1 faces) would make \
          about 800000 vertices and 400001 faces",
         &out,
     );
     let bv = d.join("out.bv");
     refused(
-        &[
-            "subdivide",
-            net,
-            "--scheme",
-            "doo-sabin",
-            "--rings",
-            "2",
-            "-o",
-            bv.to_str().unwrap(),
-        ],
+        &sub(net, "doo-sabin", ["--rings", "2"], bv.to_str().unwrap()),
         "the largest with 200000 corners) makes 4.00e10 stencil entries",
         &bv,
     );
@@ -276,16 +263,12 @@ fn a_million_rings_are_refused() {
     let d = scratch("rings");
     let out = d.join("out.bv");
     refused(
-        &[
-            "subdivide",
+        &sub(
             "gallery:cube",
-            "--scheme",
             "catmull-clark",
-            "--rings",
-            "1000000",
-            "-o",
+            ["--rings", "1000000"],
             out.to_str().unwrap(),
-        ],
+        ),
         "--rings 1000000: at most 100 rings per extraordinary element",
         &out,
     );
@@ -317,16 +300,12 @@ fn rings_at_a_vertex_of_valence_2000_are_built_and_valid() {
     let n = 2000;
     fan(&net, n);
     let out = d.join("out.bv");
-    let (code, err) = run(&[
-        "subdivide",
+    let (code, err) = run(&sub(
         net.to_str().unwrap(),
-        "--scheme",
         "catmull-clark",
-        "--rings",
-        "2",
-        "-o",
+        ["--rings", "2"],
         out.to_str().unwrap(),
-    ]);
+    ));
     assert_eq!(code, 0, "{err}");
     assert!(
         err.contains(&format!("wrote {} patches (2 rings", 7 * n)),
@@ -488,41 +467,24 @@ fn crease_files_are_checked_against_the_net_at_their_line() {
             "c.txt:2: 'crease': a creases file holds OpenSubdiv tag lines",
         ),
     ];
+    let c = d.join("c.txt");
+    let (n, c_s, o) = (
+        net.to_str().unwrap(),
+        c.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    let args = [
+        &sub(n, "catmull-clark", ["--levels", "1"], o)[..],
+        &["--creases", c_s],
+    ]
+    .concat();
     for (line, expect) in cases {
-        let c = d.join("c.txt");
         std::fs::write(&c, format!("# tags\n{line}\n")).unwrap();
-        refused(
-            &[
-                "subdivide",
-                net.to_str().unwrap(),
-                "--scheme",
-                "catmull-clark",
-                "--levels",
-                "1",
-                "--creases",
-                c.to_str().unwrap(),
-                "-o",
-                out.to_str().unwrap(),
-            ],
-            expect,
-            &out,
-        );
+        refused(&args, expect, &out);
     }
     // a valid file is taken
-    let c = d.join("c.txt");
     std::fs::write(&c, "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\n").unwrap();
-    let (code, err) = run(&[
-        "subdivide",
-        net.to_str().unwrap(),
-        "--scheme",
-        "catmull-clark",
-        "--levels",
-        "1",
-        "--creases",
-        c.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let (code, err) = run(&args);
     assert_eq!(code, 0, "{err}");
     assert_eq!(fairsub::io::read_mesh(&out).unwrap().mesh.num_faces(), 24);
 }
