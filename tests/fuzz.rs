@@ -4,8 +4,15 @@
 //! (exit code 0 or 1, never a signal; on 0 the output is read back by fairsub's own readers, on
 //! 1 no output exists).
 //!
-//! CI runs a bounded number of cases (`FAIRSUB_FUZZ_CASES`, default 300; one in 10 through the
-//! command line). The mutations are seeded (`FAIRSUB_FUZZ_SEED`), so a failure is reproducible.
+//! A second loop mutates the other inputs: a `.bv` surface (through `check` and `render`), a
+//! q-file (`--q-file` with qas-plus), an FCV file (`--fcv-file` with nonbox), a crease side file
+//! (`--creases` with catmull-clark), and the options of `analyze` / `charmap` (schemes,
+//! valences, sizes). Its contract adds the message: on exit 1 it names the mutated file with a
+//! line >= 1 (or no line), or the element (patch, vertex, face, valence).
+//!
+//! CI runs a bounded number of cases (`FAIRSUB_FUZZ_CASES`, default 300 nets, one in 10 through
+//! the command line, and a fifteenth as many side-file cases per kind). The mutations are seeded
+//! (`FAIRSUB_FUZZ_SEED`), so a failure is reproducible.
 
 use std::path::Path;
 use std::process::Command;
@@ -74,12 +81,31 @@ fn mutate(b: &mut Vec<u8>, rng: &mut Rng) {
 }
 
 fn run(args: &[&str]) -> i32 {
+    run_err(args).0
+}
+
+/// The exit code (-1 for a signal: an abort or a segfault has no code) and the error text.
+fn run_err(args: &[&str]) -> (i32, String) {
     let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
         .args(args)
         .output()
         .unwrap();
-    // a signal (abort, segfault) has no code
-    o.status.code().unwrap_or(-1)
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+fn cases_and_seed() -> (usize, u64) {
+    let cases = std::env::var("FAIRSUB_FUZZ_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(300);
+    let seed = std::env::var("FAIRSUB_FUZZ_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0x9e37_79b9_7f4a_7c15);
+    (cases, seed)
 }
 
 /// `command ... -o out`: exit 0 with a readable output, or exit 1 and no output.
@@ -98,14 +124,7 @@ fn contract(args: &[&str], out: &Path, read_back: impl Fn(&Path) -> bool, case: 
 
 #[test]
 fn mutated_nets_never_panic_and_outputs_are_valid_or_absent() {
-    let cases: usize = std::env::var("FAIRSUB_FUZZ_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(300);
-    let seed: u64 = std::env::var("FAIRSUB_FUZZ_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0x9e37_79b9_7f4a_7c15);
+    let (cases, seed) = cases_and_seed();
     let dir = std::env::temp_dir().join(format!("fairsub-fuzz-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -218,4 +237,218 @@ fn mutated_nets_never_panic_and_outputs_are_valid_or_absent() {
         accepted > 0 && through_cli > 0,
         "{accepted} of {cases} read"
     );
+}
+
+/// Exit 0, 1 or 2 (never a panic's 101 or a signal); on 1 the message names `file` (at a line
+/// >= 1 when it gives one) or an element; the output `out` is valid on 0 and absent otherwise.
+fn side_contract(args: &[&str], file: &str, out: Option<(&Path, bool)>, case: &str) {
+    if let Some((o, _)) = out {
+        let _ = std::fs::remove_file(o);
+    }
+    let (code, err) = run_err(args);
+    assert!(
+        code == 0 || code == 1 || code == 2,
+        "{case}: {args:?} exited with {code}: {err}"
+    );
+    if code == 1 {
+        let named = err.contains(file) && !err.contains(&format!("{file}:0:"));
+        let element = ["patch", "vertex", "face", "valence", "too large", "scheme"]
+            .iter()
+            .any(|w| err.contains(w));
+        assert!(
+            named || element,
+            "{case}: {args:?}: message names nothing: {err}"
+        );
+    }
+    if let Some((o, is_bv)) = out {
+        if code == 0 {
+            let ok = if is_bv {
+                fairsub::io::read_bv(o).is_ok()
+            } else {
+                fairsub::io::read_mesh(o).is_ok()
+            };
+            assert!(ok, "{case}: {args:?} wrote an unreadable output");
+        } else {
+            assert!(!o.exists(), "{case}: {args:?} failed but left an output");
+        }
+    }
+}
+
+const CUBE_OFF: &str = "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n\
+    4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+
+#[test]
+fn mutated_side_files_and_options_keep_the_contract() {
+    let (cases, seed) = cases_and_seed();
+    let per_kind = cases.div_ceil(15).max(5);
+    let dir = std::env::temp_dir().join(format!("fairsub-fuzz-side-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let (cube, obj, bv_out, png) = (
+        path("cube.off"),
+        path("out.obj"),
+        path("out.bv"),
+        path("out.png"),
+    );
+    std::fs::write(&cube, CUBE_OFF).unwrap();
+    let seed_bv = path("seed.bv");
+    assert_eq!(
+        run(&[
+            "subdivide",
+            "gallery:cube",
+            "--scheme",
+            "catmull-clark",
+            "-o",
+            &seed_bv
+        ]),
+        0
+    );
+    let bv_bytes = std::fs::read(&seed_bv).unwrap();
+    let kinds: [(&str, Vec<u8>); 4] = [
+        ("case.bv", bv_bytes),
+        (
+            "case.q",
+            b"# expansion\nvertex 0\nkind c1\np 0 0 0\nq 0 2 0.1 0 0\n".to_vec(),
+        ),
+        ("case.fcv", b"0 0 0\n*\n*\n0.5 0.5 1.2\n*\n*\n".to_vec()),
+        (
+            "case.txt",
+            b"t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\nt hole 1/0/0 2\n".to_vec(),
+        ),
+    ];
+    let mut rng = Rng(seed ^ 0x5151_5151 | 1);
+    for (k, (name, seed_bytes)) in kinds.iter().enumerate() {
+        let file = path(name);
+        for case in 0..per_kind {
+            let mut b = seed_bytes.clone();
+            for _ in 0..1 + rng.below(4) {
+                mutate(&mut b, &mut rng);
+            }
+            std::fs::write(&file, &b).unwrap();
+            let label = format!("{name} case {case} (seed {seed})");
+            let o = |p: &str, bv: bool| Some((Path::new(p).to_path_buf(), bv));
+            let (target, args): (Option<(std::path::PathBuf, bool)>, Vec<&str>) = match k {
+                0 => {
+                    side_contract(&["check", &file], name, None, &label);
+                    (
+                        o(&png, false).map(|(p, _)| (p, false)),
+                        vec!["render", &file, "--size", "48x48", "-o", &png],
+                    )
+                }
+                1 => (
+                    o(&bv_out, true),
+                    vec![
+                        "subdivide",
+                        "gallery:cnet-5-convex",
+                        "--scheme",
+                        "qas-plus",
+                        "--q-file",
+                        &file,
+                        "-o",
+                        &bv_out,
+                    ],
+                ),
+                2 => (
+                    o(&obj, false),
+                    vec![
+                        "subdivide",
+                        "gallery:cube",
+                        "--scheme",
+                        "nonbox",
+                        "--fcv-file",
+                        &file,
+                        "--levels",
+                        "1",
+                        "-o",
+                        &obj,
+                    ],
+                ),
+                _ => (
+                    o(&obj, false),
+                    vec![
+                        "subdivide",
+                        &cube,
+                        "--scheme",
+                        "catmull-clark",
+                        "--levels",
+                        "2",
+                        "--creases",
+                        &file,
+                        "-o",
+                        &obj,
+                    ],
+                ),
+            };
+            if k == 0 {
+                // a PNG is not read back: it exists on 0 and is absent otherwise
+                let p = target.unwrap().0;
+                let _ = std::fs::remove_file(&p);
+                let (code, err) = run_err(&args);
+                assert!(
+                    code == 0 || code == 1,
+                    "{label}: render exited with {code}: {err}"
+                );
+                assert_eq!(
+                    p.exists(),
+                    code == 0,
+                    "{label}: render output and exit code disagree"
+                );
+            } else {
+                let t = target.as_ref().map(|(p, bv)| (p.as_path(), *bv));
+                side_contract(&args, name, t, &label);
+            }
+        }
+    }
+    // analyze / charmap with mutated options
+    let schemes = [
+        "catmull-clark",
+        "guided-bi5",
+        "pgs",
+        "nonbox",
+        "eg",
+        "qas-plus",
+        "loop",
+        "doo-sabin",
+        "polar",
+        "no-such-scheme",
+        "",
+    ];
+    let valences = [
+        "0",
+        "1",
+        "2",
+        "3",
+        "5",
+        "7",
+        "16",
+        "17",
+        "83",
+        "84",
+        "-1",
+        "99999999999",
+        "1e3",
+        "x",
+    ];
+    for case in 0..per_kind {
+        let s = schemes[rng.below(schemes.len())];
+        let n = valences[rng.below(valences.len())];
+        let label = format!("analyze case {case} (seed {seed})");
+        if rng.below(2) == 0 {
+            side_contract(
+                &["analyze", "--scheme", s, "--valence", n],
+                "--valence",
+                None,
+                &label,
+            );
+        } else {
+            let t = Some((Path::new(&bv_out), true));
+            side_contract(
+                &["charmap", "--scheme", s, "--valence", n, "-o", &bv_out],
+                "--valence",
+                t,
+                &label,
+            );
+        }
+    }
 }

@@ -1,11 +1,11 @@
 //! Issue 20's hostile-input cases through the `fairsub` command line, each with its expected
 //! message: outputs are valid or not written, jobs over the memory budget are refused up front,
-//! side files are checked against the net, readers share one text rule, and a k-gon ten times
-//! larger costs at most fifteen times the time (no quadratic face walk).
+//! side files are checked against the net, readers share one text rule, and the once-quadratic
+//! inputs (huge faces, many patches or groups, a vertex of valence thousands) give their outcome,
+//! asserted by counts, not by time: `bench/scaling.sh` measures the time ratios.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Instant;
 
 fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("fairsub-harden-{}-{name}", std::process::id()));
@@ -23,6 +23,20 @@ fn run(args: &[&str]) -> (i32, String) {
         o.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&o.stderr).into_owned(),
     )
+}
+
+/// `subdivide NET --scheme SCHEME MODE N -o OUT`.
+fn sub<'a>(net: &'a str, scheme: &'a str, mode: [&'a str; 2], out: &'a str) -> [&'a str; 8] {
+    [
+        "subdivide",
+        net,
+        "--scheme",
+        scheme,
+        mode[0],
+        mode[1],
+        "-o",
+        out,
+    ]
 }
 
 /// Runs a command that must be refused with exit code 1, a message containing `expect` and
@@ -67,16 +81,7 @@ fn jobs_over_the_budget_are_refused_with_the_estimate_and_the_option() {
     let obj = d.join("out.obj");
     let o = obj.to_str().unwrap();
     refused(
-        &[
-            "subdivide",
-            "gallery:cube",
-            "--scheme",
-            "catmull-clark",
-            "--levels",
-            "30",
-            "-o",
-            o,
-        ],
+        &sub("gallery:cube", "catmull-clark", ["--levels", "30"], o),
         "too large: 30 refinement step(s) of catmull-clark",
         &obj,
     );
@@ -212,25 +217,274 @@ fn kgon(path: &Path, k: usize) {
 }
 
 #[test]
-fn info_on_a_kgon_scales_linearly() {
-    let d = scratch("scaling");
-    let time = |k: usize| {
-        let p = d.join(format!("k{k}.obj"));
-        kgon(&p, k);
-        // best of three, against the noise of a shared machine
-        (0..3)
-            .map(|_| {
-                let t = Instant::now();
-                let (code, err) = run(&["info", p.to_str().unwrap()]);
-                assert_eq!(code, 0, "{err}");
-                t.elapsed().as_secs_f64()
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
-    let small = time(20_000);
-    let large = time(200_000);
+fn info_on_a_200k_gon_reports_it() {
+    let d = scratch("kgon");
+    let p = d.join("k.obj");
+    kgon(&p, 200_000);
+    let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(["info", p.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0));
     assert!(
-        large <= 15.0 * small,
-        "info on a 200k-gon took {large:.3} s, on a 20k-gon {small:.3} s"
+        text.contains("200000 vertices, 200000 edges, 1 faces"),
+        "{text}"
     );
+    assert!(
+        text.contains("extraordinary faces: 1: 0(200000-gon)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_200k_gon_under_doo_sabin_is_refused_up_front() {
+    let d = scratch("ds");
+    let p = d.join("k.obj");
+    kgon(&p, 200_000);
+    let out = d.join("out.ply");
+    let (net, o) = (p.to_str().unwrap(), out.to_str().unwrap());
+    refused(
+        &sub(net, "doo-sabin", ["--levels", "1"], o),
+        "1 refinement step(s) of doo-sabin on this net (200000 vertices, 1 faces) would make \
+         about 800000 vertices and 400001 faces",
+        &out,
+    );
+    let bv = d.join("out.bv");
+    refused(
+        &sub(net, "doo-sabin", ["--rings", "2"], bv.to_str().unwrap()),
+        "the largest with 200000 corners) makes 4.00e10 stencil entries",
+        &bv,
+    );
+}
+
+#[test]
+fn a_million_rings_are_refused() {
+    let d = scratch("rings");
+    let out = d.join("out.bv");
+    refused(
+        &sub(
+            "gallery:cube",
+            "catmull-clark",
+            ["--rings", "1000000"],
+            out.to_str().unwrap(),
+        ),
+        "--rings 1000000: at most 100 rings per extraordinary element",
+        &out,
+    );
+}
+
+/// A disc of `n` quads around one vertex of valence `n`.
+fn fan(path: &Path, n: usize) {
+    use std::fmt::Write;
+    let mut s = String::from("v 0 0 0\n");
+    for r in [1.0, 2.0] {
+        for i in 0..n {
+            let t = (i as f64 + (r - 1.0) / 2.0) / n as f64 * std::f64::consts::TAU;
+            writeln!(s, "v {} {} {}", r * t.cos(), r * t.sin(), (r - 1.0) / 10.0).unwrap();
+        }
+    }
+    for i in 0..n {
+        writeln!(s, "f 1 {} {} {}", 2 + i, n + 2 + i, 2 + (i + 1) % n).unwrap();
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+/// Rings at a vertex of valence 2,000 (the issue's 20,000 took more than 30 s; it now takes as
+/// long as ten vertices of valence 2,000, see `bench/scaling.sh`): two rings of 3 n patches and
+/// the C^0 fill of n patches (the G^1 cap stops at valence 32), and the output reads back.
+#[test]
+fn rings_at_a_vertex_of_valence_2000_are_built_and_valid() {
+    let d = scratch("fan");
+    let net = d.join("fan.obj");
+    let n = 2000;
+    fan(&net, n);
+    let out = d.join("out.bv");
+    let (code, err) = run(&sub(
+        net.to_str().unwrap(),
+        "catmull-clark",
+        ["--rings", "2"],
+        out.to_str().unwrap(),
+    ));
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains(&format!("wrote {} patches (2 rings", 7 * n)),
+        "{err}"
+    );
+    let c = fairsub::io::read_bv(&out).unwrap();
+    assert_eq!(c.patches.len(), 7 * n);
+}
+
+/// A flat `m x m` grid of bi-3 patches as a `.bv`, with one `group` line per patch if `groups`.
+fn bv_grid(path: &Path, m: usize, groups: bool) {
+    use std::fmt::Write;
+    let mut s = String::new();
+    for a in 0..m {
+        for b in 0..m {
+            if groups {
+                writeln!(s, "group {} g{}", 1 + (a * m + b) % 16, a * m + b).unwrap();
+            }
+            s.push_str("4 3\n");
+            for i in 0..=3 {
+                for j in 0..=3 {
+                    let (x, y) = (a as f64 + i as f64 / 3.0, b as f64 + j as f64 / 3.0);
+                    writeln!(s, "{x} {y} 0").unwrap();
+                }
+            }
+        }
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+/// `check` on a .bv of 173^2 = 29,929 patches (30k took 22 s before the linear adjacency), and
+/// on the same grid with a `group` line per patch (100k groups took 25 s): every shared side
+/// is found, the open ones are the grid's boundary.
+#[test]
+fn check_on_30k_patches_and_30k_groups_finds_every_join() {
+    let d = scratch("bv");
+    let m = 173;
+    for groups in [false, true] {
+        let p = d.join(format!("grid-{groups}.bv"));
+        bv_grid(&p, m, groups);
+        let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+            .args(["check", p.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0));
+        let text = String::from_utf8_lossy(&o.stdout);
+        let head = format!(
+            "{} patches, {} shared pieces, {} open sides",
+            m * m,
+            2 * m * (m - 1),
+            4 * m
+        );
+        assert!(
+            text.contains(&head),
+            "groups {groups}: {}",
+            &text[..200.min(text.len())]
+        );
+    }
+}
+
+/// `analyze` and `charmap` at valence 100: guided subdivision is refused up front (its local
+/// matrix is beyond the dense-decomposition bound), PGS and non-box answer.
+#[test]
+fn analyze_and_charmap_at_valence_100() {
+    let d = scratch("analyze");
+    let (code, err) = run(&["analyze", "--scheme", "guided-bi5", "--valence", "100"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains(
+            "the local matrix of guided-bi5 would have 1806 rows (6 centre + 100 x 18 \
+             points); fairsub decomposes dense local matrices of at most 1500 rows"
+        ),
+        "{err}"
+    );
+    let out = d.join("c.bv");
+    refused(
+        &[
+            "charmap",
+            "--scheme",
+            "guided-bi5",
+            "--valence",
+            "100",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        "take a valence of at most 83",
+        &out,
+    );
+    for scheme in ["pgs", "nonbox"] {
+        let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+            .args(["charmap", "--scheme", scheme, "--valence", "100", "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(0), "{scheme}");
+        assert!(
+            text.contains(&format!("{scheme} valence 100: lambda 0."))
+                && text.contains("injective (certified)"),
+            "{scheme}: {text}"
+        );
+        assert!(fairsub::io::read_bv(&out).is_ok());
+    }
+}
+
+/// An OFF cube (vertices counted from 0, as in `--creases` files).
+const CUBE_OFF: &str = "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n\
+    4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+
+#[test]
+fn crease_files_are_checked_against_the_net_at_their_line() {
+    let d = scratch("creases");
+    let net = d.join("cube.off");
+    std::fs::write(&net, CUBE_OFF).unwrap();
+    let out = d.join("out.obj");
+    let cases = [
+        (
+            "t crease 2/1/0 0 99 2",
+            "c.txt:2: crease tag names vertex 99 (counted from 0), which does not exist",
+        ),
+        (
+            "t crease 2/1/0 0 6 2",
+            "c.txt:2: crease tag names vertices 0 and 6, which share no edge",
+        ),
+        (
+            "t crease 2/1/0 0 1",
+            "c.txt:2: tag 'crease' announces 3 arguments (2/1/0), but has 2",
+        ),
+        (
+            "t crease 4/3/0 0 1 1 2 1 2 3",
+            "c.txt:2: tag 'crease' gives 3 sharpness values for 2 elements",
+        ),
+        (
+            "t crease 2/1/0 0 1 -1",
+            "c.txt:2: tag 'crease': sharpness -1 is negative",
+        ),
+        (
+            "t crease 2/1/0 0 1 nan",
+            "c.txt:2: bad number 'nan' in tag 'crease'",
+        ),
+        (
+            "t crease 3/1/0 0 1 2 1",
+            "c.txt:2: a crease tag lists vertex pairs",
+        ),
+        (
+            "t corner 1/1/0 8 1",
+            "c.txt:2: corner tag names vertex 8 (counted from 0), which does not exist",
+        ),
+        (
+            "t corner 1/1/0 -3 1",
+            "c.txt:2: tag 'corner': vertex index -3 (indices count from 0)",
+        ),
+        (
+            "t hole 1/0/0 6",
+            "c.txt:2: hole tag names face 6 (counted from 0), but the net has 6 faces",
+        ),
+        (
+            "crease 0 1 2",
+            "c.txt:2: 'crease': a creases file holds OpenSubdiv tag lines",
+        ),
+    ];
+    let c = d.join("c.txt");
+    let (n, c_s, o) = (
+        net.to_str().unwrap(),
+        c.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    let args = [
+        &sub(n, "catmull-clark", ["--levels", "1"], o)[..],
+        &["--creases", c_s],
+    ]
+    .concat();
+    for (line, expect) in cases {
+        std::fs::write(&c, format!("# tags\n{line}\n")).unwrap();
+        refused(&args, expect, &out);
+    }
+    // a valid file is taken
+    std::fs::write(&c, "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\n").unwrap();
+    let (code, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(fairsub::io::read_mesh(&out).unwrap().mesh.num_faces(), 24);
 }

@@ -45,6 +45,16 @@ pub trait AdaptiveRules {
     /// The tag of a cell that is not emitted at level `l`.
     fn retag(&self, level: &Self::Level, cell: u32, tag: Tag, l: usize) -> Tag;
 
+    /// The tags of all cells not emitted at level `l`, in order. The default asks
+    /// [`AdaptiveRules::retag`] for each; a scheme whose retag walks a vertex's fan overrides it
+    /// to walk each fan once (else a vertex of valence n costs n^2).
+    fn retag_all(&self, level: &Self::Level, cells: Vec<(u32, Tag)>, l: usize) -> Vec<(u32, Tag)> {
+        cells
+            .into_iter()
+            .map(|(f, tag)| (f, self.retag(level, f, tag, l)))
+            .collect()
+    }
+
     /// Replaces marked cells by caps built from local nets (Catmull-Clark's caps of EG, QAS+ and
     /// guided subdivision); returns the cells left. The default caps nothing.
     fn caps(
@@ -93,9 +103,10 @@ pub fn run<R: AdaptiveRules + ?Sized>(
         let mut curves = R::Curves::default();
         for &(f, tag) in rules.active(&level) {
             if !rules.emit(&level, f, provenance(l, tag), &mut curves, &mut out) {
-                marked.push((f, rules.retag(&level, f, tag, l)));
+                marked.push((f, tag));
             }
         }
+        marked = rules.retag_all(&level, marked, l);
         marked = rules.caps(&level, marked, l, &mut out)?;
         if marked.is_empty() {
             break;

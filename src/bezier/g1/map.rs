@@ -407,12 +407,30 @@ pub struct Cap {
 /// Relative compatibility defect above which [`g1_cap`] refuses a hole.
 pub const MAX_COMPATIBILITY_DEFECT: f64 = 1e-7;
 
+/// The largest valence a cap is built for: the cap map is a dense null-space and
+/// pseudo-inverse computation on `O(n)` coefficients (time `O(n^3)`: about 2 s at n = 40, a
+/// minute at n = 100), so larger holes are refused and their providers keep their C^0 fill.
+pub const MAX_CAP_VALENCE: usize = 32;
+
+/// Refuses a valence above [`MAX_CAP_VALENCE`] before anything of size `n^2` is allocated.
+pub fn check_cap_valence(n: usize) -> Result<()> {
+    if n > MAX_CAP_VALENCE {
+        return Err(Error::Unsupported(format!(
+            "a G^1 cap of valence {n}: at most {MAX_CAP_VALENCE} (the cap map's dense solve \
+             grows like n^3)"
+        )));
+    }
+    Ok(())
+}
+
 /// The G^1 cap of a hole at the lowest certified degree (or at `degree` if given).
 ///
-/// Errors name the sector or spoke end whose data are not compatible with a C^1 ring.
+/// Errors name the sector or spoke end whose data are not compatible with a C^1 ring, or a
+/// valence above [`MAX_CAP_VALENCE`].
 pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
-    let (layout, degrees) = hole.layout()?;
     let n = hole.valence();
+    check_cap_valence(n)?;
+    let (layout, degrees) = hole.layout()?;
     let (d, centre) = match opts.centre {
         Centre::Auto => {
             let d = match opts.degree {

@@ -122,6 +122,7 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
 /// The G^1 cap of `hole` (its centre set by the provider) in the tangent plane with normal
 /// `normal`: the tangents from [`chart_tangents`], then [`g1_cap_with`] with `opts`.
 pub fn cap_in_plane(mut hole: Hole, normal: Point, opts: CapOptions) -> Result<Cap> {
+    super::map::check_cap_valence(hole.valence())?;
     hole.tangents = chart_tangents(&hole, normal)?;
     g1_cap_with(&hole, opts)
 }

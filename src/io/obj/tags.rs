@@ -12,8 +12,10 @@
 //! | `creasemethod` | 1 string: `normal` (uniform) or `chaikin` | crease method |
 //! | `smoothtriangles` | 1 string: `catmark` or `smooth` (or 1 integer 0 / 1) | triangle option (Catmull-Clark) |
 //!
-//! Vertex and face indices count from 0 (as in OpenSubdiv's shapes); sharpness values below 0
-//! count as 0, 10 and more are infinitely sharp. `facevaryingpropagatecorners` (no counterpart
+//! Vertex and face indices count from 0 (as in OpenSubdiv's shapes); a sharpness must be a
+//! finite number >= 0 (OpenSubdiv clamps negative values to 0; fairsub names the line instead,
+//! since a negative sharpness is a typing error more often than a request for 0), 10 and more
+//! are infinitely sharp. `facevaryingpropagatecorners` (no counterpart
 //! in OpenSubdiv 3) and the hierarchical edits (`vertexedit`, `edgeedit`, `faceedit`, which
 //! OpenSubdiv 3 does not support either) are ignored with a warning, as is any other tag.
 
@@ -86,13 +88,22 @@ pub(crate) fn parse_tag(
     };
     // One value for all elements, or one per element.
     let value = |k: usize, n: usize| -> Result<f32> {
-        match floats.len() {
-            1 => Ok(sharpness_value(floats[0])),
-            m if m == n => Ok(sharpness_value(floats[k])),
-            m => Err(err(format!(
-                "tag '{name}' gives {m} sharpness values for {n} elements (give 1, or one each)"
-            ))),
+        let x = match floats.len() {
+            1 => floats[0],
+            m if m == n => floats[k],
+            m => {
+                return Err(err(format!(
+                    "tag '{name}' gives {m} sharpness values for {n} elements (give 1, or one each)"
+                )));
+            }
+        };
+        if x < 0.0 {
+            return Err(err(format!(
+                "tag '{name}': sharpness {x} is negative (0 is smooth, 10 and more infinitely \
+                 sharp)"
+            )));
         }
+        Ok(sharpness_value(x))
     };
     let one_int = || match ints[..] {
         [i] if floats.is_empty() && strings.is_empty() => Ok(i),

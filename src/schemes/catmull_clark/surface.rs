@@ -37,6 +37,7 @@
 //! own boundaries. `fairsub check` measures its defects.
 
 mod g1;
+mod jets;
 
 use super::regular::bi3_net;
 use super::{CatmullClark, edge_point_stencil, vertex_point_stencil};
@@ -142,7 +143,15 @@ impl AdaptiveRules for CcRules<'_> {
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
-        tag_irregular(level, f as usize, tag)
+        tag_irregular(level, f as usize, tag, &mut HashMap::new())
+    }
+
+    fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
+        let mut fans = HashMap::new();
+        cells
+            .into_iter()
+            .map(|(f, tag)| (f, tag_irregular(level, f as usize, tag, &mut fans)))
+            .collect()
     }
 
     fn caps(
@@ -279,8 +288,14 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
-/// for a non-quad input face); faces without one inherit their parent's tag.
-fn tag_irregular(level: &Level, f: usize, tag: Tag) -> Tag {
+/// for a non-quad input face); faces without one inherit their parent's tag. `fans` keeps the
+/// position of each face in the fans walked so far.
+fn tag_irregular(
+    level: &Level,
+    f: usize,
+    tag: Tag,
+    fans: &mut HashMap<u32, HashMap<u32, u32>>,
+) -> Tag {
     let m = &level.mesh;
     if m.face_size(f) != 4 {
         return Tag {
@@ -291,14 +306,18 @@ fn tag_irregular(level: &Level, f: usize, tag: Tag) -> Tag {
     for &v in m.face(f) {
         let origin = level.info[v as usize].origin;
         if origin.is_some() && !m.is_regular_quad_vertex(v as usize) {
-            let sector = m
-                .vertex_faces(v as usize)
-                .iter()
-                .position(|&g| g == f as u32)
-                .unwrap_or(0);
+            // each vertex's fan is walked once (position of every face, the first kept)
+            let fan = fans.entry(v).or_insert_with(|| {
+                let mut at = HashMap::new();
+                for (i, &g) in m.vertex_faces(v as usize).iter().enumerate() {
+                    at.entry(g).or_insert(i as u32);
+                }
+                at
+            });
+            let sector = fan.get(&(f as u32)).copied().unwrap_or(0);
             return Tag {
                 element: origin,
-                sector: sector as u32,
+                sector,
                 ..tag
             };
         }
@@ -518,6 +537,7 @@ fn fill(
     out: &mut PatchComplex,
 ) -> Result<()> {
     let m = &level.mesh;
+    let mut jets = jets::Jets::new(m);
     for &(f, tag) in marked {
         let face = m.face(f as usize);
         if face.len() != 4 {
@@ -532,8 +552,8 @@ fn fill(
             let key = (a.min(b), a.max(b));
             let c = *curves.entry(key).or_insert_with(|| {
                 let (lo, hi) = key;
-                let (p0, d0) = limit_and_derivative(m, lo as usize, hi as usize);
-                let (p3, d3) = limit_and_derivative(m, hi as usize, lo as usize);
+                let (p0, d0) = jets.limit_and_derivative(lo as usize, hi as usize);
+                let (p3, d3) = jets.limit_and_derivative(hi as usize, lo as usize);
                 [
                     p0,
                     geom::axpy(p0, 1.0 / 3.0, d0),
