@@ -1,0 +1,1 @@
+//! Hand-computed face-varying refinements.
