@@ -96,9 +96,18 @@ pub fn refine(
             };
             let c = c as usize;
             let sibling = if c < nv {
-                face_halfedges(&pa, f)
-                    .find(|&h| m.from(h) as usize == c)
-                    .map_or(0, |h| pa.sibling[h as usize])
+                // The parent corner of a vertex point's corner: child face `h` (quads), the
+                // corner triangle `4f + i` at `3f + i` (triangles).
+                let own = match rules.split {
+                    Split::Quads => cf,
+                    Split::Triangles => 3 * f + cf % 4,
+                };
+                let h = if (own as usize) < pa.sibling.len() && m.from(own) as usize == c {
+                    Some(own)
+                } else {
+                    face_halfedges(&pa, f).find(|&h| m.from(h) as usize == c)
+                };
+                h.map_or(0, |h| pa.sibling[h as usize])
             } else if c < nv + ne && pa.discts[c - nv] {
                 pa.edge_faces(c - nv)
                     .iter()
@@ -124,11 +133,12 @@ pub fn refine(
                 continue;
             }
             for (j, (&val, &tag)) in pa.values(c).iter().zip(tags).enumerate() {
-                let child_tag = ca.tags(c)[ca
+                let child_tag = ca
                     .values(c)
                     .iter()
                     .position(|&x| x as usize == o + j)
-                    .unwrap_or(0)];
+                    .and_then(|k| ca.tags(c).get(k).copied())
+                    .unwrap_or(Tag::Corner);
                 out[o + j] = match tag.span() {
                     Some((start, end)) if !linear && !child_tag.stays() => {
                         let w = match tag {
@@ -180,7 +190,8 @@ fn face_halfedges<'a>(pa: &'a FvLevel<'_>, f: u32) -> impl Iterator<Item = u32> 
 }
 
 /// A vertex stencil row applied to face-varying values: each parent vertex is read as its
-/// value in the first of the faces `hes` (half-edges, one per face) that contains it.
+/// value at the ends of the half-edges `hes` (one per face), else in the first of their faces
+/// that contains it.
 fn mapped(pa: &FvLevel<'_>, row: (&[u32], &[f64]), hes: &[u32], src: &[[f64; 2]]) -> [f64; 2] {
     let m = pa.m;
     let terms: Vec<([f64; 2], f64)> = row
@@ -188,12 +199,21 @@ fn mapped(pa: &FvLevel<'_>, row: (&[u32], &[f64]), hes: &[u32], src: &[[f64; 2]]
         .iter()
         .zip(row.1)
         .map(|(&u, &w)| {
-            let val = hes
-                .iter()
-                .find_map(|&h| {
-                    face_halfedges(pa, m.face(h))
-                        .find(|&x| m.from(x) == u)
-                        .map(|x| pa.corner_value[x as usize])
+            // The corners of the half-edges themselves first (a face may repeat a vertex).
+            let own = hes.iter().find_map(|&h| {
+                let n = m.faces.next(h);
+                [h, n]
+                    .into_iter()
+                    .find(|&x| m.from(x) == u)
+                    .map(|x| pa.corner_value[x as usize])
+            });
+            let val = own
+                .or_else(|| {
+                    hes.iter().find_map(|&h| {
+                        face_halfedges(pa, m.face(h))
+                            .find(|&x| m.from(x) == u)
+                            .map(|x| pa.corner_value[x as usize])
+                    })
                 })
                 .unwrap_or(0);
             (src[val as usize], w)
