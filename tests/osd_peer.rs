@@ -29,10 +29,11 @@
 //! the cases marked `[today]` (what fairsub handled before issue 16's Rust side);
 //! `FAIRSUB_PEER_FILTER=TEXT` only the case lines containing TEXT.
 //!
-//! Face-varying refinement (UVs) is not implemented yet: the cases whose net has texture
-//! coordinates (`vt`) are skipped, with a count printed, unless `FAIRSUB_PEER_FVAR=1` (then they
-//! run and fail until it is). The comparer's own tests (here and in `osd_peer/compare.rs`)
-//! always run; the one on real peer output skips without the peer.
+//! Face-varying data (UVs): the nets with `vt` run with the face-varying option of their line
+//! (`--fvar`, default `all` as in OpenSubdiv's `Sdc::Options`); every written face corner's UV
+//! must agree within `TOL`, and the reported deviation covers points and UVs. The comparer's own
+//! tests (here and in `osd_peer/compare.rs`) always run; the one on real peer output skips
+//! without the peer.
 
 #[path = "osd_peer/compare.rs"]
 mod compare;
@@ -162,7 +163,7 @@ fn peer_path() -> PathBuf {
 }
 
 /// Issue 16's acceptance test: tags, boundary modes, Chaikin, smooth triangles, non-manifold
-/// nets, holes, limit positions. The face-varying cases are skipped (see the module docs).
+/// nets, holes, limit positions, face-varying data with every face-varying option.
 #[test]
 fn opensubdiv_parity() {
     let peer = peer_path();
@@ -180,15 +181,13 @@ fn opensubdiv_parity() {
     let lines: Vec<&str> = text.lines().collect();
     let dir = std::env::temp_dir().join(format!("fairsub-osd-peer-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let with_fvar = std::env::var_os("FAIRSUB_PEER_FVAR").is_some();
-    let (mut ok, mut failed, mut skipped) = (0, Vec::new(), 0);
+    let (mut ok, mut failed, mut with_uvs) = (0, Vec::new(), 0);
     for c in parse_cases(&text) {
         if (only_today && !c.today) || !lines[c.line - 1].contains(filter.as_str()) {
             continue;
         }
-        if !with_fvar && net_has_uvs(&c.net) {
-            skipped += c.levels.len();
-            continue;
+        if net_has_uvs(&c.net) {
+            with_uvs += c.levels.len();
         }
         for &level in &c.levels {
             let what = format!("{} {} L{level} {}", c.net, c.scheme, c.options.join(" "));
@@ -206,8 +205,7 @@ fn opensubdiv_parity() {
     }
     let _ = std::fs::remove_dir_all(&dir);
     println!(
-        "osd_peer: {ok} passed, {} failed, {skipped} face-varying cases skipped \
-         (face-varying refinement is not implemented; FAIRSUB_PEER_FVAR=1 runs them)",
+        "osd_peer: {ok} passed, {} failed ({with_uvs} of them on nets with UVs)",
         failed.len()
     );
     assert!(ok + failed.len() > 0, "no case selected");

@@ -108,7 +108,43 @@ pub fn write_mesh(path: &Path, mesh: &PolyMesh, format: MeshFormat) -> Result<()
         Some(k) => Polygons::uniform(mesh.positions(), k, mesh.corners())?,
         None => Polygons::new(mesh.positions(), mesh.face_starts(), mesh.corners())?,
     };
+    let uv = mesh.extras().and_then(|e| e.uv.as_ref());
+    if let (MeshFormat::Obj, Some(uv)) = (format, uv) {
+        check_uv(uv, mesh.corners().len())?;
+        return write_atomically(path, |w| {
+            obj::write_obj_uv_to(w, &polys, uv).map_err(|e| io_error(path, e))
+        });
+    }
     write_checked(path, &polys, format)
+}
+
+/// Checks face-varying data before it is written: one value per corner, indices in range,
+/// finite values.
+fn check_uv(uv: &crate::mesh::FaceVarying, corners: usize) -> Result<()> {
+    let bad = |what: String| Err(crate::error::Error::InvalidArgument(what));
+    if uv.corners.len() != corners {
+        return bad(format!(
+            "texture coordinates: {} corner values for {corners} face corners",
+            uv.corners.len()
+        ));
+    }
+    if let Some(c) = uv
+        .corners
+        .iter()
+        .position(|&i| i as usize >= uv.values.len())
+    {
+        return bad(format!(
+            "texture coordinates: face corner {c} names a missing value"
+        ));
+    }
+    if let Some(i) = uv
+        .values
+        .iter()
+        .position(|t| !t[0].is_finite() || !t[1].is_finite())
+    {
+        return bad(format!("texture coordinate {} is not finite", i + 1));
+    }
+    Ok(())
 }
 
 /// Writes plain polygons (atomically): face `f` has corners

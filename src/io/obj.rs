@@ -13,6 +13,8 @@
 //! line of the face or vertex they concern.
 
 mod tags;
+mod uv;
+pub(crate) use uv::write_obj_uv_to;
 
 pub use tags::read_tag_file;
 

@@ -11,6 +11,7 @@ pub mod catmull_clark;
 pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;
+pub mod fvar;
 pub mod growth;
 pub mod guided;
 pub mod local;
@@ -102,6 +103,12 @@ pub trait Scheme: Sync {
         None
     }
 
+    /// How the scheme refines face-varying data (texture coordinates), if it does: Catmull-Clark
+    /// and Loop with OpenSubdiv's face-varying rules ([`fvar`]); `None` drops the data.
+    fn face_varying(&self) -> Option<fvar::FvarRules> {
+        None
+    }
+
     /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
     /// scheme has closed-form limit masks.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
@@ -132,7 +139,11 @@ pub fn refine_levels(
     levels: usize,
     mut progress: impl FnMut(usize),
 ) -> Result<PolyMesh> {
-    scheme.refine_uniform(mesh, levels, &mut progress)
+    let uv = mesh.extras().and_then(|e| e.uv.as_ref());
+    match (uv, scheme.face_varying()) {
+        (Some(_), Some(rules)) => fvar::refine_levels(scheme, mesh, levels, &rules, &mut progress),
+        _ => scheme.refine_uniform(mesh, levels, &mut progress),
+    }
 }
 
 /// The stencil table from the control points of `mesh` to the points of its `levels`-th uniform

@@ -207,7 +207,7 @@ impl Registry {
                     &["cc"],
                     About {
                         family: "classic primal quad scheme [CC78]",
-                        input: "any polygon mesh (one step makes it all quads); boundaries with edge-only interpolation",
+                        input: "any polygon mesh (one step makes it all quads); with --levels OpenSubdiv's boundary options (default edge-and-corner), sharp features and face-varying UVs (--fvar, default all)",
                         patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
                         smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
                         valences: "all",
@@ -246,7 +246,7 @@ impl Registry {
                     &[],
                     About {
                         family: "classic triangle scheme [Loo87], Loop's original beta",
-                        input: "triangle meshes; boundaries as OpenSubdiv (corners stay put)",
+                        input: "triangle meshes; with --levels OpenSubdiv's boundary options (default edge-and-corner: corners stay put), sharp features and face-varying UVs (--fvar, default all)",
                         patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; Hermite fill",
                         smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
                         valences: "all",

@@ -180,8 +180,9 @@ fn canonical(c: &[usize]) -> (Vec<usize>, usize) {
         .unwrap_or_default()
 }
 
-/// Compares fairsub's net (`got`) with the peer's (`want`); returns the largest point deviation
-/// of matched vertices, or what differs.
+/// Compares fairsub's net (`got`) with the peer's (`want`); returns the largest deviation of
+/// matched vertices and (when the net has UVs) of the UVs of matched face corners, or what
+/// differs.
 pub fn compare(got: &Refined, want: &Refined) -> Result<f64, String> {
     // The peer's written faces and the vertices they use; its isolated vertices.
     let used = |r: &Refined, written_only: bool| {
@@ -316,6 +317,7 @@ pub fn compare(got: &Refined, want: &Refined) -> Result<f64, String> {
                 g_vals[gu] = true;
                 w_vals[wu] = true;
                 let d = dist(&got.uvs[gu], &want.uvs[wu]);
+                worst = worst.max(d);
                 if d > TOL {
                     return Err(format!(
                         "UV of fairsub face {f} corner {}: {:?}, OpenSubdiv {:?} (off by {d:.3e})",

@@ -41,8 +41,9 @@ pub struct FeatureArgs {
     pub smooth_triangles: bool,
     /// Catmull-Clark, Loop: how texture coordinates (OBJ `vt`) are interpolated (OpenSubdiv's
     /// FVarLinearInterpolation): none, corners-only, corners-plus1, corners-plus2, boundaries,
-    /// all (the default: linear). Overrides the `facevaryinginterpolateboundary` tag. Not
-    /// implemented yet: refused with an error (texture coordinates are not refined).
+    /// all (the default: linear). Overrides the `facevaryinginterpolateboundary` tag. The
+    /// refined values are written as `vt` with `f v/vt` (OBJ output; with `--limit` the
+    /// refined, not the limit, values).
     #[arg(long, value_parser = named::<FvarInterpolation>())]
     pub fvar: Option<FvarInterpolation>,
     /// Catmull-Clark, Loop: a side file of OpenSubdiv tag lines for OFF and PLY nets (or in
@@ -77,20 +78,10 @@ pub fn takes_features(spec: &Spec) -> bool {
 /// non-manifold nets are accepted, unused vertices kept), with the `--creases` file's tags on
 /// top of the net's own; the file's options fill the ones the command line leaves unset.
 pub fn load_net(spec: &mut Spec, a: &FeatureArgs, arg: &str, tolerant: bool) -> Result<PolyMesh> {
-    if a.fvar.is_some() {
-        return Err(Error::Unsupported(
-            "--fvar: face-varying refinement (OBJ vt, PLY texture coordinates) is not \
-             implemented yet; leave --fvar out (the output then has no texture coordinates)"
-                .into(),
-        ));
-    }
     let mut mesh = super::super::load_net_as(arg, tolerant)?.mesh;
     if let Some(ex) = mesh.extras() {
-        if ex.uv.is_some() {
-            eprintln!(
-                "warning: {arg}: texture coordinates are read but not refined yet (face-varying \
-                 refinement is not implemented); the output has none"
-            );
+        if ex.uv.is_some() && !tolerant {
+            eprintln!("warning: {arg}: texture coordinates are not carried into patch output");
         }
         if ex.vertex_data.is_some() {
             eprintln!(

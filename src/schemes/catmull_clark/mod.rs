@@ -540,6 +540,13 @@ impl Scheme for Configured {
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         Ok(CatmullClark::limit_stencils_with(mesh, &self.options))
     }
+
+    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+        Some(super::fvar::FvarRules {
+            split: super::fvar::Split::Quads,
+            options: self.options,
+        })
+    }
 }
 
 impl Scheme for CatmullClark {
@@ -562,6 +569,10 @@ impl Scheme for CatmullClark {
 
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         Configured::default().limit_stencils(mesh)
+    }
+
+    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+        Configured::default().face_varying()
     }
 }
 

@@ -497,6 +497,13 @@ impl Scheme for Configured {
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         Loop::limit_stencils_with(mesh, &self.options)
     }
+
+    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+        Some(super::fvar::FvarRules {
+            split: super::fvar::Split::Triangles,
+            options: self.options,
+        })
+    }
 }
 
 impl Scheme for Loop {
@@ -523,6 +530,10 @@ impl Scheme for Loop {
 
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         Configured::default().limit_stencils(mesh)
+    }
+
+    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+        Configured::default().face_varying()
     }
 }
 

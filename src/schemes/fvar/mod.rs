@@ -1,0 +1,272 @@
+//! Face-varying data (texture coordinates, OBJ `vt` with `f v/vt`) refined with OpenSubdiv's
+//! face-varying rules for Catmull-Clark and Loop (`Sdc::Options::FVarLinearInterpolation`:
+//! none, corners-only, corners-plus1, corners-plus2, boundaries, all; `--fvar`).
+//!
+//! One step, given the step's vertex stencils (the one source of the vertex rules):
+//!
+//! - a face point is the centroid of the face's values;
+//! - an edge point of an edge whose values agree across it takes the edge's own stencil, each
+//!   parent vertex read as its value in a face of the edge; on a seam (or a linear boundary)
+//!   each face side gets the midpoint of its two values;
+//! - a vertex point of a vertex whose value topology matches takes the vertex's own stencil
+//!   (sharpness, boundary and transition rules included), each parent vertex read as its value
+//!   in a face around the vertex; otherwise each value refines by its [`level::Tag`]: it stays
+//!   (a corner), follows the crease rule `3/4 u + 1/8 (u_a + u_b)` along its span's fvar
+//!   boundary, or blends the two while the semi-sharp features inside its span decay;
+//! - with `all` everything is linear (values stay, midpoints, centroids).
+//!
+//! The face-varying topology of each level ([`level::FvLevel`]) is derived from that level's
+//! values. The rules are those of OpenSubdiv 3.5's `Vtr::FVarLevel`, `Vtr::FVarRefinement` and
+//! `Far::PrimvarRefiner` (`docs/opensubdiv-rules.md` section 9); `tests/osd_peer.rs` checks
+//! them value by value.
+
+mod level;
+#[cfg(test)]
+mod tests;
+
+use crate::mesh::tags::{FvarInterpolation, SubdOptions};
+use crate::mesh::{FaceVarying, PolyMesh};
+use crate::stencil::StencilTable;
+use level::{FvLevel, Tag};
+
+/// How a scheme splits faces: where each child face comes from and which child vertices are
+/// face points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Split {
+    /// Catmull-Clark: child face `h` is the quad at parent corner `h`; child vertices are
+    /// vertex points, edge points, face points.
+    Quads,
+    /// Loop: child faces `4f..4f + 4` come from parent triangle `f`; child vertices are vertex
+    /// points and edge points.
+    Triangles,
+}
+
+/// What a scheme tells the face-varying refinement.
+#[derive(Debug, Clone, Copy)]
+pub struct FvarRules {
+    /// The face split.
+    pub split: Split,
+    /// OpenSubdiv's options (the face-varying option and the sharp-feature options).
+    pub options: SubdOptions,
+}
+
+/// The face-varying data of `child`, one step of `parent` (whose data is `uv`) under `rules`;
+/// `stencils` are the step's vertex stencils (row `i` gives child vertex `i`).
+pub fn refine(
+    parent: &PolyMesh,
+    uv: &FaceVarying,
+    child: &PolyMesh,
+    stencils: &StencilTable,
+    rules: &FvarRules,
+) -> FaceVarying {
+    let pa = FvLevel::new(parent, &uv.corners, &rules.options);
+    let (nv, ne) = (parent.num_vertices(), parent.num_edges());
+    let m = pa.m;
+    // Child values: per vertex point the parent's values, per seam edge one per face.
+    let count = |c: usize| -> u32 {
+        if c < nv {
+            pa.values(c).len() as u32
+        } else if c < nv + ne {
+            if pa.discts[c - nv] {
+                pa.edge_faces(c - nv).len() as u32
+            } else {
+                1
+            }
+        } else {
+            1
+        }
+    };
+    let ncv = child.num_vertices();
+    let mut offset = Vec::with_capacity(ncv + 1);
+    offset.push(0u32);
+    for c in 0..ncv {
+        offset.push(offset[c] + count(c));
+    }
+    // The value of every child corner.
+    let k = child.uniform_face_size().unwrap_or(0).max(1);
+    let corners: Vec<u32> = child
+        .corners()
+        .iter()
+        .enumerate()
+        .map(|(i, &c)| {
+            let cf = (i / k) as u32;
+            let f = match rules.split {
+                Split::Quads => m.face(cf),
+                Split::Triangles => cf / 4,
+            };
+            let c = c as usize;
+            let sibling = if c < nv {
+                // The parent corner of a vertex point's corner: child face `h` (quads), the
+                // corner triangle `4f + i` at `3f + i` (triangles).
+                let own = match rules.split {
+                    Split::Quads => cf,
+                    Split::Triangles => 3 * f + cf % 4,
+                };
+                let h = if (own as usize) < pa.sibling.len() && m.from(own) as usize == c {
+                    Some(own)
+                } else {
+                    face_halfedges(&pa, f).find(|&h| m.from(h) as usize == c)
+                };
+                h.map_or(0, |h| pa.sibling[h as usize])
+            } else if c < nv + ne && pa.discts[c - nv] {
+                pa.edge_faces(c - nv)
+                    .iter()
+                    .position(|&h| m.face(h) == f)
+                    .unwrap_or(0) as u32
+            } else {
+                0
+            };
+            offset[c] + sibling
+        })
+        .collect();
+    let ca = FvLevel::new(child, &corners, &rules.options);
+    let linear = rules.options.fvar() == FvarInterpolation::All;
+    let src = &uv.values;
+    let at = |val: u32| src[val as usize];
+    let mut out = vec![[0.0; 2]; *offset.last().unwrap_or(&0) as usize];
+    for c in 0..ncv {
+        let o = offset[c] as usize;
+        if c < nv {
+            let tags = pa.tags(c);
+            if tags.first() == Some(&Tag::Match) && !linear {
+                out[o] = mapped(&pa, stencils.row(c), pa.ring(c), src);
+                continue;
+            }
+            for (j, (&val, &tag)) in pa.values(c).iter().zip(tags).enumerate() {
+                let child_tag = ca
+                    .values(c)
+                    .iter()
+                    .position(|&x| x as usize == o + j)
+                    .and_then(|k| ca.tags(c).get(k).copied())
+                    .unwrap_or(Tag::Corner);
+                out[o + j] = match tag.span() {
+                    Some((start, end)) if !linear && !child_tag.stays() => {
+                        let w = match tag {
+                            Tag::SemiSharp { .. } => pa.fractional_weight(c, start, end),
+                            Tag::DepSharp { .. } => other_weight(&pa, c, j),
+                            _ => 0.0,
+                        };
+                        let [a, b] = pa.crease_ends(c, start, end);
+                        let (vw, ew) = ((1.0 - w) * 0.75 + w, (1.0 - w) * 0.125);
+                        combine(&[(at(val), vw), (at(a), ew), (at(b), ew)])
+                    }
+                    _ => at(val),
+                };
+            }
+        } else if c < nv + ne {
+            let e = c - nv;
+            let hs = pa.edge_faces(e);
+            if !pa.discts[e] && !pa.linear[e] && !linear {
+                out[o] = mapped(&pa, stencils.row(c), hs, src);
+                continue;
+            }
+            let sides = if pa.discts[e] { hs.len() } else { 1 };
+            for (j, &h) in hs.iter().take(sides).enumerate() {
+                let [a, b] = pa.edge_values(h);
+                out[o + j] = combine(&[(at(a), 0.5), (at(b), 0.5)]);
+            }
+        } else {
+            let f = (c - nv - ne) as u32;
+            let vals: Vec<u32> = face_halfedges(&pa, f)
+                .map(|h| uv.corners[h as usize])
+                .collect();
+            let w = 1.0 / vals.len() as f64;
+            out[o] = combine(&vals.iter().map(|&x| (at(x), w)).collect::<Vec<_>>());
+        }
+    }
+    FaceVarying {
+        values: out,
+        corners,
+        names: uv.names.clone(),
+    }
+}
+
+/// The half-edges of parent face `f`.
+fn face_halfedges<'a>(pa: &'a FvLevel<'_>, f: u32) -> impl Iterator<Item = u32> + 'a {
+    let m = pa.m;
+    let h0 = m.faces.start(f as usize);
+    let n = m.face_corners(f as usize).len() as u32;
+    h0..h0 + n
+}
+
+/// A vertex stencil row applied to face-varying values: each parent vertex is read as its
+/// value at the ends of the half-edges `hes` (one per face), else in the first of their faces
+/// that contains it.
+fn mapped(pa: &FvLevel<'_>, row: (&[u32], &[f64]), hes: &[u32], src: &[[f64; 2]]) -> [f64; 2] {
+    let m = pa.m;
+    let terms: Vec<([f64; 2], f64)> = row
+        .0
+        .iter()
+        .zip(row.1)
+        .map(|(&u, &w)| {
+            // The corners of the half-edges themselves first (a face may repeat a vertex).
+            let own = hes.iter().find_map(|&h| {
+                let n = m.faces.next(h);
+                [h, n]
+                    .into_iter()
+                    .find(|&x| m.from(x) == u)
+                    .map(|x| pa.corner_value[x as usize])
+            });
+            let val = own
+                .or_else(|| {
+                    hes.iter().find_map(|&h| {
+                        face_halfedges(pa, m.face(h))
+                            .find(|&x| m.from(x) == u)
+                            .map(|x| pa.corner_value[x as usize])
+                    })
+                })
+                .unwrap_or(0);
+            (src[val as usize], w)
+        })
+        .collect();
+    combine(&terms)
+}
+
+/// The corner weight of the other value of a two-value vertex (a dependent-sharp value takes
+/// the decay of the value it depends on).
+fn other_weight(pa: &FvLevel<'_>, v: usize, j: usize) -> f64 {
+    match pa.tags(v).get(1 - j.min(1)).and_then(|t| t.span()) {
+        Some((s, e)) => pa.fractional_weight(v, s, e),
+        None => 0.0,
+    }
+}
+
+/// `sum w_i p_i`.
+fn combine(terms: &[([f64; 2], f64)]) -> [f64; 2] {
+    let mut acc = [0.0; 2];
+    for (p, w) in terms {
+        acc[0] += w * p[0];
+        acc[1] += w * p[1];
+    }
+    acc
+}
+
+/// `levels` steps of `scheme` on a net with face-varying data: each step by
+/// [`crate::schemes::Scheme::refine`] (its stencils drive the face-varying rules), the refined
+/// data attached to each level. `progress(level)` is called after each step.
+///
+/// # Errors
+/// Whatever the scheme's step reports.
+pub fn refine_levels(
+    scheme: &dyn super::Scheme,
+    mesh: &PolyMesh,
+    levels: usize,
+    rules: &FvarRules,
+    progress: &mut dyn FnMut(usize),
+) -> crate::error::Result<PolyMesh> {
+    let mut cur: Option<PolyMesh> = None;
+    for l in 0..levels {
+        let parent = cur.as_ref().unwrap_or(mesh);
+        let step = scheme.refine(parent)?;
+        let mut child = step.mesh;
+        if let Some(uv) = parent.extras().and_then(|e| e.uv.as_ref()) {
+            let refined = refine(parent, uv, &child, &step.stencils, rules);
+            let mut ex = child.take_extras().unwrap_or_default();
+            ex.uv = Some(refined);
+            child.set_extras(Some(ex));
+        }
+        cur = Some(child);
+        progress(l + 1);
+    }
+    Ok(cur.unwrap_or_else(|| mesh.clone()))
+}
