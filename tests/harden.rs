@@ -366,8 +366,9 @@ fn check_on_30k_patches_and_30k_groups_finds_every_join() {
     }
 }
 
-/// `analyze` and `charmap` at valence 100: guided subdivision is refused up front (its local
-/// matrix is beyond the dense-decomposition bound), PGS and non-box answer.
+/// `analyze` and `charmap` at valence 100: refused up front (the local matrix is beyond the
+/// dense-decomposition bound, which keeps every accepted valence within seconds); PGS and
+/// non-box answer at valence 40, under the bound.
 #[test]
 fn analyze_and_charmap_at_valence_100() {
     let d = scratch("analyze");
@@ -376,7 +377,7 @@ fn analyze_and_charmap_at_valence_100() {
     assert!(
         err.contains(
             "the local matrix of guided-bi5 would have 1806 rows (6 centre + 100 x 18 \
-             points); fairsub decomposes dense local matrices of at most 1500 rows"
+             points); fairsub decomposes dense local matrices of at most 450 rows"
         ),
         "{err}"
     );
@@ -391,19 +392,26 @@ fn analyze_and_charmap_at_valence_100() {
             "-o",
             out.to_str().unwrap(),
         ],
-        "take a valence of at most 83",
+        "take a valence of at most 24",
         &out,
+    );
+    let (code, err) = run(&["analyze", "--scheme", "pgs", "--valence", "100"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("would have 1000 rows (0 centre + 100 x 10 points)")
+            && err.contains("take a valence of at most 45"),
+        "{err}"
     );
     for scheme in ["pgs", "nonbox"] {
         let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
-            .args(["charmap", "--scheme", scheme, "--valence", "100", "-o"])
+            .args(["charmap", "--scheme", scheme, "--valence", "40", "-o"])
             .arg(&out)
             .output()
             .unwrap();
         let text = String::from_utf8_lossy(&o.stdout);
         assert_eq!(o.status.code(), Some(0), "{scheme}");
         assert!(
-            text.contains(&format!("{scheme} valence 100: lambda 0."))
+            text.contains(&format!("{scheme} valence 40: lambda 0."))
                 && text.contains("injective (certified)"),
             "{scheme}: {text}"
         );
