@@ -158,31 +158,13 @@ impl PolyMesh {
         let mut repeats = false;
         for f in 0..nf {
             let face = &corners[face_start[f] as usize..face_start[f + 1] as usize];
-            if face.len() < 3 {
-                return Err(MeshError::FaceTooSmall {
-                    face: f,
-                    len: face.len(),
-                }
-                .into());
-            }
-            for (i, &v) in face.iter().enumerate() {
-                if v as usize >= nv {
-                    return Err(MeshError::IndexOutOfRange {
-                        face: f,
-                        index: v as i64,
-                        count: nv,
-                    }
-                    .into());
-                }
-                repeats |= face[i + 1..].contains(&v);
-            }
+            super::check_face(face, f, nv)?;
+            repeats |= face
+                .iter()
+                .enumerate()
+                .any(|(i, v)| face[i + 1..].contains(v));
         }
-        if let Some(i) = positions
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(MeshError::NonFiniteCoordinate { vertex: i }.into());
-        }
+        super::check_finite(&positions)?;
         let mut used = vec![false; nv];
         for &v in &corners {
             used[v as usize] = true;

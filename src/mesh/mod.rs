@@ -134,6 +134,39 @@ fn uniform_size(face_start: &[u32]) -> u32 {
     }
 }
 
+/// The checks every face of a flat input passes: at least three corners, each naming one of the
+/// `nv` vertices (errors name face `f`). One source for [`PolyMesh::from_flat`] and
+/// [`PolyMesh::from_flat_general`].
+pub(crate) fn check_face(face: &[u32], f: usize, nv: usize) -> Result<()> {
+    if face.len() < 3 {
+        return Err(MeshError::FaceTooSmall {
+            face: f,
+            len: face.len(),
+        }
+        .into());
+    }
+    match face.iter().find(|&&v| v as usize >= nv) {
+        Some(&v) => Err(MeshError::IndexOutOfRange {
+            face: f,
+            index: v as i64,
+            count: nv,
+        }
+        .into()),
+        None => Ok(()),
+    }
+}
+
+/// The first vertex with a non-finite coordinate, as an error naming it.
+pub(crate) fn check_finite(positions: &[Point]) -> Result<()> {
+    match positions
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        Some(vertex) => Err(MeshError::NonFiniteCoordinate { vertex }.into()),
+        None => Ok(()),
+    }
+}
+
 impl PolyMesh {
     /// Builds and validates a mesh from positions and faces (vertex indices, counter-clockwise).
     ///
@@ -185,32 +218,12 @@ impl PolyMesh {
         for f in 0..nf {
             let (a, b) = (face_start[f] as usize, face_start[f + 1] as usize);
             let face = &corners[a..b];
-            if face.len() < 3 {
-                return Err(MeshError::FaceTooSmall {
-                    face: f,
-                    len: face.len(),
-                }
-                .into());
-            }
-            for &v in face {
-                if v as usize >= nv {
-                    return Err(MeshError::IndexOutOfRange {
-                        face: f,
-                        index: v as i64,
-                        count: nv,
-                    }
-                    .into());
-                }
-            }
+            check_face(face, f, nv)?;
             if let Some(vertex) = repeated_corner(face, f as u32, &mut last_face) {
                 return Err(MeshError::RepeatedVertex { face: f, vertex }.into());
             }
         }
-        for (i, p) in positions.iter().enumerate() {
-            if !p.iter().all(|c| c.is_finite()) {
-                return Err(MeshError::NonFiniteCoordinate { vertex: i }.into());
-            }
-        }
+        check_finite(&positions)?;
         // Drop unused vertices, keeping the order of the used ones.
         let mut used = vec![false; nv];
         for &v in &corners {

@@ -7,6 +7,16 @@ use crate::mesh::PolyMesh;
 use crate::schemes::common::{RowBuf, cos_2pi, sin_2pi};
 use crate::stencil::StencilTable;
 
+/// Loop's interior tangent mask over the `n` neighbours of a vertex counted from neighbour `j`:
+/// `(cos(2 pi (i - j) / n), sin(2 pi (i - j) / n))` for neighbour `i = 0 .. n-1` (exact where
+/// [`cos_2pi`] is). The cosine row is the tangent towards neighbour `j` (up to the factor
+/// `2 / n` of a unit-parameter derivative), the sine row the one across it; one source for
+/// [`Loop::limit_tangent_stencils`] and the Hermite edges of the patch fill.
+pub(crate) fn tangent_mask(n: usize, j: usize) -> impl Iterator<Item = (f64, f64)> {
+    let (n, j) = (n as i64, j as i64);
+    (0..n).map(move |i| (cos_2pi(i - j, n), sin_2pi(i - j, n)))
+}
+
 impl Loop {
     /// Loop's weight `beta` of each edge neighbour of an interior vertex of valence `n >= 3`:
     /// `(5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n`; `1/16` for the regular `n = 6`.
@@ -63,11 +73,11 @@ impl Loop {
         for v in 0..nv {
             let vi = v as u32;
             if !mesh.is_boundary_vertex(v) {
-                let n = mesh.outgoing(v).count() as i64;
-                for (i, h) in mesh.outgoing(v).enumerate() {
+                let n = mesh.outgoing(v).count();
+                for (h, (c, s)) in mesh.outgoing(v).zip(tangent_mask(n, 0)) {
                     let p = mesh.he_to(h);
-                    r1.add(p, cos_2pi(i as i64, n));
-                    r2.add(p, sin_2pi(i as i64, n));
+                    r1.add(p, c);
+                    r2.add(p, s);
                 }
             } else if mesh.is_corner(v) {
                 let (p0, p1) = mesh.boundary_neighbors(v);

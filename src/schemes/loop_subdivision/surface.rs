@@ -71,6 +71,7 @@
 //! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
 //! between fill triangles; it is not G^1 across its edges.
 
+use super::limit::tangent_mask;
 use super::{edge_point_stencil, limit_point_stencil, vertex_point_stencil};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
@@ -85,7 +86,6 @@ use crate::host::adaptive::{
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
-use std::f64::consts::PI;
 
 /// Bezier coefficients of one triangle of the quartic box spline (Loop's regular limit), times
 /// 24. Entry `([i, j, k], w)`: the coefficient `b_ijk` of the Bernstein polynomial
@@ -439,9 +439,8 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
     };
     let n = ring.len();
     let mut d = [0.0; 3];
-    for (i, s) in ring.iter().enumerate() {
-        let w = (2.0 / n as f64) * (2.0 * PI * (i as f64 - j as f64) / n as f64).cos();
-        d = geom::axpy(d, w, s.apply(pos));
+    for (s, (c, _)) in ring.iter().zip(tangent_mask(n, j)) {
+        d = geom::axpy(d, (2.0 / n as f64) * c, s.apply(pos));
     }
     (la, d)
 }
