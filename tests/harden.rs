@@ -176,6 +176,28 @@ fn q_file_vertices_are_checked_against_the_net() {
 }
 
 #[test]
+fn q_file_constraint_errors_name_the_file_and_the_vertex_line() {
+    let d = scratch("qfile-kind");
+    let q = d.join("f.q");
+    std::fs::write(&q, "# c2\nvertex 0\nkind c2\nq 1 4 100 100 100\n").unwrap();
+    let out = d.join("out.bv");
+    refused(
+        &[
+            "subdivide",
+            "gallery:cnet-5-convex",
+            "--scheme",
+            "qas-plus",
+            "--q-file",
+            q.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        "f.q:2: q file, vertex 0: q_4 of sector 1 violates tangent plane (from sector 0)",
+        &out,
+    );
+}
+
+#[test]
 fn invalid_utf8_in_an_obj_comment_is_read_by_every_scheme() {
     let d = scratch("utf8");
     let obj = d.join("net.obj");

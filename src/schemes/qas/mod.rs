@@ -332,6 +332,28 @@ pub struct QSpec {
     pub p: Option<[f64; 3]>,
     /// Given coefficients `(sector, k, value)`, `k = 2..6`.
     pub q: Vec<(usize, usize, [f64; 3])>,
+    /// The q file's line of each entry of `q` (1-based), for errors found against the net.
+    pub q_lines: Vec<usize>,
+    /// The q file this section comes from (empty when built in code).
+    pub path: std::path::PathBuf,
+    /// The line of the section's `vertex V` statement (1-based; 0 when built in code).
+    pub line: usize,
+}
+
+impl QSpec {
+    /// An error about this section found against the net: a parse error at `line` of the q file
+    /// when the section came from one, otherwise an invalid argument.
+    pub fn error(&self, line: usize, msg: String) -> Error {
+        if self.path.as_os_str().is_empty() || line == 0 {
+            Error::InvalidArgument(msg)
+        } else {
+            Error::Parse {
+                path: self.path.clone(),
+                line,
+                msg,
+            }
+        }
+    }
 }
 
 /// Parses a q file: lines `vertex V` (starts the section of input vertex `V`), `kind c2|c1|c1-c0`,
@@ -369,7 +391,11 @@ pub fn parse_q_file(
                 let v: u32 = f[1]
                     .parse()
                     .map_err(|_| err(line, format!("'{}' is not a vertex index", f[1])))?;
-                out.entry(v).or_default();
+                let spec = out.entry(v).or_default();
+                if spec.line == 0 {
+                    spec.line = line;
+                    spec.path = path.to_path_buf();
+                }
                 cur = Some(v);
             }
             "kind" if f.len() == 2 => {
@@ -404,7 +430,9 @@ pub fn parse_q_file(
                 }
                 let x = [num(f[3])?, num(f[4])?, num(f[5])?];
                 let v = need_vertex()?;
-                out.entry(v).or_default().q.push((s, k, x));
+                let spec = out.entry(v).or_default();
+                spec.q.push((s, k, x));
+                spec.q_lines.push(line);
             }
             _ => {
                 return Err(err(

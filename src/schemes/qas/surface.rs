@@ -128,20 +128,25 @@ impl DnetRules for QasRulesProvider {
             return Ok(());
         };
         if !matches!(self.rules(n)?, QasSelected::Qas { .. }) {
-            return Err(Error::InvalidArgument(format!(
-                "the q file gives an expansion for vertex {v}, which has valence {n}: QAS+ tables \
-                 (with a quadratic expansion) are used at valences 5..={MAX_VALENCE}; valence 3 \
-                 uses EG's rules and 4 regular bi-4 refinement"
-            )));
+            return Err(spec.error(
+                spec.line,
+                format!(
+                    "the q file gives an expansion for vertex {v}, which has valence {n}: QAS+ \
+                     tables (with a quadratic expansion) are used at valences 5..={MAX_VALENCE}; \
+                     valence 3 uses EG's rules and 4 regular bi-4 refinement"
+                ),
+            ));
         }
         if let Some(p) = spec.p {
             x[0] = p;
         }
-        for &(s, k, val) in &spec.q {
+        for (i, &(s, k, val)) in spec.q.iter().enumerate() {
             if s >= n {
-                return Err(Error::InvalidArgument(format!(
-                    "the q file names sector {s} of vertex {v}, which has {n} sectors"
-                )));
+                let line = spec.q_lines.get(i).copied().unwrap_or(spec.line);
+                return Err(spec.error(
+                    line,
+                    format!("the q file names sector {s} of vertex {v}, which has {n} sectors"),
+                ));
             }
             x[qas::q_index(n, s, k)] = val;
         }
@@ -159,7 +164,7 @@ impl DnetRules for QasRulesProvider {
             .flat_map(|p| p.iter())
             .fold(1.0f64, |m, c| m.max(c.abs()));
         qas::check_kind(n, &full, spec.kind, 1e-9 * scale)
-            .map_err(|e| Error::InvalidArgument(format!("q file, vertex {v}: {e}")))
+            .map_err(|e| spec.error(spec.line, format!("q file, vertex {v}: {e}")))
     }
 }
 
