@@ -26,6 +26,7 @@ mod tests;
 
 use crate::mesh::tags::{FvarInterpolation, SubdOptions};
 use crate::mesh::{FaceVarying, PolyMesh};
+use crate::schemes::catmull_clark::crease::CREASE_VERTEX;
 use crate::stencil::StencilTable;
 use level::{FvLevel, Tag};
 
@@ -147,7 +148,8 @@ pub fn refine(
                             _ => 0.0,
                         };
                         let [a, b] = pa.crease_ends(c, start, end);
-                        let (vw, ew) = ((1.0 - w) * 0.75 + w, (1.0 - w) * 0.125);
+                        let (cv, ce) = CREASE_VERTEX;
+                        let (vw, ew) = ((1.0 - w) * cv + w, (1.0 - w) * ce);
                         combine(&[(at(val), vw), (at(a), ew), (at(b), ew)])
                     }
                     _ => at(val),

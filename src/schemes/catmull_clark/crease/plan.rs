@@ -96,13 +96,18 @@ pub(crate) enum VertexPlan {
     },
 }
 
+/// The crease (and boundary) vertex mask `3/4 v + 1/8 (a + b)`: the weight of the vertex and
+/// of each of its two crease neighbours. Face-varying refinement uses it too.
+pub(crate) const CREASE_VERTEX: (f64, f64) = (0.75, 0.125);
+
 pub(super) fn emit_mask(v: u32, mask: VertexMask, scale: f64, out: &mut impl FnMut(Emit)) {
     match mask {
         VertexMask::Smooth => out(Emit::Smooth(scale)),
         VertexMask::Crease(a, b) => {
-            out(Emit::Vertex(v, 0.75 * scale));
-            out(Emit::Vertex(a, 0.125 * scale));
-            out(Emit::Vertex(b, 0.125 * scale));
+            let (vw, ew) = CREASE_VERTEX;
+            out(Emit::Vertex(v, vw * scale));
+            out(Emit::Vertex(a, ew * scale));
+            out(Emit::Vertex(b, ew * scale));
         }
         VertexMask::Corner => out(Emit::Vertex(v, scale)),
     }
