@@ -46,21 +46,14 @@ use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
-use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, Tag, input_active, input_vertex_info, record_edge,
-};
+use crate::host::adaptive::{self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, record_edge};
 use crate::host::caps::CapBuilder;
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
 /// One level of the adaptive refinement.
-pub struct Level {
-    mesh: PolyMesh,
-    info: Vec<Info>,
-    /// Faces to process at this level, with their tags.
-    active: Vec<(u32, Tag)>,
-}
+pub type Level = MeshLevel;
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -113,33 +106,16 @@ impl AdaptiveRules for CcRules<'_> {
                 mesh.face_size(f)
             )));
         }
-        Ok(Level {
-            mesh: mesh.clone(),
-            info: input_vertex_info(mesh.num_vertices()),
-            active: input_active(mesh.num_faces()),
-        })
+        Ok(Level::input(mesh))
     }
 
-    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
-        &level.active
-    }
-
-    fn emit(
-        &self,
-        level: &Level,
-        f: u32,
-        prov: Provenance,
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> bool {
-        match regular_patch(level, f as usize) {
-            Some(p) => {
-                record_curves(&level.mesh, f as usize, &p, curves);
-                out.push(p, prov);
-                true
-            }
-            None => false,
-        }
+    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
+        let Some(p) = regular_patch(level, f as usize) else {
+            return false;
+        };
+        record_curves(&level.mesh, f as usize, &p, to.curves);
+        to.out.push(p, prov);
+        true
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
@@ -178,14 +154,8 @@ impl AdaptiveRules for CcRules<'_> {
             && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
     }
 
-    fn fill(
-        &self,
-        level: &Level,
-        marked: &[(u32, Tag)],
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> Result<()> {
-        fill(level, marked, curves, out)
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
+        fill(level, marked, to.curves, to.out)
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
@@ -459,10 +429,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             info[fid[f as usize] as usize].origin = Some(Element::Face(tag.input_face));
         }
     }
-    let mut table = crate::stencil::StencilTable::with_capacity(nv, stencils.len(), 9);
-    for s in stencils {
-        table.push(s);
-    }
+    let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let mut active = Vec::new();
