@@ -518,3 +518,120 @@ fn crease_files_are_checked_against_the_net_at_their_line() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(fairsub::io::read_mesh(&out).unwrap().mesh.num_faces(), 24);
 }
+
+/// Stdout and stderr of a command, with its exit code.
+fn run_both(args: &[&str]) -> (i32, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// The number after `key` in `text` (as in "non-manifold edges: 12: ...").
+fn count_after(text: &str, key: &str) -> usize {
+    text.split(key)
+        .nth(1)
+        .and_then(|r| r.trim_start().split(|c: char| !c.is_ascii_digit()).next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0)
+}
+
+/// Every output fairsub writes, fairsub reads: `subdivide --levels 1, 2` of every non-manifold
+/// net of the OpenSubdiv peer's data is read back by `info` (exit 0), which reports the
+/// non-manifold edges (each refinement splits every one in two) and the vertex count written.
+/// A scheme that cannot take such a net: the next test.
+#[test]
+fn non_manifold_outputs_are_read_back_by_info() {
+    let d = scratch("nonmanifold");
+    let nets = [
+        ("cc_nonmanifold_cones.obj", "catmull-clark"),
+        ("cc_nonmanifold_fan4.obj", "catmull-clark"),
+        ("cc_nonmanifold_fin3.obj", "catmull-clark"),
+        ("cc_nonmanifold_fin3_uvs.obj", "catmull-clark"),
+        ("cc_nonmanifold_membrane.obj", "catmull-clark"),
+        ("cc_repeated_vertex.obj", "catmull-clark"),
+        ("cc_isolated.obj", "catmull-clark"),
+        ("loop_nonmanifold.obj", "loop"),
+    ];
+    let mut non_manifold_outputs = 0;
+    for (net, scheme) in nets {
+        let input = format!("{}/tests/data/osd/{net}", env!("CARGO_MANIFEST_DIR"));
+        let (code, info0, err) = run_both(&["info", &input]);
+        assert_eq!(code, 0, "info {net}: {err}");
+        let edges0 = count_after(&info0, "non-manifold edges:");
+        for level in [1usize, 2] {
+            let out = d.join(format!("{net}-{level}.obj"));
+            let out = out.to_str().unwrap();
+            let l = level.to_string();
+            let (code, _, err) = run_both(&sub(&input, scheme, ["--levels", &l], out));
+            assert_eq!(code, 0, "{net} level {level}: {err}");
+            let written = count_after(&err, "wrote");
+            let (code, info, err) = run_both(&["info", out]);
+            assert_eq!(code, 0, "info on {net} level {level}: {err}");
+            assert_eq!(
+                count_after(&info, out),
+                written,
+                "{net} level {level}: info's vertex count against the written one\n{info}"
+            );
+            // A face repeating a vertex refines into faces meeting at a non-manifold vertex:
+            // its degenerate edges are gone after one step; every other edge splits in two.
+            let edges = if net == "cc_repeated_vertex.obj" {
+                0
+            } else {
+                edges0 << level
+            };
+            assert_eq!(
+                count_after(&info, "non-manifold edges:"),
+                edges,
+                "{net} level {level}\n{info}"
+            );
+            if info.contains("non-manifold") {
+                non_manifold_outputs += 1;
+            }
+        }
+    }
+    // every net but the isolated vertex's (dropped by refinement) stays non-manifold
+    assert!(non_manifold_outputs >= 14, "{non_manifold_outputs}");
+}
+
+/// A command that needs a manifold net names the non-manifold element of fairsub's own output,
+/// at its line, and says which commands take it.
+#[test]
+fn a_scheme_that_cannot_take_a_non_manifold_output_names_the_element() {
+    let d = scratch("nonmanifold-refused");
+    let input = format!(
+        "{}/tests/data/osd/cc_nonmanifold_fin3.obj",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mid = d.join("fin3-1.obj");
+    let mid = mid.to_str().unwrap();
+    let (code, _, err) = run_both(&sub(&input, "catmull-clark", ["--levels", "1"], mid));
+    assert_eq!(code, 0, "{err}");
+    let expect = "fin3-1.obj:53: invalid mesh: edge 0-15 is shared by 3 faces [0, 8, 16]; a \
+                  manifold edge has at most 2; this command needs a manifold net (only \
+                  catmull-clark and loop refine such nets, with subdivide --levels; info reads them)";
+    let out = d.join("ds.obj");
+    refused(
+        &sub(mid, "doo-sabin", ["--levels", "1"], out.to_str().unwrap()),
+        expect,
+        &out,
+    );
+    let out = d.join("cc.bv");
+    refused(
+        &sub(
+            mid,
+            "catmull-clark",
+            ["--rings", "1"],
+            out.to_str().unwrap(),
+        ),
+        expect,
+        &out,
+    );
+    let out = d.join("cc.png");
+    refused(&["render", mid, "-o", out.to_str().unwrap()], expect, &out);
+}

@@ -668,35 +668,3 @@ fn the_cli_writes_pictures_and_json_and_reports_missing_patch_output() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown mode 'wavy'"));
     let _ = std::fs::remove_dir_all(&dir);
 }
-
-/// Speed, measured, not asserted: a 1024 x 1024 highlight-line picture (2 x 2 supersampling) of
-/// the default net's 10-ring Catmull-Clark surface on one thread.
-/// `cargo test --release --test render -- --ignored --nocapture`
-#[test]
-#[ignore]
-fn speed_of_a_1024_highlight_picture_on_one_core() {
-    let net = fairsub::gallery::default_net();
-    let scene = Scene::patches(cc(&net, 10), Some(net));
-    let o = opts(Mode::Highlight, 1024, 2);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    pool.install(|| {
-        for _ in 0..3 {
-            let t = std::time::Instant::now();
-            let out = render::render(&scene, &o).unwrap();
-            let r = t.elapsed();
-            let t = std::time::Instant::now();
-            let png = out.image.to_png().unwrap();
-            println!(
-                "render {:.3} s, PNG {:.3} s ({} bytes, {} of {} samples covered)",
-                r.as_secs_f64(),
-                t.elapsed().as_secs_f64(),
-                png.len(),
-                out.stats.covered,
-                out.stats.samples
-            );
-        }
-    });
-}

@@ -284,37 +284,3 @@ fn boundaries_corners_bbox_map() {
     let (q0, q1) = (p.eval(0.3, 0.6), m.eval(0.3, 0.6));
     assert!(dist(q1, [q0[0] + 1.0, 2.0 * q0[1], q0[2]]) < 1e-14);
 }
-
-/// Per-call cost of the hot evaluators: `cargo test --release -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn timing_derivatives() {
-    let mut rng = Lcg(3);
-    let p = random_patch(&mut rng, 3, 3);
-    let n = 2_000_000;
-    let t = std::time::Instant::now();
-    let mut acc = 0.0;
-    for k in 0..n {
-        let u = (k % 1000) as f64 / 1000.0;
-        acc += p.derivatives(u, 0.3).duv[0];
-    }
-    let d = t.elapsed().as_secs_f64() / n as f64;
-    let t = std::time::Instant::now();
-    for k in 0..n {
-        let u = (k % 1000) as f64 / 1000.0;
-        acc += p.normal(u, 0.3)[0];
-    }
-    let nn = t.elapsed().as_secs_f64() / n as f64;
-    let t = std::time::Instant::now();
-    for k in 0..n {
-        let u = (k % 1000) as f64 / 1000.0;
-        acc += p.eval(u, 0.3)[0];
-    }
-    let e = t.elapsed().as_secs_f64() / n as f64;
-    println!(
-        "derivatives {:.1} ns, normal {:.1} ns, eval {:.1} ns ({acc})",
-        d * 1e9,
-        nn * 1e9,
-        e * 1e9
-    );
-}

@@ -1,4 +1,9 @@
 //! `fairsub info`: what a control net consists of and what stands in the way of each scheme.
+//!
+//! The net is read with the general reader (every net OpenSubdiv accepts, as Catmull-Clark and
+//! Loop refine them and `subdivide --levels` writes them): a non-manifold net's non-manifold
+//! edges, vertices and faces that repeat a vertex are reported as such, and the per-vertex
+//! statistics (valences, extraordinary vertices, boundary loops) cover its manifold vertices.
 
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -20,6 +25,55 @@ struct ExtraordinaryVertex {
 struct ExtraordinaryFace {
     face: usize,
     sides: usize,
+}
+
+/// A non-manifold edge in the report: its ends and the faces using it.
+#[derive(Debug, Serialize)]
+struct NonManifoldEdge {
+    edge: [u32; 2],
+    faces: Vec<u32>,
+}
+
+/// The non-manifold part of a net (all empty for a manifold net).
+#[derive(Debug, Default, Serialize)]
+struct NonManifoldReport {
+    /// Edges used by more than two faces, twice in one direction, or twice by one face.
+    edges: Vec<NonManifoldEdge>,
+    /// Vertices on such edges, joining separate fans of faces, or used by no face.
+    vertices: Vec<u32>,
+    /// Faces that name one vertex more than once.
+    repeated_vertex_faces: Vec<usize>,
+}
+
+impl NonManifoldReport {
+    fn of(m: &PolyMesh) -> NonManifoldReport {
+        let mut r = NonManifoldReport {
+            repeated_vertex_faces: (0..m.num_faces())
+                .filter(|&f| {
+                    let mut c = m.face(f).to_vec();
+                    c.sort_unstable();
+                    c.windows(2).any(|w| w[0] == w[1])
+                })
+                .collect(),
+            ..NonManifoldReport::default()
+        };
+        if let Some(nm) = &m.topology().nm {
+            r.vertices = nm.vertices.clone();
+            r.edges = nm
+                .edges
+                .iter()
+                .map(|&e| NonManifoldEdge {
+                    edge: m.edge(e as usize),
+                    faces: nm.edge_sides(e).iter().map(|&h| m.he_face(h)).collect(),
+                })
+                .collect();
+        }
+        r
+    }
+
+    fn is_empty(&self) -> bool {
+        self.edges.is_empty() && self.vertices.is_empty() && self.repeated_vertex_faces.is_empty()
+    }
 }
 
 /// The `info` report.
@@ -45,6 +99,9 @@ pub struct InfoReport {
     rules_by_valence: BTreeMap<&'static str, Vec<ValenceRules>>,
     problems: Vec<String>,
     dropped_vertices: Vec<usize>,
+    /// The non-manifold edges, vertices and repeated-vertex faces (omitted when there are none).
+    #[serde(skip_serializing_if = "NonManifoldReport::is_empty")]
+    non_manifold: NonManifoldReport,
 }
 
 /// The valences a quad scheme's caps meet: interior vertices of valence other than 4, and the
@@ -52,7 +109,7 @@ pub struct InfoReport {
 /// element of each.
 fn cap_valences(m: &PolyMesh) -> BTreeMap<usize, Vec<String>> {
     let mut out: BTreeMap<usize, Vec<String>> = BTreeMap::new();
-    for v in 0..m.num_vertices() {
+    for v in (0..m.num_vertices()).filter(|&v| !m.is_nonmanifold_vertex(v)) {
         let n = m.valence(v);
         if !m.is_boundary_vertex(v) && n != 4 {
             out.entry(n).or_default().push(format!("vertex {v}"));
@@ -128,7 +185,9 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
     }
     let mut interior_valences = BTreeMap::new();
     let mut boundary_valences = BTreeMap::new();
-    for v in 0..m.num_vertices() {
+    // A non-manifold vertex has no single fan: its valence and boundary are not defined.
+    let manifold = |v: &usize| !m.is_nonmanifold_vertex(*v);
+    for v in (0..m.num_vertices()).filter(manifold) {
         let map = if m.is_boundary_vertex(v) {
             &mut boundary_valences
         } else {
@@ -151,6 +210,7 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
         }
     };
     let evs: Vec<ExtraordinaryVertex> = (0..m.num_vertices())
+        .filter(manifold)
         .filter(|&v| !regular(v))
         .map(|v| ExtraordinaryVertex {
             vertex: v,
@@ -201,6 +261,16 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
             e.vertex, e.valence
         ));
     }
+    let non_manifold = NonManifoldReport::of(m);
+    if !m.is_manifold() {
+        problems.push(format!(
+            "the net is not manifold ({} non-manifold edge(s), {} non-manifold vertex(es)): only \
+             Catmull-Clark and Loop refine it (subdivide --levels); valences and boundary loops \
+             cover the manifold vertices",
+            non_manifold.edges.len(),
+            non_manifold.vertices.len()
+        ));
+    }
     let rules_by_valence = rules_by_valence(m, &mut problems);
     let (lo, hi) = m.bounding_box();
     InfoReport {
@@ -214,7 +284,12 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
         face_sizes,
         interior_valences,
         boundary_valences,
-        boundary_loops: m.boundary_loops().iter().map(|l| l.len()).collect(),
+        // The loops walk vertex fans, which a non-manifold vertex does not have.
+        boundary_loops: if m.is_manifold() {
+            m.boundary_loops().iter().map(|l| l.len()).collect()
+        } else {
+            Vec::new()
+        },
         extraordinary_faces: (0..m.num_faces())
             .filter(|&f| !tri && m.face_size(f) != 4)
             .map(|f| ExtraordinaryFace {
@@ -227,12 +302,13 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
         rules_by_valence,
         problems,
         dropped_vertices: m.dropped_vertices().to_vec(),
+        non_manifold,
     }
 }
 
 /// Runs `fairsub info`.
 pub fn run(net: &str, json: bool) -> Result<()> {
-    let loaded = super::load_net(net)?;
+    let loaded = super::load_net_as(net, true)?;
     let r = report(net, &loaded.mesh);
     if json {
         say!(
@@ -311,6 +387,37 @@ pub fn run(net: &str, json: bool) -> Result<()> {
             .map(|v| format!("n={}: {}", v.valence, v.rules))
             .collect();
         say!("  {scheme} rules: {}", words.join("; "));
+    }
+    let nm = &r.non_manifold;
+    if !nm.edges.is_empty() {
+        let es: Vec<String> = nm
+            .edges
+            .iter()
+            .take(20)
+            .map(|e| format!("{}-{}(faces {:?})", e.edge[0], e.edge[1], e.faces))
+            .collect();
+        say!("  non-manifold edges: {}: {}", nm.edges.len(), es.join(" "));
+    }
+    if !nm.vertices.is_empty() {
+        let vs: Vec<String> = nm.vertices.iter().take(20).map(|v| v.to_string()).collect();
+        say!(
+            "  non-manifold vertices: {}: {}",
+            nm.vertices.len(),
+            vs.join(" ")
+        );
+    }
+    if !nm.repeated_vertex_faces.is_empty() {
+        let fs: Vec<String> = nm
+            .repeated_vertex_faces
+            .iter()
+            .take(20)
+            .map(|f| f.to_string())
+            .collect();
+        say!(
+            "  faces repeating a vertex: {}: {}",
+            nm.repeated_vertex_faces.len(),
+            fs.join(" ")
+        );
     }
     for p in &r.problems {
         say!("  note: {p}");

@@ -270,19 +270,43 @@ pub fn retag_by_corners(
 /// The faces around the corners of the marked cells: a selection flag per face and the
 /// selected faces in increasing order.
 pub fn select_around(m: &PolyMesh, marked: &[(u32, Tag)]) -> (Vec<bool>, Vec<u32>) {
+    let (sel, mut sel_faces) = select_rings(m, marked, 1);
+    sel_faces.sort_unstable();
+    (sel, sel_faces)
+}
+
+/// The marked cells and the faces within `rings` vertex-rings of them: a selection flag per
+/// face and the selected faces in the order found. Each vertex's fan is walked once, so the
+/// cost is linear in the selection also around a vertex of high valence.
+pub fn select_rings(m: &PolyMesh, marked: &[(u32, Tag)], rings: usize) -> (Vec<bool>, Vec<u32>) {
     let mut sel = vec![false; m.num_faces()];
-    let mut sel_faces = Vec::new();
+    let mut walked = vec![false; m.num_vertices()];
+    let mut sel_faces: Vec<u32> = Vec::new();
     for &(f, _) in marked {
-        for &v in m.face(f as usize) {
-            for g in m.vertex_faces(v as usize) {
-                if !sel[g as usize] {
-                    sel[g as usize] = true;
-                    sel_faces.push(g);
+        if !sel[f as usize] {
+            sel[f as usize] = true;
+            sel_faces.push(f);
+        }
+    }
+    let mut start = 0;
+    for _ in 0..rings {
+        let end = sel_faces.len();
+        for i in start..end {
+            for &v in m.face(sel_faces[i] as usize) {
+                if std::mem::replace(&mut walked[v as usize], true) {
+                    continue;
+                }
+                for h in m.outgoing(v as usize) {
+                    let g = m.he_face(h);
+                    if !sel[g as usize] {
+                        sel[g as usize] = true;
+                        sel_faces.push(g);
+                    }
                 }
             }
         }
+        start = end;
     }
-    sel_faces.sort_unstable();
     (sel, sel_faces)
 }
 

@@ -302,7 +302,18 @@ fn locate_mesh_error(path: &Path, err: Error, at: &FileLines<'_>) -> Error {
         MeshError::NonManifoldEdge { faces, .. } => faces.last().and_then(|&f| (at.face)(f)),
         MeshError::InconsistentOrientation { faces, .. } => (at.face)(faces[1]),
     };
-    let msg = format!("invalid mesh: {me}{}", at.note);
+    // The general reader takes these nets: say which commands do (issue 20's contract).
+    let hint = match &me {
+        MeshError::RepeatedVertex { .. }
+        | MeshError::NonManifoldEdge { .. }
+        | MeshError::InconsistentOrientation { .. }
+        | MeshError::NonManifoldVertex { .. } => {
+            "; this command needs a manifold net (only catmull-clark and loop refine such nets, \
+             with subdivide --levels; info reads them)"
+        }
+        _ => "",
+    };
+    let msg = format!("invalid mesh: {me}{hint}{}", at.note);
     match line {
         Some(line) => parse_error(path, line, msg),
         None => text::file_error(path, msg),

@@ -37,7 +37,9 @@ impl Topology {
             he_face: &he_face,
             uniform,
         };
-        // Outgoing half-edges bucketed per vertex (CSR), in increasing half-edge order.
+        // Outgoing half-edges bucketed per vertex (CSR), each bucket sorted by (end vertex,
+        // half-edge): the half-edges a -> b are one run found by binary search, so matching
+        // twins costs O(log valence) per half-edge also around a vertex of high valence.
         let mut out_start = vec![0u32; nv + 1];
         for &v in corners {
             out_start[v as usize + 1] += 1;
@@ -52,9 +54,16 @@ impl Topology {
             fill[v as usize] += 1;
         }
         drop(fill);
+        let to = |h: u32| corners[faces.next(h) as usize];
+        sort_buckets(&mut out_he, &out_start, to);
         let outs =
             |v: u32| &out_he[out_start[v as usize] as usize..out_start[v as usize + 1] as usize];
-        let to = |h: u32| corners[faces.next(h) as usize];
+        // The half-edges a -> b.
+        let run = |a: u32, b: u32| {
+            let s = outs(a);
+            let lo = s.partition_point(|&g| to(g) < b);
+            &s[lo..lo + s[lo..].partition_point(|&g| to(g) == b)]
+        };
         let mut twin = vec![NONE; nh];
         let bad_edge = twin
             .par_chunks_mut(CHUNK)
@@ -64,21 +73,15 @@ impl Topology {
                     let h = (c * CHUNK + k) as u32;
                     let (a, b) = (corners[h as usize], to(h));
                     // Same-direction duplicates: orientation conflict or a non-manifold edge.
-                    let n_same = outs(a).iter().filter(|&&g| to(g) == b).count();
-                    let mut n_opp = 0;
-                    for &g in outs(b) {
-                        if to(g) == a {
-                            if n_opp == 0 {
-                                *slot = g;
-                            }
-                            n_opp += 1;
-                        }
+                    let (same, opp) = (run(a, b), run(b, a));
+                    let n_same = same.len();
+                    if let Some(&g) = opp.first() {
+                        *slot = g;
                     }
-                    if n_same + n_opp > 2 {
-                        let mut faces: Vec<usize> = outs(a)
+                    if n_same + opp.len() > 2 {
+                        let mut faces: Vec<usize> = same
                             .iter()
-                            .filter(|&&g| to(g) == b)
-                            .chain(outs(b).iter().filter(|&&g| to(g) == a))
+                            .chain(opp)
                             .map(|&g| faces.face(g) as usize)
                             .collect();
                         faces.sort_unstable();
@@ -86,11 +89,8 @@ impl Topology {
                         return Some((h, MeshError::NonManifoldEdge { edge, faces }));
                     }
                     if n_same == 2 {
-                        let mut faces: Vec<usize> = outs(a)
-                            .iter()
-                            .filter(|&&g| to(g) == b)
-                            .map(|&g| faces.face(g) as usize)
-                            .collect();
+                        let mut faces: Vec<usize> =
+                            same.iter().map(|&g| faces.face(g) as usize).collect();
                         faces.sort_unstable();
                         let e = MeshError::InconsistentOrientation {
                             edge: [a as usize, b as usize],
@@ -115,16 +115,22 @@ impl Topology {
                 for (k, slot) in chunk.iter_mut().enumerate() {
                     let v = c * CHUNK + k;
                     let outs = outs(v as u32);
-                    let Some(&first) = outs.first() else {
+                    let Some(&first) = outs.iter().min() else {
                         continue; // unreferenced vertex (only in refinement output; never queried)
                     };
+                    // The start is the boundary half-edge (the last in half-edge order if
+                    // several), else the first half-edge: independent of the bucket order.
                     let mut start = first;
                     let mut boundary_starts = 0;
+                    let mut last_boundary = None;
                     for &h in outs {
                         if twin[h as usize] == NONE {
                             boundary_starts += 1;
-                            start = h;
+                            last_boundary = last_boundary.max(Some(h));
                         }
+                    }
+                    if let Some(h) = last_boundary {
+                        start = h;
                     }
                     // Count faces reached by counter-clockwise rotation from `start`.
                     let mut count = 1;
@@ -161,6 +167,28 @@ impl Topology {
             nm: None,
         })
     }
+}
+
+/// Sorts each vertex's bucket of outgoing half-edges (`out_he[out_start[v]..out_start[v + 1]]`)
+/// by (end vertex, half-edge), in parallel over blocks of vertices.
+fn sort_buckets(out_he: &mut [u32], out_start: &[u32], to: impl Fn(u32) -> u32 + Sync) {
+    let nv = out_start.len() - 1;
+    let mut parts = Vec::with_capacity(nv.div_ceil(CHUNK));
+    let mut rest = out_he;
+    for c in 0..nv.div_ceil(CHUNK) {
+        let vs = c * CHUNK..((c + 1) * CHUNK).min(nv);
+        let len = (out_start[vs.end] - out_start[vs.start]) as usize;
+        let (part, tail) = rest.split_at_mut(len);
+        parts.push((vs, part));
+        rest = tail;
+    }
+    parts.into_par_iter().for_each(|(vs, part)| {
+        let base = out_start[vs.start];
+        for v in vs {
+            let bucket = (out_start[v] - base) as usize..(out_start[v + 1] - base) as usize;
+            part[bucket].sort_unstable_by_key(|&h| (to(h), h));
+        }
+    });
 }
 
 /// Numbers the edges of a half-edge mesh from its twins, in the order of their first half-edge

@@ -46,7 +46,9 @@ use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
-use crate::host::adaptive::{self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, record_edge};
+use crate::host::adaptive::{
+    self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, record_edge, select_rings,
+};
 use crate::host::caps::CapBuilder;
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::Stencil;
@@ -317,25 +319,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let m = &level.mesh;
     let nf = m.num_faces();
     // Faces within two vertex-rings of the marked faces.
-    let mut sel = vec![false; nf];
-    let mut frontier: Vec<u32> = marked.iter().map(|&(f, _)| f).collect();
-    for &f in &frontier {
-        sel[f as usize] = true;
-    }
-    for _ in 0..2 {
-        let mut next = Vec::new();
-        for &f in &frontier {
-            for &v in m.face(f as usize) {
-                for g in m.vertex_faces(v as usize) {
-                    if !sel[g as usize] {
-                        sel[g as usize] = true;
-                        next.push(g);
-                    }
-                }
-            }
-        }
-        frontier = next;
-    }
+    let (sel, _) = select_rings(m, marked, 2);
     let nv = m.num_vertices();
     let ne = m.num_edges();
     // Child vertex ids: vertex points, edge points, face points of selected faces' elements.

@@ -153,28 +153,6 @@ fn many_patches() {
     assert_eq!(sb.len(), 2 * m * (m - 1));
 }
 
-/// Timing on 10^5 patches with T-junctions: `cargo test --release -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn hundred_thousand_patches() {
-    let m = 300;
-    let which: Vec<usize> = (0..m * m).step_by(7).collect();
-    let c = refine_some(&bilinear_grid(m), &which);
-    let t = std::time::Instant::now();
-    let sb = shared_boundaries(&c, 1e-9);
-    let secs = t.elapsed().as_secs_f64();
-    println!("{} patches, {} records in {secs:.2} s", c.len(), sb.len());
-    let mut cover = vec![0.0; 4 * c.len()];
-    for r in &sb {
-        cover[4 * r.a + r.side_a.index()] += r.t[1] - r.t[0];
-        cover[4 * r.b + r.side_b.index()] += (r.s[1] - r.s[0]).abs();
-    }
-    // every side covered once except the sides on the outer boundary of the grid
-    let uncovered = cover.iter().filter(|&&x| x < 0.5).count();
-    assert!(cover.iter().all(|&x| x < 0.5 || (x - 1.0).abs() < 1e-12));
-    assert!(uncovered >= 4 * m && uncovered <= 8 * m, "{uncovered}");
-}
-
 #[test]
 fn welding() {
     let pts = [

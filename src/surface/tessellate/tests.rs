@@ -212,23 +212,3 @@ fn polygons_for_writers() {
     assert_eq!(count.values().filter(|&&x| x == 1).count(), 24);
     assert!(count.values().all(|&x| x <= 2));
 }
-
-/// Timing on about 10^5 patches: `cargo test --release -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn large_complex_timing() {
-    let base = torus(300, 300);
-    let which: Vec<usize> = (0..base.len()).step_by(7).collect();
-    let c = refine_some(&base, &which);
-    let start = std::time::Instant::now();
-    let t = tessellate(&c, 4);
-    println!(
-        "{} patches -> {} vertices, {} triangles in {:.2} s",
-        c.len(),
-        t.num_vertices(),
-        t.num_triangles(),
-        start.elapsed().as_secs_f64()
-    );
-    let (v, e, f) = check_closed(&t);
-    assert_eq!(v as i64 - e as i64 + f as i64, 0);
-}

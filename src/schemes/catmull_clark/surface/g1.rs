@@ -37,7 +37,7 @@ use crate::geom::{Point, cross};
 use crate::host::adaptive::Tag;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::CatmullClark;
-use std::collections::BTreeMap;
+use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
 pub const MAX_EXTRA_LEVELS: usize = 2;
@@ -56,19 +56,16 @@ type Group = (Option<Element>, Vec<(u32, Tag)>);
 
 /// The marked faces grouped by element, in order of first appearance.
 fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
-    let mut order: Vec<Option<Element>> = Vec::new();
-    let mut groups: BTreeMap<usize, Vec<(u32, Tag)>> = BTreeMap::new();
+    let mut index: HashMap<Option<Element>, usize> = HashMap::new();
+    let mut groups: Vec<Group> = Vec::new();
     for &(f, tag) in marked {
-        let k = match order.iter().position(|e| *e == tag.element) {
-            Some(k) => k,
-            None => {
-                order.push(tag.element);
-                order.len() - 1
-            }
-        };
-        groups.entry(k).or_default().push((f, tag));
+        let k = *index.entry(tag.element).or_insert_with(|| {
+            groups.push((tag.element, Vec::new()));
+            groups.len() - 1
+        });
+        groups[k].1.push((f, tag));
     }
-    groups.into_iter().map(|(k, g)| (order[k], g)).collect()
+    groups
 }
 
 /// Corner index of `v` in face `f`.
@@ -76,16 +73,14 @@ fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
     m.face(f).iter().position(|&w| w == v)
 }
 
-/// The segment of the hole along the edge `from -> to` of the hole face `hole_face`: the side of
-/// the emitted patch of the face across that edge, from `from` to `to`, with its outward
-/// derivative (`None` while that face has no trusted regular patch).
-fn segment_across(level: &Level, hole_face: u32, from: u32, to: u32) -> Option<Segment> {
+/// The segment of the hole along the hole face's half-edge `hole_he`, starting at its end
+/// `from`: the side of the emitted patch of the face across that edge, from `from` to the other
+/// end, with its outward derivative (`None` at the boundary or while that face has no trusted
+/// regular patch). The face across is found through the twin, in O(1) at any valence.
+fn segment_across(level: &Level, hole_he: u32, from: u32) -> Option<Segment> {
     let m = &level.mesh;
-    // The face across holds whichever half-edge of the edge is not the hole face's.
-    let (h, forward) = [(to, from, false), (from, to, true)]
-        .into_iter()
-        .filter_map(|(a, b, fwd)| Some((m.find_halfedge(a as usize, b as usize)?, fwd)))
-        .find(|&(h, _)| m.he_face(h) != hole_face)?;
+    let h = m.he_twin(hole_he)?;
+    let forward = m.he_from(h) == from;
     let g = m.he_face(h) as usize;
     let ring = regular_patch(level, g)?;
     let k = corner_of(m, g, m.he_from(h))?;
@@ -113,7 +108,8 @@ fn hole_of(
     if m.is_boundary_vertex(xu) || n < 3 || faces.len() != n {
         return Err(NoCap::Never);
     }
-    let tag_of = |f: u32| faces.iter().find(|(g, _)| *g == f).map(|(_, t)| *t);
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let tag_of = |f: u32| tag_at.get(&f).copied();
     let mut sectors = Vec::with_capacity(n);
     let mut tags = Vec::with_capacity(n);
     let mut f = f0;
@@ -124,17 +120,19 @@ fn hole_of(
             return Err(NoCap::Never);
         }
         let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
-        let (p, kk, q) = (face[(k + 1) % 4], face[(k + 2) % 4], face[(k + 3) % 4]);
+        let (p, q) = (face[(k + 1) % 4], face[(k + 3) % 4]);
         tags.push(tag_of(f).ok_or(NoCap::Never)?);
+        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
+        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
         match (
-            segment_across(level, f, p, kk),
-            segment_across(level, f, q, kk),
+            segment_across(level, he(1), p),
+            segment_across(level, he(2), q),
         ) {
             (Some(a), Some(b)) => sectors.push(vec![a, b]),
             _ => later = true,
         }
-        // The next sector counter-clockwise contains the half-edge x -> q.
-        let h = m.find_halfedge(xu, q as usize).ok_or(NoCap::Never)?;
+        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
+        let h = m.he_twin(he(3)).ok_or(NoCap::Never)?;
         f = m.he_face(h);
     }
     if f != f0 {
