@@ -102,7 +102,7 @@ pub(super) fn manifold_halfedges(mesh: &PolyMesh) -> Topology {
 
 /// The end (0 or 1) of edge(h) at which the start of half-edge `h` lies.
 #[inline]
-pub(crate) fn end_at_from(m: &MeshView<'_>, h: u32) -> u32 {
+fn end_at_from(m: &MeshView<'_>, h: u32) -> u32 {
     let first = m.edge_he[m.he_edge[h as usize] as usize];
     u32::from(!(h == first || m.from(h) == m.from(first)))
 }
@@ -115,24 +115,48 @@ pub(crate) fn end_at_from(m: &MeshView<'_>, h: u32) -> u32 {
 /// vertex points. For a manifold parent it equals [`manifold_halfedges`].
 pub(super) fn general_halfedges(mesh: &PolyMesh, child_corners: &[u32]) -> Topology {
     let m = mesh.view();
-    let t = mesh.topology();
     let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
     let nh = mesh.num_halfedges() as u32;
     let ne32 = ne as u32;
-    let half = |h: u32, at_from: bool| {
-        let e = m.he_edge[h as usize];
-        let end = end_at_from(&m, h);
-        2 * e + if at_from { end } else { 1 - end }
-    };
     let mut raw = Vec::with_capacity(4 * nh as usize);
     for h in 0..nh {
         let p = m.faces.prev(h);
-        raw.extend_from_slice(&[half(h, true), 2 * ne32 + h, 2 * ne32 + p, half(p, false)]);
+        raw.extend_from_slice(&[
+            edge_half(&m, h, true),
+            2 * ne32 + h,
+            2 * ne32 + p,
+            edge_half(&m, p, false),
+        ]);
     }
-    let nm = t.nm.as_deref();
-    let mut raw_nm = vec![false; 2 * ne + nh as usize];
-    let mut nm_vertex = vec![false; nv + ne + nf];
-    if let Some(nm) = nm {
+    general_child_topology(mesh, child_corners, 4, &raw, nh as usize, nv + ne + nf)
+}
+
+/// The raw child edge of the half of parent edge(h) at the start (`at_from`) or the end of
+/// `h`: `2 e + end`, the two halves of every parent edge shared by all its faces.
+#[inline]
+pub(crate) fn edge_half(m: &MeshView<'_>, h: u32, at_from: bool) -> u32 {
+    let e = m.he_edge[h as usize];
+    let end = end_at_from(m, h);
+    2 * e + if at_from { end } else { 1 - end }
+}
+
+/// The tolerant build of a uniform child (faces of `arity` corners, `num_points` points) from
+/// its raw edges per child half-edge: the halves of the parent edges ([`edge_half`]) and then
+/// `inner` edges inside the parent faces. Non-manifold flags pass from parent edges to their
+/// halves and edge points (numbered after the `nv` vertex points), from parent vertices to
+/// their vertex points. Catmull-Clark's and Loop's [`general_halfedges`] end here.
+pub(crate) fn general_child_topology(
+    mesh: &PolyMesh,
+    child_corners: &[u32],
+    arity: u32,
+    raw: &[u32],
+    inner: usize,
+    num_points: usize,
+) -> Topology {
+    let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+    let mut raw_nm = vec![false; 2 * ne + inner];
+    let mut nm_vertex = vec![false; num_points];
+    if let Some(nm) = mesh.topology().nm.as_deref() {
         for e in 0..ne {
             if nm.edge[e] {
                 raw_nm[2 * e] = true;
@@ -145,17 +169,42 @@ pub(super) fn general_halfedges(mesh: &PolyMesh, child_corners: &[u32]) -> Topol
     let faces = FaceIndex {
         face_start: &[],
         he_face: &[],
-        uniform: 4,
+        uniform: arity,
     };
     Topology::build_general(
-        nv + ne + nf,
+        num_points,
         faces,
         child_corners,
-        &raw,
-        2 * ne + nh as usize,
+        raw,
+        2 * ne + inner,
         &raw_nm,
         &nm_vertex,
     )
+}
+
+/// The child edge of the half of parent edge(h) at its end (`at_to`) or start: the child
+/// half-edge `c` on it when the child's connectivity `topo` is given, else the half's end
+/// points (the edge point is `nv + edge(h)`, `nv` the parent's vertex count). Catmull-Clark's and Loop's `child_extras` name
+/// sharp halves with it.
+pub(crate) fn half_child_edge(
+    m: &MeshView<'_>,
+    nv: u32,
+    topo: Option<&Topology>,
+    h: u32,
+    at_to: bool,
+    c: u32,
+) -> ChildEdge {
+    match topo {
+        Some(t) => ChildEdge::Id(t.he_edge[c as usize]),
+        None => {
+            let ep = nv + m.he_edge[h as usize];
+            ChildEdge::Pair(if at_to {
+                [ep, m.to(h)]
+            } else {
+                [m.from(h), ep]
+            })
+        }
+    }
 }
 
 /// The sharp features of the child: edge halves and vertex sharpness by OpenSubdiv's rules,
@@ -177,17 +226,7 @@ pub(super) fn child_extras(
             } else {
                 4 * h
             };
-            match topo {
-                Some(t) => ChildEdge::Id(t.he_edge[c as usize]),
-                None => {
-                    let ep = nv + m.he_edge[h as usize];
-                    ChildEdge::Pair(if at_to {
-                        [ep, m.to(h)]
-                    } else {
-                        [m.from(h), ep]
-                    })
-                }
-            }
+            half_child_edge(&m, nv, topo, h, at_to, c)
         },
         |f, out| {
             let s = m.faces.start(f as usize);

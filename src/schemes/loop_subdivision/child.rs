@@ -7,9 +7,9 @@
 //! the parent face, `2` back along `prev(h)`. The middle face `4f + 3` has side `k` from the
 //! point of edge `3f + k` to the next.
 
-use crate::mesh::{FaceIndex, NONE, PolyMesh, Topology, number_edges};
-use crate::schemes::catmull_clark::crease::{ChildEdge, SharpLevel};
-use crate::schemes::catmull_clark::end_at_from;
+use crate::mesh::{NONE, PolyMesh, Topology, number_edges};
+use crate::schemes::catmull_clark::crease::SharpLevel;
+use crate::schemes::catmull_clark::{edge_half, general_child_topology, half_child_edge};
 use rayon::prelude::*;
 
 /// Child points (or parent half-edges) per parallel task.
@@ -117,11 +117,6 @@ pub(super) fn general_halfedges(mesh: &PolyMesh, child_corners: &[u32]) -> Topol
     let m = mesh.view();
     let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
     let ne32 = ne as u32;
-    let half = |h: u32, at_from: bool| {
-        let e = m.he_edge[h as usize];
-        let end = end_at_from(&m, h);
-        2 * e + if at_from { end } else { 1 - end }
-    };
     // The edge inside the parent face from the point of edge(h) to that of edge(prev h).
     let inner = |h: u32| 2 * ne32 + h;
     let mut raw = Vec::with_capacity(12 * nf);
@@ -129,39 +124,13 @@ pub(super) fn general_halfedges(mesh: &PolyMesh, child_corners: &[u32]) -> Topol
         for i in 0..3 {
             let h = 3 * f + i;
             let p = m.faces.prev(h);
-            raw.extend_from_slice(&[half(h, true), inner(h), half(p, false)]);
+            raw.extend_from_slice(&[edge_half(&m, h, true), inner(h), edge_half(&m, p, false)]);
         }
         for k in 0..3 {
             raw.push(inner(3 * f + (k + 1) % 3));
         }
     }
-    let t = mesh.topology();
-    let mut raw_nm = vec![false; 2 * ne + 3 * nf];
-    let mut nm_vertex = vec![false; nv + ne];
-    if let Some(nm) = t.nm.as_deref() {
-        for e in 0..ne {
-            if nm.edge[e] {
-                raw_nm[2 * e] = true;
-                raw_nm[2 * e + 1] = true;
-                nm_vertex[nv + e] = true;
-            }
-        }
-        nm_vertex[..nv].copy_from_slice(&nm.vertex);
-    }
-    let faces = FaceIndex {
-        face_start: &[],
-        he_face: &[],
-        uniform: 3,
-    };
-    Topology::build_general(
-        nv + ne,
-        faces,
-        child_corners,
-        &raw,
-        2 * ne + 3 * nf,
-        &raw_nm,
-        &nm_vertex,
-    )
+    general_child_topology(mesh, child_corners, 3, &raw, 3 * nf, nv + ne)
 }
 
 /// The sharp features of the child (see `catmull_clark::crease`); `topo` is the child's
@@ -180,17 +149,7 @@ pub(super) fn child_extras(
             } else {
                 3 * corner_face(h)
             };
-            match topo {
-                Some(t) => ChildEdge::Id(t.he_edge[c as usize]),
-                None => {
-                    let ep = nv + m.he_edge[h as usize];
-                    ChildEdge::Pair(if at_to {
-                        [ep, m.to(h)]
-                    } else {
-                        [m.from(h), ep]
-                    })
-                }
-            }
+            half_child_edge(&m, nv, topo, h, at_to, c)
         },
         |f, out| out.extend(4 * f..4 * f + 4),
     )
