@@ -58,6 +58,11 @@ pub struct Defects {
 }
 
 impl Defects {
+    /// Whether no piece was measured.
+    pub fn is_empty(&self) -> bool {
+        self.pieces == 0
+    }
+
     fn merge(&mut self, o: &Defects) {
         self.pieces += o.pieces;
         if o.c0 > self.c0 {
@@ -106,8 +111,13 @@ pub struct ContinuityReport {
     pub open_sides: usize,
     /// The first [`MAX_LISTED_OPEN_SIDES`] open sides, where a crack would show.
     pub open: Vec<OpenSide>,
-    /// All shared pieces.
+    /// All shared pieces except the sharp ones.
     pub all: Defects,
+    /// Shared pieces along sharp features (infinitely sharp creases the surface keeps: C^0
+    /// joins, their C^1 and G^1 "defects" are the crease's angle), kept out of `all` and
+    /// `by_kind`; left out of the JSON when there is none.
+    #[serde(skip_serializing_if = "Defects::is_empty")]
+    pub sharp: Defects,
     /// Per kind of join, e.g. `regular|regular`, `ring1|ring2`, `ring6|cap`.
     pub by_kind: BTreeMap<String, Defects>,
 }
@@ -219,9 +229,17 @@ pub fn check(c: &PatchComplex) -> ContinuityReport {
         }
     }
     let mut all = Defects::default();
+    let mut sharp = Defects::default();
     let mut by_kind: BTreeMap<String, Defects> = BTreeMap::new();
+    let masks = c.sharp_masks();
     for sb in &shared {
         let d = measure(c, sb);
+        if masks[sb.a] & (1 << sb.side_a.index()) != 0
+            || masks[sb.b] & (1 << sb.side_b.index()) != 0
+        {
+            sharp.merge(&d);
+            continue;
+        }
         let (mut ka, mut kb) = (
             kind_name(&c.provenance[sb.a]),
             kind_name(&c.provenance[sb.b]),
@@ -238,6 +256,7 @@ pub fn check(c: &PatchComplex) -> ContinuityReport {
         open_sides,
         open,
         all,
+        sharp,
         by_kind,
     }
 }

@@ -57,6 +57,10 @@ pub struct PatchComplex {
     pub patches: Vec<BezierPatch>,
     /// Provenance of each patch (same length as `patches`).
     pub provenance: Vec<Provenance>,
+    /// Sides that lie on a sharp feature (an infinitely sharp crease inside the surface), as
+    /// `(patch, mask)` with bit [`Side::index`](super::Side::index) set per side; `check`
+    /// reports the joins along them apart (sharp joins are C^0, not smooth).
+    pub sharp_sides: Vec<(u32, u8)>,
 }
 
 impl PatchComplex {
@@ -83,7 +87,30 @@ impl PatchComplex {
 
     /// Appends all patches of another complex.
     pub fn extend(&mut self, other: PatchComplex) {
+        let base = self.patches.len() as u32;
         self.patches.extend(other.patches);
         self.provenance.extend(other.provenance);
+        self.sharp_sides
+            .extend(other.sharp_sides.into_iter().map(|(p, m)| (p + base, m)));
+    }
+
+    /// Marks side `side` (its [`Side::index`](super::Side::index)) of patch `patch` as lying
+    /// on a sharp feature.
+    pub fn mark_sharp(&mut self, patch: usize, side: usize) {
+        match self.sharp_sides.last_mut() {
+            Some((p, m)) if *p == patch as u32 => *m |= 1 << side,
+            _ => self.sharp_sides.push((patch as u32, 1 << side)),
+        }
+    }
+
+    /// The sharp-side mask of every patch (bit [`Side::index`](super::Side::index) per side).
+    pub fn sharp_masks(&self) -> Vec<u8> {
+        let mut out = vec![0u8; self.patches.len()];
+        for &(p, m) in &self.sharp_sides {
+            if let Some(x) = out.get_mut(p as usize) {
+                *x |= m;
+            }
+        }
+        out
     }
 }

@@ -88,7 +88,9 @@ pub fn check(a: CheckArgs) -> Result<()> {
     let complex = match &spec {
         Some(s) => {
             let net = super::load_net(&a.input)?.mesh;
-            let (c, n) = super::subdivide::build_complex_noted(s, &net, a.rings, !a.no_fill)?;
+            let mut s = s.clone();
+            super::subdivide::features::patch_features(&mut s, &net, &a.input)?;
+            let (c, n) = super::subdivide::build_complex_noted(&s, &net, a.rings, !a.no_fill)?;
             notes = n;
             c
         }
@@ -156,7 +158,8 @@ pub fn check(a: CheckArgs) -> Result<()> {
         "C2",
         "G1 (rad)"
     );
-    for (k, d) in &c.by_kind {
+    let sharp = (c.sharp.pieces > 0).then_some(("sharp (crease, C0)".to_string(), &c.sharp));
+    for (k, d) in c.by_kind.iter().map(|(k, d)| (k.clone(), d)).chain(sharp) {
         say!(
             "  {:<22} {:>7} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e}",
             k,

@@ -9,7 +9,7 @@ use crate::schemes::{Scheme, Spec, registry};
 use crate::surface::{ComplexOptions, PatchComplex};
 use std::path::PathBuf;
 
-mod features;
+pub(crate) mod features;
 mod nonbox;
 
 pub use features::FeatureArgs;
@@ -200,12 +200,7 @@ pub fn run(a: Args) -> Result<()> {
         crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
     }
     if patches {
-        features::refuse_features(
-            &spec,
-            &mesh,
-            &a.net,
-            "patch output (--rings) does not take yet",
-        )?;
+        features::refuse_patch_features(&spec, &mesh, &a.net)?;
     } else if !features::takes_features(&spec) {
         features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
     }

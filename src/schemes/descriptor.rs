@@ -362,6 +362,13 @@ pub trait Descriptor: Sync + Send {
         false
     }
 
+    /// Whether the scheme's patch output (`patch_rules`) honours OpenSubdiv's sharp features
+    /// (creases, corners, holes, the boundary options); front ends refuse nets with sharp
+    /// features for patch output otherwise.
+    fn patches_take_features(&self) -> bool {
+        false
+    }
+
     /// Local rules for analysis with these parameters (`None`: no analysis).
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         let _ = spec;

@@ -141,3 +141,30 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
     }
     Ok(())
 }
+
+/// For patch output: fails when the net tags sharp features and the scheme's patches do not
+/// take them (see [`refuse_features`]).
+pub fn refuse_patch_features(spec: &Spec, mesh: &PolyMesh, arg: &str) -> Result<()> {
+    if crate::schemes::registry()
+        .descriptor(spec.id)
+        .patches_take_features()
+    {
+        return Ok(());
+    }
+    let what = format!(
+        "the patch output (--rings) of {} does not take yet",
+        spec.name()
+    );
+    refuse_features(spec, mesh, arg, &what)
+}
+
+/// For `check --scheme` on a net: the net's option tags fill the options left unset, and a
+/// scheme whose patches do not take sharp features refuses a net that tags them.
+pub fn patch_features(spec: &mut Spec, mesh: &PolyMesh, arg: &str) -> Result<()> {
+    refuse_patch_features(spec, mesh, arg)?;
+    if takes_features(spec) {
+        let file_opts = mesh.extras().map(|e| e.options).unwrap_or_default();
+        spec.params.subd = spec.params.subd.or(file_opts);
+    }
+    Ok(())
+}

@@ -35,8 +35,14 @@ impl Descriptor for CcDescriptor {
         })))
     }
 
-    fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(CcPatchRules)))
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        Ok(Some(Box::new(CcPatchRules {
+            subd: spec.params.subd,
+        })))
+    }
+
+    fn patches_take_features(&self) -> bool {
+        true
     }
 
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
@@ -44,8 +50,11 @@ impl Descriptor for CcDescriptor {
     }
 }
 
-/// Catmull-Clark's exact surface: the adaptive loop with bi-3 patches and the Hermite-Coons fill.
-struct CcPatchRules;
+/// Catmull-Clark's exact surface: the adaptive loop with bi-3 patches and the Hermite-Coons fill,
+/// honouring the net's sharp features under OpenSubdiv's options.
+struct CcPatchRules {
+    subd: crate::mesh::tags::SubdOptions,
+}
 
 impl PatchRules for CcPatchRules {
     fn build(
@@ -54,7 +63,8 @@ impl PatchRules for CcPatchRules {
         opts: ComplexOptions,
         progress: &mut dyn FnMut(usize),
     ) -> Result<SurfaceOutput> {
-        super::surface::catmull_clark_complex(mesh, opts, progress).map(SurfaceOutput::plain)
+        super::surface::catmull_clark_complex_with(mesh, opts, self.subd, progress)
+            .map(SurfaceOutput::plain)
     }
 }
 

@@ -250,22 +250,22 @@ impl<const D: usize> CcTerms for Eval<'_, D> {
     }
 }
 
-/// Stencil of the Catmull-Clark vertex point of `v` (default options).
-pub(crate) fn vertex_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
-    let mut s = Stencil::new();
-    let rules = Rules::new(mesh, &Opts::default());
-    let m = mesh.view();
-    rules.vertex(v, &mut Scratch::default(), &mut Expand { m, row: &mut s });
-    s.merged()
-}
+impl Rules<'_> {
+    /// The stencil of the vertex point of `v` under these rules.
+    pub(crate) fn vertex_stencil(&self, v: usize) -> Stencil {
+        let mut s = Stencil::new();
+        let m = self.m;
+        self.vertex(v, &mut Scratch::default(), &mut Expand { m, row: &mut s });
+        s.merged()
+    }
 
-/// Stencil of the Catmull-Clark edge point of edge `e` (default options).
-pub(crate) fn edge_point_stencil(mesh: &PolyMesh, e: usize) -> Stencil {
-    let mut s = Stencil::new();
-    let rules = Rules::new(mesh, &Opts::default());
-    let m = mesh.view();
-    rules.edge(e, &mut Scratch::default(), &mut Expand { m, row: &mut s });
-    s.merged()
+    /// The stencil of the edge point of edge `e` under these rules.
+    pub(crate) fn edge_stencil(&self, e: usize) -> Stencil {
+        let mut s = Stencil::new();
+        let m = self.m;
+        self.edge(e, &mut Scratch::default(), &mut Expand { m, row: &mut s });
+        s.merged()
+    }
 }
 
 /// Fails when a child net would not fit fairsub's 32-bit indices.

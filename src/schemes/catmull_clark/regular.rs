@@ -29,16 +29,28 @@ fn rot_cw(d: Slot) -> Slot {
 /// Returns `None` unless the face is a quad whose corners are all regular quad vertices
 /// (interior valence 4, boundary valence 3, or corner valence 2, with only quads around).
 pub fn bi3_net(mesh: &PolyMesh, f: usize) -> Option<Vec<Stencil>> {
-    if mesh.face_size(f) != 4 {
-        return None;
-    }
-    let face = mesh.face(f);
-    if face
-        .iter()
-        .any(|&v| !mesh.is_regular_quad_vertex(v as usize))
+    if mesh.face_size(f) != 4
+        || mesh
+            .face(f)
+            .iter()
+            .any(|&v| !mesh.is_regular_quad_vertex(v as usize))
     {
         return None;
     }
+    bi3_net_cut(mesh, f, &|_| false)
+}
+
+/// The 4x4 net of quad `f` (as [`bi3_net`]) when the edges for which `cut(edge)` holds are
+/// boundaries too (infinitely sharp creases: the grid stops there and ghosts `2 b - i` are
+/// mirrored across them, so the crease curve is the cubic B-spline of its vertices). The caller
+/// checks that every corner's sector between cuts is regular (four quads around, two quads
+/// between two cuts, or one quad between two cuts at a corner); `None` when the grid is not
+/// consistent.
+pub fn bi3_net_cut(mesh: &PolyMesh, f: usize, cut: &dyn Fn(u32) -> bool) -> Option<Vec<Stencil>> {
+    if mesh.face_size(f) != 4 {
+        return None;
+    }
+    let twin = |h: u32| mesh.he_twin(h).filter(|_| !cut(mesh.he_edge(h)));
     let mut slot: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
     let corner_pos: [Slot; 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
     let mut dir: Slot = (1, 0);
@@ -63,13 +75,14 @@ pub fn bi3_net(mesh: &PolyMesh, f: usize) -> Option<Vec<Stencil>> {
         // Counter-clockwise from the face's outgoing half-edge.
         let mut g = h;
         let mut d = dir;
+        let mut bounded = false;
         loop {
             put((c.0 + d.0, c.1 + d.1), mesh.he_to(g), &mut slot)?;
             let nd = rot(d);
             let diag = mesh.he_from(mesh.he_next(mesh.he_next(g)));
             put((c.0 + d.0 + nd.0, c.1 + d.1 + nd.1), diag, &mut slot)?;
             let p = mesh.he_prev(g);
-            match mesh.he_twin(p) {
+            match twin(p) {
                 Some(t) if t != h => {
                     g = t;
                     d = nd;
@@ -79,15 +92,16 @@ pub fn bi3_net(mesh: &PolyMesh, f: usize) -> Option<Vec<Stencil>> {
                     // Boundary reached: the last edge neighbour is the incoming boundary edge's
                     // start.
                     put((c.0 + nd.0, c.1 + nd.1), mesh.he_from(p), &mut slot)?;
+                    bounded = true;
                     break;
                 }
             }
         }
-        // Clockwise from the face's outgoing half-edge (only needed at the boundary).
-        if mesh.is_boundary_vertex(v as usize) {
+        // Clockwise from the face's outgoing half-edge (only needed at a boundary or cut).
+        if bounded {
             let mut g = h;
             let mut d = dir;
-            while let Some(t) = mesh.he_twin(g) {
+            while let Some(t) = twin(g) {
                 let gn = mesh.he_next(t);
                 let nd = rot_cw(d);
                 put((c.0 + nd.0, c.1 + nd.1), mesh.he_to(gn), &mut slot)?;

@@ -38,9 +38,10 @@
 
 mod g1;
 mod jets;
+pub mod sharp;
 
+use super::CatmullClark;
 use super::regular::bi3_net;
-use super::{CatmullClark, edge_point_stencil, vertex_point_stencil};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::{Error, Result};
@@ -50,12 +51,31 @@ use crate::host::adaptive::{
     self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, record_edge, select_rings,
 };
 use crate::host::caps::CapBuilder;
+use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
 /// One level of the adaptive refinement.
-pub type Level = MeshLevel;
+pub struct Level {
+    /// The mesh, trust and active faces, as for every mesh-based scheme.
+    base: MeshLevel,
+    /// The level's sharp features, when the net has them ([`sharp`]).
+    sharp: Option<sharp::Features>,
+}
+
+impl std::ops::Deref for Level {
+    type Target = MeshLevel;
+    fn deref(&self) -> &MeshLevel {
+        &self.base
+    }
+}
+
+impl adaptive::Cells for Level {
+    fn active(&self) -> &[(u32, Tag)] {
+        &self.base.active
+    }
+}
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -63,9 +83,25 @@ pub type Level = MeshLevel;
 pub fn catmull_clark_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    catmull_clark_complex_with(mesh, opts, SubdOptions::default(), progress)
+}
+
+/// [`catmull_clark_complex`] with OpenSubdiv's options: the net's sharp features, boundary
+/// option and holes as [`sharp`] documents.
+pub fn catmull_clark_complex_with(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    subd: SubdOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&CcRules { caps: None, opts }, mesh, opts, &mut progress)
+    let rules = CcRules {
+        caps: None,
+        opts,
+        subd: Some(subd),
+    };
+    adaptive::run(&rules, mesh, opts, &mut progress)
 }
 
 /// The Catmull-Clark surface of `mesh` with the caps of `caps` around every extraordinary vertex
@@ -80,6 +116,7 @@ pub fn capped_complex(
         &CcRules {
             caps: Some(caps),
             opts,
+            subd: None,
         },
         mesh,
         opts,
@@ -94,6 +131,9 @@ pub struct CcRules<'a> {
     pub caps: Option<&'a dyn CapBuilder>,
     /// Rings and fill (the G^1 caps of [`g1`] come after `opts.rings` levels when filling).
     pub opts: ComplexOptions,
+    /// OpenSubdiv's options when the net's sharp features are honoured ([`sharp`]); `None`
+    /// refines every net with the plain rules (the cap schemes refuse sharp features before).
+    pub subd: Option<SubdOptions>,
 }
 
 impl AdaptiveRules for CcRules<'_> {
@@ -108,15 +148,26 @@ impl AdaptiveRules for CcRules<'_> {
                 mesh.face_size(f)
             )));
         }
-        Ok(Level::input(mesh))
+        let (mesh, sharp) = match self.subd.as_ref().and_then(|o| sharp::start(mesh, o)) {
+            Some((m, s)) => (m, Some(s)),
+            None => (mesh.clone(), None),
+        };
+        Ok(Level {
+            base: MeshLevel::input(&mesh),
+            sharp,
+        })
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
+        if sharp::is_hole(level, f as usize) {
+            return true;
+        }
         let Some(p) = regular_patch(level, f as usize) else {
             return false;
         };
         record_curves(&level.mesh, f as usize, &p, to.curves);
         to.out.push(p, prov);
+        sharp::mark_sides(level, f as usize, to.out);
         true
     }
 
@@ -246,7 +297,10 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
     if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
         return None;
     }
-    let net = bi3_net(m, f)?;
+    let net = match &level.sharp {
+        Some(ft) => sharp::bi3_net(level, ft, f)?,
+        None => bi3_net(m, f)?,
+    };
     if net.iter().any(|s| {
         s.entries()
             .iter()
@@ -277,7 +331,7 @@ fn tag_irregular(
     }
     for &v in m.face(f) {
         let origin = level.info[v as usize].origin;
-        if origin.is_some() && !m.is_regular_quad_vertex(v as usize) {
+        if origin.is_some() && sharp::irregular_vertex(level, v as usize) {
             // each vertex's fan is walked once (position of every face, the first kept)
             let fan = fans.entry(v).or_insert_with(|| {
                 let mut at = HashMap::new();
@@ -322,6 +376,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let (sel, _) = select_rings(m, marked, 2);
     let nv = m.num_vertices();
     let ne = m.num_edges();
+    let rules = sharp::rules(level);
     // Child vertex ids: vertex points, edge points, face points of selected faces' elements.
     const UNSET: u32 = u32::MAX;
     let mut vid = vec![UNSET; nv];
@@ -369,7 +424,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                 let vi = level.info[v];
                 let fan = vi.fan_ok && all_faces_selected(v);
                 let pos = vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g));
-                stencils.push(vertex_point_stencil(m, v));
+                stencils.push(rules.vertex_stencil(v));
                 info.push(Info {
                     pos_ok: pos,
                     fan_ok: fan,
@@ -381,13 +436,15 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                 if eid[e] == UNSET {
                     eid[e] = stencils.len() as u32;
                     let [a, b] = m.edge(e);
-                    let known = level.info[a as usize].fan_ok || level.info[b as usize].fan_ok;
+                    let (a_ok, b_ok) =
+                        (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
+                    let known = sharp::edge_known(level, e, a_ok, b_ok);
                     let hh = m.edge_halfedge(e);
                     let mut faces = vec![m.he_face(hh)];
                     if let Some(t) = m.he_twin(hh) {
                         faces.push(m.he_face(t));
                     }
-                    stencils.push(edge_point_stencil(m, e));
+                    stencils.push(rules.edge_stencil(e));
                     info.push(Info {
                         pos_ok: known && faces.iter().all(|&g| face_pos_ok(g)),
                         fan_ok: known && faces.iter().all(|&g| sel[g as usize]),
@@ -416,6 +473,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let (child, sharp) = sharp::child(level, &rules, child, &vid, &eid);
     let mut active = Vec::new();
     for &(f, tag) in marked {
         for (k, &c) in child_faces_of[&f].iter().enumerate() {
@@ -429,9 +487,12 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         }
     }
     Ok(Level {
-        mesh: child,
-        info,
-        active,
+        base: MeshLevel {
+            mesh: child,
+            info,
+            active,
+        },
+        sharp,
     })
 }
 
@@ -503,6 +564,9 @@ fn fill(
             let key = (a.min(b), a.max(b));
             let c = *curves.entry(key).or_insert_with(|| {
                 let (lo, hi) = key;
+                if let Some(c) = sharp::crease_curve(level, lo, hi) {
+                    return c;
+                }
                 let (p0, d0) = jets.limit_and_derivative(lo as usize, hi as usize);
                 let (p3, d3) = jets.limit_and_derivative(hi as usize, lo as usize);
                 [
@@ -533,6 +597,7 @@ fn fill(
                 sector: tag.sector,
             },
         );
+        sharp::mark_sides(level, f as usize, out);
     }
     Ok(())
 }

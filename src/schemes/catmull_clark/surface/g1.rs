@@ -105,7 +105,8 @@ fn hole_of(
         .ok_or(NoCap::Never)?;
     let xu = x as usize;
     let n = m.valence(xu);
-    if m.is_boundary_vertex(xu) || n < 3 || faces.len() != n {
+    if m.is_boundary_vertex(xu) || n < 3 || faces.len() != n || super::sharp::is_special(level, xu)
+    {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();

@@ -30,6 +30,9 @@ struct Jet {
 pub(super) struct Jets<'m> {
     mesh: &'m PolyMesh,
     cache: HashMap<usize, Option<Jet>>,
+    /// With sharp features: the vertices whose derivatives are the chords of the limit points
+    /// ([`super::sharp::chord_vertices`]).
+    chord: Option<Vec<bool>>,
 }
 
 impl<'m> Jets<'m> {
@@ -38,6 +41,7 @@ impl<'m> Jets<'m> {
         Jets {
             mesh,
             cache: HashMap::new(),
+            chord: super::sharp::chord_vertices(mesh),
         }
     }
 
@@ -45,6 +49,12 @@ impl<'m> Jets<'m> {
     /// at `v`, in the edge's unit parameter (as [`limit_and_derivative`]).
     pub(super) fn limit_and_derivative(&mut self, v: usize, w: usize) -> (Point, Point) {
         let m = self.mesh;
+        if self.chord.as_ref().is_some_and(|c| c[v]) {
+            let pos = m.positions();
+            let lim = CatmullClark::limit_stencil(m, v).apply(pos);
+            let other = CatmullClark::limit_stencil(m, w).apply(pos);
+            return (lim, geom::sub(other, lim));
+        }
         let jet = self.cache.entry(v).or_insert_with(|| jet(m, v));
         match jet {
             Some(j) => {

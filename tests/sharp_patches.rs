@@ -1,0 +1,356 @@
+//! Catmull-Clark patch output (`--rings`) with OpenSubdiv's sharp features: every emitted ring
+//! or regular patch is exact, i.e. its points at the dyadic parameters of its level are limit
+//! points of the uniformly refined net (`--levels N --limit`, which agrees with OpenSubdiv);
+//! the crease curve is the cubic B-spline of the crease vertices and shared by the patches on
+//! both sides; hole faces are not written.
+
+use fairsub::bezier::complex::{PatchComplex, Provenance};
+use fairsub::geom::Point;
+use fairsub::host::ComplexOptions;
+use fairsub::mesh::tags::{BoundaryInterpolation, SubdOptions};
+use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
+use fairsub::schemes::Scheme;
+use fairsub::schemes::catmull_clark::Configured;
+use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
+
+fn osd(name: &str) -> PolyMesh {
+    let path = format!("{}/tests/data/osd/{name}.obj", env!("CARGO_MANIFEST_DIR"));
+    fairsub::cli::load_net(&path).expect("net loads").mesh
+}
+
+fn file_options(m: &PolyMesh) -> SubdOptions {
+    m.extras().map(|e| e.options).unwrap_or_default()
+}
+
+/// The limit points of `mesh` refined `levels` times with OpenSubdiv's rules, sorted by x.
+fn limit_points(mesh: &PolyMesh, subd: SubdOptions, levels: usize) -> Vec<Point> {
+    let s = Configured { options: subd };
+    let m = fairsub::schemes::refine_levels(&s, mesh, levels, |_| {}).unwrap();
+    let mut pts = s.limit_stencils(&m).unwrap().apply(m.positions());
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    pts
+}
+
+/// Distance from `p` to the nearest of the sorted points `pts` (searched in an x window).
+fn nearest(pts: &[Point], p: Point) -> f64 {
+    let w = 1e-6;
+    let lo = pts.partition_point(|q| q[0] < p[0] - w);
+    pts[lo..]
+        .iter()
+        .take_while(|q| q[0] <= p[0] + w)
+        .map(|&q| fairsub::geom::dist(p, q))
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn level_of(p: &Provenance) -> Option<usize> {
+    match p {
+        Provenance::Regular { .. } => Some(0),
+        Provenance::Ring { ring, .. } => Some(*ring as usize),
+        _ => None,
+    }
+}
+
+/// Checks that every regular and ring patch of `c` is exact against `levels` uniform levels:
+/// its samples at parameters `k / 2^(levels - l)` are limit points (distance < 1e-9). Returns
+/// (patches checked, samples checked, largest distance).
+fn check_exact(c: &PatchComplex, pts: &[Point], levels: usize) -> (usize, usize, f64) {
+    let (mut patches, mut samples, mut worst) = (0, 0, 0f64);
+    for (p, prov) in c.patches.iter().zip(&c.provenance) {
+        let Some(l) = level_of(prov) else { continue };
+        assert!(l <= levels, "ring {l} beyond {levels} levels");
+        let k = 1usize << (levels - l);
+        patches += 1;
+        for i in 0..=k {
+            for j in 0..=k {
+                let x = p.eval(i as f64 / k as f64, j as f64 / k as f64);
+                let d = nearest(pts, x);
+                worst = worst.max(d);
+                samples += 1;
+                assert!(
+                    d < 1e-9,
+                    "{prov:?} sample ({i}, {j})/{k} at {x:?}: {d:e} from the limit"
+                );
+            }
+        }
+    }
+    (patches, samples, worst)
+}
+
+fn complex(m: &PolyMesh, subd: SubdOptions, rings: usize, fill: bool) -> PatchComplex {
+    catmull_clark_complex_with(m, ComplexOptions { rings, fill }, subd, |_| {}).unwrap()
+}
+
+/// A 6 x 6 grid (a bump in z) with an infinitely sharp crease along the line j = 3.
+fn creased_grid(sharpness: f32) -> PolyMesh {
+    let m = fairsub::mesh::nets::quad_grid(6, |x, y| 0.1 * (x * y).sin() + 0.05 * x * x);
+    let row = |i: u32| 3 * 7 + i;
+    let edges = (0..6).map(|i| ([row(i), row(i + 1)], sharpness)).collect();
+    m.with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ByPair(edges),
+        ..Extras::default()
+    }))
+}
+
+#[test]
+fn creased_grid_is_regular_patches_sharing_the_crease_b_spline() {
+    let m = creased_grid(10.0);
+    let subd = SubdOptions::default();
+    let c = complex(&m, subd, 3, true);
+    // every face is regular: crease vertices of valence 4 and the crease's ends, corners of
+    // one face on each side (three sharp edges at a boundary vertex)
+    assert_eq!(c.len(), 36);
+    assert!(
+        c.provenance
+            .iter()
+            .all(|p| matches!(p, Provenance::Regular { .. }))
+    );
+    let pts = limit_points(&m, subd, 3);
+    let (patches, samples, worst) = check_exact(&c, &pts, 3);
+    assert_eq!((patches, samples), (36, 36 * 81));
+    assert!(worst < 1e-9);
+    // every limit point is on some patch: the complex covers the whole surface
+    let mut all: Vec<Point> = Vec::new();
+    for p in &c.patches {
+        for i in 0..=8 {
+            for j in 0..=8 {
+                all.push(p.eval(i as f64 / 8.0, j as f64 / 8.0));
+            }
+        }
+    }
+    all.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    let far = pts.iter().filter(|&&q| nearest(&all, q) > 1e-9).count();
+    assert_eq!(far, 0);
+    // the crease curve: the sides on y = 3 of the patches below and above are the cubic
+    // B-spline of the crease vertices (ghosts 2 P - Q at its ends), the same on both sides
+    let pos = m.positions();
+    let crease = |i: i64| -> Point {
+        let at = |i: i64| pos[(3 * 7 + i) as usize];
+        match i {
+            -1 => fairsub::geom::sub(fairsub::geom::scale(at(0), 2.0), at(1)),
+            7 => fairsub::geom::sub(fairsub::geom::scale(at(6), 2.0), at(5)),
+            _ => at(i),
+        }
+    };
+    let mut checked = 0;
+    for i in 0..6i64 {
+        for t in [0.0, 0.25, 0.5, 0.8, 1.0] {
+            // uniform cubic B-spline of segment i at t
+            let b = [
+                (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0,
+                (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+                (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
+                t * t * t / 6.0,
+            ];
+            let mut want = [0.0; 3];
+            for (k, w) in b.iter().enumerate() {
+                want = fairsub::geom::axpy(want, *w, crease(i - 1 + k as i64));
+            }
+            // face (i, 2) below has its side v = 1 on the crease, face (i, 3) above v = 0
+            let below = c.patches[(2 * 6 + i) as usize].eval(t, 1.0);
+            let above = c.patches[(3 * 6 + i) as usize].eval(t, 0.0);
+            assert!(
+                fairsub::geom::dist(below, want) < 1e-12,
+                "{below:?} {want:?}"
+            );
+            assert!(
+                fairsub::geom::dist(above, want) < 1e-12,
+                "{above:?} {want:?}"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 30);
+    // check: C^2 away from the crease, the crease's six pieces a sharp (C^0) join
+    let r = fairsub::analysis::continuity::check(&c);
+    assert_eq!(r.sharp.pieces, 6);
+    assert!(r.sharp.c0 < 1e-12 && r.sharp.g1 > 0.05, "{:?}", r.sharp);
+    assert!(r.all.pieces > 0);
+    assert!(
+        r.all.c0 < 1e-12 && r.all.c1 < 1e-9 && r.all.c2 < 1e-9,
+        "{:?}",
+        r.all
+    );
+    // sharp: the cross derivatives jump at the crease (the surface is not C^1 there)
+    let d_below = c.patches[2 * 6 + 2].derivatives(0.5, 1.0).dv;
+    let d_above = c.patches[3 * 6 + 2].derivatives(0.5, 0.0).dv;
+    assert!(fairsub::geom::dist(d_below, d_above) > 1e-3);
+}
+
+#[test]
+fn semi_sharp_crease_refines_until_spent() {
+    // sharpness 2: the faces at the crease become regular two levels down
+    let m = creased_grid(2.0);
+    let subd = SubdOptions::default();
+    let c = complex(&m, subd, 4, true);
+    let rings: Vec<usize> = c.provenance.iter().filter_map(level_of).collect();
+    assert_eq!(
+        rings.len(),
+        c.len(),
+        "no fill: the sharpness is spent within the rings"
+    );
+    assert_eq!(rings.iter().max(), Some(&2));
+    let pts = limit_points(&m, subd, 2);
+    let (patches, _, worst) = check_exact(&c, &pts, 2);
+    assert_eq!(patches, c.len());
+    assert!(worst < 1e-9);
+    // faces two rows away from the crease are regular at level 0
+    let regular = rings.iter().filter(|&&l| l == 0).count();
+    assert_eq!(regular, 36 - 2 * 6);
+}
+
+/// The nets of OpenSubdiv's test set with sharp features: every ring and regular patch is
+/// exact; the counts of patches per kind are those of this construction.
+#[test]
+fn osd_nets_patches_are_limit_exact() {
+    let cases: &[(&str, Option<BoundaryInterpolation>)] = &[
+        ("cc_cube_infsharp", None),
+        ("cc_cube_semisharp", None),
+        ("cc_corner_tags", None),
+        ("cc_torus_dart", None),
+        ("cc_holes", None),
+        ("cc_crease_extraordinary", None),
+        ("cc_boundary_tags", None),
+        ("cc_boundary_tags", Some(BoundaryInterpolation::EdgeOnly)),
+        (
+            "cc_boundary_tags",
+            Some(BoundaryInterpolation::EdgeAndCorner),
+        ),
+        (
+            "cc_boundary_valences",
+            Some(BoundaryInterpolation::EdgeOnly),
+        ),
+        ("cc_boundary_valences", Some(BoundaryInterpolation::None)),
+        ("cc_boundary_edgeonly_tag", None),
+    ];
+    let closed = [
+        "cc_cube_infsharp",
+        "cc_cube_semisharp",
+        "cc_corner_tags",
+        "cc_torus_dart",
+    ];
+    for &(name, boundary) in cases {
+        let m = osd(name);
+        let mut subd = file_options(&m);
+        if boundary.is_some() {
+            subd.boundary = boundary;
+        }
+        let c = complex(&m, subd, 3, true);
+        let levels = c.provenance.iter().filter_map(level_of).max().unwrap_or(0);
+        let pts = limit_points(&m, subd, levels);
+        let (patches, samples, worst) = check_exact(&c, &pts, levels);
+        eprintln!(
+            "{name} {boundary:?}: {} patches, {patches} exact ({samples} samples, worst {worst:.1e})",
+            c.len()
+        );
+        assert!(patches > 0, "{name}");
+        assert!(worst < 1e-9, "{name}");
+        // no crack: every join C^0 (the fill's too), sharp joins apart
+        let r = fairsub::analysis::continuity::check(&c);
+        assert!(
+            r.all.c0 < 1e-9 && r.sharp.c0 < 1e-9,
+            "{name}: {} {}",
+            r.all.c0,
+            r.sharp.c0
+        );
+        // an infinitely sharp crease inside the surface gives sharp joins
+        let sharp_tags = m.extras().is_some_and(|e| match &e.sharp_edges {
+            SharpEdges::ById(v) => v.iter().any(|p| p.1 >= 10.0),
+            SharpEdges::ByPair(v) => v.iter().any(|p| p.1 >= 10.0),
+        });
+        eprintln!(
+            "  joins {} (C2 {:.1e}), sharp {} (G1 {:.2})",
+            r.all.pieces, r.all.c2, r.sharp.pieces, r.sharp.g1
+        );
+        if closed.contains(&name) {
+            assert_eq!(r.open_sides, 0, "{name}");
+        }
+        if sharp_tags && name != "cc_boundary_tags" {
+            assert!(r.sharp.pieces > 0, "{name}");
+        }
+    }
+}
+
+#[test]
+fn holes_are_not_written() {
+    let m = osd("cc_holes");
+    let subd = file_options(&m);
+    let c = complex(&m, subd, 2, true);
+    // the torus is regular: 24 faces, three of them holes
+    assert_eq!(c.len(), 21);
+    for p in &c.provenance {
+        match p {
+            Provenance::Regular { face } => assert!(![0, 1, 14].contains(face)),
+            other => panic!("unexpected {other:?}"),
+        }
+    }
+}
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn cli_rings_take_creases_and_check_reports_them_sharp() {
+    let dir = std::env::temp_dir().join(format!("fairsub-sharp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let net = format!(
+        "{}/tests/data/osd/cc_cube_infsharp.obj",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = dir.join("cube.bv");
+    let (code, _, err) = run(&[
+        "subdivide",
+        &net,
+        "-s",
+        "catmull-clark",
+        "--rings",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("wrote 60 patches"), "{err}");
+    let (code, json, err) = run(&[
+        "check",
+        &net,
+        "-s",
+        "catmull-clark",
+        "--rings",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let sharp = &v["continuity"]["sharp"];
+    // the top loop's four edges and vertex 0's three, each a join of two pieces or more
+    assert!(sharp["pieces"].as_u64().unwrap() >= 7, "{sharp}");
+    assert!(sharp["c0"].as_f64().unwrap() < 1e-9);
+    assert!(sharp["g1"].as_f64().unwrap() > 0.1);
+    assert_eq!(v["continuity"]["open_sides"].as_u64(), Some(0));
+    // a scheme whose patches do not take sharp features refuses the net, naming the tags
+    let (code, _, err) = run(&[
+        "subdivide",
+        &net,
+        "-s",
+        "eg",
+        "--rings",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("tags sharp features (7 sharp edges"), "{err}");
+    assert!(
+        err.contains("patch output (--rings) of eg does not take yet"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
