@@ -169,6 +169,7 @@ mod tests {
                     sector: 0,
                 },
             ],
+            domains: Vec::new(),
         };
         assert_eq!(describe_patch(&c, 0), "patch 0 (regular, in face 4)");
         assert_eq!(
@@ -185,6 +186,7 @@ mod tests {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0), p],
             provenance: vec![Provenance::Unknown; 2],
+            domains: Vec::new(),
         };
         let e = check_finite(&c).unwrap_err().to_string();
         assert!(
@@ -198,6 +200,7 @@ mod tests {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0), square(1.0, 0.0, 1.0)],
             provenance: vec![Provenance::Unknown; 2],
+            domains: Vec::new(),
         };
         let t = crate::surface::tessellate::tessellate(&c, 2);
         let m = t.to_mesh(&c).unwrap();
@@ -210,6 +213,7 @@ mod tests {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0); 3],
             provenance: vec![Provenance::Regular { face: 0 }; 3],
+            domains: Vec::new(),
         };
         let t = crate::surface::tessellate::tessellate(&c, 2);
         let e = t.to_mesh(&c).unwrap_err().to_string();
@@ -227,12 +231,14 @@ mod tests {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0), square(0.0, 0.0, 0.0)],
             provenance: vec![Provenance::Unknown; 2],
+            domains: Vec::new(),
         };
         let t = crate::surface::tessellate::tessellate(&c, 2);
         assert!(t.to_mesh(&c).is_ok());
         let d = PatchComplex {
             patches: vec![square(0.0, 0.0, 0.0); 2],
             provenance: vec![Provenance::Unknown; 2],
+            domains: Vec::new(),
         };
         let t = crate::surface::tessellate::tessellate(&d, 2);
         let e = t.to_mesh(&d).unwrap_err().to_string();

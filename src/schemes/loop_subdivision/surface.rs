@@ -80,7 +80,7 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active,
+    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active_in,
     input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
@@ -172,7 +172,7 @@ impl AdaptiveRules for LoopRules {
         Ok(Level {
             mesh: mesh.clone(),
             info: input_vertex_info(mesh.num_vertices()),
-            active: input_active(mesh.num_faces()),
+            active: input_active_in(mesh),
         })
     }
 
@@ -409,7 +409,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let active = child_active(marked, |f| (children[&f], 4));
+    let mut active = child_active(marked, |f| (children[&f], 4));
+    // four children per marked triangle, in the order of the corners above: the child domains
+    for (i, (_, t)) in active.iter_mut().enumerate() {
+        t.domain = t.domain.child((i % 4) as u32);
+    }
     Ok(Level {
         mesh: child,
         info,
@@ -532,12 +536,13 @@ fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<5>, out: &mut 
             tri[tri_index(x[0], x[1], x[2])] = geom::scale(geom::axpy(*s, 0.25, total), 1.0 / 7.0);
         }
         let element = tag.element.unwrap_or(Element::Vertex(c[0]));
-        out.push(
+        out.push_in(
             triangle_to_tensor(&tri),
             Provenance::Cap {
                 element,
                 sector: tag.sector,
             },
+            tag.domain,
         );
     }
 }

@@ -125,7 +125,12 @@ fn hole_of(
         }
         let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
         let (p, kk, q) = (face[(k + 1) % 4], face[(k + 2) % 4], face[(k + 3) % 4]);
-        tags.push(tag_of(f).ok_or(NoCap::Never)?);
+        // the cap patch of this sector has its (0, 0) at x, corner k of the sector's face
+        let tag = tag_of(f).ok_or(NoCap::Never)?;
+        tags.push(Tag {
+            domain: tag.domain.rotated(k as u32),
+            ..tag
+        });
         match (
             segment_across(level, f, p, kk),
             segment_across(level, f, q, kk),
@@ -181,12 +186,13 @@ pub(super) fn g1_caps(
         match capped {
             Some((element, cap, tags)) => {
                 for (p, tag) in cap.patches.into_iter().zip(tags) {
-                    out.push(
+                    out.push_in(
                         p,
                         Provenance::Cap {
                             element,
                             sector: tag.sector,
                         },
+                        tag.domain,
                     );
                 }
             }
