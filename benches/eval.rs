@@ -3,7 +3,8 @@
 //!
 //! - `eval/cc-12k/build`: the surface with 2 rings, the caps and the per-face cell index;
 //! - `eval/cc-12k/1e6-points`: 10^6 evaluations (point, derivatives to second order, normal,
-//!   curvatures) at random parameters of random faces, one after another on one thread.
+//!   curvatures) at random parameters of random faces, one after another on one thread;
+//! - `eval/cc-12k/1e6-points-parallel`: the same through `Surface::evaluate_many` (rayon).
 //!
 //! The net is the gallery's `torus-evs` (48 quads, two vertices of valence 3 and two of valence
 //! 5) refined four times with Catmull-Clark: 12288 quads, the extraordinary vertices kept.
@@ -51,6 +52,9 @@ fn eval(c: &mut Criterion) {
             }
             black_box(acc)
         })
+    });
+    g.bench_function("cc-12k/1e6-points-parallel", |b| {
+        b.iter(|| black_box(s.evaluate_many(&pts).len()))
     });
     g.finish();
 }

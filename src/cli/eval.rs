@@ -131,9 +131,10 @@ pub fn run(a: Args) -> Result<()> {
     let evals = match a.rings {
         Some(k) => {
             let s = build(k, !a.no_fill)?;
-            pts.iter()
+            s.evaluate_many(&pts)
+                .into_iter()
                 .enumerate()
-                .map(|(i, &(f, u, v))| s.evaluate(f, u, v).map_err(|e| at_point(e, i, pts.len())))
+                .map(|(i, r)| r.map_err(|e| at_point(e, i, pts.len())))
                 .collect::<Result<Vec<_>>>()?
         }
         None => {

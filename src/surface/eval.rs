@@ -85,6 +85,46 @@ struct Located {
     cell: [f64; 2],
 }
 
+/// The hasher of the cell index: the multiply-rotate of the Fx family (the keys are small
+/// integers from the complex itself, not input an adversary picks, and SipHash's cost would
+/// dominate a look-up).
+#[derive(Debug, Clone, Copy, Default)]
+struct CellHasher(u64);
+
+impl std::hash::Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut b = [0u8; 8];
+            b[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(b));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(u64::from(x));
+    }
+
+    fn write_u8(&mut self, x: u8) {
+        self.write_u64(u64::from(x));
+    }
+
+    fn write_u128(&mut self, x: u128) {
+        self.write_u64(x as u64);
+        self.write_u64((x >> 64) as u64);
+    }
+}
+
+/// The cell index: `(face, sub, depth, path)` -> the patch covering that cell.
+type Cells = HashMap<(u32, u32, u8, u128), usize, std::hash::BuildHasherDefault<CellHasher>>;
+
 /// A patch complex that can be evaluated at `(face, u, v)` of its input net.
 #[derive(Debug, Clone)]
 pub struct Surface {
@@ -92,7 +132,7 @@ pub struct Surface {
     /// Corners of each input face.
     sides: Vec<u32>,
     /// Cell `(face, sub, depth, path)` -> the patch covering it.
-    cells: HashMap<(u32, u32, u8, u128), usize>,
+    cells: Cells,
 }
 
 /// The error for a scheme whose patches do not carry face domains.
@@ -121,7 +161,7 @@ impl Surface {
     /// The surface of a complex built on `mesh` (patches without a domain are not found by
     /// [`Surface::evaluate`]).
     pub fn new(mesh: &PolyMesh, complex: PatchComplex) -> Surface {
-        let mut cells = HashMap::with_capacity(complex.len());
+        let mut cells = Cells::with_capacity_and_hasher(complex.len(), Default::default());
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
                 cells.entry((d.face, d.sub, d.depth, d.path)).or_insert(i);
@@ -257,6 +297,16 @@ impl Surface {
             gauss: curv.map_or(f64::NAN, |c| c.gauss),
             mean: curv.map_or(f64::NAN, |c| c.mean),
         })
+    }
+
+    /// [`Surface::evaluate`] at many points, in parallel; the results in the order of `points`.
+    pub fn evaluate_many(&self, points: &[(u32, f64, f64)]) -> Vec<Result<Evaluation>> {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .with_min_len(1024)
+            .map(|&(f, u, v)| self.evaluate(f, u, v))
+            .collect()
     }
 
     /// Extra rings a point of a cap or fill cell needs to lie on ring patches: `k` where its
