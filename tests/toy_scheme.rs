@@ -136,6 +136,7 @@ mod bilinear {
             Capabilities {
                 refine: true,
                 patches: true,
+                eval: false,
             }
         }
 

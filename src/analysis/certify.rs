@@ -214,6 +214,7 @@ fn boundary_loops(ring: &[BezierPatch]) -> Vec<Vec<Point>> {
         patches: ring.to_vec(),
         provenance: vec![crate::surface::Provenance::Unknown; ring.len()],
         sharp_sides: Vec::new(),
+        domains: Vec::new(),
     };
     let tol = default_tolerance(&c);
     let shared = shared_boundaries(&c, tol);

@@ -3,8 +3,11 @@
 //! A [`PatchComplex`] holds the Bezier patches of a whole surface, each tagged with its
 //! [`Provenance`] (regular region, ring `k` of an extraordinary element, cap / fill), so writers
 //! can group them, the renderer can colour them and analysis can report where a defect sits.
+//! Where the adaptive host knows it, each patch also has the [`Domain`] of its input face that it
+//! covers, for evaluation at `(face, u, v)`.
 
 use super::BezierPatch;
+pub use super::domain::Domain;
 use crate::mesh::Element;
 use serde::Serialize;
 
@@ -61,6 +64,9 @@ pub struct PatchComplex {
     /// `(patch, mask)` with bit [`Side::index`](super::Side::index) set per side; `check`
     /// reports the joins along them apart (sharp joins are C^0, not smooth).
     pub sharp_sides: Vec<(u32, u8)>,
+    /// The input-face domain of each patch where known (may be shorter than `patches`: the
+    /// missing ones are unknown; see [`PatchComplex::domain`]).
+    pub domains: Vec<Option<Domain>>,
 }
 
 impl PatchComplex {
@@ -75,6 +81,28 @@ impl PatchComplex {
         self.provenance.push(provenance);
     }
 
+    /// Adds a patch covering `domain` of its input face.
+    pub fn push_in(&mut self, patch: BezierPatch, provenance: Provenance, domain: Domain) {
+        self.push(patch, provenance);
+        self.set_domain(self.len() - 1, domain);
+    }
+
+    /// Records that patch `i` covers `domain` (ignored when the domain is untracked).
+    pub fn set_domain(&mut self, i: usize, domain: Domain) {
+        if !domain.is_tracked() {
+            return;
+        }
+        if self.domains.len() <= i {
+            self.domains.resize(i + 1, None);
+        }
+        self.domains[i] = Some(domain);
+    }
+
+    /// The input-face domain of patch `i`, if known.
+    pub fn domain(&self, i: usize) -> Option<Domain> {
+        self.domains.get(i).copied().flatten()
+    }
+
     /// Number of patches.
     pub fn len(&self) -> usize {
         self.patches.len()
@@ -87,6 +115,12 @@ impl PatchComplex {
 
     /// Appends all patches of another complex.
     pub fn extend(&mut self, other: PatchComplex) {
+        let first = self.len();
+        for (i, d) in other.domains.into_iter().enumerate() {
+            if let Some(d) = d {
+                self.set_domain(first + i, d);
+            }
+        }
         let base = self.patches.len() as u32;
         self.patches.extend(other.patches);
         self.provenance.extend(other.provenance);

@@ -23,6 +23,7 @@
 pub mod complex;
 pub mod convert;
 pub mod curve;
+pub mod domain;
 pub mod g1;
 
 pub use curve::BezierCurve;

@@ -16,6 +16,7 @@ macro_rules! say {
 mod analyze;
 mod check;
 mod demo;
+mod eval;
 mod info;
 pub mod limits;
 mod render;
@@ -91,6 +92,7 @@ Examples:
   fairsub subdivide net.obj --scheme {cat} --levels 3 -o fine.ply
   fairsub subdivide net.obj --scheme {cat} --rings 6 -o surface.bv
   fairsub subdivide gallery:cnet-5-saddle --scheme {cat} --rings 4 -o saddle.igs
+  fairsub eval net.obj --scheme {cat} --at 0:0.5:0.25,3:0.1:0.9 --json
   fairsub schemes
   fairsub analyze --scheme {cat} --valence 5
   fairsub charmap --scheme {cat} --valence 5 -o chi5.svg
@@ -133,6 +135,17 @@ watertight tessellation of the patch complex (--tess samples per patch edge). .b
 the exact patch complex (default 6 rings); with --levels and no --rings, .bv gets the refined net
 as a polyhedron.")]
     Subdivide(subdivide::Args),
+    /// Evaluate the exact surface at parameters F:U:V of input faces (point, derivatives,
+    /// normal, curvatures, patch).
+    #[command(after_help = "\
+Parameter domains: a quad face has (u, v) in [0,1]^2, corner 0 at (0,0), u toward corner 1, v
+toward corner 3. An n-gon (n != 4, Catmull-Clark) has u in [0,n], v in [0,1]: sub-face
+i = floor(u) is the quad at corner i (corner i, midpoint of the outgoing edge, centre, midpoint
+of the incoming edge) at local (u - i, v), u toward the outgoing edge. A triangle (Loop) has
+barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. Without --rings the
+scheme's limit surface is evaluated (as many rings as each point needs, the limit point at an
+extraordinary vertex); with --rings K the complex `subdivide --rings K` writes.")]
+    Eval(eval::Args),
     /// Draw highlight lines, reflection lines, isophotes, curvature or provenance as a PNG.
     Render(render::RenderArgs),
     /// A labelled PNG grid of schemes x modes with one camera, light set and curvature range.
@@ -183,6 +196,7 @@ fn run_command(command: Command) -> Result<()> {
     match command {
         Command::Info { net, json } => info::run(&net, json),
         Command::Subdivide(args) => subdivide::run(args),
+        Command::Eval(args) => eval::run(args),
         Command::Render(args) => render::run_render(args),
         Command::Compare(args) => render::run_compare(args),
         Command::Schemes { json } => schemes(json),

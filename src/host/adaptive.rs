@@ -10,7 +10,7 @@
 //! cell that is regular and trusted becomes patches of ring `l` (regular at level 0), the rest
 //! is refined with its neighbourhood, until the rings are done.
 
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::{Element, PolyMesh};
@@ -97,11 +97,16 @@ pub fn run<R: AdaptiveRules + ?Sized>(
         let mut marked: Vec<(u32, Tag)> = Vec::new();
         let mut curves = R::Curves::default();
         for &(f, tag) in level.active() {
+            let first = out.len();
             let to = Sink {
                 curves: &mut curves,
                 out: &mut out,
             };
-            if !rules.emit(&level, f, provenance(l, tag), to) {
+            if rules.emit(&level, f, provenance(l, tag), to) {
+                for i in first..out.len() {
+                    out.set_domain(i, tag.domain);
+                }
+            } else {
                 marked.push((f, tag));
             }
         }
@@ -157,7 +162,7 @@ impl MeshLevel {
         MeshLevel {
             mesh: mesh.clone(),
             info: input_vertex_info(mesh.num_vertices()),
-            active: input_active(mesh.num_faces()),
+            active: input_active_in(mesh),
         }
     }
 }
@@ -190,6 +195,9 @@ pub struct Tag {
     pub sector: u32,
     /// The input face the cell descends from.
     pub input_face: u32,
+    /// The part of the input face the cell covers ([`Domain::UNTRACKED`] where the scheme does
+    /// not track it); the scheme's `refine_around` gives each child its [`Domain::child`].
+    pub domain: Domain,
 }
 
 /// The trust of the `n` vertices of an input net: all trusted, each its own origin.
@@ -213,10 +221,22 @@ pub fn input_active(n: usize) -> Vec<(u32, Tag)> {
                     element: None,
                     sector: 0,
                     input_face: f,
+                    domain: Domain::UNTRACKED,
                 },
             )
         })
         .collect()
+}
+
+/// The active cells of an input net: every face, untagged, each covering its whole
+/// [`Domain::face`] (for schemes whose cells lie in input faces and whose `refine_around` tracks
+/// the children's domains).
+pub fn input_active_in(mesh: &PolyMesh) -> Vec<(u32, Tag)> {
+    let mut active = input_active(mesh.num_faces());
+    for (f, tag) in &mut active {
+        tag.domain = Domain::face(*f, mesh.face_size(*f as usize));
+    }
+    active
 }
 
 /// The provenance of a cell with tag `tag` emitted at level `l`: regular at level 0 or without

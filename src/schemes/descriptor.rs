@@ -222,6 +222,9 @@ pub struct Capabilities {
     pub refine: bool,
     /// Exact patch output (`--rings`).
     pub patches: bool,
+    /// Evaluation at `(face, u, v)` (`fairsub eval`): its patches lie in input faces and carry
+    /// their domains ([`crate::bezier::domain`]).
+    pub eval: bool,
 }
 
 /// A scheme's exact surfaces of whole nets.

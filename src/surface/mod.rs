@@ -6,6 +6,7 @@
 //! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
 
 pub mod adjacency;
+pub mod eval;
 pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;

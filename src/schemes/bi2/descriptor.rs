@@ -77,6 +77,7 @@ impl Descriptor for Bi2Descriptor {
         Capabilities {
             refine: true,
             patches: true,
+            eval: false,
         }
     }
 

@@ -22,6 +22,7 @@ impl Descriptor for CcDescriptor {
         Capabilities {
             refine: true,
             patches: true,
+            eval: true,
         }
     }
 

@@ -478,6 +478,8 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     for &(f, tag) in marked {
         for (k, &c) in child_faces_of[&f].iter().enumerate() {
             let mut t = tag;
+            // child k is the quad at corner k (of the face, or the sub-face k of an n-gon)
+            t.domain = tag.domain.child(k as u32);
             if m.face_size(f as usize) != 4 {
                 // Children of an n-gon: one per corner, sector = corner index.
                 t.element = Some(Element::Face(tag.input_face));
@@ -590,12 +592,14 @@ fn fill(
         u0.reverse();
         let patch = BezierPatch::coons(3, &sides[0], &sides[1], &v1, &u0);
         let element = tag.element.unwrap_or(Element::Face(tag.input_face));
-        out.push(
+        // the fill patch has the face's own corners: its domain is the face's cell
+        out.push_in(
             patch,
             Provenance::Cap {
                 element,
                 sector: tag.sector,
             },
+            tag.domain,
         );
         sharp::mark_sides(level, f as usize, out);
     }

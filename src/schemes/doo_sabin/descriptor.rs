@@ -26,6 +26,7 @@ impl Descriptor for DsDescriptor {
         Capabilities {
             refine: true,
             patches: true,
+            eval: false,
         }
     }
 

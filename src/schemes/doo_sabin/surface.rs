@@ -231,6 +231,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
                         element: None,
                         sector: 0,
                         input_face,
+                        domain: crate::bezier::domain::Domain::UNTRACKED,
                     },
                 )
             })

@@ -26,6 +26,7 @@ impl Descriptor for EgDescriptor {
         Capabilities {
             refine: false,
             patches: true,
+            eval: false,
         }
     }
 

@@ -42,6 +42,7 @@ impl Descriptor for GuidedDescriptor {
         Capabilities {
             refine: false,
             patches: true,
+            eval: false,
         }
     }
 

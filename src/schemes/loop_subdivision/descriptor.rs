@@ -21,6 +21,7 @@ impl Descriptor for LoopDescriptor {
         Capabilities {
             refine: true,
             patches: true,
+            eval: true,
         }
     }
 

@@ -378,7 +378,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let positions = StencilTable::from_rows(nv, stencils, 7).apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let active = child_active(marked, |f| (children[&f], 4));
+    let mut active = child_active(marked, |f| (children[&f], 4));
+    // four children per marked triangle, in the order of the corners above: the child domains
+    for (i, (_, t)) in active.iter_mut().enumerate() {
+        t.domain = t.domain.child((i % 4) as u32);
+    }
     Ok(Level {
         mesh: child,
         info,
@@ -501,12 +505,13 @@ fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<5>, out: &mut 
             tri[tri_index(x[0], x[1], x[2])] = geom::scale(geom::axpy(*s, 0.25, total), 1.0 / 7.0);
         }
         let element = tag.element.unwrap_or(Element::Vertex(c[0]));
-        out.push(
+        out.push_in(
             triangle_to_tensor(&tri),
             Provenance::Cap {
                 element,
                 sector: tag.sector,
             },
+            tag.domain,
         );
     }
 }

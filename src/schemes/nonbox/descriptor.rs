@@ -30,6 +30,7 @@ impl Descriptor for NonBoxDescriptor {
         Capabilities {
             refine: true,
             patches: true,
+            eval: false,
         }
     }
 

@@ -63,6 +63,7 @@ impl Descriptor for QasDescriptor {
         Capabilities {
             refine: false,
             patches: true,
+            eval: false,
         }
     }
 

@@ -122,7 +122,12 @@ fn hole_of(
         }
         let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
         let (p, q) = (face[(k + 1) % 4], face[(k + 3) % 4]);
-        tags.push(tag_of(f).ok_or(NoCap::Never)?);
+        // the cap patch of this sector has its (0, 0) at x, corner k of the sector's face
+        let tag = tag_of(f).ok_or(NoCap::Never)?;
+        tags.push(Tag {
+            domain: tag.domain.rotated(k as u32),
+            ..tag
+        });
         // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
         let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
         match (
@@ -180,12 +185,13 @@ pub(super) fn g1_caps(
         match capped {
             Some((element, cap, tags)) => {
                 for (p, tag) in cap.patches.into_iter().zip(tags) {
-                    out.push(
+                    out.push_in(
                         p,
                         Provenance::Cap {
                             element,
                             sector: tag.sector,
                         },
+                        tag.domain,
                     );
                 }
             }

@@ -1,0 +1,359 @@
+//! Parameter domains of patches: which part of which input face a patch of a complex covers.
+//!
+//! Evaluation at `(face, u, v)` ([`crate::surface::eval`]) needs, for every patch, the map from
+//! the patch's own parameters to its input face's. The adaptive host builds that map as it
+//! refines: a cell of level `l + 1` is one child of a cell of level `l`, so a [`Domain`] is the
+//! input face, the chain of child indices from the face down to the cell (two bits per level),
+//! and the corner of the cell at which the patch's own `(0, 0)` sits (caps are parametrised from
+//! the centre of their hole). All maps are affine with dyadic coefficients, so they are exact in
+//! floating point.
+//!
+//! # The parameter domain of an input face
+//!
+//! * A **quad** has `(u, v)` in `[0, 1]^2`: corner 0 at `(0, 0)`, `u` along the first edge
+//!   (corner 0 -> corner 1), `v` along the last edge reversed (corner 0 -> corner 3); corner 2 is
+//!   `(1, 1)`. Child `k` of a quad cell (Catmull-Clark's child at corner `k`: corner `k`, the
+//!   midpoint of edge `k -> k+1`, the centre, the midpoint of edge `k-1 -> k`) is the quarter of
+//!   the cell at corner `k`, with its own `u` toward corner `k + 1` and `v` toward corner `k - 1`.
+//! * An **n-gon** (`n != 4`, Catmull-Clark) is split into `n` quads by its first refinement;
+//!   sub-face `i` is the quad at corner `i` (corner `i`, the midpoint of edge `i -> i+1`, the
+//!   face centre, the midpoint of edge `i-1 -> i`), parametrised like a quad: `(0, 0)` at corner
+//!   `i`, `u` toward the midpoint of the outgoing edge, `v` toward the midpoint of the incoming
+//!   edge, `(1, 1)` at the centre. The face's parameters lay the sub-faces out as a strip,
+//!   `u` in `[0, n]`, `v` in `[0, 1]`: sub-face `i = min(floor(u), n - 1)` at local
+//!   `(u - i, v)` (the "quadrangulated" parameterisation of OpenSubdiv's Bfr, with the
+//!   sub-faces side by side instead of in a grid).
+//! * A **triangle** (Loop) has barycentric `(u, v)`, `u, v >= 0`, `u + v <= 1`, `w = 1 - u - v`:
+//!   corner 0 at `(0, 0)`, `u` toward corner 1, `v` toward corner 2. Children 0, 1, 2 are the
+//!   corner triangles (corner `k`, midpoints toward `k + 1` and `k + 2`), child 3 the middle one
+//!   (midpoints of edges 0-1, 1-2, 2-0), as Loop's refinement orders them.
+
+use serde::Serialize;
+
+/// Shape of a cell: how its children split it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shape {
+    /// A quad cell, `[0, 1]^2`.
+    Quad,
+    /// A triangle cell, barycentric.
+    Triangle,
+}
+
+/// Most levels a domain records (two bits each in a `u128`).
+pub const MAX_DEPTH: u8 = 64;
+
+/// The part of an input face a patch covers (see the [module](self) documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Domain {
+    /// The input face.
+    pub face: u32,
+    /// Sub-face of an n-gon (`n != 4`), 0 for quads and triangles; [`Domain::WHOLE`] for the
+    /// n-gon itself before its first refinement.
+    pub sub: u32,
+    /// Shape of the cells.
+    pub shape: Shape,
+    /// Levels below the face (or sub-face).
+    pub depth: u8,
+    /// Child index of each level, level 1 in the lowest two bits.
+    pub path: u128,
+    /// The cell corner at which the patch's `(0, 0)` sits (quads; 0 for triangles): the patch's
+    /// `u` runs toward corner `rot + 1`, its `v` toward corner `rot - 1`.
+    pub rot: u8,
+}
+
+/// An affine map of the plane, `p -> origin + p[0] e[0] + p[1] e[1]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Affine {
+    /// Image of `(0, 0)`.
+    pub origin: [f64; 2],
+    /// Images of the unit vectors (the columns of the linear part).
+    pub e: [[f64; 2]; 2],
+}
+
+/// Quad cell corners in cell coordinates, counter-clockwise from corner 0.
+const QUAD: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+/// Triangle cell corners in barycentric `(u, v)`.
+const TRI: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn half(a: [f64; 2]) -> [f64; 2] {
+    [0.5 * a[0], 0.5 * a[1]]
+}
+
+impl Affine {
+    /// The identity.
+    pub const IDENTITY: Affine = Affine {
+        origin: [0.0, 0.0],
+        e: [[1.0, 0.0], [0.0, 1.0]],
+    };
+
+    /// The map with `origin` and the columns `e0`, `e1`.
+    fn new(origin: [f64; 2], e0: [f64; 2], e1: [f64; 2]) -> Affine {
+        Affine {
+            origin,
+            e: [e0, e1],
+        }
+    }
+
+    /// Image of `p`.
+    pub fn apply(&self, p: [f64; 2]) -> [f64; 2] {
+        [
+            self.origin[0] + p[0] * self.e[0][0] + p[1] * self.e[1][0],
+            self.origin[1] + p[0] * self.e[0][1] + p[1] * self.e[1][1],
+        ]
+    }
+
+    /// `self o inner`.
+    pub fn compose(&self, inner: &Affine) -> Affine {
+        let lin = |p: [f64; 2]| {
+            [
+                p[0] * self.e[0][0] + p[1] * self.e[1][0],
+                p[0] * self.e[0][1] + p[1] * self.e[1][1],
+            ]
+        };
+        Affine {
+            origin: self.apply(inner.origin),
+            e: [lin(inner.e[0]), lin(inner.e[1])],
+        }
+    }
+
+    /// The inverse of the linear part as rows: `inv[a][b] = d p_a / d q_b` for `q = apply(p)`.
+    pub fn inverse_linear(&self) -> [[f64; 2]; 2] {
+        let [[a, c], [b, d]] = self.e; // e0 = (a, c), e1 = (b, d): matrix [[a, b], [c, d]]
+        let det = a * d - b * c;
+        [[d / det, -b / det], [-c / det, a / det]]
+    }
+
+    /// Preimage of `q`.
+    pub fn invert(&self, q: [f64; 2]) -> [f64; 2] {
+        let inv = self.inverse_linear();
+        let r = sub2(q, self.origin);
+        [
+            inv[0][0] * r[0] + inv[0][1] * r[1],
+            inv[1][0] * r[0] + inv[1][1] * r[1],
+        ]
+    }
+}
+
+impl Shape {
+    /// The map from child `k`'s coordinates to its parent cell's.
+    pub fn child_map(self, k: u8) -> Affine {
+        match self {
+            Shape::Quad => {
+                let k = k as usize & 3;
+                let c = QUAD[k];
+                Affine::new(
+                    c,
+                    half(sub2(QUAD[(k + 1) % 4], c)),
+                    half(sub2(QUAD[(k + 3) % 4], c)),
+                )
+            }
+            Shape::Triangle => match k {
+                0..=2 => {
+                    let k = k as usize;
+                    let c = TRI[k];
+                    Affine::new(
+                        c,
+                        half(sub2(TRI[(k + 1) % 3], c)),
+                        half(sub2(TRI[(k + 2) % 3], c)),
+                    )
+                }
+                _ => Affine::new(
+                    [0.5, 0.0],
+                    half(sub2(TRI[2], TRI[0])),
+                    half(sub2(TRI[2], TRI[1])),
+                ),
+            },
+        }
+    }
+
+    /// The child of a cell that holds the cell point `p` (ties go to the child at the larger
+    /// coordinate, the middle triangle last).
+    pub fn child_at(self, p: [f64; 2]) -> u8 {
+        match self {
+            Shape::Quad => match (p[0] >= 0.5, p[1] >= 0.5) {
+                (false, false) => 0,
+                (true, false) => 1,
+                (true, true) => 2,
+                (false, true) => 3,
+            },
+            Shape::Triangle => {
+                if p[0] >= 0.5 {
+                    1
+                } else if p[1] >= 0.5 {
+                    2
+                } else if 1.0 - p[0] - p[1] >= 0.5 {
+                    0
+                } else {
+                    3
+                }
+            }
+        }
+    }
+
+    /// The map from a patch's coordinates to its cell's when the patch's `(0, 0)` sits at
+    /// corner `rot` (quads; the identity for triangles).
+    pub fn corner_map(self, rot: u8) -> Affine {
+        match self {
+            Shape::Quad => {
+                let r = rot as usize & 3;
+                let c = QUAD[r];
+                Affine::new(c, sub2(QUAD[(r + 1) % 4], c), sub2(QUAD[(r + 3) % 4], c))
+            }
+            Shape::Triangle => Affine::IDENTITY,
+        }
+    }
+}
+
+impl Domain {
+    /// The n-gon itself before its first refinement (not a cell any patch covers).
+    pub const WHOLE: u32 = u32::MAX;
+
+    /// A domain the host does not track (dual schemes, whose cells are not in input faces).
+    pub const UNTRACKED: Domain = Domain {
+        face: u32::MAX,
+        sub: 0,
+        shape: Shape::Quad,
+        depth: 0,
+        path: 0,
+        rot: 0,
+    };
+
+    /// The whole input face `face` with `sides` corners: a quad, a triangle (Loop) or an n-gon
+    /// before its split into sub-faces.
+    pub fn face(face: u32, sides: usize) -> Domain {
+        let (shape, sub) = match sides {
+            3 => (Shape::Triangle, 0),
+            4 => (Shape::Quad, 0),
+            _ => (Shape::Quad, Domain::WHOLE),
+        };
+        Domain {
+            face,
+            sub,
+            shape,
+            ..Domain::UNTRACKED
+        }
+    }
+
+    /// Whether the host tracked this domain.
+    pub fn is_tracked(&self) -> bool {
+        self.face != u32::MAX && self.depth <= MAX_DEPTH
+    }
+
+    /// Child `k` of this cell: for the n-gon itself ([`Domain::WHOLE`]) the quad sub-face `k`,
+    /// otherwise the child cell `k` (see [`Shape::child_map`]). Past [`MAX_DEPTH`] levels the
+    /// domain becomes untracked.
+    pub fn child(self, k: u32) -> Domain {
+        if !self.is_tracked() {
+            return self;
+        }
+        if self.sub == Domain::WHOLE {
+            return Domain {
+                sub: k,
+                shape: Shape::Quad,
+                depth: 0,
+                path: 0,
+                rot: 0,
+                face: self.face,
+            };
+        }
+        if self.depth == MAX_DEPTH {
+            return Domain {
+                depth: MAX_DEPTH + 1,
+                ..self
+            };
+        }
+        Domain {
+            depth: self.depth + 1,
+            path: self.path | (u128::from(k & 3) << (2 * self.depth as u32)),
+            rot: 0,
+            ..self
+        }
+    }
+
+    /// The same cell with the patch's `(0, 0)` at corner `rot`.
+    pub fn rotated(self, rot: u32) -> Domain {
+        Domain {
+            rot: (rot & 3) as u8,
+            ..self
+        }
+    }
+
+    /// Child index at level `l` (1-based).
+    pub fn step(&self, l: u8) -> u8 {
+        ((self.path >> (2 * (l as u32 - 1))) & 3) as u8
+    }
+
+    /// The map from the cell's coordinates to the face's (the sub-face's for an n-gon; add
+    /// `sub` to `u` for the face's strip coordinates).
+    pub fn cell_map(&self) -> Affine {
+        let mut m = Affine::IDENTITY;
+        for l in 1..=self.depth {
+            m = m.compose(&self.shape.child_map(self.step(l)));
+        }
+        m
+    }
+
+    /// The map from the patch's coordinates (barycentric for triangles) to the face's (the
+    /// sub-face's for an n-gon).
+    pub fn patch_map(&self) -> Affine {
+        self.cell_map().compose(&self.shape.corner_map(self.rot))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quad_children_tile_the_cell() {
+        // each child's centre lies in that child, and the child maps are orientation preserving
+        for k in 0..4u8 {
+            let m = Shape::Quad.child_map(k);
+            let c = m.apply([0.5, 0.5]);
+            assert_eq!(Shape::Quad.child_at(c), k);
+            let det = m.e[0][0] * m.e[1][1] - m.e[1][0] * m.e[0][1];
+            assert_eq!(det, 0.25);
+            let back = m.invert(c);
+            assert_eq!(back, [0.5, 0.5]);
+        }
+        // child 1: corner 1 of the parent, u toward corner 2
+        let m = Shape::Quad.child_map(1);
+        assert_eq!(m.apply([0.0, 0.0]), [1.0, 0.0]);
+        assert_eq!(m.apply([1.0, 0.0]), [1.0, 0.5]);
+        assert_eq!(m.apply([0.0, 1.0]), [0.5, 0.0]);
+    }
+
+    #[test]
+    fn triangle_children_tile_the_cell() {
+        for k in 0..4u8 {
+            let m = Shape::Triangle.child_map(k);
+            let c = m.apply([1.0 / 3.0, 1.0 / 3.0]);
+            assert_eq!(Shape::Triangle.child_at(c), k);
+            let det = m.e[0][0] * m.e[1][1] - m.e[1][0] * m.e[0][1];
+            assert_eq!(det, 0.25);
+        }
+        // the middle child: corners at the midpoints 0-1, 1-2, 2-0
+        let m = Shape::Triangle.child_map(3);
+        assert_eq!(m.apply([1.0, 0.0]), [0.5, 0.5]);
+        assert_eq!(m.apply([0.0, 1.0]), [0.0, 0.5]);
+    }
+
+    #[test]
+    fn domains_compose_child_maps() {
+        let d = Domain::face(7, 4).child(2).child(1).rotated(3);
+        assert_eq!(d.depth, 2);
+        assert_eq!((d.step(1), d.step(2)), (2, 1));
+        // child 2 then its child 1, patch origin at corner 3 of that cell
+        let cell = Shape::Quad.child_map(2).compose(&Shape::Quad.child_map(1));
+        let expect = cell.apply([0.0, 1.0]);
+        assert_eq!(d.patch_map().apply([0.0, 0.0]), expect);
+        let n = Domain::face(3, 5).child(4);
+        assert_eq!((n.sub, n.depth), (4, 0));
+        assert!(!Domain::UNTRACKED.is_tracked());
+    }
+}

@@ -1,0 +1,379 @@
+//! Evaluation at `(face, u, v)` (`fairsub eval`, `surface::eval::Surface`): agreement with the
+//! patches `subdivide --rings` writes, with the bi-3 B-spline on regular faces, convergence to
+//! the limit point at the rate of the subdominant eigenvalue, and the errors.
+
+use fairsub::cli::{capture, run_words};
+use fairsub::geom::{Point, dist, norm, sub};
+use fairsub::mesh::PolyMesh;
+use fairsub::schemes::catmull_clark::catmull_clark_lambda;
+use fairsub::schemes::registry::{ids, registry};
+use fairsub::surface::ComplexOptions;
+use fairsub::surface::eval::{Surface, evaluate_limit};
+
+fn gallery(name: &str) -> PolyMesh {
+    fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("gallery net {name}"))
+        .1
+}
+
+/// Deterministic points in `[0, 1)`.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Random points of every face of `mesh` in its domain (quads `[0,1]^2`, n-gons `[0,n]x[0,1]`,
+/// triangles barycentric), plus each face's corners.
+fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64, f64)> {
+    let mut r = Lcg(seed);
+    let mut pts = Vec::new();
+    for f in 0..mesh.num_faces() {
+        let n = mesh.face_size(f);
+        for _ in 0..per_face {
+            let (mut u, mut v) = (r.next(), r.next());
+            match n {
+                3 if u + v > 1.0 => (u, v) = (1.0 - u, 1.0 - v),
+                3 | 4 => {}
+                _ => u *= n as f64,
+            }
+            pts.push((f as u32, u, v));
+        }
+        let corners: &[(f64, f64)] = if n == 3 {
+            &[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]
+        } else {
+            &[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        };
+        pts.extend(corners.iter().map(|&(u, v)| (f as u32, u, v)));
+    }
+    pts
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("fairsub-eval-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+/// Writes `subdivide --rings` of `net`, evaluates random points of every face with the library
+/// and checks each against the written patch it names; returns the largest difference.
+fn agrees_with_written(net: &str, scheme: &str, rings: usize) -> f64 {
+    let out = tmp(&format!("{}-{scheme}-{rings}.bv", net.replace(':', "-")));
+    let words = [
+        "fairsub",
+        "subdivide",
+        net,
+        "--scheme",
+        scheme,
+        "--rings",
+        &rings.to_string(),
+        "-o",
+        out.to_str().expect("utf-8 path"),
+    ];
+    run_words(words).expect("subdivide writes the patches");
+    let bv = fairsub::io::read_bv(&out).expect("read back");
+    let written = fairsub::render::complex_from_bv(&bv);
+    let mesh = gallery(net.trim_start_matches("gallery:"));
+    let spec = registry().lookup(scheme).expect("scheme");
+    let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
+    assert_eq!(s.complex().len(), written.len(), "{net}: same patches");
+    let mut worst: f64 = 0.0;
+    for (f, u, v) in face_points(&mesh, 40, 17) {
+        let e = s
+            .evaluate(f, u, v)
+            .unwrap_or_else(|err| panic!("{net} face {f} at ({u}, {v}): {err}"));
+        let w = written.patches[e.patch].eval(e.patch_uv[0], e.patch_uv[1]);
+        worst = worst.max(dist(w, e.point));
+        assert!(
+            e.point.iter().all(|x| x.is_finite()),
+            "{net}: finite point at face {f}"
+        );
+    }
+    worst
+}
+
+#[test]
+fn eval_agrees_with_the_written_patches() {
+    let cc = ids::CATMULL_CLARK.name();
+    for (net, scheme, rings) in [
+        ("gallery:cube", cc, 2),
+        ("gallery:cnet-5-saddle", cc, 3),
+        ("gallery:cnet-3-convex", cc, 2),
+        ("gallery:prism-5", cc, 2),
+        ("gallery:torus-evs", cc, 2),
+        ("gallery:icosahedron", ids::LOOP.name(), 2),
+        ("gallery:octahedron", ids::LOOP.name(), 3),
+        ("gallery:tri-grid", ids::LOOP.name(), 1),
+    ] {
+        let worst = agrees_with_written(net, scheme, rings);
+        eprintln!("{net} under {scheme}, {rings} rings: largest difference {worst:.3e}");
+        assert!(worst <= 1e-12, "{net} under {scheme}: {worst:e}");
+    }
+}
+
+/// Uniform cubic B-spline basis and its first derivative at `t`.
+fn bspline(t: f64) -> ([f64; 4], [f64; 4]) {
+    let s = 1.0 - t;
+    (
+        [
+            s * s * s / 6.0,
+            (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+            (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
+            t * t * t / 6.0,
+        ],
+        [
+            -s * s / 2.0,
+            (3.0 * t * t - 4.0 * t) / 2.0,
+            (-3.0 * t * t + 2.0 * t + 1.0) / 2.0,
+            t * t / 2.0,
+        ],
+    )
+}
+
+#[test]
+fn regular_catmull_clark_faces_are_the_bicubic_bspline() {
+    let m = 6;
+    let mesh =
+        fairsub::mesh::nets::quad_grid(m, |x, y| (1.3 * x).sin() + 0.4 * (0.7 * y * x).cos());
+    let spec = registry().lookup(ids::CATMULL_CLARK.name()).expect("cc");
+    let s = Surface::build(
+        &spec,
+        &mesh,
+        ComplexOptions {
+            rings: 2,
+            fill: true,
+        },
+    )
+    .expect("surface");
+    let id = |i: usize, j: usize| j * (m + 1) + i;
+    let mut r = Lcg(5);
+    for (i0, j0) in [(2, 2), (1, 3), (3, 1), (4, 4)] {
+        let f = (j0 * m + i0) as u32;
+        for _ in 0..25 {
+            let (u, v) = (r.next(), r.next());
+            let (bu, du) = bspline(u);
+            let (bv, dv) = bspline(v);
+            let (mut p, mut pu, mut pv) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            for a in 0..4 {
+                for b in 0..4 {
+                    let x = mesh.position(id(i0 - 1 + a, j0 - 1 + b));
+                    for c in 0..3 {
+                        p[c] += bu[a] * bv[b] * x[c];
+                        pu[c] += du[a] * bv[b] * x[c];
+                        pv[c] += bu[a] * dv[b] * x[c];
+                    }
+                }
+            }
+            let e = s.evaluate(f, u, v).expect("regular face");
+            assert!(dist(e.point, p) < 1e-12, "face {f} ({u}, {v})");
+            assert!(dist(e.du, pu) < 1e-11, "du at face {f}");
+            assert!(dist(e.dv, pv) < 1e-11, "dv at face {f}");
+        }
+    }
+}
+
+/// The Catmull-Clark limit position of vertex `v` from the scheme's limit masks.
+fn limit_point(mesh: &PolyMesh, v: usize) -> Point {
+    let spec = registry().lookup(ids::CATMULL_CLARK.name()).expect("cc");
+    let rules = registry()
+        .descriptor(spec.id)
+        .mesh_rules(&spec)
+        .expect("rules")
+        .expect("refines");
+    rules
+        .limit_stencils(mesh)
+        .expect("masks")
+        .apply(mesh.positions())[v]
+}
+
+#[test]
+fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
+    for n in [3usize, 5, 7] {
+        let mesh = gallery(&format!("cnet-{n}-saddle"));
+        let ev = (0..mesh.num_vertices())
+            .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
+            .expect("the extraordinary vertex");
+        let (f, c) = (0..mesh.num_faces())
+            .find_map(|f| {
+                mesh.face(f)
+                    .iter()
+                    .position(|&w| w as usize == ev)
+                    .map(|c| (f, c))
+            })
+            .expect("a face at the vertex");
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let (o, a, b) = (corners[c], corners[(c + 1) % 4], corners[(c + 3) % 4]);
+        let at = |h: f64| {
+            let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
+            let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
+            (f as u32, x, y)
+        };
+        let ks: Vec<i32> = (2..=12).collect();
+        let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
+        pts.push(at(0.0));
+        let spec = registry().lookup(ids::CATMULL_CLARK.name()).expect("cc");
+        let (evals, rings) = evaluate_limit(&pts, &mut |k| {
+            Surface::build(
+                &spec,
+                &mesh,
+                ComplexOptions {
+                    rings: k,
+                    fill: true,
+                },
+            )
+        })
+        .expect("limit evaluation");
+        assert!(
+            rings >= 12,
+            "valence {n}: {rings} rings for points at 2^-12"
+        );
+        let lim = limit_point(&mesh, ev);
+        let centre = evals.last().expect("the centre");
+        assert!(dist(centre.point, lim) < 1e-12, "valence {n}: limit point");
+        let err: Vec<f64> = evals[..ks.len()]
+            .iter()
+            .map(|e| norm(sub(e.point, lim)))
+            .collect();
+        let lambda = catmull_clark_lambda(n);
+        let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
+        eprintln!("valence {n}: lambda {lambda:.6}, {rings} rings, error ratios {ratios:.6?}");
+        for k in 4..err.len() - 1 {
+            let ratio = err[k + 1] / err[k];
+            assert!(
+                (ratio / lambda - 1.0).abs() < 0.1,
+                "valence {n}: error ratio {ratio} at k = {}, lambda {lambda} (errors {err:?})",
+                ks[k]
+            );
+        }
+    }
+}
+
+fn eval_words(extra: &[&str]) -> Result<String, String> {
+    let mut words = vec!["fairsub", "eval"];
+    words.extend_from_slice(extra);
+    let (r, out) = capture(|| run_words(words));
+    r.map(|()| out).map_err(|e| e.to_string())
+}
+
+#[test]
+fn cli_json_names_the_patch_and_matches_the_library() {
+    let cc = ids::CATMULL_CLARK.name();
+    let out = eval_words(&[
+        "gallery:cube",
+        "--scheme",
+        cc,
+        "--rings",
+        "2",
+        "--at",
+        "0:0.25:0.5,3:1:1",
+        "--at",
+        "5:0.01:0.99",
+        "--json",
+    ])
+    .expect("eval runs");
+    let json: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let arr = json.as_array().expect("array");
+    assert_eq!(arr.len(), 3);
+    let mesh = gallery("cube");
+    let spec = registry().lookup(cc).expect("cc");
+    let s = Surface::build(
+        &spec,
+        &mesh,
+        ComplexOptions {
+            rings: 2,
+            fill: true,
+        },
+    )
+    .expect("surface");
+    for (item, (f, u, v)) in arr
+        .iter()
+        .zip([(0, 0.25, 0.5), (3, 1.0, 1.0), (5, 0.01, 0.99)])
+    {
+        let e = s.evaluate(f, u, v).expect("point");
+        assert_eq!(item["patch"].as_u64(), Some(e.patch as u64));
+        for key in [
+            "point", "du", "dv", "duu", "duv", "dvv", "normal", "patch_uv",
+        ] {
+            assert!(item[key].is_array(), "{key} in the JSON");
+        }
+        let p: Vec<f64> = item["point"]
+            .as_array()
+            .expect("point")
+            .iter()
+            .map(|x| x.as_f64().expect("number"))
+            .collect();
+        assert!(dist([p[0], p[1], p[2]], e.point) < 1e-15);
+        assert!(item["gauss"].is_number() && item["mean"].is_number());
+    }
+    // text output: one line per point, and the limit surface without --rings
+    let text = eval_words(&["gallery:cube", "--scheme", cc, "--at", "0:0.5:0.5,1:0:0"])
+        .expect("limit eval");
+    assert_eq!(text.lines().count(), 2);
+    assert!(text.starts_with("0:0.5:0.5 patch "), "{text}");
+}
+
+#[test]
+fn errors_name_the_face_the_domain_and_the_scheme() {
+    let cc = ids::CATMULL_CLARK.name();
+    let run = |at: &str, scheme: &str, net: &str| {
+        eval_words(&[net, "--scheme", scheme, "--rings", "1", "--at", at]).expect_err("must fail")
+    };
+    let e = run("99:0.5:0.5", cc, "gallery:cube");
+    assert!(e.contains("face 99") && e.contains("6 faces"), "{e}");
+    let e = run("2:1.5:0.5", cc, "gallery:cube");
+    assert!(
+        e.contains("face 2") && e.contains("outside its domain"),
+        "{e}"
+    );
+    let e = run("2:0.5:-0.1", cc, "gallery:cube");
+    assert!(e.contains("outside its domain"), "{e}");
+    // an n-gon's strip ends at u = n, a triangle's domain at u + v = 1
+    let e = run("0:5.5:0.5", cc, "gallery:prism-5");
+    assert!(e.contains("[0, 5]"), "{e}");
+    let e = run("0:0.7:0.7", ids::LOOP.name(), "gallery:icosahedron");
+    assert!(e.contains("u + v <= 1"), "{e}");
+    let e = run("0:0.5:0.5", ids::DOO_SABIN.name(), "gallery:cube");
+    assert!(
+        e.contains("eval of scheme doo-sabin is not supported yet"),
+        "{e}"
+    );
+    let e = run("0:0.5", cc, "gallery:cube");
+    assert!(
+        e.contains("--at point 1") && e.contains("three fields"),
+        "{e}"
+    );
+    let e = run("0:x:0.5", cc, "gallery:cube");
+    assert!(e.contains("finite numbers"), "{e}");
+    // a point in the open hole
+    let e = eval_words(&[
+        "gallery:cube",
+        "--scheme",
+        cc,
+        "--rings",
+        "1",
+        "--no-fill",
+        "--at",
+        "0:0:0",
+    ])
+    .expect_err("open hole");
+    assert!(e.contains("no patch") && e.contains("face 0"), "{e}");
+    // a bad line of an --at-file names the file and line
+    let file = tmp("points.txt");
+    std::fs::write(&file, "# points\n0 0.5 0.5\n1:0.2\n").expect("write");
+    let e = eval_words(&[
+        "gallery:cube",
+        "--scheme",
+        cc,
+        "--at-file",
+        file.to_str().expect("utf-8"),
+    ])
+    .expect_err("bad line");
+    assert!(e.contains("points.txt:3"), "{e}");
+}
