@@ -16,7 +16,7 @@
 #                 Doo-Sabin face point weighs every corner (k^2 stencil entries), so both
 #                 are refused up front (`--max-memory 64M`): this measures reading and the
 #                 estimate, which must not be quadratic
-#   analyze-V     `analyze --scheme V --valence n`, n = 2 -> 20, for V in guided-bi5, pgs,
+#   analyze-V     `analyze --scheme V --valence n`, n = 3 -> 30 (valence 2 is refused by all three), for V in guided-bi5, pgs,
 #                 nonbox: a dense eigen-decomposition of a matrix of O(n) rows, cubic by nature;
 #                 analyze refuses matrices over 450 rows up front (guided-bi5 above valence 24),
 #                 so the large size stays within that bound
@@ -126,7 +126,7 @@ for c in $CASES; do
         ;;
     analyze-*)
         s=${c#analyze-}
-        n=${ANALYZE_N:-2}
+        n=${ANALYZE_N:-3}
         report "$c" "$n" "$(best "$BIN" analyze --scheme "$s" --valence "$n")" \
             "$(best "$BIN" analyze --scheme "$s" --valence "$((n * 10))")"
         ;;
