@@ -225,7 +225,12 @@ pub fn run(a: Args) -> Result<()> {
         super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
         let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?.without_holes();
         match fmt {
-            OutputFormat::Mesh(mf) => crate::io::write_mesh(&a.output, &refined, mf)?,
+            OutputFormat::Mesh(mf) => {
+                for note in crate::io::lost_in(&refined, mf) {
+                    eprintln!("warning: {}: {note}", a.output.display());
+                }
+                crate::io::write_mesh(&a.output, &refined, mf)?
+            }
             OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
             OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
         }

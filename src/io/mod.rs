@@ -109,13 +109,32 @@ pub fn write_mesh(path: &Path, mesh: &PolyMesh, format: MeshFormat) -> Result<()
         None => Polygons::new(mesh.positions(), mesh.face_starts(), mesh.corners())?,
     };
     let uv = mesh.extras().and_then(|e| e.uv.as_ref());
-    if let (MeshFormat::Obj, Some(uv)) = (format, uv) {
+    if let Some(uv) = uv.filter(|_| format != MeshFormat::Off) {
         check_uv(uv, mesh.corners().len())?;
         return write_atomically(path, |w| {
-            obj::write_obj_uv_to(w, &polys, uv).map_err(|e| io_error(path, e))
+            match format {
+                MeshFormat::Obj => obj::write_obj_uv_to(w, &polys, uv),
+                _ => ply::write_ply_uv_to(w, &polys, uv, format == MeshFormat::PlyBinary),
+            }
+            .map_err(|e| io_error(path, e))
         });
     }
     write_checked(path, &polys, format)
+}
+
+/// What [`write_mesh`] cannot keep of `mesh` in `format`, as notes for the user (a warning, as
+/// for the other lossy outputs: the geometry is written, the data named here is not): texture
+/// coordinates in OFF.
+pub fn lost_in(mesh: &PolyMesh, format: MeshFormat) -> Vec<String> {
+    let mut notes = Vec::new();
+    if let (MeshFormat::Off, Some(uv)) = (format, mesh.extras().and_then(|e| e.uv.as_ref())) {
+        notes.push(format!(
+            "OFF cannot hold texture coordinates: the net's {} face-varying values are dropped \
+             (write .obj or .ply to keep them)",
+            uv.values.len()
+        ));
+    }
+    notes
 }
 
 /// Checks face-varying data before it is written: one value per corner, indices in range,

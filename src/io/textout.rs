@@ -88,6 +88,13 @@ impl<'w> ChunkedText<'w> {
         Ok(())
     }
 
+    /// Writes the text so far, then `bytes` (for binary bodies after a text header).
+    pub fn write_bytes(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        self.w.write_all(self.buf.as_bytes())?;
+        self.buf.clear();
+        self.w.write_all(bytes)
+    }
+
     /// Writes what is left.
     pub fn finish(mut self) -> std::io::Result<()> {
         self.w.write_all(self.buf.as_bytes())?;

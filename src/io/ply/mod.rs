@@ -7,8 +7,10 @@
 //! elements (little and big endian) are read one at a time by the crate; ascii lines are parsed
 //! here by the declared property types, so that errors name the file line and the property.
 //! `vertex` elements give `x y z` (any scalar type: float, double or integer), `face` elements
-//! give `vertex_indices` (or `vertex_index`) lists of any integer type; every other element and
-//! property is skipped. Missing elements or properties are named in the error, at the header
+//! give `vertex_indices` (or `vertex_index`) lists of any integer type; texture coordinates
+//! (per vertex `u v`, `s t`, `texture_u texture_v` or `texture_s texture_t`, or a face
+//! `texcoord` float list with 2 values per corner, as MeshLab writes) become the net's
+//! face-varying data (`uv`); every other element and property is skipped. Missing elements or properties are named in the error, at the header
 //! line that declares the element; binary errors name the element and how many were read.
 //!
 //! Writing (`write`) is done by hand: ascii, and binary little endian (`double` coordinates,
@@ -16,6 +18,7 @@
 
 mod header;
 mod payload;
+mod uv;
 mod write;
 
 use super::text::io_error;
@@ -24,6 +27,7 @@ use crate::error::Result;
 use std::io::BufRead;
 use std::path::Path;
 
+pub(crate) use uv::write_ply_uv_to;
 pub(crate) use write::{write_ply_ascii_to, write_ply_binary_to};
 
 /// Reads a PLY file.
@@ -59,7 +63,8 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
         note: " (faces and vertices counted from 0 in file order)",
     };
     let mut warnings = Vec::new();
-    let mesh = finish_mesh(
+    let (vertex_uv, corner_uv) = (data.vertex_uv, data.corner_uv);
+    let mut mesh = finish_mesh(
         path,
         data.positions,
         data.face_start,
@@ -68,6 +73,17 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
         &mut warnings,
         tolerant,
     )?;
+    let pair = head.header.elements.get("vertex").and_then(|d| {
+        payload::UV_PAIRS
+            .iter()
+            .position(|p| p.iter().all(|n| d.properties.contains_key(*n)))
+    });
+    let uv = uv::face_varying(&mesh, pair, &vertex_uv, &corner_uv, &mut warnings);
+    if uv.is_some() {
+        let mut ex = mesh.take_extras().unwrap_or_default();
+        ex.uv = uv;
+        mesh.set_extras(Some(ex));
+    }
     let others: Vec<&str> = head
         .header
         .elements

@@ -23,6 +23,32 @@ pub(super) struct Payload {
     pub corners: Vec<u32>,
     /// The lines of the first vertex and of the first face (ascii files only).
     pub first_lines: Option<(usize, usize)>,
+    /// Per vertex, the value of each pair of [`UV_PAIRS`] (zero where the file lacks it).
+    pub vertex_uv: Vec<[[f64; 2]; 4]>,
+    /// Per face corner, the face `texcoord` list's pair (empty without that list).
+    pub corner_uv: Vec<[f64; 2]>,
+}
+
+/// The per-vertex texture coordinate property pairs a PLY file may have, in order of
+/// preference.
+pub(super) const UV_PAIRS: [[&str; 2]; 4] = [
+    ["u", "v"],
+    ["s", "t"],
+    ["texture_u", "texture_v"],
+    ["texture_s", "texture_t"],
+];
+
+/// The face property with per-corner texture coordinates (a float list, 2 per corner, as
+/// MeshLab writes it).
+pub(super) const TEXCOORD: &str = "texcoord";
+
+/// Where a vertex property lands in `[[f64; 2]; 4]` (pair, coordinate), if it is one of
+/// [`UV_PAIRS`].
+fn uv_slot(name: &str) -> Option<(usize, usize)> {
+    UV_PAIRS
+        .iter()
+        .enumerate()
+        .find_map(|(k, pair)| pair.iter().position(|&n| n == name).map(|c| (k, c)))
 }
 
 /// Where a face came from, for messages: its ascii line, or none (binary).
@@ -55,9 +81,16 @@ pub(super) fn read_payload<R: BufRead>(
             face_start: Vec::with_capacity(cap(nf) + 1),
             corners: Vec::with_capacity(4 * cap(nf)),
             first_lines: None,
+            vertex_uv: Vec::new(),
+            corner_uv: Vec::new(),
         },
         nv,
         index_name: head.index_name,
+        has_uv: elements.get("vertex").is_some_and(|d| {
+            UV_PAIRS
+                .iter()
+                .any(|pair| pair.iter().all(|n| d.properties.contains_key(*n)))
+        }),
         path,
     };
     sink.out.face_start.push(0);
@@ -103,6 +136,8 @@ struct Sink<'a> {
     /// The vertex count of the header.
     nv: usize,
     index_name: &'static str,
+    /// Whether the vertex element has a pair of [`UV_PAIRS`].
+    has_uv: bool,
     path: &'a Path,
 }
 
@@ -118,6 +153,7 @@ impl Sink<'_> {
         let (path, name) = (self.path, &def.name);
         let mut raw = Vec::new();
         let mut indices: Vec<i64> = Vec::new();
+        let mut texcoord: Vec<f64> = Vec::new();
         for k in 0..def.count {
             raw.clear();
             let n = reader
@@ -136,13 +172,18 @@ impl Sink<'_> {
             *line += 1;
             let content = strip_line_end(&raw);
             let text = line_text(content, content.len(), path, *line)?;
-            let mut p = [0.0; 3];
+            let mut v = Vertex::default();
             indices.clear();
-            ascii_element(text, def, kind, self.index_name, &mut p, &mut indices)
+            texcoord.clear();
+            let mut lists = (&mut indices, &mut texcoord);
+            ascii_element(text, def, kind, self.index_name, &mut v, &mut lists)
                 .map_err(|m| parse_error(path, *line, format!("{name} {k}: {m}")))?;
             match kind {
-                Kind::Vertex => self.out.positions.push(p),
-                Kind::Face => self.face(k, indices.iter().copied(), At::Line(*line))?,
+                Kind::Vertex => self.vertex(v),
+                Kind::Face => {
+                    self.face(k, indices.iter().copied(), At::Line(*line))?;
+                    self.texcoord(k, def, &texcoord, At::Line(*line))?;
+                }
                 Kind::Other => {}
             }
         }
@@ -184,7 +225,7 @@ impl Sink<'_> {
                 for k in 0..def.count {
                     let v =
                         binary_element(&parser, reader, def, big_endian).map_err(|e| fail(k, e))?;
-                    self.out.positions.push(v.0);
+                    self.vertex(v);
                 }
             }
             Kind::Face => {
@@ -193,6 +234,7 @@ impl Sink<'_> {
                     let f =
                         binary_element(&parser, reader, def, big_endian).map_err(|e| fail(k, e))?;
                     self.face(k, f.indices(), At::Binary)?;
+                    self.texcoord(k, def, &f.texcoord, At::Binary)?;
                 }
             }
             Kind::Other => {
@@ -202,6 +244,44 @@ impl Sink<'_> {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// Appends a vertex (its texture coordinates only when the file has some).
+    fn vertex(&mut self, v: Vertex) {
+        self.out.positions.push(v.p);
+        if self.has_uv {
+            self.out.vertex_uv.push(v.uv);
+        }
+    }
+
+    /// Appends the `texcoord` list of face `f` (just appended), checking that it holds two
+    /// values per corner; nothing when the face element has no such list.
+    fn texcoord(&mut self, f: usize, def: &ElementDef, list: &[f64], at: At) -> Result<()> {
+        if !def.properties.contains_key(TEXCOORD) {
+            return Ok(());
+        }
+        let n = (self.out.face_start[f + 1] - self.out.face_start[f]) as usize;
+        if list.len() != 2 * n {
+            let what = format!(
+                "has {n} corners but its '{TEXCOORD}' list holds {} values (2 per corner expected)",
+                list.len()
+            );
+            return Err(match at {
+                At::Line(l) => parse_error(self.path, l, format!("face {f} {what}")),
+                At::Binary => file_error(self.path, format!("face {f} (counted from 0) {what}")),
+            });
+        }
+        if let Some(i) = list.iter().position(|x| !x.is_finite()) {
+            let what = format!("'{TEXCOORD}' value {i} is not finite");
+            return Err(match at {
+                At::Line(l) => parse_error(self.path, l, format!("face {f} {what}")),
+                At::Binary => file_error(self.path, format!("face {f} (counted from 0) {what}")),
+            });
+        }
+        self.out
+            .corner_uv
+            .extend(list.chunks_exact(2).map(|c| [c[0], c[1]]));
         Ok(())
     }
 
@@ -289,16 +369,16 @@ fn parse_scalar(tok: &str, t: &ScalarType) -> Option<f64> {
     }
 }
 
-/// Parses one ascii element line by the properties of `def`: a vertex's `x y z` go to `p`, a
-/// face's index list to `indices`; every value is checked against its declared type. The error
-/// names the property.
+/// Parses one ascii element line by the properties of `def`: a vertex's `x y z` and texture
+/// coordinates go to `v`, a face's index list and `texcoord` list to `lists`; every value is
+/// checked against its declared type. The error names the property.
 fn ascii_element(
     text: &str,
     def: &ElementDef,
     kind: Kind,
     index_name: &str,
-    p: &mut Point,
-    indices: &mut Vec<i64>,
+    v: &mut Vertex,
+    lists: &mut (&mut Vec<i64>, &mut Vec<f64>),
 ) -> std::result::Result<(), String> {
     let mut toks = text.split_whitespace();
     let mut next = |prop: &str, t: &ScalarType| {
@@ -313,10 +393,8 @@ fn ascii_element(
             PropertyType::Scalar(t) => {
                 let tok = next(prop, t)?;
                 let x = parse_scalar(tok, t).ok_or_else(|| bad(prop, tok, t))?;
-                if kind == Kind::Vertex
-                    && let Some(c) = ["x", "y", "z"].iter().position(|c| c == prop)
-                {
-                    p[c] = x;
+                if kind == Kind::Vertex {
+                    v.set(prop, x);
                 }
             }
             PropertyType::List(count_type, item_type) => {
@@ -325,16 +403,21 @@ fn ascii_element(
                     .and_then(|n| usize::try_from(n).ok())
                     .ok_or_else(|| bad(prop, tok, count_type))?;
                 let keep = kind == Kind::Face && prop == index_name;
+                let uv = kind == Kind::Face && prop == TEXCOORD;
                 for i in 0..n {
                     let tok = next(prop, item_type).map_err(|_| {
                         format!("list '{prop}' announces {n} entries but the line has {i}")
                     })?;
                     if keep {
-                        indices.push(
+                        lists.0.push(
                             parse_int(tok, item_type).ok_or_else(|| bad(prop, tok, item_type))?,
                         );
                     } else {
-                        parse_scalar(tok, item_type).ok_or_else(|| bad(prop, tok, item_type))?;
+                        let x = parse_scalar(tok, item_type)
+                            .ok_or_else(|| bad(prop, tok, item_type))?;
+                        if uv {
+                            lists.1.push(x);
+                        }
                     }
                 }
             }
@@ -351,21 +434,35 @@ fn ascii_element(
     Ok(())
 }
 
-/// A binary vertex: `x y z` of any scalar type.
+/// A vertex: `x y z` and the pairs of [`UV_PAIRS`], of any scalar type.
 #[derive(Debug, Default)]
-struct Vertex([f64; 3]);
+struct Vertex {
+    p: Point,
+    uv: [[f64; 2]; 4],
+}
+
+impl Vertex {
+    /// Keeps property `name` if it is a coordinate or a texture coordinate.
+    fn set(&mut self, name: &str, x: f64) -> bool {
+        if let Some(c) = ["x", "y", "z"].iter().position(|&c| c == name) {
+            self.p[c] = x;
+        } else if let Some((k, c)) = uv_slot(name) {
+            self.uv[k][c] = x;
+        } else {
+            return false;
+        }
+        true
+    }
+}
 
 impl PropertyAccess for Vertex {
     fn new() -> Self {
         Vertex::default()
     }
     fn set_property(&mut self, name: &str, p: Property) -> PropertyAccessResult {
-        let k = match name {
-            "x" => 0,
-            "y" => 1,
-            "z" => 2,
-            _ => return PropertyAccessResult::Ignored,
-        };
+        if !matches!(name, "x" | "y" | "z") && uv_slot(name).is_none() {
+            return PropertyAccessResult::Ignored;
+        }
         let v = match p {
             Property::Char(v) => v as f64,
             Property::UChar(v) => v as f64,
@@ -377,7 +474,7 @@ impl PropertyAccess for Vertex {
             Property::Double(v) => v,
             _ => return PropertyAccessResult::UnsupportedType,
         };
-        self.0[k] = v;
+        self.set(name, v);
         PropertyAccessResult::Set
     }
 }
@@ -389,6 +486,8 @@ struct Face {
     int: Vec<i32>,
     uint: Vec<u32>,
     other: Vec<i64>,
+    /// The `texcoord` list.
+    texcoord: Vec<f64>,
 }
 
 impl PropertyAccess for Face {
@@ -410,6 +509,14 @@ impl PropertyAccess for Face {
         }
     }
     fn set_property(&mut self, name: &str, p: Property) -> PropertyAccessResult {
+        if name == TEXCOORD {
+            self.texcoord = match p {
+                Property::ListFloat(v) => v.into_iter().map(f64::from).collect(),
+                Property::ListDouble(v) => v,
+                _ => return PropertyAccessResult::UnsupportedType,
+            };
+            return PropertyAccessResult::Set;
+        }
         if !super::header::INDEX_NAMES.contains(&name) {
             return PropertyAccessResult::Ignored;
         }
