@@ -21,15 +21,12 @@ pub use super::ComplexOptions;
 /// A scheme's rules for the adaptive loop ([`run`]).
 pub trait AdaptiveRules {
     /// One level: the partially refined net, the trust of its points, its active cells.
-    type Level;
+    type Level: Cells;
     /// The edge curves of the cells emitted at one level, which the fill shares.
     type Curves: Default;
 
     /// Level 0 from the input net (errors name what the scheme cannot take).
     fn start(&self, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Self::Level>;
-
-    /// The cells still to be made patches at this level, with their tags.
-    fn active<'a>(&self, level: &'a Self::Level) -> &'a [(u32, Tag)];
 
     /// Pushes the patches of `cell` with provenance `prov` (recording its edge curves) when the
     /// cell is regular and all its control points are trusted; `false` otherwise.
@@ -38,8 +35,7 @@ pub trait AdaptiveRules {
         level: &Self::Level,
         cell: u32,
         prov: Provenance,
-        curves: &mut Self::Curves,
-        out: &mut PatchComplex,
+        to: Sink<Self::Curves>,
     ) -> bool;
 
     /// The tag of a cell that is not emitted at level `l`.
@@ -79,8 +75,7 @@ pub trait AdaptiveRules {
         &self,
         level: &Self::Level,
         marked: &[(u32, Tag)],
-        curves: &mut Self::Curves,
-        out: &mut PatchComplex,
+        to: Sink<Self::Curves>,
     ) -> Result<()>;
 
     /// Refines the marked cells with their neighbourhood: the next level, whose active cells are
@@ -101,8 +96,12 @@ pub fn run<R: AdaptiveRules + ?Sized>(
     for l in 0.. {
         let mut marked: Vec<(u32, Tag)> = Vec::new();
         let mut curves = R::Curves::default();
-        for &(f, tag) in rules.active(&level) {
-            if !rules.emit(&level, f, provenance(l, tag), &mut curves, &mut out) {
+        for &(f, tag) in level.active() {
+            let to = Sink {
+                curves: &mut curves,
+                out: &mut out,
+            };
+            if !rules.emit(&level, f, provenance(l, tag), to) {
                 marked.push((f, tag));
             }
         }
@@ -113,7 +112,11 @@ pub fn run<R: AdaptiveRules + ?Sized>(
         }
         if rules.is_last(l, opts.rings, &level, &marked) {
             if opts.fill {
-                rules.fill(&level, &marked, &mut curves, &mut out)?;
+                let to = Sink {
+                    curves: &mut curves,
+                    out: &mut out,
+                };
+                rules.fill(&level, &marked, to)?;
             }
             break;
         }
@@ -121,6 +124,48 @@ pub fn run<R: AdaptiveRules + ?Sized>(
         progress(l + 1);
     }
     Ok(out)
+}
+
+/// A level's active cells, which [`run`] makes patches of or marks.
+pub trait Cells {
+    /// The cells still to be made patches at this level, with their tags.
+    fn active(&self) -> &[(u32, Tag)];
+}
+
+/// Where a level's patches go: the complex being built and the level's edge curves.
+pub struct Sink<'a, C> {
+    /// The edge curves of the cells emitted at this level.
+    pub curves: &'a mut C,
+    /// The complex.
+    pub out: &'a mut PatchComplex,
+}
+
+/// A level of a scheme whose cells are the faces of a partially refined mesh (Catmull-Clark,
+/// Loop): the mesh, the trust of its vertices and its active faces.
+pub struct MeshLevel {
+    /// The partially refined mesh.
+    pub mesh: PolyMesh,
+    /// The trust of its vertices.
+    pub info: Vec<Info>,
+    /// Faces to process at this level, with their tags.
+    pub active: Vec<(u32, Tag)>,
+}
+
+impl MeshLevel {
+    /// Level 0 of an input net: every vertex trusted, every face active and untagged.
+    pub fn input(mesh: &PolyMesh) -> MeshLevel {
+        MeshLevel {
+            mesh: mesh.clone(),
+            info: input_vertex_info(mesh.num_vertices()),
+            active: input_active(mesh.num_faces()),
+        }
+    }
+}
+
+impl Cells for MeshLevel {
+    fn active(&self) -> &[(u32, Tag)] {
+        &self.active
+    }
 }
 
 /// Trust of a point of a partially refined level.

@@ -247,6 +247,46 @@ pub(crate) fn finish_mesh(
     Ok(mesh)
 }
 
+/// The flat arrays of a mesh as a reader collected them, with the file line of every vertex
+/// and face (the text readers: OBJ, OFF).
+pub(crate) struct ListedMesh {
+    pub positions: Vec<Point>,
+    pub face_start: Vec<u32>,
+    pub corners: Vec<u32>,
+    /// The 1-based line of each vertex.
+    pub vertex_line: Vec<u32>,
+    /// The 1-based line of each face.
+    pub face_line: Vec<u32>,
+}
+
+/// [`finish_mesh`] for a text reader that knows the line of every vertex and face; `note` says
+/// how the file numbers them (appended to messages).
+pub(crate) fn finish_listed(
+    path: &Path,
+    listed: ListedMesh,
+    note: &str,
+    warnings: &mut Vec<String>,
+    tolerant: bool,
+) -> Result<PolyMesh> {
+    let ListedMesh {
+        positions,
+        face_start,
+        corners,
+        vertex_line,
+        face_line,
+    } = listed;
+    let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
+    let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
+    let at = FileLines {
+        face: &fl,
+        vertex: &vl,
+        note,
+    };
+    finish_mesh(
+        path, positions, face_start, corners, &at, warnings, tolerant,
+    )
+}
+
 /// Turns a validation error of [`PolyMesh::from_flat`] into an error of the file: at the line
 /// of the face or vertex it names when known, else naming the file only.
 fn locate_mesh_error(path: &Path, err: Error, at: &FileLines<'_>) -> Error {

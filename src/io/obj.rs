@@ -20,7 +20,7 @@ pub use tags::read_tag_file;
 
 use super::text::{hash_comment, io_error, line_text, parse_error};
 use super::textout::ChunkedText;
-use super::{FileLines, LoadedMesh, Polygons, finish_mesh};
+use super::{ListedMesh, LoadedMesh, Polygons, finish_listed};
 use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::FaceVarying;
@@ -403,24 +403,16 @@ impl ObjData {
                 ),
             ));
         }
-        let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
-        let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-        let at = FileLines {
-            face: &fl,
-            vertex: &vl,
-            note: NOTE,
-        };
         let mut warnings = tag_warnings;
         let nf = face_line.len();
-        let mesh = finish_mesh(
-            path,
+        let listed = ListedMesh {
             positions,
             face_start,
             corners,
-            &at,
-            &mut warnings,
-            tolerant,
-        )?;
+            vertex_line,
+            face_line,
+        };
+        let mesh = finish_listed(path, listed, NOTE, &mut warnings, tolerant)?;
         let mut mesh = mesh.with_tags(&tags, path)?;
         if let Some(line) = uv_mixed {
             warnings.push(format!(

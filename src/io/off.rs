@@ -10,7 +10,7 @@
 
 use super::text::{Lines, io_error, parse_error, read_all};
 use super::textout::ChunkedText;
-use super::{FileLines, LoadedMesh, Polygons, finish_mesh};
+use super::{ListedMesh, LoadedMesh, Polygons, finish_listed};
 use crate::error::{Error, Result};
 use std::io::{Read, Write};
 use std::path::Path;
@@ -199,19 +199,17 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
             format!("no faces ({nv} vertices); fairsub needs a polygon mesh"),
         ));
     }
-    let fl = |f: usize| face_line.get(f).map(|&l| l as usize);
-    let vl = |v: usize| vertex_line.get(v).map(|&l| l as usize);
-    let at = FileLines {
-        face: &fl,
-        vertex: &vl,
-        note: " (faces and vertices counted from 0 in file order)",
-    };
-    let mesh = finish_mesh(
-        path,
+    let listed = ListedMesh {
         positions,
         face_start,
         corners,
-        &at,
+        vertex_line,
+        face_line,
+    };
+    let mesh = finish_listed(
+        path,
+        listed,
+        " (faces and vertices counted from 0 in file order)",
         &mut warnings,
         tolerant,
     )?;

@@ -164,6 +164,20 @@ impl StencilTable {
         self.push_pairs(&s.entries);
     }
 
+    /// The table of `rows` over `num_sources` points (rows of about `per_row` entries).
+    pub fn from_rows(
+        num_sources: usize,
+        rows: impl IntoIterator<Item = Stencil>,
+        per_row: usize,
+    ) -> Self {
+        let rows = rows.into_iter();
+        let mut table = StencilTable::with_capacity(num_sources, rows.size_hint().0, per_row);
+        for s in rows {
+            table.push(s);
+        }
+        table
+    }
+
     /// Appends all rows of another table over the same sources.
     pub fn extend_rows(&mut self, other: &StencilTable) {
         assert_eq!(self.num_sources, other.num_sources);

@@ -48,7 +48,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, Tag, input_active, input_vertex_info, record_edge,
+    self, AdaptiveRules, Cells, Curves, Info, MeshLevel, Sink, Tag, record_edge,
 };
 use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
@@ -58,12 +58,24 @@ use std::collections::HashMap;
 
 /// One level of the adaptive refinement.
 pub struct Level {
-    mesh: PolyMesh,
-    info: Vec<Info>,
-    /// Faces to process at this level, with their tags.
-    active: Vec<(u32, Tag)>,
+    /// The mesh, the trust of its vertices and the active faces (the host's level).
+    base: MeshLevel,
     /// The level's sharp features, when the net has them ([`sharp`]).
     sharp: Option<sharp::Features>,
+}
+
+impl std::ops::Deref for Level {
+    type Target = MeshLevel;
+
+    fn deref(&self) -> &MeshLevel {
+        &self.base
+    }
+}
+
+impl Cells for Level {
+    fn active(&self) -> &[(u32, Tag)] {
+        &self.base.active
+    }
 }
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
@@ -137,42 +149,24 @@ impl AdaptiveRules for CcRules<'_> {
                 mesh.face_size(f)
             )));
         }
-        let (mesh, sharp) = match self.subd.as_ref().and_then(|o| sharp::start(mesh, o)) {
-            Some((m, s)) => (m, Some(s)),
-            None => (mesh.clone(), None),
+        let (base, sharp) = match self.subd.as_ref().and_then(|o| sharp::start(mesh, o)) {
+            Some((m, s)) => (MeshLevel::input(&m), Some(s)),
+            None => (MeshLevel::input(mesh), None),
         };
-        Ok(Level {
-            info: input_vertex_info(mesh.num_vertices()),
-            active: input_active(mesh.num_faces()),
-            mesh,
-            sharp,
-        })
+        Ok(Level { base, sharp })
     }
 
-    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
-        &level.active
-    }
-
-    fn emit(
-        &self,
-        level: &Level,
-        f: u32,
-        prov: Provenance,
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> bool {
+    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
         if sharp::is_hole(level, f as usize) {
             return true;
         }
-        match regular_patch(level, f as usize) {
-            Some(p) => {
-                record_curves(&level.mesh, f as usize, &p, curves);
-                out.push(p, prov);
-                sharp::mark_sides(level, f as usize, out);
-                true
-            }
-            None => false,
-        }
+        let Some(p) = regular_patch(level, f as usize) else {
+            return false;
+        };
+        record_curves(&level.mesh, f as usize, &p, to.curves);
+        to.out.push(p, prov);
+        sharp::mark_sides(level, f as usize, to.out);
+        true
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
@@ -211,14 +205,8 @@ impl AdaptiveRules for CcRules<'_> {
             && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
     }
 
-    fn fill(
-        &self,
-        level: &Level,
-        marked: &[(u32, Tag)],
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> Result<()> {
-        fill(level, marked, curves, out)
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
+        fill(level, marked, to.curves, to.out)
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
@@ -498,10 +486,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             info[fid[f as usize] as usize].origin = Some(Element::Face(tag.input_face));
         }
     }
-    let mut table = crate::stencil::StencilTable::with_capacity(nv, stencils.len(), 9);
-    for s in stencils {
-        table.push(s);
-    }
+    let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let (child, sharp) = sharp::child(level, &rules, child, &vid, &eid);
@@ -518,9 +503,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         }
     }
     Ok(Level {
-        mesh: child,
-        info,
-        active,
+        base: MeshLevel {
+            mesh: child,
+            info,
+            active,
+        },
         sharp,
     })
 }

@@ -74,7 +74,7 @@ use crate::bezier::convert::biquadratic_bspline_stencils;
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
-use crate::host::adaptive::{self, AdaptiveRules, Info, Tag, input_vertex_info};
+use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::registry::ids;
 use crate::stencil::{Stencil, StencilTable};
@@ -178,6 +178,12 @@ pub struct Level {
     active: Vec<(u32, Tag)>,
 }
 
+impl Cells for Level {
+    fn active(&self) -> &[(u32, Tag)] {
+        &self.active
+    }
+}
+
 fn dual_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
@@ -237,39 +243,20 @@ impl AdaptiveRules for DualHost<'_, '_> {
         })
     }
 
-    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
-        &level.active
-    }
-
-    fn emit(
-        &self,
-        level: &Level,
-        v: u32,
-        prov: Provenance,
-        _curves: &mut (),
-        out: &mut PatchComplex,
-    ) -> bool {
-        match trusted_patch(level, v as usize) {
-            Some(p) => {
-                out.push(p, prov);
-                true
-            }
-            None => false,
-        }
+    fn emit(&self, level: &Level, v: u32, prov: Provenance, to: Sink<()>) -> bool {
+        let Some(p) = trusted_patch(level, v as usize) else {
+            return false;
+        };
+        to.out.push(p, prov);
+        true
     }
 
     fn retag(&self, level: &Level, v: u32, tag: Tag, l: usize) -> Tag {
         retag(level, v as usize, tag, l == 0)
     }
 
-    fn fill(
-        &self,
-        level: &Level,
-        marked: &[(u32, Tag)],
-        _curves: &mut (),
-        out: &mut PatchComplex,
-    ) -> Result<()> {
-        fill(level, marked, self.rules, out)
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<()>) -> Result<()> {
+        fill(level, marked, self.rules, to.out)
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
@@ -565,11 +552,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
                 .into(),
         ));
     }
-    let mut table = StencilTable::with_capacity(nv, stencils.len(), 6);
-    for s in stencils {
-        table.push(s);
-    }
-    let positions = table.apply(m.positions());
+    let positions = StencilTable::from_rows(nv, stencils, 6).apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let mut active = Vec::new();
     for &(v, tag) in marked {

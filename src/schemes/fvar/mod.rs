@@ -192,35 +192,53 @@ fn face_halfedges<'a>(pa: &'a FvLevel<'_>, f: u32) -> impl Iterator<Item = u32> 
 }
 
 /// A vertex stencil row applied to face-varying values: each parent vertex is read as its
-/// value at the ends of the half-edges `hes` (one per face), else in the first of their faces
-/// that contains it.
+/// value at the ends of the half-edges `hes` (one per face), else at its corners in the faces of
+/// `hes`. A vertex that is a corner of several of those faces (or twice a corner of one, a face
+/// that repeats a vertex) with different values there gets its weight split among them in
+/// proportion to each corner's share of its face's centroid (`1 / face size`): the scheme's
+/// stencil row sums these face contributions into one column, and every rule that reads a face
+/// beyond the half-edge ends (Catmull-Clark's face points, Loop's opposite vertices) reads it
+/// through the centroid with the same weight for all faces of the ring.
 fn mapped(pa: &FvLevel<'_>, row: (&[u32], &[f64]), hes: &[u32], src: &[[f64; 2]]) -> [f64; 2] {
     let m = pa.m;
-    let terms: Vec<([f64; 2], f64)> = row
-        .0
-        .iter()
-        .zip(row.1)
-        .map(|(&u, &w)| {
-            // The corners of the half-edges themselves first (a face may repeat a vertex).
-            let own = hes.iter().find_map(|&h| {
-                let n = m.faces.next(h);
-                [h, n]
-                    .into_iter()
-                    .find(|&x| m.from(x) == u)
-                    .map(|x| pa.corner_value[x as usize])
-            });
-            let val = own
-                .or_else(|| {
-                    hes.iter().find_map(|&h| {
-                        face_halfedges(pa, m.face(h))
-                            .find(|&x| m.from(x) == u)
-                            .map(|x| pa.corner_value[x as usize])
-                    })
-                })
-                .unwrap_or(0);
-            (src[val as usize], w)
-        })
-        .collect();
+    let mut terms: Vec<([f64; 2], f64)> = Vec::with_capacity(row.0.len());
+    let mut shares: Vec<(u32, f64)> = Vec::new();
+    for (&u, &w) in row.0.iter().zip(row.1) {
+        // The corners of the half-edges themselves first (a face may repeat a vertex).
+        let own = hes.iter().find_map(|&h| {
+            let n = m.faces.next(h);
+            [h, n]
+                .into_iter()
+                .find(|&x| m.from(x) == u)
+                .map(|x| pa.corner_value[x as usize])
+        });
+        if let Some(val) = own {
+            terms.push((src[val as usize], w));
+            continue;
+        }
+        shares.clear();
+        for (i, &h) in hes.iter().enumerate() {
+            let f = m.face(h);
+            if hes[..i].iter().any(|&g| m.face(g) == f) {
+                continue;
+            }
+            let size = m.face_corners(f as usize).len() as f64;
+            for x in face_halfedges(pa, f).filter(|&x| m.from(x) == u) {
+                shares.push((pa.corner_value[x as usize], 1.0 / size));
+            }
+        }
+        let total: f64 = shares.iter().map(|s| s.1).sum();
+        match shares.first() {
+            Some(&(first, _)) if shares.iter().any(|s| s.0 != first) => {
+                terms.extend(
+                    shares
+                        .iter()
+                        .map(|&(val, s)| (src[val as usize], w * s / total)),
+                );
+            }
+            first => terms.push((src[first.map_or(0, |s| s.0) as usize], w)),
+        }
+    }
     combine(&terms)
 }
 

@@ -80,8 +80,8 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active,
-    input_vertex_info, record_edge, retag_by_corners, select_around,
+    self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, child_active, edge_curve, record_edge,
+    retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
@@ -169,47 +169,24 @@ impl AdaptiveRules for LoopRules {
 
     fn start(&self, mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
         super::require_triangles(mesh, "Loop patches need")?;
-        Ok(Level {
-            mesh: mesh.clone(),
-            info: input_vertex_info(mesh.num_vertices()),
-            active: input_active(mesh.num_faces()),
-        })
+        Ok(Level::input(mesh))
     }
 
-    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
-        &level.active
-    }
-
-    fn emit(
-        &self,
-        level: &Level,
-        f: u32,
-        prov: Provenance,
-        curves: &mut Curves<5>,
-        out: &mut PatchComplex,
-    ) -> bool {
-        match trusted_net(level, f as usize) {
-            Some(tri) => {
-                record_curves(&level.mesh, f as usize, &tri, curves);
-                out.push(triangle_to_tensor(&tri), prov);
-                true
-            }
-            None => false,
-        }
+    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<5>>) -> bool {
+        let Some(tri) = trusted_net(level, f as usize) else {
+            return false;
+        };
+        record_curves(&level.mesh, f as usize, &tri, to.curves);
+        to.out.push(triangle_to_tensor(&tri), prov);
+        true
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
         retag(level, f as usize, tag)
     }
 
-    fn fill(
-        &self,
-        level: &Level,
-        marked: &[(u32, Tag)],
-        curves: &mut Curves<5>,
-        out: &mut PatchComplex,
-    ) -> Result<()> {
-        fill(level, marked, curves, out);
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {
+        fill(level, marked, to.curves, to.out);
         Ok(())
     }
 
@@ -218,11 +195,7 @@ impl AdaptiveRules for LoopRules {
     }
 }
 
-struct Level {
-    mesh: PolyMesh,
-    info: Vec<Info>,
-    active: Vec<(u32, Tag)>,
-}
+type Level = MeshLevel;
 
 /// Whether `v` is a regular Loop vertex: interior of valence 6 or boundary with 3 triangles.
 fn is_regular(m: &PolyMesh, v: usize) -> bool {
@@ -403,11 +376,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             face_start.push(corners.len() as u32);
         }
     }
-    let mut table = StencilTable::with_capacity(nv, stencils.len(), 7);
-    for s in stencils {
-        table.push(s);
-    }
-    let positions = table.apply(m.positions());
+    let positions = StencilTable::from_rows(nv, stencils, 7).apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let active = child_active(marked, |f| (children[&f], 4));
     Ok(Level {

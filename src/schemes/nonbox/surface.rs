@@ -41,7 +41,7 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, Tag, child_active, edge_curve, input_active,
+    self, AdaptiveRules, Cells, Curves, Info, Sink, Tag, child_active, edge_curve, input_active,
     input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
@@ -55,6 +55,12 @@ pub struct Level {
     points: Vec<Point>,
     info: Vec<Info>,
     active: Vec<(u32, Tag)>,
+}
+
+impl Cells for Level {
+    fn active(&self) -> &[(u32, Tag)] {
+        &self.active
+    }
 }
 
 /// The non-box surface of a net with FCVs as a patch complex: four degenerate bi-3 patches per
@@ -96,28 +102,15 @@ impl AdaptiveRules for NonBoxRules<'_> {
         })
     }
 
-    fn active<'a>(&self, level: &'a Level) -> &'a [(u32, Tag)] {
-        &level.active
-    }
-
-    fn emit(
-        &self,
-        level: &Level,
-        f: u32,
-        prov: Provenance,
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> bool {
-        match trusted_cell(level, f as usize) {
-            Some(tris) => {
-                record_curves(&level.net.mesh, f as usize, &tris, curves);
-                for t in &tris {
-                    out.push(triangle_to_tensor(t), prov);
-                }
-                true
-            }
-            None => false,
+    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
+        let Some(tris) = trusted_cell(level, f as usize) else {
+            return false;
+        };
+        record_curves(&level.net.mesh, f as usize, &tris, to.curves);
+        for t in &tris {
+            to.out.push(triangle_to_tensor(t), prov);
         }
+        true
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
@@ -132,14 +125,8 @@ impl AdaptiveRules for NonBoxRules<'_> {
                 .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
     }
 
-    fn fill(
-        &self,
-        level: &Level,
-        marked: &[(u32, Tag)],
-        curves: &mut Curves<4>,
-        out: &mut PatchComplex,
-    ) -> Result<()> {
-        fill(level, marked, curves, out);
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
+        fill(level, marked, to.curves, to.out);
         Ok(())
     }
 
@@ -316,10 +303,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         children.insert(g, (first, k));
     }
     let nc = stencils.len();
-    let mut table = StencilTable::with_capacity(nv + nf, nc + fcv_stencils.len(), 6);
-    for s in stencils.into_iter().chain(fcv_stencils) {
-        table.push(s);
-    }
+    let table = StencilTable::from_rows(nv + nf, stencils.into_iter().chain(fcv_stencils), 6);
     let points = table.apply(&level.points);
     let mesh = PolyMesh::from_partial_refinement(points[..nc].to_vec(), face_start, corners)?;
     let net = FcvNet {

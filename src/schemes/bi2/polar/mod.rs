@@ -255,10 +255,7 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
             "the polar layout is inconsistent (a face corner without a spoke point)".into(),
         ));
     }
-    let mut table = StencilTable::with_capacity(nv, rows.len(), 8);
-    for s in rows {
-        table.push(s);
-    }
+    let table = StencilTable::from_rows(nv, rows, 8);
     Ok(RadialStep {
         refinement: finish_refinement(mesh, table, face_start, corners)?,
         pole_point: pole_pt,

@@ -356,10 +356,7 @@ pub fn ternary_step(
         rows.push(Stencil::from_pairs([(b, 1.0 - t), (a, t)]));
     }
     debug_assert_eq!(rows.len(), next as usize);
-    let mut table = StencilTable::with_capacity(nv, rows.len(), 9);
-    for s in rows {
-        table.push(s);
-    }
+    let table = StencilTable::from_rows(nv, rows, 9);
 
     // Topology and widths.
     let edge_child_idx = |h: u32, near_from: bool| -> u32 {
