@@ -327,10 +327,15 @@ fn locate_mesh_error(path: &Path, err: Error, at: &FileLines<'_>) -> Error {
         | MeshError::NonManifoldEdge { .. }
         | MeshError::InconsistentOrientation { .. }
         | MeshError::NonManifoldVertex { .. } => {
-            "; this command needs a manifold net (only catmull-clark and loop refine such nets, \
-             with subdivide --levels; info reads them)"
+            let names = crate::schemes::registry()
+                .names_taking(crate::schemes::descriptor::ParamKind::SharpFeatures)
+                .join(" and ");
+            format!(
+                "; this command needs a manifold net (only {names} refine such nets, with \
+                 subdivide --levels; info reads them)"
+            )
         }
-        _ => "",
+        _ => String::new(),
     };
     let msg = format!("invalid mesh: {me}{hint}{}", at.note);
     match line {

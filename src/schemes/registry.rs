@@ -10,7 +10,8 @@
 
 use super::SchemeInfo;
 use super::descriptor::{
-    About, Capabilities, ChiKind, Descriptor, GuideDegree, Params, RulesChoice, SchemeId, Spec,
+    About, Capabilities, ChiKind, Descriptor, GuideDegree, ParamKind, Params, RulesChoice,
+    SchemeId, Spec,
 };
 use super::{bi2, catmull_clark, doo_sabin, eg, guided, loop_subdivision, nonbox, qas};
 use crate::error::{Error, Result};
@@ -588,6 +589,15 @@ impl Registry {
         self.entries
             .iter()
             .filter(|e| pick(e.capabilities()))
+            .map(|e| e.name)
+            .collect()
+    }
+
+    /// The names of the schemes whose options include `kind`, in catalogue order.
+    pub fn names_taking(&self, kind: ParamKind) -> Vec<&'static str> {
+        self.entries
+            .iter()
+            .filter(|e| e.descriptor.params().contains(&kind))
             .map(|e| e.name)
             .collect()
     }
