@@ -260,8 +260,16 @@ fn bad_input_gives_clear_errors_and_exit_code_1() {
             "{input}: message '{err}' lacks '{needle}'"
         );
         assert!(!out.exists(), "{input}: output written despite the error");
-        let (code, _, _) = run(&["info", &input]);
-        assert_eq!(code, 1);
+        // `info` reads what Catmull-Clark and Loop refine (non-manifold edges and vertices,
+        // repeated corners, inconsistent orientation) and reports it; the rest is bad input.
+        let general = ["repeat.obj", "orient.obj", "nmedge.obj", "bowtie.obj"]
+            .iter()
+            .any(|n| input.ends_with(n));
+        let (code, _, err) = run(&["info", &input]);
+        assert_eq!(code, if general { 0 } else { 1 }, "info {input}: {err}");
+        if general {
+            assert!(err.contains("not manifold"), "info {input}: {err}");
+        }
     }
     // Loop on quads names the face; unknown scheme and extension are bad input too.
     let (code, _, err) = run(&[
