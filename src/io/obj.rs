@@ -240,7 +240,8 @@ impl ObjState {
                 let uv_before = self.data.uv_corners.len();
                 for k in 1..tokens.len() {
                     let t = tok(k);
-                    let vpart = t.as_bytes().split(|&b| b == b'/').next().unwrap_or(b"");
+                    let slash = t.bytes().position(|b| b == b'/');
+                    let vpart = &t.as_bytes()[..slash.unwrap_or(t.len())];
                     let idx = parse_i64(vpart).ok_or_else(|| {
                         parse_error(
                             path,
@@ -286,7 +287,9 @@ impl ObjState {
                         ));
                     };
                     self.data.corners.push(v as u32);
-                    let uv = match t.split('/').nth(1).filter(|u| !u.is_empty()) {
+                    // The texture index: between the first and the second '/', if any.
+                    let uv_part = slash.and_then(|i| t[i + 1..].split('/').next());
+                    let uv = match uv_part.filter(|u| !u.is_empty()) {
                         None => NO_UV,
                         Some(u) => self.uv_index(u, t, line, path)?,
                     };

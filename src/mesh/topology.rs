@@ -37,9 +37,9 @@ impl Topology {
             he_face: &he_face,
             uniform,
         };
-        // Outgoing half-edges bucketed per vertex (CSR), each bucket sorted by (end vertex,
-        // half-edge): the half-edges a -> b are one run found by binary search, so matching
-        // twins costs O(log valence) per half-edge also around a vertex of high valence.
+        // Outgoing half-edges bucketed per vertex (CSR), in half-edge order; a large bucket is
+        // sorted by (end vertex, half-edge), so the half-edges a -> b are one run found by binary
+        // search and matching twins costs O(log valence) also around a vertex of high valence.
         let mut out_start = vec![0u32; nv + 1];
         for &v in corners {
             out_start[v as usize + 1] += 1;
@@ -58,11 +58,17 @@ impl Topology {
         sort_buckets(&mut out_he, &out_start, to);
         let outs =
             |v: u32| &out_he[out_start[v as usize] as usize..out_start[v as usize + 1] as usize];
-        // The half-edges a -> b.
+        // The half-edges a -> b, in increasing half-edge order: a scan of a small bucket, a
+        // binary search of a sorted large one.
         let run = |a: u32, b: u32| {
             let s = outs(a);
-            let lo = s.partition_point(|&g| to(g) < b);
-            &s[lo..lo + s[lo..].partition_point(|&g| to(g) == b)]
+            let s = if s.len() > SMALL_BUCKET {
+                let lo = s.partition_point(|&g| to(g) < b);
+                &s[lo..lo + s[lo..].partition_point(|&g| to(g) == b)]
+            } else {
+                s
+            };
+            s.iter().copied().filter(move |&g| to(g) == b)
         };
         let mut twin = vec![NONE; nh];
         let bad_edge = twin
@@ -74,23 +80,23 @@ impl Topology {
                     let (a, b) = (corners[h as usize], to(h));
                     // Same-direction duplicates: orientation conflict or a non-manifold edge.
                     let (same, opp) = (run(a, b), run(b, a));
-                    let n_same = same.len();
-                    if let Some(&g) = opp.first() {
-                        *slot = g;
+                    let n_same = same.clone().count();
+                    let mut n_opp = 0;
+                    for g in opp.clone() {
+                        if n_opp == 0 {
+                            *slot = g;
+                        }
+                        n_opp += 1;
                     }
-                    if n_same + opp.len() > 2 {
-                        let mut faces: Vec<usize> = same
-                            .iter()
-                            .chain(opp)
-                            .map(|&g| faces.face(g) as usize)
-                            .collect();
+                    if n_same + n_opp > 2 {
+                        let mut faces: Vec<usize> =
+                            same.chain(opp).map(|g| faces.face(g) as usize).collect();
                         faces.sort_unstable();
                         let edge = [a.min(b) as usize, a.max(b) as usize];
                         return Some((h, MeshError::NonManifoldEdge { edge, faces }));
                     }
                     if n_same == 2 {
-                        let mut faces: Vec<usize> =
-                            same.iter().map(|&g| faces.face(g) as usize).collect();
+                        let mut faces: Vec<usize> = same.map(|g| faces.face(g) as usize).collect();
                         faces.sort_unstable();
                         let e = MeshError::InconsistentOrientation {
                             edge: [a as usize, b as usize],
@@ -169,8 +175,13 @@ impl Topology {
     }
 }
 
+/// Buckets of at most this many outgoing half-edges stay in half-edge order and are scanned;
+/// larger ones (vertices of high valence) are sorted and searched.
+const SMALL_BUCKET: usize = 16;
+
 /// Sorts each vertex's bucket of outgoing half-edges (`out_he[out_start[v]..out_start[v + 1]]`)
-/// by (end vertex, half-edge), in parallel over blocks of vertices.
+/// with more than [`SMALL_BUCKET`] entries by (end vertex, half-edge), in parallel over blocks
+/// of vertices.
 fn sort_buckets(out_he: &mut [u32], out_start: &[u32], to: impl Fn(u32) -> u32 + Sync) {
     let nv = out_start.len() - 1;
     let mut parts = Vec::with_capacity(nv.div_ceil(CHUNK));
@@ -186,7 +197,9 @@ fn sort_buckets(out_he: &mut [u32], out_start: &[u32], to: impl Fn(u32) -> u32 +
         let base = out_start[vs.start];
         for v in vs {
             let bucket = (out_start[v] - base) as usize..(out_start[v + 1] - base) as usize;
-            part[bucket].sort_unstable_by_key(|&h| (to(h), h));
+            if bucket.len() > SMALL_BUCKET {
+                part[bucket].sort_unstable_by_key(|&h| (to(h), h));
+            }
         }
     });
 }

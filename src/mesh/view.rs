@@ -107,7 +107,7 @@ pub struct Outgoing<'a> {
 impl Iterator for Outgoing<'_> {
     type Item = u32;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<u32> {
         let h = self.next;
         if h == NONE {
@@ -116,6 +116,17 @@ impl Iterator for Outgoing<'_> {
         let t = self.view.twin[self.view.faces.prev(h) as usize];
         self.next = if t == self.start { NONE } else { t };
         Some(h)
+    }
+
+    /// The valence (the walk without the generic `fold`, which the hot refinement loops would
+    /// otherwise call out of line).
+    #[inline(always)]
+    fn count(mut self) -> usize {
+        let mut n = 0;
+        while self.next().is_some() {
+            n += 1;
+        }
+        n
     }
 }
 

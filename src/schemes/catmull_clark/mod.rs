@@ -95,7 +95,7 @@ const SMOOTH_TRI_WEIGHT: f64 = 0.47;
 /// The smooth mask of interior edge `e`, scaled: `(a + b + F1 + F2) / 4`; with smooth
 /// triangles and a triangle among its two faces, face weights `w = (w1 + w2) / 2` (0.47 for a
 /// triangle, 1/4 otherwise) and vertex weights `(1 - 2w) / 2`.
-#[inline]
+#[inline(always)]
 fn smooth_edge(m: &MeshView<'_>, e: usize, tris: bool, scale: f64, out: &mut impl CcTerms) {
     let h = m.edge_he[e];
     let (a, b, t) = (m.from(h), m.to(h), m.twin(h));
@@ -123,7 +123,7 @@ fn smooth_edge(m: &MeshView<'_>, e: usize, tris: bool, scale: f64, out: &mut imp
 
 /// The smooth mask of interior vertex `v`, scaled:
 /// `(n - 2)/n v + 1/n^2 sum(edge neighbours) + 1/n^2 sum(face points)`.
-#[inline]
+#[inline(always)]
 fn smooth_vertex(m: &MeshView<'_>, v: usize, scale: f64, out: &mut impl CcTerms) {
     let n = m.outgoing(v).count() as f64;
     out.vertex(v as u32, scale * (n - 2.0) / n);
@@ -155,30 +155,59 @@ impl<'a> Rules<'a> {
 
     /// Edge point of edge `e`: the smooth mask inside, the midpoint on the boundary; with
     /// sharp features the edge's plan.
-    #[inline]
+    #[inline(always)]
     fn edge(&self, e: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
+        self.edge_in::<false>(e, scratch, out)
+    }
+
+    /// Whether the level has neither sharp features nor smooth triangles: the plain rules.
+    fn plain(&self) -> bool {
+        self.sharp.is_none() && !self.tris
+    }
+
+    /// [`Rules::edge`]; `PLAIN` (only where [`Rules::plain`] holds) compiles the feature checks
+    /// away.
+    #[inline(always)]
+    fn edge_in<const PLAIN: bool>(&self, e: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
         let m = &self.m;
-        let plan = match &self.sharp {
+        let (sharp, tris) = if PLAIN {
+            (None, false)
+        } else {
+            (self.sharp.as_ref(), self.tris)
+        };
+        let plan = match sharp {
             Some(sl) => sl.edge_plan(e as u32, scratch),
             None if m.twin(m.edge_he[e]) == NONE => EdgePlan::Crease,
             None => EdgePlan::Smooth,
         };
         if plan == EdgePlan::Smooth {
-            return smooth_edge(m, e, self.tris, 1.0, out);
+            return smooth_edge(m, e, tris, 1.0, out);
         }
         let h = m.edge_he[e];
         plan.emit(m.from(h), m.to(h), |t| match t {
-            Emit::Smooth(s) => smooth_edge(m, e, self.tris, s, out),
+            Emit::Smooth(s) => smooth_edge(m, e, tris, s, out),
             Emit::Vertex(u, w) => out.vertex(u, w),
         });
     }
 
     /// Vertex point of `v`: the smooth mask inside; `3/4 v + 1/8 (a + b)` on the boundary; a
     /// corner stays put; with sharp features the vertex's plan.
-    #[inline]
+    #[inline(always)]
     fn vertex(&self, v: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
+        self.vertex_in::<false>(v, scratch, out)
+    }
+
+    /// [`Rules::vertex`]; `PLAIN` as in [`Rules::edge_in`].
+    #[inline(always)]
+    fn vertex_in<const PLAIN: bool>(
+        &self,
+        v: usize,
+        scratch: &mut Scratch,
+        out: &mut impl CcTerms,
+    ) {
         let m = &self.m;
-        match &self.sharp {
+        let sharp = if PLAIN { None } else { self.sharp.as_ref() };
+        match sharp {
             Some(sl) if sl.special[v] => {
                 sl.vertex_plan(v as u32, scratch)
                     .emit(v as u32, |t| match t {
@@ -353,6 +382,23 @@ impl CatmullClark {
                 }
             });
         let faces: &[[f64; D]] = faces;
+        if rules.plain() {
+            Self::vertex_edge_points::<D, true>(head, nv, src, faces, rules);
+        } else {
+            Self::vertex_edge_points::<D, false>(head, nv, src, faces, rules);
+        }
+        out
+    }
+
+    /// The vertex and edge points (`head`, vertices first) of [`CatmullClark::refine_points_by`]
+    /// from the parent points and the face points; `PLAIN` as in [`Rules::edge_in`].
+    fn vertex_edge_points<const D: usize, const PLAIN: bool>(
+        head: &mut [[f64; D]],
+        nv: usize,
+        src: &[[f64; D]],
+        faces: &[[f64; D]],
+        rules: &Rules<'_>,
+    ) {
         head.par_chunks_mut(BLOCK)
             .enumerate()
             .for_each(|(c, chunk)| {
@@ -361,14 +407,13 @@ impl CatmullClark {
                     let i = c * BLOCK + k;
                     let mut ev = Eval::new(src, faces);
                     if i < nv {
-                        rules.vertex(i, &mut scratch, &mut ev);
+                        rules.vertex_in::<PLAIN>(i, &mut scratch, &mut ev);
                     } else {
-                        rules.edge(i - nv, &mut scratch, &mut ev);
+                        rules.edge_in::<PLAIN>(i - nv, &mut scratch, &mut ev);
                     }
                     *o = ev.acc;
                 }
             });
-        out
     }
 
     /// Child topology of one step: `(face_start, corners)` of the all-quad child net.

@@ -93,7 +93,7 @@ pub(crate) fn require_triangles(mesh: &PolyMesh, what: &str) -> Result<()> {
 /// The smooth vertex-centred mask of Loop's shape at interior vertex `v`, scaled: `v` keeps
 /// `1 - n w(n)` and each edge neighbour gets `w(n)`. Both the refinement rule (`w = beta`) and
 /// the limit mask (`w = chi`) have this shape.
-#[inline]
+#[inline(always)]
 fn smooth_vertex(
     m: &MeshView<'_>,
     v: usize,
@@ -129,7 +129,7 @@ fn vertex_mask(m: &MeshView<'_>, v: usize, w: fn(usize) -> f64, b: f64, row: &mu
 
 /// Loop's smooth edge mask of interior edge `e`, scaled: `3/8, 3/8` for the end points and
 /// `1/8` for each opposite vertex.
-#[inline]
+#[inline(always)]
 fn smooth_edge(m: &MeshView<'_>, e: usize, scale: f64, row: &mut impl Terms) {
     let h = m.edge_he[e];
     let t = m.twin(h);
@@ -155,10 +155,18 @@ impl<'a> Rules<'a> {
     }
 
     /// The point of edge `e`.
-    #[inline]
+    #[inline(always)]
     fn edge(&self, e: usize, scratch: &mut Scratch, row: &mut impl Terms) {
+        self.edge_in::<false>(e, scratch, row)
+    }
+
+    /// [`Rules::edge`]; `PLAIN` (only where the level has no sharp features) compiles the
+    /// feature checks away.
+    #[inline(always)]
+    fn edge_in<const PLAIN: bool>(&self, e: usize, scratch: &mut Scratch, row: &mut impl Terms) {
         let m = &self.m;
-        let plan = match &self.sharp {
+        let sharp = if PLAIN { None } else { self.sharp.as_ref() };
+        let plan = match sharp {
             Some(sl) => sl.edge_plan(e as u32, scratch),
             None if m.twin(m.edge_he[e]) == NONE => EdgePlan::Crease,
             None => EdgePlan::Smooth,
@@ -174,10 +182,17 @@ impl<'a> Rules<'a> {
     }
 
     /// The refined point of vertex `v`.
-    #[inline]
+    #[inline(always)]
     fn vertex(&self, v: usize, scratch: &mut Scratch, row: &mut impl Terms) {
+        self.vertex_in::<false>(v, scratch, row)
+    }
+
+    /// [`Rules::vertex`]; `PLAIN` as in [`Rules::edge_in`].
+    #[inline(always)]
+    fn vertex_in<const PLAIN: bool>(&self, v: usize, scratch: &mut Scratch, row: &mut impl Terms) {
         let m = &self.m;
-        match &self.sharp {
+        let sharp = if PLAIN { None } else { self.sharp.as_ref() };
+        match sharp {
             Some(sl) if sl.special[v] => {
                 sl.vertex_plan(v as u32, scratch)
                     .emit(v as u32, |t| match t {
@@ -318,6 +333,22 @@ impl Loop {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         assert!(src.len() >= nv, "one point per parent vertex is needed");
         let mut out = crate::buffers::zeroed(nv + ne, [0.0; D]);
+        if rules.sharp.is_none() {
+            Self::points_in::<D, true>(&mut out, nv, src, rules);
+        } else {
+            Self::points_in::<D, false>(&mut out, nv, src, rules);
+        }
+        out
+    }
+
+    /// The child points (`out`, vertices first) of [`Loop::refine_points_by`]; `PLAIN` as in
+    /// [`Rules::edge_in`].
+    fn points_in<const D: usize, const PLAIN: bool>(
+        out: &mut [[f64; D]],
+        nv: usize,
+        src: &[[f64; D]],
+        rules: &Rules<'_>,
+    ) {
         out.par_chunks_mut(BLOCK)
             .enumerate()
             .for_each(|(c, chunk)| {
@@ -326,14 +357,13 @@ impl Loop {
                     let i = c * BLOCK + k;
                     let mut acc = Accumulator::new(src);
                     if i < nv {
-                        rules.vertex(i, &mut scratch, &mut acc);
+                        rules.vertex_in::<PLAIN>(i, &mut scratch, &mut acc);
                     } else {
-                        rules.edge(i - nv, &mut scratch, &mut acc);
+                        rules.edge_in::<PLAIN>(i - nv, &mut scratch, &mut acc);
                     }
                     *o = acc.value();
                 }
             });
-        out
     }
 
     /// The child net of one step with the given child points (from [`Loop::refine_points`] or
