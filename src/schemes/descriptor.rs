@@ -227,6 +227,21 @@ pub struct Capabilities {
     pub eval: bool,
 }
 
+impl Capabilities {
+    /// Exact patches only: the cap schemes, which have no net of their own to refine (the
+    /// [`Descriptor::capabilities`] default).
+    pub const PATCHES: Capabilities = Capabilities {
+        refine: false,
+        patches: true,
+        eval: false,
+    };
+    /// Whole-net refinement and exact patches, without evaluation.
+    pub const REFINE_AND_PATCHES: Capabilities = Capabilities {
+        refine: true,
+        ..Capabilities::PATCHES
+    };
+}
+
 /// A scheme's exact surfaces of whole nets.
 pub trait PatchRules: Sync {
     /// The patch complex of `mesh`: regular patches, `opts.rings` rings around every
@@ -238,6 +253,34 @@ pub trait PatchRules: Sync {
         opts: ComplexOptions,
         progress: &mut dyn FnMut(usize),
     ) -> Result<SurfaceOutput>;
+}
+
+/// [`PatchRules`] that are one function call (see [`patch_fn`]).
+struct PatchFn<F>(F);
+
+impl<F> PatchRules for PatchFn<F>
+where
+    F: Fn(&PolyMesh, ComplexOptions, &mut dyn FnMut(usize)) -> Result<SurfaceOutput> + Sync,
+{
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        (self.0)(mesh, opts, progress)
+    }
+}
+
+/// What [`Descriptor::patch_rules`] returns for a scheme whose exact surface is the call
+/// `build(mesh, opts, progress)`.
+pub fn patch_fn<F>(build: F) -> Result<Option<Box<dyn PatchRules>>>
+where
+    F: Fn(&PolyMesh, ComplexOptions, &mut dyn FnMut(usize)) -> Result<SurfaceOutput>
+        + Sync
+        + 'static,
+{
+    Ok(Some(Box::new(PatchFn(build))))
 }
 
 /// A published value next to the computed one.
@@ -327,11 +370,30 @@ pub trait LocalRules: Sync {
     }
 }
 
+/// [`LocalRules`] that give the matrix only (see [`matrix_only`]).
+struct MatrixOnly(fn(usize) -> Result<LocalMatrix>);
+
+impl LocalRules for MatrixOnly {
+    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
+        (self.0)(n)
+    }
+}
+
+/// What [`Descriptor::local_rules`] returns for a scheme whose analysis is its matrix at each
+/// valence (`matrix(n)`), with the defaults for the rest.
+pub fn matrix_only(
+    matrix: fn(usize) -> Result<LocalMatrix>,
+) -> Result<Option<Box<dyn LocalRules>>> {
+    Ok(Some(Box::new(MatrixOnly(matrix))))
+}
+
 /// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`About`],
 /// is in its registry row).
 pub trait Descriptor: Sync + Send {
-    /// What it offers.
-    fn capabilities(&self) -> Capabilities;
+    /// What it offers (default: exact patches only).
+    fn capabilities(&self) -> Capabilities {
+        Capabilities::PATCHES
+    }
 
     /// Whether the scheme takes the net at all (for front ends that try every scheme on one
     /// net, like the demo); the error names the element it cannot take.

@@ -6,11 +6,10 @@ use super::ternary::TernaryRules;
 use super::{AdjustableTps, Bi2Mixed, Pgs, PgsPreprocessed, PolarBi2, Tps};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
-use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
-    Published, Spec, SurfaceOutput,
+    Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
+    SurfaceOutput, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -74,11 +73,7 @@ impl Bi2Descriptor {
 
 impl Descriptor for Bi2Descriptor {
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: true,
-            patches: true,
-            eval: false,
-        }
+        Capabilities::REFINE_AND_PATCHES
     }
 
     fn joins_up_to_scaling(&self) -> bool {
@@ -114,12 +109,39 @@ impl Descriptor for Bi2Descriptor {
         }))
     }
 
+    /// Regular bi-2 patches, the member's rings and fill per element (`rules`: adjustable
+    /// TPS's, ignored by the others).
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(Bi2Patches {
-            kind: self.kind,
-            rules: Self::ternary_rules(spec)?,
-            poles: spec.params.poles.clone(),
-        })))
+        let (kind, rules) = (self.kind, Self::ternary_rules(spec)?);
+        let poles = spec.params.poles.clone();
+        patch_fn(move |mesh, opts, progress| {
+            use super::surface as s;
+            let with_notes = |(complex, notes)| SurfaceOutput {
+                complex,
+                fell_back: Vec::new(),
+                notes,
+            };
+            Ok(match kind {
+                Bi2Kind::Pgs => SurfaceOutput::plain(s::pgs_complex(
+                    mesh,
+                    opts,
+                    PgsOptions::default(),
+                    progress,
+                )?),
+                Bi2Kind::PgsDscc => SurfaceOutput::plain(s::pgs_complex(
+                    mesh,
+                    opts,
+                    PgsOptions { dscc_steps: 2 },
+                    progress,
+                )?),
+                Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &poles, progress)?),
+                Bi2Kind::Tps => {
+                    with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?)
+                }
+                Bi2Kind::TpsAdjustable => with_notes(s::tps_complex(mesh, opts, rules, progress)?),
+                Bi2Kind::Mixed => SurfaceOutput::plain(s::mixed_complex(mesh, opts, progress)?),
+            })
+        })
     }
 
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
@@ -152,44 +174,5 @@ impl LocalRules for Bi2Local {
     /// The bi-2 paper's polynomials, eigenvalues and limit points (its own matrix layout).
     fn published(&self, n: usize, _: &Computed<'_>) -> Result<Vec<Published>> {
         super::local::published_rules(self.kind, n, self.rules)
-    }
-}
-
-/// The exact surface of a member of the family: regular bi-2 patches, the member's rings and
-/// fill per element.
-struct Bi2Patches {
-    kind: Bi2Kind,
-    rules: TernaryRules,
-    poles: Vec<(usize, crate::geom::Point)>,
-}
-
-impl PatchRules for Bi2Patches {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        use super::surface as s;
-        let with_notes = |(complex, notes)| SurfaceOutput {
-            complex,
-            fell_back: Vec::new(),
-            notes,
-        };
-        Ok(match self.kind {
-            Bi2Kind::Pgs => {
-                SurfaceOutput::plain(s::pgs_complex(mesh, opts, PgsOptions::default(), progress)?)
-            }
-            Bi2Kind::PgsDscc => SurfaceOutput::plain(s::pgs_complex(
-                mesh,
-                opts,
-                PgsOptions { dscc_steps: 2 },
-                progress,
-            )?),
-            Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &self.poles, progress)?),
-            Bi2Kind::Tps => with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?),
-            Bi2Kind::TpsAdjustable => with_notes(s::tps_complex(mesh, opts, self.rules, progress)?),
-            Bi2Kind::Mixed => SurfaceOutput::plain(s::mixed_complex(mesh, opts, progress)?),
-        })
     }
 }

@@ -2,11 +2,10 @@
 
 use crate::bezier::BezierPatch;
 use crate::error::Result;
-use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
-    Published, Spec, SurfaceOutput,
+    Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
+    SurfaceOutput, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -20,9 +19,8 @@ pub static DESCRIPTOR: CcDescriptor = CcDescriptor;
 impl Descriptor for CcDescriptor {
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            refine: true,
-            patches: true,
             eval: true,
+            ..Capabilities::REFINE_AND_PATCHES
         }
     }
 
@@ -36,10 +34,14 @@ impl Descriptor for CcDescriptor {
         })))
     }
 
+    /// The adaptive loop with bi-3 patches and the Hermite-Coons fill, honouring the net's
+    /// sharp features under OpenSubdiv's options.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(CcPatchRules {
-            subd: spec.params.subd,
-        })))
+        let subd = spec.params.subd;
+        patch_fn(move |mesh, opts, progress| {
+            super::surface::catmull_clark_complex_with(mesh, opts, subd, progress)
+                .map(SurfaceOutput::plain)
+        })
     }
 
     fn patches_take_features(&self) -> bool {
@@ -48,24 +50,6 @@ impl Descriptor for CcDescriptor {
 
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         Ok(Some(Box::new(CcLocal)))
-    }
-}
-
-/// Catmull-Clark's exact surface: the adaptive loop with bi-3 patches and the Hermite-Coons fill,
-/// honouring the net's sharp features under OpenSubdiv's options.
-struct CcPatchRules {
-    subd: crate::mesh::tags::SubdOptions,
-}
-
-impl PatchRules for CcPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        super::surface::catmull_clark_complex_with(mesh, opts, self.subd, progress)
-            .map(SurfaceOutput::plain)
     }
 }
 

@@ -2,12 +2,10 @@
 
 use super::{DooSabin, DooSabinCc};
 use crate::error::Result;
-use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput,
+    Capabilities, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput, matrix_only, patch_fn,
 };
-use crate::schemes::local::LocalMatrix;
 
 /// Doo-Sabin (`cc = false`) or DS^CC (`cc = true`).
 #[derive(Debug)]
@@ -23,11 +21,7 @@ pub static DESCRIPTOR_CC: DsDescriptor = DsDescriptor { cc: true };
 
 impl Descriptor for DsDescriptor {
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: true,
-            patches: true,
-            eval: false,
-        }
+        Capabilities::REFINE_AND_PATCHES
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
@@ -38,42 +32,24 @@ impl Descriptor for DsDescriptor {
         }))
     }
 
+    /// Bi-2 patches of regular vertices, rings, centroid fill.
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(DsPatchRules { cc: self.cc })))
+        let cc = self.cc;
+        patch_fn(move |mesh, opts, progress| {
+            let c = if cc {
+                super::surface::doo_sabin_cc_complex(mesh, opts, progress)
+            } else {
+                super::surface::doo_sabin_complex(mesh, opts, progress)
+            };
+            c.map(SurfaceOutput::plain)
+        })
     }
 
+    /// Doo-Sabin's local analysis: the block of an `n`-gon facet (none for DS^CC).
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
-        Ok((!self.cc).then(|| Box::new(DsLocal) as Box<dyn LocalRules>))
-    }
-}
-
-/// The exact surface of Doo-Sabin or DS^CC: bi-2 patches of regular vertices, rings, centroid
-/// fill.
-struct DsPatchRules {
-    cc: bool,
-}
-
-impl PatchRules for DsPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        let c = if self.cc {
-            super::surface::doo_sabin_cc_complex(mesh, opts, progress)
-        } else {
-            super::surface::doo_sabin_complex(mesh, opts, progress)
-        };
-        c.map(SurfaceOutput::plain)
-    }
-}
-
-/// Doo-Sabin's local analysis: the block of an `n`-gon facet.
-struct DsLocal;
-
-impl LocalRules for DsLocal {
-    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
-        super::local::local_matrix(n)
+        if self.cc {
+            return Ok(None);
+        }
+        matrix_only(super::local::local_matrix)
     }
 }

@@ -7,10 +7,9 @@ use super::select::{self, Selected};
 use super::surface::{EgOptions, EgRulesProvider, dnet_complex};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, ExtraFacts, Fallback, LocalRules,
-    ParamKind, PatchRules, Published, RulesChoice, RulesOrigin, Spec, SurfaceOutput, ValenceRules,
+    Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published, RulesChoice,
+    RulesOrigin, Spec, ValenceRules, patch_fn,
 };
 use crate::schemes::local::{LocalMatrix, spectrum};
 
@@ -22,23 +21,21 @@ pub struct EgDescriptor;
 pub static DESCRIPTOR: EgDescriptor = EgDescriptor;
 
 impl Descriptor for EgDescriptor {
-    fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: false,
-            patches: true,
-            eval: false,
-        }
-    }
-
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fallback, ParamKind::Rules]
     }
 
+    /// Catmull-Clark's adaptive loop with EG caps.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(EgPatchRules {
-            fallback: spec.params.fallback,
-            choice: spec.params.rules,
-        })))
+        let (fallback, choice) = (spec.params.fallback, spec.params.rules);
+        patch_fn(move |mesh, opts, progress| {
+            let o = EgOptions {
+                rings: opts.rings,
+                fill: opts.fill,
+                fallback,
+            };
+            dnet_complex(&EgRulesProvider { choice }, mesh, o, progress)
+        })
     }
 
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
@@ -53,35 +50,6 @@ impl Descriptor for EgDescriptor {
             spec.params.rules,
             spec.params.fallback,
         ))
-    }
-}
-
-/// EG's exact surface: Catmull-Clark's adaptive loop with EG caps.
-struct EgPatchRules {
-    fallback: Fallback,
-    choice: RulesChoice,
-}
-
-impl PatchRules for EgPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        let o = EgOptions {
-            rings: opts.rings,
-            fill: opts.fill,
-            fallback: self.fallback,
-        };
-        dnet_complex(
-            &EgRulesProvider {
-                choice: self.choice,
-            },
-            mesh,
-            o,
-            progress,
-        )
     }
 }
 

@@ -6,10 +6,8 @@ use super::rings::{GuidedOptions, RingDegree};
 use super::surface::{GuidedComplexOptions, guided_complex};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
-use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, Fallback, LocalRules, ParamKind,
-    PatchRules, Published, Spec, SurfaceOutput,
+    Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -38,23 +36,25 @@ pub static BI3_MACRO: GuidedDescriptor = GuidedDescriptor {
 };
 
 impl Descriptor for GuidedDescriptor {
-    fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: false,
-            patches: true,
-            eval: false,
-        }
-    }
-
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fallback, ParamKind::Contraction]
     }
 
+    /// Catmull-Clark's adaptive loop with guided caps.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(GuidedPatchRules {
-            scheme: self.options(spec),
-            fallback: spec.params.fallback,
-        })))
+        let (scheme, fallback) = (self.options(spec), spec.params.fallback);
+        patch_fn(move |mesh, opts, progress| {
+            guided_complex(
+                mesh,
+                GuidedComplexOptions {
+                    rings: opts.rings,
+                    cap: opts.fill,
+                    scheme,
+                    fallback,
+                },
+                progress,
+            )
+        })
     }
 
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
@@ -74,32 +74,6 @@ impl GuidedDescriptor {
             chi: spec.params.chi.unwrap_or_default(),
             ..GuidedOptions::default()
         }
-    }
-}
-
-/// Guided subdivision's exact surface: Catmull-Clark's adaptive loop with guided caps.
-struct GuidedPatchRules {
-    scheme: GuidedOptions,
-    fallback: Fallback,
-}
-
-impl PatchRules for GuidedPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        guided_complex(
-            mesh,
-            GuidedComplexOptions {
-                rings: opts.rings,
-                cap: opts.fill,
-                scheme: self.scheme,
-                fallback: self.fallback,
-            },
-            progress,
-        )
     }
 }
 

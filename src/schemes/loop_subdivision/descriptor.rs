@@ -4,10 +4,9 @@ use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Descriptor, LocalRules, ParamKind, PatchRules, Spec,
-    SurfaceOutput,
+    Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput, matrix_only,
+    patch_fn,
 };
-use crate::schemes::local::LocalMatrix;
 
 /// Loop.
 #[derive(Debug)]
@@ -19,9 +18,8 @@ pub static DESCRIPTOR: LoopDescriptor = LoopDescriptor;
 impl Descriptor for LoopDescriptor {
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            refine: true,
-            patches: true,
             eval: true,
+            ..Capabilities::REFINE_AND_PATCHES
         }
     }
 
@@ -39,34 +37,15 @@ impl Descriptor for LoopDescriptor {
         })))
     }
 
+    /// Quartic box-spline triangles, rings, Hermite fill.
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(LoopPatchRules)))
+        patch_fn(|mesh, opts, progress| {
+            super::surface::loop_complex(mesh, opts, progress).map(SurfaceOutput::plain)
+        })
     }
 
+    /// The matrix on the one-ring.
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
-        Ok(Some(Box::new(LoopLocal)))
-    }
-}
-
-/// Loop's exact surface: quartic box-spline triangles, rings, Hermite fill.
-struct LoopPatchRules;
-
-impl PatchRules for LoopPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        super::surface::loop_complex(mesh, opts, progress).map(SurfaceOutput::plain)
-    }
-}
-
-/// Loop's local analysis on the one-ring.
-struct LoopLocal;
-
-impl LocalRules for LoopLocal {
-    fn matrix(&self, n: usize) -> Result<LocalMatrix> {
-        super::local::local_matrix(n)
+        matrix_only(super::local::local_matrix)
     }
 }

@@ -4,11 +4,10 @@
 use super::{NonBox, NonBox4Dir};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
-use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, LocalRules, ParamKind, PatchRules,
-    Published, Spec, SurfaceOutput,
+    Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
+    SurfaceOutput, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -27,11 +26,7 @@ pub static DESCRIPTOR_4DIR: NonBoxDescriptor = NonBoxDescriptor { four_dir: true
 
 impl Descriptor for NonBoxDescriptor {
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: true,
-            patches: true,
-            eval: false,
-        }
+        Capabilities::REFINE_AND_PATCHES
     }
 
     fn params(&self) -> &'static [ParamKind] {
@@ -46,42 +41,28 @@ impl Descriptor for NonBoxDescriptor {
         }))
     }
 
+    /// Four cubic triangles per regular cell, rings, fill; the notes say how the input's FCVs
+    /// were read.
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(NonBoxPatchRules {
-            four_dir: self.four_dir,
-        })))
+        let four_dir = self.four_dir;
+        patch_fn(move |mesh, opts, progress| {
+            let complex = if four_dir {
+                super::surface::nonbox_4dir_mesh_complex(mesh, opts, progress)?
+            } else {
+                super::surface::nonbox_mesh_complex(mesh, opts, progress)?
+            };
+            Ok(SurfaceOutput {
+                complex,
+                fell_back: Vec::new(),
+                notes: super::input_notes(four_dir, mesh),
+            })
+        })
     }
 
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         Ok(Some(Box::new(NonBoxLocal {
             four_dir: self.four_dir,
         })))
-    }
-}
-
-/// The exact surface of a non-box scheme: four cubic triangles per regular cell, rings, fill;
-/// the notes say how the input's FCVs were read.
-struct NonBoxPatchRules {
-    four_dir: bool,
-}
-
-impl PatchRules for NonBoxPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        let complex = if self.four_dir {
-            super::surface::nonbox_4dir_mesh_complex(mesh, opts, progress)?
-        } else {
-            super::surface::nonbox_mesh_complex(mesh, opts, progress)?
-        };
-        Ok(SurfaceOutput {
-            complex,
-            fell_back: Vec::new(),
-            notes: super::input_notes(self.four_dir, mesh),
-        })
     }
 }
 

@@ -10,10 +10,9 @@ use super::select::{self, QasSelected};
 use super::surface::{Contraction, QasSurface, qas_surface};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::{
-    Capabilities, ComplexOptions, Computed, Descriptor, ExtraFacts, LocalRules, ParamKind,
-    PatchRules, Published, RulesChoice, RulesOrigin, SchemeId, Spec, SurfaceOutput, ValenceRules,
+    Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published, RulesChoice,
+    RulesOrigin, SchemeId, Spec, ValenceRules, patch_fn,
 };
 use crate::schemes::eg::derive::MAX_VALENCE;
 use crate::schemes::eg::select as eg_select;
@@ -59,14 +58,6 @@ pub static DESCRIPTOR_05_04: QasDescriptor = QasDescriptor {
 };
 
 impl Descriptor for QasDescriptor {
-    fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: false,
-            patches: true,
-            eval: false,
-        }
-    }
-
     fn params(&self) -> &'static [ParamKind] {
         match self.variant {
             QasVariant::Bi3 => &[ParamKind::Fallback, ParamKind::Rules],
@@ -74,11 +65,24 @@ impl Descriptor for QasDescriptor {
         }
     }
 
+    /// Catmull-Clark's adaptive loop with QAS+ caps (EG's at valence 3).
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        Ok(Some(Box::new(QasPatchRules {
-            variant: self.variant,
-            spec: spec.clone(),
-        })))
+        let (variant, params) = (self.variant, spec.params.clone());
+        patch_fn(move |mesh, opts, progress| {
+            let o = EgOptions {
+                rings: opts.rings,
+                fill: opts.fill,
+                fallback: params.fallback,
+            };
+            let q = QasSurface {
+                id: variant.id(),
+                contraction: variant.contraction(),
+                bi3: variant == QasVariant::Bi3,
+                rules: params.rules,
+                overrides: params.q_overrides.clone(),
+            };
+            qas_surface(mesh, o, &q, progress)
+        })
     }
 
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
@@ -118,35 +122,6 @@ impl QasVariant {
             QasVariant::Fixed04 => ids::QAS_04,
             QasVariant::Gradual => ids::QAS_05_04,
         }
-    }
-}
-
-/// QAS+'s exact surface: Catmull-Clark's adaptive loop with QAS+ caps (EG's at valence 3).
-struct QasPatchRules {
-    variant: QasVariant,
-    spec: Spec,
-}
-
-impl PatchRules for QasPatchRules {
-    fn build(
-        &self,
-        mesh: &PolyMesh,
-        opts: ComplexOptions,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<SurfaceOutput> {
-        let o = EgOptions {
-            rings: opts.rings,
-            fill: opts.fill,
-            fallback: self.spec.params.fallback,
-        };
-        let q = QasSurface {
-            id: self.variant.id(),
-            contraction: self.variant.contraction(),
-            bi3: self.variant == QasVariant::Bi3,
-            rules: self.spec.params.rules,
-            overrides: self.spec.params.q_overrides.clone(),
-        };
-        qas_surface(mesh, o, &q, progress)
     }
 }
 
