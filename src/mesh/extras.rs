@@ -177,16 +177,14 @@ impl PolyMesh {
             Some(t) => t,
             None => Self::general_topology(nv, &face_start, &corners, uniform),
         };
-        Ok(PolyMesh {
+        Ok(Self::assemble(
             positions,
-            face_start: OnceLock::from(face_start),
+            face_start,
             corners,
             uniform,
-            topo: OnceLock::from(topo),
-            edges: OnceLock::new(),
-            dropped: Vec::new(),
-            extras: None,
-        })
+            topo,
+            Vec::new(),
+        ))
     }
 
     /// The tolerant topology of a base net (OpenSubdiv's edge identification).
@@ -197,15 +195,7 @@ impl PolyMesh {
         uniform: u32,
     ) -> Topology {
         let nh = corners.len();
-        let he_face: Vec<u32> = if uniform == 0 {
-            let mut he_face = vec![0u32; nh];
-            for f in 0..face_start.len() - 1 {
-                he_face[face_start[f] as usize..face_start[f + 1] as usize].fill(f as u32);
-            }
-            he_face
-        } else {
-            Vec::new()
-        };
+        let he_face = super::csr::halfedge_faces(face_start, nh, uniform);
         let faces = FaceIndex {
             face_start,
             he_face: &he_face,

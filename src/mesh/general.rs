@@ -174,20 +174,7 @@ impl Topology {
         drop(new_id);
         let ne = edge_he.len();
         // Sides per edge (CSR, in half-edge order).
-        let mut side_start = vec![0u32; ne + 1];
-        for &e in &he_edge {
-            side_start[e as usize + 1] += 1;
-        }
-        for e in 0..ne {
-            side_start[e + 1] += side_start[e];
-        }
-        let mut fill = side_start.clone();
-        let mut sides = vec![0u32; nh];
-        for (h, &e) in he_edge.iter().enumerate() {
-            sides[fill[e as usize] as usize] = h as u32;
-            fill[e as usize] += 1;
-        }
-        drop(fill);
+        let (side_start, sides) = super::csr::buckets(&he_edge, ne);
         let mut twin = vec![NONE; nh];
         for e in 0..ne {
             let s = &sides[side_start[e] as usize..side_start[e + 1] as usize];
@@ -206,20 +193,7 @@ impl Topology {
             }
         }
         // Outgoing half-edges per vertex (CSR, in increasing order).
-        let mut out_start = vec![0u32; nv + 1];
-        for &v in corners {
-            out_start[v as usize + 1] += 1;
-        }
-        for v in 0..nv {
-            out_start[v + 1] += out_start[v];
-        }
-        let mut fill = out_start.clone();
-        let mut out_he = vec![0u32; nh];
-        for (h, &v) in corners.iter().enumerate() {
-            out_he[fill[v as usize] as usize] = h as u32;
-            fill[v as usize] += 1;
-        }
-        drop(fill);
+        let (out_start, out_he) = super::csr::buckets(corners, nv);
         let outs = |v: usize| &out_he[out_start[v] as usize..out_start[v + 1] as usize];
         let mut vertex_nm: Vec<bool> = (0..nv)
             .map(|v| nm_vertex.get(v).copied().unwrap_or(false) || outs(v).is_empty())
@@ -245,19 +219,7 @@ impl Topology {
             }
             if !vertex_nm[v] {
                 // One fan: the rotation from `start` reaches every outgoing half-edge.
-                let mut count = 1;
-                let mut h = start;
-                loop {
-                    let t = twin[faces.prev(h) as usize];
-                    if t == NONE || t == start {
-                        break;
-                    }
-                    h = t;
-                    count += 1;
-                    if count > o.len() {
-                        break;
-                    }
-                }
+                let count = super::topology::fan_len(&twin, faces, start, o.len());
                 if count != o.len() || boundary_starts > 1 {
                     vertex_nm[v] = true;
                 }

@@ -11,6 +11,7 @@
 //! Rotating counter-clockwise around a vertex goes from outgoing half-edge `h` to
 //! `twin(prev(h))`.
 
+mod csr;
 mod element;
 mod extras;
 mod general;
@@ -272,7 +273,22 @@ impl PolyMesh {
                     (_, e) => e,
                 }
             })?;
-        Ok(PolyMesh {
+        Ok(Self::assemble(
+            positions, face_start, corners, uniform, topo, dropped,
+        ))
+    }
+
+    /// The mesh of checked face arrays and their topology (no extras); `dropped` lists the
+    /// input vertices no face used, removed.
+    pub(super) fn assemble(
+        positions: Vec<Point>,
+        face_start: Vec<u32>,
+        corners: Vec<u32>,
+        uniform: u32,
+        topo: Topology,
+        dropped: Vec<usize>,
+    ) -> PolyMesh {
+        PolyMesh {
             positions,
             face_start: OnceLock::from(face_start),
             corners,
@@ -281,7 +297,7 @@ impl PolyMesh {
             edges: OnceLock::new(),
             dropped,
             extras: None,
-        })
+        }
     }
 
     /// Builds a mesh whose validity is guaranteed by construction (refinement output). Still
@@ -316,16 +332,14 @@ impl PolyMesh {
     ) -> Result<PolyMesh> {
         let uniform = uniform_size(&face_start);
         let topo = Topology::build(positions.len(), &face_start, &corners, uniform, bow_ties)?;
-        Ok(PolyMesh {
+        Ok(Self::assemble(
             positions,
-            face_start: OnceLock::from(face_start),
+            face_start,
             corners,
             uniform,
-            topo: OnceLock::from(topo),
-            edges: OnceLock::new(),
-            dropped: Vec::new(),
-            extras: None,
-        })
+            topo,
+            Vec::new(),
+        ))
     }
 
     /// A mesh whose validity is guaranteed by construction (a refinement kernel's output) and

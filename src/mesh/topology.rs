@@ -18,20 +18,7 @@ impl Topology {
         relaxed: bool,
     ) -> std::result::Result<Topology, MeshError> {
         let nh = corners.len();
-        let nf = if uniform != 0 {
-            nh / uniform as usize
-        } else {
-            face_start.len() - 1
-        };
-        let he_face = if uniform == 0 {
-            let mut he_face = vec![0u32; nh];
-            for f in 0..nf {
-                he_face[face_start[f] as usize..face_start[f + 1] as usize].fill(f as u32);
-            }
-            he_face
-        } else {
-            Vec::new()
-        };
+        let he_face = super::csr::halfedge_faces(face_start, nh, uniform);
         let faces = FaceIndex {
             face_start,
             he_face: &he_face,
@@ -40,20 +27,7 @@ impl Topology {
         // Outgoing half-edges bucketed per vertex (CSR), in half-edge order; a large bucket is
         // sorted by (end vertex, half-edge), so the half-edges a -> b are one run found by binary
         // search and matching twins costs O(log valence) also around a vertex of high valence.
-        let mut out_start = vec![0u32; nv + 1];
-        for &v in corners {
-            out_start[v as usize + 1] += 1;
-        }
-        for v in 0..nv {
-            out_start[v + 1] += out_start[v];
-        }
-        let mut fill = out_start.clone();
-        let mut out_he = vec![0u32; nh];
-        for (h, &v) in corners.iter().enumerate() {
-            out_he[fill[v as usize] as usize] = h as u32;
-            fill[v as usize] += 1;
-        }
-        drop(fill);
+        let (out_start, mut out_he) = super::csr::buckets(corners, nv);
         let to = |h: u32| corners[faces.next(h) as usize];
         sort_buckets(&mut out_he, &out_start, to);
         let outs =
@@ -138,20 +112,7 @@ impl Topology {
                     if let Some(h) = last_boundary {
                         start = h;
                     }
-                    // Count faces reached by counter-clockwise rotation from `start`.
-                    let mut count = 1;
-                    let mut h = start;
-                    loop {
-                        let t = twin[faces.prev(h) as usize];
-                        if t == NONE || t == start {
-                            break;
-                        }
-                        h = t;
-                        count += 1;
-                        if count > outs.len() {
-                            break;
-                        }
-                    }
+                    let count = fan_len(&twin, faces, start, outs.len());
                     if !relaxed && (count != outs.len() || boundary_starts > 1) {
                         let fans = boundary_starts.max(2);
                         return Some((v, MeshError::NonManifoldVertex { vertex: v, fans }));
@@ -173,6 +134,26 @@ impl Topology {
             nm: None,
         })
     }
+}
+
+/// The number of faces reached by counter-clockwise rotation from the outgoing half-edge
+/// `start` (stopping at a boundary or back at `start`), at most `limit + 1`: a vertex with
+/// `limit` outgoing half-edges is one fan when it reaches them all.
+pub(super) fn fan_len(twin: &[u32], faces: FaceIndex<'_>, start: u32, limit: usize) -> usize {
+    let mut count = 1;
+    let mut h = start;
+    loop {
+        let t = twin[faces.prev(h) as usize];
+        if t == NONE || t == start {
+            break;
+        }
+        h = t;
+        count += 1;
+        if count > limit {
+            break;
+        }
+    }
+    count
 }
 
 /// Buckets of at most this many outgoing half-edges stay in half-edge order and are scanned;
