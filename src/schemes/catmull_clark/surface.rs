@@ -40,7 +40,6 @@ mod g1;
 mod jets;
 pub mod sharp;
 
-use super::CatmullClark;
 use super::regular::bi3_net;
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
@@ -496,51 +495,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         },
         sharp,
     })
-}
-
-/// Limit position and derivative along edge `a -> b` (unit edge parameter) at vertex `a`.
-fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
-    let pos = m.positions();
-    let lim = CatmullClark::limit_stencil(m, a).apply(pos);
-    let hs = m.outgoing_halfedges(a);
-    let quads = m
-        .vertex_faces(a)
-        .iter()
-        .all(|&f| m.face_size(f as usize) == 4);
-    if m.is_boundary_vertex(a) {
-        let nb = m.vertex_neighbors(a);
-        let (first, last) = (nb[0] as usize, *nb.last().expect("neighbours") as usize);
-        let along_boundary = b == first || b == last;
-        if along_boundary {
-            let other = if b == first { last } else { first };
-            let d = if nb.len() == 2 {
-                geom::sub(pos[b], pos[a])
-            } else {
-                geom::scale(geom::sub(pos[b], pos[other]), 0.5)
-            };
-            return (lim, d);
-        }
-        if nb.len() == 3 && quads {
-            // Regular boundary vertex, interior edge: derivative of the ghost-extended patch.
-            let s = CatmullClark::boundary_cross_stencil(m, a, &hs, &nb);
-            return (lim, geom::scale(s.apply(pos), 1.0 / 6.0));
-        }
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
-    }
-    if !quads {
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
-    }
-    let j = hs
-        .iter()
-        .position(|&h| m.he_to(h) as usize == b)
-        .unwrap_or(0);
-    let t = CatmullClark::eigen_tangent(m, &hs, j);
-    (
-        lim,
-        geom::scale(t.apply(pos), 1.0 / (3.0 * hs.len() as f64)),
-    )
 }
 
 /// The Hermite-Coons fill of the marked faces of the last level.

@@ -1,0 +1,30 @@
+//! Tests of PGS's parameters and DS-net labels.
+
+use super::*;
+
+#[test]
+fn regular_parameters_are_bi2() {
+    let p = PgsParams::new(4).unwrap();
+    assert_eq!(p.mu, 1.0);
+    assert!((p.lambda - 0.5).abs() < 1e-15);
+    assert!((p.w1 - 0.5).abs() < 1e-15 && (p.w2 - 0.125).abs() < 1e-15);
+    assert!((p.alpha - 0.5).abs() < 1e-15);
+    assert!(PgsParams::new(2).is_err());
+}
+
+#[test]
+fn ds_net_labels() {
+    for n in [3, 5, 8] {
+        let m = ds_net(n, |_, _| 0.0).unwrap();
+        let net = Pgs::facet_net(&m, 0).expect("the DS-net's facet has a DS-net");
+        for s in 0..n {
+            assert_eq!(net.a[s] as usize, ds_net_index(s, 0, 0));
+            assert_eq!(net.b[s] as usize, ds_net_index(s, 1, 0), "b_{s}");
+            assert_eq!(net.d[s] as usize, ds_net_index(s, 0, 1), "d_{s}");
+        }
+        // Chart walks across sectors.
+        assert_eq!(ds_net_chart(n, 1, -1, 3), Some(ds_net_index(2, 1, 0)));
+        assert_eq!(ds_net_chart(n, 1, 3, -1), Some(ds_net_index(0, 0, 1)));
+        assert_eq!(ds_net_chart(n, 0, -1, -1), None);
+    }
+}
