@@ -7,7 +7,8 @@
 //! side `k` of child face `h`.
 
 use super::crease::{ChildEdge, SharpLevel};
-use crate::mesh::{FaceIndex, MeshView, NONE, PolyMesh, Topology, number_edges};
+use crate::geom::Point;
+use crate::mesh::{FaceIndex, MeshParts, MeshView, NONE, PolyMesh, Topology, number_edges};
 use rayon::prelude::*;
 
 /// Child points (or parent half-edges) per parallel task.
@@ -234,4 +235,30 @@ pub(super) fn child_extras(
             out.extend(s..s + k);
         },
     )
+}
+
+/// The last step of [`super::CatmullClark::refine_uniform`]: consumes the parent, keeping only
+/// what the child faces need (its corners, face offsets and edge numbers).
+pub(super) fn last_child(parent: PolyMesh, positions: Vec<Point>) -> PolyMesh {
+    let nv = parent.num_vertices();
+    let ne = parent.num_edges();
+    let MeshParts {
+        positions: parent_positions,
+        face_start,
+        corners,
+        uniform,
+        topo,
+    } = parent.into_parts();
+    drop(parent_positions);
+    let Topology {
+        he_face, he_edge, ..
+    } = topo.expect("an intermediate level has its topology");
+    let faces = FaceIndex {
+        face_start: &face_start,
+        he_face: &he_face,
+        uniform,
+    };
+    let child = child_corners(faces, &corners, &he_edge, nv, ne);
+    drop((face_start, corners, he_face, he_edge));
+    PolyMesh::from_trusted_uniform(positions, 4, child, None)
 }

@@ -45,7 +45,7 @@ use super::{Refinement, Scheme};
 use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::tags::{SubdOptions, TriangleSubdivision};
-use crate::mesh::{FaceIndex, MeshParts, MeshView, NONE, PolyMesh, Topology};
+use crate::mesh::{MeshView, NONE, PolyMesh};
 use crate::stencil::{RowWriter, Stencil, StencilTable, Terms, axpy};
 use child::{BLOCK, child_corners};
 pub(crate) use child::{edge_half, general_child_topology, half_child_edge};
@@ -527,36 +527,10 @@ impl CatmullClark {
                         .as_ref()
                         .map(|sl| child::child_extras(&p, sl, None));
                     drop(rules);
-                    Self::last_child(p, positions).with_extras(extras)
+                    child::last_child(p, positions).with_extras(extras)
                 }
             })
         })
-    }
-
-    /// The last step of [`CatmullClark::refine_uniform`]: consumes the parent, keeping only
-    /// what the child faces need (its corners, face offsets and edge numbers).
-    fn last_child(parent: PolyMesh, positions: Vec<Point>) -> PolyMesh {
-        let nv = parent.num_vertices();
-        let ne = parent.num_edges();
-        let MeshParts {
-            positions: parent_positions,
-            face_start,
-            corners,
-            uniform,
-            topo,
-        } = parent.into_parts();
-        drop(parent_positions);
-        let Topology {
-            he_face, he_edge, ..
-        } = topo.expect("an intermediate level has its topology");
-        let faces = FaceIndex {
-            face_start: &face_start,
-            he_face: &he_face,
-            uniform,
-        };
-        let child = child_corners(faces, &corners, &he_edge, nv, ne);
-        drop((face_start, corners, he_face, he_edge));
-        PolyMesh::from_trusted_uniform(positions, 4, child, None)
     }
 }
 
