@@ -40,8 +40,8 @@ mod g1;
 mod jets;
 pub mod sharp;
 
-use super::CatmullClark;
 use super::regular::bi3_net;
+use super::{CatmullClark, LimitStencils};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::{Error, Result};
@@ -499,9 +499,10 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
 }
 
 /// Limit position and derivative along edge `a -> b` (unit edge parameter) at vertex `a`.
-fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
+fn limit_and_derivative(ls: &LimitStencils<'_>, a: usize, b: usize) -> (Point, Point) {
+    let m = ls.mesh();
     let pos = m.positions();
-    let lim = CatmullClark::limit_stencil(m, a).apply(pos);
+    let lim = ls.limit(a);
     let hs = m.outgoing_halfedges(a);
     let quads = m
         .vertex_faces(a)
@@ -525,12 +526,10 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
             let s = CatmullClark::boundary_cross_stencil(m, a, &hs, &nb);
             return (lim, geom::scale(s.apply(pos), 1.0 / 6.0));
         }
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
+        return (lim, geom::sub(ls.limit(b), lim));
     }
     if !quads {
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
+        return (lim, geom::sub(ls.limit(b), lim));
     }
     let j = hs
         .iter()
