@@ -6,7 +6,72 @@ use super::{CatmullClark, Opts};
 use crate::geom::{self, Point};
 use crate::mesh::{MeshView, PolyMesh};
 use crate::stencil::{RowWriter, Stencil, StencilTable, Terms};
+use std::cell::OnceCell;
+use std::collections::HashMap;
 use std::f64::consts::PI;
+
+/// Limit-position stencils of single vertices of one mesh under the default options, with the
+/// mesh's sharp level built once (and the child of a mesh with non-quads built once, on first
+/// need): the per-level object behind the fills' limit points, which ask for one vertex at a
+/// time and would otherwise rebuild the whole level per vertex (quadratic on creased nets).
+pub struct LimitStencils<'m> {
+    mesh: &'m PolyMesh,
+    sharp: Option<SharpLevel<'m>>,
+    /// The composed stencils of the vertices whose limit goes through the child (next to a
+    /// non-quad and smooth), all computed from one child.
+    through_child: OnceCell<HashMap<usize, Stencil>>,
+}
+
+/// Terms that are dropped (to ask [`limit_terms`] only whether it applies).
+struct Discard;
+
+impl Terms for Discard {
+    fn add(&mut self, _: u32, _: f64) {}
+}
+
+impl<'m> LimitStencils<'m> {
+    /// The limit stencils of `mesh` (its sharp features as its extras say, default options).
+    pub fn new(mesh: &'m PolyMesh) -> Self {
+        LimitStencils {
+            mesh,
+            sharp: SharpLevel::new(mesh, &Opts::default()),
+            through_child: OnceCell::new(),
+        }
+    }
+
+    /// The mesh the stencils are of.
+    pub fn mesh(&self) -> &'m PolyMesh {
+        self.mesh
+    }
+
+    /// Limit-position stencil of vertex `v` (as [`CatmullClark::limit_stencil`]).
+    pub fn stencil(&self, v: usize) -> Stencil {
+        if let Some(s) = CatmullClark::direct_limit_stencil(self.mesh, self.sharp.as_ref(), v) {
+            return s;
+        }
+        self.through_child.get_or_init(|| self.child_stencils())[&v].clone()
+    }
+
+    /// The limit point of vertex `v`.
+    pub fn limit(&self, v: usize) -> Point {
+        self.stencil(v).apply(self.mesh.positions())
+    }
+
+    fn child_stencils(&self) -> HashMap<usize, Stencil> {
+        let opts = Opts::default();
+        let (cm, cs) = CatmullClark::child(self.mesh, &opts);
+        let child_sharp = SharpLevel::new(&cm, &opts);
+        let m = self.mesh.view();
+        let mut scratch = Scratch::default();
+        (0..self.mesh.num_vertices())
+            .filter(|&v| !limit_terms(&m, self.sharp.as_ref(), v, &mut scratch, &mut Discard))
+            .map(|v| {
+                let s = CatmullClark::limit_through_child(&cm, &cs, child_sharp.as_ref(), v);
+                (v, s)
+            })
+            .collect()
+    }
+}
 
 /// The smooth limit mask of interior vertex `v` when all its faces are quads:
 /// `(n^2 v + 4 sum e_j + sum f_j) / (n (n + 5))` (a vertex with two faces stays, as in
@@ -110,15 +175,10 @@ impl CatmullClark {
         })
     }
 
-    /// Limit-position stencil of one vertex (see [`CatmullClark::limit_stencils`]).
+    /// Limit-position stencil of one vertex (see [`CatmullClark::limit_stencils`]). Builds the
+    /// sharp level of the whole mesh: for many vertices of one mesh use [`LimitStencils`].
     pub fn limit_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
-        let opts = Opts::default();
-        let sharp = SharpLevel::new(mesh, &opts);
-        Self::direct_limit_stencil(mesh, sharp.as_ref(), v).unwrap_or_else(|| {
-            let (cm, cs) = Self::child(mesh, &opts);
-            let child_sharp = SharpLevel::new(&cm, &opts);
-            Self::limit_through_child(&cm, &cs, child_sharp.as_ref(), v)
-        })
+        LimitStencils::new(mesh).stencil(v)
     }
 
     fn child(mesh: &PolyMesh, opts: &Opts) -> (PolyMesh, StencilTable) {

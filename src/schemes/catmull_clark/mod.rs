@@ -39,6 +39,7 @@ pub mod local;
 pub mod regular;
 pub mod surface;
 pub use descriptor::DESCRIPTOR;
+pub use limit::LimitStencils;
 
 use super::common::check_child_size;
 use super::{Refinement, Scheme};

@@ -13,7 +13,7 @@
 //!   patch, segment `b` the side `q -> K` of the ring patch across it. The ring patches are the
 //!   exact bi-3 limit patches of faces of the same level, so the data are exact and C^2
 //!   compatible at every spoke end and corner (all of them are regular vertices of the limit);
-//! * **centre**: Catmull-Clark's limit point of `x` ([`CatmullClark::limit_stencil`]);
+//! * **centre**: Catmull-Clark's limit point of `x` ([`LimitStencils`]);
 //! * **tangent plane**: spanned by the two eigen tangents of Halstead et al.
 //!   ([`CatmullClark::tangent_stencils`]); the spoke tangents' scale from the ring's chart in
 //!   that plane ([`crate::bezier::g1::ring::chart_tangents`]);
@@ -36,7 +36,7 @@ use crate::bezier::g1::{CapOptions, Hole, Segment};
 use crate::geom::{Point, cross};
 use crate::host::adaptive::Tag;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::CatmullClark;
+use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
@@ -92,6 +92,7 @@ fn segment_across(level: &Level, hole_he: u32, from: u32) -> Option<Segment> {
 /// the marked face (and tag) of each, or why there is none.
 fn hole_of(
     level: &Level,
+    limits: &LimitStencils<'_>,
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<(Hole, Point, Vec<Tag>), NoCap> {
@@ -148,7 +149,7 @@ fn hole_of(
         return Err(NoCap::Later);
     }
     let pos = m.positions();
-    let centre = CatmullClark::limit_stencil(m, xu).apply(pos);
+    let centre = limits.limit(xu);
     let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
     let normal = cross(t1.apply(pos), t2.apply(pos));
     let hole = Hole {
@@ -162,8 +163,9 @@ fn hole_of(
 /// Whether some marked element would get its G^1 cap after more levels (its faces still touch
 /// another element's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+    let limits = LimitStencils::new(&level.mesh);
     by_element(marked).iter().any(|(e, faces)| match e {
-        Some(e) => hole_of(level, *e, faces).err() == Some(NoCap::Later),
+        Some(e) => hole_of(level, &limits, *e, faces).err() == Some(NoCap::Later),
         None => false,
     })
 }
@@ -176,9 +178,10 @@ pub(super) fn g1_caps(
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
     let mut left = Vec::new();
+    let limits = LimitStencils::new(&level.mesh);
     for (element, faces) in by_element(marked) {
         let capped = element.and_then(|e| {
-            let (hole, normal, tags) = hole_of(level, e, &faces).ok()?;
+            let (hole, normal, tags) = hole_of(level, &limits, e, &faces).ok()?;
             let cap = cap_in_plane(hole, normal, CapOptions::default()).ok()?;
             Some((e, cap, tags))
         });

@@ -11,7 +11,7 @@
 
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
-use crate::schemes::catmull_clark::CatmullClark;
+use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
@@ -27,7 +27,8 @@ struct Jet {
 
 /// The vertices' jets of one level, computed on first use.
 pub(super) struct Jets<'m> {
-    mesh: &'m PolyMesh,
+    /// The level's limit stencils, its sharp level built once.
+    limits: LimitStencils<'m>,
     cache: HashMap<usize, Option<Jet>>,
     /// With sharp features: the vertices whose derivatives are the chords of the limit points
     /// ([`super::sharp::chord_vertices`]).
@@ -38,7 +39,7 @@ impl<'m> Jets<'m> {
     /// No jet computed yet.
     pub(super) fn new(mesh: &'m PolyMesh) -> Self {
         Jets {
-            mesh,
+            limits: LimitStencils::new(mesh),
             cache: HashMap::new(),
             chord: super::sharp::chord_vertices(mesh),
         }
@@ -47,14 +48,12 @@ impl<'m> Jets<'m> {
     /// The limit point of vertex `v` and the derivative of the limit curve of edge `v -> w`
     /// at `v`, in the edge's unit parameter (as [`limit_and_derivative`]).
     pub(super) fn limit_and_derivative(&mut self, v: usize, w: usize) -> (Point, Point) {
-        let m = self.mesh;
         if self.chord.as_ref().is_some_and(|c| c[v]) {
-            let pos = m.positions();
-            let lim = CatmullClark::limit_stencil(m, v).apply(pos);
-            let other = CatmullClark::limit_stencil(m, w).apply(pos);
-            return (lim, geom::sub(other, lim));
+            let lim = self.limits.limit(v);
+            return (lim, geom::sub(self.limits.limit(w), lim));
         }
-        let jet = self.cache.entry(v).or_insert_with(|| jet(m, v));
+        let limits = &self.limits;
+        let jet = self.cache.entry(v).or_insert_with(|| jet(limits, v));
         match jet {
             Some(j) => {
                 let n = j.n;
@@ -63,13 +62,14 @@ impl<'m> Jets<'m> {
                 let d = geom::add(geom::scale(j.a, t.cos()), geom::scale(j.b, t.sin()));
                 (j.limit, geom::scale(d, 1.0 / (3.0 * n as f64)))
             }
-            None => limit_and_derivative(m, v, w),
+            None => limit_and_derivative(&self.limits, v, w),
         }
     }
 }
 
 /// The jet of `v`, `None` when `v` is a boundary vertex or touches a face that is not a quad.
-fn jet(m: &PolyMesh, v: usize) -> Option<Jet> {
+fn jet(limits: &LimitStencils<'_>, v: usize) -> Option<Jet> {
+    let m = limits.mesh();
     if m.is_boundary_vertex(v)
         || m.vertex_faces(v)
             .iter()
@@ -94,7 +94,7 @@ fn jet(m: &PolyMesh, v: usize) -> Option<Jet> {
         index.entry(m.he_to(h)).or_insert(i);
     }
     Some(Jet {
-        limit: CatmullClark::limit_stencil(m, v).apply(pos),
+        limit: limits.limit(v),
         a,
         b,
         n,
@@ -103,9 +103,10 @@ fn jet(m: &PolyMesh, v: usize) -> Option<Jet> {
 }
 
 /// Limit position and derivative along edge `a -> b` (unit edge parameter) at vertex `a`.
-fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
+fn limit_and_derivative(ls: &LimitStencils<'_>, a: usize, b: usize) -> (Point, Point) {
+    let m = ls.mesh();
     let pos = m.positions();
-    let lim = CatmullClark::limit_stencil(m, a).apply(pos);
+    let lim = ls.limit(a);
     let hs = m.outgoing_halfedges(a);
     let quads = m
         .vertex_faces(a)
@@ -129,12 +130,10 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
             let s = CatmullClark::boundary_cross_stencil(m, a, &hs, &nb);
             return (lim, geom::scale(s.apply(pos), 1.0 / 6.0));
         }
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
+        return (lim, geom::sub(ls.limit(b), lim));
     }
     if !quads {
-        let lb = CatmullClark::limit_stencil(m, b).apply(pos);
-        return (lim, geom::sub(lb, lim));
+        return (lim, geom::sub(ls.limit(b), lim));
     }
     let j = hs
         .iter()

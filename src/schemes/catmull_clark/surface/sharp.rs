@@ -64,33 +64,37 @@ fn is_semi(s: f32) -> bool {
 /// Level 0 with sharp features: the net with its sharpened extras and their arrays, or `None`
 /// when the plain rules give the same surface (no feature, edge-and-corner boundaries).
 pub(super) fn start(mesh: &PolyMesh, opts: &SubdOptions) -> Option<(PolyMesh, Features)> {
-    let sl = SharpLevel::new(mesh, opts)?;
+    let SharpLevel {
+        edges,
+        vertices,
+        holes,
+        ..
+    } = SharpLevel::new(mesh, opts)?;
     let mut hole = vec![false; mesh.num_faces()];
-    for &f in &sl.holes {
+    for &f in &holes {
         hole[f as usize] = true;
     }
     let extras = Extras {
         sharp_edges: SharpEdges::ById(
-            (0..sl.edges.len() as u32)
-                .filter(|&e| sl.edges[e as usize] > 0.0)
-                .map(|e| (e, sl.edges[e as usize]))
+            (0..edges.len() as u32)
+                .filter(|&e| edges[e as usize] > 0.0)
+                .map(|e| (e, edges[e as usize]))
                 .collect(),
         ),
-        sharp_vertices: (0..sl.vertices.len() as u32)
-            .filter(|&v| sl.vertices[v as usize] > 0.0)
-            .map(|v| (v, sl.vertices[v as usize]))
+        sharp_vertices: (0..vertices.len() as u32)
+            .filter(|&v| vertices[v as usize] > 0.0)
+            .map(|v| (v, vertices[v as usize]))
             .collect(),
-        holes: sl.holes.clone(),
+        holes,
         sharpened: true,
         ..Extras::default()
     };
     let features = Features {
         opts: *opts,
-        edges: sl.edges.clone(),
-        vertices: sl.vertices.clone(),
+        edges,
+        vertices,
         hole,
     };
-    drop(sl);
     Some((mesh.clone().with_extras(Some(extras)), features))
 }
 
@@ -285,7 +289,7 @@ pub(super) fn child(
     };
     let child = child.with_extras(Some(extras));
     let edges = match SharpLevel::new(&child, &ft.opts) {
-        Some(sl) => sl.edges.clone(),
+        Some(sl) => sl.edges,
         None => vec![0.0; child.num_edges()],
     };
     let features = Features {
