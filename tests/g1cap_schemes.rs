@@ -99,3 +99,19 @@ fn catmull_clark() {
         print_curvature("catmull-clark", &name, &c);
     }
 }
+
+/// Doo-Sabin, DS^CC and PGS (one host): G^1 caps on the V-faces and F-faces of the gallery,
+/// C^1 to the bi-2 ring.
+#[test]
+fn dual_bi2() {
+    for scheme in ["doo-sabin", "doo-sabin-cc", "pgs"] {
+        for (name, net) in quad_gallery() {
+            let c = build(scheme, &net, 3);
+            let r = assert_g1(scheme, &name, &c, Some(1e-10));
+            if net.boundary_loops().is_empty() {
+                assert_eq!(r.open_sides, 0, "{scheme} {name}");
+            }
+            print_curvature(scheme, &name, &c);
+        }
+    }
+}

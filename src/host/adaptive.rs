@@ -137,6 +137,58 @@ pub trait Cells {
     fn active(&self) -> &[(u32, Tag)];
 }
 
+/// The marked cells of one extraordinary element (`None`: cells of no element).
+pub type Group = (Option<Element>, Vec<(u32, Tag)>);
+
+/// The marked cells grouped by element, in order of first appearance (the caps of
+/// [`crate::bezier::g1`] close one element's hole at a time).
+pub fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
+    let mut index: HashMap<Option<Element>, usize> = HashMap::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for &(f, tag) in marked {
+        let k = *index.entry(tag.element).or_insert_with(|| {
+            groups.push((tag.element, Vec::new()));
+            groups.len() - 1
+        });
+        groups[k].1.push((f, tag));
+    }
+    groups
+}
+
+/// The hole data of one element's G^1 cap: the hole (centre set), the normal of its limit
+/// tangent plane, and the tag of each sector's cell in the hole's sector order.
+pub type CapData = (crate::bezier::g1::Hole, Point, Vec<Tag>);
+
+/// Closes with the G^1 cap of [`crate::bezier::g1`] (spoke tangents from the ring's chart,
+/// [`crate::bezier::g1::ring::cap_in_plane`]) every element of the marked cells for which
+/// `hole_of` gives the data; the cap patches are pushed with the sectors' tags (domain and
+/// sector). Returns the cells left for the scheme's C^0 fill.
+pub fn g1_cap_elements(
+    marked: &[(u32, Tag)],
+    out: &mut PatchComplex,
+    mut hole_of: impl FnMut(Element, &[(u32, Tag)]) -> Option<CapData>,
+) -> Vec<(u32, Tag)> {
+    use crate::bezier::g1::{CapOptions, ring::cap_in_plane};
+    let mut left = Vec::new();
+    for (element, cells) in by_element(marked) {
+        let capped = element.and_then(|e| {
+            let (hole, normal, tags) = hole_of(e, &cells)?;
+            let cap = cap_in_plane(hole, normal, CapOptions::default()).ok()?;
+            Some((e, cap, tags))
+        });
+        match capped {
+            Some((element, cap, tags)) => {
+                for (p, tag) in cap.patches.into_iter().zip(tags) {
+                    let sector = tag.sector;
+                    out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
+                }
+            }
+            None => left.extend(cells),
+        }
+    }
+    left
+}
+
 /// Where a level's patches go: the complex being built and the level's edge curves.
 pub struct Sink<'a, C> {
     /// The edge curves of the cells emitted at this level.

@@ -60,6 +60,15 @@
 //! way but cannot fill an extraordinary vertex (its region is n-sided): that is an error naming
 //! the vertex. `--no-fill` leaves the holes open.
 //!
+//! # The G^1 cap
+//!
+//! Where the hole of an element has complete ring data (every corner of the last level's
+//! n-gon is interior, touches no other n-gon, and its outer neighbours are ring vertices), the
+//! fill patches of the n-gon's corners are replaced by the G^1 cap of [`crate::bezier::g1`],
+//! centred at the facet's limit point with the limit tangent plane: conditions, free
+//! parameters and the extra levels that separate touching holes in [`g1`]. Only the other
+//! elements keep the centroid fill above.
+//!
 //! # Other dual bi-2 schemes
 //!
 //! The machinery takes the scheme's rules as a [`DualRules`] value (the stencil of a new corner
@@ -191,7 +200,12 @@ fn dual_complex(
     name: &str,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&DualHost { rules, name }, mesh, opts, &mut progress)
+    let host = DualHost {
+        rules,
+        name,
+        fill: opts.fill,
+    };
+    adaptive::run(&host, mesh, opts, &mut progress)
 }
 
 /// A dual scheme's rules for the adaptive loop: cells are vertices (each regular vertex is one
@@ -199,6 +213,9 @@ fn dual_complex(
 struct DualHost<'a, 'b> {
     rules: &'a DualRules<'b>,
     name: &'a str,
+    /// Whether the holes are closed (then up to [`g1::MAX_EXTRA_LEVELS`] more levels separate
+    /// touching holes for their G^1 caps).
+    fill: bool,
 }
 
 impl AdaptiveRules for DualHost<'_, '_> {
@@ -256,8 +273,17 @@ impl AdaptiveRules for DualHost<'_, '_> {
         retag(level, v as usize, tag, l == 0)
     }
 
+    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still touch.
+    fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
+        l >= rings
+            && (!self.fill
+                || l >= rings + g1::MAX_EXTRA_LEVELS
+                || !g1::waiting(level, self.rules, marked))
+    }
+
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<()>) -> Result<()> {
-        fill(level, marked, self.rules, to.out)
+        let left = g1::g1_caps(level, self.rules, marked, to.out);
+        fill(level, &left, self.rules, to.out)
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
@@ -582,7 +608,8 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
     })
 }
 
-/// The centroid fill of the marked vertices of the last level.
+/// The centroid fill of the marked vertices of the last level that have no G^1 cap
+/// ([`g1`]).
 fn fill(
     level: &Level,
     marked: &[(u32, Tag)],
@@ -616,5 +643,6 @@ fn fill(
     Ok(())
 }
 
+mod g1;
 #[cfg(test)]
 mod tests;

@@ -30,11 +30,11 @@
 //! Hermite-Coons fill of [`super`] (C^0).
 
 use super::{Level, regular_patch};
-use crate::bezier::complex::{PatchComplex, Provenance};
-use crate::bezier::g1::ring::{cap_in_plane, quad_edge_side, segment_from_ring};
-use crate::bezier::g1::{CapOptions, Hole, Segment};
+use crate::bezier::complex::PatchComplex;
+use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
+use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, cross};
-use crate::host::adaptive::Tag;
+use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use std::collections::HashMap;
@@ -49,23 +49,6 @@ pub(super) enum NoCap {
     Later,
     /// The element's hole never gets the data (boundary, non-quad faces, no single centre).
     Never,
-}
-
-/// Marked faces of one element.
-type Group = (Option<Element>, Vec<(u32, Tag)>);
-
-/// The marked faces grouped by element, in order of first appearance.
-fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
-    let mut index: HashMap<Option<Element>, usize> = HashMap::new();
-    let mut groups: Vec<Group> = Vec::new();
-    for &(f, tag) in marked {
-        let k = *index.entry(tag.element).or_insert_with(|| {
-            groups.push((tag.element, Vec::new()));
-            groups.len() - 1
-        });
-        groups[k].1.push((f, tag));
-    }
-    groups
 }
 
 /// Corner index of `v` in face `f`.
@@ -177,29 +160,6 @@ pub(super) fn g1_caps(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
-    let mut left = Vec::new();
     let limits = LimitStencils::new(&level.mesh);
-    for (element, faces) in by_element(marked) {
-        let capped = element.and_then(|e| {
-            let (hole, normal, tags) = hole_of(level, &limits, e, &faces).ok()?;
-            let cap = cap_in_plane(hole, normal, CapOptions::default()).ok()?;
-            Some((e, cap, tags))
-        });
-        match capped {
-            Some((element, cap, tags)) => {
-                for (p, tag) in cap.patches.into_iter().zip(tags) {
-                    out.push_in(
-                        p,
-                        Provenance::Cap {
-                            element,
-                            sector: tag.sector,
-                        },
-                        tag.domain,
-                    );
-                }
-            }
-            None => left.extend(faces),
-        }
-    }
-    left
+    g1_cap_elements(marked, out, |e, faces| hole_of(level, &limits, e, faces).ok())
 }
