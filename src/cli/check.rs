@@ -4,7 +4,8 @@
 use super::spec::{self, SchemeOptions};
 use crate::analysis::{continuity, curvature, scaled};
 use crate::error::{Error, Result};
-use crate::surface::Provenance;
+use crate::schemes::Spec;
+use crate::surface::{PatchComplex, Provenance};
 use serde::Serialize;
 use std::path::Path;
 
@@ -43,6 +44,43 @@ struct CheckReport {
     /// The scheme's notes: elements that fell back, caps with derived or borrowed rules.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     notes: Vec<String>,
+}
+
+/// The report of `complex` (read from `source`, built by `spec` with `notes`, or a `.bv` file
+/// without a spec).
+fn build_report(
+    source: &str,
+    complex: &PatchComplex,
+    spec: Option<&Spec>,
+    notes: Vec<String>,
+) -> CheckReport {
+    // The bi-2 schemes (whose polar and adjustable rings shrink differently along and across
+    // their sides) and .bv input get the certificate up to per-piece scaling.
+    let scaled = match spec {
+        None => true,
+        Some(s) => crate::schemes::registry()
+            .descriptor(s.id)
+            .joins_up_to_scaling(),
+    };
+    CheckReport {
+        source: source.to_string(),
+        continuity: continuity::check(complex),
+        curvature: curvature::ring_curvature(complex),
+        c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(complex)),
+        notes,
+    }
+}
+
+/// `fairsub check --json`'s report of a complex built by `spec` (or read from a `.bv` file,
+/// `None`), for front ends that hold the complex already.
+pub fn report_json(
+    source: &str,
+    complex: &PatchComplex,
+    spec: Option<&Spec>,
+    notes: Vec<String>,
+) -> String {
+    let r = build_report(source, complex, spec, notes);
+    serde_json::to_string_pretty(&r).expect("serialisable")
 }
 
 /// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
@@ -118,21 +156,7 @@ pub fn check(a: CheckArgs) -> Result<()> {
             c
         }
     };
-    // The bi-2 schemes (whose polar and adjustable rings shrink differently along and across
-    // their sides) and .bv input get the certificate up to per-piece scaling.
-    let scaled = match &spec {
-        None => true,
-        Some(s) => crate::schemes::registry()
-            .descriptor(s.id)
-            .joins_up_to_scaling(),
-    };
-    let r = CheckReport {
-        source: a.input.clone(),
-        continuity: continuity::check(&complex),
-        curvature: curvature::ring_curvature(&complex),
-        c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(&complex)),
-        notes,
-    };
+    let r = build_report(&a.input, &complex, spec.as_ref(), notes);
     if a.json {
         say!(
             "{}",

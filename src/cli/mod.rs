@@ -14,6 +14,7 @@ macro_rules! say {
 }
 
 mod analyze;
+pub mod api;
 mod check;
 mod demo;
 mod eval;
@@ -22,6 +23,8 @@ pub mod limits;
 mod render;
 mod spec;
 mod subdivide;
+
+pub use subdivide::Computed;
 
 use crate::error::Result;
 use crate::io::LoadedMesh;

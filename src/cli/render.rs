@@ -68,7 +68,11 @@ pub struct LookArgs {
 }
 
 impl LookArgs {
-    fn options(&self, default_size: (usize, usize), mode: Mode) -> Result<RenderOptions> {
+    pub(crate) fn options(
+        &self,
+        default_size: (usize, usize),
+        mode: Mode,
+    ) -> Result<RenderOptions> {
         let (width, height) = match &self.size {
             Some(s) => render::parse_size(s)?,
             None => default_size,

@@ -142,8 +142,123 @@ impl Args {
 /// Default rings of patch output when none are given.
 pub const DEFAULT_RINGS: usize = 6;
 
+/// What `fairsub subdivide` computes, before anything is written (the command writes it; the
+/// library's other front ends, the Python package, hand it back).
+#[derive(Debug, Clone)]
+pub enum Computed {
+    /// A refined net (`--levels N [--limit]`), hole faces removed.
+    Net(PolyMesh),
+    /// A non-box limit mesh (`--levels N --limit` under a non-box scheme that makes one): the
+    /// refined quads split around their FCVs, every point at its limit, with the exact limit
+    /// normals per vertex.
+    LimitMesh(PolyMesh, Vec<crate::geom::Point>),
+    /// A refined net of a non-box scheme in its FCV layout (`crate::schemes::nonbox::FcvNet`):
+    /// OBJ output lists the FCVs as the last `v` lines.
+    FcvNet(PolyMesh),
+    /// An exact patch complex (`--rings K`) and the notes of its construction (fallbacks,
+    /// derived rules).
+    Complex(PatchComplex, Vec<String>),
+}
+
 /// Runs `fairsub subdivide`.
 pub fn run(a: Args) -> Result<()> {
+    let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
+    let (computed, label, _) = compute(&a, None)?;
+    match computed {
+        Computed::Complex(complex, _) => {
+            write_complex(&complex, fmt, &a.output, a.tess)?;
+            eprintln!(
+                "wrote {} patches ({} rings, {}) to {}",
+                complex.len(),
+                a.rings.unwrap_or(DEFAULT_RINGS),
+                label,
+                a.output.display()
+            );
+        }
+        Computed::LimitMesh(m, normals) => {
+            nonbox::write_limit(&m, &normals, fmt, &a.output)?;
+            wrote(&m, a.levels.unwrap_or(1), &label, &a.output);
+        }
+        Computed::FcvNet(m) => {
+            nonbox::write_refined(&m, fmt, &a.output)?;
+            wrote(&m, a.levels.unwrap_or(1), &label, &a.output);
+        }
+        Computed::Net(refined) => {
+            match fmt {
+                OutputFormat::Mesh(mf) => {
+                    for note in crate::io::lost_in(&refined, mf) {
+                        eprintln!("warning: {}: {note}", a.output.display());
+                    }
+                    crate::io::write_mesh(&a.output, &refined, mf)?
+                }
+                OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
+                OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
+            }
+            wrote(&refined, a.levels.unwrap_or(1), &label, &a.output);
+        }
+    }
+    Ok(())
+}
+
+/// The report line of a written net.
+fn wrote(m: &PolyMesh, levels: usize, label: &str, output: &std::path::Path) {
+    eprintln!(
+        "wrote {} vertices, {} faces ({} x {}) to {}",
+        m.num_vertices(),
+        m.num_faces(),
+        levels,
+        label,
+        output.display()
+    );
+}
+
+/// What `subdivide` with these arguments computes, and the scheme's label for its report. With
+/// `net` the given mesh replaces reading `a.net` (which then only names it in messages); the
+/// scheme's options, the mesh's own tags and the limits are applied exactly as for a file.
+pub fn compute(a: &Args, net: Option<PolyMesh>) -> Result<(Computed, String, Spec)> {
+    let p = prepare(a, net)?;
+    let (computed, label) = finish(a, &p)?;
+    Ok((computed, label, p.spec))
+}
+
+/// The refinement or the complex of a prepared job, and the scheme's label for its report.
+pub fn finish(a: &Args, p: &Prepared) -> Result<(Computed, String)> {
+    let (spec, mesh) = (&p.spec, &p.mesh);
+    let label = p.label.clone();
+    if p.patches {
+        let rings = a.rings.unwrap_or(DEFAULT_RINGS);
+        let (complex, notes) = build_complex_noted(spec, mesh, rings, !a.no_fill)?;
+        return Ok((Computed::Complex(complex, notes), label));
+    }
+    let levels = a.levels.unwrap_or(1);
+    let scheme = mesh_rules(spec)?;
+    super::limits::check_levels(scheme.as_ref(), mesh, levels)?;
+    if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
+        // the non-box reports name the scheme's rules, and the limit
+        let label = format!("{}{}", scheme.name(), if a.limit { ", limit" } else { "" });
+        let net = nonbox::compute_net(scheme.as_ref(), mesh, levels, a.limit)?;
+        return Ok((net, label));
+    }
+    let refined = refine_with(scheme.as_ref(), mesh, levels, a.limit)?.without_holes();
+    Ok((Computed::Net(refined), label))
+}
+
+/// A `subdivide` job after its arguments are checked and its net is loaded.
+#[derive(Debug)]
+pub struct Prepared {
+    /// The scheme with its options (and the net's option tags where the scheme takes them).
+    pub spec: Spec,
+    /// The scheme as reports name it.
+    pub label: String,
+    /// The net, as the scheme reads it (FCV layout, tags).
+    pub mesh: PolyMesh,
+    /// Whether the job writes patches (else a refined net).
+    pub patches: bool,
+}
+
+/// Checks `subdivide`'s arguments and loads the net (`net`, when given, stands for the file);
+/// see [`compute`].
+pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
     let mut spec = match a.spec() {
         Ok(s) => s,
@@ -191,9 +306,9 @@ pub fn run(a: Args) -> Result<()> {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
     let mesh = if features::takes_features(&spec) {
-        features::load_net(&mut spec, &a.features, &a.net, !patches)?
+        features::load_net(&mut spec, &a.features, &a.net, !patches, net)?
     } else {
-        nonbox::load_net(&spec, &a.net, &a.fcv)?
+        nonbox::load_net(&spec, &a.net, &a.fcv, net)?
     };
     if let Some(q) = &a.q_file {
         // the expansions name vertices of this net: check them against it, at their lines
@@ -204,46 +319,12 @@ pub fn run(a: Args) -> Result<()> {
     } else if !features::takes_features(&spec) {
         features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
     }
-    if patches {
-        let rings = a.rings.unwrap_or(DEFAULT_RINGS);
-        let complex = build_complex(&spec, &mesh, rings, !a.no_fill)?;
-        write_complex(&complex, fmt, &a.output, a.tess)?;
-        eprintln!(
-            "wrote {} patches ({} rings, {}) to {}",
-            complex.len(),
-            rings,
-            label,
-            a.output.display()
-        );
-    } else {
-        let levels = a.levels.unwrap_or(1);
-        let scheme = mesh_rules(&spec)?;
-        if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
-            super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
-            return nonbox::write_net(scheme.as_ref(), &mesh, levels, a.limit, fmt, &a.output);
-        }
-        super::limits::check_levels(scheme.as_ref(), &mesh, levels)?;
-        let refined = refine_with(scheme.as_ref(), &mesh, levels, a.limit)?.without_holes();
-        match fmt {
-            OutputFormat::Mesh(mf) => {
-                for note in crate::io::lost_in(&refined, mf) {
-                    eprintln!("warning: {}: {note}", a.output.display());
-                }
-                crate::io::write_mesh(&a.output, &refined, mf)?
-            }
-            OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
-            OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
-        }
-        eprintln!(
-            "wrote {} vertices, {} faces ({} x {}) to {}",
-            refined.num_vertices(),
-            refined.num_faces(),
-            levels,
-            label,
-            a.output.display()
-        );
-    }
-    Ok(())
+    Ok(Prepared {
+        spec,
+        label,
+        mesh,
+        patches,
+    })
 }
 
 /// The mesh rules of a scheme (the error lists the schemes that refine nets).

@@ -144,6 +144,16 @@ fn not_supported(spec: &Spec) -> Error {
     ))
 }
 
+/// Whether surfaces of `spec` can be evaluated ([`Capabilities`]' `eval`): the error
+/// [`Surface::build`] gives otherwise, naming the schemes that can.
+pub fn supported(spec: &Spec) -> Result<()> {
+    if registry().entry(spec.id).capabilities().eval {
+        Ok(())
+    } else {
+        Err(not_supported(spec))
+    }
+}
+
 impl Surface {
     /// The surface of `mesh` under `spec` with `opts` (rings, fill), ready to evaluate.
     ///
@@ -151,9 +161,7 @@ impl Surface {
     /// [`Error::Unsupported`] for a scheme without `eval` in its [`Capabilities`]; whatever
     /// the scheme reports for the net.
     pub fn build(spec: &Spec, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Surface> {
-        if !registry().entry(spec.id).capabilities().eval {
-            return Err(not_supported(spec));
-        }
+        supported(spec)?;
         let out = super::build(spec, mesh, opts, &mut |_| {})?;
         Ok(Surface::new(mesh, out.complex))
     }

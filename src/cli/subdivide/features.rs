@@ -76,9 +76,19 @@ pub fn takes_features(spec: &Spec) -> bool {
 
 /// Loads `arg` for a scheme that takes sharp features: tolerantly when `tolerant` (refinement:
 /// non-manifold nets are accepted, unused vertices kept), with the `--creases` file's tags on
-/// top of the net's own; the file's options fill the ones the command line leaves unset.
-pub fn load_net(spec: &mut Spec, a: &FeatureArgs, arg: &str, tolerant: bool) -> Result<PolyMesh> {
-    let mut mesh = super::super::load_net_as(arg, tolerant)?.mesh;
+/// top of the net's own; the file's options fill the ones the command line leaves unset. With
+/// `given`, that mesh (with its own tags) stands for the net `arg` names and no file is read.
+pub fn load_net(
+    spec: &mut Spec,
+    a: &FeatureArgs,
+    arg: &str,
+    tolerant: bool,
+    given: Option<PolyMesh>,
+) -> Result<PolyMesh> {
+    let mut mesh = match given {
+        Some(m) => m,
+        None => super::super::load_net_as(arg, tolerant)?.mesh,
+    };
     if let Some(ex) = mesh.extras() {
         if ex.uv.is_some() && !tolerant {
             eprintln!("warning: {arg}: texture coordinates are not carried into patch output");

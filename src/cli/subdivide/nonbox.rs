@@ -2,7 +2,9 @@
 //! writing refined nets with FCVs and limit meshes with normals. Kept apart from the generic
 //! command so that the non-box schemes' extra data stay out of the other schemes' paths.
 
+use super::Computed;
 use crate::error::{Error, Result};
+use crate::geom::Point;
 use crate::io::{MeshFormat, OutputFormat, fcv};
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::ParamKind;
@@ -28,14 +30,23 @@ pub struct FcvArgs {
 /// lists (the layout of `crate::io::fcv`) and `--fcv-file` / `--fcv-scale` set
 /// them otherwise; the result is then a layout mesh (else the plain mesh, whose FCVs are its
 /// barycentres). Other schemes get the plain net, and an error if FCV options were given.
-pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
+///
+/// With `given`, that mesh stands for the net `arg` names (no file is read): its FCVs are its
+/// face barycentres scaled by `--fcv-scale`, or the `--fcv-file`'s.
+pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs, given: Option<PolyMesh>) -> Result<PolyMesh> {
     // FCV options for other schemes were refused when the options were resolved.
     if !crate::schemes::registry()
         .descriptor(spec.id)
         .params()
         .contains(&ParamKind::Fcv)
     {
-        return Ok(super::super::load_net(arg)?.mesh);
+        return match given {
+            Some(m) => Ok(m),
+            None => Ok(super::super::load_net(arg)?.mesh),
+        };
+    }
+    if let Some(mesh) = given {
+        return choose(mesh, o);
     }
     let path = Path::new(arg);
     let is_obj = !arg.starts_with("gallery:")
@@ -64,62 +75,70 @@ pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs) -> Result<PolyMesh> {
             };
             Ok(net.to_layout_mesh())
         }
-        None if o.fcv_scale.is_some() || o.fcv_file.is_some() => {
-            Ok(fcv::choose_fcv_net(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
-        }
-        None => Ok(mesh),
+        None => choose(mesh, o),
     }
 }
 
-/// Refines `mesh` `levels` times under a non-box scheme and writes the net: OBJ gets the
-/// FCVs as the last `v` lines (`nonbox`); with `limit`, `nonbox` writes the limit mesh (the
-/// refined quads split into four triangles around their FCVs, every point at its limit; OBJ
-/// with the exact limit normals as `vn` lines) and `nonbox-4dir` its refined triangle mesh at
-/// the limit positions. Prints how the input was read.
-pub fn write_net(
+/// The net of a mesh without listed FCVs: FCVs from `--fcv-scale` / `--fcv-file` when given
+/// (a layout mesh), else the plain mesh (its FCVs are its barycentres).
+fn choose(mesh: PolyMesh, o: &FcvArgs) -> Result<PolyMesh> {
+    if o.fcv_scale.is_some() || o.fcv_file.is_some() {
+        let scale = o.fcv_scale.unwrap_or(1.0);
+        Ok(fcv::choose_fcv_net(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
+    } else {
+        Ok(mesh)
+    }
+}
+
+/// Refines `mesh` `levels` times under a non-box scheme: with `limit`, `nonbox`'s limit mesh
+/// (the refined quads split into four triangles around their FCVs, every point at its limit,
+/// with the exact limit normals) and `nonbox-4dir`'s refined triangle mesh at the limit
+/// positions; without, the refined net in its FCV layout. Prints how the input was read.
+pub fn compute_net(
     scheme: &dyn Scheme,
     mesh: &PolyMesh,
     levels: usize,
     limit: bool,
-    fmt: OutputFormat,
-    output: &Path,
-) -> Result<()> {
+) -> Result<Computed> {
     for n in scheme.input_notes(mesh) {
         eprintln!("note: {n}");
     }
-    let obj = matches!(fmt, OutputFormat::Mesh(MeshFormat::Obj));
-    let limit_mesh = if limit {
-        scheme.limit_mesh_with_normals(mesh, levels)
-    } else {
-        None
-    };
-    let quad_net = scheme.fcv_layout() == FcvLayout::Quads;
-    let refined = if let Some(r) = limit_mesh {
+    if limit && let Some(r) = scheme.limit_mesh_with_normals(mesh, levels) {
         let (m, normals) = r?;
-        if obj {
-            fcv::write_limit_obj(output, &m, &normals)?;
-        } else {
-            write_plain(&m, fmt, output)?;
-        }
-        m
+        return Ok(Computed::LimitMesh(m, normals));
+    }
+    let m = super::refine_with(scheme, mesh, levels, limit)?;
+    Ok(if scheme.fcv_layout() == FcvLayout::Quads && !limit {
+        Computed::FcvNet(m)
     } else {
-        let m = super::refine_with(scheme, mesh, levels, limit)?;
-        match FcvNet::from_layout_mesh(&m) {
-            Some(net) if quad_net && !limit && obj => fcv::write_fcv_obj(output, &net)?,
-            _ => write_plain(&m, fmt, output)?,
+        Computed::Net(m)
+    })
+}
+
+/// Writes a non-box limit mesh: OBJ with the exact limit normals as `vn` lines, other formats
+/// the plain mesh.
+pub fn write_limit(
+    m: &PolyMesh,
+    normals: &[Point],
+    fmt: OutputFormat,
+    output: &Path,
+) -> Result<()> {
+    if matches!(fmt, OutputFormat::Mesh(MeshFormat::Obj)) {
+        fcv::write_limit_obj(output, m, normals)
+    } else {
+        write_plain(m, fmt, output)
+    }
+}
+
+/// Writes a refined non-box net in its FCV layout: OBJ lists the FCVs as the last `v` lines
+/// (`nonbox`), other formats get the plain mesh.
+pub fn write_refined(m: &PolyMesh, fmt: OutputFormat, output: &Path) -> Result<()> {
+    match FcvNet::from_layout_mesh(m) {
+        Some(net) if matches!(fmt, OutputFormat::Mesh(MeshFormat::Obj)) => {
+            fcv::write_fcv_obj(output, &net)
         }
-        m
-    };
-    eprintln!(
-        "wrote {} vertices, {} faces ({} x {}{}) to {}",
-        refined.num_vertices(),
-        refined.num_faces(),
-        levels,
-        scheme.name(),
-        if limit { ", limit" } else { "" },
-        output.display()
-    );
-    Ok(())
+        _ => write_plain(m, fmt, output),
+    }
 }
 
 fn write_plain(m: &PolyMesh, fmt: OutputFormat, output: &Path) -> Result<()> {

@@ -1,0 +1,190 @@
+"""fairsub: subdivision surfaces of high shape quality, from Python.
+
+The schemes of the five fairsub papers (point-augmented, polar and ternary bi-2, Evolving Guide,
+QAS+, guided and non-box subdivision) beside Catmull-Clark, Doo-Sabin and Loop: refined nets,
+exact Bezier patch complexes, evaluation, continuity checks, spectra and pictures, with numpy
+arrays in and out.
+
+Every call runs the same Rust code as the ``fairsub`` command line: keyword options are the
+command line's options (``split_ratio=0.3`` is ``--split-ratio 0.3``, ``smooth_triangles=True``
+is ``--smooth-triangles``), with the same defaults, limits and error messages (raised as
+``ValueError``).
+
+Example::
+
+    import fairsub
+    net = fairsub.read("gallery:cnet-5-saddle")
+    s = fairsub.surface(net, "eg", rings=4)
+    print(len(s.patches), s.check()["continuity"]["all"]["g1"])
+    img = fairsub.render(s, "highlight", size=(400, 400))   # (400, 400, 3) uint8
+"""
+
+import json as _json
+
+import numpy as _np
+
+from . import _fairsub
+from ._fairsub import Net, Stencils, Surface
+
+__all__ = [
+    "Net",
+    "Surface",
+    "Stencils",
+    "read",
+    "schemes",
+    "subdivide",
+    "surface",
+    "analyze",
+    "render",
+    "level_stencils",
+    "info",
+]
+__version__ = _fairsub.__version__
+
+
+def _words(options):
+    """Command-line words of keyword options: ``a_b=x`` -> ``--a-b x``; ``True`` -> a flag;
+    ``False`` / ``None`` -> nothing; a list or tuple -> the option repeated (``pole=[...]``)."""
+    words = []
+    for key, value in options.items():
+        flag = "--" + key.rstrip("_").replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            words.append(flag)
+        elif isinstance(value, (list, tuple)):
+            for v in value:
+                words += [flag, str(v)]
+        else:
+            words += [flag, str(value)]
+    return words
+
+
+def read(path, tolerant=False):
+    """Reads a control net: an ``.obj``, ``.off`` or ``.ply`` file, or ``gallery:NAME``.
+
+    OBJ tag lines (creases, corners, holes, OpenSubdiv options), texture coordinates and FCVs
+    are kept with the file: commands re-read the file the way the command line reads it for
+    their scheme. ``tolerant=True`` accepts every net OpenSubdiv accepts (non-manifold edges
+    and vertices, faces that repeat a vertex) for the arrays of the returned net.
+
+    >>> net = read("gallery:cube")
+    >>> net.num_vertices, net.num_faces
+    (8, 6)
+    """
+    return _fairsub.read(str(path), tolerant)
+
+
+def _net(net):
+    if isinstance(net, Net):
+        return net
+    if isinstance(net, str):
+        return read(net)
+    raise ValueError("expected a fairsub.Net or a file / gallery name")
+
+
+def info(net):
+    """``fairsub info --json`` of a net, as a dict (counts, valences, extraordinary elements,
+    problems, which rules each scheme uses per valence)."""
+    return _json.loads(_net(net).info_json())
+
+
+Net.info = lambda self: _json.loads(self.info_json())
+Net.info.__doc__ = "``fairsub info --json`` of the net, as a dict."
+
+
+def schemes():
+    """The catalogue (``fairsub schemes --json``): a list of dicts, one per scheme."""
+    return _json.loads(_fairsub.report(["schemes", "--json"]))
+
+
+def subdivide(net, scheme, levels=1, limit=False, **options):
+    """Refines ``net`` ``levels`` times with ``scheme`` (``fairsub subdivide --levels``).
+
+    Returns the refined Net; with ``limit=True`` its points are at their limit positions (for
+    ``nonbox``: ``(net, normals)``, the limit mesh with its exact normals). Options are the
+    command line's (``boundary="edge-only"``, ``crease_method="chaikin"``, ``fvar=...``,
+    ``creases=FILE``, ``fcv_scale=S``, ``split_ratio=E``, ``rules="derived"``, ...).
+
+    >>> fine = subdivide(read("gallery:cube"), "catmull-clark", levels=2)
+    >>> fine.num_faces
+    96
+    """
+    words = ["--scheme", scheme, "--levels", str(levels)] + _words(
+        dict(limit=limit, **options)
+    )
+    return _fairsub.subdivide_words(_net(net), words)
+
+
+def surface(net, scheme, rings=6, fill=True, **options):
+    """The exact patch complex of ``net`` under ``scheme`` (``fairsub subdivide --rings``):
+    a Surface with ``patches`` ((du+1, dv+1, 3) arrays), ``provenance``, ``evaluate``,
+    ``tessellate``, ``check`` and ``write``. ``fill=False`` leaves the hole inside the last
+    ring open (``--no-fill``)."""
+    words = ["--scheme", scheme, "--rings", str(rings)] + _words(
+        dict(no_fill=not fill, **options)
+    )
+    return _fairsub.subdivide_words(_net(net), words)
+
+
+def _provenance(self):
+    """Per patch a dict, as ``fairsub check --json`` names it: ``{"kind": "regular", "face": F}``,
+    ``{"kind": "ring", "element": {"type": "vertex", "index": V}, "ring": K, "sector": S}``
+    (ring 1 outermost), ``{"kind": "cap", "element": ..., "sector": S}``."""
+    return _json.loads(self.provenance_json())
+
+
+def _evaluate(self, face, u, v):
+    """Evaluates the complex at parameter (u, v) of input face ``face`` (scalars or arrays of
+    one length): a dict of arrays ``point``, ``du``, ``dv``, ``duu``, ``duv``, ``dvv``,
+    ``normal`` (n, 3), ``gauss``, ``mean`` (n), ``patch`` (n) and ``patch_uv`` (n, 2), as
+    ``fairsub eval --rings K`` reports them. Parameter domains: quads [0,1]^2; an n-gon u in
+    [0, n], v in [0, 1]; a Loop triangle barycentric (u, v)."""
+    scalar = _np.ndim(face) == 0 and _np.ndim(u) == 0 and _np.ndim(v) == 0
+    f = _np.ascontiguousarray(_np.atleast_1d(face), dtype=_np.int64)
+    uu = _np.ascontiguousarray(_np.atleast_1d(u), dtype=_np.float64)
+    vv = _np.ascontiguousarray(_np.atleast_1d(v), dtype=_np.float64)
+    f, uu, vv = _np.broadcast_arrays(f, uu, vv)
+    r = self.evaluate_arrays(
+        _np.ascontiguousarray(f), _np.ascontiguousarray(uu), _np.ascontiguousarray(vv)
+    )
+    if scalar:
+        return {k: a[0] for k, a in r.items()}
+    return r
+
+
+Surface.evaluate = _evaluate
+Surface.provenance = property(_provenance)
+Surface.check = lambda self: _json.loads(self.check_json())
+Surface.check.__doc__ = (
+    "``fairsub check NET --scheme S --rings K --json`` of the surface, as a dict "
+    "(continuity defects per kind of join, curvature per ring, notes)."
+)
+
+
+def analyze(scheme, valence, replicated_centre=False, **options):
+    """``fairsub analyze --scheme S --valence N --json`` as a dict: spectrum, limit stencil,
+    characteristic-map certificate, published numbers with their differences."""
+    words = ["analyze", "--scheme", scheme, "--valence", str(valence), "--json"]
+    words += _words(dict(replicated_centre=replicated_centre, **options))
+    return _json.loads(_fairsub.report(words))
+
+
+def render(what, mode="shaded", size=(800, 800), **look):
+    """A picture as ``fairsub render`` draws it: a (height, width, 3) uint8 array of a Surface
+    (exact normals and curvature per pixel) or a Net. ``mode``: shaded, highlight, reflection,
+    isophote, gauss, mean, provenance; ``look``: the command's options (``azimuth``,
+    ``elevation``, ``stripes``, ``overlay="net,patches"``, ``range``, ``aa``, ...)."""
+    if isinstance(what, str):
+        what = read(what)
+    w, h = size
+    words = ["--mode", mode, "--size", f"{int(w)}x{int(h)}"] + _words(look)
+    return _fairsub.render_words(what, words)
+
+
+def level_stencils(net, scheme, levels=1, **options):
+    """The stencil table from the control points of ``net`` to its ``levels``-fold refinement:
+    ``(refined_net, stencils)``; ``stencils.apply(points)`` maps moved control points (n, 3)
+    to the refined points, ``stencils.csr()`` gives (indptr, indices, weights)."""
+    words = ["--scheme", scheme, "--levels", str(levels)] + _words(options)
+    return _fairsub.level_stencils_words(_net(net), words)

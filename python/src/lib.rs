@@ -1,0 +1,593 @@
+//! fairsub's Python bindings (the extension module `fairsub._fairsub`): thin PyO3 wrappers over
+//! the library's command paths (`fairsub::cli::api`), numpy arrays in and out. The Python
+//! package (`python/pysrc/fairsub/__init__.py`) turns keyword options into the command line's
+//! words, so every option, default, limit and error message is the command line's own; no rule
+//! is written here. Long work runs with the GIL released.
+
+use fairsub::cli::{Computed, api};
+use fairsub::mesh::PolyMesh;
+use fairsub::schemes::Spec;
+use fairsub::stencil::StencilTable;
+use fairsub::surface::{PatchComplex, eval};
+use numpy::PyUntypedArrayMethods;
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::Path;
+use std::sync::OnceLock;
+
+/// A fairsub error as Python's `ValueError`, with the command line's message.
+fn err(e: fairsub::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// Points as a C-contiguous float64 array of shape (n, 3).
+fn points_array<'py>(py: Python<'py>, pts: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = pts.iter().flatten().copied().collect();
+    Array2::from_shape_vec((pts.len(), 3), flat)
+        .expect("n x 3")
+        .into_pyarray(py)
+}
+
+/// Points from a float64 array of shape (n, 3).
+fn points_from(a: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<Vec<[f64; 3]>> {
+    let shape = a.shape();
+    if shape.len() != 2 || shape[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "{what} must have shape (n, 3), not {shape:?}"
+        )));
+    }
+    let v = a.as_array();
+    Ok((0..shape[0])
+        .map(|i| [v[[i, 0]], v[[i, 1]], v[[i, 2]]])
+        .collect())
+}
+
+/// The evaluated quantities of many points, one contiguous buffer per quantity (the arrays
+/// `Surface.evaluate` returns, without a copy).
+struct Evaluated {
+    /// point, du, dv, duu, duv, dvv, normal: `3 n` values each.
+    vecs: [Vec<f64>; 7],
+    /// gauss, mean, u, v: `n` values each.
+    scalars: [Vec<f64>; 4],
+    face: Vec<u32>,
+    patch: Vec<i64>,
+    patch_uv: Vec<f64>,
+}
+
+/// Names of [`Evaluated::vecs`] and [`Evaluated::scalars`].
+const VEC_NAMES: [&str; 7] = ["point", "du", "dv", "duu", "duv", "dvv", "normal"];
+const SCALAR_NAMES: [&str; 4] = ["gauss", "mean", "u", "v"];
+
+/// The part of every buffer of an [`Evaluated`] that one parallel task fills.
+struct Chunk<'a> {
+    start: usize,
+    vecs: Vec<&'a mut [f64]>,
+    scalars: Vec<&'a mut [f64]>,
+    face: &'a mut [u32],
+    patch: &'a mut [i64],
+    patch_uv: &'a mut [f64],
+}
+
+/// Points per parallel task.
+const CHUNK: usize = 4096;
+
+impl Evaluated {
+    /// Evaluates `ev` at `(f[i], u[i], v[i])` in parallel; the error of a point that fails.
+    fn run(ev: &eval::Surface, f: &[i64], u: &[f64], v: &[f64]) -> fairsub::Result<Evaluated> {
+        use rayon::prelude::*;
+        let n = f.len();
+        let mut out = Evaluated {
+            vecs: std::array::from_fn(|_| vec![0.0; 3 * n]),
+            scalars: std::array::from_fn(|_| vec![0.0; n]),
+            face: vec![0; n],
+            patch: vec![0; n],
+            patch_uv: vec![0.0; 2 * n],
+        };
+        let mut vec_chunks: Vec<_> = out
+            .vecs
+            .iter_mut()
+            .map(|b| b.chunks_mut(3 * CHUNK))
+            .collect();
+        let mut scalar_chunks: Vec<_> = out
+            .scalars
+            .iter_mut()
+            .map(|b| b.chunks_mut(CHUNK))
+            .collect();
+        let mut chunks = Vec::new();
+        for (k, (face, (patch, patch_uv))) in out
+            .face
+            .chunks_mut(CHUNK)
+            .zip(
+                out.patch
+                    .chunks_mut(CHUNK)
+                    .zip(out.patch_uv.chunks_mut(2 * CHUNK)),
+            )
+            .enumerate()
+        {
+            chunks.push(Chunk {
+                start: k * CHUNK,
+                vecs: vec_chunks
+                    .iter_mut()
+                    .map(|c| c.next().expect("chunk"))
+                    .collect(),
+                scalars: scalar_chunks
+                    .iter_mut()
+                    .map(|c| c.next().expect("chunk"))
+                    .collect(),
+                face,
+                patch,
+                patch_uv,
+            });
+        }
+        chunks.into_par_iter().try_for_each(|mut c| {
+            for j in 0..c.face.len() {
+                let i = c.start + j;
+                let face = u32::try_from(f[i]).map_err(|_| {
+                    fairsub::Error::InvalidArgument(format!(
+                        "point {i}: face {} does not exist",
+                        f[i]
+                    ))
+                })?;
+                let e = ev.evaluate(face, u[i], v[i])?;
+                for (b, p) in c
+                    .vecs
+                    .iter_mut()
+                    .zip([e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal])
+                {
+                    b[3 * j..3 * j + 3].copy_from_slice(&p);
+                }
+                for (b, x) in c.scalars.iter_mut().zip([e.gauss, e.mean, e.u, e.v]) {
+                    b[j] = x;
+                }
+                c.face[j] = e.face;
+                c.patch[j] = e.patch as i64;
+                c.patch_uv[2 * j..2 * j + 2].copy_from_slice(&e.patch_uv);
+            }
+            Ok::<(), fairsub::Error>(())
+        })?;
+        drop(vec_chunks);
+        drop(scalar_chunks);
+        Ok(out)
+    }
+}
+
+/// A tessellation as arrays: vertices (n, 3), triangles (m, 3).
+type Tessellated<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<u32>>);
+
+/// A stencil table in CSR form: (indptr, indices, weights).
+type Csr<'py> = (
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// A control net: a validated polygon mesh, with the file or gallery name it was read from.
+#[pyclass(module = "fairsub._fairsub", frozen)]
+pub struct Net {
+    mesh: PolyMesh,
+    /// The file (or `gallery:NAME`) it was read from: commands re-read it the way the command
+    /// line reads it for their scheme (tags, FCVs, non-manifold nets), so results are the CLI's.
+    source: Option<String>,
+    warnings: Vec<String>,
+}
+
+#[pymethods]
+impl Net {
+    /// A net from vertices (n, 3) and faces (lists of vertex indices, counterclockwise);
+    /// raises ValueError naming the first problem (as `fairsub info` would).
+    #[new]
+    fn new(vertices: PyReadonlyArray2<'_, f64>, faces: Vec<Vec<usize>>) -> PyResult<Net> {
+        let pts = points_from(&vertices, "vertices")?;
+        let mesh = PolyMesh::new(pts, &faces).map_err(err)?;
+        Ok(Net {
+            mesh,
+            source: None,
+            warnings: Vec::new(),
+        })
+    }
+
+    /// The vertex positions, float64 array (n, 3).
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_array(py, self.mesh.positions())
+    }
+
+    /// The faces, lists of vertex indices.
+    #[getter]
+    fn faces(&self) -> Vec<Vec<u32>> {
+        self.mesh.faces().map(|f| f.to_vec()).collect()
+    }
+
+    /// Number of vertices.
+    #[getter]
+    fn num_vertices(&self) -> usize {
+        self.mesh.num_vertices()
+    }
+
+    /// Number of faces.
+    #[getter]
+    fn num_faces(&self) -> usize {
+        self.mesh.num_faces()
+    }
+
+    /// The file or gallery name the net was read from (None for a net made from arrays).
+    #[getter]
+    fn source(&self) -> Option<String> {
+        self.source.clone()
+    }
+
+    /// What the reader noted (dropped vertices, ignored statements).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
+    }
+
+    /// `fairsub info --json` of the net, as a JSON string.
+    fn info_json(&self) -> String {
+        api::info_json(self.source.as_deref().unwrap_or("<array net>"), &self.mesh)
+    }
+
+    /// Writes the net (.obj, .off, .ply, .bv by extension).
+    fn write(&self, py: Python<'_>, path: &str) -> PyResult<()> {
+        py.detach(|| api::write_net(&self.mesh, Path::new(path)))
+            .map_err(err)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Net({} vertices, {} faces{})",
+            self.mesh.num_vertices(),
+            self.mesh.num_faces(),
+            self.source
+                .as_deref()
+                .map(|s| format!(", from {s}"))
+                .unwrap_or_default()
+        )
+    }
+}
+
+impl Net {
+    /// The NET word and the mesh that stands for it (None: the command re-reads the source).
+    fn as_input(&self) -> (String, Option<PolyMesh>) {
+        match &self.source {
+            Some(s) => (s.clone(), None),
+            None => ("<array net>".to_string(), Some(self.mesh.clone())),
+        }
+    }
+
+    fn refined(mesh: PolyMesh) -> Net {
+        Net {
+            mesh,
+            source: None,
+            warnings: Vec::new(),
+        }
+    }
+}
+
+/// Reads a net (.obj, .off, .ply or `gallery:NAME`) as `fairsub info` reads it: strictly,
+/// or with `tolerant` every net OpenSubdiv accepts (non-manifold, unused vertices kept).
+#[pyfunction]
+#[pyo3(signature = (path, tolerant = false))]
+fn read(py: Python<'_>, path: &str, tolerant: bool) -> PyResult<Net> {
+    let loaded = py
+        .detach(|| fairsub::cli::load_net_as(path, tolerant))
+        .map_err(err)?;
+    Ok(Net {
+        mesh: loaded.mesh,
+        source: Some(path.to_string()),
+        warnings: loaded.warnings,
+    })
+}
+
+/// An exact patch complex with its provenance, built by a scheme on a net.
+#[pyclass(module = "fairsub._fairsub", frozen)]
+pub struct Surface {
+    complex: PatchComplex,
+    spec: Spec,
+    label: String,
+    notes: Vec<String>,
+    net: PolyMesh,
+    source: String,
+    evaluator: OnceLock<eval::Surface>,
+}
+
+#[pymethods]
+impl Surface {
+    /// Number of patches.
+    fn __len__(&self) -> usize {
+        self.complex.len()
+    }
+
+    /// The Bezier patches: a list of float64 arrays of shape (deg_u + 1, deg_v + 1, 3),
+    /// `b[i, j]` the coefficient of `B_i(u) B_j(v)`.
+    #[getter]
+    fn patches<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray3<f64>>> {
+        self.complex
+            .patches
+            .iter()
+            .map(|p| {
+                let flat: Vec<f64> = p.cps.iter().flatten().copied().collect();
+                Array3::from_shape_vec((p.deg_u + 1, p.deg_v + 1, 3), flat)
+                    .expect("patch shape")
+                    .into_pyarray(py)
+            })
+            .collect()
+    }
+
+    /// The provenance of every patch as JSON, as `check --json` names it: `{"kind": "regular",
+    /// "face": F}`, `{"kind": "ring", "element": {"type": "vertex", "index": V}, "ring": K,
+    /// "sector": S}`, `{"kind": "cap", ...}`.
+    fn provenance_json(&self) -> String {
+        serde_json::to_string(&self.complex.provenance).expect("serialisable")
+    }
+
+    /// The scheme's notes (fallbacks, derived rules).
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+
+    /// The scheme as reports name it.
+    #[getter]
+    fn scheme(&self) -> String {
+        self.label.clone()
+    }
+
+    /// `fairsub check NET --scheme S --rings K --json` of the complex, as a JSON string.
+    fn check_json(&self, py: Python<'_>) -> String {
+        py.detach(|| api::check_json(&self.source, &self.complex, Some(&self.spec), &self.notes))
+    }
+
+    /// Writes the complex as `subdivide --rings` does (.bv, .igs, or a tessellated .obj/.ply
+    /// with `tess` samples per patch edge).
+    #[pyo3(signature = (path, tess = 8))]
+    fn write(&self, py: Python<'_>, path: &str, tess: usize) -> PyResult<()> {
+        py.detach(|| api::write_complex(&self.complex, Path::new(path), tess))
+            .map_err(err)
+    }
+
+    /// The watertight tessellation `subdivide --rings K --tess n -o X.obj` writes:
+    /// (vertices (n, 3) float64, triangles (m, 3) uint32).
+    fn tessellate<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Tessellated<'py>> {
+        let mesh = py
+            .detach(|| {
+                fairsub::cli::limits::check_tessellation(&self.complex, n)?;
+                fairsub::surface::tessellate::tessellate(&self.complex, n).to_mesh(&self.complex)
+            })
+            .map_err(err)?;
+        let tris: Vec<u32> = mesh.corners().to_vec();
+        let m = tris.len() / 3;
+        let f = Array2::from_shape_vec((m, 3), tris)
+            .expect("triangles")
+            .into_pyarray(py);
+        Ok((points_array(py, mesh.positions()), f))
+    }
+
+    /// Evaluates the complex at parameters (u, v) of input faces (arrays of equal length), in
+    /// parallel: a dict of C-contiguous arrays point, du, dv, duu, duv, dvv, normal (n, 3),
+    /// gauss, mean, u, v (n, float64), face (n, uint32), patch (n, int64), patch_uv (n, 2).
+    /// Raises ValueError with the message of a point that fails.
+    fn evaluate_arrays<'py>(
+        &self,
+        py: Python<'py>,
+        face: PyReadonlyArray1<'_, i64>,
+        u: PyReadonlyArray1<'_, f64>,
+        v: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        eval::supported(&self.spec).map_err(err)?;
+        let (f, u, v) = (face.as_slice()?, u.as_slice()?, v.as_slice()?);
+        if f.len() != u.len() || u.len() != v.len() {
+            return Err(PyValueError::new_err(format!(
+                "face, u and v must have the same length ({}, {}, {})",
+                f.len(),
+                u.len(),
+                v.len()
+            )));
+        }
+        let ev = self
+            .evaluator
+            .get_or_init(|| eval::Surface::new(&self.net, self.complex.clone()));
+        let n = f.len();
+        let out = py.detach(|| Evaluated::run(ev, f, u, v)).map_err(err)?;
+        let d = PyDict::new(py);
+        let shaped = |buf: Vec<f64>, w: usize| {
+            Array2::from_shape_vec((n, w), buf)
+                .expect("n x w")
+                .into_pyarray(py)
+        };
+        for (name, buf) in VEC_NAMES.iter().zip(out.vecs) {
+            d.set_item(*name, shaped(buf, 3))?;
+        }
+        for (name, buf) in SCALAR_NAMES.iter().zip(out.scalars) {
+            d.set_item(*name, buf.into_pyarray(py))?;
+        }
+        d.set_item("face", out.face.into_pyarray(py))?;
+        d.set_item("patch", out.patch.into_pyarray(py))?;
+        d.set_item("patch_uv", shaped(out.patch_uv, 2))?;
+        Ok(d)
+    }
+
+    /// Seconds the Rust evaluation alone (`evaluate_many`, no array conversion) takes at the
+    /// points: the reference of `python/bench_evaluate.py`.
+    fn _rust_evaluate_seconds(
+        &self,
+        py: Python<'_>,
+        face: PyReadonlyArray1<'_, i64>,
+        u: PyReadonlyArray1<'_, f64>,
+        v: PyReadonlyArray1<'_, f64>,
+    ) -> f64 {
+        let (f, u, v) = (face.as_array(), u.as_array(), v.as_array());
+        let pts: Vec<(u32, f64, f64)> = (0..f.len().min(u.len()).min(v.len()))
+            .map(|i| (f[i].clamp(0, i64::from(u32::MAX)) as u32, u[i], v[i]))
+            .collect();
+        let ev = self
+            .evaluator
+            .get_or_init(|| eval::Surface::new(&self.net, self.complex.clone()));
+        py.detach(|| {
+            let t = std::time::Instant::now();
+            let r = ev.evaluate_many(&pts);
+            let s = t.elapsed().as_secs_f64();
+            drop(r);
+            s
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Surface({} patches, {})", self.complex.len(), self.label)
+    }
+}
+
+/// Runs `fairsub subdivide NET WORDS...` on `net`: a Net (refined net), a (Net, normals) pair
+/// (non-box limit mesh with its exact normals) or a Surface (`--rings`).
+#[pyfunction]
+fn subdivide_words(py: Python<'_>, net: &Net, words: Vec<String>) -> PyResult<Py<PyAny>> {
+    let (word, given) = net.as_input();
+    let mut all = vec![word.clone()];
+    all.extend(words);
+    let out = py.detach(|| api::subdivide(&all, given)).map_err(err)?;
+    Ok(match out.computed {
+        Computed::Net(m) | Computed::FcvNet(m) => {
+            Net::refined(m).into_pyobject(py)?.into_any().unbind()
+        }
+        Computed::LimitMesh(m, normals) => {
+            let n = points_array(py, &normals);
+            (Net::refined(m), n).into_pyobject(py)?.into_any().unbind()
+        }
+        Computed::Complex(complex, notes) => Surface {
+            complex,
+            spec: out.spec,
+            label: out.label,
+            notes,
+            net: out.net,
+            source: word,
+            evaluator: OnceLock::new(),
+        }
+        .into_pyobject(py)?
+        .into_any()
+        .unbind(),
+    })
+}
+
+/// The stencil table of `--levels N` refinement: refined net and the weights from the
+/// control points to its points.
+#[pyclass(module = "fairsub._fairsub", frozen)]
+pub struct Stencils {
+    table: StencilTable,
+}
+
+#[pymethods]
+impl Stencils {
+    /// Number of rows (refined points).
+    #[getter]
+    fn num_rows(&self) -> usize {
+        self.table.num_rows()
+    }
+
+    /// Number of sources (control points).
+    #[getter]
+    fn num_sources(&self) -> usize {
+        self.table.num_sources()
+    }
+
+    /// The table in CSR form: (indptr, indices, weights).
+    fn csr<'py>(&self, py: Python<'py>) -> Csr<'py> {
+        let mut indptr = Vec::with_capacity(self.table.num_rows() + 1);
+        let mut idx = Vec::with_capacity(self.table.num_entries());
+        let mut w = Vec::with_capacity(self.table.num_entries());
+        indptr.push(0u64);
+        for r in 0..self.table.num_rows() {
+            let (i, ws) = self.table.row(r);
+            idx.extend_from_slice(i);
+            w.extend_from_slice(ws);
+            indptr.push(idx.len() as u64);
+        }
+        (
+            indptr.into_pyarray(py),
+            idx.into_pyarray(py),
+            w.into_pyarray(py),
+        )
+    }
+
+    /// Applies the table to control points (num_sources, 3): the refined points (num_rows, 3).
+    fn apply<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let pts = points_from(&points, "points")?;
+        if pts.len() != self.table.num_sources() {
+            return Err(PyValueError::new_err(format!(
+                "the table takes {} points, not {}",
+                self.table.num_sources(),
+                pts.len()
+            )));
+        }
+        let out = py.detach(|| self.table.apply(&pts));
+        Ok(points_array(py, &out))
+    }
+}
+
+/// `subdivide NET WORDS... --levels N`'s stencil table and refined net.
+#[pyfunction]
+fn level_stencils_words(
+    py: Python<'_>,
+    net: &Net,
+    words: Vec<String>,
+) -> PyResult<(Net, Stencils)> {
+    let (word, given) = net.as_input();
+    let mut all = vec![word];
+    all.extend(words);
+    let (m, table) = py
+        .detach(|| api::level_stencils(&all, given))
+        .map_err(err)?;
+    Ok((Net::refined(m), Stencils { table }))
+}
+
+/// What a reporting command prints (`schemes --json`, `analyze ... --json`, ...).
+#[pyfunction]
+fn report(py: Python<'_>, words: Vec<String>) -> PyResult<String> {
+    py.detach(|| api::report(&words)).map_err(err)
+}
+
+/// A picture as `fairsub render` draws it, (height, width, 3) uint8; `words` are render's look
+/// options (`--mode M --size WxH ...`).
+#[pyfunction]
+fn render_words<'py>(
+    py: Python<'py>,
+    what: &Bound<'py, PyAny>,
+    words: Vec<String>,
+) -> PyResult<Bound<'py, PyArray3<u8>>> {
+    let image = if let Ok(s) = what.cast::<Surface>() {
+        let s = s.get();
+        py.detach(|| api::render(Some(&s.complex), Some(&s.net), &words))
+    } else if let Ok(n) = what.cast::<Net>() {
+        let n = n.get();
+        py.detach(|| api::render(None, Some(&n.mesh), &words))
+    } else {
+        return Err(PyValueError::new_err("render takes a Net or a Surface"));
+    }
+    .map_err(err)?;
+    Ok(
+        Array3::from_shape_vec((image.height, image.width, 3), image.data)
+            .expect("image shape")
+            .into_pyarray(py),
+    )
+}
+
+/// The extension module.
+#[pymodule]
+fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Net>()?;
+    m.add_class::<Surface>()?;
+    m.add_class::<Stencils>()?;
+    m.add_function(wrap_pyfunction!(read, m)?)?;
+    m.add_function(wrap_pyfunction!(subdivide_words, m)?)?;
+    m.add_function(wrap_pyfunction!(level_stencils_words, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(render_words, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,172 @@
+//! The commands as library calls, for front ends other than the command line (the Python
+//! package in `python/`): the same argument words, parsed by the same clap definitions, the
+//! same loading, limits, construction and reports, with the results handed back instead of
+//! written. Nothing here is a second copy of a rule or of a command's logic: each function is
+//! the command's own code path (`subdivide::compute`, `check::report_json`, ...) with an
+//! in-memory net in place of a file where one is given.
+
+use super::subdivide::{self, Computed};
+use super::{Cli, Command, limits};
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::render::{Mode, Scene};
+use crate::schemes::Spec;
+use crate::surface::PatchComplex;
+use clap::Parser;
+
+/// What [`subdivide`] computed.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The refined net, the limit mesh or the patch complex.
+    pub computed: Computed,
+    /// The scheme as the command's report names it.
+    pub label: String,
+    /// The scheme with its typed options, as resolved from the words.
+    pub spec: Spec,
+    /// The net as the scheme read it (the domain of the surface's evaluation).
+    pub net: PolyMesh,
+}
+
+/// Parses `fairsub WORDS...` (without the program name) like the command line does; usage
+/// errors are [`Error::InvalidArgument`] with clap's message.
+fn parse(words: &[String]) -> Result<Cli> {
+    let all = std::iter::once("fairsub".to_string()).chain(words.iter().cloned());
+    Cli::try_parse_from(all).map_err(|e| Error::InvalidArgument(e.to_string().trim().to_string()))
+}
+
+/// The memory budget of a parsed command line (`--max-memory`).
+fn budget(cli: &Cli) -> Result<Option<u64>> {
+    cli.max_memory
+        .as_deref()
+        .map(limits::parse_memory)
+        .transpose()
+}
+
+/// `subdivide WORDS...` parsed (with a placeholder `-o` when none is given: a `.bv` for
+/// `--rings`, else an `.obj`), and its memory budget.
+fn subdivide_args(words: &[String]) -> Result<(subdivide::Args, Option<u64>)> {
+    let mut all = vec!["subdivide".to_string()];
+    all.extend(words.iter().cloned());
+    if !words
+        .iter()
+        .any(|w| w == "-o" || w == "--output" || w.starts_with("--output="))
+    {
+        let rings = words
+            .iter()
+            .any(|w| w == "--rings" || w == "-r" || w.starts_with("--rings="));
+        all.push("-o".into());
+        all.push(if rings { "out.bv" } else { "out.obj" }.into());
+    }
+    let cli = parse(&all)?;
+    let budget = budget(&cli)?;
+    let Command::Subdivide(args) = cli.command else {
+        unreachable!("the words start with subdivide")
+    };
+    Ok((args, budget))
+}
+
+/// Runs `fairsub subdivide WORDS...` (the words after `subdivide`, with `--max-memory` allowed
+/// among them) and returns what it would write. `-o` may be omitted (a `.obj` for `--levels`, a
+/// `.bv` for `--rings`; nothing is written). With `given`, that mesh is the net and the NET word
+/// only names it in messages.
+pub fn subdivide(words: &[String], given: Option<PolyMesh>) -> Result<Outcome> {
+    let (args, budget) = subdivide_args(words)?;
+    limits::with_budget(budget, || {
+        let p = subdivide::prepare(&args, given)?;
+        let (computed, label) = subdivide::finish(&args, &p)?;
+        Ok(Outcome {
+            computed,
+            label,
+            spec: p.spec,
+            net: p.mesh,
+        })
+    })
+}
+
+/// Runs a command that reports (`schemes --json`, `analyze ... --json`, `info NET --json`,
+/// `charmap`, ...) and returns what it printed.
+pub fn report(words: &[String]) -> Result<String> {
+    let cli = parse(words)?;
+    let (r, out) = super::capture(|| super::run(cli));
+    r.map(|()| out)
+}
+
+/// `fairsub check --json`'s report of a complex (see [`super::check::report_json`]).
+pub fn check_json(
+    source: &str,
+    complex: &PatchComplex,
+    spec: Option<&Spec>,
+    notes: &[String],
+) -> String {
+    super::check::report_json(source, complex, spec, notes.to_vec())
+}
+
+/// `fairsub info --json`'s report of a net.
+pub fn info_json(source: &str, mesh: &PolyMesh) -> String {
+    serde_json::to_string_pretty(&super::info::report(source, mesh)).expect("serialisable")
+}
+
+/// A picture as `fairsub render` draws it: `words` are render's look options (`--mode M`,
+/// `--size WxH`, `--azimuth`, `--stripes`, `--overlay`, ...); the scene is a complex (with its
+/// net for the net overlay) or a net.
+pub fn render(
+    complex: Option<&PatchComplex>,
+    net: Option<&PolyMesh>,
+    words: &[String],
+) -> Result<crate::render::Image> {
+    #[derive(Parser)]
+    struct Look {
+        #[arg(long, default_value = "shaded")]
+        mode: String,
+        #[command(flatten)]
+        look: super::render::LookArgs,
+    }
+    let all = std::iter::once("render".to_string()).chain(words.iter().cloned());
+    let l = Look::try_parse_from(all)
+        .map_err(|e| Error::InvalidArgument(e.to_string().trim().to_string()))?;
+    let mode: Mode = l.mode.parse()?;
+    let opts = l.look.options((800, 800), mode)?;
+    let scene = match (complex, net) {
+        (Some(c), net) => Scene::patches(c.clone(), net.cloned()),
+        (None, Some(m)) => Scene::mesh(m),
+        (None, None) => {
+            return Err(Error::InvalidArgument("nothing to render".into()));
+        }
+    };
+    crate::render::check_mode(&scene, mode)?;
+    Ok(crate::render::render(&scene, &opts)?.image)
+}
+
+/// The stencil table from the control points of the net to the points of its `--levels N`
+/// refinement (`subdivide WORDS...`'s scheme, options and net), with the refined net.
+pub fn level_stencils(
+    words: &[String],
+    given: Option<PolyMesh>,
+) -> Result<(PolyMesh, crate::stencil::StencilTable)> {
+    let (args, budget) = subdivide_args(words)?;
+    limits::with_budget(budget, || {
+        let p = subdivide::prepare(&args, given)?;
+        let scheme = subdivide::mesh_rules(&p.spec)?;
+        let levels = args.levels.unwrap_or(1);
+        limits::check_levels(scheme.as_ref(), &p.mesh, levels)?;
+        crate::schemes::level_stencils(scheme.as_ref(), &p.mesh, levels)
+    })
+}
+
+/// Writes a complex as `subdivide --rings` does (`.bv`, `.igs`, or a tessellated mesh with
+/// `tess` samples per patch edge), validated before the atomic rename.
+pub fn write_complex(c: &PatchComplex, path: &std::path::Path, tess: usize) -> Result<()> {
+    let fmt = crate::io::OutputFormat::choose(path, None)?;
+    subdivide::write_complex(c, fmt, path, tess)
+}
+
+/// Writes a net as `subdivide --levels` does (format by extension).
+pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
+    match crate::io::OutputFormat::choose(path, None)? {
+        crate::io::OutputFormat::Mesh(mf) => crate::io::write_mesh(path, m, mf),
+        crate::io::OutputFormat::Bv => crate::io::write_bv_mesh(path, m),
+        crate::io::OutputFormat::Iges => Err(Error::InvalidArgument(
+            "IGES holds patches: write a surface, not a net".into(),
+        )),
+    }
+}
