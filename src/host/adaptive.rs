@@ -275,6 +275,19 @@ impl FanSectors {
     }
 }
 
+/// The tags of `cells` by `retag`, with one [`FanSectors`] memo shared by all of them (for
+/// [`AdaptiveRules::retag_all`]).
+pub fn retag_with_fans(
+    cells: Vec<(u32, Tag)>,
+    mut retag: impl FnMut(u32, Tag, &mut FanSectors) -> Tag,
+) -> Vec<(u32, Tag)> {
+    let mut fans = FanSectors::default();
+    cells
+        .into_iter()
+        .map(|(f, tag)| (f, retag(f, tag, &mut fans)))
+        .collect()
+}
+
 /// The tag of a marked cell `f`: its first corner that descends from an input element and is
 /// not regular (by `is_regular`) gives the element, sector = the cell's position in that
 /// vertex's fan (looked up in `fans`); otherwise (or if the element is already the tag's) the

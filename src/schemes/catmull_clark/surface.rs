@@ -176,11 +176,9 @@ impl AdaptiveRules for CcRules<'_> {
     }
 
     fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
-        let mut fans = FanSectors::default();
-        cells
-            .into_iter()
-            .map(|(f, tag)| (f, tag_irregular(level, f as usize, tag, &mut fans)))
-            .collect()
+        adaptive::retag_with_fans(cells, |f, tag, fans| {
+            tag_irregular(level, f as usize, tag, fans)
+        })
     }
 
     fn caps(

@@ -186,11 +186,7 @@ impl AdaptiveRules for LoopRules {
     }
 
     fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
-        let mut fans = FanSectors::default();
-        cells
-            .into_iter()
-            .map(|(f, tag)| (f, retag(level, f as usize, tag, &mut fans)))
-            .collect()
+        adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {

@@ -118,11 +118,7 @@ impl AdaptiveRules for NonBoxRules<'_> {
     }
 
     fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
-        let mut fans = FanSectors::default();
-        cells
-            .into_iter()
-            .map(|(f, tag)| (f, retag(level, f as usize, tag, &mut fans)))
-            .collect()
+        adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
     /// Non-quad faces are always refined (their first ring is at level 1).
