@@ -306,32 +306,62 @@ pub fn provenance(l: usize, tag: Tag) -> Provenance {
     }
 }
 
+/// Positions of faces in the fans of vertices, each fan walked once: the sector of a cell at an
+/// extraordinary corner without a walk of that corner's whole fan per cell (which costs n^2 at
+/// a vertex of valence n).
+#[derive(Debug, Default)]
+pub struct FanSectors(HashMap<u32, HashMap<u32, u32>>);
+
+impl FanSectors {
+    /// The position of face `f` in the fan of `v` (the first, if `f` comes twice), 0 if `f` is
+    /// not in that fan.
+    pub fn sector(&mut self, m: &PolyMesh, v: u32, f: u32) -> u32 {
+        let fan = self.0.entry(v).or_insert_with(|| {
+            let mut at = HashMap::new();
+            for (i, g) in m.outgoing(v as usize).map(|h| m.he_face(h)).enumerate() {
+                at.entry(g).or_insert(i as u32);
+            }
+            at
+        });
+        fan.get(&f).copied().unwrap_or(0)
+    }
+}
+
+/// The tags of `cells` by `retag`, with one [`FanSectors`] memo shared by all of them (for
+/// [`AdaptiveRules::retag_all`]).
+pub fn retag_with_fans(
+    cells: Vec<(u32, Tag)>,
+    mut retag: impl FnMut(u32, Tag, &mut FanSectors) -> Tag,
+) -> Vec<(u32, Tag)> {
+    let mut fans = FanSectors::default();
+    cells
+        .into_iter()
+        .map(|(f, tag)| (f, retag(f, tag, &mut fans)))
+        .collect()
+}
+
 /// The tag of a marked cell `f`: its first corner that descends from an input element and is
 /// not regular (by `is_regular`) gives the element, sector = the cell's position in that
-/// vertex's fan; otherwise (or if the element is already the tag's) the inherited tag.
+/// vertex's fan (looked up in `fans`); otherwise (or if the element is already the tag's) the
+/// inherited tag.
 pub fn retag_by_corners(
     m: &PolyMesh,
     info: &[Info],
     f: usize,
     tag: Tag,
     is_regular: impl Fn(&PolyMesh, usize) -> bool,
+    fans: &mut FanSectors,
 ) -> Tag {
     for &v in m.face(f) {
-        let v = v as usize;
-        if let Some(origin) = info[v].origin
-            && !is_regular(m, v)
+        if let Some(origin) = info[v as usize].origin
+            && !is_regular(m, v as usize)
         {
             if tag.element == Some(origin) {
                 return tag;
             }
-            let sector = m
-                .vertex_faces(v)
-                .iter()
-                .position(|&g| g as usize == f)
-                .unwrap_or(0);
             return Tag {
                 element: Some(origin),
-                sector: sector as u32,
+                sector: fans.sector(m, v, f as u32),
                 ..tag
             };
         }

@@ -178,8 +178,23 @@ impl PolyMesh {
 
     /// Half-edge from `a` to `b`, if the edge exists in that direction.
     pub fn find_halfedge(&self, a: usize, b: usize) -> Option<u32> {
-        let hs = self.outgoing_halfedges(a);
-        hs.into_iter().find(|&h| self.he_to(h) == b as u32)
+        // Both rings are walked in step, so the cost is the smaller valence: asking a fan
+        // centre of valence n for each of its n spokes stays linear in n. A half-edge b -> a
+        // with a twin gives a -> b at once; one without a twin leaves the walk around a.
+        let (bu, au) = (b as u32, a as u32);
+        let (mut ra, mut rb) = (self.outgoing(a), self.outgoing(b));
+        loop {
+            let h = ra.next()?;
+            if self.he_to(h) == bu {
+                return Some(h);
+            }
+            if let Some(g) = rb.next().filter(|&g| self.he_to(g) == au) {
+                if let Some(t) = self.he_twin(g) {
+                    return Some(t);
+                }
+                return ra.find(|&h| self.he_to(h) == bu);
+            }
+        }
     }
 
     /// The cells of the quad grid walked by [`PolyMesh::sector_grid`]: `cells[i][j]` is the

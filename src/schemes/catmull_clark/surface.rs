@@ -47,7 +47,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, record_edge, select_rings,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, record_edge, select_rings,
 };
 use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
@@ -171,15 +171,13 @@ impl AdaptiveRules for CcRules<'_> {
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
-        tag_irregular(level, f as usize, tag, &mut HashMap::new())
+        tag_irregular(level, f as usize, tag, &mut FanSectors::default())
     }
 
     fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
-        let mut fans = HashMap::new();
-        cells
-            .into_iter()
-            .map(|(f, tag)| (f, tag_irregular(level, f as usize, tag, &mut fans)))
-            .collect()
+        adaptive::retag_with_fans(cells, |f, tag, fans| {
+            tag_irregular(level, f as usize, tag, fans)
+        })
     }
 
     fn caps(
@@ -315,12 +313,7 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
 /// for a non-quad input face); faces without one inherit their parent's tag. `fans` keeps the
 /// position of each face in the fans walked so far.
-fn tag_irregular(
-    level: &Level,
-    f: usize,
-    tag: Tag,
-    fans: &mut HashMap<u32, HashMap<u32, u32>>,
-) -> Tag {
+fn tag_irregular(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
     let m = &level.mesh;
     if m.face_size(f) != 4 {
         return Tag {
@@ -331,15 +324,7 @@ fn tag_irregular(
     for &v in m.face(f) {
         let origin = level.info[v as usize].origin;
         if origin.is_some() && sharp::irregular_vertex(level, v as usize) {
-            // each vertex's fan is walked once (position of every face, the first kept)
-            let fan = fans.entry(v).or_insert_with(|| {
-                let mut at = HashMap::new();
-                for (i, &g) in m.vertex_faces(v as usize).iter().enumerate() {
-                    at.entry(g).or_insert(i as u32);
-                }
-                at
-            });
-            let sector = fan.get(&(f as u32)).copied().unwrap_or(0);
+            let sector = fans.sector(m, v, f as u32);
             return Tag {
                 element: origin,
                 sector,

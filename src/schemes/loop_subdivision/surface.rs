@@ -80,8 +80,8 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, Info, MeshLevel, Sink, Tag, child_active, edge_curve, record_edge,
-    retag_by_corners, select_around,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, child_active, edge_curve,
+    record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
@@ -182,7 +182,11 @@ impl AdaptiveRules for LoopRules {
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
-        retag(level, f as usize, tag)
+        retag(level, f as usize, tag, &mut FanSectors::default())
+    }
+
+    fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
+        adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {
@@ -305,8 +309,8 @@ fn record_curves(m: &PolyMesh, f: usize, tri: &[Point; 15], curves: &mut Curves<
 
 /// The tag of a marked triangle: its first extraordinary corner's input vertex, sector = the
 /// triangle's position in that vertex's fan; otherwise the inherited tag.
-fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
-    retag_by_corners(&level.mesh, &level.info, f, tag, is_regular)
+fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
+    retag_by_corners(&level.mesh, &level.info, f, tag, is_regular, fans)
 }
 
 /// Refines the triangles around the corners of the marked triangles with Loop's rules; the

@@ -41,8 +41,8 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Cells, Curves, Info, Sink, Tag, child_active, edge_curve, input_active,
-    input_vertex_info, record_edge, retag_by_corners, select_around,
+    self, AdaptiveRules, Cells, Curves, FanSectors, Info, Sink, Tag, child_active, edge_curve,
+    input_active, input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
@@ -114,7 +114,11 @@ impl AdaptiveRules for NonBoxRules<'_> {
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {
-        retag(level, f as usize, tag)
+        retag(level, f as usize, tag, &mut FanSectors::default())
+    }
+
+    fn retag_all(&self, level: &Level, cells: Vec<(u32, Tag)>, _l: usize) -> Vec<(u32, Tag)> {
+        adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
     /// Non-quad faces are always refined (their first ring is at level 1).
@@ -206,7 +210,7 @@ fn record_curves(m: &PolyMesh, f: usize, tris: &[CubicTriangle; 4], curves: &mut
 
 /// The tag of a marked cell: its first irregular corner's input element (sector = the cell's
 /// position in that vertex's fan), or the input face of a non-quad; else the inherited tag.
-fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
+fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
     let m = &level.net.mesh;
     if m.face_size(f) != 4 && tag.element.is_none() {
         return Tag {
@@ -215,7 +219,7 @@ fn retag(level: &Level, f: usize, tag: Tag) -> Tag {
             ..tag
         };
     }
-    retag_by_corners(m, &level.info, f, tag, is_regular)
+    retag_by_corners(m, &level.info, f, tag, is_regular, fans)
 }
 
 /// Refines the faces around the corners of the marked cells with the non-box rules; the next
