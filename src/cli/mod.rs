@@ -23,6 +23,7 @@ pub mod limits;
 mod render;
 mod spec;
 mod subdivide;
+mod view;
 
 pub use subdivide::Computed;
 
@@ -174,6 +175,9 @@ extraordinary vertex); with --rings K the complex `subdivide --rings K` writes."
     /// Continuity report (C0/C1/C2/G1 defects per kind of join) and per-ring curvature ranges of a
     /// BezierView file or of a net's surface under a scheme.
     Check(check::CheckArgs),
+    /// Interactive viewer in the browser: a local page (127.0.0.1) with highlight lines,
+    /// curvature, overlays and scheme menu.
+    View(view::ViewArgs),
     /// Write the built-in gallery of control nets as OBJ files (or list their names).
     Gallery {
         /// Folder to write into.
@@ -207,6 +211,7 @@ fn run_command(command: Command) -> Result<()> {
         Command::Analyze(a) => analyze::analyze(a),
         Command::Charmap(a) => analyze::charmap(a),
         Command::Check(a) => check::check(a),
+        Command::View(a) => view::run(a),
         Command::Gallery { out, list } => gallery(out, list),
     }
 }

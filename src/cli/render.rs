@@ -220,7 +220,7 @@ pub struct CompareArgs {
 /// Samples per patch edge for the per-ring curvature numbers.
 const GROUP_SAMPLES: usize = 8;
 
-fn is_bv(path: &str) -> bool {
+pub(super) fn is_bv(path: &str) -> bool {
     Path::new(path)
         .extension()
         .and_then(|e| e.to_str())
@@ -229,7 +229,7 @@ fn is_bv(path: &str) -> bool {
 
 /// A `.bv` file as a scene: its tensor-product patches with provenance from the group names
 /// (its first polyhedron, if any, as the net); only polyhedra: the first one as a mesh.
-fn bv_scene(path: &str) -> Result<Scene> {
+pub(super) fn bv_scene(path: &str) -> Result<Scene> {
     let file: BvFile = crate::io::read_bv(Path::new(path))?;
     for w in &file.warnings {
         eprintln!("warning: {path}: {w}");
