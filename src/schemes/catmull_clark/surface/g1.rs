@@ -161,5 +161,7 @@ pub(super) fn g1_caps(
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
     let limits = LimitStencils::new(&level.mesh);
-    g1_cap_elements(marked, out, |e, faces| hole_of(level, &limits, e, faces).ok())
+    g1_cap_elements(marked, out, |e, faces| {
+        hole_of(level, &limits, e, faces).ok()
+    })
 }
