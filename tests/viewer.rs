@@ -104,6 +104,27 @@ fn serves_only_its_routes_and_only_on_loopback() {
     let (status, body) = get(v.port, "/api/surface?scheme=no-such-scheme");
     assert_eq!(status, 422);
     assert!(String::from_utf8_lossy(&body).contains("\"error\""));
+    // The check panel's report is `fairsub check --json`'s own.
+    let (status, body) = get(v.port, "/api/check?scheme=catmull-clark&rings=2");
+    assert_eq!(status, 200);
+    let (r, cli) = fairsub::cli::capture(|| {
+        fairsub::cli::run_words([
+            "fairsub",
+            "check",
+            "gallery:cube",
+            "--scheme",
+            "catmull-clark",
+            "--rings",
+            "2",
+            "--json",
+        ])
+    });
+    r.unwrap();
+    let page: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(
+        page,
+        serde_json::from_str::<serde_json::Value>(&cli).unwrap()
+    );
     let (status, body) = get(v.port, "/api/schemes");
     assert_eq!(status, 200);
     let s: serde_json::Value = serde_json::from_slice(&body).unwrap();

@@ -148,6 +148,11 @@ impl Reply {
         )
     }
 
+    /// A JSON body already serialised.
+    pub(crate) fn json_text(text: String) -> Reply {
+        Reply::ok("application/json", text.into_bytes())
+    }
+
     /// A JSON `{"error": ...}` with `status`.
     pub(crate) fn error(status: u16, message: &str) -> Reply {
         let mut r = Reply::json(&serde_json::json!({ "error": message }));

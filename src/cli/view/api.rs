@@ -9,7 +9,6 @@
 //! corners (3 per triangle); f32 boundary segments (6 each) and net edges (6 each).
 
 use super::{Reply, ViewArgs};
-use crate::analysis::{continuity, curvature};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::PolyMesh;
@@ -37,6 +36,8 @@ enum Source {
 /// A built surface and what was computed from it.
 struct Built {
     key: String,
+    /// The scheme that built it (`None` for a `.bv` file).
+    spec: Option<Spec>,
     complex: PatchComplex,
     notes: Vec<String>,
     buffer: Option<Vec<u8>>,
@@ -188,14 +189,16 @@ impl State {
             let b = self.cache.remove(k);
             self.cache.push(b);
         } else {
-            let (complex, notes) = match &self.source {
-                Source::Bv(c, _) => (c.clone(), Vec::new()),
+            let (spec, complex, notes) = match &self.source {
+                Source::Bv(c, _) => (None, c.clone(), Vec::new()),
                 Source::Net(net) => {
                     let mut spec = self.spec(q)?;
                     registry().descriptor(spec.id).check_input(net)?;
                     super::super::subdivide::features::patch_features(&mut spec, net, &self.input)?;
                     let rings = self.rings(q)?;
-                    super::super::subdivide::build_complex_noted(&spec, net, rings, true)?
+                    let (c, n) =
+                        super::super::subdivide::build_complex_noted(&spec, net, rings, true)?;
+                    (Some(spec), c, n)
                 }
             };
             if complex.is_empty() {
@@ -206,6 +209,7 @@ impl State {
             }
             self.cache.push(Built {
                 key,
+                spec,
                 complex,
                 notes,
                 buffer: None,
@@ -260,12 +264,12 @@ impl State {
     }
 
     fn check(&mut self, q: &[(String, String)]) -> Result<Reply> {
+        let input = self.input.clone();
         let b = self.built(q)?;
-        Ok(Reply::json(&serde_json::json!({
-            "continuity": continuity::check(&b.complex),
-            "curvature": curvature::ring_curvature(&b.complex),
-            "notes": b.notes,
-        })))
+        // `fairsub check --json`'s own report of the same complex
+        let text =
+            super::super::check::report_json(&input, &b.complex, b.spec.as_ref(), b.notes.clone());
+        Ok(Reply::json_text(text))
     }
 
     fn surface(&mut self, q: &[(String, String)]) -> Result<Reply> {
