@@ -6,7 +6,9 @@
 //! row in a reused buffer, merges duplicate sources and appends it to a [`StencilTable`].
 
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
+use crate::geom::Point;
+use crate::mesh::tags::SubdOptions as Opts;
+use crate::mesh::{Extras, PolyMesh};
 use crate::stencil::{Stencil, StencilTable, Terms};
 
 /// `cos(2 pi k / n)`, exact at the multiples of 30 degrees where the value is rational (so that
@@ -89,37 +91,66 @@ impl Terms for RowBuf {
     }
 }
 
-/// Which step of a one-shot refinement a kernel is asked for (see [`one_shot_levels`]).
-// Built once per level and matched at once: boxing the owned mesh would buy nothing.
-#[allow(clippy::large_enum_variant)]
-pub(crate) enum OneShotStep<'a> {
-    /// An intermediate level: the child keeps its full connectivity.
-    Middle(&'a PolyMesh),
-    /// A single step from the caller's net, which stays borrowed.
-    OnlyStep(&'a PolyMesh),
-    /// The last of several steps: the parent is owned and may be taken apart to save memory.
-    Last(PolyMesh),
+/// What the level loop of a one-shot kernel ([`refine_one_shot`]) asks of a scheme whose
+/// refinement is a direct point kernel plus child connectivity derived from the parent's
+/// (Catmull-Clark, Loop). Each method is the scheme's own; the loop is written once.
+pub(crate) trait OneShot {
+    /// The rules of one step on one level (plain, or with the level's sharp features).
+    type Rules<'a>;
+    /// The rules for `mesh` under `opts`.
+    fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Self::Rules<'a>;
+    /// The child points of one step, from the direct kernel.
+    fn points(mesh: &PolyMesh, rules: &Self::Rules<'_>) -> Vec<Point>;
+    /// The child with its half-edge connectivity and sharp features.
+    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Self::Rules<'_>) -> PolyMesh;
+    /// The child's sharp features named by end points (for a child without connectivity).
+    fn extras(mesh: &PolyMesh, rules: &Self::Rules<'_>) -> Option<Extras>;
+    /// The child of a borrowed manifold parent, without half-edges (built on first use).
+    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh;
+    /// The child of an owned manifold parent, without half-edges: the parent is taken apart
+    /// before the child's faces are allocated.
+    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh;
 }
 
-/// The level loop of the one-shot kernels (Catmull-Clark, Loop): `levels` calls of `step`, each
-/// parent dropped as soon as its child exists, `progress(level)` after each step. `check` runs
-/// on every parent before its step (size limits).
-pub(crate) fn one_shot_levels(
+/// The last step of [`refine_one_shot`]: the child keeps no half-edges (built on first use, if
+/// ever) unless the parent is not manifold.
+fn last_step<K: OneShot, P: std::borrow::Borrow<PolyMesh>>(
+    parent: P,
+    opts: &Opts,
+    bare: impl FnOnce(P, Vec<Point>) -> PolyMesh,
+) -> PolyMesh {
+    let p = parent.borrow();
+    let rules = K::rules(p, opts);
+    let positions = K::points(p, &rules);
+    if !p.is_manifold() {
+        return K::child(p, positions, &rules);
+    }
+    let extras = K::extras(p, &rules);
+    drop(rules);
+    bare(parent, positions).with_extras(extras)
+}
+
+/// `levels` steps of a one-shot kernel: each parent dropped as soon as its child exists, the
+/// last parent taken apart before its child is allocated, `progress(level)` after each step.
+/// `check` runs on every parent before its step (size limits).
+pub(crate) fn refine_one_shot<K: OneShot>(
     mesh: &PolyMesh,
     levels: usize,
     mut progress: impl FnMut(usize),
     check: impl Fn(&PolyMesh) -> Result<()>,
-    mut step: impl FnMut(OneShotStep<'_>) -> Result<PolyMesh>,
+    opts: &Opts,
 ) -> Result<PolyMesh> {
     let mut owned: Option<PolyMesh> = None;
     for l in 0..levels {
         check(owned.as_ref().unwrap_or(mesh))?;
         let child = if l + 1 < levels {
-            step(OneShotStep::Middle(owned.as_ref().unwrap_or(mesh)))?
+            let p = owned.as_ref().unwrap_or(mesh);
+            let rules = K::rules(p, opts);
+            K::child(p, K::points(p, &rules), &rules)
         } else {
             match owned.take() {
-                None => step(OneShotStep::OnlyStep(mesh))?,
-                Some(parent) => step(OneShotStep::Last(parent))?,
+                None => last_step::<K, _>(mesh, opts, K::bare_child),
+                Some(parent) => last_step::<K, _>(parent, opts, K::last_child),
             }
         };
         owned = Some(child);

@@ -497,41 +497,38 @@ impl CatmullClark {
         mut progress: impl FnMut(usize),
         opts: &Opts,
     ) -> Result<PolyMesh> {
-        use super::common::{OneShotStep, one_shot_levels};
-        one_shot_levels(mesh, levels, &mut progress, check_sizes, |s| {
-            Ok(match s {
-                OneShotStep::Middle(p) => {
-                    let rules = Rules::new(p, opts);
-                    Self::child_mesh_by(p, Self::refine_points_by(p, p.positions(), &rules), &rules)
-                }
-                OneShotStep::OnlyStep(p) => {
-                    let rules = Rules::new(p, opts);
-                    let positions = Self::refine_points_by(p, p.positions(), &rules);
-                    if !p.is_manifold() {
-                        return Ok(Self::child_mesh_by(p, positions, &rules));
-                    }
-                    let extras = rules
-                        .sharp
-                        .as_ref()
-                        .map(|sl| child::child_extras(p, sl, None));
-                    PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(p), None)
-                        .with_extras(extras)
-                }
-                OneShotStep::Last(p) => {
-                    let rules = Rules::new(&p, opts);
-                    let positions = Self::refine_points_by(&p, p.positions(), &rules);
-                    if !p.is_manifold() {
-                        return Ok(Self::child_mesh_by(&p, positions, &rules));
-                    }
-                    let extras = rules
-                        .sharp
-                        .as_ref()
-                        .map(|sl| child::child_extras(&p, sl, None));
-                    drop(rules);
-                    child::last_child(p, positions).with_extras(extras)
-                }
-            })
-        })
+        super::common::refine_one_shot::<Self>(mesh, levels, &mut progress, check_sizes, opts)
+    }
+}
+
+impl super::common::OneShot for CatmullClark {
+    type Rules<'a> = Rules<'a>;
+
+    fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Rules<'a> {
+        Rules::new(mesh, opts)
+    }
+
+    fn points(mesh: &PolyMesh, rules: &Rules<'_>) -> Vec<Point> {
+        Self::refine_points_by(mesh, mesh.positions(), rules)
+    }
+
+    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
+        Self::child_mesh_by(mesh, positions, rules)
+    }
+
+    fn extras(mesh: &PolyMesh, rules: &Rules<'_>) -> Option<crate::mesh::Extras> {
+        rules
+            .sharp
+            .as_ref()
+            .map(|sl| child::child_extras(mesh, sl, None))
+    }
+
+    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), None)
+    }
+
+    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        child::last_child(mesh, positions)
     }
 }
 

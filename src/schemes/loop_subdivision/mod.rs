@@ -431,49 +431,7 @@ impl Loop {
         opts: &Opts,
     ) -> Result<PolyMesh> {
         check_triangles(mesh)?;
-        use super::common::{OneShotStep, one_shot_levels};
-        one_shot_levels(mesh, levels, &mut progress, check_sizes, |s| {
-            Ok(match s {
-                OneShotStep::Middle(p) => {
-                    let rules = Rules::new(p, opts);
-                    Self::child_mesh_by(p, Self::refine_points_by(p, p.positions(), &rules), &rules)
-                }
-                OneShotStep::OnlyStep(p) => {
-                    let rules = Rules::new(p, opts);
-                    let positions = Self::refine_points_by(p, p.positions(), &rules);
-                    if !p.is_manifold() {
-                        return Ok(Self::child_mesh_by(p, positions, &rules));
-                    }
-                    let extras = rules
-                        .sharp
-                        .as_ref()
-                        .map(|sl| child::child_extras(p, sl, None));
-                    let m = p.view();
-                    let corners = child_corners(m.corners, m.he_edge, p.num_vertices());
-                    PolyMesh::from_trusted_uniform(positions, 3, corners, None).with_extras(extras)
-                }
-                OneShotStep::Last(p) => {
-                    let rules = Rules::new(&p, opts);
-                    let positions = Self::refine_points_by(&p, p.positions(), &rules);
-                    if !p.is_manifold() {
-                        return Ok(Self::child_mesh_by(&p, positions, &rules));
-                    }
-                    let extras = rules
-                        .sharp
-                        .as_ref()
-                        .map(|sl| child::child_extras(&p, sl, None));
-                    drop(rules);
-                    // Keep only what the child faces need from the parent.
-                    let nv = p.num_vertices();
-                    let MeshParts { corners, topo, .. } = p.into_parts();
-                    let Topology { he_edge, .. } =
-                        topo.expect("an intermediate level has its topology");
-                    let child = child_corners(&corners, &he_edge, nv);
-                    drop((corners, he_edge));
-                    PolyMesh::from_trusted_uniform(positions, 3, child, None).with_extras(extras)
-                }
-            })
-        })
+        super::common::refine_one_shot::<Self>(mesh, levels, &mut progress, check_sizes, opts)
     }
 
     /// Limit-position stencils with OpenSubdiv's options (see [`Scheme::limit_stencils`]).
@@ -492,6 +450,45 @@ impl Loop {
                 row.flush_into(t);
             }
         }))
+    }
+}
+
+impl super::common::OneShot for Loop {
+    type Rules<'a> = Rules<'a>;
+
+    fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Rules<'a> {
+        Rules::new(mesh, opts)
+    }
+
+    fn points(mesh: &PolyMesh, rules: &Rules<'_>) -> Vec<Point> {
+        Self::refine_points_by(mesh, mesh.positions(), rules)
+    }
+
+    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
+        Self::child_mesh_by(mesh, positions, rules)
+    }
+
+    fn extras(mesh: &PolyMesh, rules: &Rules<'_>) -> Option<crate::mesh::Extras> {
+        rules
+            .sharp
+            .as_ref()
+            .map(|sl| child::child_extras(mesh, sl, None))
+    }
+
+    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        let m = mesh.view();
+        let corners = child_corners(m.corners, m.he_edge, mesh.num_vertices());
+        PolyMesh::from_trusted_uniform(positions, 3, corners, None)
+    }
+
+    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh {
+        // Keep only what the child faces need from the parent.
+        let nv = mesh.num_vertices();
+        let MeshParts { corners, topo, .. } = mesh.into_parts();
+        let Topology { he_edge, .. } = topo.expect("an intermediate level has its topology");
+        let child = child_corners(&corners, &he_edge, nv);
+        drop((corners, he_edge));
+        PolyMesh::from_trusted_uniform(positions, 3, child, None)
     }
 }
 
