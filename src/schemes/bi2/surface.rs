@@ -284,9 +284,12 @@ fn assemble(
     }
     if opts.fill {
         for (el, local) in elements.iter().zip(&locals) {
+            // The fill reads the local net and, at index `size`, the limit point.
+            let mut with_limit = local.clone();
+            with_limit.push(el.scheme.limit()?.apply(local));
             for (c, sector) in el.scheme.fill(el.start + opts.rings)? {
                 out.push(
-                    to_patch(&c, local),
+                    to_patch(&c, &with_limit),
                     Provenance::Cap {
                         element: el.element,
                         sector,
@@ -317,6 +320,7 @@ pub fn pgs_complex(
     let limit = |m: &PolyMesh, f: usize| Pgs::facet_limit_stencil(m, f);
     let rules = ds::DualRules {
         corner: &corner,
+        face_corners: &Pgs::face_corners,
         facet_limit: &limit,
     };
     ds::dual_complex_with(&pre, opts, &rules, ids::PGS.name(), progress)
