@@ -329,10 +329,11 @@ impl Pgs {
     ) -> Result<PolyMesh> {
         let mut m = mesh.clone();
         for l in 0..levels {
+            // Only the nets are kept: large faces take their corners in linear time.
             m = if l < opts.dscc_steps {
-                DooSabinCc.refine(&m)?.mesh
+                fourier::refine_cc_net(&m)?
             } else {
-                Pgs.refine(&m)?.mesh
+                fourier::refine_net_with(&m, Pgs.name(), add_corner, Pgs::face_corners)?
             };
         }
         Ok(m)

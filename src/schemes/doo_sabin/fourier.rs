@@ -7,8 +7,10 @@
 //! [`super::DooSabin::weights`] and [`super::DooSabinCc::weights`], regrouped (tested equal to
 //! the stencils in this module's tests).
 
+use crate::error::Result;
 use crate::geom::{Point, axpy};
 use crate::mesh::PolyMesh;
+use crate::schemes::common::RowBuf;
 
 /// Faces with more corners than this get their new corners from [`FaceCorners`] rules.
 pub const LARGE_FACE: usize = 32;
@@ -82,6 +84,57 @@ pub fn doo_sabin_cc(mesh: &PolyMesh, f: usize) -> FaceCorners {
     }
 }
 
+/// One whole-net step of a dual scheme when only the child net is wanted (no stencil table
+/// kept, as for PGS's DS^CC pre-processing): [`super::refine_dual_with`] with `corner_rule`,
+/// but the corners of faces above [`LARGE_FACE`] get empty rows and their positions from
+/// `face_corners`, in time linear in the face size.
+///
+/// # Errors
+/// As [`super::refine_dual_with`].
+pub(crate) fn refine_net_with(
+    mesh: &PolyMesh,
+    name: &str,
+    mut corner_rule: impl FnMut(&PolyMesh, u32, &mut RowBuf),
+    face_corners: fn(&PolyMesh, usize) -> FaceCorners,
+) -> Result<PolyMesh> {
+    let large = |m: &PolyMesh, h: u32| m.face_size(m.he_face(h) as usize) > LARGE_FACE;
+    let r = super::refine_dual_with(mesh, name, |m, h, row| {
+        if !large(m, h) {
+            corner_rule(m, h, row);
+        }
+    })?;
+    let mut child = r.mesh;
+    let big: Vec<usize> = (0..mesh.num_faces())
+        .filter(|&f| mesh.face_size(f) > LARGE_FACE)
+        .collect();
+    if !big.is_empty() {
+        // The child point of corner h is child vertex h (the module's layout).
+        let mut pos = child.positions().to_vec();
+        for f in big {
+            let h0 = mesh.face_halfedge(f) as usize;
+            for (i, p) in face_corners(mesh, f).points.into_iter().enumerate() {
+                pos[h0 + i] = p;
+            }
+        }
+        child.set_positions(pos);
+    }
+    Ok(child)
+}
+
+/// One DS^CC step of the net alone ([`refine_net_with`] with DS^CC's rules).
+///
+/// # Errors
+/// As [`super::refine_dual_with`].
+pub fn refine_cc_net(mesh: &PolyMesh) -> Result<PolyMesh> {
+    let mut rules = super::RuleCache::new(super::DooSabinCc::weights);
+    refine_net_with(
+        mesh,
+        crate::schemes::registry::ids::DOO_SABIN_CC.name(),
+        |m, h, row| super::add_corner_point(m, &mut rules, h, 1.0, row),
+        doo_sabin_cc,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,6 +153,22 @@ mod tests {
             })
             .collect();
         PolyMesh::new(pts, &[(0..n).collect::<Vec<usize>>()]).unwrap()
+    }
+
+    #[test]
+    fn net_step_equals_the_refinement() {
+        use crate::schemes::Scheme;
+        for n in [5, 40] {
+            let m = ngon(n);
+            let a = refine_cc_net(&m).unwrap();
+            let b = DooSabinCc.refine(&m).unwrap().mesh;
+            assert_eq!(a.num_faces(), b.num_faces());
+            for (p, q) in a.positions().iter().zip(b.positions()) {
+                for k in 0..3 {
+                    assert!((p[k] - q[k]).abs() < 1e-14, "n = {n}");
+                }
+            }
+        }
     }
 
     #[test]
