@@ -381,6 +381,12 @@ fn a_million_rings_are_refused() {
 
 /// A disc of `n` quads around one vertex of valence `n`.
 fn fan(path: &Path, n: usize) {
+    disc(path, n, false);
+}
+
+/// A disc around one vertex of valence `n`: `n` quads, or with `triangles` each quad split
+/// into two triangles along the spoke-to-spoke diagonal (Loop's fan).
+fn disc(path: &Path, n: usize, triangles: bool) {
     use std::fmt::Write;
     let mut s = String::from("v 0 0 0\n");
     for r in [1.0, 2.0] {
@@ -390,7 +396,12 @@ fn fan(path: &Path, n: usize) {
         }
     }
     for i in 0..n {
-        writeln!(s, "f 1 {} {} {}", 2 + i, n + 2 + i, 2 + (i + 1) % n).unwrap();
+        let (a, b, c) = (2 + i, n + 2 + i, 2 + (i + 1) % n);
+        if triangles {
+            writeln!(s, "f 1 {a} {c}\nf {a} {b} {c}").unwrap();
+        } else {
+            writeln!(s, "f 1 {a} {b} {c}").unwrap();
+        }
     }
     std::fs::write(path, s).unwrap();
 }
@@ -420,23 +431,6 @@ fn rings_at_a_vertex_of_valence_2000_are_built_and_valid() {
     assert_eq!(c.patches.len(), 7 * n);
 }
 
-/// A disc of 2 n triangles around one vertex of valence `n` (Loop's fan).
-fn tri_fan(path: &Path, n: usize) {
-    use std::fmt::Write;
-    let mut s = String::from("v 0 0 0\n");
-    for r in [1.0, 2.0] {
-        for i in 0..n {
-            let t = (i as f64 + (r - 1.0) / 2.0) / n as f64 * std::f64::consts::TAU;
-            writeln!(s, "v {} {} {}", r * t.cos(), r * t.sin(), (r - 1.0) / 10.0).unwrap();
-        }
-    }
-    for i in 0..n {
-        let (a, b) = (2 + i, 2 + (i + 1) % n);
-        writeln!(s, "f 1 {a} {b}\nf {a} {} {b}", n + 2 + i).unwrap();
-    }
-    std::fs::write(path, s).unwrap();
-}
-
 /// `--rings 2` at a vertex of valence 1,000 under every scheme with patch output (each of them
 /// was quadratic or cubic there: composed bi-2 stencils, n-gon corner stencils of n entries,
 /// fills and retags asking an O(n) fan per cell; `bench/scaling.sh` times 2k -> 20k): the patch
@@ -448,7 +442,7 @@ fn rings_at_a_vertex_of_valence_1000_under_every_scheme() {
     let n = 1000;
     let (quads, tris) = (d.join("fan.obj"), d.join("tri-fan.obj"));
     fan(&quads, n);
-    tri_fan(&tris, n);
+    disc(&tris, n, true);
     let cc_note = "has no published";
     let guided_note = "is beyond guided subdivision's valences 3..16: Catmull-Clark rings";
     // (scheme, patches per unit of valence, a note the run must print): 2 rings of 3 n and a
