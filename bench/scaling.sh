@@ -10,16 +10,20 @@
 #   info-kgon     `info` on one k-gon                                  20k -> 200k vertices
 #   check-bv      `check` on a .bv grid of bi-3 patches                 10k -> 100k patches
 #   bv-groups     `check` on a .bv with one `group` line per patch      10k -> 100k groups
-#   valence-fan   `subdivide --scheme catmull-clark --rings 2` at one
-#                 vertex of valence n (a disc of n quads)                2k -> 20k
+#   fan-S         `subdivide --scheme S --rings 2` at one vertex of valence n 2k -> 20k
+#                 (a disc of n quads; for loop a disc of 2n triangles), for every scheme S
+#                 (FAN_SCHEMES); valence-fan is fan-catmull-clark
 #   ds-kgon       `subdivide --scheme doo-sabin --levels 1` on a k-gon  20k -> 200k; a
 #                 Doo-Sabin face point weighs every corner (k^2 stencil entries), so both
 #                 are refused up front (`--max-memory 64M`): this measures reading and the
 #                 estimate, which must not be quadratic
-#   analyze-V     `analyze --scheme V --valence n`, n = 3 -> 30 (valence 2 is refused by all three), for V in guided-bi5, pgs,
-#                 nonbox: a dense eigen-decomposition of a matrix of O(n) rows, cubic by nature;
-#                 analyze refuses matrices over 450 rows up front (guided-bi5 above valence 24),
-#                 so the large size stays within that bound
+#   analyze-V     `analyze --scheme V --valence n`, n = 3 -> 30 (ANALYZE_N; valence 2 is
+#                 refused by all three), for V in guided-bi5, pgs, nonbox: today a dense
+#                 eigen-decomposition of a matrix of O(n) rows, cubic; analyze refuses matrices
+#                 over 450 rows up front (guided-bi5 above valence 24, so its 30 is refused and
+#                 the case fails). These cases FAIL until the block-circulant local matrices are
+#                 solved by Fourier blocks (issue 20); measured 2026-12-02: pgs 3 -> 30 x22,
+#                 nonbox x20
 #
 # Timings are wall-clock of the whole process (reading, work, writing) on whatever machine runs
 # the script; run it on an idle machine. It is not part of `cargo test` (the project has no timed
@@ -30,7 +34,10 @@ REPS=${REPS:-3}
 LIMIT=${LIMIT:-15}
 BIN=${BIN:-target/release/fairsub}
 OUT=${OUT:-target/scaling}
-CASES=${CASES:-"info-kgon check-bv bv-groups valence-fan ds-kgon analyze-guided-bi5 analyze-pgs analyze-nonbox"}
+FAN_SCHEMES=${FAN_SCHEMES:-"catmull-clark doo-sabin doo-sabin-cc loop nonbox nonbox-4dir eg qas-plus qas-plus-bi3 qas-0.4 qas-0.5-0.4 pgs pgs-dscc polar-bi2 tps tps-adjustable bi2-mixed guided-bi5 guided-bi6 guided-bi4-macro guided-bi3-macro"}
+FANS=""
+for s in $FAN_SCHEMES; do FANS="$FANS fan-$s"; done
+CASES=${CASES:-"info-kgon check-bv bv-groups$FANS ds-kgon analyze-guided-bi5 analyze-pgs analyze-nonbox"}
 
 if [ ! -x "$BIN" ]; then
     cargo build --release >&2
@@ -52,6 +59,16 @@ fan() { # n file
         for (i = 0; i < n; i++) { t = 6.283185307179586 * i / n; printf "v %.17g %.17g 0\n", cos(t), sin(t) }
         for (i = 0; i < n; i++) { t = 6.283185307179586 * (i + 0.5) / n; printf "v %.17g %.17g 0.1\n", 2 * cos(t), 2 * sin(t) }
         for (i = 0; i < n; i++) printf "f 1 %d %d %d\n", 2 + i, n + 2 + i, 2 + (i + 1) % n }' >"$2"
+}
+
+# A disc of 2n triangles around one vertex of valence n (Loop): centre 1, inner ring 2..n+1,
+# outer ring n+2..2n+1; triangles (centre, a_i, a_{i+1}) and (a_i, b_i, a_{i+1}).
+trifan() { # n file
+    awk -v n="$1" 'BEGIN {
+        print "v 0 0 0"
+        for (i = 0; i < n; i++) { t = 6.283185307179586 * i / n; printf "v %.17g %.17g 0\n", cos(t), sin(t) }
+        for (i = 0; i < n; i++) { t = 6.283185307179586 * (i + 0.5) / n; printf "v %.17g %.17g 0.1\n", 2 * cos(t), 2 * sin(t) }
+        for (i = 0; i < n; i++) { printf "f 1 %d %d\n", 2 + i, 2 + (i + 1) % n; printf "f %d %d %d\n", 2 + i, n + 2 + i, 2 + (i + 1) % n } }' >"$2"
 }
 
 # A flat m x m grid of bi-3 patches in .bv (adjacent patches share their boundary rows); with
@@ -112,11 +129,17 @@ for c in $CASES; do
         bvgrid 100 1 "$OUT/h1.bv"; bvgrid 316 1 "$OUT/h2.bv"
         report "$c" 10000 "$(best "$BIN" check "$OUT/h1.bv")" "$(best "$BIN" check "$OUT/h2.bv")"
         ;;
-    valence-fan)
-        fan 2000 "$OUT/f1.obj"; fan 20000 "$OUT/f2.obj"
+    valence-fan | fan-*)
+        s=${c#fan-}
+        if [ "$c" = valence-fan ]; then s=catmull-clark; fi
+        if [ "$s" = loop ]; then net=t; else net=f; fi
+        if [ ! -f "$OUT/${net}2.obj" ]; then
+            if [ $net = t ]; then trifan 2000 "$OUT/t1.obj"; trifan 20000 "$OUT/t2.obj"
+            else fan 2000 "$OUT/f1.obj"; fan 20000 "$OUT/f2.obj"; fi
+        fi
         report "$c" 2000 \
-            "$(best "$BIN" subdivide "$OUT/f1.obj" --scheme catmull-clark --rings 2 -o "$OUT/f1.bv")" \
-            "$(best "$BIN" subdivide "$OUT/f2.obj" --scheme catmull-clark --rings 2 -o "$OUT/f2.bv")"
+            "$(best "$BIN" subdivide "$OUT/${net}1.obj" --scheme "$s" --rings 2 -o "$OUT/${net}1.bv")" \
+            "$(best "$BIN" subdivide "$OUT/${net}2.obj" --scheme "$s" --rings 2 -o "$OUT/${net}2.bv")"
         ;;
     ds-kgon)
         kgon 20000 "$OUT/d1.obj"; kgon 200000 "$OUT/d2.obj"

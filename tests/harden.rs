@@ -75,6 +75,59 @@ fn huge_fcvs_give_an_error_not_an_empty_mesh() {
     );
 }
 
+/// The cube's OBJ with vertex `i` at `v(i, its place on the unit cube)`.
+fn cube_with(v: impl Fn(usize, [f64; 3]) -> [f64; 3]) -> String {
+    let base = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let mut s = String::new();
+    for (i, b) in base.iter().enumerate() {
+        let q = v(i, *b);
+        s.push_str(&format!("v {:e} {:e} {:e}\n", q[0], q[1], q[2]));
+    }
+    s + "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+}
+
+/// The issue's other empty-mesh cases: a control point at 1e100 and a net whose points all
+/// coincide give an error naming a patch, for OBJ and PLY tessellations, and write nothing.
+#[test]
+fn huge_or_coincident_control_points_give_an_error_not_an_empty_mesh() {
+    let d = scratch("huge-cp");
+    let huge = d.join("huge.obj");
+    std::fs::write(
+        &huge,
+        cube_with(|i, b| if i == 0 { [1e100, 0.0, 0.0] } else { b }),
+    )
+    .unwrap();
+    let same = d.join("same.obj");
+    std::fs::write(&same, cube_with(|_, _| [0.0; 3])).unwrap();
+    for (net, scheme, patches) in [(&huge, "catmull-clark", 96), (&same, "nonbox", 312)] {
+        for ext in ["obj", "ply"] {
+            let out = d.join(format!("out.{ext}"));
+            refused(
+                &sub(
+                    net.to_str().unwrap(),
+                    scheme,
+                    ["--rings", "2"],
+                    out.to_str().unwrap(),
+                ),
+                &format!(
+                    "invalid output: the tessellation is empty: all {patches} patches, e.g. \
+                     patch 0 (ring 2 around vertex 0, sector 0), are degenerate"
+                ),
+                &out,
+            );
+        }
+    }
+}
+
 #[test]
 fn jobs_over_the_budget_are_refused_with_the_estimate_and_the_option() {
     let d = scratch("limits");
@@ -171,6 +224,36 @@ fn q_file_vertices_are_checked_against_the_net() {
             out.to_str().unwrap(),
         ],
         "e.q:2: vertex 9999 does not exist: the net has 8 vertices",
+        &out,
+    );
+}
+
+/// A q-file naming a regular vertex is refused at its line (it would be ignored silently).
+#[test]
+fn q_file_naming_a_regular_vertex_is_refused() {
+    let d = scratch("qfile-regular");
+    let net = d.join("grid.obj");
+    std::fs::write(
+        &net,
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0\n\
+         f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n",
+    )
+    .unwrap();
+    let q = d.join("reg.q");
+    std::fs::write(&q, "# the centre of a 2 x 2 grid\nvertex 4\n").unwrap();
+    let out = d.join("out.bv");
+    refused(
+        &[
+            "subdivide",
+            net.to_str().unwrap(),
+            "--scheme",
+            "qas-plus",
+            "--q-file",
+            q.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        "reg.q:2: vertex 4 is regular (valence 4, quads around it)",
         &out,
     );
 }
@@ -298,6 +381,12 @@ fn a_million_rings_are_refused() {
 
 /// A disc of `n` quads around one vertex of valence `n`.
 fn fan(path: &Path, n: usize) {
+    disc(path, n, false);
+}
+
+/// A disc around one vertex of valence `n`: `n` quads, or with `triangles` each quad split
+/// into two triangles along the spoke-to-spoke diagonal (Loop's fan).
+fn disc(path: &Path, n: usize, triangles: bool) {
     use std::fmt::Write;
     let mut s = String::from("v 0 0 0\n");
     for r in [1.0, 2.0] {
@@ -307,7 +396,12 @@ fn fan(path: &Path, n: usize) {
         }
     }
     for i in 0..n {
-        writeln!(s, "f 1 {} {} {}", 2 + i, n + 2 + i, 2 + (i + 1) % n).unwrap();
+        let (a, b, c) = (2 + i, n + 2 + i, 2 + (i + 1) % n);
+        if triangles {
+            writeln!(s, "f 1 {a} {c}\nf {a} {b} {c}").unwrap();
+        } else {
+            writeln!(s, "f 1 {a} {b} {c}").unwrap();
+        }
     }
     std::fs::write(path, s).unwrap();
 }
@@ -335,6 +429,65 @@ fn rings_at_a_vertex_of_valence_2000_are_built_and_valid() {
     );
     let c = fairsub::io::read_bv(&out).unwrap();
     assert_eq!(c.patches.len(), 7 * n);
+}
+
+/// `--rings 2` at a vertex of valence 1,000 under every scheme with patch output (each of them
+/// was quadratic or cubic there: composed bi-2 stencils, n-gon corner stencils of n entries,
+/// fills and retags asking an O(n) fan per cell; `bench/scaling.sh` times 2k -> 20k): the patch
+/// count of the scheme's layout, the note where the scheme hands the vertex to other rules,
+/// and an output that reads back.
+#[test]
+fn rings_at_a_vertex_of_valence_1000_under_every_scheme() {
+    let d = scratch("fans");
+    let n = 1000;
+    let (quads, tris) = (d.join("fan.obj"), d.join("tri-fan.obj"));
+    fan(&quads, n);
+    disc(&tris, n, true);
+    let cc_note = "has no published";
+    let guided_note = "is beyond guided subdivision's valences 3..16: Catmull-Clark rings";
+    // (scheme, patches per unit of valence, a note the run must print): 2 rings of 3 n and a
+    // fill of n (Catmull-Clark layout, TPS's 2 n per ring + n); the dual schemes' n-gon is born
+    // at level 1 (rings of 3 n from there); Loop's rings on the triangle fan; non-box 12 n per
+    // ring + n; PGS-DS^CC after two whole-net DS^CC steps.
+    let cases: [(&str, usize, &str); 21] = [
+        ("catmull-clark", 7, ""),
+        ("doo-sabin", 6, ""),
+        ("doo-sabin-cc", 6, ""),
+        ("loop", 26, ""),
+        ("nonbox", 25, ""),
+        ("nonbox-4dir", 25, ""),
+        ("eg", 7, cc_note),
+        ("qas-plus", 7, cc_note),
+        ("qas-plus-bi3", 7, cc_note),
+        ("qas-0.4", 7, cc_note),
+        ("qas-0.5-0.4", 7, cc_note),
+        ("pgs", 6, ""),
+        ("pgs-dscc", 42, ""),
+        ("polar-bi2", 7, "is not a pole: TPS rings there"),
+        ("tps", 7, ""),
+        ("tps-adjustable", 7, ""),
+        ("bi2-mixed", 7, ""),
+        ("guided-bi5", 7, guided_note),
+        ("guided-bi6", 7, guided_note),
+        ("guided-bi4-macro", 7, guided_note),
+        ("guided-bi3-macro", 7, guided_note),
+    ];
+    for (scheme, per, note) in cases {
+        let net = if scheme == "loop" { &tris } else { &quads };
+        let out = d.join(format!("{scheme}.bv"));
+        let (code, err) = run(&sub(
+            net.to_str().unwrap(),
+            scheme,
+            ["--rings", "2"],
+            out.to_str().unwrap(),
+        ));
+        assert_eq!(code, 0, "{scheme}: {err}");
+        let want = format!("wrote {} patches (2 rings, {scheme})", per * n);
+        assert!(err.contains(&want), "{scheme}: expected {want:?} in {err}");
+        assert!(err.contains(note), "{scheme}: expected {note:?} in {err}");
+        let c = fairsub::io::read_bv(&out).unwrap();
+        assert_eq!(c.patches.len(), per * n, "{scheme}");
+    }
 }
 
 /// A flat `m x m` grid of bi-3 patches as a `.bv`, with one `group` line per patch if `groups`.

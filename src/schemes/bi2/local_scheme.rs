@@ -299,10 +299,15 @@ impl LocalScheme {
     }
 
     /// The fill patches of the hole inside the ring of the level-`l` local net (see the
-    /// [module](self) documentation), over the local net.
+    /// [module](self) documentation), over the local net extended by one point: index
+    /// [`LocalScheme::size`] stands for the element's [limit point](Self::limit). Every sector's
+    /// patch has that point as its centre coefficient; naming it by one index, instead of
+    /// repeating the limit stencil (which reads all `n` ring points) in each of the `n`
+    /// patches, keeps the fill linear in the valence. Errors as [`Self::limit`].
     pub fn fill(&self, l: usize) -> Result<Vec<(Vec<Stencil>, u32)>> {
         let n = self.n;
-        let lim = self.limit()?;
+        self.limit()?;
+        let lim = Stencil::point(self.size);
         let mut out = Vec::new();
         match self.kind {
             LocalKind::Pgs => {

@@ -135,16 +135,6 @@ pub fn bi2_patch_stencils(net: &[[Stencil; 3]; 3], wu: [f64; 3], wv: [f64; 3]) -
     out
 }
 
-/// Composes a stencil over local points with the stencils of those points: the result is over
-/// the sources of `points`.
-pub fn compose(s: &Stencil, points: &[Stencil]) -> Stencil {
-    let mut out = Stencil::new();
-    for &(i, w) in s.entries() {
-        out.add_scaled(&points[i as usize], w);
-    }
-    out.merged()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

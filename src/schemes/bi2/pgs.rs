@@ -54,8 +54,10 @@
 //! kept corners).
 
 use crate::error::{Error, Result};
+use crate::geom::axpy;
 use crate::mesh::PolyMesh;
 use crate::schemes::common::RowBuf;
+use crate::schemes::doo_sabin::fourier::{self, FaceCorners};
 use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, refine_dual_with};
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
@@ -267,6 +269,39 @@ impl Pgs {
         row.take_stencil()
     }
 
+    /// All new corners of facet `f` at once, as positions in time linear in its size (for the
+    /// adaptive host's large faces): (4) with the centre `p` of (1) evaluated once, where
+    /// [`Pgs::corner_stencil`] would carry `p`'s `O(n)` stencil in every corner; Doo-Sabin's rule
+    /// ([`crate::schemes::doo_sabin::fourier::doo_sabin`]) at a facet without a DS-net and at a
+    /// quad (where it is the bi-2 mask), as [`Pgs::corner_stencil`].
+    pub fn face_corners(mesh: &PolyMesh, f: usize) -> FaceCorners {
+        let n = mesh.face_size(f);
+        let centre = if n == 4 {
+            None
+        } else {
+            Self::centre_stencil(mesh, f)
+        };
+        let Some(p) = centre else {
+            return fourier::doo_sabin(mesh, f);
+        };
+        let prm = PgsParams::new(n).expect("a face has at least 3 sides");
+        let pos = mesh.positions();
+        let verts = mesh.face(f);
+        let pp = p.apply(pos);
+        let at = |i: usize| pos[verts[i % n] as usize];
+        let points = (0..n)
+            .map(|i| {
+                let mut q = axpy([0.0; 3], 1.0 - prm.w1 - 2.0 * prm.w2, pp);
+                q = axpy(q, prm.w1, at(i));
+                q = axpy(q, prm.w2, at(i + 1));
+                axpy(q, prm.w2, at(i + n - 1))
+            })
+            .collect();
+        let mut reads: Vec<u32> = p.entries().iter().map(|&(x, _)| x).collect();
+        reads.extend_from_slice(verts);
+        FaceCorners { points, reads }
+    }
+
     /// The limit point (7) of facet `f` with `p` from (1), when PGS applies there; otherwise
     /// the limit point of the facet's child after one (Doo-Sabin) step is not a closed form of
     /// `f` alone, and the centroid is returned (exact for quads, the documented centre of the
@@ -294,10 +329,11 @@ impl Pgs {
     ) -> Result<PolyMesh> {
         let mut m = mesh.clone();
         for l in 0..levels {
+            // Only the nets are kept: large faces take their corners in linear time.
             m = if l < opts.dscc_steps {
-                DooSabinCc.refine(&m)?.mesh
+                fourier::refine_cc_net(&m)?
             } else {
-                Pgs.refine(&m)?.mesh
+                fourier::refine_net_with(&m, Pgs.name(), add_corner, Pgs::face_corners)?
             };
         }
         Ok(m)

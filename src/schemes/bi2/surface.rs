@@ -54,9 +54,9 @@ use crate::geom::Point;
 use crate::host::ComplexOptions;
 use crate::mesh::Element;
 use crate::mesh::PolyMesh;
+use crate::schemes::bi2::Pgs;
 use crate::schemes::bi2::pgs::{PgsOptions, ds_net_index};
 use crate::schemes::bi2::ternary::{TernaryRules, Widths, ternary_step, uniform_widths};
-use crate::schemes::bi2::{Pgs, compose};
 use crate::schemes::doo_sabin::surface as ds;
 use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
@@ -243,8 +243,11 @@ fn assemble(
 ) -> Result<PatchComplex> {
     let pos = mesh.positions();
     let mut out = PatchComplex::new();
-    let to_patch = |c: &[Stencil], local: &[Stencil]| -> BezierPatch {
-        let cps: Vec<Point> = c.iter().map(|s| compose(s, local).apply(pos)).collect();
+    // Each element's local net is carried as positions, not as stencils over the input: a
+    // facet's centre reads all n ring points, so composed stencils would grow to n entries
+    // per point (n^2 work per level, n^3 with the merges) where positions cost n per level.
+    let to_patch = |c: &[Stencil], local: &[Point]| -> BezierPatch {
+        let cps: Vec<Point> = c.iter().map(|s| s.apply(local)).collect();
         BezierPatch::new(2, 2, cps)
     };
     for v in 0..mesh.num_vertices() {
@@ -258,13 +261,14 @@ fn assemble(
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
         }
     }
-    let mut locals: Vec<Vec<Stencil>> = elements.iter().map(|e| e.local0.clone()).collect();
+    let mut locals: Vec<Vec<Point>> = elements
+        .iter()
+        .map(|e| e.local0.iter().map(|s| s.apply(pos)).collect())
+        .collect();
     for l in 1..=opts.rings {
         for (el, local) in elements.iter().zip(locals.iter_mut()) {
             let step = el.scheme.step(el.start + l - 1);
-            *local = (0..step.num_rows())
-                .map(|r| compose(&step.stencil(r), local))
-                .collect();
+            *local = step.apply(local);
             for (c, sector) in el.scheme.ring(el.start + l) {
                 out.push(
                     to_patch(&c, local),
@@ -280,9 +284,12 @@ fn assemble(
     }
     if opts.fill {
         for (el, local) in elements.iter().zip(&locals) {
+            // The fill reads the local net and, at index `size`, the limit point.
+            let mut with_limit = local.clone();
+            with_limit.push(el.scheme.limit()?.apply(local));
             for (c, sector) in el.scheme.fill(el.start + opts.rings)? {
                 out.push(
-                    to_patch(&c, local),
+                    to_patch(&c, &with_limit),
                     Provenance::Cap {
                         element: el.element,
                         sector,
@@ -313,6 +320,7 @@ pub fn pgs_complex(
     let limit = |m: &PolyMesh, f: usize| Pgs::facet_limit_stencil(m, f);
     let rules = ds::DualRules {
         corner: &corner,
+        face_corners: &Pgs::face_corners,
         facet_limit: &limit,
     };
     ds::dual_complex_with(&pre, opts, &rules, ids::PGS.name(), progress)

@@ -53,7 +53,7 @@ use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::Stencil;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// One level of the adaptive refinement.
 pub struct Level {
@@ -223,10 +223,14 @@ fn apply_caps(
 ) -> Result<Vec<(u32, Tag)>> {
     let m = &level.mesh;
     let mut cand: HashMap<u32, Vec<u32>> = HashMap::new();
+    // Each corner is examined once: a vertex of valence n is a corner of n marked faces, and
+    // its c-net walk costs n, so asking again for every face (as when it is not accepted and
+    // so not in `cand`) is n^2.
+    let mut seen: HashSet<u32> = HashSet::new();
     for &(f, _) in &marked {
         for &v in m.face(f as usize) {
             let vi = level.info[v as usize];
-            if cand.contains_key(&v)
+            if !seen.insert(v)
                 || m.is_regular_quad_vertex(v as usize)
                 || m.is_boundary_vertex(v as usize)
             {

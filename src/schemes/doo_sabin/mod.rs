@@ -70,6 +70,7 @@
 //! corner, the corner.
 
 pub mod descriptor;
+pub mod fourier;
 pub mod local;
 pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};

@@ -76,6 +76,7 @@
 //! point-augmented scheme PGS ([`crate::schemes::bi2::pgs`]) reuses it unchanged through
 //! [`dual_complex_with`]: its surfaces are laid out exactly like Doo-Sabin's, patch for patch.
 
+use super::fourier::{self, FaceCorners, LARGE_FACE};
 use super::{DooSabin, DooSabinCc, boundary_edge_point_stencil, corner_point_stencil};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
@@ -87,6 +88,7 @@ use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_v
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::registry::ids;
 use crate::stencil::{Stencil, StencilTable};
+use std::collections::HashMap;
 
 /// The Doo-Sabin surface of `mesh` as a patch complex: bi-2 patches on regular vertices,
 /// `opts.rings` rings of bi-2 patches around every extraordinary element and, if `opts.fill`, the
@@ -104,6 +106,7 @@ pub fn doo_sabin_complex(
     let corner = |m: &PolyMesh, h: u32| corner_point_stencil(m, h, DooSabin::weights);
     let rules = DualRules {
         corner: &corner,
+        face_corners: &fourier::doo_sabin,
         facet_limit: &centroid_stencil,
     };
     dual_complex_with(mesh, opts, &rules, ids::DOO_SABIN.name(), progress)
@@ -123,6 +126,7 @@ pub fn doo_sabin_cc_complex(
     let corner = |m: &PolyMesh, h: u32| corner_point_stencil(m, h, DooSabinCc::weights);
     let rules = DualRules {
         corner: &corner,
+        face_corners: &fourier::doo_sabin_cc,
         facet_limit: &centroid_stencil,
     };
     dual_complex_with(mesh, opts, &rules, ids::DOO_SABIN_CC.name(), progress)
@@ -135,6 +139,10 @@ pub struct DualRules<'a> {
     /// The new point of face corner `h` (a half-edge) as a stencil over the mesh's vertices.
     /// It may read beyond the face (PGS reads the quads across a facet's edges).
     pub corner: &'a dyn Fn(&PolyMesh, u32) -> Stencil,
+    /// All new corners of face `f` at once as positions, for faces above
+    /// [`fourier::LARGE_FACE`]: the same rule as `corner`, in time linear in the face size
+    /// (`n` stencils of `n` entries would cost `n^2`).
+    pub face_corners: &'a dyn Fn(&PolyMesh, usize) -> FaceCorners,
     /// The limit point of a face that is not a quad (the centre of the fill): the centroid for
     /// Doo-Sabin and DS^CC, the point-augmented limit point (7) for PGS.
     pub facet_limit: &'a dyn Fn(&PolyMesh, usize) -> Stencil,
@@ -351,20 +359,6 @@ fn vertex_net(m: &PolyMesh, v: usize) -> Option<VertexNet> {
     Some(VertexNet { net, ngons })
 }
 
-/// The nine bi-2 coefficients of a vertex net as stencils: the B-spline conversion, with the
-/// corner coefficient of each non-quad face replaced by the face's limit point.
-fn coefficient_stencils(
-    m: &PolyMesh,
-    vn: &VertexNet,
-    facet_limit: &dyn Fn(&PolyMesh, usize) -> Stencil,
-) -> Vec<Stencil> {
-    let mut s = biquadratic_bspline_stencils(&vn.net);
-    for &(c, f) in &vn.ngons {
-        s[c] = facet_limit(m, f as usize);
-    }
-    s
-}
-
 fn patch_from(m: &PolyMesh, stencils: &[Stencil]) -> BezierPatch {
     let cps: Vec<Point> = stencils.iter().map(|s| s.apply(m.positions())).collect();
     BezierPatch::new(2, 2, cps)
@@ -401,16 +395,15 @@ fn retag(level: &Level, v: usize, tag: Tag, first: bool) -> Tag {
             ..tag
         };
     }
-    for f in m.vertex_faces(v) {
-        if let Some(element) = level.face_origin[f as usize] {
-            let sector = m
-                .face(f as usize)
-                .iter()
-                .position(|&x| x as usize == v)
-                .unwrap_or(0);
+    for h in m.outgoing(v) {
+        let f = m.he_face(h) as usize;
+        if let Some(element) = level.face_origin[f] {
+            // The corner of h in its face (a face's half-edges are its corners in order): O(1),
+            // where searching the face for v costs n for each of an n-gon's n corners.
+            let sector = h - m.face_halfedge(f);
             return Tag {
                 element: Some(element),
-                sector: sector as u32,
+                sector,
                 ..tag
             };
         }
@@ -436,8 +429,21 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
         }
     }
     sel_faces.sort_unstable();
-    let whole_fan =
-        |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
+    // Whether a corner of a selected face has its whole fan selected, found once per vertex
+    // (asking per corner walks a fan of valence n for each of its n faces).
+    let mut fan_selected = vec![false; nv];
+    let mut fan_known = vec![false; nv];
+    for &f in &sel_faces {
+        for &x in m.face(f as usize) {
+            let x = x as usize;
+            if !fan_known[x] {
+                fan_known[x] = true;
+                fan_selected[x] =
+                    level.info[x].fan_ok && m.outgoing(x).all(|h| sel[m.he_face(h) as usize]);
+            }
+        }
+    }
+    let whole_fan = |v: usize| fan_selected[v];
     // A boundary edge of the partial mesh is a true boundary edge when an end has its true fan.
     let true_boundary = |h: u32| {
         m.he_twin(h).is_none()
@@ -453,17 +459,33 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
         info.push(i);
         (stencils.len() - 1) as u32
     }
+    // Corners of large faces come as positions (`fixed`), their stencils left empty.
+    let mut fixed: Vec<(u32, Point)> = Vec::new();
     for &f in &sel_faces {
         let f = f as usize;
         let h0 = m.face_halfedge(f);
+        let large = (m.face_size(f) > LARGE_FACE).then(|| {
+            let fc = (rules.face_corners)(m, f);
+            let ok = fc.reads.iter().all(|&x| level.info[x as usize].pos_ok);
+            (fc.points, ok)
+        });
         for h in h0..h0 + m.face_size(f) as u32 {
             let v = m.he_from(h) as usize;
-            let st = (rules.corner)(m, h);
-            // Trusted when every point the rule reads is (the rule may reach beyond the face).
-            let pos = st
-                .entries()
-                .iter()
-                .all(|&(x, _)| level.info[x as usize].pos_ok);
+            let (st, pos) = match &large {
+                Some((points, ok)) => {
+                    fixed.push((stencils.len() as u32, points[(h - h0) as usize]));
+                    (Stencil::new(), *ok)
+                }
+                None => {
+                    let st = (rules.corner)(m, h);
+                    // Trusted when every point the rule reads is (it may reach beyond the face).
+                    let pos = st
+                        .entries()
+                        .iter()
+                        .all(|&(x, _)| level.info[x as usize].pos_ok);
+                    (st, pos)
+                }
+            };
             corner_pt[h as usize] = push(
                 st,
                 Info {
@@ -579,7 +601,10 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) ->
                 .into(),
         ));
     }
-    let positions = StencilTable::from_rows(nv, stencils, 6).apply(m.positions());
+    let mut positions = StencilTable::from_rows(nv, stencils, 6).apply(m.positions());
+    for (i, p) in fixed {
+        positions[i as usize] = p;
+    }
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let mut active = Vec::new();
     for &(v, tag) in marked {
@@ -617,6 +642,8 @@ fn fill(
     out: &mut PatchComplex,
 ) -> Result<()> {
     let m = &level.mesh;
+    // Each n-gon's limit point once: it reads all n corners, and each of them has a patch.
+    let mut limits: HashMap<u32, Point> = HashMap::new();
     for &(v, tag) in marked {
         let vn = vertex_net(m, v as usize).ok_or_else(|| {
             Error::Unsupported(format!(
@@ -630,7 +657,16 @@ fn fill(
                 }
             ))
         })?;
-        let p = patch_from(m, &coefficient_stencils(m, &vn, rules.facet_limit));
+        let mut cps: Vec<Point> = biquadratic_bspline_stencils(&vn.net)
+            .iter()
+            .map(|s| s.apply(m.positions()))
+            .collect();
+        for &(c, f) in &vn.ngons {
+            cps[c] = *limits
+                .entry(f)
+                .or_insert_with(|| (rules.facet_limit)(m, f as usize).apply(m.positions()));
+        }
+        let p = BezierPatch::new(2, 2, cps);
         let element = tag.element.unwrap_or(Element::Vertex(v));
         out.push(
             p,

@@ -84,6 +84,7 @@ use crate::host::adaptive::{
     record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::common::{cos_2pi, sin_2pi};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 
@@ -203,11 +204,12 @@ type Level = MeshLevel;
 
 /// Whether `v` is a regular Loop vertex: interior of valence 6 or boundary with 3 triangles.
 fn is_regular(m: &PolyMesh, v: usize) -> bool {
-    let hs = m.outgoing_halfedges(v);
+    // At most seven half-edges are counted: O(1) at a vertex of high valence too.
+    let n = m.outgoing(v).take(7).count();
     if m.is_boundary_vertex(v) {
-        hs.len() == 3
+        n == 3
     } else {
-        hs.len() == 6
+        n == 6
     }
 }
 
@@ -396,14 +398,27 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
 
 /// Limit position of `a` and the derivative along the edge `a -> b` (unit edge parameter), for
 /// the Hermite edges of the fill.
-fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
+fn limit_and_derivative(m: &PolyMesh, jets: &mut Jets, a: usize, b: usize) -> (Point, Point) {
     let pos = m.positions();
-    let la = limit_point_stencil(m, a).apply(pos);
-    let chord = || geom::sub(limit_point_stencil(m, b).apply(pos), la);
+    let la = jets.limit(m, a);
+    let chord = |jets: &mut Jets| geom::sub(jets.limit(m, b), la);
+    let fourier = jets
+        .modes(m, a)
+        .map(|md| (md.n, md.c, md.s, md.index.get(&(b as u32)).copied()));
+    if let Some((n, c, s, j)) = fourier {
+        let Some(j) = j else {
+            return (la, chord(jets));
+        };
+        // (2/n) sum_i cos(2 pi (i - j)/n) p_i = (2/n) (cos(t j) C + sin(t j) S).
+        let w = 2.0 / n as f64;
+        let (n, j) = (n as i64, j as i64);
+        let d = geom::axpy([0.0; 3], w * cos_2pi(j, n), c);
+        return (la, geom::axpy(d, w * sin_2pi(j, n), s));
+    }
     let ring: Vec<Stencil> = if m.is_boundary_vertex(a) {
         match ring6(m, a) {
             Some(r) => r.to_vec(),
-            None => return (la, chord()),
+            None => return (la, chord(jets)),
         }
     } else {
         m.outgoing_halfedges(a)
@@ -412,7 +427,7 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
             .collect()
     };
     let Some(j) = ring.iter().position(|s| s.entries() == [(b as u32, 1.0)]) else {
-        return (la, chord());
+        return (la, chord(jets));
     };
     let n = ring.len();
     let mut d = [0.0; 3];
@@ -420,6 +435,62 @@ fn limit_and_derivative(m: &PolyMesh, a: usize, b: usize) -> (Point, Point) {
         d = geom::axpy(d, (2.0 / n as f64) * c, s.apply(pos));
     }
     (la, d)
+}
+
+/// Interior valences above which the fill's tangents come from Fourier sums
+/// ([`FanModes`]); at and below it they are the masks' sums as before, to the bit.
+const FOURIER_ABOVE: usize = 32;
+
+/// The mode-1 sums `C = sum_i cos(2 pi i / n) p_i`, `S = sum_i sin(2 pi i / n) p_i` of an
+/// interior vertex's ring `p_i` (outgoing order), and each neighbour's first position in it.
+struct FanModes {
+    n: usize,
+    c: Point,
+    s: Point,
+    index: HashMap<u32, usize>,
+}
+
+/// The fill's limit points and fan sums, each computed once per vertex: at a vertex of valence
+/// `n` each costs `O(n)`, and the vertex has `n` edges to fill (`n^2` when asked per edge).
+#[derive(Default)]
+struct Jets {
+    limits: HashMap<usize, Point>,
+    modes: HashMap<usize, Option<FanModes>>,
+}
+
+impl Jets {
+    fn limit(&mut self, m: &PolyMesh, v: usize) -> Point {
+        *self
+            .limits
+            .entry(v)
+            .or_insert_with(|| limit_point_stencil(m, v).apply(m.positions()))
+    }
+
+    /// The fan sums of interior vertex `v` of valence above [`FOURIER_ABOVE`], else `None`.
+    fn modes(&mut self, m: &PolyMesh, v: usize) -> Option<&FanModes> {
+        self.modes
+            .entry(v)
+            .or_insert_with(|| {
+                if m.is_boundary_vertex(v) {
+                    return None;
+                }
+                let ring: Vec<u32> = m.outgoing(v).map(|h| m.he_to(h)).collect();
+                let n = ring.len();
+                if n <= FOURIER_ABOVE {
+                    return None;
+                }
+                let pos = m.positions();
+                let (mut c, mut s) = ([0.0; 3], [0.0; 3]);
+                let mut index = HashMap::with_capacity(n);
+                for (i, &w) in ring.iter().enumerate() {
+                    c = geom::axpy(c, cos_2pi(i as i64, n as i64), pos[w as usize]);
+                    s = geom::axpy(s, sin_2pi(i as i64, n as i64), pos[w as usize]);
+                    index.entry(w).or_insert(i);
+                }
+                Some(FanModes { n, c, s, index })
+            })
+            .as_ref()
+    }
 }
 
 /// The other boundary neighbour of boundary vertex `v` (not `w`), or the ghost `2 v - w` at a
@@ -438,7 +509,7 @@ fn boundary_continuation(m: &PolyMesh, v: usize, w: usize) -> Point {
 }
 
 /// The edge curve `a -> b` of the fill (see the module documentation), as a quartic.
-fn fill_edge(m: &PolyMesh, a: usize, b: usize) -> [Point; 5] {
+fn fill_edge(m: &PolyMesh, jets: &mut Jets, a: usize, b: usize) -> [Point; 5] {
     let pos = m.positions();
     let cubic = match m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a)) {
         Some(h) if m.he_twin(h).is_none() => {
@@ -451,8 +522,8 @@ fn fill_edge(m: &PolyMesh, a: usize, b: usize) -> [Point; 5] {
             cubic_bspline_to_bezier(&d)
         }
         _ => {
-            let (p0, d0) = limit_and_derivative(m, a, b);
-            let (p3, d3) = limit_and_derivative(m, b, a);
+            let (p0, d0) = limit_and_derivative(m, jets, a, b);
+            let (p3, d3) = limit_and_derivative(m, jets, b, a);
             [
                 p0,
                 geom::axpy(p0, 1.0 / 3.0, d0),
@@ -468,11 +539,14 @@ fn fill_edge(m: &PolyMesh, a: usize, b: usize) -> [Point; 5] {
 /// The Hermite fill of the marked triangles of the last level.
 fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<5>, out: &mut PatchComplex) {
     let m = &level.mesh;
+    let mut jets = Jets::default();
     for &(f, tag) in marked {
         let c = m.face(f as usize);
         let mut tri = [[0.0; 3]; 15];
         for k in 0..3 {
-            let e = edge_curve(curves, c[k], c[(k + 1) % 3], |a, b| fill_edge(m, a, b));
+            let e = edge_curve(curves, c[k], c[(k + 1) % 3], |a, b| {
+                fill_edge(m, &mut jets, a, b)
+            });
             for (r, p) in e.iter().enumerate() {
                 let mut idx = [0usize; 3];
                 idx[k] = 4 - r;

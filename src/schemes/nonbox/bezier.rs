@@ -94,7 +94,9 @@ pub fn corner_fcvs(m: &PolyMesh, g: u32) -> Option<[Stencil; 4]> {
     let w = m.he_from(g) as usize;
     let nv = m.num_vertices();
     let fcv = |h: u32| Stencil::point(nv + m.he_face(h) as usize);
-    let hs = m.outgoing_halfedges(w);
+    // At most five half-edges: the rest of a fan of high valence is never needed (the vertex
+    // is then not regular), and collecting it would cost its valence per call.
+    let hs: Vec<u32> = m.outgoing(w).take(5).collect();
     let rot = |h: u32| m.he_twin(m.he_prev(h));
     if !m.is_boundary_vertex(w) {
         if hs.len() != 4 {

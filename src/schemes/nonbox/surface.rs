@@ -165,7 +165,9 @@ pub fn nonbox_4dir_mesh_complex(
 /// Whether `v` is a regular vertex: interior of valence 4, or boundary with two faces or one
 /// (a corner), where ghost FCVs complete the net.
 fn is_regular(m: &PolyMesh, v: usize) -> bool {
-    let n = m.outgoing_halfedges(v).len();
+    // At most five half-edges are counted: O(1) at a vertex of high valence too (this is
+    // asked for every corner of every cell around it).
+    let n = m.outgoing(v).take(5).count();
     if m.is_boundary_vertex(v) {
         n <= 2
     } else {
@@ -326,27 +328,20 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
 
 /// The derivative of the limit surface at vertex `a` along its edge to `b` (unit edge
 /// parameter), see the [module](self) documentation.
-fn edge_derivative(level: &Level, a: usize, b: usize) -> Point {
+fn edge_derivative(level: &Level, jets: &mut Jets, a: usize, b: usize) -> Point {
     let m = &level.net.mesh;
     let pts = &level.points;
-    let chord = || {
-        let la = NonBox::limit_stencil(&level.net, a).apply(pts);
-        let lb = NonBox::limit_stencil(&level.net, b).apply(pts);
-        geom::sub(lb, la)
-    };
+    let chord = |jets: &mut Jets| geom::sub(jets.limit(level, b), jets.limit(level, a));
     let Some(g) = m.find_halfedge(a, b) else {
-        return chord();
+        return chord(jets);
     };
     if let Some(r) = corner_fcvs(m, g) {
         let q: Vec<Point> = r.iter().map(|s| s.apply(pts)).collect();
         return geom::scale(geom::sub(geom::add(q[0], q[3]), geom::add(q[1], q[2])), 0.5);
     }
-    let hs = m.outgoing_halfedges(a);
-    let (t1, t2) = NonBox::tangent_stencils(&level.net, a);
-    let (u1, u2) = (t1.apply(pts), t2.apply(pts));
+    let (u1, u2) = jets.tangents(level, a);
     if !m.is_boundary_vertex(a) {
-        let k = hs.len();
-        let j = hs.iter().position(|&h| h == g).unwrap_or(0);
+        let (j, k) = jets.fan_index(m, a, g);
         let t = (2.0 * j as f64 - 1.0) * PI / k as f64;
         let s = 2.0 * 2f64.sqrt() / k as f64;
         return geom::scale(
@@ -354,9 +349,53 @@ fn edge_derivative(level: &Level, a: usize, b: usize) -> Point {
             s,
         );
     }
-    let c = chord();
+    let c = chord(jets);
     let n = geom::normalize(geom::cross(u1, u2));
     geom::sub(c, geom::scale(n, geom::dot(c, n)))
+}
+
+/// The fill's limit points, limit tangents and fan positions, each computed once per vertex:
+/// at a vertex of valence `n` each is an `O(n)` stencil or walk, and the vertex has `n` edges
+/// to fill (`n^2` when asked per edge).
+#[derive(Default)]
+struct Jets {
+    limits: HashMap<usize, Point>,
+    tangents: HashMap<usize, (Point, Point)>,
+    /// Position of each outgoing half-edge in its vertex's fan, for the fans walked so far.
+    fan: HashMap<u32, usize>,
+    /// The number of outgoing half-edges of each vertex walked.
+    fan_len: HashMap<usize, usize>,
+}
+
+impl Jets {
+    fn limit(&mut self, level: &Level, v: usize) -> Point {
+        *self
+            .limits
+            .entry(v)
+            .or_insert_with(|| NonBox::limit_stencil(&level.net, v).apply(&level.points))
+    }
+
+    fn tangents(&mut self, level: &Level, v: usize) -> (Point, Point) {
+        *self.tangents.entry(v).or_insert_with(|| {
+            let (t1, t2) = NonBox::tangent_stencils(&level.net, v);
+            (t1.apply(&level.points), t2.apply(&level.points))
+        })
+    }
+
+    /// The position of `g` among `v`'s outgoing half-edges (0 when it is not one), and their
+    /// number.
+    fn fan_index(&mut self, m: &PolyMesh, v: usize, g: u32) -> (usize, usize) {
+        let fan = &mut self.fan;
+        let k = *self.fan_len.entry(v).or_insert_with(|| {
+            let mut k = 0;
+            for (j, h) in m.outgoing(v).enumerate() {
+                fan.insert(h, j);
+                k = j + 1;
+            }
+            k
+        });
+        (self.fan.get(&g).copied().unwrap_or(0), k)
+    }
 }
 
 /// The other boundary neighbour of boundary vertex `v` (not `w`), or the ghost `2 v - w` at a
@@ -373,7 +412,7 @@ fn boundary_continuation(level: &Level, v: usize, w: usize) -> Point {
 }
 
 /// The fill curve of edge `a -> b` (see the [module](self) documentation).
-fn fill_edge(level: &Level, a: usize, b: usize) -> [Point; 4] {
+fn fill_edge(level: &Level, jets: &mut Jets, a: usize, b: usize) -> [Point; 4] {
     let m = &level.net.mesh;
     let pos = &level.points;
     let h = m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a));
@@ -388,10 +427,10 @@ fn fill_edge(level: &Level, a: usize, b: usize) -> [Point; 4] {
         ];
         return cubic_bspline_to_bezier(&d);
     }
-    let p0 = NonBox::limit_stencil(&level.net, a).apply(pos);
-    let p3 = NonBox::limit_stencil(&level.net, b).apply(pos);
-    let d0 = edge_derivative(level, a, b);
-    let d3 = edge_derivative(level, b, a);
+    let p0 = jets.limit(level, a);
+    let p3 = jets.limit(level, b);
+    let d0 = edge_derivative(level, jets, a, b);
+    let d3 = edge_derivative(level, jets, b, a);
     [
         p0,
         geom::axpy(p0, 1.0 / 3.0, d0),
@@ -403,10 +442,13 @@ fn fill_edge(level: &Level, a: usize, b: usize) -> [Point; 4] {
 /// The Coons fill of the marked cells of the last level.
 fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<4>, out: &mut PatchComplex) {
     let m = &level.net.mesh;
+    let mut jets = Jets::default();
     for &(f, tag) in marked {
         let c = m.face(f as usize);
         let mut edge = |k: usize| -> [Point; 4] {
-            edge_curve(curves, c[k], c[(k + 1) % 4], |a, b| fill_edge(level, a, b))
+            edge_curve(curves, c[k], c[(k + 1) % 4], |a, b| {
+                fill_edge(level, &mut jets, a, b)
+            })
         };
         let v0 = edge(0);
         let u1 = edge(1);

@@ -28,3 +28,23 @@ fn ds_net_labels() {
         assert_eq!(ds_net_chart(n, 0, -1, -1), None);
     }
 }
+
+#[test]
+fn face_corners_equal_the_corner_stencils() {
+    // A facet with a DS-net (rule (4)) and one without (the outer ring's faces: Doo-Sabin).
+    for n in [3, 5, 8, 40] {
+        let m = ds_net(n, |x, y| 0.3 * (2.0 * x).sin() * y + 0.1 * x * x).unwrap();
+        for f in 0..m.num_faces() {
+            let fc = Pgs::face_corners(&m, f);
+            let h0 = m.face_halfedge(f);
+            for (i, p) in fc.points.iter().enumerate() {
+                let st = Pgs::corner_stencil(&m, h0 + i as u32);
+                let q = st.apply(m.positions());
+                for k in 0..3 {
+                    assert!((p[k] - q[k]).abs() < 1e-14, "n {n} face {f} corner {i}");
+                }
+                assert!(st.entries().iter().all(|(x, _)| fc.reads.contains(x)));
+            }
+        }
+    }
+}

@@ -39,8 +39,9 @@
 //! that never are (an `n`-gon at the boundary, corners next to two `n`-gons, `--rings 0`) keep
 //! the centroid fill of the parent module (C^0 across the spokes).
 
-use super::{Level, coefficient_stencils, patch_from, vertex_net};
+use super::{Level, vertex_net};
 use crate::bezier::complex::PatchComplex;
+use crate::bezier::convert::biquadratic_bspline_stencils;
 use crate::bezier::g1::Hole;
 use crate::bezier::g1::ring::segment_from_inside;
 use crate::bezier::{BezierPatch, Side};
@@ -48,7 +49,7 @@ use crate::geom::{Point, axpy, cross};
 use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
 use crate::mesh::Element;
 use crate::schemes::doo_sabin::surface::DualRules;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
 pub const MAX_EXTRA_LEVELS: usize = 2;
@@ -91,15 +92,17 @@ fn hole_of(
     if verts.len() != n || n < 3 {
         return Err(NoCap::Never);
     }
+    // Linear in n: the tags, F's corners and F's limit point are looked up, not searched or
+    // recomputed per corner.
+    let tag_of: HashMap<u32, Tag> = verts.iter().copied().collect();
+    let in_face: HashSet<u32> = face.iter().copied().collect();
+    let pos = m.positions();
+    let centre = (rules.facet_limit)(m, f as usize).apply(pos);
     let mut sectors = Vec::with_capacity(n);
     let mut tags = Vec::with_capacity(n);
     let mut later = false;
     for &vk in &face {
-        let tag = verts
-            .iter()
-            .find(|(v, _)| *v == vk)
-            .map(|&(_, t)| t)
-            .ok_or(NoCap::Never)?;
+        let tag = *tag_of.get(&vk).ok_or(NoCap::Never)?;
         let vu = vk as usize;
         if m.is_boundary_vertex(vu) {
             return Err(NoCap::Never);
@@ -116,7 +119,7 @@ fn hole_of(
             .outgoing_halfedges(vu)
             .iter()
             .map(|&h| m.he_to(h))
-            .filter(|w| !face.contains(w))
+            .filter(|w| !in_face.contains(w))
             .collect::<Vec<_>>();
         if outside.len() != 2 {
             return Err(NoCap::Never);
@@ -131,10 +134,13 @@ fn hole_of(
             8 => 2,
             _ => 3,
         };
-        let p = turned(
-            patch_from(m, &coefficient_stencils(m, &vn, rules.facet_limit)),
-            r,
-        );
+        // The centroid fill's patch: F's corner coefficient is F's limit point.
+        let mut cps: Vec<Point> = biquadratic_bspline_stencils(&vn.net)
+            .iter()
+            .map(|s| s.apply(pos))
+            .collect();
+        cps[c] = centre;
+        let p = turned(BezierPatch::new(2, 2, cps), r);
         sectors.push(vec![
             segment_from_inside(&p, Side::U1, [0.0, 1.0], 1.0),
             segment_from_inside(&p, Side::V1, [0.0, 1.0], 1.0),
@@ -144,8 +150,6 @@ fn hole_of(
     if later {
         return Err(NoCap::Later);
     }
-    let pos = m.positions();
-    let centre = (rules.facet_limit)(m, f as usize).apply(pos);
     let mut t = [[0.0; 3]; 2];
     for (k, &vk) in face.iter().enumerate() {
         let th = 2.0 * std::f64::consts::PI * k as f64 / n as f64;

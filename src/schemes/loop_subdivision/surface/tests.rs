@@ -163,3 +163,44 @@ fn box_spline_matches_loop_limits() {
         }
     }
 }
+
+/// Above [`FOURIER_ABOVE`] the fill's edge derivatives at an interior vertex come from the
+/// fan's mode-1 sums: equal to the tangent mask's sum to rounding.
+#[test]
+fn fourier_fan_derivative_equals_the_mask() {
+    for n in [33usize, 40, 101] {
+        // A wavy fan of n triangles around vertex 0, closed by an outer ring of triangles.
+        let mut pts = vec![[0.0, 0.0, 0.1]];
+        for i in 0..n {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            pts.push([t.cos(), t.sin(), 0.2 * (3.0 * t).sin()]);
+        }
+        for i in 0..n {
+            let t = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+            pts.push([2.0 * t.cos(), 2.0 * t.sin(), 0.0]);
+        }
+        let mut faces = Vec::new();
+        for i in 0..n {
+            let (a, b) = (1 + i, 1 + (i + 1) % n);
+            faces.push(vec![0, a, b]);
+            faces.push(vec![a, 1 + n + i, b]);
+        }
+        let m = PolyMesh::new(pts, &faces).unwrap();
+        let mut jets = Jets::default();
+        for b in [1usize, 2, n / 2, n] {
+            let (_, d) = limit_and_derivative(&m, &mut jets, 0, b);
+            let hs = m.outgoing_halfedges(0);
+            let j = hs.iter().position(|&h| m.he_to(h) as usize == b).unwrap();
+            let mut want = [0.0; 3];
+            for (h, (c, _)) in hs.iter().zip(tangent_mask(n, j)) {
+                want = geom::axpy(want, (2.0 / n as f64) * c, m.position(m.he_to(*h) as usize));
+            }
+            for k in 0..3 {
+                assert!(
+                    (d[k] - want[k]).abs() < 1e-14,
+                    "n {n}, b {b}: {d:?} {want:?}"
+                );
+            }
+        }
+    }
+}
