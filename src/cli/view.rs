@@ -24,12 +24,10 @@ pub struct ViewArgs {
     /// Rings of the exact surface the page starts with.
     #[arg(long, short, default_value_t = super::subdivide::DEFAULT_RINGS)]
     pub rings: usize,
-    /// Guided schemes: the contraction lambda.
-    #[arg(long)]
-    pub lambda: Option<f64>,
-    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
-    #[arg(long, value_enum)]
-    pub rules: Option<super::spec::RulesArg>,
+    /// The start scheme's options, as `fairsub subdivide` takes them (the page changes those
+    /// with a value; files stay as given here).
+    #[command(flatten)]
+    pub options: super::subdivide::SchemeArgs,
     /// Samples per patch edge of the tessellation sent to the page.
     #[arg(long, default_value_t = api::DEFAULT_TESS)]
     pub tess: usize,
