@@ -1,7 +1,7 @@
 //! `fairsub view`: the interactive viewer, a small HTTP server on 127.0.0.1 that serves one
 //! embedded WebGL2 page (`view/assets/`) and the geometry it draws.
 //!
-//! The server answers a fixed set of routes only: the page, its script and style sheet, and the
+//! The server answers a fixed set of routes only: the page, its scripts and style sheet, and the
 //! API of [`api`] (surface buffers, net info, the `check` summary, the schemes). Every other
 //! path is a 404, so nothing outside the embedded assets can be read (no file system access by
 //! path at all). Surfaces are recomputed on the server when the page asks for another scheme or
@@ -40,11 +40,16 @@ pub struct ViewArgs {
 }
 
 /// The embedded assets: route, content type, bytes.
-const ASSETS: [(&str, &str, &[u8]); 3] = [
+const ASSETS: [(&str, &str, &[u8]); 4] = [
     (
         "/",
         "text/html; charset=utf-8",
         include_bytes!("view/assets/index.html"),
+    ),
+    (
+        "/gl.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("view/assets/gl.js"),
     ),
     (
         "/viewer.js",
