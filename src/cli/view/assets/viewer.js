@@ -258,15 +258,18 @@ async function load() {
 }
 
 // `?bench=N`: N frames paced by requestAnimationFrame while the camera turns (what a user
-// dragging sees: frames per second), then N frames each drawn and waited for with gl.finish()
-// (the time the GPU takes per frame, not capped by the display's refresh). The results go to
-// the page (#bench), to document.body.dataset and to window.fairsubBench.
+// dragging sees: frames per second), then N frames each drawn and waited for by reading one
+// pixel back (the time the GPU takes per frame, not capped by the display's refresh; Chromium's
+// gl.finish() does not wait). The results go to the page (#bench), to document.body.dataset
+// and to window.fairsubBench.
 async function runBench(n) {
   const frame = () => new Promise((r) => requestAnimationFrame(r));
+  const pixel = new Uint8Array(4);
+  const wait = () => gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
   const az0 = state.az;
   await frame();
   draw();
-  gl.finish();
+  wait();
   const stamps = [];
   for (let i = 0; i < n; i++) {
     stamps.push(await frame());
@@ -280,7 +283,7 @@ async function runBench(n) {
     state.az = az0 + (360 * i) / n;
     const t0 = performance.now();
     draw();
-    gl.finish();
+    wait();
     waited.push(performance.now() - t0);
   }
   state.az = az0;
@@ -291,16 +294,16 @@ async function runBench(n) {
     triangles: panels.reduce((s, p) => s + (p ? p.nt : 0), 0),
     fps: span > 0 ? (n * 1000) / span : 0,
     msPerFrame: span / n,
-    finishMsMedian: waited[Math.floor(n / 2)],
+    drawMsMedian: waited[Math.floor(n / 2)],
     renderer: rendererName(),
   };
   window.fairsubBench = r;
   Object.assign(document.body.dataset, {
     benchFrames: r.frames, benchFps: r.fps.toFixed(2), benchMs: r.msPerFrame.toFixed(2),
-    benchFinishMs: r.finishMsMedian.toFixed(2),
+    benchDrawMs: r.drawMsMedian.toFixed(2),
   });
   $("bench").textContent = `${r.triangles} triangles: ${r.fps.toFixed(1)} frames/s ` +
-    `(${r.msPerFrame.toFixed(1)} ms/frame), draw + finish ${r.finishMsMedian.toFixed(1)} ms; ${r.renderer}`;
+    `(${r.msPerFrame.toFixed(1)} ms/frame), draw + read-back ${r.drawMsMedian.toFixed(1)} ms; ${r.renderer}`;
   $("bench").style.display = "block";
 }
 
@@ -320,48 +323,59 @@ function showCheck(r) {
 
 // The option controls of the shown schemes (left, then right), built from the option words
 // the server describes: a menu for a fixed set of values, a box for a flag, a field otherwise;
-// files show what the command line gave.
+// files show what the command line gave. In the side-by-side view each scheme's own options
+// are under its name (an option both take is shown once, under the left one, and applies to
+// both).
 function buildOptions() {
   const box = $("opts");
   box.textContent = "";
-  if (meta.bv) box.textContent = "(the patches of a .bv file)";
+  if (meta.bv) { box.textContent = "(the patches of a .bv file)"; return; }
   const seen = new Set();
-  for (const scheme of [state.scheme, state.split]) for (const o of optionsOf(scheme)) {
-    if (seen.has(o.name)) continue;
-    seen.add(o.name);
-    const label = document.createElement("label");
-    label.title = o.help;
-    label.append(o.name + " ");
-    let el;
-    if (o.file) {
-      const given = (meta.start.files || []).find(([k]) => k === o.name);
-      el = document.createElement("span");
-      el.className = "file";
-      el.textContent = given ? given[1] : "(command line)";
-    } else if (o.flag) {
-      el = document.createElement("input");
-      el.type = "checkbox";
-      el.checked = opts[o.name] === "1";
-      el.onchange = () => { opts[o.name] = el.checked ? "1" : ""; load(); };
-    } else if (o.choices.length) {
-      el = document.createElement("select");
-      el.add(new Option("default", ""));
-      for (const c of o.choices) el.add(new Option(c, c));
-      el.value = opts[o.name] || "";
-      el.onchange = () => { opts[o.name] = el.value; load(); };
-    } else {
-      el = document.createElement("input");
-      el.type = "text";
-      el.size = o.repeated ? 14 : 5;
-      el.placeholder = o.repeated ? "a;b" : "default";
-      el.value = opts[o.name] || "";
-      el.onchange = () => { opts[o.name] = el.value.trim(); load(); };
+  for (const scheme of state.split ? [state.scheme, state.split] : [state.scheme]) {
+    const own = optionsOf(scheme).filter((o) => !seen.has(o.name));
+    if (state.split) {
+      const h = document.createElement("div");
+      h.className = "scheme";
+      h.textContent = own.length ? scheme : `${scheme}: no other options`;
+      box.append(h);
     }
-    el.dataset.option = o.name;
-    label.append(el);
-    box.append(label);
+    for (const o of own) { seen.add(o.name); box.append(control(o)); }
   }
-  if (!seen.size && !meta.bv) box.textContent = "(none)";
+  if (!seen.size && !state.split) box.textContent = "(none)";
+}
+
+function control(o) {
+  const label = document.createElement("label");
+  label.title = o.help;
+  label.append(o.name + " ");
+  let el;
+  if (o.file) {
+    const given = (meta.start.files || []).find(([k]) => k === o.name);
+    el = document.createElement("span");
+    el.className = "file";
+    el.textContent = given ? given[1] : "(command line)";
+  } else if (o.flag) {
+    el = document.createElement("input");
+    el.type = "checkbox";
+    el.checked = opts[o.name] === "1";
+    el.onchange = () => { opts[o.name] = el.checked ? "1" : ""; load(); };
+  } else if (o.choices.length) {
+    el = document.createElement("select");
+    el.add(new Option("default", ""));
+    for (const c of o.choices) el.add(new Option(c, c));
+    el.value = opts[o.name] || "";
+    el.onchange = () => { opts[o.name] = el.value; load(); };
+  } else {
+    el = document.createElement("input");
+    el.type = "text";
+    el.size = o.repeated ? 14 : 5;
+    el.placeholder = o.repeated ? "a;b" : "default";
+    el.value = opts[o.name] || "";
+    el.onchange = () => { opts[o.name] = el.value.trim(); load(); };
+  }
+  el.dataset.option = o.name;
+  label.append(el);
+  return label;
 }
 
 function bindControls() {
