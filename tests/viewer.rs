@@ -162,6 +162,61 @@ fn stops_cleanly_on_ctrl_c() {
     assert!(status.success(), "exit status after Ctrl-C: {status}");
 }
 
+/// Without `--no-browser` the page is opened with `xdg-open URL` (a stand-in on PATH here that
+/// records its argument), the URL printed on the first line.
+#[cfg(target_os = "linux")]
+#[test]
+fn opens_the_default_browser() {
+    let dir = std::env::temp_dir().join(format!("fairsub-viewer-open-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let log = dir.join("opened");
+    let opener = dir.join("xdg-open");
+    std::fs::write(
+        &opener,
+        format!("#!/bin/sh\necho \"$1\" > '{}'\n", log.display()),
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&opener, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!(
+        "{}:{}",
+        dir.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args([
+            "view",
+            "gallery:cube",
+            "--scheme",
+            "catmull-clark",
+            "--rings",
+            "1",
+        ])
+        .args(["--port", "0"])
+        .env("PATH", path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("fairsub runs");
+    let mut url = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut url)
+        .unwrap();
+    let v = Viewer {
+        child,
+        url: url.trim().to_string(),
+        port: 0,
+    };
+    let t0 = std::time::Instant::now();
+    while std::fs::read_to_string(&log).map_or(true, |s| !s.ends_with('\n')) {
+        assert!(t0.elapsed() < Duration::from_secs(10), "xdg-open not run");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert_eq!(std::fs::read_to_string(&log).unwrap().trim(), v.url);
+    drop(v);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The browser, or `None` (the test skips) unless FAIRSUB_REQUIRE_BROWSER is set.
 fn chromium() -> Option<PathBuf> {
     let found = cdp::find();

@@ -222,3 +222,37 @@ pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn option_words_come_from_the_command() {
+        let w = option_words(&[
+            ParamKind::AlphaRule,
+            ParamKind::QFile,
+            ParamKind::Poles,
+            ParamKind::SmoothTriangles,
+            ParamKind::Fcv,
+        ]);
+        let names: Vec<&str> = w.iter().map(|o| o.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "alpha-rule",
+                "q-file",
+                "pole",
+                "smooth-triangles",
+                "fcv-scale",
+                "fcv-file"
+            ]
+        );
+        assert_eq!(w[0].choices, ["tps-limit-point", "regular-spectrum"]);
+        assert!(w[1].file && !w[1].flag && !w[1].repeated);
+        assert!(w[2].repeated && !w[2].file);
+        assert!(w[3].flag);
+        assert!(!w[4].file && w[5].file);
+        assert!(w[0].help.contains("alphas"));
+    }
+}

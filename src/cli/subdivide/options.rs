@@ -123,3 +123,58 @@ impl From<AlphaRuleArg> for AlphaRule {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::{Cli, Command};
+    use clap::Parser;
+
+    /// The options of `subdivide NET --scheme S WORDS -o x.obj`.
+    fn parse(words: &[&str]) -> super::SchemeArgs {
+        let all = [
+            "fairsub",
+            "subdivide",
+            "net.obj",
+            "--scheme",
+            "s",
+            "-o",
+            "x.obj",
+        ];
+        let cli = Cli::try_parse_from(all.iter().chain(words)).unwrap();
+        match cli.command {
+            Command::Subdivide(a) => a.options,
+            _ => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn words_parse_back_into_the_same_options() {
+        let given = [
+            "--lambda",
+            "0.5",
+            "--fcv-scale",
+            "1.5",
+            "--fcv-file",
+            "f.txt",
+            "--fallback",
+            "error",
+            "--q-file",
+            "q.txt",
+            "--split-ratio",
+            "0.3",
+            "--alpha-rule",
+            "regular-spectrum",
+            "--pole",
+            "0:1,2,3",
+            "--pole",
+            "4:0,0,1",
+            "--rules",
+            "derived",
+        ];
+        let words = parse(&given).words();
+        assert_eq!(words, given);
+        let back: Vec<&str> = words.iter().map(String::as_str).collect();
+        assert_eq!(parse(&back).words(), words);
+        assert!(parse(&[]).words().is_empty(), "defaults give no words");
+    }
+}
