@@ -113,6 +113,24 @@ fn serves_only_its_routes_and_only_on_loopback() {
     let (status, body) = get(v.port, "/api/surface?scheme=no-such-scheme");
     assert_eq!(status, 422);
     assert!(String::from_utf8_lossy(&body).contains("\"error\""));
+    // Files are named on the command line only: a page cannot make the server read one.
+    for q in [
+        "creases=/etc/passwd",
+        "q-file=%2Fetc%2Fpasswd",
+        "fcv-file=Cargo.toml",
+    ] {
+        let (status, body) = get(v.port, &format!("/api/surface?scheme=catmull-clark&{q}"));
+        let text = String::from_utf8_lossy(&body);
+        assert_eq!(status, 422, "{q}");
+        assert!(
+            text.contains("names a file") && !text.contains("root:"),
+            "{q}: {text}"
+        );
+    }
+    // An option the scheme does not take is the command line's error.
+    let (status, body) = get(v.port, "/api/surface?scheme=catmull-clark&split-ratio=0.3");
+    assert_eq!(status, 422);
+    assert!(String::from_utf8_lossy(&body).contains("--split-ratio and --alpha-rule apply to"));
     // The check panel's report is `fairsub check --json`'s own.
     let (status, body) = get(v.port, "/api/check?scheme=catmull-clark&rings=2");
     assert_eq!(status, 200);
