@@ -353,7 +353,8 @@ function control(o) {
     const given = (meta.start.files || []).find(([k]) => k === o.name);
     el = document.createElement("span");
     el.className = "file";
-    el.textContent = given ? given[1] : "(command line)";
+    el.textContent = given ? given[1] : "(none given)";
+    el.title = "files are named on the command line of fairsub view (--q-file, --fcv-file)";
   } else if (o.flag) {
     el = document.createElement("input");
     el.type = "checkbox";
