@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::render::{Mode, Scene};
 use crate::schemes::Spec;
+use crate::schemes::descriptor::ParamKind;
 use crate::surface::PatchComplex;
 use clap::Parser;
 
@@ -42,8 +43,59 @@ fn budget(cli: &Cli) -> Result<Option<u64>> {
         .transpose()
 }
 
+/// One option of `subdivide` that sets a scheme parameter, described from the command's own
+/// clap definition for a front end that offers it (the viewer builds its controls from these
+/// and passes the values back as words).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct OptionWord {
+    /// The option without its dashes (`split-ratio`).
+    pub name: String,
+    /// Its help text.
+    pub help: String,
+    /// The values it takes, when they are a fixed set (else empty).
+    pub choices: Vec<String>,
+    /// Whether its value names a file.
+    pub file: bool,
+    /// Whether it is a flag without a value.
+    pub flag: bool,
+    /// Whether it may be given more than once.
+    pub repeated: bool,
+}
+
+/// The options of `subdivide` that set the parameters `kinds` (a scheme descriptor's
+/// [`ParamKind`]s, named by [`ParamKind::option`]), in that order.
+pub fn option_words(kinds: &[ParamKind]) -> Vec<OptionWord> {
+    let cmd = <Cli as clap::CommandFactory>::command();
+    let sub = cmd
+        .find_subcommand("subdivide")
+        .expect("subdivide is a command");
+    kinds
+        .iter()
+        .flat_map(|k| k.option().split(" / "))
+        .filter_map(|o| {
+            let name = o.strip_prefix("--")?;
+            let arg = sub.get_arguments().find(|a| a.get_long() == Some(name))?;
+            let action = arg.get_action();
+            Some(OptionWord {
+                name: name.to_string(),
+                help: arg.get_help().map(|h| h.to_string()).unwrap_or_default(),
+                choices: arg
+                    .get_possible_values()
+                    .iter()
+                    .map(|v| v.get_name().to_string())
+                    .collect(),
+                file: arg.get_value_parser().type_id()
+                    == std::any::TypeId::of::<std::path::PathBuf>(),
+                flag: matches!(action, clap::ArgAction::SetTrue),
+                repeated: matches!(action, clap::ArgAction::Append),
+            })
+        })
+        .collect()
+}
+
 /// `subdivide WORDS...` parsed (with a placeholder `-o` when none is given: a `.bv` for
-/// `--rings`, else an `.obj`), and its memory budget.
+/// `--rings`, else an `.obj`), and its memory budget (the running command's `--max-memory`
+/// when the words give none).
 fn subdivide_args(words: &[String]) -> Result<(subdivide::Args, Option<u64>)> {
     let mut all = vec!["subdivide".to_string()];
     all.extend(words.iter().cloned());
@@ -58,7 +110,7 @@ fn subdivide_args(words: &[String]) -> Result<(subdivide::Args, Option<u64>)> {
         all.push(if rings { "out.bv" } else { "out.obj" }.into());
     }
     let cli = parse(&all)?;
-    let budget = budget(&cli)?;
+    let budget = budget(&cli)?.or_else(limits::max_memory);
     let Command::Subdivide(args) = cli.command else {
         unreachable!("the words start with subdivide")
     };
@@ -168,5 +220,39 @@ pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
         crate::io::OutputFormat::Iges => Err(Error::InvalidArgument(
             "IGES holds patches: write a surface, not a net".into(),
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn option_words_come_from_the_command() {
+        let w = option_words(&[
+            ParamKind::AlphaRule,
+            ParamKind::QFile,
+            ParamKind::Poles,
+            ParamKind::SmoothTriangles,
+            ParamKind::Fcv,
+        ]);
+        let names: Vec<&str> = w.iter().map(|o| o.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "alpha-rule",
+                "q-file",
+                "pole",
+                "smooth-triangles",
+                "fcv-scale",
+                "fcv-file"
+            ]
+        );
+        assert_eq!(w[0].choices, ["tps-limit-point", "regular-spectrum"]);
+        assert!(w[1].file && !w[1].flag && !w[1].repeated);
+        assert!(w[2].repeated && !w[2].file);
+        assert!(w[3].flag);
+        assert!(!w[4].file && w[5].file);
+        assert!(w[0].help.contains("alphas"));
     }
 }

@@ -70,6 +70,11 @@ pub(super) fn with_budget<T>(max: Option<u64>, f: impl FnOnce() -> T) -> T {
     r
 }
 
+/// The `--max-memory` of the command running on this thread, if one was given.
+pub(super) fn max_memory() -> Option<u64> {
+    BUDGET.with(Cell::get)
+}
+
 /// The budget of the command running on this thread.
 pub fn budget() -> Budget {
     match BUDGET.with(Cell::get) {

@@ -4,15 +4,16 @@ use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
 use crate::io::OutputFormat;
 use crate::mesh::PolyMesh;
-use crate::schemes::descriptor::{AlphaRule, Fallback};
 use crate::schemes::{Scheme, Spec, registry};
 use crate::surface::{ComplexOptions, PatchComplex};
 use std::path::PathBuf;
 
 pub(crate) mod features;
 mod nonbox;
+mod options;
 
 pub use features::FeatureArgs;
+pub use options::{AlphaRuleArg, SchemeArgs};
 
 /// Arguments of `fairsub subdivide`.
 #[derive(Debug, clap::Args)]
@@ -38,16 +39,13 @@ pub struct Args {
     /// the G^1 bi-6 cap of Appendix B).
     #[arg(long)]
     pub cap: bool,
-    /// Contraction of a guided scheme: 0.5 samples through QAS+'s characteristic map (valences
-    /// 5..10); without it, Catmull-Clark's chi and lambda.
-    #[arg(long)]
-    pub lambda: Option<f64>,
     /// Samples per patch edge when a patch complex is written as a mesh.
     #[arg(long, default_value_t = 8)]
     pub tess: usize,
-    /// Face control vertices (non-box schemes).
+    /// The scheme's options (lambda, FCVs, fallback, q file, split ratio, alpha rule, poles,
+    /// rules).
     #[command(flatten)]
-    pub fcv: nonbox::FcvArgs,
+    pub options: SchemeArgs,
     /// OpenSubdiv's sharp features and options (Catmull-Clark, Loop).
     #[command(flatten)]
     pub features: FeatureArgs,
@@ -57,81 +55,23 @@ pub struct Args {
     /// Output format (obj, off, ply, ply-ascii, bv, igs), instead of the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// At vertices whose valence no rules cover (EG, QAS+: above 16): use Catmull-Clark there,
-    /// or stop with an error.
-    #[arg(long, value_enum, default_value_t = FallbackArg::CatmullClark)]
-    pub fallback: FallbackArg,
-    /// QAS+ only: quadratic expansions per vertex (lines `vertex V`, `kind c2|c1|c1-c0`,
-    /// `p X Y Z`, `q SECTOR K X Y Z`); they replace fairsub's qas-fit where given.
-    #[arg(long)]
-    pub q_file: Option<PathBuf>,
-    /// tps-adjustable only: the split ratio e, 0 < e < 1/2 (default 0.2; 1/3 is TPS).
-    #[arg(long)]
-    pub split_ratio: Option<f64>,
-    /// tps-adjustable only: how rule (18)'s alphas are chosen.
-    #[arg(long, value_enum)]
-    pub alpha_rule: Option<AlphaRuleArg>,
-    /// polar-bi2 only: the pole of an n-gon cap, `FACE:X,Y,Z` (input face index; repeatable).
-    /// Caps without one get their centroid.
-    #[arg(long)]
-    pub pole: Vec<String>,
-    /// EG and QAS+ only: the paper's printed rules where they exist (default; derived rules at
-    /// the other valences), or fairsub's derived rules everywhere (to compare).
-    #[arg(long, value_enum)]
-    pub rules: Option<spec::RulesArg>,
-}
-
-/// `--fallback` values.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum FallbackArg {
-    /// Catmull-Clark rings and fill at vertices without rules.
-    CatmullClark,
-    /// Stop with an error naming the vertex.
-    Error,
-}
-
-impl From<FallbackArg> for Fallback {
-    fn from(f: FallbackArg) -> Self {
-        match f {
-            FallbackArg::CatmullClark => Fallback::CatmullClark,
-            FallbackArg::Error => Fallback::Error,
-        }
-    }
-}
-
-/// `--alpha-rule` values.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum AlphaRuleArg {
-    /// The paper's: the stationary limit point is TPS's (21) (default).
-    TpsLimitPoint,
-    /// fairsub's alternative: stationary frequency-0 eigenvalues lambda^2, lambda^4 (bounded
-    /// curvature, mu / lambda^2 = 1); the limit point is still TPS's (21).
-    RegularSpectrum,
-}
-
-impl From<AlphaRuleArg> for AlphaRule {
-    fn from(a: AlphaRuleArg) -> Self {
-        match a {
-            AlphaRuleArg::TpsLimitPoint => AlphaRule::TpsLimitPoint,
-            AlphaRuleArg::RegularSpectrum => AlphaRule::RegularSpectrum,
-        }
-    }
 }
 
 impl Args {
     /// The scheme with its options, checked against it.
     fn spec(&self) -> Result<Spec> {
+        let o = &self.options;
         spec::resolve(
             &self.scheme,
             &SchemeOptions {
-                lambda: self.lambda,
-                fallback: Some(self.fallback.into()),
-                split_ratio: self.split_ratio,
-                alpha_rule: self.alpha_rule.map(Into::into),
-                poles: &self.pole,
-                q_file: self.q_file.as_deref(),
-                fcv: self.fcv.fcv_scale.is_some() || self.fcv.fcv_file.is_some(),
-                rules: self.rules.map(Into::into),
+                lambda: o.lambda,
+                fallback: Some(o.fallback.into()),
+                split_ratio: o.split_ratio,
+                alpha_rule: o.alpha_rule.map(Into::into),
+                poles: &o.pole,
+                q_file: o.q_file.as_deref(),
+                fcv: o.fcv.fcv_scale.is_some() || o.fcv.fcv_file.is_some(),
+                rules: o.rules.map(Into::into),
                 subd: self.features.options(),
                 creases: self.features.creases.is_some(),
             },
@@ -308,9 +248,9 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
     let mesh = if features::takes_features(&spec) {
         features::load_net(&mut spec, &a.features, &a.net, !patches, net)?
     } else {
-        nonbox::load_net(&spec, &a.net, &a.fcv, net)?
+        nonbox::load_net(&spec, &a.net, &a.options.fcv, net)?
     };
-    if let Some(q) = &a.q_file {
+    if let Some(q) = &a.options.q_file {
         // the expansions name vertices of this net: check them against it, at their lines
         crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
     }

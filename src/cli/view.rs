@@ -1,7 +1,7 @@
 //! `fairsub view`: the interactive viewer, a small HTTP server on 127.0.0.1 that serves one
 //! embedded WebGL2 page (`view/assets/`) and the geometry it draws.
 //!
-//! The server answers a fixed set of routes only: the page, its script and style sheet, and the
+//! The server answers a fixed set of routes only: the page, its scripts and style sheet, and the
 //! API of [`api`] (surface buffers, net info, the `check` summary, the schemes). Every other
 //! path is a 404, so nothing outside the embedded assets can be read (no file system access by
 //! path at all). Surfaces are recomputed on the server when the page asks for another scheme or
@@ -24,12 +24,10 @@ pub struct ViewArgs {
     /// Rings of the exact surface the page starts with.
     #[arg(long, short, default_value_t = super::subdivide::DEFAULT_RINGS)]
     pub rings: usize,
-    /// Guided schemes: the contraction lambda.
-    #[arg(long)]
-    pub lambda: Option<f64>,
-    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
-    #[arg(long, value_enum)]
-    pub rules: Option<super::spec::RulesArg>,
+    /// The start scheme's options, as `fairsub subdivide` takes them (the page changes those
+    /// with a value; files stay as given here).
+    #[command(flatten)]
+    pub options: super::subdivide::SchemeArgs,
     /// Samples per patch edge of the tessellation sent to the page.
     #[arg(long, default_value_t = api::DEFAULT_TESS)]
     pub tess: usize,
@@ -42,11 +40,16 @@ pub struct ViewArgs {
 }
 
 /// The embedded assets: route, content type, bytes.
-const ASSETS: [(&str, &str, &[u8]); 3] = [
+const ASSETS: [(&str, &str, &[u8]); 4] = [
     (
         "/",
         "text/html; charset=utf-8",
         include_bytes!("view/assets/index.html"),
+    ),
+    (
+        "/gl.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("view/assets/gl.js"),
     ),
     (
         "/viewer.js",

@@ -9,6 +9,8 @@
 //! corners (3 per triangle); f32 boundary segments (6 each) and net edges (6 each).
 
 use super::{Reply, ViewArgs};
+use crate::cli::api::{self as cli_api, OptionWord};
+use crate::cli::subdivide::Computed;
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::PolyMesh;
@@ -50,38 +52,40 @@ pub struct State {
     scheme: Option<String>,
     rings: usize,
     tess: usize,
-    lambda: Option<f64>,
-    rules: Option<super::super::spec::RulesArg>,
+    /// The start options with a value (`split-ratio`, `0.3`): the start URL carries them.
+    start_values: Vec<(String, String)>,
+    /// The file options of the command line (`q-file`, path): only the command line names
+    /// files, the page cannot; they apply to the schemes that take them.
+    files: Vec<(String, String)>,
     cache: Vec<Built>,
-}
-
-/// The command-line name of an option kind (as `subdivide` spells it).
-fn option_name(k: ParamKind) -> &'static str {
-    match k {
-        ParamKind::Fallback => "fallback",
-        ParamKind::Contraction => "lambda",
-        ParamKind::SplitRatio => "split-ratio",
-        ParamKind::AlphaRule => "alpha-rule",
-        ParamKind::Poles => "pole",
-        ParamKind::QFile => "q-file",
-        ParamKind::Fcv => "fcv",
-        ParamKind::Rules => "rules",
-        ParamKind::SharpFeatures => "creases",
-        ParamKind::SmoothTriangles => "smooth-triangles",
-    }
 }
 
 fn param<'a>(q: &'a [(String, String)], key: &str) -> Option<&'a str> {
     q.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
 }
 
+/// The option words of every scheme with patch output (the keys the page may send).
+fn all_option_words() -> Vec<OptionWord> {
+    let mut kinds: Vec<ParamKind> = Vec::new();
+    for e in registry().entries() {
+        for k in e.descriptor.params() {
+            if !kinds.contains(k) {
+                kinds.push(*k);
+            }
+        }
+    }
+    cli_api::option_words(&kinds)
+}
+
 impl State {
-    /// Loads the input of `fairsub view` (a net, or a `.bv` file) and checks the start scheme.
+    /// Loads the input of `fairsub view` (a net, or a `.bv` file) and builds the start surface
+    /// (so that a scheme or option the net cannot take stops the command with its message).
     pub fn load(a: &ViewArgs) -> Result<State> {
         let source = if super::super::render::is_bv(&a.input) {
-            if a.scheme.is_some() {
+            if a.scheme.is_some() || !a.options.words().is_empty() {
                 return Err(Error::InvalidArgument(
-                    "a .bv file holds its patches already: drop --scheme".into(),
+                    "a .bv file holds its patches already: drop --scheme and the scheme options"
+                        .into(),
                 ));
             }
             let scene = super::super::render::bv_scene(&a.input)?;
@@ -97,28 +101,57 @@ impl State {
             (Source::Net(_), Some(s)) => Some(registry().lookup(s)?.name().to_string()),
             (Source::Net(m), None) => Some(first_scheme_for(m)?),
         };
-        let s = State {
+        let files_named: Vec<String> = all_option_words()
+            .into_iter()
+            .filter(|w| w.file)
+            .map(|w| w.name)
+            .collect();
+        let (mut start_values, mut files) = (Vec::new(), Vec::new());
+        for pair in a.options.words().chunks(2) {
+            let name = pair[0].trim_start_matches("--").to_string();
+            let list = if files_named.contains(&name) {
+                &mut files
+            } else {
+                &mut start_values
+            };
+            list.push((name, pair[1].clone()));
+        }
+        let mut s = State {
             input: a.input.clone(),
             source,
             scheme,
             rings: a.rings,
             tess: a.tess.max(1),
-            lambda: a.lambda,
-            rules: a.rules,
+            start_values,
+            files,
             cache: Vec::new(),
         };
-        if let Some(name) = &s.scheme {
-            s.spec(&[("scheme".into(), name.clone())])?;
-        }
+        // The start surface with every option of the command line, files included.
+        let q = s.start_values.clone();
+        let files = s.files.clone();
+        s.built_with(&q, &files)?;
         Ok(s)
     }
 
-    /// The query of the start URL (`?scheme=..&rings=..`).
+    /// The query of the start URL (`?scheme=..&rings=..` and the start options with a value;
+    /// poles joined by `;`).
     pub fn start_query(&self) -> String {
-        match &self.scheme {
-            Some(s) => format!("?scheme={s}&rings={}", self.rings),
-            None => String::new(),
+        let Some(scheme) = &self.scheme else {
+            return String::new();
+        };
+        let mut q = format!("?scheme={scheme}&rings={}", self.rings);
+        let mut poles = Vec::new();
+        for (k, v) in &self.start_values {
+            if k == "pole" {
+                poles.push(v.as_str());
+            } else {
+                q.push_str(&format!("&{k}={}", percent_encode(v)));
+            }
         }
+        if !poles.is_empty() {
+            q.push_str(&format!("&pole={}", percent_encode(&poles.join(";"))));
+        }
+        q
     }
 
     /// Answers `/api/NAME`.
@@ -133,36 +166,8 @@ impl State {
         r.unwrap_or_else(|e| Reply::error(422, &e.to_string()))
     }
 
-    /// The scheme of a query with its options (the start options where the query has none).
-    fn spec(&self, q: &[(String, String)]) -> Result<Spec> {
-        let name = param(q, "scheme")
-            .map(str::to_string)
-            .or_else(|| self.scheme.clone())
-            .ok_or_else(|| Error::InvalidArgument("no scheme given".into()))?;
-        let lambda = match param(q, "lambda").filter(|s| !s.is_empty()) {
-            Some(l) => Some(
-                l.parse::<f64>()
-                    .map_err(|_| Error::InvalidArgument(format!("lambda '{l}' is not a number")))?,
-            ),
-            None => self.lambda,
-        };
-        let rules = match param(q, "rules").filter(|s| !s.is_empty()) {
-            Some(r) => Some(
-                <super::super::spec::RulesArg as clap::ValueEnum>::from_str(r, true)
-                    .map_err(|e| Error::InvalidArgument(format!("rules '{r}': {e}")))?,
-            ),
-            None => self.rules,
-        };
-        let o = super::super::spec::SchemeOptions {
-            lambda,
-            rules: rules.map(Into::into),
-            ..Default::default()
-        };
-        super::super::spec::resolve(&name, &o)
-    }
-
     fn rings(&self, q: &[(String, String)]) -> Result<usize> {
-        let rings = match param(q, "rings") {
+        let rings = match param(q, "rings").filter(|r| !r.is_empty()) {
             Some(r) => r
                 .parse::<usize>()
                 .map_err(|_| Error::InvalidArgument(format!("rings '{r}' is not a count")))?,
@@ -176,29 +181,86 @@ impl State {
         Ok(rings)
     }
 
+    /// The words of `fairsub subdivide` for a query: the net, the scheme, the rings, the scheme
+    /// options the query gives (by their command-line names: `split-ratio=0.3`, `pole=F:X,Y,Z`
+    /// with several poles joined by `;`, `smooth-triangles=1`) and the command line's file
+    /// options the scheme takes. An option the scheme does not take is the command's error.
+    fn words(&self, q: &[(String, String)], files: &[(String, String)]) -> Result<Vec<String>> {
+        let scheme = param(q, "scheme")
+            .filter(|s| !s.is_empty())
+            .map(str::to_string)
+            .or_else(|| self.scheme.clone())
+            .ok_or_else(|| Error::InvalidArgument("no scheme given".into()))?;
+        let mut w = vec![
+            self.input.clone(),
+            "--scheme".into(),
+            scheme.clone(),
+            "--rings".into(),
+            self.rings(q)?.to_string(),
+        ];
+        let known = all_option_words();
+        for (k, v) in q {
+            let Some(o) = known.iter().find(|o| o.name == *k) else {
+                continue;
+            };
+            let flag = format!("--{k}");
+            if o.file {
+                return Err(Error::InvalidArgument(format!(
+                    "{flag} names a file: give it on the command line of `fairsub view`"
+                )));
+            } else if o.flag {
+                if v == "1" || v == "true" {
+                    w.push(flag);
+                }
+            } else if o.repeated {
+                for p in v.split(';').map(str::trim).filter(|p| !p.is_empty()) {
+                    w.extend([flag.clone(), p.to_string()]);
+                }
+            } else if !v.is_empty() {
+                w.extend([flag, v.clone()]);
+            }
+        }
+        let id = registry().lookup(&scheme)?.id;
+        let takes = cli_api::option_words(registry().descriptor(id).params());
+        for (k, v) in files {
+            if takes.iter().any(|o| o.name == *k) {
+                w.extend([format!("--{k}"), v.clone()]);
+            }
+        }
+        Ok(w)
+    }
+
     /// The built surface of a query (built and cached when new).
     fn built(&mut self, q: &[(String, String)]) -> Result<&mut Built> {
-        let key = match &self.source {
-            Source::Bv(..) => "bv".to_string(),
-            Source::Net(_) => {
-                let spec = self.spec(q)?;
-                format!("{spec:?}/{}", self.rings(q)?)
-            }
+        let files = self.files.clone();
+        self.built_with(q, &files)
+    }
+
+    /// [`State::built`] with the file options `files`.
+    fn built_with(
+        &mut self,
+        q: &[(String, String)],
+        files: &[(String, String)],
+    ) -> Result<&mut Built> {
+        let words = match &self.source {
+            Source::Bv(..) => Vec::new(),
+            Source::Net(_) => self.words(q, files)?,
         };
+        let key = words.join("\u{0}");
         if let Some(k) = self.cache.iter().position(|b| b.key == key) {
             let b = self.cache.remove(k);
             self.cache.push(b);
         } else {
             let (spec, complex, notes) = match &self.source {
                 Source::Bv(c, _) => (None, c.clone(), Vec::new()),
-                Source::Net(net) => {
-                    let mut spec = self.spec(q)?;
-                    registry().descriptor(spec.id).check_input(net)?;
-                    super::super::subdivide::features::patch_features(&mut spec, net, &self.input)?;
-                    let rings = self.rings(q)?;
-                    let (c, n) =
-                        super::super::subdivide::build_complex_noted(&spec, net, rings, true)?;
-                    (Some(spec), c, n)
+                Source::Net(_) => {
+                    // `fairsub subdivide WORDS`'s own path: the same parsing, loading, limits
+                    // and construction as the command line and the Python package.
+                    let out = cli_api::subdivide(&words, None)?;
+                    match out.computed {
+                        Computed::Complex(c, notes) => (Some(out.spec), c, notes),
+                        _ => unreachable!("--rings makes a patch complex"),
+                    }
                 }
             };
             if complex.is_empty() {
@@ -231,24 +293,23 @@ impl State {
             .iter()
             .filter(|e| e.descriptor.capabilities().patches)
             .map(|e| {
-                let options: Vec<_> = e
-                    .descriptor
-                    .params()
-                    .iter()
-                    .map(|k| option_name(*k))
-                    .collect();
                 serde_json::json!({
                     "name": e.name,
                     "aliases": e.aliases,
                     "family": e.about.family,
-                    "options": options,
+                    "options": cli_api::option_words(e.descriptor.params()),
                 })
             })
             .collect();
         Reply::json(&serde_json::json!({
             "input": self.input,
             "bv": matches!(self.source, Source::Bv(..)),
-            "start": { "scheme": self.scheme, "rings": self.rings, "tess": self.tess },
+            "start": {
+                "scheme": self.scheme,
+                "rings": self.rings,
+                "tess": self.tess,
+                "files": self.files,
+            },
             "schemes": list,
         }))
     }
@@ -282,6 +343,18 @@ impl State {
         }
         Ok(Reply::binary(b.buffer.clone().expect("just built")))
     }
+}
+
+/// `%XX`-escapes what is not unreserved in a query value.
+fn percent_encode(s: &str) -> String {
+    s.bytes()
+        .map(|b| match b {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'.' | b'_' | b'~' | b',' | b':' => {
+                (b as char).to_string()
+            }
+            _ => format!("%{b:02X}"),
+        })
+        .collect()
 }
 
 /// The first scheme with patch output that takes the net (the page's default).
