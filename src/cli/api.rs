@@ -2,7 +2,7 @@
 //! package in `python/`): the same argument words, parsed by the same clap definitions, the
 //! same loading, limits, construction and reports, with the results handed back instead of
 //! written. Nothing here is a second copy of a rule or of a command's logic: each function is
-//! the command's own code path (`subdivide::compute`, `check::report_json`, ...) with an
+//! the command's own code path (`subdivide::prepare` and `finish`, `check::report_json`, ...) with an
 //! in-memory net in place of a file where one is given.
 
 use super::subdivide::{self, Computed};
