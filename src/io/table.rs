@@ -71,7 +71,10 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
     for cap in table.caps() {
         let (layout, degrees) = cap.step.hole.layout()?;
         let n = cap.step.hole.valence();
-        let key = (n, format!("{layout:?}{degrees:?}{}{:?}", cap.degree, cap.centre));
+        let key = (
+            n,
+            format!("{layout:?}{degrees:?}{}{:?}", cap.degree, cap.centre),
+        );
         let id = match map_of.get(&key) {
             Some(&id) => id,
             None => {
@@ -95,13 +98,13 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
         let _ = writeln!(s, "capmaps {}", maps.len());
         let _ = writeln!(s, "constants {}", u8::from(!table.constants().is_empty()));
         for (p, &(du, dv)) in table.shapes().iter().enumerate() {
-            let kind = if table.is_cap_patch(p) { "cap" } else { "linear" };
+            let kind = if table.is_cap_patch(p) {
+                "cap"
+            } else {
+                "linear"
+            };
             let group = table.provenance()[p].group_name();
-            let _ = writeln!(
-                out.buf,
-                "p {du} {dv} {} {kind} {group}",
-                table.first_row(p)
-            );
+            let _ = writeln!(out.buf, "p {du} {dv} {} {kind} {group}", table.first_row(p));
             out.maybe_flush().map_err(io)?;
         }
         for (cap, id) in table.caps().iter().zip(&cap_map_ids) {
@@ -178,9 +181,9 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
     let text = super::read_text(path)?;
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let mut next = |what: &str| {
-        lines
-            .next()
-            .ok_or_else(|| parse_error(path, text.lines().count().max(1), format!("missing {what}")))
+        lines.next().ok_or_else(|| {
+            parse_error(path, text.lines().count().max(1), format!("missing {what}"))
+        })
     };
     let (l, first) = next("the first line")?;
     if first.trim() != MAGIC {
@@ -189,7 +192,11 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
     let mut header = |key: &str| -> Result<usize> {
         let (l, line) = next(key)?;
         let mut w = line.split_whitespace();
-        match (w.next(), w.next().and_then(|x| x.parse::<usize>().ok()), w.next()) {
+        match (
+            w.next(),
+            w.next().and_then(|x| x.parse::<usize>().ok()),
+            w.next(),
+        ) {
             (Some(k), Some(v), None) if k == key => Ok(v),
             _ => Err(parse_error(path, l, format!("expected '{key} COUNT'"))),
         }
@@ -246,7 +253,11 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
             .collect::<std::result::Result<_, _>>()
             .map_err(|_| parse_error(path, l, "bad cap line"))?;
         if w.first() != Some(&"c") || v.len() < 7 || v[3] as usize >= nmaps.max(1) {
-            return Err(parse_error(path, l, "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE ...'"));
+            return Err(parse_error(
+                path,
+                l,
+                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE ...'",
+            ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));
     }
@@ -263,7 +274,10 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
             let (l, line) = next("a cap map row")?;
             let row: Vec<f64> = line
                 .split_whitespace()
-                .map(|x| x.parse::<f64>().map_err(|_| parse_error(path, l, "bad number")))
+                .map(|x| {
+                    x.parse::<f64>()
+                        .map_err(|_| parse_error(path, l, "bad number"))
+                })
                 .collect::<Result<_>>()?;
             if row.len() != c {
                 return Err(parse_error(path, l, format!("expected {c} numbers")));
@@ -278,7 +292,11 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         let v = nums(l, line, "r")?;
         let k = v.first().copied().unwrap_or(-1.0);
         if k < 0.0 || v.len() != 1 + 2 * k as usize {
-            return Err(parse_error(path, l, "expected 'r K' and K index-weight pairs"));
+            return Err(parse_error(
+                path,
+                l,
+                "expected 'r K' and K index-weight pairs",
+            ));
         }
         let mut pairs = Vec::with_capacity(k as usize);
         for pair in v[1..].chunks(2) {
@@ -291,7 +309,11 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         rows.push_pairs(&pairs);
     }
     if rows.num_entries() != nentries {
-        return Err(parse_error(path, 5, format!("{} entries, not {nentries}", rows.num_entries())));
+        return Err(parse_error(
+            path,
+            5,
+            format!("{} entries, not {nentries}", rows.num_entries()),
+        ));
     }
     let mut constants = Vec::new();
     if has_constants == 1 {

@@ -31,6 +31,10 @@
 //!   cap and which a C^0 fill, the cap's compatibility check) is decided on the net's points;
 //!   the table keeps that structure. If moved points would make the construction choose
 //!   otherwise, [`PatchTable::apply`] reports the cap that fails (rebuild the table then).
+//! * **Non-box's Hermite fill at an extraordinary boundary vertex** takes the edge derivative as
+//!   the chord projected onto the limit tangent plane (`nonbox::surface`'s `edge_derivative`):
+//!   not linear. The build refuses such a net with an error naming the fill patch (gallery:
+//!   `tri-grid`'s corners); everywhere else non-box is linear and tabulated.
 //! * **Fixed points given as options** (`--pole FACE:X,Y,Z` of polar-bi2, QAS+'s `--q-file`
 //!   expansions) do not move with the net: they make the map affine, and the table carries
 //!   their contribution as a constant per coefficient ([`PatchTable::constants`]).

@@ -67,10 +67,11 @@ pub fn build_from(
     let codes = Codes::new(n);
     let adjacency = VertexFaces::new(mesh);
     let mut entries = None;
+    let mut clash = 0;
     for radius in [3usize, 6, 12, usize::MAX] {
         let colour = adjacency.colouring(radius);
         let classes = colour.iter().copied().max().map_or(0, |c| c as usize + 1);
-        let runs: Vec<Result<Option<Vec<(u32, u32, f64)>>>> = (0..classes as u32)
+        let runs: Vec<Result<Decoded>> = (0..classes as u32)
             .into_par_iter()
             .map(|c| {
                 let mut pts = p0.clone();
@@ -84,13 +85,26 @@ pub fn build_from(
                 Ok(decode(&y0, &y, &skip, c, &colour, &codes, s, tau))
             })
             .collect();
-        let runs: Vec<Option<Vec<(u32, u32, f64)>>> = runs.into_iter().collect::<Result<_>>()?;
-        if runs.iter().all(Option::is_some) {
-            entries = Some(runs.into_iter().flatten().flatten().collect::<Vec<_>>());
-            break;
+        let runs: Vec<Decoded> = runs.into_iter().collect::<Result<_>>()?;
+        if let Some(Err(r)) = runs.iter().find(|d| d.is_err()) {
+            clash = *r;
+            continue;
         }
+        entries = Some(
+            runs.into_iter()
+                .flat_map(|d| d.expect("checked"))
+                .collect::<Vec<_>>(),
+        );
+        break;
     }
-    let entries = entries.expect("the last colouring gives every point its own class");
+    let Some(entries) = entries else {
+        // every point its own class and still no single point: not linear
+        return Err(Error::Unsupported(format!(
+            "the construction is not linear in the control points: coefficient row {clash} \
+             ({}) does not move like one point's weight times its displacement",
+            describe_row(base, clash)
+        )));
+    };
     let rows = assemble(n, y0.len(), entries);
     let w = rows.apply(&p0);
     let mut constants: Vec<Point> = y0
@@ -103,7 +117,10 @@ pub fn build_from(
             *c = [0.0; 3];
         }
     }
-    let cmax = constants.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    let cmax = constants
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     if cmax <= 1e3 * tau {
         constants.clear();
     }
@@ -199,7 +216,11 @@ fn signature(c: &PatchComplex) -> Signature {
 
 /// Every coefficient of every patch in order, then every cap's data points: the table's rows.
 fn outputs(c: &PatchComplex) -> Vec<Point> {
-    let mut y: Vec<Point> = c.patches.iter().flat_map(|p| p.cps.iter().copied()).collect();
+    let mut y: Vec<Point> = c
+        .patches
+        .iter()
+        .flat_map(|p| p.cps.iter().copied())
+        .collect();
     for st in &c.caps {
         y.extend(hole_points(&st.hole, &st.plane));
     }
@@ -233,7 +254,7 @@ impl Codes {
         // a multiplier coprime to n permutes 0..n
         let mult = [7919u64, 104_729, 1_299_709]
             .into_iter()
-            .find(|&p| n as u64 % p != 0)
+            .find(|&p| !(n as u64).is_multiple_of(p))
             .expect("n has at most two of these prime factors below 2^32");
         let perm = (0..n as u64)
             .map(|j| ((j * mult + 13) % n.max(1) as u64) as u32)
@@ -250,8 +271,46 @@ impl Codes {
     }
 }
 
-/// The entries `(row, source, weight)` one class `c` contributes, or `None` when two points of
-/// the class met in one coefficient.
+/// The entries `(row, source, weight)` one class contributes, or the first row where two points
+/// of the class met.
+type Decoded = std::result::Result<Vec<(u32, u32, f64)>, usize>;
+
+/// What row `r` of a complex's outputs is: a patch's coefficient (with the patch's
+/// provenance) or a G^1 cap's data.
+fn describe_row(c: &PatchComplex, r: usize) -> String {
+    use crate::bezier::complex::Provenance;
+    let mut k = 0;
+    for (p, patch) in c.patches.iter().enumerate() {
+        k += patch.cps.len();
+        if r < k {
+            let what = match c.provenance[p] {
+                Provenance::Regular { face } => format!("regular, face {face}"),
+                Provenance::Ring {
+                    element,
+                    ring,
+                    sector,
+                } => {
+                    format!(
+                        "ring {ring} of {}, sector {sector}",
+                        crate::host::caps::describe(element)
+                    )
+                }
+                Provenance::Cap { element, sector } => {
+                    format!(
+                        "cap of {}, sector {sector}",
+                        crate::host::caps::describe(element)
+                    )
+                }
+                Provenance::Unknown => "unknown".into(),
+            };
+            return format!("patch {p}: {what}");
+        }
+    }
+    "data of a G^1 cap".into()
+}
+
+/// The entries `(row, source, weight)` class `c` contributes, or the first row where two points
+/// of the class met in one coefficient.
 #[allow(clippy::too_many_arguments)]
 fn decode(
     y0: &[Point],
@@ -262,7 +321,7 @@ fn decode(
     codes: &Codes,
     s: f64,
     tau: f64,
-) -> Option<Vec<(u32, u32, f64)>> {
+) -> Decoded {
     let n = codes.n as f64;
     let mut out = Vec::new();
     for (r, (a, b)) in y0.iter().zip(y).enumerate() {
@@ -272,7 +331,7 @@ fn decode(
         let d = crate::geom::sub(*b, *a);
         if d[0].abs() <= tau {
             if d[1].abs() > 4.0 * tau || d[2].abs() > 4.0 * tau {
-                return None;
+                return Err(r);
             }
             continue;
         }
@@ -286,10 +345,10 @@ fn decode(
         if ok {
             out.push((r as u32, j as u32, d[0] / s));
         } else if d[0].abs() > SMALL * s {
-            return None;
+            return Err(r);
         }
     }
-    Some(out)
+    Ok(out)
 }
 
 /// The table of `rows` rows over `n` sources from its entries (any order).
@@ -310,7 +369,13 @@ fn assemble(n: usize, rows: usize, mut entries: Vec<(u32, u32, f64)>) -> Stencil
 }
 
 /// Checks the table applied to `pts` against the construction's complex `truth` of them.
-fn check(table: &PatchTable, pts: &[Point], truth: &PatchComplex, s: f64, what: &str) -> Result<()> {
+fn check(
+    table: &PatchTable,
+    pts: &[Point],
+    truth: &PatchComplex,
+    s: f64,
+    what: &str,
+) -> Result<()> {
     let got = table.apply(pts)?;
     let (dev, at) = max_deviation(&got, truth);
     if dev > CHECK * s {
@@ -331,7 +396,7 @@ pub fn max_deviation(a: &PatchComplex, b: &PatchComplex) -> (f64, usize) {
         }
         for (x, y) in p.cps.iter().zip(&q.cps) {
             let d = crate::geom::dist(*x, *y);
-            if !(d <= worst.0) {
+            if d > worst.0 || d.is_nan() {
                 worst = (d, i);
             }
         }
@@ -355,7 +420,13 @@ pub fn moved_points(p: &[Point], size: f64) -> Vec<Point> {
         (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
     p.iter()
-        .map(|q| [q[0] + size * next(), q[1] + size * next(), q[2] + size * next()])
+        .map(|q| {
+            [
+                q[0] + size * next(),
+                q[1] + size * next(),
+                q[2] + size * next(),
+            ]
+        })
         .collect()
 }
 
