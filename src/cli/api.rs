@@ -153,6 +153,37 @@ pub fn level_stencils(
     })
 }
 
+/// The patch stencil table `subdivide WORDS... --rings K --stencils FILE` writes (the same
+/// scheme, options, net, limits and construction), with the complex it was read off.
+pub fn patch_table(
+    words: &[String],
+    given: Option<PolyMesh>,
+) -> Result<(crate::surface::table::PatchTable, PatchComplex)> {
+    let (args, budget) = subdivide_args(words)?;
+    limits::with_budget(budget, || {
+        let p = subdivide::prepare(&args, given)?;
+        if !p.patches {
+            return Err(Error::InvalidArgument(
+                "a patch table needs a complex: give --rings K".into(),
+            ));
+        }
+        let (computed, _) = subdivide::finish(&args, &p)?;
+        let Computed::Complex(complex, _) = computed else {
+            unreachable!("a --rings job computes a complex")
+        };
+        let table = subdivide::patch_table(&args, &p, &complex)?;
+        Ok((table, complex))
+    })
+}
+
+/// Writes a patch stencil table as `subdivide --stencils` does (validated, atomic).
+pub fn write_patch_table(
+    t: &crate::surface::table::PatchTable,
+    path: &std::path::Path,
+) -> Result<()> {
+    crate::io::table::write_table(path, t)
+}
+
 /// Writes a complex as `subdivide --rings` does (`.bv`, `.igs`, or a tessellated mesh with
 /// `tess` samples per patch edge), validated before the atomic rename.
 pub fn write_complex(c: &PatchComplex, path: &std::path::Path, tess: usize) -> Result<()> {
