@@ -8,6 +8,8 @@
 //! fairsub-bench compare A.ply B.ply
 //! fairsub-bench caps VALENCE RINGS REPS
 //! fairsub-bench patch-table IN.obj RINGS POINTS REPS OUT.bin
+//! fairsub-bench compare-points A.bin B.bin
+//! fairsub-bench complex IN.obj RINGS
 //! ```
 //!
 //! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...).
@@ -31,6 +33,10 @@
 //!   second derivatives, normal, curvatures), printing each phase's time (minimum over REPS);
 //!   the evaluated points go to OUT.bin (little-endian f64 x y z per point) for comparison with
 //!   OpenSubdiv's.
+//! - `complex` times the Catmull-Clark complex alone (RINGS rings and the caps), the unit the
+//!   patch table's build costs a multiple of.
+//! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
+//!   1e-3, and the largest distance.
 //! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
 //!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
@@ -60,13 +66,15 @@ fn main() {
         }
         ["compare", x, y] => compare(x, y),
         ["caps", valence, rings, reps] => caps(valence.parse().ok(), rings.parse().ok(), reps),
+        ["compare-points", a, b] => compare_points(a, b),
+        ["complex", input, rings] => complex_only(input, rings.parse().ok()),
         ["patch-table", input, rings, points, reps, out] => {
             patch_table(input, rings.parse().ok(), points, reps.parse().ok(), out)
         }
         _ => Err(
             "usage: fairsub-bench gen quad-torus|tri-torus FACES OUT.obj | phases IN SCHEME \
                   LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply | caps \
-                  VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin"
+                  VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin | compare-points A B | complex IN.obj RINGS"
                 .into(),
         ),
     };
@@ -488,6 +496,53 @@ fn patch_table(
     println!(
         "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed)",
         pts.len()
+    );
+    Ok(())
+}
+
+fn compare_points(a: &str, b: &str) -> Res<()> {
+    let read = |p: &str| -> Res<Vec<f64>> {
+        Ok(std::fs::read(p)?
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect())
+    };
+    let (x, y) = (read(a)?, read(b)?);
+    if x.len() != y.len() {
+        return Err(format!("{} against {} values", x.len(), y.len()).into());
+    }
+    let d: Vec<f64> = x
+        .chunks_exact(3)
+        .zip(y.chunks_exact(3))
+        .map(|(p, q)| {
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .collect();
+    let n = d.len() as f64;
+    let within = |t: f64| d.iter().filter(|&&e| e <= t).count() as f64 / n * 100.0;
+    let worst = d.iter().copied().fold(0.0f64, f64::max);
+    println!(
+        "points: {} compared; within 1e-9: {:.2}%, 1e-6: {:.2}%, 1e-3: {:.2}%; largest distance {worst:.3e}",
+        d.len(),
+        within(1e-9),
+        within(1e-6),
+        within(1e-3)
+    );
+    Ok(())
+}
+
+fn complex_only(input: &str, rings: Option<usize>) -> Res<()> {
+    let rings = rings.ok_or("bad ring count")?;
+    let mesh = fairsub::io::read_mesh(Path::new(input))?.mesh;
+    let spec = fairsub::schemes::registry::registry().lookup("catmull-clark")?;
+    let opts = fairsub::surface::ComplexOptions { rings, fill: true };
+    let t = Instant::now();
+    let c = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
+    println!(
+        "catmull-clark complex, {} faces, {rings} rings + caps: {} patches in {:.1} ms",
+        mesh.num_faces(),
+        c.len(),
+        t.elapsed().as_secs_f64() * 1e3
     );
     Ok(())
 }

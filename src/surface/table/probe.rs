@@ -55,6 +55,13 @@ pub fn build_from(
     base: &PatchComplex,
     construct: &Construction<'_>,
 ) -> Result<PatchTable> {
+    let debug = std::env::var_os("FAIRSUB_TABLE_DEBUG").is_some();
+    let clock = std::time::Instant::now();
+    let lap = |what: &str| {
+        if debug {
+            eprintln!("  {what}: {:.1} ms", clock.elapsed().as_secs_f64() * 1e3);
+        }
+    };
     let n = mesh.num_vertices();
     let p0 = mesh.positions().to_vec();
     let y0 = outputs(base);
@@ -86,6 +93,10 @@ pub fn build_from(
             })
             .collect();
         let runs: Vec<Decoded> = runs.into_iter().collect::<Result<_>>()?;
+        if debug {
+            let bad = runs.iter().filter(|d| d.is_err()).count();
+            eprintln!("radius {radius}: {classes} classes, {bad} with clashes");
+        }
         if let Some(Err(r)) = runs.iter().find(|d| d.is_err()) {
             clash = *r;
             continue;
@@ -105,7 +116,9 @@ pub fn build_from(
             describe_row(base, clash)
         )));
     };
+    lap("probe runs");
     let rows = assemble(n, y0.len(), entries);
+    lap("assembled");
     let w = rows.apply(&p0);
     let mut constants: Vec<Point> = y0
         .iter()
@@ -126,6 +139,7 @@ pub fn build_from(
     }
     let table = PatchTable::from_parts(base, rows, constants)?;
     check(&table, &p0, base, s, "the net's points")?;
+    lap("checked at the net's points");
     let moved = moved_points(&p0, 0.05 * s);
     let mut m = mesh.clone();
     m.set_positions(moved.clone());
@@ -134,6 +148,7 @@ pub fn build_from(
         return Err(changed_structure());
     }
     check(&table, &moved, &truth, s, "randomly moved points")?;
+    lap("checked at moved points");
     Ok(table)
 }
 
@@ -463,6 +478,35 @@ impl VertexFaces {
         }
     }
 
+    /// The vertices in breadth-first order (each component from its lowest vertex): greedy
+    /// colouring in a spatially coherent order needs fewer colours (a regular quad grid at
+    /// radius 3: 16 to 20 against 27 in the order of a refined net's vertex blocks).
+    fn bfs_order(&self) -> Vec<u32> {
+        let nv = self.start.len() - 1;
+        let mut seen = vec![false; nv];
+        let mut order = Vec::with_capacity(nv);
+        for s in 0..nv {
+            if seen[s] {
+                continue;
+            }
+            seen[s] = true;
+            let mut k = order.len();
+            order.push(s as u32);
+            while k < order.len() {
+                let x = order[k] as usize;
+                k += 1;
+                for &f in &self.faces[self.start[x] as usize..self.start[x + 1] as usize] {
+                    for &w in &self.corners[f as usize] {
+                        if !std::mem::replace(&mut seen[w as usize], true) {
+                            order.push(w);
+                        }
+                    }
+                }
+            }
+        }
+        order
+    }
+
     /// A greedy colouring in which two points of one colour are more than `radius` steps apart
     /// (a step joins two corners of a face); `usize::MAX`: every point its own colour.
     fn colouring(&self, radius: usize) -> Vec<u32> {
@@ -476,7 +520,8 @@ impl VertexFaces {
         let mut used: Vec<u32> = Vec::new();
         let mut frontier: Vec<u32> = Vec::new();
         let mut next: Vec<u32> = Vec::new();
-        for v in 0..nv {
+        for v in self.bfs_order() {
+            let v = v as usize;
             used.clear();
             frontier.clear();
             frontier.push(v as u32);
