@@ -3,7 +3,7 @@
 #
 #   bench/run_patch_peer.sh          # from the repository root; results in target/patch-peer/
 #
-# Installs libosd-dev and g++ when missing, builds the C++ peer (bench/osd_peer.cpp, mode
+# Installs libosd-dev and g++ when missing (tests/peer/build.sh), builds the C++ peer (bench/osd_peer.cpp, mode
 # `patches`) and fairsub-bench, generates two meshes of about 100k quads with extraordinary
 # vertices, and on each measures (best of REPS):
 #
@@ -32,15 +32,8 @@ POINTS=${POINTS:-1000000}
 OUT=${OUT:-target/patch-peer}
 mkdir -p "$OUT"
 
-need=()
-dpkg -s libosd-dev >/dev/null 2>&1 || need+=(libosd-dev)
-command -v g++ >/dev/null 2>&1 || need+=(g++)
-if [ ${#need[@]} -gt 0 ]; then
-    sudo=""
-    [ "$(id -u)" -eq 0 ] || sudo=sudo
-    $sudo apt-get update
-    $sudo apt-get install -y --no-install-recommends "${need[@]}"
-fi
+# libosd-dev and g++ (installed when missing, as for the tests' peer)
+tests/peer/build.sh >/dev/null
 g++ -O3 -std=c++17 -o "$OUT/osd_peer" bench/osd_peer.cpp -losdCPU
 cargo build --release --quiet --bin fairsub --example fairsub-bench
 FAIRSUB=target/release/fairsub

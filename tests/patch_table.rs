@@ -6,9 +6,8 @@
 //! equal to the library's.
 
 use fairsub::PolyMesh;
-use fairsub::geom::Point;
 use fairsub::schemes::registry::registry;
-use fairsub::surface::table::PatchTable;
+use fairsub::surface::table::{PatchTable, probe};
 use fairsub::surface::{ComplexOptions, PatchComplex};
 
 /// The gallery nets the tables are checked on (each scheme takes some of them).
@@ -25,27 +24,6 @@ const NETS: &[&str] = &[
     "tri-grid",
     "nonbox-cube-fcv-1.5",
 ];
-
-/// Points moved by a seeded pseudo-random displacement of up to `size` per coordinate (another
-/// generator than the builder's own check).
-fn moved(p: &[Point], size: f64, seed: u64) -> Vec<Point> {
-    let mut s = seed;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
-    p.iter()
-        .map(|q| {
-            [
-                q[0] + size * next(),
-                q[1] + size * next(),
-                q[2] + size * next(),
-            ]
-        })
-        .collect()
-}
 
 /// Largest coefficient difference, after asserting the same structure.
 fn deviation(what: &str, a: &PatchComplex, b: &PatchComplex) -> f64 {
@@ -114,7 +92,7 @@ fn every_scheme_reapplies_to_moved_points() {
             let d0 = deviation(&what, &again, &base.complex);
             assert!(d0 < 1e-12, "{what}: at the net's points {d0:e}");
             for (seed, size) in [(7u64, 0.1), (11, 0.3)] {
-                let pts = moved(mesh.positions(), size, seed);
+                let pts = probe::moved_points(mesh.positions(), size, seed);
                 let mut m = mesh.clone();
                 m.set_positions(pts.clone());
                 let truth = fairsub::surface::build(&spec, &m, opts, &mut |_| {})

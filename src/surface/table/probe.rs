@@ -140,7 +140,7 @@ pub fn build_from(
     let table = PatchTable::from_parts(base, rows, constants)?;
     check(&table, &p0, base, s, "the net's points")?;
     lap("checked at the net's points");
-    let moved = moved_points(&p0, 0.05 * s);
+    let moved = moved_points(&p0, 0.05 * s, 0);
     let mut m = mesh.clone();
     m.set_positions(moved.clone());
     let truth = construct(&m)?;
@@ -422,9 +422,10 @@ pub fn max_deviation(a: &PatchComplex, b: &PatchComplex) -> (f64, usize) {
     worst
 }
 
-/// The points moved by a fixed pseudo-random displacement of size up to `size` per coordinate.
-pub fn moved_points(p: &[Point], size: f64) -> Vec<Point> {
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+/// The points moved by a pseudo-random displacement (seeded: the same for the same `seed`) of
+/// size up to `size` per coordinate.
+pub fn moved_points(p: &[Point], size: f64, seed: u64) -> Vec<Point> {
+    let mut state = seed ^ 0x9e37_79b9_7f4a_7c15u64;
     let mut next = move || {
         // splitmix64
         state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
