@@ -7,6 +7,9 @@
 //! fairsub-bench reapply IN.obj SCHEME LEVELS REPS
 //! fairsub-bench compare A.ply B.ply
 //! fairsub-bench caps VALENCE RINGS REPS
+//! fairsub-bench patch-table IN.obj RINGS POINTS REPS OUT.bin
+//! fairsub-bench compare-points A.bin B.bin
+//! fairsub-bench complex IN.obj RINGS
 //! ```
 //!
 //! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...).
@@ -23,6 +26,19 @@
 //!   c-net of the given valence (one extraordinary vertex, three rings of quads), both with
 //!   RINGS rings and the fill: the two complexes differ only in the cap, so the ratio of the
 //!   times is the cost of an EG cap against a Catmull-Clark cap (minimum over REPS runs).
+//!
+//! - `patch-table` (the patch-table peer, `bench/run_patch_peer.sh`): builds the Catmull-Clark
+//!   complex with RINGS rings and the fill and its patch stencil table, re-applies the table,
+//!   and evaluates the complex at the POINTS-point grid of [`grid_points`] (point, first and
+//!   second derivatives, normal, curvatures), printing each phase's time (minimum over REPS);
+//!   the evaluated points go to OUT.bin (little-endian f64 x y z per point) for comparison with
+//!   OpenSubdiv's.
+//! - `complex` times the Catmull-Clark complex alone (RINGS rings and the caps), the unit the
+//!   patch table's build costs a multiple of.
+//! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
+//!   1e-3, and the largest distance.
+//! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
+//!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
 //! Run through cargo: `cargo run --release --example fairsub-bench -- gen quad-torus 100k t.obj`.
 
@@ -50,10 +66,15 @@ fn main() {
         }
         ["compare", x, y] => compare(x, y),
         ["caps", valence, rings, reps] => caps(valence.parse().ok(), rings.parse().ok(), reps),
+        ["compare-points", a, b] => compare_points(a, b),
+        ["complex", input, rings] => complex_only(input, rings.parse().ok()),
+        ["patch-table", input, rings, points, reps, out] => {
+            patch_table(input, rings.parse().ok(), points, reps.parse().ok(), out)
+        }
         _ => Err(
             "usage: fairsub-bench gen quad-torus|tri-torus FACES OUT.obj | phases IN SCHEME \
                   LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply | caps \
-                  VALENCE RINGS REPS"
+                  VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin | compare-points A B | complex IN.obj RINGS"
                 .into(),
         ),
     };
@@ -65,6 +86,21 @@ fn main() {
 
 fn gen_mesh(kind: &str, faces: &str, out: &str) -> Res<()> {
     let faces = meshes::parse_count(faces).ok_or("bad face count")?;
+    if kind == "quad-evs" {
+        // 12 quads per triangle after two steps
+        let (m, n) = meshes::torus_dims(faces / 24);
+        let (p, fs, c) = meshes::tri_torus_arrays(m, n);
+        let tri = fairsub::PolyMesh::from_flat(p, fs, c)?;
+        let cc = schemes::by_name("catmull-clark")?;
+        let q = schemes::refine_levels(cc.as_ref(), &tri, 2, |_| {})?;
+        fairsub::io::write_mesh(Path::new(out), &q, MeshFormat::Obj)?;
+        println!(
+            "{out}: {} vertices, {} faces",
+            q.num_vertices(),
+            q.num_faces()
+        );
+        return Ok(());
+    }
     let (m, n) = match kind {
         "quad-torus" => meshes::torus_dims(faces),
         "tri-torus" => meshes::torus_dims(faces / 2),
@@ -352,6 +388,161 @@ fn caps(valence: Option<usize>, rings: Option<usize>, reps: &str) -> Res<()> {
         te * 1e3,
         tc * 1e3,
         te / tc
+    );
+    Ok(())
+}
+
+/// The evaluation grid of the patch-table peer (the same in `osd_peer patches`): per face in
+/// order a `k x k` grid of parameters `((a + 1/2) / k, (b + 1/2) / k)`, `k` the smallest with
+/// `faces k^2 >= count`, cut at `count` points.
+fn grid_points(faces: usize, count: usize) -> Vec<(u32, f64, f64)> {
+    let mut k = 1;
+    while faces * k * k < count {
+        k += 1;
+    }
+    let mut pts = Vec::with_capacity(count);
+    'all: for f in 0..faces {
+        for a in 0..k {
+            for b in 0..k {
+                if pts.len() == count {
+                    break 'all;
+                }
+                let t = |x: usize| (x as f64 + 0.5) / k as f64;
+                pts.push((f as u32, t(a), t(b)));
+            }
+        }
+    }
+    pts
+}
+
+fn patch_table(
+    input: &str,
+    rings: Option<usize>,
+    points: &str,
+    reps: Option<usize>,
+    out: &str,
+) -> Res<()> {
+    use fairsub::surface::{ComplexOptions, eval, table::probe};
+    let rings = rings.ok_or("bad ring count")?;
+    let reps = reps.ok_or("bad reps")?.max(1);
+    let count = meshes::parse_count(points).ok_or("bad point count")?;
+    let mesh = fairsub::io::read_mesh(Path::new(input))?.mesh;
+    let spec = fairsub::schemes::registry::registry().lookup("catmull-clark")?;
+    let opts = ComplexOptions { rings, fill: true };
+    let construct = |m: &fairsub::PolyMesh| {
+        fairsub::surface::build(&spec, m, opts, &mut |_| {}).map(|o| o.complex)
+    };
+    let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
+    let (mut complex_ms, mut table_ms, mut index_ms) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let (mut apply_ms, mut eval_ms) = (f64::INFINITY, f64::INFINITY);
+    let pts = grid_points(mesh.num_faces(), count);
+    let mut result = Vec::new();
+    let mut sizes = (0, 0, 0, 0);
+    for _ in 0..reps {
+        let t = Instant::now();
+        let complex = construct(&mesh)?;
+        complex_ms = complex_ms.min(ms(t));
+        let t = Instant::now();
+        let table = probe::build_from(&mesh, &complex, &construct)?;
+        table_ms = table_ms.min(ms(t));
+        let t = Instant::now();
+        let again = table.apply(mesh.positions())?;
+        apply_ms = apply_ms.min(ms(t));
+        let t = Instant::now();
+        let surface = eval::Surface::new(&mesh, again);
+        index_ms = index_ms.min(ms(t));
+        let t = Instant::now();
+        let r = surface.evaluate_many(&pts);
+        eval_ms = eval_ms.min(ms(t));
+        sizes = (
+            complex.len(),
+            table.rows().num_rows(),
+            table.rows().num_entries(),
+            table.caps().len(),
+        );
+        result = r;
+    }
+    let mut bytes = Vec::with_capacity(24 * pts.len());
+    let mut failed = 0;
+    for r in &result {
+        let p = match r {
+            Ok(e) => e.point,
+            Err(_) => {
+                failed += 1;
+                [f64::NAN; 3]
+            }
+        };
+        for x in p {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    std::fs::write(out, bytes)?;
+    println!(
+        "fairsub catmull-clark, {} faces, {rings} rings + G^1 caps: {} patches, table {} rows, \
+         {} weights, {} caps",
+        mesh.num_faces(),
+        sizes.0,
+        sizes.1,
+        sizes.2,
+        sizes.3
+    );
+    println!(
+        "build: complex {complex_ms:.1} ms + table {table_ms:.1} ms + evaluation index \
+         {index_ms:.1} ms = {:.1} ms",
+        complex_ms + table_ms + index_ms
+    );
+    println!("re-apply the table to the control points: {apply_ms:.1} ms");
+    println!(
+        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed)",
+        pts.len()
+    );
+    Ok(())
+}
+
+fn compare_points(a: &str, b: &str) -> Res<()> {
+    let read = |p: &str| -> Res<Vec<f64>> {
+        Ok(std::fs::read(p)?
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect())
+    };
+    let (x, y) = (read(a)?, read(b)?);
+    if x.len() != y.len() {
+        return Err(format!("{} against {} values", x.len(), y.len()).into());
+    }
+    let d: Vec<f64> = x
+        .chunks_exact(3)
+        .zip(y.chunks_exact(3))
+        .map(|(p, q)| {
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .collect();
+    let n = d.len() as f64;
+    let within = |t: f64| d.iter().filter(|&&e| e <= t).count() as f64 / n * 100.0;
+    let worst = d.iter().copied().fold(0.0f64, f64::max);
+    println!(
+        "points: {} compared; within 1e-9: {:.2}%, 1e-6: {:.2}%, 1e-3: {:.2}%; largest distance {worst:.3e}",
+        d.len(),
+        within(1e-9),
+        within(1e-6),
+        within(1e-3)
+    );
+    Ok(())
+}
+
+fn complex_only(input: &str, rings: Option<usize>) -> Res<()> {
+    let rings = rings.ok_or("bad ring count")?;
+    let mesh = fairsub::io::read_mesh(Path::new(input))?.mesh;
+    let spec = fairsub::schemes::registry::registry().lookup("catmull-clark")?;
+    let opts = fairsub::surface::ComplexOptions { rings, fill: true };
+    let t = Instant::now();
+    let c = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
+    println!(
+        "catmull-clark complex, {} faces, {rings} rings + caps: {} patches in {:.1} ms",
+        mesh.num_faces(),
+        c.len(),
+        t.elapsed().as_secs_f64() * 1e3
     );
     Ok(())
 }

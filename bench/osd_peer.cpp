@@ -15,11 +15,24 @@
 //       (factorized, last level only) and times its application with Osd::CpuEvaluator
 //       (single thread, float data as the evaluator requires), minimum over REPS runs.
 //
+//   osd_peer patches IN.obj ISOLATION POINTS REPS OUT.bin
+//       The adaptive patch table of Catmull-Clark (Far::TopologyRefiner::RefineAdaptive to
+//       ISOLATION levels, Far::PatchTableFactory with Gregory end caps in double precision, the
+//       double Far::StencilTable from the control points to the refined and local points, and
+//       Far::PatchMap), timed as a whole; then the points of the refined and local vertices
+//       from the control points (the re-application) and the evaluation of the POINTS-point
+//       grid of fairsub-bench's grid_points (per face a k x k grid) with PatchMap::FindPatch
+//       and PatchTable::EvaluateBasis (point, first and second derivatives), minimum over REPS;
+//       the points go to OUT.bin (little-endian double x y z per point).
+//
 // Boundaries: VTX_BOUNDARY_EDGE_AND_CORNER, fairsub's rule (corners stay put). The comparison
 // uses closed meshes, where the option plays no part.
 //
 // Build: g++ -O3 -std=c++17 -o osd_peer osd_peer.cpp -losdCPU
 
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
@@ -252,9 +265,147 @@ int stencils(const char* scheme, const char* in, int levels, int reps) {
     return 0;
 }
 
+// A double point with the interface StencilTableReal<double>::UpdateValues expects.
+struct DVertex {
+    double p[3];
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0.0; }
+    void AddWithWeight(DVertex const& src, double w) {
+        p[0] += w * src.p[0];
+        p[1] += w * src.p[1];
+        p[2] += w * src.p[2];
+    }
+};
+
+int patches(const char* in, int isolation, long count, int reps, const char* out) {
+    Obj obj = read_obj(in);
+    const int nf = static_cast<int>(obj.face_sizes.size());
+    for (int n : obj.face_sizes) {
+        if (n != 4) fail("the patch peer takes quad meshes (PatchMap face = input face)");
+    }
+    // the evaluation grid, as fairsub-bench's grid_points
+    long k = 1;
+    while (static_cast<long>(nf) * k * k < count) ++k;
+    std::vector<int> gf;
+    std::vector<double> gu, gv;
+    for (int f = 0; f < nf && static_cast<long>(gf.size()) < count; ++f) {
+        for (long a = 0; a < k && static_cast<long>(gf.size()) < count; ++a) {
+            for (long b = 0; b < k && static_cast<long>(gf.size()) < count; ++b) {
+                gf.push_back(f);
+                gu.push_back((a + 0.5) / k);
+                gv.push_back((b + 0.5) / k);
+            }
+        }
+    }
+    const size_t n = gf.size();
+    std::vector<double> result(3 * n);
+    double best_build = 1e30, best_apply = 1e30, best_eval = 1e30, best_eval_p = 1e30;
+    size_t npatches = 0, npoints = 0;
+    for (int r = 0; r < reps; ++r) {
+        double t0 = now();
+        Sdc::Options options;
+        options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+        Far::TopologyDescriptor desc;
+        desc.numVertices = static_cast<int>(obj.points.size());
+        desc.numFaces = nf;
+        desc.numVertsPerFace = obj.face_sizes.data();
+        desc.vertIndicesPerFace = obj.corners.data();
+        using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+        std::unique_ptr<Far::TopologyRefiner> refiner(
+            Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
+        if (!refiner) fail("OpenSubdiv rejected the mesh");
+        Far::PatchTableFactory::Options po(isolation);
+        po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+        po.SetPatchPrecision<double>();
+        refiner->RefineAdaptive(po.GetRefineAdaptiveOptions());
+        std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, po));
+        Far::StencilTableFactoryReal<double>::Options so;
+        so.generateIntermediateLevels = true;
+        so.generateOffsets = true;
+        std::unique_ptr<Far::StencilTableReal<double> const> st(
+            Far::StencilTableFactoryReal<double>::Create(*refiner, so));
+        if (auto const* lp = table->GetLocalPointStencilTable<double>()) {
+            auto const* all = Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(
+                *refiner, st.get(), lp);
+            if (all) st.reset(all);
+        }
+        Far::PatchMap map(*table);
+        double t1 = now();
+        best_build = std::min(best_build, t1 - t0);
+        // control points -> every patch point (refined vertices, then local points)
+        const int ncoarse = refiner->GetLevel(0).GetNumVertices();
+        std::vector<DVertex> verts(ncoarse + st->GetNumStencils());
+        for (int i = 0; i < ncoarse; ++i) {
+            for (int c = 0; c < 3; ++c) verts[i].p[c] = obj.points[i].p[c];
+        }
+        double t2 = now();
+        st->UpdateValues(verts.data(), verts.data() + ncoarse);
+        best_apply = std::min(best_apply, now() - t2);
+        // evaluation: point, first and second derivatives
+        double t3 = now();
+        double wP[20], wDu[20], wDv[20], wDuu[20], wDuv[20], wDvv[20];
+        for (size_t i = 0; i < n; ++i) {
+            auto const* h = map.FindPatch(gf[i], gu[i], gv[i]);
+            if (!h) fail("PatchMap found no patch");
+            table->EvaluateBasis(*h, gu[i], gv[i], wP, wDu, wDv, wDuu, wDuv, wDvv);
+            Far::ConstIndexArray cvs = table->GetPatchVertices(*h);
+            double acc[6][3] = {};
+            for (int j = 0; j < cvs.size(); ++j) {
+                const double* q = verts[cvs[j]].p;
+                for (int c = 0; c < 3; ++c) {
+                    acc[0][c] += wP[j] * q[c];
+                    acc[1][c] += wDu[j] * q[c];
+                    acc[2][c] += wDv[j] * q[c];
+                    acc[3][c] += wDuu[j] * q[c];
+                    acc[4][c] += wDuv[j] * q[c];
+                    acc[5][c] += wDvv[j] * q[c];
+                }
+            }
+            double keep = 0.0;
+            for (int d = 1; d < 6; ++d) keep += acc[d][0] + acc[d][1] + acc[d][2];
+            result[3 * i] = acc[0][0] + 0.0 * keep;
+            result[3 * i + 1] = acc[0][1];
+            result[3 * i + 2] = acc[0][2];
+        }
+        best_eval = std::min(best_eval, now() - t3);
+        // evaluation of the point only
+        double t4 = now();
+        double sink = 0.0;
+        for (size_t i = 0; i < n; ++i) {
+            auto const* h = map.FindPatch(gf[i], gu[i], gv[i]);
+            table->EvaluateBasis(*h, gu[i], gv[i], wP);
+            Far::ConstIndexArray cvs = table->GetPatchVertices(*h);
+            double acc[3] = {};
+            for (int j = 0; j < cvs.size(); ++j) {
+                for (int c = 0; c < 3; ++c) acc[c] += wP[j] * verts[cvs[j]].p[c];
+            }
+            sink += acc[0] + acc[1] + acc[2];
+        }
+        best_eval_p = std::min(best_eval_p, now() - t4);
+        if (sink == 12345.678) std::printf(" ");
+        npatches = static_cast<size_t>(table->GetNumPatchesTotal());
+        npoints = static_cast<size_t>(st->GetNumStencils());
+    }
+    std::ofstream f(out, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(result.data()), result.size() * sizeof(double));
+    if (!f) fail("cannot write the points");
+    std::printf(
+        "opensubdiv adaptive catmark, %d faces, isolation %d, gregory end caps, double: %zu "
+        "patches, %zu refined + local points\n"
+        "build (refiner, adaptive refinement, patch table, stencils, patch map): %.1f ms\n"
+        "re-apply the stencils to the control points: %.1f ms\n"
+        "evaluate %zu points (point, d1, d2): %.1f ms; point only: %.1f ms\n",
+        nf, isolation, npatches, npoints, best_build * 1e3, best_apply * 1e3, n,
+        best_eval * 1e3, best_eval_p * 1e3);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (argc == 7 && std::strcmp(argv[1], "patches") == 0) {
+        return patches(argv[2], std::atoi(argv[3]), std::atol(argv[4]), std::atoi(argv[5]),
+                       argv[6]);
+    }
     if (argc == 6 && std::strcmp(argv[1], "refine") == 0) {
         return refine(argv[2], argv[3], std::atoi(argv[4]), argv[5]);
     }
@@ -263,6 +414,7 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr,
                  "usage: osd_peer refine catmark|loop IN.obj LEVELS OUT.ply\n"
-                 "       osd_peer stencils catmark|loop IN.obj LEVELS REPS\n");
+                 "       osd_peer stencils catmark|loop IN.obj LEVELS REPS\n"
+                 "       osd_peer patches IN.obj ISOLATION POINTS REPS OUT.bin\n");
     return 2;
 }

@@ -4,6 +4,8 @@
 //! words, so every option, default, limit and error message is the command line's own; no rule
 //! is written here. Long work runs with the GIL released.
 
+mod table;
+
 use fairsub::cli::{Computed, api};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::Spec;
@@ -164,6 +166,25 @@ type Csr<'py> = (
     Bound<'py, PyArray1<f64>>,
 );
 
+/// A stencil table's rows as numpy arrays (indptr, indices, weights).
+fn csr_arrays<'py>(py: Python<'py>, table: &StencilTable) -> Csr<'py> {
+    let mut indptr = Vec::with_capacity(table.num_rows() + 1);
+    let mut idx = Vec::with_capacity(table.num_entries());
+    let mut w = Vec::with_capacity(table.num_entries());
+    indptr.push(0u64);
+    for r in 0..table.num_rows() {
+        let (i, ws) = table.row(r);
+        idx.extend_from_slice(i);
+        w.extend_from_slice(ws);
+        indptr.push(idx.len() as u64);
+    }
+    (
+        indptr.into_pyarray(py),
+        idx.into_pyarray(py),
+        w.into_pyarray(py),
+    )
+}
+
 /// A control net: a validated polygon mesh, with the file or gallery name it was read from.
 #[pyclass(module = "fairsub._fairsub", frozen)]
 pub struct Net {
@@ -292,10 +313,22 @@ pub struct Surface {
     net: PolyMesh,
     source: String,
     evaluator: OnceLock<eval::Surface>,
+    /// The `subdivide` words that built it and the in-memory net (for `stencils`).
+    words: Vec<String>,
+    given: Option<PolyMesh>,
 }
 
 #[pymethods]
 impl Surface {
+    /// The patch stencil table of this surface (`subdivide ... --rings K --stencils FILE`'s,
+    /// by the same code path): `apply(points)` maps moved control points to the patches.
+    fn stencils(&self, py: Python<'_>) -> PyResult<table::PatchTable> {
+        let (t, _) = py
+            .detach(|| api::patch_table(&self.words, self.given.clone()))
+            .map_err(err)?;
+        Ok(table::PatchTable { table: t })
+    }
+
     /// Number of patches.
     fn __len__(&self) -> usize {
         self.complex.len()
@@ -447,7 +480,9 @@ fn subdivide_words(py: Python<'_>, net: &Net, words: Vec<String>) -> PyResult<Py
     let (word, given) = net.as_input();
     let mut all = vec![word.clone()];
     all.extend(words);
-    let out = py.detach(|| api::subdivide(&all, given)).map_err(err)?;
+    let out = py
+        .detach(|| api::subdivide(&all, given.clone()))
+        .map_err(err)?;
     Ok(match out.computed {
         Computed::Net(m) | Computed::FcvNet(m) => {
             Net::refined(m).into_pyobject(py)?.into_any().unbind()
@@ -464,6 +499,8 @@ fn subdivide_words(py: Python<'_>, net: &Net, words: Vec<String>) -> PyResult<Py
             net: out.net,
             source: word,
             evaluator: OnceLock::new(),
+            words: all,
+            given,
         }
         .into_pyobject(py)?
         .into_any()
@@ -494,21 +531,7 @@ impl Stencils {
 
     /// The table in CSR form: (indptr, indices, weights).
     fn csr<'py>(&self, py: Python<'py>) -> Csr<'py> {
-        let mut indptr = Vec::with_capacity(self.table.num_rows() + 1);
-        let mut idx = Vec::with_capacity(self.table.num_entries());
-        let mut w = Vec::with_capacity(self.table.num_entries());
-        indptr.push(0u64);
-        for r in 0..self.table.num_rows() {
-            let (i, ws) = self.table.row(r);
-            idx.extend_from_slice(i);
-            w.extend_from_slice(ws);
-            indptr.push(idx.len() as u64);
-        }
-        (
-            indptr.into_pyarray(py),
-            idx.into_pyarray(py),
-            w.into_pyarray(py),
-        )
+        csr_arrays(py, &self.table)
     }
 
     /// Applies the table to control points (num_sources, 3): the refined points (num_rows, 3).
@@ -583,6 +606,7 @@ fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Net>()?;
     m.add_class::<Surface>()?;
     m.add_class::<Stencils>()?;
+    m.add_class::<table::PatchTable>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(subdivide_words, m)?)?;
     m.add_function(wrap_pyfunction!(level_stencils_words, m)?)?;

@@ -213,8 +213,7 @@ fn boundary_loops(ring: &[BezierPatch]) -> Vec<Vec<Point>> {
     let c = PatchComplex {
         patches: ring.to_vec(),
         provenance: vec![crate::surface::Provenance::Unknown; ring.len()],
-        sharp_sides: Vec::new(),
-        domains: Vec::new(),
+        ..PatchComplex::default()
     };
     let tol = default_tolerance(&c);
     let shared = shared_boundaries(&c, tol);

@@ -8,6 +8,8 @@
 
 use super::BezierPatch;
 pub use super::domain::Domain;
+use super::g1::{CapOptions, Hole};
+use crate::geom::Point;
 use crate::mesh::Element;
 use serde::Serialize;
 
@@ -67,6 +69,29 @@ pub struct PatchComplex {
     /// The input-face domain of each patch where known (may be shorter than `patches`: the
     /// missing ones are unknown; see [`PatchComplex::domain`]).
     pub domains: Vec<Option<Domain>>,
+    /// The G^1 caps among the patches, with the data they were computed from: the one step of
+    /// a construction that is not linear in the control points (its tangent plane), which a
+    /// patch stencil table ([`crate::surface::table`]) repeats instead of tabulating.
+    pub caps: Vec<CapStep>,
+}
+
+/// Patches `first .. first + count` of a complex are the G^1 cap
+/// ([`crate::bezier::g1::ring::cap_in_plane`]) of `hole` (its tangents unset) in the plane
+/// spanned by `plane` (normal `plane[0] x plane[1]`), with `options`. Everything in the step's
+/// data is a linear function of the control points; the cap is not (it projects onto the
+/// plane).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CapStep {
+    /// The first cap patch.
+    pub first: u32,
+    /// Number of cap patches (one per sector).
+    pub count: u32,
+    /// The hole: centre and ring segments (tangents unset).
+    pub hole: Hole,
+    /// Two vectors spanning the limit tangent plane.
+    pub plane: [Point; 2],
+    /// The cap's options.
+    pub options: CapOptions,
 }
 
 impl PatchComplex {
@@ -122,6 +147,10 @@ impl PatchComplex {
             }
         }
         let base = self.patches.len() as u32;
+        self.caps.extend(other.caps.into_iter().map(|c| CapStep {
+            first: c.first + base,
+            ..c
+        }));
         self.patches.extend(other.patches);
         self.provenance.extend(other.provenance);
         self.sharp_sides

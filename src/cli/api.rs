@@ -2,7 +2,7 @@
 //! package in `python/`): the same argument words, parsed by the same clap definitions, the
 //! same loading, limits, construction and reports, with the results handed back instead of
 //! written. Nothing here is a second copy of a rule or of a command's logic: each function is
-//! the command's own code path (`subdivide::compute`, `check::report_json`, ...) with an
+//! the command's own code path (`subdivide::prepare` and `finish`, `check::report_json`, ...) with an
 //! in-memory net in place of a file where one is given.
 
 use super::subdivide::{self, Computed};
@@ -203,6 +203,37 @@ pub fn level_stencils(
         limits::check_levels(scheme.as_ref(), &p.mesh, levels)?;
         crate::schemes::level_stencils(scheme.as_ref(), &p.mesh, levels)
     })
+}
+
+/// The patch stencil table `subdivide WORDS... --rings K --stencils FILE` writes (the same
+/// scheme, options, net, limits and construction), with the complex it was read off.
+pub fn patch_table(
+    words: &[String],
+    given: Option<PolyMesh>,
+) -> Result<(crate::surface::table::PatchTable, PatchComplex)> {
+    let (args, budget) = subdivide_args(words)?;
+    limits::with_budget(budget, || {
+        let p = subdivide::prepare(&args, given)?;
+        if !p.patches {
+            return Err(Error::InvalidArgument(
+                "a patch table needs a complex: give --rings K".into(),
+            ));
+        }
+        let (computed, _) = subdivide::finish(&args, &p)?;
+        let Computed::Complex(complex, _) = computed else {
+            unreachable!("a --rings job computes a complex")
+        };
+        let table = subdivide::patch_table(&args, &p, &complex)?;
+        Ok((table, complex))
+    })
+}
+
+/// Writes a patch stencil table as `subdivide --stencils` does (validated, atomic).
+pub fn write_patch_table(
+    t: &crate::surface::table::PatchTable,
+    path: &std::path::Path,
+) -> Result<()> {
+    crate::io::table::write_table(path, t)
 }
 
 /// Writes a complex as `subdivide --rings` does (`.bv`, `.igs`, or a tessellated mesh with

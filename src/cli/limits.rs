@@ -450,6 +450,39 @@ pub fn check_complex(spec: &Spec, mesh: &PolyMesh, rings: usize, fill: bool) -> 
     )
 }
 
+/// Weights per coefficient a patch table is budgeted for (16 for a regular bi-3 patch, more
+/// near extraordinary elements and in caps).
+const TABLE_WEIGHTS_PER_ROW: f64 = 32.0;
+/// Bytes per weight while a patch table is built: the probes' entries (16) and the table (12).
+const TABLE_BYTES_PER_WEIGHT: f64 = 28.0;
+
+/// A patch stencil table of `c` (`subdivide --stencils`) within the budget: its weights, and a
+/// probe complex per core beside the complex.
+pub fn check_table(c: &PatchComplex) -> Result<()> {
+    let coefficients: f64 = c.patches.iter().map(|p| p.cps.len() as f64).sum();
+    let weights = coefficients * TABLE_WEIGHTS_PER_ROW;
+    let probes = rayon::current_num_threads() as f64 * coefficients * 2.0 * 24.0;
+    within_budget(
+        || {
+            format!(
+                "the patch table of {} patches ({} coefficients) would hold about {} weights; it",
+                count(c.len() as f64),
+                count(coefficients),
+                count(weights)
+            )
+        },
+        weights * TABLE_BYTES_PER_WEIGHT + probes,
+        "lower --rings or write the table of a smaller net",
+    )?;
+    if weights >= MAX_ELEMENTS * 2.0 {
+        return Err(Error::TooLarge(format!(
+            "the patch table would hold about {} weights; its rows index with 32 bits",
+            count(weights)
+        )));
+    }
+    Ok(())
+}
+
 /// The largest face size of `mesh`.
 fn largest_face(mesh: &PolyMesh) -> usize {
     let st = mesh.face_starts();

@@ -52,6 +52,10 @@ pub struct Args {
     /// Output file.
     #[arg(long, short)]
     pub output: PathBuf,
+    /// With --rings: also write the patch stencil table (the weights from the net's points to
+    /// every Bezier coefficient of the written complex; format in the README, `fairsub::io::table`).
+    #[arg(long, value_name = "FILE")]
+    pub stencils: Option<PathBuf>,
     /// Output format (obj, off, ply, ply-ascii, bv, igs), instead of the extension.
     #[arg(long)]
     pub format: Option<String>,
@@ -103,10 +107,25 @@ pub enum Computed {
 /// Runs `fairsub subdivide`.
 pub fn run(a: Args) -> Result<()> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
-    let (computed, label, _) = compute(&a, None)?;
+    let p = prepare(&a, None)?;
+    let (computed, label) = finish(&a, &p)?;
     match computed {
         Computed::Complex(complex, _) => {
+            let table = match &a.stencils {
+                Some(_) => Some(patch_table(&a, &p, &complex)?),
+                None => None,
+            };
             write_complex(&complex, fmt, &a.output, a.tess)?;
+            if let (Some(path), Some(t)) = (&a.stencils, &table) {
+                crate::io::table::write_table(path, t)?;
+                eprintln!(
+                    "wrote the patch table ({} rows, {} weights over {} points) to {}",
+                    t.rows().num_rows(),
+                    t.rows().num_entries(),
+                    t.num_sources(),
+                    path.display()
+                );
+            }
             eprintln!(
                 "wrote {} patches ({} rings, {}) to {}",
                 complex.len(),
@@ -140,6 +159,25 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
+/// The patch stencil table of the complex `finish` built for a prepared `--rings` job (the
+/// construction run again on displaced points, [`crate::surface::table`]), within the memory
+/// budget.
+pub fn patch_table(
+    a: &Args,
+    p: &Prepared,
+    complex: &PatchComplex,
+) -> Result<crate::surface::table::PatchTable> {
+    let opts = ComplexOptions {
+        rings: a.rings.unwrap_or(DEFAULT_RINGS),
+        fill: !a.no_fill,
+    };
+    super::limits::check_table(complex)?;
+    let spec = &p.spec;
+    crate::surface::table::probe::build_from(&p.mesh, complex, &|m| {
+        crate::surface::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
+    })
+}
+
 /// The report line of a written net.
 fn wrote(m: &PolyMesh, levels: usize, label: &str, output: &std::path::Path) {
     eprintln!(
@@ -150,15 +188,6 @@ fn wrote(m: &PolyMesh, levels: usize, label: &str, output: &std::path::Path) {
         label,
         output.display()
     );
-}
-
-/// What `subdivide` with these arguments computes, and the scheme's label for its report. With
-/// `net` the given mesh replaces reading `a.net` (which then only names it in messages); the
-/// scheme's options, the mesh's own tags and the limits are applied exactly as for a file.
-pub fn compute(a: &Args, net: Option<PolyMesh>) -> Result<(Computed, String, Spec)> {
-    let p = prepare(a, net)?;
-    let (computed, label) = finish(a, &p)?;
-    Ok((computed, label, p.spec))
 }
 
 /// The refinement or the complex of a prepared job, and the scheme's label for its report.
@@ -242,6 +271,13 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
         (OutputFormat::Iges, None, None) | (OutputFormat::Bv, None, None) => true,
         (_, _, None) => false,
     };
+    if a.stencils.is_some() && !patches {
+        return Err(Error::InvalidArgument(
+            "--stencils writes the patch table of a complex: give --rings K (for the stencils \
+             of a refined net use the library's level_stencils)"
+                .into(),
+        ));
+    }
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }

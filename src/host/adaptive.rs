@@ -10,7 +10,7 @@
 //! cell that is regular and trusted becomes patches of ring `l` (regular at level 0), the rest
 //! is refined with its neighbourhood, until the rings are done.
 
-use crate::bezier::complex::{Domain, PatchComplex, Provenance};
+use crate::bezier::complex::{CapStep, Domain, PatchComplex, Provenance};
 use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::{Element, PolyMesh};
@@ -155,14 +155,17 @@ pub fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
     groups
 }
 
-/// The hole data of one element's G^1 cap: the hole (centre set), the normal of its limit
-/// tangent plane, and the tag of each sector's cell in the hole's sector order.
-pub type CapData = (crate::bezier::g1::Hole, Point, Vec<Tag>);
+/// The hole data of one element's G^1 cap: the hole (centre set), two vectors spanning its
+/// limit tangent plane (normal `plane[0] x plane[1]`; both linear in the control points, so a
+/// patch stencil table can tabulate them), and the tag of each sector's cell in the hole's
+/// sector order.
+pub type CapData = (crate::bezier::g1::Hole, [Point; 2], Vec<Tag>);
 
 /// Closes with the G^1 cap of [`crate::bezier::g1`] (spoke tangents from the ring's chart,
 /// [`crate::bezier::g1::ring::cap_in_plane`]) every element of the marked cells for which
 /// `hole_of` gives the data; the cap patches are pushed with the sectors' tags (domain and
-/// sector). Returns the cells left for the scheme's C^0 fill.
+/// sector), and the cap's data as a [`CapStep`] of the complex. Returns the cells left for the
+/// scheme's C^0 fill.
 pub fn g1_cap_elements(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
@@ -172,12 +175,22 @@ pub fn g1_cap_elements(
     let mut left = Vec::new();
     for (element, cells) in by_element(marked) {
         let capped = element.and_then(|e| {
-            let (hole, normal, tags) = hole_of(e, &cells)?;
-            let cap = cap_in_plane(hole, normal, CapOptions::default()).ok()?;
-            Some((e, cap, tags))
+            let (hole, plane, tags) = hole_of(e, &cells)?;
+            let options = CapOptions::default();
+            let normal = crate::geom::cross(plane[0], plane[1]);
+            let cap = cap_in_plane(hole.clone(), normal, options).ok()?;
+            let step = CapStep {
+                first: out.len() as u32,
+                count: cap.patches.len() as u32,
+                hole,
+                plane,
+                options,
+            };
+            Some((e, cap, tags, step))
         });
         match capped {
-            Some((element, cap, tags)) => {
+            Some((element, cap, tags, step)) => {
+                out.caps.push(step);
                 for (p, tag) in cap.patches.into_iter().zip(tags) {
                     let sector = tag.sector;
                     out.push_in(p, Provenance::Cap { element, sector }, tag.domain);

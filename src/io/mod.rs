@@ -15,6 +15,7 @@
 //! | [`ply`] | PLY reader (ascii, binary little and big endian; header and binary data via `ply-rs-bw`) and writers |
 //! | [`bv`] | BezierView `.bv` writer and reader (tensor, triangular patches, polyhedra, groups) |
 //! | [`iges`] | IGES 5.3 writer (entity 128 per patch) and a validating reader |
+//! | [`table`] | the patch stencil table file (`subdivide --stencils`): writer and validating reader |
 //! | [`fcv`] | FCV side files, OBJ nets with FCVs and OBJ limit meshes with normals (non-box schemes) |
 //! | `format` | [`MeshFormat`], [`OutputFormat`] and the choice by name or extension |
 //! | `text`, `textout` | the text rule and errors of the readers; number formatting and line sinks of the writers |
@@ -33,6 +34,7 @@ pub mod obj;
 pub mod off;
 pub mod ply;
 mod polygons;
+pub mod table;
 #[cfg(test)]
 mod testutil;
 mod text;

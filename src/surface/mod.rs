@@ -1,12 +1,14 @@
 //! Exact surfaces of whole nets: the patch complexes of every scheme (regular patches, rings
 //! around extraordinary elements, caps), built by the scheme's rules, and what is computed from
-//! them (tessellations, adjacency of patch sides, the validity checks before output).
+//! them (tessellations, adjacency of patch sides, the validity checks before output, the patch
+//! stencil tables that re-apply a complex to moved control points).
 //!
 //! The complex itself ([`PatchComplex`], [`Provenance`]) lives in [`crate::bezier::complex`] and
 //! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
 
 pub mod adjacency;
 pub mod eval;
+pub mod table;
 pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod testing;

@@ -152,8 +152,7 @@ pub fn tessellate_with_tolerance(c: &PatchComplex, n: usize, tol: f64) -> Tessel
     let sub = PatchComplex {
         patches: keep.iter().map(|&p| c.patches[p].clone()).collect(),
         provenance: keep.iter().map(|&p| c.provenance[p]).collect(),
-        sharp_sides: Vec::new(),
-        domains: Vec::new(),
+        ..PatchComplex::default()
     };
     let mut t = tessellate_all(&sub, n, tol);
     for p in t

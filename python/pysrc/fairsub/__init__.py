@@ -17,6 +17,8 @@ Example::
     s = fairsub.surface(net, "eg", rings=4)
     print(len(s.patches), s.check()["continuity"]["all"]["g1"])
     img = fairsub.render(s, "highlight", size=(400, 400))   # (400, 400, 3) uint8
+    table = s.stencils()                                    # patch stencil table, built once
+    moved = table.apply(net.vertices + 0.01)                # patches of moved control points
 """
 
 import json as _json
@@ -24,12 +26,13 @@ import json as _json
 import numpy as _np
 
 from . import _fairsub
-from ._fairsub import Net, Stencils, Surface
+from ._fairsub import Net, PatchTable, Stencils, Surface
 
 __all__ = [
     "Net",
     "Surface",
     "Stencils",
+    "PatchTable",
     "read",
     "schemes",
     "subdivide",

@@ -52,6 +52,55 @@ class Surface:
     def check(self) -> Dict[str, Any]: ...
     def check_json(self) -> str: ...
     def write(self, path: str, tess: int = 8) -> None: ...
+    def stencils(self) -> PatchTable:
+        """The patch stencil table of this surface (what ``fairsub subdivide NET --scheme S
+        --rings K --stencils FILE`` writes, built by the same code): the weights from the
+        net's control points to every Bezier coefficient, built once and re-applied to moved
+        points without redoing the construction.
+
+        Example::
+
+            s = fairsub.surface("gallery:torus-evs", "catmull-clark", rings=2)
+            t = s.stencils()
+            net = fairsub.read("gallery:torus-evs")
+            patches = t.apply(net.vertices + 0.1 * np.random.rand(48, 3))
+        """
+        ...
+
+class PatchTable:
+    """The patch stencil table of a Surface: one row per Bezier coefficient (patch order,
+    ``b[i, j]`` at ``first_rows[p] + i * (deg_v + 1) + j``), then the data rows of the G^1
+    caps, which ``apply`` rebuilds in their tangent plane (their one step that is not linear
+    in the points)."""
+
+    def __len__(self) -> int: ...
+    @property
+    def num_sources(self) -> int: ...
+    @property
+    def num_rows(self) -> int: ...
+    @property
+    def shapes(self) -> List[Tuple[int, int]]: ...
+    @property
+    def first_rows(self) -> npt.NDArray[np.uint64]: ...
+    @property
+    def cap_patches(self) -> List[bool]: ...
+    def csr(
+        self,
+    ) -> Tuple[npt.NDArray[np.uint64], npt.NDArray[np.uint32], FloatArray]:
+        """The rows in CSR form: (indptr, indices, weights)."""
+        ...
+    def apply(self, points: npt.NDArray[np.float64]) -> List[FloatArray]:
+        """Moved control points (num_sources, 3) -> the patches, (deg_u+1, deg_v+1, 3) arrays,
+        equal to the surface recomputed from the moved net. Other widths (num_sources, d) are
+        per-point data (``apply_data``)."""
+        ...
+    def apply_data(self, values: npt.NDArray[np.float64]) -> List[FloatArray]:
+        """Per-point data (num_sources, d) through the same rows: (deg_u+1, deg_v+1, d)
+        arrays (G^1 caps fit their tangents in the data's own space)."""
+        ...
+    def write(self, path: str) -> None:
+        """Writes the table as ``subdivide --stencils FILE`` does."""
+        ...
 
 class Stencils:
     """A sparse stencil table (refined points from control points)."""

@@ -380,7 +380,7 @@ pub fn lowest_certified_degree(
 }
 
 /// Options of [`g1_cap_with`].
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct CapOptions {
     /// The cap's bi-degree; `None`: the lowest certified one.
     pub degree: Option<usize>,

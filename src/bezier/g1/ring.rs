@@ -95,20 +95,7 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
             "the limit normal of the hole is not defined".into(),
         ));
     }
-    let q = hole.to_quad_layout()?;
-    let n = q.hole.valence();
-    let mut t = [[0.0; 3]; 2];
-    let mut size: f64 = 0.0;
-    for (s, sec) in q.hole.sectors.iter().enumerate() {
-        let a = &sec[0];
-        let e = project(sub(a.boundary[0], hole.centre), nrm);
-        let f = project(scale(a.cross[0], -1.0), nrm);
-        let ts = axpy(scale(e, 2.0), -1.0, f);
-        size = size.max(norm(e));
-        let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
-        t[0] = axpy(t[0], 2.0 * th.cos() / n as f64, ts);
-        t[1] = axpy(t[1], 2.0 * th.sin() / n as f64, ts);
-    }
+    let (t, n, size) = fit_tangents(hole, |x| project(x, nrm))?;
     let area = norm(cross(t[0], t[1]));
     if area.is_nan() || area <= 1e-6 * size * size {
         return Err(Error::Unsupported(format!(
@@ -117,6 +104,34 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
         )));
     }
     Ok(t)
+}
+
+/// The Fourier mode 1 `[T0, T1]` of the spoke derivatives `2 e_s - f_s` mapped by `proj` (see
+/// the [module](self) documentation), the valence and the largest `|proj(e_s)|`.
+fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2], usize, f64)> {
+    let q = hole.to_quad_layout()?;
+    let n = q.hole.valence();
+    let mut t = [[0.0; 3]; 2];
+    let mut size: f64 = 0.0;
+    for (s, sec) in q.hole.sectors.iter().enumerate() {
+        let a = &sec[0];
+        let e = proj(sub(a.boundary[0], hole.centre));
+        let f = proj(scale(a.cross[0], -1.0));
+        let ts = axpy(scale(e, 2.0), -1.0, f);
+        size = size.max(norm(e));
+        let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+        t[0] = axpy(t[0], 2.0 * th.cos() / n as f64, ts);
+        t[1] = axpy(t[1], 2.0 * th.sin() / n as f64, ts);
+    }
+    Ok((t, n, size))
+}
+
+/// The spoke tangents of a hole whose data are not positions (colours, texture coordinates:
+/// per-point data through a patch table, three components at a time): the fit of
+/// [`chart_tangents`] without the projection onto a tangent plane, which only positions have,
+/// and without its degeneracy check (constant data have zero tangents). Linear in the data.
+pub fn data_tangents(hole: &Hole) -> Result<[Point; 2]> {
+    fit_tangents(hole, |x| x).map(|(t, _, _)| t)
 }
 
 /// The G^1 cap of `hole` (its centre set by the provider) in the tangent plane with normal

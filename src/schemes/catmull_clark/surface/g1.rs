@@ -33,7 +33,7 @@ use super::{Level, regular_patch};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
-use crate::geom::{Point, cross};
+use crate::geom::Point;
 use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
@@ -78,7 +78,7 @@ fn hole_of(
     limits: &LimitStencils<'_>,
     element: Element,
     faces: &[(u32, Tag)],
-) -> Result<(Hole, Point, Vec<Tag>), NoCap> {
+) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.mesh;
     let (f0, _) = faces[0];
     let x = m
@@ -134,13 +134,13 @@ fn hole_of(
     let pos = m.positions();
     let centre = limits.limit(xu);
     let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
-    let normal = cross(t1.apply(pos), t2.apply(pos));
+    let plane = [t1.apply(pos), t2.apply(pos)];
     let hole = Hole {
         centre,
         tangents: [[0.0; 3]; 2],
         sectors,
     };
-    Ok((hole, normal, tags))
+    Ok((hole, plane, tags))
 }
 
 /// Whether some marked element would get its G^1 cap after more levels (its faces still touch

@@ -45,7 +45,7 @@ use crate::bezier::convert::biquadratic_bspline_stencils;
 use crate::bezier::g1::Hole;
 use crate::bezier::g1::ring::segment_from_inside;
 use crate::bezier::{BezierPatch, Side};
-use crate::geom::{Point, axpy, cross};
+use crate::geom::{Point, axpy};
 use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
 use crate::mesh::Element;
 use crate::schemes::doo_sabin::surface::DualRules;
@@ -69,15 +69,15 @@ fn turned(p: BezierPatch, r: usize) -> BezierPatch {
     (0..r).fold(p, |q, _| q.transposed().reversed_v())
 }
 
-/// The hole of element `element` whose marked vertices are `verts`, its centre, the normal of
-/// its tangent plane, and the tag of each sector (in the hole's sector order).
+/// The hole of element `element` whose marked vertices are `verts`, its centre, two vectors
+/// spanning its tangent plane, and the tag of each sector (in the hole's sector order).
 fn hole_of(
     level: &Level,
     rules: &DualRules<'_>,
     element: Element,
     verts: &[(u32, Tag)],
     marked: &HashSet<u32>,
-) -> Result<(Hole, Point, Vec<Tag>), NoCap> {
+) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.mesh;
     let (v0, _) = verts[0];
     let vn0 = vertex_net(m, v0 as usize).ok_or(NoCap::Never)?;
@@ -161,7 +161,7 @@ fn hole_of(
         tangents: [[0.0; 3]; 2],
         sectors,
     };
-    Ok((hole, cross(t[0], t[1]), tags))
+    Ok((hole, t, tags))
 }
 
 /// Whether some element would get its G^1 cap after more levels (its hole still touches

@@ -1,0 +1,340 @@
+//! The patch stencil table file (`subdivide --rings K --stencils OUT`): a text format, one
+//! record per line, numbers in shortest round-trip form (they read back bit for bit).
+//!
+//! ```text
+//! fairsub-patch-table 1
+//! sources N          control points the rows read (the net's vertices as the scheme reads it)
+//! patches P
+//! rows R             P patches' coefficient rows, then the caps' data rows
+//! entries E          non-zero weights in all rows
+//! caps C
+//! capmaps M
+//! constants 0|1      1: a constant line per row follows the rows
+//! p DU DV FIRST KIND GROUP        P lines: bi-degree, first row, linear|cap, provenance group
+//! c FIRST COUNT ROW MAP DEGREE CENTRE SECTORS SEGMENTS B C ...   C lines, see below
+//! m ID VALENCE ROWS COLS          M blocks, each followed by ROWS lines of COLS numbers
+//! r K I1 W1 ... IK WK             R lines: row r is sum_k Wk * point[Ik]
+//! k X Y Z                         R lines when constants is 1
+//! end
+//! ```
+//!
+//! Patch `p` has `(DU + 1) (DV + 1)` coefficients at rows `FIRST ..`, `b[i][j]` at
+//! `FIRST + i (DV + 1) + j` (i along u). A `cap` patch has empty rows: it is one of the
+//! `COUNT` patches `FIRST ..` of a G^1 cap line `c`, computed from the cap's data rows `ROW ..`:
+//! the centre `C`, two vectors `A`, `B` spanning the limit tangent plane, then per sector (of
+//! `SECTORS`) and per segment (`SEGMENTS` numbers per sector, each segment given as its
+//! `B C` coefficient counts) the boundary coefficients, then the cross-derivative coefficients.
+//! The cap's patches are `matrix MAP x (C, T0, T1, data after A, B)`, bi-`DEGREE` per sector,
+//! rows `s (DEGREE + 1)^2 + i (DEGREE + 1) + j`, where `T0, T1` are the spoke tangents fitted in
+//! the plane with normal `A x B` ([`crate::bezier::g1::ring::chart_tangents`]; the one step that
+//! is not linear in the points). `CENTRE` is `tangent-plane` or `quadratic-jet`.
+
+use super::atomic::write_atomically;
+use super::text::{io_error, parse_error};
+use super::textout::{ChunkedText, push_f64, push_point};
+use crate::bezier::g1::{Centre, cap_map};
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::stencil::StencilTable;
+use crate::surface::table::PatchTable;
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The first line of the format.
+pub const MAGIC: &str = "fairsub-patch-table 1";
+
+fn centre_name(c: Centre) -> &'static str {
+    match c {
+        Centre::QuadraticJet => "quadratic-jet",
+        _ => "tangent-plane",
+    }
+}
+
+/// Writes `table` to `path` atomically (checked first: finite weights and constants).
+pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
+    let rows = table.rows();
+    if let Some(r) = (0..rows.num_rows()).find(|&r| rows.row(r).1.iter().any(|w| !w.is_finite())) {
+        return Err(Error::InvalidArgument(format!(
+            "row {r} of the patch table has a weight that is not finite; nothing written"
+        )));
+    }
+    if table.constants().iter().flatten().any(|x| !x.is_finite()) {
+        return Err(Error::InvalidArgument(
+            "the patch table has constants that are not finite; nothing written".into(),
+        ));
+    }
+    // one matrix per distinct cap map
+    let mut maps: Vec<std::sync::Arc<crate::bezier::g1::CapMap>> = Vec::new();
+    let mut map_of: HashMap<(usize, String), usize> = HashMap::new();
+    let mut cap_map_ids = Vec::new();
+    for cap in table.caps() {
+        let (layout, degrees) = cap.step.hole.layout()?;
+        let n = cap.step.hole.valence();
+        let key = (
+            n,
+            format!("{layout:?}{degrees:?}{}{:?}", cap.degree, cap.centre),
+        );
+        let id = match map_of.get(&key) {
+            Some(&id) => id,
+            None => {
+                maps.push(cap_map(n, layout, degrees, cap.degree, cap.centre)?);
+                map_of.insert(key, maps.len() - 1);
+                maps.len() - 1
+            }
+        };
+        cap_map_ids.push(id);
+    }
+    write_atomically(path, |w| {
+        let mut out = ChunkedText::new(w);
+        let io = |e| io_error(path, e);
+        let s = &mut out.buf;
+        let _ = writeln!(s, "{MAGIC}");
+        let _ = writeln!(s, "sources {}", table.num_sources());
+        let _ = writeln!(s, "patches {}", table.num_patches());
+        let _ = writeln!(s, "rows {}", rows.num_rows());
+        let _ = writeln!(s, "entries {}", rows.num_entries());
+        let _ = writeln!(s, "caps {}", table.caps().len());
+        let _ = writeln!(s, "capmaps {}", maps.len());
+        let _ = writeln!(s, "constants {}", u8::from(!table.constants().is_empty()));
+        for (p, &(du, dv)) in table.shapes().iter().enumerate() {
+            let kind = if table.is_cap_patch(p) {
+                "cap"
+            } else {
+                "linear"
+            };
+            let group = table.provenance()[p].group_name();
+            let _ = writeln!(out.buf, "p {du} {dv} {} {kind} {group}", table.first_row(p));
+            out.maybe_flush().map_err(io)?;
+        }
+        for (cap, id) in table.caps().iter().zip(&cap_map_ids) {
+            let st = &cap.step;
+            let shape = cap.shape();
+            let _ = write!(
+                out.buf,
+                "c {} {} {} {id} {} {} {} {}",
+                st.first,
+                st.count,
+                cap.data_row,
+                cap.degree,
+                centre_name(cap.centre),
+                shape.len(),
+                shape.first().map_or(0, Vec::len)
+            );
+            for (b, c) in shape.iter().flatten() {
+                let _ = write!(out.buf, " {b} {c}");
+            }
+            out.buf.push('\n');
+        }
+        for (id, map) in maps.iter().enumerate() {
+            let m = map.matrix();
+            let _ = writeln!(out.buf, "m {id} {} {} {}", map.n, m.nrows(), m.ncols());
+            for i in 0..m.nrows() {
+                for j in 0..m.ncols() {
+                    if j > 0 {
+                        out.buf.push(' ');
+                    }
+                    push_f64(&mut out.buf, m[(i, j)]);
+                }
+                out.buf.push('\n');
+                out.maybe_flush().map_err(io)?;
+            }
+        }
+        for r in 0..rows.num_rows() {
+            let (idx, w) = rows.row(r);
+            let _ = write!(out.buf, "r {}", idx.len());
+            for (&i, &x) in idx.iter().zip(w) {
+                let _ = write!(out.buf, " {i} ");
+                push_f64(&mut out.buf, x);
+            }
+            out.buf.push('\n');
+            out.maybe_flush().map_err(io)?;
+        }
+        for &c in table.constants() {
+            out.buf.push_str("k ");
+            push_point(&mut out.buf, c);
+            out.buf.push('\n');
+            out.maybe_flush().map_err(io)?;
+        }
+        out.buf.push_str("end\n");
+        out.finish().map_err(io)
+    })
+}
+
+/// A patch table file as read back: what every line holds, checked for consistency.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableFile {
+    /// Per patch `(deg_u, deg_v, first_row, is_cap)`.
+    pub patches: Vec<(u32, u32, u32, bool)>,
+    /// The rows.
+    pub rows: StencilTable,
+    /// Per cap `(first_patch, count, data_row, map, degree)`.
+    pub caps: Vec<(u32, u32, u32, u32, u32)>,
+    /// The cap maps' matrices, row major, with `(rows, cols)`.
+    pub maps: Vec<((usize, usize), Vec<f64>)>,
+    /// The constants (empty when the file has none).
+    pub constants: Vec<Point>,
+}
+
+/// Reads a patch table file, naming the line of any error.
+pub fn read_table(path: &Path) -> Result<TableFile> {
+    let text = super::read_text(path)?;
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let mut next = |what: &str| {
+        lines.next().ok_or_else(|| {
+            parse_error(path, text.lines().count().max(1), format!("missing {what}"))
+        })
+    };
+    let (l, first) = next("the first line")?;
+    if first.trim() != MAGIC {
+        return Err(parse_error(path, l, format!("expected '{MAGIC}'")));
+    }
+    let mut header = |key: &str| -> Result<usize> {
+        let (l, line) = next(key)?;
+        let mut w = line.split_whitespace();
+        match (
+            w.next(),
+            w.next().and_then(|x| x.parse::<usize>().ok()),
+            w.next(),
+        ) {
+            (Some(k), Some(v), None) if k == key => Ok(v),
+            _ => Err(parse_error(path, l, format!("expected '{key} COUNT'"))),
+        }
+    };
+    let sources = header("sources")?;
+    let npatches = header("patches")?;
+    let nrows = header("rows")?;
+    let nentries = header("entries")?;
+    let ncaps = header("caps")?;
+    let nmaps = header("capmaps")?;
+    let has_constants = header("constants")?;
+    if sources > u32::MAX as usize || nrows > u32::MAX as usize || has_constants > 1 {
+        return Err(parse_error(path, 2, "counts out of range"));
+    }
+    let nums = |l: usize, line: &str, tag: &str| -> Result<Vec<f64>> {
+        let mut w = line.split_whitespace();
+        if w.next() != Some(tag) {
+            return Err(parse_error(path, l, format!("expected a '{tag}' line")));
+        }
+        w.map(|x| {
+            x.parse::<f64>()
+                .map_err(|_| parse_error(path, l, format!("'{x}' is not a number")))
+        })
+        .collect()
+    };
+    let mut patches = Vec::with_capacity(npatches.min(1 << 24));
+    for _ in 0..npatches {
+        let (l, line) = next("a patch line")?;
+        let w: Vec<&str> = line.split_whitespace().collect();
+        let parse = |x: &str| x.parse::<u32>().ok();
+        match w.as_slice() {
+            ["p", du, dv, first, kind, _group] => {
+                let (Some(du), Some(dv), Some(first)) = (parse(du), parse(dv), parse(first)) else {
+                    return Err(parse_error(path, l, "bad patch line"));
+                };
+                let end = first as u64 + (du as u64 + 1) * (dv as u64 + 1);
+                if end > nrows as u64 || !matches!(*kind, "linear" | "cap") {
+                    return Err(parse_error(path, l, "patch rows out of range or bad kind"));
+                }
+                patches.push((du, dv, first, *kind == "cap"));
+            }
+            _ => return Err(parse_error(path, l, "expected 'p DU DV FIRST KIND GROUP'")),
+        }
+    }
+    let mut caps = Vec::new();
+    for _ in 0..ncaps {
+        let (l, line) = next("a cap line")?;
+        let w: Vec<&str> = line.split_whitespace().collect();
+        let v: Vec<u32> = w
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != 0 && i != 6)
+            .map(|(_, x)| x.parse::<u32>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| parse_error(path, l, "bad cap line"))?;
+        if w.first() != Some(&"c") || v.len() < 7 || v[3] as usize >= nmaps.max(1) {
+            return Err(parse_error(
+                path,
+                l,
+                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE ...'",
+            ));
+        }
+        caps.push((v[0], v[1], v[2], v[3], v[4]));
+    }
+    let mut maps = Vec::new();
+    for _ in 0..nmaps {
+        let (l, line) = next("a cap map")?;
+        let h = nums(l, line, "m")?;
+        if h.len() != 4 || h[2] * h[3] > 1e8 {
+            return Err(parse_error(path, l, "expected 'm ID VALENCE ROWS COLS'"));
+        }
+        let (r, c) = (h[2] as usize, h[3] as usize);
+        let mut data = Vec::with_capacity(r * c);
+        for _ in 0..r {
+            let (l, line) = next("a cap map row")?;
+            let row: Vec<f64> = line
+                .split_whitespace()
+                .map(|x| {
+                    x.parse::<f64>()
+                        .map_err(|_| parse_error(path, l, "bad number"))
+                })
+                .collect::<Result<_>>()?;
+            if row.len() != c {
+                return Err(parse_error(path, l, format!("expected {c} numbers")));
+            }
+            data.extend(row);
+        }
+        maps.push(((r, c), data));
+    }
+    let mut rows = StencilTable::with_capacity(sources, nrows.min(1 << 24), 16);
+    for _ in 0..nrows {
+        let (l, line) = next("a row")?;
+        let v = nums(l, line, "r")?;
+        let k = v.first().copied().unwrap_or(-1.0);
+        if k < 0.0 || v.len() != 1 + 2 * k as usize {
+            return Err(parse_error(
+                path,
+                l,
+                "expected 'r K' and K index-weight pairs",
+            ));
+        }
+        let mut pairs = Vec::with_capacity(k as usize);
+        for pair in v[1..].chunks(2) {
+            let i = pair[0];
+            if i < 0.0 || i >= sources as f64 || i.fract() != 0.0 || !pair[1].is_finite() {
+                return Err(parse_error(path, l, format!("bad source {i} or weight")));
+            }
+            pairs.push((i as u32, pair[1]));
+        }
+        rows.push_pairs(&pairs);
+    }
+    if rows.num_entries() != nentries {
+        return Err(parse_error(
+            path,
+            5,
+            format!("{} entries, not {nentries}", rows.num_entries()),
+        ));
+    }
+    let mut constants = Vec::new();
+    if has_constants == 1 {
+        for _ in 0..nrows {
+            let (l, line) = next("a constant")?;
+            let v = nums(l, line, "k")?;
+            if v.len() != 3 {
+                return Err(parse_error(path, l, "expected 'k X Y Z'"));
+            }
+            constants.push([v[0], v[1], v[2]]);
+        }
+    }
+    let (l, end) = next("'end'")?;
+    if end.trim() != "end" {
+        return Err(parse_error(path, l, "expected 'end'"));
+    }
+    Ok(TableFile {
+        patches,
+        rows,
+        caps,
+        maps,
+        constants,
+    })
+}

@@ -1,0 +1,478 @@
+//! Patch stencil tables: the sparse linear map from the control points of a net to every Bezier
+//! coefficient of its exact patch complex, built once and re-applied to moved control points
+//! (animation, shape optimisation) without redoing the construction.
+//!
+//! Every scheme in fairsub is linear in its control points: each coefficient of the complex
+//! `subdivide --rings K` writes is a fixed affine combination of the net's points. A
+//! [`PatchTable`] holds these combinations as one [`StencilTable`] (one row per coefficient, in
+//! the complex's patch order, `b[i][j]` of a patch at row `first + i * (deg_v + 1) + j`).
+//!
+//! # Where the table comes from: the construction itself
+//!
+//! The table is read off the scheme's own construction ([`crate::surface::build`], the code
+//! that writes the patches), never from a second copy of its rules: [`PatchTable::build`]
+//! runs the construction on the net with its points displaced, one colour class of points at a
+//! time (points of one class are far enough apart in the net that no coefficient depends on two
+//! of them), and reads each coefficient's weights off the differences; [`probe`] documents the
+//! encoding. The result is then checked: applied to the net's points it must give the
+//! construction's complex, and applied to randomly moved points the complex the construction
+//! computes from them (else the build fails, naming the deviation). So one mechanism serves
+//! every scheme, present and future, and the table is exact to rounding.
+//!
+//! # Steps that are not linear
+//!
+//! * **G^1 caps** ([`crate::bezier::g1`]) fit their spoke tangents in the limit tangent plane,
+//!   whose normal is a cross product of two linear vectors, and project onto it: not linear in
+//!   the points (and not the same map for x, y, z). The complex records each cap as a
+//!   [`CapStep`] (hole data and two plane vectors, all linear); the table tabulates those data
+//!   and repeats the cap itself ([`crate::bezier::g1::ring::cap_in_plane`], the same code) at
+//!   [`PatchTable::apply`], which costs one small matrix product per cap.
+//! * **Geometry-dependent branches.** The construction's structure (which elements get a G^1
+//!   cap and which a C^0 fill, the cap's compatibility check) is decided on the net's points;
+//!   the table keeps that structure. If moved points would make the construction choose
+//!   otherwise, [`PatchTable::apply`] reports the cap that fails (rebuild the table then).
+//! * **Non-box's Hermite fill at an extraordinary boundary vertex** takes the edge derivative as
+//!   the chord projected onto the limit tangent plane (`nonbox::surface`'s `edge_derivative`):
+//!   not linear. The build refuses such a net with an error naming the fill patch (gallery:
+//!   `tri-grid`'s corners); everywhere else non-box is linear and tabulated.
+//! * **Fixed points given as options** (`--pole FACE:X,Y,Z` of polar-bi2, QAS+'s `--q-file`
+//!   expansions) do not move with the net: they make the map affine, and the table carries
+//!   their contribution as a constant per coefficient ([`PatchTable::constants`]).
+//!
+//! # Other per-point data
+//!
+//! [`PatchTable::apply_data`] maps any per-point data of dimension `d` (colours, texture
+//! coordinates with one value per vertex, ...) through the same rows. A G^1 cap there uses the
+//! same cap map with spoke tangents fitted in the data's own space
+//! ([`crate::bezier::g1::ring::data_tangents`]): only positions have a tangent plane. Data that
+//! are not continuous across edges (face-varying values with seams) need their own net.
+
+use crate::bezier::BezierPatch;
+use crate::bezier::complex::{CapStep, Domain, PatchComplex, Provenance};
+use crate::bezier::g1::{Centre, Hole, Segment, cap_map, ring};
+use crate::error::{Error, Result};
+use crate::geom::{Point, cross};
+use crate::stencil::StencilTable;
+
+pub mod probe;
+
+/// How a cap's hole data are laid out in the table's rows: per sector, per segment, the number
+/// of boundary and cross coefficients.
+pub type HoleShape = Vec<Vec<(u32, u32)>>;
+
+/// A G^1 cap of the complex as the table repeats it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableCap {
+    /// The cap's data as the construction recorded them (tangents unset); the table replaces
+    /// every point of it by its row.
+    pub step: CapStep,
+    /// First of the cap's data rows: centre, the two plane vectors, then per sector and segment
+    /// the boundary coefficients followed by the cross coefficients.
+    pub data_row: u32,
+    /// The cap map the construction chose for this hole (degree and centre condition): the
+    /// map [`PatchTable::apply_data`] applies.
+    pub degree: usize,
+    /// See [`TableCap::degree`].
+    pub centre: Centre,
+}
+
+impl TableCap {
+    /// Number of data rows.
+    pub fn data_len(&self) -> usize {
+        hole_points(&self.step.hole, &self.step.plane).len()
+    }
+
+    /// The hole's segment sizes.
+    pub fn shape(&self) -> HoleShape {
+        self.step
+            .hole
+            .sectors
+            .iter()
+            .map(|sec| {
+                sec.iter()
+                    .map(|s| (s.boundary.len() as u32, s.cross.len() as u32))
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// The points of a cap step in data-row order: centre, plane vectors, segments.
+pub(crate) fn hole_points(hole: &Hole, plane: &[Point; 2]) -> Vec<Point> {
+    let mut d = vec![hole.centre, plane[0], plane[1]];
+    for sec in &hole.sectors {
+        for seg in sec {
+            d.extend_from_slice(&seg.boundary);
+            d.extend_from_slice(&seg.cross);
+        }
+    }
+    d
+}
+
+/// A hole of shape `shape` read from `vals` (centre first, see [`TableCap::data_row`]), and its
+/// plane vectors.
+fn hole_from(vals: &[Point], shape: &HoleShape) -> (Hole, [Point; 2]) {
+    let mut k = 3;
+    let mut take = |n: u32| {
+        let v = vals[k..k + n as usize].to_vec();
+        k += n as usize;
+        v
+    };
+    let sectors = shape
+        .iter()
+        .map(|sec| {
+            sec.iter()
+                .map(|&(b, c)| Segment {
+                    boundary: take(b),
+                    cross: take(c),
+                })
+                .collect()
+        })
+        .collect();
+    let hole = Hole {
+        centre: vals[0],
+        tangents: [[0.0; 3]; 2],
+        sectors,
+    };
+    (hole, [vals[1], vals[2]])
+}
+
+/// The sparse map from a net's control points to every Bezier coefficient of its patch complex
+/// (see the [module](self) documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchTable {
+    /// One row per coefficient of every patch (cap patches: empty rows), then the caps' data
+    /// rows.
+    rows: StencilTable,
+    /// Per patch `(deg_u, deg_v)`.
+    shapes: Vec<(u32, u32)>,
+    /// Per patch, its first row (and one past the last patch's rows at the end).
+    first_row: Vec<u32>,
+    /// Whether each patch is computed by a cap step (its rows are empty).
+    in_cap: Vec<bool>,
+    /// The caps, in the complex's order.
+    caps: Vec<TableCap>,
+    /// The part of each row that does not depend on the points (options that fix points);
+    /// empty when there is none.
+    constants: Vec<Point>,
+    /// Provenance of each patch.
+    provenance: Vec<Provenance>,
+    /// Input-face domain of each patch, where known.
+    domains: Vec<Option<Domain>>,
+    /// Sharp sides, as the complex has them.
+    sharp_sides: Vec<(u32, u8)>,
+}
+
+impl PatchTable {
+    /// Assembles a table from its parts (checked: row counts, cap ranges). `template` gives
+    /// the patches' degrees, provenance, domains, sharp sides and caps; `rows` has one row per
+    /// coefficient (cap patches' rows empty) followed by the caps' data rows in order.
+    pub fn from_parts(
+        template: &PatchComplex,
+        rows: StencilTable,
+        constants: Vec<Point>,
+    ) -> Result<PatchTable> {
+        let mut first_row = Vec::with_capacity(template.len() + 1);
+        let mut shapes = Vec::with_capacity(template.len());
+        let mut r = 0u64;
+        for p in &template.patches {
+            first_row.push(r as u32);
+            shapes.push((p.deg_u as u32, p.deg_v as u32));
+            r += ((p.deg_u + 1) * (p.deg_v + 1)) as u64;
+        }
+        let mut in_cap = vec![false; template.len()];
+        let mut caps = Vec::with_capacity(template.caps.len());
+        for step in &template.caps {
+            let range = step.first as usize..(step.first + step.count) as usize;
+            if range.end > template.len() || in_cap[range.clone()].iter().any(|&c| c) {
+                return Err(Error::InvalidArgument(format!(
+                    "cap patches {range:?} overlap or lie outside the complex"
+                )));
+            }
+            in_cap[range].iter_mut().for_each(|c| *c = true);
+            let normal = cross(step.plane[0], step.plane[1]);
+            let built = ring::cap_in_plane(step.hole.clone(), normal, step.options)?;
+            let cap = TableCap {
+                step: step.clone(),
+                data_row: r as u32,
+                degree: built.degree,
+                centre: built.centre,
+            };
+            r += cap.data_len() as u64;
+            caps.push(cap);
+        }
+        if r > u32::MAX as u64 || rows.num_rows() as u64 != r {
+            return Err(Error::InvalidArgument(format!(
+                "the table has {} rows, the complex needs {r}",
+                rows.num_rows()
+            )));
+        }
+        if !constants.is_empty() && constants.len() != rows.num_rows() {
+            return Err(Error::InvalidArgument(format!(
+                "{} constants for {} rows",
+                constants.len(),
+                rows.num_rows()
+            )));
+        }
+        first_row.push(caps.first().map_or(r as u32, |c| c.data_row));
+        Ok(PatchTable {
+            rows,
+            shapes,
+            first_row,
+            in_cap,
+            caps,
+            constants,
+            provenance: template.provenance.clone(),
+            domains: template.domains.clone(),
+            sharp_sides: template.sharp_sides.clone(),
+        })
+    }
+
+    /// Builds the table of the complex `surface::build(spec, mesh, opts)` writes (see
+    /// [`probe`]).
+    ///
+    /// # Errors
+    /// Whatever the construction reports; [`Error::Unsupported`] when the construction is not
+    /// linear in the points or changes its structure under displacement (naming what differs).
+    pub fn build(
+        spec: &crate::schemes::Spec,
+        mesh: &crate::mesh::PolyMesh,
+        opts: super::ComplexOptions,
+    ) -> Result<PatchTable> {
+        probe::build(mesh, &|m| {
+            super::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
+        })
+    }
+
+    /// Number of control points the table reads.
+    pub fn num_sources(&self) -> usize {
+        self.rows.num_sources()
+    }
+
+    /// Number of patches.
+    pub fn num_patches(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// The rows: one per coefficient in patch order (empty for cap patches), then the caps'
+    /// data rows.
+    pub fn rows(&self) -> &StencilTable {
+        &self.rows
+    }
+
+    /// `(deg_u, deg_v)` of each patch.
+    pub fn shapes(&self) -> &[(u32, u32)] {
+        &self.shapes
+    }
+
+    /// The first row of each patch's coefficients.
+    pub fn first_row(&self, patch: usize) -> usize {
+        self.first_row[patch] as usize
+    }
+
+    /// Whether patch `p` is computed by a G^1 cap step.
+    pub fn is_cap_patch(&self, p: usize) -> bool {
+        self.in_cap[p]
+    }
+
+    /// The G^1 caps the table repeats.
+    pub fn caps(&self) -> &[TableCap] {
+        &self.caps
+    }
+
+    /// The constant part of each row (empty when the map is linear).
+    pub fn constants(&self) -> &[Point] {
+        &self.constants
+    }
+
+    /// Provenance of each patch.
+    pub fn provenance(&self) -> &[Provenance] {
+        &self.provenance
+    }
+
+    /// Input-face domain of each patch, where known (may be shorter than the patches).
+    pub fn domains(&self) -> &[Option<Domain>] {
+        &self.domains
+    }
+
+    /// Sharp sides of the complex.
+    pub fn sharp_sides(&self) -> &[(u32, u8)] {
+        &self.sharp_sides
+    }
+
+    /// Bytes held by the rows.
+    pub fn heap_bytes(&self) -> usize {
+        self.rows.heap_bytes() + 24 * self.constants.len() + 16 * self.shapes.len()
+    }
+
+    /// The complex of the control points `points` (one per source, as the net was read by the
+    /// scheme): the same patches, degrees, provenance and domains as the construction's.
+    ///
+    /// # Errors
+    /// When `points` has the wrong length, or a G^1 cap cannot be built for the moved points
+    /// (the construction would then take another branch: rebuild the table).
+    pub fn apply(&self, points: &[Point]) -> Result<PatchComplex> {
+        let vals = self.values(points)?;
+        let mut patches = self.linear_patches(&vals);
+        for (k, cap) in self.caps.iter().enumerate() {
+            let r = cap.data_row as usize;
+            let (hole, plane) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+            let built = ring::cap_in_plane(hole, cross(plane[0], plane[1]), cap.step.options)
+                .map_err(|e| cap_failed(k, cap, e))?;
+            self.place_cap(k, cap, built.patches, &mut patches)?;
+        }
+        Ok(self.complex_of(patches, &vals))
+    }
+
+    /// The rows applied to `points` (plus the constants).
+    fn values(&self, points: &[Point]) -> Result<Vec<Point>> {
+        if points.len() != self.num_sources() {
+            return Err(Error::InvalidArgument(format!(
+                "the table takes {} points, not {}",
+                self.num_sources(),
+                points.len()
+            )));
+        }
+        let mut vals = self.rows.apply(points);
+        for (v, c) in vals.iter_mut().zip(&self.constants) {
+            *v = crate::geom::add(*v, *c);
+        }
+        Ok(vals)
+    }
+
+    /// The patches whose coefficients are rows (cap patches left empty).
+    fn linear_patches(&self, vals: &[Point]) -> Vec<BezierPatch> {
+        (0..self.num_patches())
+            .map(|p| {
+                let (du, dv) = self.shapes[p];
+                let cps = if self.in_cap[p] {
+                    Vec::new()
+                } else {
+                    let r = self.first_row[p] as usize;
+                    vals[r..r + ((du + 1) * (dv + 1)) as usize].to_vec()
+                };
+                BezierPatch {
+                    deg_u: du as usize,
+                    deg_v: dv as usize,
+                    cps,
+                }
+            })
+            .collect()
+    }
+
+    /// Puts the patches of cap `k` in place, checking their degrees against the table's.
+    fn place_cap(
+        &self,
+        k: usize,
+        cap: &TableCap,
+        built: Vec<BezierPatch>,
+        patches: &mut [BezierPatch],
+    ) -> Result<()> {
+        if built.len() != cap.step.count as usize {
+            return Err(Error::Unsupported(format!(
+                "cap {k} now has {} patches, the table {}",
+                built.len(),
+                cap.step.count
+            )));
+        }
+        for (i, p) in built.into_iter().enumerate() {
+            let at = cap.step.first as usize + i;
+            if self.shapes[at] != (p.deg_u as u32, p.deg_v as u32) {
+                return Err(Error::Unsupported(format!(
+                    "cap {k} now has degree ({}, {}), the table ({}, {})",
+                    p.deg_u, p.deg_v, self.shapes[at].0, self.shapes[at].1
+                )));
+            }
+            patches[at] = p;
+        }
+        Ok(())
+    }
+
+    /// The complex of the patches with the table's provenance, domains, sharp sides and caps
+    /// (their data from `vals`).
+    fn complex_of(&self, patches: Vec<BezierPatch>, vals: &[Point]) -> PatchComplex {
+        let caps = self
+            .caps
+            .iter()
+            .map(|cap| {
+                let r = cap.data_row as usize;
+                let (hole, plane) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+                CapStep {
+                    hole,
+                    plane,
+                    ..cap.step.clone()
+                }
+            })
+            .collect();
+        PatchComplex {
+            patches,
+            provenance: self.provenance.clone(),
+            sharp_sides: self.sharp_sides.clone(),
+            domains: self.domains.clone(),
+            caps,
+        }
+    }
+
+    /// Per-point data of dimension `d` (`data[i * d .. (i + 1) * d]` for point `i`) mapped to
+    /// every patch: per patch its `(deg_u + 1) (deg_v + 1)` coefficients of dimension `d`, row
+    /// major. G^1 caps apply the construction's cap map with spoke tangents from the data
+    /// ([`ring::data_tangents`]; no tangent plane, no compatibility check: the data's ring is
+    /// compatible because the positions' is, the map being the same); the constants of fixed
+    /// points are not added (they are positions).
+    ///
+    /// # Errors
+    /// When the data do not hold `d` values per point, or a cap's map cannot be applied.
+    pub fn apply_data(&self, data: &[f64], d: usize) -> Result<Vec<Vec<f64>>> {
+        if d == 0 || data.len() != d * self.num_sources() {
+            return Err(Error::InvalidArgument(format!(
+                "the table takes {} points of dimension {d}: {} values, not {}",
+                self.num_sources(),
+                d * self.num_sources(),
+                data.len()
+            )));
+        }
+        let chunks = d.div_ceil(3);
+        let mut out: Vec<Vec<f64>> = self
+            .shapes
+            .iter()
+            .map(|&(du, dv)| vec![0.0; ((du + 1) * (dv + 1)) as usize * d])
+            .collect();
+        for c in 0..chunks {
+            let w = (d - 3 * c).min(3);
+            let pts: Vec<Point> = (0..self.num_sources())
+                .map(|i| {
+                    let mut p = [0.0; 3];
+                    p[..w].copy_from_slice(&data[i * d + 3 * c..i * d + 3 * c + w]);
+                    p
+                })
+                .collect();
+            let vals = self.rows.apply(&pts);
+            let mut patches = self.linear_patches(&vals);
+            for (k, cap) in self.caps.iter().enumerate() {
+                let r = cap.data_row as usize;
+                let (mut hole, _) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+                hole.tangents = ring::data_tangents(&hole)?;
+                let (layout, degrees) = hole.layout()?;
+                let map = cap_map(hole.valence(), layout, degrees, cap.degree, cap.centre)?;
+                let built = map.apply(&hole).map_err(|e| cap_failed(k, cap, e))?;
+                self.place_cap(k, cap, built, &mut patches)?;
+            }
+            for (o, p) in out.iter_mut().zip(&patches) {
+                for (i, q) in p.cps.iter().enumerate() {
+                    o[i * d + 3 * c..i * d + 3 * c + w].copy_from_slice(&q[..w]);
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The error of a cap that cannot be repeated for moved points.
+fn cap_failed(k: usize, cap: &TableCap, e: Error) -> Error {
+    Error::Unsupported(format!(
+        "the G^1 cap {k} (patches {}..{}) cannot be built for these points ({e}); the \
+         construction would take another branch here: build the table again",
+        cap.step.first,
+        cap.step.first + cap.step.count
+    ))
+}
