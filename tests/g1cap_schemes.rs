@@ -115,3 +115,83 @@ fn dual_bi2() {
         }
     }
 }
+
+/// EG, QAS+ and the accelerated QAS variants: G^1 caps on their own bi-4 rings (and on the
+/// Catmull-Clark fallback where a c-net is not clean), C^1 to the ring.
+#[test]
+fn dnet_bi4() {
+    for scheme in ["eg", "qas-plus", "qas-0.4", "qas-0.5-0.4"] {
+        for (name, net) in quad_gallery() {
+            let c = build(scheme, &net, 3);
+            let r = assert_g1(scheme, &name, &c, Some(1e-10));
+            if net.boundary_loops().is_empty() {
+                assert_eq!(r.open_sides, 0, "{scheme} {name}");
+            }
+            print_curvature(scheme, &name, &c);
+        }
+    }
+}
+
+/// The normal of a cap at its centre (the first patch's corner `(0, 0)`).
+fn centre_normal(c: &PatchComplex) -> [f64; 3] {
+    let i = c
+        .provenance
+        .iter()
+        .position(|p| matches!(p, Provenance::Cap { .. }))
+        .expect("a cap");
+    let p = &c.patches[i];
+    let d = p.derivatives(0.0, 0.0);
+    let n = fairsub::geom::cross(d.du, d.dv);
+    fairsub::geom::normalize(n)
+}
+
+/// The normal of ring `k`'s first patch at its corner nearest the cap centre.
+fn ring_normal_near(c: &PatchComplex, k: u32, centre: [f64; 3]) -> [f64; 3] {
+    let i = c
+        .provenance
+        .iter()
+        .position(|p| matches!(p, Provenance::Ring { ring, .. } if *ring == k))
+        .expect("the ring");
+    let p = &c.patches[i];
+    let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)];
+    let &(u, v) = corners
+        .iter()
+        .min_by(|a, b| {
+            let da = fairsub::geom::norm(fairsub::geom::sub(p.eval(a.0, a.1), centre));
+            let db = fairsub::geom::norm(fairsub::geom::sub(p.eval(b.0, b.1), centre));
+            da.total_cmp(&db)
+        })
+        .expect("four corners");
+    let d = p.derivatives(u, v);
+    fairsub::geom::normalize(fairsub::geom::cross(d.du, d.dv))
+}
+
+/// The d-net caps sit in the scheme's limit tangent plane: the same plane whatever the number
+/// of rings (it is read off an invariant of the local vector), and the rings' normals next to
+/// the centre converge to it.
+#[test]
+fn dnet_tangent_plane_is_the_limit_plane() {
+    for scheme in ["eg", "qas-plus", "qas-0.5-0.4"] {
+        for n in [3, 5, 6] {
+            let net = gallery::cnet(n, CnetShape::Saddle, 3);
+            let c3 = build(scheme, &net, 3);
+            let c12 = build(scheme, &net, 12);
+            let (n3, n12) = (centre_normal(&c3), centre_normal(&c12));
+            let angle =
+                |a: [f64; 3], b: [f64; 3]| fairsub::geom::norm(fairsub::geom::cross(a, b)).asin();
+            assert!(angle(n3, n12) < 1e-9, "{scheme} {n}: {:e}", angle(n3, n12));
+            let centre = c12.patches[c12
+                .provenance
+                .iter()
+                .position(|p| matches!(p, Provenance::Cap { .. }))
+                .expect("cap")]
+            .cp(0, 0);
+            let a6 = angle(ring_normal_near(&c12, 6, centre), n12);
+            let a12 = angle(ring_normal_near(&c12, 12, centre), n12);
+            eprintln!(
+                "{scheme} n={n}: ring 6 {a6:.3e}, ring 12 {a12:.3e} rad from the cap's plane"
+            );
+            assert!(a12 < 1e-2 && a12 < 0.2 * a6, "{scheme} {n}: {a6:e} {a12:e}");
+        }
+    }
+}

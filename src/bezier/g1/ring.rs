@@ -143,3 +143,19 @@ pub fn quad_edge_side(k: usize, forward: bool) -> (Side, [f64; 2]) {
         (side, [range[1], range[0]])
     }
 }
+
+/// The hole's sectors read off a C^1-to-the-ring fill in the cap's conventions (one patch per
+/// sector, `(0, 0)` at the centre, spoke `s` its side `v = 0`, `P_s(u, 0) = P_(s-1)(0, u)`):
+/// segment `a` is the fill's side `u = 1`, segment `b` its side `v = 1`, each with the
+/// derivative from the ring into the hole ([`segment_from_inside`]). Exact ring data when the
+/// fill's two outer layers along those sides are the ring's C^1 continuation.
+pub fn sectors_from_fill(fill: &[BezierPatch]) -> Vec<Vec<Segment>> {
+    fill.iter()
+        .map(|p| {
+            vec![
+                segment_from_inside(p, Side::U1, [0.0, 1.0], 1.0),
+                segment_from_inside(p, Side::V1, [0.0, 1.0], 1.0),
+            ]
+        })
+        .collect()
+}
