@@ -104,11 +104,12 @@
 //! at every spoke end and corner. Polar rings (PolBS: one segment per sector whose boundary is
 //! smooth through the spoke ends, collapsed patches at the pole) do not fit either layout: their
 //! spoke ends are flat points of the boundary, where a quad or kite corner would be degenerate;
-//! they need a polar cap (collapsed side at the centre), not built here. Triangle rings must be
-//! a three-direction lattice at the spoke ends (valence 6), as Loop's are.
+//! they get the polar cap of [`polar`] (collapsed side at the centre, closed form). Triangle
+//! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
 pub mod hole;
 mod map;
+pub mod polar;
 pub mod ring;
 mod system;
 #[cfg(test)]

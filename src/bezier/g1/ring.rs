@@ -78,7 +78,7 @@ pub fn segment_from_inside(p: &BezierPatch, side: Side, range: [f64; 2], factor:
 }
 
 /// Projection of `x` onto the plane through the origin with unit normal `nrm`.
-fn project(x: Point, nrm: Point) -> Point {
+pub fn project_onto_plane(x: Point, nrm: Point) -> Point {
     axpy(x, -dot(x, nrm), nrm)
 }
 
@@ -101,8 +101,8 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
     let mut size: f64 = 0.0;
     for (s, sec) in q.hole.sectors.iter().enumerate() {
         let a = &sec[0];
-        let e = project(sub(a.boundary[0], hole.centre), nrm);
-        let f = project(scale(a.cross[0], -1.0), nrm);
+        let e = project_onto_plane(sub(a.boundary[0], hole.centre), nrm);
+        let f = project_onto_plane(scale(a.cross[0], -1.0), nrm);
         let ts = axpy(scale(e, 2.0), -1.0, f);
         size = size.max(norm(e));
         let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
