@@ -308,3 +308,86 @@ fn polar_bi2() {
         print_curvature("polar-bi2", &name, &c);
     }
 }
+
+/// Non-box's C^1 between its cubic ring triangles and the cap in the chart in which the hole
+/// cell and the ring cell across a cap side are unit squares: a ring triangle's derivative
+/// towards its apex (the ring cell's centre) at the edge point `t` must be
+/// `(1/2 - t) D_t + D_out / 2`, `D_out` the cap's derivative out of its side. (`check`'s
+/// conformal C^1 compares the triangles' skewed parameters and does not apply: it reports 2.8
+/// between regular triangles.) Returns the largest defect relative to the size of the
+/// derivatives.
+fn nonbox_chart_c1(c: &PatchComplex) -> f64 {
+    use fairsub::geom::{axpy, dist, norm, scale, sub};
+    let rings: Vec<&fairsub::bezier::BezierPatch> = c
+        .patches
+        .iter()
+        .zip(&c.provenance)
+        .filter(|(_, p)| matches!(p, Provenance::Ring { .. }))
+        .map(|(p, _)| p)
+        .collect();
+    let mut worst: f64 = 0.0;
+    let mut sides = 0;
+    for (p, prov) in c.patches.iter().zip(&c.provenance) {
+        if !matches!(prov, Provenance::Cap { .. }) {
+            continue;
+        }
+        // (side point at tau, derivative along tau, derivative out of the cap)
+        let at = |side: usize, tau: f64| {
+            if side == 0 {
+                let d = p.derivatives(1.0, tau);
+                (d.p, d.dv, d.du)
+            } else {
+                let d = p.derivatives(tau, 1.0);
+                (d.p, d.du, d.dv)
+            }
+        };
+        for side in 0..2 {
+            let (a, b) = (at(side, 0.0).0, at(side, 1.0).0);
+            let tol = 1e-9 * (1.0 + norm(a));
+            let found = rings.iter().find_map(|r| {
+                let (r0, r1) = (r.eval(0.0, 0.0), r.eval(1.0, 0.0));
+                if dist(r0, a) < tol && dist(r1, b) < tol {
+                    Some((r, true))
+                } else if dist(r0, b) < tol && dist(r1, a) < tol {
+                    Some((r, false))
+                } else {
+                    None
+                }
+            });
+            let Some((r, same)) = found else { continue };
+            sides += 1;
+            for k in 0..=8 {
+                let t = k as f64 / 8.0;
+                let d = r.derivatives(t, 0.0);
+                let tau = if same { t } else { 1.0 - t };
+                let (_, along, out) = at(side, tau);
+                let along = if same { along } else { scale(along, -1.0) };
+                let expect = axpy(scale(out, 0.5), 0.5 - t, along);
+                let e = norm(sub(d.dv, expect)) / (norm(d.dv) + norm(out));
+                worst = worst.max(e);
+            }
+        }
+    }
+    assert!(sides > 0, "no cap side next to a ring triangle");
+    worst
+}
+
+/// Non-box (and its four-directional variant, the same complex): G^1 caps on the cubic ring
+/// triangles, C^1 to them in the cells' chart.
+#[test]
+fn nonbox_caps() {
+    for scheme in ["nonbox", "nonbox-4dir"] {
+        for (name, net) in quad_gallery() {
+            let c = build(scheme, &net, 3);
+            let r = assert_g1(scheme, &name, &c, None);
+            if net.boundary_loops().is_empty() {
+                assert_eq!(r.open_sides, 0, "{scheme} {name}");
+            }
+            let c1 = nonbox_chart_c1(&c);
+            assert!(c1 < 1e-10, "{scheme} {name}: chart C^1 {c1:e}");
+            if scheme == "nonbox" {
+                print_curvature(scheme, &name, &c);
+            }
+        }
+    }
+}
