@@ -287,8 +287,8 @@ fn perturbed_prism(n: usize) -> PolyMesh {
     PolyMesh::new(pts, &faces).expect("mesh")
 }
 
-/// PolBS: polar G^1 caps (collapsed at the pole) C^1 to the last ring and across the spokes,
-/// one tangent plane at the pole.
+/// PolBS: its collapsed bi-2 caps are G^1: C^1 to the last ring and across the spokes, one
+/// tangent plane at the pole.
 #[test]
 fn polar_bi2() {
     let mut nets: Vec<(String, PolyMesh)> = [3, 5, 6, 8]

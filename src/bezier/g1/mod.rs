@@ -104,12 +104,11 @@
 //! at every spoke end and corner. Polar rings (PolBS: one segment per sector whose boundary is
 //! smooth through the spoke ends, collapsed patches at the pole) do not fit either layout: their
 //! spoke ends are flat points of the boundary, where a quad or kite corner would be degenerate;
-//! they get the polar cap of [`polar`] (collapsed side at the centre, closed form). Triangle
+//! PolBS's own collapsed bi-2 cap is G^1 there (see `schemes::bi2::surface`). Triangle
 //! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
 pub mod hole;
 mod map;
-pub mod polar;
 pub mod ring;
 mod system;
 #[cfg(test)]

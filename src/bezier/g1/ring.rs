@@ -78,7 +78,7 @@ pub fn segment_from_inside(p: &BezierPatch, side: Side, range: [f64; 2], factor:
 }
 
 /// Projection of `x` onto the plane through the origin with unit normal `nrm`.
-pub fn project_onto_plane(x: Point, nrm: Point) -> Point {
+fn project_onto_plane(x: Point, nrm: Point) -> Point {
     axpy(x, -dot(x, nrm), nrm)
 }
 

@@ -48,7 +48,8 @@
 //! characteristic nets). They are written only where the G^1 cap of [`g1`] cannot be built
 //! (with a note): the cap reads its hole data off the fill's outer layers and closes the hole
 //! G^1 in the element's limit tangent plane (quad-layout caps for TPS, adjustable TPS and PGS
-//! elements, the polar cap at poles). `--no-fill` leaves the holes open.
+//! elements; PolBS's collapsed fill is kept as its cap once checked to be G^1). `--no-fill`
+//! leaves the holes open.
 
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};

@@ -17,23 +17,27 @@
 //!   so the cap joins the ring C^1 up to the same per-piece affine reparametrisation as the
 //!   rings join each other. Conditions, free parameters (fairness `F_4`) and degrees (bi-4 odd
 //!   `n`, bi-5 even `n`) are those of [`crate::bezier::g1`].
-//! * **PolBS**: the polar cap of [`crate::bezier::g1::polar`] (bi-(3, 2), collapsed at the pole,
-//!   no free parameter), from the fill's outer row (the ring's inner boundary) and the radial
-//!   derivative there.
+//! * **PolBS**: the collapsed bi-2 fill of [`super`] is already a G^1 cap once a ring was made:
+//!   its outer two rows are the ring's C^1 continuation, every row is a C^1 quadratic spline
+//!   around the pole (so the fill is C^1 across the spokes), and its first row (the `a` ring of
+//!   the last polar net) lies in the limit tangent plane through the limit point (16), so the
+//!   normal at the pole is the plane's from every direction (measured on perturbed prisms:
+//!   4e-15 rad between the normals at the pole, equal to the eigen-plane's normal to 1e-12;
+//!   `tests/g1cap_schemes.rs::polar_bi2`). It is kept (bi-2, the lowest degree) after that check;
+//!   a first row off the plane (beyond `1e-9` of its size) keeps the fill with a note.
 //!
 //! Centre: the element's limit point ((7), (21), (16): `LocalScheme::limit`). Tangent plane:
 //! the two left eigenvectors of the subdominant eigenvalue of the element's stationary local
 //! step (`LocalScheme::step(l)` for `l >= 1`; `crate::linalg::subdominant_left_pair`) applied
 //! to the last local net (after the first step when no ring was made): the exact limit tangent
 //! plane. Where a cap cannot be built (no double subdominant eigenvalue, degenerate tangents,
-//! a folding polar cap, valence above the cap's bound) the fill stays, with a note.
+//! a polar first row off the plane, valence above the cap's bound) the fill stays, with a note.
 
-use crate::bezier::g1::polar::polar_cap;
+use crate::bezier::BezierPatch;
 use crate::bezier::g1::ring::{cap_in_plane, sectors_from_fill};
 use crate::bezier::g1::{CapOptions, Hole};
-use crate::bezier::{BezierPatch, Side};
 use crate::error::{Error, Result};
-use crate::geom::{Point, cross, scale, sub};
+use crate::geom::{Point, cross, dot, norm, normalize, sub};
 use crate::schemes::bi2::local_scheme::{LocalKind, LocalScheme};
 use nalgebra::DMatrix;
 
@@ -97,17 +101,19 @@ pub(super) fn element_cap(
     let normal = cross(apply(&m[0], at), apply(&m[1], at));
     match scheme.kind {
         LocalKind::Polar => {
-            let boundary: Vec<Vec<Point>> = fill.iter().map(|p| p.boundary(Side::U1)).collect();
-            let radial: Vec<Vec<Point>> = fill
-                .iter()
-                .map(|p| {
-                    let d = p.deg_u as f64;
-                    (0..=p.deg_v)
-                        .map(|j| scale(sub(p.cp(p.deg_u, j), p.cp(p.deg_u - 1, j)), d))
-                        .collect()
-                })
-                .collect();
-            polar_cap(&boundary, &radial, centre, normal)
+            let nrm = normalize(normal);
+            for (s, p) in fill.iter().enumerate() {
+                for j in 0..=p.deg_v {
+                    let d = sub(p.cp(1, j), centre);
+                    if dot(d, nrm).abs() > 1e-9 * norm(d) {
+                        return Err(Error::Unsupported(format!(
+                            "the first row of the collapsed fill is not in the limit tangent \
+                             plane (sector {s})"
+                        )));
+                    }
+                }
+            }
+            Ok(fill.to_vec())
         }
         _ => {
             let hole = Hole {
