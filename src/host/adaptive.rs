@@ -189,6 +189,96 @@ pub fn g1_cap_elements(
     left
 }
 
+/// Levels computed beyond the requested rings, at most, so that holes that still touch
+/// separate and get their G^1 caps (Catmull-Clark, the dual bi-2 schemes, non-box).
+pub const MAX_EXTRA_CAP_LEVELS: usize = 2;
+
+/// Why an element has no G^1 cap at a level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoCap {
+    /// More levels would give the data (the element's hole touches another element's).
+    Later,
+    /// The element's hole never gets the data (boundary, non-quad faces, no single centre).
+    Never,
+}
+
+/// Whether some element of the marked cells would get its G^1 cap after more levels (`hole`
+/// says `NoCap::Later` for it): the adaptive loop then goes on.
+pub fn caps_waiting<T>(
+    marked: &[(u32, Tag)],
+    mut hole: impl FnMut(Element, &[(u32, Tag)]) -> std::result::Result<T, NoCap>,
+) -> bool {
+    by_element(marked).iter().any(|(e, cells)| match e {
+        Some(e) => matches!(hole(*e, cells), Err(NoCap::Later)),
+        None => false,
+    })
+}
+
+/// One sector of a quad-layout hole around a vertex `x`: the quad `face = [x, p, K, q]` with
+/// `x` at corner `corner`, and the half-edges `p -> K` and `K -> q` across which the hole's
+/// segments `a` (from `p`) and `b` (from `q`) are read.
+#[derive(Debug, Clone, Copy)]
+pub struct QuadSector {
+    /// The face.
+    pub face: u32,
+    /// Corner of `x` in the face.
+    pub corner: usize,
+    /// The corner after `x` (end of spoke `s`).
+    pub p: u32,
+    /// The corner before `x` (end of spoke `s + 1`).
+    pub q: u32,
+    /// The half-edge `p -> K`.
+    pub pk: u32,
+    /// The half-edge `K -> q`.
+    pub kq: u32,
+}
+
+/// The `n` quads around vertex `x` counter-clockwise from face `f0` (Catmull-Clark's and
+/// non-box's cap sectors), or `None` when one is not a quad or the walk does not close after
+/// `n` faces (a boundary).
+pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<QuadSector>> {
+    let mut out = Vec::with_capacity(n);
+    let mut f = f0;
+    for _ in 0..n {
+        let face = m.face(f as usize);
+        if face.len() != 4 {
+            return None;
+        }
+        let k = face.iter().position(|&v| v == x)?;
+        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
+        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
+        out.push(QuadSector {
+            face: f,
+            corner: k,
+            p: face[(k + 1) % 4],
+            q: face[(k + 3) % 4],
+            pk: he(1),
+            kq: he(2),
+        });
+        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
+        f = m.he_face(m.he_twin(he(3))?);
+    }
+    (f == f0).then_some(out)
+}
+
+/// The segments of a quad-layout hole over its sectors: `across(half_edge, from)` reads the
+/// segment along a hole half-edge starting at its end `from` off the ring (`None` while the
+/// ring there is not emitted yet); segment `a` of a sector runs from `p` along `p -> K`,
+/// segment `b` from `q` along `K -> q`. `NoCap::Later` when some segment is missing.
+pub fn quad_hole_segments(
+    sectors: &[QuadSector],
+    mut across: impl FnMut(u32, u32) -> Option<crate::bezier::g1::Segment>,
+) -> std::result::Result<Vec<Vec<crate::bezier::g1::Segment>>, NoCap> {
+    let mut out = Vec::with_capacity(sectors.len());
+    for sec in sectors {
+        match (across(sec.pk, sec.p), across(sec.kq, sec.q)) {
+            (Some(a), Some(b)) => out.push(vec![a, b]),
+            _ => return Err(NoCap::Later),
+        }
+    }
+    Ok(out)
+}
+
 /// Where a level's patches go: the complex being built and the level's edge curves.
 pub struct Sink<'a, C> {
     /// The edge curves of the cells emitted at this level.

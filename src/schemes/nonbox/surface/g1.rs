@@ -35,23 +35,17 @@ use super::{Level, trusted_cell};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, axpy, cross, scale};
-use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
+use crate::host::adaptive::{
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, quad_hole_segments,
+    quad_sectors_around,
+};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = 2;
-
-/// Why an element has no G^1 cap at this level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum NoCap {
-    /// More levels would give the data.
-    Later,
-    /// The hole never gets the data.
-    Never,
-}
+pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// The inverse of the cubic Bernstein collocation matrix at `0, 1/3, 2/3, 1`.
 const COLLOCATION3: [[f64; 4]; 4] = [
@@ -125,34 +119,12 @@ fn hole_of(
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let (mut sectors, mut tags) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    let mut f = f0;
-    let mut later = false;
-    for _ in 0..n {
-        let face = m.face(f as usize);
-        if face.len() != 4 {
-            return Err(NoCap::Never);
-        }
-        let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
-        let (p, q) = (face[(k + 1) % 4], face[(k + 3) % 4]);
-        tags.push(*tag_at.get(&f).ok_or(NoCap::Never)?);
-        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
-        match (
-            segment_across(level, he(1), p),
-            segment_across(level, he(2), q),
-        ) {
-            (Some(a), Some(b)) => sectors.push(vec![a, b]),
-            _ => later = true,
-        }
-        let h = m.he_twin(he(3)).ok_or(NoCap::Never)?;
-        f = m.he_face(h);
-    }
-    if f != f0 {
-        return Err(NoCap::Never);
-    }
-    if later {
-        return Err(NoCap::Later);
-    }
+    let quads = quad_sectors_around(m, x, f0, n).ok_or(NoCap::Never)?;
+    let tags = quads
+        .iter()
+        .map(|sec| tag_at.get(&sec.face).copied().ok_or(NoCap::Never))
+        .collect::<Result<Vec<Tag>, NoCap>>()?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = NonBox::tangent_stencils(&level.net, xu);
     let normal = cross(t1.apply(&level.points), t2.apply(&level.points));
@@ -166,10 +138,7 @@ fn hole_of(
 
 /// Whether some marked element would get its cap after more levels.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
-    by_element(marked).iter().any(|(e, cells)| match e {
-        Some(e) => hole_of(level, *e, cells).err() == Some(NoCap::Later),
-        None => false,
-    })
+    caps_waiting(marked, |e, cells| hole_of(level, e, cells))
 }
 
 /// Caps every element of the marked cells that has its hole data; returns the cells left for
