@@ -325,6 +325,12 @@ impl CapBuilder for DnetCaps<'_> {
         if let (true, Some(ring)) = (self.fill, last) {
             let next = self.step(n, self.rings)?.ring.apply(&x);
             let (patches, per_sector) = if is_bi3_ring(&ring, n) {
+                self.notes.note(
+                    "the holes keep the C^0 bi-3 Coons fill, no G^1 cap: the inner sides of \
+                     the 2 x 2 bi-3 macro-patch rings are piecewise cubics, which a one-patch \
+                     cap sector cannot join C^1"
+                        .into(),
+                );
                 (fill::fill_bi3(&ring, &next, x[0], n), 4)
             } else {
                 let c0 = fill::fill(&ring, &next, x[0], n);
