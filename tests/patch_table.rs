@@ -170,10 +170,11 @@ fn per_point_data_go_through_the_same_rows() {
 
 #[test]
 fn data_of_dimension_three_equal_positions_except_in_caps() {
-    // without caps (EG's fill is linear) apply_data on the positions is apply
+    // without caps (EG's rings, no fill: every step linear) apply_data on the positions is
+    // apply
     let opts = ComplexOptions {
         rings: 2,
-        fill: true,
+        fill: false,
     };
     let mesh = net("cnet-5-saddle");
     let spec = registry().lookup("eg").unwrap();

@@ -35,11 +35,9 @@ use std::cell::Cell;
 /// Most rings per extraordinary element.
 pub const MAX_RINGS: usize = 100;
 
-/// Most rows of a local matrix that `analyze` and `charmap` decompose. Measured in release on
-/// one core of a shared 2-core machine: the slowest scheme per row, guided-bi5, takes about
-/// 2 s at 384 rows (valence 21) and its cost grows with the cube of the rows, so 450 rows keep
-/// every accepted valence of every scheme within about 3 s (catmull-clark: 3 s at 721 rows).
-pub const MAX_ANALYSIS_DIMENSION: usize = 450;
+/// Most rows of a local matrix that `analyze` and `charmap` decompose: the dense
+/// eigen-decomposition's bound ([`crate::linalg::MAX_DENSE_EIGEN_ROWS`], where it is measured).
+pub const MAX_ANALYSIS_DIMENSION: usize = crate::linalg::MAX_DENSE_EIGEN_ROWS;
 
 /// Largest count of vertices or corners of an output (32-bit indices, one bit to spare).
 pub const MAX_ELEMENTS: f64 = 2147483648.0;

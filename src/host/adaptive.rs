@@ -10,7 +10,7 @@
 //! cell that is regular and trusted becomes patches of ring `l` (regular at level 0), the rest
 //! is refined with its neighbourhood, until the rings are done.
 
-use crate::bezier::complex::{CapStep, Domain, PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::{Element, PolyMesh};
@@ -164,34 +164,25 @@ pub type CapData = (crate::bezier::g1::Hole, [Point; 2], Vec<Tag>);
 /// Closes with the G^1 cap of [`crate::bezier::g1`] (spoke tangents from the ring's chart,
 /// [`crate::bezier::g1::ring::cap_in_plane`]) every element of the marked cells for which
 /// `hole_of` gives the data; the cap patches are pushed with the sectors' tags (domain and
-/// sector), and the cap's data as a [`CapStep`] of the complex. Returns the cells left for the
+/// sector), and the cap's data as a [`crate::bezier::complex::CapStep`] of the complex. Returns the cells left for the
 /// scheme's C^0 fill.
 pub fn g1_cap_elements(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
     mut hole_of: impl FnMut(Element, &[(u32, Tag)]) -> Option<CapData>,
 ) -> Vec<(u32, Tag)> {
-    use crate::bezier::g1::{CapOptions, ring::cap_in_plane};
+    use crate::bezier::g1::{CapOptions, ring::cap_step};
     let mut left = Vec::new();
     for (element, cells) in by_element(marked) {
         let capped = element.and_then(|e| {
             let (hole, plane, tags) = hole_of(e, &cells)?;
-            let options = CapOptions::default();
-            let normal = crate::geom::cross(plane[0], plane[1]);
-            let cap = cap_in_plane(hole.clone(), normal, options).ok()?;
-            let step = CapStep {
-                first: out.len() as u32,
-                count: cap.patches.len() as u32,
-                hole,
-                plane,
-                options,
-            };
-            Some((e, cap, tags, step))
+            let (patches, step) = cap_step(hole, plane, CapOptions::default(), out.len()).ok()?;
+            Some((e, patches, tags, step))
         });
         match capped {
-            Some((element, cap, tags, step)) => {
+            Some((element, patches, tags, step)) => {
                 out.caps.push(step);
-                for (p, tag) in cap.patches.into_iter().zip(tags) {
+                for (p, tag) in patches.into_iter().zip(tags) {
                     let sector = tag.sector;
                     out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
                 }
@@ -200,6 +191,96 @@ pub fn g1_cap_elements(
         }
     }
     left
+}
+
+/// Levels computed beyond the requested rings, at most, so that holes that still touch
+/// separate and get their G^1 caps (Catmull-Clark, the dual bi-2 schemes, non-box).
+pub const MAX_EXTRA_CAP_LEVELS: usize = 2;
+
+/// Why an element has no G^1 cap at a level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoCap {
+    /// More levels would give the data (the element's hole touches another element's).
+    Later,
+    /// The element's hole never gets the data (boundary, non-quad faces, no single centre).
+    Never,
+}
+
+/// Whether some element of the marked cells would get its G^1 cap after more levels (`hole`
+/// says `NoCap::Later` for it): the adaptive loop then goes on.
+pub fn caps_waiting<T>(
+    marked: &[(u32, Tag)],
+    mut hole: impl FnMut(Element, &[(u32, Tag)]) -> std::result::Result<T, NoCap>,
+) -> bool {
+    by_element(marked).iter().any(|(e, cells)| match e {
+        Some(e) => matches!(hole(*e, cells), Err(NoCap::Later)),
+        None => false,
+    })
+}
+
+/// One sector of a quad-layout hole around a vertex `x`: the quad `face = [x, p, K, q]` with
+/// `x` at corner `corner`, and the half-edges `p -> K` and `K -> q` across which the hole's
+/// segments `a` (from `p`) and `b` (from `q`) are read.
+#[derive(Debug, Clone, Copy)]
+pub struct QuadSector {
+    /// The face.
+    pub face: u32,
+    /// Corner of `x` in the face.
+    pub corner: usize,
+    /// The corner after `x` (end of spoke `s`).
+    pub p: u32,
+    /// The corner before `x` (end of spoke `s + 1`).
+    pub q: u32,
+    /// The half-edge `p -> K`.
+    pub pk: u32,
+    /// The half-edge `K -> q`.
+    pub kq: u32,
+}
+
+/// The `n` quads around vertex `x` counter-clockwise from face `f0` (Catmull-Clark's and
+/// non-box's cap sectors), or `None` when one is not a quad or the walk does not close after
+/// `n` faces (a boundary).
+pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<QuadSector>> {
+    let mut out = Vec::with_capacity(n);
+    let mut f = f0;
+    for _ in 0..n {
+        let face = m.face(f as usize);
+        if face.len() != 4 {
+            return None;
+        }
+        let k = face.iter().position(|&v| v == x)?;
+        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
+        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
+        out.push(QuadSector {
+            face: f,
+            corner: k,
+            p: face[(k + 1) % 4],
+            q: face[(k + 3) % 4],
+            pk: he(1),
+            kq: he(2),
+        });
+        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
+        f = m.he_face(m.he_twin(he(3))?);
+    }
+    (f == f0).then_some(out)
+}
+
+/// The segments of a quad-layout hole over its sectors: `across(half_edge, from)` reads the
+/// segment along a hole half-edge starting at its end `from` off the ring (`None` while the
+/// ring there is not emitted yet); segment `a` of a sector runs from `p` along `p -> K`,
+/// segment `b` from `q` along `K -> q`. `NoCap::Later` when some segment is missing.
+pub fn quad_hole_segments(
+    sectors: &[QuadSector],
+    mut across: impl FnMut(u32, u32) -> Option<crate::bezier::g1::Segment>,
+) -> std::result::Result<Vec<Vec<crate::bezier::g1::Segment>>, NoCap> {
+    let mut out = Vec::with_capacity(sectors.len());
+    for sec in sectors {
+        match (across(sec.pk, sec.p), across(sec.kq, sec.q)) {
+            (Some(a), Some(b)) => out.push(vec![a, b]),
+            _ => return Err(NoCap::Later),
+        }
+    }
+    Ok(out)
 }
 
 /// Where a level's patches go: the complex being built and the level's edge curves.

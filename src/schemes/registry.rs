@@ -140,7 +140,7 @@ impl Registry {
                     About {
                         family: "classic primal quad scheme [CC78]",
                         input: "any polygon mesh (one step makes it all quads); with --levels OpenSubdiv's boundary options (default edge-and-corner), sharp features and face-varying UVs (--fvar, default all)",
-                        patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; Hermite-Coons fill",
+                        patches: "bi-3 on regular quads; rings of 3n bi-3 patches per extraordinary vertex; G^1 cap (bi-4/bi-5, C^1 to the last ring; Hermite-Coons fill where the ring is incomplete)",
                         smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
                         valences: "all",
                         status: "available",
@@ -153,7 +153,7 @@ impl Registry {
                     About {
                         family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
                         input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
-                        patches: "bi-2 per regular vertex (Chaikin boundaries via doubled boundary layer); rings of 3n bi-2 patches per n-gon (from level 2 for an n-valent vertex); centroid fill",
+                        patches: "bi-2 per regular vertex (Chaikin boundaries via doubled boundary layer); rings of 3n bi-2 patches per n-gon (from level 2 for an n-valent vertex); G^1 cap (centroid fill where the ring is incomplete)",
                         smoothness: "C^1 (bi-2 on regular parts)",
                         valences: "all facet sizes",
                         status: "available",
@@ -166,7 +166,7 @@ impl Registry {
                     About {
                         family: "DS^CC: face-corner point = mean of vertex, face centroid and the two edge midpoints",
                         input: "any polygon mesh; boundaries as doo-sabin",
-                        patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; centroid fill",
+                        patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; G^1 cap (centroid fill where the ring is incomplete)",
                         smoothness: "C^1",
                         valences: "all facet sizes",
                         status: "available",
@@ -192,7 +192,7 @@ impl Registry {
                     About {
                         family: "non-box subdivision [Huang]: four-directional S_3^1 non-box splines, quad variant with face control vertices (FCVs)",
                         input: "any polygon mesh (FCVs: face barycentres, scaled barycentres or an FCV file); boundaries: cubic B-spline V/E rules, ghost-FCV NFCV rule (fairsub's reconstruction)",
-                        patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; Hermite fill",
+                        patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; G^1 cap (bi-4/bi-5, C^1 to the ring in the cells' chart; Coons fill where the ring is incomplete)",
                         smoothness: "C^1 with the convex hull property (all weights non-negative); C^1 at extraordinary vertices (lambda = 1/2 + cos(2 pi / k) / 4)",
                         valences: "all",
                         status: "available",
@@ -218,7 +218,7 @@ impl Registry {
                     About {
                         family: "Evolving Guide subdivision [Karciauskas-Peters]: bi-4 rings joining bi-3 surroundings C^2",
                         input: "Catmull-Clark nets (quads; one local Catmull-Clark step where extraordinary vertices touch or n-gons occur)",
-                        patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
+                        patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; G^1 cap (bi-4/bi-5) C^1 to the last ring",
                         smoothness: "C^2 rings and joins, C^1 at the extraordinary point; mu/lambda^2 = 1.00015 (n=3), 1.00016 (n=5); derived rules: Catmull-Clark's lambda, mu/lambda^2 0.997..1.0006",
                         valences: "3, 5 printed; 4 = bi-4 refinement; 6..16 fairsub's derived rules (eg-derived; the text lost 6..10; --rules derived or suffix -derived: also at 3, 5); above 16: Catmull-Clark fallback or error",
                         status: "available (patches; printed 3, 5; derived 6..16, a reconstruction approximating the printed arrays)",
@@ -232,7 +232,7 @@ impl Registry {
                     About {
                         family: "QAS+^4 quadratic-attraction subdivision [Karciauskas-Peters], contraction 1/2",
                         input: "Catmull-Clark nets (as eg); initial quadratic expansion by fairsub's qas-fit",
-                        patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; bi-4 fill C^1 to the last ring",
+                        patches: "bi-3 on regular quads; K rings of 3n bi-4 patches per extraordinary vertex; G^1 cap (bi-4/bi-5) C^1 to the last ring",
                         smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) < 0.13621 < 1/4; derived tables 0.1253..0.1297)",
                         valences: "5, 6, 7 printed; 8..16 fairsub's derived tables (qas-plus-derived; --rules derived or suffix -derived: also at 5..7); 3 uses eg's rules, 4 bi-4 refinement; above 16: Catmull-Clark fallback or error",
                         status: "available (patches; printed 5..7; derived 8..16, a reconstruction approximating the printed tables)",
@@ -288,7 +288,7 @@ impl Registry {
                     About {
                         family: "Point-Augmented Bi-2 Subdivision [Karciauskas-Peters]: Doo-Sabin with an added central point p per extraordinary facet",
                         input: "any polygon mesh (p is added automatically by (1)); facets without a DS-net get one Doo-Sabin step first; boundaries as doo-sabin",
-                        patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; fill centred at the limit point (7)",
+                        patches: "as doo-sabin: bi-2 per regular vertex; rings of 3n bi-2 patches per n-gon; G^1 cap at the limit point (7)",
                         smoothness: "C^1; lambda_sub from (10) (> 1/2 for n > 4)",
                         valences: "all facet sizes (n = 4 is uniform bi-2)",
                         status: "available",
@@ -314,7 +314,7 @@ impl Registry {
                     About {
                         family: "Polar Bi-2 Subdivision (PolBS) [Karciauskas-Peters]: radial bi-2 refinement around poles",
                         input: "polar layouts (poles with fans of triangles, rings of quads); prism-like n-gon caps become poles at their centroids (or at --pole FACE:X,Y,Z); other elements as bi2-mixed",
-                        patches: "bi-2 per regular vertex; rings of n bi-2 patches per pole; collapsed bi-2 cap at the limit point (16)",
+                        patches: "bi-2 per regular vertex; rings of n bi-2 patches per pole; collapsed bi-2 cap at the limit point (16), G^1",
                         smoothness: "C^1; subdominant 1/2, subsubdominant 1/4",
                         valences: "all pole valences",
                         status: "available",
@@ -327,7 +327,7 @@ impl Registry {
                     About {
                         family: "Primal Bi-2 Subdivision (TPS) [Karciauskas-Peters]: ternary bi-2 on quad nets",
                         input: "quad nets (one Catmull-Clark step makes any mesh one); boundaries with a doubled layer (fairsub's rules)",
-                        patches: "bi-2 per regular vertex; rings of 2n bi-2 patches per extraordinary vertex (ternary); quarter-piece fill at the limit point (21)",
+                        patches: "bi-2 per regular vertex; rings of 2n bi-2 patches per extraordinary vertex (ternary); G^1 cap (bi-4/bi-5) at the limit point (21)",
                         smoothness: "C^1; lambda = (5 + 2c + 2 sqrt(c^2 + 5c + 4)) / 27",
                         valences: "all interior valences >= 3; extraordinary boundary vertices: error",
                         status: "available",
@@ -340,7 +340,7 @@ impl Registry {
                     About {
                         family: "adjustable TPS, split ratio e = 0.2 or --split-ratio E; alphas of (18) by --alpha-rule (fairsub's reconstruction of the stencils, tps-adjustable-derived: exact e : 1-2e : e knot insertion; reproduces (22))",
                         input: "quad nets, as tps",
-                        patches: "bi-2 with non-uniform knots; rings of 2n patches per extraordinary vertex; fill as tps",
+                        patches: "bi-2 with non-uniform knots; rings of 2n patches per extraordinary vertex; cap as tps",
                         smoothness: "C^1 (up to per-piece affine reparametrisation across ring sides); lambda from (22)",
                         valences: "all interior valences >= 3",
                         status: "available (reconstruction)",
@@ -353,7 +353,7 @@ impl Registry {
                     About {
                         family: "bi-2 family combined (Fig. 15): regular bi-2, PGS at facets, TPS at extraordinary vertices, PolBS at poles",
                         input: "polygon meshes with separated elements; net refinement only when all elements are of one kind",
-                        patches: "bi-2 per regular vertex; per element its scheme's rings and fill",
+                        patches: "bi-2 per regular vertex; per element its scheme's rings and G^1 cap",
                         smoothness: "C^1",
                         valences: "all",
                         status: "available",

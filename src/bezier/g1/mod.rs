@@ -104,8 +104,8 @@
 //! at every spoke end and corner. Polar rings (PolBS: one segment per sector whose boundary is
 //! smooth through the spoke ends, collapsed patches at the pole) do not fit either layout: their
 //! spoke ends are flat points of the boundary, where a quad or kite corner would be degenerate;
-//! they need a polar cap (collapsed side at the centre), not built here. Triangle rings must be
-//! a three-direction lattice at the spoke ends (valence 6), as Loop's are.
+//! PolBS's own collapsed bi-2 cap is G^1 there (see `schemes::bi2::surface`). Triangle
+//! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
 pub mod hole;
 mod map;

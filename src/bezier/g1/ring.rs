@@ -25,6 +25,7 @@
 
 use super::hole::{Hole, Segment};
 use super::map::{Cap, CapOptions, g1_cap_with};
+use crate::bezier::complex::CapStep;
 use crate::bezier::{BezierPatch, Side, curve};
 use crate::error::{Error, Result};
 use crate::geom::{Point, axpy, cross, dot, norm, normalize, scale, sub};
@@ -78,7 +79,7 @@ pub fn segment_from_inside(p: &BezierPatch, side: Side, range: [f64; 2], factor:
 }
 
 /// Projection of `x` onto the plane through the origin with unit normal `nrm`.
-fn project(x: Point, nrm: Point) -> Point {
+fn project_onto_plane(x: Point, nrm: Point) -> Point {
     axpy(x, -dot(x, nrm), nrm)
 }
 
@@ -95,7 +96,7 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
             "the limit normal of the hole is not defined".into(),
         ));
     }
-    let (t, n, size) = fit_tangents(hole, |x| project(x, nrm))?;
+    let (t, n, size) = fit_tangents(hole, |x| project_onto_plane(x, nrm))?;
     let area = norm(cross(t[0], t[1]));
     if area.is_nan() || area <= 1e-6 * size * size {
         return Err(Error::Unsupported(format!(
@@ -142,6 +143,27 @@ pub fn cap_in_plane(mut hole: Hole, normal: Point, opts: CapOptions) -> Result<C
     g1_cap_with(&hole, opts)
 }
 
+/// The G^1 cap of `hole` in the plane spanned by `plane` (normal `plane[0] x plane[1]`) with
+/// `opts`, and the [`CapStep`] that records it for a patch stencil table (its `first` patch
+/// set to `first`): every caller that closes a hole with [`cap_in_plane`] from data linear in
+/// the control points goes through here, so the table can repeat the one non-linear step.
+pub fn cap_step(
+    hole: Hole,
+    plane: [Point; 2],
+    opts: CapOptions,
+    first: usize,
+) -> Result<(Vec<BezierPatch>, CapStep)> {
+    let cap = cap_in_plane(hole.clone(), cross(plane[0], plane[1]), opts)?;
+    let step = CapStep {
+        first: first as u32,
+        count: cap.patches.len() as u32,
+        hole,
+        plane,
+        options: opts,
+    };
+    Ok((cap.patches, step))
+}
+
 /// The side of a quad patch whose corners `0, 1, 2, 3` of its face sit at `(u, v) = (0, 0),
 /// (1, 0), (1, 1), (0, 1)` that runs along the face's edge from corner `k` to corner `k + 1`, and
 /// the side-parameter range of that edge from corner `k` to `k + 1` (`forward`) or back.
@@ -157,4 +179,20 @@ pub fn quad_edge_side(k: usize, forward: bool) -> (Side, [f64; 2]) {
     } else {
         (side, [range[1], range[0]])
     }
+}
+
+/// The hole's sectors read off a C^1-to-the-ring fill in the cap's conventions (one patch per
+/// sector, `(0, 0)` at the centre, spoke `s` its side `v = 0`, `P_s(u, 0) = P_(s-1)(0, u)`):
+/// segment `a` is the fill's side `u = 1`, segment `b` its side `v = 1`, each with the
+/// derivative from the ring into the hole ([`segment_from_inside`]). Exact ring data when the
+/// fill's two outer layers along those sides are the ring's C^1 continuation.
+pub fn sectors_from_fill(fill: &[BezierPatch]) -> Vec<Vec<Segment>> {
+    fill.iter()
+        .map(|p| {
+            vec![
+                segment_from_inside(p, Side::U1, [0.0, 1.0], 1.0),
+                segment_from_inside(p, Side::V1, [0.0, 1.0], 1.0),
+            ]
+        })
+        .collect()
 }

@@ -139,7 +139,7 @@ impl Descriptor for Bi2Descriptor {
                     with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?)
                 }
                 Bi2Kind::TpsAdjustable => with_notes(s::tps_complex(mesh, opts, rules, progress)?),
-                Bi2Kind::Mixed => SurfaceOutput::plain(s::mixed_complex(mesh, opts, progress)?),
+                Bi2Kind::Mixed => with_notes(s::mixed_complex(mesh, opts, progress)?),
             })
         })
     }

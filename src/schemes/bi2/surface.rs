@@ -45,7 +45,11 @@
 //!
 //! The fills meet at the limit point with tangents towards the first inner coefficients, so
 //! they are tangent-continuous there exactly when those are coplanar (always for the
-//! characteristic nets; `--no-fill` leaves the holes open).
+//! characteristic nets). They are written only where the G^1 cap of [`g1`] cannot be built
+//! (with a note): the cap reads its hole data off the fill's outer layers and closes the hole
+//! G^1 in the element's limit tangent plane (quad-layout caps for TPS, adjustable TPS and PGS
+//! elements; PolBS's collapsed fill is kept as its cap once checked to be G^1). `--no-fill`
+//! leaves the holes open.
 
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
@@ -62,6 +66,8 @@ use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
 
 use super::local_scheme::{LocalScheme, qnet_index};
+
+mod g1;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
     element: Element,
@@ -232,15 +238,15 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
     })
 }
 
-/// Regular patches of every regular vertex (with knot widths when given), then rings and fills
-/// of every element.
+/// Regular patches of every regular vertex (with knot widths when given), then rings and the
+/// G^1 cap of [`g1`] (or the fill, with a note) of every element.
 fn assemble(
     mesh: &PolyMesh,
     widths: Option<&Widths>,
     elements: &[RingElement],
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
-) -> Result<PatchComplex> {
+) -> Result<(PatchComplex, Vec<String>)> {
     let pos = mesh.positions();
     let mut out = PatchComplex::new();
     // Each element's local net is carried as positions, not as stencils over the input: a
@@ -282,14 +288,39 @@ fn assemble(
         }
         progress(l);
     }
+    let mut notes = Vec::new();
     if opts.fill {
+        let mut masks = g1::Masks::default();
         for (el, local) in elements.iter().zip(&locals) {
             // The fill reads the local net and, at index `size`, the limit point.
+            let l = el.start + opts.rings;
             let mut with_limit = local.clone();
             with_limit.push(el.scheme.limit()?.apply(local));
-            for (c, sector) in el.scheme.fill(el.start + opts.rings)? {
+            let fill: Vec<(BezierPatch, u32)> = el
+                .scheme
+                .fill(l)?
+                .iter()
+                .map(|(c, sector)| (to_patch(c, &with_limit), *sector))
+                .collect();
+            let patches: Vec<BezierPatch> = fill.iter().map(|(p, _)| p.clone()).collect();
+            let cap = g1::element_cap(&el.scheme, l, local, &patches, &mut masks, out.len());
+            let capped: Vec<(BezierPatch, u32)> = match cap {
+                Ok((cap, step)) => {
+                    out.caps.extend(step);
+                    cap.into_iter().zip(fill.iter().map(|f| f.1)).collect()
+                }
+                Err(e) => {
+                    notes.push(format!(
+                        "{} (valence {}): the C^0 fill closes the hole, no G^1 cap ({e})",
+                        crate::host::caps::describe(el.element),
+                        el.scheme.n
+                    ));
+                    fill
+                }
+            };
+            for (p, sector) in capped {
                 out.push(
-                    to_patch(&c, &with_limit),
+                    p,
                     Provenance::Cap {
                         element: el.element,
                         sector,
@@ -298,7 +329,7 @@ fn assemble(
             }
         }
     }
-    Ok(out)
+    Ok((out, notes))
 }
 
 /// The PGS surface of any polygon mesh, through the Doo-Sabin machinery of [`crate::schemes::doo_sabin::surface`]
@@ -366,7 +397,8 @@ pub fn tps_complex(
             .collect();
         match built {
             Ok(elements) => {
-                let c = assemble(&m, Some(&w), &elements, opts, &mut progress)?;
+                let (c, more) = assemble(&m, Some(&w), &elements, opts, &mut progress)?;
+                notes.extend(more);
                 return Ok((c, notes));
             }
             Err(_) if start < 2 => {
@@ -401,8 +433,10 @@ pub fn polar_complex(
 ) -> Result<(PatchComplex, Vec<String>)> {
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
-    let (els, notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    Ok((assemble(&net.mesh, None, &els, opts, progress)?, notes))
+    let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
+    let (c, more) = assemble(&net.mesh, None, &els, opts, progress)?;
+    notes.extend(more);
+    Ok((c, notes))
 }
 
 /// The elements of a mixed net with their local nets; poles named by `named` (else by their
@@ -463,7 +497,7 @@ fn mixed_elements(
 
 /// The surface of a mixed bi-2 net (Fig. 15 of the paper): regular bi-2 patches, PGS rings
 /// at facets, TPS rings at extraordinary vertices, polar rings at poles (see
-/// [`crate::schemes::bi2::mixed`]).
+/// [`crate::schemes::bi2::mixed`]), with the notes of holes that keep their fill.
 ///
 /// # Errors
 /// [`Error::Unsupported`] when elements are not separated (a vertex next to a hole is not
@@ -472,7 +506,7 @@ pub fn mixed_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
     progress: impl FnMut(usize),
-) -> Result<PatchComplex> {
+) -> Result<(PatchComplex, Vec<String>)> {
     let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
     assemble(mesh, None, &els, opts, progress)
 }

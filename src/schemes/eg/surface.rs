@@ -1,5 +1,6 @@
 //! EG subdivision surfaces of whole meshes: bi-3 patches on regular faces, an EG cap of `K` bi-4
-//! rings at every extraordinary vertex with published rules, and the documented fill.
+//! rings at every extraordinary vertex with published rules, and the G^1 cap of [`g1`] (or the
+//! documented fill).
 //!
 //! Built on Catmull-Clark's adaptive loop ([`crate::schemes::catmull_clark::surface`]): every extraordinary vertex whose c-net is clean
 //! (one-ring regular, and every extraordinary vertex of the c-net capped too) gets an EG cap at
@@ -31,14 +32,17 @@
 //!   differences) of the net.
 //!
 //! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
-//! `n != 4`); `fairsub check` reports the measured defects. `--no-fill` leaves the hole open.
+//! `n != 4`). It is written only where the G^1 cap of [`g1`] (read off the fill's outer
+//! layers, in the limit tangent plane) cannot be built, with a note; QAS+^3's bi-3 rings keep
+//! their C^0 Coons fill ([`fill`]). `fairsub check` reports the measured defects. `--no-fill`
+//! leaves the hole open.
 
 use super::select::{self, Selected};
 use super::{Eg, EgStep, from_cnet};
+use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
-use crate::bezier::{BezierPatch, curve};
 use crate::error::{Error, Result};
-use crate::geom::{self, Point};
+use crate::geom::Point;
 use crate::host::caps::{CapBuilder, CapNotes, describe};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
@@ -48,6 +52,9 @@ use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::HashMap;
 use std::sync::Mutex;
+
+mod fill;
+mod g1;
 
 /// Options of [`eg_complex`].
 #[derive(Debug, Clone, Copy)]
@@ -104,6 +111,12 @@ pub(crate) trait DnetRules: Sync {
     }
     /// The message of `--fallback error`.
     fn no_rules(&self, n: usize) -> String;
+    /// Two vectors spanning the limit tangent plane, read off the local vector `x` after the
+    /// last step, where the rules carry it explicitly (QAS+'s quadratic expansion); `None`
+    /// (the default) takes the subdominant left eigenvectors of the step instead.
+    fn limit_tangents(&self, _n: usize, _x: &[Point]) -> Result<Option<[Point; 2]>> {
+        Ok(None)
+    }
     /// Adjusts the initial local vector of one element (user-given data); the default keeps it.
     fn adjust(&self, _n: usize, _element: Element, _x: &mut [Point]) -> Result<()> {
         Ok(())
@@ -163,6 +176,7 @@ pub(crate) struct DnetCaps<'a> {
     fallback: Fallback,
     init: Mutex<HashMap<usize, StencilTable>>,
     steps: Mutex<HashMap<(usize, usize), EgStep>>,
+    masks: Mutex<HashMap<(usize, usize), g1::TangentMasks>>,
     notes: CapNotes,
 }
 
@@ -180,6 +194,7 @@ impl<'a> DnetCaps<'a> {
             fallback,
             init: Mutex::new(HashMap::new()),
             steps: Mutex::new(HashMap::new()),
+            masks: Mutex::new(HashMap::new()),
             notes: CapNotes::default(),
         }
     }
@@ -194,6 +209,38 @@ impl<'a> DnetCaps<'a> {
         let s = self.rules.step(n, k)?;
         map.insert((n, k), s.clone());
         Ok(s)
+    }
+
+    /// Two vectors spanning the limit tangent plane of the local vector `x` after the last
+    /// step ([`g1`]): the rules' own ([`DnetRules::limit_tangents`]) or the subdominant left
+    /// eigenvectors of the step that makes the next ring (cached like the steps) applied to `x`.
+    fn limit_tangents(&self, n: usize, x: &[Point]) -> Result<[Point; 2]> {
+        if let Some(t) = self.rules.limit_tangents(n, x)? {
+            return Ok(t);
+        }
+        let k = if self.rules.stationary() {
+            0
+        } else {
+            self.rings
+        };
+        let cached = self
+            .masks
+            .lock()
+            .expect("no poisoning")
+            .get(&(n, k))
+            .cloned();
+        let m = match cached {
+            Some(m) => m,
+            None => {
+                let m = g1::tangent_masks(&self.step(n, k)?.step)?;
+                self.masks
+                    .lock()
+                    .expect("no poisoning")
+                    .insert((n, k), m.clone());
+                m
+            }
+        };
+        Ok(m.map(|w| g1::apply(&w, x)))
     }
 
     fn init(&self, n: usize) -> Result<StencilTable> {
@@ -277,10 +324,36 @@ impl CapBuilder for DnetCaps<'_> {
         }
         if let (true, Some(ring)) = (self.fill, last) {
             let next = self.step(n, self.rings)?.ring.apply(&x);
-            if is_bi3_ring(&ring, n) {
-                fill_bi3(&ring, &next, x[0], n, element, out);
+            let (patches, per_sector) = if is_bi3_ring(&ring, n) {
+                self.notes.note(
+                    "the holes keep the C^0 bi-3 Coons fill, no G^1 cap: the inner sides of \
+                     the 2 x 2 bi-3 macro-patch rings are piecewise cubics, which a one-patch \
+                     cap sector cannot join C^1"
+                        .into(),
+                );
+                (fill::fill_bi3(&ring, &next, x[0], n), 4)
             } else {
-                fill(&ring, &next, x[0], n, element, out);
+                let c0 = fill::fill(&ring, &next, x[0], n);
+                let cap = self
+                    .limit_tangents(n, &x)
+                    .and_then(|t| g1::dnet_cap(&c0, x[0], t, out.len()));
+                match cap {
+                    Ok((cap, step)) => {
+                        out.caps.push(step);
+                        (cap, 1)
+                    }
+                    Err(e) => {
+                        self.notes.note(format!(
+                            "{} (valence {n}): the C^0 fill closes the hole, no G^1 cap ({e})",
+                            describe(element)
+                        ));
+                        (c0, 1)
+                    }
+                }
+            };
+            for (k, p) in patches.into_iter().enumerate() {
+                let sector = (k / per_sector) as u32;
+                out.push(p, Provenance::Cap { element, sector });
             }
         }
         Ok(())
@@ -325,202 +398,6 @@ fn is_bi3_ring(ring: &[Point], n: usize) -> bool {
 fn ring_patch3(ring: &[Point], s: usize, k: usize, sub: usize) -> BezierPatch {
     let base = 16 * (12 * s + 4 * k + sub);
     BezierPatch::new(3, 3, ring[base..base + 16].to_vec())
-}
-
-/// The fill inside a bi-3 ring (QAS+^3): per sector 2 x 2 bi-3 Coons patches. The outer sides are
-/// the ring's inner sides (exact), the spokes cubics through `c0`, the next ring's corner at half
-/// the distance and the ring's corner with its derivative (split in two), the inner lines straight
-/// through a centre point set by the bilinear Coons rule. C^0 to the ring and between sectors.
-fn fill_bi3(
-    ring: &[Point],
-    next: &[Point],
-    c0: Point,
-    n: usize,
-    element: Element,
-    out: &mut PatchComplex,
-) {
-    let spokes: Vec<[Point; 4]> = (0..n)
-        .map(|s| {
-            let a = ring_patch3(ring, s, 0, 0);
-            let q = a.cp(0, 0);
-            // The sub-patch spans half the spoke's parameter: the spoke's derivative is twice.
-            let d = geom::scale(a.derivatives(0.0, 0.0).du, 2.0);
-            let mid = ring_patch3(next, s, 0, 0).cp(0, 0);
-            let b2 = geom::axpy(q, -1.0 / 3.0, d);
-            let mut b1 = [0.0; 3];
-            for k in 0..3 {
-                b1[k] = (8.0 * mid[k] - c0[k] - 3.0 * b2[k] - q[k]) / 3.0;
-            }
-            [c0, b1, b2, q]
-        })
-        .collect();
-    let halves = |c: &[Point; 4]| {
-        let (lo, hi) = curve::split(c, 0.5);
-        (lo, hi)
-    };
-    let line = |a: Point, b: Point| {
-        vec![
-            a,
-            geom::lerp(a, b, 1.0 / 3.0),
-            geom::lerp(a, b, 2.0 / 3.0),
-            b,
-        ]
-    };
-    for s in 0..n {
-        let (sp_lo, sp_hi) = halves(&spokes[s]);
-        let (sq_lo, sq_hi) = halves(&spokes[(s + n - 1) % n]);
-        let a00 = ring_patch3(ring, s, 0, 0).boundary(crate::bezier::Side::U0);
-        let a01 = ring_patch3(ring, s, 0, 2).boundary(crate::bezier::Side::U0);
-        let c00 = ring_patch3(ring, s, 2, 0).boundary(crate::bezier::Side::V0);
-        let c10 = ring_patch3(ring, s, 2, 1).boundary(crate::bezier::Side::V0);
-        let (m1, m3) = (sp_lo[3], sq_lo[3]);
-        let (m2, m4) = (c00[3], a00[3]);
-        let corner = a01[3];
-        let (q_s, q_p) = (sp_hi[3], sq_hi[3]);
-        let mut x = [0.0; 3];
-        for k in 0..3 {
-            x[k] = 0.5 * (m1[k] + m2[k] + m3[k] + m4[k])
-                - 0.25 * (c0[k] + q_s[k] + q_p[k] + corner[k]);
-        }
-        // Sub-patches of the sector fill over [0, 1/2]^2 etc. of its EG chart: (v0, u1, v1, u0).
-        // Each cell lists its sides (v0, u1, v1, u0).
-        let cells: [[Vec<Point>; 4]; 4] = [
-            [sp_lo.to_vec(), line(m1, x), line(m3, x), sq_lo.to_vec()],
-            [sp_hi.to_vec(), a00.clone(), line(x, m4), line(m1, x)],
-            [line(m3, x), line(x, m2), c00.clone(), sq_hi.to_vec()],
-            [line(x, m4), a01.clone(), c10.clone(), line(x, m2)],
-        ];
-        for [v0, u1, v1, u0] in cells.iter() {
-            let p = BezierPatch::coons(3, v0, u1, v1, u0);
-            out.push(
-                p.transposed(),
-                Provenance::Cap {
-                    element,
-                    sector: s as u32,
-                },
-            );
-        }
-    }
-}
-
-/// The EG fill of the hole inside `ring` (see the module documentation); `next` is the ring after
-/// it (only its corner points are used), `c0` the limit point.
-fn fill(
-    ring: &[Point],
-    next: &[Point],
-    c0: Point,
-    n: usize,
-    element: Element,
-    out: &mut PatchComplex,
-) {
-    // Spoke s runs along the ray between sectors s and s + 1 (the EG chart's u axis of sector s):
-    // the cubic through c0, the next ring's corner at half the distance and the ring's corner Q
-    // with the ring's derivative there, raised to degree 4 (its last two coefficients are then
-    // exactly the C^1 continuation of the ring along the ray).
-    let spokes: Vec<Vec<Point>> = (0..n)
-        .map(|s| {
-            let a = ring_patch(ring, s, 0);
-            let q = a.cp(0, 0);
-            let d = a.derivatives(0.0, 0.0).du;
-            let mid = ring_patch(next, s, 0).cp(0, 0);
-            let b2 = geom::axpy(q, -1.0 / 3.0, d);
-            let mut b1 = [0.0; 3];
-            for k in 0..3 {
-                b1[k] = (8.0 * mid[k] - c0[k] - 3.0 * b2[k] - q[k]) / 3.0;
-            }
-            curve::raise(&[c0, b1, b2, q])
-        })
-        .collect();
-    for s in 0..n {
-        let a = ring_patch(ring, s, 0);
-        let c = ring_patch(ring, s, 2);
-        let mut b = [[[0.0; 3]; 5]; 5];
-        let mut fixed = [[false; 5]; 5];
-        for t in 0..5 {
-            // Spokes (C^0 between sectors).
-            b[t][0] = spokes[s][t];
-            b[0][t] = spokes[(s + n - 1) % n][t];
-            fixed[t][0] = true;
-            fixed[0][t] = true;
-        }
-        for t in 0..5 {
-            // C^0 and C^1 to patch A across u = 1 and to patch C across v = 1.
-            b[4][t] = a.cp(0, t);
-            b[3][t] = geom::sub(geom::scale(a.cp(0, t), 2.0), a.cp(1, t));
-            b[t][4] = c.cp(t, 0);
-            b[t][3] = geom::sub(geom::scale(c.cp(t, 0), 2.0), c.cp(t, 1));
-            fixed[4][t] = true;
-            fixed[3][t] = true;
-            fixed[t][4] = true;
-            fixed[t][3] = true;
-        }
-        fair_interior(&mut b, &fixed);
-        let p = BezierPatch::from_fn(4, 4, |i, j| b[i][j]);
-        out.push(
-            p.transposed(),
-            Provenance::Cap {
-                element,
-                sector: s as u32,
-            },
-        );
-    }
-}
-
-/// Sets the free coefficients of a 5 x 5 net to minimise the sum of squared second differences
-/// (`u u`, `v v` and twice the mixed ones): a discrete thin-plate energy, solved exactly by the
-/// normal equations.
-fn fair_interior(b: &mut [[Point; 5]; 5], fixed: &[[bool; 5]; 5]) {
-    let free: Vec<(usize, usize)> = (0..5)
-        .flat_map(|i| (0..5).map(move |j| (i, j)))
-        .filter(|&(i, j)| !fixed[i][j])
-        .collect();
-    if free.is_empty() {
-        return;
-    }
-    let col = |i: usize, j: usize| free.iter().position(|&f| f == (i, j));
-    // Each second difference is a row: sum_k w_k b_k; split into free (matrix) and fixed (rhs).
-    let mut stencils: Vec<Vec<((usize, usize), f64)>> = Vec::new();
-    for i in 0..5 {
-        for j in 0..5 {
-            if i + 2 < 5 {
-                stencils.push(vec![((i, j), 1.0), ((i + 1, j), -2.0), ((i + 2, j), 1.0)]);
-            }
-            if j + 2 < 5 {
-                stencils.push(vec![((i, j), 1.0), ((i, j + 1), -2.0), ((i, j + 2), 1.0)]);
-            }
-            if i + 1 < 5 && j + 1 < 5 {
-                let w = std::f64::consts::SQRT_2;
-                stencils.push(vec![
-                    ((i, j), w),
-                    ((i + 1, j), -w),
-                    ((i, j + 1), -w),
-                    ((i + 1, j + 1), w),
-                ]);
-            }
-        }
-    }
-    let k = free.len();
-    let mut m = nalgebra::DMatrix::<f64>::zeros(stencils.len(), k);
-    let mut rhs = nalgebra::DMatrix::<f64>::zeros(stencils.len(), 3);
-    for (r, st) in stencils.iter().enumerate() {
-        for &((i, j), w) in st {
-            match col(i, j) {
-                Some(c) => m[(r, c)] += w,
-                None => {
-                    for d in 0..3 {
-                        rhs[(r, d)] -= w * b[i][j][d];
-                    }
-                }
-            }
-        }
-    }
-    let ata = m.transpose() * &m;
-    let atb = m.transpose() * rhs;
-    if let Some(x) = ata.lu().solve(&atb) {
-        for (c, &(i, j)) in free.iter().enumerate() {
-            b[i][j] = [x[(c, 0)], x[(c, 1)], x[(c, 2)]];
-        }
-    }
 }
 
 /// The EG surface of a net as a patch complex (printed rules where they exist, derived ones

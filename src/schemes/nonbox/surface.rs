@@ -1,4 +1,5 @@
-//! Non-box surfaces as exact patch complexes: S_3^1 cubic triangles, rings, and a fill.
+//! Non-box surfaces as exact patch complexes: S_3^1 cubic triangles, rings, and the G^1 cap
+//! (or a fill).
 //!
 //! Where a quad cell of the net is regular (each corner an interior vertex of valence 4 or a
 //! boundary vertex with one or two faces), the limit over it is four cubic triangles of the S_3^1
@@ -30,7 +31,9 @@
 //!   chord projected into the limit tangent plane.
 //!
 //! The fill is C^0 to the last ring and between fill patches, not G^1 across its edges; with
-//! `K` rings it covers a region of size about `lambda^K`.
+//! `K` rings it covers a region of size about `lambda^K`. It closes only the holes that get no
+//! G^1 cap ([`g1`]: read off the ring triangles across the hole's edges, centred at the limit
+//! point in the limit tangent plane; up to two more levels while holes touch).
 
 use super::bezier::{CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor};
 use super::{FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil};
@@ -48,6 +51,8 @@ use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 use std::f64::consts::PI;
+
+mod g1;
 
 /// One level of the adaptive refinement: the net with its FCVs.
 pub struct Level {
@@ -73,13 +78,19 @@ pub fn nonbox_complex(
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&NonBoxRules { net }, &net.mesh, opts, &mut progress)
+    let rules = NonBoxRules {
+        net,
+        fill: opts.fill,
+    };
+    adaptive::run(&rules, &net.mesh, opts, &mut progress)
 }
 
 /// The non-box rules for the adaptive loop: cells are quads with their FCV, each regular cell
 /// four cubic triangles.
 struct NonBoxRules<'a> {
     net: &'a FcvNet,
+    /// Whether holes are closed (then touching holes get more levels for their G^1 caps).
+    fill: bool,
 }
 
 impl AdaptiveRules for NonBoxRules<'_> {
@@ -121,16 +132,19 @@ impl AdaptiveRules for NonBoxRules<'_> {
         adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
-    /// Non-quad faces are always refined (their first ring is at level 1).
+    /// Non-quad faces are always refined (their first ring is at level 1); with a fill, up to
+    /// [`g1::MAX_EXTRA_LEVELS`] more levels while holes touch.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
         l >= rings
             && marked
                 .iter()
                 .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
+            && (!self.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
-        fill(level, marked, to.curves, to.out);
+        let left = g1::g1_caps(level, marked, to.out);
+        fill(level, &left, to.curves, to.out);
         Ok(())
     }
 

@@ -120,6 +120,23 @@ impl DnetRules for QasRulesProvider {
         select::no_rules(self.id, n)
     }
 
+    /// QAS+'s limit tangent plane: the plane of the expansion `q` (see
+    /// [`crate::schemes::eg::surface`]'s cap): Fourier mode 1 of `q_2^s - p`, `q_2^s` along the
+    /// chart direction `e_s`.
+    fn limit_tangents(&self, n: usize, x: &[Point]) -> Result<Option<[Point; 2]>> {
+        if !matches!(self.rules(n)?, QasSelected::Qas { .. }) {
+            return Ok(None);
+        }
+        let mut t = [[0.0; 3]; 2];
+        for s in 0..n {
+            let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+            let d = crate::geom::sub(x[qas::q_index(n, s, 2)], x[0]);
+            t[0] = crate::geom::axpy(t[0], th.cos(), d);
+            t[1] = crate::geom::axpy(t[1], th.sin(), d);
+        }
+        Ok(Some(t))
+    }
+
     fn adjust(&self, n: usize, element: Element, x: &mut [Point]) -> Result<()> {
         let Element::Vertex(v) = element else {
             return Ok(());

@@ -34,22 +34,16 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::Point;
-use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
+use crate::host::adaptive::{
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, quad_hole_segments,
+    quad_sectors_around,
+};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = 2;
-
-/// Why an element has no G^1 cap at this level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum NoCap {
-    /// More levels would give the data (the element's faces touch another element's).
-    Later,
-    /// The element's hole never gets the data (boundary, non-quad faces, no single centre).
-    Never,
-}
+pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// Corner index of `v` in face `f`.
 fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
@@ -94,43 +88,17 @@ fn hole_of(
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let tag_of = |f: u32| tag_at.get(&f).copied();
-    let mut sectors = Vec::with_capacity(n);
+    let quads = quad_sectors_around(m, x, f0, n).ok_or(NoCap::Never)?;
     let mut tags = Vec::with_capacity(n);
-    let mut f = f0;
-    let mut later = false;
-    for _ in 0..n {
-        let face = m.face(f as usize);
-        if face.len() != 4 {
-            return Err(NoCap::Never);
-        }
-        let k = corner_of(m, f as usize, x).ok_or(NoCap::Never)?;
-        let (p, q) = (face[(k + 1) % 4], face[(k + 3) % 4]);
+    for sec in &quads {
         // the cap patch of this sector has its (0, 0) at x, corner k of the sector's face
-        let tag = tag_of(f).ok_or(NoCap::Never)?;
+        let tag = *tag_at.get(&sec.face).ok_or(NoCap::Never)?;
         tags.push(Tag {
-            domain: tag.domain.rotated(k as u32),
+            domain: tag.domain.rotated(sec.corner as u32),
             ..tag
         });
-        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
-        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
-        match (
-            segment_across(level, he(1), p),
-            segment_across(level, he(2), q),
-        ) {
-            (Some(a), Some(b)) => sectors.push(vec![a, b]),
-            _ => later = true,
-        }
-        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
-        let h = m.he_twin(he(3)).ok_or(NoCap::Never)?;
-        f = m.he_face(h);
     }
-    if f != f0 {
-        return Err(NoCap::Never);
-    }
-    if later {
-        return Err(NoCap::Later);
-    }
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let pos = m.positions();
     let centre = limits.limit(xu);
     let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
@@ -147,10 +115,7 @@ fn hole_of(
 /// another element's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
     let limits = LimitStencils::new(&level.mesh);
-    by_element(marked).iter().any(|(e, faces)| match e {
-        Some(e) => hole_of(level, &limits, *e, faces).err() == Some(NoCap::Later),
-        None => false,
-    })
+    caps_waiting(marked, |e, faces| hole_of(level, &limits, e, faces))
 }
 
 /// Caps every element of the marked faces that has its hole data (see the [module](self)

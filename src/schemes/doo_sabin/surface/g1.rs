@@ -46,22 +46,13 @@ use crate::bezier::g1::Hole;
 use crate::bezier::g1::ring::segment_from_inside;
 use crate::bezier::{BezierPatch, Side};
 use crate::geom::{Point, axpy};
-use crate::host::adaptive::{Tag, by_element, g1_cap_elements};
+use crate::host::adaptive::{MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements};
 use crate::mesh::Element;
 use crate::schemes::doo_sabin::surface::DualRules;
 use std::collections::{HashMap, HashSet};
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = 2;
-
-/// Why an element has no G^1 cap at this level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum NoCap {
-    /// More levels would give the data (an outer neighbour is still marked).
-    Later,
-    /// The element's hole never gets the data.
-    Never,
-}
+pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// `p` turned (orientation kept) so that its corner `r` (counter-clockwise from `(0, 0)`:
 /// `(0, 0), (1, 0), (1, 1), (0, 1)`) becomes `(0, 0)`: `r` times `Q(u, v) = P(1 - v, u)`.
@@ -168,10 +159,7 @@ fn hole_of(
 /// another's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, rules: &DualRules<'_>, marked: &[(u32, Tag)]) -> bool {
     let set: HashSet<u32> = marked.iter().map(|&(v, _)| v).collect();
-    by_element(marked).iter().any(|(e, verts)| match e {
-        Some(e) => hole_of(level, rules, *e, verts, &set).err() == Some(NoCap::Later),
-        None => false,
-    })
+    caps_waiting(marked, |e, verts| hole_of(level, rules, e, verts, &set))
 }
 
 /// Caps every element of the marked vertices that has its hole data (see the [module](self)

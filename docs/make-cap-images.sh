@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Zooms into one cap of each family of schemes, before (the C^0 fill of an older fairsub) and
+# after (the G^1 cap), in highlight-line mode, for the README's section on caps.
+#   BEFORE=/path/to/old/fairsub docs/make-cap-images.sh
+# BEFORE is a fairsub binary built before the caps of issue 17's second round (the README's
+# pictures: main at 7a6822f); without it only the "after" pictures are made.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+F=target/release/fairsub
+look=(--rings 4 --mode highlight --zoom-rings 3..5 --size 300x300 --stripes 16)
+# family name, scheme, net, extra options
+cases=(
+  "eg eg gallery:cnet-5-saddle"
+  "qas qas-plus gallery:cnet-6-convex"
+  "tps tps gallery:cnet-5-saddle"
+  "nonbox nonbox gallery:cnet-6-convex"
+)
+for c in "${cases[@]}"; do
+  read -r family scheme net extra <<<"$c"
+  name=$(basename "$net" .obj)
+  name=${name#gallery:}
+  $F render "$net" -s "$scheme" "${look[@]}" ${extra:-} -o "docs/images/cap-$family-$name-after.png" >/dev/null
+  if [ -n "${BEFORE:-}" ]; then
+    "$BEFORE" render "$net" -s "$scheme" "${look[@]}" ${extra:-} -o "docs/images/cap-$family-$name-before.png" >/dev/null
+  fi
+done

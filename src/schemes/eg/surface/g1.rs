@@ -1,0 +1,93 @@
+//! The G^1 cap of the d-net schemes' own holes (EG, QAS+ and its accelerated variants; QAS+ at
+//! valence 3 runs on EG's rules).
+//!
+//! # The cap
+//!
+//! After `K` rings the hole of sector `s` is the square `[0, h]^2` of the last d-net's chart,
+//! bounded by the inner sides of the ring's patches `A` and `C` of that sector; the spoke between
+//! two sectors is the chart's ray. The cap is the G^1 cap of [`crate::bezier::g1`]:
+//!
+//! * **hole data**: read off the bi-4 fill of [`super::fill`] (transposed to the mesh chart, as
+//!   the rings are): its two outer layers along each outer side are exactly the C^1 continuation
+//!   of `A` and `C` (value and first cross derivative at the ring's parameter speed), so
+//!   [`crate::bezier::g1::ring::sectors_from_fill`] returns the ring's exact C^1 data. The ring is
+//!   one C^2 bi-4 spline in the d-net's chart, so the data are compatible at every corner and
+//!   spoke end (tensor grid there, `kappa = 0`);
+//! * **centre**: the local vector's source 0, the scheme's limit point (`c0` of EG's (3) / (4);
+//!   QAS+'s central point `p = q_1`, which its rings converge to);
+//! * **tangent plane**: for EG's rules, spanned by the two left eigenvectors of the subdominant
+//!   eigenvalue of the step matrix on the local vector (`crate::linalg::subdominant_left_pair`)
+//!   applied to the local vector after the last step: the exact limit tangent plane of a
+//!   stationary scheme. For QAS+'s rules (and its accelerated variants) the plane of the
+//!   quadratic expansion `q` the rings are attracted to, spanned by the Fourier mode 1 of the
+//!   first-order coefficients `q_2^s - p` (the eigenvalue 1/2 of the step is not a double one:
+//!   every sector's `q` keeps its own first-order pair, so the eigen route does not apply);
+//! * **spoke tangents' scale**: from the ring's chart in that plane
+//!   ([`crate::bezier::g1::ring::chart_tangents`]);
+//! * **conditions, free parameters, degree**: those of [`crate::bezier::g1`] (C^1 to the ring,
+//!   centre and plane, C^0 and the G^1 relation along every spoke, the quadratic jet where the
+//!   degree allows it; the rest minimises `F_4`): bi-4 for odd `n`, bi-5 for even `n` (bi-4 at
+//!   the regular `n = 4`).
+//!
+//! Where the cap cannot be built (a degenerate tangent pair) the hole keeps the C^0 fill and the
+//! output notes say so. QAS+^3's bi-3 rings are 2 x 2 macro-patches per sector: their hole's
+//! sides are piecewise cubics, not one polynomial, so the single-patch cap does not fit; they keep
+//! the C^0 bi-3 Coons fill (see the notes).
+
+use crate::bezier::BezierPatch;
+use crate::bezier::complex::CapStep;
+use crate::bezier::g1::ring::{cap_step, sectors_from_fill};
+use crate::bezier::g1::{CapOptions, Hole};
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::stencil::StencilTable;
+use nalgebra::DMatrix;
+
+/// Two weight vectors over the local vector whose values span the limit tangent plane.
+pub(super) type TangentMasks = [Vec<f64>; 2];
+
+/// The two left eigenvectors of the subdominant eigenvalue of a step matrix (rows over the
+/// local vector), or why there are none.
+pub(super) fn tangent_masks(step: &StencilTable) -> Result<TangentMasks> {
+    let (r, c) = (step.num_rows(), step.num_sources());
+    if r != c {
+        return Err(Error::Unsupported(format!(
+            "the step matrix is {r} x {c}, not square"
+        )));
+    }
+    let m = DMatrix::from_row_slice(r, c, &step.to_dense());
+    let (_, [a, b]) = crate::linalg::subdominant_left_pair(&m).ok_or_else(|| {
+        Error::Unsupported(
+            "the step matrix has no real double subdominant eigenvalue (no tangent pair)".into(),
+        )
+    })?;
+    Ok([a.iter().copied().collect(), b.iter().copied().collect()])
+}
+
+/// `mask . x`.
+pub(super) fn apply(mask: &[f64], x: &[Point]) -> Point {
+    let mut p = [0.0; 3];
+    for (w, q) in mask.iter().zip(x) {
+        for k in 0..3 {
+            p[k] += w * q[k];
+        }
+    }
+    p
+}
+
+/// The G^1 cap of a d-net hole: `fill` the bi-4 fill's patches per sector (mesh chart),
+/// `centre` the limit point, `tangents` two vectors spanning the limit tangent plane; with the
+/// cap's [`CapStep`] for a patch stencil table, its first patch at index `first`.
+pub(super) fn dnet_cap(
+    fill: &[BezierPatch],
+    centre: Point,
+    tangents: [Point; 2],
+    first: usize,
+) -> Result<(Vec<BezierPatch>, CapStep)> {
+    let hole = Hole {
+        centre,
+        tangents: [[0.0; 3]; 2],
+        sectors: sectors_from_fill(fill),
+    };
+    cap_step(hole, tangents, CapOptions::default(), first)
+}

@@ -1,0 +1,152 @@
+//! The G^1 cap of non-box subdivision's last ring (`nonbox`, and `nonbox-4dir`, which builds
+//! the same complex).
+//!
+//! # The cap
+//!
+//! An extraordinary vertex `x` of valence `n` whose cells at the last level are the `n` quads
+//! around it, every outer edge of which is shared with an emitted (ring or regular) cell of the
+//! same level, is closed by the quad-layout G^1 cap of [`crate::bezier::g1`], one patch per
+//! hole cell:
+//!
+//! * **hole data**: sector `s` is the cell `[x, p, K, q]`, spoke `s` its edge `x -> p` (the
+//!   layout of Catmull-Clark's cap). Segment `a` runs along the edge `p -> K`, segment `b` along
+//!   `q -> K`; each is read off the cubic S_3^1 triangle of the emitted cell across the edge
+//!   (the triangle on that edge, apex at that cell's centre). In the affine chart in which both
+//!   cells are unit squares, the triangle's derivative towards its apex at the edge point `t` is
+//!   `(1/2 - t) D_t + D_out / 2`, so the derivative out of the hole is
+//!   `D_out = 2 D_apex - (1 - 2 t) D_t`; the segment's cross derivative is `-D_out`, a cubic,
+//!   interpolated exactly at four points. The S_3^1 spline is C^1 with its mixed derivative
+//!   continuous at the lattice vertices of the four-directional mesh (the spoke ends `p, q` and
+//!   the corners `K` are regular vertices of the spline), so the data are compatible there
+//!   (`kappa = 0`; [`crate::bezier::g1::g1_cap_with`] checks every hole and refuses one that
+//!   is not, naming the spoke end);
+//! * **centre**: the paper's limit point of `x` (`NonBox::limit_stencil`);
+//! * **tangent plane**: spanned by the paper's tangents `u1, u2` (`NonBox::tangent_stencils`,
+//!   Fourier mode 1 of the FCVs around `x`; the exact left eigenvectors of the subdominant pair,
+//!   tested in `nonbox::local`); the spoke tangents' scale from the ring's chart in that plane;
+//! * **conditions, free parameters, degree**: those of [`crate::bezier::g1`]: bi-4 for odd `n`,
+//!   bi-5 for even `n` (bi-4 at `n = 4`).
+//!
+//! Holes that touch another element's after the requested rings get up to
+//! [`MAX_EXTRA_LEVELS`] more levels; holes without the data (boundary vertices, non-quad
+//! cells, still touching after that) keep the C^0 Coons fill of [`super`].
+
+use super::{Level, trusted_cell};
+use crate::bezier::complex::PatchComplex;
+use crate::bezier::g1::{Hole, Segment};
+use crate::geom::{Point, axpy, scale};
+use crate::host::adaptive::{
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, quad_hole_segments,
+    quad_sectors_around,
+};
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::nonbox::NonBox;
+use crate::schemes::nonbox::bezier::triangle_to_tensor;
+use std::collections::HashMap;
+
+/// Levels computed beyond the requested rings, at most, so that touching holes separate.
+pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
+
+/// The inverse of the cubic Bernstein collocation matrix at `0, 1/3, 2/3, 1`.
+const COLLOCATION3: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [-5.0 / 6.0, 3.0, -1.5, 1.0 / 3.0],
+    [1.0 / 3.0, -1.5, 3.0, -5.0 / 6.0],
+    [0.0, 0.0, 0.0, 1.0],
+];
+
+/// The cubic with values `v` at `0, 1/3, 2/3, 1`.
+fn interpolate(v: &[Point; 4]) -> Vec<Point> {
+    COLLOCATION3
+        .iter()
+        .map(|row| {
+            row.iter()
+                .zip(v)
+                .fold([0.0; 3], |acc, (&w, p)| axpy(acc, w, *p))
+        })
+        .collect()
+}
+
+fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
+    m.face(f).iter().position(|&w| w == v)
+}
+
+/// The segment of the hole along its half-edge `hole_he`, from its end `from` (see the
+/// [module](self) documentation); `None` while the cell across has no trusted triangles.
+fn segment_across(level: &Level, hole_he: u32, from: u32) -> Option<Segment> {
+    let m = &level.net.mesh;
+    let h = m.he_twin(hole_he)?;
+    let g = m.he_face(h) as usize;
+    if m.face_size(g) != 4 {
+        return None;
+    }
+    let tris = trusted_cell(level, g)?;
+    let k = corner_of(m, g, m.he_from(h))?;
+    let x = triangle_to_tensor(&tris[k]);
+    let forward = m.he_from(h) == from;
+    let (mut b, mut c) = ([[0.0; 3]; 4], [[0.0; 3]; 4]);
+    for j in 0..4 {
+        let tau = j as f64 / 3.0;
+        let t = if forward { tau } else { 1.0 - tau };
+        let d = x.derivatives(t, 0.0);
+        b[j] = d.p;
+        // -D_out = (1 - 2 t) D_t - 2 D_apex
+        c[j] = axpy(scale(d.dv, -2.0), 1.0 - 2.0 * t, d.du);
+    }
+    Some(Segment {
+        boundary: interpolate(&b),
+        cross: interpolate(&c),
+    })
+}
+
+/// The hole of one element, two vectors spanning its limit tangent plane and the tags of its sectors, or why there is none.
+fn hole_of(
+    level: &Level,
+    element: Element,
+    cells: &[(u32, Tag)],
+) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
+    let m = &level.net.mesh;
+    let (f0, _) = cells[0];
+    let x = m
+        .face(f0 as usize)
+        .iter()
+        .copied()
+        .find(|&v| level.info[v as usize].origin == Some(element))
+        .ok_or(NoCap::Never)?;
+    let xu = x as usize;
+    let n = m.valence(xu);
+    if m.is_boundary_vertex(xu) || n < 3 || cells.len() != n {
+        return Err(NoCap::Never);
+    }
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let quads = quad_sectors_around(m, x, f0, n).ok_or(NoCap::Never)?;
+    let tags = quads
+        .iter()
+        .map(|sec| tag_at.get(&sec.face).copied().ok_or(NoCap::Never))
+        .collect::<Result<Vec<Tag>, NoCap>>()?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
+    let (t1, t2) = NonBox::tangent_stencils(&level.net, xu);
+    let plane = [t1.apply(&level.points), t2.apply(&level.points)];
+    let hole = Hole {
+        centre,
+        tangents: [[0.0; 3]; 2],
+        sectors,
+    };
+    Ok((hole, plane, tags))
+}
+
+/// Whether some marked element would get its cap after more levels.
+pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+    caps_waiting(marked, |e, cells| hole_of(level, e, cells))
+}
+
+/// Caps every element of the marked cells that has its hole data; returns the cells left for
+/// the Coons fill.
+pub(super) fn g1_caps(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    out: &mut PatchComplex,
+) -> Vec<(u32, Tag)> {
+    g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok())
+}
