@@ -76,8 +76,8 @@
 //! point-augmented scheme PGS ([`crate::schemes::bi2::pgs`]) reuses it unchanged through
 //! [`dual_complex_with`]: its surfaces are laid out exactly like Doo-Sabin's, patch for patch.
 
-use super::fourier::{self, FaceCorners, LARGE_FACE};
-use super::{DooSabin, DooSabinCc, boundary_edge_point_stencil, corner_point_stencil};
+use super::fourier::{self, FaceCorners};
+use super::{DooSabin, DooSabinCc, corner_point_stencil};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::bezier::convert::biquadratic_bspline_stencils;
@@ -87,7 +87,7 @@ use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::registry::ids;
-use crate::stencil::{Stencil, StencilTable};
+use crate::stencil::Stencil;
 use std::collections::HashMap;
 
 /// The Doo-Sabin surface of `mesh` as a patch complex: bi-2 patches on regular vertices,
@@ -411,228 +411,6 @@ fn retag(level: &Level, v: usize, tag: Tag, first: bool) -> Tag {
     tag
 }
 
-/// Refines the faces around the marked vertices with the scheme's rules; the next level's
-/// active vertices are the children of the marked vertices (they tile the marked patches'
-/// regions), each inheriting its parent's tag.
-fn refine_around(level: &Level, marked: &[(u32, Tag)], rules: &DualRules<'_>) -> Result<Level> {
-    const UNSET: u32 = u32::MAX;
-    let m = &level.mesh;
-    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
-    let mut sel = vec![false; nf];
-    let mut sel_faces = Vec::new();
-    for &(v, _) in marked {
-        for f in m.vertex_faces(v as usize) {
-            if !sel[f as usize] {
-                sel[f as usize] = true;
-                sel_faces.push(f);
-            }
-        }
-    }
-    sel_faces.sort_unstable();
-    // Whether a corner of a selected face has its whole fan selected, found once per vertex
-    // (asking per corner walks a fan of valence n for each of its n faces).
-    let mut fan_selected = vec![false; nv];
-    let mut fan_known = vec![false; nv];
-    for &f in &sel_faces {
-        for &x in m.face(f as usize) {
-            let x = x as usize;
-            if !fan_known[x] {
-                fan_known[x] = true;
-                fan_selected[x] =
-                    level.info[x].fan_ok && m.outgoing(x).all(|h| sel[m.he_face(h) as usize]);
-            }
-        }
-    }
-    let whole_fan = |v: usize| fan_selected[v];
-    // A boundary edge of the partial mesh is a true boundary edge when an end has its true fan.
-    let true_boundary = |h: u32| {
-        m.he_twin(h).is_none()
-            && (level.info[m.he_from(h) as usize].fan_ok || level.info[m.he_to(h) as usize].fan_ok)
-    };
-    let mut stencils: Vec<Stencil> = Vec::new();
-    let mut info: Vec<Info> = Vec::new();
-    let mut corner_pt = vec![UNSET; m.num_halfedges()];
-    let mut edge_pt = vec![[UNSET; 2]; ne];
-    let mut kept = vec![UNSET; nv];
-    fn push(s: Stencil, i: Info, stencils: &mut Vec<Stencil>, info: &mut Vec<Info>) -> u32 {
-        stencils.push(s);
-        info.push(i);
-        (stencils.len() - 1) as u32
-    }
-    // Corners of large faces come as positions (`fixed`), their stencils left empty.
-    let mut fixed: Vec<(u32, Point)> = Vec::new();
-    for &f in &sel_faces {
-        let f = f as usize;
-        let h0 = m.face_halfedge(f);
-        let large = (m.face_size(f) > LARGE_FACE).then(|| {
-            let fc = (rules.face_corners)(m, f);
-            let ok = fc.reads.iter().all(|&x| level.info[x as usize].pos_ok);
-            (fc.points, ok)
-        });
-        for h in h0..h0 + m.face_size(f) as u32 {
-            let v = m.he_from(h) as usize;
-            let (st, pos) = match &large {
-                Some((points, ok)) => {
-                    fixed.push((stencils.len() as u32, points[(h - h0) as usize]));
-                    (Stencil::new(), *ok)
-                }
-                None => {
-                    let st = (rules.corner)(m, h);
-                    // Trusted when every point the rule reads is (it may reach beyond the face).
-                    let pos = st
-                        .entries()
-                        .iter()
-                        .all(|&(x, _)| level.info[x as usize].pos_ok);
-                    (st, pos)
-                }
-            };
-            corner_pt[h as usize] = push(
-                st,
-                Info {
-                    pos_ok: pos,
-                    fan_ok: whole_fan(v),
-                    origin: None,
-                },
-                &mut stencils,
-                &mut info,
-            );
-            if true_boundary(h) {
-                let e = m.he_edge(h) as usize;
-                let (a, b) = (v, m.he_to(h) as usize);
-                let pos = level.info[a].pos_ok && level.info[b].pos_ok;
-                for (k, end) in [a, b].into_iter().enumerate() {
-                    edge_pt[e][k] = push(
-                        boundary_edge_point_stencil(m, h, k == 1),
-                        Info {
-                            pos_ok: pos,
-                            fan_ok: whole_fan(end),
-                            origin: None,
-                        },
-                        &mut stencils,
-                        &mut info,
-                    );
-                }
-            }
-        }
-        for &x in m.face(f) {
-            let x = x as usize;
-            if kept[x] == UNSET && level.info[x].fan_ok && m.is_corner(x) {
-                kept[x] = push(
-                    Stencil::point(x),
-                    Info {
-                        pos_ok: level.info[x].pos_ok,
-                        fan_ok: whole_fan(x),
-                        origin: None,
-                    },
-                    &mut stencils,
-                    &mut info,
-                );
-            }
-        }
-    }
-    // Faces: F-faces, E-faces, V-faces (the layout of `refine_dual`).
-    let mut face_start = vec![0u32];
-    let mut corners: Vec<u32> = Vec::new();
-    let mut face_origin = Vec::new();
-    for &f in &sel_faces {
-        let h0 = m.face_halfedge(f as usize);
-        for h in h0..h0 + m.face_size(f as usize) as u32 {
-            corners.push(corner_pt[h as usize]);
-        }
-        face_start.push(corners.len() as u32);
-        face_origin.push(level.face_origin[f as usize]);
-    }
-    for (e, pts) in edge_pt.iter().enumerate() {
-        let h = m.edge_halfedge(e);
-        let quad = match m.he_twin(h) {
-            Some(t) if sel[m.he_face(h) as usize] && sel[m.he_face(t) as usize] => [
-                corner_pt[m.he_next(h) as usize],
-                corner_pt[h as usize],
-                corner_pt[m.he_next(t) as usize],
-                corner_pt[t as usize],
-            ],
-            None if pts[0] != UNSET => [
-                corner_pt[m.he_next(h) as usize],
-                corner_pt[h as usize],
-                pts[0],
-                pts[1],
-            ],
-            _ => continue,
-        };
-        corners.extend_from_slice(&quad);
-        face_start.push(corners.len() as u32);
-        face_origin.push(None);
-    }
-    let mut done = vec![false; nv];
-    for &f in &sel_faces {
-        for &x in m.face(f as usize) {
-            let v = x as usize;
-            if done[v] || !whole_fan(v) {
-                continue;
-            }
-            done[v] = true;
-            let start = corners.len();
-            let hs = m.outgoing_halfedges(v);
-            let boundary = m.is_boundary_vertex(v);
-            if boundary {
-                corners.push(edge_pt[m.he_edge(hs[0]) as usize][0]);
-            }
-            corners.extend(hs.iter().map(|&h| corner_pt[h as usize]));
-            if boundary {
-                let last = *hs.last().expect("a vertex has a face");
-                corners.push(edge_pt[m.he_edge(m.he_prev(last)) as usize][1]);
-                if kept[v] != UNSET {
-                    corners.push(kept[v]);
-                }
-            }
-            let size = corners.len() - start;
-            face_start.push(corners.len() as u32);
-            face_origin.push(if size != 4 {
-                level.info[v].origin
-            } else {
-                None
-            });
-        }
-    }
-    if corners.contains(&UNSET) {
-        return Err(Error::Unsupported(
-            "adaptive Doo-Sabin refinement met an inconsistent neighbourhood (a boundary edge \
-             whose Chaikin points are unknown); refine the net once with --levels 1 and retry"
-                .into(),
-        ));
-    }
-    let mut positions = StencilTable::from_rows(nv, stencils, 6).apply(m.positions());
-    for (i, p) in fixed {
-        positions[i as usize] = p;
-    }
-    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let mut active = Vec::new();
-    for &(v, tag) in marked {
-        let v = v as usize;
-        for h in m.outgoing_halfedges(v) {
-            active.push((corner_pt[h as usize], tag));
-        }
-        if m.is_boundary_vertex(v) {
-            let hs = m.outgoing_halfedges(v);
-            let first = hs[0];
-            let last = *hs.last().expect("a vertex has a face");
-            active.push((edge_pt[m.he_edge(first) as usize][0], tag));
-            active.push((edge_pt[m.he_edge(m.he_prev(last)) as usize][1], tag));
-            if kept[v] != UNSET {
-                active.push((kept[v], tag));
-            }
-        }
-    }
-    // Children that could not be made (a cut the bookkeeping did not trust) stay out.
-    active.retain(|&(x, _)| x != UNSET);
-    Ok(Level {
-        mesh: child,
-        info,
-        face_origin,
-        active,
-    })
-}
-
 /// The centroid fill of the marked vertices of the last level that have no G^1 cap
 /// ([`g1`]).
 fn fill(
@@ -680,5 +458,7 @@ fn fill(
 }
 
 mod g1;
+mod refine;
+use refine::refine_around;
 #[cfg(test)]
 mod tests;
