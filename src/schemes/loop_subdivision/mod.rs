@@ -49,7 +49,7 @@ use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
 use rayon::prelude::*;
 
 use super::catmull_clark::Opts;
-use super::catmull_clark::crease::{EdgePlan, Emit, Scratch, SharpLevel};
+use super::catmull_clark::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use super::common::{RowBuf, check_child_size};
 use super::{Refinement, Scheme};
 use child::{BLOCK, child_corners};
@@ -168,7 +168,14 @@ impl<'a> Rules<'a> {
         let sharp = if PLAIN { None } else { self.sharp.as_ref() };
         let plan = match sharp {
             Some(sl) => sl.edge_plan(e as u32, scratch),
-            None if m.twin(m.edge_he[e]) == NONE => EdgePlan::Crease,
+            None if m.twin(m.edge_he[e]) == NONE => {
+                // EdgePlan::Crease's terms, emitted here: passing `row` to the plan's closure
+                // kept the kernel's accumulator in memory for every point (callgrind)
+                let h = m.edge_he[e];
+                row.add(m.from(h), CREASE_EDGE);
+                row.add(m.to(h), CREASE_EDGE);
+                return;
+            }
             None => EdgePlan::Smooth,
         };
         if plan == EdgePlan::Smooth {

@@ -100,6 +100,9 @@ pub(crate) enum VertexPlan {
 /// of each of its two crease neighbours. Face-varying refinement uses it too.
 pub(crate) const CREASE_VERTEX: (f64, f64) = (0.75, 0.125);
 
+/// The crease (and boundary) edge mask: the weight of each end of the edge, the midpoint.
+pub(crate) const CREASE_EDGE: f64 = 0.5;
+
 pub(super) fn emit_mask(v: u32, mask: VertexMask, scale: f64, out: &mut impl FnMut(Emit)) {
     match mask {
         VertexMask::Smooth => out(Emit::Smooth(scale)),
@@ -152,8 +155,8 @@ impl EdgePlan {
                 s
             }
         };
-        out(Emit::Vertex(a, 0.5 * crease));
-        out(Emit::Vertex(b, 0.5 * crease));
+        out(Emit::Vertex(a, CREASE_EDGE * crease));
+        out(Emit::Vertex(b, CREASE_EDGE * crease));
     }
 }
 
