@@ -129,11 +129,7 @@ fn hole_from(vals: &[Point], shape: &HoleShape) -> (Hole, [Point; 2]) {
                 .collect()
         })
         .collect();
-    let hole = Hole {
-        centre: vals[0],
-        tangents: [[0.0; 3]; 2],
-        sectors,
-    };
+    let hole = Hole::untangented(vals[0], sectors);
     (hole, [vals[1], vals[2]])
 }
 

@@ -84,6 +84,17 @@ pub struct Degrees {
 }
 
 impl Hole {
+    /// A hole with its centre and sectors, the spoke tangents still unset (zero): the form in
+    /// which the schemes hand their hole data to [`super::ring::cap_in_plane`], which fits the
+    /// tangents in the limit tangent plane.
+    pub fn untangented(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
+        Hole {
+            centre,
+            tangents: [[0.0; 3]; 2],
+            sectors,
+        }
+    }
+
     /// Number of sectors.
     pub fn valence(&self) -> usize {
         self.sectors.len()

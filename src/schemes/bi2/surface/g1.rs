@@ -127,11 +127,7 @@ pub(super) fn element_cap(
             Ok((fill.to_vec(), None))
         }
         _ => {
-            let hole = Hole {
-                centre,
-                tangents: [[0.0; 3]; 2],
-                sectors: sectors_from_fill(fill),
-            };
+            let hole = Hole::untangented(centre, sectors_from_fill(fill));
             let (patches, step) = cap_step(hole, plane, CapOptions::default(), first)?;
             Ok((patches, Some(step)))
         }

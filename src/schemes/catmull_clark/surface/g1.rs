@@ -103,11 +103,7 @@ fn hole_of(
     let centre = limits.limit(xu);
     let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
     let plane = [t1.apply(pos), t2.apply(pos)];
-    let hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors,
-    };
+    let hole = Hole::untangented(centre, sectors);
     Ok((hole, plane, tags))
 }
 

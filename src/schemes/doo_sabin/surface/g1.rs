@@ -147,11 +147,7 @@ fn hole_of(
         t[0] = axpy(t[0], th.cos(), pos[vk as usize]);
         t[1] = axpy(t[1], th.sin(), pos[vk as usize]);
     }
-    let hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors,
-    };
+    let hole = Hole::untangented(centre, sectors);
     Ok((hole, t, tags))
 }
 

@@ -84,10 +84,6 @@ pub(super) fn dnet_cap(
     tangents: [Point; 2],
     first: usize,
 ) -> Result<(Vec<BezierPatch>, CapStep)> {
-    let hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors: sectors_from_fill(fill),
-    };
+    let hole = Hole::untangented(centre, sectors_from_fill(fill));
     cap_step(hole, tangents, CapOptions::default(), first)
 }

@@ -128,11 +128,7 @@ fn hole_of(
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = NonBox::tangent_stencils(&level.net, xu);
     let plane = [t1.apply(&level.points), t2.apply(&level.points)];
-    let hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors,
-    };
+    let hole = Hole::untangented(centre, sectors);
     Ok((hole, plane, tags))
 }
 
