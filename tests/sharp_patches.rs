@@ -335,12 +335,43 @@ fn cli_rings_take_creases_and_check_reports_them_sharp() {
     assert!(sharp["c0"].as_f64().unwrap() < 1e-9);
     assert!(sharp["g1"].as_f64().unwrap() > 0.1);
     assert_eq!(v["continuity"]["open_sides"].as_u64(), Some(0));
+    // the cap schemes take the net: Catmull-Clark's sharp rules near the features (the same
+    // sharp joins as Catmull-Clark's), their own caps where the c-net is clear, a note
+    let report = |scheme: &str| {
+        let (code, json, err) = run(&["check", &net, "-s", scheme, "--rings", "3", "--json"]);
+        assert_eq!(code, 0, "{scheme}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        (v["continuity"].clone(), err)
+    };
+    let (cc, _) = report("catmull-clark");
+    for scheme in ["eg", "qas-plus", "guided-bi6"] {
+        let (c, err) = report(scheme);
+        assert!(
+            err.contains("is next to a sharp feature"),
+            "{scheme}: {err}"
+        );
+        assert_eq!(c["sharp"]["pieces"], cc["sharp"]["pieces"], "{scheme}");
+        assert!(c["sharp"]["c0"].as_f64().unwrap() < 1e-9, "{scheme}");
+        assert!(c["all"]["c0"].as_f64().unwrap() < 1e-9, "{scheme}");
+        // no join worse than Catmull-Clark's worst (its fill at the crease vertices)
+        let (g, g_cc) = (
+            c["all"]["g1"].as_f64().unwrap(),
+            cc["all"]["g1"].as_f64().unwrap(),
+        );
+        assert!(g <= g_cc + 1e-9, "{scheme}: G1 {g} against {g_cc}");
+        assert_eq!(c["open_sides"].as_u64(), Some(0), "{scheme}");
+        // more patches than Catmull-Clark: the cap scheme's own rings where the c-net is clear
+        assert!(
+            c["all"]["pieces"].as_u64() > cc["all"]["pieces"].as_u64(),
+            "{scheme}"
+        );
+    }
     // a scheme whose patches do not take sharp features refuses the net, naming the tags
     let (code, _, err) = run(&[
         "subdivide",
         &net,
         "-s",
-        "eg",
+        "pgs",
         "--rings",
         "2",
         "-o",
@@ -349,7 +380,7 @@ fn cli_rings_take_creases_and_check_reports_them_sharp() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("tags sharp features (7 sharp edges"), "{err}");
     assert!(
-        err.contains("patch output (--rings) of eg does not take yet"),
+        err.contains("patch output (--rings) of pgs does not take yet"),
         "{err}"
     );
     std::fs::remove_dir_all(&dir).ok();

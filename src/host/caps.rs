@@ -29,6 +29,9 @@ pub trait CapBuilder {
         first_ring: u32,
         out: &mut PatchComplex,
     ) -> Result<()>;
+
+    /// Records a note for the user (once), e.g. an element left to Catmull-Clark by the host.
+    fn note(&self, msg: String);
 }
 
 /// How notes and errors name an element that gets a cap: `vertex 3`, `the centre of face 7`.

@@ -104,18 +104,26 @@ pub fn catmull_clark_complex_with(
 }
 
 /// The Catmull-Clark surface of `mesh` with the caps of `caps` around every extraordinary vertex
-/// it takes (the adaptive loop with [`CcRules`]).
+/// it takes (the adaptive loop with [`CcRules`]). A net that tags sharp features (creases,
+/// corners, holes) is refined with OpenSubdiv's rules under the net's own option tags, as
+/// [`catmull_clark_complex_with`] does; an extraordinary vertex whose c-net touches a feature is
+/// left to Catmull-Clark's rings and cap (the cap schemes' rules are for smooth c-nets), with a
+/// note. A net without features is refined with the plain rules (the outputs of before).
 pub fn capped_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
     caps: &dyn CapBuilder,
     progress: &mut dyn FnMut(usize),
 ) -> Result<PatchComplex> {
+    let subd = mesh
+        .extras()
+        .filter(|e| e.has_features())
+        .map(|e| e.options);
     adaptive::run(
         &CcRules {
             caps: Some(caps),
             opts,
-            subd: None,
+            subd,
         },
         mesh,
         opts,
@@ -131,7 +139,7 @@ pub struct CcRules<'a> {
     /// Rings and fill (the G^1 caps of [`g1`] come after `opts.rings` levels when filling).
     pub opts: ComplexOptions,
     /// OpenSubdiv's options when the net's sharp features are honoured ([`sharp`]); `None`
-    /// refines every net with the plain rules (the cap schemes refuse sharp features before).
+    /// refines every net with the plain rules (the cap schemes on a net without features).
     pub subd: Option<SubdOptions>,
 }
 
@@ -213,6 +221,21 @@ impl AdaptiveRules for CcRules<'_> {
     }
 }
 
+/// Whether a vertex of the c-net `idx` has a sharp feature ([`sharp::is_special`]) or one of
+/// its faces is a hole: the cap schemes' rules then do not apply.
+fn touches_features(level: &Level, idx: &[u32]) -> bool {
+    level.sharp.is_some()
+        && idx.iter().any(|&w| {
+            let w = w as usize;
+            sharp::is_special(level, w)
+                || level
+                    .mesh
+                    .vertex_faces(w)
+                    .iter()
+                    .any(|&f| sharp::is_hole(level, f as usize))
+        })
+}
+
 /// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
 fn apply_caps(
     level: &Level,
@@ -244,6 +267,15 @@ fn apply_caps(
                 continue;
             };
             let n = m.valence(v as usize);
+            if touches_features(level, &idx) {
+                builder.note(format!(
+                    "{} (valence {n}) is next to a sharp feature (within the two rings of its \
+                     c-net): Catmull-Clark rings with OpenSubdiv's rules there until it is \
+                     clear of it, Catmull-Clark's cap if it never is",
+                    crate::host::caps::describe(element)
+                ));
+                continue;
+            }
             // The one-ring (chart points (1, 0) and (1, 1) of each sector) must be regular and
             // complete, and the whole c-net trusted.
             let ring1_ok = (0..n).all(|s| {

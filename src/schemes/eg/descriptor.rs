@@ -21,6 +21,12 @@ pub struct EgDescriptor;
 pub static DESCRIPTOR: EgDescriptor = EgDescriptor;
 
 impl Descriptor for EgDescriptor {
+    /// Sharp features: refined with OpenSubdiv's rules by Catmull-Clark's host; extraordinary
+    /// vertices next to them get Catmull-Clark's rings and cap, with a note.
+    fn patches_take_features(&self) -> bool {
+        true
+    }
+
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fallback, ParamKind::Rules]
     }

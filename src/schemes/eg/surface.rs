@@ -299,6 +299,10 @@ impl CapBuilder for DnetCaps<'_> {
         }
     }
 
+    fn note(&self, msg: String) {
+        self.notes.note(msg);
+    }
+
     fn build(
         &self,
         cnet: &[Point],

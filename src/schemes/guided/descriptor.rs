@@ -36,6 +36,12 @@ pub static BI3_MACRO: GuidedDescriptor = GuidedDescriptor {
 };
 
 impl Descriptor for GuidedDescriptor {
+    /// Sharp features: refined with OpenSubdiv's rules by Catmull-Clark's host; extraordinary
+    /// vertices next to them get Catmull-Clark's rings and cap, with a note.
+    fn patches_take_features(&self) -> bool {
+        true
+    }
+
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fallback, ParamKind::Contraction]
     }

@@ -137,6 +137,10 @@ impl CapBuilder for GuidedCaps {
         Ok(true)
     }
 
+    fn note(&self, msg: String) {
+        self.notes.note(msg);
+    }
+
     fn build(
         &self,
         cnet: &[Point],

@@ -58,6 +58,12 @@ pub static DESCRIPTOR_05_04: QasDescriptor = QasDescriptor {
 };
 
 impl Descriptor for QasDescriptor {
+    /// Sharp features: refined with OpenSubdiv's rules by Catmull-Clark's host; extraordinary
+    /// vertices next to them get Catmull-Clark's rings and cap, with a note.
+    fn patches_take_features(&self) -> bool {
+        true
+    }
+
     fn params(&self) -> &'static [ParamKind] {
         match self.variant {
             QasVariant::Bi3 => &[ParamKind::Fallback, ParamKind::Rules],
