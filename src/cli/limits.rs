@@ -39,6 +39,10 @@ pub const MAX_RINGS: usize = 100;
 /// eigen-decomposition's bound ([`crate::linalg::MAX_DENSE_EIGEN_ROWS`], where it is measured).
 pub const MAX_ANALYSIS_DIMENSION: usize = crate::linalg::MAX_DENSE_EIGEN_ROWS;
 
+/// Largest valence of the Fourier-block analysis of `analyze` and `charmap` (schemes with a
+/// block-circulant local matrix, above [`MAX_ANALYSIS_DIMENSION`] rows).
+pub const MAX_FOURIER_VALENCE: usize = 1000;
+
 /// Largest count of vertices or corners of an output (32-bit indices, one bit to spare).
 pub const MAX_ELEMENTS: f64 = 2147483648.0;
 
@@ -541,15 +545,20 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     };
     let dim = centre + n.saturating_mul(lm.sector);
     if dim > MAX_ANALYSIS_DIMENSION {
+        if let Ok(Some(sparse)) = rules.sparse(lm.n) {
+            return check_blocks(spec, n, &sparse);
+        }
         let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm.centre)) / lm.sector.max(1);
         return Err(Error::TooLarge(format!(
             "valence {n}: the local matrix of {} would have {dim} rows ({} centre + {n} x {} \
              points); fairsub decomposes dense local matrices of at most \
              {MAX_ANALYSIS_DIMENSION} rows (the cost grows with the cube of the size; the bound \
-             keeps every scheme within seconds): take a valence of at most {max_n}",
+             keeps every scheme within seconds; {} has no block-circulant form): take a \
+             valence of at most {max_n}",
             spec.name(),
             centre,
-            lm.sector
+            lm.sector,
+            spec.name()
         )));
     }
     // the matrix, its eigen-decomposition (complex Schur form and vectors) and the Fourier
@@ -562,6 +571,42 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     )
 }
 
+/// The Fourier-block analysis at valence `n` ([`crate::schemes::circulant`]), from the scheme's
+/// sparse rows at a small valence (`small`): within [`MAX_FOURIER_VALENCE`] and the budget.
+/// Memory: the sparse rows (a row that reads every sector at the small valence, like
+/// Doo-Sabin's, is counted as reading every point at `n`), the `n` blocks of
+/// `(centre + sector)^2` complex entries with their eigen-decompositions, and a few vectors
+/// on the local net.
+fn check_blocks(
+    spec: &Spec,
+    n: usize,
+    small: &crate::schemes::circulant::SparseLocal,
+) -> Result<()> {
+    if n > MAX_FOURIER_VALENCE {
+        return Err(Error::TooLarge(format!(
+            "valence {n}: {} is analysed by the Fourier blocks of its local matrix above \
+             {MAX_ANALYSIS_DIMENSION} rows, for valences up to {MAX_FOURIER_VALENCE} (the \
+             characteristic map's certificate and the spectrum's grouping grow faster than \
+             linearly beyond): take a valence of at most {MAX_FOURIER_VALENCE}",
+            spec.name()
+        )));
+    }
+    let k = (small.centre + small.sector) as f64;
+    let nf = n as f64;
+    let rows = small.centre as f64 + nf * small.sector as f64;
+    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
+    let per_row = if widest >= small.n as f64 {
+        rows
+    } else {
+        widest
+    };
+    let bytes = 2.0 * 16.0 * rows * per_row.max(1.0) + 8.0 * 16.0 * nf * k * k + 64.0 * rows * 8.0;
+    within_budget(
+        || format!("the Fourier blocks at valence {n} ({n} blocks of {k} rows)"),
+        bytes,
+        "take a smaller valence",
+    )
+}
 /// A picture of `cells` cells of `width x height` pixels with `aa x aa` samples each.
 pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Result<()> {
     let samples = width as f64 * height as f64 * (aa * aa) as f64 * cells.max(1) as f64;
