@@ -272,19 +272,10 @@ impl LocalMatrix {
         )
     }
 
-    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1.
+    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1
+    /// ([`LocalOperator::limit_stencil`]).
     pub fn limit_stencil(&self) -> Result<Vec<f64>> {
-        let v = self.left_eigenvectors(1.0);
-        if v.len() != 1 {
-            return Err(Error::Unsupported(format!(
-                "{} at valence {}: eigenvalue 1 has {} left eigenvectors, expected 1",
-                self.scheme,
-                self.n,
-                v.len()
-            )));
-        }
-        let s: f64 = v[0].iter().sum();
-        Ok(v[0].iter().map(|x| x / s).collect())
+        LocalOperator::limit_stencil(self)
     }
 
     /// The characteristic map's control points on the local net: the real and imaginary parts
@@ -432,10 +423,6 @@ impl LocalOperator for LocalMatrix {
 
     fn characteristic_points(&self) -> Result<(Vec<[f64; 3]>, f64)> {
         LocalMatrix::characteristic_points(self)
-    }
-
-    fn limit_stencil(&self) -> Result<Vec<f64>> {
-        LocalMatrix::limit_stencil(self)
     }
 }
 
