@@ -17,13 +17,14 @@
 #                 Doo-Sabin face point weighs every corner (k^2 stencil entries), so both
 #                 are refused up front (`--max-memory 64M`): this measures reading and the
 #                 estimate, which must not be quadratic
-#   analyze-V     `analyze --scheme V --valence n`, n = 3 -> 30 (ANALYZE_N; valence 2 is
-#                 refused by all three), for V in guided-bi5, pgs, nonbox: today a dense
-#                 eigen-decomposition of a matrix of O(n) rows, cubic; analyze refuses matrices
-#                 over 450 rows up front (guided-bi5 above valence 24, so its 30 is refused and
-#                 the case fails). These cases FAIL until the block-circulant local matrices are
-#                 solved by Fourier blocks (issue 20); measured 2026-12-02: pgs 3 -> 30 x22,
-#                 nonbox x20
+#   analyze-V     `analyze --scheme V --valence n`, n = 30 -> 300 (ANALYZE_N), for V in
+#                 guided-bi5, pgs, nonbox: a dense eigen-decomposition up to 450 rows, the
+#                 Fourier blocks of the block-circulant local matrix above
+#                 (src/schemes/circulant.rs), linear in n. It starts at 30 because a run at
+#                 valence 3 is 7 ms of process start (3 -> 30 measures the dense path near its
+#                 bound: pgs x28, nonbox x50). guided-bi5's matrix is not block-circulant: it
+#                 is refused above 450 rows (valence 24), so its case FAILS; measured
+#                 2026-12-03: pgs 30 -> 300 x1.5, nonbox x1.5
 #
 # Timings are wall-clock of the whole process (reading, work, writing) on whatever machine runs
 # the script; run it on an idle machine. It is not part of `cargo test` (the project has no timed
@@ -149,7 +150,7 @@ for c in $CASES; do
         ;;
     analyze-*)
         s=${c#analyze-}
-        n=${ANALYZE_N:-3}
+        n=${ANALYZE_N:-30}
         report "$c" "$n" "$(best "$BIN" analyze --scheme "$s" --valence "$n")" \
             "$(best "$BIN" analyze --scheme "$s" --valence "$((n * 10))")"
         ;;

@@ -541,9 +541,11 @@ fn check_on_30k_patches_and_30k_groups_finds_every_join() {
     }
 }
 
-/// `analyze` and `charmap` at valence 100: refused up front (the local matrix is beyond the
-/// dense-decomposition bound, which keeps every accepted valence within seconds); PGS and
-/// non-box answer at valence 40, under the bound.
+/// `analyze` and `charmap` at valence 100: guided-bi5 (whose local matrix is not
+/// block-circulant) is refused up front beyond the dense-decomposition bound, which keeps
+/// every accepted valence within seconds; PGS answers by its Fourier blocks
+/// (tests/fourier_analysis.rs compares them with the dense path); PGS and non-box answer at
+/// valence 40, under the bound.
 #[test]
 fn analyze_and_charmap_at_valence_100() {
     let d = scratch("analyze");
@@ -571,12 +573,7 @@ fn analyze_and_charmap_at_valence_100() {
         &out,
     );
     let (code, err) = run(&["analyze", "--scheme", "pgs", "--valence", "100"]);
-    assert_eq!(code, 1, "{err}");
-    assert!(
-        err.contains("would have 1000 rows (0 centre + 100 x 10 points)")
-            && err.contains("take a valence of at most 45"),
-        "{err}"
-    );
+    assert_eq!(code, 0, "{err}");
     for scheme in ["pgs", "nonbox"] {
         let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
             .args(["charmap", "--scheme", scheme, "--valence", "40", "-o"])

@@ -8,7 +8,7 @@ use super::certify::{self, InjectivityCertificate};
 use crate::error::{Error, Result};
 use crate::linalg::C64;
 use crate::schemes::descriptor::{Computed, LocalRules, Published, ValenceRules};
-use crate::schemes::local::{LocalMatrix, Spectrum, spectrum};
+use crate::schemes::local::{LocalOperator, Spectrum};
 use crate::schemes::{Spec, registry};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -97,19 +97,14 @@ pub fn local_rules(spec: &Spec) -> Result<Box<dyn LocalRules>> {
 /// form with the central points replicated once per sector.
 pub fn analyze(spec: &Spec, n: usize, replicated_centre: bool) -> Result<AnalyzeReport> {
     let rules = local_rules(spec)?;
-    let lm = rules.matrix(n)?;
-    let lm = if replicated_centre {
-        lm.replicated_centre()
-    } else {
-        lm
-    };
-    let mut r = report(rules.as_ref(), n, &lm)?;
+    let lm = rules.operator(n, replicated_centre)?;
+    let mut r = report(rules.as_ref(), n, lm.as_ref())?;
     r.rules = registry().descriptor(spec.id).valence_rules(spec, n);
     Ok(r)
 }
 
-fn report(rules: &dyn LocalRules, n: usize, lm: &LocalMatrix) -> Result<AnalyzeReport> {
-    let spectrum = spectrum(&lm.matrix);
+fn report(rules: &dyn LocalRules, n: usize, lm: &dyn LocalOperator) -> Result<AnalyzeReport> {
+    let spectrum = lm.spectrum();
     let blocks = lm.fourier_blocks().unwrap_or_default();
     let fourier_blocks = blocks
         .iter()
@@ -145,11 +140,11 @@ fn report(rules: &dyn LocalRules, n: usize, lm: &LocalMatrix) -> Result<AnalyzeR
         extra_lines.extend(x.lines);
     }
     Ok(AnalyzeReport {
-        scheme: lm.scheme.clone(),
-        valence: lm.n,
-        matrix_size: lm.matrix.nrows(),
-        centre_points: lm.centre,
-        points_per_sector: lm.sector,
+        scheme: lm.scheme().to_string(),
+        valence: lm.n(),
+        matrix_size: lm.size(),
+        centre_points: lm.centre(),
+        points_per_sector: lm.sector(),
         rotation_defect: lm.rotation_defect(),
         spectrum,
         fourier_blocks,

@@ -16,14 +16,16 @@
 //! | `subdivide --levels`, `render --levels` | the net after each level from the scheme's own growth rule ([`crate::schemes::Scheme::step_size`]): parent, child and the step's stencil table ([`crate::schemes::growth`]) |
 //! | `--rings` (`subdivide`, `check`, `render`, `compare`) | the patches: regular patches per input corner and ring patches per unit of element size per ring, measured by building one ring of the scheme on small canonical nets; plus one refinement step of the net (dense face rules) |
 //! | tessellated `.obj`/`.off`/`.ply` | `(tess + 1)^2` points and `2 tess^2` triangles per patch with the arrays of the tessellation and of the validated mesh |
-//! | `analyze`, `charmap` | the local matrix, `centre + n x points per sector` rows, from the scheme's local rules at a small valence |
+//! | `analyze`, `charmap` | the local matrix, `centre + n x points per sector` rows, from the scheme's local rules at a small valence; above [`MAX_ANALYSIS_DIMENSION`] rows, the sparse rows and the `n` Fourier blocks of a block-circulant matrix |
 //! | `render`, `compare` | the samples (`width x height x aa^2` per cell) |
 //!
 //! Besides the budget, bounds that hold on every machine: outputs have fewer than 2^31
 //! vertices and corners (fairsub's meshes index with 32 bits), `--rings` is at most
 //! [`MAX_RINGS`] (beyond about 70 rings every scheme's rings are smaller than the welding
-//! tolerance of double precision), and dense analysis at most [`MAX_ANALYSIS_DIMENSION`] rows
-//! (its eigen-decomposition costs the cube of that).
+//! tolerance of double precision), dense analysis at most [`MAX_ANALYSIS_DIMENSION`] rows
+//! (its eigen-decomposition costs the cube of that), and the Fourier-block analysis of
+//! block-circulant local matrices ([`crate::schemes::circulant`], above that many rows) at most
+//! valence [`MAX_FOURIER_VALENCE`].
 
 use crate::error::{Error, Result};
 use crate::mesh::{Element, PolyMesh};
@@ -38,6 +40,15 @@ pub const MAX_RINGS: usize = 100;
 /// Most rows of a local matrix that `analyze` and `charmap` decompose: the dense
 /// eigen-decomposition's bound ([`crate::linalg::MAX_DENSE_EIGEN_ROWS`], where it is measured).
 pub const MAX_ANALYSIS_DIMENSION: usize = crate::linalg::MAX_DENSE_EIGEN_ROWS;
+
+/// Largest valence of the Fourier-block analysis of `analyze` and `charmap` (schemes with a
+/// block-circulant local matrix, above [`MAX_ANALYSIS_DIMENSION`] rows). The blocks cost
+/// `n (centre + sector)^3`; the characteristic map's certificate (3n to 36n patches and their
+/// boundary curves) and the grouping of the `n x sector` eigenvalues grow a little faster.
+/// Measured in release on one core of a shared 2-core machine at valence 1000: non-box-4dir
+/// 7.1 s (the slowest: 36 000 ring patches), non-box 4.8 s, Catmull-Clark 4.3 s, PGS and TPS
+/// 3.5 s, at most 180 MB; so 1000 keeps every accepted case within about 10 s.
+pub const MAX_FOURIER_VALENCE: usize = 1000;
 
 /// Largest count of vertices or corners of an output (32-bit indices, one bit to spare).
 pub const MAX_ELEMENTS: f64 = 2147483648.0;
@@ -541,15 +552,20 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     };
     let dim = centre + n.saturating_mul(lm.sector);
     if dim > MAX_ANALYSIS_DIMENSION {
+        if let Ok(Some(sparse)) = rules.sparse(lm.n) {
+            return check_blocks(spec, n, &sparse);
+        }
         let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm.centre)) / lm.sector.max(1);
         return Err(Error::TooLarge(format!(
             "valence {n}: the local matrix of {} would have {dim} rows ({} centre + {n} x {} \
              points); fairsub decomposes dense local matrices of at most \
              {MAX_ANALYSIS_DIMENSION} rows (the cost grows with the cube of the size; the bound \
-             keeps every scheme within seconds): take a valence of at most {max_n}",
+             keeps every scheme within seconds; {} has no block-circulant form): take a \
+             valence of at most {max_n}",
             spec.name(),
             centre,
-            lm.sector
+            lm.sector,
+            spec.name()
         )));
     }
     // the matrix, its eigen-decomposition (complex Schur form and vectors) and the Fourier
@@ -562,6 +578,42 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     )
 }
 
+/// The Fourier-block analysis at valence `n` ([`crate::schemes::circulant`]), from the scheme's
+/// sparse rows at a small valence (`small`): within [`MAX_FOURIER_VALENCE`] and the budget.
+/// Memory: the sparse rows (a row that reads every sector at the small valence, like
+/// Doo-Sabin's, is counted as reading every point at `n`), the `n` blocks of
+/// `(centre + sector)^2` complex entries with their eigen-decompositions, and a few vectors
+/// on the local net.
+fn check_blocks(
+    spec: &Spec,
+    n: usize,
+    small: &crate::schemes::circulant::SparseLocal,
+) -> Result<()> {
+    if n > MAX_FOURIER_VALENCE {
+        return Err(Error::TooLarge(format!(
+            "valence {n}: {} is analysed by the Fourier blocks of its local matrix above \
+             {MAX_ANALYSIS_DIMENSION} rows, for valences up to {MAX_FOURIER_VALENCE} (the \
+             characteristic map's certificate and the spectrum's grouping grow faster than \
+             linearly beyond): take a valence of at most {MAX_FOURIER_VALENCE}",
+            spec.name()
+        )));
+    }
+    let k = (small.centre + small.sector) as f64;
+    let nf = n as f64;
+    let rows = small.centre as f64 + nf * small.sector as f64;
+    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
+    let per_row = if widest >= small.n as f64 {
+        rows
+    } else {
+        widest
+    };
+    let bytes = 2.0 * 16.0 * rows * per_row.max(1.0) + 8.0 * 16.0 * nf * k * k + 64.0 * rows * 8.0;
+    within_budget(
+        || format!("the Fourier blocks at valence {n} ({n} blocks of {k} rows)"),
+        bytes,
+        "take a smaller valence",
+    )
+}
 /// A picture of `cells` cells of `width x height` pixels with `aa x aa` samples each.
 pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Result<()> {
     let samples = width as f64 * height as f64 * (aa * aa) as f64 * cells.max(1) as f64;

@@ -14,7 +14,8 @@
 //! scheme up in the registry and ask its descriptor; nothing matches on scheme names.
 
 use super::Scheme;
-use super::local::LocalMatrix;
+use super::circulant::{SparseLocal, choose};
+use super::local::{LocalMatrix, LocalOperator};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::geom::Point;
@@ -311,8 +312,8 @@ impl Published {
 /// What the analysis computed from a local matrix, handed to [`LocalRules::published`].
 #[derive(Debug, Clone)]
 pub struct Computed<'a> {
-    /// The matrix.
-    pub matrix: &'a LocalMatrix,
+    /// The matrix (dense, or its Fourier blocks at large valences).
+    pub matrix: &'a dyn LocalOperator,
     /// Its spectrum.
     pub spectrum: &'a super::local::Spectrum,
     /// The limit-point stencil reported.
@@ -337,6 +338,30 @@ pub trait LocalRules: Sync {
     /// then sector by sector), from the scheme's own stencils.
     fn matrix(&self, n: usize) -> Result<LocalMatrix>;
 
+    /// The same matrix as sparse rows, for schemes whose matrix is block-circulant (`None`:
+    /// the dense matrix only).
+    fn sparse(&self, n: usize) -> Result<Option<SparseLocal>> {
+        let _ = n;
+        Ok(None)
+    }
+
+    /// The matrix the analysis decomposes at valence `n`: [`LocalRules::matrix`] within
+    /// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows or without sparse rows, its Fourier blocks
+    /// ([`super::circulant`]) above; with `replicated_centre`, its replicated-centre form.
+    fn operator(&self, n: usize, replicated_centre: bool) -> Result<Box<dyn LocalOperator>> {
+        match self.sparse(n)? {
+            Some(rows) => choose(&rows, replicated_centre, || self.matrix(n)),
+            None => {
+                let lm = self.matrix(n)?;
+                Ok(Box::new(if replicated_centre {
+                    lm.replicated_centre()
+                } else {
+                    lm
+                }))
+            }
+        }
+    }
+
     /// The planar characteristic ring at valence `n` (patches of one ring of the
     /// characteristic map) and its contraction lambda.
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
@@ -347,7 +372,7 @@ pub trait LocalRules: Sync {
 
     /// The limit-point stencil reported beside the matrix (default: the left eigenvector of 1
     /// of `m`).
-    fn limit_stencil(&self, n: usize, m: &LocalMatrix) -> Result<Vec<f64>> {
+    fn limit_stencil(&self, n: usize, m: &dyn LocalOperator) -> Result<Vec<f64>> {
         let _ = n;
         m.limit_stencil()
     }
@@ -370,12 +395,20 @@ pub trait LocalRules: Sync {
     }
 }
 
-/// [`LocalRules`] that give the matrix only (see [`matrix_only`]).
-struct MatrixOnly(fn(usize) -> Result<LocalMatrix>);
+/// [`LocalRules`] that give the matrix (and possibly its sparse rows) only (see
+/// [`matrix_only`], [`matrix_and_rows`]).
+struct MatrixOnly(
+    fn(usize) -> Result<LocalMatrix>,
+    Option<fn(usize) -> Result<SparseLocal>>,
+);
 
 impl LocalRules for MatrixOnly {
     fn matrix(&self, n: usize) -> Result<LocalMatrix> {
         (self.0)(n)
+    }
+
+    fn sparse(&self, n: usize) -> Result<Option<SparseLocal>> {
+        self.1.map(|f| f(n)).transpose()
     }
 }
 
@@ -384,7 +417,17 @@ impl LocalRules for MatrixOnly {
 pub fn matrix_only(
     matrix: fn(usize) -> Result<LocalMatrix>,
 ) -> Result<Option<Box<dyn LocalRules>>> {
-    Ok(Some(Box::new(MatrixOnly(matrix))))
+    Ok(Some(Box::new(MatrixOnly(matrix, None))))
+}
+
+/// [`matrix_only`] for a block-circulant matrix with its sparse rows (`rows(n)`, whose
+/// [`SparseLocal::to_matrix`] is `matrix(n)`), so that large valences are analysed by Fourier
+/// blocks.
+pub fn matrix_and_rows(
+    matrix: fn(usize) -> Result<LocalMatrix>,
+    rows: fn(usize) -> Result<SparseLocal>,
+) -> Result<Option<Box<dyn LocalRules>>> {
+    Ok(Some(Box::new(MatrixOnly(matrix, Some(rows)))))
 }
 
 /// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`About`],

@@ -89,7 +89,12 @@ pub fn group_eigenvalues(values: &[C64], rel_tol: f64) -> Vec<Eigenvalue> {
 
 /// The spectrum of a subdivision matrix: grouped eigenvalues, lambda, mu and mu / lambda^2.
 pub fn spectrum(m: &DMatrix<f64>) -> Spectrum {
-    let ev = group_eigenvalues(&eigenvalues(m), 1e-6);
+    spectrum_of(&eigenvalues(m))
+}
+
+/// The spectrum of a matrix with the given eigenvalues (all of them, with repetitions).
+pub fn spectrum_of(values: &[C64]) -> Spectrum {
+    let ev = group_eigenvalues(values, 1e-6);
     let dominant = ev.first().map(|e| e.re).unwrap_or(0.0);
     let below: Vec<&Eigenvalue> = ev
         .iter()
@@ -267,56 +272,157 @@ impl LocalMatrix {
         )
     }
 
-    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1.
+    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1
+    /// ([`LocalOperator::limit_stencil`]).
     pub fn limit_stencil(&self) -> Result<Vec<f64>> {
-        let v = self.left_eigenvectors(1.0);
-        if v.len() != 1 {
-            return Err(Error::Unsupported(format!(
-                "{} at valence {}: eigenvalue 1 has {} left eigenvectors, expected 1",
-                self.scheme,
-                self.n,
-                v.len()
-            )));
-        }
-        let s: f64 = v[0].iter().sum();
-        Ok(v[0].iter().map(|x| x / s).collect())
+        LocalOperator::limit_stencil(self)
     }
 
     /// The characteristic map's control points on the local net: the real and imaginary parts
     /// of the frequency-1 eigenvector of the subdominant eigenvalue, as `(x, y, 0)` points,
     /// oriented so that the map preserves orientation. Returns the points and lambda.
     pub fn characteristic_points(&self) -> Result<(Vec<[f64; 3]>, f64)> {
-        let spec = spectrum(&self.matrix);
-        let lambda = spec.lambda;
+        let lambda = spectrum(&self.matrix).lambda;
         let blocks = self.fourier_blocks()?;
-        let b1 = &blocks[1 % self.n];
-        let k = b1.matrix.nrows();
-        let v = null_space(
-            &(b1.matrix.clone() - DMatrix::<C64>::identity(k, k) * C64::new(lambda, 0.0)),
-            1e-7,
-        );
-        let Some(v) = v.into_iter().next() else {
-            return Err(Error::Unsupported(format!(
-                "{} at valence {}: the subdominant eigenvalue {lambda} is not in the frequency-1 block",
-                self.scheme, self.n
-            )));
-        };
-        let (c, m, n) = (self.centre, self.sector, self.n);
-        let off = if self.n == 1 { c } else { 0 };
-        // Normalise the phase so that the largest entry is real and positive.
-        let big = (0..m)
-            .max_by(|&a, &b| v[off + a].norm().total_cmp(&v[off + b].norm()))
-            .unwrap_or(0);
-        let phase = v[off + big].conj() / v[off + big].norm();
-        let mut pts = vec![[0.0; 3]; c + n * m];
-        for s in 0..n {
-            let z = C64::from_polar(1.0, 2.0 * PI * s as f64 / n as f64);
-            for x in 0..m {
-                let p = v[off + x] * phase * z;
-                pts[c + s * m + x] = [p.re, p.im, 0.0];
-            }
+        points_from_block(
+            &self.scheme,
+            (self.centre, self.sector, self.n),
+            lambda,
+            &blocks[1 % self.n],
+        )
+    }
+}
+
+/// The characteristic map's control points from the frequency-1 Fourier block `b1` of a matrix
+/// with `(centre, sector, n)` points and subdominant eigenvalue `lambda`: the real and
+/// imaginary parts of the block's eigenvector of `lambda`, rotated from sector to sector, as
+/// `(x, y, 0)` points (centre points at the origin), its phase normalised so that the largest
+/// entry is real and positive. Returns the points and lambda.
+pub fn points_from_block(
+    scheme: &str,
+    (c, m, n): (usize, usize, usize),
+    lambda: f64,
+    b1: &FourierBlock,
+) -> Result<(Vec<[f64; 3]>, f64)> {
+    let k = b1.matrix.nrows();
+    let v = null_space(
+        &(b1.matrix.clone() - DMatrix::<C64>::identity(k, k) * C64::new(lambda, 0.0)),
+        1e-7,
+    );
+    let Some(v) = v.into_iter().next() else {
+        return Err(Error::Unsupported(format!(
+            "{scheme} at valence {n}: the subdominant eigenvalue {lambda} is not in the frequency-1 block"
+        )));
+    };
+    let off = if n == 1 { c } else { 0 };
+    // Normalise the phase so that the largest entry is real and positive.
+    let big = (0..m)
+        .max_by(|&a, &b| v[off + a].norm().total_cmp(&v[off + b].norm()))
+        .unwrap_or(0);
+    let phase = v[off + big].conj() / v[off + big].norm();
+    let mut pts = vec![[0.0; 3]; c + n * m];
+    for s in 0..n {
+        let z = C64::from_polar(1.0, 2.0 * PI * s as f64 / n as f64);
+        for x in 0..m {
+            let p = v[off + x] * phase * z;
+            pts[c + s * m + x] = [p.re, p.im, 0.0];
         }
-        Ok((pts, lambda))
+    }
+    Ok((pts, lambda))
+}
+
+/// What the analysis reads off a local matrix, whether it is held dense ([`LocalMatrix`]) or
+/// as its Fourier blocks ([`super::circulant::Circulant`], for valences whose dense matrix
+/// would be too large to decompose).
+pub trait LocalOperator: std::fmt::Debug + Sync + Send {
+    /// Scheme name (the report's label).
+    fn scheme(&self) -> &str;
+    /// Valence.
+    fn n(&self) -> usize;
+    /// Centre points.
+    fn centre(&self) -> usize;
+    /// Points per sector.
+    fn sector(&self) -> usize;
+    /// Rows of the matrix.
+    fn size(&self) -> usize;
+    /// Largest deviation from rotational symmetry.
+    fn rotation_defect(&self) -> f64;
+    /// Entry `(i, j)`.
+    fn entry(&self, i: usize, j: usize) -> f64;
+    /// All eigenvalues, with repetitions.
+    fn eigenvalues(&self) -> Vec<C64>;
+    /// The spectrum.
+    fn spectrum(&self) -> Spectrum;
+    /// The discrete Fourier blocks, frequencies `0..n`.
+    fn fourier_blocks(&self) -> Result<Vec<FourierBlock>>;
+    /// An orthonormal basis of the left eigenvectors of the real eigenvalue `value`.
+    fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>>;
+    /// The characteristic map's control points on the local net, and lambda.
+    fn characteristic_points(&self) -> Result<(Vec<[f64; 3]>, f64)>;
+
+    /// The limit-point stencil: the left eigenvector of eigenvalue 1, scaled to sum 1.
+    fn limit_stencil(&self) -> Result<Vec<f64>> {
+        let v = self.left_eigenvectors(1.0);
+        if v.len() != 1 {
+            return Err(Error::Unsupported(format!(
+                "{} at valence {}: eigenvalue 1 has {} left eigenvectors, expected 1",
+                self.scheme(),
+                self.n(),
+                v.len()
+            )));
+        }
+        let s: f64 = v[0].iter().sum();
+        Ok(v[0].iter().map(|x| x / s).collect())
+    }
+}
+
+impl LocalOperator for LocalMatrix {
+    fn scheme(&self) -> &str {
+        &self.scheme
+    }
+
+    fn n(&self) -> usize {
+        self.n
+    }
+
+    fn centre(&self) -> usize {
+        self.centre
+    }
+
+    fn sector(&self) -> usize {
+        self.sector
+    }
+
+    fn size(&self) -> usize {
+        self.matrix.nrows()
+    }
+
+    fn rotation_defect(&self) -> f64 {
+        LocalMatrix::rotation_defect(self)
+    }
+
+    fn entry(&self, i: usize, j: usize) -> f64 {
+        self.matrix[(i, j)]
+    }
+
+    fn eigenvalues(&self) -> Vec<C64> {
+        eigenvalues(&self.matrix)
+    }
+
+    fn spectrum(&self) -> Spectrum {
+        spectrum(&self.matrix)
+    }
+
+    fn fourier_blocks(&self) -> Result<Vec<FourierBlock>> {
+        LocalMatrix::fourier_blocks(self)
+    }
+
+    fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
+        LocalMatrix::left_eigenvectors(self, value)
+    }
+
+    fn characteristic_points(&self) -> Result<(Vec<[f64; 3]>, f64)> {
+        LocalMatrix::characteristic_points(self)
     }
 }
 

@@ -7,6 +7,7 @@ use super::{AdjustableTps, Bi2Mixed, Pgs, PgsPreprocessed, PolarBi2, Tps};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::Scheme;
+use crate::schemes::circulant::SparseLocal;
 use crate::schemes::descriptor::{
     Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
     SurfaceOutput, patch_fn,
@@ -165,6 +166,10 @@ struct Bi2Local {
 impl LocalRules for Bi2Local {
     fn matrix(&self, n: usize) -> Result<LocalMatrix> {
         super::local::local_matrix_rules(self.kind, n, self.rules)
+    }
+
+    fn sparse(&self, n: usize) -> Result<Option<SparseLocal>> {
+        super::local::sparse_rules(self.kind, n, self.rules).map(Some)
     }
 
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {

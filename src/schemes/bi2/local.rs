@@ -26,7 +26,8 @@ use super::{Pgs, cos_2pi};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::Scheme;
-use crate::schemes::local::{FourierBlock, LocalMatrix, spectrum};
+use crate::schemes::circulant::{SparseLocal, choose};
+use crate::schemes::local::{FourierBlock, LocalMatrix, LocalOperator};
 use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
 use nalgebra::DMatrix;
@@ -74,9 +75,8 @@ fn dense(rows: &[Stencil], size: usize) -> DMatrix<f64> {
     m
 }
 
-/// PGS at an `n`-gon facet: the `10n x 10n` replicated matrix on `(p, a, b, c, d, 5 .. 9)` per
-/// sector, `p` kept as an independent point.
-pub fn pgs(n: usize) -> Result<LocalMatrix> {
+/// PGS's rows at an `n`-gon facet on `(p, DS-net)`, `p` kept as an independent point.
+fn pgs_stencils(n: usize) -> Result<Vec<Stencil>> {
     let _ = PgsParams::new(n)?;
     let net = ds_net(n, |_, _| 0.0)?;
     let r = Pgs.refine(&net)?;
@@ -90,15 +90,22 @@ pub fn pgs(n: usize) -> Result<LocalMatrix> {
         }))
     };
     let mut out = vec![shift(&Pgs::centre_update(&net, 0, &p))];
-    let facet_corners: Vec<usize> = (0..n).map(|s| net.face_halfedge(0) as usize + s).collect();
+    let h0 = net.face_halfedge(0) as usize;
     for &row in &rows {
-        let st = if facet_corners.contains(&row) {
+        let st = if (h0..h0 + n).contains(&row) {
             Pgs::corner_stencil_with_centre(&net, row as u32, &p)
         } else {
             r.stencils.stencil(row)
         };
         out.push(shift(&st));
     }
+    Ok(out)
+}
+
+/// PGS at an `n`-gon facet: the `10n x 10n` replicated matrix on `(p, a, b, c, d, 5 .. 9)` per
+/// sector, `p` kept as an independent point.
+pub fn pgs(n: usize) -> Result<LocalMatrix> {
+    let out = pgs_stencils(n)?;
     let lm = LocalMatrix {
         scheme: ids::PGS.name().into(),
         n,
@@ -109,9 +116,13 @@ pub fn pgs(n: usize) -> Result<LocalMatrix> {
     replicate_centre(&lm)
 }
 
-fn from_local(name: &str, ls: &LocalScheme, sector: usize) -> Result<LocalMatrix> {
+fn local_stencils(ls: &LocalScheme) -> Vec<Stencil> {
     let t = ls.step(1);
-    let rows: Vec<Stencil> = (0..t.num_rows()).map(|r| t.stencil(r)).collect();
+    (0..t.num_rows()).map(|r| t.stencil(r)).collect()
+}
+
+fn from_local(name: &str, ls: &LocalScheme, sector: usize) -> Result<LocalMatrix> {
+    let rows = local_stencils(ls);
     let lm = LocalMatrix {
         scheme: name.into(),
         n: ls.n,
@@ -120,6 +131,47 @@ fn from_local(name: &str, ls: &LocalScheme, sector: usize) -> Result<LocalMatrix
         matrix: dense(&rows, ls.size),
     };
     replicate_centre(&lm)
+}
+
+/// The sparse rows of a member of the family at valence `n` (before the centre's
+/// replication, which they ask for), for its Fourier blocks at large valences.
+pub fn sparse_rules(scheme: Bi2Kind, n: usize, adj: TernaryRules) -> Result<SparseLocal> {
+    let (rows, sector) = if scheme == Bi2Kind::Pgs {
+        (pgs_stencils(n)?, 9)
+    } else {
+        let (ls, sector) = local_scheme(scheme, n, adj)?;
+        (local_stencils(&ls), sector)
+    };
+    Ok(SparseLocal {
+        scheme: match scheme {
+            Bi2Kind::Pgs => ids::PGS,
+            Bi2Kind::Polar => ids::POLAR_BI2,
+            Bi2Kind::Tps => ids::TPS,
+            _ => ids::TPS_ADJUSTABLE,
+        }
+        .name()
+        .into(),
+        n,
+        centre: 1,
+        sector,
+        rows: rows
+            .iter()
+            .map(|s| s.entries().iter().map(|&(i, w)| (i as usize, w)).collect())
+            .collect(),
+        replicate: true,
+    })
+}
+
+/// The local matrix of a member of the family as the analysis decomposes it: dense within
+/// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows, its Fourier blocks above.
+pub fn operator_rules(
+    scheme: Bi2Kind,
+    n: usize,
+    adj: TernaryRules,
+) -> Result<Box<dyn LocalOperator>> {
+    choose(&sparse_rules(scheme, n, adj)?, false, || {
+        local_matrix_rules(scheme, n, adj)
+    })
 }
 
 /// PolBS at a pole of valence `n`: the `4n x 4n` replicated matrix on `(p, a, b, c)`.
@@ -225,7 +277,7 @@ pub fn characteristic_ring_rules(
     n: usize,
     adj: TernaryRules,
 ) -> Result<(Vec<BezierPatch>, f64)> {
-    let lm = local_matrix_rules(scheme, n, adj)?;
+    let lm = operator_rules(scheme, n, adj)?;
     let (ls, per) = local_scheme(scheme, n, adj)?;
     let (pts, lambda) = lm.characteristic_points()?;
     // Replicated layout (s, 0) copy, (s, 1 + x) point x of sector s; the local nets have the
@@ -314,11 +366,11 @@ pub fn published_rules(
     adj: TernaryRules,
 ) -> Result<Vec<PublishedCheck>> {
     let e = adj.e;
-    let lm = local_matrix_rules(scheme, n, adj)?;
-    let spec = spectrum(&lm.matrix);
+    let lm = operator_rules(scheme, n, adj)?;
+    let spec = lm.spectrum();
     let blocks = lm.fourier_blocks()?;
     let limit = lm.limit_stencil()?;
-    let k = lm.sector;
+    let k = lm.sector();
     // Affine weights of the centre (sum of its copies) and of one first-ring point.
     let centre_weight: f64 = (0..n).map(|s| limit[s * k]).sum();
     let c1 = cos_2pi(1, n as i64);

@@ -3,6 +3,7 @@
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::Scheme;
+use crate::schemes::circulant::SparseLocal;
 use crate::schemes::descriptor::{
     Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
     SurfaceOutput, patch_fn,
@@ -59,6 +60,10 @@ struct CcLocal;
 impl LocalRules for CcLocal {
     fn matrix(&self, n: usize) -> Result<LocalMatrix> {
         super::local::local_matrix(n)
+    }
+
+    fn sparse(&self, n: usize) -> Result<Option<SparseLocal>> {
+        super::local::local_sparse(n).map(Some)
     }
 
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {

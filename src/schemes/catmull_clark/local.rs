@@ -8,12 +8,18 @@ use crate::geom::Point;
 use crate::mesh::PolyMesh;
 use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::Scheme;
-use crate::schemes::local::{LocalMatrix, check_valence, dense};
+use crate::schemes::circulant::SparseLocal;
+use crate::schemes::local::{LocalMatrix, check_valence};
 use crate::schemes::registry::ids;
 
 /// Catmull-Clark on the c-net of valence `n` (`6n + 1` points: centre, then 6 per sector at
 /// chart points `(i, j)`, `i = 1, 2`, `j = 0, 1, 2`).
 pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
+    Ok(local_sparse(n)?.to_matrix())
+}
+
+/// [`local_matrix`]'s rows, sparse (for its Fourier blocks at large valences).
+pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     check_valence(n)?;
     let net = nets::cnet(n, CnetShape::Convex, 2);
     let st = CatmullClark::stencils(&net);
@@ -27,13 +33,11 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
         .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
     let rows: Vec<usize> = rows.iter().map(|&r| r as usize).collect();
     let t = st.select_rows(&rows);
-    Ok(LocalMatrix {
-        scheme: ids::CATMULL_CLARK.name().into(),
-        n,
-        centre: 1,
-        sector: 6,
-        matrix: dense(&t),
-    })
+    Ok(SparseLocal::from_table(
+        ids::CATMULL_CLARK.name(),
+        (1, 6, n),
+        &t,
+    ))
 }
 
 /// Catmull-Clark's characteristic ring at valence `n`: the planar patches of one ring of the
@@ -69,8 +73,7 @@ pub fn characteristic_sector(n: usize) -> Result<([BezierPatch; 3], f64)> {
 /// sector, in the sector's chart, from the level-1 grid points of the refined characteristic
 /// net (3 rings), each the bi-3 patch of its 4 x 4 grid.
 fn characteristic_cells(n: usize) -> Result<(Vec<[BezierPatch; 3]>, f64)> {
-    let lm = local_matrix(n)?;
-    let (pts, lambda) = lm.characteristic_points()?;
+    let (pts, lambda) = local_sparse(n)?.operator()?.characteristic_points()?;
     let mut net = nets::cnet(n, CnetShape::Convex, 2);
     net.set_positions(pts);
     let child = CatmullClark.refine(&net)?.mesh;

@@ -4,7 +4,8 @@ use super::{DooSabin, DooSabinCc};
 use crate::error::Result;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput, matrix_only, patch_fn,
+    Capabilities, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput, matrix_and_rows,
+    patch_fn,
 };
 
 /// Doo-Sabin (`cc = false`) or DS^CC (`cc = true`).
@@ -50,6 +51,6 @@ impl Descriptor for DsDescriptor {
         if self.cc {
             return Ok(None);
         }
-        matrix_only(super::local::local_matrix)
+        matrix_and_rows(super::local::local_matrix, super::local::local_sparse)
     }
 }

@@ -5,12 +5,20 @@ use super::DooSabin;
 use crate::error::{Error, Result};
 use crate::mesh::nets;
 use crate::schemes::Scheme;
-use crate::schemes::local::{LocalMatrix, check_valence, dense};
+use crate::schemes::circulant::SparseLocal;
+use crate::schemes::local::{LocalMatrix, check_valence};
 use crate::schemes::registry::ids;
 
 /// Doo-Sabin's `n x n` block of an `n`-gon facet: the child points of the facet's corners in
 /// terms of its corners (the facet of a prism cap).
 pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
+    Ok(local_sparse(n)?.to_matrix())
+}
+
+/// [`local_matrix`]'s rows, sparse (for its Fourier blocks at large valences: one circulant
+/// `n x n` block, whose Fourier blocks are `1 x 1`, the eigenvalues of
+/// [`super::fourier`]'s closed form).
+pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     check_valence(n)?;
     let net = nets::prism(n);
     let f = (0..net.num_faces())
@@ -26,11 +34,9 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
         .select_rows(&rows)
         .restrict_sources(&cols)
         .ok_or_else(|| Error::Unsupported("Doo-Sabin facet block is not invariant".into()))?;
-    Ok(LocalMatrix {
-        scheme: ids::DOO_SABIN.name().into(),
-        n,
-        centre: 0,
-        sector: 1,
-        matrix: dense(&t),
-    })
+    Ok(SparseLocal::from_table(
+        ids::DOO_SABIN.name(),
+        (0, 1, n),
+        &t,
+    ))
 }

@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::schemes::descriptor::{
     Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec, patch_fn,
 };
-use crate::schemes::local::LocalMatrix;
+use crate::schemes::local::{LocalMatrix, LocalOperator};
 
 /// A guided scheme of one ring degree.
 #[derive(Debug)]
@@ -100,7 +100,7 @@ impl LocalRules for GuidedLocal {
 
     /// The matrix acts on the guide's free set `P`, whose first coordinate is the limit point;
     /// its stencil on the c-net (centre, then sector by sector) is the fit's first row.
-    fn limit_stencil(&self, n: usize, m: &LocalMatrix) -> Result<Vec<f64>> {
+    fn limit_stencil(&self, n: usize, m: &dyn LocalOperator) -> Result<Vec<f64>> {
         match super::rings::Guided::new(n, self.options) {
             Ok(g) => Ok(g.fit.row(0).iter().copied().collect()),
             Err(_) => m.limit_stencil(),
@@ -117,7 +117,7 @@ impl LocalRules for GuidedLocal {
         // Table (5) is for extraordinary valences; at n = 4 (c = 0) the G^2 space is the larger
         // C^2 one (81 coordinates: lambda^3 x6, lambda^4 x9).
         if n != 4 {
-            for (s, p, k) in super::local::table5(n, l, &c.matrix.matrix) {
+            for (s, p, k) in super::local::table5(n, l, &c.matrix.eigenvalues()) {
                 out.push(Published::new(
                     format!("multiplicity of lambda^{s} (table (5))"),
                     p as f64,

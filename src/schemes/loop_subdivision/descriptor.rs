@@ -4,8 +4,8 @@ use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput, matrix_only,
-    patch_fn,
+    Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput,
+    matrix_and_rows, patch_fn,
 };
 
 /// Loop.
@@ -46,6 +46,6 @@ impl Descriptor for LoopDescriptor {
 
     /// The matrix on the one-ring.
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
-        matrix_only(super::local::local_matrix)
+        matrix_and_rows(super::local::local_matrix, super::local::local_sparse)
     }
 }

@@ -5,12 +5,18 @@ use super::Loop;
 use crate::error::{Error, Result};
 use crate::mesh::nets;
 use crate::schemes::Scheme;
-use crate::schemes::local::{LocalMatrix, check_valence, dense};
+use crate::schemes::circulant::SparseLocal;
+use crate::schemes::local::{LocalMatrix, check_valence};
 use crate::schemes::registry::ids;
 
 /// Loop on the one-ring of a vertex of valence `n` (`n + 1` points: centre, then its neighbours
 /// in counter-clockwise order).
 pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
+    Ok(local_sparse(n)?.to_matrix())
+}
+
+/// [`local_matrix`]'s rows, sparse (for its Fourier blocks at large valences).
+pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     check_valence(n)?;
     let net = nets::loop_net(n, 2);
     let r = Loop.refine(&net)?;
@@ -27,11 +33,5 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
         .select_rows(&rows)
         .restrict_sources(&cols)
         .ok_or_else(|| Error::Unsupported("Loop one-ring is not invariant".into()))?;
-    Ok(LocalMatrix {
-        scheme: ids::LOOP.name().into(),
-        n,
-        centre: 1,
-        sector: 1,
-        matrix: dense(&t),
-    })
+    Ok(SparseLocal::from_table(ids::LOOP.name(), (1, 1, n), &t))
 }

@@ -5,6 +5,7 @@ use super::{NonBox, NonBox4Dir};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::Scheme;
+use crate::schemes::circulant::SparseLocal;
 use crate::schemes::descriptor::{
     Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
     SurfaceOutput, patch_fn,
@@ -79,6 +80,10 @@ impl LocalRules for NonBoxLocal {
         } else {
             super::local::local_matrix(n)
         }
+    }
+
+    fn sparse(&self, n: usize) -> Result<Option<SparseLocal>> {
+        super::local::local_sparse(n, self.four_dir).map(Some)
     }
 
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {

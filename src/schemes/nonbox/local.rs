@@ -41,10 +41,12 @@ use crate::error::{Error, Result};
 use crate::linalg::C64;
 use crate::mesh::PolyMesh;
 use crate::mesh::nets::{self, CnetShape};
-use crate::schemes::local::LocalMatrix;
+use crate::schemes::circulant::SparseLocal;
+use crate::schemes::local::{LocalMatrix, LocalOperator};
 use crate::schemes::nonbox::bezier::{cell_stencils, triangle_to_quads};
 use crate::schemes::nonbox::fourdir::{NonBox4Dir, triangulate};
 use crate::schemes::nonbox::{FcvNet, NonBox, a_k, subdominant_eigenvalue};
+use crate::schemes::registry::ids;
 use crate::stencil::{Stencil, StencilTable};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
@@ -93,21 +95,16 @@ pub fn labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
     Some(out)
 }
 
-fn dense(t: &StencilTable) -> DMatrix<f64> {
-    DMatrix::from_row_slice(t.num_rows(), t.num_sources(), &t.to_dense())
-}
-
-/// Rows `rows` of a step table restricted to the sources `cols`: the local matrix.
-fn restrict(st: &StencilTable, rows: &[usize], cols: &[usize]) -> Result<DMatrix<f64>> {
-    let t = st.select_rows(rows).restrict_sources(cols).ok_or_else(|| {
+/// Rows `rows` of a step table restricted to the sources `cols`: the local matrix's table.
+fn restrict(st: &StencilTable, rows: &[usize], cols: &[usize]) -> Result<StencilTable> {
+    st.select_rows(rows).restrict_sources(cols).ok_or_else(|| {
         Error::Unsupported("the non-box local net is not invariant under refinement".into())
-    })?;
-    Ok(dense(&t))
+    })
 }
 
-/// The local subdivision matrix `S_k` (`(10 k + 1)^2`) of the quad variant with FCVs, from
-/// [`NonBox::step`].
-pub fn local_matrix(k: usize) -> Result<LocalMatrix> {
+/// The local subdivision table `S_k` (`(10 k + 1)^2`) of the quad variant with FCVs (or of the
+/// four-directional variant), from [`NonBox::step`] ([`NonBox4Dir::step`]).
+pub fn local_sparse(k: usize, four_dir: bool) -> Result<SparseLocal> {
     check_valence(k)?;
     let net = local_fcv_net(k, 2);
     let h0 = net.mesh.vertex_halfedge(0);
@@ -115,38 +112,35 @@ pub fn local_matrix(k: usize) -> Result<LocalMatrix> {
         .ok_or_else(|| Error::Unsupported("c-net is not regular".into()))?;
     let step = NonBox::step(&net)?;
     // Child face h is the quad of parent corner h; its first half-edge leaves the V-vertex
-    // along the child of the parent's edge h.
+    // along the child of the parent's edge h. The triangulated child's vertices are the quad
+    // child's points in the same order.
     let rows = labelled_points(&step.net.mesh, 4 * h0)
         .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
-    Ok(LocalMatrix {
-        scheme: crate::schemes::registry::ids::NONBOX.name().into(),
-        n: k,
-        centre: 1,
-        sector: SECTOR,
-        matrix: restrict(&step.stencils, &rows, &cols)?,
-    })
+    let (id, t) = if four_dir {
+        let (_, st) = NonBox4Dir::step(&triangulate(&net))?;
+        (ids::NONBOX_4DIR, restrict(&st, &rows, &cols)?)
+    } else {
+        (ids::NONBOX, restrict(&step.stencils, &rows, &cols)?)
+    };
+    Ok(SparseLocal::from_table(id.name(), (1, SECTOR, k), &t))
+}
+
+/// The local subdivision matrix `S_k` (`(10 k + 1)^2`) of the quad variant with FCVs, from
+/// [`NonBox::step`].
+pub fn local_matrix(k: usize) -> Result<LocalMatrix> {
+    Ok(local_sparse(k, false)?.to_matrix())
 }
 
 /// The local matrix of the four-directional variant, from [`NonBox4Dir::step`] on the
 /// triangulated local net (same labelling; the triangle mesh's vertices are the net's points).
 pub fn local_matrix_4dir(k: usize) -> Result<LocalMatrix> {
-    check_valence(k)?;
-    let net = local_fcv_net(k, 2);
-    let h0 = net.mesh.vertex_halfedge(0);
-    let cols = labelled_points(&net.mesh, h0)
-        .ok_or_else(|| Error::Unsupported("c-net is not regular".into()))?;
-    let (_, st) = NonBox4Dir::step(&triangulate(&net))?;
-    // The triangulated child's vertices are the quad child's points in the same order.
-    let child = NonBox::step(&net)?.net;
-    let rows = labelled_points(&child.mesh, 4 * h0)
-        .ok_or_else(|| Error::Unsupported("refined c-net is not regular".into()))?;
-    Ok(LocalMatrix {
-        scheme: crate::schemes::registry::ids::NONBOX_4DIR.name().into(),
-        n: k,
-        centre: 1,
-        sector: SECTOR,
-        matrix: restrict(&st, &rows, &cols)?,
-    })
+    Ok(local_sparse(k, true)?.to_matrix())
+}
+
+/// The local matrix as the analysis decomposes it: dense within
+/// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows, its Fourier blocks above.
+pub fn operator(k: usize, four_dir: bool) -> Result<Box<dyn LocalOperator>> {
+    local_sparse(k, four_dir)?.operator()
 }
 
 /// The paper's `B(0)` at valence `k` (11 x 11, rows and columns `V0, V1 .. V10`), as printed.
@@ -275,14 +269,14 @@ fn pv(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedVa
 /// from the published eigenvalues, and of the limit-point and tangent formulas from the left
 /// eigenvectors.
 pub fn published_comparisons(k: usize) -> Result<Vec<PublishedValue>> {
-    let lm = local_matrix(k)?;
-    let spec = crate::schemes::local::spectrum(&lm.matrix);
+    let lm = operator(k, false)?;
+    let spec = lm.spectrum();
     let lambda = subdominant_eigenvalue(k);
     let mut out = vec![pv("lambda = 1/2 + cos(2 pi / k) / 4", lambda, spec.lambda)];
     out.push(pv(
         "a_k (Proposition 1) = 1 - (weight of V0 in the V-vertex rule)",
         a_k(k),
-        1.0 - lm.matrix[(0, 0)],
+        1.0 - lm.entry(0, 0),
     ));
     let blocks = lm.fourier_blocks()?;
     let mut entry_dev: f64 = 0.0;
@@ -344,7 +338,7 @@ pub fn published_comparisons(k: usize) -> Result<Vec<PublishedValue>> {
     out.push(pv(
         "distance of the tangent formulas l1, l2 from the left eigenvectors of lambda",
         0.0,
-        tangent_deviation(&lm, lambda),
+        tangent_deviation(lm.as_ref(), lambda),
     ));
     Ok(out)
 }
@@ -352,12 +346,12 @@ pub fn published_comparisons(k: usize) -> Result<Vec<PublishedValue>> {
 /// How far the tangent formulas `l1`, `l2` are from the span of the left eigenvectors of
 /// `lambda` (the largest residual after projection; 0 when they are left eigenvectors), or 1
 /// when the span is not two-dimensional.
-pub fn tangent_deviation(lm: &LocalMatrix, lambda: f64) -> f64 {
+pub fn tangent_deviation(lm: &dyn LocalOperator, lambda: f64) -> f64 {
     let basis = lm.left_eigenvectors(lambda);
     if basis.len() != 2 {
         return 1.0;
     }
-    let (l1, l2) = tangent_formulas(lm.n);
+    let (l1, l2) = tangent_formulas(lm.n());
     let mut worst: f64 = 0.0;
     for l in [l1, l2] {
         let v = nalgebra::DVector::from_vec(l);
@@ -373,13 +367,16 @@ pub fn tangent_deviation(lm: &LocalMatrix, lambda: f64) -> f64 {
 /// The characteristic ring at valence `k` (three non-degenerate bi-3 patches per Bezier
 /// triangle, 36 per sector) and `lambda`; see the [module](self) documentation.
 pub fn characteristic_ring(k: usize) -> Result<(Vec<BezierPatch>, f64)> {
-    let lm = local_matrix(k)?;
-    let (pts, lambda) = lm.characteristic_points()?;
+    let (pts, lambda) = operator(k, false)?.characteristic_points()?;
     // A larger net, so that the child points of the ring come from interior rules.
     let net = local_fcv_net(k, 3);
     let h0 = net.mesh.vertex_halfedge(0);
     let labels = labelled_points(&net.mesh, h0)
         .ok_or_else(|| Error::Unsupported("c-net is not regular".into()))?;
+    let mut label_of = vec![usize::MAX; labels.iter().max().map_or(0, |&l| l + 1)];
+    for (pos, &l) in labels.iter().enumerate() {
+        label_of[l] = pos;
+    }
     let step = NonBox::step(&net)?;
     let child = &step.net.mesh;
     let sectors = child
@@ -393,9 +390,10 @@ pub fn characteristic_ring(k: usize) -> Result<(Vec<BezierPatch>, f64)> {
         let parent = parent.merged();
         let mut local = Stencil::new();
         for &(i, w) in parent.entries() {
-            let pos = labels
-                .iter()
-                .position(|&l| l == i as usize)
+            let pos = label_of
+                .get(i as usize)
+                .copied()
+                .filter(|&p| p != usize::MAX)
                 .ok_or_else(|| {
                     Error::Unsupported(
                         "a ring coefficient depends on points outside the local net".into(),
