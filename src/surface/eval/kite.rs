@@ -70,40 +70,22 @@ pub(super) fn to_chart(d: &Derivatives, uv: [f64; 2], neighbour: bool) -> Deriva
         [j[1][1] / det, -j[0][1] / det],
         [-j[1][0] / det, j[0][0] / det],
     ];
+    // the affine part by the chain rule, then the twist's term:
     // d^2 q / d chart_b d chart_c = -inv . twist . (inv[0][b] inv[1][c] + inv[1][b] inv[0][c])
+    let mut out = super::chain(d, inv);
     let inv_twist = [
         inv[0][0] * twist[0] + inv[0][1] * twist[1],
         inv[1][0] * twist[0] + inv[1][1] * twist[1],
     ];
-    let first = [d.du, d.dv];
-    let second = [[d.duu, d.duv], [d.duv, d.dvv]];
-    let d1 = |b: usize| -> Point {
-        first
-            .iter()
-            .enumerate()
-            .fold([0.0; 3], |r, (a, f)| axpy(r, inv[a][b], *f))
-    };
-    let d2 = |b: usize, c: usize| -> Point {
-        let mut r = [0.0; 3];
-        for (a, row) in second.iter().enumerate() {
-            for (e, s) in row.iter().enumerate() {
-                r = axpy(r, inv[a][b] * inv[e][c], *s);
-            }
-        }
+    let term = |b: usize, c: usize, r: Point| -> Point {
         let w = inv[0][b] * inv[1][c] + inv[1][b] * inv[0][c];
-        for (a, f) in first.iter().enumerate() {
-            r = axpy(r, -inv_twist[a] * w, *f);
-        }
-        r
+        let r = axpy(r, -inv_twist[0] * w, d.du);
+        axpy(r, -inv_twist[1] * w, d.dv)
     };
-    Derivatives {
-        p: d.p,
-        du: d1(0),
-        dv: d1(1),
-        duu: d2(0, 0),
-        duv: d2(0, 1),
-        dvv: d2(1, 1),
-    }
+    out.duu = term(0, 0, out.duu);
+    out.duv = term(0, 1, out.duv);
+    out.dvv = term(1, 1, out.dvv);
+    out
 }
 
 #[cfg(test)]

@@ -66,7 +66,7 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{axpy, scale};
 use crate::host::adaptive::{
-    CapData, MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements,
+    CapData, MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::loop_subdivision::limit::tangent_mask;
@@ -111,15 +111,9 @@ fn segment_across(level: &Level, he: u32) -> Option<Segment> {
 fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapData, NoCap> {
     let m = &level.mesh;
     let (f0, _) = cells[0];
-    let x = m
-        .face(f0 as usize)
-        .iter()
-        .copied()
-        .find(|&v| level.info[v as usize].origin == Some(element))
-        .ok_or(NoCap::Never)?;
+    let (x, n) = hole_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
-    let n = m.valence(xu);
-    if m.is_boundary_vertex(xu) || n < 3 || !level.info[xu].fan_ok {
+    if !level.info[xu].fan_ok {
         return Err(NoCap::Never);
     }
     let fan = fan_around(m, x, f0, n).ok_or(NoCap::Never)?;
