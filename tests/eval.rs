@@ -180,8 +180,8 @@ fn regular_catmull_clark_faces_are_the_bicubic_bspline() {
 }
 
 /// The Catmull-Clark limit position of vertex `v` from the scheme's limit masks.
-fn limit_point(mesh: &PolyMesh, v: usize) -> Point {
-    let spec = registry().lookup(ids::CATMULL_CLARK.name()).expect("cc");
+fn limit_point(scheme: &str, mesh: &PolyMesh, v: usize) -> Point {
+    let spec = registry().lookup(scheme).expect("scheme");
     let rules = registry()
         .descriptor(spec.id)
         .mesh_rules(&spec)
@@ -193,10 +193,25 @@ fn limit_point(mesh: &PolyMesh, v: usize) -> Point {
         .apply(mesh.positions())[v]
 }
 
+/// Catmull-Clark on the saddle c-nets of valences 3, 5, 7, and Loop on the tetrahedron,
+/// octahedron and icosahedron (valences 3, 4, 5; its caps are kites, evaluated through their
+/// bilinear charts): points at `2^-k` of the extraordinary vertex converge to its limit point
+/// with ratio `lambda` per halving, and the vertex itself is the limit point.
 #[test]
 fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
-    for n in [3usize, 5, 7] {
-        let mesh = gallery(&format!("cnet-{n}-saddle"));
+    let cc = ids::CATMULL_CLARK.name();
+    let lp = ids::LOOP.name();
+    let loop_lambda = |n: usize| 0.375 + 0.25 * (std::f64::consts::TAU / n as f64).cos();
+    let cases = [
+        (cc, "cnet-3-saddle".to_string(), 3, catmull_clark_lambda(3)),
+        (cc, "cnet-5-saddle".to_string(), 5, catmull_clark_lambda(5)),
+        (cc, "cnet-7-saddle".to_string(), 7, catmull_clark_lambda(7)),
+        (lp, "tetrahedron".to_string(), 3, loop_lambda(3)),
+        (lp, "octahedron".to_string(), 4, loop_lambda(4)),
+        (lp, "icosahedron".to_string(), 5, loop_lambda(5)),
+    ];
+    for (scheme, net, n, lambda) in cases {
+        let mesh = gallery(&net);
         let ev = (0..mesh.num_vertices())
             .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
             .expect("the extraordinary vertex");
@@ -208,8 +223,13 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
                     .map(|c| (f, c))
             })
             .expect("a face at the vertex");
-        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        let (o, a, b) = (corners[c], corners[(c + 1) % 4], corners[(c + 3) % 4]);
+        let corners: &[[f64; 2]] = if mesh.face_size(f) == 3 {
+            &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+        } else {
+            &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+        };
+        let k = corners.len();
+        let (o, a, b) = (corners[c], corners[(c + 1) % k], corners[(c + k - 1) % k]);
         let at = |h: f64| {
             let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
             let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
@@ -218,7 +238,7 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
         let ks: Vec<i32> = (2..=12).collect();
         let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
         pts.push(at(0.0));
-        let spec = registry().lookup(ids::CATMULL_CLARK.name()).expect("cc");
+        let spec = registry().lookup(scheme).expect("scheme");
         let (evals, rings) = evaluate_limit(&pts, &mut |k| {
             Surface::build(
                 &spec,
@@ -232,23 +252,28 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
         .expect("limit evaluation");
         assert!(
             rings >= 12,
-            "valence {n}: {rings} rings for points at 2^-12"
+            "{scheme} {net}: {rings} rings for points at 2^-12"
         );
-        let lim = limit_point(&mesh, ev);
+        let lim = limit_point(scheme, &mesh, ev);
         let centre = evals.last().expect("the centre");
-        assert!(dist(centre.point, lim) < 1e-12, "valence {n}: limit point");
+        assert!(
+            dist(centre.point, lim) < 1e-12,
+            "{scheme} {net}: limit point"
+        );
         let err: Vec<f64> = evals[..ks.len()]
             .iter()
             .map(|e| norm(sub(e.point, lim)))
             .collect();
-        let lambda = catmull_clark_lambda(n);
         let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
-        eprintln!("valence {n}: lambda {lambda:.6}, {rings} rings, error ratios {ratios:.6?}");
+        eprintln!(
+            "{scheme} {net} (valence {n}): lambda {lambda:.6}, {rings} rings, error ratios \
+             {ratios:.6?}"
+        );
         for k in 4..err.len() - 1 {
             let ratio = err[k + 1] / err[k];
             assert!(
                 (ratio / lambda - 1.0).abs() < 0.1,
-                "valence {n}: error ratio {ratio} at k = {}, lambda {lambda} (errors {err:?})",
+                "{scheme} {net}: error ratio {ratio} at k = {}, lambda {lambda} (errors {err:?})",
                 ks[k]
             );
         }

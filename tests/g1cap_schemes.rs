@@ -388,3 +388,174 @@ fn nonbox_caps() {
         }
     }
 }
+
+/// A bipyramid over a wavy `n`-gon: two apices of valence `n`, `n` equator vertices of
+/// valence 4, closed, every vertex extraordinary for Loop (but the apices at `n = 6`).
+fn bipyramid(n: usize) -> PolyMesh {
+    let mut pos = vec![[0.1, 0.0, 1.2], [0.0, -0.1, -0.9]];
+    for i in 0..n {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        let r = 1.0 + 0.2 * (2.0 * a).cos();
+        pos.push([r * a.cos(), r * a.sin(), 0.15 * (3.0 * a).sin()]);
+    }
+    let mut faces = Vec::new();
+    for i in 0..n {
+        let (a, b) = (2 + i, 2 + (i + 1) % n);
+        faces.push(vec![0, a, b]);
+        faces.push(vec![1, b, a]);
+    }
+    PolyMesh::new(pos, &faces).expect("bipyramid")
+}
+
+/// The closed triangle nets: the gallery's (tetrahedron: holes touching at spoke ends after
+/// one level) and bipyramids of valences 3 to 8 (bi-4 and bi-5 kites).
+fn triangle_gallery() -> Vec<(String, PolyMesh)> {
+    let mut nets: Vec<(String, PolyMesh)> = gallery::all()
+        .into_iter()
+        .filter(|(n, _)| ["tetrahedron", "octahedron", "icosahedron"].contains(&n.as_str()))
+        .collect();
+    for n in [3, 5, 7, 8] {
+        nets.push((format!("bipyramid-{n}"), bipyramid(n)));
+    }
+    nets
+}
+
+/// Loop's G^1 caps: G^1 at every join (cap|cap, ring|cap), every interior hole capped, each
+/// cap centred at Loop's limit point of its vertex with the limit normal (from Loop's tangent
+/// masks on the input net), and C^1 to the ring in the lattice chart: the face-parameter
+/// derivatives that `eval` reports (kites mapped through their bilinear chart) agree on both
+/// sides of every cap cell's outer edge.
+#[test]
+fn loop_caps() {
+    use fairsub::geom::{cross, dist, dot, norm, normalize, sub};
+    use fairsub::schemes::registry::registry;
+    use fairsub::schemes::{Loop, Scheme};
+    use fairsub::surface::eval::Surface;
+    let spec = registry().lookup("loop").expect("loop");
+    for (name, net) in triangle_gallery() {
+        let rings = 3;
+        let c = build("loop", &net, rings);
+        let r = assert_g1("loop", &name, &c, None);
+        assert_eq!(r.open_sides, 0, "{name}");
+        print_curvature("loop", &name, &c);
+        // every interior extraordinary vertex has a cap (a CapStep of kites), the others none
+        let interior_evs: Vec<usize> = (0..net.num_vertices())
+            .filter(|&v| !net.is_boundary_vertex(v) && net.valence(v) != 6)
+            .collect();
+        assert_eq!(c.caps.len(), interior_evs.len(), "{name}: caps");
+        let limits = Loop
+            .limit_stencils(&net)
+            .expect("limit")
+            .apply(net.positions());
+        let normals = Loop.limit_normals(&net).expect("normals");
+        for step in &c.caps {
+            let first = step.first as usize;
+            let Provenance::Cap { element, .. } = c.provenance[first] else {
+                panic!("{name}: cap step on a non-cap patch");
+            };
+            let fairsub::surface::Element::Vertex(v) = element else {
+                panic!("{name}: Loop cap of {element:?}");
+            };
+            let v = v as usize;
+            assert!(interior_evs.contains(&v), "{name}: cap at vertex {v}");
+            assert_eq!(step.count as usize, net.valence(v), "{name}: kites at {v}");
+            for p in &c.patches[first..first + step.count as usize] {
+                let centre = p.cp(0, 0);
+                assert!(dist(centre, limits[v]) < 1e-12, "{name}: centre of {v}");
+                let d = p.derivatives(0.0, 0.0);
+                let nc = normalize(cross(d.du, d.dv));
+                assert!(
+                    norm(cross(nc, normals[v])) < 1e-10 && dot(nc, normals[v]) > 0.0,
+                    "{name}: cap normal at {v}"
+                );
+            }
+        }
+        // C^1 across the outer edges of the cap cells, by evaluation at face parameters: the
+        // fan triangle at corner k of an input face at depth `rings` is the corner child k of
+        // corner child k ..., its outer edge the segment between the points at 2^-rings along
+        // the face's two edges from corner k.
+        let s = Surface::build(&spec, &net, ComplexOptions { rings, fill: true }).expect("surface");
+        let h = 0.5f64.powi(rings as i32);
+        let eps = 1e-7;
+        let mut worst: f64 = 0.0;
+        let mut sides = 0;
+        for f in 0..net.num_faces() {
+            for (k, &v) in net.face(f).iter().enumerate() {
+                if !interior_evs.contains(&(v as usize)) {
+                    continue;
+                }
+                let corners = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+                let (o, a, b) = (corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]);
+                for i in 1..8 {
+                    let t = i as f64 / 8.0;
+                    // the edge point and the inward direction (toward the corner)
+                    let p = [
+                        o[0] + h * ((1.0 - t) * (a[0] - o[0]) + t * (b[0] - o[0])),
+                        o[1] + h * ((1.0 - t) * (a[1] - o[1]) + t * (b[1] - o[1])),
+                    ];
+                    let dir = [o[0] - p[0], o[1] - p[1]];
+                    let at = |sgn: f64| {
+                        s.evaluate(
+                            f as u32,
+                            p[0] + sgn * eps * dir[0],
+                            p[1] + sgn * eps * dir[1],
+                        )
+                        .expect("evaluate")
+                    };
+                    let (inside, outside) = (at(1.0), at(-1.0));
+                    let is_cap = |e: &fairsub::surface::eval::Evaluation| {
+                        matches!(c.provenance[e.patch], Provenance::Cap { .. })
+                    };
+                    assert!(
+                        is_cap(&inside) && !is_cap(&outside),
+                        "{name}: face {f} corner {k}"
+                    );
+                    let scale = norm(inside.du) + norm(inside.dv);
+                    let e = norm(sub(inside.du, outside.du)) + norm(sub(inside.dv, outside.dv));
+                    worst = worst.max(e / scale);
+                    sides += 1;
+                }
+            }
+        }
+        assert!(sides > 0, "{name}: no cap edge sampled");
+        eprintln!(
+            "loop {name}: C^1 across the cap's outer edges (eval, offset {eps:e}) {worst:.2e}"
+        );
+        assert!(worst < 1e-5, "{name}: C^1 ring|cap by eval {worst:e}");
+    }
+}
+
+/// Loop's extraordinary boundary vertices keep the C^0 Hermite fill (no G^1 cap, no CapStep),
+/// and `--no-fill` leaves every hole open.
+#[test]
+fn loop_boundary_holes_keep_the_fill() {
+    let net = gallery::tri_grid();
+    let c = build("loop", &net, 2);
+    assert!(c.caps.is_empty(), "tri-grid: {} caps", c.caps.len());
+    assert!(
+        c.provenance
+            .iter()
+            .any(|p| matches!(p, Provenance::Cap { .. })),
+        "tri-grid: the fill"
+    );
+    for net in [gallery::icosahedron(), bipyramid(7)] {
+        let open = complex(
+            "loop",
+            &net,
+            ComplexOptions {
+                rings: 2,
+                fill: false,
+            },
+            |_| {},
+        )
+        .expect("loop");
+        assert!(open.caps.is_empty());
+        assert!(
+            !open
+                .provenance
+                .iter()
+                .any(|p| matches!(p, Provenance::Cap { .. }))
+        );
+        assert!(check(&open).open_sides > 0);
+    }
+}

@@ -57,8 +57,10 @@ pub struct Domain {
     pub depth: u8,
     /// Child index of each level, level 1 in the lowest two bits.
     pub path: u128,
-    /// The cell corner at which the patch's `(0, 0)` sits (quads; 0 for triangles): the patch's
-    /// `u` runs toward corner `rot + 1`, its `v` toward corner `rot - 1`.
+    /// The cell corner at which the patch's `(0, 0)` sits: for quads the patch's `u` runs
+    /// toward corner `rot + 1`, its `v` toward corner `rot - 1`. Triangle patches have 0, except
+    /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
+    /// triangle ([`Shape::corner_map`]; `crate::surface::eval` maps the chart to the kites).
     pub rot: u8,
 }
 
@@ -196,7 +198,10 @@ impl Shape {
     }
 
     /// The map from a patch's coordinates to its cell's when the patch's `(0, 0)` sits at
-    /// corner `rot` (quads; the identity for triangles).
+    /// corner `rot`: for quads `u` toward corner `rot + 1`, `v` toward corner `rot - 1`; for
+    /// triangles the barycentric chart with `(1, 0)` at corner `rot + 1` and `(0, 1)` at corner
+    /// `rot + 2` (the identity for `rot = 0`, which every triangle patch but Loop's G^1 kites
+    /// has).
     pub fn corner_map(self, rot: u8) -> Affine {
         match self {
             Shape::Quad => {
@@ -204,7 +209,11 @@ impl Shape {
                 let c = QUAD[r];
                 Affine::new(c, sub2(QUAD[(r + 1) % 4], c), sub2(QUAD[(r + 3) % 4], c))
             }
-            Shape::Triangle => Affine::IDENTITY,
+            Shape::Triangle => {
+                let r = rot as usize % 3;
+                let c = TRI[r];
+                Affine::new(c, sub2(TRI[(r + 1) % 3], c), sub2(TRI[(r + 2) % 3], c))
+            }
         }
     }
 }

@@ -206,6 +206,28 @@ pub enum NoCap {
     Never,
 }
 
+/// The centre of an element's hole: the corner of its marked cell `f0` that descends from
+/// `element`, and its valence; `NoCap::Never` when there is none, it lies on the boundary or
+/// its valence is below 3 (the checks every vertex-centred cap provider starts with).
+pub fn hole_centre(
+    m: &PolyMesh,
+    info: &[Info],
+    element: Element,
+    f0: u32,
+) -> std::result::Result<(u32, usize), NoCap> {
+    let x = m
+        .face(f0 as usize)
+        .iter()
+        .copied()
+        .find(|&v| info[v as usize].origin == Some(element))
+        .ok_or(NoCap::Never)?;
+    let n = m.valence(x as usize);
+    if m.is_boundary_vertex(x as usize) || n < 3 {
+        return Err(NoCap::Never);
+    }
+    Ok((x, n))
+}
+
 /// Whether some element of the marked cells would get its G^1 cap after more levels (`hole`
 /// says `NoCap::Later` for it): the adaptive loop then goes on.
 pub fn caps_waiting<T>(

@@ -15,7 +15,11 @@
 //! cap patch of a sector has its `(0, 0)` at the centre, `u` along the sector's first spoke and
 //! `v` along its second, so it covers the sector's remaining square exactly as the cell's own
 //! coordinates rotated to the centre corner; the Hermite-Coons fill and Loop's fill have the
-//! cell's own corners. Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
+//! cell's own corners. Loop's G^1 cap is made of kites, each covering halves of two fan
+//! triangles: a point of a fan triangle is mapped to the kite that holds it by inverting the
+//! kite's bilinear map in the triangle's lattice chart ([`kite`]), and derivatives go through
+//! the inverse function rule (the map is not affine there); `patch` names that kite and
+//! `patch_uv` its parameters. Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
 //! v), v)`, are evaluated as the triangles `T` they represent (barycentric derivatives, defined at
 //! the collapsed corner too); their `patch_uv` is the stored patch's `(u, v)`.
 //!
@@ -23,6 +27,7 @@
 //! many rings as the points need (a point at distance about `2^-k` of an extraordinary element,
 //! in face parameters, needs about `k` rings), up to [`MAX_EXACT_RINGS`].
 
+mod kite;
 mod triangle;
 
 use crate::bezier::Derivatives;
@@ -133,6 +138,9 @@ pub struct Surface {
     sides: Vec<u32>,
     /// Cell `(face, sub, depth, path)` -> the patch covering it.
     cells: Cells,
+    /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
+    /// covers the other half of kite `s`'s fan triangle ([`kite`]).
+    kites: HashMap<usize, usize>,
 }
 
 /// The error for a scheme whose patches do not carry face domains.
@@ -175,12 +183,22 @@ impl Surface {
                 cells.entry((d.face, d.sub, d.depth, d.path)).or_insert(i);
             }
         }
+        let mut kites = HashMap::new();
+        for step in &complex.caps {
+            if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
+                let (first, n) = (step.first as usize, step.count as usize);
+                for s in 0..n {
+                    kites.insert(first + s, first + (s + n - 1) % n);
+                }
+            }
+        }
         Surface {
             complex,
             sides: (0..mesh.num_faces())
                 .map(|f| mesh.face_size(f) as u32)
                 .collect(),
             cells,
+            kites,
         }
     }
 
@@ -267,6 +285,7 @@ impl Surface {
     pub fn evaluate(&self, face: u32, u: f64, v: f64) -> Result<Evaluation> {
         let at = self.locate(face, u, v)?;
         let d = at.domain;
+        let mut index = at.patch;
         let patch = &self.complex.patches[at.patch];
         let q = d.shape.corner_map(d.rot).invert(at.cell);
         let (dp, normal, patch_uv) = match d.shape {
@@ -274,6 +293,16 @@ impl Surface {
                 let dp = patch.derivatives(q[0], q[1]);
                 let n = patch.normal_from(q[0], q[1], &dp);
                 (dp, n, q)
+            }
+            Shape::Triangle if self.kites.contains_key(&at.patch) => {
+                let (neighbour, uv) = kite::locate(q);
+                if neighbour {
+                    index = self.kites[&at.patch];
+                }
+                let patch = &self.complex.patches[index];
+                let dp = patch.derivatives(uv[0], uv[1]);
+                let n = patch.normal_from(uv[0], uv[1], &dp);
+                (kite::to_chart(&dp, uv, neighbour), n, uv)
             }
             Shape::Triangle => {
                 let dp = triangle::derivatives(patch, q)?;
@@ -293,7 +322,7 @@ impl Surface {
             face,
             u,
             v,
-            patch: at.patch,
+            patch: index,
             patch_uv,
             point: df.p,
             du: df.du,

@@ -37,7 +37,7 @@ impl Descriptor for LoopDescriptor {
         })))
     }
 
-    /// Quartic box-spline triangles, rings, Hermite fill.
+    /// Quartic box-spline triangles, rings, G^1 caps of kites (Hermite fill at boundary holes).
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         patch_fn(|mesh, opts, progress| {
             super::surface::loop_complex(mesh, opts, progress).map(SurfaceOutput::plain)

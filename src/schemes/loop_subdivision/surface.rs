@@ -6,7 +6,9 @@
 //! from the 12 control points around the triangle with the weights [`BOX_SPLINE_BEZIER`]. Other
 //! triangles are refined with Loop's own rules ([`crate::schemes::loop_subdivision`]) together
 //! with the triangles around their corners; regular children are emitted as ring `l` at level
-//! `l`, the rest refined again; after `K` levels the hole is closed by the fill below.
+//! `l`, the rest refined again; after `K` levels the hole around an interior extraordinary
+//! vertex is closed by a G^1 cap of kites ([`g1`]: C^1 to the last ring, centred at Loop's
+//! limit point with its limit tangent plane), other holes by the C^0 fill below.
 //!
 //! # Storage as tensor-product patches
 //!
@@ -57,6 +59,8 @@
 //!
 //! # The Hermite fill (fairsub's own, documented construction)
 //!
+//! The holes without a G^1 cap (extraordinary boundary vertices, holes whose ring is not
+//! complete after the extra levels, see [`g1`]) are filled (`fill.rs`).
 //! Each triangle left after the last ring becomes one quartic triangle. Its three edge curves
 //! are defined once per edge and shared by both triangles at the edge, so the fill is C^0: an
 //! edge shared with a triangle emitted at the same level takes that triangle's edge (exact); a
@@ -71,22 +75,22 @@
 //! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
 //! between fill triangles; it is not G^1 across its edges.
 
-use super::limit::tangent_mask;
-use super::{edge_point_stencil, limit_point_stencil, vertex_point_stencil};
+use super::{edge_point_stencil, vertex_point_stencil};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
-use crate::bezier::convert::cubic_bspline_to_bezier;
 use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, child_active, edge_curve,
-    record_edge, retag_by_corners, select_around,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, child_active, record_edge,
+    retag_by_corners, select_around,
 };
-use crate::mesh::{Element, PolyMesh};
-use crate::schemes::common::{cos_2pi, sin_2pi};
+use crate::mesh::PolyMesh;
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
+
+mod fill;
+mod g1;
 
 /// Bezier coefficients of one triangle of the quartic box spline (Loop's regular limit), times
 /// 24. Entry `([i, j, k], w)`: the coefficient `b_ijk` of the Bernstein polynomial
@@ -148,7 +152,7 @@ pub fn eval_triangle(tri: &[Point; 15], l: [f64; 3]) -> Point {
 
 /// The Loop surface of `mesh` (a triangle net) as a patch complex: one degenerate bi-4 patch per
 /// regular triangle, `opts.rings` rings around every extraordinary vertex and, if `opts.fill`,
-/// the Hermite fill (see the [module](self) documentation). `progress(level)` is called after
+/// the G^1 caps and the Hermite fill (see the [module](self) documentation). `progress(level)` is called after
 /// each refinement level.
 ///
 /// # Errors
@@ -158,11 +162,13 @@ pub fn loop_complex(
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&LoopRules, mesh, opts, &mut progress)
+    adaptive::run(&LoopRules { opts }, mesh, opts, &mut progress)
 }
 
 /// Loop's rules for the adaptive loop: cells are triangles.
-struct LoopRules;
+struct LoopRules {
+    opts: ComplexOptions,
+}
 
 impl AdaptiveRules for LoopRules {
     type Level = Level;
@@ -190,8 +196,30 @@ impl AdaptiveRules for LoopRules {
         adaptive::retag_with_fans(cells, |f, tag, fans| retag(level, f as usize, tag, fans))
     }
 
+    /// From the requested ring on, the G^1 cap of every hole with complete data ([`g1`]).
+    fn caps(
+        &self,
+        level: &Level,
+        marked: Vec<(u32, Tag)>,
+        l: usize,
+        out: &mut PatchComplex,
+    ) -> Result<Vec<(u32, Tag)>> {
+        if self.opts.fill && l >= self.opts.rings {
+            Ok(g1::g1_caps(level, &marked, out))
+        } else {
+            Ok(marked)
+        }
+    }
+
+    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still wait
+    /// for their ring.
+    fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
+        l >= rings
+            && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
+    }
+
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {
-        fill(level, marked, to.curves, to.out);
+        fill::fill(level, marked, to.curves, to.out);
         Ok(())
     }
 
@@ -394,204 +422,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         info,
         active,
     })
-}
-
-/// Limit position of `a` and the derivative along the edge `a -> b` (unit edge parameter), for
-/// the Hermite edges of the fill.
-fn limit_and_derivative(m: &PolyMesh, jets: &mut Jets, a: usize, b: usize) -> (Point, Point) {
-    let pos = m.positions();
-    let la = jets.limit(m, a);
-    let chord = |jets: &mut Jets| geom::sub(jets.limit(m, b), la);
-    let fourier = jets
-        .modes(m, a)
-        .map(|md| (md.n, md.c, md.s, md.index.get(&(b as u32)).copied()));
-    if let Some((n, c, s, j)) = fourier {
-        let Some(j) = j else {
-            return (la, chord(jets));
-        };
-        // (2/n) sum_i cos(2 pi (i - j)/n) p_i = (2/n) (cos(t j) C + sin(t j) S).
-        let w = 2.0 / n as f64;
-        let (n, j) = (n as i64, j as i64);
-        let d = geom::axpy([0.0; 3], w * cos_2pi(j, n), c);
-        return (la, geom::axpy(d, w * sin_2pi(j, n), s));
-    }
-    let ring: Vec<Stencil> = if m.is_boundary_vertex(a) {
-        match ring6(m, a) {
-            Some(r) => r.to_vec(),
-            None => return (la, chord(jets)),
-        }
-    } else {
-        m.outgoing_halfedges(a)
-            .iter()
-            .map(|&h| Stencil::point(m.he_to(h) as usize))
-            .collect()
-    };
-    let Some(j) = ring.iter().position(|s| s.entries() == [(b as u32, 1.0)]) else {
-        return (la, chord(jets));
-    };
-    let n = ring.len();
-    let mut d = [0.0; 3];
-    for (s, (c, _)) in ring.iter().zip(tangent_mask(n, j)) {
-        d = geom::axpy(d, (2.0 / n as f64) * c, s.apply(pos));
-    }
-    (la, d)
-}
-
-/// Interior valences above which the fill's tangents come from Fourier sums
-/// ([`FanModes`]); at and below it they are the masks' sums as before, to the bit.
-const FOURIER_ABOVE: usize = 32;
-
-/// The mode-1 sums `C = sum_i cos(2 pi i / n) p_i`, `S = sum_i sin(2 pi i / n) p_i` of an
-/// interior vertex's ring `p_i` (outgoing order), and each neighbour's first position in it.
-struct FanModes {
-    n: usize,
-    c: Point,
-    s: Point,
-    index: HashMap<u32, usize>,
-}
-
-/// The fill's limit points and fan sums, each computed once per vertex: at a vertex of valence
-/// `n` each costs `O(n)`, and the vertex has `n` edges to fill (`n^2` when asked per edge).
-#[derive(Default)]
-struct Jets {
-    limits: HashMap<usize, Point>,
-    modes: HashMap<usize, Option<FanModes>>,
-}
-
-impl Jets {
-    fn limit(&mut self, m: &PolyMesh, v: usize) -> Point {
-        *self
-            .limits
-            .entry(v)
-            .or_insert_with(|| limit_point_stencil(m, v).apply(m.positions()))
-    }
-
-    /// The fan sums of interior vertex `v` of valence above [`FOURIER_ABOVE`], else `None`.
-    fn modes(&mut self, m: &PolyMesh, v: usize) -> Option<&FanModes> {
-        self.modes
-            .entry(v)
-            .or_insert_with(|| {
-                if m.is_boundary_vertex(v) {
-                    return None;
-                }
-                let ring: Vec<u32> = m.outgoing(v).map(|h| m.he_to(h)).collect();
-                let n = ring.len();
-                if n <= FOURIER_ABOVE {
-                    return None;
-                }
-                let pos = m.positions();
-                let (mut c, mut s) = ([0.0; 3], [0.0; 3]);
-                let mut index = HashMap::with_capacity(n);
-                for (i, &w) in ring.iter().enumerate() {
-                    c = geom::axpy(c, cos_2pi(i as i64, n as i64), pos[w as usize]);
-                    s = geom::axpy(s, sin_2pi(i as i64, n as i64), pos[w as usize]);
-                    index.entry(w).or_insert(i);
-                }
-                Some(FanModes { n, c, s, index })
-            })
-            .as_ref()
-    }
-}
-
-/// The other boundary neighbour of boundary vertex `v` (not `w`), or the ghost `2 v - w` at a
-/// corner.
-fn boundary_continuation(m: &PolyMesh, v: usize, w: usize) -> Point {
-    let pos = m.positions();
-    let hs = m.outgoing_halfedges(v);
-    let first = m.he_to(hs[0]) as usize;
-    let last = m.he_from(m.he_prev(*hs.last().expect("a vertex has a face"))) as usize;
-    let other = if first == w { last } else { first };
-    if m.vertex_faces(v).len() == 1 {
-        geom::sub(geom::scale(pos[v], 2.0), pos[w])
-    } else {
-        pos[other]
-    }
-}
-
-/// The edge curve `a -> b` of the fill (see the module documentation), as a quartic.
-fn fill_edge(m: &PolyMesh, jets: &mut Jets, a: usize, b: usize) -> [Point; 5] {
-    let pos = m.positions();
-    let cubic = match m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a)) {
-        Some(h) if m.he_twin(h).is_none() => {
-            let d = [
-                boundary_continuation(m, a, b),
-                pos[a],
-                pos[b],
-                boundary_continuation(m, b, a),
-            ];
-            cubic_bspline_to_bezier(&d)
-        }
-        _ => {
-            let (p0, d0) = limit_and_derivative(m, jets, a, b);
-            let (p3, d3) = limit_and_derivative(m, jets, b, a);
-            [
-                p0,
-                geom::axpy(p0, 1.0 / 3.0, d0),
-                geom::axpy(p3, 1.0 / 3.0, d3),
-                p3,
-            ]
-        }
-    };
-    let q = crate::bezier::curve::raise(&cubic);
-    [q[0], q[1], q[2], q[3], q[4]]
-}
-
-/// The Hermite fill of the marked triangles of the last level.
-fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<5>, out: &mut PatchComplex) {
-    let m = &level.mesh;
-    let mut jets = Jets::default();
-    for &(f, tag) in marked {
-        let c = m.face(f as usize);
-        let mut tri = [[0.0; 3]; 15];
-        for k in 0..3 {
-            let e = edge_curve(curves, c[k], c[(k + 1) % 3], |a, b| {
-                fill_edge(m, &mut jets, a, b)
-            });
-            for (r, p) in e.iter().enumerate() {
-                let mut idx = [0usize; 3];
-                idx[k] = 4 - r;
-                idx[(k + 1) % 3] = r;
-                tri[tri_index(idx[0], idx[1], idx[2])] = *p;
-            }
-        }
-        // Discrete harmonic interior: x = (S_x + S / 4) / 7 with S_x the sum of the four
-        // boundary neighbours of x in the Bezier net and S the sum over the three.
-        let interior = [[2, 1, 1], [1, 2, 1], [1, 1, 2]];
-        let sums: Vec<Point> = interior
-            .iter()
-            .map(|&[i, j, k]| {
-                let mut s = [0.0; 3];
-                for d in [
-                    [1, 0, -1],
-                    [1, -1, 0],
-                    [0, 1, -1],
-                    [-1, 1, 0],
-                    [0, -1, 1],
-                    [-1, 0, 1],
-                ] {
-                    let (a, b, cc) = (i as i32 + d[0], j as i32 + d[1], k as i32 + d[2]);
-                    let n = [a as usize, b as usize, cc as usize];
-                    if !interior.contains(&n) {
-                        s = geom::add(s, tri[tri_index(n[0], n[1], n[2])]);
-                    }
-                }
-                s
-            })
-            .collect();
-        let total = geom::add(geom::add(sums[0], sums[1]), sums[2]);
-        for (x, s) in interior.iter().zip(&sums) {
-            tri[tri_index(x[0], x[1], x[2])] = geom::scale(geom::axpy(*s, 0.25, total), 1.0 / 7.0);
-        }
-        let element = tag.element.unwrap_or(Element::Vertex(c[0]));
-        out.push_in(
-            triangle_to_tensor(&tri),
-            Provenance::Cap {
-                element,
-                sector: tag.sector,
-            },
-            tag.domain,
-        );
-    }
 }
 
 #[cfg(test)]

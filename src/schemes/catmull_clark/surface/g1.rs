@@ -35,8 +35,8 @@ use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::Point;
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, quad_hole_segments,
-    quad_sectors_around,
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
+    quad_hole_segments, quad_sectors_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
@@ -75,16 +75,9 @@ fn hole_of(
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.mesh;
     let (f0, _) = faces[0];
-    let x = m
-        .face(f0 as usize)
-        .iter()
-        .copied()
-        .find(|&v| level.info[v as usize].origin == Some(element))
-        .ok_or(NoCap::Never)?;
+    let (x, n) = hole_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
-    let n = m.valence(xu);
-    if m.is_boundary_vertex(xu) || n < 3 || faces.len() != n || super::sharp::is_special(level, xu)
-    {
+    if faces.len() != n || super::sharp::is_special(level, xu) {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();

@@ -1,6 +1,8 @@
 //! Unit tests of Loop's box-spline triangles, the quartic table and the Hermite fill.
 
+use super::fill::{Jets, limit_and_derivative};
 use super::*;
+use crate::schemes::loop_subdivision::limit::tangent_mask;
 use crate::schemes::{Loop, Scheme};
 
 #[test]
@@ -164,7 +166,7 @@ fn box_spline_matches_loop_limits() {
     }
 }
 
-/// Above [`FOURIER_ABOVE`] the fill's edge derivatives at an interior vertex come from the
+/// Above `fill::FOURIER_ABOVE` the fill's edge derivatives at an interior vertex come from the
 /// fan's mode-1 sums: equal to the tangent mask's sum to rounding.
 #[test]
 fn fourier_fan_derivative_equals_the_mask() {

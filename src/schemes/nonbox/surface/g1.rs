@@ -36,8 +36,8 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, axpy, scale};
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, quad_hole_segments,
-    quad_sectors_around,
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
+    quad_hole_segments, quad_sectors_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
@@ -107,15 +107,9 @@ fn hole_of(
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
-    let x = m
-        .face(f0 as usize)
-        .iter()
-        .copied()
-        .find(|&v| level.info[v as usize].origin == Some(element))
-        .ok_or(NoCap::Never)?;
+    let (x, n) = hole_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
-    let n = m.valence(xu);
-    if m.is_boundary_vertex(xu) || n < 3 || cells.len() != n {
+    if cells.len() != n {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();

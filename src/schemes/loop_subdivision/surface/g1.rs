@@ -1,0 +1,187 @@
+//! The G^1 cap of Loop's last ring.
+//!
+//! # The cap
+//!
+//! An extraordinary interior vertex `x` of valence `n` whose cells at the last level are the `n`
+//! triangles of its fan, every outer edge of which is shared with an emitted (ring or regular)
+//! quartic box-spline triangle of the same level, is closed by the triangle-layout G^1 cap of
+//! [`crate::bezier::g1`]:
+//!
+//! * **hole data**: sector `s` is the fan triangle `[x, E_s, E_(s+1)]` (counter-clockwise, the
+//!   faces' orientation), segment `s` its outer edge `E_s -> E_(s+1)`. The segment is read off
+//!   the box-spline triangle `[E_(s+1), E_s, X]` across that edge exactly: its boundary is the
+//!   triangle's quartic edge curve, its cross derivative the triangle's derivative in the
+//!   barycentric direction from `X` to the edge's midpoint (`e_a / 2 + e_b / 2 - e_X`), the
+//!   cubic `4 (b_(i+e_a) / 2 + b_(i+e_b) / 2 - b_(i+e_X))` over the edge's degree-3 indices
+//!   `i`. In the lattice chart of the ring (the last level's triangles as unit triangles of a
+//!   three-direction lattice, valid at every spoke end `E_s`: an edge point of valence 6) that
+//!   is the derivative toward the centre required by [`crate::bezier::g1::hole`]. The spline's
+//!   2-jet at a valence-6 vertex depends only on its one-ring, so the two segments meeting at a
+//!   spoke end are compatible to rounding (also where two holes touch at a spoke end, as on the
+//!   tetrahedron after one level); [`crate::bezier::g1::g1_cap_with`] checks every hole;
+//! * **centre**: Loop's limit point of `x` (`limit_point_stencil`, the mask `1 - n chi`,
+//!   `chi` per neighbour);
+//! * **tangent plane**: spanned by Loop's tangent masks ([`super::super::limit::tangent_mask`],
+//!   the left eigenvectors of the subdominant pair: `sum cos(2 pi i / n) p_i`,
+//!   `sum sin(2 pi i / n) p_i` over the one-ring); the spoke tangents' scale from the ring's
+//!   chart in that plane ([`crate::bezier::g1::ring::chart_tangents`]);
+//! * **layout, conditions, free parameters**: the hole is split into `n` kites
+//!   (`Hole::to_quad_layout`): cap patch `s` is the kite `x, M_s, E_(s+1), M_(s+1)` (`M_s`
+//!   the midpoint of segment `s`), covering the half of fan triangle `s` beside `E_(s+1)` and the
+//!   half of fan triangle `s + 1` beside `E_(s+1)`, with `(0, 0)` at the centre, spoke `v = 0`
+//!   toward `M_s`. The conditions are those of [`crate::bezier::g1`] with the kites' spoke-end
+//!   twist `kappa = 1`: C^1 to the ring (the two outer layers exact), centre and tangent plane,
+//!   C^0 and the G^1 relation along every spoke, the quadratic jet at the centre where the
+//!   degree allows it; the remaining coefficients minimise the fairness functional `F_4`.
+//!   Degree: the lowest certified, bi-4 for odd `n` (and `n = 4`), bi-5 for even `n != 4`.
+//!
+//! * **spoke tangents' scale**: the cubic spoke model of
+//!   [`crate::bezier::g1::ring::chart_tangents`] for triangle holes, `(3 e_s - f_s) / 2`.
+//!   Measured on a saddle fan (interior vertex of valence `n` in a ring of triangles, 4 rings),
+//!   Gauss curvature of the cap against the last ring's:
+//!
+//!   | `n` | quadratic `2 e - f` | cubic `(3 e - f) / 2` | last ring |
+//!   | --- | --- | --- | --- |
+//!   | 3 | `[-1.4e5, 2.3e6]` | `[-4.0, 116]` | `[-14, 20]` |
+//!   | 4 | `[-0.12, 0.21]` | `[-0.12, 0.24]` | `[-0.30, 0.29]` |
+//!   | 5 | `[-0.107, 0.013]` | `[-0.104, 0.016]` | `[-0.20, 0.09]` |
+//!   | 7 | `[-1.17, -0.36]` | `[-1.37, -0.44]` | `[-0.79, -0.27]` |
+//!   | 8 | `[-2.05, 0.56]` | `[-2.48, 0.025]` | `[-1.29, -0.27]` |
+//!
+//!   At `n = 3` Loop's subdominant eigenvalue is `1/4`, the ring's spokes grow like `r^2` and
+//!   the quadratic model's centre derivative vanishes; elsewhere the two are alike.
+//!
+//! The kites are evaluated at face parameters by inverting their bilinear map in the fan
+//! triangle's lattice chart ([`crate::surface::eval`]); each kite carries the domain of fan
+//! triangle `s` with the centre's corner as its `rot`.
+//!
+//! Holes whose ring is not complete after the requested rings (at `--rings 0` the spoke ends
+//! are input vertices, which need not be regular; another hole's cells next to it) get up to
+//! [`MAX_EXTRA_LEVELS`] more levels. Holes that never have the data (extraordinary boundary
+//! vertices, a fan that does not close, still incomplete after the extra levels) keep the C^0
+//! Hermite fill of [`super`].
+
+use super::{Level, is_regular, tri_index, trusted_net};
+use crate::bezier::complex::PatchComplex;
+use crate::bezier::g1::{Hole, Segment};
+use crate::geom::{axpy, scale};
+use crate::host::adaptive::{
+    CapData, MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
+};
+use crate::mesh::{Element, PolyMesh};
+use crate::schemes::loop_subdivision::limit::tangent_mask;
+use crate::schemes::loop_subdivision::limit_point_stencil;
+use std::collections::HashMap;
+
+/// Levels computed beyond the requested rings, at most, so that incomplete rings complete.
+pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
+
+/// The segment of the hole along the outer edge `from -> to` of a fan triangle, read off the
+/// emitted triangle across it (see the [module](self) documentation); `None` at the boundary
+/// or while that triangle is not emitted.
+fn segment_across(level: &Level, he: u32) -> Option<Segment> {
+    let m = &level.mesh;
+    let h = m.he_twin(he)?;
+    let g = m.he_face(h) as usize;
+    let tri = trusted_net(level, g)?;
+    // the twin runs E_(s+1) -> E_s: corner kb = E_(s+1), ka = E_s, kx the apex
+    let kb = (h - m.face_halfedge(g)) as usize;
+    let (ka, kx) = ((kb + 1) % 3, (kb + 2) % 3);
+    let at = |a: usize, b: usize, x: usize| {
+        let mut idx = [0usize; 3];
+        idx[ka] = a;
+        idx[kb] = b;
+        idx[kx] = x;
+        tri[tri_index(idx[0], idx[1], idx[2])]
+    };
+    let boundary = (0..=4).map(|r| at(4 - r, r, 0)).collect();
+    let cross = (0..=3)
+        .map(|r| {
+            let (a, b) = (3 - r, r);
+            let mid = scale(axpy(at(a + 1, b, 0), 1.0, at(a, b + 1, 0)), 2.0);
+            axpy(mid, -4.0, at(a, b, 1))
+        })
+        .collect();
+    Some(Segment { boundary, cross })
+}
+
+/// The hole of one element, two vectors spanning its limit tangent plane and the tags of its
+/// sectors (each fan triangle's domain with the centre's corner as `rot`), or why there is
+/// none.
+fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapData, NoCap> {
+    let m = &level.mesh;
+    let (f0, _) = cells[0];
+    let (x, n) = hole_centre(m, &level.info, element, f0)?;
+    let xu = x as usize;
+    if !level.info[xu].fan_ok {
+        return Err(NoCap::Never);
+    }
+    let fan = fan_around(m, x, f0, n).ok_or(NoCap::Never)?;
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    if cells.len() != n {
+        return Err(NoCap::Later);
+    }
+    let mut tags = Vec::with_capacity(n);
+    let mut sectors = Vec::with_capacity(n);
+    for &(f, corner) in &fan {
+        let tag = *tag_at.get(&f).ok_or(NoCap::Later)?;
+        tags.push(Tag {
+            domain: tag.domain.rotated(corner as u32),
+            ..tag
+        });
+        let outer = m.face_halfedge(f as usize) + ((corner + 1) % 3) as u32;
+        let spoke_end = m.he_from(outer) as usize;
+        if !is_regular(m, spoke_end) || m.is_boundary_vertex(spoke_end) {
+            return Err(NoCap::Later);
+        }
+        sectors.push(vec![segment_across(level, outer).ok_or(NoCap::Later)?]);
+    }
+    let pos = m.positions();
+    let centre = limit_point_stencil(m, xu).apply(pos);
+    let mut plane = [[0.0; 3]; 2];
+    for (h, (c, s)) in m.outgoing(xu).zip(tangent_mask(n, 0)) {
+        let p = pos[m.he_to(h) as usize];
+        plane[0] = axpy(plane[0], c, p);
+        plane[1] = axpy(plane[1], s, p);
+    }
+    let hole = Hole {
+        centre,
+        tangents: [[0.0; 3]; 2],
+        sectors,
+    };
+    Ok((hole, plane, tags))
+}
+
+/// The `n` triangles around vertex `x` counter-clockwise from face `f0`, each with the corner of
+/// `x` in it, or `None` when one is not a triangle or the walk does not close after `n` faces.
+fn fan_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<(u32, usize)>> {
+    let mut out = Vec::with_capacity(n);
+    let mut f = f0;
+    for _ in 0..n {
+        let face = m.face(f as usize);
+        if face.len() != 3 {
+            return None;
+        }
+        let k = face.iter().position(|&v| v == x)?;
+        out.push((f, k));
+        // the next triangle counter-clockwise holds the twin of E_(s+1) -> x
+        let back = m.face_halfedge(f as usize) + ((k + 2) % 3) as u32;
+        f = m.he_face(m.he_twin(back)?);
+    }
+    (f == f0).then_some(out)
+}
+
+/// Whether some marked element would get its cap after more levels.
+pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+    caps_waiting(marked, |e, cells| hole_of(level, e, cells))
+}
+
+/// Caps every element of the marked cells that has its hole data; returns the cells left for
+/// the Hermite fill.
+pub(super) fn g1_caps(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    out: &mut PatchComplex,
+) -> Vec<(u32, Tag)> {
+    g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok())
+}
