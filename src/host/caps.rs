@@ -3,7 +3,7 @@
 //! and the notes a cap scheme leaves for the user where it falls back or substitutes rules.
 
 use super::Fallback;
-use crate::bezier::complex::PatchComplex;
+use crate::bezier::complex::{Domain, PatchComplex};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::Element;
@@ -21,12 +21,18 @@ pub trait CapBuilder {
 
     /// Appends the cap of one vertex: `cnet` holds its c-net positions in the order of
     /// [`crate::mesh::PolyMesh::cnet_indices`] with two rings; rings are numbered from `first_ring`.
+    /// `sectors[s]` is the input-face domain of sector `s`'s face (the quad between spokes `s`
+    /// and `s + 1`), rotated so that the patch frame's `(0, 0)` is the vertex, `u` runs along
+    /// spoke `s` and `v` along spoke `s + 1` ([`Domain::UNTRACKED`] where the host does not
+    /// track domains); a builder whose patches tile that frame in a known way records their
+    /// domains with [`Domain::square`].
     fn build(
         &self,
         cnet: &[Point],
         n: usize,
         element: Element,
         first_ring: u32,
+        sectors: &[Domain],
         out: &mut PatchComplex,
     ) -> Result<()>;
 }

@@ -8,8 +8,8 @@ use super::surface::{EgOptions, EgRulesProvider, dnet_complex};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::descriptor::{
-    Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published, RulesChoice,
-    RulesOrigin, Spec, ValenceRules, patch_fn,
+    Capabilities, Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published,
+    RulesChoice, RulesOrigin, Spec, ValenceRules, patch_fn,
 };
 use crate::schemes::local::{LocalMatrix, spectrum};
 
@@ -21,6 +21,15 @@ pub struct EgDescriptor;
 pub static DESCRIPTOR: EgDescriptor = EgDescriptor;
 
 impl Descriptor for EgDescriptor {
+    /// Exact patches and evaluation: the caps' rings tile each sector's face dyadically in the
+    /// d-net's chart ([`crate::schemes::eg::surface`]'s parameter domain).
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            eval: true,
+            ..Capabilities::PATCHES
+        }
+    }
+
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fallback, ParamKind::Rules]
     }

@@ -143,6 +143,7 @@ impl CapBuilder for GuidedCaps {
         n: usize,
         element: Element,
         first_ring: u32,
+        _sectors: &[crate::bezier::complex::Domain],
         out: &mut PatchComplex,
     ) -> Result<()> {
         if self.opts.cap && self.opts.rings == 0 {
