@@ -8,6 +8,7 @@
 use fairsub::cli::run_words;
 use fairsub::geom::{Point, dist, norm, sub};
 use fairsub::mesh::PolyMesh;
+use fairsub::schemes::catmull_clark::catmull_clark_lambda;
 use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::{Surface, evaluate_limit};
@@ -125,8 +126,10 @@ const NETS: [&str; 5] = [
     "torus-evs",
 ];
 
-fn cap_schemes() -> [&'static str; 5] {
+fn cap_schemes() -> [&'static str; 7] {
     [
+        ids::GUIDED_BI5.name(),
+        ids::GUIDED_BI6.name(),
         ids::EG.name(),
         ids::QAS_PLUS.name(),
         ids::QAS_PLUS_BI3.name(),
@@ -235,6 +238,8 @@ fn cap_scheme_limit_evaluation_converges_at_rate_lambda() {
         (ids::QAS_PLUS.name(), 5, Some(0.5)),
         (ids::QAS_PLUS.name(), 6, Some(0.5)),
         (ids::QAS_04.name(), 5, Some(0.4)),
+        (ids::GUIDED_BI5.name(), 5, Some(catmull_clark_lambda(5))),
+        (ids::GUIDED_BI6.name(), 3, Some(catmull_clark_lambda(3))),
     ] {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (ev, at) = toward_ev(&mesh, n);

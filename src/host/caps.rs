@@ -37,6 +37,19 @@ pub trait CapBuilder {
     ) -> Result<()>;
 }
 
+/// Lower-left corners of the three patches `A`, `B`, `C` of a sector's ring in the ring's
+/// chart, in units of half the ring's scale: the L-shaped band `[0, 1]^2 \ [0, 1/2]^2` of the
+/// contracting cap schemes (EG's and QAS+'s d-net rings, guided rings; each in its own chart).
+pub const RING_CELLS: [(u32, u32); 3] = [(1, 0), (1, 1), (0, 1)];
+
+/// The domain of the dyadic square `(i, j) 2^-level` of sector `s`'s frame
+/// ([`CapBuilder::build`]'s `sectors`, [`Domain::square`]); untracked without sector domains.
+pub fn sector_square(sectors: &[Domain], s: usize, level: u8, i: u32, j: u32) -> Domain {
+    sectors
+        .get(s)
+        .map_or(Domain::UNTRACKED, |d| d.square(level, i, j))
+}
+
 /// How notes and errors name an element that gets a cap: `vertex 3`, `the centre of face 7`.
 pub fn describe(e: Element) -> String {
     match e {

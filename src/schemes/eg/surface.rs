@@ -58,7 +58,7 @@ use crate::bezier::BezierPatch;
 use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::host::caps::{CapBuilder, CapNotes, describe};
+use crate::host::caps::{CapBuilder, CapNotes, RING_CELLS, describe, sector_square};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
@@ -395,18 +395,6 @@ fn ring_patch(ring: &[Point], s: usize, k: usize) -> BezierPatch {
     BezierPatch::new(4, 4, ring[base..base + 25].to_vec())
 }
 
-/// Lower-left corners of the ring patches `A`, `B`, `C` of a sector in its EG chart, in units
-/// of half the ring's d-net spacing (the cells of [`crate::schemes::eg::build_step`]).
-const ABC: [(u32, u32); 3] = [(1, 0), (1, 1), (0, 1)];
-
-/// The domain of the dyadic square `(i, j) 2^-level` of sector `s`'s frame (the mesh chart:
-/// `i` along spoke `s`, which is the EG chart's `v`), untracked without sector domains.
-fn sector_square(sectors: &[Domain], s: usize, level: u8, i: u32, j: u32) -> Domain {
-    sectors
-        .get(s)
-        .map_or(Domain::UNTRACKED, |d| d.square(level, i, j))
-}
-
 /// Appends ring `at.1` (0-based; numbered `at.0 + at.1` in the provenance) of a cap, each patch
 /// with its domain in its sector's face (the module's "Parameter domain"): the patches are
 /// written transposed (mesh chart), so their first parameter runs along spoke `s`, as the
@@ -425,12 +413,12 @@ fn push_ring(
         for k in 0..if bi3 { 12 } else { 3 } {
             // The EG chart mirrors the mesh chart: transpose so the normal points outward.
             let (p, domain) = if bi3 {
-                let (cu, cv) = ABC[k / 4];
+                let (cu, cv) = RING_CELLS[k / 4];
                 let (su, sv) = ((k % 4 % 2) as u32, (k % 4 / 2) as u32);
                 let d = sector_square(sectors, s, level + 1, 2 * cv + sv, 2 * cu + su);
                 (ring_patch3(ring, s, k / 4, k % 4), d)
             } else {
-                let (cu, cv) = ABC[k];
+                let (cu, cv) = RING_CELLS[k];
                 (
                     ring_patch(ring, s, k),
                     sector_square(sectors, s, level, cv, cu),
