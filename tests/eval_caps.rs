@@ -13,25 +13,9 @@ use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::{Surface, evaluate_limit};
 
-fn gallery(name: &str) -> PolyMesh {
-    fairsub::gallery::all()
-        .into_iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("gallery net {name}"))
-        .1
-}
-
-/// Deterministic points in `[0, 1)`.
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+#[path = "eval/support.rs"]
+mod support;
+use support::{Lcg, gallery, tmp};
 
 /// `per_face` random points of every face (n-gons on their strip `[0, n] x [0, 1]`), half of
 /// them within `2^-6` of a corner (so in the caps of the extraordinary vertices), and each
@@ -65,12 +49,6 @@ fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64, f6
     pts
 }
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("fairsub-eval-caps-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
-}
-
 fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
     let mesh = gallery(net);
     let spec = registry().lookup(scheme).expect("scheme");
@@ -82,7 +60,7 @@ fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
 /// against the written patch it names; returns the largest difference and how many points fell
 /// on cap patches.
 fn agrees_with_written(net: &str, scheme: &str, rings: usize) -> (f64, usize) {
-    let out = tmp(&format!("{net}-{scheme}-{rings}.bv"));
+    let out = tmp("fairsub-eval-caps", &format!("{net}-{scheme}-{rings}.bv"));
     let words = [
         "fairsub",
         "subdivide",
