@@ -12,7 +12,7 @@ use fairsub::surface::eval::{Surface, evaluate_limit};
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{Lcg, gallery, tmp};
+use support::{Lcg, gallery, tmp, toward_ev};
 
 /// Random points of every face of `mesh` in its domain (quads `[0,1]^2`, n-gons `[0,n]x[0,1]`,
 /// triangles barycentric), plus each face's corners.
@@ -178,24 +178,7 @@ fn limit_point(mesh: &PolyMesh, v: usize) -> Point {
 fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
     for n in [3usize, 5, 7] {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
-        let ev = (0..mesh.num_vertices())
-            .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
-            .expect("the extraordinary vertex");
-        let (f, c) = (0..mesh.num_faces())
-            .find_map(|f| {
-                mesh.face(f)
-                    .iter()
-                    .position(|&w| w as usize == ev)
-                    .map(|c| (f, c))
-            })
-            .expect("a face at the vertex");
-        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        let (o, a, b) = (corners[c], corners[(c + 1) % 4], corners[(c + 3) % 4]);
-        let at = |h: f64| {
-            let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
-            let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
-            (f as u32, x, y)
-        };
+        let (ev, at) = toward_ev(&mesh, n);
         let ks: Vec<i32> = (2..=12).collect();
         let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
         pts.push(at(0.0));

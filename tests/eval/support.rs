@@ -31,3 +31,27 @@ pub fn tmp(prefix: &str, name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir.join(name)
 }
+
+/// The extraordinary vertex of valence `n` of the c-net `cnet-n-saddle`, a face at it, and the
+/// face point at distance `h` from it (along a fixed direction into the face).
+pub fn toward_ev(mesh: &PolyMesh, n: usize) -> (usize, impl Fn(f64) -> (u32, f64, f64)) {
+    let ev = (0..mesh.num_vertices())
+        .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
+        .expect("the extraordinary vertex");
+    let (f, c) = (0..mesh.num_faces())
+        .find_map(|f| {
+            mesh.face(f)
+                .iter()
+                .position(|&w| w as usize == ev)
+                .map(|c| (f, c))
+        })
+        .expect("a face at the vertex");
+    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let (o, a, b) = (corners[c], corners[(c + 1) % 4], corners[(c + 3) % 4]);
+    let at = move |h: f64| {
+        let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
+        let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
+        (f as u32, x, y)
+    };
+    (ev, at)
+}
