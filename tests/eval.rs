@@ -10,25 +10,9 @@ use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::{Surface, evaluate_limit};
 
-fn gallery(name: &str) -> PolyMesh {
-    fairsub::gallery::all()
-        .into_iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("gallery net {name}"))
-        .1
-}
-
-/// Deterministic points in `[0, 1)`.
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+#[path = "eval/support.rs"]
+mod support;
+use support::{Lcg, gallery, tmp, toward_ev};
 
 /// Random points of every face of `mesh` in its domain (quads `[0,1]^2`, n-gons `[0,n]x[0,1]`,
 /// triangles barycentric), plus each face's corners.
@@ -56,16 +40,13 @@ fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64, f6
     pts
 }
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("fairsub-eval-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
-}
-
 /// Writes `subdivide --rings` of `net`, evaluates random points of every face with the library
 /// and checks each against the written patch it names; returns the largest difference.
 fn agrees_with_written(net: &str, scheme: &str, rings: usize) -> f64 {
-    let out = tmp(&format!("{}-{scheme}-{rings}.bv", net.replace(':', "-")));
+    let out = tmp(
+        "fairsub-eval",
+        &format!("{}-{scheme}-{rings}.bv", net.replace(':', "-")),
+    );
     let words = [
         "fairsub",
         "subdivide",
@@ -212,29 +193,7 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
     ];
     for (scheme, net, n, lambda) in cases {
         let mesh = gallery(&net);
-        let ev = (0..mesh.num_vertices())
-            .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
-            .expect("the extraordinary vertex");
-        let (f, c) = (0..mesh.num_faces())
-            .find_map(|f| {
-                mesh.face(f)
-                    .iter()
-                    .position(|&w| w as usize == ev)
-                    .map(|c| (f, c))
-            })
-            .expect("a face at the vertex");
-        let corners: &[[f64; 2]] = if mesh.face_size(f) == 3 {
-            &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
-        } else {
-            &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-        };
-        let k = corners.len();
-        let (o, a, b) = (corners[c], corners[(c + 1) % k], corners[(c + k - 1) % k]);
-        let at = |h: f64| {
-            let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
-            let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
-            (f as u32, x, y)
-        };
+        let (ev, at) = toward_ev(&mesh, n);
         let ks: Vec<i32> = (2..=12).collect();
         let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
         pts.push(at(0.0));
@@ -390,7 +349,7 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     .expect_err("open hole");
     assert!(e.contains("no patch") && e.contains("face 0"), "{e}");
     // a bad line of an --at-file names the file and line
-    let file = tmp("points.txt");
+    let file = tmp("fairsub-eval", "points.txt");
     std::fs::write(&file, "# points\n0 0.5 0.5\n1:0.2\n").expect("write");
     let e = eval_words(&[
         "gallery:cube",

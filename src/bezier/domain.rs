@@ -15,7 +15,7 @@
 //!   `(1, 1)`. Child `k` of a quad cell (Catmull-Clark's child at corner `k`: corner `k`, the
 //!   midpoint of edge `k -> k+1`, the centre, the midpoint of edge `k-1 -> k`) is the quarter of
 //!   the cell at corner `k`, with its own `u` toward corner `k + 1` and `v` toward corner `k - 1`.
-//! * An **n-gon** (`n != 4`, Catmull-Clark) is split into `n` quads by its first refinement;
+//! * An **n-gon** (`n != 4`; Catmull-Clark and the schemes on its host) is split into `n` quads by its first refinement;
 //!   sub-face `i` is the quad at corner `i` (corner `i`, the midpoint of edge `i -> i+1`, the
 //!   face centre, the midpoint of edge `i-1 -> i`), parametrised like a quad: `(0, 0)` at corner
 //!   `i`, `u` toward the midpoint of the outgoing edge, `v` toward the midpoint of the incoming
@@ -292,6 +292,31 @@ impl Domain {
         }
     }
 
+    /// The dyadic square `[i, i + 1] x [j, j + 1] * 2^-level` of this patch frame (the cell's
+    /// coordinates rotated so that `(0, 0)` sits at corner `rot`, as [`Domain::patch_map`]
+    /// maps them), as a cell `level` levels down with the patch's `(0, 0)` at the square's
+    /// corner nearest the frame's origin and its axes along the frame's: the domain of the
+    /// cap schemes' ring patches, which tile a sector's face in its own chart (quads only).
+    pub fn square(self, level: u8, i: u32, j: u32) -> Domain {
+        let mut d = self;
+        let mut r = u32::from(self.rot);
+        for l in (0..u32::from(level)).rev() {
+            let (qx, qy) = ((i >> l) & 1, (j >> l) & 1);
+            // the quadrant's corner counted from the frame's origin, counter-clockwise
+            let off = match (qx, qy) {
+                (0, 0) => 0,
+                (1, 0) => 1,
+                (1, 1) => 2,
+                _ => 3,
+            };
+            let k = (r + off) % 4;
+            d = d.child(k);
+            // child k's corner c sits where the parent's corner k + c does, scaled toward k
+            r = (r + 4 - k) % 4;
+        }
+        d.rotated(r)
+    }
+
     /// Child index at level `l` (1-based).
     pub fn step(&self, l: u8) -> u8 {
         ((self.path >> (2 * (l as u32 - 1))) & 3) as u8
@@ -350,6 +375,29 @@ mod tests {
         let m = Shape::Triangle.child_map(3);
         assert_eq!(m.apply([1.0, 0.0]), [0.5, 0.5]);
         assert_eq!(m.apply([0.0, 1.0]), [0.0, 0.5]);
+    }
+
+    #[test]
+    fn squares_are_the_frame_scaled() {
+        for rot in 0..4u32 {
+            let base = Domain::face(2, 4).child(1).rotated(rot);
+            for level in 0..4u8 {
+                let side = 1u32 << level;
+                for i in 0..side {
+                    for j in 0..side {
+                        let d = base.square(level, i, j);
+                        assert_eq!(d.depth, 1 + level);
+                        let h = 0.5f64.powi(i32::from(level));
+                        let frame = base.patch_map();
+                        for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.25, 0.625]] {
+                            let want =
+                                frame.apply([(f64::from(i) + p[0]) * h, (f64::from(j) + p[1]) * h]);
+                            assert_eq!(d.patch_map().apply(p), want, "rot {rot} ({i}, {j})");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -22,7 +22,8 @@ pub struct Args {
     /// A file of points, one `F:U:V` (or `F U V`) per line; `#` starts a comment.
     #[arg(long)]
     pub at_file: Option<PathBuf>,
-    /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark and Loop).
+    /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark, Loop, EG, the QAS+
+    /// variants and guided bi-5/bi-6).
     #[arg(long, short)]
     pub scheme: String,
     /// Evaluate the complex `subdivide --rings K` writes (same options); without it, the

@@ -143,10 +143,14 @@ as a polyhedron.")]
     /// normal, curvatures, patch).
     #[command(after_help = "\
 Parameter domains: a quad face has (u, v) in [0,1]^2, corner 0 at (0,0), u toward corner 1, v
-toward corner 3. An n-gon (n != 4, Catmull-Clark) has u in [0,n], v in [0,1]: sub-face
+toward corner 3. An n-gon (n != 4; Catmull-Clark, EG, QAS+, guided) has u in [0,n], v in [0,1]: sub-face
 i = floor(u) is the quad at corner i (corner i, midpoint of the outgoing edge, centre, midpoint
 of the incoming edge) at local (u - i, v), u toward the outgoing edge. A triangle (Loop) has
-barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. Without --rings the
+barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. EG, QAS+ (all
+variants) and guided bi-5/bi-6 parametrise the faces around a capped vertex by their rings'
+chart: ring k of the cap
+covers the band between 2^-k and 2^-(k-1) of the face's square at the vertex, the cap the
+square inside the last ring. Without --rings the
 scheme's limit surface is evaluated (as many rings as each point needs, the limit point at an
 extraordinary vertex); with --rings K the complex `subdivide --rings K` writes.")]
     Eval(eval::Args),

@@ -3,7 +3,7 @@
 //! and the notes a cap scheme leaves for the user where it falls back or substitutes rules.
 
 use super::Fallback;
-use crate::bezier::complex::PatchComplex;
+use crate::bezier::complex::{Domain, PatchComplex};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::Element;
@@ -21,17 +21,36 @@ pub trait CapBuilder {
 
     /// Appends the cap of one vertex: `cnet` holds its c-net positions in the order of
     /// [`crate::mesh::PolyMesh::cnet_indices`] with two rings; rings are numbered from `first_ring`.
+    /// `sectors[s]` is the input-face domain of sector `s`'s face (the quad between spokes `s`
+    /// and `s + 1`), rotated so that the patch frame's `(0, 0)` is the vertex, `u` runs along
+    /// spoke `s` and `v` along spoke `s + 1` ([`Domain::UNTRACKED`] where the host does not
+    /// track domains); a builder whose patches tile that frame in a known way records their
+    /// domains with [`Domain::square`].
     fn build(
         &self,
         cnet: &[Point],
         n: usize,
         element: Element,
         first_ring: u32,
+        sectors: &[Domain],
         out: &mut PatchComplex,
     ) -> Result<()>;
 
     /// Records a note for the user (once), e.g. an element left to Catmull-Clark by the host.
     fn note(&self, msg: String);
+}
+
+/// Lower-left corners of the three patches `A`, `B`, `C` of a sector's ring in the ring's
+/// chart, in units of half the ring's scale: the L-shaped band `[0, 1]^2 \ [0, 1/2]^2` of the
+/// contracting cap schemes (EG's and QAS+'s d-net rings, guided rings; each in its own chart).
+pub const RING_CELLS: [(u32, u32); 3] = [(1, 0), (1, 1), (0, 1)];
+
+/// The domain of the dyadic square `(i, j) 2^-level` of sector `s`'s frame
+/// ([`CapBuilder::build`]'s `sectors`, [`Domain::square`]); untracked without sector domains.
+pub fn sector_square(sectors: &[Domain], s: usize, level: u8, i: u32, j: u32) -> Domain {
+    sectors
+        .get(s)
+        .map_or(Domain::UNTRACKED, |d| d.square(level, i, j))
 }
 
 /// How notes and errors name an element that gets a cap: `vertex 3`, `the centre of face 7`.

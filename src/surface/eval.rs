@@ -3,8 +3,9 @@
 //! and which patch (and where in it) the point lies in.
 //!
 //! A [`Surface`] is a patch complex whose patches carry the [`Domain`] of their input face (the
-//! adaptive host records it for the schemes whose [`Capabilities`] say `eval`: Catmull-Clark
-//! and Loop). The parameter domain of quads, n-gons and triangles is documented in
+//! adaptive host records it for the schemes whose [`Capabilities`] say `eval`: Catmull-Clark,
+//! Loop, and EG, the QAS+ family and guided subdivision, whose caps tile each sector's face in
+//! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`]). The parameter domain of quads, n-gons and triangles is documented in
 //! [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
 //! children, so the cells form a quadtree per face: a point is located by descending it, one
 //! hash look-up per level (`O(log)` of the patch size, independent of the number of patches).

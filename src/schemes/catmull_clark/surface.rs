@@ -42,7 +42,7 @@ pub mod sharp;
 
 use super::regular::bi3_net;
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
@@ -312,16 +312,43 @@ fn apply_caps(
     }
     let mut capped: Vec<u32> = cand.keys().copied().collect();
     capped.sort_unstable();
+    let domains: HashMap<u32, Domain> = if capped.is_empty() {
+        HashMap::new()
+    } else {
+        marked.iter().map(|&(f, tag)| (f, tag.domain)).collect()
+    };
     for &v in &capped {
         let idx = &cand[&v];
         let pts: Vec<Point> = idx.iter().map(|&w| m.position(w as usize)).collect();
         let element = level.info[v as usize].origin.expect("checked above");
-        builder.build(&pts, m.valence(v as usize), element, l + 1, out)?;
+        let sectors = sector_domains(m, v, &domains);
+        builder.build(&pts, m.valence(v as usize), element, l + 1, &sectors, out)?;
     }
     Ok(marked
         .into_iter()
         .filter(|&(f, _)| !m.face(f as usize).iter().any(|w| cand.contains_key(w)))
         .collect())
+}
+
+/// The domain of each sector's face around the interior vertex `v`, in the sector order of
+/// [`PolyMesh::cnet_indices`], rotated to `v`'s corner (the frame [`CapBuilder::build`]
+/// documents); [`Domain::UNTRACKED`] for faces without one in `domains`.
+fn sector_domains(m: &PolyMesh, v: u32, domains: &HashMap<u32, Domain>) -> Vec<Domain> {
+    let h0 = m.vertex_halfedge(v as usize);
+    let ring = m.interior_ring_from(h0).unwrap_or_default();
+    ring.iter()
+        .map(|&h| {
+            let f = m.he_face(h);
+            let face = m.face(f as usize);
+            let to = m.he_to(h);
+            let corner = (0..face.len())
+                .find(|&c| face[c] == v && face[(c + 1) % face.len()] == to)
+                .unwrap_or(0);
+            domains
+                .get(&f)
+                .map_or(Domain::UNTRACKED, |d| d.rotated(corner as u32))
+        })
+        .collect()
 }
 
 /// The bi-3 patch of face `f` if it is regular and all its net points are trusted.

@@ -8,8 +8,8 @@ use super::surface::{EgOptions, EgRulesProvider, dnet_complex};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::descriptor::{
-    Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published, RulesChoice,
-    RulesOrigin, Spec, ValenceRules, patch_fn,
+    Capabilities, Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published,
+    RulesChoice, RulesOrigin, Spec, ValenceRules, patch_fn,
 };
 use crate::schemes::local::{LocalMatrix, spectrum};
 
@@ -25,6 +25,15 @@ impl Descriptor for EgDescriptor {
     /// vertices next to them get Catmull-Clark's rings and cap, with a note.
     fn patches_take_features(&self) -> bool {
         true
+    }
+
+    /// Exact patches and evaluation: the caps' rings tile each sector's face dyadically in the
+    /// d-net's chart ([`crate::schemes::eg::surface`]'s parameter domain).
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            eval: true,
+            ..Capabilities::PATCHES
+        }
     }
 
     fn params(&self) -> &'static [ParamKind] {

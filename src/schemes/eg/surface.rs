@@ -36,14 +36,29 @@
 //! layers, in the limit tangent plane) cannot be built, with a note; QAS+^3's bi-3 rings keep
 //! their C^0 Coons fill ([`fill`]). `fairsub check` reports the measured defects. `--no-fill`
 //! leaves the hole open.
+//!
+//! # Parameter domain (evaluation)
+//!
+//! The cap's patches record the part of their input face they cover ([`crate::bezier::domain`]),
+//! so `fairsub eval` works for EG and the QAS+ family. The host gives each sector's face as a
+//! frame with the vertex at `(0, 0)`, `u` along spoke `s`, `v` along spoke `s + 1`
+//! ([`CapBuilder::build`]); that is the d-net's chart at the c-net's spacing, transposed
+//! (the EG chart's `u` runs along spoke `s + 1`). Each step halves the d-net spacing, so ring
+//! `k` (0-based) covers the band `[0, 2^-k]^2 \ [0, 2^-(k+1)]^2` of the frame: patch `A` on the
+//! EG chart's `[1/2, 1] x [0, 1/2]` of that square, `B` on `[1/2, 1]^2`, `C` on
+//! `[0, 1/2] x [1/2, 1]` (the cells of [`crate::schemes::eg::build_step`]; QAS+^3's bi-3 rings
+//! split each in its 2 x 2 quarters), each patch's own `(u, v)` the frame's, scaled. The cap
+//! or fill inside ring `K` covers `[0, 2^-K]^2` with `(0, 0)` at the centre (QAS+^3's Coons
+//! fill: its 2 x 2 quarters). The ratio is the chart's, whatever the scheme's eigenvalue
+//! (QAS_0.4 contracts the surface by 0.4 per ring, its chart by 1/2).
 
 use super::select::{self, Selected};
 use super::{Eg, EgStep, from_cnet};
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::host::caps::{CapBuilder, CapNotes, describe};
+use crate::host::caps::{CapBuilder, CapNotes, RING_CELLS, describe, sector_square};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
@@ -309,6 +324,7 @@ impl CapBuilder for DnetCaps<'_> {
         n: usize,
         element: Element,
         first_ring: u32,
+        sectors: &[Domain],
         out: &mut PatchComplex,
     ) -> Result<()> {
         if self.fill && self.rings == 0 {
@@ -322,7 +338,7 @@ impl CapBuilder for DnetCaps<'_> {
         for k in 0..self.rings {
             let step = self.step(n, k)?;
             let ring = step.ring.apply(&x);
-            push_ring(&ring, n, element, first_ring + k as u32, out);
+            push_ring(&ring, n, element, (first_ring, k), sectors, out);
             last = Some(ring);
             x = step.step.apply(&x);
         }
@@ -355,9 +371,22 @@ impl CapBuilder for DnetCaps<'_> {
                     }
                 }
             };
+            let rings = self.rings as u8;
             for (k, p) in patches.into_iter().enumerate() {
-                let sector = (k / per_sector) as u32;
-                out.push(p, Provenance::Cap { element, sector });
+                let s = k / per_sector;
+                // one patch on the square [0, 2^-K]^2 of the sector's frame, or QAS+^3's 2 x 2
+                let domain = match per_sector {
+                    1 => sector_square(sectors, s, rings, 0, 0),
+                    _ => {
+                        let (cu, cv) = ((k % 4 % 2) as u32, (k % 4 / 2) as u32);
+                        sector_square(sectors, s, rings + 1, cv, cu)
+                    }
+                };
+                let prov = Provenance::Cap {
+                    element,
+                    sector: s as u32,
+                };
+                out.push_in(p, prov, domain);
             }
         }
         Ok(())
@@ -370,24 +399,41 @@ fn ring_patch(ring: &[Point], s: usize, k: usize) -> BezierPatch {
     BezierPatch::new(4, 4, ring[base..base + 25].to_vec())
 }
 
-fn push_ring(ring: &[Point], n: usize, element: Element, ring_index: u32, out: &mut PatchComplex) {
+/// Appends ring `at.1` (0-based; numbered `at.0 + at.1` in the provenance) of a cap, each patch
+/// with its domain in its sector's face (the module's "Parameter domain"): the patches are
+/// written transposed (mesh chart), so their first parameter runs along spoke `s`, as the
+/// sector frame's `u` does.
+fn push_ring(
+    ring: &[Point],
+    n: usize,
+    element: Element,
+    at: (u32, usize),
+    sectors: &[Domain],
+    out: &mut PatchComplex,
+) {
     let bi3 = is_bi3_ring(ring, n);
+    let level = at.1 as u8 + 1;
     for s in 0..n {
         for k in 0..if bi3 { 12 } else { 3 } {
             // The EG chart mirrors the mesh chart: transpose so the normal points outward.
-            let p = if bi3 {
-                ring_patch3(ring, s, k / 4, k % 4)
+            let (p, domain) = if bi3 {
+                let (cu, cv) = RING_CELLS[k / 4];
+                let (su, sv) = ((k % 4 % 2) as u32, (k % 4 / 2) as u32);
+                let d = sector_square(sectors, s, level + 1, 2 * cv + sv, 2 * cu + su);
+                (ring_patch3(ring, s, k / 4, k % 4), d)
             } else {
-                ring_patch(ring, s, k)
+                let (cu, cv) = RING_CELLS[k];
+                (
+                    ring_patch(ring, s, k),
+                    sector_square(sectors, s, level, cv, cu),
+                )
             };
-            out.push(
-                p.transposed(),
-                Provenance::Ring {
-                    element,
-                    ring: ring_index,
-                    sector: s as u32,
-                },
-            );
+            let prov = Provenance::Ring {
+                element,
+                ring: at.0 + at.1 as u32,
+                sector: s as u32,
+            };
+            out.push_in(p.transposed(), prov, domain);
         }
     }
 }

@@ -7,7 +7,8 @@ use super::surface::{GuidedComplexOptions, guided_complex};
 use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::descriptor::{
-    Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec, patch_fn,
+    Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
+    patch_fn,
 };
 use crate::schemes::local::{LocalMatrix, LocalOperator};
 
@@ -40,6 +41,18 @@ impl Descriptor for GuidedDescriptor {
     /// vertices next to them get Catmull-Clark's rings and cap, with a note.
     fn patches_take_features(&self) -> bool {
         true
+    }
+
+    /// Exact patches; evaluation for the bi-5 and bi-6 rings with their cap, which tile each
+    /// sector's face dyadically in the c-net chart ([`super::surface`]'s parameter domain). The
+    /// macro-patch variants have no cap (their hole is open, so limit evaluation near the centre
+    /// has no patch), and the bi-3 pieces split a ring patch in thirds, which no dyadic cell
+    /// holds.
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            eval: matches!(self.ring, RingDegree::Bi5 | RingDegree::Bi6),
+            ..Capabilities::PATCHES
+        }
     }
 
     fn params(&self) -> &'static [ParamKind] {

@@ -9,15 +9,27 @@
 //! first. With the contraction 1/2 ([`ChiKind::Half`]) the QAS+ characteristic map is used,
 //! which exists for valences 5..10; other valences fall back to Catmull-Clark's map (a note
 //! names them) or stop with an error, as the user chooses.
+//!
+//! # Parameter domain (evaluation)
+//!
+//! The rings live in the c-net chart of each sector ([`super::rings`]): the sector's face is
+//! `[0, 1]^2` with the vertex at `(0, 0)` and `u` along spoke `s` (the frame the host gives,
+//! [`CapBuilder::build`]), and ring `l` (0-based) is at scale `2^-l`: `A` on
+//! `[1/2, 1] x [0, 1/2]` of `[0, 2^-l]^2`, `B` on `[1/2, 1]^2`, `C` on `[0, 1/2] x [1/2, 1]`,
+//! local `(s, t)` the chart's, scaled (the prolongation relations of [`super::rings`] say so:
+//! `A`'s point `(s, t)` is the previous `A`'s `((s - 1)/2, t/2)`). The cap covers `[0, 2^-K]^2`,
+//! local `(u, v)` = chart / `2^-K`, `(0, 0)` at the centre ([`super::cap`]). The scale is the
+//! chart's whatever the characteristic map's `lambda`. Each patch records that square as its
+//! domain, so `fairsub eval` works for bi-5 and bi-6; the macro-patch pieces get none.
 
 use super::cap::CapTables;
 use super::chi::ChiKind;
 use super::rings::{Guided, GuidedOptions};
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::host::caps::{CapBuilder, CapNotes, describe};
+use crate::host::caps::{CapBuilder, CapNotes, RING_CELLS, describe, sector_square};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
@@ -147,6 +159,7 @@ impl CapBuilder for GuidedCaps {
         n: usize,
         element: Element,
         first_ring: u32,
+        sectors: &[Domain],
         out: &mut PatchComplex,
     ) -> Result<()> {
         if self.opts.cap && self.opts.rings == 0 {
@@ -170,7 +183,11 @@ impl CapBuilder for GuidedCaps {
                     sector: (k / 3) as u32,
                 };
                 match mk {
-                    None => out.push(BezierPatch::new(d, d, p.clone()), prov),
+                    None => {
+                        let (cu, cv) = RING_CELLS[k % 3];
+                        let domain = sector_square(sectors, k / 3, l as u8 + 1, cu, cv);
+                        out.push_in(BezierPatch::new(d, d, p.clone()), prov, domain);
+                    }
                     Some(kind) => {
                         let e = kind.degree();
                         for piece in kind.pieces_of(p) {
@@ -181,13 +198,15 @@ impl CapBuilder for GuidedCaps {
             }
         }
         if let (Some(cap), Some(last)) = (&t.cap, rings.last()) {
+            let level = rings.len() as u8;
             for (s, p) in cap.cap(&guide, last).into_iter().enumerate() {
-                out.push(
+                out.push_in(
                     BezierPatch::new(6, 6, p),
                     Provenance::Cap {
                         element,
                         sector: s as u32,
                     },
+                    sector_square(sectors, s, level, 0, 0),
                 );
             }
         }

@@ -11,8 +11,8 @@ use super::surface::{Contraction, QasSurface, qas_surface};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::descriptor::{
-    Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published, RulesChoice,
-    RulesOrigin, SchemeId, Spec, ValenceRules, patch_fn,
+    Capabilities, Computed, Descriptor, ExtraFacts, LocalRules, ParamKind, PatchRules, Published,
+    RulesChoice, RulesOrigin, SchemeId, Spec, ValenceRules, patch_fn,
 };
 use crate::schemes::eg::derive::MAX_VALENCE;
 use crate::schemes::eg::select as eg_select;
@@ -62,6 +62,15 @@ impl Descriptor for QasDescriptor {
     /// vertices next to them get Catmull-Clark's rings and cap, with a note.
     fn patches_take_features(&self) -> bool {
         true
+    }
+
+    /// Exact patches and evaluation: the caps' rings tile each sector's face dyadically in the
+    /// d-net's chart ([`crate::schemes::eg::surface`]'s parameter domain).
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            eval: true,
+            ..Capabilities::PATCHES
+        }
     }
 
     fn params(&self) -> &'static [ParamKind] {

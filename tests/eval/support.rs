@@ -1,0 +1,63 @@
+//! Helpers shared by the evaluation tests (`tests/eval.rs`, `tests/eval_caps.rs`): gallery nets,
+//! deterministic random numbers and a temporary directory per test process.
+
+use fairsub::mesh::PolyMesh;
+
+/// The gallery net `name`.
+pub fn gallery(name: &str) -> PolyMesh {
+    fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("gallery net {name}"))
+        .1
+}
+
+/// Deterministic points in `[0, 1)`.
+pub struct Lcg(pub u64);
+impl Lcg {
+    /// The next number.
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A path `name` in a temporary directory of this test process (`prefix` names the test).
+pub fn tmp(prefix: &str, name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("{prefix}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+/// The interior vertex of valence `n` of a net (a c-net, or a triangle net for Loop), a face at it
+/// (quad or triangle), and the face point at distance `h` from it (along a fixed direction into
+/// the face).
+pub fn toward_ev(mesh: &PolyMesh, n: usize) -> (usize, impl Fn(f64) -> (u32, f64, f64)) {
+    let ev = (0..mesh.num_vertices())
+        .find(|&v| mesh.valence(v) == n && !mesh.is_boundary_vertex(v))
+        .expect("the extraordinary vertex");
+    let (f, c) = (0..mesh.num_faces())
+        .find_map(|f| {
+            mesh.face(f)
+                .iter()
+                .position(|&w| w as usize == ev)
+                .map(|c| (f, c))
+        })
+        .expect("a face at the vertex");
+    let corners: &[[f64; 2]] = if mesh.face_size(f) == 3 {
+        &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+    } else {
+        &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    };
+    let k = corners.len();
+    let (o, a, b) = (corners[c], corners[(c + 1) % k], corners[(c + k - 1) % k]);
+    let at = move |h: f64| {
+        let x = o[0] + h * (0.6 * (a[0] - o[0]) + 0.3 * (b[0] - o[0]));
+        let y = o[1] + h * (0.6 * (a[1] - o[1]) + 0.3 * (b[1] - o[1]));
+        (f as u32, x, y)
+    };
+    (ev, at)
+}
