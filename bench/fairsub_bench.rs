@@ -2,7 +2,7 @@
 //! it: generating the meshes, timing stencil re-application, comparing the two programs' outputs.
 //!
 //! ```text
-//! fairsub-bench gen quad-torus|tri-torus FACES OUT.obj
+//! fairsub-bench gen quad-torus|tri-torus|creased-quad-torus FACES OUT.obj
 //! fairsub-bench phases IN.obj SCHEME LEVELS OUT.ply
 //! fairsub-bench reapply IN.obj SCHEME LEVELS REPS
 //! fairsub-bench compare A.ply B.ply
@@ -12,7 +12,8 @@
 //! fairsub-bench complex IN.obj RINGS
 //! ```
 //!
-//! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...).
+//! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...);
+//!   `creased-quad-torus` adds OpenSubdiv crease and corner tags (`meshes::torus_crease_tags`).
 //! - `phases` runs the path of `fairsub subdivide` (read, refine, write) and prints each phase's
 //!   time.
 //! - `reapply` builds the factorized stencil table from the control points to the points of
@@ -72,7 +73,7 @@ fn main() {
             patch_table(input, rings.parse().ok(), points, reps.parse().ok(), out)
         }
         _ => Err(
-            "usage: fairsub-bench gen quad-torus|tri-torus FACES OUT.obj | phases IN SCHEME \
+            "usage: fairsub-bench gen quad-torus|tri-torus|creased-quad-torus FACES OUT.obj | phases IN SCHEME \
                   LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply | caps \
                   VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin | compare-points A B | complex IN.obj RINGS"
                 .into(),
@@ -102,16 +103,21 @@ fn gen_mesh(kind: &str, faces: &str, out: &str) -> Res<()> {
         return Ok(());
     }
     let (m, n) = match kind {
-        "quad-torus" => meshes::torus_dims(faces),
+        "quad-torus" | "creased-quad-torus" => meshes::torus_dims(faces),
         "tri-torus" => meshes::torus_dims(faces / 2),
         _ => return Err(format!("unknown mesh kind '{kind}'").into()),
     };
-    let (p, fs, c) = if kind == "quad-torus" {
-        meshes::quad_torus_arrays(m, n)
-    } else {
+    let (p, fs, c) = if kind == "tri-torus" {
         meshes::tri_torus_arrays(m, n)
+    } else {
+        meshes::quad_torus_arrays(m, n)
     };
     fairsub::io::write_polygons(Path::new(out), &p, &fs, &c, MeshFormat::Obj)?;
+    if kind == "creased-quad-torus" {
+        use std::io::Write;
+        let mut f = std::fs::OpenOptions::new().append(true).open(out)?;
+        f.write_all(meshes::torus_crease_tags(m, n).as_bytes())?;
+    }
     println!("{out}: {} vertices, {} faces", p.len(), fs.len() - 1);
     Ok(())
 }

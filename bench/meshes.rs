@@ -54,6 +54,37 @@ pub fn tri_torus_arrays(m: usize, n: usize) -> (Vec<Point>, Vec<u32>, Vec<u32>) 
     (torus_points(m, n), face_start, corners)
 }
 
+/// OpenSubdiv tag lines that crease an `m x n` quad torus (of [`quad_torus_arrays`]): every
+/// 8th ring of edges around the minor circle and every 8th ring around the major one, with
+/// sharpness cycling through infinitely sharp (10) and the semi-sharp 0.5, 1, 2.5 and 4; and a
+/// semi-sharp corner (2) at every 16th vertex off the creases. About an eighth of the edges
+/// and a quarter of the faces touch a crease, so every sharp rule (crease, corner, dart where a
+/// semi-sharp ring meets a smooth vertex after it is spent, the transition blend) is exercised.
+pub fn torus_crease_tags(m: usize, n: usize) -> String {
+    use std::fmt::Write;
+    const SHARPNESS: [f64; 5] = [10.0, 0.5, 1.0, 2.5, 4.0];
+    let id = |i: usize, j: usize| (i % m) * n + (j % n);
+    let mut out = String::new();
+    for i in (0..m).step_by(8) {
+        let s = SHARPNESS[(i / 8) % SHARPNESS.len()];
+        for j in 0..n {
+            let _ = writeln!(out, "t crease 2/1/0 {} {} {s}", id(i, j), id(i, j + 1));
+        }
+    }
+    for j in (0..n).step_by(8) {
+        let s = SHARPNESS[(j / 8 + 2) % SHARPNESS.len()];
+        for i in 0..m {
+            let _ = writeln!(out, "t crease 2/1/0 {} {} {s}", id(i, j), id(i + 1, j));
+        }
+    }
+    for i in (4..m).step_by(16) {
+        for j in (4..n).step_by(16) {
+            let _ = writeln!(out, "t corner 1/1/0 {} 2", id(i, j));
+        }
+    }
+    out
+}
+
 /// Grid dimensions `(m, n)` with `m * n` close to `cells`, `m` about `1.6 n` (so a 100k-cell
 /// torus is 400 x 250).
 pub fn torus_dims(cells: usize) -> (usize, usize) {

@@ -85,10 +85,17 @@ struct Obj {
     std::vector<Vertex> points;
     std::vector<int> face_sizes;
     std::vector<int> corners;
+    // OpenSubdiv tags `t crease 2/1/0 a b s` (one edge per line, as fairsub-bench writes them)
+    // and `t corner 1/1/0 v s`.
+    std::vector<int> crease_pairs;
+    std::vector<float> crease_weights;
+    std::vector<int> corner_vertices;
+    std::vector<float> corner_weights;
 };
 
 // Reads `v` and `f` lines (f tokens may be v, v/vt, v//vn, v/vt/vn; negative indices count
-// back); every other statement is skipped.
+// back) and the one-edge `t crease 2/1/0` and one-vertex `t corner 1/1/0` tags; every other
+// statement is skipped.
 Obj read_obj(const char* path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(std::string("cannot open ") + path);
@@ -130,6 +137,21 @@ Obj read_obj(const char* path) {
                 ++n;
             }
             obj.face_sizes.push_back(n);
+        } else if (c + 1 < eol && c[0] == 't' && (c[1] == ' ' || c[1] == '\t')) {
+            std::string line(c + 2, eol);
+            char name[32] = {0};
+            int a = 0, b = 0;
+            float w = 0.0f;
+            if (std::sscanf(line.c_str(), " crease 2/1/0 %d %d %f", &a, &b, &w) == 3) {
+                obj.crease_pairs.push_back(a);
+                obj.crease_pairs.push_back(b);
+                obj.crease_weights.push_back(w);
+            } else if (std::sscanf(line.c_str(), " corner 1/1/0 %d %f", &a, &w) == 2) {
+                obj.corner_vertices.push_back(a);
+                obj.corner_weights.push_back(w);
+            } else if (std::sscanf(line.c_str(), " %31s", name) == 1) {
+                fail(std::string("unsupported tag line: t") + line);
+            }
         }
         s = eol + 1;
     }
@@ -152,6 +174,12 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const char* scheme, Obj const
     desc.numFaces = static_cast<int>(obj.face_sizes.size());
     desc.numVertsPerFace = obj.face_sizes.data();
     desc.vertIndicesPerFace = obj.corners.data();
+    desc.numCreases = static_cast<int>(obj.crease_weights.size());
+    desc.creaseVertexIndexPairs = obj.crease_pairs.data();
+    desc.creaseWeights = obj.crease_weights.data();
+    desc.numCorners = static_cast<int>(obj.corner_weights.size());
+    desc.cornerVertexIndices = obj.corner_vertices.data();
+    desc.cornerWeights = obj.corner_weights.data();
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     std::unique_ptr<Far::TopologyRefiner> refiner(
         Factory::Create(desc, Factory::Options(type, options)));

@@ -10,6 +10,8 @@
 #      Catmull-Clark, 100k quads, level 3 (and Loop, 100k triangles, level 3): best wall time of
 #      REPS runs (the programs take turns), peak RSS (/usr/bin/time), output bytes; the outputs are checked to be the same
 #      mesh (same faces, points within 1e-9 of the bounding box diagonal).
+#      The same for a creased torus (Catmull-Clark; crease and corner tags, infinitely sharp and
+#      semi-sharp 0.5 .. 4, `fairsub-bench gen creased-quad-torus`).
 #      fairsub uses all cores (RAYON_NUM_THREADS unset) and is also run on one thread; the
 #      OpenSubdiv Far refiner is single-threaded.
 #   2. stencil re-application (animation: same topology, new points): the factorized table from
@@ -53,6 +55,7 @@ PEER=$OUT/osd_peer
 # --- meshes -----------------------------------------------------------------------------------
 "$TOOL" gen quad-torus "$FACES" "$OUT/quads.obj"
 "$TOOL" gen tri-torus "$FACES" "$OUT/tris.obj"
+"$TOOL" gen creased-quad-torus "$FACES" "$OUT/creased.obj"
 "$TOOL" gen quad-torus "$STENCIL_FACES" "$OUT/stencil.obj"
 
 # Runs a command once; prints "wall_seconds peak_rss_bytes".
@@ -73,11 +76,14 @@ mb() { awk -v a="$1" 'BEGIN { printf "%.0f MB", a / 1e6 }'; }
 rows=()
 row() { rows+=("$(printf '%-58s %14s %14s %8s' "$1" "$2" "$3" "$4")"); }
 
+rm -f "$OUT"/compare-*.txt
 echo "load before measuring: $(uptime)"
 
 # --- 1. whole process ---------------------------------------------------------------------------
 whole() { # scheme-name osd-scheme mesh label
-    local fs_ply="$OUT/fairsub-$1.ply" osd_ply="$OUT/osd-$1.ply"
+    local key
+    key=$(basename "$3" .obj)
+    local fs_ply="$OUT/fairsub-$key.ply" osd_ply="$OUT/osd-$key.ply"
     local t_osd="" rss_osd="" t_fs="" rss_fs="" t_fs1="" t rss
     # The programs take turns, so a change of load on the machine hits both alike; best wall
     # time and largest peak RSS over REPS turns.
@@ -92,7 +98,7 @@ whole() { # scheme-name osd-scheme mesh label
             -o "$fs_ply" "$3")
         t_fs1=$(min "$t" "$t_fs1")
     done
-    "$TOOL" compare "$fs_ply" "$osd_ply" >"$OUT/compare-$1.txt"
+    "$TOOL" compare "$fs_ply" "$osd_ply" >"$OUT/compare-$key.txt"
     local bytes
     bytes=$(stat -c %s "$fs_ply")
     row "$4: wall s (all cores)" "$t_osd" "$t_fs" "$(ratio "$t_osd" "$t_fs")x"
@@ -102,6 +108,7 @@ whole() { # scheme-name osd-scheme mesh label
 }
 whole catmull-clark catmark "$OUT/quads.obj" "CC $FACES quads L$LEVELS"
 whole loop loop "$OUT/tris.obj" "Loop $FACES tris L$LEVELS"
+whole catmull-clark catmark "$OUT/creased.obj" "CC $FACES quads, creased, L$LEVELS"
 
 # --- 2. stencil re-application ------------------------------------------------------------------
 osd_st=$("$PEER" stencils catmark "$OUT/stencil.obj" 3 "$STENCIL_REPS")
