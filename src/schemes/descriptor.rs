@@ -111,7 +111,7 @@ pub use super::qas::QSpec;
 
 /// Which rules a scheme with printed and derived rules uses where the paper prints them
 /// (`--rules`); elsewhere it uses its derived rules either way.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RulesChoice {
     /// The paper's printed rules where they exist (the default).

@@ -66,7 +66,7 @@ use crate::schemes::descriptor::{RulesChoice, RulesOrigin};
 use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::HashMap;
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 mod fill;
 mod g1;
@@ -170,8 +170,18 @@ impl DnetRules for EgRulesProvider {
         from_cnet(n)
     }
 
+    /// The stationary step of valence `n`, built once per process and rules choice (about a
+    /// millisecond each; every complex of the process shares it).
     fn step(&self, n: usize, _k: usize) -> Result<EgStep> {
-        Eg::with_rules(self.rules(n)?.rules).step()
+        static STEPS: OnceLock<Mutex<HashMap<(RulesChoice, usize), EgStep>>> = OnceLock::new();
+        let steps = STEPS.get_or_init(|| Mutex::new(HashMap::new()));
+        let key = (self.choice, n);
+        if let Some(s) = steps.lock().expect("no poisoning").get(&key) {
+            return Ok(s.clone());
+        }
+        let s = Eg::with_rules(self.rules(n)?.rules).step()?;
+        steps.lock().expect("no poisoning").insert(key, s.clone());
+        Ok(s)
     }
 
     fn stationary(&self) -> bool {

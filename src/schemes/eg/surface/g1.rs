@@ -42,26 +42,48 @@ use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::stencil::StencilTable;
 use nalgebra::DMatrix;
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 
 /// Two weight vectors over the local vector whose values span the limit tangent plane.
 pub(super) type TangentMasks = [Vec<f64>; 2];
 
 /// The two left eigenvectors of the subdominant eigenvalue of a step matrix (rows over the
 /// local vector), or why there are none.
+///
+/// The eigen-decomposition is the costly part of a cap (more than the rings), so the masks are
+/// kept for the process, keyed by the matrix itself (its size and the bits of its entries): the
+/// complexes of one process share them, and equal steps of different rules choices coincide.
 pub(super) fn tangent_masks(step: &StencilTable) -> Result<TangentMasks> {
+    type Cache = HashMap<(usize, Vec<u64>), TangentMasks>;
+    /// Masks kept at most (each key is the dense matrix, `(12 n + 1)^2` entries).
+    const MAX_CACHED: usize = 64;
+    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
     let (r, c) = (step.num_rows(), step.num_sources());
     if r != c {
         return Err(Error::Unsupported(format!(
             "the step matrix is {r} x {c}, not square"
         )));
     }
-    let m = DMatrix::from_row_slice(r, c, &step.to_dense());
+    let dense = step.to_dense();
+    let key = (r, dense.iter().map(|w| w.to_bits()).collect::<Vec<u64>>());
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(m) = cache.lock().expect("no poisoning").get(&key) {
+        return Ok(m.clone());
+    }
+    let m = DMatrix::from_row_slice(r, c, &dense);
     let (_, [a, b]) = crate::linalg::subdominant_left_pair(&m).ok_or_else(|| {
         Error::Unsupported(
             "the step matrix has no real double subdominant eigenvalue (no tangent pair)".into(),
         )
     })?;
-    Ok([a.iter().copied().collect(), b.iter().copied().collect()])
+    let masks: TangentMasks = [a.iter().copied().collect(), b.iter().copied().collect()];
+    let mut map = cache.lock().expect("no poisoning");
+    if map.len() >= MAX_CACHED {
+        map.clear();
+    }
+    map.insert(key, masks.clone());
+    Ok(masks)
 }
 
 /// `mask . x`.
