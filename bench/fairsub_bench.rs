@@ -10,6 +10,7 @@
 //! fairsub-bench patch-table IN.obj RINGS POINTS REPS OUT.bin
 //! fairsub-bench compare-points A.bin B.bin
 //! fairsub-bench complex IN.obj RINGS
+//! fairsub-bench eval IN.obj RINGS POINTS REPS
 //! ```
 //!
 //! - `gen` writes a closed torus of about FACES quads or triangles (`100k`, `1M`, ...);
@@ -38,6 +39,10 @@
 //!   patch table's build costs a multiple of.
 //! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
 //!   1e-3, and the largest distance.
+//! - `eval` builds the Catmull-Clark complex (RINGS rings and the caps) once and times
+//!   `Surface::new` (the evaluation index) and `Surface::evaluate_many` at the POINTS-point grid
+//!   of [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
+//!   10k-face net).
 //! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
 //!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
@@ -69,13 +74,16 @@ fn main() {
         ["caps", valence, rings, reps] => caps(valence.parse().ok(), rings.parse().ok(), reps),
         ["compare-points", a, b] => compare_points(a, b),
         ["complex", input, rings] => complex_only(input, rings.parse().ok()),
+        ["eval", input, rings, points, reps] => {
+            eval_only(input, rings.parse().ok(), points, reps.parse().ok())
+        }
         ["patch-table", input, rings, points, reps, out] => {
             patch_table(input, rings.parse().ok(), points, reps.parse().ok(), out)
         }
         _ => Err(
             "usage: fairsub-bench gen quad-torus|tri-torus|creased-quad-torus FACES OUT.obj | phases IN SCHEME \
                   LEVELS OUT.ply | reapply IN SCHEME LEVELS REPS | compare A.ply B.ply | caps \
-                  VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin | compare-points A B | complex IN.obj RINGS"
+                  VALENCE RINGS REPS | patch-table IN.obj RINGS POINTS REPS OUT.bin | compare-points A B | complex IN.obj RINGS | eval IN.obj RINGS POINTS REPS"
                 .into(),
         ),
     };
@@ -419,6 +427,37 @@ fn grid_points(faces: usize, count: usize) -> Vec<(u32, f64, f64)> {
         }
     }
     pts
+}
+
+fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize>) -> Res<()> {
+    use fairsub::surface::{ComplexOptions, eval};
+    let rings = rings.ok_or("bad ring count")?;
+    let reps = reps.ok_or("bad reps")?.max(1);
+    let count = meshes::parse_count(points).ok_or("bad point count")?;
+    let mesh = fairsub::io::read_mesh(Path::new(input))?.mesh;
+    let spec = fairsub::schemes::registry::registry().lookup("catmull-clark")?;
+    let opts = ComplexOptions { rings, fill: true };
+    let complex = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
+    let pts = grid_points(mesh.num_faces(), count);
+    let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
+    let (mut index_ms, mut eval_ms, mut failed) = (f64::INFINITY, f64::INFINITY, 0);
+    for _ in 0..reps {
+        let t = Instant::now();
+        let surface = eval::Surface::new(&mesh, complex.clone());
+        index_ms = index_ms.min(ms(t));
+        let t = Instant::now();
+        let r = surface.evaluate_many(&pts);
+        eval_ms = eval_ms.min(ms(t));
+        failed = r.iter().filter(|e| e.is_err()).count();
+    }
+    println!(
+        "{} faces, {} patches: index {index_ms:.1} ms, evaluate {} points {eval_ms:.1} ms \
+         ({failed} failed)",
+        mesh.num_faces(),
+        complex.len(),
+        pts.len()
+    );
+    Ok(())
 }
 
 fn patch_table(
