@@ -110,37 +110,52 @@ impl Descriptor for Bi2Descriptor {
         }))
     }
 
+    /// Infinitely sharp creases and corners: the net is cut along them
+    /// ([`crate::schemes::doo_sabin::sharp`]); semi-sharp features are refused.
+    fn patches_take_features(&self) -> bool {
+        true
+    }
+
     /// Regular bi-2 patches, the member's rings and fill per element (`rules`: adjustable
-    /// TPS's, ignored by the others).
+    /// TPS's, ignored by the others); on a net with sharp features, of the net cut along its
+    /// creases.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let (kind, rules) = (self.kind, Self::ternary_rules(spec)?);
         let poles = spec.params.poles.clone();
+        let name = spec.name();
         patch_fn(move |mesh, opts, progress| {
-            use super::surface as s;
-            let with_notes = |(complex, notes)| SurfaceOutput {
-                complex,
-                fell_back: Vec::new(),
-                notes,
-            };
-            Ok(match kind {
-                Bi2Kind::Pgs => SurfaceOutput::plain(s::pgs_complex(
-                    mesh,
-                    opts,
-                    PgsOptions::default(),
-                    progress,
-                )?),
-                Bi2Kind::PgsDscc => SurfaceOutput::plain(s::pgs_complex(
-                    mesh,
-                    opts,
-                    PgsOptions { dscc_steps: 2 },
-                    progress,
-                )?),
-                Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &poles, progress)?),
-                Bi2Kind::Tps => {
-                    with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?)
+            crate::schemes::doo_sabin::sharp::on_cut_net(mesh, name, |mesh| {
+                use super::surface as s;
+                if !matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) {
+                    crate::schemes::doo_sabin::sharp::refuse_kept_corners_with_faces(mesh, name)?;
                 }
-                Bi2Kind::TpsAdjustable => with_notes(s::tps_complex(mesh, opts, rules, progress)?),
-                Bi2Kind::Mixed => with_notes(s::mixed_complex(mesh, opts, progress)?),
+                let with_notes = |(complex, notes)| SurfaceOutput {
+                    complex,
+                    fell_back: Vec::new(),
+                    notes,
+                };
+                Ok(match kind {
+                    Bi2Kind::Pgs => SurfaceOutput::plain(s::pgs_complex(
+                        mesh,
+                        opts,
+                        PgsOptions::default(),
+                        progress,
+                    )?),
+                    Bi2Kind::PgsDscc => SurfaceOutput::plain(s::pgs_complex(
+                        mesh,
+                        opts,
+                        PgsOptions { dscc_steps: 2 },
+                        progress,
+                    )?),
+                    Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &poles, progress)?),
+                    Bi2Kind::Tps => {
+                        with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?)
+                    }
+                    Bi2Kind::TpsAdjustable => {
+                        with_notes(s::tps_complex(mesh, opts, rules, progress)?)
+                    }
+                    Bi2Kind::Mixed => with_notes(s::mixed_complex(mesh, opts, progress)?),
+                })
             })
         })
     }

@@ -458,7 +458,7 @@ impl Scheme for Pgs {
         for v in 0..nv {
             let vi = v as u32;
             if mesh.is_boundary_vertex(v) {
-                if mesh.is_corner(v) {
+                if crate::schemes::doo_sabin::sharp::is_kept_corner(mesh, v) {
                     row.add(vi, 1.0);
                 } else {
                     let (u, w) = mesh.boundary_neighbors(v);

@@ -33,16 +33,25 @@ impl Descriptor for DsDescriptor {
         }))
     }
 
-    /// Bi-2 patches of regular vertices, rings, centroid fill.
-    fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        let cc = self.cc;
+    /// Infinitely sharp creases and corners: the net is cut along them
+    /// ([`super::sharp`]); semi-sharp features are refused.
+    fn patches_take_features(&self) -> bool {
+        true
+    }
+
+    /// Bi-2 patches of regular vertices, rings, centroid fill; on a net with sharp features,
+    /// of the net cut along its creases ([`super::sharp`]).
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        let (cc, name) = (self.cc, spec.name());
         patch_fn(move |mesh, opts, progress| {
-            let c = if cc {
-                super::surface::doo_sabin_cc_complex(mesh, opts, progress)
-            } else {
-                super::surface::doo_sabin_complex(mesh, opts, progress)
-            };
-            c.map(SurfaceOutput::plain)
+            super::sharp::on_cut_net(mesh, name, |mesh| {
+                let c = if cc {
+                    super::surface::doo_sabin_cc_complex(mesh, opts, progress)
+                } else {
+                    super::surface::doo_sabin_complex(mesh, opts, progress)
+                };
+                c.map(SurfaceOutput::plain)
+            })
         })
     }
 

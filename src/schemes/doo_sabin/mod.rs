@@ -32,7 +32,10 @@
 //!   that stays put and closes its V-face to a quad (edge point, face-corner point, edge point,
 //!   corner). The boundary curve is then the quadratic B-spline of the boundary polygon with every
 //!   corner doubled: it interpolates the corner with a tangent break, as the Loop and
-//!   Catmull-Clark corner rules (OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`) do.
+//!   Catmull-Clark corner rules (OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`) do. A boundary
+//!   vertex that the net's extras tag as sharp is kept the same way whatever its number of
+//!   faces (its V-face gets the kept corner as one more vertex): these are the crease ends and
+//!   junctions of a net cut along its creases ([`sharp`], [`sharp::is_kept_corner`]).
 //!
 //! Why these rules: on a rectangular quad net they are exactly tensor-product bi-2 B-spline
 //! refinement of the net whose boundary layer of points is doubled (a phantom copy of every
@@ -72,6 +75,7 @@
 pub mod descriptor;
 pub mod fourier;
 pub mod local;
+pub mod sharp;
 pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};
 
@@ -284,7 +288,7 @@ pub(crate) fn refine_dual_with(
     let mut corner = vec![NONE; nv];
     let mut nc = 0u32;
     for (v, slot) in corner.iter_mut().enumerate() {
-        if mesh.is_corner(v) {
+        if sharp::is_kept_corner(mesh, v) {
             *slot = nc;
             nc += 1;
         }
@@ -384,7 +388,7 @@ fn dual_limit_stencils(
             for h in mesh.outgoing(v) {
                 add_corner_point(mesh, &mut rules, h, 1.0 / k as f64, &mut row);
             }
-        } else if mesh.is_corner(v) {
+        } else if sharp::is_kept_corner(mesh, v) {
             row.add(vi, 1.0);
         } else {
             let (u, w) = mesh.boundary_neighbors(v);

@@ -315,7 +315,8 @@ fn vertex_net(m: &PolyMesh, v: usize) -> Option<VertexNet> {
     let hs = m.outgoing_halfedges(v);
     let boundary = m.is_boundary_vertex(v);
     let ok = if boundary {
-        hs.len() == 1 || hs.len() == 2
+        // A kept corner with two faces is not regular: its boundary curve interpolates it.
+        hs.len() == 1 || (hs.len() == 2 && !super::sharp::is_tagged_corner(m, v))
     } else {
         hs.len() == 4
     };

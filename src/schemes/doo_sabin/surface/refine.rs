@@ -121,7 +121,10 @@ pub(super) fn refine_around(
         }
         for &x in m.face(f) {
             let x = x as usize;
-            if kept[x] == UNSET && level.info[x].fan_ok && m.is_corner(x) {
+            if kept[x] == UNSET
+                && level.info[x].fan_ok
+                && crate::schemes::doo_sabin::sharp::is_kept_corner(m, x)
+            {
                 kept[x] = push(
                     Stencil::point(x),
                     Info {

@@ -1,0 +1,305 @@
+//! Sharp features for the dual (bi-2) schemes' patch output: the net is cut along its
+//! infinitely sharp creases, and the ends and junctions of the creases are kept as corners.
+//!
+//! OpenSubdiv defines sharp features for Catmull-Clark and Loop only; Doo-Sabin has no
+//! published crease rules. fairsub's construction (our own, documented here) reuses the dual
+//! schemes' boundary rules ([`super`]): a boundary polygon is refined by Chaikin's corner cutting,
+//! so the limit boundary is the quadratic B-spline curve of the boundary polygon, and a *kept
+//! corner* stays put, so the curve interpolates it (the polygon with the corner doubled).
+//!
+//! - **Cut.** Every infinitely sharp edge (sharpness at least 10, OpenSubdiv's infinite value)
+//!   is made a boundary on both of its sides: the corners of a vertex are grouped into the
+//!   sectors between its sharp edges (faces that share a smooth edge at the vertex are in one
+//!   sector), and each sector gets its own copy of the vertex (the first keeps the vertex's
+//!   index, further copies are numbered after the net's vertices).
+//! - **Kept corners.** Both sides of a crease then end on the Chaikin limit of the same polygon.
+//!   Where a crease polygon does not simply pass through a vertex (a crease vertex with other
+//!   than two sharp edges: a dart, a junction; a crease vertex on the net's boundary; a vertex
+//!   tagged as an infinitely sharp corner) the sectors' polygons turn differently, so every copy
+//!   of such a vertex is kept as a corner: all sides' curves interpolate it, and the surface
+//!   closes along the whole crease (a sharp join, no crack).
+//! - **Refused, with the element named:** semi-sharp edges and vertices (sharpness below 10:
+//!   no bi-2 rule spends sharpness), darts (a crease ending inside the surface: cut there, the
+//!   two sides of the slit would be one curve traced back and forth and the surface would fold
+//!   over at its end, where OpenSubdiv's Catmull-Clark dart fades the crease out), an
+//!   infinitely sharp corner tag at an interior vertex that no crease reaches (a bi-2 surface
+//!   cannot keep an interior point), boundary options other than the default edge-and-corner.
+//!   The schemes whose boundary rules keep only single-face corners (TPS, adjustable TPS, polar
+//!   bi-2, the mixed scheme) also refuse a kept corner with more faces on one side
+//!   ([`refuse_kept_corners_with_faces`]); Doo-Sabin, DS^CC and PGS keep it.
+//! - **Holes** (`t hole`) are removed before the cut: a bi-2 patch spans the quarters of the four
+//!   faces around its vertex, so a face cannot be kept for support and left unwritten; the
+//!   faces around a hole end on the hole's boundary curve instead.
+
+use crate::error::{Error, Result};
+use crate::mesh::tags::BoundaryInterpolation;
+use crate::mesh::{Extras, NONE, PolyMesh, SharpEdges};
+use crate::schemes::catmull_clark::crease::INFINITE;
+use crate::schemes::descriptor::SurfaceOutput;
+
+/// A net cut along its creases, with what the cut did (for the notes).
+#[derive(Debug)]
+pub struct CutNet {
+    /// The cut net: creases are boundaries; its extras tag the kept corners (sorted, each with
+    /// infinite sharpness) and nothing else.
+    pub mesh: PolyMesh,
+    /// Notes for the user.
+    pub notes: Vec<String>,
+}
+
+/// Whether the dual schemes' boundary rules keep vertex `v` as a corner: a boundary vertex with
+/// a single face, or a boundary vertex the net's extras tag as a sharp vertex (the kept corners
+/// of [`cut_along_creases`]; the tags are sorted by vertex).
+pub fn is_kept_corner(mesh: &PolyMesh, v: usize) -> bool {
+    mesh.is_boundary_vertex(v) && (mesh.is_corner(v) || is_tagged_corner(mesh, v))
+}
+
+/// Whether the extras tag vertex `v` as sharp (the tags are sorted by vertex).
+pub(crate) fn is_tagged_corner(mesh: &PolyMesh, v: usize) -> bool {
+    mesh.extras().is_some_and(|e| {
+        e.sharp_vertices
+            .binary_search_by_key(&(v as u32), |p| p.0)
+            .is_ok()
+    })
+}
+
+/// The net cut along its infinitely sharp creases, or `None` when it tags no sharp feature
+/// (see the [module](self) documentation). `name` is the scheme's name for messages.
+///
+/// # Errors
+/// [`Error::Unsupported`] for the features the construction cannot take, naming the element.
+pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> {
+    let Some(ex) = mesh.extras() else {
+        return Ok(None);
+    };
+    let boundary = ex.options.boundary();
+    if ex.options.boundary.is_some() && boundary != BoundaryInterpolation::EdgeAndCorner {
+        return Err(Error::Unsupported(format!(
+            "the net asks for the boundary interpolation {boundary:?}; {name}'s patches have \
+             the edge-and-corner boundary only (the Chaikin curve of the boundary polygon, \
+             corners kept)"
+        )));
+    }
+    if !ex.has_features() {
+        return Ok(None);
+    }
+    let mut notes = Vec::new();
+    let holes = ex.holes.len();
+    let mesh = if holes > 0 {
+        notes.push(format!(
+            "{holes} hole faces removed before the patches ({name}'s patches span four faces, \
+             so a hole cannot be refined for support and left out): the surface ends on the \
+             hole's boundary curve"
+        ));
+        mesh.clone().without_holes()
+    } else {
+        mesh.clone()
+    };
+    let ex = mesh.extras().cloned().unwrap_or_default();
+    let sharp = sharp_edge_flags(&mesh, &ex, name)?;
+    let nh = mesh.num_halfedges();
+    let nv = mesh.num_vertices();
+
+    // Sectors: union the two corners of every smooth interior edge at each of its ends.
+    let mut parent: Vec<u32> = (0..nh as u32).collect();
+    for e in 0..mesh.num_edges() {
+        let h = mesh.edge_halfedge(e);
+        let Some(t) = mesh.he_twin(h) else { continue };
+        if sharp[e] {
+            continue;
+        }
+        union(&mut parent, h, mesh.he_next(t));
+        union(&mut parent, t, mesh.he_next(h));
+    }
+    // A vertex per sector: the first sector of a vertex keeps its index.
+    let mut id = vec![NONE; nh];
+    let mut used = vec![false; nv];
+    let mut positions = mesh.positions().to_vec();
+    let mut origin: Vec<u32> = (0..nv as u32).collect();
+    for h in 0..nh as u32 {
+        let r = find(&mut parent, h) as usize;
+        if id[r] == NONE {
+            let v = mesh.he_from(h) as usize;
+            id[r] = if used[v] {
+                positions.push(positions[v]);
+                origin.push(v as u32);
+                (positions.len() - 1) as u32
+            } else {
+                used[v] = true;
+                v as u32
+            };
+        }
+    }
+    // Interior sharp edges per vertex (a sharp boundary edge is a boundary already).
+    let mut crease_valence = vec![0u32; nv];
+    for e in (0..mesh.num_edges()).filter(|&e| sharp[e]) {
+        let h = mesh.edge_halfedge(e);
+        if mesh.he_twin(h).is_some() {
+            crease_valence[mesh.he_from(h) as usize] += 1;
+            crease_valence[mesh.he_to(h) as usize] += 1;
+        }
+    }
+    // Kept corners; darts refused.
+    let mut keep = vec![false; nv];
+    for (v, k) in keep.iter_mut().enumerate() {
+        let c = crease_valence[v];
+        let boundary = mesh.is_boundary_vertex(v);
+        if c == 1 && !boundary {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} is a dart (a crease ends there, inside the surface); {name}'s \
+                 patches cut the net along its creases and cannot fade a crease out: extend \
+                 the crease to a boundary or another crease, or refine with Catmull-Clark or \
+                 Loop"
+            )));
+        }
+        *k = c > 0 && (c != 2 || boundary);
+    }
+    for &(v, s) in &ex.sharp_vertices {
+        if s < INFINITE {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} has the semi-sharp corner value {s}; {name}'s patches take \
+                 infinitely sharp features only (sharpness 10 or more)"
+            )));
+        }
+        let v = v as usize;
+        if crease_valence[v] == 0 && !mesh.is_boundary_vertex(v) {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} is tagged as a corner but lies inside the surface with no crease \
+                 through it; a {name} surface cannot keep an interior point (tag a crease \
+                 through it, or refine with Catmull-Clark or Loop)"
+            )));
+        }
+        keep[v] = true;
+    }
+    let mut face_start = Vec::with_capacity(mesh.num_faces() + 1);
+    face_start.push(0u32);
+    let mut corners = Vec::with_capacity(nh);
+    for f in 0..mesh.num_faces() {
+        let h0 = mesh.face_halfedge(f);
+        for h in h0..h0 + mesh.face_size(f) as u32 {
+            corners.push(id[find(&mut parent, h) as usize]);
+        }
+        face_start.push(corners.len() as u32);
+    }
+    let kept: Vec<(u32, f32)> = (0..positions.len() as u32)
+        .filter(|&v| keep[origin[v as usize] as usize])
+        .map(|v| (v, INFINITE))
+        .collect();
+    let cut_edges = crease_valence.iter().sum::<u32>() / 2;
+    let copies = positions.len() - nv;
+    let out = PolyMesh::from_flat(positions, face_start, corners)?;
+    let extras = Extras {
+        sharp_vertices: kept.clone(),
+        ..Extras::default()
+    };
+    notes.push(format!(
+        "sharp features: the net is cut along its {cut_edges} infinitely sharp edges ({copies} \
+         vertex copies, numbered from {nv}); both sides of a crease end on the quadratic \
+         B-spline of the crease polygon, which interpolates the {} kept corners (crease ends, \
+         junctions, crease vertices on the boundary, corner tags); elements on a crease take \
+         the Doo-Sabin boundary rules",
+        kept.len()
+    ));
+    Ok(Some(CutNet {
+        mesh: out.with_extras(Some(extras)),
+        notes,
+    }))
+}
+
+/// Runs `build` on the net cut along its creases ([`cut_along_creases`]; the net itself when it
+/// tags no sharp feature) and adds the cut's notes to its output: the patch output of every
+/// dual scheme goes through here.
+///
+/// # Errors
+/// Those of the cut and of `build`.
+pub fn on_cut_net(
+    mesh: &PolyMesh,
+    name: &str,
+    build: impl FnOnce(&PolyMesh) -> Result<SurfaceOutput>,
+) -> Result<SurfaceOutput> {
+    match cut_along_creases(mesh, name)? {
+        None => build(mesh),
+        Some(cut) => {
+            let mut out = build(&cut.mesh)?;
+            let mut notes = cut.notes;
+            notes.append(&mut out.notes);
+            out.notes = notes;
+            Ok(out)
+        }
+    }
+}
+
+/// For the bi-2 schemes whose boundary rules keep only single-face corners (TPS, adjustable
+/// TPS, polar bi-2, the mixed scheme): refuses a cut net with a kept corner that has more than
+/// one face, which those rules would not interpolate (the sides of the crease would part).
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the vertex and the way out.
+pub fn refuse_kept_corners_with_faces(mesh: &PolyMesh, name: &str) -> Result<()> {
+    let Some(ex) = mesh.extras() else {
+        return Ok(());
+    };
+    for &(v, _) in &ex.sharp_vertices {
+        let v = v as usize;
+        if mesh.is_boundary_vertex(v) && !mesh.is_corner(v) {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} of the net cut along its creases is a crease end or junction with \
+                 {} faces on one side; {name}'s boundary rules keep only corners with one \
+                 face, so the crease would open there (way out: {} or {}, which keep it)",
+                mesh.outgoing(v).count(),
+                crate::schemes::registry::ids::PGS,
+                crate::schemes::registry::ids::DOO_SABIN
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Per edge: infinitely sharp. Semi-sharp edges are refused.
+fn sharp_edge_flags(mesh: &PolyMesh, ex: &Extras, name: &str) -> Result<Vec<bool>> {
+    let mut sharp = vec![false; mesh.num_edges()];
+    let mut set = |e: usize, a: u32, b: u32, s: f32| {
+        if s < INFINITE {
+            return Err(Error::Unsupported(format!(
+                "the edge {a}-{b} has the semi-sharp crease value {s}; {name}'s patches take \
+                 infinitely sharp creases only (sharpness 10 or more); refine with \
+                 Catmull-Clark or Loop for semi-sharp creases"
+            )));
+        }
+        sharp[e] = true;
+        Ok(())
+    };
+    match &ex.sharp_edges {
+        SharpEdges::ById(v) => {
+            for &(e, s) in v {
+                let h = mesh.edge_halfedge(e as usize);
+                set(e as usize, mesh.he_from(h), mesh.he_to(h), s)?;
+            }
+        }
+        SharpEdges::ByPair(v) => {
+            for &([a, b], s) in v {
+                let e = mesh.find_edge(a, b).ok_or_else(|| {
+                    Error::Unsupported(format!("the sharp edge {a}-{b} is not an edge of the net"))
+                })?;
+                set(e as usize, a, b, s)?;
+            }
+        }
+    }
+    Ok(sharp)
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[parent[x as usize] as usize];
+        parent[x as usize] = p;
+        x = p;
+    }
+    x
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
