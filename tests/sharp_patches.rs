@@ -4,76 +4,29 @@
 //! the crease curve is the cubic B-spline of the crease vertices and shared by the patches on
 //! both sides; hole faces are not written.
 
+#[path = "sharp/support.rs"]
+mod support;
+
 use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::geom::Point;
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
-use fairsub::schemes::Scheme;
 use fairsub::schemes::catmull_clark::Configured;
 use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
-
-fn osd(name: &str) -> PolyMesh {
-    let path = format!("{}/tests/data/osd/{name}.obj", env!("CARGO_MANIFEST_DIR"));
-    fairsub::cli::load_net(&path).expect("net loads").mesh
-}
-
-fn file_options(m: &PolyMesh) -> SubdOptions {
-    m.extras().map(|e| e.options).unwrap_or_default()
-}
+use support::{
+    check_net, file_options, has_infinite_crease, level_of, nearest, osd, quad_samples,
+    rings_and_check, run,
+};
 
 /// The limit points of `mesh` refined `levels` times with OpenSubdiv's rules, sorted by x.
 fn limit_points(mesh: &PolyMesh, subd: SubdOptions, levels: usize) -> Vec<Point> {
-    let s = Configured { options: subd };
-    let m = fairsub::schemes::refine_levels(&s, mesh, levels, |_| {}).unwrap();
-    let mut pts = s.limit_stencils(&m).unwrap().apply(m.positions());
-    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    pts
+    support::limit_points(&Configured { options: subd }, mesh, levels)
 }
 
-/// Distance from `p` to the nearest of the sorted points `pts` (searched in an x window).
-fn nearest(pts: &[Point], p: Point) -> f64 {
-    let w = 1e-6;
-    let lo = pts.partition_point(|q| q[0] < p[0] - w);
-    pts[lo..]
-        .iter()
-        .take_while(|q| q[0] <= p[0] + w)
-        .map(|&q| fairsub::geom::dist(p, q))
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn level_of(p: &Provenance) -> Option<usize> {
-    match p {
-        Provenance::Regular { .. } => Some(0),
-        Provenance::Ring { ring, .. } => Some(*ring as usize),
-        _ => None,
-    }
-}
-
-/// Checks that every regular and ring patch of `c` is exact against `levels` uniform levels:
-/// its samples at parameters `k / 2^(levels - l)` are limit points (distance < 1e-9). Returns
-/// (patches checked, samples checked, largest distance).
+/// [`support::check_exact`] for quads.
 fn check_exact(c: &PatchComplex, pts: &[Point], levels: usize) -> (usize, usize, f64) {
-    let (mut patches, mut samples, mut worst) = (0, 0, 0f64);
-    for (p, prov) in c.patches.iter().zip(&c.provenance) {
-        let Some(l) = level_of(prov) else { continue };
-        assert!(l <= levels, "ring {l} beyond {levels} levels");
-        let k = 1usize << (levels - l);
-        patches += 1;
-        for i in 0..=k {
-            for j in 0..=k {
-                let x = p.eval(i as f64 / k as f64, j as f64 / k as f64);
-                let d = nearest(pts, x);
-                worst = worst.max(d);
-                samples += 1;
-                assert!(
-                    d < 1e-9,
-                    "{prov:?} sample ({i}, {j})/{k} at {x:?}: {d:e} from the limit"
-                );
-            }
-        }
-    }
-    (patches, samples, worst)
+    support::check_exact(c, pts, levels, quad_samples)
 }
 
 fn complex(m: &PolyMesh, subd: SubdOptions, rings: usize, fill: bool) -> PatchComplex {
@@ -135,16 +88,7 @@ fn creased_grid_is_regular_patches_sharing_the_crease_b_spline() {
     for i in 0..6i64 {
         for t in [0.0, 0.25, 0.5, 0.8, 1.0] {
             // uniform cubic B-spline of segment i at t
-            let b = [
-                (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0,
-                (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
-                (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
-                t * t * t / 6.0,
-            ];
-            let mut want = [0.0; 3];
-            for (k, w) in b.iter().enumerate() {
-                want = fairsub::geom::axpy(want, *w, crease(i - 1 + k as i64));
-            }
+            let want = support::bspline(std::array::from_fn(|k| crease(i - 1 + k as i64)), t);
             // face (i, 2) below has its side v = 1 on the crease, face (i, 3) above v = 0
             let below = c.patches[(2 * 6 + i) as usize].eval(t, 1.0);
             let above = c.patches[(3 * 6 + i) as usize].eval(t, 0.0);
@@ -235,38 +179,12 @@ fn osd_nets_patches_are_limit_exact() {
             subd.boundary = boundary;
         }
         let c = complex(&m, subd, 3, true);
-        let levels = c.provenance.iter().filter_map(level_of).max().unwrap_or(0);
-        let pts = limit_points(&m, subd, levels);
-        let (patches, samples, worst) = check_exact(&c, &pts, levels);
-        eprintln!(
-            "{name} {boundary:?}: {} patches, {patches} exact ({samples} samples, worst {worst:.1e})",
-            c.len()
-        );
-        assert!(patches > 0, "{name}");
-        assert!(worst < 1e-9, "{name}");
-        // no crack: every join C^0 (the fill's too), sharp joins apart
-        let r = fairsub::analysis::continuity::check(&c);
-        assert!(
-            r.all.c0 < 1e-9 && r.sharp.c0 < 1e-9,
-            "{name}: {} {}",
-            r.all.c0,
-            r.sharp.c0
-        );
         // an infinitely sharp crease inside the surface gives sharp joins
-        let sharp_tags = m.extras().is_some_and(|e| match &e.sharp_edges {
-            SharpEdges::ById(v) => v.iter().any(|p| p.1 >= 10.0),
-            SharpEdges::ByPair(v) => v.iter().any(|p| p.1 >= 10.0),
-        });
-        eprintln!(
-            "  joins {} (C2 {:.1e}), sharp {} (G1 {:.2})",
-            r.all.pieces, r.all.c2, r.sharp.pieces, r.sharp.g1
-        );
-        if closed.contains(&name) {
-            assert_eq!(r.open_sides, 0, "{name}");
-        }
-        if sharp_tags && name != "cc_boundary_tags" {
-            assert!(r.sharp.pieces > 0, "{name}");
-        }
+        let sharp = has_infinite_crease(&m) && name != "cc_boundary_tags";
+        let scheme = Configured { options: subd };
+        eprint!("{boundary:?} ");
+        let closed = closed.contains(&name);
+        check_net(name, &m, &c, &scheme, quad_samples, closed, sharp);
     }
 }
 
@@ -285,56 +203,12 @@ fn holes_are_not_written() {
     }
 }
 
-fn run(args: &[&str]) -> (i32, String, String) {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn cli_rings_take_creases_and_check_reports_them_sharp() {
-    let dir = std::env::temp_dir().join(format!("fairsub-sharp-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let net = format!(
-        "{}/tests/data/osd/cc_cube_infsharp.obj",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let out = dir.join("cube.bv");
-    let (code, _, err) = run(&[
-        "subdivide",
-        &net,
-        "-s",
-        "catmull-clark",
-        "--rings",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert!(err.contains("wrote 60 patches"), "{err}");
-    let (code, json, err) = run(&[
-        "check",
-        &net,
-        "-s",
-        "catmull-clark",
-        "--rings",
-        "2",
-        "--json",
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
-    let sharp = &v["continuity"]["sharp"];
     // the top loop's four edges and vertex 0's three, each a join of two pieces or more
-    assert!(sharp["pieces"].as_u64().unwrap() >= 7, "{sharp}");
-    assert!(sharp["c0"].as_f64().unwrap() < 1e-9);
-    assert!(sharp["g1"].as_f64().unwrap() > 0.1);
-    assert_eq!(v["continuity"]["open_sides"].as_u64(), Some(0));
+    let (err, _) = rings_and_check("catmull-clark", "cc_cube_infsharp", "2", 7);
+    assert!(err.contains("wrote 60 patches"), "{err}");
+    let net = support::osd_path("cc_cube_infsharp");
     // the cap schemes take the net: Catmull-Clark's sharp rules near the features (the same
     // sharp joins as Catmull-Clark's), their own caps where the c-net is clear, a note
     let report = |scheme: &str| {
@@ -367,6 +241,8 @@ fn cli_rings_take_creases_and_check_reports_them_sharp() {
         );
     }
     // a scheme whose patches do not take sharp features refuses the net, naming the tags
+    // (before writing anything)
+    let out = std::env::temp_dir().join(format!("fairsub-pgs-{}.bv", std::process::id()));
     let (code, _, err) = run(&[
         "subdivide",
         &net,
@@ -377,11 +253,11 @@ fn cli_rings_take_creases_and_check_reports_them_sharp() {
         "-o",
         out.to_str().unwrap(),
     ]);
+    assert!(!out.exists());
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("tags sharp features (7 sharp edges"), "{err}");
     assert!(
         err.contains("patch output (--rings) of pgs does not take yet"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }

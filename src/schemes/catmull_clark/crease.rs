@@ -17,6 +17,7 @@
 use crate::mesh::tags::{BoundaryInterpolation, CreaseMethod, SubdOptions};
 use crate::mesh::{Extras, MeshView, NONE, NonManifold, PolyMesh, SharpEdges};
 
+pub(crate) mod adaptive;
 mod plan;
 
 pub(crate) use plan::*;

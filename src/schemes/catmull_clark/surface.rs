@@ -52,29 +52,12 @@ use crate::host::adaptive::{
 use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
+pub use crate::schemes::catmull_clark::crease::adaptive::Level;
+use crate::schemes::catmull_clark::crease::adaptive::{
+    child as sharp_child, crease_curve, edge_known, is_hole, is_special,
+};
 use crate::stencil::Stencil;
 use std::collections::{HashMap, HashSet};
-
-/// One level of the adaptive refinement.
-pub struct Level {
-    /// The mesh, trust and active faces, as for every mesh-based scheme.
-    base: MeshLevel,
-    /// The level's sharp features, when the net has them ([`sharp`]).
-    sharp: Option<sharp::Features>,
-}
-
-impl std::ops::Deref for Level {
-    type Target = MeshLevel;
-    fn deref(&self) -> &MeshLevel {
-        &self.base
-    }
-}
-
-impl adaptive::Cells for Level {
-    fn active(&self) -> &[(u32, Tag)] {
-        &self.base.active
-    }
-}
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -155,18 +138,11 @@ impl AdaptiveRules for CcRules<'_> {
                 mesh.face_size(f)
             )));
         }
-        let (mesh, sharp) = match self.subd.as_ref().and_then(|o| sharp::start(mesh, o)) {
-            Some((m, s)) => (m, Some(s)),
-            None => (mesh.clone(), None),
-        };
-        Ok(Level {
-            base: MeshLevel::input(&mesh),
-            sharp,
-        })
+        Ok(Level::input(mesh, self.subd.as_ref()))
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
-        if sharp::is_hole(level, f as usize) {
+        if is_hole(level, f as usize) {
             return true;
         }
         let Some(p) = regular_patch(level, f as usize) else {
@@ -221,18 +197,18 @@ impl AdaptiveRules for CcRules<'_> {
     }
 }
 
-/// Whether a vertex of the c-net `idx` has a sharp feature ([`sharp::is_special`]) or one of
+/// Whether a vertex of the c-net `idx` has a sharp feature ([`is_special`]) or one of
 /// its faces is a hole: the cap schemes' rules then do not apply.
 fn touches_features(level: &Level, idx: &[u32]) -> bool {
     level.sharp.is_some()
         && idx.iter().any(|&w| {
             let w = w as usize;
-            sharp::is_special(level, w)
+            is_special(level, w)
                 || level
                     .mesh
                     .vertex_faces(w)
                     .iter()
-                    .any(|&f| sharp::is_hole(level, f as usize))
+                    .any(|&f| is_hole(level, f as usize))
         })
 }
 
@@ -485,7 +461,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                     let [a, b] = m.edge(e);
                     let (a_ok, b_ok) =
                         (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
-                    let known = sharp::edge_known(level, e, a_ok, b_ok);
+                    let known = edge_known(level, e, a_ok, b_ok, a_ok || b_ok);
                     let hh = m.edge_halfedge(e);
                     let mut faces = vec![m.he_face(hh)];
                     if let Some(t) = m.he_twin(hh) {
@@ -520,7 +496,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let (child, sharp) = sharp::child(level, &rules, child, &vid, &eid);
+    let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, &vid, &eid);
     let mut active = Vec::new();
     for &(f, tag) in marked {
         for (k, &c) in child_faces_of[&f].iter().enumerate() {
@@ -568,7 +544,7 @@ fn fill(
             let key = (a.min(b), a.max(b));
             let c = *curves.entry(key).or_insert_with(|| {
                 let (lo, hi) = key;
-                if let Some(c) = sharp::crease_curve(level, lo, hi) {
+                if let Some(c) = crease_curve(level, lo, hi) {
                     return c;
                 }
                 let (p0, d0) = jets.limit_and_derivative(lo as usize, hi as usize);

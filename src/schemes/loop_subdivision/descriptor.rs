@@ -37,11 +37,17 @@ impl Descriptor for LoopDescriptor {
         })))
     }
 
-    /// Quartic box-spline triangles, rings, G^1 caps of kites (Hermite fill at boundary holes).
-    fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        patch_fn(|mesh, opts, progress| {
-            super::surface::loop_complex(mesh, opts, progress).map(SurfaceOutput::plain)
+    /// Quartic box-spline triangles, rings, G^1 caps of kites (Hermite fill at boundary holes),
+    /// honouring the net's sharp features under OpenSubdiv's options.
+    fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
+        let subd = spec.params.subd;
+        patch_fn(move |mesh, opts, progress| {
+            super::surface::loop_complex_with(mesh, opts, subd, progress).map(SurfaceOutput::plain)
         })
+    }
+
+    fn patches_take_features(&self) -> bool {
+        true
     }
 
     /// The matrix on the one-ring.

@@ -154,6 +154,35 @@ impl<'a> Rules<'a> {
         }
     }
 
+    /// The plain rules of `mesh` (its features, if any, not read): the smooth masks inside,
+    /// the boundary's crease and corner masks.
+    pub fn plain(mesh: &'a PolyMesh) -> Rules<'a> {
+        Rules {
+            m: mesh.view(),
+            sharp: None,
+        }
+    }
+
+    /// The level's sharp features, when its rules have them.
+    pub fn sharp(&self) -> Option<&SharpLevel<'a>> {
+        self.sharp.as_ref()
+    }
+
+    /// The refined position of vertex `v` as a stencil over the mesh vertices.
+    pub fn vertex_stencil(&self, v: usize) -> Stencil {
+        row_stencil(|s, row| self.vertex(v, s, row))
+    }
+
+    /// The point of edge `e` as a stencil over the mesh vertices.
+    pub fn edge_stencil(&self, e: usize) -> Stencil {
+        row_stencil(|s, row| self.edge(e, s, row))
+    }
+
+    /// The limit position of vertex `v` as a stencil over the mesh vertices.
+    pub fn limit_stencil(&self, v: usize) -> Stencil {
+        row_stencil(|s, row| self.limit(v, s, row))
+    }
+
     /// The point of edge `e`.
     #[inline(always)]
     fn edge(&self, e: usize, scratch: &mut Scratch, row: &mut impl Terms) {
@@ -231,26 +260,27 @@ impl<'a> Rules<'a> {
     }
 }
 
+/// One rule's row (written into a [`RowBuf`]) as a stencil.
+fn row_stencil(rule: impl FnOnce(&mut Scratch, &mut RowBuf)) -> Stencil {
+    let mut row = RowBuf::default();
+    rule(&mut Scratch::default(), &mut row);
+    row.take_stencil()
+}
+
 /// The refined position of vertex `v` under Loop's vertex rule, as a stencil over the mesh
 /// vertices (the rule [`Scheme::refine`] applies, for adaptive refinement).
 pub fn vertex_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
-    let mut row = RowBuf::default();
-    Rules::new(mesh, &Opts::default()).vertex(v, &mut Scratch::default(), &mut row);
-    row.take_stencil()
+    Rules::new(mesh, &Opts::default()).vertex_stencil(v)
 }
 
 /// The new point of edge `e` under Loop's edge rule, as a stencil over the mesh vertices.
 pub fn edge_point_stencil(mesh: &PolyMesh, e: usize) -> Stencil {
-    let mut row = RowBuf::default();
-    Rules::new(mesh, &Opts::default()).edge(e, &mut Scratch::default(), &mut row);
-    row.take_stencil()
+    Rules::new(mesh, &Opts::default()).edge_stencil(e)
 }
 
 /// The limit position of vertex `v` ([`Scheme::limit_stencils`] for one vertex).
 pub fn limit_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
-    let mut row = RowBuf::default();
-    Rules::new(mesh, &Opts::default()).limit(v, &mut Scratch::default(), &mut row);
-    row.take_stencil()
+    Rules::new(mesh, &Opts::default()).limit_stencil(v)
 }
 
 /// Fails when a child net would need more points than fairsub's 32-bit indices.

@@ -75,7 +75,7 @@
 //! in the Bezier net), which reproduces linear functions. The fill is C^0 to the last ring and
 //! between fill triangles; it is not G^1 across its edges.
 
-use super::{edge_point_stencil, vertex_point_stencil};
+use super::Rules;
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::Result;
@@ -86,11 +86,14 @@ use crate::host::adaptive::{
     retag_by_corners, select_around,
 };
 use crate::mesh::PolyMesh;
+use crate::mesh::tags::SubdOptions;
+use crate::schemes::catmull_clark::crease::adaptive::{self as features, edge_known, is_hole};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 
 mod fill;
 mod g1;
+pub mod sharp;
 
 /// Bezier coefficients of one triangle of the quartic box spline (Loop's regular limit), times
 /// 24. Entry `([i, j, k], w)`: the coefficient `b_ijk` of the Bernstein polynomial
@@ -160,14 +163,30 @@ pub fn eval_triangle(tri: &[Point; 15], l: [f64; 3]) -> Point {
 pub fn loop_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    loop_complex_with(mesh, opts, SubdOptions::default(), progress)
+}
+
+/// [`loop_complex`] with OpenSubdiv's options: the net's sharp features, boundary option and
+/// holes as [`sharp`] documents.
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the first face that is not a triangle.
+pub fn loop_complex_with(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    subd: SubdOptions,
     mut progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    adaptive::run(&LoopRules { opts }, mesh, opts, &mut progress)
+    adaptive::run(&LoopRules { opts, subd }, mesh, opts, &mut progress)
 }
 
 /// Loop's rules for the adaptive loop: cells are triangles.
 struct LoopRules {
     opts: ComplexOptions,
+    /// OpenSubdiv's options under which the net's features are honoured.
+    subd: SubdOptions,
 }
 
 impl AdaptiveRules for LoopRules {
@@ -176,15 +195,19 @@ impl AdaptiveRules for LoopRules {
 
     fn start(&self, mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
         super::require_triangles(mesh, "Loop patches need")?;
-        Ok(Level::input(mesh))
+        Ok(Level::input(mesh, Some(&self.subd)))
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<5>>) -> bool {
+        if is_hole(level, f as usize) {
+            return true;
+        }
         let Some(tri) = trusted_net(level, f as usize) else {
             return false;
         };
         record_curves(&level.mesh, f as usize, &tri, to.curves);
         to.out.push(triangle_to_tensor(&tri), prov);
+        sharp::mark_sides(level, f as usize, to.out);
         true
     }
 
@@ -228,7 +251,7 @@ impl AdaptiveRules for LoopRules {
     }
 }
 
-type Level = MeshLevel;
+type Level = features::Level;
 
 /// Whether `v` is a regular Loop vertex: interior of valence 6 or boundary with 3 triangles.
 fn is_regular(m: &PolyMesh, v: usize) -> bool {
@@ -242,39 +265,22 @@ fn is_regular(m: &PolyMesh, v: usize) -> bool {
 }
 
 /// The six neighbours of a regular vertex counter-clockwise from the end of its first outgoing
-/// half-edge, phantoms (`v + a - c`, see the module documentation) for the two missing ones of
-/// a boundary vertex. `None` for a vertex that is not regular.
+/// half-edge under the plain rules, phantoms (`v + a - c`, see the module documentation) for
+/// the two missing ones of a boundary vertex. `None` for a vertex that is not regular.
 fn ring6(m: &PolyMesh, v: usize) -> Option<[Stencil; 6]> {
-    if !is_regular(m, v) {
-        return None;
-    }
-    let hs = m.outgoing_halfedges(v);
-    let mut ring: Vec<Stencil> = hs
-        .iter()
-        .map(|&h| Stencil::point(m.he_to(h) as usize))
-        .collect();
-    if m.is_boundary_vertex(v) {
-        let n: Vec<usize> = hs.iter().map(|&h| m.he_to(h) as usize).collect();
-        let n3 = m.he_from(m.he_prev(hs[2])) as usize;
-        let phantom = |a: usize, c: usize| Stencil::from_pairs([(v, 1.0), (a, 1.0), (c, -1.0)]);
-        ring.push(Stencil::point(n3));
-        ring.push(phantom(n3, n[2]));
-        ring.push(phantom(n[0], n[1]));
-    }
-    ring.try_into().ok()
+    let h = m.outgoing(v).next()?;
+    sharp::corner_ring(m, None, h)
 }
 
-/// The 12 control points of triangle `f` (order of [`BOX_SPLINE_BEZIER`]) as stencils, or
-/// `None` unless all its corners are regular.
-fn box_spline_net(m: &PolyMesh, f: usize) -> Option<[Stencil; 12]> {
+/// The 12 control points of triangle `f` of `level` (order of [`BOX_SPLINE_BEZIER`]) as
+/// stencils, or `None` unless all its corners are regular (with respect to the level's
+/// features, [`sharp`]).
+fn box_spline_net(level: &Level, f: usize) -> Option<[Stencil; 12]> {
+    let m = &level.mesh;
     let h0 = m.face_halfedge(f);
     let mut rings: Vec<[Stencil; 6]> = Vec::with_capacity(3);
-    for k in 0..3u32 {
-        let h = h0 + k;
-        let v = m.he_from(h) as usize;
-        let ring = ring6(m, v)?;
-        let off = m.outgoing_halfedges(v).iter().position(|&g| g == h)?;
-        rings.push(std::array::from_fn(|i| ring[(off + i) % 6].clone()));
+    for h in h0..h0 + 3 {
+        rings.push(sharp::corner_ring(m, level.sharp.as_ref(), h)?);
     }
     let corner = |k: usize| Stencil::point(m.face(f)[k] as usize);
     Some([
@@ -307,7 +313,7 @@ fn trusted_net(level: &Level, f: usize) -> Option<[Point; 15]> {
     if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
         return None;
     }
-    let s = box_spline_stencils(&box_spline_net(m, f)?);
+    let s = box_spline_stencils(&box_spline_net(level, f)?);
     if s.iter().any(|st| {
         st.entries()
             .iter()
@@ -340,7 +346,8 @@ fn record_curves(m: &PolyMesh, f: usize, tri: &[Point; 15], curves: &mut Curves<
 /// The tag of a marked triangle: its first extraordinary corner's input vertex, sector = the
 /// triangle's position in that vertex's fan; otherwise the inherited tag.
 fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
-    retag_by_corners(&level.mesh, &level.info, f, tag, is_regular, fans)
+    let regular = |_: &PolyMesh, v: usize| !sharp::irregular_vertex(level, v);
+    retag_by_corners(&level.mesh, &level.info, f, tag, regular, fans)
 }
 
 /// Refines the triangles around the corners of the marked triangles with Loop's rules; the
@@ -350,6 +357,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let m = &level.mesh;
     let (nv, ne) = (m.num_vertices(), m.num_edges());
     let (sel, sel_faces) = select_around(m, marked);
+    let rules = Rules::new(m, &level.options());
     let whole_fan =
         |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let sources_ok = |s: &Stencil| {
@@ -371,7 +379,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             let v = m.he_from(h) as usize;
             if vid[v] == UNSET {
                 vid[v] = stencils.len() as u32;
-                let s = vertex_point_stencil(m, v);
+                let s = rules.vertex_stencil(v);
                 info.push(Info {
                     pos_ok: level.info[v].fan_ok && sources_ok(&s),
                     fan_ok: whole_fan(v),
@@ -383,11 +391,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             if eid[e] == UNSET {
                 eid[e] = stencils.len() as u32;
                 let [a, b] = m.edge(e);
-                let known = m.he_twin(h).is_some()
-                    || level.info[a as usize].fan_ok
-                    || level.info[b as usize].fan_ok;
+                let (a_ok, b_ok) = (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
+                let known =
+                    edge_known(level, e, a_ok, b_ok, m.he_twin(h).is_some() || a_ok || b_ok);
                 let both_selected = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
-                let s = edge_point_stencil(m, e);
+                let s = rules.edge_stencil(e);
                 info.push(Info {
                     pos_ok: known && sources_ok(&s),
                     fan_ok: known && both_selected,
@@ -412,15 +420,19 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let positions = StencilTable::from_rows(nv, stencils, 7).apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let (child, sharp) = features::child(level, rules.sharp(), child, &vid, &eid);
     let mut active = child_active(marked, |f| (children[&f], 4));
     // four children per marked triangle, in the order of the corners above: the child domains
     for (i, (_, t)) in active.iter_mut().enumerate() {
         t.domain = t.domain.child((i % 4) as u32);
     }
     Ok(Level {
-        mesh: child,
-        info,
-        active,
+        base: MeshLevel {
+            mesh: child,
+            info,
+            active,
+        },
+        sharp,
     })
 }
 

@@ -77,7 +77,7 @@ fn hole_of(
     let (f0, _) = faces[0];
     let (x, n) = hole_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
-    if faces.len() != n || super::sharp::is_special(level, xu) {
+    if faces.len() != n || crate::schemes::catmull_clark::crease::adaptive::is_special(level, xu) {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();

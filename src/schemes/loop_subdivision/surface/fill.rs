@@ -9,14 +9,16 @@ use crate::bezier::convert::cubic_bspline_to_bezier;
 use crate::geom::{self, Point};
 use crate::host::adaptive::{Curves, Tag, edge_curve};
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::crease::adaptive::{chord_vertices, crease_curve};
 use crate::schemes::common::{cos_2pi, sin_2pi};
+use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::limit::tangent_mask;
-use crate::schemes::loop_subdivision::limit_point_stencil;
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
 /// Limit position of `a` and the derivative along the edge `a -> b` (unit edge parameter), for
-/// the Hermite edges of the fill.
+/// the Hermite edges of the fill; the chord of the limit points at a vertex with a sharp
+/// feature other than a plain boundary ([`chord_vertices`]).
 pub(super) fn limit_and_derivative(
     m: &PolyMesh,
     jets: &mut Jets,
@@ -26,6 +28,9 @@ pub(super) fn limit_and_derivative(
     let pos = m.positions();
     let la = jets.limit(m, a);
     let chord = |jets: &mut Jets| geom::sub(jets.limit(m, b), la);
+    if jets.chord.as_ref().is_some_and(|c| c[a]) {
+        return (la, chord(jets));
+    }
     let fourier = jets
         .modes(m, a)
         .map(|md| (md.n, md.c, md.s, md.index.get(&(b as u32)).copied()));
@@ -76,18 +81,35 @@ struct FanModes {
 
 /// The fill's limit points and fan sums, each computed once per vertex: at a vertex of valence
 /// `n` each costs `O(n)`, and the vertex has `n` edges to fill (`n^2` when asked per edge).
-#[derive(Default)]
-pub(super) struct Jets {
+pub(super) struct Jets<'m> {
+    /// The level's rules (its sharp level built once), for the limit points.
+    rules: Rules<'m>,
+    /// With sharp features: the vertices whose derivatives are chords.
+    chord: Option<Vec<bool>>,
     limits: HashMap<usize, Point>,
     modes: HashMap<usize, Option<FanModes>>,
 }
 
-impl Jets {
+impl<'m> Jets<'m> {
+    /// The jets of `level`, none computed yet.
+    pub(super) fn new(level: &'m Level) -> Self {
+        Jets {
+            rules: Rules::new(&level.mesh, &level.options()),
+            chord: level
+                .sharp
+                .as_ref()
+                .and_then(|_| chord_vertices(&level.mesh)),
+            limits: HashMap::new(),
+            modes: HashMap::new(),
+        }
+    }
+
     fn limit(&mut self, m: &PolyMesh, v: usize) -> Point {
+        let rules = &self.rules;
         *self
             .limits
             .entry(v)
-            .or_insert_with(|| limit_point_stencil(m, v).apply(m.positions()))
+            .or_insert_with(|| rules.limit_stencil(v).apply(m.positions()))
     }
 
     /// The fan sums of interior vertex `v` of valence above [`FOURIER_ABOVE`], else `None`.
@@ -132,10 +154,15 @@ fn boundary_continuation(m: &PolyMesh, v: usize, w: usize) -> Point {
     }
 }
 
-/// The edge curve `a -> b` of the fill (see the module documentation), as a quartic.
-fn fill_edge(m: &PolyMesh, jets: &mut Jets, a: usize, b: usize) -> [Point; 5] {
+/// The edge curve `a -> b` of `level`'s fill (see the module documentation), as a quartic:
+/// with sharp features, an infinitely sharp edge between crease or corner vertices takes its
+/// exact crease curve ([`crease_curve`]).
+fn fill_edge(level: &Level, jets: &mut Jets, a: usize, b: usize) -> [Point; 5] {
+    let m = &level.mesh;
     let pos = m.positions();
+    let crease = crease_curve(level, a as u32, b as u32);
     let cubic = match m.find_halfedge(a, b).or_else(|| m.find_halfedge(b, a)) {
+        _ if crease.is_some() => crease.expect("checked"),
         Some(h) if m.he_twin(h).is_none() => {
             let d = [
                 boundary_continuation(m, a, b),
@@ -168,13 +195,13 @@ pub(super) fn fill(
     out: &mut PatchComplex,
 ) {
     let m = &level.mesh;
-    let mut jets = Jets::default();
+    let mut jets = Jets::new(level);
     for &(f, tag) in marked {
         let c = m.face(f as usize);
         let mut tri = [[0.0; 3]; 15];
         for k in 0..3 {
             let e = edge_curve(curves, c[k], c[(k + 1) % 3], |a, b| {
-                fill_edge(m, &mut jets, a, b)
+                fill_edge(level, &mut jets, a, b)
             });
             for (r, p) in e.iter().enumerate() {
                 let mut idx = [0usize; 3];
@@ -220,5 +247,6 @@ pub(super) fn fill(
             },
             tag.domain,
         );
+        super::sharp::mark_sides(level, f as usize, out);
     }
 }

@@ -19,7 +19,7 @@
 //!   2-jet at a valence-6 vertex depends only on its one-ring, so the two segments meeting at a
 //!   spoke end are compatible to rounding (also where two holes touch at a spoke end, as on the
 //!   tetrahedron after one level); [`crate::bezier::g1::g1_cap_with`] checks every hole;
-//! * **centre**: Loop's limit point of `x` (`limit_point_stencil`, the mask `1 - n chi`,
+//! * **centre**: Loop's limit point of `x` (the smooth limit mask `1 - n chi`,
 //!   `chi` per neighbour);
 //! * **tangent plane**: spanned by Loop's tangent masks ([`super::super::limit::tangent_mask`],
 //!   the left eigenvectors of the subdominant pair: `sum cos(2 pi i / n) p_i`,
@@ -57,9 +57,10 @@
 //!
 //! Holes whose ring is not complete after the requested rings (at `--rings 0` the spoke ends
 //! are input vertices, which need not be regular; another hole's cells next to it) get up to
-//! [`MAX_EXTRA_LEVELS`] more levels. Holes that never have the data (extraordinary boundary
-//! vertices, a fan that does not close, still incomplete after the extra levels) keep the C^0
-//! Hermite fill of [`super`].
+//! [`MAX_EXTRA_LEVELS`] more levels, as do holes whose spoke ends have a sharp feature (a
+//! crease through the one-ring: the holes shrink away from it). Holes that never have the data
+//! (extraordinary boundary vertices, a centre with a sharp feature, a fan that does not close,
+//! still incomplete after the extra levels) keep the C^0 Hermite fill of [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
 use crate::bezier::complex::PatchComplex;
@@ -69,8 +70,9 @@ use crate::host::adaptive::{
     CapData, MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
 };
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::crease::adaptive::is_special;
+use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::limit::tangent_mask;
-use crate::schemes::loop_subdivision::limit_point_stencil;
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that incomplete rings complete.
@@ -113,7 +115,7 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
     let (f0, _) = cells[0];
     let (x, n) = hole_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
-    if !level.info[xu].fan_ok {
+    if !level.info[xu].fan_ok || is_special(level, xu) {
         return Err(NoCap::Never);
     }
     let fan = fan_around(m, x, f0, n).ok_or(NoCap::Never)?;
@@ -131,13 +133,17 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
         });
         let outer = m.face_halfedge(f as usize) + ((corner + 1) % 3) as u32;
         let spoke_end = m.he_from(outer) as usize;
-        if !is_regular(m, spoke_end) || m.is_boundary_vertex(spoke_end) {
+        if !is_regular(m, spoke_end)
+            || m.is_boundary_vertex(spoke_end)
+            || is_special(level, spoke_end)
+        {
             return Err(NoCap::Later);
         }
         sectors.push(vec![segment_across(level, outer).ok_or(NoCap::Later)?]);
     }
     let pos = m.positions();
-    let centre = limit_point_stencil(m, xu).apply(pos);
+    // the centre has no feature: the plain (smooth) limit mask
+    let centre = Rules::plain(m).limit_stencil(xu).apply(pos);
     let mut plane = [[0.0; 3]; 2];
     for (h, (c, s)) in m.outgoing(xu).zip(tangent_mask(n, 0)) {
         let p = pos[m.he_to(h) as usize];

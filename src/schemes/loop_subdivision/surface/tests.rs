@@ -56,7 +56,7 @@ fn table_is_loops_limit_interpolant() {
         m.face(f),
         [id(2, 2) as u32, id(3, 2) as u32, id(3, 3) as u32]
     );
-    let net = box_spline_net(&m, f).unwrap();
+    let net = box_spline_net(&super::Level::input(&m, None), f).unwrap();
     let fine = Loop.refine(&Loop.refine(&m).unwrap().mesh).unwrap().mesh;
     let (s1, s2) = (
         Loop.refine(&m).unwrap().stencils,
@@ -188,7 +188,8 @@ fn fourier_fan_derivative_equals_the_mask() {
             faces.push(vec![a, 1 + n + i, b]);
         }
         let m = PolyMesh::new(pts, &faces).unwrap();
-        let mut jets = Jets::default();
+        let level = super::Level::input(&m, None);
+        let mut jets = Jets::new(&level);
         for b in [1usize, 2, n / 2, n] {
             let (_, d) = limit_and_derivative(&m, &mut jets, 0, b);
             let hs = m.outgoing_halfedges(0);

@@ -1,0 +1,228 @@
+//! What the sharp-feature patch tests of Catmull-Clark and Loop share: the OpenSubdiv test nets,
+//! the limit points of uniform refinement, the check that every regular and ring patch is exact
+//! against them, and running the binary.
+
+#![allow(dead_code)]
+
+use fairsub::bezier::complex::{PatchComplex, Provenance};
+use fairsub::geom::Point;
+use fairsub::mesh::tags::SubdOptions;
+use fairsub::mesh::{PolyMesh, SharpEdges};
+use fairsub::schemes::Scheme;
+
+/// The path of the net `tests/data/osd/NAME.obj`.
+pub fn osd_path(name: &str) -> String {
+    format!("{}/tests/data/osd/{name}.obj", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The net `tests/data/osd/NAME.obj` with its tags.
+pub fn osd(name: &str) -> PolyMesh {
+    fairsub::cli::load_net(&osd_path(name))
+        .expect("net loads")
+        .mesh
+}
+
+/// The option tags of a net.
+pub fn file_options(m: &PolyMesh) -> SubdOptions {
+    m.extras().map(|e| e.options).unwrap_or_default()
+}
+
+/// Whether the net tags an infinitely sharp edge.
+pub fn has_infinite_crease(m: &PolyMesh) -> bool {
+    m.extras().is_some_and(|e| match &e.sharp_edges {
+        SharpEdges::ById(v) => v.iter().any(|p| p.1 >= 10.0),
+        SharpEdges::ByPair(v) => v.iter().any(|p| p.1 >= 10.0),
+    })
+}
+
+/// The limit points of `mesh` refined `levels` times by `scheme`, sorted by x.
+pub fn limit_points(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> Vec<Point> {
+    let m = fairsub::schemes::refine_levels(scheme, mesh, levels, |_| {}).unwrap();
+    let mut pts = scheme.limit_stencils(&m).unwrap().apply(m.positions());
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    pts
+}
+
+/// Distance from `p` to the nearest of the sorted points `pts` (searched in an x window).
+pub fn nearest(pts: &[Point], p: Point) -> f64 {
+    let w = 1e-6;
+    let lo = pts.partition_point(|q| q[0] < p[0] - w);
+    pts[lo..]
+        .iter()
+        .take_while(|q| q[0] <= p[0] + w)
+        .map(|&q| fairsub::geom::dist(p, q))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The refinement level of a regular (0) or ring patch; `None` for caps and fills.
+pub fn level_of(p: &Provenance) -> Option<usize> {
+    match p {
+        Provenance::Regular { .. } => Some(0),
+        Provenance::Ring { ring, .. } => Some(*ring as usize),
+        _ => None,
+    }
+}
+
+/// The parameters of a quad patch where a net refined `k` more times has vertices.
+pub fn quad_samples(k: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for i in 0..=k {
+        for j in 0..=k {
+            out.push((i as f64 / k as f64, j as f64 / k as f64));
+        }
+    }
+    out
+}
+
+/// The same for a triangle stored as Loop stores it (`X(u, v) = T(u (1 - v), v)`): the lattice
+/// points `(s, t) = (i, j) / k`, `i + j <= k`, at `u = i / (k - j)`, `v = j / k`.
+pub fn triangle_samples(k: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for j in 0..=k {
+        for i in 0..=k - j {
+            let u = if j == k {
+                0.0
+            } else {
+                i as f64 / (k - j) as f64
+            };
+            out.push((u, j as f64 / k as f64));
+        }
+    }
+    out
+}
+
+/// Checks that every regular and ring patch of `c` is exact against `levels` uniform levels:
+/// its samples (`samples(2^(levels - l))`) are limit points (distance < 1e-9). Returns
+/// (patches checked, samples checked, largest distance).
+pub fn check_exact(
+    c: &PatchComplex,
+    pts: &[Point],
+    levels: usize,
+    samples: fn(usize) -> Vec<(f64, f64)>,
+) -> (usize, usize, f64) {
+    let (mut patches, mut count, mut worst) = (0, 0, 0f64);
+    for (p, prov) in c.patches.iter().zip(&c.provenance) {
+        let Some(l) = level_of(prov) else { continue };
+        assert!(l <= levels, "ring {l} beyond {levels} levels");
+        let k = 1usize << (levels - l);
+        patches += 1;
+        for (u, v) in samples(k) {
+            let x = p.eval(u, v);
+            let d = nearest(pts, x);
+            worst = worst.max(d);
+            count += 1;
+            assert!(
+                d < 1e-9,
+                "{prov:?} sample ({u}, {v}) at {x:?}: {d:e} from the limit"
+            );
+        }
+    }
+    (patches, count, worst)
+}
+
+/// Runs the `fairsub` binary: (exit code, stdout, stderr).
+pub fn run(args: &[&str]) -> (i32, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// Checks the complex `c` of the test net `name` (`m`): every regular and ring patch exact
+/// against the limit points of `scheme` after as many levels as its deepest ring, no crack
+/// (every join C^0, the sharp ones too), no open side when `closed`, sharp joins when
+/// `sharp` (an infinitely sharp crease inside the surface). Returns the continuity report.
+pub fn check_net(
+    name: &str,
+    m: &PolyMesh,
+    c: &PatchComplex,
+    scheme: &dyn Scheme,
+    samples: fn(usize) -> Vec<(f64, f64)>,
+    closed: bool,
+    sharp: bool,
+) -> fairsub::analysis::continuity::ContinuityReport {
+    let levels = c.provenance.iter().filter_map(level_of).max().unwrap_or(0);
+    let pts = limit_points(scheme, m, levels);
+    let (patches, count, worst) = check_exact(c, &pts, levels, samples);
+    eprintln!(
+        "{name}: {} patches, {patches} exact ({count} samples, worst {worst:.1e}), {levels} levels",
+        c.len()
+    );
+    assert!(patches > 0, "{name}");
+    assert!(worst < 1e-9, "{name}");
+    let r = fairsub::analysis::continuity::check(c);
+    eprintln!(
+        "  joins {} (C0 {:.1e}, C2 {:.1e}, G1 {:.2}), sharp {} (C0 {:.1e}, G1 {:.2}), open {}",
+        r.all.pieces,
+        r.all.c0,
+        r.all.c2,
+        r.all.g1,
+        r.sharp.pieces,
+        r.sharp.c0,
+        r.sharp.g1,
+        r.open_sides
+    );
+    assert!(
+        r.all.c0 < 1e-9 && r.sharp.c0 < 1e-9,
+        "{name}: {} {}",
+        r.all.c0,
+        r.sharp.c0
+    );
+    if closed {
+        assert_eq!(r.open_sides, 0, "{name}");
+    }
+    if sharp {
+        assert!(r.sharp.pieces > 0, "{name}");
+    }
+    r
+}
+
+/// Runs `subdivide NET -s SCHEME --rings RINGS -o FILE` (in a temporary folder) and `check NET
+/// -s SCHEME --rings RINGS --json` on the test net `name`, both of which must succeed, and
+/// checks that the report has at least `sharp_pieces` sharp joins, C^0 with a crease angle, and
+/// no open side: the first's stderr and the second's report.
+pub fn rings_and_check(
+    scheme: &str,
+    name: &str,
+    rings: &str,
+    sharp_pieces: u64,
+) -> (String, serde_json::Value) {
+    let net = &osd_path(name);
+    let dir = std::env::temp_dir().join(format!("fairsub-sharp-{scheme}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out.bv");
+    let args = ["subdivide", net, "-s", scheme, "--rings", rings, "-o"];
+    let (code, _, written) = run(&[&args[..], &[out.to_str().unwrap()]].concat());
+    assert_eq!(code, 0, "{written}");
+    std::fs::remove_dir_all(&dir).ok();
+    let (code, json, err) = run(&["check", net, "-s", scheme, "--rings", rings, "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let sharp = &v["continuity"]["sharp"];
+    assert!(sharp["pieces"].as_u64().unwrap() >= sharp_pieces, "{sharp}");
+    assert!(sharp["c0"].as_f64().unwrap() < 1e-9);
+    assert!(sharp["g1"].as_f64().unwrap() > 0.1);
+    assert!(v["continuity"]["all"]["c0"].as_f64().unwrap() < 1e-9);
+    assert_eq!(v["continuity"]["open_sides"].as_u64(), Some(0));
+    (written, v)
+}
+
+/// The uniform cubic B-spline segment of the control points `d` at `t` in `[0, 1]`.
+pub fn bspline(d: [Point; 4], t: f64) -> Point {
+    let b = [
+        (1.0 - t) * (1.0 - t) * (1.0 - t) / 6.0,
+        (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+        (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
+        t * t * t / 6.0,
+    ];
+    let mut p = [0.0; 3];
+    for (w, q) in b.iter().zip(d) {
+        p = fairsub::geom::axpy(p, *w, q);
+    }
+    p
+}
