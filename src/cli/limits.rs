@@ -545,17 +545,32 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     let Some(lm) = [5, 6, 7, 3, 8].iter().find_map(|&k| rules.matrix(k).ok()) else {
         return Ok(());
     };
-    let centre = if replicated_centre {
-        lm.centre * n
-    } else {
-        lm.centre
+    // A matrix without sectors (a numeric basis of the guided schemes' bi-4 and bi-3 guide
+    // spaces) grows all the same: its rows per valence are measured between two valences.
+    let (lm_centre, lm_sector) = match lm.sector {
+        0 => match rules.matrix(lm.n + 2) {
+            Ok(m2) => {
+                let per = m2.centre.saturating_sub(lm.centre) / 2;
+                (lm.centre.saturating_sub(per * lm.n), per)
+            }
+            Err(_) => (lm.centre, 0),
+        },
+        _ => (lm.centre, lm.sector),
     };
-    let dim = centre + n.saturating_mul(lm.sector);
+    let centre = if replicated_centre {
+        lm_centre * n
+    } else {
+        lm_centre
+    };
+    let dim = centre + n.saturating_mul(lm_sector);
     if dim > MAX_ANALYSIS_DIMENSION {
         if let Ok(Some(sparse)) = rules.sparse(lm.n) {
             return check_blocks(spec, n, &sparse);
         }
-        let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm.centre)) / lm.sector.max(1);
+        if rules.own_blocks(n) {
+            return check_fourier(spec, n, (lm.centre, lm.sector), lm.sector as f64);
+        }
+        let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm_centre)) / lm_sector.max(1);
         return Err(Error::TooLarge(format!(
             "valence {n}: the local matrix of {} would have {dim} rows ({} centre + {n} x {} \
              points); fairsub decomposes dense local matrices of at most \
@@ -564,7 +579,7 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
              valence of at most {max_n}",
             spec.name(),
             centre,
-            lm.sector,
+            lm_sector,
             spec.name()
         )));
     }
@@ -589,6 +604,25 @@ fn check_blocks(
     n: usize,
     small: &crate::schemes::circulant::SparseLocal,
 ) -> Result<()> {
+    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
+    let rows = small.centre as f64 + n as f64 * small.sector as f64;
+    let per_row = if widest >= small.n as f64 {
+        rows
+    } else {
+        widest
+    };
+    check_fourier(spec, n, (small.centre, small.sector), per_row)
+}
+
+/// The Fourier-block analysis at valence `n` of a matrix with `centre + n sector` rows of
+/// `per_row` entries (held sparse, or as the scheme's own blocks): within
+/// [`MAX_FOURIER_VALENCE`] and the budget.
+fn check_fourier(
+    spec: &Spec,
+    n: usize,
+    (centre, sector): (usize, usize),
+    per_row: f64,
+) -> Result<()> {
     if n > MAX_FOURIER_VALENCE {
         return Err(Error::TooLarge(format!(
             "valence {n}: {} is analysed by the Fourier blocks of its local matrix above \
@@ -598,15 +632,9 @@ fn check_blocks(
             spec.name()
         )));
     }
-    let k = (small.centre + small.sector) as f64;
+    let k = (centre + sector) as f64;
     let nf = n as f64;
-    let rows = small.centre as f64 + nf * small.sector as f64;
-    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
-    let per_row = if widest >= small.n as f64 {
-        rows
-    } else {
-        widest
-    };
+    let rows = centre as f64 + nf * sector as f64;
     let bytes = 2.0 * 16.0 * rows * per_row.max(1.0) + 8.0 * 16.0 * nf * k * k + 64.0 * rows * 8.0;
     within_budget(
         || format!("the Fourier blocks at valence {n} ({n} blocks of {k} rows)"),
@@ -614,6 +642,7 @@ fn check_blocks(
         "take a smaller valence",
     )
 }
+
 /// A picture of `cells` cells of `width x height` pixels with `aa x aa` samples each.
 pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Result<()> {
     let samples = width as f64 * height as f64 * (aa * aa) as f64 * cells.max(1) as f64;
