@@ -542,7 +542,7 @@ fn check_on_30k_patches_and_30k_groups_finds_every_join() {
 }
 
 /// `analyze` and `charmap` at valence 100: guided-bi5 answers by the Fourier blocks of its
-/// Bloch basis (tests/guided_fourier.rs compares them with the dense path) with table (5)'s
+/// Bloch basis (tests/fourier_analysis.rs compares them with the dense path) with table (5)'s
 /// multiplicities; its bi-4 guide (a numeric basis without sectors) is refused up front beyond
 /// its valence bound, and guided-bi5 beyond the Fourier bound; PGS answers by its Fourier
 /// blocks (tests/fourier_analysis.rs compares them with the dense path); PGS and non-box answer
@@ -577,6 +577,20 @@ fn analyze_and_charmap_at_valence_100() {
         ],
         "take a valence of at most 24",
         &out,
+    );
+    // The replicated-centre form has no blocks: refused by rows.
+    let (code, err) = run(&[
+        "analyze",
+        "--scheme",
+        "guided-bi5",
+        "--valence",
+        "100",
+        "--replicated-centre",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("fairsub decomposes dense local matrices of at most 450 rows"),
+        "{err}"
     );
     let (code, err) = run(&["analyze", "--scheme", "guided-bi5", "--valence", "1001"]);
     assert_eq!(code, 1, "{err}");

@@ -591,7 +591,8 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
         if let Ok(Some(sparse)) = rules.sparse(lm.n) {
             return check_blocks(spec, n, &sparse);
         }
-        if rules.own_blocks(n) {
+        // Blocks of the scheme's own (not of the replicated-centre form, which stays dense).
+        if rules.own_blocks(n) && !replicated_centre {
             return check_fourier(spec, n, (lm.centre, lm.sector), lm.sector as f64);
         }
         let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm_centre)) / lm_sector.max(1);
