@@ -55,6 +55,17 @@ fn zeta(n: usize, w: usize) -> C64 {
     C64::from_polar(1.0, 2.0 * PI * (w % n) as f64 / n as f64)
 }
 
+/// The valences of the paper's bi-5 coordinates: `n >= 3`, `n != 4` (Appendix A divides by
+/// `cos(2 pi / n)`).
+fn paper_valence(n: usize) -> Result<()> {
+    if n < 3 || n == 4 {
+        return Err(Error::Unsupported(format!(
+            "the paper's bi-5 guide coordinates need a valence n >= 3, n != 4 (got {n})"
+        )));
+    }
+    Ok(())
+}
+
 /// The central Bloch vectors of valence `n`: frequencies and the matrix `V` whose column `q`
 /// holds the central BB coefficients (in [`CENTRAL`] order) of `q o L_0`, `q` in
 /// `1, z, zbar, z zbar, z^2, zbar^2`.
@@ -168,11 +179,7 @@ impl GuidedBlocks {
     /// # Errors
     /// Valences below 3 and 4 (the paper's coordinates divide by `cos(2 pi / n)`).
     pub fn new(scheme: impl Into<String>, n: usize, lambda: f64) -> Result<GuidedBlocks> {
-        if n < 3 || n == 4 {
-            return Err(Error::Unsupported(format!(
-                "the paper's bi-5 guide coordinates need a valence n >= 3, n != 4 (got {n})"
-            )));
-        }
+        paper_valence(n)?;
         let (f6, v) = central_basis(n);
         let vinv = v
             .clone()
@@ -419,8 +426,13 @@ impl LocalOperator for GuidedBlocks {
 /// (the weights of the central point `g^0_00`): the frequency-0 part of the guide space, for
 /// the limit point's fit ([`super::rings`]).
 pub(crate) fn frequency_zero_guides(n: usize) -> Result<(DMatrix<f64>, Vec<f64>)> {
-    let ops = GuidedBlocks::new("", n, 0.5)?;
-    let mem = &ops.members[0];
+    paper_valence(n)?;
+    let (freq, v) = central_basis(n);
+    // The central vectors of frequency 0, and the kernel coordinate of (4) at n = 3.
+    let mut mem: Vec<usize> = (0..6).filter(|&j| freq[j] == 0).collect();
+    if n == 3 {
+        mem.push(6);
+    }
     let zero = C64::default();
     let k = mem.len() + 18;
     let mut g = DMatrix::zeros(36, k);
@@ -429,8 +441,8 @@ pub(crate) fn frequency_zero_guides(n: usize) -> Result<(DMatrix<f64>, Vec<f64>)
         let (mut cc, mut free, mut kern) = ([zero; 6], [zero; 18], zero);
         match mem.get(col) {
             Some(&j) if j < 6 => {
-                cc = std::array::from_fn(|r| ops.v[(r, j)]);
-                point[col] = ops.v[(0, j)].re;
+                cc = std::array::from_fn(|r| v[(r, j)]);
+                point[col] = v[(0, j)].re;
             }
             Some(_) => kern = C64::new(1.0 / 3f64.sqrt(), 0.0),
             None => free[col - mem.len()] = C64::new(1.0, 0.0),

@@ -18,7 +18,8 @@ pub fn lambda(n: usize, chi: crate::schemes::guided::chi::ChiKind) -> f64 {
 /// Appendix C of the paper): the guide restricted to `[0, lambda]^2` by de Casteljau, in the
 /// guide's coordinates. For the bi-5 guide these are the paper's coordinates (6 central ones, one
 /// more for n = 3, 6, then 18 per sector); the central quadratic expansion is not
-/// rotation-invariant, so the matrix has no discrete Fourier blocks. Its eigenvalues are
+/// rotation-invariant, so the matrix has no discrete Fourier blocks of the sector-periodic form
+/// (the Bloch basis of [`super::fourier`] splits it by frequency). Its eigenvalues are
 /// `lambda^s`, `s = 0..10`, with the multiplicities of the paper's table (5). The matrix does not
 /// depend on the ring degree (bi-5 or bi-6) or on chi, only on `lambda`.
 pub fn local_matrix(
