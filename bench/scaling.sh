@@ -20,11 +20,12 @@
 #   analyze-V     `analyze --scheme V --valence n`, n = 30 -> 300 (ANALYZE_N), for V in
 #                 guided-bi5, pgs, nonbox: a dense eigen-decomposition up to 450 rows, the
 #                 Fourier blocks of the block-circulant local matrix above
-#                 (src/schemes/circulant.rs), linear in n. It starts at 30 because a run at
-#                 valence 3 is 7 ms of process start (3 -> 30 measures the dense path near its
-#                 bound: pgs x28, nonbox x50). guided-bi5's matrix is not block-circulant: it
-#                 is refused above 450 rows (valence 24), so its case FAILS; measured
-#                 2026-12-03: pgs 30 -> 300 x1.5, nonbox x1.5
+#                 (src/schemes/circulant.rs; guided's Bloch basis, src/schemes/guided/
+#                 fourier.rs), linear in n. It starts at 30 because a run at valence 3 is 7 ms
+#                 of process start (3 -> 30 measures the dense path near its bound: pgs x28,
+#                 nonbox x50); measured 2026-12-03: pgs 30 -> 300 x1.2, nonbox x1.7,
+#                 guided-bi5 x4.3 (analyze-guided-bi6, -bi4-macro, -bi3-macro also run:
+#                 x4.6, x10.5, x7.5)
 #
 # Timings are wall-clock of the whole process (reading, work, writing) on whatever machine runs
 # the script; run it on an idle machine. It is not part of `cargo test` (the project has no timed

@@ -541,29 +541,35 @@ fn check_on_30k_patches_and_30k_groups_finds_every_join() {
     }
 }
 
-/// `analyze` and `charmap` at valence 100: guided-bi5 (whose local matrix is not
-/// block-circulant) is refused up front beyond the dense-decomposition bound, which keeps
-/// every accepted valence within seconds; PGS answers by its Fourier blocks
-/// (tests/fourier_analysis.rs compares them with the dense path); PGS and non-box answer at
-/// valence 40, under the bound.
+/// `analyze` and `charmap` at valence 100: guided-bi5 answers by the Fourier blocks of its
+/// Bloch basis (tests/fourier_analysis.rs compares them with the dense path) with table (5)'s
+/// multiplicities; its bi-4 guide (a numeric basis without sectors) is refused up front beyond
+/// its valence bound, and guided-bi5 beyond the Fourier bound; PGS answers by its Fourier
+/// blocks (tests/fourier_analysis.rs compares them with the dense path); PGS and non-box answer
+/// at valence 40, under the bound.
 #[test]
 fn analyze_and_charmap_at_valence_100() {
     let d = scratch("analyze");
-    let (code, err) = run(&["analyze", "--scheme", "guided-bi5", "--valence", "100"]);
-    assert_eq!(code, 1, "{err}");
-    assert!(
-        err.contains(
-            "the local matrix of guided-bi5 would have 1806 rows (6 centre + 100 x 18 \
-             points); fairsub decomposes dense local matrices of at most 450 rows"
-        ),
-        "{err}"
-    );
+    let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(["analyze", "--scheme", "guided-bi5", "--valence", "100"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{text}");
+    for line in [
+        "1806x1806 local matrix (6 centre + 100 x 18 points)",
+        "published multiplicity of lambda^3 (table (5)): 100.000000000000, computed 100.000000000000",
+        "published multiplicity of lambda^5 (table (5)): 300.000000000000, computed 300.000000000000",
+        "injective (certified)",
+    ] {
+        assert!(text.contains(line), "{line}: {text}");
+    }
     let out = d.join("c.bv");
     refused(
         &[
             "charmap",
             "--scheme",
-            "guided-bi5",
+            "guided-bi5-g4",
             "--valence",
             "100",
             "-o",
@@ -572,6 +578,23 @@ fn analyze_and_charmap_at_valence_100() {
         "take a valence of at most 24",
         &out,
     );
+    // The replicated-centre form has no blocks: refused by rows.
+    let (code, err) = run(&[
+        "analyze",
+        "--scheme",
+        "guided-bi5",
+        "--valence",
+        "100",
+        "--replicated-centre",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("fairsub decomposes dense local matrices of at most 450 rows"),
+        "{err}"
+    );
+    let (code, err) = run(&["analyze", "--scheme", "guided-bi5", "--valence", "1001"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("take a valence of at most 1000"), "{err}");
     let (code, err) = run(&["analyze", "--scheme", "pgs", "--valence", "100"]);
     assert_eq!(code, 0, "{err}");
     for scheme in ["pgs", "nonbox"] {

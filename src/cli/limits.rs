@@ -16,7 +16,7 @@
 //! | `subdivide --levels`, `render --levels` | the net after each level from the scheme's own growth rule ([`crate::schemes::Scheme::step_size`]): parent, child and the step's stencil table ([`crate::schemes::growth`]) |
 //! | `--rings` (`subdivide`, `check`, `render`, `compare`) | the patches: regular patches per input corner and ring patches per unit of element size per ring, measured by building one ring of the scheme on small canonical nets; plus one refinement step of the net (dense face rules) |
 //! | tessellated `.obj`/`.off`/`.ply` | `(tess + 1)^2` points and `2 tess^2` triangles per patch with the arrays of the tessellation and of the validated mesh |
-//! | `analyze`, `charmap` | the local matrix, `centre + n x points per sector` rows, from the scheme's local rules at a small valence; above [`MAX_ANALYSIS_DIMENSION`] rows, the sparse rows and the `n` Fourier blocks of a block-circulant matrix |
+//! | `analyze`, `charmap` | the local matrix, `centre + n x points per sector` rows, from the scheme's local rules at a small valence; above [`MAX_ANALYSIS_DIMENSION`] rows, the sparse rows and the `n` Fourier blocks of a block-circulant matrix (of the Bloch basis for guided subdivision) |
 //! | `render`, `compare` | the samples (`width x height x aa^2` per cell) |
 //!
 //! Besides the budget, bounds that hold on every machine: outputs have fewer than 2^31
@@ -24,8 +24,10 @@
 //! [`MAX_RINGS`] (beyond about 70 rings every scheme's rings are smaller than the welding
 //! tolerance of double precision), dense analysis at most [`MAX_ANALYSIS_DIMENSION`] rows
 //! (its eigen-decomposition costs the cube of that), and the Fourier-block analysis of
-//! block-circulant local matrices ([`crate::schemes::circulant`], above that many rows) at most
-//! valence [`MAX_FOURIER_VALENCE`].
+//! block-circulant local matrices ([`crate::schemes::circulant`], above that many rows) and of
+//! guided subdivision's bi-5 guide ([`crate::schemes::guided::fourier`]) at most valence
+//! [`MAX_FOURIER_VALENCE`]; local matrices without sectors (the guided `-g4` / `-g3` guides)
+//! at most valence [`MAX_SECTORLESS_VALENCE`].
 
 use crate::error::{Error, Result};
 use crate::mesh::{Element, PolyMesh};
@@ -51,9 +53,22 @@ pub const MAX_ANALYSIS_DIMENSION: usize = crate::linalg::MAX_DENSE_EIGEN_ROWS;
 /// `n (centre + sector)^3`; the characteristic map's certificate (3n to 36n patches and their
 /// boundary curves) and the grouping of the `n x sector` eigenvalues grow a little faster.
 /// Measured in release on one core of a shared 2-core machine at valence 1000: non-box-4dir
-/// 7.1 s (the slowest: 36 000 ring patches), non-box 4.8 s, Catmull-Clark 4.3 s, PGS and TPS
-/// 3.5 s, at most 180 MB; so 1000 keeps every accepted case within about 10 s.
+/// 7.1 s (36 000 ring patches), non-box 4.8 s, Catmull-Clark 4.3 s, PGS and TPS 3.5 s, at
+/// most 180 MB (before the certificate's simplicity test moved from strips to a grid). The
+/// guided schemes (bi-5 guide: Fourier blocks in a Bloch basis,
+/// [`crate::schemes::guided::fourier`]), after it, under a load of about 7: guided-bi5 2.4 s,
+/// bi6 2.9 s, bi4-macro 4.2 s, bi3-macro 8.7 s (the slowest: 27 000 ring pieces, whose
+/// winding samples dominate), at most 182 MB; so 1000 keeps every accepted case within about
+/// 10 s.
 pub const MAX_FOURIER_VALENCE: usize = 1000;
+
+/// Largest valence of `analyze` and `charmap` for a local matrix without sectors: the guided
+/// schemes' bi-4 and bi-3 guides (`-g4`, `-g3`), whose guide space is a numeric null space
+/// over all sectors' coefficients, and whose fit and step matrix are dense over it (no Bloch
+/// basis; the bi-5 guide has one, [`crate::schemes::guided::fourier`]). Measured in release on
+/// a shared 2-core machine: `-g4` 1.8 s at valence 24 (14 s at 44), `-g3` 2.0 s at 40 (8.2 s
+/// at 56, 102 s at 111).
+pub const MAX_SECTORLESS_VALENCE: usize = 24;
 
 /// Largest count of vertices or corners of an output (32-bit indices, one bit to spare).
 pub const MAX_ELEMENTS: f64 = 2147483648.0;
@@ -345,17 +360,42 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
     let Some(lm) = [5, 6, 7, 3, 8].iter().find_map(|&k| rules.matrix(k).ok()) else {
         return Ok(());
     };
-    let centre = if replicated_centre {
-        lm.centre * n
-    } else {
-        lm.centre
+    // A matrix without sectors (a numeric basis of the guided schemes' bi-4 and bi-3 guide
+    // spaces) grows all the same: its rows per valence are measured between two valences, and
+    // its valence is bounded by MAX_SECTORLESS_VALENCE.
+    if lm.sector == 0 && n > MAX_SECTORLESS_VALENCE {
+        return Err(Error::TooLarge(format!(
+            "valence {n}: the local matrix of {} is built on a numeric basis of its space over \
+             all sectors (a dense null space whose cost grows with the cube of the valence): \
+             take a valence of at most {MAX_SECTORLESS_VALENCE}",
+            spec.name()
+        )));
+    }
+    let (lm_centre, lm_sector) = match lm.sector {
+        0 => match rules.matrix(lm.n + 2) {
+            Ok(m2) => {
+                let per = m2.centre.saturating_sub(lm.centre) / 2;
+                (lm.centre.saturating_sub(per * lm.n), per)
+            }
+            Err(_) => (lm.centre, 0),
+        },
+        _ => (lm.centre, lm.sector),
     };
-    let dim = centre + n.saturating_mul(lm.sector);
+    let centre = if replicated_centre {
+        lm_centre * n
+    } else {
+        lm_centre
+    };
+    let dim = centre + n.saturating_mul(lm_sector);
     if dim > MAX_ANALYSIS_DIMENSION {
         if let Ok(Some(sparse)) = rules.sparse(lm.n) {
             return check_blocks(spec, n, &sparse);
         }
-        let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm.centre)) / lm.sector.max(1);
+        // Blocks of the scheme's own (not of the replicated-centre form, which stays dense).
+        if rules.own_blocks(n) && !replicated_centre {
+            return check_fourier(spec, n, (lm.centre, lm.sector), lm.sector as f64);
+        }
+        let max_n = (MAX_ANALYSIS_DIMENSION.saturating_sub(lm_centre)) / lm_sector.max(1);
         return Err(Error::TooLarge(format!(
             "valence {n}: the local matrix of {} would have {dim} rows ({} centre + {n} x {} \
              points); fairsub decomposes dense local matrices of at most \
@@ -364,7 +404,7 @@ pub fn check_analysis(spec: &Spec, n: usize, replicated_centre: bool) -> Result<
              valence of at most {max_n}",
             spec.name(),
             centre,
-            lm.sector,
+            lm_sector,
             spec.name()
         )));
     }
@@ -389,6 +429,25 @@ fn check_blocks(
     n: usize,
     small: &crate::schemes::circulant::SparseLocal,
 ) -> Result<()> {
+    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
+    let rows = small.centre as f64 + n as f64 * small.sector as f64;
+    let per_row = if widest >= small.n as f64 {
+        rows
+    } else {
+        widest
+    };
+    check_fourier(spec, n, (small.centre, small.sector), per_row)
+}
+
+/// The Fourier-block analysis at valence `n` of a matrix with `centre + n sector` rows of
+/// `per_row` entries (held sparse, or as the scheme's own blocks): within
+/// [`MAX_FOURIER_VALENCE`] and the budget.
+fn check_fourier(
+    spec: &Spec,
+    n: usize,
+    (centre, sector): (usize, usize),
+    per_row: f64,
+) -> Result<()> {
     if n > MAX_FOURIER_VALENCE {
         return Err(Error::TooLarge(format!(
             "valence {n}: {} is analysed by the Fourier blocks of its local matrix above \
@@ -398,15 +457,9 @@ fn check_blocks(
             spec.name()
         )));
     }
-    let k = (small.centre + small.sector) as f64;
+    let k = (centre + sector) as f64;
     let nf = n as f64;
-    let rows = small.centre as f64 + nf * small.sector as f64;
-    let widest = small.rows.iter().map(Vec::len).max().unwrap_or(0) as f64;
-    let per_row = if widest >= small.n as f64 {
-        rows
-    } else {
-        widest
-    };
+    let rows = centre as f64 + nf * sector as f64;
     let bytes = 2.0 * 16.0 * rows * per_row.max(1.0) + 8.0 * 16.0 * nf * k * k + 64.0 * rows * 8.0;
     within_budget(
         || format!("the Fourier blocks at valence {n} ({n} blocks of {k} rows)"),
@@ -414,6 +467,7 @@ fn check_blocks(
         "take a smaller valence",
     )
 }
+
 /// A picture of `cells` cells of `width x height` pixels with `aa x aa` samples each.
 pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Result<()> {
     let samples = width as f64 * height as f64 * (aa * aa) as f64 * cells.max(1) as f64;

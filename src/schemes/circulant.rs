@@ -336,43 +336,64 @@ impl Circulant {
     pub fn left_eigenvectors(&self, value: f64) -> Vec<DVector<f64>> {
         let (c, m, n) = (self.centre, self.sector, self.n);
         let size = c + n * m;
-        let mut out: Vec<DVector<f64>> = Vec::new();
-        for w in 0..=n / 2 {
-            let b = self.block(w).matrix;
-            let k = b.nrows();
-            let shifted = b.transpose() - DMatrix::<C64>::identity(k, k) * C64::new(value, 0.0);
-            for u in block_null_space(&shifted, &b) {
-                let off = if w == 0 { c } else { 0 };
-                let real = w == 0 || 2 * w == n;
-                // A real block's null vector is real up to a phase.
-                let u = if real {
-                    let big = (0..k)
-                        .max_by(|&a, &b| u[a].norm().total_cmp(&u[b].norm()))
-                        .unwrap_or(0);
-                    let ph = u[big].conj() / u[big].norm();
-                    u.map(|z| z * ph)
-                } else {
-                    u
-                };
-                let mut full = DVector::<C64>::zeros(size);
-                for i in 0..off {
-                    full[i] = u[i];
-                }
-                let scale = if w == 0 { 1.0 / n as f64 } else { 1.0 };
-                for s in 0..n {
-                    let z = self.zeta[(w * s) % n].conj() * scale;
-                    for x in 0..m {
-                        full[c + s * m + x] = u[off + x] * z;
-                    }
-                }
-                out.push(full.map(|z| z.re));
-                if !real {
-                    out.push(full.map(|z| z.im));
+        let lift = |w: usize, u: &DVector<C64>| {
+            let off = if w == 0 { c } else { 0 };
+            let mut full = DVector::<C64>::zeros(size);
+            for i in 0..off {
+                full[i] = u[i];
+            }
+            let scale = if w == 0 { 1.0 / n as f64 } else { 1.0 };
+            for s in 0..n {
+                let z = self.zeta[(w * s) % n].conj() * scale;
+                for x in 0..m {
+                    full[c + s * m + x] = u[off + x] * z;
                 }
             }
-        }
-        orthonormal(out)
+            full
+        };
+        left_eigenvectors_by_blocks(n, value, |w| self.block(w).matrix, lift)
     }
+}
+
+/// The left eigenvectors of the real eigenvalue `value` of a matrix that the discrete Fourier
+/// transform over its `n` sectors splits into blocks (`block(w)`, frequency `w`), as real
+/// vectors on the whole space: an orthonormal basis of the union over frequencies `0..=n/2` of
+/// the blocks' left null spaces of `B - value I` (singular values below `1e-8` of the largest),
+/// each null vector `u` of block `w` lifted to the whole space by `lift(w, u)` (the row of the
+/// inverse transform: `l^T y = u^T (coordinates of y in block w)`). Blocks `w = 0` and
+/// `2 w = n` are real, so their null vectors are real up to a phase, which is removed; a
+/// complex block (and its conjugate `n - w`) gives the real and imaginary parts of its lift.
+pub(crate) fn left_eigenvectors_by_blocks(
+    n: usize,
+    value: f64,
+    block: impl Fn(usize) -> DMatrix<C64>,
+    lift: impl Fn(usize, &DVector<C64>) -> DVector<C64>,
+) -> Vec<DVector<f64>> {
+    let mut out: Vec<DVector<f64>> = Vec::new();
+    for w in 0..=n / 2 {
+        let b = block(w);
+        let k = b.nrows();
+        let shifted = b.transpose() - DMatrix::<C64>::identity(k, k) * C64::new(value, 0.0);
+        for u in block_null_space(&shifted, &b) {
+            let real = w == 0 || 2 * w == n;
+            // A real block's null vector is real up to a phase.
+            let u = if real {
+                let big = (0..k)
+                    .max_by(|&a, &b| u[a].norm().total_cmp(&u[b].norm()))
+                    .unwrap_or(0);
+                let ph = u[big].conj() / u[big].norm();
+                u.map(|z| z * ph)
+            } else {
+                u
+            };
+            let full = lift(w, &u);
+            out.push(full.map(|z| z.re));
+            if !real {
+                out.push(full.map(|z| z.im));
+            }
+        }
+    }
+    orthonormal(out)
 }
 
 /// The null space of `shifted = B^T - value I` for a Fourier block `B`: singular values at
@@ -499,6 +520,13 @@ pub fn with_dense_rows<T>(max: usize, f: impl FnOnce() -> T) -> T {
     out
 }
 
+/// The most rows [`choose`] decomposes densely on this thread ([`MAX_DENSE_EIGEN_ROWS`], or
+/// what [`with_dense_rows`] set), for schemes that choose between their dense matrix and their
+/// blocks themselves.
+pub fn dense_rows() -> usize {
+    DENSE_ROWS.with(Cell::get)
+}
+
 /// The local operator of a scheme's sparse rows: the dense matrix `dense()` (the scheme's
 /// [`LocalMatrix`]) within [`MAX_DENSE_EIGEN_ROWS`] rows, so that outputs there are the dense
 /// path's to the bit, and the Fourier blocks above; with `replicated_centre`, in the
@@ -511,7 +539,7 @@ pub fn choose(
     replicated_centre: bool,
     dense: impl FnOnce() -> Result<LocalMatrix>,
 ) -> Result<Box<dyn LocalOperator>> {
-    if rows.matrix_size(replicated_centre) <= DENSE_ROWS.with(Cell::get) {
+    if rows.matrix_size(replicated_centre) <= dense_rows() {
         let lm = dense()?;
         return Ok(Box::new(if replicated_centre {
             lm.replicated_centre()

@@ -345,6 +345,15 @@ pub trait LocalRules: Sync {
         Ok(None)
     }
 
+    /// Whether [`LocalRules::operator`] takes valence `n` by Fourier blocks of its own (without
+    /// sparse rows, like guided subdivision's Bloch basis) above
+    /// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows, so that the limits bound it by valence
+    /// rather than by rows.
+    fn own_blocks(&self, n: usize) -> bool {
+        let _ = n;
+        false
+    }
+
     /// The matrix the analysis decomposes at valence `n`: [`LocalRules::matrix`] within
     /// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows or without sparse rows, its Fourier blocks
     /// ([`super::circulant`]) above; with `replicated_centre`, its replicated-centre form.

@@ -107,13 +107,32 @@ impl LocalRules for GuidedLocal {
         super::local::local_matrix(n, o.guide, super::local::lambda(n, o.chi))
     }
 
+    /// The bi-5 guide in the paper's coordinates (valences other than 4).
+    fn own_blocks(&self, n: usize) -> bool {
+        self.options.guide == super::guide::GuideDegree::Bi5 && n != 4
+    }
+
+    /// The dense matrix, or above the dense bound the Fourier blocks of the bi-5 guide's
+    /// matrix ([`super::local::operator`]).
+    fn operator(&self, n: usize, replicated_centre: bool) -> Result<Box<dyn LocalOperator>> {
+        let o = self.options;
+        if replicated_centre {
+            return Ok(Box::new(self.matrix(n)?.replicated_centre()));
+        }
+        super::local::operator(n, o.guide, super::local::lambda(n, o.chi))
+    }
+
     fn characteristic_ring(&self, n: usize) -> Result<(Vec<BezierPatch>, f64)> {
         super::local::characteristic_ring(n, self.options)
     }
 
     /// The matrix acts on the guide's free set `P`, whose first coordinate is the limit point;
-    /// its stencil on the c-net (centre, then sector by sector) is the fit's first row.
+    /// its stencil on the c-net (centre, then sector by sector) is the fit's first row (from
+    /// the fit's frequency-0 part above the dense bound, [`super::rings::limit_stencil`]).
     fn limit_stencil(&self, n: usize, m: &dyn LocalOperator) -> Result<Vec<f64>> {
+        if m.size() > crate::schemes::circulant::dense_rows() {
+            return super::rings::limit_stencil(n, self.options).or_else(|_| m.limit_stencil());
+        }
         match super::rings::Guided::new(n, self.options) {
             Ok(g) => Ok(g.fit.row(0).iter().copied().collect()),
             Err(_) => m.limit_stencil(),

@@ -268,10 +268,10 @@ pub fn restriction(n: usize, d: usize, lambda: f64) -> DMatrix<f64> {
 }
 
 /// The central coefficients of sector 0 in the order of `P`.
-const CENTRAL: [(usize, usize); 6] = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (0, 2)];
+pub(crate) const CENTRAL: [(usize, usize); 6] = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (0, 2)];
 
 /// Per-sector free coefficients: nine black, nine cyan.
-const FREE_SECTOR: [(usize, usize); 18] = [
+pub(crate) const FREE_SECTOR: [(usize, usize); 18] = [
     (2, 1),
     (2, 2),
     (4, 0),
@@ -322,33 +322,132 @@ impl Circulant {
     }
 }
 
+/// A scalar the bi-5 guide's relations are evaluated in: `f64` for the guide of [`expand_bi5`],
+/// [`crate::linalg::C64`] for the Bloch guides of [`super::fourier`] (one sector of a guide whose
+/// sector `s` is `exp(2 pi i w s / n)` times sector 0).
+pub(crate) trait Coef:
+    Copy
+    + Default
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Neg<Output = Self>
+    + std::ops::Mul<f64, Output = Self>
+{
+}
+impl Coef for f64 {}
+impl Coef for crate::linalg::C64 {}
+
+/// The `6 x 6` BB coefficients of one bi-5 sector.
+pub(crate) type Sector<T> = [[T; 6]; 6];
+
+/// (3): the central expansion of a sector (in [`CENTRAL`] order) from that of the sector
+/// before it, `prev` (the grave side of their common ray).
+pub(crate) fn central_next<T: Coef>(c: f64, prev: &Sector<T>) -> [T; 6] {
+    // acute = this sector, grave = the previous one transposed: p''_ij = prev[j][i].
+    let gr = |i: usize, j: usize| prev[j][i];
+    let (p00, p10, p20) = (gr(0, 0), gr(1, 0), gr(2, 0));
+    let (p01, p11, p02) = (gr(0, 1), gr(1, 1), gr(0, 2));
+    [
+        p00,
+        p10,
+        p20,
+        -p01 + p10 * (2.0 * c) + p00 * (2.0 * (1.0 - c)),
+        -p11 + p20 * (1.6 * c) + p10 * (2.0 - 1.2 * c) - p00 * (0.4 * c),
+        p02 - p11 * (5.0 * c)
+            + p20 * (4.0 * c * c)
+            + p01 * (5.0 * c - 4.0)
+            + p10 * (c * (9.0 - 8.0 * c))
+            + p00 * (4.0 - 9.0 * c + 4.0 * c * c),
+    ]
+}
+
+/// (4)'s right-hand side `r_s` of `x_(s+1) + 2 c x_s = r_s` (`x_k = g^k_12`) at the ray between
+/// sector `s` (`gs`, grave) and sector `s + 1` (`gt`, acute).
+pub(crate) fn rhs4<T: Coef>(c: f64, gs: &Sector<T>, gt: &Sector<T>) -> T {
+    gs[2][1]
+        + gt[2][1] * (2.0 * c)
+        + gs[1][0] * c
+        + gs[1][1] * (3.0 * c - 4.0)
+        + gt[2][0] * (0.8 * c * (4.0 - 3.0 * c))
+        + gt[1][0] * (4.0 - 5.4 * c + 0.8 * c * c)
+        + gt[0][0] * (c / 5.0 * (8.0 * c - 9.0))
+}
+
+/// Appendix A at one ray, between sector `e` (`ac`, acute) and sector `e - 1` (`gv`, grave):
+/// `p_30` (shared), `p'_32` of the acute side, `p_31, p_41, p_51` of the grave side (the
+/// printed formulas) and of the acute side (accents swapped), with the erratum
+/// [`APPENDIX_A_ERRATUM`].
+pub(crate) fn appendix_a<T: Coef>(
+    c: f64,
+    ac: &Sector<T>,
+    gv: &Sector<T>,
+) -> (T, T, [T; 3], [T; 3]) {
+    let d1 = 4.0 + 8.0 * c + 5.0 * c * c;
+    let d2 = 4.0 + 5.0 * c;
+    let d3 = 36.0 + 45.0 * c + 5.0 * c * c;
+    let d4 = 20.0 + 36.0 * c + 9.0 * c * c - 15.0 * c.powi(3);
+    let d5 = 32.0 + 48.0 * c + 15.0 * c * c;
+    let d6 = 16.0 + 36.0 * c + 36.0 * c * c + 15.0 * c.powi(3);
+    let d7 = 32.0 + 64.0 * c + 72.0 * c * c + 48.0 * c.powi(3) + 15.0 * c.powi(4);
+    let acu = |i: usize, j: usize| ac[i][j];
+    let gr = |i: usize, j: usize| gv[j][i];
+    let row = |i: usize| ac[i][0];
+    let p30 = row(1) * (2.0 / 3.0)
+        + row(2) * ((c - 5.0) / (3.0 * c))
+        + (gr(2, 1) + acu(2, 1)) * (5.0 / (6.0 * c));
+    let p32a = gr(3, 2) - (gr(1, 1) - acu(1, 1)) * (d6 / (3.0 * d1))
+        + (gr(2, 1) - acu(2, 1)) * (d7 / (3.0 * c * d1))
+        - (gr(2, 2) - acu(2, 2)) * (d6 / (3.0 * c * d1))
+        - (gr(4, 2) - acu(4, 2)) * (c * d2 / (2.0 * d1))
+        + (gr(5, 2) - acu(5, 2)) * (c * c / (2.0 * d1));
+    // p_31, p_41, p_51 for the side `own` (grave: the printed formulas; acute: swapped).
+    let side = |own: &dyn Fn(usize, usize) -> T, oth: &dyn Fn(usize, usize) -> T| {
+        let p31 = row(0) * (2.0 * c / 15.0) + row(1) * (8.0 * c / 15.0) + own(1, 1) * (2.0 / 3.0)
+            - row(2) * ((25.0 + 16.0 * c * c) / (15.0 * c))
+            + own(2, 1) * ((1.0 + 2.0 * c) / (6.0 * c))
+            + oth(2, 1) * (3.0 / (2.0 * c))
+            + (own(2, 2) - oth(2, 2)) * (1.0 / (3.0 * c))
+            + row(4) * (2.0 * c / 5.0);
+        let p41 = (row(0) * (c * d2) - row(1) * d3 + own(1, 1) * (5.0 * d2))
+            * (2.0 * c / (15.0 * d1))
+            + row(2) * (4.0 * d4 / (15.0 * d1))
+            - own(2, 1) * (d5 / (6.0 * d1))
+            - oth(2, 1) * (c * (16.0 + 25.0 * c) / (6.0 * d1))
+            + (own(2, 2) - oth(2, 2)) * (d2 / (3.0 * d1))
+            + row(4) * (1.0 + 0.6 * c)
+            + (own(4, 2) - oth(4, 2)) * (d2 / (4.0 * d1))
+            + row(5) * (c / 5.0)
+            // Erratum: printed (own - other).
+            + (oth(5, 2) - own(5, 2)) * (c / (4.0 * d1));
+        let p51 = (row(0) * c + row(1) * (3.0 * c - 5.0) + own(1, 1) * 5.0)
+            * (2.0 * c * c / (3.0 * d1))
+            + (row(2) * (-16.0 * c * c)
+                + (own(2, 1) - oth(2, 1)) * (5.0 * (c - 4.0))
+                + (own(2, 2) - oth(2, 2)) * 10.0)
+                * (c / (6.0 * d1))
+            - row(4) * c
+            + (own(4, 2) - oth(4, 2)) * (5.0 * c / (4.0 * d1))
+            + row(5) * (1.0 + c)
+            + (own(5, 2) - oth(5, 2)) * ((4.0 + 3.0 * c) / (4.0 * d1));
+        [p31, p41, p51]
+    };
+    let grave = side(&gr, &acu);
+    let acute = side(&acu, &gr);
+    (p30, p32a, grave, acute)
+}
+
 /// All `36 n` BB coefficients of the bi-5 guide with coordinates `p`.
 fn expand_bi5(n: usize, p: &[f64], circ: &Circulant) -> Vec<f64> {
     let c = cos_n(n);
     let extra = usize::from(circ.kernel.is_some());
     let centre = 6 + extra;
-    let mut g = vec![[[0.0f64; 6]; 6]; n];
+    let mut g: Vec<Sector<f64>> = vec![[[0.0f64; 6]; 6]; n];
     // Central quadratic expansion of sector 0, then (3) around the vertex.
     for (k, &(i, j)) in CENTRAL.iter().enumerate() {
         g[0][i][j] = p[k];
     }
     for s in 1..n {
-        // acute = sector s, grave = sector s-1 transposed: p''_ij = g[s-1][j][i].
-        let gr = |i: usize, j: usize| g[s - 1][j][i];
-        let (p00, p10, p20) = (gr(0, 0), gr(1, 0), gr(2, 0));
-        let (p01, p11, p02) = (gr(0, 1), gr(1, 1), gr(0, 2));
-        let new = [
-            p00,
-            p10,
-            p20,
-            -p01 + 2.0 * c * p10 + 2.0 * (1.0 - c) * p00,
-            -p11 + 1.6 * c * p20 + (2.0 - 1.2 * c) * p10 - 0.4 * c * p00,
-            p02 - 5.0 * c * p11
-                + 4.0 * c * c * p20
-                + (5.0 * c - 4.0) * p01
-                + c * (9.0 - 8.0 * c) * p10
-                + (4.0 - 9.0 * c + 4.0 * c * c) * p00,
-        ];
+        let new = central_next(c, &g[s - 1]);
         for (k, &(i, j)) in CENTRAL.iter().enumerate() {
             g[s][i][j] = new[k];
         }
@@ -359,76 +458,15 @@ fn expand_bi5(n: usize, p: &[f64], circ: &Circulant) -> Vec<f64> {
         }
     }
     // (4): x_(s+1) + 2c x_s = r_s at the ray e_(s+1) (acute s+1, grave s).
-    let r: Vec<f64> = (0..n)
-        .map(|s| {
-            let t = (s + 1) % n;
-            g[s][2][1]
-                + 2.0 * c * g[t][2][1]
-                + c * g[s][1][0]
-                + (3.0 * c - 4.0) * g[s][1][1]
-                + 0.8 * c * (4.0 - 3.0 * c) * g[t][2][0]
-                + (4.0 - 5.4 * c + 0.8 * c * c) * g[t][1][0]
-                + c / 5.0 * (8.0 * c - 9.0) * g[t][0][0]
-        })
-        .collect();
+    let r: Vec<f64> = (0..n).map(|s| rhs4(c, &g[s], &g[(s + 1) % n])).collect();
     let x = &circ.pinv * DVector::from_vec(r);
     for s in 0..n {
         g[s][1][2] = x[s] + circ.kernel.as_ref().map_or(0.0, |kv| p[6] * kv[s]);
     }
     // Appendix A at every ray e_e: acute = sector e, grave = sector e-1 transposed.
-    let d1 = 4.0 + 8.0 * c + 5.0 * c * c;
-    let d2 = 4.0 + 5.0 * c;
-    let d3 = 36.0 + 45.0 * c + 5.0 * c * c;
-    let d4 = 20.0 + 36.0 * c + 9.0 * c * c - 15.0 * c.powi(3);
-    let d5 = 32.0 + 48.0 * c + 15.0 * c * c;
-    let d6 = 16.0 + 36.0 * c + 36.0 * c * c + 15.0 * c.powi(3);
-    let d7 = 32.0 + 64.0 * c + 72.0 * c * c + 48.0 * c.powi(3) + 15.0 * c.powi(4);
     for e in 0..n {
         let q = (e + n - 1) % n;
-        let ac = |i: usize, j: usize| g[e][i][j];
-        let gr = |i: usize, j: usize| g[q][j][i];
-        let row = |i: usize| g[e][i][0];
-        let p30 = 2.0 / 3.0 * row(1)
-            + (c - 5.0) / (3.0 * c) * row(2)
-            + 5.0 / (6.0 * c) * (gr(2, 1) + ac(2, 1));
-        let p32a = gr(3, 2) - d6 / (3.0 * d1) * (gr(1, 1) - ac(1, 1))
-            + d7 / (3.0 * c * d1) * (gr(2, 1) - ac(2, 1))
-            - d6 / (3.0 * c * d1) * (gr(2, 2) - ac(2, 2))
-            - c * d2 / (2.0 * d1) * (gr(4, 2) - ac(4, 2))
-            + c * c / (2.0 * d1) * (gr(5, 2) - ac(5, 2));
-        // p_31, p_41, p_51 for the side `own` (grave: the printed formulas; acute: swapped).
-        let side = |own: &dyn Fn(usize, usize) -> f64, oth: &dyn Fn(usize, usize) -> f64| {
-            let p31 = 2.0 * c / 15.0 * row(0) + 8.0 * c / 15.0 * row(1) + 2.0 / 3.0 * own(1, 1)
-                - (25.0 + 16.0 * c * c) / (15.0 * c) * row(2)
-                + (1.0 + 2.0 * c) / (6.0 * c) * own(2, 1)
-                + 3.0 / (2.0 * c) * oth(2, 1)
-                + 1.0 / (3.0 * c) * (own(2, 2) - oth(2, 2))
-                + 2.0 * c / 5.0 * row(4);
-            let p41 = 2.0 * c / (15.0 * d1)
-                * (c * d2 * row(0) - d3 * row(1) + 5.0 * d2 * own(1, 1))
-                + 4.0 * d4 / (15.0 * d1) * row(2)
-                - d5 / (6.0 * d1) * own(2, 1)
-                - c * (16.0 + 25.0 * c) / (6.0 * d1) * oth(2, 1)
-                + d2 / (3.0 * d1) * (own(2, 2) - oth(2, 2))
-                + (1.0 + 0.6 * c) * row(4)
-                + d2 / (4.0 * d1) * (own(4, 2) - oth(4, 2))
-                + c / 5.0 * row(5)
-                // Erratum: printed (own - other).
-                + c / (4.0 * d1) * (oth(5, 2) - own(5, 2));
-            let p51 = 2.0 * c * c / (3.0 * d1)
-                * (c * row(0) + (3.0 * c - 5.0) * row(1) + 5.0 * own(1, 1))
-                + c / (6.0 * d1)
-                    * (-16.0 * c * c * row(2)
-                        + 5.0 * (c - 4.0) * (own(2, 1) - oth(2, 1))
-                        + 10.0 * (own(2, 2) - oth(2, 2)))
-                - c * row(4)
-                + 5.0 * c / (4.0 * d1) * (own(4, 2) - oth(4, 2))
-                + (1.0 + c) * row(5)
-                + (4.0 + 3.0 * c) / (4.0 * d1) * (own(5, 2) - oth(5, 2));
-            [p31, p41, p51]
-        };
-        let grave = side(&gr, &ac);
-        let acute = side(&ac, &gr);
+        let (p30, p32a, grave, acute) = appendix_a(c, &g[e], &g[q]);
         g[e][3][0] = p30;
         g[q][0][3] = p30;
         g[e][3][2] = p32a;

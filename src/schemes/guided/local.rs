@@ -18,7 +18,8 @@ pub fn lambda(n: usize, chi: crate::schemes::guided::chi::ChiKind) -> f64 {
 /// Appendix C of the paper): the guide restricted to `[0, lambda]^2` by de Casteljau, in the
 /// guide's coordinates. For the bi-5 guide these are the paper's coordinates (6 central ones, one
 /// more for n = 3, 6, then 18 per sector); the central quadratic expansion is not
-/// rotation-invariant, so the matrix has no discrete Fourier blocks. Its eigenvalues are
+/// rotation-invariant, so the matrix has no discrete Fourier blocks of the sector-periodic form
+/// (the Bloch basis of [`super::fourier`] splits it by frequency). Its eigenvalues are
 /// `lambda^s`, `s = 0..10`, with the multiplicities of the paper's table (5). The matrix does not
 /// depend on the ring degree (bi-5 or bi-6) or on chi, only on `lambda`.
 pub fn local_matrix(
@@ -43,6 +44,31 @@ pub fn local_matrix(
     })
 }
 
+/// The matrix the analysis decomposes: [`local_matrix`] within
+/// [`crate::linalg::MAX_DENSE_EIGEN_ROWS`] rows (so that outputs there are the dense path's
+/// to the bit) or for guides without the paper's coordinates (bi-4, bi-3, valence 4), the
+/// Fourier blocks of the bi-5 guide's matrix ([`super::fourier::GuidedBlocks`]) above.
+///
+/// # Errors
+/// As [`local_matrix`] and [`super::fourier::GuidedBlocks::new`].
+pub fn operator(
+    n: usize,
+    degree: crate::schemes::guided::guide::GuideDegree,
+    lambda: f64,
+) -> Result<Box<dyn crate::schemes::local::LocalOperator>> {
+    check_valence(n)?;
+    let bloch = degree == crate::schemes::guided::guide::GuideDegree::Bi5 && n != 4;
+    let rows = 6 + usize::from(n == 3 || n == 6) + 18 * n;
+    if !bloch || rows <= crate::schemes::circulant::dense_rows() {
+        return Ok(Box::new(local_matrix(n, degree, lambda)?));
+    }
+    Ok(Box::new(super::fourier::GuidedBlocks::new(
+        "guided (bi-5 guide)",
+        n,
+        lambda,
+    )?))
+}
+
 /// The characteristic ring of guided subdivision: the ring sampled from the planar guide `L`
 /// (the subdominant eigenfunctions), i.e. chi re-expressed in bi-5 or bi-6 form by the scheme's
 /// own ring table, and lambda.
@@ -50,9 +76,10 @@ pub fn characteristic_ring(
     n: usize,
     o: crate::schemes::guided::rings::GuidedOptions,
 ) -> Result<(Vec<crate::bezier::BezierPatch>, f64)> {
-    let g = crate::schemes::guided::rings::Guided::new(n, o)?;
-    let d = g.degree();
-    let dg = g.space.degree;
+    // The ring tables only: neither the guide space nor the fit (O(1) in n).
+    let g = crate::schemes::guided::rings::RingTables::new(n, o)?;
+    let d = o.ring.degree();
+    let dg = o.guide.degree();
     let mg = (dg + 1) * (dg + 1);
     let l = crate::schemes::guided::guide::shear_coeffs(n, dg);
     let lambda = g.chi.lambda;

@@ -11,6 +11,7 @@ pub mod bern;
 pub mod cap;
 pub mod chi;
 pub mod descriptor;
+pub mod fourier;
 pub mod guide;
 pub mod jets;
 pub mod local;

@@ -351,22 +351,42 @@ pub struct Guided {
     pub ring0: Vec<DMatrix<f64>>,
 }
 
-impl Guided {
-    /// The scheme at valence `n` with the given options.
-    pub fn new(n: usize, opts: GuidedOptions) -> Result<Guided> {
-        if n < 3 {
-            return Err(Error::InvalidArgument(format!(
-                "valence {n}: a valence is at least 3"
-            )));
-        }
-        if n == 4 {
-            return Err(Error::Unsupported(
-                "valence 4 is regular: guided subdivision caps extraordinary vertices only".into(),
-            ));
-        }
-        let space = GuideSpace::new(n, opts.guide)?;
-        let chi = CharRing::new(n, opts.chi)?;
-        let dg = space.degree;
+/// The valence guided subdivision caps (at least 3, not the regular 4).
+fn check_valence(n: usize) -> Result<usize> {
+    if n < 3 {
+        return Err(Error::InvalidArgument(format!(
+            "valence {n}: a valence is at least 3"
+        )));
+    }
+    if n == 4 {
+        return Err(Error::Unsupported(
+            "valence 4 is regular: guided subdivision caps extraordinary vertices only".into(),
+        ));
+    }
+    Ok(n)
+}
+
+/// The per-valence tables of [`Guided`] that need neither the guide space nor the fit (so
+/// that the characteristic ring costs O(1) in the valence): `chi`, the restriction, the inner
+/// jet tables and the ring table.
+pub struct RingTables {
+    /// The characteristic ring.
+    pub chi: CharRing,
+    /// Restriction of a guide sector to `[0, lambda]^2`.
+    pub restrict: DMatrix<f64>,
+    inner: Blocks,
+    /// Ring `l >= 1` of a sector from the guide sector of level `l - 1` ([`Guided::ring_table`]).
+    pub ring_table: DMatrix<f64>,
+}
+
+impl RingTables {
+    /// The tables at valence `n`.
+    ///
+    /// # Errors
+    /// Valences below 3 or 4, or a characteristic map that does not exist at `n`.
+    pub fn new(n: usize, opts: GuidedOptions) -> Result<RingTables> {
+        let chi = CharRing::new(check_valence(n)?, opts.chi)?;
+        let dg = opts.guide.degree();
         let mg = (dg + 1) * (dg + 1);
         let d = opts.ring.degree();
         let k = opts.ring.jet();
@@ -404,6 +424,45 @@ impl Guided {
             }
             t
         };
+        Ok(RingTables {
+            chi,
+            restrict,
+            inner,
+            ring_table,
+        })
+    }
+}
+
+/// The limit point's stencil on the c-net at valence `n` (the first row of [`Guided::fit`]),
+/// in time linear in `n` from the fit's frequency-0 part ([`fit::limit_row`]) for the bi-5
+/// guide in the paper's coordinates.
+///
+/// # Errors
+/// As [`RingTables::new`]; other guide degrees (their guide space has no Bloch basis here).
+pub fn limit_stencil(n: usize, opts: GuidedOptions) -> Result<Vec<f64>> {
+    if opts.guide != GuideDegree::Bi5 {
+        return Err(Error::Unsupported(format!(
+            "valence {n}: the frequency-0 fit needs the bi-5 guide"
+        )));
+    }
+    let chi = CharRing::new(check_valence(n)?, opts.chi)?;
+    fit::limit_row(n, &chi, opts.fit)
+}
+
+impl Guided {
+    /// The scheme at valence `n` with the given options.
+    pub fn new(n: usize, opts: GuidedOptions) -> Result<Guided> {
+        let space = GuideSpace::new(check_valence(n)?, opts.guide)?;
+        let dg = space.degree;
+        let mg = (dg + 1) * (dg + 1);
+        let d = opts.ring.degree();
+        let k = opts.ring.jet();
+        let RingTables {
+            chi,
+            restrict,
+            inner,
+            ring_table,
+        } = RingTables::new(n, opts)?;
         let fit = fit_matrix(n, &space, &chi, opts.fit)?;
         let guide0 = &space.basis * &fit;
         let mut ring0 = Vec::with_capacity(n);
