@@ -323,11 +323,34 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     assert!(e.contains("[0, 5]"), "{e}");
     let e = run("0:0.7:0.7", ids::LOOP.name(), "gallery:icosahedron");
     assert!(e.contains("u + v <= 1"), "{e}");
-    let e = run("0:0.5:0.5", ids::DOO_SABIN.name(), "gallery:cube");
+    let e = run("0:0.5:0.5", ids::TPS.name(), "gallery:cube");
     assert!(
-        e.contains("eval of scheme doo-sabin is not supported yet"),
+        e.contains(&format!("eval of scheme {} is not supported yet", ids::TPS)),
         "{e}"
     );
+    // the dual schemes' quarters at boundary vertices are not tracked: face 0 of the c-net
+    // lies at its extraordinary vertex (interior) and reaches the boundary
+    let net = "gallery:cnet-5-saddle";
+    let mesh = gallery("cnet-5-saddle");
+    let (f, k) = (0..mesh.num_faces())
+        .find_map(|f| {
+            let face = mesh.face(f);
+            (face.len() == 4)
+                .then(|| {
+                    face.iter()
+                        .position(|&x| mesh.is_boundary_vertex(x as usize))
+                })
+                .flatten()
+                .map(|k| (f, k))
+        })
+        .expect("a face at the boundary");
+    let corner = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]][k];
+    let e = run(
+        &format!("{f}:{}:{}", corner[0], corner[1]),
+        ids::DOO_SABIN.name(),
+        net,
+    );
+    assert!(e.contains("boundary vertices"), "{e}");
     let e = run("0:0.5", cc, "gallery:cube");
     assert!(
         e.contains("--at point 1") && e.contains("three fields"),

@@ -5,7 +5,6 @@
 //! (a patch placed in the wrong square or with a transposed or rotated parameter jumps there),
 //! and convergence to the limit point at the rate of the scheme's subdominant eigenvalue.
 
-use fairsub::cli::run_words;
 use fairsub::geom::{Point, dist, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
@@ -15,86 +14,10 @@ use fairsub::surface::eval::{Surface, evaluate_limit};
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{Lcg, gallery, tmp, toward_ev};
-
-/// `per_face` random points of every face (n-gons on their strip `[0, n] x [0, 1]`), half of
-/// them within `2^-6` of a corner (so in the caps of the extraordinary vertices), and each
-/// face's corners.
-fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64, f64)> {
-    let mut r = Lcg(seed);
-    let mut pts = Vec::new();
-    for f in 0..mesh.num_faces() {
-        let n = mesh.face_size(f);
-        let width = if n == 4 { 1.0 } else { n as f64 };
-        for k in 0..per_face {
-            let (mut u, mut v) = (r.next(), r.next());
-            if k % 2 == 1 {
-                // near corner (0, 0), (1, 0), (1, 1) or (0, 1) of the face or sub-face
-                let c = (r.next() * 4.0) as usize;
-                let s = 1.0 / 64.0;
-                u = if c == 1 || c == 2 { 1.0 - s * u } else { s * u };
-                v = if c >= 2 { 1.0 - s * v } else { s * v };
-            }
-            let sub = if n == 4 {
-                0.0
-            } else {
-                (r.next() * width).floor()
-            };
-            pts.push((f as u32, sub + u, v));
-        }
-        for (u, v) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
-            pts.push((f as u32, u, v));
-        }
-    }
-    pts
-}
-
-fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
-    let mesh = gallery(net);
-    let spec = registry().lookup(scheme).expect("scheme");
-    let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
-    (mesh, s)
-}
-
-/// Writes `subdivide --rings` of `net`, evaluates random points of every face and checks each
-/// against the written patch it names; returns the largest difference and how many points fell
-/// on cap patches.
-fn agrees_with_written(net: &str, scheme: &str, rings: usize) -> (f64, usize) {
-    let out = tmp("fairsub-eval-caps", &format!("{net}-{scheme}-{rings}.bv"));
-    let words = [
-        "fairsub",
-        "subdivide",
-        &format!("gallery:{net}"),
-        "--scheme",
-        scheme,
-        "--rings",
-        &rings.to_string(),
-        "-o",
-        out.to_str().expect("utf-8 path"),
-    ];
-    run_words(words).expect("subdivide writes the patches");
-    let bv = fairsub::io::read_bv(&out).expect("read back");
-    let written = fairsub::render::complex_from_bv(&bv);
-    let (mesh, s) = surface(net, scheme, rings);
-    assert_eq!(s.complex().len(), written.len(), "{net}: same patches");
-    let mut worst: f64 = 0.0;
-    let mut in_caps = 0;
-    for (f, u, v) in face_points(&mesh, 60, 23) {
-        let e = s
-            .evaluate(f, u, v)
-            .unwrap_or_else(|err| panic!("{net} under {scheme}: face {f} at ({u}, {v}): {err}"));
-        assert!((0.0..=1.0).contains(&e.patch_uv[0]) && (0.0..=1.0).contains(&e.patch_uv[1]));
-        let w = written.patches[e.patch].eval(e.patch_uv[0], e.patch_uv[1]);
-        worst = worst.max(dist(w, e.point));
-        if matches!(
-            s.complex().provenance[e.patch],
-            fairsub::bezier::complex::Provenance::Cap { .. }
-        ) {
-            in_caps += 1;
-        }
-    }
-    (worst, in_caps)
-}
+use support::{gallery, toward_ev};
+#[path = "eval/faces.rs"]
+mod faces;
+use faces::{agrees_with_written, largest_jump, surface};
 
 const NETS: [&str; 5] = [
     "cnet-5-saddle",
@@ -121,7 +44,7 @@ fn cap_schemes_eval_agrees_with_the_written_patches() {
     for scheme in cap_schemes() {
         for (k, net) in NETS.iter().enumerate() {
             let rings = 1 + k % 3;
-            let (worst, in_caps) = agrees_with_written(net, scheme, rings);
+            let (worst, in_caps) = agrees_with_written(net, scheme, rings, &|_, _| true);
             eprintln!(
                 "{net} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
             );
@@ -129,35 +52,6 @@ fn cap_schemes_eval_agrees_with_the_written_patches() {
             assert!(in_caps > 0, "{net} under {scheme}: no point on a cap");
         }
     }
-}
-
-/// Largest jump of the evaluation across the lines `u = i 2^-m` and `v = i 2^-m` (`m <= depth`)
-/// of every face: points `delta` apart on either side, at several positions along the line.
-fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64 {
-    let mut worst: f64 = 0.0;
-    let lines = 1u32 << depth;
-    for f in 0..mesh.num_faces() {
-        let n = mesh.face_size(f);
-        let subs = if n == 4 { 1 } else { n };
-        for sub in 0..subs {
-            let base = sub as f64;
-            for i in 1..lines {
-                let x = f64::from(i) / f64::from(lines);
-                for t in 1..16 {
-                    let y = (f64::from(t) - 0.5) / 15.0;
-                    for (a, b) in [
-                        ((x - delta, y), (x + delta, y)),
-                        ((y, x - delta), (y, x + delta)),
-                    ] {
-                        let p = s.evaluate(f as u32, base + a.0, a.1).expect("point");
-                        let q = s.evaluate(f as u32, base + b.0, b.1).expect("point");
-                        worst = worst.max(dist(p.point, q.point));
-                    }
-                }
-            }
-        }
-    }
-    worst
 }
 
 #[test]

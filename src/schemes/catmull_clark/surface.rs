@@ -159,10 +159,13 @@ impl AdaptiveRules for CcRules<'_> {
             Some((m, s)) => (m, Some(s)),
             None => (mesh.clone(), None),
         };
-        Ok(Level {
-            base: MeshLevel::input(&mesh),
-            sharp,
-        })
+        let mut base = MeshLevel::input(&mesh);
+        // Catmull-Clark splits a triangle into three quads like any n-gon: its domain is the
+        // 3-gon's strip of quad sub-faces, not Loop's barycentric triangle
+        for (f, tag) in &mut base.active {
+            tag.domain = Domain::polygon(*f, mesh.face_size(*f as usize));
+        }
+        Ok(Level { base, sharp })
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
