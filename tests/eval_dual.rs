@@ -13,15 +13,13 @@ use fairsub::analysis::report;
 use fairsub::geom::{dist, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::{ids, registry};
-use fairsub::surface::ComplexOptions;
-use fairsub::surface::eval::{Surface, evaluate_limit};
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, toward_ev};
+use support::{gallery, limit_along, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
-use faces::{agrees_with_written, largest_jump, surface};
+use faces::{all_agree, all_continuous};
 
 fn dual_schemes() -> [&'static str; 3] {
     [
@@ -60,31 +58,19 @@ fn dual_schemes_eval_agrees_with_the_written_patches() {
         "octahedron",
         "cnet-5-saddle",
     ];
-    for scheme in dual_schemes() {
-        for (k, net) in nets.iter().enumerate() {
-            let rings = 1 + k % 3;
-            let (worst, in_caps) = agrees_with_written(net, scheme, rings, &at_interior_vertex);
-            eprintln!(
-                "{net} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
-            );
-            assert!(worst <= 1e-12, "{net} under {scheme}: {worst:e}");
-            assert!(in_caps > 0, "{net} under {scheme}: no point on a cap");
-        }
-    }
+    all_agree(
+        &dual_schemes(),
+        &nets,
+        &[1, 2, 3, 1, 2, 3],
+        &at_interior_vertex,
+    );
 }
 
 #[test]
 fn dual_scheme_evaluation_is_continuous_across_patch_boundaries() {
-    for scheme in dual_schemes() {
-        for net in ["cube", "prism-5", "tetrahedron"] {
-            let (mesh, s) = surface(net, scheme, 3);
-            // cells go down to 2^-4 (3 rings, up to 2 more levels separating the holes, the
-            // quarters of level 0)
-            let jump = largest_jump(&mesh, &s, 6, 1e-10);
-            eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
-            assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
-        }
-    }
+    // cells go down to 2^-4 (3 rings, up to 2 more levels separating the holes, the
+    // quarters of level 0)
+    all_continuous(&dual_schemes(), &["cube", "prism-5", "tetrahedron"]);
 }
 
 /// The subdominant eigenvalue of `scheme` at an `n`-gon (the V-face of a vertex of valence
@@ -111,35 +97,20 @@ fn converges(
     lambda: f64,
     what: &str,
 ) -> fairsub::geom::Point {
-    let ks: Vec<i32> = (2..=12).collect();
-    let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
-    pts.push(at(0.0));
-    let spec = registry().lookup(scheme).expect("scheme");
-    let (evals, rings) = evaluate_limit(&pts, &mut |k| {
-        Surface::build(
-            &spec,
-            mesh,
-            ComplexOptions {
-                rings: k,
-                fill: true,
-            },
-        )
-    })
-    .expect("limit evaluation");
-    assert!(rings >= 12, "{scheme} {what}: {rings} rings");
+    let evals = limit_along(scheme, mesh, &at);
     let centre = evals.last().expect("the centre").point;
-    let err: Vec<f64> = evals[..ks.len()]
+    let err: Vec<f64> = evals[..evals.len() - 1]
         .iter()
         .map(|e| norm(sub(e.point, centre)))
         .collect();
     let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
-    eprintln!("{scheme} {what}: lambda {lambda:.6}, {rings} rings, error ratios {ratios:.6?}");
+    eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
     for k in 4..err.len() - 1 {
         let ratio = err[k + 1] / err[k];
         assert!(
             (ratio / lambda - 1.0).abs() < 0.1,
             "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
-            ks[k]
+            k + 2
         );
     }
     centre
@@ -189,14 +160,7 @@ fn dual_limit_evaluation_converges_at_rate_lambda() {
 /// barycentric cells, and the evaluation jumped by 0.25 across `u = 1/4`).
 #[test]
 fn catmull_clark_triangles_are_three_quad_sub_faces() {
-    let cc = ids::CATMULL_CLARK.name();
-    let (worst, in_caps) = agrees_with_written("tetrahedron", cc, 2, &|_, _| true);
-    assert!(
-        worst <= 1e-12 && in_caps > 0,
-        "{worst:e}, {in_caps} on caps"
-    );
-    let (mesh, s) = surface("tetrahedron", cc, 2);
-    let jump = largest_jump(&mesh, &s, 6, 1e-10);
-    eprintln!("tetrahedron under {cc}: largest jump {jump:.3e}");
-    assert!(jump < 1e-7, "jump {jump:e}");
+    let cc = [ids::CATMULL_CLARK.name()];
+    all_agree(&cc, &["tetrahedron"], &[2], &|_, _| true);
+    all_continuous(&cc, &["tetrahedron"]);
 }

@@ -2,8 +2,7 @@
 //! `tests/eval_dual.rs`): random face points, agreement with the written patches, and the
 //! largest jump of the evaluation across the lines of a dyadic grid of every face.
 
-use crate::support::{Lcg, gallery, tmp};
-use fairsub::cli::run_words;
+use crate::support::{Lcg, gallery, written};
 use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::registry;
@@ -42,7 +41,7 @@ pub fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64
     pts
 }
 
-pub fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
+fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
     let mesh = gallery(net);
     let spec = registry().lookup(scheme).expect("scheme");
     let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
@@ -56,27 +55,8 @@ pub type Covered = dyn Fn(&PolyMesh, (u32, f64, f64)) -> bool;
 /// against the written patch it names; returns the largest difference and how many points fell
 /// on cap patches. Points where `covered(mesh, point)` is false must be errors instead (the
 /// dual schemes' quarters of faces at boundary vertices).
-pub fn agrees_with_written(
-    net: &str,
-    scheme: &str,
-    rings: usize,
-    covered: &Covered,
-) -> (f64, usize) {
-    let out = tmp("fairsub-eval-caps", &format!("{net}-{scheme}-{rings}.bv"));
-    let words = [
-        "fairsub",
-        "subdivide",
-        &format!("gallery:{net}"),
-        "--scheme",
-        scheme,
-        "--rings",
-        &rings.to_string(),
-        "-o",
-        out.to_str().expect("utf-8 path"),
-    ];
-    run_words(words).expect("subdivide writes the patches");
-    let bv = fairsub::io::read_bv(&out).expect("read back");
-    let written = fairsub::render::complex_from_bv(&bv);
+fn agrees_with_written(net: &str, scheme: &str, rings: usize, covered: &Covered) -> (f64, usize) {
+    let written = written(net, scheme, rings);
     let (mesh, s) = surface(net, scheme, rings);
     assert_eq!(s.complex().len(), written.len(), "{net}: same patches");
     let mut worst: f64 = 0.0;
@@ -105,7 +85,7 @@ pub fn agrees_with_written(
 
 /// Largest jump of the evaluation across the lines `u = i 2^-m` and `v = i 2^-m` (`m <= depth`)
 /// of every face: points `delta` apart on either side, at several positions along the line.
-pub fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64 {
+fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64 {
     let mut worst: f64 = 0.0;
     let lines = 1u32 << depth;
     for f in 0..mesh.num_faces() {
@@ -130,4 +110,32 @@ pub fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64
         }
     }
     worst
+}
+
+/// Every scheme on every net (`rings[k]` rings for the `k`-th) agrees with its written
+/// patches to 1e-12 ([`agrees_with_written`]), with some points on caps.
+pub fn all_agree(schemes: &[&str], nets: &[&str], rings: &[usize], covered: &Covered) {
+    for scheme in schemes {
+        for (net, &rings) in nets.iter().zip(rings) {
+            let (worst, in_caps) = agrees_with_written(net, scheme, rings, covered);
+            eprintln!(
+                "{net} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
+            );
+            assert!(worst <= 1e-12, "{net} under {scheme}: {worst:e}");
+            assert!(in_caps > 0, "{net} under {scheme}: no point on a cap");
+        }
+    }
+}
+
+/// Every scheme's evaluation on every net (3 rings) jumps by less than 1e-7 across the lines
+/// `i 2^-6` of every face, for points 2e-10 apart ([`largest_jump`]).
+pub fn all_continuous(schemes: &[&str], nets: &[&str]) {
+    for scheme in schemes {
+        for net in nets {
+            let (mesh, s) = surface(net, scheme, 3);
+            let jump = largest_jump(&mesh, &s, 6, 1e-10);
+            eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
+            assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
+        }
+    }
 }
