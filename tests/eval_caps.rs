@@ -5,96 +5,17 @@
 //! (a patch placed in the wrong square or with a transposed or rotated parameter jumps there),
 //! and convergence to the limit point at the rate of the scheme's subdominant eigenvalue.
 
-use fairsub::cli::run_words;
 use fairsub::geom::{Point, dist, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
-use fairsub::schemes::registry::{ids, registry};
-use fairsub::surface::ComplexOptions;
-use fairsub::surface::eval::{Surface, evaluate_limit};
+use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{Lcg, gallery, tmp, toward_ev};
-
-/// `per_face` random points of every face (n-gons on their strip `[0, n] x [0, 1]`), half of
-/// them within `2^-6` of a corner (so in the caps of the extraordinary vertices), and each
-/// face's corners.
-fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64, f64)> {
-    let mut r = Lcg(seed);
-    let mut pts = Vec::new();
-    for f in 0..mesh.num_faces() {
-        let n = mesh.face_size(f);
-        let width = if n == 4 { 1.0 } else { n as f64 };
-        for k in 0..per_face {
-            let (mut u, mut v) = (r.next(), r.next());
-            if k % 2 == 1 {
-                // near corner (0, 0), (1, 0), (1, 1) or (0, 1) of the face or sub-face
-                let c = (r.next() * 4.0) as usize;
-                let s = 1.0 / 64.0;
-                u = if c == 1 || c == 2 { 1.0 - s * u } else { s * u };
-                v = if c >= 2 { 1.0 - s * v } else { s * v };
-            }
-            let sub = if n == 4 {
-                0.0
-            } else {
-                (r.next() * width).floor()
-            };
-            pts.push((f as u32, sub + u, v));
-        }
-        for (u, v) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
-            pts.push((f as u32, u, v));
-        }
-    }
-    pts
-}
-
-fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
-    let mesh = gallery(net);
-    let spec = registry().lookup(scheme).expect("scheme");
-    let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
-    (mesh, s)
-}
-
-/// Writes `subdivide --rings` of `net`, evaluates random points of every face and checks each
-/// against the written patch it names; returns the largest difference and how many points fell
-/// on cap patches.
-fn agrees_with_written(net: &str, scheme: &str, rings: usize) -> (f64, usize) {
-    let out = tmp("fairsub-eval-caps", &format!("{net}-{scheme}-{rings}.bv"));
-    let words = [
-        "fairsub",
-        "subdivide",
-        &format!("gallery:{net}"),
-        "--scheme",
-        scheme,
-        "--rings",
-        &rings.to_string(),
-        "-o",
-        out.to_str().expect("utf-8 path"),
-    ];
-    run_words(words).expect("subdivide writes the patches");
-    let bv = fairsub::io::read_bv(&out).expect("read back");
-    let written = fairsub::render::complex_from_bv(&bv);
-    let (mesh, s) = surface(net, scheme, rings);
-    assert_eq!(s.complex().len(), written.len(), "{net}: same patches");
-    let mut worst: f64 = 0.0;
-    let mut in_caps = 0;
-    for (f, u, v) in face_points(&mesh, 60, 23) {
-        let e = s
-            .evaluate(f, u, v)
-            .unwrap_or_else(|err| panic!("{net} under {scheme}: face {f} at ({u}, {v}): {err}"));
-        assert!((0.0..=1.0).contains(&e.patch_uv[0]) && (0.0..=1.0).contains(&e.patch_uv[1]));
-        let w = written.patches[e.patch].eval(e.patch_uv[0], e.patch_uv[1]);
-        worst = worst.max(dist(w, e.point));
-        if matches!(
-            s.complex().provenance[e.patch],
-            fairsub::bezier::complex::Provenance::Cap { .. }
-        ) {
-            in_caps += 1;
-        }
-    }
-    (worst, in_caps)
-}
+use support::{gallery, limit_along, toward_ev};
+#[path = "eval/faces.rs"]
+mod faces;
+use faces::{all_agree, all_continuous};
 
 const NETS: [&str; 5] = [
     "cnet-5-saddle",
@@ -118,60 +39,14 @@ fn cap_schemes() -> [&'static str; 7] {
 
 #[test]
 fn cap_schemes_eval_agrees_with_the_written_patches() {
-    for scheme in cap_schemes() {
-        for (k, net) in NETS.iter().enumerate() {
-            let rings = 1 + k % 3;
-            let (worst, in_caps) = agrees_with_written(net, scheme, rings);
-            eprintln!(
-                "{net} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
-            );
-            assert!(worst <= 1e-12, "{net} under {scheme}: {worst:e}");
-            assert!(in_caps > 0, "{net} under {scheme}: no point on a cap");
-        }
-    }
-}
-
-/// Largest jump of the evaluation across the lines `u = i 2^-m` and `v = i 2^-m` (`m <= depth`)
-/// of every face: points `delta` apart on either side, at several positions along the line.
-fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64 {
-    let mut worst: f64 = 0.0;
-    let lines = 1u32 << depth;
-    for f in 0..mesh.num_faces() {
-        let n = mesh.face_size(f);
-        let subs = if n == 4 { 1 } else { n };
-        for sub in 0..subs {
-            let base = sub as f64;
-            for i in 1..lines {
-                let x = f64::from(i) / f64::from(lines);
-                for t in 1..16 {
-                    let y = (f64::from(t) - 0.5) / 15.0;
-                    for (a, b) in [
-                        ((x - delta, y), (x + delta, y)),
-                        ((y, x - delta), (y, x + delta)),
-                    ] {
-                        let p = s.evaluate(f as u32, base + a.0, a.1).expect("point");
-                        let q = s.evaluate(f as u32, base + b.0, b.1).expect("point");
-                        worst = worst.max(dist(p.point, q.point));
-                    }
-                }
-            }
-        }
-    }
-    worst
+    all_agree(&cap_schemes(), &NETS, &[1, 2, 3, 1, 2], &|_, _| true);
 }
 
 #[test]
 fn cap_scheme_evaluation_is_continuous_across_patch_boundaries() {
-    for scheme in cap_schemes() {
-        for net in ["cnet-5-saddle", "cube", "prism-5"] {
-            let (mesh, s) = surface(net, scheme, 3);
-            // the tiling's lines go down to 2^-4 (prism-5: one local Catmull-Clark step, then
-            // 3 rings, QAS+^3's quarters one level more)
-            let jump = largest_jump(&mesh, &s, 6, 1e-10);
-            eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
-            assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
-        }
-    }
+    // the tiling's lines go down to 2^-4 (prism-5: one local Catmull-Clark step, then 3
+    // rings, QAS+^3's quarters one level more)
+    all_continuous(&cap_schemes(), &["cnet-5-saddle", "cube", "prism-5"]);
 }
 
 /// EG's limit point `c0` of the c-net of `ev` by the paper's formula (3).
@@ -197,22 +72,7 @@ fn cap_scheme_limit_evaluation_converges_at_rate_lambda() {
     ] {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (ev, at) = toward_ev(&mesh, n);
-        let ks: Vec<i32> = (2..=12).collect();
-        let mut pts: Vec<(u32, f64, f64)> = ks.iter().map(|&k| at(0.5f64.powi(k))).collect();
-        pts.push(at(0.0));
-        let spec = registry().lookup(scheme).expect("scheme");
-        let (evals, rings) = evaluate_limit(&pts, &mut |k| {
-            Surface::build(
-                &spec,
-                &mesh,
-                ComplexOptions {
-                    rings: k,
-                    fill: true,
-                },
-            )
-        })
-        .expect("limit evaluation");
-        assert!(rings >= 12, "{scheme} n = {n}: {rings} rings");
+        let evals = limit_along(scheme, &mesh, &at);
         let centre = evals.last().expect("the centre").point;
         let lambda = match lambda {
             Some(l) => l,
@@ -225,18 +85,18 @@ fn cap_scheme_limit_evaluation_converges_at_rate_lambda() {
                     .1
             }
         };
-        let err: Vec<f64> = evals[..ks.len()]
+        let err: Vec<f64> = evals[..evals.len() - 1]
             .iter()
             .map(|e| norm(sub(e.point, centre)))
             .collect();
         let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
-        eprintln!("{scheme} n = {n}: lambda {lambda:.6}, {rings} rings, error ratios {ratios:.6?}");
+        eprintln!("{scheme} n = {n}: lambda {lambda:.6}, error ratios {ratios:.6?}");
         for k in 4..err.len() - 1 {
             let ratio = err[k + 1] / err[k];
             assert!(
                 (ratio / lambda - 1.0).abs() < 0.1,
                 "{scheme} n = {n}: error ratio {ratio} at k = {}, lambda {lambda}",
-                ks[k]
+                k + 2
             );
         }
     }

@@ -30,6 +30,7 @@ fn deviation(what: &str, a: &PatchComplex, b: &PatchComplex) -> f64 {
     assert_eq!(a.len(), b.len(), "{what}: patch counts");
     assert_eq!(a.provenance, b.provenance, "{what}: provenance");
     assert_eq!(a.domains, b.domains, "{what}: domains");
+    assert_eq!(a.pieces, b.pieces, "{what}: pieces");
     assert_eq!(a.sharp_sides, b.sharp_sides, "{what}: sharp sides");
     let mut worst: f64 = 0.0;
     for (i, (p, q)) in a.patches.iter().zip(&b.patches).enumerate() {

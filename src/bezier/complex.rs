@@ -7,7 +7,7 @@
 //! covers, for evaluation at `(face, u, v)`.
 
 use super::BezierPatch;
-pub use super::domain::Domain;
+pub use super::domain::{Domain, Piece};
 use super::g1::{CapOptions, Hole};
 use crate::geom::Point;
 use crate::mesh::Element;
@@ -69,6 +69,10 @@ pub struct PatchComplex {
     /// The input-face domain of each patch where known (may be shorter than `patches`: the
     /// missing ones are unknown; see [`PatchComplex::domain`]).
     pub domains: Vec<Option<Domain>>,
+    /// Patches that cover parts of several cells (a dual scheme's patch of an input vertex
+    /// covers a quarter of each face around it): one [`Piece`] per part, in addition to (and
+    /// instead of) `domains`.
+    pub pieces: Vec<Piece>,
     /// The G^1 caps among the patches, with the data they were computed from: the one step of
     /// a construction that is not linear in the control points (its tangent plane), which a
     /// patch stencil table ([`crate::surface::table`]) repeats instead of tabulating.
@@ -123,6 +127,14 @@ impl PatchComplex {
         self.domains[i] = Some(domain);
     }
 
+    /// Records that the part `window` of patch `i` covers `domain` (ignored when the domain
+    /// is untracked).
+    pub fn push_piece(&mut self, piece: Piece) {
+        if piece.domain.is_tracked() {
+            self.pieces.push(piece);
+        }
+    }
+
     /// The input-face domain of patch `i`, if known.
     pub fn domain(&self, i: usize) -> Option<Domain> {
         self.domains.get(i).copied().flatten()
@@ -147,6 +159,10 @@ impl PatchComplex {
             }
         }
         let base = self.patches.len() as u32;
+        self.pieces.extend(other.pieces.into_iter().map(|p| Piece {
+            patch: p.patch + base,
+            ..p
+        }));
         self.caps.extend(other.caps.into_iter().map(|c| CapStep {
             first: c.first + base,
             ..c

@@ -15,7 +15,8 @@
 //!   `(1, 1)`. Child `k` of a quad cell (Catmull-Clark's child at corner `k`: corner `k`, the
 //!   midpoint of edge `k -> k+1`, the centre, the midpoint of edge `k-1 -> k`) is the quarter of
 //!   the cell at corner `k`, with its own `u` toward corner `k + 1` and `v` toward corner `k - 1`.
-//! * An **n-gon** (`n != 4`; Catmull-Clark and the schemes on its host) is split into `n` quads by its first refinement;
+//! * An **n-gon** (`n != 4`, triangles included; Catmull-Clark and the schemes on its host,
+//!   which start from [`Domain::polygon`]) is split into `n` quads by its first refinement;
 //!   sub-face `i` is the quad at corner `i` (corner `i`, the midpoint of edge `i -> i+1`, the
 //!   face centre, the midpoint of edge `i-1 -> i`), parametrised like a quad: `(0, 0)` at corner
 //!   `i`, `u` toward the midpoint of the outgoing edge, `v` toward the midpoint of the incoming
@@ -23,10 +24,28 @@
 //!   `u` in `[0, n]`, `v` in `[0, 1]`: sub-face `i = min(floor(u), n - 1)` at local
 //!   `(u - i, v)` (the "quadrangulated" parameterisation of OpenSubdiv's Bfr, with the
 //!   sub-faces side by side instead of in a grid).
-//! * A **triangle** (Loop) has barycentric `(u, v)`, `u, v >= 0`, `u + v <= 1`, `w = 1 - u - v`:
+//! * A **triangle** of Loop's (cells of [`Shape::Triangle`]) has barycentric `(u, v)`, `u, v >= 0`, `u + v <= 1`, `w = 1 - u - v`:
 //!   corner 0 at `(0, 0)`, `u` toward corner 1, `v` toward corner 2. Children 0, 1, 2 are the
 //!   corner triangles (corner `k`, midpoints toward `k + 1` and `k + 2`), child 3 the middle one
 //!   (midpoints of edges 0-1, 1-2, 2-0), as Loop's refinement orders them.
+//!
+//! # Dual schemes (Doo-Sabin, DS^CC, PGS)
+//!
+//! A dual scheme's patch is centred at a vertex, not in a face: the bi-2 patch of an input
+//! vertex `v` has the centroids (limit points) of the four faces around `v` at its corners, so
+//! it covers one quarter of each of them. The faces keep the domains above, with every face
+//! that is not a quad (triangles included) an `n`-gon of `n` quad sub-faces: the quarter of
+//! face `F` at its corner `k` is child `k` of `F` (sub-face `k` of an `n`-gon), the cell
+//! whose corners are `v` (0), the midpoint of `F`'s outgoing edge (1), `F`'s centroid (2, the
+//! centre `(1, 1)` of every sub-face) and the midpoint of the incoming edge (3). Such a patch
+//! is recorded as four [`Piece`]s, one per quarter, each a quarter of the patch's own
+//! parameter square. Every vertex made by refinement lies in one such cell and its patch
+//! covers exactly that cell (its children those of the cell's four children, one per face
+//! around it), so from level 1 on dual patches have ordinary domains. The hole of an
+//! extraordinary vertex shrinks to corner `(0, 0)` of its faces' quarters, that of an `n`-gon
+//! to the centre `(1, 1)` of its sub-faces. The quarters of faces at boundary vertices are not
+//! tracked (the doubled boundary layer puts the boundary curve half a face outside the net's
+//! lattice, so they are not dyadic cells of the face): evaluating there is an error.
 
 use serde::Serialize;
 
@@ -62,6 +81,45 @@ pub struct Domain {
     /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
     /// triangle ([`Shape::corner_map`]; `crate::surface::eval` maps the chart to the kites).
     pub rot: u8,
+}
+
+/// A part of a patch that covers one cell: the patch's parameters in the box `window`
+/// (`[lo, hi]` per parameter, dyadic, so the maps are exact) cover `domain`, whose `rot` places
+/// the box's own `(0, 0)` corner (`lo`) in the cell, its `u` along the patch's `u` (see the
+/// dual schemes in the [module](self) documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// The patch.
+    pub patch: u32,
+    /// `[lo, hi]`: `[[u_lo, v_lo], [u_hi, v_hi]]` of the patch's parameters.
+    pub window: [[f64; 2]; 2],
+    /// The cell the window covers, with the window's `(0, 0)` at corner `rot`.
+    pub domain: Domain,
+}
+
+impl Piece {
+    /// The quarter of a patch at its corner `r` (counter-clockwise from `(0, 0)`: `(0, 0)`,
+    /// `(1, 0)`, `(1, 1)`, `(0, 1)`) covering `cell`, with patch corner `r` at the cell's corner
+    /// `at`: the quarter's `(0, 0)` is its own corner `0`, and patch corner `r` its corner `r`.
+    pub fn quarter(patch: u32, r: u8, cell: Domain, at: u8) -> Piece {
+        let (u, v) = match r & 3 {
+            0 => (0.0, 0.0),
+            1 => (0.5, 0.0),
+            2 => (0.5, 0.5),
+            _ => (0.0, 0.5),
+        };
+        Piece {
+            patch,
+            window: [[u, v], [u + 0.5, v + 0.5]],
+            domain: cell.rotated(u32::from((4 + at - (r & 3)) % 4)),
+        }
+    }
+
+    /// The map from the window's coordinates (`[0, 1]^2`) to the patch's.
+    pub fn window_map(&self) -> Affine {
+        let [lo, hi] = self.window;
+        Affine::new(lo, [hi[0] - lo[0], 0.0], [0.0, hi[1] - lo[1]])
+    }
 }
 
 /// An affine map of the plane, `p -> origin + p[0] e[0] + p[1] e[1]`.
@@ -128,6 +186,15 @@ impl Affine {
         let [[a, c], [b, d]] = self.e; // e0 = (a, c), e1 = (b, d): matrix [[a, b], [c, d]]
         let det = a * d - b * c;
         [[d / det, -b / det], [-c / det, a / det]]
+    }
+
+    /// The inverse map (exact for the dyadic maps of this module).
+    pub fn inverse(&self) -> Affine {
+        let inv = self.inverse_linear();
+        Affine {
+            origin: self.invert([0.0, 0.0]),
+            e: [[inv[0][0], inv[1][0]], [inv[0][1], inv[1][1]]],
+        }
     }
 
     /// Preimage of `q`.
@@ -222,7 +289,8 @@ impl Domain {
     /// The n-gon itself before its first refinement (not a cell any patch covers).
     pub const WHOLE: u32 = u32::MAX;
 
-    /// A domain the host does not track (dual schemes, whose cells are not in input faces).
+    /// A domain the host does not track (schemes without face domains, the dual schemes'
+    /// quarters at boundary vertices).
     pub const UNTRACKED: Domain = Domain {
         face: u32::MAX,
         sub: 0,
@@ -244,6 +312,17 @@ impl Domain {
             face,
             sub,
             shape,
+            ..Domain::UNTRACKED
+        }
+    }
+
+    /// The whole input face `face` with `sides` corners as the quad-shaped schemes parametrise
+    /// it: a quad, or an `n`-gon (triangles included) before its split into quad sub-faces.
+    pub fn polygon(face: u32, sides: usize) -> Domain {
+        Domain {
+            face,
+            sub: if sides == 4 { 0 } else { Domain::WHOLE },
+            shape: Shape::Quad,
             ..Domain::UNTRACKED
         }
     }

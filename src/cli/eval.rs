@@ -23,7 +23,7 @@ pub struct Args {
     #[arg(long)]
     pub at_file: Option<PathBuf>,
     /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark, Loop, EG, the QAS+
-    /// variants and guided bi-5/bi-6).
+    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC and PGS).
     #[arg(long, short)]
     pub scheme: String,
     /// Evaluate the complex `subdivide --rings K` writes (same options); without it, the

@@ -5,8 +5,10 @@
 //! A [`Surface`] is a patch complex whose patches carry the [`Domain`] of their input face (the
 //! adaptive host records it for the schemes whose [`Capabilities`] say `eval`: Catmull-Clark,
 //! Loop, and EG, the QAS+ family and guided subdivision, whose caps tile each sector's face in
-//! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`]). The parameter domain of quads, n-gons and triangles is documented in
-//! [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
+//! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`];
+//! the dual schemes Doo-Sabin, DS^CC and PGS, whose patches of input vertices cover a quarter
+//! of each face around them as [`Piece`](crate::bezier::complex::Piece)s). The parameter domain of quads, n-gons and
+//! triangles (and of the dual schemes' faces) is documented in [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
 //! children, so the cells form a quadtree per face: a point is located by descending it, one
 //! hash look-up per level (`O(log)` of the patch size, independent of the number of patches).
 //!
@@ -33,7 +35,7 @@ mod triangle;
 
 use crate::bezier::Derivatives;
 use crate::bezier::complex::{Domain, PatchComplex, Provenance};
-use crate::bezier::domain::{MAX_DEPTH, Shape};
+use crate::bezier::domain::{Affine, MAX_DEPTH, Shape};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -88,7 +90,17 @@ pub struct Evaluation {
 struct Located {
     patch: usize,
     domain: Domain,
+    /// The map from the cell's frame to the patch's parameters when the cell holds a part of
+    /// the patch (a [`crate::bezier::complex::Piece`]), else `None` (the frame is the patch's).
+    window: Option<Affine>,
     cell: [f64; 2],
+}
+
+/// What covers a cell: a patch (`piece == u32::MAX`) or piece `piece` of the complex.
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    patch: u32,
+    piece: u32,
 }
 
 /// The hasher of the cell index: the multiply-rotate of the Fx family (the keys are small
@@ -129,7 +141,7 @@ impl std::hash::Hasher for CellHasher {
 }
 
 /// The cell index: `(face, sub, depth, path)` -> the patch covering that cell.
-type Cells = HashMap<(u32, u32, u8, u128), usize, std::hash::BuildHasherDefault<CellHasher>>;
+type Cells = HashMap<(u32, u32, u8, u128), Entry, std::hash::BuildHasherDefault<CellHasher>>;
 
 /// A patch complex that can be evaluated at `(face, u, v)` of its input net.
 #[derive(Debug, Clone)]
@@ -137,7 +149,10 @@ pub struct Surface {
     complex: PatchComplex,
     /// Corners of each input face.
     sides: Vec<u32>,
-    /// Cell `(face, sub, depth, path)` -> the patch covering it.
+    /// The triangles whose cells are quads (a 3-gon of three quad sub-faces: the dual
+    /// schemes), not barycentric triangles (Loop).
+    tri_strips: Vec<bool>,
+    /// Cell `(face, sub, depth, path)` -> the patch or piece covering it.
     cells: Cells,
     /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
     /// covers the other half of kite `s`'s fan triangle ([`kite`]).
@@ -178,11 +193,40 @@ impl Surface {
     /// The surface of a complex built on `mesh` (patches without a domain are not found by
     /// [`Surface::evaluate`]).
     pub fn new(mesh: &PolyMesh, complex: PatchComplex) -> Surface {
-        let mut cells = Cells::with_capacity_and_hasher(complex.len(), Default::default());
+        let mut cells = Cells::with_capacity_and_hasher(
+            complex.len() + complex.pieces.len(),
+            Default::default(),
+        );
+        let mut tri_strips = vec![false; mesh.num_faces()];
+        let mut index = |d: Domain, entry: Entry| {
+            if let Some(t) = tri_strips.get_mut(d.face as usize) {
+                *t |= d.shape == Shape::Quad && mesh.face_size(d.face as usize) == 3;
+            }
+            cells
+                .entry((d.face, d.sub, d.depth, d.path))
+                .or_insert(entry);
+        };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
-                cells.entry((d.face, d.sub, d.depth, d.path)).or_insert(i);
+                let piece = u32::MAX;
+                index(
+                    d,
+                    Entry {
+                        patch: i as u32,
+                        piece,
+                    },
+                );
             }
+        }
+        for (k, p) in complex.pieces.iter().enumerate() {
+            let piece = k as u32;
+            index(
+                p.domain,
+                Entry {
+                    patch: p.patch,
+                    piece,
+                },
+            );
         }
         let mut kites = HashMap::new();
         for step in &complex.caps {
@@ -198,6 +242,7 @@ impl Surface {
             sides: (0..mesh.num_faces())
                 .map(|f| mesh.face_size(f) as u32)
                 .collect(),
+            tri_strips,
             cells,
             kites,
         }
@@ -227,7 +272,7 @@ impl Surface {
             return Err(bad("(u and v must be finite numbers)"));
         }
         match n {
-            3 => {
+            3 if !self.tri_strips[face as usize] => {
                 if u < 0.0 || v < 0.0 || u + v > 1.0 + 1e-12 {
                     return Err(bad("u, v >= 0, u + v <= 1"));
                 }
@@ -256,14 +301,20 @@ impl Surface {
         let (sub, shape, mut p) = self.face_point(face, u, v)?;
         let mut path = 0u128;
         for depth in 0..=MAX_DEPTH {
-            if let Some(&patch) = self.cells.get(&(face, sub, depth, path)) {
-                let domain = self
-                    .complex
-                    .domain(patch)
-                    .expect("indexed patches have domains");
+            if let Some(&e) = self.cells.get(&(face, sub, depth, path)) {
+                let (domain, window) = match self.complex.pieces.get(e.piece as usize) {
+                    Some(piece) => (piece.domain, Some(piece.window_map())),
+                    None => (
+                        self.complex
+                            .domain(e.patch as usize)
+                            .expect("indexed patches have domains"),
+                        None,
+                    ),
+                };
                 return Ok(Located {
-                    patch,
+                    patch: e.patch as usize,
                     domain,
+                    window,
                     cell: p,
                 });
             }
@@ -273,7 +324,8 @@ impl Surface {
         }
         Err(Error::InvalidArgument(format!(
             "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole inside \
-             the last ring is open (--no-fill), or the patches there carry no face domain"
+             the last ring is open (--no-fill), or the patches there carry no face domain (the \
+             dual schemes' quarters of faces at boundary vertices)"
         )))
     }
 
@@ -288,7 +340,13 @@ impl Surface {
         let d = at.domain;
         let mut index = at.patch;
         let patch = &self.complex.patches[at.patch];
-        let q = d.shape.corner_map(d.rot).invert(at.cell);
+        let mut q = d.shape.corner_map(d.rot).invert(at.cell);
+        // the map from the patch's parameters to the face's
+        let mut patch_map = d.patch_map();
+        if let Some(w) = at.window {
+            q = w.apply(q);
+            patch_map = patch_map.compose(&w.inverse());
+        }
         let (dp, normal, patch_uv) = match d.shape {
             Shape::Quad => {
                 let dp = patch.derivatives(q[0], q[1]);
@@ -317,7 +375,7 @@ impl Surface {
                 (dp, n, uv)
             }
         };
-        let df = chain(&dp, d.patch_map().inverse_linear());
+        let df = chain(&dp, patch_map.inverse_linear());
         let curv = df.curvature();
         Ok(Evaluation {
             face,

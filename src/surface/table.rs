@@ -48,7 +48,7 @@
 //! are not continuous across edges (face-varying values with seams) need their own net.
 
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{CapStep, Domain, PatchComplex, Provenance};
+use crate::bezier::complex::{CapStep, Domain, PatchComplex, Piece, Provenance};
 use crate::bezier::g1::{Centre, Hole, Segment, cap_map, ring};
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross};
@@ -155,6 +155,8 @@ pub struct PatchTable {
     provenance: Vec<Provenance>,
     /// Input-face domain of each patch, where known.
     domains: Vec<Option<Domain>>,
+    /// Parts of patches covering several cells, as the complex has them.
+    pieces: Vec<Piece>,
     /// Sharp sides, as the complex has them.
     sharp_sides: Vec<(u32, u8)>,
 }
@@ -220,6 +222,7 @@ impl PatchTable {
             constants,
             provenance: template.provenance.clone(),
             domains: template.domains.clone(),
+            pieces: template.pieces.clone(),
             sharp_sides: template.sharp_sides.clone(),
         })
     }
@@ -289,6 +292,11 @@ impl PatchTable {
     /// Input-face domain of each patch, where known (may be shorter than the patches).
     pub fn domains(&self) -> &[Option<Domain>] {
         &self.domains
+    }
+
+    /// The parts of patches that cover several cells ([`PatchComplex::pieces`]).
+    pub fn pieces(&self) -> &[Piece] {
+        &self.pieces
     }
 
     /// Sharp sides of the complex.
@@ -405,6 +413,7 @@ impl PatchTable {
             provenance: self.provenance.clone(),
             sharp_sides: self.sharp_sides.clone(),
             domains: self.domains.clone(),
+            pieces: self.pieces.clone(),
             caps,
         }
     }

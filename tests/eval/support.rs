@@ -2,6 +2,9 @@
 //! deterministic random numbers and a temporary directory per test process.
 
 use fairsub::mesh::PolyMesh;
+use fairsub::schemes::registry::registry;
+use fairsub::surface::ComplexOptions;
+use fairsub::surface::eval::{Evaluation, Surface, evaluate_limit};
 
 /// The gallery net `name`.
 pub fn gallery(name: &str) -> PolyMesh {
@@ -60,4 +63,53 @@ pub fn toward_ev(mesh: &PolyMesh, n: usize) -> (usize, impl Fn(f64) -> (u32, f64
         (f as u32, x, y)
     };
     (ev, at)
+}
+
+/// The limit surface of `scheme` on `mesh` ([`evaluate_limit`]) at `at(2^-k)` for `k = 2 ..=
+/// 12` and, last, at `at(0)`; asserts that at least 12 rings were computed.
+pub fn limit_along(
+    scheme: &str,
+    mesh: &PolyMesh,
+    at: &dyn Fn(f64) -> (u32, f64, f64),
+) -> Vec<Evaluation> {
+    let mut pts: Vec<(u32, f64, f64)> = (2..=12).map(|k| at(0.5f64.powi(k))).collect();
+    pts.push(at(0.0));
+    let spec = registry().lookup(scheme).expect("scheme");
+    let (evals, rings) = evaluate_limit(&pts, &mut |k| {
+        Surface::build(
+            &spec,
+            mesh,
+            ComplexOptions {
+                rings: k,
+                fill: true,
+            },
+        )
+    })
+    .expect("limit evaluation");
+    eprintln!("{scheme}: {rings} rings");
+    assert!(rings >= 12, "{scheme}: {rings} rings for points at 2^-12");
+    evals
+}
+
+/// The patches `subdivide --rings` writes for gallery net `net` under `scheme`, read back from
+/// the `.bv` file.
+pub fn written(net: &str, scheme: &str, rings: usize) -> fairsub::bezier::complex::PatchComplex {
+    let out = tmp(
+        "fairsub-eval-written",
+        &format!("{net}-{scheme}-{rings}.bv"),
+    );
+    let words = [
+        "fairsub",
+        "subdivide",
+        &format!("gallery:{net}"),
+        "--scheme",
+        scheme,
+        "--rings",
+        &rings.to_string(),
+        "-o",
+        out.to_str().expect("utf-8 path"),
+    ];
+    fairsub::cli::run_words(words).expect("subdivide writes the patches");
+    let bv = fairsub::io::read_bv(&out).expect("read back");
+    fairsub::render::complex_from_bv(&bv)
 }

@@ -73,8 +73,14 @@ impl Bi2Descriptor {
 }
 
 impl Descriptor for Bi2Descriptor {
+    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin (the others'
+    /// rings come from local nets without face domains, PGS after DS^CC steps from the refined
+    /// net's faces).
     fn capabilities(&self) -> Capabilities {
-        Capabilities::REFINE_AND_PATCHES
+        Capabilities {
+            eval: self.kind == Bi2Kind::Pgs,
+            ..Capabilities::REFINE_AND_PATCHES
+        }
     }
 
     fn joins_up_to_scaling(&self) -> bool {

@@ -138,7 +138,14 @@ impl AdaptiveRules for CcRules<'_> {
                 mesh.face_size(f)
             )));
         }
-        Ok(Level::input(mesh, self.subd.as_ref()))
+        let mut level = Level::input(mesh, self.subd.as_ref());
+        // Catmull-Clark splits a triangle into three quads like any n-gon: its domain is the
+        // 3-gon's strip of quad sub-faces, not Loop's barycentric triangle
+        let base = &mut level.base;
+        for (f, tag) in &mut base.active {
+            tag.domain = Domain::polygon(*f, base.mesh.face_size(*f as usize));
+        }
+        Ok(level)
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {

@@ -21,8 +21,13 @@ pub static DESCRIPTOR: DsDescriptor = DsDescriptor { cc: false };
 pub static DESCRIPTOR_CC: DsDescriptor = DsDescriptor { cc: true };
 
 impl Descriptor for DsDescriptor {
+    /// Refinement, exact patches and evaluation: an input vertex's patch covers the quarters
+    /// of its faces, every later patch one cell of a face ([`crate::bezier::domain`]).
     fn capabilities(&self) -> Capabilities {
-        Capabilities::REFINE_AND_PATCHES
+        Capabilities {
+            eval: true,
+            ..Capabilities::REFINE_AND_PATCHES
+        }
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {

@@ -69,6 +69,15 @@
 //! parameters and the extra levels that separate touching holes in [`g1`]. Only the other
 //! elements keep the centroid fill above.
 //!
+//! # Face domains (evaluation)
+//!
+//! The patch of an interior input vertex covers the quarter of each of its four faces at it:
+//! `emit` records the four as [`Piece`]s of the patch. Every later vertex lies in one cell of
+//! an input face, kept in its tag (`rot`: the corner of its patch's `(0, 0)`), and its children
+//! get the cell's quarters (`refine::child_domain`); the fill and the G^1 cap sectors cover
+//! their vertex's cell. The layout is in [`crate::bezier::domain`]; next to the boundary
+//! nothing is tracked.
+//!
 //! # Other dual bi-2 schemes
 //!
 //! The machinery takes the scheme's rules as a [`DualRules`] value (the stencil of a new corner
@@ -79,7 +88,7 @@
 use super::fourier::{self, FaceCorners};
 use super::{DooSabin, DooSabinCc, corner_point_stencil};
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Piece, Provenance};
 use crate::bezier::convert::biquadratic_bspline_stencils;
 use crate::error::{Error, Result};
 use crate::geom::Point;
@@ -191,8 +200,12 @@ pub struct Level {
     info: Vec<Info>,
     /// Input element of every non-quad face.
     face_origin: Vec<Option<Element>>,
-    /// Vertices whose patches are still to be produced, with their tags.
+    /// Vertices whose patches are still to be produced, with their tags. From level 1 on a
+    /// tag's domain is the vertex's cell with `rot` the corner of its patch's `(0, 0)`
+    /// ([`crate::bezier::domain`]; untracked next to the boundary).
     active: Vec<(u32, Tag)>,
+    /// Level 0: the input net, whose vertex patches cover quarters of four faces.
+    first: bool,
 }
 
 impl Cells for Level {
@@ -256,7 +269,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
                         element: None,
                         sector: 0,
                         input_face,
-                        domain: crate::bezier::domain::Domain::UNTRACKED,
+                        domain: Domain::UNTRACKED,
                     },
                 )
             })
@@ -266,6 +279,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
             info,
             face_origin,
             active,
+            first: true,
         })
     }
 
@@ -274,6 +288,9 @@ impl AdaptiveRules for DualHost<'_, '_> {
             return false;
         };
         to.out.push(p, prov);
+        if level.first {
+            input_vertex_pieces(&level.mesh, v as usize, to.out);
+        }
         true
     }
 
@@ -384,6 +401,23 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
     trusted.then(|| patch_from(m, &s))
 }
 
+/// The quarters of the four faces around the interior input vertex `v` that its patch, the
+/// last of `out`, covers ([`crate::bezier::domain`]): face `i` of `v`'s fan (`u` along its
+/// first outgoing half-edge) has its centroid at the patch's corner `2 + i` and at corner 2
+/// of its quarter at `v`. Boundary vertices' patches are not recorded.
+fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+    if m.is_boundary_vertex(v) {
+        return;
+    }
+    let patch = (out.len() - 1) as u32;
+    for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
+        let g = m.he_face(h) as usize;
+        let k = h - m.face_halfedge(g);
+        let cell = Domain::polygon(g as u32, m.face_size(g)).child(k);
+        out.push_piece(Piece::quarter(patch, ((2 + i) % 4) as u8, cell, 2));
+    }
+}
+
 /// The tag of a marked vertex: at level 0 the vertex itself if its neighbourhood is not regular,
 /// else its first non-quad face; later its first non-quad face with an input origin (the sector
 /// is the vertex's corner index in that face). Otherwise the inherited tag.
@@ -447,13 +481,9 @@ fn fill(
         }
         let p = BezierPatch::new(2, 2, cps);
         let element = tag.element.unwrap_or(Element::Vertex(v));
-        out.push(
-            p,
-            Provenance::Cap {
-                element,
-                sector: tag.sector,
-            },
-        );
+        // the vertex's own patch, in its own cell
+        let sector = tag.sector;
+        out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
     }
     Ok(())
 }

@@ -136,7 +136,12 @@ fn hole_of(
             segment_from_inside(&p, Side::U1, [0.0, 1.0], 1.0),
             segment_from_inside(&p, Side::V1, [0.0, 1.0], 1.0),
         ]);
-        tags.push(tag);
+        // the cap's sector has the turned patch's frame: (0, 0) at F's corner of the cell
+        let rot = u32::from(tag.domain.rot) + r as u32;
+        tags.push(Tag {
+            domain: tag.domain.rotated(rot),
+            ..tag
+        });
     }
     if later {
         return Err(NoCap::Later);

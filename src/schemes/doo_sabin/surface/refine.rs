@@ -4,6 +4,7 @@
 //! holds the host, the regular patches and the centroid fill.
 
 use super::{DualRules, Level};
+use crate::bezier::domain::Domain;
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::adaptive::{Info, Tag};
@@ -11,6 +12,7 @@ use crate::mesh::PolyMesh;
 use crate::schemes::doo_sabin::boundary_edge_point_stencil;
 use crate::schemes::doo_sabin::fourier::LARGE_FACE;
 use crate::stencil::{Stencil, StencilTable};
+use std::collections::HashMap;
 
 /// Refines the faces around the marked vertices with the scheme's rules; the next level's
 /// active vertices are the children of the marked vertices (they tile the marked patches'
@@ -214,20 +216,39 @@ pub(super) fn refine_around(
         positions[i as usize] = p;
     }
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    // The F-face of each selected face in the child (the first faces, in `sel_faces` order).
+    let f_face: HashMap<u32, u32> = sel_faces
+        .iter()
+        .enumerate()
+        .map(|(i, &f)| (f, i as u32))
+        .collect();
     let mut active = Vec::new();
     for &(v, tag) in marked {
         let v = v as usize;
-        for h in m.outgoing_halfedges(v) {
-            active.push((corner_pt[h as usize], tag));
+        let hs = m.outgoing_halfedges(v);
+        // on the true boundary (its whole fan present): children untracked
+        let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
+        for (i, &h) in hs.iter().enumerate() {
+            let w = corner_pt[h as usize];
+            let mut t = tag;
+            t.domain = Domain::UNTRACKED;
+            if w != UNSET && !on_boundary {
+                let g = m.he_face(h);
+                t.domain = child_domain(level, &child, h, i, tag.domain, f_face[&g], w);
+            }
+            active.push((w, t));
         }
         if m.is_boundary_vertex(v) {
-            let hs = m.outgoing_halfedges(v);
+            let untracked = Tag {
+                domain: Domain::UNTRACKED,
+                ..tag
+            };
             let first = hs[0];
             let last = *hs.last().expect("a vertex has a face");
-            active.push((edge_pt[m.he_edge(first) as usize][0], tag));
-            active.push((edge_pt[m.he_edge(m.he_prev(last)) as usize][1], tag));
+            active.push((edge_pt[m.he_edge(first) as usize][0], untracked));
+            active.push((edge_pt[m.he_edge(m.he_prev(last)) as usize][1], untracked));
             if kept[v] != UNSET {
-                active.push((kept[v], tag));
+                active.push((kept[v], untracked));
             }
         }
     }
@@ -238,5 +259,42 @@ pub(super) fn refine_around(
         info,
         face_origin,
         active,
+        first: false,
     })
+}
+
+/// The domain of the child `w` (in `child`) of a vertex `v` of `level` that is the new corner
+/// of face `g = face(h)`, `h` being `v`'s `i`-th outgoing half-edge and `cell` `v`'s domain
+/// (untracked at level 0): the quarter of `v`'s cell toward `g`'s centroid (at level 0 the
+/// quarter of the input face `g` at `v`, see [`crate::bezier::domain`]), turned so that its
+/// `rot` is the corner of the patch's `(0, 0)` for `w`'s outgoing order in `child`. The
+/// faces around `v` sit at its cell's corners `rot + 2 + i` (the patch of `v`, `u` along its
+/// first outgoing half-edge, has face `i`'s centroid at its corner `2 + i`); `w`'s cell has
+/// `g`'s F-face `fg` at its corner 0 (at level 0: 2, the input face's centroid).
+fn child_domain(
+    level: &Level,
+    child: &PolyMesh,
+    h: u32,
+    i: usize,
+    cell: Domain,
+    fg: u32,
+    w: u32,
+) -> Domain {
+    let m = &level.mesh;
+    let (d, at) = if level.first {
+        let g = m.he_face(h) as usize;
+        let k = h - m.face_halfedge(g);
+        (Domain::polygon(g as u32, m.face_size(g)).child(k), 2)
+    } else if cell.is_tracked() {
+        let c = (u32::from(cell.rot) + 2 + i as u32) % 4;
+        (cell.child(c), 0)
+    } else {
+        return Domain::UNTRACKED;
+    };
+    let hs = child.outgoing_halfedges(w as usize);
+    match hs.iter().position(|&x| child.he_face(x) == fg) {
+        // face p of w's fan is g's F-face at corner `at`: the patch's (0, 0) at at - 2 - p
+        Some(p) => d.rotated((at + 8 - 2 - p as u32) % 4),
+        None => Domain::UNTRACKED,
+    }
 }
