@@ -203,6 +203,15 @@ pub fn finish(a: &Args, p: &Prepared) -> Result<(Computed, String)> {
     let scheme = mesh_rules(spec)?;
     super::limits::check_levels(scheme.as_ref(), mesh, levels)?;
     if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
+        if let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) {
+            eprintln!(
+                "warning: {}: the per-vertex properties ({}) are not carried by {}'s FCV \
+                 layout; the output has positions only",
+                a.net,
+                d.names.join(", "),
+                scheme.name()
+            );
+        }
         // the non-box reports name the scheme's rules, and the limit
         let label = format!("{}{}", scheme.name(), if a.limit { ", limit" } else { "" });
         let net = nonbox::compute_net(scheme.as_ref(), mesh, levels, a.limit)?;
@@ -291,6 +300,13 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
         crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
     }
     if patches {
+        if let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) {
+            eprintln!(
+                "warning: {}: the per-vertex properties ({}) are not carried into patch output",
+                a.net,
+                d.names.join(", ")
+            );
+        }
         features::refuse_patch_features(&spec, &mesh, &a.net)?;
     } else if !features::takes_features(&spec) {
         features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
@@ -316,7 +332,9 @@ pub fn mesh_rules(spec: &Spec) -> Result<Box<dyn Scheme>> {
         })
 }
 
-/// Refines `levels` times with a progress bar and optionally projects to the limit.
+/// Refines `levels` times with a progress bar and optionally projects to the limit; per-vertex
+/// data goes through the same stencils as the positions ([`crate::schemes::refine_levels`],
+/// the limit stencils).
 pub fn refine_with(
     s: &dyn Scheme,
     mesh: &PolyMesh,
@@ -328,8 +346,13 @@ pub fn refine_with(
     let mut m = crate::schemes::refine_levels(s, mesh, levels, |l| pb.set_position(l as u64))?;
     pb.finish_and_clear();
     if limit {
-        let lim = s.limit_stencils(&m)?.apply(m.positions());
-        m.set_positions(lim);
+        // One table for the positions and the per-vertex data.
+        let table = s.limit_stencils(&m)?;
+        m.set_positions(table.apply(m.positions()));
+        if let Some(mut ex) = m.take_extras() {
+            ex.vertex_data = ex.vertex_data.map(|d| d.through(&table));
+            m.set_extras(Some(ex));
+        }
     }
     Ok(m)
 }

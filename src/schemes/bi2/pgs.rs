@@ -393,6 +393,26 @@ impl Scheme for PgsPreprocessed {
         Ok(m)
     }
 
+    /// The steps of `refine_uniform` (DS^CC first, then PGS), each with its stencils.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
+        let mut m = mesh.clone();
+        for l in 0..levels {
+            let mut r = if l < self.opts.dscc_steps {
+                DooSabinCc.refine(&m)?
+            } else {
+                Pgs.refine(&m)?
+            };
+            step(&m, &mut r)?;
+            m = r.mesh;
+        }
+        Ok(m)
+    }
+
     /// Refused: the limit of a net depends on how many pre-processing steps remain, which the
     /// net does not record.
     fn limit_stencils(&self, _mesh: &PolyMesh) -> Result<StencilTable> {
