@@ -1,0 +1,683 @@
+//! Per-vertex PLY data through `subdivide --levels L [--limit]` (issue 16: "per-vertex colours
+//! and other per-point data through the same stencils").
+//!
+//! The nets are the OpenSubdiv peer's nets (`tests/data/osd/`), written here as PLY files with
+//! per-vertex properties of every kind (`uchar` colours, `float` alpha and normal, `double`
+//! quality, `short` and `char` channels) in ascii, binary little endian and binary big endian;
+//! their crease and corner tags go in a `--creases` side file. Checks:
+//!
+//! - values: every output channel equals the test's own values pushed through the stencil table
+//!   of `schemes::level_stencils` on the same net (and the limit stencils of the refined net
+//!   with `--limit`), multiplied out here row by row; integer channels rounded to the nearest
+//!   integer and clamped to their type's range (within half a unit plus 1e-9 of the exact
+//!   value), `float` within single-precision rounding, `double` within 1e-12;
+//! - names and types: the output header lists the input's properties in their order with their
+//!   types; ascii and binary outputs hold the same values;
+//! - positions: equal (to 1e-12) to those of the run on the same net without properties;
+//! - creased nets: the same check (the data takes the sharp rules' weights);
+//! - OpenSubdiv: where the peer (`target/peer/osd_refine`, `tests/peer/build.sh`) is built, the
+//!   float channels are refined by OpenSubdiv as a vertex primvar (the peer refines the points
+//!   of an OBJ net; the data is given as the points of the same net) and compared point by
+//!   point (1e-6), vertices matched through the peer's refined positions;
+//! - bad input: a list-typed vertex property is skipped with a warning naming it, a NaN is an
+//!   error naming the vertex and the property; OBJ output warns that it drops the data.
+
+use fairsub::mesh::PolyMesh;
+use fairsub::schemes::{CatmullClark, Loop, Scheme};
+use fairsub::stencil::StencilTable;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("fairsub-plydata-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `fairsub ARGS`: (success, stderr).
+fn fairsub(args: &[&str]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// An OBJ net of the peer: points, faces (0-based) and its `t` tag lines.
+struct Net {
+    v: Vec<[f64; 3]>,
+    f: Vec<Vec<usize>>,
+    tags: String,
+}
+
+fn read_net(name: &str) -> Net {
+    let text = std::fs::read_to_string(root().join("tests/data/osd").join(name)).unwrap();
+    let mut n = Net {
+        v: vec![],
+        f: vec![],
+        tags: String::new(),
+    };
+    for l in text.lines() {
+        let t: Vec<&str> = l.split_whitespace().collect();
+        match t.first() {
+            Some(&"v") => n.v.push([1, 2, 3].map(|i| t[i].parse().unwrap())),
+            Some(&"f") => n.f.push(
+                t[1..]
+                    .iter()
+                    .map(|c| c.split('/').next().unwrap().parse::<usize>().unwrap() - 1)
+                    .collect(),
+            ),
+            Some(&"t") => {
+                n.tags.push_str(l);
+                n.tags.push('\n');
+            }
+            _ => {}
+        }
+    }
+    n
+}
+
+/// The test's vertex properties: (name, PLY type).
+const CHANNELS: [(&str, &str); 8] = [
+    ("red", "uchar"),
+    ("green", "uchar"),
+    ("blue", "uchar"),
+    ("alpha", "float"),
+    ("nx", "float"),
+    ("quality", "double"),
+    ("temperature", "short"),
+    ("label", "char"),
+];
+
+/// The value of channel `c` at vertex `v`, as the file stores it (so exactly representable in
+/// its type). The colours take the extremes 0 and 255 (Catmull-Clark's and Loop's weights are
+/// positive, so the refined values stay in range; the rounding is what the integer check sees).
+fn value(v: usize, c: usize) -> f64 {
+    let s = (v * 7 + c * 13) as f64;
+    match CHANNELS[c].1 {
+        "uchar" => [0.0, 255.0, 37.0, 200.0, 255.0, 0.0, 128.0][(v * 3 + c) % 7],
+        "float" => f64::from((0.37 * s).sin() as f32),
+        "double" => (0.21 * s).cos() * 3.0 + 0.5,
+        "short" => ((v * 977 + c * 131) % 65536) as f64 - 32768.0,
+        "char" => [-128.0, 127.0, 5.0, -3.0][(v + c) % 4],
+        t => unreachable!("{t}"),
+    }
+}
+
+fn type_range(t: &str) -> (f64, f64) {
+    match t {
+        "uchar" => (0.0, 255.0),
+        "short" => (-32768.0, 32767.0),
+        "char" => (-128.0, 127.0),
+        _ => (f64::NEG_INFINITY, f64::INFINITY),
+    }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Enc {
+    Ascii,
+    Little,
+    Big,
+}
+
+/// Writes `net` as PLY in `enc` with double `x y z`, the properties of [`CHANNELS`] when
+/// `data` (the alpha and normal channels between `y` and `z`, to test the header order), and a
+/// vertex list property `ids` when `list`.
+fn write_ply(path: &Path, net: &Net, enc: Enc, data: bool, list: bool) {
+    let format = match enc {
+        Enc::Ascii => "ascii",
+        Enc::Little => "binary_little_endian",
+        Enc::Big => "binary_big_endian",
+    };
+    // Property order: x y [alpha nx] z [the others] [ids].
+    let mut props: Vec<(String, &str)> = vec![("x".into(), "double"), ("y".into(), "double")];
+    let order: Vec<usize> = if data {
+        vec![3, 4, 0, 1, 2, 5, 6, 7]
+    } else {
+        vec![]
+    };
+    let mut cols: Vec<Option<usize>> = vec![Some(100), Some(101)];
+    for (k, &c) in order.iter().enumerate() {
+        if k == 2 {
+            props.push(("z".into(), "double"));
+            cols.push(Some(102));
+        }
+        props.push((CHANNELS[c].0.into(), CHANNELS[c].1));
+        cols.push(Some(c));
+    }
+    if !data {
+        props.push(("z".into(), "double"));
+        cols.push(Some(102));
+    }
+    let mut head = format!("ply\nformat {format} 1.0\nelement vertex {}\n", net.v.len());
+    for (n, t) in &props {
+        head.push_str(&format!("property {t} {n}\n"));
+    }
+    if list {
+        head.push_str("property list uchar int ids\n");
+    }
+    head.push_str(&format!(
+        "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        net.f.len()
+    ));
+    let mut bytes = head.into_bytes();
+    let put = |bytes: &mut Vec<u8>, t: &str, x: f64| match enc {
+        Enc::Ascii => bytes.extend_from_slice(
+            match t {
+                "float" => format!(" {}", x as f32),
+                "double" => format!(" {x:?}"),
+                _ => format!(" {}", x as i64),
+            }
+            .as_bytes(),
+        ),
+        Enc::Little | Enc::Big => {
+            let b: Vec<u8> = match t {
+                "uchar" => vec![x as u8],
+                "char" => vec![x as i8 as u8],
+                "short" => (x as i16).to_be_bytes().to_vec(),
+                "int" => (x as i32).to_be_bytes().to_vec(),
+                "float" => (x as f32).to_be_bytes().to_vec(),
+                "double" => x.to_be_bytes().to_vec(),
+                t => unreachable!("{t}"),
+            };
+            if enc == Enc::Big {
+                bytes.extend_from_slice(&b);
+            } else {
+                bytes.extend(b.iter().rev());
+            }
+        }
+    };
+    for (v, p) in net.v.iter().enumerate() {
+        for ((_, t), col) in props.iter().zip(&cols) {
+            let x = match col.unwrap() {
+                c @ 100..=102 => p[c - 100],
+                c => value(v, c),
+            };
+            put(&mut bytes, t, x);
+        }
+        if list {
+            put(&mut bytes, "uchar", 2.0);
+            put(&mut bytes, "int", v as f64);
+            put(&mut bytes, "int", 7.0);
+        }
+        if enc == Enc::Ascii {
+            bytes.push(b'\n');
+        }
+    }
+    for face in &net.f {
+        put(&mut bytes, "uchar", face.len() as f64);
+        for &i in face {
+            put(&mut bytes, "int", i as f64);
+        }
+        if enc == Enc::Ascii {
+            bytes.push(b'\n');
+        }
+    }
+    // The ascii lines start with a space from `put`: harmless for PLY readers.
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// A PLY file fairsub wrote: vertex property (name, type) pairs and the vertex rows.
+struct Out {
+    props: Vec<(String, String)>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Out {
+    fn column(&self, name: &str) -> Option<usize> {
+        self.props.iter().position(|p| p.0 == name)
+    }
+}
+
+/// Reads fairsub's PLY output (ascii or binary little endian) up to the vertex rows.
+fn read_out(path: &Path) -> Out {
+    let bytes = std::fs::read(path).unwrap();
+    let end = bytes
+        .windows(11)
+        .position(|w| w == b"end_header\n")
+        .unwrap()
+        + 11;
+    let head = std::str::from_utf8(&bytes[..end]).unwrap();
+    let ascii = head.contains("format ascii");
+    let mut props = Vec::new();
+    let mut nv = 0;
+    let mut in_vertex = false;
+    for l in head.lines() {
+        let t: Vec<&str> = l.split_whitespace().collect();
+        match t.as_slice() {
+            ["element", "vertex", n] => {
+                nv = n.parse().unwrap();
+                in_vertex = true;
+            }
+            ["element", ..] => in_vertex = false,
+            ["property", ty, name] if in_vertex => props.push((name.to_string(), ty.to_string())),
+            _ => {}
+        }
+    }
+    let mut rows = Vec::with_capacity(nv);
+    if ascii {
+        let text = std::str::from_utf8(&bytes[end..]).unwrap();
+        for l in text.lines().take(nv) {
+            let row = l
+                .split_whitespace()
+                .zip(&props)
+                .map(|(x, (_, t))| match t.as_str() {
+                    "float" => f64::from(x.parse::<f32>().unwrap()),
+                    _ => x.parse().unwrap(),
+                });
+            rows.push(row.collect());
+        }
+    } else {
+        let mut at = end;
+        for _ in 0..nv {
+            let mut row = Vec::new();
+            for (_, t) in &props {
+                let take = |n: usize| {
+                    let mut b = [0u8; 8];
+                    b[..n].copy_from_slice(&bytes[at..at + n]);
+                    b
+                };
+                let (x, n) = match t.as_str() {
+                    "uchar" => (f64::from(bytes[at]), 1),
+                    "char" => (f64::from(bytes[at] as i8), 1),
+                    "short" => (f64::from(i16::from_le_bytes([bytes[at], bytes[at + 1]])), 2),
+                    "float" => (
+                        f64::from(f32::from_le_bytes(take(4)[..4].try_into().unwrap())),
+                        4,
+                    ),
+                    "double" => (f64::from_le_bytes(take(8)), 8),
+                    t => panic!("unexpected type {t}"),
+                };
+                row.push(x);
+                at += n;
+            }
+            rows.push(row);
+        }
+    }
+    Out { props, rows }
+}
+
+/// `table` applied to per-vertex values, row by row (the test's own multiply).
+fn multiply(table: &StencilTable, src: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    (0..table.num_rows())
+        .map(|r| {
+            let (idx, w) = table.row(r);
+            let mut acc = vec![0.0; src[0].len()];
+            for (&i, &w) in idx.iter().zip(w) {
+                for (a, x) in acc.iter_mut().zip(&src[i as usize]) {
+                    *a += w * x;
+                }
+            }
+            acc
+        })
+        .collect()
+}
+
+/// What the run must write for the net in `ply` (with the tags of `creases`): the stencils of
+/// `schemes::level_stencils` (and the limit stencils) applied to the test's values.
+fn expected(
+    scheme: &dyn Scheme,
+    ply: &Path,
+    creases: Option<&Path>,
+    levels: usize,
+    limit: bool,
+) -> Vec<Vec<f64>> {
+    let mut mesh: PolyMesh = fairsub::io::read_mesh_as(ply, true).unwrap().mesh;
+    if let Some(c) = creases {
+        let (tags, _) = fairsub::io::obj::read_tag_file(c).unwrap();
+        mesh = mesh.with_tags(&tags, c).unwrap();
+    }
+    let (fine, table) = fairsub::schemes::level_stencils(scheme, &mesh, levels).unwrap();
+    let src: Vec<Vec<f64>> = (0..mesh.num_vertices())
+        .map(|v| (0..CHANNELS.len()).map(|c| value(v, c)).collect())
+        .collect();
+    let refined = multiply(&table, &src);
+    if limit {
+        multiply(&scheme.limit_stencils(&fine).unwrap(), &refined)
+    } else {
+        refined
+    }
+}
+
+/// Checks an output against the expected values; returns the largest deviation of the
+/// floating channels.
+fn check_values(out: &Out, want: &[Vec<f64>], what: &str) -> f64 {
+    assert_eq!(out.rows.len(), want.len(), "{what}: vertex count");
+    // Names and types, in the input's order (alpha and nx came before z there; fairsub writes
+    // x y z first, then the data in its own order).
+    let names: Vec<(&str, &str)> = out
+        .props
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    let order = [3, 4, 0, 1, 2, 5, 6, 7];
+    let mut expect_names = vec![("x", "double"), ("y", "double"), ("z", "double")];
+    expect_names.extend(order.iter().map(|&c| CHANNELS[c]));
+    assert_eq!(names, expect_names, "{what}: properties");
+    let mut worst: f64 = 0.0;
+    for (c, (name, ty)) in CHANNELS.iter().enumerate() {
+        let col = out.column(name).unwrap();
+        let (lo, hi) = type_range(ty);
+        for (v, (row, w)) in out.rows.iter().zip(want).enumerate() {
+            let (got, exact) = (row[col], w[c]);
+            match *ty {
+                "float" => {
+                    let d = (got - exact).abs();
+                    assert!(
+                        d <= 1e-6 * exact.abs().max(1.0),
+                        "{what}: vertex {v} {name}: {got} vs {exact}"
+                    );
+                    worst = worst.max(d);
+                }
+                "double" => {
+                    let d = (got - exact).abs();
+                    assert!(
+                        d <= 1e-12 * exact.abs().max(1.0),
+                        "{what}: vertex {v} {name}: {got} vs {exact}"
+                    );
+                    worst = worst.max(d);
+                }
+                _ => {
+                    assert_eq!(got, got.round(), "{what}: vertex {v} {name} not an integer");
+                    let clamped = exact.clamp(lo, hi);
+                    assert!(
+                        (got - clamped).abs() <= 0.5 + 1e-9,
+                        "{what}: vertex {v} {name}: {got}, exact {exact}"
+                    );
+                }
+            }
+        }
+    }
+    worst
+}
+
+fn positions(out: &Out) -> Vec<[f64; 3]> {
+    let (x, y, z) = (
+        out.column("x").unwrap(),
+        out.column("y").unwrap(),
+        out.column("z").unwrap(),
+    );
+    out.rows.iter().map(|r| [r[x], r[y], r[z]]).collect()
+}
+
+/// One net through one scheme, every encoding, `--levels 2` with and without `--limit`.
+fn run_net(name: &str, scheme: &dyn Scheme, cli: &str, creased: bool) {
+    let net = read_net(name);
+    let dir = scratch(&format!("{cli}-{name}"));
+    let creases = dir.join("tags.txt");
+    std::fs::write(&creases, &net.tags).unwrap();
+    let plain = dir.join("plain.ply");
+    write_ply(&plain, &net, Enc::Little, false, false);
+    for enc in [Enc::Ascii, Enc::Little, Enc::Big] {
+        let ply = dir.join("net.ply");
+        write_ply(&ply, &net, enc, true, false);
+        for limit in [false, true] {
+            let mut args = vec!["subdivide", "--scheme", cli, "--levels", "2"];
+            if limit {
+                args.push("--limit");
+            }
+            if creased {
+                args.extend(["--creases", creases.to_str().unwrap()]);
+            }
+            let what = format!("{name} {cli} limit={limit}");
+            let run = |input: &Path, out: &Path, fmt: &str| {
+                let mut a = args.clone();
+                a.insert(1, input.to_str().unwrap());
+                a.extend(["--format", fmt, "-o", out.to_str().unwrap()]);
+                let (ok, err) = fairsub(&a);
+                assert!(ok, "{what}: {err}");
+                read_out(out)
+            };
+            let ascii = run(&ply, &dir.join("out-a.ply"), "ply-ascii");
+            let binary = run(&ply, &dir.join("out-b.ply"), "ply");
+            let want = expected(scheme, &ply, creased.then_some(creases.as_path()), 2, limit);
+            check_values(&ascii, &want, &format!("{what} ascii"));
+            check_values(&binary, &want, &format!("{what} binary"));
+            for (a, b) in ascii.rows.iter().zip(&binary.rows) {
+                assert_eq!(a, b, "{what}: ascii and binary outputs differ");
+            }
+            let bare = run(&plain, &dir.join("out-p.ply"), "ply");
+            assert_eq!(
+                bare.props.len(),
+                3,
+                "{what}: a net without data gets x y z only"
+            );
+            for (p, q) in positions(&binary).iter().zip(&positions(&bare)) {
+                for k in 0..3 {
+                    assert!(
+                        (p[k] - q[k]).abs() <= 1e-12,
+                        "{what}: positions {p:?} vs {q:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn catmull_clark_carries_vertex_data_through_its_stencils() {
+    run_net("cc_torus_smooth.obj", &CatmullClark, "catmull-clark", false);
+    run_net("cc_mixed_ngons.obj", &CatmullClark, "catmull-clark", false);
+}
+
+#[test]
+fn loop_carries_vertex_data_through_its_stencils() {
+    run_net("loop_icosa.obj", &Loop, "loop", false);
+    run_net("loop_tri_grid.obj", &Loop, "loop", false);
+}
+
+/// Sharp rules apply to the data too: creases, corners and semi-sharp edges.
+#[test]
+fn creased_nets_carry_vertex_data_with_the_sharp_rules() {
+    run_net(
+        "cc_cube_semisharp.obj",
+        &CatmullClark,
+        "catmull-clark",
+        true,
+    );
+    run_net("cc_pole7_crease.obj", &CatmullClark, "catmull-clark", true);
+    run_net("loop_octa_semisharp.obj", &Loop, "loop", true);
+    run_net("loop_dart_corner.obj", &Loop, "loop", true);
+}
+
+/// The peer's points (`v` lines, or `lp` with `--limit`), in its vertex order.
+fn peer_points(text: &str, limit: bool) -> Vec<[f64; 3]> {
+    let key = if limit { "lp" } else { "v" };
+    text.lines()
+        .filter_map(|l| {
+            let t: Vec<&str> = l.split_whitespace().collect();
+            (t.first() == Some(&key)).then(|| [1, 2, 3].map(|i| t[i].parse::<f64>().unwrap()))
+        })
+        .collect()
+}
+
+/// OpenSubdiv refines the float channels (alpha, nx, quality) as a vertex primvar: the peer
+/// refines the net with those channels as its points (the weights do not depend on the
+/// points), and a second run with the net's own points says which of fairsub's vertices each of
+/// the peer's is (by position, within 1e-6). Point by point within 1e-6.
+#[test]
+fn float_channels_match_opensubdiv_vertex_primvars() {
+    let peer = std::env::var_os("FAIRSUB_PEER")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root().join("target/peer/osd_refine"));
+    if !peer.exists() {
+        let msg = format!("{} missing (run tests/peer/build.sh)", peer.display());
+        if std::env::var_os("FAIRSUB_REQUIRE_PEER").is_some() {
+            panic!("FAIRSUB_REQUIRE_PEER is set and {msg}");
+        }
+        println!("ply_data: peer comparison skipped: {msg}");
+        return;
+    }
+    let float_channels = [3usize, 4, 5];
+    let mut compared = 0;
+    let mut worst: f64 = 0.0;
+    for (name, cli, osd) in [
+        ("cc_torus_smooth.obj", "catmull-clark", "catmark"),
+        ("cc_cube_semisharp.obj", "catmull-clark", "catmark"),
+        ("cc_pole7_crease.obj", "catmull-clark", "catmark"),
+        ("loop_octa_semisharp.obj", "loop", "loop"),
+        ("loop_dart_corner.obj", "loop", "loop"),
+    ] {
+        let net = read_net(name);
+        let dir = scratch(&format!("peer-{name}"));
+        let creases = dir.join("tags.txt");
+        std::fs::write(&creases, &net.tags).unwrap();
+        let ply = dir.join("net.ply");
+        write_ply(&ply, &net, Enc::Little, true, false);
+        // The same OBJ net with the float channels as its points.
+        let source = std::fs::read_to_string(root().join("tests/data/osd").join(name)).unwrap();
+        let mut k = 0;
+        let mut data_obj = String::new();
+        for l in source.lines() {
+            if l.split_whitespace().next() == Some("v") {
+                let d = float_channels.map(|c| value(k, c));
+                data_obj.push_str(&format!("v {:?} {:?} {:?}\n", d[0], d[1], d[2]));
+                k += 1;
+            } else {
+                data_obj.push_str(l);
+                data_obj.push('\n');
+            }
+        }
+        let data_path = dir.join("data.obj");
+        std::fs::write(&data_path, data_obj).unwrap();
+        for limit in [false, true] {
+            let what = format!("{name} limit={limit}");
+            let osd_run = |input: &Path, out: &Path| {
+                let mut c = Command::new(&peer);
+                c.args(["--scheme", osd, "--levels", "2"]);
+                if limit {
+                    c.arg("--limit");
+                }
+                let o = c.arg(input).arg(out).output().unwrap();
+                assert!(
+                    o.status.success(),
+                    "{what}: peer: {}",
+                    String::from_utf8_lossy(&o.stderr)
+                );
+                peer_points(&std::fs::read_to_string(out).unwrap(), limit)
+            };
+            let at = osd_run(
+                &root().join("tests/data/osd").join(name),
+                &dir.join("pos.txt"),
+            );
+            let data = osd_run(&data_path, &dir.join("data.txt"));
+            let out = dir.join("out.ply");
+            let mut args = vec!["subdivide", ply.to_str().unwrap(), "--scheme", cli];
+            args.extend(["--levels", "2", "-o", out.to_str().unwrap()]);
+            args.extend(["--creases", creases.to_str().unwrap()]);
+            if limit {
+                args.push("--limit");
+            }
+            let (ok, err) = fairsub(&args);
+            assert!(ok, "{what}: {err}");
+            let ours = read_out(&out);
+            let pos = positions(&ours);
+            assert_eq!(pos.len(), at.len(), "{what}: vertex counts");
+            let cols = float_channels.map(|c| ours.column(CHANNELS[c].0).unwrap());
+            for (i, p) in at.iter().enumerate() {
+                let near: Vec<usize> = (0..pos.len())
+                    .filter(|&j| (0..3).all(|k| (pos[j][k] - p[k]).abs() <= 1e-6))
+                    .collect();
+                assert_eq!(
+                    near.len(),
+                    1,
+                    "{what}: peer vertex {i} at {p:?} matches {near:?}"
+                );
+                let row = &ours.rows[near[0]];
+                for (k, &col) in cols.iter().enumerate() {
+                    let d = (row[col] - data[i][k]).abs();
+                    assert!(
+                        d <= 1e-6,
+                        "{what}: peer vertex {i} channel {k}: {} vs {}",
+                        row[col],
+                        data[i][k]
+                    );
+                    worst = worst.max(d);
+                }
+                compared += 1;
+            }
+        }
+    }
+    println!(
+        "ply_data: {compared} vertices agree with OpenSubdiv's vertex primvars, worst {worst:.2e}"
+    );
+}
+
+/// A list-typed vertex property is skipped with a warning that names it; a NaN in a property is
+/// an error naming the vertex and the property; OBJ output warns that the data is dropped.
+#[test]
+fn bad_properties_are_named_and_obj_output_warns() {
+    let net = read_net("cc_cube_semisharp.obj");
+    let dir = scratch("bad");
+    let ply = dir.join("list.ply");
+    write_ply(&ply, &net, Enc::Ascii, true, true);
+    let out = dir.join("out.ply");
+    let (ok, err) = fairsub(&[
+        "subdivide",
+        ply.to_str().unwrap(),
+        "-s",
+        "catmull-clark",
+        "-l",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(err.contains("vertex list property 'ids' skipped"), "{err}");
+    let o = read_out(&out);
+    assert!(o.column("ids").is_none() && o.column("red").is_some());
+    // NaN in a float channel, on the line of vertex 3.
+    let text = std::fs::read_to_string(&ply).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let first = lines.iter().position(|l| l == "end_header").unwrap() + 1;
+    let mut toks: Vec<String> = lines[first + 3]
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    toks[2] = "nan".into(); // alpha (x y alpha nx z ...)
+    lines[first + 3] = toks.join(" ");
+    let nan = dir.join("nan.ply");
+    std::fs::write(&nan, lines.join("\n") + "\n").unwrap();
+    let (ok, err) = fairsub(&[
+        "subdivide",
+        nan.to_str().unwrap(),
+        "-s",
+        "catmull-clark",
+        "-l",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!ok);
+    let line = first + 4;
+    assert!(
+        err.contains(&format!(":{line}"))
+            && err.contains("vertex 3")
+            && err.contains("'alpha' is not finite"),
+        "{err}"
+    );
+    let obj = dir.join("out.obj");
+    let (ok, err) = fairsub(&[
+        "subdivide",
+        ply.to_str().unwrap(),
+        "-s",
+        "catmull-clark",
+        "-l",
+        "1",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("OBJ cannot hold the per-vertex properties (alpha, nx, red, green, blue, quality, temperature, label)"),
+        "{err}"
+    );
+}
