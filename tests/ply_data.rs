@@ -681,3 +681,63 @@ fn bad_properties_are_named_and_obj_output_warns() {
         "{err}"
     );
 }
+
+/// Every scheme that refines nets carries the data through the stencils of its own steps:
+/// `level_stencils` (which follows the steps of `refine_uniform`, also for the schemes that
+/// carry state from step to step: adjustable TPS, pgs-dscc, polar nets) gives the output data,
+/// and the positions are those of the run without data (the non-box schemes too: a net without
+/// given FCVs has the barycentres as its FCVs, affine in its points).
+#[test]
+fn every_refining_scheme_carries_vertex_data() {
+    use fairsub::schemes::registry::registry;
+    let dir = scratch("all");
+    let nets = ["cc_cube.obj", "loop_icosa.obj", "cc_mixed_ngons.obj"];
+    let mut files = Vec::new();
+    for name in nets {
+        let net = read_net(name);
+        let (plain, data) = (
+            dir.join(format!("p-{name}.ply")),
+            dir.join(format!("d-{name}.ply")),
+        );
+        write_ply(&plain, &net, Enc::Little, false, false);
+        write_ply(&data, &net, Enc::Little, true, false);
+        files.push((plain, data));
+    }
+    let mut carried = Vec::new();
+    for scheme in registry().names_with(|c| c.refine) {
+        let spec = registry().lookup(scheme).unwrap();
+        let rules = registry()
+            .descriptor(spec.id)
+            .mesh_rules(&spec)
+            .unwrap()
+            .unwrap();
+        // The first net the scheme takes.
+        let out_p = dir.join("p.ply");
+        let Some((plain, data)) = files.iter().find(|(p, _)| {
+            let args = ["subdivide", p.to_str().unwrap(), "-s", scheme, "-l", "2"];
+            fairsub(&[&args[..], &["-o", out_p.to_str().unwrap()]].concat()).0
+        }) else {
+            panic!("{scheme} takes none of {nets:?}");
+        };
+        let out_d = dir.join("d.ply");
+        let args = ["subdivide", data.to_str().unwrap(), "-s", scheme, "-l", "2"];
+        let (ok, err) = fairsub(&[&args[..], &["-o", out_d.to_str().unwrap()]].concat());
+        assert!(ok, "{scheme}: {err}");
+        let (bare, ours) = (read_out(&out_p), read_out(&out_d));
+        let what = format!("{scheme} on {}", data.display());
+        let want = expected(rules.as_ref(), data, None, 2, false);
+        check_values(&ours, &want, &what);
+        assert_eq!(bare.rows.len(), ours.rows.len(), "{what}");
+        for (p, q) in positions(&ours).iter().zip(&positions(&bare)) {
+            for k in 0..3 {
+                assert!(
+                    (p[k] - q[k]).abs() <= 1e-12,
+                    "{what}: positions {p:?} vs {q:?}"
+                );
+            }
+        }
+        carried.push(scheme);
+    }
+    println!("ply_data: data carried by {carried:?}");
+    assert!(carried.len() >= 8, "{carried:?}");
+}

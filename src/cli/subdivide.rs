@@ -203,18 +203,25 @@ pub fn finish(a: &Args, p: &Prepared) -> Result<(Computed, String)> {
     let scheme = mesh_rules(spec)?;
     super::limits::check_levels(scheme.as_ref(), mesh, levels)?;
     if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
-        if let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) {
-            eprintln!(
-                "warning: {}: the per-vertex properties ({}) are not carried by {}'s FCV \
-                 layout; the output has positions only",
-                a.net,
-                d.names.join(", "),
-                scheme.name()
-            );
-        }
         // the non-box reports name the scheme's rules, and the limit
         let label = format!("{}{}", scheme.name(), if a.limit { ", limit" } else { "" });
         let net = nonbox::compute_net(scheme.as_ref(), mesh, levels, a.limit)?;
+        let out = match &net {
+            Computed::Net(m) | Computed::FcvNet(m) | Computed::LimitMesh(m, _) => m.extras(),
+            Computed::Complex(..) => None,
+        };
+        let input = mesh.extras().and_then(|e| e.vertex_data.as_ref());
+        if let (Some(d), None) = (input, out.and_then(|e| e.vertex_data.as_ref())) {
+            // The FCV layout of given FCVs and the limit mesh around the FCVs are new points.
+            eprintln!(
+                "warning: {}: the per-vertex properties ({}) are not carried into {}'s {}; the \
+                 output has positions only",
+                a.net,
+                d.names.join(", "),
+                scheme.name(),
+                if a.limit { "limit mesh" } else { "FCV layout" }
+            );
+        }
         return Ok((net, label));
     }
     let refined = refine_with(scheme.as_ref(), mesh, levels, a.limit)?.without_holes();
