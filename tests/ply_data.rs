@@ -713,7 +713,7 @@ fn every_refining_scheme_carries_vertex_data() {
             .unwrap();
         // The first net the scheme takes.
         let out_p = dir.join("p.ply");
-        let Some((plain, data)) = files.iter().find(|(p, _)| {
+        let Some((_, data)) = files.iter().find(|(p, _)| {
             let args = ["subdivide", p.to_str().unwrap(), "-s", scheme, "-l", "2"];
             fairsub(&[&args[..], &["-o", out_p.to_str().unwrap()]].concat()).0
         }) else {
