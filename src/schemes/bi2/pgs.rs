@@ -374,26 +374,22 @@ impl Scheme for PgsPreprocessed {
         }
     }
 
-    /// `levels` steps: the pre-processing steps first, then PGS.
+    /// `levels` steps: the pre-processing steps first, then PGS (those of `refine_steps`).
     fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
         progress: &mut dyn FnMut(usize),
     ) -> Result<PolyMesh> {
-        let mut m = mesh.clone();
-        for l in 0..levels {
-            m = if l < self.opts.dscc_steps {
-                DooSabinCc.refine(&m)?.mesh
-            } else {
-                Pgs.refine(&m)?.mesh
-            };
-            progress(l + 1);
-        }
-        Ok(m)
+        let mut l = 0;
+        self.refine_steps(mesh, levels, &mut |_, _| {
+            l += 1;
+            progress(l);
+            Ok(())
+        })
     }
 
-    /// The steps of `refine_uniform` (DS^CC first, then PGS), each with its stencils.
+    /// The pre-processing steps first (DS^CC), then PGS, each with its stencils.
     fn refine_steps(
         &self,
         mesh: &PolyMesh,
