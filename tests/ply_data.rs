@@ -351,16 +351,12 @@ fn bad_properties_are_named_and_obj_output_warns() {
     let ply = dir.join("list.ply");
     write_ply(&ply, &net, Enc::Ascii, true, true);
     let out = dir.join("out.ply");
-    let (ok, err) = fairsub(&[
-        "subdivide",
-        ply.to_str().unwrap(),
-        "-s",
-        "catmull-clark",
-        "-l",
-        "1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    // One Catmull-Clark step of `input` into `output`.
+    let refine1 = |input: &Path, output: &Path| {
+        let (i, o) = (input.to_str().unwrap(), output.to_str().unwrap());
+        fairsub(&["subdivide", i, "-s", "catmull-clark", "-l", "1", "-o", o])
+    };
+    let (ok, err) = refine1(&ply, &out);
     assert!(ok, "{err}");
     assert!(err.contains("vertex list property 'ids' skipped"), "{err}");
     let o = read_out(&out);
@@ -377,16 +373,7 @@ fn bad_properties_are_named_and_obj_output_warns() {
     lines[first + 3] = toks.join(" ");
     let nan = dir.join("nan.ply");
     std::fs::write(&nan, lines.join("\n") + "\n").unwrap();
-    let (ok, err) = fairsub(&[
-        "subdivide",
-        nan.to_str().unwrap(),
-        "-s",
-        "catmull-clark",
-        "-l",
-        "1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let (ok, err) = refine1(&nan, &out);
     assert!(!ok);
     let line = first + 4;
     assert!(
@@ -396,16 +383,7 @@ fn bad_properties_are_named_and_obj_output_warns() {
         "{err}"
     );
     let obj = dir.join("out.obj");
-    let (ok, err) = fairsub(&[
-        "subdivide",
-        ply.to_str().unwrap(),
-        "-s",
-        "catmull-clark",
-        "-l",
-        "1",
-        "-o",
-        obj.to_str().unwrap(),
-    ]);
+    let (ok, err) = refine1(&ply, &obj);
     assert!(ok, "{err}");
     assert!(
         err.contains("OBJ cannot hold the per-vertex properties (alpha, nx, red, green, blue, quality, temperature, label)"),
