@@ -78,10 +78,12 @@ pub const MAX_ELEMENTS: f64 = 2147483648.0;
 const BYTES_PER_SAMPLE: f64 = 56.0;
 
 /// `levels` refinement steps of `scheme` on `mesh`: the largest level in memory at once (the
-/// parent, the child and the step's stencils) within the budget, the result within the index
-/// range. The error says which `--levels` would fit.
+/// parent, the child and the step's stencils, and the per-vertex data of both with the
+/// buffers of one group of channels) within the budget, the result within the index range.
+/// The error says which `--levels` would fit.
 pub fn check_levels(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> Result<()> {
     let start = NetSize::of(mesh);
+    let data_bytes = vertex_data_bytes(mesh);
     let sizes = growth::levels(start, levels, |s| scheme.step_size(s));
     let peak_after = |k: usize| -> f64 {
         let mut parent = start;
@@ -92,7 +94,8 @@ pub fn check_levels(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> Resu
                 ..parent
             }
             .bytes();
-            peak = peak.max(parent_bytes + s.bytes());
+            let data = data_bytes * (parent.vertices + s.vertices);
+            peak = peak.max(parent_bytes + s.bytes() + data);
             parent = *s;
         }
         peak
@@ -126,6 +129,16 @@ pub fn check_levels(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> Resu
     };
     within_indices(what, last.vertices, last.corners, &lower)?;
     within_budget(what, peak_after(sizes.len()), &lower)
+}
+
+/// Bytes per vertex of a net's per-vertex data in refinement: the values (8 bytes per
+/// channel) and one group of channels in `VertexData::through`'s buffers (`8 x GROUP`); 0
+/// without data.
+fn vertex_data_bytes(mesh: &PolyMesh) -> f64 {
+    let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) else {
+        return 0.0;
+    };
+    8.0 * (d.width() + crate::mesh::VertexData::GROUP) as f64
 }
 
 /// How many patches a scheme makes, measured on canonical nets: regular patches per corner of

@@ -206,6 +206,22 @@ pub fn finish(a: &Args, p: &Prepared) -> Result<(Computed, String)> {
         // the non-box reports name the scheme's rules, and the limit
         let label = format!("{}{}", scheme.name(), if a.limit { ", limit" } else { "" });
         let net = nonbox::compute_net(scheme.as_ref(), mesh, levels, a.limit)?;
+        let out = match &net {
+            Computed::Net(m) | Computed::FcvNet(m) | Computed::LimitMesh(m, _) => m.extras(),
+            Computed::Complex(..) => None,
+        };
+        let input = mesh.extras().and_then(|e| e.vertex_data.as_ref());
+        if let (Some(d), None) = (input, out.and_then(|e| e.vertex_data.as_ref())) {
+            // The FCV layout of given FCVs and the limit mesh around the FCVs are new points.
+            eprintln!(
+                "warning: {}: the per-vertex properties ({}) are not carried into {}'s {}; the \
+                 output has positions only",
+                a.net,
+                d.names.join(", "),
+                scheme.name(),
+                if a.limit { "limit mesh" } else { "FCV layout" }
+            );
+        }
         return Ok((net, label));
     }
     let refined = refine_with(scheme.as_ref(), mesh, levels, a.limit)?.without_holes();
@@ -291,6 +307,13 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
         crate::schemes::qas::qfile::check_q_file(&crate::io::read_text(q)?, q, &mesh)?;
     }
     if patches {
+        if let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) {
+            eprintln!(
+                "warning: {}: the per-vertex properties ({}) are not carried into patch output",
+                a.net,
+                d.names.join(", ")
+            );
+        }
         features::refuse_patch_features(&spec, &mesh, &a.net)?;
     } else if !features::takes_features(&spec) {
         features::refuse_features(&spec, &mesh, &a.net, &format!("{label} has no rules for"))?;
@@ -316,7 +339,9 @@ pub fn mesh_rules(spec: &Spec) -> Result<Box<dyn Scheme>> {
         })
 }
 
-/// Refines `levels` times with a progress bar and optionally projects to the limit.
+/// Refines `levels` times with a progress bar and optionally projects to the limit; per-vertex
+/// data goes through the same stencils as the positions ([`crate::schemes::refine_levels`],
+/// the limit stencils).
 pub fn refine_with(
     s: &dyn Scheme,
     mesh: &PolyMesh,
@@ -328,8 +353,13 @@ pub fn refine_with(
     let mut m = crate::schemes::refine_levels(s, mesh, levels, |l| pb.set_position(l as u64))?;
     pb.finish_and_clear();
     if limit {
-        let lim = s.limit_stencils(&m)?.apply(m.positions());
-        m.set_positions(lim);
+        // One table for the positions and the per-vertex data.
+        let table = s.limit_stencils(&m)?;
+        m.set_positions(table.apply(m.positions()));
+        if let Some(mut ex) = m.take_extras() {
+            ex.vertex_data = ex.vertex_data.map(|d| d.through(&table));
+            m.set_extras(Some(ex));
+        }
     }
     Ok(m)
 }

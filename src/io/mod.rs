@@ -110,13 +110,25 @@ pub fn write_mesh(path: &Path, mesh: &PolyMesh, format: MeshFormat) -> Result<()
         Some(k) => Polygons::uniform(mesh.positions(), k, mesh.corners())?,
         None => Polygons::new(mesh.positions(), mesh.face_starts(), mesh.corners())?,
     };
-    let uv = mesh.extras().and_then(|e| e.uv.as_ref());
-    if let Some(uv) = uv.filter(|_| format != MeshFormat::Off) {
+    let uv = mesh
+        .extras()
+        .and_then(|e| e.uv.as_ref())
+        .filter(|_| format != MeshFormat::Off);
+    let data = mesh
+        .extras()
+        .and_then(|e| e.vertex_data.as_ref())
+        .filter(|_| matches!(format, MeshFormat::PlyAscii | MeshFormat::PlyBinary));
+    if let Some(uv) = uv {
         check_uv(uv, mesh.corners().len())?;
+    }
+    if let Some(d) = data {
+        check_vertex_data(d, mesh.num_vertices())?;
+    }
+    if uv.is_some() || data.is_some() {
         return write_atomically(path, |w| {
-            match format {
-                MeshFormat::Obj => obj::write_obj_uv_to(w, &polys, uv),
-                _ => ply::write_ply_uv_to(w, &polys, uv, format == MeshFormat::PlyBinary),
+            match (format, uv) {
+                (MeshFormat::Obj, Some(uv)) => obj::write_obj_uv_to(w, &polys, uv),
+                _ => ply::write_ply_extras_to(w, &polys, uv, data, format == MeshFormat::PlyBinary),
             }
             .map_err(|e| io_error(path, e))
         });
@@ -126,9 +138,22 @@ pub fn write_mesh(path: &Path, mesh: &PolyMesh, format: MeshFormat) -> Result<()
 
 /// What [`write_mesh`] cannot keep of `mesh` in `format`, as notes for the user (a warning, as
 /// for the other lossy outputs: the geometry is written, the data named here is not): texture
-/// coordinates in OFF.
+/// coordinates in OFF, per-vertex data (PLY properties) in OBJ and OFF.
 pub fn lost_in(mesh: &PolyMesh, format: MeshFormat) -> Vec<String> {
     let mut notes = Vec::new();
+    let data = mesh.extras().and_then(|e| e.vertex_data.as_ref());
+    if let (MeshFormat::Obj | MeshFormat::Off, Some(d)) = (format, data) {
+        notes.push(format!(
+            "{} cannot hold the per-vertex properties ({}): they are dropped (write .ply to keep \
+             them)",
+            if format == MeshFormat::Obj {
+                "OBJ"
+            } else {
+                "OFF"
+            },
+            d.names.join(", ")
+        ));
+    }
     if let (MeshFormat::Off, Some(uv)) = (format, mesh.extras().and_then(|e| e.uv.as_ref())) {
         notes.push(format!(
             "OFF cannot hold texture coordinates: the net's {} face-varying values are dropped \
@@ -137,6 +162,26 @@ pub fn lost_in(mesh: &PolyMesh, format: MeshFormat) -> Vec<String> {
         ));
     }
     notes
+}
+
+/// Checks per-vertex data before it is written: one row per vertex, finite values.
+fn check_vertex_data(d: &crate::mesh::VertexData, vertices: usize) -> Result<()> {
+    let bad = |what: String| Err(crate::error::Error::InvalidArgument(what));
+    if d.kinds.len() != d.width() || d.values.len() != d.width() * vertices {
+        return bad(format!(
+            "per-vertex data: {} values of {} channels for {vertices} vertices",
+            d.values.len(),
+            d.width()
+        ));
+    }
+    if let Some(i) = d.values.iter().position(|x| !x.is_finite()) {
+        return bad(format!(
+            "per-vertex property '{}' of vertex {} is not finite",
+            d.names[i % d.width()],
+            i / d.width()
+        ));
+    }
+    Ok(())
 }
 
 /// Checks face-varying data before it is written: one value per corner, indices in range,

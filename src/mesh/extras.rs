@@ -71,6 +71,30 @@ pub enum ScalarKind {
     F64,
 }
 
+impl ScalarKind {
+    /// Whether the kind holds integers.
+    pub fn is_integer(self) -> bool {
+        !matches!(self, ScalarKind::F32 | ScalarKind::F64)
+    }
+
+    /// The value a file of this kind stores for `x`: integer kinds round to the nearest integer
+    /// (halves away from zero) and clamp to their range (a colour channel that a stencil with
+    /// negative weights takes past 255 is written as 255); `F32` rounds to single precision.
+    pub fn stored(self, x: f64) -> f64 {
+        let clamp = |lo: f64, hi: f64| x.round().clamp(lo, hi);
+        match self {
+            ScalarKind::U8 => clamp(0.0, 255.0),
+            ScalarKind::I8 => clamp(-128.0, 127.0),
+            ScalarKind::U16 => clamp(0.0, 65535.0),
+            ScalarKind::I16 => clamp(-32768.0, 32767.0),
+            ScalarKind::U32 => clamp(0.0, 4294967295.0),
+            ScalarKind::I32 => clamp(-2147483648.0, 2147483647.0),
+            ScalarKind::F32 => x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32 as f64,
+            ScalarKind::F64 => x,
+        }
+    }
+}
+
 /// Per-vertex data refined with the net by the vertex stencils (colours, other properties).
 #[derive(Debug, Clone, PartialEq)]
 pub struct VertexData {
@@ -86,6 +110,64 @@ impl VertexData {
     /// Number of channels.
     pub fn width(&self) -> usize {
         self.names.len()
+    }
+
+    /// Number of vertices the data covers.
+    pub fn num_points(&self) -> usize {
+        self.values.len().checked_div(self.width()).unwrap_or(0)
+    }
+
+    /// The data of the points `table` makes from these points (row `i` gives point `i`): each
+    /// channel goes through the table's own apply, as positions do (the channels in groups of
+    /// [`VertexData::GROUP`], as `[f64; GROUP]` points), so refinement and limit projection
+    /// treat the data exactly as OpenSubdiv's `PrimvarRefiner::Interpolate` treats vertex
+    /// primvars: the same weights as the positions. Values stay unrounded (`f64`) until written.
+    ///
+    /// # Panics
+    /// When the table's sources are not these points.
+    pub fn through(&self, table: &crate::stencil::StencilTable) -> VertexData {
+        let (w, n) = (self.width(), self.num_points());
+        assert_eq!(
+            table.num_sources(),
+            n,
+            "vertex data and stencil sources differ"
+        );
+        let rows = table.num_rows();
+        let mut values = vec![0.0; rows * w];
+        let mut src = vec![[0.0; Self::GROUP]; n];
+        let mut out = vec![[0.0; Self::GROUP]; rows];
+        for c0 in (0..w).step_by(Self::GROUP) {
+            let k = Self::GROUP.min(w - c0);
+            for (s, v) in src.iter_mut().zip(self.values.chunks_exact(w)) {
+                s[..k].copy_from_slice(&v[c0..c0 + k]);
+            }
+            table.apply_into(&src, &mut out);
+            for (o, v) in out.iter().zip(values.chunks_exact_mut(w)) {
+                v[c0..c0 + k].copy_from_slice(&o[..k]);
+            }
+        }
+        VertexData {
+            names: self.names.clone(),
+            kinds: self.kinds.clone(),
+            values,
+        }
+    }
+
+    /// Channels applied together by [`VertexData::through`].
+    pub const GROUP: usize = 4;
+
+    /// The data of the vertices `keep` lists, in that order.
+    pub fn select(&self, keep: impl Iterator<Item = usize>) -> VertexData {
+        let w = self.width();
+        let mut values = Vec::new();
+        for v in keep {
+            values.extend_from_slice(&self.values[v * w..(v + 1) * w]);
+        }
+        VertexData {
+            names: self.names.clone(),
+            kinds: self.kinds.clone(),
+            values,
+        }
     }
 }
 

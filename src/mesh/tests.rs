@@ -189,3 +189,47 @@ fn interior_rings_close_or_fail() {
     assert_eq!(ring, vec![hs[1], hs[2], hs[3], hs[0]]);
     assert_eq!(m.interior_ring_from(m.vertex_halfedge(1)), None);
 }
+
+#[test]
+fn vertex_data_goes_through_a_table_and_is_stored_by_its_kind() {
+    // Two points, five channels (two groups of `VertexData::GROUP`); a table with a negative
+    // weight takes the colours past their range.
+    let d = VertexData {
+        names: ["red", "green", "blue", "alpha", "quality"]
+            .map(String::from)
+            .to_vec(),
+        kinds: vec![
+            ScalarKind::U8,
+            ScalarKind::U8,
+            ScalarKind::I8,
+            ScalarKind::F32,
+            ScalarKind::F64,
+        ],
+        values: vec![
+            255.0, 0.0, -128.0, 0.25, 1.0, //
+            100.0, 10.0, 100.0, 0.5, 3.0,
+        ],
+    };
+    let mut t = crate::stencil::StencilTable::new(2);
+    t.push(crate::stencil::Stencil::from_pairs([(0, 1.5), (1, -0.5)]));
+    t.push(crate::stencil::Stencil::from_pairs([(0, 0.5), (1, 0.5)]));
+    let r = d.through(&t);
+    assert_eq!(r.num_points(), 2);
+    assert_eq!(r.names, d.names);
+    let want = [
+        332.5, -5.0, -242.0, 0.125, 0.0, //
+        177.5, 5.0, -14.0, 0.375, 2.0,
+    ];
+    for (a, b) in r.values.iter().zip(want) {
+        assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+    }
+    let stored: Vec<f64> = r.values[..5]
+        .iter()
+        .zip(&r.kinds)
+        .map(|(&x, k)| k.stored(x))
+        .collect();
+    assert_eq!(stored, [255.0, 0.0, -128.0, 0.125, 0.0]);
+    assert_eq!(ScalarKind::U8.stored(177.5), 178.0);
+    assert_eq!(ScalarKind::I16.stored(-40000.2), -32768.0);
+    assert_eq!(ScalarKind::F32.stored(0.1), f64::from(0.1f32));
+}

@@ -70,6 +70,27 @@ pub trait Scheme: Sync {
         Ok(m.unwrap_or_else(|| mesh.clone()))
     }
 
+    /// `levels` steps as [`Scheme::refine_uniform`] takes them, each with its stencil table:
+    /// `step(parent, refinement)` sees every step (row `i` of its table gives child vertex `i`
+    /// from the parent's) and may attach data to the child, as the per-vertex and face-varying
+    /// data are attached ([`refine_levels`]). The default repeats [`Scheme::refine`]; schemes
+    /// whose `refine_uniform` carries state from step to step override it with the same state.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
+        let mut m: Option<PolyMesh> = None;
+        for _ in 0..levels {
+            let parent = m.as_ref().unwrap_or(mesh);
+            let mut r = self.refine(parent)?;
+            step(parent, &mut r)?;
+            m = Some(r.mesh);
+        }
+        Ok(m.unwrap_or_else(|| mesh.clone()))
+    }
+
     /// The size of the child of a net of size `s` after one step, with the entries of the
     /// step's stencil table: what a front end checks against its memory budget before
     /// refining (see [`growth`]). The default is Catmull-Clark's primal quad split
@@ -133,18 +154,44 @@ pub enum FcvLayout {
 }
 
 /// Applies `levels` refinement steps ([`Scheme::refine_uniform`]), calling `progress(level)`
-/// after each.
+/// after each. A net with per-vertex data ([`crate::mesh::VertexData`]) or face-varying data
+/// that the scheme refines is refined step by step ([`Scheme::refine_steps`]): each step's
+/// stencil table, the one that made the child's positions, is applied to the per-vertex data
+/// ([`crate::mesh::VertexData::through`]) and drives the face-varying rules ([`fvar::refine`]).
+/// Plain nets keep the scheme's direct kernel.
 pub fn refine_levels(
     scheme: &dyn Scheme,
     mesh: &PolyMesh,
     levels: usize,
     mut progress: impl FnMut(usize),
 ) -> Result<PolyMesh> {
-    let uv = mesh.extras().and_then(|e| e.uv.as_ref());
-    match (uv, scheme.face_varying()) {
-        (Some(_), Some(rules)) => fvar::refine_levels(scheme, mesh, levels, &rules, &mut progress),
-        _ => scheme.refine_uniform(mesh, levels, &mut progress),
+    let ex = mesh.extras();
+    let fv_rules = scheme.face_varying();
+    let uv = ex.is_some_and(|e| e.uv.is_some()) && fv_rules.is_some();
+    let data = ex.is_some_and(|e| e.vertex_data.is_some());
+    if !uv && !data {
+        return scheme.refine_uniform(mesh, levels, &mut progress);
     }
+    let mut level = 0;
+    scheme.refine_steps(mesh, levels, &mut |parent, r| {
+        let pex = parent.extras();
+        let refined_uv = match (pex.and_then(|e| e.uv.as_ref()), &fv_rules) {
+            (Some(uv), Some(rules)) => Some(fvar::refine(parent, uv, &r.mesh, &r.stencils, rules)),
+            _ => None,
+        };
+        let refined_data = pex
+            .and_then(|e| e.vertex_data.as_ref())
+            .map(|d| d.through(&r.stencils));
+        if refined_uv.is_some() || refined_data.is_some() {
+            let mut cex = r.mesh.take_extras().unwrap_or_default();
+            cex.uv = refined_uv;
+            cex.vertex_data = refined_data;
+            r.mesh.set_extras(Some(cex));
+        }
+        level += 1;
+        progress(level);
+        Ok(())
+    })
 }
 
 /// The stencil table from the control points of `mesh` to the points of its `levels`-th uniform
@@ -155,10 +202,10 @@ pub fn refine_levels(
 /// the refined level, in parallel over rows and without allocating. `levels = 0` gives the
 /// identity.
 ///
-/// The steps are repeated [`Scheme::refine`] calls, so for schemes whose
+/// The steps are those of [`Scheme::refine_steps`], so for schemes whose
 /// [`Scheme::refine_uniform`] carries state from step to step (the knot widths of adjustable
-/// TPS, the DS^CC pre-processing of `pgs-dscc`) the table follows the repeated single step,
-/// not that override.
+/// TPS, the DS^CC pre-processing of `pgs-dscc`, the pole conversion of polar nets) the table
+/// follows that state, as refinement does.
 ///
 /// # Errors
 /// Whatever [`Scheme::refine`] reports (for example a face the scheme cannot handle).
@@ -167,20 +214,17 @@ pub fn level_stencils(
     mesh: &PolyMesh,
     levels: usize,
 ) -> Result<(PolyMesh, StencilTable)> {
-    let mut fine: Option<PolyMesh> = None;
     let mut table: Option<StencilTable> = None;
-    for _ in 0..levels {
-        let r = scheme.refine(fine.as_ref().unwrap_or(mesh))?;
-        table = Some(match table {
-            None => r.stencils,
-            Some(t) => r.stencils.compose(&t),
+    let fine = scheme.refine_steps(mesh, levels, &mut |_, r| {
+        let step = std::mem::replace(&mut r.stencils, StencilTable::new(0));
+        table = Some(match table.take() {
+            None => step,
+            Some(t) => step.compose(&t),
         });
-        fine = Some(r.mesh);
-    }
-    Ok(match (fine, table) {
-        (Some(m), Some(t)) => (m, t),
-        _ => (mesh.clone(), StencilTable::identity(mesh.num_vertices())),
-    })
+        Ok(())
+    })?;
+    let table = table.unwrap_or_else(|| StencilTable::identity(mesh.num_vertices()));
+    Ok((fine, table))
 }
 
 /// Builds the child mesh from topology and stencils: positions are the stencils applied to the

@@ -89,16 +89,8 @@ pub fn load_net(
         Some(m) => m,
         None => super::super::load_net_as(arg, tolerant)?.mesh,
     };
-    if let Some(ex) = mesh.extras() {
-        if ex.uv.is_some() && !tolerant {
-            eprintln!("warning: {arg}: texture coordinates are not carried into patch output");
-        }
-        if ex.vertex_data.is_some() {
-            eprintln!(
-                "warning: {arg}: per-vertex properties are read but not refined yet; the output \
-                 has positions only"
-            );
-        }
+    if !tolerant && mesh.extras().is_some_and(|ex| ex.uv.is_some()) {
+        eprintln!("warning: {arg}: texture coordinates are not carried into patch output");
     }
     if let Some(file) = &a.creases {
         let (tags, warnings) = crate::io::obj::read_tag_file(file)?;

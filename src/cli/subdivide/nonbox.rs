@@ -46,7 +46,7 @@ pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs, given: Option<PolyMesh>) ->
         };
     }
     if let Some(mesh) = given {
-        return choose(mesh, o);
+        return choose(mesh, o, arg);
     }
     let path = Path::new(arg);
     let is_obj = !arg.starts_with("gallery:")
@@ -75,14 +75,22 @@ pub fn load_net(spec: &Spec, arg: &str, o: &FcvArgs, given: Option<PolyMesh>) ->
             };
             Ok(net.to_layout_mesh())
         }
-        None => choose(mesh, o),
+        None => choose(mesh, o, arg),
     }
 }
 
 /// The net of a mesh without listed FCVs: FCVs from `--fcv-scale` / `--fcv-file` when given
 /// (a layout mesh), else the plain mesh (its FCVs are its barycentres).
-fn choose(mesh: PolyMesh, o: &FcvArgs) -> Result<PolyMesh> {
+fn choose(mesh: PolyMesh, o: &FcvArgs, arg: &str) -> Result<PolyMesh> {
     if o.fcv_scale.is_some() || o.fcv_file.is_some() {
+        if let Some(d) = mesh.extras().and_then(|e| e.vertex_data.as_ref()) {
+            // Given FCVs are not affine in the net's points: the data has no value there.
+            eprintln!(
+                "warning: {arg}: the per-vertex properties ({}) are not carried into a net with \
+                 given FCVs (--fcv-scale, --fcv-file); the output has positions only",
+                d.names.join(", ")
+            );
+        }
         let scale = o.fcv_scale.unwrap_or(1.0);
         Ok(fcv::choose_fcv_net(&mesh, scale, o.fcv_file.as_deref())?.to_layout_mesh())
     } else {

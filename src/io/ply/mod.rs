@@ -10,12 +10,19 @@
 //! give `vertex_indices` (or `vertex_index`) lists of any integer type; texture coordinates
 //! (per vertex `u v`, `s t`, `texture_u texture_v` or `texture_s texture_t`, or a face
 //! `texcoord` float list with 2 values per corner, as MeshLab writes) become the net's
-//! face-varying data (`uv`); every other element and property is skipped. Missing elements or properties are named in the error, at the header
-//! line that declares the element; binary errors name the element and how many were read.
+//! face-varying data (`uv`); every other scalar vertex property (colours `red green blue alpha`
+//! as `uchar` or `float`, normals `nx ny nz`, `quality`, any scalar of any PLY type) becomes the
+//! net's per-vertex data (`data`: `VertexData`), which `subdivide --levels L [--limit]`
+//! interpolates with the positions' own stencils (OpenSubdiv's vertex primvars) and writes back
+//! with the same names and types (integer types rounded and clamped to their range). Vertex
+//! list properties and other elements are skipped with a warning naming them. Missing elements
+//! or properties are named in the error, at the header line that declares the element; binary
+//! errors name the element and how many were read.
 //!
 //! Writing (`write`) is done by hand: ascii, and binary little endian (`double` coordinates,
 //! `property list uchar int vertex_indices`) encoded in parallel.
 
+mod data;
 mod header;
 mod payload;
 mod uv;
@@ -27,7 +34,7 @@ use crate::error::Result;
 use std::io::BufRead;
 use std::path::Path;
 
-pub(crate) use uv::write_ply_uv_to;
+pub(crate) use uv::write_ply_extras_to;
 pub(crate) use write::{write_ply_ascii_to, write_ply_binary_to};
 
 /// Reads a PLY file.
@@ -44,9 +51,9 @@ pub fn read_ply_from<R: BufRead>(reader: R, path: &Path) -> Result<LoadedMesh> {
 /// [`read_ply_from`], tolerantly with `tolerant` (see [`super::read_mesh_as`]).
 pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> Result<LoadedMesh> {
     let head = header::read_header(&mut reader, path)?;
-    let data = payload::read_payload(&mut reader, &head, path)?;
-    let nv = data.positions.len();
-    if data.face_start.len() == 1 {
+    let body = payload::read_payload(&mut reader, &head, path)?;
+    let nv = body.positions.len();
+    if body.face_start.len() == 1 {
         return Err(parse_error(
             path,
             head.element_line("face"),
@@ -54,7 +61,7 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
         ));
     }
     // In an ascii file, element k is on the line of the first element plus k.
-    let lines = data.first_lines;
+    let lines = body.first_lines;
     let face_line = |f: usize| lines.map(|(_, l)| l + f);
     let vertex_line = |v: usize| lines.map(|(l, _)| l + v);
     let at = FileLines {
@@ -63,12 +70,12 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
         note: " (faces and vertices counted from 0 in file order)",
     };
     let mut warnings = Vec::new();
-    let (vertex_uv, corner_uv) = (data.vertex_uv, data.corner_uv);
+    let (vertex_uv, corner_uv) = (body.vertex_uv, body.corner_uv);
     let mut mesh = finish_mesh(
         path,
-        data.positions,
-        data.face_start,
-        data.corners,
+        body.positions,
+        body.face_start,
+        body.corners,
         &at,
         &mut warnings,
         tolerant,
@@ -78,10 +85,23 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
             .iter()
             .position(|p| p.iter().all(|n| d.properties.contains_key(*n)))
     });
-    let uv = uv::face_varying(&mesh, pair, &vertex_uv, &corner_uv, &mut warnings);
-    if uv.is_some() {
+    let (uv, used) = uv::face_varying(&mesh, pair, &vertex_uv, &corner_uv, &mut warnings);
+    let vertex_data = match head.header.elements.get("vertex") {
+        Some(def) => data::vertex_data(
+            &mesh,
+            def,
+            &body.vertex_extra,
+            used.map(|k| payload::UV_PAIRS[k]),
+            &vertex_line,
+            path,
+            &mut warnings,
+        )?,
+        None => None,
+    };
+    if uv.is_some() || vertex_data.is_some() {
         let mut ex = mesh.take_extras().unwrap_or_default();
         ex.uv = uv;
+        ex.vertex_data = vertex_data;
         mesh.set_extras(Some(ex));
     }
     let others: Vec<&str> = head

@@ -1,8 +1,9 @@
 //! The PLY payload. Ascii lines are decoded by the text rule and parsed here by the declared
 //! property types, so errors name the file line and the property; binary elements are read one
 //! at a time by `ply-rs-bw`, so errors name the element and how many were read. Vertex `x y z`
-//! (any scalar type) and the face index list (any integer type) are kept; every other element
-//! and property is checked and skipped.
+//! and every other scalar vertex property (any scalar type), the face index list (any integer
+//! type) and the face `texcoord` list are kept; every other element and property is checked and
+//! skipped.
 
 use super::super::text::{file_error, io_error, line_text, parse_error, strip_line_end};
 use super::header::{PlyHeader, crate_message};
@@ -27,6 +28,9 @@ pub(super) struct Payload {
     pub vertex_uv: Vec<[[f64; 2]; 4]>,
     /// Per face corner, the face `texcoord` list's pair (empty without that list).
     pub corner_uv: Vec<[f64; 2]>,
+    /// Every scalar vertex property other than `x y z`, vertex after vertex, in header order
+    /// (texture coordinates included: the reader decides which of them are per-vertex data).
+    pub vertex_extra: Vec<f64>,
 }
 
 /// The per-vertex texture coordinate property pairs a PLY file may have, in order of
@@ -83,6 +87,7 @@ pub(super) fn read_payload<R: BufRead>(
             first_lines: None,
             vertex_uv: Vec::new(),
             corner_uv: Vec::new(),
+            vertex_extra: Vec::new(),
         },
         nv,
         index_name: head.index_name,
@@ -250,6 +255,7 @@ impl Sink<'_> {
     /// Appends a vertex (its texture coordinates only when the file has some).
     fn vertex(&mut self, v: Vertex) {
         self.out.positions.push(v.p);
+        self.out.vertex_extra.extend_from_slice(&v.extra);
         if self.has_uv {
             self.out.vertex_uv.push(v.uv);
         }
@@ -434,24 +440,27 @@ fn ascii_element(
     Ok(())
 }
 
-/// A vertex: `x y z` and the pairs of [`UV_PAIRS`], of any scalar type.
+/// A vertex: `x y z`, the pairs of [`UV_PAIRS`] and every other scalar property (in header
+/// order), of any scalar type. A file without other properties allocates nothing per vertex.
 #[derive(Debug, Default)]
 struct Vertex {
     p: Point,
     uv: [[f64; 2]; 4],
+    extra: Vec<f64>,
 }
 
 impl Vertex {
-    /// Keeps property `name` if it is a coordinate or a texture coordinate.
-    fn set(&mut self, name: &str, x: f64) -> bool {
+    /// Keeps scalar property `name`: a coordinate, or another property (a texture coordinate
+    /// also in its pair's slot).
+    fn set(&mut self, name: &str, x: f64) {
         if let Some(c) = ["x", "y", "z"].iter().position(|&c| c == name) {
             self.p[c] = x;
-        } else if let Some((k, c)) = uv_slot(name) {
-            self.uv[k][c] = x;
-        } else {
-            return false;
+            return;
         }
-        true
+        if let Some((k, c)) = uv_slot(name) {
+            self.uv[k][c] = x;
+        }
+        self.extra.push(x);
     }
 }
 
@@ -460,9 +469,6 @@ impl PropertyAccess for Vertex {
         Vertex::default()
     }
     fn set_property(&mut self, name: &str, p: Property) -> PropertyAccessResult {
-        if !matches!(name, "x" | "y" | "z") && uv_slot(name).is_none() {
-            return PropertyAccessResult::Ignored;
-        }
         let v = match p {
             Property::Char(v) => v as f64,
             Property::UChar(v) => v as f64,
@@ -472,7 +478,8 @@ impl PropertyAccess for Vertex {
             Property::UInt(v) => v as f64,
             Property::Float(v) => v as f64,
             Property::Double(v) => v,
-            _ => return PropertyAccessResult::UnsupportedType,
+            // A list per vertex is skipped (the reader warns, naming it).
+            _ => return PropertyAccessResult::Ignored,
         };
         self.set(name, v);
         PropertyAccessResult::Set

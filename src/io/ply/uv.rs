@@ -1,32 +1,34 @@
 //! PLY texture coordinates: read into the net's face-varying data (one channel, as OBJ `vt`)
 //! and written back, per vertex (`property double u`, `v`, or the names the values came from)
 //! when every vertex has one value, else as the face `texcoord` list (`property list uchar
-//! double texcoord`, 2 per corner, in MeshLab's layout; double so the values round-trip).
+//! double texcoord`, 2 per corner, in MeshLab's layout; double so the values round-trip). The
+//! one writer of PLY extras: per-vertex data ([`super::data`]) follows on the vertex lines.
 
 use super::super::Polygons;
 use super::super::textout::{ChunkedText, push_f64};
 use super::payload::UV_PAIRS;
-use crate::mesh::{FaceVarying, PolyMesh};
+use crate::mesh::{FaceVarying, PolyMesh, VertexData};
 use std::collections::HashMap;
 use std::io::Write;
 
 /// The face-varying data of a PLY net: from the face `texcoord` lists when the file has them
 /// (corners of one vertex with the same pair share one value, so seams are where the pairs
 /// differ), else from the per-vertex pair `UV_PAIRS[pair]`; `None` without either. A file with
-/// both gets a note that the per-vertex pair was not used.
+/// both gets a note that the per-vertex pair is kept as per-vertex data instead. Also returns
+/// the per-vertex pair used, if one is.
 pub(super) fn face_varying(
     mesh: &PolyMesh,
     pair: Option<usize>,
     vertex_uv: &[[[f64; 2]; 4]],
     corner_uv: &[[f64; 2]],
     warnings: &mut Vec<String>,
-) -> Option<FaceVarying> {
+) -> (Option<FaceVarying>, Option<usize>) {
     let corners = mesh.corners();
     if !corner_uv.is_empty() && corner_uv.len() == corners.len() {
         if let Some(k) = pair {
             warnings.push(format!(
-                "the per-vertex texture coordinates '{} {}' were not used: the faces' \
-                 'texcoord' lists give them per corner",
+                "the per-vertex texture coordinates '{} {}' are kept as per-vertex data, not \
+                 used as texture coordinates: the faces' 'texcoord' lists give those per corner",
                 UV_PAIRS[k][0], UV_PAIRS[k][1]
             ));
         }
@@ -44,13 +46,16 @@ pub(super) fn face_varying(
                     })
             })
             .collect();
-        return Some(FaceVarying {
+        let fv = FaceVarying {
             values,
             corners: ids,
             names: ["u".into(), "v".into()],
-        });
+        };
+        return (Some(fv), None);
     }
-    let k = pair?;
+    let Some(k) = pair else {
+        return (None, None);
+    };
     // Per mesh vertex (the input vertices a strict read dropped are skipped).
     let mut values = vec![[0.0; 2]; mesh.num_vertices()];
     for (v, uv) in vertex_uv.iter().enumerate() {
@@ -58,11 +63,12 @@ pub(super) fn face_varying(
             values[m as usize] = uv[k];
         }
     }
-    Some(FaceVarying {
+    let fv = FaceVarying {
         values,
         corners: corners.to_vec(),
         names: UV_PAIRS[k].map(String::from),
-    })
+    };
+    (Some(fv), Some(k))
 }
 
 /// The value of every vertex when each vertex's corners share one value (`None` otherwise, or
@@ -86,15 +92,30 @@ fn per_vertex(p: &Polygons<'_>, uv: &FaceVarying) -> Option<Vec<[f64; 2]>> {
         .collect()
 }
 
-/// Writes polygons with texture coordinates as PLY (ascii, or binary little endian with
-/// `binary`): per vertex when the data is vertex-consistent, else per face corner.
-pub(crate) fn write_ply_uv_to(
+/// Writes polygons with texture coordinates and / or per-vertex data as PLY (ascii, or binary
+/// little endian with `binary`): texture coordinates per vertex when they are
+/// vertex-consistent, else per face corner; the data after them with its own names and types
+/// (`data`).
+pub(crate) fn write_ply_extras_to(
     w: &mut dyn Write,
     p: &Polygons<'_>,
-    uv: &FaceVarying,
+    uv: Option<&FaceVarying>,
+    data: Option<&VertexData>,
     binary: bool,
 ) -> std::io::Result<()> {
-    let vertex = per_vertex(p, uv);
+    // Without texture coordinates: no texcoord list, no per-vertex pair.
+    let none = FaceVarying {
+        values: Vec::new(),
+        corners: Vec::new(),
+        names: [String::new(), String::new()],
+    };
+    let has_uv = uv.is_some();
+    let uv = uv.unwrap_or(&none);
+    let vertex = if has_uv {
+        per_vertex(p, uv)
+    } else {
+        Some(Vec::new())
+    };
     let wide_tex = 2 * p.max_face > u8::MAX as usize;
     let format = if binary {
         "binary_little_endian"
@@ -115,11 +136,23 @@ pub(crate) fn write_ply_uv_to(
         }
         None => UV_PAIRS[0],
     };
+    let data_lines = data.map(super::data::header_lines).unwrap_or_default();
+    if vertex.is_none() {
+        head = head.replacen(
+            "property double z\n",
+            &format!("property double z\n{data_lines}"),
+            1,
+        );
+    }
     let extra = match vertex {
+        Some(_) if !has_uv => (
+            "property double z\n",
+            format!("property double z\n{data_lines}"),
+        ),
         Some(_) => (
             "property double z\n",
             format!(
-                "property double z\nproperty double {}\nproperty double {}\n",
+                "property double z\nproperty double {}\nproperty double {}\n{data_lines}",
                 names[0], names[1]
             ),
         ),
@@ -141,16 +174,22 @@ pub(crate) fn write_ply_uv_to(
     let mut out = ChunkedText::new(w);
     out.buf.push_str(&head);
     for (i, q) in p.positions.iter().enumerate() {
-        let t = vertex.as_ref().map(|vals| vals[i]);
+        let t = vertex.as_ref().and_then(|vals| vals.get(i).copied());
         let row = q.iter().copied().chain(t.into_iter().flatten());
         if binary {
             row.for_each(|x| bytes.extend_from_slice(&x.to_le_bytes()));
+            if let Some(d) = data {
+                super::data::push_binary(&mut bytes, d, i);
+            }
         } else {
             for (j, x) in row.enumerate() {
                 if j > 0 {
                     out.buf.push(' ');
                 }
                 push_f64(&mut out.buf, x);
+            }
+            if let Some(d) = data {
+                super::data::push_ascii(&mut out.buf, d, i);
             }
             out.buf.push('\n');
             out.maybe_flush()?;

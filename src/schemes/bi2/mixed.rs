@@ -146,6 +146,16 @@ impl Scheme for Bi2Mixed {
         chosen(mesh)?.refine_uniform(mesh, levels, progress)
     }
 
+    /// The steps of the scheme chosen for the input net.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
+        chosen(mesh)?.refine_steps(mesh, levels, step)
+    }
+
     /// The limit stencils of the chosen scheme.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
         chosen(mesh)?.limit_stencils(mesh)

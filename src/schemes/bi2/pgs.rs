@@ -374,21 +374,37 @@ impl Scheme for PgsPreprocessed {
         }
     }
 
-    /// `levels` steps: the pre-processing steps first, then PGS.
+    /// `levels` steps: the pre-processing steps first, then PGS (those of `refine_steps`).
     fn refine_uniform(
         &self,
         mesh: &PolyMesh,
         levels: usize,
         progress: &mut dyn FnMut(usize),
     ) -> Result<PolyMesh> {
+        let mut l = 0;
+        self.refine_steps(mesh, levels, &mut |_, _| {
+            l += 1;
+            progress(l);
+            Ok(())
+        })
+    }
+
+    /// The pre-processing steps first (DS^CC), then PGS, each with its stencils.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
         let mut m = mesh.clone();
         for l in 0..levels {
-            m = if l < self.opts.dscc_steps {
-                DooSabinCc.refine(&m)?.mesh
+            let mut r = if l < self.opts.dscc_steps {
+                DooSabinCc.refine(&m)?
             } else {
-                Pgs.refine(&m)?.mesh
+                Pgs.refine(&m)?
             };
-            progress(l + 1);
+            step(&m, &mut r)?;
+            m = r.mesh;
         }
         Ok(m)
     }

@@ -260,33 +260,3 @@ fn combine(terms: &[([f64; 2], f64)]) -> [f64; 2] {
     }
     acc
 }
-
-/// `levels` steps of `scheme` on a net with face-varying data: each step by
-/// [`crate::schemes::Scheme::refine`] (its stencils drive the face-varying rules), the refined
-/// data attached to each level. `progress(level)` is called after each step.
-///
-/// # Errors
-/// Whatever the scheme's step reports.
-pub fn refine_levels(
-    scheme: &dyn super::Scheme,
-    mesh: &PolyMesh,
-    levels: usize,
-    rules: &FvarRules,
-    progress: &mut dyn FnMut(usize),
-) -> crate::error::Result<PolyMesh> {
-    let mut cur: Option<PolyMesh> = None;
-    for l in 0..levels {
-        let parent = cur.as_ref().unwrap_or(mesh);
-        let step = scheme.refine(parent)?;
-        let mut child = step.mesh;
-        if let Some(uv) = parent.extras().and_then(|e| e.uv.as_ref()) {
-            let refined = refine(parent, uv, &child, &step.stencils, rules);
-            let mut ex = child.take_extras().unwrap_or_default();
-            ex.uv = Some(refined);
-            child.set_extras(Some(ex));
-        }
-        cur = Some(child);
-        progress(l + 1);
-    }
-    Ok(cur.unwrap_or_else(|| mesh.clone()))
-}

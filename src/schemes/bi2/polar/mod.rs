@@ -280,27 +280,12 @@ fn ring_point_stencil(mesh: &PolyMesh, p: usize, v: usize) -> Result<Stencil> {
     Ok(s.merged())
 }
 
-impl Scheme for PolarBi2 {
-    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
-        crate::schemes::growth::ternary(s)
-    }
-
-    fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::POLAR_BI2.name()
-    }
-
-    /// Converts caps to poles (no-op on a polar layout), then one radial step; a net without
-    /// poles is refined as `bi2-mixed` refines it.
-    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        let net = to_polar_layout(mesh, &self.poles)?;
-        if net.poles.is_empty() {
-            return super::Bi2Mixed.refine(mesh);
-        }
-        if net.mesh.num_vertices() == mesh.num_vertices() {
-            return radial_step(mesh);
-        }
-        // The conversion adds poles: compose its (trivial) stencils with the step.
-        let r = radial_step(&net.mesh)?;
+impl PolarBi2 {
+    /// The stencils of the conversion of `mesh` to its polar layout `net`: the vertices stay,
+    /// each new pole is its cap's centroid. A user-given pole is not an affine combination of
+    /// the net: it becomes a constant, which stencils cannot hold, so it is refused rather than
+    /// lost.
+    fn conversion(&self, mesh: &PolyMesh, net: &PolarNet) -> Result<StencilTable> {
         let nv = mesh.num_vertices();
         let mut conv = StencilTable::with_capacity(nv, net.mesh.num_vertices(), 4);
         for v in 0..nv {
@@ -323,11 +308,66 @@ impl Scheme for PolarBi2 {
                 conv.push(Stencil::from_pairs(verts.iter().map(|&x| (x as usize, w))));
             }
         }
-        let stencils = r.stencils.compose(&conv);
+        Ok(conv)
+    }
+}
+
+impl Scheme for PolarBi2 {
+    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
+        crate::schemes::growth::ternary(s)
+    }
+
+    fn name(&self) -> &'static str {
+        crate::schemes::registry::ids::POLAR_BI2.name()
+    }
+
+    /// Converts caps to poles (no-op on a polar layout), then one radial step; a net without
+    /// poles is refined as `bi2-mixed` refines it.
+    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        let net = to_polar_layout(mesh, &self.poles)?;
+        if net.poles.is_empty() {
+            return super::Bi2Mixed.refine(mesh);
+        }
+        if net.mesh.num_vertices() == mesh.num_vertices() {
+            return radial_step(mesh);
+        }
+        // The conversion adds poles: compose its (trivial) stencils with the step.
+        let r = radial_step(&net.mesh)?;
+        let stencils = r.stencils.compose(&self.conversion(mesh, &net)?);
         Ok(Refinement {
             mesh: r.mesh,
             stencils,
         })
+    }
+
+    /// Converts caps once, then `levels` radial steps (as `refine_uniform`), each with its
+    /// stencils (the first composed with the conversion's); a net without poles is refined as
+    /// `bi2-mixed` refines it.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
+        let net = to_polar_layout(mesh, &self.poles)?;
+        if net.poles.is_empty() {
+            return super::Bi2Mixed.refine_steps(mesh, levels, step);
+        }
+        if levels == 0 {
+            return Ok(mesh.clone());
+        }
+        let mut r = radial_step(&net.mesh)?;
+        if net.mesh.num_vertices() != mesh.num_vertices() {
+            r.stencils = r.stencils.compose(&self.conversion(mesh, &net)?);
+        }
+        step(mesh, &mut r)?;
+        let mut m = r.mesh;
+        for _ in 1..levels {
+            let mut r = radial_step(&m)?;
+            step(&m, &mut r)?;
+            m = r.mesh;
+        }
+        Ok(m)
     }
 
     /// Converts caps once (with the user's poles), then `levels` radial steps.

@@ -437,6 +437,26 @@ impl Scheme for AdjustableTps {
         Ok(self.refine_levels_exact(mesh, levels, progress)?.0)
     }
 
+    /// The exact steps of [`AdjustableTps::refine_levels_exact`] (the knot widths carried),
+    /// each with its stencils.
+    fn refine_steps(
+        &self,
+        mesh: &PolyMesh,
+        levels: usize,
+        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
+    ) -> Result<PolyMesh> {
+        let rules = self.rules()?;
+        let mut m = mesh.clone();
+        let mut w = uniform_widths(mesh);
+        for _ in 0..levels {
+            let (mut r, nw) = ternary_step(&m, &w, &rules, ids::TPS_ADJUSTABLE.name())?;
+            step(&m, &mut r)?;
+            m = r.mesh;
+            w = nw;
+        }
+        Ok(m)
+    }
+
     /// Refused: a refined adjustable net has non-uniform knots that a mesh does not carry, so
     /// its limit positions cannot be read from the mesh alone.
     fn limit_stencils(&self, _mesh: &PolyMesh) -> Result<StencilTable> {
