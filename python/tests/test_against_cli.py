@@ -125,7 +125,10 @@ def test_options_reach_the_rules(cli):
     assert a != fairsub.analyze("tps-adjustable", 5)
 
 
-@pytest.mark.parametrize("scheme,net", [("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron")])
+@pytest.mark.parametrize("scheme,net", [
+    ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
+    ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
+])
 def test_evaluate_equals_cli(scheme, net, cli):
     s = fairsub.surface(f"gallery:{net}", scheme, rings=3)
     rng = np.random.default_rng(7)
@@ -149,8 +152,8 @@ def test_evaluate_equals_cli(scheme, net, cli):
 
 
 def test_evaluate_refuses_schemes_without_domains():
-    s = fairsub.surface("gallery:cnet-5-saddle", "eg", rings=2)
-    with pytest.raises(ValueError, match="not supported yet"):
+    s = fairsub.surface("gallery:cnet-5-saddle", "tps", rings=2)
+    with pytest.raises(ValueError, match="eval of scheme tps is not supported yet"):
         s.evaluate([0], [0.5], [0.5])
 
 
