@@ -265,6 +265,7 @@ fn assemble(
             let face = mesh.vertex_faces(v).first().copied().unwrap_or(0);
             let cps = c.iter().map(|s| s.apply(pos)).collect();
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
+            ds::mark_boundary_sides(mesh, v, &mut out);
         }
     }
     let mut locals: Vec<Vec<Point>> = elements

@@ -87,9 +87,9 @@
 
 use super::fourier::{self, FaceCorners};
 use super::{DooSabin, DooSabinCc, corner_point_stencil};
-use crate::bezier::BezierPatch;
 use crate::bezier::complex::{Domain, PatchComplex, Piece, Provenance};
 use crate::bezier::convert::biquadratic_bspline_stencils;
+use crate::bezier::{BezierPatch, Side};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -288,6 +288,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
             return false;
         };
         to.out.push(p, prov);
+        mark_boundary_sides(&level.mesh, v as usize, to.out);
         if level.first {
             input_vertex_pieces(&level.mesh, v as usize, to.out);
         }
@@ -484,8 +485,25 @@ fn fill(
         // the vertex's own patch, in its own cell
         let sector = tag.sector;
         out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
+        mark_boundary_sides(m, v as usize, out);
     }
     Ok(())
+}
+
+/// Marks the sides of the last patch of `out`, the patch of vertex `v` ([`vertex_net`]'s
+/// layout, shared by the ring host of the other bi-2 schemes), that lie on the net's boundary: `v = 0` at a boundary vertex, `u = 0` too at a
+/// corner. On a net cut along its creases these are crease sides or the surface's boundary;
+/// [`super::sharp::on_cut_net`] keeps the marks of the crease sides only (those that meet a
+/// marked side of the other side of the cut) and clears the rest.
+pub(crate) fn mark_boundary_sides(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+    if !m.is_boundary_vertex(v) {
+        return;
+    }
+    let last = out.len() - 1;
+    out.mark_sharp(last, Side::V0.index());
+    if m.is_corner(v) {
+        out.mark_sharp(last, Side::U0.index());
+    }
 }
 
 mod g1;
