@@ -33,16 +33,7 @@ fn deviation(a: &PatchComplex, b: &PatchComplex) -> f64 {
 }
 
 fn size(m: &PolyMesh) -> f64 {
-    let p = m.positions();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for q in p {
-        for k in 0..3 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
-    }
-    fairsub::geom::dist(lo, hi)
+    probe::net_size(m.positions())
 }
 
 /// Tracked against probed, and the tracked table re-applied to moved points; `Some(caps)` when
