@@ -73,12 +73,13 @@ impl Bi2Descriptor {
 }
 
 impl Descriptor for Bi2Descriptor {
-    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin (the others'
-    /// rings come from local nets without face domains, PGS after DS^CC steps from the refined
-    /// net's faces).
+    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin, and for PGS
+    /// after DS^CC steps, whose refined net's vertices carry the input faces' cells
+    /// ([`crate::schemes::doo_sabin::surface::step_cells`]); the others' rings come from local
+    /// nets without face domains.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            eval: self.kind == Bi2Kind::Pgs,
+            eval: matches!(self.kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc),
             ..Capabilities::REFINE_AND_PATCHES
         }
     }
