@@ -177,7 +177,7 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
     for (scheme, net, n, lambda) in cases {
         let mesh = gallery(&net);
         let (ev, at) = toward_ev(&mesh, n);
-        let evals = limit_along(scheme, &mesh, &at);
+        let evals = limit_along(scheme, &mesh, &at, 12);
         let lim = limit_point(scheme, &mesh, ev);
         let centre = evals.last().expect("the centre");
         assert!(

@@ -23,7 +23,8 @@ pub struct Args {
     #[arg(long)]
     pub at_file: Option<PathBuf>,
     /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark, Loop, EG, the QAS+
-    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC and PGS).
+    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC, PGS, PGS after DS^CC and the mixed bi-2
+    /// net at its facets).
     #[arg(long, short)]
     pub scheme: String,
     /// Evaluate the complex `subdivide --rings K` writes (same options); without it, the

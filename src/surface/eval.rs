@@ -325,7 +325,8 @@ impl Surface {
         Err(Error::InvalidArgument(format!(
             "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole inside \
              the last ring is open (--no-fill), or the patches there carry no face domain (the \
-             dual schemes' quarters of faces at boundary vertices)"
+             dual schemes' quarters of faces at boundary vertices, the mixed bi-2 net's TPS \
+             vertices and poles)"
         )))
     }
 

@@ -73,12 +73,15 @@ impl Bi2Descriptor {
 }
 
 impl Descriptor for Bi2Descriptor {
-    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin (the others'
-    /// rings come from local nets without face domains, PGS after DS^CC steps from the refined
-    /// net's faces).
+    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin, for PGS
+    /// after DS^CC steps, whose refined net's vertices carry the input faces' cells
+    /// ([`crate::schemes::doo_sabin::surface::step_cells`]), and for the mixed net at its
+    /// regular vertices and PGS facets (`bi2::surface::cells`; its TPS vertices and poles are
+    /// not evaluated). TPS, adjustable TPS and PolBS rings (ternary, radial) lie in no dyadic
+    /// cell.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            eval: self.kind == Bi2Kind::Pgs,
+            eval: matches!(self.kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc | Bi2Kind::Mixed),
             ..Capabilities::REFINE_AND_PATCHES
         }
     }

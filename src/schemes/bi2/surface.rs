@@ -52,7 +52,7 @@
 //! leaves the holes open.
 
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -67,7 +67,9 @@ use crate::stencil::Stencil;
 
 use super::local_scheme::{LocalScheme, qnet_index};
 
+mod cells;
 mod g1;
+use cells::FacetCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
     element: Element,
@@ -75,6 +77,9 @@ struct RingElement {
     local0: Vec<Stencil>,
     /// The scheme's level of `local0` (1 after a whole-net step).
     start: usize,
+    /// Where a PGS facet's rings and cap lie in the input faces ([`cells`]); `None` for the
+    /// other elements (not evaluated).
+    cells: Option<FacetCells>,
 }
 
 fn not_separated(what: String, name: &str) -> Error {
@@ -157,6 +162,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         scheme: LocalScheme::pgs(n)?,
         local0: local,
         start: 0,
+        cells: FacetCells::of(mesh, f),
     })
 }
 
@@ -194,6 +200,7 @@ fn ternary_element(
         scheme: LocalScheme::ternary(n, rules)?,
         local0: local,
         start: 0,
+        cells: None,
     })
 }
 
@@ -235,13 +242,16 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         scheme: LocalScheme::polar(n)?,
         local0: local,
         start: 0,
+        cells: None,
     })
 }
 
 /// Regular patches of every regular vertex (with knot widths when given), then rings and the
-/// G^1 cap of [`g1`] (or the fill, with a note) of every element.
+/// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `track` (`mesh` is the
+/// input net, no widths) the patches record the input-face cells they cover ([`cells`]).
 fn assemble(
     mesh: &PolyMesh,
+    track: bool,
     widths: Option<&Widths>,
     elements: &[RingElement],
     opts: ComplexOptions,
@@ -266,6 +276,9 @@ fn assemble(
             let cps = c.iter().map(|s| s.apply(pos)).collect();
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
             ds::mark_boundary_sides(mesh, v, &mut out);
+            if track {
+                ds::input_vertex_pieces(mesh, v, &mut out);
+            }
         }
     }
     let mut locals: Vec<Vec<Point>> = elements
@@ -276,15 +289,17 @@ fn assemble(
         for (el, local) in elements.iter().zip(locals.iter_mut()) {
             let step = el.scheme.step(el.start + l - 1);
             *local = step.apply(local);
-            for (c, sector) in el.scheme.ring(el.start + l) {
-                out.push(
-                    to_patch(&c, local),
-                    Provenance::Ring {
-                        element: el.element,
-                        ring: l as u32,
-                        sector,
-                    },
-                );
+            for (i, (c, sector)) in el.scheme.ring(el.start + l).into_iter().enumerate() {
+                let prov = Provenance::Ring {
+                    element: el.element,
+                    ring: l as u32,
+                    sector,
+                };
+                let cell = match (&el.cells, track) {
+                    (Some(cells), true) => cells.ring(el.start + l, i / 3, i % 3),
+                    _ => Domain::UNTRACKED,
+                };
+                out.push_in(to_patch(&c, local), prov, cell);
             }
         }
         progress(l);
@@ -320,13 +335,15 @@ fn assemble(
                 }
             };
             for (p, sector) in capped {
-                out.push(
-                    p,
-                    Provenance::Cap {
-                        element: el.element,
-                        sector,
-                    },
-                );
+                let prov = Provenance::Cap {
+                    element: el.element,
+                    sector,
+                };
+                let cell = match (&el.cells, track) {
+                    (Some(cells), true) => cells.cap(l, sector as usize),
+                    _ => Domain::UNTRACKED,
+                };
+                out.push_in(p, prov, cell);
             }
         }
     }
@@ -347,7 +364,6 @@ pub fn pgs_complex(
     pgs: PgsOptions,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    let pre = Pgs::refine_levels_with(mesh, pgs.dscc_steps, pgs)?;
     let corner = |m: &PolyMesh, h: u32| Pgs::corner_stencil(m, h);
     let limit = |m: &PolyMesh, f: usize| Pgs::facet_limit_stencil(m, f);
     let rules = ds::DualRules {
@@ -355,7 +371,20 @@ pub fn pgs_complex(
         face_corners: &Pgs::face_corners,
         facet_limit: &limit,
     };
-    ds::dual_complex_with(&pre, opts, &rules, ids::PGS.name(), progress)
+    if pgs.dscc_steps == 0 {
+        return ds::dual_complex_with(mesh, opts, &rules, ids::PGS.name(), progress);
+    }
+    // The DS^CC steps carry the input faces' cells down to the refined net's vertices
+    // (`pgs-dscc` evaluates on the input's faces, see `crate::bezier::domain`).
+    let mut pre = mesh.clone();
+    let mut cells: Option<Vec<crate::bezier::domain::Domain>> = None;
+    for _ in 0..pgs.dscc_steps {
+        let child = crate::schemes::doo_sabin::fourier::refine_cc_net(&pre)?;
+        cells = Some(ds::step_cells(&pre, cells.as_deref(), &child));
+        pre = child;
+    }
+    let cells = cells.expect("at least one step");
+    ds::dual_complex_in_cells(&pre, &cells, opts, &rules, ids::PGS.name(), progress)
 }
 
 /// The TPS surface ([`TernaryRules::TPS`]) or adjustable TPS surface
@@ -398,7 +427,7 @@ pub fn tps_complex(
             .collect();
         match built {
             Ok(elements) => {
-                let (c, more) = assemble(&m, Some(&w), &elements, opts, &mut progress)?;
+                let (c, more) = assemble(&m, false, Some(&w), &elements, opts, &mut progress)?;
                 notes.extend(more);
                 return Ok((c, notes));
             }
@@ -435,7 +464,7 @@ pub fn polar_complex(
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
     let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (c, more) = assemble(&net.mesh, None, &els, opts, progress)?;
+    let (c, more) = assemble(&net.mesh, false, None, &els, opts, progress)?;
     notes.extend(more);
     Ok((c, notes))
 }
@@ -509,7 +538,7 @@ pub fn mixed_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
-    assemble(mesh, None, &els, opts, progress)
+    assemble(mesh, true, None, &els, opts, progress)
 }
 
 /// `n`-valent extraordinary element's ring `l` patches from explicit local-net points (the

@@ -191,7 +191,25 @@ pub fn dual_complex_with(
     name: &str,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    dual_complex(mesh, opts, rules, name, progress)
+    dual_complex(mesh, None, opts, rules, name, progress)
+}
+
+/// [`dual_complex_with`] on a net whose vertices' patches cover the cells `cells` of the
+/// faces of an earlier net (one per vertex, `rot` the corner of the patch's `(0, 0)`;
+/// untracked ones are not evaluated): a net made from that earlier net by whole-net dual
+/// steps, whose cells [`step_cells`] gives (PGS after DS^CC steps).
+///
+/// # Errors
+/// As [`doo_sabin_complex`].
+pub fn dual_complex_in_cells(
+    mesh: &PolyMesh,
+    cells: &[Domain],
+    opts: ComplexOptions,
+    rules: &DualRules<'_>,
+    name: &str,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    dual_complex(mesh, Some(cells), opts, rules, name, progress)
 }
 
 /// One level of the adaptive refinement.
@@ -216,6 +234,7 @@ impl Cells for Level {
 
 fn dual_complex(
     mesh: &PolyMesh,
+    cells: Option<&[Domain]>,
     opts: ComplexOptions,
     rules: &DualRules<'_>,
     name: &str,
@@ -225,6 +244,7 @@ fn dual_complex(
         rules,
         name,
         fill: opts.fill,
+        cells,
     };
     adaptive::run(&host, mesh, opts, &mut progress)
 }
@@ -237,6 +257,8 @@ struct DualHost<'a, 'b> {
     /// Whether the holes are closed (then up to [`g1::MAX_EXTRA_LEVELS`] more levels separate
     /// touching holes for their G^1 caps).
     fill: bool,
+    /// The cells of the start net's vertices when it is not the input net ([`step_cells`]).
+    cells: Option<&'a [Domain]>,
 }
 
 impl AdaptiveRules for DualHost<'_, '_> {
@@ -269,7 +291,10 @@ impl AdaptiveRules for DualHost<'_, '_> {
                         element: None,
                         sector: 0,
                         input_face,
-                        domain: Domain::UNTRACKED,
+                        domain: self
+                            .cells
+                            .and_then(|c| c.get(v as usize).copied())
+                            .unwrap_or(Domain::UNTRACKED),
                     },
                 )
             })
@@ -279,7 +304,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
             info,
             face_origin,
             active,
-            first: true,
+            first: self.cells.is_none(),
         })
     }
 
@@ -405,8 +430,9 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
 /// The quarters of the four faces around the interior input vertex `v` that its patch, the
 /// last of `out`, covers ([`crate::bezier::domain`]): face `i` of `v`'s fan (`u` along its
 /// first outgoing half-edge) has its centroid at the patch's corner `2 + i` and at corner 2
-/// of its quarter at `v`. Boundary vertices' patches are not recorded.
-fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+/// of its quarter at `v`. Boundary vertices' patches are not recorded. The regular patches of
+/// `bi2-mixed` are laid out the same way.
+pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
     if m.is_boundary_vertex(v) {
         return;
     }
@@ -509,5 +535,6 @@ pub(crate) fn mark_boundary_sides(m: &PolyMesh, v: usize, out: &mut PatchComplex
 mod g1;
 mod refine;
 use refine::refine_around;
+pub use refine::step_cells;
 #[cfg(test)]
 mod tests;
