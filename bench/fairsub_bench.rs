@@ -40,9 +40,10 @@
 //! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
 //!   1e-3, and the largest distance.
 //! - `eval` builds the Catmull-Clark complex (RINGS rings and the caps) once and times
-//!   `Surface::new` (the evaluation index) and `Surface::evaluate_many` at the POINTS-point grid
-//!   of [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
-//!   10k-face net).
+//!   `Surface::new` (the evaluation index), `Surface::evaluate_many` and
+//!   `Surface::evaluate_into` (into a buffer allocated once) at the POINTS-point grid of
+//!   [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
+//!   10k-face net). `RAYON_NUM_THREADS=1` for one thread.
 //! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
 //!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
@@ -440,7 +441,9 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
     let complex = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
     let pts = grid_points(mesh.num_faces(), count);
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
-    let (mut index_ms, mut eval_ms, mut failed) = (f64::INFINITY, f64::INFINITY, 0);
+    let (mut index_ms, mut eval_ms, mut into_ms, mut failed) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY, 0);
+    let mut out = vec![eval::Evaluation::default(); pts.len()];
     for _ in 0..reps {
         let t = Instant::now();
         let surface = eval::Surface::new(&mesh, complex.clone());
@@ -449,13 +452,21 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
         failed = r.iter().filter(|e| e.is_err()).count();
+        drop(r);
+        let t = Instant::now();
+        let r = surface.evaluate_into(&pts, &mut out);
+        into_ms = into_ms.min(ms(t));
+        if let Err((i, e)) = r {
+            return Err(format!("point {i}: {e}").into());
+        }
     }
     println!(
         "{} faces, {} patches: index {index_ms:.1} ms, evaluate {} points {eval_ms:.1} ms \
-         ({failed} failed)",
+         ({failed} failed), evaluate_into a reused buffer {into_ms:.1} ms ({} threads)",
         mesh.num_faces(),
         complex.len(),
-        pts.len()
+        pts.len(),
+        rayon::current_num_threads()
     );
     Ok(())
 }
