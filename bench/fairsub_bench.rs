@@ -491,8 +491,9 @@ fn patch_table(
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
     let (mut complex_ms, mut table_ms, mut index_ms) =
         (f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let (mut apply_ms, mut eval_ms) = (f64::INFINITY, f64::INFINITY);
+    let (mut apply_ms, mut eval_ms, mut into_ms) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let pts = grid_points(mesh.num_faces(), count);
+    let mut out = vec![eval::Evaluation::default(); pts.len()];
     let mut result = Vec::new();
     let mut sizes = (0, 0, 0, 0);
     for _ in 0..reps {
@@ -511,6 +512,11 @@ fn patch_table(
         let t = Instant::now();
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
+        let t = Instant::now();
+        surface
+            .evaluate_into(&pts, &mut out)
+            .map_err(|(i, e)| format!("point {i}: {e}"))?;
+        into_ms = into_ms.min(ms(t));
         sizes = (
             complex.len(),
             table.rows().num_rows(),
@@ -550,7 +556,8 @@ fn patch_table(
     );
     println!("re-apply the table to the control points: {apply_ms:.1} ms");
     println!(
-        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed)",
+        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed); \
+         evaluate_into a reused buffer: {into_ms:.1} ms",
         pts.len()
     );
     Ok(())

@@ -9,8 +9,9 @@
 //! the dual schemes Doo-Sabin, DS^CC and PGS, whose patches of input vertices cover a quarter
 //! of each face around them as [`Piece`](crate::bezier::complex::Piece)s). The parameter domain of quads, n-gons and
 //! triangles (and of the dual schemes' faces) is documented in [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
-//! children, so the cells form a quadtree per face: a point is located by descending it, one
-//! hash look-up per level (`O(log)` of the patch size, independent of the number of patches).
+//! children, so the cells form a tree per face: a point is located by descending it, one
+//! array step per level (`index`; `O(log)` of the patch size, independent of the number of
+//! patches, and no step at all on a face one patch covers).
 //!
 //! Patch parameters are mapped to face parameters by affine maps with dyadic coefficients
 //! (exact in floating point); derivatives go through the chain rule of that map. Points in the
