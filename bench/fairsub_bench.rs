@@ -493,7 +493,7 @@ fn patch_table(
         (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let (mut apply_ms, mut eval_ms, mut into_ms) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let pts = grid_points(mesh.num_faces(), count);
-    let mut out = vec![eval::Evaluation::default(); pts.len()];
+    let mut buf = vec![eval::Evaluation::default(); pts.len()];
     let mut result = Vec::new();
     let mut sizes = (0, 0, 0, 0);
     for _ in 0..reps {
@@ -514,7 +514,7 @@ fn patch_table(
         eval_ms = eval_ms.min(ms(t));
         let t = Instant::now();
         surface
-            .evaluate_into(&pts, &mut out)
+            .evaluate_into(&pts, &mut buf)
             .map_err(|(i, e)| format!("point {i}: {e}"))?;
         into_ms = into_ms.min(ms(t));
         sizes = (
