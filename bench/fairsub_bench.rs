@@ -41,9 +41,10 @@
 //! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
 //!   1e-3, and the largest distance.
 //! - `eval` builds the Catmull-Clark complex (RINGS rings and the caps) once and times
-//!   `Surface::new` (the evaluation index) and `Surface::evaluate_many` at the POINTS-point grid
-//!   of [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
-//!   10k-face net).
+//!   `Surface::new` (the evaluation index), `Surface::evaluate_many` and
+//!   `Surface::evaluate_into` (into a buffer allocated once) at the POINTS-point grid of
+//!   [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
+//!   10k-face net). `RAYON_NUM_THREADS=1` for one thread.
 //! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
 //!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
@@ -441,7 +442,9 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
     let complex = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
     let pts = grid_points(mesh.num_faces(), count);
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
-    let (mut index_ms, mut eval_ms, mut failed) = (f64::INFINITY, f64::INFINITY, 0);
+    let (mut index_ms, mut eval_ms, mut into_ms, mut failed) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY, 0);
+    let mut out = vec![eval::Evaluation::default(); pts.len()];
     for _ in 0..reps {
         let t = Instant::now();
         let surface = eval::Surface::new(&mesh, complex.clone());
@@ -450,13 +453,21 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
         failed = r.iter().filter(|e| e.is_err()).count();
+        drop(r);
+        let t = Instant::now();
+        let r = surface.evaluate_into(&pts, &mut out);
+        into_ms = into_ms.min(ms(t));
+        if let Err((i, e)) = r {
+            return Err(format!("point {i}: {e}").into());
+        }
     }
     println!(
         "{} faces, {} patches: index {index_ms:.1} ms, evaluate {} points {eval_ms:.1} ms \
-         ({failed} failed)",
+         ({failed} failed), evaluate_into a reused buffer {into_ms:.1} ms ({} threads)",
         mesh.num_faces(),
         complex.len(),
-        pts.len()
+        pts.len(),
+        rayon::current_num_threads()
     );
     Ok(())
 }
@@ -481,8 +492,9 @@ fn patch_table(
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
     let (mut complex_ms, mut table_ms, mut index_ms) =
         (f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let (mut apply_ms, mut eval_ms) = (f64::INFINITY, f64::INFINITY);
+    let (mut apply_ms, mut eval_ms, mut into_ms) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let pts = grid_points(mesh.num_faces(), count);
+    let mut buf = vec![eval::Evaluation::default(); pts.len()];
     let mut result = Vec::new();
     let mut sizes = (0, 0, 0, 0);
     for _ in 0..reps {
@@ -501,6 +513,11 @@ fn patch_table(
         let t = Instant::now();
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
+        let t = Instant::now();
+        surface
+            .evaluate_into(&pts, &mut buf)
+            .map_err(|(i, e)| format!("point {i}: {e}"))?;
+        into_ms = into_ms.min(ms(t));
         sizes = (
             complex.len(),
             table.rows().num_rows(),
@@ -540,7 +557,8 @@ fn patch_table(
     );
     println!("re-apply the table to the control points: {apply_ms:.1} ms");
     println!(
-        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed)",
+        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed); \
+         evaluate_into a reused buffer: {into_ms:.1} ms",
         pts.len()
     );
     Ok(())

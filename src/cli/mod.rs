@@ -52,6 +52,15 @@ pub(crate) fn say_line(line: String) {
     });
 }
 
+/// Writes a block of complete lines (each ending in a newline) to this thread's sink: one write
+/// for many lines (`fairsub eval`'s 10^6 points).
+pub(crate) fn say_text(text: &str) {
+    SINK.with(|s| match s.borrow_mut().as_mut() {
+        Some(buf) => buf.push_str(text),
+        None => print!("{text}"),
+    });
+}
+
 /// Runs `f` with the reports of commands collected instead of printed; returns them.
 pub fn capture<T>(f: impl FnOnce() -> T) -> (T, String) {
     let old = SINK.with(|s| s.replace(Some(String::new())));
