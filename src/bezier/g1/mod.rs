@@ -110,6 +110,8 @@
 pub mod hole;
 mod map;
 pub mod ring;
+#[cfg(test)]
+mod split_tests;
 mod system;
 #[cfg(test)]
 mod tests;
