@@ -119,18 +119,18 @@
 //! circulant enclosure condition of even `n` on the centre piece's `S_1`, and the jet), which
 //! a split leaves as it is:
 //!
-//! | `m`, data degree, centre | bi-3 | bi-4 | bi-5 |
-//! | --- | --- | --- | --- |
-//! | 2, 3 or 4, tangent plane | `n = 4` only | odd `n` (residual 3e-11..7e-11) except `n = 3` (1.1e-10, just above [`CERTIFIED`]), and 4 | all (<= 7e-12) |
-//! | 2, 3 or 4, quadratic jet | `n = 4` | `n = 3` (4e-10: not certified), 4 | all (<= 3e-12) |
-//! | 3, 3, tangent plane | `n = 4` | odd `n` consistent but at 7e-10..2e-9, above [`CERTIFIED`]: not taken | all (<= 5e-11) |
-//! | 3, 3, quadratic jet | `n = 4` | `n = 4` | all (<= 7e-12) |
+//! | `m`, data degree, centre | lowest certified degree (certificate) |
+//! | --- | --- |
+//! | 2, 3 or 4, tangent plane | bi-4 at odd `n = 5..15` (3e-11..7e-11), bi-3 (data 3) / bi-4 (data 4) at `n = 4`, bi-5 at `n = 3` (bi-4: 1.1e-10, just above [`CERTIFIED`]) and even `n` (<= 2e-12); measured over 3..16 |
+//! | 2, 3 or 4, quadratic jet | bi-5 at every `n != 4` (<= 3e-12; bi-4 4e-10 at `n = 3`, >= 2e-3 elsewhere), bi-3 / bi-4 at `n = 4`; measured over 3..16 |
+//! | 3, 3, tangent plane | bi-5 at every `n != 4` (<= 5e-11): bi-4 is consistent at odd `n` but measures 7e-10..2e-9, above [`CERTIFIED`], so it is not taken; measured over 3..8 |
+//! | 3, 3, quadratic jet | bi-5 at every `n != 4` (<= 7e-12); measured over 3..8 |
 //!
 //! Inconsistent degrees measure 5e-5 and more (even `n` at bi-4: 4.7e-4 for `m = 2`, 5.7e-5
-//! for `m = 3`). So QAS+^3's and guided-bi4-macro's caps are bi-4 at `n = 5, 7` and bi-5
+//! for `m = 3`). So QAS+^3's and guided-bi4-macro's caps are bi-4 at odd `n >= 5` and bi-5
 //! elsewhere, guided-bi3-macro's bi-5 at every valence (the threshold is not relaxed for the
 //! larger `m = 3` systems, whose rounding is higher).
-
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
