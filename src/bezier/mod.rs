@@ -398,39 +398,7 @@ impl BezierPatch {
             let (bv1, bv2) = rest.split_at_mut(n);
             curve::bernstein_derivs(self.deg_u, u, bu0, bu1, bu2);
             curve::bernstein_derivs(self.deg_v, v, bv0, bv1, bv2);
-            let mut d = Derivatives {
-                p: [0.0; 3],
-                du: [0.0; 3],
-                dv: [0.0; 3],
-                duu: [0.0; 3],
-                duv: [0.0; 3],
-                dvv: [0.0; 3],
-            };
-            for (row, ((&w0, &w1), &w2)) in self
-                .cps
-                .chunks_exact(nv)
-                .zip(bu0.iter().zip(bu1.iter()).zip(bu2.iter()))
-            {
-                let (mut q0, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-                for (c, ((&v0, &v1), &v2)) in
-                    row.iter().zip(bv0.iter().zip(bv1.iter()).zip(bv2.iter()))
-                {
-                    for k in 0..3 {
-                        q0[k] += v0 * c[k];
-                        q1[k] += v1 * c[k];
-                        q2[k] += v2 * c[k];
-                    }
-                }
-                for k in 0..3 {
-                    d.p[k] += w0 * q0[k];
-                    d.du[k] += w1 * q0[k];
-                    d.duu[k] += w2 * q0[k];
-                    d.dv[k] += w0 * q1[k];
-                    d.duv[k] += w1 * q1[k];
-                    d.dvv[k] += w0 * q2[k];
-                }
-            }
-            d
+            combine_derivatives(&self.cps, nv, [&*bu0, &*bu1, &*bu2], [&*bv0, &*bv1, &*bv2])
         })
     }
 
@@ -442,37 +410,8 @@ impl BezierPatch {
         let (mut bv0, mut bv1, mut bv2) = ([0.0; NV], [0.0; NV], [0.0; NV]);
         curve::bernstein_derivs_inline(NU - 1, u, &mut bu0, &mut bu1, &mut bu2);
         curve::bernstein_derivs_inline(NV - 1, v, &mut bv0, &mut bv1, &mut bv2);
-        let mut d = Derivatives {
-            p: [0.0; 3],
-            du: [0.0; 3],
-            dv: [0.0; 3],
-            duu: [0.0; 3],
-            duv: [0.0; 3],
-            dvv: [0.0; 3],
-        };
         let cps: &[Point] = &self.cps[..NU * NV];
-        for i in 0..NU {
-            let row = &cps[i * NV..(i + 1) * NV];
-            let (mut q0, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-            for j in 0..NV {
-                let c = row[j];
-                for k in 0..3 {
-                    q0[k] += bv0[j] * c[k];
-                    q1[k] += bv1[j] * c[k];
-                    q2[k] += bv2[j] * c[k];
-                }
-            }
-            let (w0, w1, w2) = (bu0[i], bu1[i], bu2[i]);
-            for k in 0..3 {
-                d.p[k] += w0 * q0[k];
-                d.du[k] += w1 * q0[k];
-                d.duu[k] += w2 * q0[k];
-                d.dv[k] += w0 * q1[k];
-                d.duv[k] += w1 * q1[k];
-                d.dvv[k] += w0 * q2[k];
-            }
-        }
-        d
+        combine_derivatives(cps, NV, [&bu0, &bu1, &bu2], [&bv0, &bv1, &bv2])
     }
 
     /// The domain direction from `(u, v)` toward the centre `(1/2, 1/2)` (`(1, 1)` at the
@@ -645,3 +584,44 @@ impl BezierPatch {
 
 #[cfg(test)]
 mod tests;
+
+/// Position and first and second derivatives of the tensor-product patch `cps` (rows of `nv`
+/// points along `v`) from the Bernstein values and derivatives `bu = [B, B', B'']` in `u` and
+/// `bv` in `v`, contracting `v` first; inlined so that fixed-size callers get unrolled loops
+/// with the same sums in the same order (the same bits) as the general one.
+#[inline(always)]
+fn combine_derivatives(cps: &[Point], nv: usize, bu: [&[f64]; 3], bv: [&[f64]; 3]) -> Derivatives {
+    let mut d = Derivatives {
+        p: [0.0; 3],
+        du: [0.0; 3],
+        dv: [0.0; 3],
+        duu: [0.0; 3],
+        duv: [0.0; 3],
+        dvv: [0.0; 3],
+    };
+    for (row, ((&w0, &w1), &w2)) in cps
+        .chunks_exact(nv)
+        .zip(bu[0].iter().zip(bu[1].iter()).zip(bu[2].iter()))
+    {
+        let (mut q0, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        for (c, ((&v0, &v1), &v2)) in row
+            .iter()
+            .zip(bv[0].iter().zip(bv[1].iter()).zip(bv[2].iter()))
+        {
+            for k in 0..3 {
+                q0[k] += v0 * c[k];
+                q1[k] += v1 * c[k];
+                q2[k] += v2 * c[k];
+            }
+        }
+        for k in 0..3 {
+            d.p[k] += w0 * q0[k];
+            d.du[k] += w1 * q0[k];
+            d.duu[k] += w2 * q0[k];
+            d.dv[k] += w0 * q1[k];
+            d.duv[k] += w1 * q1[k];
+            d.dvv[k] += w0 * q2[k];
+        }
+    }
+    d
+}
