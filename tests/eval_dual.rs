@@ -19,7 +19,10 @@ mod support;
 use support::{gallery, limit_along, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
+#[path = "eval/quarters.rs"]
+mod quarters;
 use faces::{all_agree, all_continuous};
+use quarters::at_interior_vertex;
 
 fn dual_schemes() -> [&'static str; 3] {
     [
@@ -27,24 +30,6 @@ fn dual_schemes() -> [&'static str; 3] {
         ids::DOO_SABIN_CC.name(),
         ids::PGS.name(),
     ]
-}
-
-/// Whether a face point lies in a quarter at an interior vertex (those at boundary vertices
-/// are not tracked): the quarter at corner `floor(u)` of an n-gon, at the nearest corner of a
-/// quad.
-fn at_interior_vertex(mesh: &PolyMesh, (f, u, v): (u32, f64, f64)) -> bool {
-    let face = mesh.face(f as usize);
-    let k = if face.len() == 4 {
-        match (u >= 0.5, v >= 0.5) {
-            (false, false) => 0,
-            (true, false) => 1,
-            (true, true) => 2,
-            (false, true) => 3,
-        }
-    } else {
-        (u.floor() as usize).min(face.len() - 1)
-    };
-    !mesh.is_boundary_vertex(face[k] as usize)
 }
 
 #[test]

@@ -7,10 +7,15 @@
 //! Loop, and EG, the QAS+ family and guided subdivision, whose caps tile each sector's face in
 //! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`];
 //! the dual schemes Doo-Sabin, DS^CC and PGS, whose patches of input vertices cover a quarter
-//! of each face around them as [`Piece`](crate::bezier::complex::Piece)s). The parameter domain of quads, n-gons and
+//! of each face around them as [`Piece`](crate::bezier::complex::Piece)s; TPS, laid out like
+//! them, whose rings are cells in thirds of the quarters at extraordinary vertices, see
+//! `crate::schemes::bi2::surface::cells`). The parameter domain of quads, n-gons and
 //! triangles (and of the dual schemes' faces) is documented in [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
 //! children, so the cells form a quadtree per face: a point is located by descending it, one
 //! hash look-up per level (`O(log)` of the patch size, independent of the number of patches).
+//! A cell whose children are thirds (TPS) is in the index too, marked as split in thirds, so
+//! the descent takes the 3 x 3 grid there (the dyadic schemes have no such marks: their
+//! descent is the quadtree's).
 //!
 //! Patch parameters are mapped to face parameters by affine maps with dyadic coefficients
 //! (exact in floating point); derivatives go through the chain rule of that map. Points in the
@@ -96,12 +101,18 @@ struct Located {
     cell: [f64; 2],
 }
 
-/// What covers a cell: a patch (`piece == u32::MAX`) or piece `piece` of the complex.
+/// What covers a cell: a patch (`piece == u32::MAX`) or piece `piece` of the complex; or,
+/// with `piece == THIRDS`, no patch: the cell splits in thirds (its children are
+/// [`Shape::third_map`]'s, see [`crate::bezier::domain`]). Cells absent from the index split
+/// dyadically.
 #[derive(Debug, Clone, Copy)]
 struct Entry {
     patch: u32,
     piece: u32,
 }
+
+/// [`Entry::piece`] of a cell that splits in thirds.
+const THIRDS: u32 = u32::MAX - 1;
 
 /// The hasher of the cell index: the multiply-rotate of the Fx family (the keys are small
 /// integers from the complex itself, not input an adversary picks, and SipHash's cost would
@@ -205,6 +216,15 @@ impl Surface {
             cells
                 .entry((d.face, d.sub, d.depth, d.path))
                 .or_insert(entry);
+            // the ancestors whose children are in thirds, so that `locate` descends them so
+            for l in (1..=d.depth).filter(|&l| d.thirds != 0 && d.splits_in_thirds(l)) {
+                let (depth, path) = d.ancestor_key(l - 1);
+                let split = Entry {
+                    patch: u32::MAX,
+                    piece: THIRDS,
+                };
+                cells.entry((d.face, d.sub, depth, path)).or_insert(split);
+            }
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -300,8 +320,12 @@ impl Surface {
     fn locate(&self, face: u32, u: f64, v: f64) -> Result<Located> {
         let (sub, shape, mut p) = self.face_point(face, u, v)?;
         let mut path = 0u128;
+        // the place value of the next level's child index in the path (see `Domain::path`)
+        let mut place = Some(1u128);
         for depth in 0..=MAX_DEPTH {
-            if let Some(&e) = self.cells.get(&(face, sub, depth, path)) {
+            let hit = self.cells.get(&(face, sub, depth, path)).copied();
+            let thirds = hit.is_some_and(|e| e.piece == THIRDS);
+            if let Some(e) = hit.filter(|_| !thirds) {
                 let (domain, window) = match self.complex.pieces.get(e.piece as usize) {
                     Some(piece) => (piece.domain, Some(piece.window_map())),
                     None => (
@@ -318,9 +342,22 @@ impl Surface {
                     cell: p,
                 });
             }
-            let k = shape.child_at(p);
-            p = shape.child_map(k).invert(p);
-            path |= u128::from(k) << (2 * u32::from(depth));
+            let (k, map, radix) = if thirds {
+                let k = Shape::third_at(p);
+                (k, Shape::third_map(k), 9)
+            } else {
+                let k = shape.child_at(p);
+                (k, shape.child_map(k), 4)
+            };
+            p = map.invert(p);
+            let Some(next) = place
+                .and_then(|w| u128::from(k).checked_mul(w))
+                .and_then(|x| path.checked_add(x))
+            else {
+                break;
+            };
+            path = next;
+            place = place.and_then(|w| w.checked_mul(radix));
         }
         Err(Error::InvalidArgument(format!(
             "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole inside \
@@ -423,7 +460,14 @@ impl Surface {
         if d <= 0.0 {
             return 0;
         }
-        (-d.log2()).floor().max(0.0) as usize + 1
+        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
+        let dom = at.domain;
+        let per_ring = if dom.splits_in_thirds(dom.depth) {
+            3f64.log2()
+        } else {
+            1.0
+        };
+        (-d.log2() / per_ring).floor().max(0.0) as usize + 1
     }
 }
 

@@ -1,5 +1,5 @@
-//! Checks shared by the evaluation tests of the cap and dual schemes (`tests/eval_caps.rs`,
-//! `tests/eval_dual.rs`): random face points, agreement with the written patches, and the
+//! Checks shared by the evaluation tests of the cap, dual and ternary schemes
+//! (`tests/eval_caps.rs`, `tests/eval_dual.rs`, `tests/eval_ternary.rs`): random face points, agreement with the written patches, and the
 //! largest jump of the evaluation across the lines of a dyadic grid of every face.
 
 use crate::support::{Lcg, gallery, written};
@@ -41,7 +41,8 @@ pub fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64
     pts
 }
 
-fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
+/// The surface `subdivide --rings` of gallery net `net` under `scheme`, ready to evaluate.
+pub fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
     let mesh = gallery(net);
     let spec = registry().lookup(scheme).expect("scheme");
     let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
@@ -83,11 +84,11 @@ fn agrees_with_written(net: &str, scheme: &str, rings: usize, covered: &Covered)
     (worst, in_caps)
 }
 
-/// Largest jump of the evaluation across the lines `u = i 2^-m` and `v = i 2^-m` (`m <= depth`)
-/// of every face: points `delta` apart on either side, at several positions along the line.
-fn largest_jump(mesh: &PolyMesh, s: &Surface, depth: u32, delta: f64) -> f64 {
+/// Largest jump of the evaluation across the lines `u = i / lines` and `v = i / lines`
+/// (`0 < i < lines`) of every face: points `delta` apart on either side, at several positions
+/// along the line.
+pub fn largest_jump(mesh: &PolyMesh, s: &Surface, lines: u32, delta: f64) -> f64 {
     let mut worst: f64 = 0.0;
-    let lines = 1u32 << depth;
     for f in 0..mesh.num_faces() {
         let n = mesh.face_size(f);
         let subs = if n == 4 { 1 } else { n };
@@ -133,7 +134,7 @@ pub fn all_continuous(schemes: &[&str], nets: &[&str]) {
     for scheme in schemes {
         for net in nets {
             let (mesh, s) = surface(net, scheme, 3);
-            let jump = largest_jump(&mesh, &s, 6, 1e-10);
+            let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10);
             eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
             assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
         }

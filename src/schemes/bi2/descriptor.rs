@@ -73,12 +73,13 @@ impl Bi2Descriptor {
 }
 
 impl Descriptor for Bi2Descriptor {
-    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin (the others'
-    /// rings come from local nets without face domains, PGS after DS^CC steps from the refined
-    /// net's faces).
+    /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin, and TPS,
+    /// whose rings record cells in thirds (`schemes::bi2::surface::cells`; adjustable TPS
+    /// splits in `e : 1 - 2e : e`, PolBS and the mixed net have no face domains, PGS after
+    /// DS^CC steps is laid out on the refined net's faces).
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            eval: self.kind == Bi2Kind::Pgs,
+            eval: matches!(self.kind, Bi2Kind::Pgs | Bi2Kind::Tps),
             ..Capabilities::REFINE_AND_PATCHES
         }
     }

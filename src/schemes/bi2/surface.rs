@@ -52,7 +52,7 @@
 //! leaves the holes open.
 
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -67,6 +67,7 @@ use crate::stencil::Stencil;
 
 use super::local_scheme::{LocalScheme, qnet_index};
 
+mod cells;
 mod g1;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
@@ -75,6 +76,9 @@ struct RingElement {
     local0: Vec<Stencil>,
     /// The scheme's level of `local0` (1 after a whole-net step).
     start: usize,
+    /// The quarter of each sector's face at the element, where its rings record face domains
+    /// (TPS, [`cells`]); empty otherwise.
+    sectors: Vec<Domain>,
 }
 
 fn not_separated(what: String, name: &str) -> Error {
@@ -157,6 +161,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         scheme: LocalScheme::pgs(n)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
     })
 }
 
@@ -194,6 +199,7 @@ fn ternary_element(
         scheme: LocalScheme::ternary(n, rules)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
     })
 }
 
@@ -235,14 +241,18 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         scheme: LocalScheme::polar(n)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
     })
 }
 
 /// Regular patches of every regular vertex (with knot widths when given), then rings and the
-/// G^1 cap of [`g1`] (or the fill, with a note) of every element.
+/// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `cells` (the cell of
+/// an input face each face of `mesh` is, TPS) the regular patches and the rings and caps of
+/// elements with `sectors` record their face domains ([`cells`]).
 fn assemble(
     mesh: &PolyMesh,
     widths: Option<&Widths>,
+    cells: Option<&[Domain]>,
     elements: &[RingElement],
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
@@ -265,6 +275,9 @@ fn assemble(
             let face = mesh.vertex_faces(v).first().copied().unwrap_or(0);
             let cps = c.iter().map(|s| s.apply(pos)).collect();
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
+            if let Some(cells) = cells {
+                cells::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, &mut out);
+            }
         }
     }
     let mut locals: Vec<Vec<Point>> = elements
@@ -275,6 +288,7 @@ fn assemble(
         for (el, local) in elements.iter().zip(locals.iter_mut()) {
             let step = el.scheme.step(el.start + l - 1);
             *local = step.apply(local);
+            let first = out.len();
             for (c, sector) in el.scheme.ring(el.start + l) {
                 out.push(
                     to_patch(&c, local),
@@ -284,6 +298,9 @@ fn assemble(
                         sector,
                     },
                 );
+            }
+            if !el.sectors.is_empty() {
+                cells::ring_pieces(&el.sectors, l, first, &mut out);
             }
         }
         progress(l);
@@ -318,6 +335,7 @@ fn assemble(
                     fill
                 }
             };
+            let first = out.len();
             for (p, sector) in capped {
                 out.push(
                     p,
@@ -326,6 +344,9 @@ fn assemble(
                         sector,
                     },
                 );
+            }
+            if !el.sectors.is_empty() {
+                cells::cap_domains(&el.sectors, opts.rings, first, &mut out);
             }
         }
     }
@@ -381,6 +402,10 @@ pub fn tps_complex(
     let mut m = mesh.clone();
     let mut w = uniform_widths(mesh);
     let mut notes = Vec::new();
+    // The cell of an input face each face of `m` is (TPS only: adjustable TPS does not split
+    // in thirds, see `cells`).
+    let tracked = rules == TernaryRules::TPS;
+    let mut face_cells = cells::input_face_cells(mesh);
     // Validate the net as the scheme would (quads, boundary rules).
     ternary_step(&m, &w, &rules, name)?;
     for start in 0..=2 {
@@ -392,12 +417,16 @@ pub fn tps_complex(
             .map(|&v| {
                 let mut el = ternary_element(&m, v, rules, name)?;
                 el.start = start;
+                if tracked {
+                    el.sectors = cells::sector_cells(&m, &face_cells, v);
+                }
                 Ok(el)
             })
             .collect();
         match built {
             Ok(elements) => {
-                let (c, more) = assemble(&m, Some(&w), &elements, opts, &mut progress)?;
+                let cells = tracked.then_some(face_cells.as_slice());
+                let (c, more) = assemble(&m, Some(&w), cells, &elements, opts, &mut progress)?;
                 notes.extend(more);
                 return Ok((c, notes));
             }
@@ -408,6 +437,7 @@ pub fn tps_complex(
                      count from the refined net"
                 ));
                 let (r, nw) = ternary_step(&m, &w, &rules, name)?;
+                face_cells = cells::refined_face_cells(&face_cells, r.mesh.num_faces());
                 m = r.mesh;
                 w = nw;
             }
@@ -434,7 +464,7 @@ pub fn polar_complex(
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
     let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (c, more) = assemble(&net.mesh, None, &els, opts, progress)?;
+    let (c, more) = assemble(&net.mesh, None, None, &els, opts, progress)?;
     notes.extend(more);
     Ok((c, notes))
 }
@@ -508,7 +538,7 @@ pub fn mixed_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
-    assemble(mesh, None, &els, opts, progress)
+    assemble(mesh, None, None, &els, opts, progress)
 }
 
 /// `n`-valent extraordinary element's ring `l` patches from explicit local-net points (the
