@@ -9,7 +9,7 @@
 //! eigenvalue per ring, without `--rings`.
 
 use fairsub::analysis::report;
-use fairsub::geom::{axpy, dist, norm, sub};
+use fairsub::geom::{axpy, dist};
 use fairsub::schemes::bi2::TpsParams;
 use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
@@ -27,6 +27,9 @@ mod faces;
 mod quarters;
 use faces::{all_agree, all_continuous, largest_jump, surface};
 use quarters::at_interior_vertex;
+#[path = "eval/ratios.rs"]
+mod ratios;
+use ratios::error_ratios;
 
 #[test]
 fn tps_eval_agrees_with_the_written_patches() {
@@ -86,12 +89,7 @@ fn tps_limit_evaluation_converges_at_rate_lambda() {
         })
         .expect("limit evaluation");
         assert!(rings >= 10, "n = {n}: {rings} rings for points at 3^-10");
-        let centre = evals.last().expect("the centre").point;
-        let err: Vec<f64> = evals[..evals.len() - 1]
-            .iter()
-            .map(|e| norm(sub(e.point, centre)))
-            .collect();
-        let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
+        let (centre, ratios) = error_ratios(&evals);
         eprintln!("tps n = {n}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}");
         for (k, ratio) in ratios.iter().enumerate().skip(2) {
             assert!(
