@@ -30,7 +30,8 @@
 //!   times is the cost of an EG cap against a Catmull-Clark cap (minimum over REPS runs).
 //!
 //! - `patch-table` (the patch-table peer, `bench/run_patch_peer.sh`): builds the Catmull-Clark
-//!   complex with RINGS rings and the fill and its patch stencil table, re-applies the table,
+//!   complex with RINGS rings and the fill alone, then the complex with its patch stencil table
+//!   (`PatchTable::build_with`: tracked beside the points), re-applies the table,
 //!   and evaluates the complex at the POINTS-point grid of [`grid_points`] (point, first and
 //!   second derivatives, normal, curvatures), printing each phase's time (minimum over REPS);
 //!   the evaluated points go to OUT.bin (little-endian f64 x y z per point) for comparison with
@@ -40,9 +41,10 @@
 //! - `compare-points` compares two such point files: how many points agree to 1e-9, 1e-6,
 //!   1e-3, and the largest distance.
 //! - `eval` builds the Catmull-Clark complex (RINGS rings and the caps) once and times
-//!   `Surface::new` (the evaluation index) and `Surface::evaluate_many` at the POINTS-point grid
-//!   of [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
-//!   10k-face net).
+//!   `Surface::new` (the evaluation index), `Surface::evaluate_many` and
+//!   `Surface::evaluate_into` (into a buffer allocated once) at the POINTS-point grid of
+//!   [`grid_points`] (minimum over REPS; issue 17's target is 1 s for 10^6 points of a
+//!   10k-face net). `RAYON_NUM_THREADS=1` for one thread.
 //! - `gen quad-evs FACES OUT.obj`: a triangle torus refined twice by Catmull-Clark: about FACES
 //!   quads with an extraordinary vertex (valence 3 or 6) in every 2 x 2 block of faces' corner.
 //!
@@ -440,7 +442,9 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
     let complex = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {})?.complex;
     let pts = grid_points(mesh.num_faces(), count);
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
-    let (mut index_ms, mut eval_ms, mut failed) = (f64::INFINITY, f64::INFINITY, 0);
+    let (mut index_ms, mut eval_ms, mut into_ms, mut failed) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY, 0);
+    let mut out = vec![eval::Evaluation::default(); pts.len()];
     for _ in 0..reps {
         let t = Instant::now();
         let surface = eval::Surface::new(&mesh, complex.clone());
@@ -449,13 +453,21 @@ fn eval_only(input: &str, rings: Option<usize>, points: &str, reps: Option<usize
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
         failed = r.iter().filter(|e| e.is_err()).count();
+        drop(r);
+        let t = Instant::now();
+        let r = surface.evaluate_into(&pts, &mut out);
+        into_ms = into_ms.min(ms(t));
+        if let Err((i, e)) = r {
+            return Err(format!("point {i}: {e}").into());
+        }
     }
     println!(
         "{} faces, {} patches: index {index_ms:.1} ms, evaluate {} points {eval_ms:.1} ms \
-         ({failed} failed)",
+         ({failed} failed), evaluate_into a reused buffer {into_ms:.1} ms ({} threads)",
         mesh.num_faces(),
         complex.len(),
-        pts.len()
+        pts.len(),
+        rayon::current_num_threads()
     );
     Ok(())
 }
@@ -467,7 +479,7 @@ fn patch_table(
     reps: Option<usize>,
     out: &str,
 ) -> Res<()> {
-    use fairsub::surface::{ComplexOptions, eval, table::probe};
+    use fairsub::surface::{ComplexOptions, eval, table::PatchTable};
     let rings = rings.ok_or("bad ring count")?;
     let reps = reps.ok_or("bad reps")?.max(1);
     let count = meshes::parse_count(points).ok_or("bad point count")?;
@@ -480,16 +492,17 @@ fn patch_table(
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
     let (mut complex_ms, mut table_ms, mut index_ms) =
         (f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let (mut apply_ms, mut eval_ms) = (f64::INFINITY, f64::INFINITY);
+    let (mut apply_ms, mut eval_ms, mut into_ms) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let pts = grid_points(mesh.num_faces(), count);
+    let mut buf = vec![eval::Evaluation::default(); pts.len()];
     let mut result = Vec::new();
     let mut sizes = (0, 0, 0, 0);
     for _ in 0..reps {
         let t = Instant::now();
-        let complex = construct(&mesh)?;
+        construct(&mesh)?;
         complex_ms = complex_ms.min(ms(t));
         let t = Instant::now();
-        let table = probe::build_from(&mesh, &complex, &construct)?;
+        let (complex, table) = PatchTable::build_with(&spec, &mesh, opts)?;
         table_ms = table_ms.min(ms(t));
         let t = Instant::now();
         let again = table.apply(mesh.positions())?;
@@ -500,6 +513,11 @@ fn patch_table(
         let t = Instant::now();
         let r = surface.evaluate_many(&pts);
         eval_ms = eval_ms.min(ms(t));
+        let t = Instant::now();
+        surface
+            .evaluate_into(&pts, &mut buf)
+            .map_err(|(i, e)| format!("point {i}: {e}"))?;
+        into_ms = into_ms.min(ms(t));
         sizes = (
             complex.len(),
             table.rows().num_rows(),
@@ -533,13 +551,14 @@ fn patch_table(
         sizes.3
     );
     println!(
-        "build: complex {complex_ms:.1} ms + table {table_ms:.1} ms + evaluation index \
-         {index_ms:.1} ms = {:.1} ms",
-        complex_ms + table_ms + index_ms
+        "build: complex and table {table_ms:.1} ms + evaluation index {index_ms:.1} ms = {:.1} ms \
+         (the complex alone: {complex_ms:.1} ms)",
+        table_ms + index_ms
     );
     println!("re-apply the table to the control points: {apply_ms:.1} ms");
     println!(
-        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed)",
+        "evaluate {} points (point, d1, d2, normal, curvature): {eval_ms:.1} ms ({failed} failed); \
+         evaluate_into a reused buffer: {into_ms:.1} ms",
         pts.len()
     );
     Ok(())

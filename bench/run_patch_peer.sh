@@ -13,7 +13,8 @@
 #     patch stencil table + evaluation index;
 #   - re-applying the table to the control points;
 #   - evaluating POINTS points (per face a k x k grid; point, first and second derivatives):
-#     PatchMap::FindPatch + PatchTable::EvaluateBasis against Surface::evaluate_many;
+#     PatchMap::FindPatch + PatchTable::EvaluateBasis against Surface::evaluate_many and
+#     Surface::evaluate_into (a buffer allocated once);
 #   - and compares the evaluated points (the two surfaces agree on regular faces; near the
 #     extraordinary vertices OpenSubdiv's Gregory end caps and fairsub's rings + G^1 caps are
 #     different approximations of the limit surface).

@@ -3,7 +3,8 @@
 # after (the G^1 cap), in highlight-line mode, for the README's section on caps.
 #   BEFORE=/path/to/old/fairsub docs/make-cap-images.sh
 # BEFORE is a fairsub binary built before the caps of issue 17's second round (the README's
-# pictures: main at 7a6822f; Loop's: main at 3f0d61c); without it only the "after" pictures are
+# pictures: main at 7a6822f; Loop's: main at 3f0d61c; QAS+^3's and guided-bi4-macro's split
+# caps: main at 10bee89); without it only the "after" pictures are
 # made.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +18,8 @@ cases=(
   "tps tps gallery:cnet-5-saddle"
   "nonbox nonbox gallery:cnet-6-convex"
   "loop loop gallery:icosahedron --focus vertex:0"
+  "qas-plus-bi3 qas-plus-bi3 gallery:cnet-5-saddle"
+  "guided-bi4-macro guided-bi4-macro gallery:cnet-5-saddle"
 )
 for c in "${cases[@]}"; do
   read -r family scheme net extra <<<"$c"

@@ -4,7 +4,8 @@
 
 Builds the Catmull-Clark surface (2 rings) of a gallery net refined to about 12k quads,
 evaluates POINTS random parameters (default 10^6) through the Python API and through the
-Rust call alone (`evaluate_many`, timed inside the extension), best of 3 each, and prints the
+Rust call alone (`Surface::evaluate_into` a buffer allocated before the clock starts,
+timed inside the extension), best of 3 each, and prints the
 ratio (the acceptance bound of issue 18 is 1.5).
 """
 

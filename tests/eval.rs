@@ -177,7 +177,7 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
     for (scheme, net, n, lambda) in cases {
         let mesh = gallery(&net);
         let (ev, at) = toward_ev(&mesh, n);
-        let evals = limit_along(scheme, &mesh, &at);
+        let evals = limit_along(scheme, &mesh, &at, 12);
         let lim = limit_point(scheme, &mesh, ev);
         let centre = evals.last().expect("the centre");
         assert!(
@@ -351,4 +351,51 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     ])
     .expect_err("bad line");
     assert!(e.contains("points.txt:3"), "{e}");
+}
+
+/// The batch path (`Surface::evaluate_into`, which the CLI and the Python package use) gives
+/// exactly `evaluate`'s results, in order, on every scheme family's faces (quads, n-gons,
+/// Loop's triangles), and names the first point that fails.
+#[test]
+fn evaluate_into_is_evaluate() {
+    for (net, scheme) in [
+        ("torus-evs", "catmull-clark"),
+        ("prism-5", "catmull-clark"),
+        ("octahedron", "loop"),
+        ("cube", "doo-sabin"),
+    ] {
+        let mesh = gallery(net);
+        let spec = registry().lookup(scheme).expect("scheme");
+        let s = Surface::build(
+            &spec,
+            &mesh,
+            ComplexOptions {
+                rings: 2,
+                fill: true,
+            },
+        )
+        .expect("surface");
+        let pts = face_points(&mesh, 300, 5);
+        let mut out = vec![Default::default(); pts.len()];
+        s.evaluate_into(&pts, &mut out)
+            .expect("every point evaluates");
+        let many = s.evaluate_many(&pts);
+        for ((&(f, u, v), got), want) in pts.iter().zip(&out).zip(many) {
+            // compared as printed (shortest round trip: the same bits, NaN curvatures too)
+            let want = want.expect("evaluates");
+            assert_eq!(
+                format!("{got:?}"),
+                format!("{want:?}"),
+                "{net} {scheme} face {f} ({u}, {v})"
+            );
+        }
+        // the first failing point by index, whichever thread meets it first
+        let mut bad = pts.clone();
+        let n = bad.len();
+        bad[n - 5].0 = mesh.num_faces() as u32;
+        bad[n / 3].1 = -1.0;
+        let (i, e) = s.evaluate_into(&bad, &mut out).expect_err("bad points");
+        assert_eq!(i, n / 3, "{net}: {e}");
+        assert!(e.to_string().contains("outside its domain"), "{e}");
+    }
 }

@@ -72,7 +72,7 @@ fn cap_scheme_limit_evaluation_converges_at_rate_lambda() {
     ] {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (ev, at) = toward_ev(&mesh, n);
-        let evals = limit_along(scheme, &mesh, &at);
+        let evals = limit_along(scheme, &mesh, &at, 12);
         let centre = evals.last().expect("the centre").point;
         let lambda = match lambda {
             Some(l) => l,

@@ -19,10 +19,7 @@ mod support;
 use support::{gallery, limit_along, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
-#[path = "eval/quarters.rs"]
-mod quarters;
-use faces::{all_agree, all_continuous};
-use quarters::at_interior_vertex;
+use faces::{all_agree, all_continuous, at_interior_vertex};
 #[path = "eval/ratios.rs"]
 mod ratios;
 use ratios::error_ratios;
@@ -85,7 +82,7 @@ fn converges(
     lambda: f64,
     what: &str,
 ) -> fairsub::geom::Point {
-    let evals = limit_along(scheme, mesh, &at);
+    let evals = limit_along(scheme, mesh, &at, 12);
     let (centre, ratios) = error_ratios(&evals);
     eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
     for (k, &ratio) in ratios.iter().enumerate().skip(4) {

@@ -129,6 +129,54 @@ fn dnet_bi4() {
     quad_gallery_g1(&["eg", "qas-plus", "qas-0.4", "qas-0.5-0.4"]);
 }
 
+/// QAS+^3 and the guided macro-patch variants: the split G^1 caps (2 x 2 or 3 x 3 pieces per
+/// sector) on their macro-patch rings, over c-nets of valence 3, 5, 6, 7, the pentagonal prism
+/// and the cube (QAS+^3 runs on EG's bi-4 rules at valence 3): G^1 at every join (pieces of one sector, spokes, centre), C^1 between the last
+/// ring and the cap, closed surfaces, every cap recorded as a split cap step.
+#[test]
+fn split_caps() {
+    let mut nets = Vec::new();
+    for n in [3, 5, 6, 7] {
+        for shape in CnetShape::ALL {
+            nets.push((
+                format!("cnet-{n}-{}", shape.name()),
+                gallery::cnet(n, shape, 3),
+            ));
+        }
+    }
+    nets.push(("prism-5".into(), gallery::prism(5)));
+    nets.push(("cube".into(), gallery::cube()));
+    for (scheme, m) in [
+        ("qas-plus-bi3", 2),
+        ("guided-bi4-macro", 2),
+        ("guided-bi3-macro", 3),
+    ] {
+        for (name, net) in &nets {
+            let c = build(scheme, net, 3);
+            let r = assert_g1(scheme, name, &c, Some(1e-10));
+            if net.boundary_loops().is_empty() {
+                assert_eq!(r.open_sides, 0, "{scheme} {name}");
+            }
+            let split = c
+                .caps
+                .iter()
+                .filter(|step| step.hole.sectors[0].len() == 2 * m)
+                .count();
+            // QAS+ at valence 3 runs on EG's bi-4 rules: one-patch caps there
+            let bi4 = scheme == "qas-plus-bi3" && (name.starts_with("cnet-3") || name == "cube");
+            assert_eq!(split > 0, !bi4, "{scheme} {name}: split caps {split}");
+            for step in c.caps.iter().filter(|s| s.hole.sectors[0].len() == 2 * m) {
+                assert_eq!(
+                    step.count as usize,
+                    m * m * step.hole.sectors.len(),
+                    "{scheme} {name}"
+                );
+            }
+            print_curvature(scheme, name, &c);
+        }
+    }
+}
+
 /// The normal of a cap at its centre (the first patch's corner `(0, 0)`).
 fn centre_normal(c: &PatchComplex) -> [f64; 3] {
     let i = c

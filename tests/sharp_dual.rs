@@ -16,6 +16,11 @@ use fairsub::schemes::registry::registry;
 /// two face points of the `x = +-1` faces (junctions of four sharp edges) and pass through
 /// regular vertices only.
 fn creased_cube() -> PolyMesh {
+    creased_cube_with(true)
+}
+
+/// The cube of [`creased_cube`] with the equator crease, and the meridian one when `meridian`.
+fn creased_cube_with(meridian: bool) -> PolyMesh {
     let cube = fairsub::gallery::all()
         .into_iter()
         .find(|(n, _)| n == "cube")
@@ -29,11 +34,15 @@ fn creased_cube() -> PolyMesh {
     for e in 0..m.num_edges() {
         let h = m.edge_halfedge(e);
         let (a, b) = (m.he_from(h) as usize, m.he_to(h) as usize);
-        if (on(a, 2) && on(b, 2)) || (on(a, 1) && on(b, 1)) {
+        if (on(a, 2) && on(b, 2)) || (meridian && on(a, 1) && on(b, 1)) {
             sharp.push((e as u32, 10.0f32));
         }
     }
-    assert_eq!(sharp.len(), 16, "two loops of eight edges");
+    assert_eq!(
+        sharp.len(),
+        if meridian { 16 } else { 8 },
+        "loops of eight edges"
+    );
     m.with_extras(Some(Extras {
         sharp_edges: SharpEdges::ById(sharp),
         ..Extras::default()
@@ -82,9 +91,28 @@ fn creases_close_on_the_crease_polygons_b_spline() {
         let report = continuity::check(c);
         assert_eq!(report.open_sides, 0, "{scheme}: the surface is closed");
         assert!(
-            report.all.c0 < 1e-12,
-            "{scheme}: C0 gap {} at a join",
-            report.all.c0
+            report.all.c0 < 1e-12 && report.sharp.c0 < 1e-12,
+            "{scheme}: C0 gap {} at a join, {} on a crease",
+            report.all.c0,
+            report.sharp.c0
+        );
+        // The crease sides are marked: `check` reports the creases apart as sharp joins (the
+        // two sides of a crease meet at an angle: 0.79 rad at the largest), and every other
+        // join is G^1 (unmarked, the crease joins made the smooth kinds' largest angle that).
+        eprintln!(
+            "{scheme}: sharp pieces {} (g1 {:.3}), smooth pieces {} (g1 {:.3e})",
+            report.sharp.pieces, report.sharp.g1, report.all.pieces, report.all.g1
+        );
+        assert!(report.sharp.pieces > 0, "{scheme}: crease joins reported");
+        assert!(
+            report.sharp.g1 > 0.5,
+            "{scheme}: the crease joins are not smooth: {}",
+            report.sharp.g1
+        );
+        assert!(
+            report.all.g1 < 1e-8,
+            "{scheme}: smooth joins G^1, largest {} rad",
+            report.all.g1
         );
         let (mids, corners) = side_points(c);
         // Every crease vertex of valence 2 in its loop: the crease curve passes through
@@ -218,5 +246,31 @@ fn a_junction_with_two_faces_on_one_side_is_kept() {
             e.contains("vertex 40") && e.contains("2 faces on one side"),
             "{e}"
         );
+    }
+}
+
+/// The bi-2 schemes on their own ring hosts (TPS, adjustable TPS, polar, mixed) mark the crease
+/// sides too: on the cube with the equator crease (no junction, which their boundary rules could
+/// not keep), `check` reports the crease apart and every other join is G^1.
+#[test]
+fn ring_hosts_report_creases_as_sharp_joins() {
+    let net = creased_cube_with(false);
+    for scheme in ["doo-sabin", "pgs", "tps", "tps-adjustable", "bi2-mixed"] {
+        let out = build(scheme, &net).unwrap_or_else(|e| panic!("{scheme}: {e}"));
+        let report = continuity::check(&out.complex);
+        eprintln!(
+            "{scheme}: open {}, sharp pieces {} (g1 {:.3}, c0 {:.1e}), smooth {} (g1 {:.3e})",
+            report.open_sides,
+            report.sharp.pieces,
+            report.sharp.g1,
+            report.sharp.c0,
+            report.all.pieces,
+            report.all.g1
+        );
+        assert_eq!(report.open_sides, 0, "{scheme}: closed");
+        assert!(report.sharp.pieces > 0, "{scheme}: crease joins reported");
+        assert!(report.sharp.c0 < 1e-12, "{scheme}: no crack on the crease");
+        assert!(report.sharp.g1 > 0.5, "{scheme}: {}", report.sharp.g1);
+        assert!(report.all.g1 < 1e-8, "{scheme}: {}", report.all.g1);
     }
 }

@@ -128,16 +128,30 @@ def test_options_reach_the_rules(cli):
 @pytest.mark.parametrize("scheme,net", [
     ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
-    ("tps", "cube"),
+    ("pgs-dscc", "prism-5"), ("tps", "cube"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
-    s = fairsub.surface(f"gallery:{net}", scheme, rings=3)
+    _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
+
+
+def test_evaluate_equals_cli_on_bi2_mixed_facets(cli, tmp_path):
+    # two PGS steps of the cube: eight separated triangle facets with DS-nets, every vertex
+    # of valence 4, so every face's quarter at corner 0 evaluates
+    src = tmp_path / "cube-pgs2.obj"
+    code, _, err = cli("subdivide", "gallery:cube", "--scheme", "pgs", "--levels", 2,
+                       "-o", src)
+    assert code == 0, err
+    _evaluate_equals_cli(cli, str(src), "bi2-mixed")
+
+
+def _evaluate_equals_cli(cli, src, scheme):
+    s = fairsub.surface(src, scheme, rings=3)
     rng = np.random.default_rng(7)
-    faces = np.arange(fairsub.read(f"gallery:{net}").num_faces)
+    faces = np.arange(fairsub.read(src).num_faces)
     u = rng.random(len(faces)) * 0.5
     v = rng.random(len(faces)) * 0.5
     at = ",".join(f"{f}:{float(a)!r}:{float(b)!r}" for f, a, b in zip(faces, u, v))
-    code, out, err = cli("eval", f"gallery:{net}", "--scheme", scheme, "--rings", 3,
+    code, out, err = cli("eval", src, "--scheme", scheme, "--rings", 3,
                          "--at", at, "--json")
     assert code == 0, err
     theirs = json.loads(out)

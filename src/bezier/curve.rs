@@ -56,6 +56,19 @@ pub fn bernstein(d: usize, t: f64, out: &mut [f64]) {
 /// # Panics
 /// Panics when a buffer is shorter than `d + 1`.
 pub fn bernstein_derivs(d: usize, t: f64, b0: &mut [f64], b1: &mut [f64], b2: &mut [f64]) {
+    bernstein_derivs_inline(d, t, b0, b1, b2);
+}
+
+/// [`bernstein_derivs`] inlined into its caller, so that a degree known at compile time
+/// unrolls it (the evaluation fast path of [`crate::bezier::BezierPatch::derivatives`]).
+#[inline(always)]
+pub(crate) fn bernstein_derivs_inline(
+    d: usize,
+    t: f64,
+    b0: &mut [f64],
+    b1: &mut [f64],
+    b2: &mut [f64],
+) {
     let (b0, b1, b2) = (&mut b0[..=d], &mut b1[..=d], &mut b2[..=d]);
     b1.fill(0.0);
     b2.fill(0.0);
@@ -63,7 +76,11 @@ pub fn bernstein_derivs(d: usize, t: f64, b0: &mut [f64], b1: &mut [f64], b2: &m
     // values of degree max(d - 2, 0), then scatter the second-derivative weights
     // d (d - 1) (B_{i-2} - 2 B_{i-1} + B_i): each B_k^{d-2} adds to i = k, k + 1, k + 2
     let m = d.saturating_sub(2);
-    bernstein(m, t, b0);
+    // `bernstein(m, t, b0)`, inlined
+    b0[0] = 1.0;
+    for k in 0..m {
+        elevate_stage(k, t, b0);
+    }
     if d >= 2 {
         let c = df * (df - 1.0);
         for k in 0..=m {
@@ -89,7 +106,7 @@ pub fn bernstein_derivs(d: usize, t: f64, b0: &mut [f64], b1: &mut [f64], b2: &m
 
 /// One step of the Bernstein recursion: `b[0..=k]` of degree `k` to `b[0..=k+1]` of degree
 /// `k + 1`.
-#[inline]
+#[inline(always)]
 fn elevate_stage(k: usize, t: f64, b: &mut [f64]) {
     let s = 1.0 - t;
     let mut saved = 0.0;

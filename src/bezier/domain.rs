@@ -59,7 +59,7 @@
 //! `[0, 3^-(l-1)]^2` but its corner child, which is the next hole; the cap covers `[0, 3^-K]^2`
 //! from the centre. Faces of a net refined by whole-net ternary steps (to separate
 //! extraordinary vertices) are children in thirds of the input faces. The layout is documented
-//! with the code in `crate::schemes::bi2::surface::cells`.
+//! with the code in `crate::schemes::bi2::surface::thirds`.
 
 use serde::Serialize;
 

@@ -381,6 +381,13 @@ impl BezierPatch {
     /// values and their derivatives (the derivative-net formulas), contracting `v` first. No
     /// allocation for degrees below [`curve::STACK_DEGREE`].
     pub fn derivatives(&self, u: f64, v: f64) -> Derivatives {
+        // the common degrees with their sizes known at compile time (the same operations in
+        // the same order, so the same bits, unrolled)
+        match (self.deg_u, self.deg_v) {
+            (3, 3) => return self.derivatives_fixed::<4, 4>(u, v),
+            (2, 2) => return self.derivatives_fixed::<3, 3>(u, v),
+            _ => {}
+        }
         let (nu, nv) = (self.deg_u + 1, self.deg_v + 1);
         let n = nu.max(nv);
         with_values6(n, |buf| {
@@ -425,6 +432,47 @@ impl BezierPatch {
             }
             d
         })
+    }
+
+    /// [`BezierPatch::derivatives`] for bi-degree `(NU - 1, NV - 1)` (which the caller checked),
+    /// with the loop bounds known at compile time: the same sums in the same order.
+    #[inline]
+    fn derivatives_fixed<const NU: usize, const NV: usize>(&self, u: f64, v: f64) -> Derivatives {
+        let (mut bu0, mut bu1, mut bu2) = ([0.0; NU], [0.0; NU], [0.0; NU]);
+        let (mut bv0, mut bv1, mut bv2) = ([0.0; NV], [0.0; NV], [0.0; NV]);
+        curve::bernstein_derivs_inline(NU - 1, u, &mut bu0, &mut bu1, &mut bu2);
+        curve::bernstein_derivs_inline(NV - 1, v, &mut bv0, &mut bv1, &mut bv2);
+        let mut d = Derivatives {
+            p: [0.0; 3],
+            du: [0.0; 3],
+            dv: [0.0; 3],
+            duu: [0.0; 3],
+            duv: [0.0; 3],
+            dvv: [0.0; 3],
+        };
+        let cps: &[Point] = &self.cps[..NU * NV];
+        for i in 0..NU {
+            let row = &cps[i * NV..(i + 1) * NV];
+            let (mut q0, mut q1, mut q2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            for j in 0..NV {
+                let c = row[j];
+                for k in 0..3 {
+                    q0[k] += bv0[j] * c[k];
+                    q1[k] += bv1[j] * c[k];
+                    q2[k] += bv2[j] * c[k];
+                }
+            }
+            let (w0, w1, w2) = (bu0[i], bu1[i], bu2[i]);
+            for k in 0..3 {
+                d.p[k] += w0 * q0[k];
+                d.du[k] += w1 * q0[k];
+                d.duu[k] += w2 * q0[k];
+                d.dv[k] += w0 * q1[k];
+                d.duv[k] += w1 * q1[k];
+                d.dvv[k] += w0 * q2[k];
+            }
+        }
+        d
     }
 
     /// The domain direction from `(u, v)` toward the centre `(1/2, 1/2)` (`(1, 1)` at the

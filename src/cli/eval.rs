@@ -6,6 +6,7 @@ use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
 use crate::surface::ComplexOptions;
 use crate::surface::eval::{Evaluation, Surface, evaluate_limit};
+use std::fmt::Write;
 use std::path::PathBuf;
 
 /// Most points one command evaluates (`--at` and `--at-file` together).
@@ -23,7 +24,8 @@ pub struct Args {
     #[arg(long)]
     pub at_file: Option<PathBuf>,
     /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark, Loop, EG, the QAS+
-    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC, PGS and TPS).
+    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC, PGS, PGS after DS^CC, the mixed bi-2
+    /// net at its facets, and TPS).
     #[arg(long, short)]
     pub scheme: String,
     /// Evaluate the complex `subdivide --rings K` writes (same options); without it, the
@@ -40,17 +42,27 @@ pub struct Args {
 
 /// One point `F:U:V` (or `F U V`); `what` names it in errors.
 fn parse_point(text: &str, what: &dyn Fn() -> String) -> Result<(u32, f64, f64)> {
-    let parts: Vec<&str> = if text.contains(':') {
-        text.split(':').map(str::trim).collect()
-    } else {
-        text.split_whitespace().collect()
-    };
     let bad = |why: &str| {
         Error::InvalidArgument(format!("{}: '{text}' is not a point F:U:V ({why})", what()))
     };
-    let [f, u, v] = parts[..] else {
-        return Err(bad("three fields expected"));
+    // the three fields without collecting them (10^6 lines of `--at-file`)
+    let mut parts: [&str; 3] = [""; 3];
+    let mut count = 0;
+    let fields: &mut dyn Iterator<Item = &str> = if text.contains(':') {
+        &mut text.split(':').map(str::trim)
+    } else {
+        &mut text.split_whitespace()
     };
+    for field in fields {
+        if count < 3 {
+            parts[count] = field;
+        }
+        count += 1;
+    }
+    if count != 3 {
+        return Err(bad("three fields expected"));
+    }
+    let [f, u, v] = parts;
     let f = f
         .parse::<u32>()
         .map_err(|_| bad("the face is not a non-negative integer"))?;
@@ -98,26 +110,46 @@ fn points(a: &Args) -> Result<Vec<(u32, f64, f64)>> {
     Ok(pts)
 }
 
-/// `x y z` with 17 significant digits.
-fn vec3(p: [f64; 3]) -> String {
-    format!("{:.17e} {:.17e} {:.17e}", p[0], p[1], p[2])
+/// Appends `x y z` with 17 significant digits.
+fn vec3(out: &mut String, p: [f64; 3]) {
+    let _ = write!(out, "{:.17e} {:.17e} {:.17e}", p[0], p[1], p[2]);
 }
 
-/// The text line of one evaluation.
-fn line(e: &Evaluation) -> String {
-    format!(
-        "{}:{}:{} patch {} at ({}, {}) point {} normal {} gauss {:.10e} mean {:.10e}",
-        e.face,
-        e.u,
-        e.v,
-        e.patch,
-        e.patch_uv[0],
-        e.patch_uv[1],
-        vec3(e.point),
-        vec3(e.normal),
-        e.gauss,
-        e.mean
-    )
+/// Appends the text line of one evaluation (with its newline).
+fn line(out: &mut String, e: &Evaluation) {
+    let _ = write!(
+        out,
+        "{}:{}:{} patch {} at ({}, {}) point ",
+        e.face, e.u, e.v, e.patch, e.patch_uv[0], e.patch_uv[1]
+    );
+    vec3(out, e.point);
+    out.push_str(" normal ");
+    vec3(out, e.normal);
+    let _ = writeln!(out, " gauss {:.10e} mean {:.10e}", e.gauss, e.mean);
+}
+
+/// Prints the text lines of `evals`, formatted in parallel blocks and written a block at a
+/// time.
+fn print_lines(evals: &[Evaluation]) {
+    use rayon::prelude::*;
+    const BLOCK: usize = 4096;
+    // a bounded number of blocks formatted ahead of the writer
+    let mut pending = Vec::new();
+    for group in evals.chunks(BLOCK * 64) {
+        group
+            .par_chunks(BLOCK)
+            .map(|chunk| {
+                let mut text = String::with_capacity(chunk.len() * 240);
+                for e in chunk {
+                    line(&mut text, e);
+                }
+                text
+            })
+            .collect_into_vec(&mut pending);
+        for text in &pending {
+            super::say_text(text);
+        }
+    }
 }
 
 /// Runs `fairsub eval`.
@@ -132,11 +164,10 @@ pub fn run(a: Args) -> Result<()> {
     let evals = match a.rings {
         Some(k) => {
             let s = build(k, !a.no_fill)?;
-            s.evaluate_many(&pts)
-                .into_iter()
-                .enumerate()
-                .map(|(i, r)| r.map_err(|e| at_point(e, i, pts.len())))
-                .collect::<Result<Vec<_>>>()?
+            let mut out = vec![Evaluation::default(); pts.len()];
+            s.evaluate_into(&pts, &mut out)
+                .map_err(|(i, e)| at_point(e, i, pts.len()))?;
+            out
         }
         None => {
             let (evals, rings) = evaluate_limit(&pts, &mut |k| build(k, true))?;
@@ -149,9 +180,7 @@ pub fn run(a: Args) -> Result<()> {
             .map_err(|e| Error::InvalidArgument(format!("JSON output: {e}")))?;
         say!("{text}");
     } else {
-        for e in &evals {
-            say!("{}", line(e));
-        }
+        print_lines(&evals);
     }
     Ok(())
 }

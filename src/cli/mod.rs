@@ -52,6 +52,15 @@ pub(crate) fn say_line(line: String) {
     });
 }
 
+/// Writes a block of complete lines (each ending in a newline) to this thread's sink: one write
+/// for many lines (`fairsub eval`'s 10^6 points).
+pub(crate) fn say_text(text: &str) {
+    SINK.with(|s| match s.borrow_mut().as_mut() {
+        Some(buf) => buf.push_str(text),
+        None => print!("{text}"),
+    });
+}
+
 /// Runs `f` with the reports of commands collected instead of printed; returns them.
 pub fn capture<T>(f: impl FnOnce() -> T) -> (T, String) {
     let old = SINK.with(|s| s.replace(Some(String::new())));
@@ -144,12 +153,14 @@ as a polyhedron.")]
     #[command(after_help = "\
 Parameter domains: a quad face has (u, v) in [0,1]^2, corner 0 at (0,0), u toward corner 1, v
 toward corner 3. An n-gon (n != 4, triangles included; Catmull-Clark, EG, QAS+, guided,
-Doo-Sabin, DS^CC, PGS) has u in [0,n], v in [0,1]: sub-face
+Doo-Sabin, DS^CC, PGS and its variants) has u in [0,n], v in [0,1]: sub-face
 i = floor(u) is the quad at corner i (corner i, midpoint of the outgoing edge, centre, midpoint
 of the incoming edge) at local (u - i, v), u toward the outgoing edge. A triangle (Loop) has
 barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. Under the dual schemes
 (Doo-Sabin, DS^CC, PGS) the quarter of a face at corner i (sub-face i of an n-gon) lies on
-vertex i's patch; the quarters at boundary vertices are not evaluated. EG, QAS+ (all
+vertex i's patch (PGS after DS^CC: on the patches of its DS^CC-refined children; the mixed
+bi-2 net: in a facet's rings at its corners); the quarters at boundary vertices, and the mixed
+net's at TPS vertices and poles, are not evaluated. EG, QAS+ (all
 variants) and guided bi-5/bi-6 parametrise the faces around a capped vertex by their rings'
 chart: ring k of the cap
 covers the band between 2^-k and 2^-(k-1) of the face's square at the vertex, the cap the

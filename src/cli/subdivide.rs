@@ -173,6 +173,12 @@ pub fn patch_table(
     };
     super::limits::check_table(complex)?;
     let spec = &p.spec;
+    // the tracked table belongs to the same complex: the construction is deterministic
+    if let Some((c, table)) = crate::surface::table::PatchTable::tracked(spec, &p.mesh, opts)?
+        && c.patches == complex.patches
+    {
+        return Ok(table);
+    }
     crate::surface::table::probe::build_from(&p.mesh, complex, &|m| {
         crate::surface::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
     })

@@ -291,10 +291,11 @@ pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Ve
 /// segment along a hole half-edge starting at its end `from` off the ring (`None` while the
 /// ring there is not emitted yet); segment `a` of a sector runs from `p` along `p -> K`,
 /// segment `b` from `q` along `K -> q`. `NoCap::Later` when some segment is missing.
-pub fn quad_hole_segments(
+/// (Generic in what a segment is: its points, or the rows of a tracked patch table.)
+pub fn quad_hole_segments<T>(
     sectors: &[QuadSector],
-    mut across: impl FnMut(u32, u32) -> Option<crate::bezier::g1::Segment>,
-) -> std::result::Result<Vec<Vec<crate::bezier::g1::Segment>>, NoCap> {
+    mut across: impl FnMut(u32, u32) -> Option<T>,
+) -> std::result::Result<Vec<Vec<T>>, NoCap> {
     let mut out = Vec::with_capacity(sectors.len());
     for sec in sectors {
         match (across(sec.pk, sec.p), across(sec.kq, sec.q)) {

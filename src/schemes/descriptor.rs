@@ -254,6 +254,18 @@ pub trait PatchRules: Sync {
         opts: ComplexOptions,
         progress: &mut dyn FnMut(usize),
     ) -> Result<SurfaceOutput>;
+
+    /// The complex of [`PatchRules::build`] with its patch stencil table's rows tracked beside
+    /// the points (the layout of `surface::table::PatchTable::from_parts`), when the scheme
+    /// tracks every step it took for this net; `None` otherwise (the table is then probed).
+    fn build_tracked(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+    ) -> Result<Option<(SurfaceOutput, crate::stencil::StencilTable)>> {
+        let _ = (mesh, opts);
+        Ok(None)
+    }
 }
 
 /// [`PatchRules`] that are one function call (see [`patch_fn`]).

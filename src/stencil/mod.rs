@@ -228,9 +228,11 @@ impl Stencil {
 
 mod packed;
 mod table;
+mod track;
 
 pub use packed::PackedStencilTable;
 pub use table::StencilTable;
+pub use track::linear_weights;
 
 #[cfg(test)]
 mod tests;

@@ -9,13 +9,14 @@
 //! the dual schemes Doo-Sabin, DS^CC and PGS, whose patches of input vertices cover a quarter
 //! of each face around them as [`Piece`](crate::bezier::complex::Piece)s; TPS, laid out like
 //! them, whose rings are cells in thirds of the quarters at extraordinary vertices, see
-//! `crate::schemes::bi2::surface::cells`). The parameter domain of quads, n-gons and
+//! `crate::schemes::bi2::surface::thirds`). The parameter domain of quads, n-gons and
 //! triangles (and of the dual schemes' faces) is documented in [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
-//! children, so the cells form a quadtree per face: a point is located by descending it, one
-//! hash look-up per level (`O(log)` of the patch size, independent of the number of patches).
-//! A cell whose children are thirds (TPS) is in the index too, marked as split in thirds, so
-//! the descent takes the 3 x 3 grid there (the dyadic schemes have no such marks: their
-//! descent is the quadtree's).
+//! children, so the cells form a tree per face: a point is located by descending it, one
+//! array step per level (`index`; `O(log)` of the patch size, independent of the number of
+//! patches, and no step at all on a face one patch covers).
+//! A cell whose children are thirds (TPS) is split 3 x 3 in the tree (`index`), so the
+//! descent takes the 3 x 3 grid there (the dyadic schemes have no such cells: their descent
+//! is the quadtree's).
 //!
 //! Patch parameters are mapped to face parameters by affine maps with dyadic coefficients
 //! (exact in floating point); derivatives go through the chain rule of that map. Points in the
@@ -35,18 +36,20 @@
 //! many rings as the points need (a point at distance about `2^-k` of an extraordinary element,
 //! in face parameters, needs about `k` rings), up to [`MAX_EXACT_RINGS`].
 
+mod index;
 mod kite;
 mod triangle;
 
 use crate::bezier::Derivatives;
-use crate::bezier::complex::{Domain, PatchComplex, Provenance};
-use crate::bezier::domain::{Affine, MAX_DEPTH, Shape};
+use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::domain::Shape;
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::Capabilities;
 use crate::schemes::{Spec, registry};
+use index::{CellTree, Leaf};
 use serde::Serialize;
 use std::collections::HashMap;
 
@@ -57,7 +60,7 @@ use std::collections::HashMap;
 pub const MAX_EXACT_RINGS: usize = 40;
 
 /// The surface and its derivatives at one point of an input face.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct Evaluation {
     /// The input face.
     pub face: u32,
@@ -89,71 +92,6 @@ pub struct Evaluation {
     pub mean: f64,
 }
 
-/// Where a face point lies: its patch, the patch's domain and the point in the cell's
-/// coordinates.
-#[derive(Debug, Clone, Copy)]
-struct Located {
-    patch: usize,
-    domain: Domain,
-    /// The map from the cell's frame to the patch's parameters when the cell holds a part of
-    /// the patch (a [`crate::bezier::complex::Piece`]), else `None` (the frame is the patch's).
-    window: Option<Affine>,
-    cell: [f64; 2],
-}
-
-/// What covers a cell: a patch (`piece == u32::MAX`) or piece `piece` of the complex; or,
-/// with `piece == THIRDS`, no patch: the cell splits in thirds (its children are
-/// [`Shape::third_map`]'s, see [`crate::bezier::domain`]). Cells absent from the index split
-/// dyadically.
-#[derive(Debug, Clone, Copy)]
-struct Entry {
-    patch: u32,
-    piece: u32,
-}
-
-/// [`Entry::piece`] of a cell that splits in thirds.
-const THIRDS: u32 = u32::MAX - 1;
-
-/// The hasher of the cell index: the multiply-rotate of the Fx family (the keys are small
-/// integers from the complex itself, not input an adversary picks, and SipHash's cost would
-/// dominate a look-up).
-#[derive(Debug, Clone, Copy, Default)]
-struct CellHasher(u64);
-
-impl std::hash::Hasher for CellHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut b = [0u8; 8];
-            b[..chunk.len()].copy_from_slice(chunk);
-            self.write_u64(u64::from_le_bytes(b));
-        }
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_u32(&mut self, x: u32) {
-        self.write_u64(u64::from(x));
-    }
-
-    fn write_u8(&mut self, x: u8) {
-        self.write_u64(u64::from(x));
-    }
-
-    fn write_u128(&mut self, x: u128) {
-        self.write_u64(x as u64);
-        self.write_u64((x >> 64) as u64);
-    }
-}
-
-/// The cell index: `(face, sub, depth, path)` -> the patch covering that cell.
-type Cells = HashMap<(u32, u32, u8, u128), Entry, std::hash::BuildHasherDefault<CellHasher>>;
-
 /// A patch complex that can be evaluated at `(face, u, v)` of its input net.
 #[derive(Debug, Clone)]
 pub struct Surface {
@@ -163,8 +101,8 @@ pub struct Surface {
     /// The triangles whose cells are quads (a 3-gon of three quad sub-faces: the dual
     /// schemes), not barycentric triangles (Loop).
     tri_strips: Vec<bool>,
-    /// Cell `(face, sub, depth, path)` -> the patch or piece covering it.
-    cells: Cells,
+    /// The cells of every face and the patch or piece covering each ([`index`]).
+    cells: CellTree,
     /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
     /// covers the other half of kite `s`'s fan triangle ([`kite`]).
     kites: HashMap<usize, usize>,
@@ -204,50 +142,19 @@ impl Surface {
     /// The surface of a complex built on `mesh` (patches without a domain are not found by
     /// [`Surface::evaluate`]).
     pub fn new(mesh: &PolyMesh, complex: PatchComplex) -> Surface {
-        let mut cells = Cells::with_capacity_and_hasher(
-            complex.len() + complex.pieces.len(),
-            Default::default(),
-        );
+        let sides: Vec<u32> = (0..mesh.num_faces())
+            .map(|f| mesh.face_size(f) as u32)
+            .collect();
         let mut tri_strips = vec![false; mesh.num_faces()];
-        let mut index = |d: Domain, entry: Entry| {
+        let quad_domains = (0..complex.len())
+            .filter_map(|i| complex.domain(i))
+            .chain(complex.pieces.iter().map(|p| p.domain));
+        for d in quad_domains {
             if let Some(t) = tri_strips.get_mut(d.face as usize) {
-                *t |= d.shape == Shape::Quad && mesh.face_size(d.face as usize) == 3;
-            }
-            cells
-                .entry((d.face, d.sub, d.depth, d.path))
-                .or_insert(entry);
-            // the ancestors whose children are in thirds, so that `locate` descends them so
-            for l in (1..=d.depth).filter(|&l| d.thirds != 0 && d.splits_in_thirds(l)) {
-                let (depth, path) = d.ancestor_key(l - 1);
-                let split = Entry {
-                    patch: u32::MAX,
-                    piece: THIRDS,
-                };
-                cells.entry((d.face, d.sub, depth, path)).or_insert(split);
-            }
-        };
-        for i in 0..complex.len() {
-            if let Some(d) = complex.domain(i) {
-                let piece = u32::MAX;
-                index(
-                    d,
-                    Entry {
-                        patch: i as u32,
-                        piece,
-                    },
-                );
+                *t |= d.shape == Shape::Quad && sides[d.face as usize] == 3;
             }
         }
-        for (k, p) in complex.pieces.iter().enumerate() {
-            let piece = k as u32;
-            index(
-                p.domain,
-                Entry {
-                    patch: p.patch,
-                    piece,
-                },
-            );
-        }
+        let cells = CellTree::new(&sides, &complex);
         let mut kites = HashMap::new();
         for step in &complex.caps {
             if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
@@ -259,9 +166,7 @@ impl Surface {
         }
         Surface {
             complex,
-            sides: (0..mesh.num_faces())
-                .map(|f| mesh.face_size(f) as u32)
-                .collect(),
+            sides,
             tri_strips,
             cells,
             kites,
@@ -316,54 +221,18 @@ impl Surface {
         }
     }
 
-    /// The patch holding a face point: the face's cells descended from the root.
-    fn locate(&self, face: u32, u: f64, v: f64) -> Result<Located> {
-        let (sub, shape, mut p) = self.face_point(face, u, v)?;
-        let mut path = 0u128;
-        // the place value of the next level's child index in the path (see `Domain::path`)
-        let mut place = Some(1u128);
-        for depth in 0..=MAX_DEPTH {
-            let hit = self.cells.get(&(face, sub, depth, path)).copied();
-            let thirds = hit.is_some_and(|e| e.piece == THIRDS);
-            if let Some(e) = hit.filter(|_| !thirds) {
-                let (domain, window) = match self.complex.pieces.get(e.piece as usize) {
-                    Some(piece) => (piece.domain, Some(piece.window_map())),
-                    None => (
-                        self.complex
-                            .domain(e.patch as usize)
-                            .expect("indexed patches have domains"),
-                        None,
-                    ),
-                };
-                return Ok(Located {
-                    patch: e.patch as usize,
-                    domain,
-                    window,
-                    cell: p,
-                });
-            }
-            let (k, map, radix) = if thirds {
-                let k = Shape::third_at(p);
-                (k, Shape::third_map(k), 9)
-            } else {
-                let k = shape.child_at(p);
-                (k, shape.child_map(k), 4)
-            };
-            p = map.invert(p);
-            let Some(next) = place
-                .and_then(|w| u128::from(k).checked_mul(w))
-                .and_then(|x| path.checked_add(x))
-            else {
-                break;
-            };
-            path = next;
-            place = place.and_then(|w| w.checked_mul(radix));
-        }
-        Err(Error::InvalidArgument(format!(
-            "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole inside \
-             the last ring is open (--no-fill), or the patches there carry no face domain (the \
-             dual schemes' quarters of faces at boundary vertices)"
-        )))
+    /// The leaf holding a face point (the face's cells descended from the root) and the
+    /// point in its cell's coordinates.
+    fn locate(&self, face: u32, u: f64, v: f64) -> Result<(&Leaf, [f64; 2])> {
+        let (sub, shape, p) = self.face_point(face, u, v)?;
+        self.cells.locate(face, sub, shape, p).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
+                 inside the last ring is open (--no-fill), or the patches there carry no face \
+                 domain (the dual schemes' quarters of faces at boundary vertices, the mixed bi-2 \
+                 net's TPS vertices and poles)"
+            ))
+        })
     }
 
     /// The surface at parameter `(u, v)` of input face `face` (see [`crate::bezier::domain`]
@@ -373,16 +242,13 @@ impl Surface {
     /// [`Error::InvalidArgument`] naming the face for a face index out of range, `(u, v)`
     /// outside the face's domain, or a point no patch covers (the hole left open).
     pub fn evaluate(&self, face: u32, u: f64, v: f64) -> Result<Evaluation> {
-        let at = self.locate(face, u, v)?;
+        let (at, cell) = self.locate(face, u, v)?;
         let d = at.domain;
-        let mut index = at.patch;
-        let patch = &self.complex.patches[at.patch];
-        let mut q = d.shape.corner_map(d.rot).invert(at.cell);
-        // the map from the patch's parameters to the face's
-        let mut patch_map = d.patch_map();
+        let mut index = at.patch as usize;
+        let patch = &self.complex.patches[index];
+        let mut q = at.corner_point(cell);
         if let Some(w) = at.window {
             q = w.apply(q);
-            patch_map = patch_map.compose(&w.inverse());
         }
         let (dp, normal, patch_uv) = match d.shape {
             Shape::Quad => {
@@ -390,10 +256,10 @@ impl Surface {
                 let n = patch.normal_from(q[0], q[1], &dp);
                 (dp, n, q)
             }
-            Shape::Triangle if self.kites.contains_key(&at.patch) => {
+            Shape::Triangle if self.kites.contains_key(&index) => {
                 let (neighbour, uv) = kite::locate(q);
                 if neighbour {
-                    index = self.kites[&at.patch];
+                    index = self.kites[&index];
                 }
                 let patch = &self.complex.patches[index];
                 let dp = patch.derivatives(uv[0], uv[1]);
@@ -412,7 +278,7 @@ impl Surface {
                 (dp, n, uv)
             }
         };
-        let df = chain(&dp, patch_map.inverse_linear());
+        let df = chain(&dp, at.chain);
         let curv = df.curvature();
         Ok(Evaluation {
             face,
@@ -442,14 +308,59 @@ impl Surface {
             .collect()
     }
 
+    /// [`Surface::evaluate`] at many points into `out` (`out[i]` for `points[i]`), in parallel,
+    /// without a `Result` or an allocation per point: the batch path of the CLI, the Python
+    /// package and the benchmarks. On failure it returns the index of the first point that
+    /// fails with its error; the entries of `out` are then unspecified.
+    ///
+    /// # Errors
+    /// `(i, e)` for the first point `i` that [`Surface::evaluate`] refuses; `(0, e)` when
+    /// `out` and `points` differ in length.
+    pub fn evaluate_into(
+        &self,
+        points: &[(u32, f64, f64)],
+        out: &mut [Evaluation],
+    ) -> std::result::Result<(), (usize, Error)> {
+        use rayon::prelude::*;
+        if out.len() != points.len() {
+            return Err((
+                0,
+                Error::InvalidArgument(format!(
+                    "{} points but room for {} evaluations",
+                    points.len(),
+                    out.len()
+                )),
+            ));
+        }
+        const CHUNK: usize = 2048;
+        let first = out
+            .par_chunks_mut(CHUNK)
+            .zip(points.par_chunks(CHUNK))
+            .enumerate()
+            .filter_map(|(c, (out, pts))| {
+                for (j, (o, &(f, u, v))) in out.iter_mut().zip(pts).enumerate() {
+                    match self.evaluate(f, u, v) {
+                        Ok(e) => *o = e,
+                        Err(e) => return Some((c * CHUNK + j, e)),
+                    }
+                }
+                None
+            })
+            .min_by_key(|(i, _)| *i);
+        first.map_or(Ok(()), Err)
+    }
+
     /// Extra rings a point of a cap or fill cell needs to lie on ring patches: `k` where its
     /// distance to the nearest cell corner (the extraordinary element is one of them) is about
     /// `2^-k` of the cell; 0 for points of ring and regular patches and for the corners.
-    fn rings_needed(&self, at: &Located) -> usize {
-        if !matches!(self.complex.provenance[at.patch], Provenance::Cap { .. }) {
+    fn rings_needed(&self, at: &Leaf, cell: [f64; 2]) -> usize {
+        if !matches!(
+            self.complex.provenance[at.patch as usize],
+            Provenance::Cap { .. }
+        ) {
             return 0;
         }
-        let [x, y] = at.cell;
+        let [x, y] = cell;
         let d = match at.domain.shape {
             Shape::Quad => [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
                 .iter()
@@ -523,8 +434,8 @@ pub fn evaluate_limit(
         let mut need = rings;
         let mut out = Vec::with_capacity(points.len());
         for &(f, u, v) in points {
-            let at = s.locate(f, u, v)?;
-            need = need.max(rings + s.rings_needed(&at));
+            let (at, cell) = s.locate(f, u, v)?;
+            need = need.max(rings + s.rings_needed(at, cell));
             out.push(s.evaluate(f, u, v)?);
         }
         let next = need.min(MAX_EXACT_RINGS);

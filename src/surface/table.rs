@@ -238,9 +238,108 @@ impl PatchTable {
         mesh: &crate::mesh::PolyMesh,
         opts: super::ComplexOptions,
     ) -> Result<PatchTable> {
+        Self::build_with(spec, mesh, opts).map(|(_, t)| t)
+    }
+
+    /// The complex `surface::build(spec, mesh, opts)` writes and its table: tracked beside the
+    /// points where the scheme tracks every step it takes ([`PatchTable::tracked`]), else
+    /// probed ([`PatchTable::build_probed`]).
+    ///
+    /// # Errors
+    /// As [`PatchTable::build`].
+    pub fn build_with(
+        spec: &crate::schemes::Spec,
+        mesh: &crate::mesh::PolyMesh,
+        opts: super::ComplexOptions,
+    ) -> Result<(PatchComplex, PatchTable)> {
+        if let Some(built) = Self::tracked(spec, mesh, opts)? {
+            return Ok(built);
+        }
+        let complex = super::build(spec, mesh, opts, &mut |_| {})?.complex;
+        let table = probe::build_from(mesh, &complex, &|m| {
+            super::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
+        })?;
+        Ok((complex, table))
+    }
+
+    /// The table read off the construction by [`probe`] (one construction per colour class,
+    /// then checked at the net's and at moved points): the reference the tracked tables are
+    /// tested against, and the table of every scheme or net without tracking.
+    ///
+    /// # Errors
+    /// As [`PatchTable::build`].
+    pub fn build_probed(
+        spec: &crate::schemes::Spec,
+        mesh: &crate::mesh::PolyMesh,
+        opts: super::ComplexOptions,
+    ) -> Result<PatchTable> {
         probe::build(mesh, &|m| {
             super::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
         })
+    }
+
+    /// The complex and its table with the rows tracked beside the points during the one
+    /// construction ([`crate::schemes::descriptor::PatchRules::build_tracked`]: Catmull-Clark, its caps
+    /// included; not its Hermite-Coons fill, nor the cap schemes), or `None` where the scheme
+    /// does not track every step it takes for this net, or `FAIRSUB_TABLE_PROBE` is set (the
+    /// probe's table then). With `FAIRSUB_TABLE_CHECK` set, the tracked table is compared with
+    /// the probed one (relative `1e-12`) and the build fails on a difference.
+    ///
+    /// # Errors
+    /// As [`PatchTable::build`].
+    pub fn tracked(
+        spec: &crate::schemes::Spec,
+        mesh: &crate::mesh::PolyMesh,
+        opts: super::ComplexOptions,
+    ) -> Result<Option<(PatchComplex, PatchTable)>> {
+        if std::env::var_os("FAIRSUB_TABLE_PROBE").is_some() {
+            return Ok(None);
+        }
+        let descriptor = crate::schemes::registry::registry().descriptor(spec.id);
+        let Some(rules) = descriptor.patch_rules(spec)? else {
+            return Err(super::no_patch_output(spec.name()));
+        };
+        let Some((out, rows)) = rules.build_tracked(mesh, opts)? else {
+            return Ok(None);
+        };
+        let table = PatchTable::from_parts(&out.complex, rows, Vec::new())?;
+        if std::env::var_os("FAIRSUB_TABLE_CHECK").is_some() {
+            let probed = probe::build_from(mesh, &out.complex, &|m| {
+                super::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
+            })?;
+            let d = table.rows_deviation(&probed);
+            if d > 1e-12 {
+                return Err(Error::Unsupported(format!(
+                    "the tracked patch table differs from the probed one by {d:.3e}"
+                )));
+            }
+        }
+        Ok(Some((out.complex, table)))
+    }
+
+    /// The largest difference between the weights of two tables of one layout (relative to the
+    /// largest weight; infinite when their rows or caps differ in number).
+    pub fn rows_deviation(&self, other: &PatchTable) -> f64 {
+        let (a, b) = (&self.rows, &other.rows);
+        if a.num_rows() != b.num_rows() || self.caps.len() != other.caps.len() {
+            return f64::INFINITY;
+        }
+        let (mut worst, mut scale) = (0.0f64, 0.0f64);
+        let mut acc: std::collections::HashMap<u32, f64> = std::collections::HashMap::new();
+        for r in 0..a.num_rows() {
+            acc.clear();
+            let (i, w) = a.row(r);
+            for (&i, &w) in i.iter().zip(w) {
+                *acc.entry(i).or_default() += w;
+                scale = scale.max(w.abs());
+            }
+            let (i, w) = b.row(r);
+            for (&i, &w) in i.iter().zip(w) {
+                *acc.entry(i).or_default() -= w;
+            }
+            worst = acc.values().fold(worst, |m, d| m.max(d.abs()));
+        }
+        worst / scale.max(f64::MIN_POSITIVE)
     }
 
     /// Number of control points the table reads.

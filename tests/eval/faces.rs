@@ -1,6 +1,7 @@
 //! Checks shared by the evaluation tests of the cap, dual and ternary schemes
-//! (`tests/eval_caps.rs`, `tests/eval_dual.rs`, `tests/eval_ternary.rs`): random face points, agreement with the written patches, and the
-//! largest jump of the evaluation across the lines of a dyadic grid of every face.
+//! (`tests/eval_caps.rs`, `tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`):
+//! random face points, agreement with the written patches, and the largest jump of the
+//! evaluation across the lines of a grid of every face.
 
 use crate::support::{Lcg, gallery, written};
 use fairsub::geom::dist;
@@ -41,9 +42,12 @@ pub fn face_points(mesh: &PolyMesh, per_face: usize, seed: u64) -> Vec<(u32, f64
     pts
 }
 
-/// The surface `subdivide --rings` of gallery net `net` under `scheme`, ready to evaluate.
-pub fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
-    let mesh = gallery(net);
+fn surface(net: &str, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
+    surface_of(gallery(net), scheme, rings)
+}
+
+/// The surface of `mesh` under `scheme` with `rings` rings and the fill.
+pub fn surface_of(mesh: PolyMesh, scheme: &str, rings: usize) -> (PolyMesh, Surface) {
     let spec = registry().lookup(scheme).expect("scheme");
     let s = Surface::build(&spec, &mesh, ComplexOptions { rings, fill: true }).expect("surface");
     (mesh, s)
@@ -59,18 +63,28 @@ pub type Covered = dyn Fn(&PolyMesh, (u32, f64, f64)) -> bool;
 fn agrees_with_written(net: &str, scheme: &str, rings: usize, covered: &Covered) -> (f64, usize) {
     let written = written(net, scheme, rings);
     let (mesh, s) = surface(net, scheme, rings);
-    assert_eq!(s.complex().len(), written.len(), "{net}: same patches");
+    agrees_with(&written, &mesh, &s, covered)
+}
+
+/// [`agrees_with_written`] for the patches `written` of the surface `s` of `mesh`.
+pub fn agrees_with(
+    written: &fairsub::bezier::complex::PatchComplex,
+    mesh: &PolyMesh,
+    s: &Surface,
+    covered: &Covered,
+) -> (f64, usize) {
+    assert_eq!(s.complex().len(), written.len(), "same patches");
     let mut worst: f64 = 0.0;
     let mut in_caps = 0;
-    for (f, u, v) in face_points(&mesh, 60, 23) {
-        if !covered(&mesh, (f, u, v)) {
+    for (f, u, v) in face_points(mesh, 60, 23) {
+        if !covered(mesh, (f, u, v)) {
             let err = s.evaluate(f, u, v).expect_err("an uncovered point");
-            assert!(err.to_string().contains("no patch"), "{net}: {err}");
+            assert!(err.to_string().contains("no patch"), "{err}");
             continue;
         }
         let e = s
             .evaluate(f, u, v)
-            .unwrap_or_else(|err| panic!("{net} under {scheme}: face {f} at ({u}, {v}): {err}"));
+            .unwrap_or_else(|err| panic!("face {f} at ({u}, {v}): {err}"));
         assert!((0.0..=1.0).contains(&e.patch_uv[0]) && (0.0..=1.0).contains(&e.patch_uv[1]));
         let w = written.patches[e.patch].eval(e.patch_uv[0], e.patch_uv[1]);
         worst = worst.max(dist(w, e.point));
@@ -86,8 +100,14 @@ fn agrees_with_written(net: &str, scheme: &str, rings: usize, covered: &Covered)
 
 /// Largest jump of the evaluation across the lines `u = i / lines` and `v = i / lines`
 /// (`0 < i < lines`) of every face: points `delta` apart on either side, at several positions
-/// along the line.
-pub fn largest_jump(mesh: &PolyMesh, s: &Surface, lines: u32, delta: f64) -> f64 {
+/// along the line (pairs with a point where `covered` is false are skipped).
+pub fn largest_jump(
+    mesh: &PolyMesh,
+    s: &Surface,
+    lines: u32,
+    delta: f64,
+    covered: &Covered,
+) -> f64 {
     let mut worst: f64 = 0.0;
     for f in 0..mesh.num_faces() {
         let n = mesh.face_size(f);
@@ -102,6 +122,10 @@ pub fn largest_jump(mesh: &PolyMesh, s: &Surface, lines: u32, delta: f64) -> f64
                         ((x - delta, y), (x + delta, y)),
                         ((y, x - delta), (y, x + delta)),
                     ] {
+                        let (pa, pb) = ((f as u32, base + a.0, a.1), (f as u32, base + b.0, b.1));
+                        if !covered(mesh, pa) || !covered(mesh, pb) {
+                            continue;
+                        }
                         let p = s.evaluate(f as u32, base + a.0, a.1).expect("point");
                         let q = s.evaluate(f as u32, base + b.0, b.1).expect("point");
                         worst = worst.max(dist(p.point, q.point));
@@ -134,9 +158,28 @@ pub fn all_continuous(schemes: &[&str], nets: &[&str]) {
     for scheme in schemes {
         for net in nets {
             let (mesh, s) = surface(net, scheme, 3);
-            let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10);
+            let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
             eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
             assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
         }
     }
+}
+
+/// Whether a face point lies in a quarter at an interior vertex (those at boundary vertices
+/// are not tracked; not every test binary has them): the quarter at corner `floor(u)` of an n-gon, at the nearest corner of a
+/// quad.
+#[allow(dead_code)]
+pub fn at_interior_vertex(mesh: &PolyMesh, (f, u, v): (u32, f64, f64)) -> bool {
+    let face = mesh.face(f as usize);
+    let k = if face.len() == 4 {
+        match (u >= 0.5, v >= 0.5) {
+            (false, false) => 0,
+            (true, false) => 1,
+            (true, true) => 2,
+            (false, true) => 3,
+        }
+    } else {
+        (u.floor() as usize).min(face.len() - 1)
+    };
+    !mesh.is_boundary_vertex(face[k] as usize)
 }

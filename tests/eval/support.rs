@@ -66,11 +66,13 @@ pub fn toward_ev(mesh: &PolyMesh, n: usize) -> (usize, impl Fn(f64) -> (u32, f64
 }
 
 /// The limit surface of `scheme` on `mesh` ([`evaluate_limit`]) at `at(2^-k)` for `k = 2 ..=
-/// 12` and, last, at `at(0)`; asserts that at least 12 rings were computed.
+/// 12` and, last, at `at(0)`; asserts that at least `min_rings` rings were computed (12, or
+/// fewer for schemes whose complex starts after whole-net steps: `pgs-dscc`'s two).
 pub fn limit_along(
     scheme: &str,
     mesh: &PolyMesh,
     at: &dyn Fn(f64) -> (u32, f64, f64),
+    min_rings: usize,
 ) -> Vec<Evaluation> {
     let mut pts: Vec<(u32, f64, f64)> = (2..=12).map(|k| at(0.5f64.powi(k))).collect();
     pts.push(at(0.0));
@@ -87,21 +89,35 @@ pub fn limit_along(
     })
     .expect("limit evaluation");
     eprintln!("{scheme}: {rings} rings");
-    assert!(rings >= 12, "{scheme}: {rings} rings for points at 2^-12");
+    assert!(
+        rings >= min_rings,
+        "{scheme}: {rings} rings for points at 2^-12"
+    );
     evals
 }
 
 /// The patches `subdivide --rings` writes for gallery net `net` under `scheme`, read back from
 /// the `.bv` file.
 pub fn written(net: &str, scheme: &str, rings: usize) -> fairsub::bezier::complex::PatchComplex {
+    written_from(&format!("gallery:{net}"), net, scheme, rings)
+}
+
+/// The patches `subdivide --rings` writes for the net `src` (a path or `gallery:NAME`), `name`
+/// naming the output file.
+pub fn written_from(
+    src: &str,
+    name: &str,
+    scheme: &str,
+    rings: usize,
+) -> fairsub::bezier::complex::PatchComplex {
     let out = tmp(
         "fairsub-eval-written",
-        &format!("{net}-{scheme}-{rings}.bv"),
+        &format!("{name}-{scheme}-{rings}.bv"),
     );
     let words = [
         "fairsub",
         "subdivide",
-        &format!("gallery:{net}"),
+        src,
         "--scheme",
         scheme,
         "--rings",

@@ -26,6 +26,16 @@
 //! (the usual case: the hole of a sector is one face of the last level) this is just the ring
 //! patch's own derivative off that side, continued.
 //!
+//! **Split layout** ([`Layout::Split`]`(m)`, `2 m` segments per sector: QAS+^3 and the guided
+//! macro-patch variants, whose last ring's inner sides are splines of `m` polynomial pieces).
+//! Sector `s` is an `m x m` grid of pieces `P_s^(a, b)` on `[a/m, (a+1)/m] x [b/m, (b+1)/m]`,
+//! each a patch in its own local `[0, 1]^2`; the sector's `(u, v)` as in the quad layout. Its
+//! segments are, in order, the `m` pieces of side `u = 1` (piece `b` on `v` in
+//! `[b/m, (b+1)/m]`, from the spoke end towards the corner) and then the `m` pieces of side
+//! `v = 1` (piece `a`, from `E_(s+1)` towards the corner), each parametrised like the quad
+//! segment it is part of, its `cross` **per unit of the piece's** transversal parameter (`1/m`
+//! of the sector's): for a ring piece of the same size as the cap piece, its own derivative.
+//!
 //! **Triangle layout** (one segment per sector: Loop; a fan of triangles `C, E_s, E_(s+1)`).
 //! Segment `s` runs from `E_s` (`t = 0`) to `E_(s+1)` (`t = 1`), `cross` is the derivative of
 //! the ring in the direction of the chart vector from the segment's midpoint `M_s` to the centre,
@@ -41,6 +51,10 @@
 
 use crate::error::{Error, Result};
 use crate::geom::{Point, axpy, scale};
+
+/// The largest number of pieces per sector side of a [`Layout::Split`] hole (the cap map grows
+/// like `(n m^2 d^2)^3`).
+pub const MAX_PIECES: usize = 4;
 
 /// One outer boundary segment of a sector: the ring's boundary curve and its cross-boundary
 /// derivative into the hole (conventions in the module documentation).
@@ -71,6 +85,19 @@ pub enum Layout {
     Quad,
     /// One segment per sector (a fan of triangles on a three-direction lattice).
     Triangle,
+    /// A quad sector split into an `m x m` grid of pieces (`m >= 2`): `2 m` segments per
+    /// sector, `m` along each outer side (the inner sides of macro-patch rings).
+    Split(usize),
+}
+
+impl Layout {
+    /// Pieces per sector side: `m` of [`Layout::Split`], 1 otherwise.
+    pub fn pieces(self) -> usize {
+        match self {
+            Layout::Split(m) => m,
+            _ => 1,
+        }
+    }
 }
 
 /// The degrees of a hole's segments: every boundary has degree `boundary`, every cross
@@ -112,9 +139,11 @@ impl Hole {
         let layout = match segs {
             1 => Layout::Triangle,
             2 => Layout::Quad,
+            k if k.is_multiple_of(2) && k <= 2 * MAX_PIECES => Layout::Split(k / 2),
             k => {
                 return Err(Error::InvalidArgument(format!(
-                    "sector 0 of the hole has {k} segments; a sector has one or two"
+                    "sector 0 of the hole has {k} segments; a sector has one, or two per piece \
+                     of a side (at most {MAX_PIECES} pieces)"
                 )));
             }
         };
@@ -181,29 +210,32 @@ impl Hole {
     }
 
     /// The quad-layout hole a triangle hole stands for (kites, see the module documentation);
-    /// a quad hole is returned as it is, with `kappa = 0`. Its segments have degree
-    /// `max(boundary, cross + 1)` for a triangle hole.
+    /// a quad or split hole is returned as it is (its segments raised to one degree), with
+    /// `kappa = 0`. Its segments have degree `max(boundary, cross + 1)` for a triangle hole.
     pub fn to_quad_layout(&self) -> Result<QuadHole> {
         let (layout, deg) = self.layout()?;
         let data = self.data();
         let conv = Conversion::new(self.valence(), layout, deg);
         let q = conv.apply(&data);
-        let per = 4 * (conv.degree + 1);
+        let segs = 2 * layout.pieces();
+        let per = 2 * segs * (conv.degree + 1);
         let m = conv.degree + 1;
-        let sectors: Vec<[Segment; 2]> = (0..self.valence())
+        let sectors: Vec<Vec<Segment>> = (0..self.valence())
             .map(|s| {
                 let b = 3 + s * per;
-                [0, 1].map(|k| Segment {
-                    boundary: q[b + 2 * k * m..b + (2 * k + 1) * m].to_vec(),
-                    cross: q[b + (2 * k + 1) * m..b + (2 * k + 2) * m].to_vec(),
-                })
+                (0..segs)
+                    .map(|k| Segment {
+                        boundary: q[b + 2 * k * m..b + (2 * k + 1) * m].to_vec(),
+                        cross: q[b + (2 * k + 1) * m..b + (2 * k + 2) * m].to_vec(),
+                    })
+                    .collect()
             })
             .collect();
         Ok(QuadHole {
             hole: Hole {
                 centre: self.centre,
                 tangents: self.tangents,
-                sectors: sectors.into_iter().map(|[a, b]| vec![a, b]).collect(),
+                sectors,
             },
             kappa: conv.kappa,
         })
@@ -222,7 +254,8 @@ pub struct QuadHole {
 
 /// The linear map from a hole's data vector ([`Hole::data`]) to the canonical quad data: centre,
 /// `T0`, `T1`, then per quad sector `a.boundary, a.cross, b.boundary, b.cross`, each with
-/// `degree + 1` coefficients.
+/// `degree + 1` coefficients (a split sector: the `m` pieces of `a`, each boundary then cross,
+/// then those of `b`).
 #[derive(Debug, Clone)]
 pub(crate) struct Conversion {
     /// Degree of the canonical curves.
@@ -265,11 +298,12 @@ impl Conversion {
         let seg_len = db + dc + 2;
         let (degree, kappa, nseg) = match layout {
             Layout::Quad => (db.max(dc), 0.0, 2),
+            Layout::Split(m) => (db.max(dc), 0.0, 2 * m),
             Layout::Triangle => (db.max(dc + 1), 1.0, 1),
         };
         let cols = 3 + n * nseg * seg_len;
         let m = degree + 1;
-        let rows = 3 + n * 4 * m;
+        let rows = 3 + n * 4 * layout.pieces() * m;
         let mut w = vec![0.0; rows * cols];
         for k in 0..3 {
             w[k * cols + k] = 1.0;
@@ -297,10 +331,10 @@ impl Conversion {
         // Offsets of boundary / cross coefficients of input segment `k` of sector `s`.
         let off = |s: usize, k: usize| 3 + (s * nseg + k) * seg_len;
         for s in 0..n {
-            let r = 3 + s * 4 * m;
+            let r = 3 + s * 4 * layout.pieces() * m;
             match layout {
-                Layout::Quad => {
-                    for k in 0..2 {
+                Layout::Quad | Layout::Split(_) => {
+                    for k in 0..nseg {
                         let o = off(s, k);
                         put(r + 2 * k * m, &|t, out| {
                             for (i, b) in bern(db, t).into_iter().enumerate() {

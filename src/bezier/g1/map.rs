@@ -43,6 +43,8 @@ pub enum Centre {
 pub struct CapMap {
     /// Valence.
     pub n: usize,
+    /// Pieces per sector side (`m` of [`Layout::Split`], else 1): `m^2` patches per sector.
+    pub pieces: usize,
     /// Layout of the input holes.
     pub layout: Layout,
     /// Degrees of the input segments.
@@ -59,7 +61,8 @@ pub struct CapMap {
     pub certificate: f64,
     /// Number of free parameters left after all conditions (fixed by the energy).
     pub free_parameters: usize,
-    /// `n (d + 1)^2 x data` weights: cap coefficient `cidx(s, i, j)` from the hole's data vector.
+    /// `n m^2 (d + 1)^2 x data` weights: cap coefficient `cidx(p, i, j)` from the hole's data
+    /// vector.
     matrix: DMatrix<f64>,
     /// Compatibility rows over the hole's data vector and their labels.
     compat: DMatrix<f64>,
@@ -91,12 +94,13 @@ fn pinv_and_null(a: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     Ok((pinv, z))
 }
 
-/// The matrix that raises every canonical curve from degree `from` to degree `to`.
-fn raise_canonical(n: usize, from: usize, to: usize) -> DMatrix<f64> {
-    let (qf, qt) = (QuadData { d: from }, QuadData { d: to });
-    let mut m = DMatrix::zeros(qt.len(n), qf.len(n));
+/// The matrix that raises every canonical curve from degree `from` to degree `to` (`m` pieces
+/// per sector side).
+fn raise_canonical(n: usize, m: usize, from: usize, to: usize) -> DMatrix<f64> {
+    let (qf, qt) = (QuadData { d: from, m }, QuadData { d: to, m });
+    let mut mat = DMatrix::zeros(qt.len(n), qf.len(n));
     for k in 0..3 {
-        m[(k, k)] = 1.0;
+        mat[(k, k)] = 1.0;
     }
     // univariate raising from -> to
     let mut r = DMatrix::<f64>::identity(from + 1, from + 1);
@@ -114,17 +118,19 @@ fn raise_canonical(n: usize, from: usize, to: usize) -> DMatrix<f64> {
         r = step * r;
     }
     for s in 0..n {
-        for (to_off, from_off) in [
-            (qt.a(s, 0), qf.a(s, 0)),
-            (qt.ca(s, 0), qf.ca(s, 0)),
-            (qt.b(s, 0), qf.b(s, 0)),
-            (qt.cb(s, 0), qf.cb(s, 0)),
-        ] {
-            m.view_mut((to_off, from_off), (to + 1, from + 1))
-                .copy_from(&r);
+        for k in 0..m {
+            for (to_off, from_off) in [
+                (qt.a(s, k, 0), qf.a(s, k, 0)),
+                (qt.ca(s, k, 0), qf.ca(s, k, 0)),
+                (qt.b(s, k, 0), qf.b(s, k, 0)),
+                (qt.cb(s, k, 0), qf.cb(s, k, 0)),
+            ] {
+                mat.view_mut((to_off, from_off), (to + 1, from + 1))
+                    .copy_from(&r);
+            }
         }
     }
-    m
+    mat
 }
 
 impl CapMap {
@@ -151,10 +157,12 @@ impl CapMap {
         }
         let d = degree;
         let wconv = DMatrix::from_row_slice(conv.rows, conv.cols, &conv.w);
-        let q = raise_canonical(n, conv.degree, d) * wconv;
-        let qd = QuadData { d };
+        let pm = layout.pieces();
+        let q = raise_canonical(n, pm, conv.degree, d) * wconv;
+        let qd = QuadData { d, m: pm };
         let nq = qd.len(n);
-        let nx = n * (d + 1) * (d + 1);
+        let np = n * pm * pm;
+        let nx = np * (d + 1) * (d + 1);
         if centre == Centre::Auto {
             return Err(Error::InvalidArgument(
                 "a cap map needs a definite centre condition (Auto is resolved by g1_cap_with)"
@@ -163,7 +171,7 @@ impl CapMap {
         }
         let jet = centre == Centre::QuadraticJet;
         let nu = nx + if jet { 3 } else { 0 };
-        let cond = conditions(n, d, conv.kappa, jet);
+        let cond = conditions(n, d, pm, conv.kappa, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
         // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
@@ -200,7 +208,7 @@ impl CapMap {
         let hp = patch_energy(d, FAIRNESS_ORDER);
         let m = (d + 1) * (d + 1);
         let mut h = DMatrix::zeros(nu, nu);
-        for s in 0..n {
+        for s in 0..np {
             h.view_mut((s * m, s * m), (m, m)).copy_from(&hp);
         }
         let h_yy = DMatrix::from_fn(free.len(), free.len(), |a, c| h[(free[a], free[c])]);
@@ -229,7 +237,7 @@ impl CapMap {
             map.set_row(x, &y.row(k));
         }
         // Certificate over the data satisfying the ring's compatibility conditions.
-        let g = compatibility(n, d, conv.kappa);
+        let g = compatibility(n, d, pm, conv.kappa);
         let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
         let (_, admissible) = pinv_and_null(&gm)?;
         let resid =
@@ -237,6 +245,7 @@ impl CapMap {
         let certificate = resid.amax();
         Ok(CapMap {
             n,
+            pieces: pm,
             layout,
             degrees,
             degree: d,
@@ -255,7 +264,8 @@ impl CapMap {
         self.certificate < CERTIFIED
     }
 
-    /// The weights: row `s (d + 1)^2 + i (d + 1) + j` gives coefficient `b_ij` of cap patch `s`
+    /// The weights: row `p (d + 1)^2 + i (d + 1) + j` gives coefficient `b_ij` of cap patch `p`
+    /// (the sector `s`, or piece `(a, b)` of a split sector, `p = (s m + a) m + b`)
     /// as a combination of the entries of the hole's data vector ([`Hole::data`]); the same
     /// weights apply to x, y and z.
     pub fn matrix(&self) -> &DMatrix<f64> {
@@ -284,8 +294,9 @@ impl CapMap {
         worst
     }
 
-    /// The cap patches of a hole of this map's shape (one bi-`degree` patch per quad sector, in
-    /// the conventions of [`super::hole`]).
+    /// The cap patches of a hole of this map's shape (one bi-`degree` patch per quad sector, or
+    /// the `m x m` pieces of each split sector, row-major with `a` along `u`, in the
+    /// conventions of [`super::hole`]).
     pub fn apply(&self, hole: &Hole) -> Result<Vec<BezierPatch>> {
         let (layout, degrees) = hole.layout()?;
         if hole.valence() != self.n || layout != self.layout || degrees != self.degrees {
@@ -301,7 +312,7 @@ impl CapMap {
         let data = hole.data();
         let d = self.degree;
         let m = (d + 1) * (d + 1);
-        Ok((0..self.n)
+        Ok((0..self.n * self.pieces * self.pieces)
             .map(|s| {
                 let cps = (0..m)
                     .map(|k| {

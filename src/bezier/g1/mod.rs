@@ -93,10 +93,43 @@
 //! circulant `S_1 = b^s_11 + b^(s-1)_11` is singular for even `n`: a condition on the data that
 //! a ring does not satisfy (certificate 1e-2). At bi-5 each spoke keeps one free vector and the
 //! enclosure condition is met. The jet ties `b_20` and `S_1` to the common Hessian, which bi-4
-//! cannot afford beyond `n = 3, 4`. Splitting a sector into macro-patches would allow lower
-//! degree but each internal join needs its own G^1 relation and vertex enclosure at the new
-//! inner vertices; a single bi-5 patch per sector is the smallest certified construction found.
+//! cannot afford beyond `n = 3, 4`. Splitting a sector into C^2-joined pieces (below, "Split
+//! sectors") does not lower the degree either: measured, the same degrees certify.
 //! A cap is never of lower degree than the ring's segments (bi-6 for guided bi-6 rings).
+//!
+//! # Split sectors (macro-patch rings)
+//!
+//! Where the last ring's inner sides are splines of `m` polynomial pieces (QAS+^3: `m = 2`,
+//! bi-3; guided-bi4-macro: `m = 2`, bi-4; guided-bi3-macro: `m = 3`, bi-3), a sector is an
+//! `m x m` grid of bi-`d` pieces ([`Layout::Split`], conventions in [`hole`]). The conditions
+//! are those above, imposed piece by piece: the two outer layers of every outer piece from its
+//! ring piece (C^1, per unit of the piece's parameter); centre, spoke tangents (divided by `m`)
+//! and the jet (second derivatives divided by `m^2`) on the centre piece; C^0 and the spoke
+//! relation on each of the `m` spoke pieces with the *same* weight `w(u)` of the whole spoke,
+//! restricted to the piece's interval (its Bernstein coefficients by the blossom), as a
+//! polynomial identity; and C^2 across the inner grid lines (the rings are C^2 splines, so the
+//! sector is one C^2 spline on its grid). The compatibility conditions add, per knot of each
+//! side, C^2 of the boundary and of the cross derivative. `F_4` is summed over all pieces. The
+//! one-patch layouts are the case `m = 1` with the same rows in the same order (their maps and
+//! outputs are unchanged).
+//!
+//! Measured certificates ([`CapMap::new`] per degree on valences 3..8; the table of
+//! `split_lowest_certified_degrees` over 3..16 is an ignored test because the `m = 3` maps take
+//! minutes): splitting does **not** lower the degree. The obstruction is at the centre (the
+//! circulant enclosure condition of even `n` on the centre piece's `S_1`, and the jet), which
+//! a split leaves as it is:
+//!
+//! | `m`, data degree, centre | lowest certified degree (certificate) |
+//! | --- | --- |
+//! | 2, 3 or 4, tangent plane | bi-4 at odd `n = 5..15` (3e-11..7e-11), bi-3 (data 3) / bi-4 (data 4) at `n = 4`, bi-5 at `n = 3` (bi-4: 1.1e-10, just above [`CERTIFIED`]) and even `n` (<= 2e-12); measured over 3..16 |
+//! | 2, 3 or 4, quadratic jet | bi-5 at every `n != 4` (<= 3e-12; bi-4 4e-10 at `n = 3`, >= 2e-3 elsewhere), bi-3 / bi-4 at `n = 4`; measured over 3..16 |
+//! | 3, 3, tangent plane | bi-5 at every `n != 4` (<= 5e-11): bi-4 is consistent at odd `n` but measures 7e-10..2e-9, above [`CERTIFIED`], so it is not taken; measured over 3..8 |
+//! | 3, 3, quadratic jet | bi-5 at every `n != 4` (<= 7e-12); measured over 3..8 |
+//!
+//! Inconsistent degrees measure 5e-5 and more (even `n` at bi-4: 4.7e-4 for `m = 2`, 5.7e-5
+//! for `m = 3`). So QAS+^3's and guided-bi4-macro's caps are bi-4 at odd `n >= 5` and bi-5
+//! elsewhere, guided-bi3-macro's bi-5 at every valence (the threshold is not relaxed for the
+//! larger `m = 3` systems, whose rounding is higher).
 //!
 //! # Data that are not enough
 //!
@@ -110,6 +143,8 @@
 pub mod hole;
 mod map;
 pub mod ring;
+#[cfg(test)]
+mod split_tests;
 mod system;
 #[cfg(test)]
 mod tests;

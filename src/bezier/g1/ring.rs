@@ -129,9 +129,10 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     for (s, sec) in q.hole.sectors.iter().enumerate() {
         let a = &sec[0];
         let e = proj(sub(a.boundary[0], hole.centre));
-        let f = proj(scale(a.cross[0], -1.0));
+        // per unit of the sector's parameter (a split sector's segments are per piece)
+        let f = proj(scale(a.cross[0], -(layout.pieces() as f64)));
         let ts = match layout {
-            Layout::Quad => axpy(scale(e, 2.0), -1.0, f),
+            Layout::Quad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
             Layout::Triangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
         };
         size = size.max(norm(e));
@@ -209,5 +210,24 @@ pub fn sectors_from_fill(fill: &[BezierPatch]) -> Vec<Vec<Segment>> {
                 segment_from_inside(p, Side::V1, [0.0, 1.0], 1.0),
             ]
         })
+        .collect()
+}
+
+/// The `2 m` segments of a split sector ([`super::Layout::Split`]) read off the last ring's
+/// pieces that border it: `a_side[b]` the ring piece beside the hole's side `u = 1` at its
+/// piece `b` (its side `u = 0` on the hole, `v` running from the spoke end to the corner), and
+/// `b_side[a]` the ring piece beside the side `v = 1` at piece `a` (its side `v = 0` on the hole,
+/// `u` from spoke `s + 1` to the corner). Ring pieces of the cap pieces' size (the macro-patch
+/// rings: a hole sector has the size of one ring patch), so each cross derivative is the piece's
+/// own ([`segment_from_ring`], factor 1).
+pub fn split_sector(a_side: &[BezierPatch], b_side: &[BezierPatch]) -> Vec<Segment> {
+    a_side
+        .iter()
+        .map(|p| segment_from_ring(p, Side::U0, [0.0, 1.0], 1.0))
+        .chain(
+            b_side
+                .iter()
+                .map(|p| segment_from_ring(p, Side::V0, [0.0, 1.0], 1.0)),
+        )
         .collect()
 }

@@ -5,37 +5,47 @@
 
 use nalgebra::DMatrix;
 
-/// Index of coefficient `(i, j)` of sector `s` among the unknowns.
+/// Index of coefficient `(i, j)` of cap patch `p` among the unknowns (`p` the sector in the
+/// one-patch layouts, [`piece`] of a split sector).
 #[inline]
-pub(crate) fn cidx(d: usize, s: usize, i: usize, j: usize) -> usize {
-    s * (d + 1) * (d + 1) + i * (d + 1) + j
+pub(crate) fn cidx(d: usize, p: usize, i: usize, j: usize) -> usize {
+    p * (d + 1) * (d + 1) + i * (d + 1) + j
 }
 
-/// Offsets in the canonical quad data vector (centre, T0, T1, then per sector
-/// `a.boundary, a.cross, b.boundary, b.cross` of `d + 1` coefficients each).
+/// The cap patch index of piece `(a, b)` (`a` along `u`) of sector `s` split `m x m`.
+#[inline]
+pub(crate) fn piece(m: usize, s: usize, a: usize, b: usize) -> usize {
+    (s * m + a) * m + b
+}
+
+/// Offsets in the canonical quad data vector (centre, T0, T1, then per sector the `m` pieces
+/// of `a` (boundary, cross) and the `m` pieces of `b`, of `d + 1` coefficients each).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct QuadData {
     pub d: usize,
+    /// Pieces per sector side.
+    pub m: usize,
 }
 
 impl QuadData {
     pub fn len(&self, n: usize) -> usize {
-        3 + n * 4 * (self.d + 1)
+        3 + n * 4 * self.m * (self.d + 1)
     }
     fn base(&self, s: usize) -> usize {
-        3 + s * 4 * (self.d + 1)
+        3 + s * 4 * self.m * (self.d + 1)
     }
-    pub fn a(&self, s: usize, j: usize) -> usize {
-        self.base(s) + j
+    /// Boundary coefficient `j` of piece `k` of segment `a` of sector `s`.
+    pub fn a(&self, s: usize, k: usize, j: usize) -> usize {
+        self.base(s) + 2 * k * (self.d + 1) + j
     }
-    pub fn ca(&self, s: usize, j: usize) -> usize {
-        self.base(s) + (self.d + 1) + j
+    pub fn ca(&self, s: usize, k: usize, j: usize) -> usize {
+        self.base(s) + (2 * k + 1) * (self.d + 1) + j
     }
-    pub fn b(&self, s: usize, i: usize) -> usize {
-        self.base(s) + 2 * (self.d + 1) + i
+    pub fn b(&self, s: usize, k: usize, i: usize) -> usize {
+        self.base(s) + (2 * self.m + 2 * k) * (self.d + 1) + i
     }
-    pub fn cb(&self, s: usize, i: usize) -> usize {
-        self.base(s) + 3 * (self.d + 1) + i
+    pub fn cb(&self, s: usize, k: usize, i: usize) -> usize {
+        self.base(s) + (2 * self.m + 2 * k + 1) * (self.d + 1) + i
     }
 }
 
@@ -61,12 +71,26 @@ pub(crate) fn binom(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
-/// The degree-`d + 1` Bernstein coefficients of the spoke relation of spoke `s` (between
-/// sector `s`, side `v = 0`, and sector `s - 1`, side `u = 0`):
-/// `R(u) = d/dv P_s(u, 0) + d/du P_(s-1)(0, u) - w(u) d/du P_s(u, 0)`, as rows over the unknowns.
-pub(crate) fn spoke_rows(n: usize, d: usize, kappa: f64, s: usize) -> Vec<Row> {
-    let q = (s + n - 1) % n;
+/// `w` of [`weight`] restricted to the `k`-th of `m` equal parts of the spoke, as a quadratic
+/// in the part's own parameter (Bernstein form, by the blossom); `m = 1` is [`weight`] itself.
+pub(crate) fn weight_part(n: usize, kappa: f64, m: usize, k: usize) -> [f64; 3] {
     let w = weight(n, kappa);
+    if m == 1 {
+        return w;
+    }
+    let blossom = |x: f64, y: f64| {
+        w[0] * (1.0 - x) * (1.0 - y) + w[1] * ((1.0 - x) * y + x * (1.0 - y)) + w[2] * x * y
+    };
+    let (t0, t1) = (k as f64 / m as f64, (k + 1) as f64 / m as f64);
+    [blossom(t0, t0), blossom(t0, t1), blossom(t1, t1)]
+}
+
+/// The degree-`d + 1` Bernstein coefficients of the spoke relation between patch `ps` (its
+/// side `v = 0`) and patch `pq` (its side `u = 0`) with the quadratic weight `w`:
+/// `R(u) = d/dv P_ps(u, 0) + d/du P_pq(0, u) - w(u) d/du P_ps(u, 0)`, as rows over the
+/// unknowns. For the one-patch layouts `ps = s`, `pq = s - 1`, `w` = [`weight`].
+pub(crate) fn spoke_rows(d: usize, w: [f64; 3], ps: usize, pq: usize) -> Vec<Row> {
+    let (s, q) = (ps, pq);
     let df = d as f64;
     let mut rows = vec![Vec::new(); d + 2];
     // Degree raising d -> d + 1 of a coefficient at index i: to k = i (weight 1 - i/(d+1)) and
@@ -102,12 +126,14 @@ pub(crate) fn spoke_rows(n: usize, d: usize, kappa: f64, s: usize) -> Vec<Row> {
     rows
 }
 
-/// The conditions of the cap of valence `n`, degree `d`, spoke-end twist `kappa`; with `jet`
-/// also the quadratic-jet conditions at the centre over three extra unknowns
-/// ([`jet_rows`]).
-pub(crate) fn conditions(n: usize, d: usize, kappa: f64, jet: bool) -> Conditions {
-    let qd = QuadData { d };
+/// The conditions of the cap of valence `n`, degree `d`, `m x m` pieces per sector, spoke-end
+/// twist `kappa`; with `jet` also the quadratic-jet conditions at the centre over three extra
+/// unknowns ([`jet_rows`]). Split sectors (`m > 1`) add C^`r` joins between their pieces
+/// ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1` gives the one-patch rows unchanged.
+pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) -> Conditions {
+    let qd = QuadData { d, m };
     let df = d as f64;
+    let mf = m as f64;
     let mut e: Vec<Row> = Vec::new();
     let mut f: Vec<Row> = Vec::new();
     let mut fix = |e: &mut Vec<Row>, x: usize, row: Row| {
@@ -115,71 +141,151 @@ pub(crate) fn conditions(n: usize, d: usize, kappa: f64, jet: bool) -> Condition
         f.push(row);
     };
     for s in 0..n {
-        for j in 0..=d {
-            // side u = 1: b_dj = a_j, b_(d-1)j = a_j + cross_a_j / d
-            fix(&mut e, cidx(d, s, d, j), vec![(qd.a(s, j), 1.0)]);
-            fix(
-                &mut e,
-                cidx(d, s, d - 1, j),
-                vec![(qd.a(s, j), 1.0), (qd.ca(s, j), 1.0 / df)],
-            );
-            // side v = 1: b_id = b_i, b_i(d-1) = b_i + cross_b_i / d
-            fix(&mut e, cidx(d, s, j, d), vec![(qd.b(s, j), 1.0)]);
-            fix(
-                &mut e,
-                cidx(d, s, j, d - 1),
-                vec![(qd.b(s, j), 1.0), (qd.cb(s, j), 1.0 / df)],
-            );
+        for k in 0..m {
+            // piece (m - 1, k) along side a, piece (k, m - 1) along side b
+            let (pa, pb) = (piece(m, s, m - 1, k), piece(m, s, k, m - 1));
+            for j in 0..=d {
+                // side u = 1: b_dj = a_j, b_(d-1)j = a_j + cross_a_j / d
+                fix(&mut e, cidx(d, pa, d, j), vec![(qd.a(s, k, j), 1.0)]);
+                fix(
+                    &mut e,
+                    cidx(d, pa, d - 1, j),
+                    vec![(qd.a(s, k, j), 1.0), (qd.ca(s, k, j), 1.0 / df)],
+                );
+                // side v = 1: b_id = b_i, b_i(d-1) = b_i + cross_b_i / d
+                fix(&mut e, cidx(d, pb, j, d), vec![(qd.b(s, k, j), 1.0)]);
+                fix(
+                    &mut e,
+                    cidx(d, pb, j, d - 1),
+                    vec![(qd.b(s, k, j), 1.0), (qd.cb(s, k, j), 1.0 / df)],
+                );
+            }
         }
-        // the centre and the spoke tangents
+        // the centre and the spoke tangents (per unit of the centre piece's parameter)
         let th = |k: usize| 2.0 * std::f64::consts::PI * k as f64 / n as f64;
-        fix(&mut e, cidx(d, s, 0, 0), vec![(0, 1.0)]);
+        let p0 = piece(m, s, 0, 0);
+        let dm = df * mf;
+        fix(&mut e, cidx(d, p0, 0, 0), vec![(0, 1.0)]);
         let (a0, a1) = (th(s), th(s + 1));
         fix(
             &mut e,
-            cidx(d, s, 1, 0),
-            vec![(0, 1.0), (1, a0.cos() / df), (2, a0.sin() / df)],
+            cidx(d, p0, 1, 0),
+            vec![(0, 1.0), (1, a0.cos() / dm), (2, a0.sin() / dm)],
         );
         fix(
             &mut e,
-            cidx(d, s, 0, 1),
-            vec![(0, 1.0), (1, a1.cos() / df), (2, a1.sin() / df)],
+            cidx(d, p0, 0, 1),
+            vec![(0, 1.0), (1, a1.cos() / dm), (2, a1.sin() / dm)],
         );
     }
     for s in 0..n {
         let q = (s + n - 1) % n;
-        for i in 0..=d {
-            e.push(vec![(cidx(d, s, i, 0), 1.0), (cidx(d, q, 0, i), -1.0)]);
-            f.push(Vec::new());
+        for k in 0..m {
+            let (ps, pq) = (piece(m, s, k, 0), piece(m, q, 0, k));
+            for i in 0..=d {
+                e.push(vec![(cidx(d, ps, i, 0), 1.0), (cidx(d, pq, 0, i), -1.0)]);
+                f.push(Vec::new());
+            }
+            for r in spoke_rows(d, weight_part(n, kappa, m, k), ps, pq) {
+                e.push(r);
+                f.push(Vec::new());
+            }
         }
-        for r in spoke_rows(n, d, kappa, s) {
+    }
+    if m > 1 {
+        for r in inner_rows(n, d, m, INNER_SMOOTHNESS) {
             e.push(r);
             f.push(Vec::new());
         }
     }
     if jet {
-        let (je, jf) = jet_rows(n, d, kappa);
+        let (je, jf) = jet_rows(n, d, m, kappa);
         e.extend(je);
         f.extend(jf);
     }
     Conditions { e, f }
 }
 
+/// Smoothness of the joins between the pieces of a split sector: C^2, like the macro-patch
+/// rings the split caps join (QAS+^3's and guided-bi3-macro's pieces are C^2,
+/// guided-bi4-macro's C^3), so a sector is one C^2 spline on its `m x m` grid.
+pub(crate) const INNER_SMOOTHNESS: usize = 2;
+
+/// `l`-th difference weights `(-1)^(l - t) C(l, t)`, `t = 0..=l`.
+fn differences(l: usize) -> Vec<f64> {
+    (0..=l)
+        .map(|t| {
+            if (l - t).is_multiple_of(2) {
+                binom(l, t)
+            } else {
+                -binom(l, t)
+            }
+        })
+        .collect()
+}
+
+/// C^`r` across the inner grid lines of every split sector: for pieces `(a, b)`, `(a + 1, b)`
+/// (and `(a, b)`, `(a, b + 1)`) the derivatives of order `0..=r` across the common side agree
+/// (equal piece sizes: the `l`-th differences of the coefficients at the two sides agree).
+pub(crate) fn inner_rows(n: usize, d: usize, m: usize, r: usize) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for s in 0..n {
+        for a in 0..m {
+            for b in 0..m {
+                let p = piece(m, s, a, b);
+                for (next, along_u) in [(a + 1 < m, true), (b + 1 < m, false)] {
+                    if !next {
+                        continue;
+                    }
+                    let p2 = if along_u {
+                        piece(m, s, a + 1, b)
+                    } else {
+                        piece(m, s, a, b + 1)
+                    };
+                    for l in 0..=r {
+                        let w = differences(l);
+                        for j in 0..=d {
+                            let mut row = Vec::with_capacity(2 * l + 2);
+                            for (t, &wt) in w.iter().enumerate() {
+                                let (i1, i2) = (d - l + t, t);
+                                let (x1, x2) = if along_u {
+                                    (cidx(d, p, i1, j), cidx(d, p2, i2, j))
+                                } else {
+                                    (cidx(d, p, j, i1), cidx(d, p2, j, i2))
+                                };
+                                row.push((x1, wt));
+                                row.push((x2, -wt));
+                            }
+                            rows.push(row);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    rows
+}
+
 /// The ring's compatibility conditions on canonical data, `G q = 0`: the corner block of each
 /// sector is defined consistently by both segments, and at each spoke end the two sectors agree
 /// on the end point and the spoke tangent, their boundary tangents are opposite (the ring's
 /// boundary is C^1 there) and their cross-derivative twists satisfy the spoke relation's
-/// derivative at `u = 1` (see [`super`]). Each row is labelled with the sector or spoke.
-pub(crate) fn compatibility(n: usize, d: usize, kappa: f64) -> Vec<(String, Row)> {
-    let qd = QuadData { d };
+/// derivative at `u = 1` (see [`super`]); for split sectors, the pieces of each side join
+/// C^[`INNER_SMOOTHNESS`] in boundary and cross derivative. Each row is labelled with the sector
+/// or spoke.
+pub(crate) fn compatibility(n: usize, d: usize, m: usize, kappa: f64) -> Vec<(String, Row)> {
+    let qd = QuadData { d, m };
     let df = d as f64;
+    // -w'(1) of the last part of the spoke, in its own parameter
+    let kappa = kappa / m as f64;
     let mut g = Vec::new();
     for s in 0..n {
+        let l = m - 1;
         let (a, ca, b, cb) = (
-            |j| qd.a(s, j),
-            |j| qd.ca(s, j),
-            |j| qd.b(s, j),
-            |j| qd.cb(s, j),
+            |j| qd.a(s, l, j),
+            |j| qd.ca(s, l, j),
+            |j| qd.b(s, l, j),
+            |j| qd.cb(s, l, j),
         );
         let corner = format!("corner of sector {s}");
         g.push((corner.clone(), vec![(a(d), 1.0), (b(d), -1.0)]));
@@ -202,35 +308,61 @@ pub(crate) fn compatibility(n: usize, d: usize, kappa: f64) -> Vec<(String, Row)
         ));
         let q = (s + n - 1) % n;
         let end = format!("end of spoke {s} (sectors {q}, {s})");
-        g.push((end.clone(), vec![(qd.a(s, 0), 1.0), (qd.b(q, 0), -1.0)]));
+        g.push((
+            end.clone(),
+            vec![(qd.a(s, 0, 0), 1.0), (qd.b(q, 0, 0), -1.0)],
+        ));
         g.push((
             end.clone(),
             vec![
-                (qd.a(s, 0), 1.0),
-                (qd.ca(s, 0), 1.0 / df),
-                (qd.b(q, 0), -1.0),
-                (qd.cb(q, 0), -1.0 / df),
+                (qd.a(s, 0, 0), 1.0),
+                (qd.ca(s, 0, 0), 1.0 / df),
+                (qd.b(q, 0, 0), -1.0),
+                (qd.cb(q, 0, 0), -1.0 / df),
             ],
         ));
         g.push((
             end.clone(),
             vec![
-                (qd.a(s, 1), 1.0),
-                (qd.a(s, 0), -1.0),
-                (qd.b(q, 1), 1.0),
-                (qd.b(q, 0), -1.0),
+                (qd.a(s, 0, 1), 1.0),
+                (qd.a(s, 0, 0), -1.0),
+                (qd.b(q, 0, 1), 1.0),
+                (qd.b(q, 0, 0), -1.0),
             ],
         ));
         // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
         g.push((
             end,
             vec![
-                (qd.ca(s, 1), -df),
-                (qd.ca(s, 0), df - kappa),
-                (qd.cb(q, 1), -df),
-                (qd.cb(q, 0), df),
+                (qd.ca(s, 0, 1), -df),
+                (qd.ca(s, 0, 0), df - kappa),
+                (qd.cb(q, 0, 1), -df),
+                (qd.cb(q, 0, 0), df),
             ],
         ));
+        // knots between the pieces of each side: boundary and cross C^r
+        for k in 0..m.saturating_sub(1) {
+            for (side, name) in [(0, "a"), (1, "b")] {
+                let label = format!("knot {} of side {name} of sector {s}", k + 1);
+                for l in 0..=INNER_SMOOTHNESS {
+                    let w = differences(l);
+                    for cross in [false, true] {
+                        let at = |k: usize, j: usize| match (side, cross) {
+                            (0, false) => qd.a(s, k, j),
+                            (0, true) => qd.ca(s, k, j),
+                            (_, false) => qd.b(s, k, j),
+                            (_, true) => qd.cb(s, k, j),
+                        };
+                        let mut row = Vec::new();
+                        for (t, &wt) in w.iter().enumerate() {
+                            row.push((at(k, d - l + t), wt));
+                            row.push((at(k + 1, t), -wt));
+                        }
+                        g.push((label.clone(), row));
+                    }
+                }
+            }
+        }
     }
     g
 }
@@ -300,24 +432,27 @@ pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
 /// satisfy that derivative of the relation identically (the quadratic part cancels because
 /// `t_(s+1) + t_(s-1) = 2 c t_s`), so the cap has one quadratic expansion at the centre:
 /// curvature continuous there.
-pub(crate) fn jet_rows(n: usize, d: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
+pub(crate) fn jet_rows(n: usize, d: usize, m: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
     let c = (2.0 * std::f64::consts::PI / n as f64).cos();
-    let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c));
+    // the centre piece of a split sector sees the sector's second derivatives times 1 / m^2
+    let sc = 1.0 / (m * m) as f64;
+    let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c)) * sc;
     let df = d as f64;
-    let h0 = n * (d + 1) * (d + 1);
+    let h0 = n * m * m * (d + 1) * (d + 1);
     let th = |s: usize| 2.0 * std::f64::consts::PI * s as f64 / n as f64;
     let (mut e, mut f) = (Vec::new(), Vec::new());
-    for s in 0..n {
-        let (a, b) = (th(s), th(s + 1));
+    for s0 in 0..n {
+        let s = piece(m, s0, 0, 0);
+        let (a, b) = (th(s0), th(s0 + 1));
         let (ca, sa, cb, sb) = (a.cos(), a.sin(), b.cos(), b.sin());
         // d(d-1)(b20 - 2 b10 + b00) - H(t_s, t_s) = 0
         e.push(vec![
             (cidx(d, s, 2, 0), df * (df - 1.0)),
             (cidx(d, s, 1, 0), -2.0 * df * (df - 1.0)),
             (cidx(d, s, 0, 0), df * (df - 1.0)),
-            (h0, -ca * ca),
-            (h0 + 1, -2.0 * ca * sa),
-            (h0 + 2, -sa * sa),
+            (h0, -ca * ca * sc),
+            (h0 + 1, -2.0 * ca * sa * sc),
+            (h0 + 2, -sa * sa * sc),
         ]);
         f.push(Vec::new());
         // d^2 (b11 - b10 - b01 + b00) - H(t_s, t_(s+1)) = k (t_s + t_(s+1))
@@ -326,9 +461,9 @@ pub(crate) fn jet_rows(n: usize, d: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
             (cidx(d, s, 1, 0), -df * df),
             (cidx(d, s, 0, 1), -df * df),
             (cidx(d, s, 0, 0), df * df),
-            (h0, -ca * cb),
-            (h0 + 1, -(ca * sb + sa * cb)),
-            (h0 + 2, -sa * sb),
+            (h0, -ca * cb * sc),
+            (h0 + 1, -(ca * sb + sa * cb) * sc),
+            (h0 + 2, -sa * sb * sc),
         ]);
         f.push(vec![(1, k * (ca + cb)), (2, k * (sa + sb))]);
     }

@@ -21,8 +21,13 @@ impl Lcg {
 /// A random quad hole of degree `d` whose data satisfy the compatibility conditions (random
 /// combination of a basis of their null space).
 pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) -> Hole {
-    let qd = QuadData { d };
-    let g = compatibility(n, d, kappa);
+    random_split_hole(n, d, 1, kappa, rng)
+}
+
+/// Like [`random_quad_hole`] with `m` pieces per sector side (`m = 1`: the quad layout).
+pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
+    let qd = QuadData { d, m };
+    let g = compatibility(n, d, m, kappa);
     let gm = dense(
         &g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(),
         qd.len(n),
@@ -59,10 +64,10 @@ pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) ->
         }
     }
     let seg = |s: usize, k: usize| {
-        let (b0, c0) = if k == 0 {
-            (qd.a(s, 0), qd.ca(s, 0))
+        let (b0, c0) = if k < m {
+            (qd.a(s, k, 0), qd.ca(s, k, 0))
         } else {
-            (qd.b(s, 0), qd.cb(s, 0))
+            (qd.b(s, k - m, 0), qd.cb(s, k - m, 0))
         };
         Segment {
             boundary: q[b0..b0 + d + 1].to_vec(),
@@ -72,7 +77,9 @@ pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) ->
     Hole {
         centre: q[0],
         tangents: [q[1], q[2]],
-        sectors: (0..n).map(|s| vec![seg(s, 0), seg(s, 1)]).collect(),
+        sectors: (0..n)
+            .map(|s| (0..2 * m).map(|k| seg(s, k)).collect())
+            .collect(),
     }
 }
 
@@ -96,7 +103,8 @@ fn random_compatible_data_give_g1_caps() {
             let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
             let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
             for s in 0..n {
-                for r in super::system::spoke_rows(n, d, 0.0, s) {
+                let (w, q) = (super::system::weight(n, 0.0), (s + n - 1) % n);
+                for r in super::system::spoke_rows(d, w, s, q) {
                     let v = r
                         .iter()
                         .fold([0.0; 3], |a, &(c, w)| crate::geom::axpy(a, w, x[c]));

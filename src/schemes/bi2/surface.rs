@@ -69,6 +69,8 @@ use super::local_scheme::{LocalScheme, qnet_index};
 
 mod cells;
 mod g1;
+mod thirds;
+use cells::FacetCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
     element: Element,
@@ -77,8 +79,11 @@ struct RingElement {
     /// The scheme's level of `local0` (1 after a whole-net step).
     start: usize,
     /// The quarter of each sector's face at the element, where its rings record face domains
-    /// (TPS, [`cells`]); empty otherwise.
+    /// in thirds (TPS, [`thirds`]); empty otherwise.
     sectors: Vec<Domain>,
+    /// Where a PGS facet's rings and cap lie in the input faces ([`cells`]); `None` for the
+    /// other elements (not evaluated).
+    cells: Option<FacetCells>,
 }
 
 fn not_separated(what: String, name: &str) -> Error {
@@ -162,6 +167,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        cells: FacetCells::of(mesh, f),
     })
 }
 
@@ -200,6 +206,7 @@ fn ternary_element(
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        cells: None,
     })
 }
 
@@ -242,17 +249,21 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        cells: None,
     })
 }
 
 /// Regular patches of every regular vertex (with knot widths when given), then rings and the
-/// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `cells` (the cell of
-/// an input face each face of `mesh` is, TPS) the regular patches and the rings and caps of
-/// elements with `sectors` record their face domains ([`cells`]).
+/// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `track` (`mesh` is the
+/// input net, no widths) the patches record the input-face cells they cover ([`cells`]); with
+/// `face_cells` (the cell of an input face each face of `mesh` is, TPS) the regular patches
+/// and the rings and caps of elements with `sectors` record their face domains in thirds
+/// ([`thirds`]).
 fn assemble(
     mesh: &PolyMesh,
+    track: bool,
     widths: Option<&Widths>,
-    cells: Option<&[Domain]>,
+    face_cells: Option<&[Domain]>,
     elements: &[RingElement],
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
@@ -275,8 +286,11 @@ fn assemble(
             let face = mesh.vertex_faces(v).first().copied().unwrap_or(0);
             let cps = c.iter().map(|s| s.apply(pos)).collect();
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
-            if let Some(cells) = cells {
-                cells::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, &mut out);
+            ds::mark_boundary_sides(mesh, v, &mut out);
+            if track {
+                ds::input_vertex_pieces(mesh, v, &mut out);
+            } else if let Some(cells) = face_cells {
+                thirds::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, &mut out);
             }
         }
     }
@@ -289,18 +303,20 @@ fn assemble(
             let step = el.scheme.step(el.start + l - 1);
             *local = step.apply(local);
             let first = out.len();
-            for (c, sector) in el.scheme.ring(el.start + l) {
-                out.push(
-                    to_patch(&c, local),
-                    Provenance::Ring {
-                        element: el.element,
-                        ring: l as u32,
-                        sector,
-                    },
-                );
+            for (i, (c, sector)) in el.scheme.ring(el.start + l).into_iter().enumerate() {
+                let prov = Provenance::Ring {
+                    element: el.element,
+                    ring: l as u32,
+                    sector,
+                };
+                let cell = match (&el.cells, track) {
+                    (Some(cells), true) => cells.ring(el.start + l, i / 3, i % 3),
+                    _ => Domain::UNTRACKED,
+                };
+                out.push_in(to_patch(&c, local), prov, cell);
             }
             if !el.sectors.is_empty() {
-                cells::ring_pieces(&el.sectors, l, first, &mut out);
+                thirds::ring_pieces(&el.sectors, l, first, &mut out);
             }
         }
         progress(l);
@@ -337,16 +353,18 @@ fn assemble(
             };
             let first = out.len();
             for (p, sector) in capped {
-                out.push(
-                    p,
-                    Provenance::Cap {
-                        element: el.element,
-                        sector,
-                    },
-                );
+                let prov = Provenance::Cap {
+                    element: el.element,
+                    sector,
+                };
+                let cell = match (&el.cells, track) {
+                    (Some(cells), true) => cells.cap(l, sector as usize),
+                    _ => Domain::UNTRACKED,
+                };
+                out.push_in(p, prov, cell);
             }
             if !el.sectors.is_empty() {
-                cells::cap_domains(&el.sectors, opts.rings, first, &mut out);
+                thirds::cap_domains(&el.sectors, opts.rings, first, &mut out);
             }
         }
     }
@@ -367,7 +385,6 @@ pub fn pgs_complex(
     pgs: PgsOptions,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    let pre = Pgs::refine_levels_with(mesh, pgs.dscc_steps, pgs)?;
     let corner = |m: &PolyMesh, h: u32| Pgs::corner_stencil(m, h);
     let limit = |m: &PolyMesh, f: usize| Pgs::facet_limit_stencil(m, f);
     let rules = ds::DualRules {
@@ -375,7 +392,20 @@ pub fn pgs_complex(
         face_corners: &Pgs::face_corners,
         facet_limit: &limit,
     };
-    ds::dual_complex_with(&pre, opts, &rules, ids::PGS.name(), progress)
+    if pgs.dscc_steps == 0 {
+        return ds::dual_complex_with(mesh, opts, &rules, ids::PGS.name(), progress);
+    }
+    // The DS^CC steps carry the input faces' cells down to the refined net's vertices
+    // (`pgs-dscc` evaluates on the input's faces, see `crate::bezier::domain`).
+    let mut pre = mesh.clone();
+    let mut cells: Option<Vec<crate::bezier::domain::Domain>> = None;
+    for _ in 0..pgs.dscc_steps {
+        let child = crate::schemes::doo_sabin::fourier::refine_cc_net(&pre)?;
+        cells = Some(ds::step_cells(&pre, cells.as_deref(), &child));
+        pre = child;
+    }
+    let cells = cells.expect("at least one step");
+    ds::dual_complex_in_cells(&pre, &cells, opts, &rules, ids::PGS.name(), progress)
 }
 
 /// The TPS surface ([`TernaryRules::TPS`]) or adjustable TPS surface
@@ -403,9 +433,9 @@ pub fn tps_complex(
     let mut w = uniform_widths(mesh);
     let mut notes = Vec::new();
     // The cell of an input face each face of `m` is (TPS only: adjustable TPS does not split
-    // in thirds, see `cells`).
+    // in thirds, see `thirds`).
     let tracked = rules == TernaryRules::TPS;
-    let mut face_cells = cells::input_face_cells(mesh);
+    let mut face_cells = thirds::input_face_cells(mesh);
     // Validate the net as the scheme would (quads, boundary rules).
     ternary_step(&m, &w, &rules, name)?;
     for start in 0..=2 {
@@ -418,7 +448,7 @@ pub fn tps_complex(
                 let mut el = ternary_element(&m, v, rules, name)?;
                 el.start = start;
                 if tracked {
-                    el.sectors = cells::sector_cells(&m, &face_cells, v);
+                    el.sectors = thirds::sector_cells(&m, &face_cells, v);
                 }
                 Ok(el)
             })
@@ -426,7 +456,8 @@ pub fn tps_complex(
         match built {
             Ok(elements) => {
                 let cells = tracked.then_some(face_cells.as_slice());
-                let (c, more) = assemble(&m, Some(&w), cells, &elements, opts, &mut progress)?;
+                let (c, more) =
+                    assemble(&m, false, Some(&w), cells, &elements, opts, &mut progress)?;
                 notes.extend(more);
                 return Ok((c, notes));
             }
@@ -437,7 +468,7 @@ pub fn tps_complex(
                      count from the refined net"
                 ));
                 let (r, nw) = ternary_step(&m, &w, &rules, name)?;
-                face_cells = cells::refined_face_cells(&face_cells, r.mesh.num_faces());
+                face_cells = thirds::refined_face_cells(&face_cells, r.mesh.num_faces());
                 m = r.mesh;
                 w = nw;
             }
@@ -464,7 +495,7 @@ pub fn polar_complex(
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
     let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (c, more) = assemble(&net.mesh, None, None, &els, opts, progress)?;
+    let (c, more) = assemble(&net.mesh, false, None, None, &els, opts, progress)?;
     notes.extend(more);
     Ok((c, notes))
 }
@@ -538,7 +569,7 @@ pub fn mixed_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
-    assemble(mesh, None, None, &els, opts, progress)
+    assemble(mesh, true, None, None, &els, opts, progress)
 }
 
 /// `n`-valent extraordinary element's ring `l` patches from explicit local-net points (the

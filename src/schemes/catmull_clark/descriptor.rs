@@ -2,11 +2,13 @@
 
 use crate::bezier::BezierPatch;
 use crate::error::Result;
+use crate::host::ComplexOptions;
+use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::descriptor::{
     Capabilities, Computed, Descriptor, LocalRules, ParamKind, PatchRules, Published, Spec,
-    SurfaceOutput, patch_fn,
+    SurfaceOutput,
 };
 use crate::schemes::local::LocalMatrix;
 
@@ -38,11 +40,9 @@ impl Descriptor for CcDescriptor {
     /// The adaptive loop with bi-3 patches and the Hermite-Coons fill, honouring the net's
     /// sharp features under OpenSubdiv's options.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
-        let subd = spec.params.subd;
-        patch_fn(move |mesh, opts, progress| {
-            super::surface::catmull_clark_complex_with(mesh, opts, subd, progress)
-                .map(SurfaceOutput::plain)
-        })
+        Ok(Some(Box::new(CcPatches {
+            subd: spec.params.subd,
+        })))
     }
 
     fn patches_take_features(&self) -> bool {
@@ -51,6 +51,32 @@ impl Descriptor for CcDescriptor {
 
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         Ok(Some(Box::new(CcLocal)))
+    }
+}
+
+/// Catmull-Clark's exact surfaces, with their patch tables tracked beside the points.
+struct CcPatches {
+    subd: crate::mesh::tags::SubdOptions,
+}
+
+impl PatchRules for CcPatches {
+    fn build(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<SurfaceOutput> {
+        super::surface::catmull_clark_complex_with(mesh, opts, self.subd, progress)
+            .map(SurfaceOutput::plain)
+    }
+
+    fn build_tracked(
+        &self,
+        mesh: &PolyMesh,
+        opts: ComplexOptions,
+    ) -> Result<Option<(SurfaceOutput, crate::stencil::StencilTable)>> {
+        let (complex, rows) = super::surface::catmull_clark_tracked(mesh, opts, self.subd)?;
+        Ok(rows.map(|r| (SurfaceOutput::plain(complex), r)))
     }
 }
 

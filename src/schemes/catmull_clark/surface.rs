@@ -39,6 +39,7 @@
 mod g1;
 mod jets;
 pub mod sharp;
+mod track;
 
 use super::regular::bi3_net;
 use crate::bezier::BezierPatch;
@@ -58,6 +59,7 @@ use crate::schemes::catmull_clark::crease::adaptive::{
 };
 use crate::stencil::Stencil;
 use std::collections::{HashMap, HashSet};
+pub use track::catmull_clark_tracked;
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -82,6 +84,7 @@ pub fn catmull_clark_complex_with(
         caps: None,
         opts,
         subd: Some(subd),
+        track: None,
     };
     adaptive::run(&rules, mesh, opts, &mut progress)
 }
@@ -107,6 +110,7 @@ pub fn capped_complex(
             caps: Some(caps),
             opts,
             subd,
+            track: None,
         },
         mesh,
         opts,
@@ -124,6 +128,8 @@ pub struct CcRules<'a> {
     /// OpenSubdiv's options when the net's sharp features are honoured ([`sharp`]); `None`
     /// refines every net with the plain rules (the cap schemes on a net without features).
     pub subd: Option<SubdOptions>,
+    /// The patch table's rows, when tracked beside the points ([`catmull_clark_tracked`]).
+    pub(crate) track: Option<std::cell::RefCell<track::Tracker>>,
 }
 
 impl AdaptiveRules for CcRules<'_> {
@@ -139,6 +145,9 @@ impl AdaptiveRules for CcRules<'_> {
             )));
         }
         let mut level = Level::input(mesh, self.subd.as_ref());
+        if self.track.is_some() {
+            level.rows = Some(crate::stencil::StencilTable::identity(mesh.num_vertices()));
+        }
         // Catmull-Clark splits a triangle into three quads like any n-gon: its domain is the
         // 3-gon's strip of quad sub-faces, not Loop's barycentric triangle
         let base = &mut level.base;
@@ -152,9 +161,13 @@ impl AdaptiveRules for CcRules<'_> {
         if is_hole(level, f as usize) {
             return true;
         }
-        let Some(p) = regular_patch(level, f as usize) else {
+        let Some(net) = regular_net(level, f as usize) else {
             return false;
         };
+        let p = net_patch(level, &net);
+        if let Some(t) = &self.track {
+            t.borrow_mut().regular(to.out.len(), level, &net);
+        }
         record_curves(&level.mesh, f as usize, &p, to.curves);
         to.out.push(p, prov);
         sharp::mark_sides(level, f as usize, to.out);
@@ -183,7 +196,12 @@ impl AdaptiveRules for CcRules<'_> {
             None => marked,
         };
         if self.opts.fill && l >= self.opts.rings {
-            Ok(g1::g1_caps(level, &marked, out))
+            let before = out.caps.len();
+            let left = g1::g1_caps(level, &marked, out);
+            if let Some(t) = &self.track {
+                t.borrow_mut().caps(level, &marked, out, before);
+            }
+            Ok(left)
         } else {
             Ok(marked)
         }
@@ -336,6 +354,12 @@ fn sector_domains(m: &PolyMesh, v: u32, domains: &HashMap<u32, Domain>) -> Vec<D
 
 /// The bi-3 patch of face `f` if it is regular and all its net points are trusted.
 fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
+    regular_net(level, f).map(|net| net_patch(level, &net))
+}
+
+/// The bi-3 B-spline net of face `f` (stencils over the level's points) if the face is regular
+/// and all its net points are trusted.
+fn regular_net(level: &Level, f: usize) -> Option<Vec<Stencil>> {
     let m = &level.mesh;
     if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
         return None;
@@ -351,9 +375,17 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
     }) {
         return None;
     }
-    let pts: Vec<Point> = net.iter().map(|s| s.apply(m.positions())).collect();
+    Some(net)
+}
+
+/// The bi-3 patch of a B-spline net of the level.
+fn net_patch(level: &Level, net: &[Stencil]) -> BezierPatch {
+    let pts: Vec<Point> = net
+        .iter()
+        .map(|s| s.apply(level.mesh.positions()))
+        .collect();
     let m3 = crate::bezier::convert::cubic_bspline_matrix();
-    Some(crate::bezier::convert::tensor_apply(m3, m3, &pts))
+    crate::bezier::convert::tensor_apply(m3, m3, &pts)
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
@@ -502,6 +534,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
+    let rows = level.rows.as_ref().map(|r| table.compose(r));
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, &vid, &eid);
     let mut active = Vec::new();
@@ -525,6 +558,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             active,
         },
         sharp,
+        rows,
     })
 }
 

@@ -31,11 +31,15 @@
 //!   faces around its vertex, so a face cannot be kept for support and left unwritten; the
 //!   faces around a hole end on the hole's boundary curve instead.
 
+use crate::bezier::Side;
+use crate::bezier::complex::PatchComplex;
 use crate::error::{Error, Result};
+use crate::geom::{Point, dist};
 use crate::mesh::tags::BoundaryInterpolation;
 use crate::mesh::{Extras, NONE, PolyMesh, SharpEdges};
 use crate::schemes::catmull_clark::crease::INFINITE;
 use crate::schemes::descriptor::SurfaceOutput;
+use std::collections::HashMap;
 
 /// A net cut along its creases, with what the cut did (for the notes).
 #[derive(Debug)]
@@ -218,13 +222,82 @@ pub fn on_cut_net(
     build: impl FnOnce(&PolyMesh) -> Result<SurfaceOutput>,
 ) -> Result<SurfaceOutput> {
     match cut_along_creases(mesh, name)? {
-        None => build(mesh),
+        None => {
+            let mut out = build(mesh)?;
+            // no crease: the boundary sides the host marked are the surface's boundary
+            out.complex.sharp_sides.clear();
+            Ok(out)
+        }
         Some(cut) => {
             let mut out = build(&cut.mesh)?;
+            keep_crease_sides(&mut out.complex);
             let mut notes = cut.notes;
             notes.append(&mut out.notes);
             out.notes = notes;
             Ok(out)
+        }
+    }
+}
+
+/// Of the sides the host marked as lying on the cut net's boundary (the Doo-Sabin host marks
+/// them as it emits the patches), keeps those that meet another marked side: the two sides of
+/// a crease, which end on the same curve, so that `check` reports the crease as a sharp join.
+/// The others are the surface's boundary and are cleared. Two sides meet when their end points
+/// and midpoints agree to `1e-9` of the complex's size, found through a grid of cells of
+/// `1e-6` of its size (a side's midpoint is compared with those of the 27 cells around it).
+fn keep_crease_sides(c: &mut PatchComplex) {
+    let marks = std::mem::take(&mut c.sharp_sides);
+    if marks.is_empty() {
+        return;
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in c.patches.iter().flat_map(|p| &p.cps) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = dist(lo, hi).max(f64::MIN_POSITIVE);
+    let (tol, cell) = (1e-9 * size, 1e-6 * size);
+    let key =
+        |x: Point| std::array::from_fn::<i64, 3, _>(|k| ((x[k] - lo[k]) / cell).floor() as i64);
+    let sides: Vec<(u32, Side, [Point; 3])> = marks
+        .iter()
+        .flat_map(|&(p, m)| {
+            Side::ALL
+                .into_iter()
+                .filter(move |s| m & (1 << s.index()) != 0)
+                .map(move |s| (p, s))
+        })
+        .map(|(p, s)| {
+            let patch = &c.patches[p as usize];
+            let at = |t: f64| {
+                let [u, v] = s.domain_point(t);
+                patch.eval(u, v)
+            };
+            (p, s, [at(0.0), at(0.5), at(1.0)])
+        })
+        .collect();
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (i, s) in sides.iter().enumerate() {
+        grid.entry(key(s.2[1])).or_default().push(i);
+    }
+    let close = |a: Point, b: Point| dist(a, b) <= tol;
+    for (i, &(p, side, [a, m, b])) in sides.iter().enumerate() {
+        let k = key(m);
+        let met = (0..27).any(|d| {
+            let cell = [k[0] + d % 3 - 1, k[1] + d / 3 % 3 - 1, k[2] + d / 9 - 1];
+            grid.get(&cell).is_some_and(|js| {
+                js.iter().any(|&j| {
+                    let [a2, m2, b2] = sides[j].2;
+                    j != i
+                        && close(m, m2)
+                        && ((close(a, a2) && close(b, b2)) || (close(a, b2) && close(b, a2)))
+                })
+            })
+        });
+        if met {
+            c.mark_sharp(p as usize, side.index());
         }
     }
 }

@@ -87,9 +87,9 @@
 
 use super::fourier::{self, FaceCorners};
 use super::{DooSabin, DooSabinCc, corner_point_stencil};
-use crate::bezier::BezierPatch;
 use crate::bezier::complex::{Domain, PatchComplex, Piece, Provenance};
 use crate::bezier::convert::biquadratic_bspline_stencils;
+use crate::bezier::{BezierPatch, Side};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -191,7 +191,25 @@ pub fn dual_complex_with(
     name: &str,
     progress: impl FnMut(usize),
 ) -> Result<PatchComplex> {
-    dual_complex(mesh, opts, rules, name, progress)
+    dual_complex(mesh, None, opts, rules, name, progress)
+}
+
+/// [`dual_complex_with`] on a net whose vertices' patches cover the cells `cells` of the
+/// faces of an earlier net (one per vertex, `rot` the corner of the patch's `(0, 0)`;
+/// untracked ones are not evaluated): a net made from that earlier net by whole-net dual
+/// steps, whose cells [`step_cells`] gives (PGS after DS^CC steps).
+///
+/// # Errors
+/// As [`doo_sabin_complex`].
+pub fn dual_complex_in_cells(
+    mesh: &PolyMesh,
+    cells: &[Domain],
+    opts: ComplexOptions,
+    rules: &DualRules<'_>,
+    name: &str,
+    progress: impl FnMut(usize),
+) -> Result<PatchComplex> {
+    dual_complex(mesh, Some(cells), opts, rules, name, progress)
 }
 
 /// One level of the adaptive refinement.
@@ -216,6 +234,7 @@ impl Cells for Level {
 
 fn dual_complex(
     mesh: &PolyMesh,
+    cells: Option<&[Domain]>,
     opts: ComplexOptions,
     rules: &DualRules<'_>,
     name: &str,
@@ -225,6 +244,7 @@ fn dual_complex(
         rules,
         name,
         fill: opts.fill,
+        cells,
     };
     adaptive::run(&host, mesh, opts, &mut progress)
 }
@@ -237,6 +257,8 @@ struct DualHost<'a, 'b> {
     /// Whether the holes are closed (then up to [`g1::MAX_EXTRA_LEVELS`] more levels separate
     /// touching holes for their G^1 caps).
     fill: bool,
+    /// The cells of the start net's vertices when it is not the input net ([`step_cells`]).
+    cells: Option<&'a [Domain]>,
 }
 
 impl AdaptiveRules for DualHost<'_, '_> {
@@ -269,7 +291,10 @@ impl AdaptiveRules for DualHost<'_, '_> {
                         element: None,
                         sector: 0,
                         input_face,
-                        domain: Domain::UNTRACKED,
+                        domain: self
+                            .cells
+                            .and_then(|c| c.get(v as usize).copied())
+                            .unwrap_or(Domain::UNTRACKED),
                     },
                 )
             })
@@ -279,7 +304,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
             info,
             face_origin,
             active,
-            first: true,
+            first: self.cells.is_none(),
         })
     }
 
@@ -288,11 +313,9 @@ impl AdaptiveRules for DualHost<'_, '_> {
             return false;
         };
         to.out.push(p, prov);
+        mark_boundary_sides(&level.mesh, v as usize, to.out);
         if level.first {
-            let m = &level.mesh;
-            let patch = (to.out.len() - 1) as u32;
-            let cell = |g: usize| Domain::polygon(g as u32, m.face_size(g));
-            vertex_quarter_pieces(m, v as usize, patch, &cell, to.out);
+            input_vertex_pieces(&level.mesh, v as usize, to.out);
         }
         true
     }
@@ -404,6 +427,15 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
     trusted.then(|| patch_from(m, &s))
 }
 
+/// The quarters of the four faces around the interior input vertex `v` that its patch, the
+/// last of `out`, covers ([`crate::bezier::domain`]): [`vertex_quarter_pieces`] with the input
+/// faces' own cells. The regular patches of `bi2-mixed` are laid out the same way.
+pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+    let patch = (out.len() - 1) as u32;
+    let cell = |g: usize| Domain::polygon(g as u32, m.face_size(g));
+    vertex_quarter_pieces(m, v, patch, &cell, out);
+}
+
 /// The quarters of the four faces around the interior vertex `v` that its bi-2 patch `patch`
 /// covers ([`crate::bezier::domain`]), `face_cell(g)` being the cell face `g` of `m` is (the
 /// input face itself, or for TPS a third of one): face `i` of `v`'s fan (`u` along its first
@@ -420,7 +452,7 @@ pub(crate) fn vertex_quarter_pieces(
     if m.is_boundary_vertex(v) {
         return;
     }
-    for (i, h) in m.outgoing(v).enumerate() {
+    for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
         let g = m.he_face(h) as usize;
         let k = h - m.face_halfedge(g);
         let cell = face_cell(g).child(k);
@@ -494,12 +526,30 @@ fn fill(
         // the vertex's own patch, in its own cell
         let sector = tag.sector;
         out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
+        mark_boundary_sides(m, v as usize, out);
     }
     Ok(())
+}
+
+/// Marks the sides of the last patch of `out`, the patch of vertex `v` ([`vertex_net`]'s
+/// layout, shared by the ring host of the other bi-2 schemes), that lie on the net's boundary: `v = 0` at a boundary vertex, `u = 0` too at a
+/// corner. On a net cut along its creases these are crease sides or the surface's boundary;
+/// [`super::sharp::on_cut_net`] keeps the marks of the crease sides only (those that meet a
+/// marked side of the other side of the cut) and clears the rest.
+pub(crate) fn mark_boundary_sides(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+    if !m.is_boundary_vertex(v) {
+        return;
+    }
+    let last = out.len() - 1;
+    out.mark_sharp(last, Side::V0.index());
+    if m.is_corner(v) {
+        out.mark_sharp(last, Side::U0.index());
+    }
 }
 
 mod g1;
 mod refine;
 use refine::refine_around;
+pub use refine::step_cells;
 #[cfg(test)]
 mod tests;

@@ -33,8 +33,9 @@
 //!
 //! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
 //! `n != 4`). It is written only where the G^1 cap of [`g1`] (read off the fill's outer
-//! layers, in the limit tangent plane) cannot be built, with a note; QAS+^3's bi-3 rings keep
-//! their C^0 Coons fill ([`fill`]). `fairsub check` reports the measured defects. `--no-fill`
+//! layers, in the limit tangent plane) cannot be built, with a note; QAS+^3's bi-3 rings get
+//! the split G^1 cap of [`g1`] (2 x 2 pieces per sector), their C^0 Coons fill ([`fill`]) only
+//! where that cannot be built. `fairsub check` reports the measured defects. `--no-fill`
 //! leaves the hole open.
 //!
 //! # Parameter domain (evaluation)
@@ -48,8 +49,8 @@
 //! EG chart's `[1/2, 1] x [0, 1/2]` of that square, `B` on `[1/2, 1]^2`, `C` on
 //! `[0, 1/2] x [1/2, 1]` (the cells of [`crate::schemes::eg::build_step`]; QAS+^3's bi-3 rings
 //! split each in its 2 x 2 quarters), each patch's own `(u, v)` the frame's, scaled. The cap
-//! or fill inside ring `K` covers `[0, 2^-K]^2` with `(0, 0)` at the centre (QAS+^3's Coons
-//! fill: its 2 x 2 quarters). The ratio is the chart's, whatever the scheme's eigenvalue
+//! or fill inside ring `K` covers `[0, 2^-K]^2` with `(0, 0)` at the centre (QAS+^3's split
+//! cap or Coons fill: its 2 x 2 quarters). The ratio is the chart's, whatever the scheme's eigenvalue
 //! (QAS_0.4 contracts the surface by 0.4 per ring, its chart by 1/2).
 
 use super::select::{self, Selected};
@@ -355,13 +356,23 @@ impl CapBuilder for DnetCaps<'_> {
         if let (true, Some(ring)) = (self.fill, last) {
             let next = self.step(n, self.rings)?.ring.apply(&x);
             let (patches, per_sector) = if is_bi3_ring(&ring, n) {
-                self.notes.note(
-                    "the holes keep the C^0 bi-3 Coons fill, no G^1 cap: the inner sides of \
-                     the 2 x 2 bi-3 macro-patch rings are piecewise cubics, which a one-patch \
-                     cap sector cannot join C^1"
-                        .into(),
-                );
-                (fill::fill_bi3(&ring, &next, x[0], n), 4)
+                let cap = self
+                    .limit_tangents(n, &x)
+                    .and_then(|t| g1::bi3_cap(&ring, n, x[0], t, out.len()));
+                match cap {
+                    Ok((cap, step)) => {
+                        out.caps.push(step);
+                        (cap, 4)
+                    }
+                    Err(e) => {
+                        self.notes.note(format!(
+                            "{} (valence {n}): the C^0 bi-3 Coons fill closes the hole, no G^1 \
+                             cap ({e})",
+                            describe(element)
+                        ));
+                        (fill::fill_bi3(&ring, &next, x[0], n), 4)
+                    }
+                }
             } else {
                 let c0 = fill::fill(&ring, &next, x[0], n);
                 let cap = self
@@ -385,6 +396,7 @@ impl CapBuilder for DnetCaps<'_> {
             for (k, p) in patches.into_iter().enumerate() {
                 let s = k / per_sector;
                 // one patch on the square [0, 2^-K]^2 of the sector's frame, or QAS+^3's 2 x 2
+                // (cap pieces (a, b) and the Coons fill's quarters alike: index 2 a + b)
                 let domain = match per_sector {
                     1 => sector_square(sectors, s, rings, 0, 0),
                     _ => {

@@ -31,8 +31,10 @@
 //! restriction of `T` of the quintic, so consecutive rings would in general meet only at the
 //! patch corners (with matching 2-jets there) and leave gaps along the ring boundaries.
 //!
-//! Not derived: the variants' caps (the paper's G^1 bi-3 cap is "formally only C^0-connected" to
-//! the last ring; its construction is in the lost Fig. 17), so these variants leave the hole open.
+//! Not the paper's: the variants' caps (the paper's G^1 bi-3 cap is "formally only
+//! C^0-connected" to the last ring; its construction is in the lost Fig. 17). fairsub closes the
+//! hole with its own split-sector G^1 cap of [`crate::bezier::g1`] (`m x m` pieces per sector,
+//! C^1 to the last ring, see [`super::surface`]), a reconstruction, not the paper's cap.
 
 use super::bern::{bernstein_derivs, kron};
 use nalgebra::DMatrix;

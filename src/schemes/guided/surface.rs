@@ -1,7 +1,10 @@
 //! Guided subdivision surfaces of whole meshes: bi-3 patches on regular faces and, at every
 //! extraordinary vertex of valence 3 and 5..16, `K` guided rings of `3 n` bi-5 or bi-6 patches
 //! and the G^1 bi-6 cap of [`crate::schemes::guided::cap`] (or an open hole). The macro-patch
-//! variants write each ring patch as its 2 x 2 bi-4 or 3 x 3 bi-3 pieces and have no cap.
+//! variants write each ring patch as its 2 x 2 bi-4 or 3 x 3 bi-3 pieces and close the hole
+//! with the split G^1 cap of [`crate::bezier::g1`] (2 x 2 or 3 x 3 pieces per sector, C^1 to
+//! the last ring piece by piece, at the guide's central point in its tangent plane; see
+//! `macro_cap`); `--no-fill` leaves the hole open.
 //!
 //! Built on Catmull-Clark's adaptive loop ([`crate::schemes::catmull_clark::surface`]) exactly
 //! like EG and QAS+: vertices whose c-net is
@@ -24,11 +27,15 @@
 
 use super::cap::CapTables;
 use super::chi::ChiKind;
+use super::macro_patch::MacroKind;
 use super::rings::{Guided, GuidedOptions};
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{Domain, PatchComplex, Provenance};
+use crate::bezier::complex::{CapStep, Domain, PatchComplex, Provenance};
+use crate::bezier::g1::ring::{cap_step, split_sector};
+use crate::bezier::g1::{CapOptions, Hole};
 use crate::error::{Error, Result};
 use crate::geom::Point;
+use crate::geom::sub;
 use crate::host::caps::{CapBuilder, CapNotes, RING_CELLS, describe, sector_square};
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
@@ -171,9 +178,6 @@ impl CapBuilder for GuidedCaps {
         let t = self.tables(n)?;
         let d = t.scheme.degree();
         let mk = t.scheme.opts.ring.macro_kind();
-        if mk.is_some() && self.opts.cap {
-            self.notes.note("the macro-patch variants have no cap (the paper's bi-3 / bi-4 caps are in the lost Fig. 17): the hole inside the last ring stays open".to_string());
-        }
         let (rings, guide) = t.scheme.rings(cnet, self.opts.rings)?;
         for (l, ring) in rings.iter().enumerate() {
             for (k, p) in ring.iter().enumerate() {
@@ -197,6 +201,26 @@ impl CapBuilder for GuidedCaps {
                 }
             }
         }
+        if let (Some(kind), true, Some(last)) = (mk, self.opts.cap, rings.last()) {
+            let first = out.len();
+            match macro_cap(kind, last, &guide, &t.scheme, first) {
+                Ok((patches, step)) => {
+                    out.caps.push(step);
+                    let per = kind.pieces() * kind.pieces();
+                    for (k, p) in patches.into_iter().enumerate() {
+                        let prov = Provenance::Cap {
+                            element,
+                            sector: (k / per) as u32,
+                        };
+                        out.push(p, prov);
+                    }
+                }
+                Err(e) => self.notes.note(format!(
+                    "{} (valence {n}): no G^1 cap, the hole inside the last ring stays open ({e})",
+                    describe(element)
+                )),
+            }
+        }
         if let (Some(cap), Some(last)) = (&t.cap, rings.last()) {
             let level = rings.len() as u8;
             for (s, p) in cap.cap(&guide, last).into_iter().enumerate() {
@@ -212,6 +236,48 @@ impl CapBuilder for GuidedCaps {
         }
         Ok(())
     }
+}
+
+/// The split G^1 cap of a macro-patch variant ([`crate::bezier::g1`],
+/// [`crate::bezier::g1::Layout::Split`]`(m)`, `m` the pieces per ring patch side): the hole's
+/// sides are read off the last ring's pieces (`A`'s pieces `(0, b)` beside the side `u = 1`, `C`'s
+/// pieces `(a, 0)` beside `v = 1`), centred at the guide's central point (the rings' limit point)
+/// in the guide's tangent plane there (`g^0_10 - g^0_00`, `g^0_01 - g^0_00`); `first` is the index
+/// of the cap's first patch.
+fn macro_cap(
+    kind: MacroKind,
+    last: &[Vec<Point>],
+    guide: &nalgebra::DMatrix<f64>,
+    scheme: &Guided,
+    first: usize,
+) -> Result<(Vec<BezierPatch>, CapStep)> {
+    let (e, m, n) = (kind.degree(), kind.pieces(), scheme.n);
+    let pieces = |p: &[Point]| -> Vec<BezierPatch> {
+        kind.pieces_of(p)
+            .into_iter()
+            .map(|c| BezierPatch::new(e, e, c))
+            .collect()
+    };
+    let sectors = (0..n)
+        .map(|s| {
+            let (a, c) = (pieces(&last[3 * s]), pieces(&last[3 * s + 2]));
+            let a_side: Vec<BezierPatch> = (0..m).map(|b| a[b].clone()).collect();
+            let b_side: Vec<BezierPatch> = (0..m).map(|k| c[k * m].clone()).collect();
+            split_sector(&a_side, &b_side)
+        })
+        .collect();
+    let row = |i: usize, j: usize| -> Point {
+        let r = scheme.space.coeff(0, i, j);
+        [guide[(r, 0)], guide[(r, 1)], guide[(r, 2)]]
+    };
+    let centre = row(0, 0);
+    let plane = [sub(row(1, 0), centre), sub(row(0, 1), centre)];
+    cap_step(
+        Hole::untangented(centre, sectors),
+        plane,
+        CapOptions::default(),
+        first,
+    )
 }
 
 /// The guided surface of a net as a patch complex, with notes for the user.

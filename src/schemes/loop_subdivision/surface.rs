@@ -433,6 +433,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             active,
         },
         sharp,
+        rows: None,
     })
 }
 

@@ -242,6 +242,12 @@ fn outputs(c: &PatchComplex) -> Vec<Point> {
     y
 }
 
+/// The diagonal of the points' bounding box: the net's size the checks are relative to.
+pub fn net_size(p: &[Point]) -> f64 {
+    let (lo, hi) = bounds(p);
+    crate::geom::dist(lo, hi)
+}
+
 /// Bounding box of the points.
 fn bounds(p: &[Point]) -> (Point, Point) {
     let mut lo = [f64::INFINITY; 3];

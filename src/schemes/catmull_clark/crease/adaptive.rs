@@ -36,6 +36,9 @@ pub struct Level {
     pub(crate) base: MeshLevel,
     /// The level's sharp features, when the net has them.
     pub(crate) sharp: Option<Features>,
+    /// When the construction tracks its patch table: the row of each point of the level over
+    /// the input net's points (identity at level 0, composed with each refinement's stencils).
+    pub(crate) rows: Option<crate::stencil::StencilTable>,
 }
 
 impl std::ops::Deref for Level {
@@ -59,10 +62,12 @@ impl Level {
             Some((m, s)) => Level {
                 base: MeshLevel::input(&m),
                 sharp: Some(s),
+                rows: None,
             },
             None => Level {
                 base: MeshLevel::input(mesh),
                 sharp: None,
+                rows: None,
             },
         }
     }

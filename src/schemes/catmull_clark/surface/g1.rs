@@ -33,13 +33,15 @@ use super::{Level, regular_patch};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
+use crate::bezier::{BezierPatch, Side};
 use crate::geom::Point;
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
+    MAX_EXTRA_CAP_LEVELS, NoCap, QuadSector, Tag, caps_waiting, g1_cap_elements, hole_centre,
     quad_hole_segments, quad_sectors_around,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
+use crate::stencil::linear_weights;
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
@@ -55,14 +57,52 @@ fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
 /// end, with its outward derivative (`None` at the boundary or while that face has no trusted
 /// regular patch). The face across is found through the twin, in O(1) at any valence.
 fn segment_across(level: &Level, hole_he: u32, from: u32) -> Option<Segment> {
+    let (g, side, range) = across(level, hole_he, from)?;
+    let ring = regular_patch(level, g)?;
+    Some(segment_from_ring(&ring, side, range, 1.0))
+}
+
+/// The face across the hole half-edge `hole_he` and the side and range of its patch that give
+/// the segment starting at `from`.
+fn across(level: &Level, hole_he: u32, from: u32) -> Option<(usize, Side, [f64; 2])> {
     let m = &level.mesh;
     let h = m.he_twin(hole_he)?;
     let forward = m.he_from(h) == from;
     let g = m.he_face(h) as usize;
-    let ring = regular_patch(level, g)?;
     let k = corner_of(m, g, m.he_from(h))?;
     let (side, range) = quad_edge_side(k, forward);
-    Some(segment_from_ring(&ring, side, range, 1.0))
+    Some((g, side, range))
+}
+
+/// The rows of [`segment_across`] over the level's points (boundary, then cross), its weights
+/// read off [`segment_from_ring`] itself; `patch_rows` gives a regular face's coefficient rows.
+fn segment_rows(
+    level: &Level,
+    hole_he: u32,
+    from: u32,
+    patch_rows: &impl Fn(usize) -> Option<Vec<Vec<(u32, f64)>>>,
+) -> Option<Vec<Vec<(u32, f64)>>> {
+    let (g, side, range) = across(level, hole_he, from)?;
+    let cps = patch_rows(g)?;
+    let weights = linear_weights(cps.len(), |pts| {
+        let p = BezierPatch {
+            deg_u: 3,
+            deg_v: 3,
+            cps: pts.to_vec(),
+        };
+        let s = segment_from_ring(&p, side, range, 1.0);
+        [s.boundary, s.cross].concat()
+    });
+    Some(
+        weights
+            .iter()
+            .map(|w| {
+                w.iter()
+                    .flat_map(|&(c, x)| cps[c as usize].iter().map(move |&(v, y)| (v, x * y)))
+                    .collect()
+            })
+            .collect(),
+    )
 }
 
 /// The hole of one element: its centre vertex and the sectors in counter-clockwise order with
@@ -73,6 +113,47 @@ fn hole_of(
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
+    let (x, quads, tags) = hole_sectors(level, element, faces)?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    let m = &level.mesh;
+    let pos = m.positions();
+    let centre = limits.limit(x);
+    let (t1, t2) = CatmullClark::tangent_stencils(m, x).ok_or(NoCap::Never)?;
+    let plane = [t1.apply(pos), t2.apply(pos)];
+    let hole = Hole::untangented(centre, sectors);
+    Ok((hole, plane, tags))
+}
+
+/// The rows of the data of [`hole_of`] over the level's points, in the order of the patch
+/// table's cap data (centre, the two plane vectors, per sector and segment the boundary then the
+/// cross coefficients): the same walk, the limit and tangent stencils themselves, and the
+/// segments' weights read off the segment code ([`segment_rows`]).
+pub(super) fn hole_rows(
+    level: &Level,
+    limits: &LimitStencils<'_>,
+    element: Element,
+    faces: &[(u32, Tag)],
+    patch_rows: &impl Fn(usize) -> Option<Vec<Vec<(u32, f64)>>>,
+) -> Option<Vec<Vec<(u32, f64)>>> {
+    let (x, quads, _) = hole_sectors(level, element, faces).ok()?;
+    let sectors =
+        quad_hole_segments(&quads, |he, from| segment_rows(level, he, from, patch_rows)).ok()?;
+    let (t1, t2) = CatmullClark::tangent_stencils(&level.mesh, x)?;
+    let mut rows = vec![limits.stencil(x), t1, t2]
+        .into_iter()
+        .map(|s| s.entries().to_vec())
+        .collect::<Vec<_>>();
+    rows.extend(sectors.into_iter().flatten().flatten());
+    Some(rows)
+}
+
+/// The centre vertex of an element's hole, its sectors counter-clockwise and the tag of each
+/// sector's cap patch, or why there is none.
+fn hole_sectors(
+    level: &Level,
+    element: Element,
+    faces: &[(u32, Tag)],
+) -> Result<(usize, Vec<QuadSector>, Vec<Tag>), NoCap> {
     let m = &level.mesh;
     let (f0, _) = faces[0];
     let (x, n) = hole_centre(m, &level.info, element, f0)?;
@@ -91,13 +172,7 @@ fn hole_of(
             ..tag
         });
     }
-    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
-    let pos = m.positions();
-    let centre = limits.limit(xu);
-    let (t1, t2) = CatmullClark::tangent_stencils(m, xu).ok_or(NoCap::Never)?;
-    let plane = [t1.apply(pos), t2.apply(pos)];
-    let hole = Hole::untangented(centre, sectors);
-    Ok((hole, plane, tags))
+    Ok((xu, quads, tags))
 }
 
 /// Whether some marked element would get its G^1 cap after more levels (its faces still touch

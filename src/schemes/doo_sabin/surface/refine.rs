@@ -234,7 +234,7 @@ pub(super) fn refine_around(
             t.domain = Domain::UNTRACKED;
             if w != UNSET && !on_boundary {
                 let g = m.he_face(h);
-                t.domain = child_domain(level, &child, h, i, tag.domain, f_face[&g], w);
+                t.domain = child_domain(m, level.first, &child, h, i, tag.domain, f_face[&g], w);
             }
             active.push((w, t));
         }
@@ -263,16 +263,19 @@ pub(super) fn refine_around(
     })
 }
 
-/// The domain of the child `w` (in `child`) of a vertex `v` of `level` that is the new corner
+/// The domain of the child `w` (in `child`) of a vertex `v` of `m` that is the new corner
 /// of face `g = face(h)`, `h` being `v`'s `i`-th outgoing half-edge and `cell` `v`'s domain
-/// (untracked at level 0): the quarter of `v`'s cell toward `g`'s centroid (at level 0 the
-/// quarter of the input face `g` at `v`, see [`crate::bezier::domain`]), turned so that its
-/// `rot` is the corner of the patch's `(0, 0)` for `w`'s outgoing order in `child`. The
-/// faces around `v` sit at its cell's corners `rot + 2 + i` (the patch of `v`, `u` along its
-/// first outgoing half-edge, has face `i`'s centroid at its corner `2 + i`); `w`'s cell has
-/// `g`'s F-face `fg` at its corner 0 (at level 0: 2, the input face's centroid).
+/// (unused when `first`, `m` being the input net): the quarter of `v`'s cell toward `g`'s
+/// centroid (when `first` the quarter of the input face `g` at `v`, see
+/// [`crate::bezier::domain`]), turned so that its `rot` is the corner of the patch's `(0, 0)`
+/// for `w`'s outgoing order in `child`. The faces around `v` sit at its cell's corners
+/// `rot + 2 + i` (the patch of `v`, `u` along its first outgoing half-edge, has face `i`'s
+/// centroid at its corner `2 + i`); `w`'s cell has `g`'s F-face `fg` at its corner 0 (when
+/// `first`: 2, the input face's centroid).
+#[allow(clippy::too_many_arguments)]
 fn child_domain(
-    level: &Level,
+    m: &PolyMesh,
+    first: bool,
     child: &PolyMesh,
     h: u32,
     i: usize,
@@ -280,8 +283,7 @@ fn child_domain(
     fg: u32,
     w: u32,
 ) -> Domain {
-    let m = &level.mesh;
-    let (d, at) = if level.first {
+    let (d, at) = if first {
         let g = m.he_face(h) as usize;
         let k = h - m.face_halfedge(g);
         (Domain::polygon(g as u32, m.face_size(g)).child(k), 2)
@@ -297,4 +299,27 @@ fn child_domain(
         Some(p) => d.rotated((at + 8 - 2 - p as u32) % 4),
         None => Domain::UNTRACKED,
     }
+}
+
+/// The cells of the vertices of `child`, one whole-net step of a dual scheme on `m` (the
+/// layout of [`crate::schemes::doo_sabin`]: child vertex `h` is the new corner of half-edge
+/// `h`, child face `f` the F-face of face `f`), from the cells of `m`'s vertices (`None`: `m`
+/// is the input net, whose vertices' patches cover quarters of their faces). Each child of an
+/// interior vertex gets the quarter of its parent's cell toward its face, exactly as the
+/// adaptive refinement gives it (`rot` the corner of its patch's `(0, 0)`); boundary points,
+/// kept corners and the children of boundary vertices are untracked (see
+/// [`crate::bezier::domain`]). PGS after DS^CC steps (`pgs-dscc`) starts its complex from
+/// these cells ([`super::dual_complex_in_cells`]).
+pub fn step_cells(m: &PolyMesh, cells: Option<&[Domain]>, child: &PolyMesh) -> Vec<Domain> {
+    let mut out = vec![Domain::UNTRACKED; child.num_vertices()];
+    for v in 0..m.num_vertices() {
+        if m.is_boundary_vertex(v) {
+            continue;
+        }
+        let cell = cells.map_or(Domain::UNTRACKED, |c| c[v]);
+        for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
+            out[h as usize] = child_domain(m, cells.is_none(), child, h, i, cell, m.he_face(h), h);
+        }
+    }
+    out
 }

@@ -30,13 +30,18 @@
 //!   the regular `n = 4`).
 //!
 //! Where the cap cannot be built (a degenerate tangent pair) the hole keeps the C^0 fill and the
-//! output notes say so. QAS+^3's bi-3 rings are 2 x 2 macro-patches per sector: their hole's
-//! sides are piecewise cubics, not one polynomial, so the single-patch cap does not fit; they keep
-//! the C^0 bi-3 Coons fill (see the notes).
+//! output notes say so.
+//!
+//! QAS+^3's bi-3 rings are 2 x 2 macro-patches per sector (one C^2 bi-3 spline in the d-net's
+//! chart): the hole's sides are piecewise cubics of two pieces each, read directly off the last
+//! ring's pieces (no fill needed: [`crate::bezier::g1::ring::split_sector`]), and the cap is the
+//! split-sector cap of [`crate::bezier::g1`] ([`crate::bezier::g1::Layout::Split`]`(2)`): each
+//! sector a 2 x 2 grid of bi-`d` pieces, C^2 inside the sector, C^1 to the ring piece by
+//! piece, G^1 across every spoke piece, same centre and plane as QAS+^4's cap.
 
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::CapStep;
-use crate::bezier::g1::ring::{cap_step, sectors_from_fill};
+use crate::bezier::g1::ring::{cap_step, sectors_from_fill, split_sector};
 use crate::bezier::g1::{CapOptions, Hole};
 use crate::error::{Error, Result};
 use crate::geom::Point;
@@ -108,4 +113,35 @@ pub(super) fn dnet_cap(
 ) -> Result<(Vec<BezierPatch>, CapStep)> {
     let hole = Hole::untangented(centre, sectors_from_fill(fill));
     cap_step(hole, tangents, CapOptions::default(), first)
+}
+
+/// The split G^1 cap of a QAS+^3 hole: `ring` the last bi-3 ring (12 pieces per sector, EG
+/// chart), the cap's pieces per sector `(a, b)` row-major in the mesh chart (`a` along spoke
+/// `s`), with its [`CapStep`].
+pub(super) fn bi3_cap(
+    ring: &[Point],
+    n: usize,
+    centre: Point,
+    tangents: [Point; 2],
+    first: usize,
+) -> Result<(Vec<BezierPatch>, CapStep)> {
+    // In the mesh chart (transposed) the hole's side u = 1 borders C (its quarters (0, k):
+    // EG sub-patch k), the side v = 1 borders A (quarters (k, 0): EG sub-patch 2 k).
+    let sectors = (0..n)
+        .map(|s| {
+            let a: Vec<BezierPatch> = (0..2)
+                .map(|k| super::ring_patch3(ring, s, 2, k).transposed())
+                .collect();
+            let b: Vec<BezierPatch> = (0..2)
+                .map(|k| super::ring_patch3(ring, s, 0, 2 * k).transposed())
+                .collect();
+            split_sector(&a, &b)
+        })
+        .collect();
+    cap_step(
+        Hole::untangented(centre, sectors),
+        tangents,
+        CapOptions::default(),
+        first,
+    )
 }

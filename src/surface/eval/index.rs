@@ -1,0 +1,227 @@
+//! The evaluation index of a [`super::Surface`]: per input face (per sub-face of an n-gon) a
+//! flat tree of cells, so that locating a point is an array walk, not a hash look-up per level.
+//!
+//! Every node is a cell of its face: empty (no patch covers it), a leaf (the patch or piece
+//! covering it) or split into `factor^2` children (4 for the dyadic quad and triangle cells,
+//! 9 for a cell in thirds), stored contiguously so that the child holding a point is
+//! `first + k` with `k` the child index of [`crate::bezier::domain`]. A regular face covered
+//! by one patch is its root leaf: no descent at all. Each leaf keeps what evaluating there
+//! needs, computed once with the same functions (and so the same rounding) as before: the
+//! patch's domain, the window of a piece, the inverse of the cell's corner map and the
+//! inverse linear part of the map from the patch's parameters to the face's.
+//!
+//! The tree answers exactly as the per-level look-up it replaces: the first domain indexed
+//! for a cell wins, and a cell covered by a patch hides every deeper cell below it (the
+//! descent stops at the shallowest covered cell).
+
+use crate::bezier::complex::PatchComplex;
+use crate::bezier::domain::{Affine, Domain, Shape};
+
+/// What covers a cell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Node {
+    /// No patch covers the cell (yet).
+    Empty,
+    /// Leaf `0` of [`CellTree::leaves`].
+    Leaf(u32),
+    /// Split into `factor^2` children from node `first` on.
+    Split { first: u32, factor: u8 },
+}
+
+/// A cell covered by a patch (or a piece of one), with its maps precomputed.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Leaf {
+    /// The patch.
+    pub patch: u32,
+    /// The domain the patch (or piece) covers.
+    pub domain: Domain,
+    /// The map from the cell's frame to the patch's parameters for a piece, else `None`.
+    pub window: Option<Affine>,
+    /// The cell corner map's origin and inverse linear part ([`Affine::invert`] split up).
+    corner_origin: [f64; 2],
+    corner_inv: [[f64; 2]; 2],
+    /// `inv[a][b] = d q_a / d p_b`: patch parameters `q` by face parameters `p`.
+    pub chain: [[f64; 2]; 2],
+}
+
+impl Leaf {
+    fn new(patch: u32, domain: Domain, window: Option<Affine>) -> Leaf {
+        let corner = domain.shape.corner_map(domain.rot);
+        let mut patch_map = domain.patch_map();
+        if let Some(w) = window {
+            patch_map = patch_map.compose(&w.inverse());
+        }
+        Leaf {
+            patch,
+            domain,
+            window,
+            corner_origin: corner.origin,
+            corner_inv: corner.inverse_linear(),
+            chain: patch_map.inverse_linear(),
+        }
+    }
+
+    /// The patch's parameters at cell point `cell` (before a piece's window:
+    /// `corner_map(rot).invert(cell)`, with the same arithmetic).
+    #[inline]
+    pub fn corner_point(&self, cell: [f64; 2]) -> [f64; 2] {
+        let inv = self.corner_inv;
+        let r = [
+            cell[0] - self.corner_origin[0],
+            cell[1] - self.corner_origin[1],
+        ];
+        [
+            inv[0][0] * r[0] + inv[0][1] * r[1],
+            inv[1][0] * r[0] + inv[1][1] * r[1],
+        ]
+    }
+}
+
+/// The inverse of a child map, split up like [`Affine::invert`].
+#[derive(Debug, Clone, Copy)]
+struct ChildInverse {
+    origin: [f64; 2],
+    inv: [[f64; 2]; 2],
+}
+
+impl ChildInverse {
+    fn of(map: Affine) -> ChildInverse {
+        ChildInverse {
+            origin: map.origin,
+            inv: map.inverse_linear(),
+        }
+    }
+
+    /// `map.invert(p)`, with the same arithmetic.
+    #[inline]
+    fn apply(&self, p: [f64; 2]) -> [f64; 2] {
+        let r = [p[0] - self.origin[0], p[1] - self.origin[1]];
+        [
+            self.inv[0][0] * r[0] + self.inv[0][1] * r[1],
+            self.inv[1][0] * r[0] + self.inv[1][1] * r[1],
+        ]
+    }
+}
+
+/// The cells of every face of a complex.
+#[derive(Debug, Clone)]
+pub(super) struct CellTree {
+    /// Face `f`'s root cells are nodes `root[f] .. root[f + 1]`, one per sub-face.
+    root: Vec<u32>,
+    nodes: Vec<Node>,
+    leaves: Vec<Leaf>,
+    /// Inverse child maps of quad cells, then of triangle cells.
+    quad: [ChildInverse; 4],
+    triangle: [ChildInverse; 4],
+    /// Inverse maps of a quad cell's children in thirds ([`Shape::third_map`]).
+    third: [ChildInverse; 9],
+}
+
+/// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
+/// level in thirds ([`Domain::splits_in_thirds`], TPS), else 2 (the dyadic cells).
+fn factor_of(d: &Domain, l: u8) -> u8 {
+    if d.splits_in_thirds(l) { 3 } else { 2 }
+}
+
+impl CellTree {
+    /// The index of `complex`'s patches and pieces over a net whose faces have `sides`
+    /// corners (a face of `n != 4` corners has `n` sub-faces; quads and Loop's triangles use
+    /// the first).
+    pub fn new(sides: &[u32], complex: &PatchComplex) -> CellTree {
+        let mut root = Vec::with_capacity(sides.len() + 1);
+        let mut total = 0u32;
+        for &n in sides {
+            root.push(total);
+            total += if n == 4 { 1 } else { n };
+        }
+        root.push(total);
+        let mut tree = CellTree {
+            root,
+            nodes: vec![Node::Empty; total as usize],
+            leaves: Vec::with_capacity(complex.len() + complex.pieces.len()),
+            quad: std::array::from_fn(|k| ChildInverse::of(Shape::Quad.child_map(k as u8))),
+            triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
+            third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
+        };
+        for i in 0..complex.len() {
+            if let Some(d) = complex.domain(i) {
+                tree.insert(Leaf::new(i as u32, d, None));
+            }
+        }
+        for p in &complex.pieces {
+            tree.insert(Leaf::new(p.patch, p.domain, Some(p.window_map())));
+        }
+        tree
+    }
+
+    /// Adds a leaf at its domain's cell (ignored where a shallower cell is covered already or
+    /// the same cell was indexed before; the domain of a face or sub-face the net does not
+    /// have is never looked up).
+    fn insert(&mut self, leaf: Leaf) {
+        let d = leaf.domain;
+        let face = d.face as usize;
+        let Some((&lo, &hi)) = self.root.get(face).zip(self.root.get(face + 1)) else {
+            return;
+        };
+        if d.sub >= hi - lo || !d.is_tracked() {
+            return;
+        }
+        let mut at = (lo + d.sub) as usize;
+        for l in 1..=d.depth {
+            let first = match self.nodes[at] {
+                Node::Leaf(_) => return,
+                // a cell split the other way (dyadic vs in thirds) by an earlier domain:
+                // the first indexed wins, as for a covered cell
+                Node::Split { first, factor } if factor == factor_of(&d, l) => first,
+                Node::Split { .. } => return,
+                Node::Empty => {
+                    let f = factor_of(&d, l);
+                    let first = self.nodes.len() as u32;
+                    let count = usize::from(f) * usize::from(f);
+                    self.nodes.extend(std::iter::repeat_n(Node::Empty, count));
+                    self.nodes[at] = Node::Split { first, factor: f };
+                    first
+                }
+            };
+            at = first as usize + usize::from(d.step(l));
+        }
+        if !matches!(self.nodes[at], Node::Leaf(_)) {
+            self.nodes[at] = Node::Leaf(self.leaves.len() as u32);
+            self.leaves.push(leaf);
+        }
+    }
+
+    /// The leaf covering point `p` of root cell `sub` of `face` (cell coordinates of the
+    /// sub-face), and `p` in the leaf's cell coordinates; `None` where no patch covers it.
+    #[inline]
+    pub fn locate(
+        &self,
+        face: u32,
+        sub: u32,
+        shape: Shape,
+        mut p: [f64; 2],
+    ) -> Option<(&Leaf, [f64; 2])> {
+        let mut at = *self.root.get(face as usize)? as usize + sub as usize;
+        loop {
+            match *self.nodes.get(at)? {
+                Node::Leaf(i) => return Some((&self.leaves[i as usize], p)),
+                Node::Empty => return None,
+                Node::Split { first, factor: 2 } => {
+                    let k = shape.child_at(p);
+                    let maps = match shape {
+                        Shape::Quad => &self.quad,
+                        Shape::Triangle => &self.triangle,
+                    };
+                    p = maps[usize::from(k)].apply(p);
+                    at = first as usize + usize::from(k);
+                }
+                Node::Split { first, factor: 3 } => {
+                    let k = Shape::third_at(p);
+                    p = self.third[usize::from(k)].apply(p);
+                    at = first as usize + usize::from(k);
+                }
+                Node::Split { .. } => return None,
+            }
+        }
+    }
+}

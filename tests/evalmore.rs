@@ -1,0 +1,223 @@
+//! Evaluation at `(face, u, v)` of the schemes made evaluable after the dual schemes: PGS after
+//! DS^CC steps (`pgs-dscc`), whose refined net's vertices carry the input faces' cells, and
+//! `bi2-mixed` at its PGS facets (regular patches as Doo-Sabin's, the facet's rings in its
+//! sub-faces and the quarters of the quads at its corners; TPS vertices and poles are not
+//! evaluated). Tests as for the other schemes: agreement with the patches `subdivide --rings`
+//! writes at random points of every face (caps included), continuity across every line of a
+//! dyadic grid of every face, convergence to the limit point at the scheme's `lambda` per ring;
+//! and `bi2-mixed` against `pgs` on a DS-net, where both have the same rings.
+
+use fairsub::analysis::report;
+use fairsub::bezier::complex::Provenance;
+use fairsub::geom::{dist, norm, sub};
+use fairsub::mesh::PolyMesh;
+use fairsub::schemes::bi2::mixed::{Bi2Element, elements, fig15_like_net};
+use fairsub::schemes::bi2::pgs::ds_net;
+use fairsub::schemes::registry::{ids, registry};
+
+#[path = "eval/support.rs"]
+mod support;
+use support::{gallery, limit_along, tmp, toward_ev, written_from};
+#[path = "eval/faces.rs"]
+mod faces;
+use faces::{
+    agrees_with, all_agree, all_continuous, at_interior_vertex, face_points, largest_jump,
+    surface_of,
+};
+
+/// `fairsub analyze`'s subdominant eigenvalue of `scheme` at valence `n`.
+fn lambda(scheme: &str, n: usize) -> f64 {
+    let spec = registry().lookup(scheme).expect("scheme");
+    report::analyze(&spec, n, false)
+        .expect("analysis")
+        .spectrum
+        .lambda
+}
+
+/// Errors of the limit evaluation at `2^-k` (k = 2..=12) along `at` relative to the point at
+/// `at(0)`; asserts that the ratios of successive errors are `lambda` within 10% from k = 6
+/// and returns them.
+fn converges(
+    scheme: &str,
+    mesh: &PolyMesh,
+    at: impl Fn(f64) -> (u32, f64, f64),
+    lambda: f64,
+    min_rings: usize,
+    what: &str,
+) -> Vec<f64> {
+    let evals = limit_along(scheme, mesh, &at, min_rings);
+    let centre = evals.last().expect("the centre").point;
+    let err: Vec<f64> = evals[..evals.len() - 1]
+        .iter()
+        .map(|e| norm(sub(e.point, centre)))
+        .collect();
+    let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
+    eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
+    for (k, ratio) in ratios.iter().enumerate().skip(4) {
+        assert!(
+            (ratio / lambda - 1.0).abs() < 0.1,
+            "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
+            k + 3
+        );
+    }
+    ratios
+}
+
+#[test]
+fn pgs_dscc_eval_agrees_with_the_written_patches() {
+    all_agree(
+        &[ids::PGS_DSCC.name()],
+        &["cube", "prism-5", "tetrahedron", "cnet-5-saddle"],
+        &[1, 2, 1, 2],
+        &at_interior_vertex,
+    );
+}
+
+#[test]
+fn pgs_dscc_evaluation_is_continuous_across_patch_boundaries() {
+    all_continuous(&[ids::PGS_DSCC.name()], &["cube", "prism-5", "tetrahedron"]);
+}
+
+#[test]
+fn pgs_dscc_limit_evaluation_converges_at_rate_lambda() {
+    // two DS^CC steps turn the vertex of valence n into an n-gon facet, which PGS's rings
+    // close at its own lambda_sub
+    let scheme = ids::PGS_DSCC.name();
+    for n in [3, 5, 6] {
+        let mesh = gallery(&format!("cnet-{n}-saddle"));
+        let (_, at) = toward_ev(&mesh, n);
+        converges(
+            scheme,
+            &mesh,
+            at,
+            lambda(ids::PGS.name(), n),
+            10,
+            &format!("vertex n = {n}"),
+        );
+    }
+}
+
+/// A DS-net of an `n`-gon (the facet and two rings of quads, a boundary), curved.
+fn dsnet(n: usize) -> PolyMesh {
+    ds_net(n, |x, y| -0.15 * (x * x + y * y) + 0.05 * x * y).expect("DS-net")
+}
+
+/// Whether a face point of a `bi2-mixed` net lies where its patches carry face cells: in a
+/// quarter at an interior vertex that is not a TPS vertex or a pole (those of `mesh`, found
+/// once).
+fn mixed_covered(mesh: &PolyMesh) -> impl Fn(&PolyMesh, (u32, f64, f64)) -> bool + use<> {
+    let skip: std::collections::HashSet<u32> = elements(mesh)
+        .into_iter()
+        .filter_map(|e| match e {
+            Bi2Element::Vertex(x) | Bi2Element::Pole(x) => Some(x),
+            Bi2Element::Facet(_) => None,
+        })
+        .collect();
+    move |mesh: &PolyMesh, p: (u32, f64, f64)| {
+        let face = mesh.face(p.0 as usize);
+        let k = if face.len() == 4 {
+            match (p.1 >= 0.5, p.2 >= 0.5) {
+                (false, false) => 0,
+                (true, false) => 1,
+                (true, true) => 2,
+                (false, true) => 3,
+            }
+        } else {
+            (p.1.floor() as usize).min(face.len() - 1)
+        };
+        at_interior_vertex(mesh, p) && !skip.contains(&face[k])
+    }
+}
+
+/// `mesh` written to an OBJ file and read back (the CLI reads the same file).
+fn via_obj(mesh: &PolyMesh, name: &str) -> (PolyMesh, String) {
+    let path = tmp("fairsub-evalmore", &format!("{name}.obj"));
+    fairsub::io::write_mesh(&path, mesh, fairsub::io::MeshFormat::Obj).expect("write");
+    let back = fairsub::io::read_mesh(&path).expect("read back").mesh;
+    (back, path.to_str().expect("utf-8 path").to_string())
+}
+
+#[test]
+fn bi2_mixed_eval_agrees_with_the_written_patches() {
+    let scheme = ids::BI2_MIXED.name();
+    for (name, net, rings) in [
+        ("dsnet-5", dsnet(5), 2),
+        ("dsnet-3", dsnet(3), 3),
+        ("fig15-5", fig15_like_net(5).expect("net"), 2),
+    ] {
+        let (mesh, src) = via_obj(&net, name);
+        let written = written_from(&src, name, scheme, rings);
+        let (mesh, s) = surface_of(mesh, scheme, rings);
+        let (worst, in_caps) = agrees_with(&written, &mesh, &s, &mixed_covered(&mesh));
+        eprintln!(
+            "{name} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
+        );
+        assert!(worst <= 1e-12, "{name}: {worst:e}");
+        assert!(in_caps > 0, "{name}: no point on a cap");
+    }
+}
+
+#[test]
+fn bi2_mixed_evaluation_is_continuous_across_patch_boundaries() {
+    for (name, net) in [
+        ("dsnet-5", dsnet(5)),
+        ("fig15-5", fig15_like_net(5).expect("net")),
+    ] {
+        let (mesh, s) = surface_of(net, ids::BI2_MIXED.name(), 3);
+        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &mixed_covered(&mesh));
+        eprintln!("{name} under bi2-mixed: largest jump {jump:.3e}");
+        assert!(jump < 1e-7, "{name}: jump {jump:e}");
+    }
+}
+
+/// On a DS-net `bi2-mixed`'s local-net rings are PGS's rings (tests/bi2.rs), so outside the
+/// caps the two evaluate to the same points at the same face parameters, although their
+/// domains are built apart (PGS's through the adaptive host's cells, bi2-mixed's from the
+/// DS-net's chart).
+#[test]
+fn bi2_mixed_equals_pgs_on_a_ds_net() {
+    for n in [3, 5, 6] {
+        let (mesh, mixed) = surface_of(dsnet(n), ids::BI2_MIXED.name(), 3);
+        let (_, pgs) = surface_of(dsnet(n), ids::PGS.name(), 3);
+        let mut worst: f64 = 0.0;
+        let mut compared = 0;
+        for p in face_points(&mesh, 60, 5) {
+            if !at_interior_vertex(&mesh, p) {
+                continue;
+            }
+            let a = mixed.evaluate(p.0, p.1, p.2).expect("bi2-mixed point");
+            let b = pgs.evaluate(p.0, p.1, p.2).expect("pgs point");
+            let cap = |s: &fairsub::surface::eval::Surface, i: usize| {
+                matches!(s.complex().provenance[i], Provenance::Cap { .. })
+            };
+            if cap(&mixed, a.patch) || cap(&pgs, b.patch) {
+                continue;
+            }
+            worst = worst.max(dist(a.point, b.point));
+            worst = worst.max(dist(a.du, b.du)).max(dist(a.dv, b.dv));
+            compared += 1;
+        }
+        eprintln!("n = {n}: {compared} points, largest difference {worst:.3e}");
+        assert!(compared > 100, "n = {n}: {compared} points");
+        assert!(worst < 1e-12, "n = {n}: {worst:e}");
+    }
+}
+
+#[test]
+fn bi2_mixed_limit_evaluation_converges_at_rate_lambda() {
+    // toward the centre (1, 1) of the last sub-face of the facet (face 0 of the DS-net; u = n
+    // on its strip, where u = 1 would be sub-face 1's corner 0)
+    let scheme = ids::BI2_MIXED.name();
+    for n in [5, 6] {
+        let mesh = dsnet(n);
+        let at = |h: f64| (0u32, n as f64 - 0.6 * h, 1.0 - 0.3 * h);
+        converges(
+            scheme,
+            &mesh,
+            at,
+            lambda(ids::PGS.name(), n),
+            12,
+            &format!("facet n = {n}"),
+        );
+    }
+}
