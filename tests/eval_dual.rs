@@ -10,7 +10,7 @@
 //! dual schemes' 3-gon domain.
 
 use fairsub::analysis::report;
-use fairsub::geom::{dist, norm, sub};
+use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::{ids, registry};
 
@@ -20,6 +20,9 @@ use support::{gallery, limit_along, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{all_agree, all_continuous, at_interior_vertex};
+#[path = "eval/ratios.rs"]
+mod ratios;
+use ratios::error_ratios;
 
 fn dual_schemes() -> [&'static str; 3] {
     [
@@ -80,15 +83,9 @@ fn converges(
     what: &str,
 ) -> fairsub::geom::Point {
     let evals = limit_along(scheme, mesh, &at, 12);
-    let centre = evals.last().expect("the centre").point;
-    let err: Vec<f64> = evals[..evals.len() - 1]
-        .iter()
-        .map(|e| norm(sub(e.point, centre)))
-        .collect();
-    let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
+    let (centre, ratios) = error_ratios(&evals);
     eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
-    for k in 4..err.len() - 1 {
-        let ratio = err[k + 1] / err[k];
+    for (k, &ratio) in ratios.iter().enumerate().skip(4) {
         assert!(
             (ratio / lambda - 1.0).abs() < 0.1,
             "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",

@@ -9,7 +9,7 @@
 
 use fairsub::analysis::report;
 use fairsub::bezier::complex::Provenance;
-use fairsub::geom::{dist, norm, sub};
+use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::bi2::mixed::{Bi2Element, elements, fig15_like_net};
 use fairsub::schemes::bi2::pgs::ds_net;
@@ -24,6 +24,9 @@ use faces::{
     agrees_with, all_agree, all_continuous, at_interior_vertex, face_points, largest_jump,
     surface_of,
 };
+#[path = "eval/ratios.rs"]
+mod ratios;
+use ratios::error_ratios;
 
 /// `fairsub analyze`'s subdominant eigenvalue of `scheme` at valence `n`.
 fn lambda(scheme: &str, n: usize) -> f64 {
@@ -46,12 +49,7 @@ fn converges(
     what: &str,
 ) -> Vec<f64> {
     let evals = limit_along(scheme, mesh, &at, min_rings);
-    let centre = evals.last().expect("the centre").point;
-    let err: Vec<f64> = evals[..evals.len() - 1]
-        .iter()
-        .map(|e| norm(sub(e.point, centre)))
-        .collect();
-    let ratios: Vec<f64> = err.windows(2).map(|w| w[1] / w[0]).collect();
+    let (_, ratios) = error_ratios(&evals);
     eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
     for (k, ratio) in ratios.iter().enumerate().skip(4) {
         assert!(
@@ -164,7 +162,7 @@ fn bi2_mixed_evaluation_is_continuous_across_patch_boundaries() {
         ("fig15-5", fig15_like_net(5).expect("net")),
     ] {
         let (mesh, s) = surface_of(net, ids::BI2_MIXED.name(), 3);
-        let jump = largest_jump(&mesh, &s, 6, 1e-10, &mixed_covered(&mesh));
+        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &mixed_covered(&mesh));
         eprintln!("{name} under bi2-mixed: largest jump {jump:.3e}");
         assert!(jump < 1e-7, "{name}: jump {jump:e}");
     }

@@ -128,7 +128,7 @@ def test_options_reach_the_rules(cli):
 @pytest.mark.parametrize("scheme,net", [
     ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
-    ("pgs-dscc", "prism-5"),
+    ("pgs-dscc", "prism-5"), ("tps", "cube"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
@@ -167,8 +167,8 @@ def _evaluate_equals_cli(cli, src, scheme):
 
 
 def test_evaluate_refuses_schemes_without_domains():
-    s = fairsub.surface("gallery:cnet-5-saddle", "tps", rings=2)
-    with pytest.raises(ValueError, match="eval of scheme tps is not supported yet"):
+    s = fairsub.surface("gallery:cnet-5-saddle", "tps-adjustable", rings=2)
+    with pytest.raises(ValueError, match="eval of scheme tps-adjustable is not supported yet"):
         s.evaluate([0], [0.5], [0.5])
 
 

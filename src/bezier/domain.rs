@@ -3,10 +3,13 @@
 //! Evaluation at `(face, u, v)` ([`crate::surface::eval`]) needs, for every patch, the map from
 //! the patch's own parameters to its input face's. The adaptive host builds that map as it
 //! refines: a cell of level `l + 1` is one child of a cell of level `l`, so a [`Domain`] is the
-//! input face, the chain of child indices from the face down to the cell (two bits per level),
-//! and the corner of the cell at which the patch's own `(0, 0)` sits (caps are parametrised from
-//! the centre of their hole). All maps are affine with dyadic coefficients, so they are exact in
-//! floating point.
+//! input face, the chain of child indices from the face down to the cell (two bits per dyadic
+//! level), and the corner of the cell at which the patch's own `(0, 0)` sits (caps are
+//! parametrised from the centre of their hole). The maps of dyadic cells are affine with
+//! dyadic coefficients, so they are exact in floating point. A level may instead split its
+//! cell in thirds (the 3 x 3 grid of the ternary schemes, or thirds of any dyadic cell), see
+//! the `thirds` submodule ([`Domain::third_child`], [`Domain::third`]); their maps have the
+//! coefficients `1/3`, rounded once per level.
 //!
 //! # The parameter domain of an input face
 //!
@@ -46,8 +49,21 @@
 //! to the centre `(1, 1)` of its sub-faces. The quarters of faces at boundary vertices are not
 //! tracked (the doubled boundary layer puts the boundary curve half a face outside the net's
 //! lattice, so they are not dyadic cells of the face): evaluating there is an error.
+//!
+//! # TPS (primal ternary bi-2)
+//!
+//! TPS's patches are centred at vertices too, so an input vertex's patch covers the quarters
+//! of its faces as above (quads only: TPS takes quad nets). Each ternary step splits a
+//! vertex's piece in thirds, so in the quarter of a face at an extraordinary vertex (its own
+//! `u` along the sector's first spoke) ring `l` covers the children in thirds of the square
+//! `[0, 3^-(l-1)]^2` but its corner child, which is the next hole; the cap covers `[0, 3^-K]^2`
+//! from the centre. Faces of a net refined by whole-net ternary steps (to separate
+//! extraordinary vertices) are children in thirds of the input faces. The layout is documented
+//! with the code in `crate::schemes::bi2::surface::thirds`.
 
 use serde::Serialize;
+
+mod thirds;
 
 /// Shape of a cell: how its children split it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -74,8 +90,13 @@ pub struct Domain {
     pub shape: Shape,
     /// Levels below the face (or sub-face).
     pub depth: u8,
-    /// Child index of each level, level 1 in the lowest two bits.
+    /// Child index of each level as a mixed-radix number, level 1 the lowest digit: a dyadic
+    /// level has radix 4, a level in thirds radix 9 ([`Domain::thirds`]). With dyadic levels
+    /// only, two bits per level, level 1 in the lowest two bits.
     pub path: u128,
+    /// Levels whose cells split in thirds (the 3 x 3 grid of [`Shape::third_map`]): bit
+    /// `l - 1` set for level `l`. 0 for the dyadic cells of every scheme but TPS.
+    pub thirds: u64,
     /// The cell corner at which the patch's `(0, 0)` sits: for quads the patch's `u` runs
     /// toward corner `rot + 1`, its `v` toward corner `rot - 1`. Triangle patches have 0, except
     /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
@@ -297,6 +318,7 @@ impl Domain {
         shape: Shape::Quad,
         depth: 0,
         path: 0,
+        thirds: 0,
         rot: 0,
     };
 
@@ -345,6 +367,7 @@ impl Domain {
                 shape: Shape::Quad,
                 depth: 0,
                 path: 0,
+                thirds: 0,
                 rot: 0,
                 face: self.face,
             };
@@ -355,12 +378,7 @@ impl Domain {
                 ..self
             };
         }
-        Domain {
-            depth: self.depth + 1,
-            path: self.path | (u128::from(k & 3) << (2 * self.depth as u32)),
-            rot: 0,
-            ..self
-        }
+        self.descend(u128::from(k & 3), false)
     }
 
     /// The same cell with the patch's `(0, 0)` at corner `rot`.
@@ -396,9 +414,14 @@ impl Domain {
         d.rotated(r)
     }
 
-    /// Child index at level `l` (1-based).
+    /// Child index at level `l` (1-based): `0..4` for a dyadic level, `0..9` for a level in
+    /// thirds.
     pub fn step(&self, l: u8) -> u8 {
-        ((self.path >> (2 * (l as u32 - 1))) & 3) as u8
+        if self.thirds == 0 {
+            return ((self.path >> (2 * (l as u32 - 1))) & 3) as u8;
+        }
+        let place = self.place(l - 1).unwrap_or(u128::MAX);
+        ((self.path / place) % self.radix(l)) as u8
     }
 
     /// The map from the cell's coordinates to the face's (the sub-face's for an n-gon; add
@@ -406,7 +429,12 @@ impl Domain {
     pub fn cell_map(&self) -> Affine {
         let mut m = Affine::IDENTITY;
         for l in 1..=self.depth {
-            m = m.compose(&self.shape.child_map(self.step(l)));
+            let child = if self.splits_in_thirds(l) {
+                Shape::third_map(self.step(l))
+            } else {
+                self.shape.child_map(self.step(l))
+            };
+            m = m.compose(&child);
         }
         m
     }

@@ -24,8 +24,8 @@ pub struct Args {
     #[arg(long)]
     pub at_file: Option<PathBuf>,
     /// The scheme (see `fairsub schemes`; eval takes Catmull-Clark, Loop, EG, the QAS+
-    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC, PGS, PGS after DS^CC and the mixed bi-2
-    /// net at its facets).
+    /// variants, guided bi-5/bi-6, Doo-Sabin, DS^CC, PGS, PGS after DS^CC, the mixed bi-2
+    /// net at its facets, and TPS).
     #[arg(long, short)]
     pub scheme: String,
     /// Evaluate the complex `subdivide --rings K` writes (same options); without it, the

@@ -164,7 +164,10 @@ net's at TPS vertices and poles, are not evaluated. EG, QAS+ (all
 variants) and guided bi-5/bi-6 parametrise the faces around a capped vertex by their rings'
 chart: ring k of the cap
 covers the band between 2^-k and 2^-(k-1) of the face's square at the vertex, the cap the
-square inside the last ring. Without --rings the
+square inside the last ring. TPS (ternary) lays a vertex's patch on the quarters of its faces
+as the dual schemes do; ring k of an extraordinary vertex covers the band between 3^-k and
+3^-(k-1) of the quarter at the vertex (in its halved coordinates), the cap the square inside
+the last ring. Without --rings the
 scheme's limit surface is evaluated (as many rings as each point needs, the limit point at an
 extraordinary vertex); with --rings K the complex `subdivide --rings K` writes.")]
     Eval(eval::Args),

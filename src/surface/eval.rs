@@ -7,11 +7,16 @@
 //! Loop, and EG, the QAS+ family and guided subdivision, whose caps tile each sector's face in
 //! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`];
 //! the dual schemes Doo-Sabin, DS^CC and PGS, whose patches of input vertices cover a quarter
-//! of each face around them as [`Piece`](crate::bezier::complex::Piece)s). The parameter domain of quads, n-gons and
+//! of each face around them as [`Piece`](crate::bezier::complex::Piece)s; TPS, laid out like
+//! them, whose rings are cells in thirds of the quarters at extraordinary vertices, see
+//! `crate::schemes::bi2::surface::thirds`). The parameter domain of quads, n-gons and
 //! triangles (and of the dual schemes' faces) is documented in [`crate::bezier::domain`]. Each cell of a face is either covered by one patch or split into
 //! children, so the cells form a tree per face: a point is located by descending it, one
 //! array step per level (`index`; `O(log)` of the patch size, independent of the number of
 //! patches, and no step at all on a face one patch covers).
+//! A cell whose children are thirds (TPS) is split 3 x 3 in the tree (`index`), so the
+//! descent takes the 3 x 3 grid there (the dyadic schemes have no such cells: their descent
+//! is the quadtree's).
 //!
 //! Patch parameters are mapped to face parameters by affine maps with dyadic coefficients
 //! (exact in floating point); derivatives go through the chain rule of that map. Points in the
@@ -366,7 +371,14 @@ impl Surface {
         if d <= 0.0 {
             return 0;
         }
-        (-d.log2()).floor().max(0.0) as usize + 1
+        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
+        let dom = at.domain;
+        let per_ring = if dom.splits_in_thirds(dom.depth) {
+            3f64.log2()
+        } else {
+            1.0
+        };
+        (-d.log2() / per_ring).floor().max(0.0) as usize + 1
     }
 }
 

@@ -1,6 +1,7 @@
-//! Checks shared by the evaluation tests of the cap and dual schemes (`tests/eval_caps.rs`,
-//! `tests/eval_dual.rs`): random face points, agreement with the written patches, and the
-//! largest jump of the evaluation across the lines of a dyadic grid of every face.
+//! Checks shared by the evaluation tests of the cap, dual and ternary schemes
+//! (`tests/eval_caps.rs`, `tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`):
+//! random face points, agreement with the written patches, and the largest jump of the
+//! evaluation across the lines of a grid of every face.
 
 use crate::support::{Lcg, gallery, written};
 use fairsub::geom::dist;
@@ -97,18 +98,17 @@ pub fn agrees_with(
     (worst, in_caps)
 }
 
-/// Largest jump of the evaluation across the lines `u = i 2^-m` and `v = i 2^-m` (`m <= depth`)
-/// of every face: points `delta` apart on either side, at several positions along the line
-/// (pairs with a point where `covered` is false are skipped).
+/// Largest jump of the evaluation across the lines `u = i / lines` and `v = i / lines`
+/// (`0 < i < lines`) of every face: points `delta` apart on either side, at several positions
+/// along the line (pairs with a point where `covered` is false are skipped).
 pub fn largest_jump(
     mesh: &PolyMesh,
     s: &Surface,
-    depth: u32,
+    lines: u32,
     delta: f64,
     covered: &Covered,
 ) -> f64 {
     let mut worst: f64 = 0.0;
-    let lines = 1u32 << depth;
     for f in 0..mesh.num_faces() {
         let n = mesh.face_size(f);
         let subs = if n == 4 { 1 } else { n };
@@ -158,7 +158,7 @@ pub fn all_continuous(schemes: &[&str], nets: &[&str]) {
     for scheme in schemes {
         for net in nets {
             let (mesh, s) = surface(net, scheme, 3);
-            let jump = largest_jump(&mesh, &s, 6, 1e-10, &|_, _| true);
+            let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
             eprintln!("{net} under {scheme}: largest jump {jump:.3e}");
             assert!(jump < 1e-7, "{net} under {scheme}: jump {jump:e}");
         }

@@ -75,13 +75,17 @@ impl Bi2Descriptor {
 impl Descriptor for Bi2Descriptor {
     /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin, for PGS
     /// after DS^CC steps, whose refined net's vertices carry the input faces' cells
-    /// ([`crate::schemes::doo_sabin::surface::step_cells`]), and for the mixed net at its
-    /// regular vertices and PGS facets (`bi2::surface::cells`; its TPS vertices and poles are
-    /// not evaluated). TPS, adjustable TPS and PolBS rings (ternary, radial) lie in no dyadic
-    /// cell.
+    /// ([`crate::schemes::doo_sabin::surface::step_cells`]), for the mixed net at its regular
+    /// vertices and PGS facets (`bi2::surface::cells`; its TPS vertices and poles are not
+    /// evaluated), and for TPS, whose rings record cells in thirds
+    /// (`bi2::surface::thirds`). Adjustable TPS (splits in `e : 1 - 2e : e`) and PolBS
+    /// (radial rings) lie in no such cells.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            eval: matches!(self.kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc | Bi2Kind::Mixed),
+            eval: matches!(
+                self.kind,
+                Bi2Kind::Pgs | Bi2Kind::PgsDscc | Bi2Kind::Mixed | Bi2Kind::Tps
+            ),
             ..Capabilities::REFINE_AND_PATCHES
         }
     }

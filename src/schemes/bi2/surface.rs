@@ -69,6 +69,7 @@ use super::local_scheme::{LocalScheme, qnet_index};
 
 mod cells;
 mod g1;
+mod thirds;
 use cells::FacetCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
@@ -77,6 +78,9 @@ struct RingElement {
     local0: Vec<Stencil>,
     /// The scheme's level of `local0` (1 after a whole-net step).
     start: usize,
+    /// The quarter of each sector's face at the element, where its rings record face domains
+    /// in thirds (TPS, [`thirds`]); empty otherwise.
+    sectors: Vec<Domain>,
     /// Where a PGS facet's rings and cap lie in the input faces ([`cells`]); `None` for the
     /// other elements (not evaluated).
     cells: Option<FacetCells>,
@@ -162,6 +166,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         scheme: LocalScheme::pgs(n)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
         cells: FacetCells::of(mesh, f),
     })
 }
@@ -200,6 +205,7 @@ fn ternary_element(
         scheme: LocalScheme::ternary(n, rules)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
         cells: None,
     })
 }
@@ -242,17 +248,22 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         scheme: LocalScheme::polar(n)?,
         local0: local,
         start: 0,
+        sectors: Vec::new(),
         cells: None,
     })
 }
 
 /// Regular patches of every regular vertex (with knot widths when given), then rings and the
 /// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `track` (`mesh` is the
-/// input net, no widths) the patches record the input-face cells they cover ([`cells`]).
+/// input net, no widths) the patches record the input-face cells they cover ([`cells`]); with
+/// `face_cells` (the cell of an input face each face of `mesh` is, TPS) the regular patches
+/// and the rings and caps of elements with `sectors` record their face domains in thirds
+/// ([`thirds`]).
 fn assemble(
     mesh: &PolyMesh,
     track: bool,
     widths: Option<&Widths>,
+    face_cells: Option<&[Domain]>,
     elements: &[RingElement],
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
@@ -278,6 +289,8 @@ fn assemble(
             ds::mark_boundary_sides(mesh, v, &mut out);
             if track {
                 ds::input_vertex_pieces(mesh, v, &mut out);
+            } else if let Some(cells) = face_cells {
+                thirds::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, &mut out);
             }
         }
     }
@@ -289,6 +302,7 @@ fn assemble(
         for (el, local) in elements.iter().zip(locals.iter_mut()) {
             let step = el.scheme.step(el.start + l - 1);
             *local = step.apply(local);
+            let first = out.len();
             for (i, (c, sector)) in el.scheme.ring(el.start + l).into_iter().enumerate() {
                 let prov = Provenance::Ring {
                     element: el.element,
@@ -300,6 +314,9 @@ fn assemble(
                     _ => Domain::UNTRACKED,
                 };
                 out.push_in(to_patch(&c, local), prov, cell);
+            }
+            if !el.sectors.is_empty() {
+                thirds::ring_pieces(&el.sectors, l, first, &mut out);
             }
         }
         progress(l);
@@ -334,6 +351,7 @@ fn assemble(
                     fill
                 }
             };
+            let first = out.len();
             for (p, sector) in capped {
                 let prov = Provenance::Cap {
                     element: el.element,
@@ -344,6 +362,9 @@ fn assemble(
                     _ => Domain::UNTRACKED,
                 };
                 out.push_in(p, prov, cell);
+            }
+            if !el.sectors.is_empty() {
+                thirds::cap_domains(&el.sectors, opts.rings, first, &mut out);
             }
         }
     }
@@ -411,6 +432,10 @@ pub fn tps_complex(
     let mut m = mesh.clone();
     let mut w = uniform_widths(mesh);
     let mut notes = Vec::new();
+    // The cell of an input face each face of `m` is (TPS only: adjustable TPS does not split
+    // in thirds, see `thirds`).
+    let tracked = rules == TernaryRules::TPS;
+    let mut face_cells = thirds::input_face_cells(mesh);
     // Validate the net as the scheme would (quads, boundary rules).
     ternary_step(&m, &w, &rules, name)?;
     for start in 0..=2 {
@@ -422,12 +447,17 @@ pub fn tps_complex(
             .map(|&v| {
                 let mut el = ternary_element(&m, v, rules, name)?;
                 el.start = start;
+                if tracked {
+                    el.sectors = thirds::sector_cells(&m, &face_cells, v);
+                }
                 Ok(el)
             })
             .collect();
         match built {
             Ok(elements) => {
-                let (c, more) = assemble(&m, false, Some(&w), &elements, opts, &mut progress)?;
+                let cells = tracked.then_some(face_cells.as_slice());
+                let (c, more) =
+                    assemble(&m, false, Some(&w), cells, &elements, opts, &mut progress)?;
                 notes.extend(more);
                 return Ok((c, notes));
             }
@@ -438,6 +468,7 @@ pub fn tps_complex(
                      count from the refined net"
                 ));
                 let (r, nw) = ternary_step(&m, &w, &rules, name)?;
+                face_cells = thirds::refined_face_cells(&face_cells, r.mesh.num_faces());
                 m = r.mesh;
                 w = nw;
             }
@@ -464,7 +495,7 @@ pub fn polar_complex(
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
     let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (c, more) = assemble(&net.mesh, false, None, &els, opts, progress)?;
+    let (c, more) = assemble(&net.mesh, false, None, None, &els, opts, progress)?;
     notes.extend(more);
     Ok((c, notes))
 }
@@ -538,7 +569,7 @@ pub fn mixed_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
-    assemble(mesh, true, None, &els, opts, progress)
+    assemble(mesh, true, None, None, &els, opts, progress)
 }
 
 /// `n`-valent extraordinary element's ring `l` patches from explicit local-net points (the

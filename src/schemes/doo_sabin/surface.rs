@@ -428,19 +428,34 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
 }
 
 /// The quarters of the four faces around the interior input vertex `v` that its patch, the
-/// last of `out`, covers ([`crate::bezier::domain`]): face `i` of `v`'s fan (`u` along its
-/// first outgoing half-edge) has its centroid at the patch's corner `2 + i` and at corner 2
-/// of its quarter at `v`. Boundary vertices' patches are not recorded. The regular patches of
-/// `bi2-mixed` are laid out the same way.
+/// last of `out`, covers ([`crate::bezier::domain`]): [`vertex_quarter_pieces`] with the input
+/// faces' own cells. The regular patches of `bi2-mixed` are laid out the same way.
 pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
+    let patch = (out.len() - 1) as u32;
+    let cell = |g: usize| Domain::polygon(g as u32, m.face_size(g));
+    vertex_quarter_pieces(m, v, patch, &cell, out);
+}
+
+/// The quarters of the four faces around the interior vertex `v` that its bi-2 patch `patch`
+/// covers ([`crate::bezier::domain`]), `face_cell(g)` being the cell face `g` of `m` is (the
+/// input face itself, or for TPS a third of one): face `i` of `v`'s fan (`u` along its first
+/// outgoing half-edge, `v` counter-clockwise) has its centroid at the patch's corner `2 + i`
+/// and at corner 2 of its quarter at `v`. Boundary vertices' patches are not recorded. Shared
+/// by the dual schemes and TPS, whose vertex patches lie alike.
+pub(crate) fn vertex_quarter_pieces(
+    m: &PolyMesh,
+    v: usize,
+    patch: u32,
+    face_cell: &dyn Fn(usize) -> Domain,
+    out: &mut PatchComplex,
+) {
     if m.is_boundary_vertex(v) {
         return;
     }
-    let patch = (out.len() - 1) as u32;
     for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
         let g = m.he_face(h) as usize;
         let k = h - m.face_halfedge(g);
-        let cell = Domain::polygon(g as u32, m.face_size(g)).child(k);
+        let cell = face_cell(g).child(k);
         out.push_piece(Piece::quarter(patch, ((2 + i) % 4) as u8, cell, 2));
     }
 }

@@ -113,12 +113,14 @@ pub(super) struct CellTree {
     /// Inverse child maps of quad cells, then of triangle cells.
     quad: [ChildInverse; 4],
     triangle: [ChildInverse; 4],
+    /// Inverse maps of a quad cell's children in thirds ([`Shape::third_map`]).
+    third: [ChildInverse; 9],
 }
 
-/// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 2 for the
-/// dyadic cells of every scheme on this branch.
-fn factor(_d: &Domain, _l: u8) -> u8 {
-    2
+/// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
+/// level in thirds ([`Domain::splits_in_thirds`], TPS), else 2 (the dyadic cells).
+fn factor_of(d: &Domain, l: u8) -> u8 {
+    if d.splits_in_thirds(l) { 3 } else { 2 }
 }
 
 impl CellTree {
@@ -139,6 +141,7 @@ impl CellTree {
             leaves: Vec::with_capacity(complex.len() + complex.pieces.len()),
             quad: std::array::from_fn(|k| ChildInverse::of(Shape::Quad.child_map(k as u8))),
             triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
+            third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -167,9 +170,12 @@ impl CellTree {
         for l in 1..=d.depth {
             let first = match self.nodes[at] {
                 Node::Leaf(_) => return,
-                Node::Split { first, .. } => first,
+                // a cell split the other way (dyadic vs in thirds) by an earlier domain:
+                // the first indexed wins, as for a covered cell
+                Node::Split { first, factor } if factor == factor_of(&d, l) => first,
+                Node::Split { .. } => return,
                 Node::Empty => {
-                    let f = factor(&d, l);
+                    let f = factor_of(&d, l);
                     let first = self.nodes.len() as u32;
                     let count = usize::from(f) * usize::from(f);
                     self.nodes.extend(std::iter::repeat_n(Node::Empty, count));
@@ -207,6 +213,11 @@ impl CellTree {
                         Shape::Triangle => &self.triangle,
                     };
                     p = maps[usize::from(k)].apply(p);
+                    at = first as usize + usize::from(k);
+                }
+                Node::Split { first, factor: 3 } => {
+                    let k = Shape::third_at(p);
+                    p = self.third[usize::from(k)].apply(p);
                     at = first as usize + usize::from(k);
                 }
                 Node::Split { .. } => return None,

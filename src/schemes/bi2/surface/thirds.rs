@@ -1,0 +1,149 @@
+//! Face domains of the TPS complex, for evaluation at `(face, u, v)`
+//! ([`crate::surface::eval`]).
+//!
+//! # The parameter domain (primal ternary bi-2)
+//!
+//! TPS is primal, but its patches are centred at vertices like a dual scheme's: the bi-2 patch
+//! of a regular vertex `v` spans half-way to its neighbours, so it covers the quarter of each of
+//! its four faces at `v` (corners: `v`, the two edge midpoints, the face centre). Faces keep
+//! the quad domain of [`crate::bezier::domain`] (`[0, 1]^2`), and the quarter of face `F` at
+//! its corner `k` is `F`'s dyadic child `k`; the vertex's patch is recorded as four
+//! [`Piece`]s, exactly as the dual schemes' patches of input vertices
+//! ([`crate::schemes::doo_sabin::surface`]).
+//!
+//! A ternary step splits every vertex's piece in thirds, so the pieces of level `l` are the
+//! squares of side `3^-l` around the level-`l` vertices. In the quarter of face `F` at an
+//! extraordinary vertex (sector `s`: `F`'s corners `v`, `a_s`, `b_s`, `a_(s+1)` of the q-net,
+//! the quarter's `u` along spoke `a_s`, its `v` along spoke `a_(s+1)`), the hole left after
+//! ring `l` is the square `[0, 3^-l]^2`: the corner child in thirds of the hole before. Ring
+//! `l`'s patches cover the other children in thirds of that square: the patch of `b_s`
+//! (q-net `(1, 1)`) the four children `(1..=2) x (1..=2)`, each a quarter of its parameter
+//! square; the patch of `a_s` (q-net `(1, 0)`, centred on the spoke) the children `(1, 0)`,
+//! `(2, 0)` of sector `s` with its half `v >= 1/2`, and the children `(0, 1)`, `(0, 2)` of
+//! sector `s - 1` with its half `v <= 1/2`, turned (its `u` runs along sector `s - 1`'s `v`).
+//! The cap or fill of sector `s` covers the last hole `[0, 3^-K]^2` with `(0, 0)` at the
+//! centre and `u` along spoke `s` (how [`super::g1`] and the fill lay it out).
+//!
+//! Extraordinary vertices too close for rings are separated by whole-net steps first; a face
+//! of the refined net is then child `i + 3 j` in thirds of its parent face (the face children
+//! of `ternary_step`, face `9 f + 3 i + j` at `(i, j) / 3` of face `f`), so its quarters and
+//! the cells in them are cells of an input face all the same. As for the dual schemes, the
+//! patches of boundary vertices are not recorded (their doubled boundary layer puts the
+//! boundary curve half a face outside the face's domain), nor the faces of the boundary layer
+//! a step adds: evaluating there is an error. Adjustable TPS splits in `e : 1 - 2e : e`, not in
+//! thirds, so its rings are not cells of this kind and it records no domains.
+
+use crate::bezier::complex::{Domain, PatchComplex, Piece};
+use crate::mesh::PolyMesh;
+
+/// The cells of the faces of the net after whole-net ternary steps: `parent` holds the cells
+/// of the faces before the step (of `before`, with `before.num_faces()` entries), the result
+/// those of the `9 F` face children of the step (then untracked boundary-layer faces up to
+/// `after_faces`).
+pub(super) fn refined_face_cells(parent: &[Domain], after_faces: usize) -> Vec<Domain> {
+    let mut out = Vec::with_capacity(after_faces);
+    for &d in parent {
+        for i in 0..3u8 {
+            for j in 0..3u8 {
+                out.push(d.third_child(i + 3 * j));
+            }
+        }
+    }
+    out.resize(after_faces, Domain::UNTRACKED);
+    out
+}
+
+/// The cells of an input net's faces (quads; other faces untracked, TPS refuses them).
+pub(super) fn input_face_cells(mesh: &PolyMesh) -> Vec<Domain> {
+    (0..mesh.num_faces())
+        .map(|f| match mesh.face_size(f) {
+            4 => Domain::polygon(f as u32, 4),
+            _ => Domain::UNTRACKED,
+        })
+        .collect()
+}
+
+/// The quarters of the four faces around interior vertex `v` that its regular patch (patch
+/// `patch`, `u` along `v`'s first outgoing half-edge, `v` counter-clockwise) covers, as the
+/// dual schemes record them.
+pub(super) fn vertex_pieces(
+    mesh: &PolyMesh,
+    cells: &[Domain],
+    v: usize,
+    patch: u32,
+    out: &mut PatchComplex,
+) {
+    let cell = |g: usize| cells.get(g).copied().unwrap_or(Domain::UNTRACKED);
+    crate::schemes::doo_sabin::surface::vertex_quarter_pieces(mesh, v, patch, &cell, out);
+}
+
+/// The quarter of each sector's face at extraordinary vertex `v` of valence `n` (sector `s`
+/// the face `v, a_s, b_s, a_(s+1)` of its q-net, as [`crate::mesh::PolyMesh::cnet_indices`]
+/// orders it), its `(0, 0)` at `v` and `u` along spoke `a_s`; all untracked when a face does
+/// not run counter-clockwise through `v, a_s, b_s`.
+pub(super) fn sector_cells(mesh: &PolyMesh, cells: &[Domain], v: usize) -> Vec<Domain> {
+    let Some(idx) = mesh.cnet_indices(v, 1) else {
+        return Vec::new();
+    };
+    let n = (idx.len() - 1) / 2;
+    let mut out = Vec::with_capacity(n);
+    for s in 0..n {
+        let (a, b) = (idx[1 + 2 * s], idx[2 + 2 * s]);
+        let h = mesh
+            .outgoing(v)
+            .find(|&h| mesh.he_to(h) == a && mesh.he_to(mesh.he_next(h)) == b);
+        match h {
+            Some(h) => {
+                let g = mesh.he_face(h) as usize;
+                let k = h - mesh.face_halfedge(g);
+                out.push(cells.get(g).map_or(Domain::UNTRACKED, |d| d.child(k)));
+            }
+            None => return vec![Domain::UNTRACKED; n],
+        }
+    }
+    out
+}
+
+/// The hole of sector cell `q` after `l` rings: its corner child in thirds `l` times.
+fn hole(q: Domain, l: usize) -> Domain {
+    (0..l).fold(q, |d, _| d.third_child(0))
+}
+
+/// Records where ring `l`'s patches of an element lie (see the [module](self) documentation):
+/// patches `first + 2 s` (`a_s`) and `first + 2 s + 1` (`b_s`) for each sector `s` of
+/// `sectors`.
+pub(super) fn ring_pieces(sectors: &[Domain], l: usize, first: usize, out: &mut PatchComplex) {
+    let n = sectors.len();
+    let half = |u: f64, v: f64| [[u, v], [u + 0.5, v + 0.5]];
+    for (s, &q) in sectors.iter().enumerate() {
+        let here = hole(q, l - 1);
+        let before = hole(sectors[(s + n - 1) % n], l - 1);
+        let (a, b) = ((first + 2 * s) as u32, (first + 2 * s + 1) as u32);
+        // (window, patch, cell, corner of the window's (0, 0))
+        let pieces = [
+            (half(0.0, 0.5), a, here.third_child(1), 0),
+            (half(0.5, 0.5), a, here.third_child(2), 0),
+            (half(0.0, 0.0), a, before.third_child(3), 1),
+            (half(0.5, 0.0), a, before.third_child(6), 1),
+            (half(0.0, 0.0), b, here.third_child(4), 0),
+            (half(0.5, 0.0), b, here.third_child(5), 0),
+            (half(0.0, 0.5), b, here.third_child(7), 0),
+            (half(0.5, 0.5), b, here.third_child(8), 0),
+        ];
+        for (window, patch, cell, rot) in pieces {
+            out.push_piece(Piece {
+                patch,
+                window,
+                domain: cell.rotated(rot),
+            });
+        }
+    }
+}
+
+/// Records that cap (or fill) patches `first .. first + n` cover the holes of their sectors
+/// after `rings` rings, `(0, 0)` at the centre.
+pub(super) fn cap_domains(sectors: &[Domain], rings: usize, first: usize, out: &mut PatchComplex) {
+    for (s, &q) in sectors.iter().enumerate() {
+        out.set_domain(first + s, hole(q, rings));
+    }
+}
