@@ -4,8 +4,8 @@
 #   BEFORE=/path/to/old/fairsub docs/make-cap-images.sh
 # BEFORE is a fairsub binary built before the caps of issue 17's second round (the README's
 # pictures: main at 7a6822f; Loop's: main at 3f0d61c; QAS+^3's and guided-bi4-macro's split
-# caps: main at 10bee89; guided-bi3-macro's: 7a6822f; Doo-Sabin's and PGS's: e860dfb,
-# before their caps); without it only the "after" pictures are
+# caps: main at 10bee89; guided-bi3-macro's and adjustable TPS's: 7a6822f; Doo-Sabin's and
+# PGS's: e860dfb, before their caps); without it only the "after" pictures are
 # made.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +24,7 @@ cases=(
   "guided-bi3-macro guided-bi3-macro gallery:cnet-5-saddle"
   "doo-sabin doo-sabin gallery:cnet-5-saddle"
   "pgs pgs gallery:cnet-5-convex"
+  "tps-adjustable tps-adjustable gallery:cnet-5-saddle"
 )
 for c in "${cases[@]}"; do
   read -r family scheme net extra <<<"$c"
