@@ -1,7 +1,9 @@
 //! Frame rate of `fairsub view` in headless Chromium: the page's `?bench=N` mode (N frames
 //! paced by requestAnimationFrame while the camera turns, then N frames each drawn and waited
 //! for by reading one pixel back) on EG's surface of the torus with valence-3 and valence-5 vertices,
-//! 4 rings, at tessellations from 16k to 1M triangles.
+//! 4 rings, at tessellations from 16k to 1M triangles. Besides the frame rate it prints the
+//! JavaScript time of one frame (the calls handed to the GPU process, median) and one frame's
+//! WebGL calls and data uploads (the drawing path a real GPU gets).
 //!
 //! ```text
 //! cargo bench --bench viewer_fps          # FRAMES=30 SIZE=1280x800 TESS=4,8,16,32 MODE=highlight
@@ -38,8 +40,8 @@ fn main() {
          window {w}x{h}"
     );
     println!(
-        "{:>5} {:>10} {:>9} {:>10} {:>14}",
-        "tess", "triangles", "frames/s", "ms/frame", "draw+read ms"
+        "{:>5} {:>10} {:>9} {:>10} {:>14} {:>8} {:>6} {:>8}",
+        "tess", "triangles", "frames/s", "ms/frame", "draw+read ms", "JS ms", "calls", "uploads"
     );
     let mut renderer = String::new();
     for t in tess.split(',') {
@@ -65,12 +67,15 @@ fn main() {
         b.open(&format!("{}&mode={mode}&bench={frames}", url.trim()));
         let r = b.eval("window.fairsubBench");
         println!(
-            "{:>5} {:>10} {:>9.2} {:>10.1} {:>14.1}",
+            "{:>5} {:>10} {:>9.2} {:>10.1} {:>14.1} {:>8.3} {:>6} {:>8}",
             t,
             r["triangles"],
             r["fps"].as_f64().unwrap(),
             r["msPerFrame"].as_f64().unwrap(),
             r["drawMsMedian"].as_f64().unwrap(),
+            r["jsMsMedian"].as_f64().unwrap(),
+            r["callsTotal"],
+            r["uploads"],
         );
         renderer = r["renderer"].as_str().unwrap_or("?").to_string();
         drop(b);

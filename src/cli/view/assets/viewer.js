@@ -286,25 +286,73 @@ async function runBench(n) {
     wait();
     waited.push(performance.now() - t0);
   }
+  // The JavaScript side of a frame: draw() alone (the calls handed to the GPU process, no
+  // waiting for them), then one frame's WebGL calls counted by name.
+  const js = [];
+  for (let i = 0; i < n; i++) {
+    state.az = az0 + (360 * i) / n;
+    const t0 = performance.now();
+    draw();
+    js.push(performance.now() - t0);
+    wait();
+  }
   state.az = az0;
-  draw();
+  const calls = countCalls(draw);
   waited.sort((a, b) => a - b);
+  js.sort((a, b) => a - b);
+  const count = (names) => names.reduce((s, k) => s + (calls[k] || 0), 0);
   const r = {
     frames: n,
     triangles: panels.reduce((s, p) => s + (p ? p.nt : 0), 0),
     fps: span > 0 ? (n * 1000) / span : 0,
     msPerFrame: span / n,
     drawMsMedian: waited[Math.floor(n / 2)],
+    jsMsMedian: js[Math.floor(n / 2)],
+    calls,
+    callsTotal: count(Object.keys(calls)),
+    uploads: count(UPLOADS),
+    draws: count(["drawElements", "drawArrays"]),
     renderer: rendererName(),
   };
   window.fairsubBench = r;
   Object.assign(document.body.dataset, {
     benchFrames: r.frames, benchFps: r.fps.toFixed(2), benchMs: r.msPerFrame.toFixed(2),
-    benchDrawMs: r.drawMsMedian.toFixed(2),
+    benchDrawMs: r.drawMsMedian.toFixed(2), benchJsMs: r.jsMsMedian.toFixed(3),
+    benchCalls: JSON.stringify(calls), benchUploads: r.uploads, benchDraws: r.draws,
   });
   $("bench").textContent = `${r.triangles} triangles: ${r.fps.toFixed(1)} frames/s ` +
-    `(${r.msPerFrame.toFixed(1)} ms/frame), draw + read-back ${r.drawMsMedian.toFixed(1)} ms; ${r.renderer}`;
+    `(${r.msPerFrame.toFixed(1)} ms/frame), draw + read-back ${r.drawMsMedian.toFixed(1)} ms, ` +
+    `JavaScript ${r.jsMsMedian.toFixed(2)} ms, ${r.callsTotal} WebGL calls (${r.uploads} uploads, ` +
+    `${r.draws} draws) per frame; ${r.renderer}`;
   $("bench").style.display = "block";
+}
+
+// WebGL calls that send data to the GPU: none may happen in a frame of a loaded surface.
+const UPLOADS = ["bufferData", "bufferSubData", "texImage2D", "texSubImage2D", "texImage3D",
+  "texSubImage3D", "compressedTexImage2D", "compressedTexSubImage2D", "copyBufferSubData"];
+
+// Runs `f` with every method of the WebGL context counted (by name, on the context object, so
+// nothing else is touched) and returns the counts.
+function countCalls(f) {
+  const counts = {};
+  const proto = Object.getPrototypeOf(gl);
+  const names = Object.getOwnPropertyNames(proto).filter((k) => {
+    const d = Object.getOwnPropertyDescriptor(proto, k);
+    return k !== "constructor" && d && typeof d.value === "function";
+  });
+  for (const k of names) {
+    const orig = proto[k];
+    gl[k] = (...a) => {
+      counts[k] = (counts[k] || 0) + 1;
+      return orig.apply(gl, a);
+    };
+  }
+  try {
+    f();
+  } finally {
+    for (const k of names) delete gl[k];
+  }
+  return counts;
 }
 
 function rendererName() {
