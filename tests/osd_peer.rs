@@ -27,7 +27,9 @@
 //! Missing peer: the test prints that it skipped, unless `FAIRSUB_REQUIRE_PEER` is set (CI), then
 //! it fails. `FAIRSUB_PEER=PATH` names another peer binary; `FAIRSUB_PEER_ONLY_TODAY=1` runs only
 //! the cases marked `[today]` (what fairsub handled before issue 16's Rust side);
-//! `FAIRSUB_PEER_FILTER=TEXT` only the case lines containing TEXT.
+//! `FAIRSUB_PEER_FILTER=TEXT` only the case lines containing TEXT; `FAIRSUB_PEER_CASES=FILE` and
+//! `FAIRSUB_PEER_NETS=DIR` run another cases file over the nets of another folder (a set of
+//! models of your own, compared the same way).
 //!
 //! Face-varying data (UVs): the nets with `vt` run with the face-varying option of their line
 //! (`--fvar`, default `all` as in OpenSubdiv's `Sdc::Options`); every written face corner's UV
@@ -99,6 +101,21 @@ fn parse_cases(text: &str) -> Vec<Case> {
     out
 }
 
+/// The cases file: `tests/peer/cases.txt`, or `FAIRSUB_PEER_CASES` (models of your own, run the
+/// same way).
+fn cases_file() -> PathBuf {
+    std::env::var_os("FAIRSUB_PEER_CASES")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root().join("tests/peer/cases.txt"))
+}
+
+/// The folder of the cases' nets: `tests/data/osd`, or `FAIRSUB_PEER_NETS`.
+fn nets_dir() -> PathBuf {
+    std::env::var_os("FAIRSUB_PEER_NETS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root().join("tests/data/osd"))
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -121,7 +138,7 @@ fn run(cmd: &mut Command) -> Result<(), String> {
 
 /// Runs one case at one level through both programs and compares.
 fn run_case(peer: &Path, dir: &Path, c: &Case, level: usize) -> Result<f64, String> {
-    let net = root().join("tests/data/osd").join(&c.net);
+    let net = nets_dir().join(&c.net);
     let tag = format!(
         "{}-{}-{}-{level}",
         c.line,
@@ -175,7 +192,7 @@ fn opensubdiv_parity() {
         println!("osd_peer: skipped: {msg}");
         return;
     }
-    let text = std::fs::read_to_string(root().join("tests/peer/cases.txt")).unwrap();
+    let text = std::fs::read_to_string(cases_file()).unwrap();
     let only_today = std::env::var_os("FAIRSUB_PEER_ONLY_TODAY").is_some();
     let filter = std::env::var("FAIRSUB_PEER_FILTER").unwrap_or_default();
     let lines: Vec<&str> = text.lines().collect();
@@ -219,7 +236,7 @@ fn opensubdiv_parity() {
 
 /// Whether a net of `tests/data/osd` has texture coordinates (`vt` lines).
 fn net_has_uvs(net: &str) -> bool {
-    let text = std::fs::read_to_string(root().join("tests/data/osd").join(net)).unwrap();
+    let text = std::fs::read_to_string(nets_dir().join(net)).unwrap();
     text.lines().any(|l| l.starts_with("vt "))
 }
 
@@ -262,7 +279,7 @@ fn comparer_on_peer_output() {
         println!("osd_peer: skipped: {} missing", peer.display());
         return;
     }
-    let text = std::fs::read_to_string(root().join("tests/peer/cases.txt")).unwrap();
+    let text = std::fs::read_to_string(cases_file()).unwrap();
     let dir = std::env::temp_dir().join(format!("fairsub-osd-self-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut seen = std::collections::HashSet::new();
@@ -274,7 +291,7 @@ fn comparer_on_peer_output() {
         run(Command::new(&peer)
             .args(["--scheme", &c.scheme, "--levels", "2"])
             .args(&c.options)
-            .arg(root().join("tests/data/osd").join(&c.net))
+            .arg(nets_dir().join(&c.net))
             .arg(&out))
         .unwrap();
         let limit = c.options.iter().any(|o| o == "--limit");
@@ -302,12 +319,12 @@ fn comparer_on_peer_output() {
 
 #[test]
 fn cases_file_parses_and_names_existing_nets() {
-    let text = std::fs::read_to_string(root().join("tests/peer/cases.txt")).unwrap();
+    let text = std::fs::read_to_string(cases_file()).unwrap();
     let cases = parse_cases(&text);
     assert!(cases.len() >= 100, "{} cases", cases.len());
     for c in &cases {
         assert!(
-            root().join("tests/data/osd").join(&c.net).exists(),
+            nets_dir().join(&c.net).exists(),
             "cases.txt:{}: {} missing",
             c.line,
             c.net

@@ -428,6 +428,7 @@ impl ObjData {
                 values: uvs,
                 corners: uv_corners,
                 names: ["u".into(), "v".into()],
+                classes: Vec::new(),
             });
             mesh.set_extras(Some(ex));
         }

@@ -181,6 +181,12 @@ pub struct FaceVarying {
     pub corners: Vec<u32>,
     /// The property names the values came from (`u v` for OBJ `vt`, the PLY names).
     pub names: [String; 2],
+    /// Per value, the class its seams are judged by: empty for values as read (every value
+    /// its own class); on a refined level the class of the parent value a vertex point's
+    /// value comes from (OpenSubdiv inherits a refined level's seams from the parent level
+    /// instead of comparing value indices again, and a base vertex may give one value two
+    /// siblings, see `schemes::fvar`), a new class for every other value.
+    pub classes: Vec<u32>,
 }
 
 /// The extras of a net (see the module documentation).

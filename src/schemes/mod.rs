@@ -176,7 +176,14 @@ pub fn refine_levels(
     scheme.refine_steps(mesh, levels, &mut |parent, r| {
         let pex = parent.extras();
         let refined_uv = match (pex.and_then(|e| e.uv.as_ref()), &fv_rules) {
-            (Some(uv), Some(rules)) => Some(fvar::refine(parent, uv, &r.mesh, &r.stencils, rules)),
+            (Some(uv), Some(rules)) => Some(fvar::refine(
+                parent,
+                uv,
+                level == 0,
+                &r.mesh,
+                &r.stencils,
+                rules,
+            )),
             _ => None,
         };
         let refined_data = pex

@@ -302,8 +302,48 @@ pub fn compare(got: &Refined, want: &Refined) -> Result<f64, String> {
     let (mut g_vals, mut w_vals) = (vec![false; got.uvs.len()], vec![false; want.uvs.len()]);
     for (f, face) in got.faces.iter().enumerate() {
         let cyc: Vec<usize> = face.iter().map(|&v| cluster_of_g[v]).collect();
-        let (key, rot) = canonical(&cyc);
-        let Some((pf, prot)) = pool.get_mut(&key).and_then(|v| v.pop()) else {
+        let (key, mut rot) = canonical(&cyc);
+        // Points of different kinds may coincide (the vertex and face points of a flat pillow
+        // of two faces), so a cycle can match several peer faces, or one in several rotations:
+        // with UVs, take the face and rotations whose UVs agree, if any.
+        let choice = pool.get_mut(&key).and_then(|cands| {
+            let hit = has_uv
+                .then(|| {
+                    let rots = |c: &[usize]| -> Vec<usize> {
+                        let m = c.len();
+                        (0..m)
+                            .filter(|&r| (0..m).all(|i| c[(r + i) % m] == key[i]))
+                            .collect()
+                    };
+                    let m = face.len();
+                    cands.iter().enumerate().find_map(|(j, &(pf, _))| {
+                        let wc: Vec<usize> =
+                            want.faces[pf].iter().map(|&v| cluster_of_w[v]).collect();
+                        let rw = rots(&wc);
+                        rots(&cyc).into_iter().find_map(|rg| {
+                            rw.iter()
+                                .copied()
+                                .find(|&r| {
+                                    (0..m).all(|i| {
+                                        let gu = got.face_uvs[f][(rg + i) % m];
+                                        let wu = want.face_uvs[pf][(r + i) % m];
+                                        dist(&got.uvs[gu], &want.uvs[wu]) <= TOL
+                                    })
+                                })
+                                .map(|r| (j, rg, r))
+                        })
+                    })
+                })
+                .flatten();
+            match hit {
+                Some((j, rg, rw)) => {
+                    rot = rg;
+                    Some((cands.swap_remove(j).0, rw))
+                }
+                None => cands.pop(),
+            }
+        });
+        let Some((pf, prot)) = choice else {
             let pts: Vec<[f64; 3]> = face.iter().map(|&v| got.points[v]).collect();
             return Err(format!(
                 "fairsub face {f} {pts:?} is not an OpenSubdiv face"

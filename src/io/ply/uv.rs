@@ -50,6 +50,7 @@ pub(super) fn face_varying(
             values,
             corners: ids,
             names: ["u".into(), "v".into()],
+            classes: Vec::new(),
         };
         return (Some(fv), None);
     }
@@ -67,6 +68,7 @@ pub(super) fn face_varying(
         values,
         corners: corners.to_vec(),
         names: UV_PAIRS[k].map(String::from),
+        classes: Vec::new(),
     };
     (Some(fv), Some(k))
 }
@@ -108,6 +110,7 @@ pub(crate) fn write_ply_extras_to(
         values: Vec::new(),
         corners: Vec::new(),
         names: [String::new(), String::new()],
+        classes: Vec::new(),
     };
     let has_uv = uv.is_some();
     let uv = uv.unwrap_or(&none);

@@ -63,6 +63,8 @@ pub(super) struct FvLevel<'a> {
     pub m: MeshView<'a>,
     /// The value of each face corner (half-edge).
     pub corner_value: &'a [u32],
+    /// The seam class of each value (`FaceVarying::classes`; empty: the value itself).
+    classes: &'a [u32],
     /// The sibling (position among its vertex's values) of each face corner.
     pub sibling: Vec<u32>,
     /// Per vertex: offsets into `ring`; the corners (outgoing half-edges) at the vertex, in
@@ -87,7 +89,13 @@ pub(super) struct FvLevel<'a> {
 
 impl<'a> FvLevel<'a> {
     /// The face-varying topology of `mesh` with corner values `corner_value` under `opts`.
-    pub fn new(mesh: &'a PolyMesh, corner_value: &'a [u32], opts: &SubdOptions) -> FvLevel<'a> {
+    pub fn new(
+        mesh: &'a PolyMesh,
+        corner_value: &'a [u32],
+        opts: &SubdOptions,
+        base: bool,
+        classes: &'a [u32],
+    ) -> FvLevel<'a> {
         let m = mesh.view();
         let (nv, ne, nh) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_halfedges());
         let sharp = SharpLevel::new(mesh, opts);
@@ -127,6 +135,7 @@ impl<'a> FvLevel<'a> {
         let mut lv = FvLevel {
             m,
             corner_value,
+            classes,
             sibling: vec![0; nh],
             ring_start,
             ring,
@@ -141,7 +150,7 @@ impl<'a> FvLevel<'a> {
             vertices,
             sharp,
         };
-        lv.find_values();
+        lv.find_values(base);
         lv.find_seams();
         lv.tag_values(&manifold, opts);
         lv
@@ -173,22 +182,40 @@ impl<'a> FvLevel<'a> {
         [self.corner_value[h as usize], self.corner_value[n as usize]]
     }
 
-    /// The sibling values per vertex, in the order of its corners.
-    fn find_values(&mut self) {
+    /// The sibling values per vertex, in the order of its corners. On the base net (`base`)
+    /// they are assigned as OpenSubdiv assigns them (`FVarLevel::completeTopologyFromFaceValues`):
+    /// walking the corners in ring order (OpenSubdiv's: from the lowest face, or from the
+    /// face whose edge out of the vertex is a boundary edge), a corner whose value equals the
+    /// previous corner's shares its sibling; a corner with another value is looked up among the
+    /// values found so far, except that while exactly two are known and the value differs from
+    /// the first, it is taken as new without comparing it with the second. So values
+    /// alternating around a vertex (`a b a b`) give three siblings (`a`, `b` and a second `b`
+    /// for the last run), which OpenSubdiv refines as separate values (its regression shapes
+    /// `catmark_bishop`, `_car`, `_rook`, whose faces all carry the same four `vt`, need it).
+    /// OpenSubdiv carries refined levels' siblings over from their parents instead, so there
+    /// (`!base`, where every value index belongs to one vertex) equal values are one sibling.
+    fn find_values(&mut self, base: bool) {
         let nv = self.ring_start.len() - 1;
         self.value_start.push(0);
         for v in 0..nv {
-            let base = self.values.len();
+            let first = self.values.len();
+            let mut prev: Option<(u32, usize)> = None;
             for k in self.ring_start[v]..self.ring_start[v + 1] {
                 let h = self.ring[k as usize];
                 let val = self.corner_value[h as usize];
-                let s = match self.values[base..].iter().position(|&x| x == val) {
-                    Some(s) => s,
-                    None => {
-                        self.values.push(val);
-                        self.values.len() - base - 1
-                    }
+                let known = self.values.len() - first;
+                let s = match prev {
+                    Some((p, s)) if p == val => s,
+                    Some(_) if base && known == 2 && self.values[first] != val => known,
+                    _ => self.values[first..]
+                        .iter()
+                        .position(|&x| x == val)
+                        .unwrap_or(known),
                 };
+                if s == known {
+                    self.values.push(val);
+                }
+                prev = Some((val, s));
                 self.sibling[h as usize] = s as u32;
             }
             self.value_start.push(self.values.len() as u32);
@@ -196,13 +223,15 @@ impl<'a> FvLevel<'a> {
         self.tags = vec![Tag::Match; self.values.len()];
     }
 
-    /// The discontinuous edges: the faces of the edge disagree at one of its ends.
+    /// The discontinuous edges: the faces of the edge disagree at one of its ends (values
+    /// compared by their seam class, so a refined level inherits its parent's seams).
     fn find_seams(&mut self) {
+        let class = |v: u32| self.classes.get(v as usize).copied().unwrap_or(v);
         for e in 0..self.discts.len() {
             let hs = self.edge_faces(e);
             let a = self.m.from(hs[0]);
             let key = |h: u32| {
-                let [x, y] = self.edge_values(h);
+                let [x, y] = self.edge_values(h).map(class);
                 if self.m.from(h) == a { [x, y] } else { [y, x] }
             };
             let first = key(hs[0]);

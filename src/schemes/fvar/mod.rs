@@ -52,15 +52,18 @@ pub struct FvarRules {
 }
 
 /// The face-varying data of `child`, one step of `parent` (whose data is `uv`) under `rules`;
-/// `stencils` are the step's vertex stencils (row `i` gives child vertex `i`).
+/// `stencils` are the step's vertex stencils (row `i` gives child vertex `i`). `base`: the
+/// parent is the net as read (its values are grouped per vertex as OpenSubdiv groups the base
+/// level's, [`FvLevel::new`]); refined parents carry the values this function gave them.
 pub fn refine(
     parent: &PolyMesh,
     uv: &FaceVarying,
+    base: bool,
     child: &PolyMesh,
     stencils: &StencilTable,
     rules: &FvarRules,
 ) -> FaceVarying {
-    let pa = FvLevel::new(parent, &uv.corners, &rules.options);
+    let pa = FvLevel::new(parent, &uv.corners, &rules.options, base, &uv.classes);
     let (nv, ne) = (parent.num_vertices(), parent.num_edges());
     let m = pa.m;
     // Child values: per vertex point the parent's values, per seam edge one per face.
@@ -120,7 +123,27 @@ pub fn refine(
             offset[c] + sibling
         })
         .collect();
-    let ca = FvLevel::new(child, &corners, &rules.options);
+    // Seam classes of the child values: a vertex point's values keep their parent values'
+    // classes, every other value is a class of its own.
+    let class_of = |v: u32| uv.classes.get(v as usize).copied().unwrap_or(v);
+    let space = uv
+        .classes
+        .iter()
+        .max()
+        .map_or(0, |&c| c + 1)
+        .max(uv.values.len() as u32);
+    let mut classes = Vec::with_capacity(*offset.last().unwrap_or(&0) as usize);
+    for c in 0..ncv {
+        for s in 0..count(c) as usize {
+            let own = space + classes.len() as u32;
+            classes.push(if c < nv {
+                class_of(pa.values(c)[s])
+            } else {
+                own
+            });
+        }
+    }
+    let ca = FvLevel::new(child, &corners, &rules.options, false, &classes);
     let linear = rules.options.fvar() == FvarInterpolation::All;
     let src = &uv.values;
     let at = |val: u32| src[val as usize];
@@ -180,6 +203,7 @@ pub fn refine(
         values: out,
         corners,
         names: uv.names.clone(),
+        classes,
     }
 }
 

@@ -33,6 +33,7 @@ fn strip() -> PolyMesh {
         ],
         corners: (0..8).collect(),
         names: ["u".into(), "v".into()],
+        classes: Vec::new(),
     };
     m.set_extras(Some(Extras {
         uv: Some(uv),
