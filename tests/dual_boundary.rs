@@ -407,3 +407,39 @@ fn schemes_without_the_modes_refuse_them_by_name() {
         assert!(e.contains("boundary mode none"), "{e}");
     }
 }
+
+#[test]
+fn the_command_line_option_sets_the_mode() {
+    let dir = std::env::temp_dir().join(format!("fairsub-dual-boundary-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let net = dir.join("grid.obj");
+    fairsub::io::write_mesh(&net, &grid(4, None), fairsub::io::MeshFormat::Obj).unwrap();
+    let run = |scheme: &str, mode: &str, out: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+            .args([
+                "subdivide",
+                "--scheme",
+                scheme,
+                "--levels",
+                "1",
+                "--boundary",
+                mode,
+            ])
+            .arg("-o")
+            .arg(dir.join(out))
+            .arg(&net)
+            .output()
+            .unwrap()
+    };
+    for (mode, points) in [("edge-and-corner", 100), ("edge-only", 96), ("none", 64)] {
+        let o = run("doo-sabin", mode, "out.obj");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let m = fairsub::io::read_mesh(&dir.join("out.obj")).unwrap().mesh;
+        assert_eq!(m.num_vertices(), points, "{mode}");
+    }
+    // a scheme without the modes refuses the option by name
+    let o = run("tps", "none", "tps.obj");
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--boundary"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

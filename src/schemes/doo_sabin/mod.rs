@@ -477,9 +477,11 @@ pub(crate) fn refuse_reaching_rule_at_trimmed_boundary(mesh: &PolyMesh, name: &s
             "face {f} ({} sides) of the refined net lies on the boundary that the boundary \
              mode none left after the strip was dropped; {name}'s rule for it reads the quads \
              across its edges, which none leaves out (not built: refine with one level fewer, \
-             use doo-sabin or doo-sabin-cc, whose rules read the face alone, or --rings, whose \
-             patches take none here)",
-            mesh.face_size(f)
+             use {} or {}, whose rules read the face alone, or --rings, whose patches take \
+             none here)",
+            mesh.face_size(f),
+            crate::schemes::registry::ids::DOO_SABIN,
+            crate::schemes::registry::ids::DOO_SABIN_CC
         ))),
         None => Ok(()),
     }
