@@ -274,3 +274,43 @@ fn ring_hosts_report_creases_as_sharp_joins() {
         assert!(report.all.g1 < 1e-8, "{scheme}: {}", report.all.g1);
     }
 }
+
+/// An open 8 x 8 grid with an L-shaped crease: along row 4 from the left boundary to the middle
+/// vertex 40, then up column 4 to the top boundary. At vertex 40 the crease turns around the one
+/// face 35 (its north-west face): the cut gives that sector a copy of 40 with a single face, which
+/// must follow the crease polygon like the other side's copy (three faces), not stay put.
+fn l_creased_grid() -> PolyMesh {
+    let mut m = creased_grid();
+    let n = 8usize;
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut sharp: Vec<(u32, f32)> = (0..4)
+        .map(|i| (id(i, 4), id(i + 1, 4)))
+        .chain((4..n).map(|j| (id(4, j), id(4, j + 1))))
+        .map(|(a, b)| (m.find_edge(a, b).expect("edge"), 10.0))
+        .collect();
+    sharp.sort_by_key(|p| p.0);
+    m.set_extras(Some(Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Extras::default()
+    }));
+    m
+}
+
+#[test]
+fn a_crease_turning_around_one_face_stays_closed() {
+    let net = l_creased_grid();
+    let mut plain = net.clone();
+    plain.set_extras(None);
+    for scheme in ["doo-sabin", "doo-sabin-cc", "pgs"] {
+        let open_plain = continuity::check(&build(scheme, &plain).unwrap().complex).open_sides;
+        let c = build(scheme, &net).unwrap().complex;
+        let report = continuity::check(&c);
+        eprintln!(
+            "{scheme}: open {} (plain {open_plain}), c0 {:.2e}, sharp c0 {:.2e}",
+            report.open_sides, report.all.c0, report.sharp.c0
+        );
+        // The grid's boundary split once more at each of the two crease ends on it.
+        assert_eq!(report.open_sides, open_plain + 2, "{scheme}: no crack");
+        assert!(report.all.c0 < 1e-12 && report.sharp.c0 < 1e-12, "{scheme}");
+    }
+}

@@ -127,7 +127,10 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
         spec.params.rules = r;
     }
     let s = o.subd;
-    if (s.boundary.is_some() || s.crease_method.is_some() || s.fvar.is_some() || o.creases)
+    let boundary_only = s.crease_method.is_none() && s.fvar.is_none() && !o.creases;
+    if s.boundary.is_some() && boundary_only && takes(&spec, ParamKind::BoundaryMode) {
+        // the dual schemes' boundary modes: the front end puts the option on the net
+    } else if (s.boundary.is_some() || s.crease_method.is_some() || s.fvar.is_some() || o.creases)
         && !takes(&spec, ParamKind::SharpFeatures)
     {
         return Err(Error::InvalidArgument(format!(

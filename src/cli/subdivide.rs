@@ -306,7 +306,8 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
     let mesh = if features::takes_features(&spec) {
         features::load_net(&mut spec, &a.features, &a.net, !patches, net)?
     } else {
-        nonbox::load_net(&spec, &a.net, &a.options.fcv, net)?
+        let m = nonbox::load_net(&spec, &a.net, &a.options.fcv, net)?;
+        features::with_boundary_mode(&spec, m)
     };
     if let Some(q) = &a.options.q_file {
         // the expansions name vertices of this net: check them against it, at their lines

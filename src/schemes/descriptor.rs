@@ -80,6 +80,10 @@ pub enum ParamKind {
     SharpFeatures,
     /// `--smooth-triangles`: OpenSubdiv's smooth triangle option (Catmull-Clark).
     SmoothTriangles,
+    /// `--boundary` alone (and the net's `interpolateboundary` tag): the boundary modes of the
+    /// dual schemes (`crate::schemes::doo_sabin`), for schemes without the rest of
+    /// [`ParamKind::SharpFeatures`].
+    BoundaryMode,
 }
 
 impl ParamKind {
@@ -96,6 +100,7 @@ impl ParamKind {
             ParamKind::Rules => "--rules",
             ParamKind::SharpFeatures => "--boundary / --crease-method / --fvar / --creases",
             ParamKind::SmoothTriangles => "--smooth-triangles",
+            ParamKind::BoundaryMode => "--boundary",
         }
     }
 }

@@ -152,7 +152,7 @@ impl Registry {
                     &["ds"],
                     About {
                         family: "classic dual quad scheme [DS78], weights of the Doo-Sabin paper",
-                        input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules)",
+                        input: "any polygon mesh; boundaries: Chaikin points on boundary edges (fairsub's rules), --boundary edge-and-corner (default: corners of one face kept), edge-only (Chaikin through the corners) or none (what a boundary rule makes is not written; fairsub's dual reading of OpenSubdiv's modes); --rings: infinitely sharp creases by cutting the net",
                         patches: "bi-2 per regular vertex (Chaikin boundaries via doubled boundary layer); rings of 3n bi-2 patches per n-gon (from level 2 for an n-valent vertex); G^1 cap (centroid fill where the ring is incomplete)",
                         smoothness: "C^1 (bi-2 on regular parts)",
                         valences: "all facet sizes",

@@ -111,6 +111,20 @@ pub fn load_net(
     Ok(mesh)
 }
 
+/// For a scheme that takes the boundary modes alone (the dual schemes): the net with
+/// `--boundary` (when given) as its `interpolateboundary` option, overriding the net's tag; the
+/// scheme reads the mode from there ([`crate::schemes::doo_sabin::boundary_mode`]).
+pub fn with_boundary_mode(spec: &Spec, mesh: PolyMesh) -> PolyMesh {
+    match spec.params.subd.boundary {
+        Some(b) if takes(spec, ParamKind::BoundaryMode) => {
+            let mut ex = mesh.extras().cloned().unwrap_or_default();
+            ex.options.boundary = Some(b);
+            mesh.with_extras(Some(ex))
+        }
+        _ => mesh,
+    }
+}
+
 fn takes(spec: &Spec, kind: ParamKind) -> bool {
     crate::schemes::registry()
         .descriptor(spec.id)
@@ -134,7 +148,15 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
             ex.holes.len()
         )));
     }
-    if !ex.options.is_empty() && !takes_features(spec) {
+    let boundary_only = SubdOptions {
+        boundary: None,
+        ..ex.options
+    }
+    .is_empty();
+    if !ex.options.is_empty()
+        && !takes_features(spec)
+        && (!boundary_only || !takes(spec, ParamKind::BoundaryMode))
+    {
         eprintln!(
             "warning: {arg}: OpenSubdiv option tags (interpolateboundary, creasemethod, ...) are \
              ignored by {}",

@@ -98,6 +98,8 @@ impl Descriptor for Bi2Descriptor {
         match self.kind {
             Bi2Kind::Polar => &[ParamKind::Poles],
             Bi2Kind::TpsAdjustable => &[ParamKind::SplitRatio, ParamKind::AlphaRule],
+            // the dual host's boundary modes (crate::schemes::doo_sabin)
+            Bi2Kind::Pgs | Bi2Kind::PgsDscc => &[ParamKind::BoundaryMode],
             _ => &[],
         }
     }
@@ -141,6 +143,7 @@ impl Descriptor for Bi2Descriptor {
                 use super::surface as s;
                 if !matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) {
                     crate::schemes::doo_sabin::sharp::refuse_kept_corners_with_faces(mesh, name)?;
+                    crate::schemes::doo_sabin::sharp::refuse_boundary_modes(mesh, name)?;
                 }
                 let with_notes = |(complex, notes)| SurfaceOutput {
                     complex,

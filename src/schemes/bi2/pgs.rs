@@ -333,6 +333,10 @@ impl Pgs {
             m = if l < opts.dscc_steps {
                 fourier::refine_cc_net(&m)?
             } else {
+                crate::schemes::doo_sabin::refuse_reaching_rule_at_trimmed_boundary(
+                    &m,
+                    Pgs.name(),
+                )?;
                 fourier::refine_net_with(&m, Pgs.name(), add_corner, Pgs::face_corners)?
             };
         }
@@ -460,6 +464,7 @@ impl Scheme for Pgs {
     /// One PGS step: Doo-Sabin topology and boundary rules, rule (4) at every facet with a
     /// DS-net (see the [module](self) documentation).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
+        crate::schemes::doo_sabin::refuse_reaching_rule_at_trimmed_boundary(mesh, self.name())?;
         refine_dual_with(mesh, self.name(), add_corner)
     }
 
@@ -468,6 +473,7 @@ impl Scheme for Pgs {
     /// otherwise); boundary vertices lie on the Chaikin limit curve `(u + 6 v + w) / 8`;
     /// corners are kept.
     fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
+        crate::schemes::doo_sabin::refuse_limit_without_boundary(mesh, self.name())?;
         let nv = mesh.num_vertices();
         let mut table = StencilTable::with_capacity(nv, nv, 16);
         let mut row = RowBuf::default();

@@ -4,8 +4,8 @@ use super::{DooSabin, DooSabinCc};
 use crate::error::Result;
 use crate::schemes::Scheme;
 use crate::schemes::descriptor::{
-    Capabilities, Descriptor, LocalRules, PatchRules, Spec, SurfaceOutput, matrix_and_rows,
-    patch_fn,
+    Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput,
+    matrix_and_rows, patch_fn,
 };
 
 /// Doo-Sabin (`cc = false`) or DS^CC (`cc = true`).
@@ -28,6 +28,12 @@ impl Descriptor for DsDescriptor {
             eval: true,
             ..Capabilities::REFINE_AND_PATCHES
         }
+    }
+
+    /// The boundary modes (`--boundary`, the net's `interpolateboundary` tag): see
+    /// [`super`].
+    fn params(&self) -> &'static [ParamKind] {
+        &[ParamKind::BoundaryMode]
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {

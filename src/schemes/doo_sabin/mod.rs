@@ -52,6 +52,35 @@
 //! highlight-line oscillations. Near boundary vertices with other than two faces the V-face is a
 //! `(k + 2)`-gon touching the boundary; its smoothness is not analysed here.
 //!
+//! # Boundary modes (fairsub's translation of OpenSubdiv's, not published)
+//!
+//! OpenSubdiv's `VtxBoundaryInterpolation` names three modes for the primal schemes; the net's
+//! `interpolateboundary` option (or `--boundary`, [`boundary_mode`]) picks their dual
+//! counterparts, which are our own:
+//!
+//! - `edge-and-corner` (the default): the rules above, corners of one face kept.
+//! - `edge-only`: OpenSubdiv's boundary vertex with one face follows the boundary crease
+//!   instead of staying put. Here: no kept corner at a vertex with one face (vertices the
+//!   net's extras tag as sharp are still kept); the boundary polygon is refined by Chaikin's
+//!   rule through the corner like everywhere else, so the limit boundary is the quadratic
+//!   B-spline of the boundary polygon without doubled corners (it cuts the corner), and the
+//!   corner's V-face is a triangle that leaves the boundary after one more step and shrinks to
+//!   an interior point (an extraordinary 3-gon of the surface).
+//! - `none`: OpenSubdiv makes the faces at the boundary holes, refined for support and not
+//!   written, so the surface is what the interior rules alone determine. Here: a point is
+//!   *rule-free* when no boundary rule (a Chaikin point, a kept corner, a phantom of a
+//!   boundary vertex's patch) enters its computation; what is written is what is made of
+//!   rule-free points only. A refinement step makes the corner points only (all rule-free,
+//!   the corner rule reads no boundary point rule) and the F-faces, the E-faces of interior
+//!   edges and the V-faces of interior vertices: the boundary strip (Chaikin points, kept
+//!   corners, E-faces of boundary edges, V-faces of boundary vertices) is not made, and the
+//!   next step refines the trimmed net the same way. The surface is the union of the patches
+//!   of the input's interior vertices (on a regular region; in general the part of the
+//!   edge-and-corner surface with rule-free control points), and the trimmed net at any level
+//!   describes the same surface under `none`. Limit points (`--limit`) are refused on a net
+//!   with a boundary: a boundary vertex's patch is not part of the surface. The patch output
+//!   writes the rule-free patches (`surface`).
+//!
 //! An interior vertex of valence 2 (two faces sharing two edges) would give a 2-sided V-face:
 //! that V-face is omitted and its two neighbouring E-faces share the edge instead.
 //!
@@ -80,7 +109,9 @@ pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};
 
 use crate::error::{Error, Result};
-use crate::mesh::{NONE, PolyMesh};
+use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
+use crate::mesh::{Extras, NONE, PolyMesh};
+use crate::schemes::catmull_clark::crease::INFINITE;
 use crate::stencil::{Stencil, StencilTable};
 
 use super::common::{RowBuf, check_child_size, cos_2pi};
@@ -285,10 +316,16 @@ pub(crate) fn refine_dual_with(
             nb += 1;
         }
     }
+    // Boundary `none`: the boundary strip (its Chaikin points, kept corners, boundary E-faces
+    // and V-faces) is not made; see the module's boundary modes.
+    let trim = boundary_mode(mesh) == BoundaryInterpolation::None;
+    if trim {
+        nb = 0;
+    }
     let mut corner = vec![NONE; nv];
     let mut nc = 0u32;
     for (v, slot) in corner.iter_mut().enumerate() {
-        if sharp::is_kept_corner(mesh, v) {
+        if !trim && sharp::is_kept_corner(mesh, v) {
             *slot = nc;
             nc += 1;
         }
@@ -304,7 +341,7 @@ pub(crate) fn refine_dual_with(
         corner_rule(mesh, h, &mut row);
         row.flush_into(&mut table);
     }
-    for e in (0..ne).filter(|&e| mesh.is_boundary_edge(e)) {
+    for e in (0..ne).filter(|&e| !trim && mesh.is_boundary_edge(e)) {
         let h = mesh.edge_halfedge(e);
         let (a, b) = (mesh.he_from(h), mesh.he_to(h));
         for (wa, wb) in CHAIKIN {
@@ -327,6 +364,7 @@ pub(crate) fn refine_dual_with(
         let h = mesh.edge_halfedge(e);
         let quad = match mesh.he_twin(h) {
             Some(t) => [mesh.he_next(h), h, mesh.he_next(t), t],
+            None if trim => continue,
             None => [
                 mesh.he_next(h),
                 h,
@@ -340,6 +378,9 @@ pub(crate) fn refine_dual_with(
     for (v, &kept) in corner.iter().enumerate() {
         let start = corners.len();
         let boundary = mesh.is_boundary_vertex(v);
+        if boundary && trim {
+            continue;
+        }
         let h0 = mesh.vertex_halfedge(v);
         if boundary {
             corners.push(edge_point(mesh.he_edge(h0), false));
@@ -361,7 +402,89 @@ pub(crate) fn refine_dual_with(
         }
         face_start.push(corners.len() as u32);
     }
-    finish_refinement(mesh, table, face_start, corners)
+    let mut r = finish_refinement(mesh, table, face_start, corners)?;
+    // The child keeps the boundary mode, and a kept corner's child point stays kept.
+    if let Some(ex) = mesh.extras() {
+        let kept: Vec<(u32, f32)> = (0..nv)
+            .filter(|&v| corner[v] != NONE && sharp::is_tagged_corner(mesh, v))
+            .map(|v| (h_count + 2 * nb + corner[v], INFINITE))
+            .collect();
+        if !kept.is_empty() || ex.options.boundary.is_some() {
+            let extras = Extras {
+                sharp_vertices: kept,
+                options: SubdOptions {
+                    boundary: ex.options.boundary,
+                    ..SubdOptions::default()
+                },
+                sharpened: true,
+                ..Extras::default()
+            };
+            r.mesh = r.mesh.with_extras(Some(extras));
+        }
+    }
+    Ok(r)
+}
+
+/// The boundary mode a dual scheme refines `mesh` with: the net's `interpolateboundary`
+/// option (a command-line `--boundary` is put there by the front end), edge-and-corner when it
+/// says nothing. See the module's boundary modes.
+pub fn boundary_mode(mesh: &PolyMesh) -> BoundaryInterpolation {
+    mesh.extras()
+        .map_or(BoundaryInterpolation::EdgeAndCorner, |e| {
+            e.options.boundary()
+        })
+}
+
+/// Refuses limit points under the boundary mode `none` when the net has a boundary: its
+/// boundary vertices' patches are not part of the surface, so they have no limit point on it.
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the first boundary vertex.
+pub(crate) fn refuse_limit_without_boundary(mesh: &PolyMesh, name: &str) -> Result<()> {
+    if boundary_mode(mesh) != BoundaryInterpolation::None {
+        return Ok(());
+    }
+    match (0..mesh.num_vertices()).find(|&v| mesh.is_boundary_vertex(v)) {
+        Some(v) => Err(Error::Unsupported(format!(
+            "vertex {v} is on the boundary and the boundary mode is none: {name}'s surface \
+             leaves out the patches of boundary vertices, so the vertex has no limit point on \
+             it (write the refined net without --limit, or choose --boundary edge-only or \
+             edge-and-corner)"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// For a corner rule that reads beyond its face (PGS reads the quads across a facet's edges):
+/// refuses a step under the boundary mode `none` on a refined level (one whose boundary is
+/// where the boundary strip was left out) when a face that is not a quad has a boundary edge.
+/// There the full refinement's rule reads the left-out strip, so the face's new corners are not
+/// rule-free, and the trimmed net has no faces to read in their place.
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the face.
+pub(crate) fn refuse_reaching_rule_at_trimmed_boundary(mesh: &PolyMesh, name: &str) -> Result<()> {
+    let refined = mesh.extras().is_some_and(|e| e.sharpened);
+    if boundary_mode(mesh) != BoundaryInterpolation::None || !refined {
+        return Ok(());
+    }
+    let at_boundary = |f: usize| {
+        let h0 = mesh.face_halfedge(f);
+        (h0..h0 + mesh.face_size(f) as u32).any(|h| mesh.he_twin(h).is_none())
+    };
+    match (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 4 && at_boundary(f)) {
+        Some(f) => Err(Error::Unsupported(format!(
+            "face {f} ({} sides) of the refined net lies on the boundary that the boundary \
+             mode none left after the strip was dropped; {name}'s rule for it reads the quads \
+             across its edges, which none leaves out (not built: refine with one level fewer, \
+             use {} or {}, whose rules read the face alone, or --rings, whose patches take \
+             none here)",
+            mesh.face_size(f),
+            crate::schemes::registry::ids::DOO_SABIN,
+            crate::schemes::registry::ids::DOO_SABIN_CC
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Limit points of the vertices of a net under a dual scheme with the given corner rule.
@@ -370,6 +493,7 @@ fn dual_limit_stencils(
     name: &str,
     rule: fn(usize) -> Vec<f64>,
 ) -> Result<StencilTable> {
+    refuse_limit_without_boundary(mesh, name)?;
     let nv = mesh.num_vertices();
     let mut rules = RuleCache::new(rule);
     let mut table = StencilTable::with_capacity(nv, nv, 9);

@@ -23,7 +23,14 @@
 //!   two sides of the slit would be one curve traced back and forth and the surface would fold
 //!   over at its end, where OpenSubdiv's Catmull-Clark dart fades the crease out), an
 //!   infinitely sharp corner tag at an interior vertex that no crease reaches (a bi-2 surface
-//!   cannot keep an interior point), boundary options other than the default edge-and-corner.
+//!   cannot keep an interior point), the boundary mode `none` together with creases (its
+//!   trimming would drop the sides of the cut too).
+//! - **Boundary modes** ([`super`]): the cut net keeps exactly the vertices above (and, under
+//!   edge-and-corner, the net's own corners of one face) as tagged corners and is refined
+//!   under edge-only, so a sector of one face that the cut makes where a crease turns around a
+//!   single face follows the crease polygon like the other side (kept as a corner it would
+//!   crack the crease). TPS, adjustable TPS, polar bi-2 and the mixed scheme refuse `none` and
+//!   an `edge-only` corner of one face ([`refuse_boundary_modes`]).
 //!   The schemes whose boundary rules keep only single-face corners (TPS, adjustable TPS, polar
 //!   bi-2, the mixed scheme) also refuse a kept corner with more faces on one side
 //!   ([`refuse_kept_corners_with_faces`]); Doo-Sabin, DS^CC and PGS keep it.
@@ -35,7 +42,7 @@ use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::error::{Error, Result};
 use crate::geom::{Point, dist};
-use crate::mesh::tags::BoundaryInterpolation;
+use crate::mesh::tags::{BoundaryInterpolation, Named, SubdOptions};
 use crate::mesh::{Extras, NONE, PolyMesh, SharpEdges};
 use crate::schemes::catmull_clark::crease::INFINITE;
 use crate::schemes::descriptor::SurfaceOutput;
@@ -51,11 +58,14 @@ pub struct CutNet {
     pub notes: Vec<String>,
 }
 
-/// Whether the dual schemes' boundary rules keep vertex `v` as a corner: a boundary vertex with
-/// a single face, or a boundary vertex the net's extras tag as a sharp vertex (the kept corners
-/// of [`cut_along_creases`]; the tags are sorted by vertex).
+/// Whether the dual schemes' boundary rules keep vertex `v` as a corner: a boundary vertex the
+/// net's extras tag as a sharp vertex (the kept corners of [`cut_along_creases`]; the tags are
+/// sorted by vertex), or a boundary vertex with a single face unless the net's boundary mode is
+/// `edge-only` ([`super::boundary_mode`]).
 pub fn is_kept_corner(mesh: &PolyMesh, v: usize) -> bool {
-    mesh.is_boundary_vertex(v) && (mesh.is_corner(v) || is_tagged_corner(mesh, v))
+    mesh.is_boundary_vertex(v)
+        && ((mesh.is_corner(v) && super::boundary_mode(mesh) != BoundaryInterpolation::EdgeOnly)
+            || is_tagged_corner(mesh, v))
 }
 
 /// Whether the extras tag vertex `v` as sharp (the tags are sorted by vertex).
@@ -76,16 +86,17 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
     let Some(ex) = mesh.extras() else {
         return Ok(None);
     };
-    let boundary = ex.options.boundary();
-    if ex.options.boundary.is_some() && boundary != BoundaryInterpolation::EdgeAndCorner {
-        return Err(Error::Unsupported(format!(
-            "the net asks for the boundary interpolation {boundary:?}; {name}'s patches have \
-             the edge-and-corner boundary only (the Chaikin curve of the boundary polygon, \
-             corners kept)"
-        )));
-    }
     if !ex.has_features() {
         return Ok(None);
+    }
+    let mode = ex.options.boundary();
+    if mode == BoundaryInterpolation::None {
+        return Err(Error::Unsupported(format!(
+            "the net tags sharp features and asks for the boundary mode none; {name} cuts the \
+             net along its creases, and under none the cut would lose its sides like the \
+             boundary (not built: choose --boundary edge-only or edge-and-corner, or remove \
+             the tags)"
+        )));
     }
     let mut notes = Vec::new();
     let holes = ex.holes.len();
@@ -175,6 +186,15 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
         }
         keep[v] = true;
     }
+    // Under edge-and-corner the net's own corners (a boundary vertex with one face) are kept
+    // too; the cut net keeps exactly the tagged vertices (its boundary mode is edge-only), so a
+    // sector of one face that the cut makes at a crease vertex follows the crease polygon like
+    // the other side, instead of staying put as a corner would.
+    if mode == BoundaryInterpolation::EdgeAndCorner {
+        for (v, k) in keep.iter_mut().enumerate() {
+            *k |= mesh.is_boundary_vertex(v) && mesh.is_corner(v);
+        }
+    }
     let mut face_start = Vec::with_capacity(mesh.num_faces() + 1);
     face_start.push(0u32);
     let mut corners = Vec::with_capacity(nh);
@@ -194,14 +214,18 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
     let out = PolyMesh::from_flat(positions, face_start, corners)?;
     let extras = Extras {
         sharp_vertices: kept.clone(),
+        options: SubdOptions {
+            boundary: Some(BoundaryInterpolation::EdgeOnly),
+            ..SubdOptions::default()
+        },
         ..Extras::default()
     };
     notes.push(format!(
         "sharp features: the net is cut along its {cut_edges} infinitely sharp edges ({copies} \
          vertex copies, numbered from {nv}); both sides of a crease end on the quadratic \
          B-spline of the crease polygon, which interpolates the {} kept corners (crease ends, \
-         junctions, crease vertices on the boundary, corner tags); elements on a crease take \
-         the Doo-Sabin boundary rules",
+         junctions, crease vertices on the boundary, corner tags, and under edge-and-corner \
+         the net's corners); elements on a crease take the Doo-Sabin boundary rules",
         kept.len()
     ));
     Ok(Some(CutNet {
@@ -326,6 +350,38 @@ pub fn refuse_kept_corners_with_faces(mesh: &PolyMesh, name: &str) -> Result<()>
         }
     }
     Ok(())
+}
+
+/// For the bi-2 schemes whose boundary rules keep single-face corners and have no others (TPS,
+/// adjustable TPS, polar bi-2, the mixed scheme): refuses the boundary mode `none` on a net with
+/// a boundary, and `edge-only` where a boundary vertex has a single face (its V-face would be a
+/// triangle at the boundary, for which they have no rule).
+///
+/// # Errors
+/// [`Error::Unsupported`] naming the vertex and the way out.
+pub fn refuse_boundary_modes(mesh: &PolyMesh, name: &str) -> Result<()> {
+    let mode = super::boundary_mode(mesh);
+    if mode == BoundaryInterpolation::EdgeAndCorner {
+        return Ok(());
+    }
+    let bad = |v: usize| {
+        mesh.is_boundary_vertex(v)
+            && (mode == BoundaryInterpolation::None
+                || (mesh.is_corner(v) && !is_kept_corner(mesh, v)))
+    };
+    match (0..mesh.num_vertices()).find(|&v| bad(v)) {
+        Some(v) => Err(Error::Unsupported(format!(
+            "boundary vertex {v} under the boundary mode {}: {name}'s boundary rules keep \
+             every corner with one face and have no rule for the boundary modes none and \
+             edge-only there (way out: {}, {} or {}, which take them, or --boundary \
+             edge-and-corner)",
+            mode.name(),
+            crate::schemes::registry::ids::PGS,
+            crate::schemes::registry::ids::DOO_SABIN,
+            crate::schemes::registry::ids::DOO_SABIN_CC
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Per edge: infinitely sharp. Semi-sharp edges are refused.

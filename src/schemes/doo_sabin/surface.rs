@@ -78,6 +78,15 @@
 //! their vertex's cell. The layout is in [`crate::bezier::domain`]; next to the boundary
 //! nothing is tracked.
 //!
+//! # Boundary modes
+//!
+//! `edge-only` needs nothing here but [`super::sharp::is_kept_corner`]: a corner that is not
+//! kept has a triangle for V-face, an extraordinary element like any other. Under `none`
+//! ([`super`]'s boundary modes) each level knows which of its points are rule-free
+//! (`Level::rule_free`); a vertex on the boundary, and a regular vertex whose net has a point
+//! that is not, writes no patch and is not refined; an element whose last-level corners are
+//! not all rule-free gets no G^1 cap, and the centroid fill writes the rule-free corners only.
+//!
 //! # Other dual bi-2 schemes
 //!
 //! The machinery takes the scheme's rules as a [`DualRules`] value (the stencil of a new corner
@@ -94,6 +103,7 @@ use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
+use crate::mesh::tags::BoundaryInterpolation;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
@@ -224,6 +234,9 @@ pub struct Level {
     active: Vec<(u32, Tag)>,
     /// Level 0: the input net, whose vertex patches cover quarters of four faces.
     first: bool,
+    /// Boundary mode `none` (else `None`): per point, whether it is computed without any
+    /// boundary rule (the module's boundary modes).
+    rule_free: Option<Vec<bool>>,
 }
 
 impl Cells for Level {
@@ -299,19 +312,30 @@ impl AdaptiveRules for DualHost<'_, '_> {
                 )
             })
             .collect();
+        let none = super::boundary_mode(mesh) == BoundaryInterpolation::None;
         Ok(Level {
             mesh: mesh.clone(),
             info,
             face_origin,
             active,
             first: self.cells.is_none(),
+            rule_free: none.then(|| vec![true; mesh.num_vertices()]),
         })
     }
 
     fn emit(&self, level: &Level, v: u32, prov: Provenance, to: Sink<()>) -> bool {
+        let on_boundary =
+            level.mesh.is_boundary_vertex(v as usize) && level.info[v as usize].fan_ok;
+        if level.rule_free.is_some() && on_boundary {
+            // boundary `none`: the region of a boundary vertex is not part of the surface
+            return true;
+        }
         let Some(p) = trusted_patch(level, v as usize) else {
             return false;
         };
+        if !rule_free(level, v as usize, self.rules) {
+            return true;
+        }
         to.out.push(p, prov);
         mark_boundary_sides(&level.mesh, v as usize, to.out);
         if level.first {
@@ -333,7 +357,24 @@ impl AdaptiveRules for DualHost<'_, '_> {
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<()>) -> Result<()> {
-        let left = g1::g1_caps(level, self.rules, marked, to.out);
+        if level.rule_free.is_none() {
+            let left = g1::g1_caps(level, self.rules, marked, to.out);
+            return fill(level, &left, self.rules, to.out);
+        }
+        // boundary `none`: an element that touches a point made by a boundary rule has no
+        // G^1 cap; the centroid fill writes the patches of its rule-free corners only
+        let mut left = Vec::new();
+        for (_, cells) in adaptive::by_element(marked) {
+            if cells
+                .iter()
+                .all(|&(v, _)| rule_free(level, v as usize, self.rules))
+            {
+                left.extend(g1::g1_caps(level, self.rules, &cells, to.out));
+            } else {
+                left.extend(cells);
+            }
+        }
+        left.retain(|&(v, _)| rule_free(level, v as usize, self.rules));
         fill(level, &left, self.rules, to.out)
     }
 
@@ -358,8 +399,10 @@ fn vertex_net(m: &PolyMesh, v: usize) -> Option<VertexNet> {
     let hs = m.outgoing_halfedges(v);
     let boundary = m.is_boundary_vertex(v);
     let ok = if boundary {
-        // A kept corner with two faces is not regular: its boundary curve interpolates it.
-        hs.len() == 1 || (hs.len() == 2 && !super::sharp::is_tagged_corner(m, v))
+        // A kept corner with two faces is not regular: its boundary curve interpolates it; a
+        // vertex with one face is regular only when kept (not under edge-only).
+        (hs.len() == 1 && super::sharp::is_kept_corner(m, v))
+            || (hs.len() == 2 && !super::sharp::is_tagged_corner(m, v))
     } else {
         hs.len() == 4
     };
@@ -549,7 +592,7 @@ pub(crate) fn mark_boundary_sides(m: &PolyMesh, v: usize, out: &mut PatchComplex
 
 mod g1;
 mod refine;
-use refine::refine_around;
 pub use refine::step_cells;
+use refine::{refine_around, rule_free};
 #[cfg(test)]
 mod tests;

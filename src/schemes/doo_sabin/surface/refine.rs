@@ -58,6 +58,10 @@ pub(super) fn refine_around(
     };
     let mut stencils: Vec<Stencil> = Vec::new();
     let mut info: Vec<Info> = Vec::new();
+    // Boundary `none`: whether each new point is computed without a boundary rule (see the
+    // parent module's boundary modes); the Chaikin points and kept corners are not.
+    let free = |x: u32| level.rule_free.as_ref().is_none_or(|r| r[x as usize]);
+    let mut rule_free: Vec<bool> = Vec::new();
     let mut corner_pt = vec![UNSET; m.num_halfedges()];
     let mut edge_pt = vec![[UNSET; 2]; ne];
     let mut kept = vec![UNSET; nv];
@@ -74,13 +78,15 @@ pub(super) fn refine_around(
         let large = (m.face_size(f) > LARGE_FACE).then(|| {
             let fc = (rules.face_corners)(m, f);
             let ok = fc.reads.iter().all(|&x| level.info[x as usize].pos_ok);
-            (fc.points, ok)
+            let rf = fc.reads.iter().all(|&x| free(x));
+            (fc.points, ok, rf)
         });
         for h in h0..h0 + m.face_size(f) as u32 {
             let v = m.he_from(h) as usize;
             let (st, pos) = match &large {
-                Some((points, ok)) => {
+                Some((points, ok, rf)) => {
                     fixed.push((stencils.len() as u32, points[(h - h0) as usize]));
+                    rule_free.push(*rf);
                     (Stencil::new(), *ok)
                 }
                 None => {
@@ -90,6 +96,7 @@ pub(super) fn refine_around(
                         .entries()
                         .iter()
                         .all(|&(x, _)| level.info[x as usize].pos_ok);
+                    rule_free.push(st.entries().iter().all(|&(x, _)| free(x)));
                     (st, pos)
                 }
             };
@@ -108,6 +115,7 @@ pub(super) fn refine_around(
                 let (a, b) = (v, m.he_to(h) as usize);
                 let pos = level.info[a].pos_ok && level.info[b].pos_ok;
                 for (k, end) in [a, b].into_iter().enumerate() {
+                    rule_free.push(false);
                     edge_pt[e][k] = push(
                         boundary_edge_point_stencil(m, h, k == 1),
                         Info {
@@ -127,6 +135,7 @@ pub(super) fn refine_around(
                 && level.info[x].fan_ok
                 && crate::schemes::doo_sabin::sharp::is_kept_corner(m, x)
             {
+                rule_free.push(false);
                 kept[x] = push(
                     Stencil::point(x),
                     Info {
@@ -254,12 +263,14 @@ pub(super) fn refine_around(
     }
     // Children that could not be made (a cut the bookkeeping did not trust) stay out.
     active.retain(|&(x, _)| x != UNSET);
+    debug_assert_eq!(rule_free.len(), info.len());
     Ok(Level {
         mesh: child,
         info,
         face_origin,
         active,
         first: false,
+        rule_free: level.rule_free.as_ref().map(|_| rule_free),
     })
 }
 
@@ -322,4 +333,24 @@ pub fn step_cells(m: &PolyMesh, cells: Option<&[Domain]>, child: &PolyMesh) -> V
         }
     }
     out
+}
+
+/// Whether the patch (or fill patch) of vertex `v` is computed without any boundary rule: always
+/// unless the boundary mode is `none`; then `v` is interior and every point of its faces (and
+/// of what the facet limit of a non-quad face among them reads) is rule-free.
+pub(super) fn rule_free(level: &Level, v: usize, rules: &DualRules<'_>) -> bool {
+    let Some(free) = &level.rule_free else {
+        return true;
+    };
+    let m = &level.mesh;
+    !m.is_boundary_vertex(v)
+        && m.vertex_faces(v).into_iter().all(|f| {
+            let f = f as usize;
+            m.face(f).iter().all(|&x| free[x as usize])
+                && (m.face_size(f) == 4
+                    || (rules.facet_limit)(m, f)
+                        .entries()
+                        .iter()
+                        .all(|&(x, _)| free[x as usize]))
+        })
 }
