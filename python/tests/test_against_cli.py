@@ -128,7 +128,8 @@ def test_options_reach_the_rules(cli):
 @pytest.mark.parametrize("scheme,net", [
     ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
-    ("pgs-dscc", "prism-5"), ("tps", "cube"),
+    ("pgs-dscc", "prism-5"), ("tps", "cube"), ("nonbox", "prism-5"),
+    ("nonbox-4dir", "nonbox-cube-fcv-1"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
@@ -142,6 +143,16 @@ def test_evaluate_equals_cli_on_bi2_mixed_facets(cli, tmp_path):
                        "-o", src)
     assert code == 0, err
     _evaluate_equals_cli(cli, str(src), "bi2-mixed")
+
+
+def test_evaluate_equals_cli_on_nonbox_4dir_triangles(cli, tmp_path):
+    # one step of the four-directional variant writes a quasi-four-directional triangle
+    # mesh, whose faces (fan triangles of its polygons) are the evaluation's faces
+    src = tmp_path / "cube-4dir1.obj"
+    code, _, err = cli("subdivide", "gallery:cube", "--scheme", "nonbox-4dir", "--levels", 1,
+                       "-o", src)
+    assert code == 0, err
+    _evaluate_equals_cli(cli, str(src), "nonbox-4dir")
 
 
 def _evaluate_equals_cli(cli, src, scheme):
