@@ -144,9 +144,9 @@ fn nonbox_4dir_eval_agrees_with_the_written_patches() {
 
 /// On the triangles of the four-directional mesh the evaluation is `nonbox`'s on the polygon
 /// net at the fan triangle's host point (the same limit surface): on a quad host the triangle
-/// `(V_i, V_(i+1), FCV)` is triangle `i` of the cell's criss-cross, `(x, y) = V_i + s (V_(i+1)
-/// - V_i) + t (centre - V_i)` at its barycentric `(s, t)`; and it is continuous across the
-/// triangles' edges (each edge point evaluated from both triangles).
+/// `(V_i, V_(i+1), FCV)` is triangle `i` of the cell's criss-cross,
+/// `(x, y) = V_i + s (V_(i+1) - V_i) + t (centre - V_i)` at its barycentric `(s, t)`; and it
+/// is continuous across the triangles' edges (each edge point evaluated from both triangles).
 #[test]
 fn nonbox_4dir_triangles_are_fan_triangles_of_the_polygons() {
     let (mesh, _) = four_dir_mesh("cube");

@@ -135,24 +135,20 @@ def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
 
 
-def test_evaluate_equals_cli_on_bi2_mixed_facets(cli, tmp_path):
+@pytest.mark.parametrize("refine,levels,scheme", [
     # two PGS steps of the cube: eight separated triangle facets with DS-nets, every vertex
     # of valence 4, so every face's quarter at corner 0 evaluates
-    src = tmp_path / "cube-pgs2.obj"
-    code, _, err = cli("subdivide", "gallery:cube", "--scheme", "pgs", "--levels", 2,
-                       "-o", src)
-    assert code == 0, err
-    _evaluate_equals_cli(cli, str(src), "bi2-mixed")
-
-
-def test_evaluate_equals_cli_on_nonbox_4dir_triangles(cli, tmp_path):
+    ("pgs", 2, "bi2-mixed"),
     # one step of the four-directional variant writes a quasi-four-directional triangle
     # mesh, whose faces (fan triangles of its polygons) are the evaluation's faces
-    src = tmp_path / "cube-4dir1.obj"
-    code, _, err = cli("subdivide", "gallery:cube", "--scheme", "nonbox-4dir", "--levels", 1,
+    ("nonbox-4dir", 1, "nonbox-4dir"),
+])
+def test_evaluate_equals_cli_on_refined_cubes(refine, levels, scheme, cli, tmp_path):
+    src = tmp_path / f"cube-{refine}{levels}.obj"
+    code, _, err = cli("subdivide", "gallery:cube", "--scheme", refine, "--levels", levels,
                        "-o", src)
     assert code == 0, err
-    _evaluate_equals_cli(cli, str(src), "nonbox-4dir")
+    _evaluate_equals_cli(cli, str(src), scheme)
 
 
 def _evaluate_equals_cli(cli, src, scheme):
