@@ -318,6 +318,19 @@ pub struct Surface {
     given: Option<PolyMesh>,
 }
 
+impl Surface {
+    /// The evaluator of the complex, built once ([`eval::Surface::of_scheme`]: the input faces
+    /// as the scheme evaluates them).
+    fn evaluator(&self) -> PyResult<&eval::Surface> {
+        if let Some(ev) = self.evaluator.get() {
+            return Ok(ev);
+        }
+        let ev =
+            eval::Surface::of_scheme(&self.spec, &self.net, self.complex.clone()).map_err(err)?;
+        Ok(self.evaluator.get_or_init(|| ev))
+    }
+}
+
 #[pymethods]
 impl Surface {
     /// The patch stencil table of this surface (`subdivide ... --rings K --stencils FILE`'s,
@@ -420,9 +433,7 @@ impl Surface {
                 v.len()
             )));
         }
-        let ev = self
-            .evaluator
-            .get_or_init(|| eval::Surface::new(&self.net, self.complex.clone()));
+        let ev = self.evaluator()?;
         let n = f.len();
         let out = py.detach(|| Evaluated::run(ev, f, u, v)).map_err(err)?;
         let d = PyDict::new(py);
@@ -452,22 +463,20 @@ impl Surface {
         face: PyReadonlyArray1<'_, i64>,
         u: PyReadonlyArray1<'_, f64>,
         v: PyReadonlyArray1<'_, f64>,
-    ) -> f64 {
+    ) -> PyResult<f64> {
         let (f, u, v) = (face.as_array(), u.as_array(), v.as_array());
         let pts: Vec<(u32, f64, f64)> = (0..f.len().min(u.len()).min(v.len()))
             .map(|i| (f[i].clamp(0, i64::from(u32::MAX)) as u32, u[i], v[i]))
             .collect();
-        let ev = self
-            .evaluator
-            .get_or_init(|| eval::Surface::new(&self.net, self.complex.clone()));
+        let ev = self.evaluator()?;
         let mut out = vec![eval::Evaluation::default(); pts.len()];
-        py.detach(|| {
+        Ok(py.detach(|| {
             let t = std::time::Instant::now();
             let r = ev.evaluate_into(&pts, &mut out);
             let s = t.elapsed().as_secs_f64();
             drop(r);
             s
-        })
+        }))
     }
 
     fn __repr__(&self) -> String {

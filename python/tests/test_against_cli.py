@@ -128,20 +128,27 @@ def test_options_reach_the_rules(cli):
 @pytest.mark.parametrize("scheme,net", [
     ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
-    ("pgs-dscc", "prism-5"), ("tps", "cube"),
+    ("pgs-dscc", "prism-5"), ("tps", "cube"), ("nonbox", "prism-5"),
+    ("nonbox-4dir", "nonbox-cube-fcv-1"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
 
 
-def test_evaluate_equals_cli_on_bi2_mixed_facets(cli, tmp_path):
+@pytest.mark.parametrize("refine,levels,scheme", [
     # two PGS steps of the cube: eight separated triangle facets with DS-nets, every vertex
     # of valence 4, so every face's quarter at corner 0 evaluates
-    src = tmp_path / "cube-pgs2.obj"
-    code, _, err = cli("subdivide", "gallery:cube", "--scheme", "pgs", "--levels", 2,
+    ("pgs", 2, "bi2-mixed"),
+    # one step of the four-directional variant writes a quasi-four-directional triangle
+    # mesh, whose faces (fan triangles of its polygons) are the evaluation's faces
+    ("nonbox-4dir", 1, "nonbox-4dir"),
+])
+def test_evaluate_equals_cli_on_refined_cubes(refine, levels, scheme, cli, tmp_path):
+    src = tmp_path / f"cube-{refine}{levels}.obj"
+    code, _, err = cli("subdivide", "gallery:cube", "--scheme", refine, "--levels", levels,
                        "-o", src)
     assert code == 0, err
-    _evaluate_equals_cli(cli, str(src), "bi2-mixed")
+    _evaluate_equals_cli(cli, str(src), scheme)
 
 
 def _evaluate_equals_cli(cli, src, scheme):

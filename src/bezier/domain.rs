@@ -60,10 +60,22 @@
 //! from the centre. Faces of a net refined by whole-net ternary steps (to separate
 //! extraordinary vertices) are children in thirds of the input faces. The layout is documented
 //! with the code in `crate::schemes::bi2::surface::thirds`.
+//!
+//! # Non-box
+//!
+//! `nonbox` parametrises faces as Catmull-Clark does (quads `[0, 1]^2`, n-gons and triangles
+//! the strip of their quad sub-faces) and refines cells the same way; a regular cell is
+//! covered by the four S_3^1 triangles of its criss-cross
+//! ([`Domain::criss_cross`]). `nonbox-4dir` on a triangle mesh evaluates on its triangles,
+//! each a fan triangle of a polygon of the net with FCVs ([`FanTriangle`], the `fan`
+//! submodule).
 
 use serde::Serialize;
 
+mod fan;
 mod thirds;
+
+pub use fan::FanTriangle;
 
 /// Shape of a cell: how its children split it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -101,6 +113,8 @@ pub struct Domain {
     /// toward corner `rot + 1`, its `v` toward corner `rot - 1`. Triangle patches have 0, except
     /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
     /// triangle ([`Shape::corner_map`]; `crate::surface::eval` maps the chart to the kites).
+    /// `4 + k` marks triangle `k` of a quad cell's criss-cross ([`Domain::criss_cross`]), whose
+    /// maps are those of `rot = 0`.
     pub rot: u8,
 }
 
@@ -379,6 +393,24 @@ impl Domain {
             };
         }
         self.descend(u128::from(k & 3), false)
+    }
+
+    /// The same cell covered by the four triangles of its criss-cross (the cell split by both
+    /// diagonals; non-box's S_3^1 cells), this patch being triangle `k`: the one on the cell's
+    /// side from corner `k` to corner `k + 1`, apex at the centre, stored as the collapsed bi-3
+    /// patch `T(u (1 - v), v)` of its barycentric `T(s, t)` (`s` toward corner `k + 1`, `t`
+    /// toward the centre). The four are consecutive patches of the complex, triangle 0 first
+    /// (`crate::surface::eval` finds the others from it). Its maps are those of `rot = 0`.
+    pub fn criss_cross(self, k: u8) -> Domain {
+        Domain {
+            rot: 4 + (k & 3),
+            ..self
+        }
+    }
+
+    /// `Some(k)` for triangle `k` of a criss-cross cell ([`Domain::criss_cross`]).
+    pub fn criss_cross_triangle(&self) -> Option<u8> {
+        (self.shape == Shape::Quad && self.rot >= 4).then_some(self.rot - 4)
     }
 
     /// The same cell with the patch's `(0, 0)` at corner `rot`.

@@ -503,6 +503,22 @@ pub trait Descriptor: Sync + Send {
         false
     }
 
+    /// The input faces of `mesh` as fan triangles of the faces the patches' domains refer
+    /// to, when those differ (`nonbox-4dir` builds its complex on the polygons of a triangle
+    /// mesh; [`crate::surface::eval::Surface::of_scheme`]); `None` (the default): the domains
+    /// refer to the input faces.
+    ///
+    /// # Errors
+    /// When the scheme cannot read the net.
+    fn eval_faces(
+        &self,
+        spec: &Spec,
+        mesh: &PolyMesh,
+    ) -> Result<Option<Vec<crate::bezier::domain::FanTriangle>>> {
+        let _ = (spec, mesh);
+        Ok(None)
+    }
+
     /// Local rules for analysis with these parameters (`None`: no analysis).
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {
         let _ = spec;

@@ -30,19 +30,26 @@
 //! the inverse function rule (the map is not affine there); `patch` names that kite and
 //! `patch_uv` its parameters. Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
 //! v), v)`, are evaluated as the triangles `T` they represent (barycentric derivatives, defined at
-//! the collapsed corner too); their `patch_uv` is the stored patch's `(u, v)`.
+//! the collapsed corner too); their `patch_uv` is the stored patch's `(u, v)`. Non-box's
+//! regular cells are covered by the four cubic triangles of their criss-cross (the cell split
+//! by both diagonals, [`Domain::criss_cross`](crate::bezier::domain::Domain::criss_cross)):
+//! the cell is one leaf, and a point is mapped to its triangle's barycentric parameters by
+//! the affine maps of [`crisscross`], then evaluated as Loop's triangles are. `nonbox-4dir`'s
+//! triangles are fan triangles of the polygons its complex is built on
+//! ([`FanTriangle`], [`Surface::of_scheme`]): a point is mapped to its polygon first.
 //!
 //! [`evaluate_limit`] evaluates the scheme's limit surface itself: it builds the complex with as
 //! many rings as the points need (a point at distance about `2^-k` of an extraordinary element,
 //! in face parameters, needs about `k` rings), up to [`MAX_EXACT_RINGS`].
 
+mod crisscross;
 mod index;
 mod kite;
 mod triangle;
 
 use crate::bezier::Derivatives;
 use crate::bezier::complex::{PatchComplex, Provenance};
-use crate::bezier::domain::Shape;
+use crate::bezier::domain::{FanTriangle, Shape};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::ComplexOptions;
@@ -96,8 +103,11 @@ pub struct Evaluation {
 #[derive(Debug, Clone)]
 pub struct Surface {
     complex: PatchComplex,
-    /// Corners of each input face.
+    /// Corners of each face the domains refer to (the input faces, unless `fans` is set).
     sides: Vec<u32>,
+    /// The input faces when they are fan triangles of the faces the domains refer to
+    /// ([`Surface::of_scheme`]); empty otherwise.
+    fans: Vec<FanTriangle>,
     /// The triangles whose cells are quads (a 3-gon of three quad sub-faces: the dual
     /// schemes), not barycentric triangles (Loop).
     tri_strips: Vec<bool>,
@@ -136,7 +146,30 @@ impl Surface {
     pub fn build(spec: &Spec, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Surface> {
         supported(spec)?;
         let out = super::build(spec, mesh, opts, &mut |_| {})?;
-        Ok(Surface::new(mesh, out.complex))
+        Surface::of_scheme(spec, mesh, out.complex)
+    }
+
+    /// The surface of a complex built on `mesh` under `spec`: [`Surface::new`], with the input
+    /// faces mapped to the faces the domains refer to where the scheme's
+    /// [`Descriptor::eval_faces`](crate::schemes::descriptor::Descriptor::eval_faces) says so
+    /// (`nonbox-4dir` on a triangle mesh).
+    ///
+    /// # Errors
+    /// Those of the scheme's `eval_faces`.
+    pub fn of_scheme(spec: &Spec, mesh: &PolyMesh, complex: PatchComplex) -> Result<Surface> {
+        let fans = registry().descriptor(spec.id).eval_faces(spec, mesh)?;
+        let mut s = Surface::new(mesh, complex);
+        if let Some(fans) = fans.filter(|f| f.len() == mesh.num_faces()) {
+            // the domains refer to the host faces the fan triangles lie in
+            let hosts = fans.iter().map(|t| t.host as usize + 1).max().unwrap_or(0);
+            let mut sides = vec![4; hosts];
+            for t in &fans {
+                sides[t.host as usize] = t.sides;
+            }
+            s = Surface::assemble(sides, s.complex);
+            s.fans = fans;
+        }
+        Ok(s)
     }
 
     /// The surface of a complex built on `mesh` (patches without a domain are not found by
@@ -145,7 +178,13 @@ impl Surface {
         let sides: Vec<u32> = (0..mesh.num_faces())
             .map(|f| mesh.face_size(f) as u32)
             .collect();
-        let mut tri_strips = vec![false; mesh.num_faces()];
+        Surface::assemble(sides, complex)
+    }
+
+    /// The surface of a complex whose domains refer to faces with `sides` corners.
+    fn assemble(sides: Vec<u32>, complex: PatchComplex) -> Surface {
+        let fans = Vec::new();
+        let mut tri_strips = vec![false; sides.len()];
         let quad_domains = (0..complex.len())
             .filter_map(|i| complex.domain(i))
             .chain(complex.pieces.iter().map(|p| p.domain));
@@ -167,6 +206,7 @@ impl Surface {
         Surface {
             complex,
             sides,
+            fans,
             tri_strips,
             cells,
             kites,
@@ -221,11 +261,40 @@ impl Surface {
         }
     }
 
+    /// A point of a fan triangle input face ([`FanTriangle`]): its host face, the host's
+    /// sub-face and the point in its coordinates, and the derivative of those by `(u, v)`.
+    fn fan_point(&self, face: u32, u: f64, v: f64) -> Result<(u32, u32, [f64; 2], Jacobian)> {
+        let t = self.fans.get(face as usize).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "face {face} does not exist: the net has {} faces (0..{})",
+                self.fans.len(),
+                self.fans.len()
+            ))
+        })?;
+        if !(u.is_finite() && v.is_finite()) || u < 0.0 || v < 0.0 || u + v > 1.0 + 1e-12 {
+            return Err(Error::InvalidArgument(format!(
+                "face {face} (3 sides): (u, v) = ({u}, {v}) is outside its domain u, v >= 0, \
+                 u + v <= 1"
+            )));
+        }
+        let (sub, p, jac) = t.to_host(u, v);
+        Ok((t.host, sub, p, jac))
+    }
+
     /// The leaf holding a face point (the face's cells descended from the root) and the
     /// point in its cell's coordinates.
-    fn locate(&self, face: u32, u: f64, v: f64) -> Result<(&Leaf, [f64; 2])> {
-        let (sub, shape, p) = self.face_point(face, u, v)?;
-        self.cells.locate(face, sub, shape, p).ok_or_else(|| {
+    /// With fan faces (`fans`), the host face's leaf and the derivative of the host face's
+    /// parameters by the input face's (`None` otherwise).
+    fn locate(&self, face: u32, u: f64, v: f64) -> Result<(&Leaf, [f64; 2], Option<Jacobian>)> {
+        let (host, sub, shape, p, jac) = if self.fans.is_empty() {
+            let (sub, shape, p) = self.face_point(face, u, v)?;
+            (face, sub, shape, p, None)
+        } else {
+            let (host, sub, p, jac) = self.fan_point(face, u, v)?;
+            (host, sub, Shape::Quad, p, Some(jac))
+        };
+        let found = self.cells.locate(host, sub, shape, p);
+        found.map(|(leaf, cell)| (leaf, cell, jac)).ok_or_else(|| {
             Error::InvalidArgument(format!(
                 "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
                  inside the last ring is open (--no-fill), or the patches there carry no face \
@@ -242,7 +311,7 @@ impl Surface {
     /// [`Error::InvalidArgument`] naming the face for a face index out of range, `(u, v)`
     /// outside the face's domain, or a point no patch covers (the hole left open).
     pub fn evaluate(&self, face: u32, u: f64, v: f64) -> Result<Evaluation> {
-        let (at, cell) = self.locate(face, u, v)?;
+        let (at, cell, fan) = self.locate(face, u, v)?;
         let d = at.domain;
         let mut index = at.patch as usize;
         let patch = &self.complex.patches[index];
@@ -251,6 +320,20 @@ impl Surface {
             q = w.apply(q);
         }
         let (dp, normal, patch_uv) = match d.shape {
+            Shape::Quad if d.criss_cross_triangle().is_some() && index + 3 < self.complex.len() => {
+                let (k, st, jac) = crisscross::locate(q);
+                index += k;
+                let dp = triangle::derivatives(&self.complex.patches[index], st)?;
+                let n = dp
+                    .normal_toward([1.0 / 3.0 - st[0], 1.0 / 3.0 - st[1]])
+                    .unwrap_or([f64::NAN; 3]);
+                let uv = if st[1] < 1.0 {
+                    [st[0] / (1.0 - st[1]), st[1]]
+                } else {
+                    [0.0, 1.0]
+                };
+                (crisscross::to_cell(&dp, jac), n, uv)
+            }
             Shape::Quad => {
                 let dp = patch.derivatives(q[0], q[1]);
                 let n = patch.normal_from(q[0], q[1], &dp);
@@ -278,7 +361,10 @@ impl Surface {
                 (dp, n, uv)
             }
         };
-        let df = chain(&dp, at.chain);
+        let mut df = chain(&dp, at.chain);
+        if let Some(jac) = fan {
+            df = chain(&df, jac);
+        }
         let curv = df.curvature();
         Ok(Evaluation {
             face,
@@ -382,6 +468,9 @@ impl Surface {
     }
 }
 
+/// `jac[a][b]`: the derivative of parameter `a` of one chart by parameter `b` of another.
+type Jacobian = [[f64; 2]; 2];
+
 /// Derivatives in face parameters from those in patch parameters, `inv[a][b] = d p_a / d q_b`
 /// (the patch map is affine, so no second-order term of the map enters).
 fn chain(d: &Derivatives, inv: [[f64; 2]; 2]) -> Derivatives {
@@ -434,7 +523,7 @@ pub fn evaluate_limit(
         let mut need = rings;
         let mut out = Vec::with_capacity(points.len());
         for &(f, u, v) in points {
-            let (at, cell) = s.locate(f, u, v)?;
+            let (at, cell, _) = s.locate(f, u, v)?;
             need = need.max(rings + s.rings_needed(at, cell));
             out.push(s.evaluate(f, u, v)?);
         }

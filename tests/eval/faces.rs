@@ -73,10 +73,21 @@ pub fn agrees_with(
     s: &Surface,
     covered: &Covered,
 ) -> (f64, usize) {
+    agrees_at(written, mesh, s, &face_points(mesh, 60, 23), covered)
+}
+
+/// [`agrees_with`] at the face points `pts`.
+pub fn agrees_at(
+    written: &fairsub::bezier::complex::PatchComplex,
+    mesh: &PolyMesh,
+    s: &Surface,
+    pts: &[(u32, f64, f64)],
+    covered: &Covered,
+) -> (f64, usize) {
     assert_eq!(s.complex().len(), written.len(), "same patches");
     let mut worst: f64 = 0.0;
     let mut in_caps = 0;
-    for (f, u, v) in face_points(mesh, 60, 23) {
+    for &(f, u, v) in pts {
         if !covered(mesh, (f, u, v)) {
             let err = s.evaluate(f, u, v).expect_err("an uncovered point");
             assert!(err.to_string().contains("no patch"), "{err}");

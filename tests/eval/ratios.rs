@@ -1,5 +1,5 @@
 //! The rate at which limit evaluations approach an extraordinary element's limit point
-//! (`tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`).
+//! (`tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`, `tests/eval_nonbox.rs`).
 
 use fairsub::geom::{Point, norm, sub};
 use fairsub::surface::eval::Evaluation;
@@ -13,4 +13,30 @@ pub fn error_ratios(evals: &[Evaluation]) -> (Point, Vec<f64>) {
         .map(|e| norm(sub(e.point, centre)))
         .collect();
     (centre, err.windows(2).map(|w| w[1] / w[0]).collect())
+}
+
+/// The limit evaluation of `scheme` on `mesh` at `at(2^-k)` (k = 2..=12) and `at(0)`
+/// ([`crate::support::limit_along`], at least `min_rings` rings); asserts that the ratios of
+/// successive errors to the centre are `lambda` within 10% from k = 6 and returns the centre
+/// and the ratios.
+#[allow(dead_code)]
+pub fn converges(
+    scheme: &str,
+    mesh: &fairsub::mesh::PolyMesh,
+    at: impl Fn(f64) -> (u32, f64, f64),
+    lambda: f64,
+    min_rings: usize,
+    what: &str,
+) -> (Point, Vec<f64>) {
+    let evals = crate::support::limit_along(scheme, mesh, &at, min_rings);
+    let (centre, ratios) = error_ratios(&evals);
+    eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
+    for (k, &ratio) in ratios.iter().enumerate().skip(4) {
+        assert!(
+            (ratio / lambda - 1.0).abs() < 0.1,
+            "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
+            k + 2
+        );
+    }
+    (centre, ratios)
 }

@@ -3,7 +3,9 @@
 
 use super::{NonBox, NonBox4Dir};
 use crate::bezier::BezierPatch;
+use crate::bezier::domain::FanTriangle;
 use crate::error::Result;
+use crate::mesh::PolyMesh;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::descriptor::{
@@ -26,8 +28,14 @@ pub static DESCRIPTOR: NonBoxDescriptor = NonBoxDescriptor { four_dir: false };
 pub static DESCRIPTOR_4DIR: NonBoxDescriptor = NonBoxDescriptor { four_dir: true };
 
 impl Descriptor for NonBoxDescriptor {
+    /// Both evaluate: `nonbox` on its net's faces (the domains of `super::surface`),
+    /// `nonbox-4dir` on the triangles of its input mesh (or the polygons, when the input is a
+    /// polygon net; `super::surface::nonbox_4dir_mesh_complex`).
     fn capabilities(&self) -> Capabilities {
-        Capabilities::REFINE_AND_PATCHES
+        Capabilities {
+            eval: true,
+            ..Capabilities::REFINE_AND_PATCHES
+        }
     }
 
     fn params(&self) -> &'static [ParamKind] {
@@ -58,6 +66,16 @@ impl Descriptor for NonBoxDescriptor {
                 notes: super::input_notes(four_dir, mesh),
             })
         })
+    }
+
+    /// `nonbox-4dir` on a quasi-four-directional triangle mesh evaluates on its triangles,
+    /// fan triangles of the polygons its complex is built on.
+    fn eval_faces(&self, _: &Spec, mesh: &PolyMesh) -> Result<Option<Vec<FanTriangle>>> {
+        if self.four_dir {
+            super::surface::nonbox_4dir_fan_faces(mesh)
+        } else {
+            Ok(None)
+        }
     }
 
     fn local_rules(&self, _: &Spec) -> Result<Option<Box<dyn LocalRules>>> {

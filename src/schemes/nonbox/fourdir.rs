@@ -33,6 +33,7 @@
 //! tetrahedron, the icosahedron) is a polygon mesh of triangles and gets FCVs inserted.
 
 use super::{FcvNet, NonBox, fcv_insertion, layout_vertex_count};
+use crate::bezier::domain::FanTriangle;
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::schemes::registry::ids;
@@ -240,6 +241,49 @@ impl FourDirNet {
         FourDirNet::new(mesh, t)
     }
 
+    /// The half-edges from type-2 vertex `v` to its polygon's corners, in the polygon's corner
+    /// order: counter-clockwise, starting in the triangle of lowest index (so a net
+    /// triangulated by [`triangulate`] gets its own corner order back). The triangle of the
+    /// `i`-th is the polygon's `(corner i, corner i + 1, FCV)`.
+    fn polygon_halfedges(&self, v: usize) -> Vec<u32> {
+        let m = &self.mesh;
+        let hs = m.outgoing_halfedges(v);
+        let first = (0..hs.len()).min_by_key(|&i| m.he_face(hs[i])).unwrap_or(0);
+        (0..hs.len()).map(|i| hs[(first + i) % hs.len()]).collect()
+    }
+
+    /// Each triangle as the fan triangle of its polygon in [`FourDirNet::to_fcv_net`]'s net
+    /// (polygon `p` is the `p`-th type-2 vertex's): the domain of the triangles when the
+    /// complex is built on that net (`crate::bezier::domain`'s `fan` module).
+    pub fn fan_triangles(&self) -> Vec<FanTriangle> {
+        let m = &self.mesh;
+        let mut out = vec![
+            FanTriangle {
+                host: u32::MAX,
+                sides: 0,
+                edge: 0,
+                rot: 0,
+            };
+            m.num_faces()
+        ];
+        let type2 = (0..m.num_vertices()).filter(|&v| self.type2[v]);
+        for (p, v) in type2.enumerate() {
+            let hs = self.polygon_halfedges(v);
+            for (i, &h) in hs.iter().enumerate() {
+                let t = m.he_face(h) as usize;
+                let corner = m.he_to(h);
+                let rot = m.face(t).iter().position(|&w| w == corner).unwrap_or(0);
+                out[t] = FanTriangle {
+                    host: p as u32,
+                    sides: hs.len() as u32,
+                    edge: i as u32,
+                    rot: rot as u8,
+                };
+            }
+        }
+        out
+    }
+
     /// The polygon mesh with FCVs of this net, and for each of its points (vertices, then FCVs)
     /// the vertex of this triangle mesh it is.
     pub fn to_fcv_net(&self) -> Result<(FcvNet, Vec<usize>)> {
@@ -256,13 +300,10 @@ impl FourDirNet {
         let mut fcv = Vec::new();
         let mut fcv_vertex = Vec::new();
         for v in (0..m.num_vertices()).filter(|&v| self.type2[v]) {
-            // The polygon's corners counter-clockwise, starting in the triangle of lowest index
-            // (so a net triangulated by `triangulate` gets its own corner order back).
-            let hs = m.outgoing_halfedges(v);
-            let first = (0..hs.len()).min_by_key(|&i| m.he_face(hs[i])).unwrap_or(0);
             faces.push(
-                (0..hs.len())
-                    .map(|i| new_of_old[m.he_to(hs[(first + i) % hs.len()]) as usize])
+                self.polygon_halfedges(v)
+                    .iter()
+                    .map(|&h| new_of_old[m.he_to(h) as usize])
                     .collect(),
             );
             fcv.push(m.position(v));

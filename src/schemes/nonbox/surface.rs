@@ -34,12 +34,28 @@
 //! `K` rings it covers a region of size about `lambda^K`. It closes only the holes that get no
 //! G^1 cap ([`g1`]: read off the ring triangles across the hole's edges, centred at the limit
 //! point in the limit tangent plane; up to two more levels while holes touch).
+//!
+//! # Evaluation domains
+//!
+//! Every patch records the cell of its input face it covers ([`crate::bezier::domain`]): the
+//! input faces start as Catmull-Clark's (a quad `[0, 1]^2`, an n-gon or triangle the strip of
+//! the quad sub-faces its first refinement makes), and the scheme's refinement splits a cell
+//! into the same four quads (child `k` at corner `k`: corner `k`, the midpoint of the outgoing
+//! edge, the centre (FCV), the midpoint of the incoming edge), so a cell of level `l` is a
+//! dyadic square of its face. The four triangles of a regular cell carry the cell as its
+//! criss-cross ([`crate::bezier::domain::Domain::criss_cross`]: triangle `k` on the side from
+//! corner `k` to corner `k + 1`, apex at the cell's centre, the split by both diagonals);
+//! a G^1 cap sector covers its cell with `(0, 0)` at the extraordinary vertex (the cell rotated
+//! to that corner, `u` along the sector's first spoke), a fill patch its cell with the cell's
+//! own corners. `nonbox-4dir`'s triangles are fan triangles of these polygons
+//! ([`nonbox_4dir_fan_faces`]).
 
 use super::bezier::{CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor};
 use super::{FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil};
 use crate::bezier::BezierPatch;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::bezier::convert::cubic_bspline_to_bezier;
+use crate::bezier::domain::FanTriangle;
 use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
@@ -49,6 +65,7 @@ use crate::host::adaptive::{
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::stencil::{Stencil, StencilTable};
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
@@ -81,8 +98,19 @@ pub fn nonbox_complex(
     let rules = NonBoxRules {
         net,
         fill: opts.fill,
+        cells: RefCell::new(Vec::new()),
     };
-    adaptive::run(&rules, &net.mesh, opts, &mut progress)
+    let mut complex = adaptive::run(&rules, &net.mesh, opts, &mut progress)?;
+    // the host gave each triangle its cell's domain: mark them as the cell's criss-cross
+    for first in rules.cells.into_inner() {
+        for k in 0..4u8 {
+            let i = first as usize + usize::from(k);
+            if let Some(d) = complex.domain(i) {
+                complex.set_domain(i, d.criss_cross(k));
+            }
+        }
+    }
+    Ok(complex)
 }
 
 /// The non-box rules for the adaptive loop: cells are quads with their FCV, each regular cell
@@ -91,6 +119,8 @@ struct NonBoxRules<'a> {
     net: &'a FcvNet,
     /// Whether holes are closed (then touching holes get more levels for their G^1 caps).
     fill: bool,
+    /// The first patch of each emitted cell (its four triangles are consecutive).
+    cells: RefCell<Vec<u32>>,
 }
 
 impl AdaptiveRules for NonBoxRules<'_> {
@@ -105,11 +135,17 @@ impl AdaptiveRules for NonBoxRules<'_> {
             fan_ok: true,
             origin: None,
         }));
+        // every face (triangles included) is parametrised as Catmull-Clark's: a quad is its
+        // [0, 1]^2, an n-gon the strip of the quad sub-faces its first refinement makes
+        let mut active = input_active(m.num_faces());
+        for (f, tag) in &mut active {
+            tag.domain = Domain::polygon(*f, m.face_size(*f as usize));
+        }
         Ok(Level {
             points: self.net.points(),
             net: self.net.clone(),
             info,
-            active: input_active(m.num_faces()),
+            active,
         })
     }
 
@@ -118,6 +154,9 @@ impl AdaptiveRules for NonBoxRules<'_> {
             return false;
         };
         record_curves(&level.net.mesh, f as usize, &tris, to.curves);
+        // the four triangles split the cell by its diagonals (the host gives each the cell's
+        // domain, `nonbox_complex` then marks them `Domain::criss_cross`)
+        self.cells.borrow_mut().push(to.out.len() as u32);
         for t in &tris {
             to.out.push(triangle_to_tensor(t), prov);
         }
@@ -166,6 +205,18 @@ pub fn nonbox_mesh_complex(
 /// The complex of a plain mesh under `nonbox-4dir` (read as in
 /// [`crate::schemes::nonbox::NonBox4Dir`]; provenance faces number the polygons, i.e. the
 /// type-2 vertices in order).
+///
+/// # Evaluation domains
+///
+/// The patches are those of `nonbox` on the polygon net with FCVs, with its domains. When the
+/// input is a polygon net (a layout mesh, or a mesh fanned around inserted barycentres) its
+/// faces are those polygons and the domains are theirs. When the input is the quasi-four-
+/// directional triangle mesh itself, its faces are the triangles `(V_i, V_(i+1), FCV)`: each
+/// keeps the barycentric domain of a triangle and is mapped to its polygon as a fan triangle
+/// ([`crate::bezier::domain::FanTriangle`], given to evaluation by the descriptor's
+/// `eval_faces`, [`nonbox_4dir_fan_faces`]): on a quad it is
+/// exactly one of the four S_3^1 triangles of the regular cell (the limit surface over it is
+/// one cubic polynomial), on an n-gon it lies across two quad sub-faces.
 pub fn nonbox_4dir_mesh_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
@@ -174,6 +225,19 @@ pub fn nonbox_4dir_mesh_complex(
     let (net, _) = crate::schemes::nonbox::fourdir::four_dir_of(mesh)?;
     let (fcv, _) = net.to_fcv_net()?;
     nonbox_complex(&fcv, opts, progress)
+}
+
+/// The input faces of `mesh` under `nonbox-4dir` as fan triangles of the polygons the
+/// complex is built on, when `mesh` is read as the quasi-four-directional triangle mesh
+/// itself (see [`nonbox_4dir_mesh_complex`]); `None` when its faces are the polygons.
+///
+/// # Errors
+/// Those of reading the mesh as [`nonbox_4dir_mesh_complex`] does.
+pub fn nonbox_4dir_fan_faces(mesh: &PolyMesh) -> Result<Option<Vec<FanTriangle>>> {
+    let (net, table) = crate::schemes::nonbox::fourdir::four_dir_of(mesh)?;
+    // the triangle mesh itself was read (not a polygon net triangulated for it)
+    let own = table.is_none() && net.mesh.num_faces() == mesh.num_faces();
+    Ok(own.then(|| net.fan_triangles()))
 }
 
 /// Whether `v` is a regular vertex: interior of valence 4, or boundary with two faces or one
@@ -331,7 +395,18 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         fcv: points[nc..].to_vec(),
     };
     child_info.extend(fcv_info);
-    let active = child_active(marked, |f| children[&f]);
+    // child k of a cell is the quad at its corner k (of the face, or sub-face k of an n-gon),
+    // as Catmull-Clark's: corner k, the midpoint of the outgoing edge, the centre, the
+    // midpoint of the incoming edge
+    let mut active = child_active(marked, |f| children[&f]);
+    let mut at = 0;
+    for &(f, tag) in marked {
+        let (_, count) = children[&f];
+        for k in 0..count {
+            active[at].1.domain = tag.domain.child(k);
+            at += 1;
+        }
+    }
     Ok(Level {
         net,
         points,
@@ -471,12 +546,14 @@ fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<4>, out: &mut 
         let mut u0 = edge(3);
         u0.reverse();
         let element = tag.element.unwrap_or(Element::Vertex(c[0]));
-        out.push(
+        // the fill patch has the cell's own corners: its domain is the cell
+        out.push_in(
             BezierPatch::coons(3, &v0, &u1, &v1, &u0),
             Provenance::Cap {
                 element,
                 sector: tag.sector,
             },
+            tag.domain,
         );
     }
 }

@@ -114,9 +114,16 @@ fn hole_of(
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
     let quads = quad_sectors_around(m, x, f0, n).ok_or(NoCap::Never)?;
+    // the cap patch of a sector has its (0, 0) at x, corner `sec.corner` of the sector's cell
     let tags = quads
         .iter()
-        .map(|sec| tag_at.get(&sec.face).copied().ok_or(NoCap::Never))
+        .map(|sec| {
+            let tag = tag_at.get(&sec.face).copied().ok_or(NoCap::Never)?;
+            Ok(Tag {
+                domain: tag.domain.rotated(sec.corner as u32),
+                ..tag
+            })
+        })
         .collect::<Result<Vec<Tag>, NoCap>>()?;
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
