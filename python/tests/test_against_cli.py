@@ -129,6 +129,7 @@ def test_options_reach_the_rules(cli):
     ("catmull-clark", "cnet-5-saddle"), ("loop", "octahedron"), ("eg", "cnet-5-saddle"),
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
     ("pgs-dscc", "prism-5"), ("tps", "cube"),
+    ("guided-bi4-macro", "cnet-5-saddle"), ("guided-bi3-macro", "cnet-6-convex"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
