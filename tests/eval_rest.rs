@@ -10,8 +10,6 @@
 use fairsub::analysis::report;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
 use fairsub::schemes::registry::{ids, registry};
-use fairsub::surface::ComplexOptions;
-use fairsub::surface::eval::{Surface, evaluate_limit};
 
 #[allow(dead_code)]
 #[path = "eval/support.rs"]
@@ -23,7 +21,7 @@ mod faces;
 use faces::{all_agree, at_interior_vertex, jump_across, largest_jump, surface_of};
 #[path = "eval/ratios.rs"]
 mod ratios;
-use ratios::error_ratios;
+use ratios::{error_ratios, limit_at_ratio};
 
 fn macro_schemes() -> [&'static str; 2] {
     [ids::GUIDED_BI4_MACRO.name(), ids::GUIDED_BI3_MACRO.name()]
@@ -188,20 +186,7 @@ fn tps_adjustable_limit_evaluation_converges_at_rate_lambda() {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (_, at) = toward_ev(&mesh, n);
         // ring k lies at s^k of the quarter
-        let mut pts: Vec<(u32, f64, f64)> = (2..=12).map(|k| at(S.powi(k))).collect();
-        pts.push(at(0.0));
-        let (evals, rings) = evaluate_limit(&pts, &mut |k| {
-            Surface::build(
-                &spec,
-                &mesh,
-                ComplexOptions {
-                    rings: k,
-                    fill: true,
-                },
-            )
-        })
-        .expect("limit evaluation");
-        assert!(rings >= 12, "n = {n}: {rings} rings for points at s^12");
+        let (evals, rings) = limit_at_ratio(ids::TPS_ADJUSTABLE.name(), &mesh, &at, S, 12);
         let (_, ratios) = error_ratios(&evals);
         eprintln!(
             "tps-adjustable n = {n}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}"
