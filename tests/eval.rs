@@ -288,11 +288,11 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     assert!(e.contains("[0, 5]"), "{e}");
     let e = run("0:0.7:0.7", ids::LOOP.name(), "gallery:icosahedron");
     assert!(e.contains("u + v <= 1"), "{e}");
-    let e = run("0:0.5:0.5", ids::TPS_ADJUSTABLE.name(), "gallery:cube");
+    let e = run("0:0.5:0.5", ids::POLAR_BI2.name(), "gallery:prism-5");
     assert!(
         e.contains(&format!(
             "eval of scheme {} is not supported yet",
-            ids::TPS_ADJUSTABLE
+            ids::POLAR_BI2
         )),
         "{e}"
     );

@@ -12,8 +12,6 @@ use fairsub::analysis::report;
 use fairsub::geom::{axpy, dist};
 use fairsub::schemes::bi2::TpsParams;
 use fairsub::schemes::registry::{ids, registry};
-use fairsub::surface::ComplexOptions;
-use fairsub::surface::eval::{Surface, evaluate_limit};
 
 // `limit_along` samples at 2^-k and asks for 12 rings; TPS's rings shrink by 3, so the
 // convergence test below samples at 3^-k itself
@@ -26,7 +24,7 @@ mod faces;
 use faces::{all_agree, all_continuous, at_interior_vertex, largest_jump, surface_of};
 #[path = "eval/ratios.rs"]
 mod ratios;
-use ratios::error_ratios;
+use ratios::{error_ratios, limit_at_ratio};
 
 #[test]
 fn tps_eval_agrees_with_the_written_patches() {
@@ -72,20 +70,7 @@ fn tps_limit_evaluation_converges_at_rate_lambda() {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (_, at) = toward_ev(&mesh, n);
         // points at 3^-k of the face, k = 2..=10, then the vertex itself
-        let mut pts: Vec<(u32, f64, f64)> = (2..=10).map(|k| at(3f64.powi(-k))).collect();
-        pts.push(at(0.0));
-        let (evals, rings) = evaluate_limit(&pts, &mut |k| {
-            Surface::build(
-                &spec,
-                &mesh,
-                ComplexOptions {
-                    rings: k,
-                    fill: true,
-                },
-            )
-        })
-        .expect("limit evaluation");
-        assert!(rings >= 10, "n = {n}: {rings} rings for points at 3^-10");
+        let (evals, rings) = limit_at_ratio(ids::TPS.name(), &mesh, &at, 1.0 / 3.0, 10);
         let (centre, ratios) = error_ratios(&evals);
         eprintln!("tps n = {n}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}");
         for (k, ratio) in ratios.iter().enumerate().skip(2) {

@@ -130,6 +130,7 @@ def test_options_reach_the_rules(cli):
     ("guided-bi5", "cnet-5-saddle"), ("doo-sabin", "cube"), ("pgs", "prism-5"),
     ("pgs-dscc", "prism-5"), ("tps", "cube"), ("nonbox", "prism-5"),
     ("nonbox-4dir", "nonbox-cube-fcv-1"),
+    ("guided-bi4-macro", "cnet-5-saddle"), ("guided-bi3-macro", "cnet-6-convex"),
 ])
 def test_evaluate_equals_cli(scheme, net, cli):
     _evaluate_equals_cli(cli, f"gallery:{net}", scheme)
@@ -151,10 +152,27 @@ def test_evaluate_equals_cli_on_refined_cubes(refine, levels, scheme, cli, tmp_p
     _evaluate_equals_cli(cli, str(src), scheme)
 
 
-def _evaluate_equals_cli(cli, src, scheme):
+def test_evaluate_equals_cli_on_tps_adjustable(cli):
+    # the input net's faces whose corner 0 is interior (the quarters at boundary vertices are
+    # not evaluated; nets that need a separating step are not either)
+    src = "gallery:cnet-5-saddle"
+    faces = fairsub.read(src).faces
+    count = {}
+    for f in faces:
+        for a, b in zip(f, f[1:] + f[:1]):
+            e = (min(a, b), max(a, b))
+            count[e] = count.get(e, 0) + 1
+    boundary = {v for e, c in count.items() if c == 1 for v in e}
+    inner = [i for i, f in enumerate(faces) if f[0] not in boundary]
+    assert len(inner) >= 5
+    _evaluate_equals_cli(cli, src, "tps-adjustable", np.array(inner))
+
+
+def _evaluate_equals_cli(cli, src, scheme, faces=None):
     s = fairsub.surface(src, scheme, rings=3)
     rng = np.random.default_rng(7)
-    faces = np.arange(fairsub.read(src).num_faces)
+    if faces is None:
+        faces = np.arange(fairsub.read(src).num_faces)
     u = rng.random(len(faces)) * 0.5
     v = rng.random(len(faces)) * 0.5
     at = ",".join(f"{f}:{float(a)!r}:{float(b)!r}" for f, a, b in zip(faces, u, v))
@@ -174,8 +192,8 @@ def _evaluate_equals_cli(cli, src, scheme):
 
 
 def test_evaluate_refuses_schemes_without_domains():
-    s = fairsub.surface("gallery:cnet-5-saddle", "tps-adjustable", rings=2)
-    with pytest.raises(ValueError, match="eval of scheme tps-adjustable is not supported yet"):
+    s = fairsub.surface("gallery:prism-5", "polar-bi2", rings=2)
+    with pytest.raises(ValueError, match="eval of scheme polar-bi2 is not supported yet"):
         s.evaluate([0], [0.5], [0.5])
 
 

@@ -9,7 +9,8 @@
 //! dyadic coefficients, so they are exact in floating point. A level may instead split its
 //! cell in thirds (the 3 x 3 grid of the ternary schemes, or thirds of any dyadic cell), see
 //! the `thirds` submodule ([`Domain::third_child`], [`Domain::third`]); their maps have the
-//! coefficients `1/3`, rounded once per level.
+//! coefficients `1/3`, rounded once per level. Adjustable TPS's levels split a cell 2 x 2 at a
+//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]).
 //!
 //! # The parameter domain of an input face
 //!
@@ -73,6 +74,7 @@
 use serde::Serialize;
 
 mod fan;
+mod ratio;
 mod thirds;
 
 pub use fan::FanTriangle;
@@ -109,6 +111,12 @@ pub struct Domain {
     /// Levels whose cells split in thirds (the 3 x 3 grid of [`Shape::third_map`]): bit
     /// `l - 1` set for level `l`. 0 for the dyadic cells of every scheme but TPS.
     pub thirds: u64,
+    /// Levels whose cells split at [`Domain::ratio`] (2 x 2, cut at the ratio instead of
+    /// `1/2`; adjustable TPS, the `ratio` submodule): bit `l - 1` set for level `l`. 0 for
+    /// every other scheme.
+    pub split_at: u64,
+    /// The bits of the `f64` ratio of the levels in `split_at` (0 when there are none).
+    pub ratio: u64,
     /// The cell corner at which the patch's `(0, 0)` sits: for quads the patch's `u` runs
     /// toward corner `rot + 1`, its `v` toward corner `rot - 1`. Triangle patches have 0, except
     /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
@@ -333,6 +341,8 @@ impl Domain {
         depth: 0,
         path: 0,
         thirds: 0,
+        split_at: 0,
+        ratio: 0,
         rot: 0,
     };
 
@@ -382,6 +392,8 @@ impl Domain {
                 depth: 0,
                 path: 0,
                 thirds: 0,
+                split_at: 0,
+                ratio: 0,
                 rot: 0,
                 face: self.face,
             };
@@ -463,6 +475,8 @@ impl Domain {
         for l in 1..=self.depth {
             let child = if self.splits_in_thirds(l) {
                 Shape::third_map(self.step(l))
+            } else if self.splits_at_ratio(l) {
+                Shape::ratio_map(self.ratio(), self.step(l))
             } else {
                 self.shape.child_map(self.step(l))
             };

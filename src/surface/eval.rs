@@ -461,6 +461,9 @@ impl Surface {
         let dom = at.domain;
         let per_ring = if dom.splits_in_thirds(dom.depth) {
             3f64.log2()
+        } else if dom.splits_at_ratio(dom.depth) {
+            // adjustable TPS: the hole shrinks by its ratio
+            -dom.ratio().log2()
         } else {
             1.0
         };

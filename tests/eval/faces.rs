@@ -119,14 +119,21 @@ pub fn largest_jump(
     delta: f64,
     covered: &Covered,
 ) -> f64 {
+    let xs: Vec<f64> = (1..lines)
+        .map(|i| f64::from(i) / f64::from(lines))
+        .collect();
+    jump_across(mesh, s, &xs, delta, covered)
+}
+
+/// [`largest_jump`] across the lines `u = x` and `v = x` for every `x` of `xs`.
+pub fn jump_across(mesh: &PolyMesh, s: &Surface, xs: &[f64], delta: f64, covered: &Covered) -> f64 {
     let mut worst: f64 = 0.0;
     for f in 0..mesh.num_faces() {
         let n = mesh.face_size(f);
         let subs = if n == 4 { 1 } else { n };
         for sub in 0..subs {
             let base = sub as f64;
-            for i in 1..lines {
-                let x = f64::from(i) / f64::from(lines);
+            for &x in xs {
                 for t in 1..16 {
                     let y = (f64::from(t) - 0.5) / 15.0;
                     for (a, b) in [

@@ -40,3 +40,39 @@ pub fn converges(
     }
     (centre, ratios)
 }
+
+/// The limit surface of `scheme` on `mesh` ([`evaluate_limit`]) at `at(ratio^k)` for
+/// `k = 2 ..= last` and, last, at `at(0)` (for schemes whose rings shrink by `ratio`, not 2:
+/// TPS's thirds, adjustable TPS's `1 - 2e`), with the rings used; asserts at least `last`.
+#[allow(dead_code)]
+pub fn limit_at_ratio(
+    scheme: &str,
+    mesh: &fairsub::mesh::PolyMesh,
+    at: &dyn Fn(f64) -> (u32, f64, f64),
+    ratio: f64,
+    last: i32,
+) -> (Vec<Evaluation>, usize) {
+    use fairsub::surface::ComplexOptions;
+    use fairsub::surface::eval::{Surface, evaluate_limit};
+    let spec = fairsub::schemes::registry::registry()
+        .lookup(scheme)
+        .expect("scheme");
+    let mut pts: Vec<(u32, f64, f64)> = (2..=last).map(|k| at(ratio.powi(k))).collect();
+    pts.push(at(0.0));
+    let (evals, rings) = evaluate_limit(&pts, &mut |k| {
+        Surface::build(
+            &spec,
+            mesh,
+            ComplexOptions {
+                rings: k,
+                fill: true,
+            },
+        )
+    })
+    .expect("limit evaluation");
+    assert!(
+        rings >= last as usize,
+        "{scheme}: {rings} rings for points at {ratio}^{last}"
+    );
+    (evals, rings)
+}

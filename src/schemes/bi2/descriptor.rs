@@ -78,13 +78,18 @@ impl Descriptor for Bi2Descriptor {
     /// ([`crate::schemes::doo_sabin::surface::step_cells`]), for the mixed net at its regular
     /// vertices and PGS facets (`bi2::surface::cells`; its TPS vertices and poles are not
     /// evaluated), and for TPS, whose rings record cells in thirds
-    /// (`bi2::surface::thirds`). Adjustable TPS (splits in `e : 1 - 2e : e`) and PolBS
-    /// (radial rings) lie in no such cells.
+    /// (`bi2::surface::thirds`), and for adjustable TPS on its input net's faces, whose rings
+    /// record cells split at `1 - 2e` in knot coordinates (same module). PolBS (radial rings)
+    /// lies in no such cells.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
             eval: matches!(
                 self.kind,
-                Bi2Kind::Pgs | Bi2Kind::PgsDscc | Bi2Kind::Mixed | Bi2Kind::Tps
+                Bi2Kind::Pgs
+                    | Bi2Kind::PgsDscc
+                    | Bi2Kind::Mixed
+                    | Bi2Kind::Tps
+                    | Bi2Kind::TpsAdjustable
             ),
             ..Capabilities::REFINE_AND_PATCHES
         }

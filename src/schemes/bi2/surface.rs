@@ -79,8 +79,10 @@ struct RingElement {
     /// The scheme's level of `local0` (1 after a whole-net step).
     start: usize,
     /// The quarter of each sector's face at the element, where its rings record face domains
-    /// in thirds (TPS, [`thirds`]); empty otherwise.
+    /// in thirds (TPS) or split at a ratio (adjustable TPS, [`thirds`]); empty otherwise.
     sectors: Vec<Domain>,
+    /// How its rings split the hole before them (with `sectors`).
+    split: thirds::Split,
     /// Where a PGS facet's rings and cap lie in the input faces ([`cells`]); `None` for the
     /// other elements (not evaluated).
     cells: Option<FacetCells>,
@@ -167,6 +169,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        split: thirds::Split::Thirds,
         cells: FacetCells::of(mesh, f),
     })
 }
@@ -206,6 +209,7 @@ fn ternary_element(
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        split: thirds::Split::Thirds,
         cells: None,
     })
 }
@@ -249,6 +253,7 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         local0: local,
         start: 0,
         sectors: Vec::new(),
+        split: thirds::Split::Thirds,
         cells: None,
     })
 }
@@ -316,7 +321,7 @@ fn assemble(
                 out.push_in(to_patch(&c, local), prov, cell);
             }
             if !el.sectors.is_empty() {
-                thirds::ring_pieces(&el.sectors, l, first, &mut out);
+                thirds::ring_pieces(&el.sectors, l, first, el.split, &mut out);
             }
         }
         progress(l);
@@ -364,7 +369,7 @@ fn assemble(
                 out.push_in(p, prov, cell);
             }
             if !el.sectors.is_empty() {
-                thirds::cap_domains(&el.sectors, opts.rings, first, &mut out);
+                thirds::cap_domains(&el.sectors, opts.rings, first, el.split, &mut out);
             }
         }
     }
@@ -432,9 +437,13 @@ pub fn tps_complex(
     let mut m = mesh.clone();
     let mut w = uniform_widths(mesh);
     let mut notes = Vec::new();
-    // The cell of an input face each face of `m` is (TPS only: adjustable TPS does not split
-    // in thirds, see `thirds`).
-    let tracked = rules == TernaryRules::TPS;
+    // The cell of an input face each face of `m` is: TPS's refined faces are thirds of the
+    // input faces, adjustable TPS's are not cells (`thirds`), so they are untracked.
+    let split = if rules == TernaryRules::TPS {
+        thirds::Split::Thirds
+    } else {
+        thirds::Split::At(1.0 - 2.0 * rules.e)
+    };
     let mut face_cells = thirds::input_face_cells(mesh);
     // Validate the net as the scheme would (quads, boundary rules).
     ternary_step(&m, &w, &rules, name)?;
@@ -447,15 +456,14 @@ pub fn tps_complex(
             .map(|&v| {
                 let mut el = ternary_element(&m, v, rules, name)?;
                 el.start = start;
-                if tracked {
-                    el.sectors = thirds::sector_cells(&m, &face_cells, v);
-                }
+                el.sectors = thirds::sector_cells(&m, &face_cells, v);
+                el.split = split;
                 Ok(el)
             })
             .collect();
         match built {
             Ok(elements) => {
-                let cells = tracked.then_some(face_cells.as_slice());
+                let cells = Some(face_cells.as_slice());
                 let (c, more) =
                     assemble(&m, false, Some(&w), cells, &elements, opts, &mut progress)?;
                 notes.extend(more);
@@ -468,7 +476,12 @@ pub fn tps_complex(
                      count from the refined net"
                 ));
                 let (r, nw) = ternary_step(&m, &w, &rules, name)?;
-                face_cells = thirds::refined_face_cells(&face_cells, r.mesh.num_faces());
+                face_cells = match split {
+                    thirds::Split::Thirds => {
+                        thirds::refined_face_cells(&face_cells, r.mesh.num_faces())
+                    }
+                    thirds::Split::At(_) => vec![Domain::UNTRACKED; r.mesh.num_faces()],
+                };
                 m = r.mesh;
                 w = nw;
             }

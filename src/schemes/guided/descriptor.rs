@@ -43,14 +43,12 @@ impl Descriptor for GuidedDescriptor {
         true
     }
 
-    /// Exact patches; evaluation for the bi-5 and bi-6 rings with their cap, which tile each
-    /// sector's face dyadically in the c-net chart ([`super::surface`]'s parameter domain). The
-    /// macro-patch variants have no cap (their hole is open, so limit evaluation near the centre
-    /// has no patch), and the bi-3 pieces split a ring patch in thirds, which no dyadic cell
-    /// holds.
+    /// Exact patches and evaluation: the rings and caps tile each sector's face in the c-net
+    /// chart ([`super::surface`]'s parameter domain); the macro-patch variants' pieces and
+    /// split caps cover the 2 x 2 quarters (bi-4) or 3 x 3 thirds (bi-3) of those squares.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            eval: matches!(self.ring, RingDegree::Bi5 | RingDegree::Bi6),
+            eval: true,
             ..Capabilities::PATCHES
         }
     }

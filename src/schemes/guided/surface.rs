@@ -23,7 +23,16 @@
 //! `A`'s point `(s, t)` is the previous `A`'s `((s - 1)/2, t/2)`). The cap covers `[0, 2^-K]^2`,
 //! local `(u, v)` = chart / `2^-K`, `(0, 0)` at the centre ([`super::cap`]). The scale is the
 //! chart's whatever the characteristic map's `lambda`. Each patch records that square as its
-//! domain, so `fairsub eval` works for bi-5 and bi-6; the macro-patch pieces get none.
+//! domain, so `fairsub eval` works for bi-5 and bi-6. The macro-patch variants write each ring
+//! patch's square as its pieces (`piece (a, b)`, `a` along the patch's `u`): `guided-bi4-macro`'s
+//! 2 x 2 bi-4 pieces cover the square's dyadic quarters `[a/2, (a+1)/2] x [b/2, (b+1)/2]`
+//! (one level deeper), `guided-bi3-macro`'s 3 x 3 bi-3 pieces its thirds
+//! `[a/3, (a+1)/3] x [b/3, (b+1)/3]` (a level in thirds, [`Domain::third`]); each piece's own
+//! `(u, v)` is its cell's, scaled, axes along the chart's. Their split G^1 caps
+//! ([`crate::bezier::g1`], `Layout::Split(m)`) cover `[0, 2^-K]^2` from the centre as an
+//! `m x m` grid of pieces in the same way (piece `(a, b)` on `[a/m, (a+1)/m] x [b/m, (b+1)/m]`
+//! of the cap's square, `(0, 0)` at the centre), so the bi-3 caps' pieces are thirds too
+//! ([`piece_cell`]).
 
 use super::cap::CapTables;
 use super::chi::ChiKind;
@@ -194,8 +203,11 @@ impl CapBuilder for GuidedCaps {
                     }
                     Some(kind) => {
                         let e = kind.degree();
-                        for piece in kind.pieces_of(p) {
-                            out.push(BezierPatch::new(e, e, piece), prov);
+                        let (cu, cv) = RING_CELLS[k % 3];
+                        let domain = sector_square(sectors, k / 3, l as u8 + 1, cu, cv);
+                        for (i, piece) in kind.pieces_of(p).into_iter().enumerate() {
+                            let cell = piece_cell(kind, domain, i);
+                            out.push_in(BezierPatch::new(e, e, piece), prov, cell);
                         }
                     }
                 }
@@ -207,12 +219,15 @@ impl CapBuilder for GuidedCaps {
                 Ok((patches, step)) => {
                     out.caps.push(step);
                     let per = kind.pieces() * kind.pieces();
+                    let level = rings.len() as u8;
                     for (k, p) in patches.into_iter().enumerate() {
+                        let s = k / per;
                         let prov = Provenance::Cap {
                             element,
-                            sector: (k / per) as u32,
+                            sector: s as u32,
                         };
-                        out.push(p, prov);
+                        let square = sector_square(sectors, s, level, 0, 0);
+                        out.push_in(p, prov, piece_cell(kind, square, k % per));
                     }
                 }
                 Err(e) => self.notes.note(format!(
@@ -235,6 +250,20 @@ impl CapBuilder for GuidedCaps {
             }
         }
         Ok(())
+    }
+}
+
+/// The cell of piece `i` (row-major, `i = a m + b`, `a` along the first parameter: the order
+/// of [`MacroKind::pieces_of`] and of the split cap's pieces) of a macro patch or split cap
+/// sector covering `square` (a cell with the patch's `(0, 0)` at its corner `rot`): the 2 x 2
+/// quarters ([`Domain::square`]) of the bi-4 variant, the 3 x 3 thirds ([`Domain::third`]) of
+/// the bi-3 one, each piece's own `(u, v)` the square's scaled.
+fn piece_cell(kind: MacroKind, square: Domain, i: usize) -> Domain {
+    let m = kind.pieces();
+    let (a, b) = (i / m, i % m);
+    match kind {
+        MacroKind::Bi4 => square.square(1, a as u32, b as u32),
+        MacroKind::Bi3 => square.third(a as u8, b as u8),
     }
 }
 

@@ -26,6 +26,9 @@ enum Node {
     Leaf(u32),
     /// Split into `factor^2` children from node `first` on.
     Split { first: u32, factor: u8 },
+    /// Split 2 x 2 at the ratio [`CellTree::ratios`]`[ratio]` (adjustable TPS,
+    /// [`Shape::ratio_map`]), children from node `first` on.
+    SplitAt { first: u32, ratio: u32 },
 }
 
 /// A cell covered by a patch (or a piece of one), with its maps precomputed.
@@ -115,6 +118,8 @@ pub(super) struct CellTree {
     triangle: [ChildInverse; 4],
     /// Inverse maps of a quad cell's children in thirds ([`Shape::third_map`]).
     third: [ChildInverse; 9],
+    /// The ratios of the cells split at a ratio, and the inverse maps of their children.
+    ratios: Vec<(f64, [ChildInverse; 4])>,
 }
 
 /// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
@@ -142,6 +147,7 @@ impl CellTree {
             quad: std::array::from_fn(|k| ChildInverse::of(Shape::Quad.child_map(k as u8))),
             triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
             third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
+            ratios: Vec::new(),
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -168,8 +174,15 @@ impl CellTree {
         }
         let mut at = (lo + d.sub) as usize;
         for l in 1..=d.depth {
+            if d.splits_at_ratio(l) {
+                let Some(first) = self.split_at_ratio(at, d.ratio()) else {
+                    return;
+                };
+                at = first as usize + usize::from(d.step(l));
+                continue;
+            }
             let first = match self.nodes[at] {
-                Node::Leaf(_) => return,
+                Node::Leaf(_) | Node::SplitAt { .. } => return,
                 // a cell split the other way (dyadic vs in thirds) by an earlier domain:
                 // the first indexed wins, as for a covered cell
                 Node::Split { first, factor } if factor == factor_of(&d, l) => first,
@@ -188,6 +201,33 @@ impl CellTree {
         if !matches!(self.nodes[at], Node::Leaf(_)) {
             self.nodes[at] = Node::Leaf(self.leaves.len() as u32);
             self.leaves.push(leaf);
+        }
+    }
+
+    /// The first child of node `at` split at ratio `t` (splitting it when empty); `None` when
+    /// it is covered or split another way (the first indexed wins).
+    fn split_at_ratio(&mut self, at: usize, t: f64) -> Option<u32> {
+        match self.nodes[at] {
+            Node::SplitAt { first, ratio } if self.ratios[ratio as usize].0 == t => Some(first),
+            Node::Empty => {
+                let ratio = match self.ratios.iter().position(|r| r.0 == t) {
+                    Some(i) => i,
+                    None => {
+                        let maps =
+                            std::array::from_fn(|k| ChildInverse::of(Shape::ratio_map(t, k as u8)));
+                        self.ratios.push((t, maps));
+                        self.ratios.len() - 1
+                    }
+                };
+                let first = self.nodes.len() as u32;
+                self.nodes.extend(std::iter::repeat_n(Node::Empty, 4));
+                self.nodes[at] = Node::SplitAt {
+                    first,
+                    ratio: ratio as u32,
+                };
+                Some(first)
+            }
+            _ => None,
         }
     }
 
@@ -218,6 +258,12 @@ impl CellTree {
                 Node::Split { first, factor: 3 } => {
                     let k = Shape::third_at(p);
                     p = self.third[usize::from(k)].apply(p);
+                    at = first as usize + usize::from(k);
+                }
+                Node::SplitAt { first, ratio } => {
+                    let (t, maps) = &self.ratios[ratio as usize];
+                    let k = Shape::ratio_at(*t, p);
+                    p = maps[usize::from(k)].apply(p);
                     at = first as usize + usize::from(k);
                 }
                 Node::Split { .. } => return None,

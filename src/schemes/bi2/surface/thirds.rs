@@ -30,8 +30,25 @@
 //! the cells in them are cells of an input face all the same. As for the dual schemes, the
 //! patches of boundary vertices are not recorded (their doubled boundary layer puts the
 //! boundary curve half a face outside the face's domain), nor the faces of the boundary layer
-//! a step adds: evaluating there is an error. Adjustable TPS splits in `e : 1 - 2e : e`, not in
-//! thirds, so its rings are not cells of this kind and it records no domains.
+//! a step adds: evaluating there is an error.
+//!
+//! # Adjustable TPS: cells split at `s = 1 - 2e`
+//!
+//! Adjustable TPS splits every piece `e : 1 - 2e : e` (knot insertion,
+//! [`crate::schemes::bi2::ternary`]). The input net's knots are uniform, so a face's `[0, 1]^2`
+//! is its knot coordinates and a vertex's patch covers the quarters of its faces as above. In
+//! the quarter at an extraordinary vertex (scaled to `[0, 1]^2`, knot coordinates), the centre
+//! piece after `l` steps is `[-s^l, s^l]^2`, so the hole after ring `l` is `[0, s^l]^2` with
+//! `s = 1 - 2e`, and ring `l` covers the rest of `[0, s^(l-1)]^2`: the hole of the step before
+//! split 2 x 2 at the ratio `s` ([`Domain::ratio_child`]): `b_s` its child `[s, 1]^2` (the whole
+//! patch, `(0, 0)` at the inner corner), `a_s` with its half `v >= 1/2` the child
+//! `[s, 1] x [0, s]` of sector `s` and with its half `v <= 1/2` the child `[0, s] x [s, 1]` of
+//! sector `s - 1`, turned as for TPS. The cap covers `[0, s^K]^2` from the centre. So the
+//! face parameters are the spline's own knot coordinates: the pieces join C^1 in them as the
+//! spline does. Only the input net's faces are tracked: a whole-net step (to separate
+//! extraordinary vertices) cuts a face at the knots `(1 -/+ e) / 2`, so the refined net's
+//! vertex pieces are not quarters of its faces, and those nets are not evaluated (an error).
+//! With `e = 1/3` the cells are TPS's thirds' sizes (`s = 1/3`), cut as 2 x 2 at `1/3`.
 
 use crate::bezier::complex::{Domain, PatchComplex, Piece};
 use crate::mesh::PolyMesh;
@@ -104,21 +121,56 @@ pub(super) fn sector_cells(mesh: &PolyMesh, cells: &[Domain], v: usize) -> Vec<D
     out
 }
 
-/// The hole of sector cell `q` after `l` rings: its corner child in thirds `l` times.
-fn hole(q: Domain, l: usize) -> Domain {
-    (0..l).fold(q, |d, _| d.third_child(0))
+/// How the rings of a TPS-like element split the hole before them: in thirds (TPS) or 2 x 2
+/// at a ratio `s = 1 - 2e` (adjustable TPS; see the [module](self) documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Split {
+    /// The 3 x 3 grid.
+    Thirds,
+    /// 2 x 2 at the ratio.
+    At(f64),
+}
+
+/// The hole of sector cell `q` after `l` rings: its corner child `l` times.
+fn hole(q: Domain, l: usize, split: Split) -> Domain {
+    (0..l).fold(q, |d, _| match split {
+        Split::Thirds => d.third_child(0),
+        Split::At(t) => d.ratio_child(t, 0),
+    })
 }
 
 /// Records where ring `l`'s patches of an element lie (see the [module](self) documentation):
 /// patches `first + 2 s` (`a_s`) and `first + 2 s + 1` (`b_s`) for each sector `s` of
 /// `sectors`.
-pub(super) fn ring_pieces(sectors: &[Domain], l: usize, first: usize, out: &mut PatchComplex) {
+pub(super) fn ring_pieces(
+    sectors: &[Domain],
+    l: usize,
+    first: usize,
+    split: Split,
+    out: &mut PatchComplex,
+) {
     let n = sectors.len();
     let half = |u: f64, v: f64| [[u, v], [u + 0.5, v + 0.5]];
     for (s, &q) in sectors.iter().enumerate() {
-        let here = hole(q, l - 1);
-        let before = hole(sectors[(s + n - 1) % n], l - 1);
+        let here = hole(q, l - 1, split);
+        let before = hole(sectors[(s + n - 1) % n], l - 1, split);
         let (a, b) = ((first + 2 * s) as u32, (first + 2 * s + 1) as u32);
+        if let Split::At(t) = split {
+            // (window, patch, cell, corner of the window's (0, 0))
+            let pieces = [
+                ([[0.0, 0.5], [1.0, 1.0]], a, here.ratio_child(t, 1), 0),
+                ([[0.0, 0.0], [1.0, 0.5]], a, before.ratio_child(t, 3), 1),
+                ([[0.0, 0.0], [1.0, 1.0]], b, here.ratio_child(t, 2), 0),
+            ];
+            for (window, patch, cell, rot) in pieces {
+                out.push_piece(Piece {
+                    patch,
+                    window,
+                    domain: cell.rotated(rot),
+                });
+            }
+            continue;
+        }
         // (window, patch, cell, corner of the window's (0, 0))
         let pieces = [
             (half(0.0, 0.5), a, here.third_child(1), 0),
@@ -142,8 +194,14 @@ pub(super) fn ring_pieces(sectors: &[Domain], l: usize, first: usize, out: &mut 
 
 /// Records that cap (or fill) patches `first .. first + n` cover the holes of their sectors
 /// after `rings` rings, `(0, 0)` at the centre.
-pub(super) fn cap_domains(sectors: &[Domain], rings: usize, first: usize, out: &mut PatchComplex) {
+pub(super) fn cap_domains(
+    sectors: &[Domain],
+    rings: usize,
+    first: usize,
+    split: Split,
+    out: &mut PatchComplex,
+) {
     for (s, &q) in sectors.iter().enumerate() {
-        out.set_domain(first + s, hole(q, rings));
+        out.set_domain(first + s, hole(q, rings, split));
     }
 }
