@@ -37,7 +37,9 @@ pub struct Args {
     /// With --rings: leave the hole inside the last ring open (points there are errors).
     #[arg(long, requires = "rings")]
     pub no_fill: bool,
-    /// Print the evaluations as a JSON array.
+    /// Print the evaluations as a JSON array (default: one line per point, `F:U:V patch P at
+    /// (PU, PV) point X Y Z normal X Y Z gauss G mean M`). Every number is the shortest text
+    /// that reads back to the same f64.
     #[arg(long)]
     pub json: bool,
 }

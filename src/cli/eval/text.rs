@@ -104,12 +104,7 @@ type FormatFn = dyn Fn(&mut Vec<u8>, usize, &Evaluation) -> Result<()> + Sync;
 /// formatted as soon as it is computed: no buffer of all evaluations) and hands each block's
 /// text, in order, to `write`; at most [`AHEAD`] blocks are held at once. The first error
 /// (by block) stops it.
-fn blocks(
-    n: usize,
-    eval: &EvalFn,
-    format: &FormatFn,
-    write: &mut WriteFn,
-) -> Result<()> {
+fn blocks(n: usize, eval: &EvalFn, format: &FormatFn, write: &mut WriteFn) -> Result<()> {
     let mut pending: Vec<Result<Vec<u8>>> = Vec::new();
     for group in (0..n).step_by(BLOCK * AHEAD) {
         let end = (group + BLOCK * AHEAD).min(n);
