@@ -4,6 +4,7 @@
 //! words, so every option, default, limit and error message is the command line's own; no rule
 //! is written here. Long work runs with the GIL released.
 
+mod evaluate;
 mod table;
 
 use fairsub::cli::{Computed, api};
@@ -45,115 +46,6 @@ fn points_from(a: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<Vec<[f64; 
     Ok((0..shape[0])
         .map(|i| [v[[i, 0]], v[[i, 1]], v[[i, 2]]])
         .collect())
-}
-
-/// The evaluated quantities of many points, one contiguous buffer per quantity (the arrays
-/// `Surface.evaluate` returns, without a copy).
-struct Evaluated {
-    /// point, du, dv, duu, duv, dvv, normal: `3 n` values each.
-    vecs: [Vec<f64>; 7],
-    /// gauss, mean, u, v: `n` values each.
-    scalars: [Vec<f64>; 4],
-    face: Vec<u32>,
-    patch: Vec<i64>,
-    patch_uv: Vec<f64>,
-}
-
-/// Names of [`Evaluated::vecs`] and [`Evaluated::scalars`].
-const VEC_NAMES: [&str; 7] = ["point", "du", "dv", "duu", "duv", "dvv", "normal"];
-const SCALAR_NAMES: [&str; 4] = ["gauss", "mean", "u", "v"];
-
-/// The part of every buffer of an [`Evaluated`] that one parallel task fills.
-struct Chunk<'a> {
-    start: usize,
-    vecs: Vec<&'a mut [f64]>,
-    scalars: Vec<&'a mut [f64]>,
-    face: &'a mut [u32],
-    patch: &'a mut [i64],
-    patch_uv: &'a mut [f64],
-}
-
-/// Points per parallel task.
-const CHUNK: usize = 4096;
-
-impl Evaluated {
-    /// Evaluates `ev` at `(f[i], u[i], v[i])` in parallel; the error of a point that fails.
-    fn run(ev: &eval::Surface, f: &[i64], u: &[f64], v: &[f64]) -> fairsub::Result<Evaluated> {
-        use rayon::prelude::*;
-        let n = f.len();
-        let mut out = Evaluated {
-            vecs: std::array::from_fn(|_| vec![0.0; 3 * n]),
-            scalars: std::array::from_fn(|_| vec![0.0; n]),
-            face: vec![0; n],
-            patch: vec![0; n],
-            patch_uv: vec![0.0; 2 * n],
-        };
-        let mut vec_chunks: Vec<_> = out
-            .vecs
-            .iter_mut()
-            .map(|b| b.chunks_mut(3 * CHUNK))
-            .collect();
-        let mut scalar_chunks: Vec<_> = out
-            .scalars
-            .iter_mut()
-            .map(|b| b.chunks_mut(CHUNK))
-            .collect();
-        let mut chunks = Vec::new();
-        for (k, (face, (patch, patch_uv))) in out
-            .face
-            .chunks_mut(CHUNK)
-            .zip(
-                out.patch
-                    .chunks_mut(CHUNK)
-                    .zip(out.patch_uv.chunks_mut(2 * CHUNK)),
-            )
-            .enumerate()
-        {
-            chunks.push(Chunk {
-                start: k * CHUNK,
-                vecs: vec_chunks
-                    .iter_mut()
-                    .map(|c| c.next().expect("chunk"))
-                    .collect(),
-                scalars: scalar_chunks
-                    .iter_mut()
-                    .map(|c| c.next().expect("chunk"))
-                    .collect(),
-                face,
-                patch,
-                patch_uv,
-            });
-        }
-        chunks.into_par_iter().try_for_each(|mut c| {
-            for j in 0..c.face.len() {
-                let i = c.start + j;
-                let face = u32::try_from(f[i]).map_err(|_| {
-                    fairsub::Error::InvalidArgument(format!(
-                        "point {i}: face {} does not exist",
-                        f[i]
-                    ))
-                })?;
-                let e = ev.evaluate(face, u[i], v[i])?;
-                for (b, p) in c
-                    .vecs
-                    .iter_mut()
-                    .zip([e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal])
-                {
-                    b[3 * j..3 * j + 3].copy_from_slice(&p);
-                }
-                for (b, x) in c.scalars.iter_mut().zip([e.gauss, e.mean, e.u, e.v]) {
-                    b[j] = x;
-                }
-                c.face[j] = e.face;
-                c.patch[j] = e.patch as i64;
-                c.patch_uv[2 * j..2 * j + 2].copy_from_slice(&e.patch_uv);
-            }
-            Ok::<(), fairsub::Error>(())
-        })?;
-        drop(vec_chunks);
-        drop(scalar_chunks);
-        Ok(out)
-    }
 }
 
 /// A tessellation as arrays: vertices (n, 3), triangles (m, 3).
@@ -318,6 +210,19 @@ pub struct Surface {
     given: Option<PolyMesh>,
 }
 
+/// The `(face, u, v)` triples of three parallel arrays (the shortest length; faces clamped
+/// to `u32`), for the timing and comparison hooks.
+fn parameter_points(
+    face: &PyReadonlyArray1<'_, i64>,
+    u: &PyReadonlyArray1<'_, f64>,
+    v: &PyReadonlyArray1<'_, f64>,
+) -> Vec<(u32, f64, f64)> {
+    let (f, u, v) = (face.as_array(), u.as_array(), v.as_array());
+    (0..f.len().min(u.len()).min(v.len()))
+        .map(|i| (f[i].clamp(0, i64::from(u32::MAX)) as u32, u[i], v[i]))
+        .collect()
+}
+
 impl Surface {
     /// The evaluator of the complex, built once ([`eval::Surface::of_scheme`]: the input faces
     /// as the scheme evaluates them).
@@ -434,24 +339,7 @@ impl Surface {
             )));
         }
         let ev = self.evaluator()?;
-        let n = f.len();
-        let out = py.detach(|| Evaluated::run(ev, f, u, v)).map_err(err)?;
-        let d = PyDict::new(py);
-        let shaped = |buf: Vec<f64>, w: usize| {
-            Array2::from_shape_vec((n, w), buf)
-                .expect("n x w")
-                .into_pyarray(py)
-        };
-        for (name, buf) in VEC_NAMES.iter().zip(out.vecs) {
-            d.set_item(*name, shaped(buf, 3))?;
-        }
-        for (name, buf) in SCALAR_NAMES.iter().zip(out.scalars) {
-            d.set_item(*name, buf.into_pyarray(py))?;
-        }
-        d.set_item("face", out.face.into_pyarray(py))?;
-        d.set_item("patch", out.patch.into_pyarray(py))?;
-        d.set_item("patch_uv", shaped(out.patch_uv, 2))?;
-        Ok(d)
+        evaluate::evaluate_arrays(py, ev, f, u, v)
     }
 
     /// Seconds the Rust evaluation alone takes at the points (`evaluate_into` a buffer
@@ -464,10 +352,7 @@ impl Surface {
         u: PyReadonlyArray1<'_, f64>,
         v: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<f64> {
-        let (f, u, v) = (face.as_array(), u.as_array(), v.as_array());
-        let pts: Vec<(u32, f64, f64)> = (0..f.len().min(u.len()).min(v.len()))
-            .map(|i| (f[i].clamp(0, i64::from(u32::MAX)) as u32, u[i], v[i]))
-            .collect();
+        let pts = parameter_points(&face, &u, &v);
         let ev = self.evaluator()?;
         let mut out = vec![eval::Evaluation::default(); pts.len()];
         Ok(py.detach(|| {
@@ -477,6 +362,35 @@ impl Surface {
             drop(r);
             s
         }))
+    }
+
+    /// The Rust call's own results at the points, one row each (face, u, v, patch,
+    /// patch_uv (2), point, du, dv, duu, duv, dvv, normal (3 each), gauss, mean: 29 columns),
+    /// from `evaluate_into` a `Vec` of `Evaluation`s: what the tests compare `evaluate` with.
+    fn _rust_evaluations<'py>(
+        &self,
+        py: Python<'py>,
+        face: PyReadonlyArray1<'_, i64>,
+        u: PyReadonlyArray1<'_, f64>,
+        v: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let pts = parameter_points(&face, &u, &v);
+        let ev = self.evaluator()?;
+        let mut out = vec![eval::Evaluation::default(); pts.len()];
+        py.detach(|| ev.evaluate_into(&pts, &mut out))
+            .map_err(|(_, e)| err(e))?;
+        let mut rows = Vec::with_capacity(29 * out.len());
+        for e in &out {
+            rows.extend([f64::from(e.face), e.u, e.v, e.patch as f64]);
+            rows.extend(e.patch_uv);
+            for p in [e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal] {
+                rows.extend(p);
+            }
+            rows.extend([e.gauss, e.mean]);
+        }
+        Ok(Array2::from_shape_vec((out.len(), 29), rows)
+            .expect("n x 29")
+            .into_pyarray(py))
     }
 
     fn __repr__(&self) -> String {

@@ -5,9 +5,11 @@
 use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
 use crate::surface::ComplexOptions;
-use crate::surface::eval::{Evaluation, Surface, evaluate_limit};
-use std::fmt::Write;
+use crate::surface::eval::{Surface, limit_surface};
 use std::path::PathBuf;
+use text::parse_point;
+
+mod text;
 
 /// Most points one command evaluates (`--at` and `--at-file` together).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -35,42 +37,11 @@ pub struct Args {
     /// With --rings: leave the hole inside the last ring open (points there are errors).
     #[arg(long, requires = "rings")]
     pub no_fill: bool,
-    /// Print the evaluations as a JSON array.
+    /// Print the evaluations as a JSON array (default: one line per point, `F:U:V patch P at
+    /// (PU, PV) point X Y Z normal X Y Z gauss G mean M`). Every number is the shortest text
+    /// that reads back to the same f64.
     #[arg(long)]
     pub json: bool,
-}
-
-/// One point `F:U:V` (or `F U V`); `what` names it in errors.
-fn parse_point(text: &str, what: &dyn Fn() -> String) -> Result<(u32, f64, f64)> {
-    let bad = |why: &str| {
-        Error::InvalidArgument(format!("{}: '{text}' is not a point F:U:V ({why})", what()))
-    };
-    // the three fields without collecting them (10^6 lines of `--at-file`)
-    let mut parts: [&str; 3] = [""; 3];
-    let mut count = 0;
-    let fields: &mut dyn Iterator<Item = &str> = if text.contains(':') {
-        &mut text.split(':').map(str::trim)
-    } else {
-        &mut text.split_whitespace()
-    };
-    for field in fields {
-        if count < 3 {
-            parts[count] = field;
-        }
-        count += 1;
-    }
-    if count != 3 {
-        return Err(bad("three fields expected"));
-    }
-    let [f, u, v] = parts;
-    let f = f
-        .parse::<u32>()
-        .map_err(|_| bad("the face is not a non-negative integer"))?;
-    let num = |s: &str| s.parse::<f64>().ok().filter(|x| x.is_finite());
-    let (Some(u), Some(v)) = (num(u), num(v)) else {
-        return Err(bad("u and v must be finite numbers"));
-    };
-    Ok((f, u, v))
 }
 
 /// The points of `--at` and `--at-file`, in order.
@@ -89,17 +60,9 @@ fn points(a: &Args) -> Result<Vec<(u32, f64, f64)>> {
     }
     if let Some(path) = &a.at_file {
         let text = crate::io::read_text(path)?;
-        for (k, line) in text.lines().enumerate() {
-            let line = line.split('#').next().unwrap_or("").trim();
-            if line.is_empty() {
-                continue;
-            }
-            pts.push(parse_point(line, &|| {
-                format!("{}:{}", path.display(), k + 1)
-            })?);
-            if pts.len() > MAX_POINTS {
-                return Err(too_many());
-            }
+        pts.extend(text::parse_file(&text, path)?);
+        if pts.len() > MAX_POINTS {
+            return Err(too_many());
         }
     }
     if pts.is_empty() {
@@ -108,48 +71,6 @@ fn points(a: &Args) -> Result<Vec<(u32, f64, f64)>> {
         ));
     }
     Ok(pts)
-}
-
-/// Appends `x y z` with 17 significant digits.
-fn vec3(out: &mut String, p: [f64; 3]) {
-    let _ = write!(out, "{:.17e} {:.17e} {:.17e}", p[0], p[1], p[2]);
-}
-
-/// Appends the text line of one evaluation (with its newline).
-fn line(out: &mut String, e: &Evaluation) {
-    let _ = write!(
-        out,
-        "{}:{}:{} patch {} at ({}, {}) point ",
-        e.face, e.u, e.v, e.patch, e.patch_uv[0], e.patch_uv[1]
-    );
-    vec3(out, e.point);
-    out.push_str(" normal ");
-    vec3(out, e.normal);
-    let _ = writeln!(out, " gauss {:.10e} mean {:.10e}", e.gauss, e.mean);
-}
-
-/// Prints the text lines of `evals`, formatted in parallel blocks and written a block at a
-/// time.
-fn print_lines(evals: &[Evaluation]) {
-    use rayon::prelude::*;
-    const BLOCK: usize = 4096;
-    // a bounded number of blocks formatted ahead of the writer
-    let mut pending = Vec::new();
-    for group in evals.chunks(BLOCK * 64) {
-        group
-            .par_chunks(BLOCK)
-            .map(|chunk| {
-                let mut text = String::with_capacity(chunk.len() * 240);
-                for e in chunk {
-                    line(&mut text, e);
-                }
-                text
-            })
-            .collect_into_vec(&mut pending);
-        for text in &pending {
-            super::say_text(text);
-        }
-    }
 }
 
 /// Runs `fairsub eval`.
@@ -161,28 +82,37 @@ pub fn run(a: Args) -> Result<()> {
         super::limits::check_complex(&spec, &mesh, rings, fill)?;
         Surface::build(&spec, &mesh, ComplexOptions { rings, fill })
     };
-    let evals = match a.rings {
+    // every point is located before the first line is written (an error writes nothing);
+    // the evaluations are then computed and formatted block by block, never all held
+    let s = match a.rings {
         Some(k) => {
             let s = build(k, !a.no_fill)?;
-            let mut out = vec![Evaluation::default(); pts.len()];
-            s.evaluate_into(&pts, &mut out)
-                .map_err(|(i, e)| at_point(e, i, pts.len()))?;
-            out
+            if let Some((i, e)) = s.first_unlocated(&pts) {
+                return Err(at_point(e, i, pts.len()));
+            }
+            s
         }
         None => {
-            let (evals, rings) = evaluate_limit(&pts, &mut |k| build(k, true))?;
+            let (s, rings) = limit_surface(&pts, &mut |k| build(k, true))?;
             eprintln!("limit surface: {rings} rings");
-            evals
+            s
         }
     };
+    let eval = |i: usize| {
+        let (f, u, v) = pts[i];
+        s.evaluate(f, u, v).map_err(|e| at_point(e, i, pts.len()))
+    };
+    let mut write = |block: &[u8]| -> Result<()> {
+        let block = std::str::from_utf8(block)
+            .map_err(|e| Error::InvalidArgument(format!("eval output: {e}")))?;
+        super::say_text(block);
+        Ok(())
+    };
     if a.json {
-        let text = serde_json::to_string_pretty(&evals)
-            .map_err(|e| Error::InvalidArgument(format!("JSON output: {e}")))?;
-        say!("{text}");
+        text::write_json(pts.len(), &eval, &mut write)
     } else {
-        print_lines(&evals);
+        text::write_lines(pts.len(), &eval, &mut write)
     }
-    Ok(())
 }
 
 /// An evaluation error of point `i` (of `n`), naming the point when there are several.

@@ -1,0 +1,355 @@
+//! The text of `fairsub eval`: its points read from `--at-file` and its evaluations written as
+//! lines or JSON, both in parallel blocks (10^6 points must take well under a second).
+//!
+//! Every number is written as the shortest decimal text that reads back to the same `f64`
+//! (zmij, the printer serde_json uses for `--json`): exact, and several times faster than
+//! `{:.17e}`, whose 17-digit output often falls back to big-number arithmetic.
+
+use crate::error::{Error, Result};
+use crate::surface::eval::Evaluation;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Points per block formatted (or lines per block parsed) by one parallel task.
+const BLOCK: usize = 4096;
+
+/// Blocks formatted ahead of the writer (bounds the text held at once to about 64 blocks).
+const AHEAD: usize = 64;
+
+/// A point `F:U:V` of the command line or of a file.
+pub type Point = (u32, f64, f64);
+
+/// Appends `x` as the shortest text that reads back to the same `f64` (`NaN`, `inf`, `-inf`
+/// for the non-finite values, which Rust's and Python's float parsers read).
+#[inline]
+fn num(out: &mut Vec<u8>, x: f64) {
+    out.extend_from_slice(zmij::Buffer::new().format(x).as_bytes());
+}
+
+/// Appends an unsigned integer.
+#[inline]
+fn int(out: &mut Vec<u8>, mut k: u64) {
+    let mut digits = [0u8; 20];
+    let mut i = digits.len();
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (k % 10) as u8;
+        k /= 10;
+        if k == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&digits[i..]);
+}
+
+/// Appends ` x y z`.
+fn vec3(out: &mut Vec<u8>, p: [f64; 3]) {
+    for x in p {
+        out.push(b' ');
+        num(out, x);
+    }
+}
+
+/// Appends the text line of one evaluation (with its newline):
+/// `F:U:V patch P at (PU, PV) point X Y Z normal X Y Z gauss G mean M`.
+pub fn line(out: &mut Vec<u8>, e: &Evaluation) {
+    int(out, u64::from(e.face));
+    out.push(b':');
+    num(out, e.u);
+    out.push(b':');
+    num(out, e.v);
+    out.extend_from_slice(b" patch ");
+    int(out, e.patch as u64);
+    out.extend_from_slice(b" at (");
+    num(out, e.patch_uv[0]);
+    out.extend_from_slice(b", ");
+    num(out, e.patch_uv[1]);
+    out.extend_from_slice(b") point");
+    vec3(out, e.point);
+    out.extend_from_slice(b" normal");
+    vec3(out, e.normal);
+    out.extend_from_slice(b" gauss ");
+    num(out, e.gauss);
+    out.extend_from_slice(b" mean ");
+    num(out, e.mean);
+    out.push(b'\n');
+}
+
+/// One evaluation as `serde_json::to_string_pretty` writes it inside the array (indented one
+/// level, no separator).
+fn json_item(out: &mut Vec<u8>, e: &Evaluation) -> Result<()> {
+    let mut item = Vec::with_capacity(640);
+    serde_json::to_writer_pretty(&mut item, e)
+        .map_err(|err| Error::InvalidArgument(format!("JSON output: {err}")))?;
+    // no strings inside: every newline is a line break of the layout
+    for &b in &item {
+        out.push(b);
+        if b == b'\n' {
+            out.extend_from_slice(b"  ");
+        }
+    }
+    Ok(())
+}
+
+/// The evaluation of point `i` (of the command's points, in order).
+pub type EvalFn<'a> = dyn Fn(usize) -> Result<Evaluation> + Sync + 'a;
+
+/// Where formatted text goes, a block of whole lines at a time.
+pub type WriteFn<'a> = dyn FnMut(&[u8]) -> Result<()> + 'a;
+
+/// Appends the text of evaluation `i` (the whole array's `i`-th item).
+type FormatFn = dyn Fn(&mut Vec<u8>, usize, &Evaluation) -> Result<()> + Sync;
+
+/// Evaluates and formats points `0..n` in parallel blocks of [`BLOCK`] (each evaluation is
+/// formatted as soon as it is computed: no buffer of all evaluations) and hands each block's
+/// text, in order, to `write`; at most [`AHEAD`] blocks are held at once. The first error
+/// (by block) stops it.
+fn blocks(n: usize, eval: &EvalFn, format: &FormatFn, write: &mut WriteFn) -> Result<()> {
+    let mut pending: Vec<Result<Vec<u8>>> = Vec::new();
+    for group in (0..n).step_by(BLOCK * AHEAD) {
+        let end = (group + BLOCK * AHEAD).min(n);
+        (group..end)
+            .step_by(BLOCK)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|first| {
+                let last = (first + BLOCK).min(end);
+                let mut text = Vec::with_capacity((last - first) * 300);
+                for i in first..last {
+                    format(&mut text, i, &eval(i)?)?;
+                }
+                Ok(text)
+            })
+            .collect_into_vec(&mut pending);
+        for text in pending.drain(..) {
+            write(&text?)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes the text lines of the evaluations of points `0..n` through `write`, a block of
+/// lines at a time.
+pub fn write_lines(n: usize, eval: &EvalFn, write: &mut WriteFn) -> Result<()> {
+    blocks(
+        n,
+        eval,
+        &|out, _, e| {
+            line(out, e);
+            Ok(())
+        },
+        write,
+    )
+}
+
+/// Writes the evaluations of points `0..n` as `serde_json::to_string_pretty` writes their
+/// array (byte for byte), then a newline, through `write`.
+pub fn write_json(n: usize, eval: &EvalFn, write: &mut WriteFn) -> Result<()> {
+    if n == 0 {
+        return write(b"[]\n");
+    }
+    write(b"[")?;
+    blocks(
+        n,
+        eval,
+        &|out, i, e| {
+            out.extend_from_slice(if i == 0 { b"\n  " } else { b",\n  " });
+            json_item(out, e)
+        },
+        write,
+    )?;
+    write(b"\n]\n")
+}
+
+/// One point `F:U:V` (or `F U V`); `what` names it in errors.
+pub fn parse_point(text: &str, what: &dyn Fn() -> String) -> Result<Point> {
+    let bad = |why: &str| {
+        Error::InvalidArgument(format!("{}: '{text}' is not a point F:U:V ({why})", what()))
+    };
+    // the three fields without collecting them (10^6 lines of `--at-file`)
+    let mut parts: [&str; 3] = [""; 3];
+    let mut count = 0;
+    let fields: &mut dyn Iterator<Item = &str> = if text.contains(':') {
+        &mut text.split(':').map(str::trim)
+    } else {
+        &mut text.split_whitespace()
+    };
+    for field in fields {
+        if count < 3 {
+            parts[count] = field;
+        }
+        count += 1;
+    }
+    if count != 3 {
+        return Err(bad("three fields expected"));
+    }
+    let [f, u, v] = parts;
+    let f = f
+        .parse::<u32>()
+        .map_err(|_| bad("the face is not a non-negative integer"))?;
+    let num = |s: &str| s.parse::<f64>().ok().filter(|x| x.is_finite());
+    let (Some(u), Some(v)) = (num(u), num(v)) else {
+        return Err(bad("u and v must be finite numbers"));
+    };
+    Ok((f, u, v))
+}
+
+/// The content of a line of a points file: without its `#` comment, trimmed.
+fn content(line: &str) -> &str {
+    line.split('#').next().unwrap_or("").trim()
+}
+
+/// The points of a points file's `text` (read from `path`), in order, parsed in parallel blocks
+/// of lines; an error names the file and line of the first bad point.
+pub fn parse_file(text: &str, path: &Path) -> Result<Vec<Point>> {
+    // blocks of about BLOCK lines (80 bytes each is generous), cut after a newline
+    let bytes = text.as_bytes();
+    let mut cuts = vec![0];
+    while let Some(&last) = cuts.last() {
+        let mut end = (last + BLOCK * 80).min(bytes.len());
+        while end < bytes.len() && bytes[end - 1] != b'\n' {
+            end += 1;
+        }
+        cuts.push(end);
+        if end == bytes.len() {
+            break;
+        }
+    }
+    // per block: its points, its number of lines, the first bad line (index in the block)
+    let parsed: Vec<(Vec<Point>, usize, Option<usize>)> = cuts
+        .par_windows(2)
+        .map(|w| {
+            let mut pts = Vec::with_capacity((w[1] - w[0]) / 16);
+            let mut lines = 0;
+            for (k, line) in text[w[0]..w[1]].lines().enumerate() {
+                lines = k + 1;
+                let line = content(line);
+                if line.is_empty() {
+                    continue;
+                }
+                match parse_point(line, &String::new) {
+                    Ok(p) => pts.push(p),
+                    Err(_) => return (pts, lines, Some(k)),
+                }
+            }
+            (pts, lines, None)
+        })
+        .collect();
+    let total: usize = parsed.iter().map(|(p, ..)| p.len()).sum();
+    let mut pts = Vec::with_capacity(total);
+    let mut first_line = 0;
+    for (block, (p, lines, bad)) in cuts.windows(2).zip(parsed) {
+        if let Some(k) = bad {
+            // parsed again, alone, for its message with the file and line
+            let line = text[block[0]..block[1]].lines().nth(k).unwrap_or("");
+            let at = first_line + k + 1;
+            return Err(
+                parse_point(content(line), &|| format!("{}:{at}", path.display()))
+                    .err()
+                    .unwrap_or_else(|| {
+                        Error::InvalidArgument(format!("{}:{at}: bad point", path.display()))
+                    }),
+            );
+        }
+        pts.extend_from_slice(&p);
+        first_line += lines;
+    }
+    Ok(pts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Vec<Evaluation> {
+        (0..9000)
+            .map(|i| {
+                let x = f64::from(i);
+                Evaluation {
+                    face: i,
+                    u: x / 7.0,
+                    v: 1.0 / (x + 3.0),
+                    patch: 3 * i as usize,
+                    patch_uv: [x.sin(), 1e-300 * x],
+                    point: [x.cos(), -x * 1e17, 0.1 + x],
+                    normal: [0.0, -0.0, 1.0],
+                    gauss: if i % 5 == 0 { f64::NAN } else { x.sqrt() },
+                    mean: -x.exp(),
+                    ..Default::default()
+                }
+            })
+            .collect()
+    }
+
+    fn collect(f: impl Fn(&mut WriteFn) -> Result<()>) -> String {
+        let mut out = Vec::new();
+        f(&mut |b| {
+            out.extend_from_slice(b);
+            Ok(())
+        })
+        .expect("formats");
+        String::from_utf8(out).expect("utf-8")
+    }
+
+    #[test]
+    fn json_is_serde_jsons_pretty_array() {
+        let evals = sample();
+        for n in [1, 2, 4096, 4097, evals.len()] {
+            let got = collect(|w| write_json(n, &|i| Ok(evals[i]), w));
+            let want = serde_json::to_string_pretty(&evals[..n]).expect("json") + "\n";
+            assert!(got == want, "{n} evaluations");
+        }
+    }
+
+    #[test]
+    fn lines_read_back_to_the_same_bits() {
+        let evals = sample();
+        let text = collect(|w| write_lines(evals.len(), &|i| Ok(evals[i]), w));
+        assert_eq!(text.lines().count(), evals.len());
+        let same = |a: f64, b: &str| {
+            let b: f64 = b.parse().expect("number");
+            a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+        };
+        for (e, l) in evals.iter().zip(text.lines()) {
+            let w: Vec<&str> = l
+                .split([' ', ':', '(', ')', ','])
+                .filter(|w| !w.is_empty())
+                .collect();
+            assert_eq!(w[0].parse::<u32>(), Ok(e.face));
+            assert!(same(e.u, w[1]) && same(e.v, w[2]), "{l}");
+            assert_eq!((w[3], w[4].parse::<usize>()), ("patch", Ok(e.patch)));
+            assert!(
+                same(e.patch_uv[0], w[6]) && same(e.patch_uv[1], w[7]),
+                "{l}"
+            );
+            for k in 0..3 {
+                assert!(
+                    same(e.point[k], w[9 + k]) && same(e.normal[k], w[13 + k]),
+                    "{l}"
+                );
+            }
+            assert!(same(e.gauss, w[17]) && same(e.mean, w[19]), "{l}");
+        }
+    }
+
+    #[test]
+    fn file_points_and_their_errors_keep_their_lines() {
+        let mut text = String::from("# header\n\n");
+        for i in 0..20_000u32 {
+            text.push_str(&format!("{i}:{}:0.25  # c\r\n", f64::from(i) / 20_000.0));
+        }
+        let path = Path::new("pts.txt");
+        let pts = parse_file(&text, path).expect("parses");
+        assert_eq!(pts.len(), 20_000);
+        assert_eq!(pts[12_345], (12_345, 12_345.0 / 20_000.0, 0.25));
+        let bad = text.replacen("15000:", "15000:x:", 1);
+        let e = parse_file(&bad, path).expect_err("bad line").to_string();
+        assert!(
+            e.contains("pts.txt:15003:") && e.contains("three fields"),
+            "{e}"
+        );
+        let bad = text.replacen("3:", "-3:", 1);
+        let e = parse_file(&bad, path).expect_err("bad line").to_string();
+        assert!(e.contains("pts.txt:6:") && e.contains("face"), "{e}");
+    }
+}
