@@ -59,7 +59,7 @@ use crate::schemes::catmull_clark::crease::adaptive::{
 };
 use crate::stencil::Stencil;
 use std::collections::{HashMap, HashSet};
-pub use track::catmull_clark_tracked;
+pub use track::{bspline_patch, catmull_clark_tracked};
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -384,12 +384,12 @@ fn regular_net(level: &Level, f: usize) -> Option<Vec<Stencil>> {
 
 /// The bi-3 patch of a B-spline net of the level.
 fn net_patch(level: &Level, net: &[Stencil]) -> BezierPatch {
-    let pts: Vec<Point> = net
-        .iter()
-        .map(|s| s.apply(level.mesh.positions()))
-        .collect();
-    let m3 = crate::bezier::convert::cubic_bspline_matrix();
-    crate::bezier::convert::tensor_apply(m3, m3, &pts)
+    let pos = level.mesh.positions();
+    let mut pts = [[0.0; 3]; 16];
+    for (p, s) in pts.iter_mut().zip(net) {
+        *p = s.apply(pos);
+    }
+    bspline_patch(&pts)
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element

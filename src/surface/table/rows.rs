@@ -1,15 +1,17 @@
 //! The two forms of a patch table's rows: expanded (one row per Bezier coefficient over the
 //! control points: the probed tables, the tables read from files) and factored (Catmull-Clark's
 //! tracked tables: per bi-3 patch the 16 rows of its B-spline net over a stack of refinement
-//! levels, [`LayeredTable`], converted to Bezier form at apply by the one
-//! [`crate::bezier::convert::tensor_apply`]). Both give the same values; the factored form
+//! levels, [`LayeredTable`], converted to Bezier form at apply by the one conversion,
+//! [`bspline_patch`]: the stencils of [`crate::bezier::convert::tensor_stencils`], as the
+//! construction applies them). Both give the same values; the factored form
 //! expands on demand ([`Rows::expanded`]) for readers that want one row per coefficient (the
 //! `--stencils` file, Python's `csr()`), with the same conversion weights
 //! ([`crate::bezier::convert::tensor_stencils`]).
 
 use crate::bezier::BezierPatch;
-use crate::bezier::convert::{cubic_bspline_matrix, tensor_apply, tensor_stencils};
+use crate::bezier::convert::{cubic_bspline_matrix, tensor_stencils};
 use crate::geom::Point;
+use crate::schemes::catmull_clark::surface::bspline_patch;
 use crate::stencil::{LayeredTable, StencilTable};
 use rayon::prelude::*;
 use std::sync::OnceLock;
@@ -110,7 +112,6 @@ impl Rows {
                 layered, net_first, ..
             } => {
                 let vals = layered.apply(pts);
-                let m3 = cubic_bspline_matrix();
                 let patches = (0..layout.shapes.len())
                     .into_par_iter()
                     .map(|p| {
@@ -119,7 +120,7 @@ impl Rows {
                             return empty(du, dv);
                         }
                         let r = net_first[p] as usize;
-                        tensor_apply(m3, m3, &vals[r..r + NET])
+                        bspline_patch(&vals[r..r + NET])
                     })
                     .collect();
                 let data0 = nets_end(net_first, layout);

@@ -16,8 +16,10 @@
 //! table and the caller probes the construction instead.
 
 use super::{CcRules, Level, g1};
+use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::Result;
+use crate::geom::Point;
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, Tag, by_element};
 use crate::mesh::PolyMesh;
@@ -78,6 +80,19 @@ fn conversion() -> &'static [Stencil] {
         let net: Vec<usize> = (0..16).collect();
         crate::bezier::convert::tensor_stencils(m3, m3, &net)
     })
+}
+
+/// The bi-3 Bezier patch of a uniform bi-3 B-spline net's 16 points (`net[k * 4 + l]`, `k`
+/// along `u`): the conversion's stencils ([`crate::bezier::convert::tensor_stencils`]) applied,
+/// which are the products of [`crate::bezier::convert::tensor_apply`] summed in the same order
+/// (bit-identical results) without its loops over the zeros of the matrix. The hot path of every
+/// regular patch of the construction and of a factored patch table's apply.
+///
+/// # Panics
+/// When `net` has fewer than 16 points.
+pub fn bspline_patch(net: &[Point]) -> BezierPatch {
+    let cps = conversion().iter().map(|s| s.apply(net)).collect();
+    BezierPatch::new(3, 3, cps)
 }
 
 /// The coefficient rows of the patch of a B-spline net, over the level's points.
