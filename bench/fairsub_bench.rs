@@ -496,7 +496,7 @@ fn patch_table(
     let pts = grid_points(mesh.num_faces(), count);
     let mut buf = vec![eval::Evaluation::default(); pts.len()];
     let mut result = Vec::new();
-    let mut sizes = (0, 0, 0, 0);
+    let mut sizes = (0, 0, 0, 0, 0);
     for _ in 0..reps {
         let t = Instant::now();
         construct(&mesh)?;
@@ -518,12 +518,19 @@ fn patch_table(
             .evaluate_into(&pts, &mut buf)
             .map_err(|(i, e)| format!("point {i}: {e}"))?;
         into_ms = into_ms.min(ms(t));
-        sizes = (
-            complex.len(),
-            table.rows().num_rows(),
-            table.rows().num_entries(),
-            table.caps().len(),
-        );
+        sizes = match table.layered() {
+            Some(l) => {
+                let (level_weights, row_weights) = l.num_entries();
+                (
+                    complex.len(),
+                    l.num_points() - l.num_sources(),
+                    level_weights,
+                    row_weights,
+                    table.caps().len(),
+                )
+            }
+            None => (complex.len(), 0, 0, table.rows().num_entries(), 0),
+        };
         result = r;
     }
     let mut bytes = Vec::with_capacity(24 * pts.len());
@@ -542,13 +549,14 @@ fn patch_table(
     }
     std::fs::write(out, bytes)?;
     println!(
-        "fairsub catmull-clark, {} faces, {rings} rings + G^1 caps: {} patches, table {} rows, \
-         {} weights, {} caps",
+        "fairsub catmull-clark, {} faces, {rings} rings + G^1 caps: {} patches, factored table: \
+         {} refined points ({} weights), {} net and cap data weights, {} caps",
         mesh.num_faces(),
         sizes.0,
         sizes.1,
         sizes.2,
-        sizes.3
+        sizes.3,
+        sizes.4
     );
     println!(
         "build: complex and table {table_ms:.1} ms + evaluation index {index_ms:.1} ms = {:.1} ms \

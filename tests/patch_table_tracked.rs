@@ -1,5 +1,7 @@
-//! Catmull-Clark's patch table tracked beside the points (`PatchTable::tracked`) against the
-//! table probed off the construction (`PatchTable::build_probed`): the same rows to 1e-12 on
+//! Catmull-Clark's patch table tracked beside the points (`PatchTable::tracked`, factored: the
+//! refinement levels' own stencils and each patch's B-spline net, expanded to one row per Bezier
+//! coefficient on demand) against the table probed off the construction
+//! (`PatchTable::build_probed`): the same expanded rows to 1e-12 on
 //! gallery nets and OpenSubdiv's tagged nets (creases, corners, semi-sharp features, boundaries),
 //! and re-applied to moved points equal to the complex recomputed from them to 1e-12. Where the
 //! construction takes a step that is not tracked (the Hermite-Coons fill at boundary
@@ -50,7 +52,22 @@ fn check(what: &str, mesh: &PolyMesh, rings: usize) -> Option<usize> {
         "{what}: tracking changes the complex"
     );
     assert_eq!(complex.provenance, plain.provenance, "{what}: provenance");
+    // the tracked table is factored: per bi-3 patch its net's 16 rows over the levels, then the
+    // caps' data rows (the expanded rows: one per Bezier coefficient)
+    let layered = tracked.layered().expect("tracked tables are factored");
+    let np = tracked.num_patches();
+    let nets = (0..np).filter(|&p| !tracked.is_cap_patch(p)).count();
+    let data = tracked.rows().num_rows() - tracked.first_row(np);
+    assert_eq!(
+        layered.num_rows(),
+        16 * nets + data,
+        "{what}: factored rows"
+    );
     let probed = PatchTable::build_probed(&spec, mesh, opts).expect(what);
+    assert!(
+        probed.layered().is_none(),
+        "{what}: probed tables are expanded"
+    );
     let d = tracked.rows_deviation(&probed);
     assert!(
         d <= 1e-12,

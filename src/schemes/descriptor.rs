@@ -261,13 +261,14 @@ pub trait PatchRules: Sync {
     ) -> Result<SurfaceOutput>;
 
     /// The complex of [`PatchRules::build`] with its patch stencil table's rows tracked beside
-    /// the points (the layout of `surface::table::PatchTable::from_parts`), when the scheme
-    /// tracks every step it took for this net; `None` otherwise (the table is then probed).
+    /// the points, in factored form (the layout of `surface::table::PatchTable::from_layered`),
+    /// when the scheme tracks every step it took for this net; `None` otherwise (the table is
+    /// then probed).
     fn build_tracked(
         &self,
         mesh: &PolyMesh,
         opts: ComplexOptions,
-    ) -> Result<Option<(SurfaceOutput, crate::stencil::StencilTable)>> {
+    ) -> Result<Option<(SurfaceOutput, crate::stencil::LayeredTable)>> {
         let _ = (mesh, opts);
         Ok(None)
     }

@@ -226,10 +226,12 @@ impl Stencil {
     }
 }
 
+mod layered;
 mod packed;
 mod table;
 mod track;
 
+pub use layered::LayeredTable;
 pub use packed::PackedStencilTable;
 pub use table::StencilTable;
 pub use track::linear_weights;

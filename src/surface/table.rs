@@ -52,9 +52,11 @@ use crate::bezier::complex::{CapStep, Domain, PatchComplex, Piece, Provenance};
 use crate::bezier::g1::{Centre, Hole, Segment, cap_map, ring};
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross};
-use crate::stencil::StencilTable;
+use crate::stencil::{LayeredTable, StencilTable};
+use rows::{Layout, Rows};
 
 pub mod probe;
+mod rows;
 
 /// How a cap's hole data are laid out in the table's rows: per sector, per segment, the number
 /// of boundary and cross coefficients.
@@ -134,12 +136,13 @@ fn hole_from(vals: &[Point], shape: &HoleShape) -> (Hole, [Point; 2]) {
 }
 
 /// The sparse map from a net's control points to every Bezier coefficient of its patch complex
-/// (see the [module](self) documentation).
-#[derive(Debug, Clone, PartialEq)]
+/// (see the [module](self) documentation). Two tables are equal when their rows in expanded
+/// form ([`PatchTable::rows`]) and everything else are.
+#[derive(Debug, Clone)]
 pub struct PatchTable {
     /// One row per coefficient of every patch (cap patches: empty rows), then the caps' data
-    /// rows.
-    rows: StencilTable,
+    /// rows; or the same in factored form ([`rows`]).
+    rows: Rows,
     /// Per patch `(deg_u, deg_v)`.
     shapes: Vec<(u32, u32)>,
     /// Per patch, its first row (and one past the last patch's rows at the end).
@@ -170,6 +173,30 @@ impl PatchTable {
         rows: StencilTable,
         constants: Vec<Point>,
     ) -> Result<PatchTable> {
+        Self::assemble(template, Rows::Expanded(rows), constants)
+    }
+
+    /// Assembles a table whose rows are factored ([`LayeredTable`]): per patch of `template`
+    /// that is not a cap patch (each a bi-3 patch) the 16 rows of its B-spline net, then the
+    /// caps' data rows in order. [`PatchTable::apply`] converts each net's points to Bezier
+    /// form; [`PatchTable::rows`] expands the rows to one per coefficient when asked.
+    ///
+    /// # Errors
+    /// When a patch that is not a cap patch is not bi-3, or the row counts do not match.
+    pub fn from_layered(template: &PatchComplex, rows: LayeredTable) -> Result<PatchTable> {
+        Self::assemble(
+            template,
+            Rows::Nets {
+                layered: rows,
+                net_first: Vec::new(),
+                expanded: std::sync::OnceLock::new(),
+            },
+            Vec::new(),
+        )
+    }
+
+    /// [`PatchTable::from_parts`] for either form of rows.
+    fn assemble(template: &PatchComplex, rows: Rows, constants: Vec<Point>) -> Result<PatchTable> {
         let mut first_row = Vec::with_capacity(template.len() + 1);
         let mut shapes = Vec::with_capacity(template.len());
         let mut r = 0u64;
@@ -199,17 +226,36 @@ impl PatchTable {
             r += cap.data_len() as u64;
             caps.push(cap);
         }
-        if r > u32::MAX as u64 || rows.num_rows() as u64 != r {
-            return Err(Error::InvalidArgument(format!(
-                "the table has {} rows, the complex needs {r}",
-                rows.num_rows()
-            )));
+        if r > u32::MAX as u64 {
+            return Err(Error::InvalidArgument(format!("{r} rows")));
         }
-        if !constants.is_empty() && constants.len() != rows.num_rows() {
+        let data = (r - caps.first().map_or(r, |c| c.data_row as u64)) as usize;
+        let rows = match rows {
+            Rows::Expanded(t) if t.num_rows() as u64 != r => {
+                return Err(Error::InvalidArgument(format!(
+                    "the table has {} rows, the complex needs {r}",
+                    t.num_rows()
+                )));
+            }
+            Rows::Nets { layered, .. } => {
+                let n = layered.num_rows();
+                let layout = Layout {
+                    shapes: &shapes,
+                    in_cap: &in_cap,
+                };
+                Rows::nets(layered, &layout, data).ok_or_else(|| {
+                    Error::InvalidArgument(format!(
+                        "the factored table's {n} rows are not 16 per bi-3 patch and {data} \
+                         cap data rows"
+                    ))
+                })?
+            }
+            rows => rows,
+        };
+        if !constants.is_empty() && constants.len() as u64 != r {
             return Err(Error::InvalidArgument(format!(
-                "{} constants for {} rows",
+                "{} constants for {r} rows",
                 constants.len(),
-                rows.num_rows()
             )));
         }
         first_row.push(caps.first().map_or(r as u32, |c| c.data_row));
@@ -302,7 +348,7 @@ impl PatchTable {
         let Some((out, rows)) = rules.build_tracked(mesh, opts)? else {
             return Ok(None);
         };
-        let table = PatchTable::from_parts(&out.complex, rows, Vec::new())?;
+        let table = PatchTable::from_layered(&out.complex, rows)?;
         if std::env::var_os("FAIRSUB_TABLE_CHECK").is_some() {
             let probed = probe::build_from(mesh, &out.complex, &|m| {
                 super::build(spec, m, opts, &mut |_| {}).map(|o| o.complex)
@@ -320,7 +366,7 @@ impl PatchTable {
     /// The largest difference between the weights of two tables of one layout (relative to the
     /// largest weight; infinite when their rows or caps differ in number).
     pub fn rows_deviation(&self, other: &PatchTable) -> f64 {
-        let (a, b) = (&self.rows, &other.rows);
+        let (a, b) = (self.rows(), other.rows());
         if a.num_rows() != b.num_rows() || self.caps.len() != other.caps.len() {
             return f64::INFINITY;
         }
@@ -347,15 +393,34 @@ impl PatchTable {
         self.rows.num_sources()
     }
 
+    /// The shapes and cap flags of the patches, as the rows see them.
+    fn layout(&self) -> Layout<'_> {
+        Layout {
+            shapes: &self.shapes,
+            in_cap: &self.in_cap,
+        }
+    }
+
+    /// The factored rows of a tracked Catmull-Clark table (per bi-3 patch its net's 16 rows,
+    /// then the caps' data rows, over a stack of refinement levels), `None` for a table of
+    /// expanded rows.
+    pub fn layered(&self) -> Option<&LayeredTable> {
+        match &self.rows {
+            Rows::Nets { layered, .. } => Some(layered),
+            Rows::Expanded(_) => None,
+        }
+    }
+
     /// Number of patches.
     pub fn num_patches(&self) -> usize {
         self.shapes.len()
     }
 
     /// The rows: one per coefficient in patch order (empty for cap patches), then the caps'
-    /// data rows.
+    /// data rows (a factored table composes them on the first call: the cost of the old
+    /// tracking, paid only by readers that want this form).
     pub fn rows(&self) -> &StencilTable {
-        &self.rows
+        self.rows.expanded(&self.layout())
     }
 
     /// `(deg_u, deg_v)` of each patch.
@@ -403,7 +468,7 @@ impl PatchTable {
         &self.sharp_sides
     }
 
-    /// Bytes held by the rows.
+    /// Bytes held by the rows (the factored form without its expanded copy).
     pub fn heap_bytes(&self) -> usize {
         self.rows.heap_bytes() + 24 * self.constants.len() + 16 * self.shapes.len()
     }
@@ -415,20 +480,25 @@ impl PatchTable {
     /// When `points` has the wrong length, or a G^1 cap cannot be built for the moved points
     /// (the construction would then take another branch: rebuild the table).
     pub fn apply(&self, points: &[Point]) -> Result<PatchComplex> {
-        let vals = self.values(points)?;
-        let mut patches = self.linear_patches(&vals);
+        let (mut patches, data) = self.values(points)?;
         for (k, cap) in self.caps.iter().enumerate() {
-            let r = cap.data_row as usize;
-            let (hole, plane) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+            let r = self.data_index(cap);
+            let (hole, plane) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
             let built = ring::cap_in_plane(hole, cross(plane[0], plane[1]), cap.step.options)
                 .map_err(|e| cap_failed(k, cap, e))?;
             self.place_cap(k, cap, built.patches, &mut patches)?;
         }
-        Ok(self.complex_of(patches, &vals))
+        Ok(self.complex_of(patches, &data))
     }
 
-    /// The rows applied to `points` (plus the constants).
-    fn values(&self, points: &[Point]) -> Result<Vec<Point>> {
+    /// Where cap `cap`'s data start in the caps' data values.
+    fn data_index(&self, cap: &TableCap) -> usize {
+        (cap.data_row - self.first_row[self.num_patches()]) as usize
+    }
+
+    /// The rows applied to `points` (plus the constants): the patches (cap patches empty) and
+    /// the caps' data values.
+    fn values(&self, points: &[Point]) -> Result<(Vec<BezierPatch>, Vec<Point>)> {
         if points.len() != self.num_sources() {
             return Err(Error::InvalidArgument(format!(
                 "the table takes {} points, not {}",
@@ -436,31 +506,16 @@ impl PatchTable {
                 points.len()
             )));
         }
-        let mut vals = self.rows.apply(points);
+        if self.constants.is_empty() {
+            return Ok(self.rows.values(&self.layout(), points));
+        }
+        // constants come with expanded rows only (probed tables)
+        let mut vals = self.rows().apply(points);
         for (v, c) in vals.iter_mut().zip(&self.constants) {
             *v = crate::geom::add(*v, *c);
         }
-        Ok(vals)
-    }
-
-    /// The patches whose coefficients are rows (cap patches left empty).
-    fn linear_patches(&self, vals: &[Point]) -> Vec<BezierPatch> {
-        (0..self.num_patches())
-            .map(|p| {
-                let (du, dv) = self.shapes[p];
-                let cps = if self.in_cap[p] {
-                    Vec::new()
-                } else {
-                    let r = self.first_row[p] as usize;
-                    vals[r..r + ((du + 1) * (dv + 1)) as usize].to_vec()
-                };
-                BezierPatch {
-                    deg_u: du as usize,
-                    deg_v: dv as usize,
-                    cps,
-                }
-            })
-            .collect()
+        let (patches, data0) = rows::expanded_patches(&self.layout(), &vals);
+        Ok((patches, vals[data0..].to_vec()))
     }
 
     /// Puts the patches of cap `k` in place, checking their degrees against the table's.
@@ -493,13 +548,13 @@ impl PatchTable {
 
     /// The complex of the patches with the table's provenance, domains, sharp sides and caps
     /// (their data from `vals`).
-    fn complex_of(&self, patches: Vec<BezierPatch>, vals: &[Point]) -> PatchComplex {
+    fn complex_of(&self, patches: Vec<BezierPatch>, data: &[Point]) -> PatchComplex {
         let caps = self
             .caps
             .iter()
             .map(|cap| {
-                let r = cap.data_row as usize;
-                let (hole, plane) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+                let r = self.data_index(cap);
+                let (hole, plane) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
                 CapStep {
                     hole,
                     plane,
@@ -550,11 +605,10 @@ impl PatchTable {
                     p
                 })
                 .collect();
-            let vals = self.rows.apply(&pts);
-            let mut patches = self.linear_patches(&vals);
+            let (mut patches, data) = self.rows.values(&self.layout(), &pts);
             for (k, cap) in self.caps.iter().enumerate() {
-                let r = cap.data_row as usize;
-                let (mut hole, _) = hole_from(&vals[r..r + cap.data_len()], &cap.shape());
+                let r = self.data_index(cap);
+                let (mut hole, _) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
                 hole.tangents = ring::data_tangents(&hole)?;
                 let (layout, degrees) = hole.layout()?;
                 let map = cap_map(hole.valence(), layout, degrees, cap.degree, cap.centre)?;
@@ -568,6 +622,21 @@ impl PatchTable {
             }
         }
         Ok(out)
+    }
+}
+
+impl PartialEq for PatchTable {
+    fn eq(&self, other: &PatchTable) -> bool {
+        self.rows() == other.rows()
+            && self.shapes == other.shapes
+            && self.first_row == other.first_row
+            && self.in_cap == other.in_cap
+            && self.caps == other.caps
+            && self.constants == other.constants
+            && self.provenance == other.provenance
+            && self.domains == other.domains
+            && self.pieces == other.pieces
+            && self.sharp_sides == other.sharp_sides
     }
 }
 

@@ -51,6 +51,8 @@
 
 use crate::error::{Error, Result};
 use crate::geom::{Point, axpy, scale};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The largest number of pieces per sector side of a [`Layout::Split`] hole (the cap map grows
 /// like `(n m^2 d^2)^3`).
@@ -215,7 +217,7 @@ impl Hole {
     pub fn to_quad_layout(&self) -> Result<QuadHole> {
         let (layout, deg) = self.layout()?;
         let data = self.data();
-        let conv = Conversion::new(self.valence(), layout, deg);
+        let conv = Conversion::cached(self.valence(), layout, deg);
         let q = conv.apply(&data);
         let segs = 2 * layout.pieces();
         let per = 2 * segs * (conv.degree + 1);
@@ -293,6 +295,23 @@ pub(crate) fn collocation_inverse(d: usize) -> nalgebra::DMatrix<f64> {
 }
 
 impl Conversion {
+    /// [`Conversion::new`], built once per process and shape and shared (it depends on the
+    /// shape only; every cap of a complex at one valence uses the same).
+    pub(crate) fn cached(n: usize, layout: Layout, deg: Degrees) -> Arc<Conversion> {
+        type Cache = Mutex<HashMap<(usize, Layout, Degrees), Arc<Conversion>>>;
+        static CACHE: OnceLock<Cache> = OnceLock::new();
+        let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+        let key = (n, layout, deg);
+        if let Some(c) = cache.lock().ok().and_then(|m| m.get(&key).cloned()) {
+            return c;
+        }
+        let c = Arc::new(Conversion::new(n, layout, deg));
+        if let Ok(mut m) = cache.lock() {
+            m.insert(key, c.clone());
+        }
+        c
+    }
+
     pub(crate) fn new(n: usize, layout: Layout, deg: Degrees) -> Conversion {
         let (db, dc) = (deg.boundary, deg.cross);
         let seg_len = db + dc + 2;

@@ -378,7 +378,7 @@ pub fn lowest_certified_degree(
     } else {
         centre
     };
-    let lo = Conversion::new(n, layout, degrees).degree.max(3);
+    let lo = Conversion::cached(n, layout, degrees).degree.max(3);
     for d in lo..=lo + 4 {
         if cap_map(n, layout, degrees, d, centre)?.is_certified() {
             return Ok(d);

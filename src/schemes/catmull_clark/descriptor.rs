@@ -74,7 +74,7 @@ impl PatchRules for CcPatches {
         &self,
         mesh: &PolyMesh,
         opts: ComplexOptions,
-    ) -> Result<Option<(SurfaceOutput, crate::stencil::StencilTable)>> {
+    ) -> Result<Option<(SurfaceOutput, crate::stencil::LayeredTable)>> {
         let (complex, rows) = super::surface::catmull_clark_tracked(mesh, opts, self.subd)?;
         Ok(rows.map(|r| (SurfaceOutput::plain(complex), r)))
     }

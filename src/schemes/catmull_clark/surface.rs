@@ -59,7 +59,7 @@ use crate::schemes::catmull_clark::crease::adaptive::{
 };
 use crate::stencil::Stencil;
 use std::collections::{HashMap, HashSet};
-pub use track::catmull_clark_tracked;
+pub use track::{bspline_patch, catmull_clark_tracked};
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the
@@ -134,7 +134,10 @@ pub struct CcRules<'a> {
 
 impl AdaptiveRules for CcRules<'_> {
     type Level = Level;
-    type Curves = Curves<4>;
+    /// The faces emitted at the level and their patches: the fill reads the edge curves it
+    /// shares with them off these patches ([`fill`]), so a level that needs no fill records
+    /// nothing per patch but the pair.
+    type Curves = Vec<(u32, u32)>;
 
     fn start(&self, mesh: &PolyMesh, opts: ComplexOptions) -> Result<Level> {
         if opts.rings == 0 && !mesh.is_all_quads() {
@@ -145,9 +148,6 @@ impl AdaptiveRules for CcRules<'_> {
             )));
         }
         let mut level = Level::input(mesh, self.subd.as_ref());
-        if self.track.is_some() {
-            level.rows = Some(crate::stencil::StencilTable::identity(mesh.num_vertices()));
-        }
         // Catmull-Clark splits a triangle into three quads like any n-gon: its domain is the
         // 3-gon's strip of quad sub-faces, not Loop's barycentric triangle
         let base = &mut level.base;
@@ -157,7 +157,7 @@ impl AdaptiveRules for CcRules<'_> {
         Ok(level)
     }
 
-    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
+    fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Vec<(u32, u32)>>) -> bool {
         if is_hole(level, f as usize) {
             return true;
         }
@@ -166,9 +166,9 @@ impl AdaptiveRules for CcRules<'_> {
         };
         let p = net_patch(level, &net);
         if let Some(t) = &self.track {
-            t.borrow_mut().regular(to.out.len(), level, &net);
+            t.borrow_mut().regular(to.out.len(), &net);
         }
-        record_curves(&level.mesh, f as usize, &p, to.curves);
+        to.curves.push((f, to.out.len() as u32));
         to.out.push(p, prov);
         sharp::mark_sides(level, f as usize, to.out);
         true
@@ -213,12 +213,16 @@ impl AdaptiveRules for CcRules<'_> {
             && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
     }
 
-    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
+    fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Vec<(u32, u32)>>) -> Result<()> {
         fill(level, marked, to.curves, to.out)
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-        refine_around(level, marked)
+        let mut next = refine_around(level, marked, self.track.is_some())?;
+        if let (Some(t), Some(step)) = (&self.track, next.rows.take()) {
+            t.borrow_mut().level(step);
+        }
+        Ok(next)
     }
 }
 
@@ -380,12 +384,12 @@ fn regular_net(level: &Level, f: usize) -> Option<Vec<Stencil>> {
 
 /// The bi-3 patch of a B-spline net of the level.
 fn net_patch(level: &Level, net: &[Stencil]) -> BezierPatch {
-    let pts: Vec<Point> = net
-        .iter()
-        .map(|s| s.apply(level.mesh.positions()))
-        .collect();
-    let m3 = crate::bezier::convert::cubic_bspline_matrix();
-    crate::bezier::convert::tensor_apply(m3, m3, &pts)
+    let pos = level.mesh.positions();
+    let mut pts = [[0.0; 3]; 16];
+    for (p, s) in pts.iter_mut().zip(net) {
+        *p = s.apply(pos);
+    }
+    bspline_patch(&pts)
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
@@ -430,8 +434,9 @@ fn record_curves(m: &PolyMesh, f: usize, p: &BezierPatch, curves: &mut Curves<4>
 }
 
 /// Refines the marked faces and two rings of faces around them; returns the next level, whose
-/// active faces are the children of the marked faces.
-fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
+/// active faces are the children of the marked faces (with its stencils over `level`'s points
+/// in [`Level::rows`] when `keep`).
+fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Level> {
     let m = &level.mesh;
     let nf = m.num_faces();
     // Faces within two vertex-rings of the marked faces.
@@ -534,7 +539,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
-    let rows = level.rows.as_ref().map(|r| table.compose(r));
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, &vid, &eid);
     let mut active = Vec::new();
@@ -558,19 +562,22 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             active,
         },
         sharp,
-        rows,
+        rows: keep.then_some(table),
     })
 }
 
-/// The Hermite-Coons fill of the marked faces of the last level.
+/// The Hermite-Coons fill of the marked faces of the last level; `emitted` lists the level's
+/// emitted faces and their patches.
 fn fill(
     level: &Level,
     marked: &[(u32, Tag)],
-    curves: &mut HashMap<(u32, u32), [Point; 4]>,
+    emitted: &[(u32, u32)],
     out: &mut PatchComplex,
 ) -> Result<()> {
     let m = &level.mesh;
     let mut jets = jets::Jets::new(m);
+    let patch_of: HashMap<u32, u32> = emitted.iter().copied().collect();
+    let mut curves: Curves<4> = HashMap::new();
     for &(f, tag) in marked {
         let face = m.face(f as usize);
         if face.len() != 4 {
@@ -583,6 +590,15 @@ fn fill(
         for k in 0..4 {
             let (a, b) = (face[k], face[(k + 1) % 4]);
             let key = (a.min(b), a.max(b));
+            // an edge shared with an emitted patch takes that patch's side (the face across is
+            // the only emitted face at the edge)
+            if !curves.contains_key(&key)
+                && let Some(t) = m.he_twin(m.face_halfedge(f as usize) + k as u32)
+                && let Some(&p) = patch_of.get(&m.he_face(t))
+            {
+                let g = m.he_face(t) as usize;
+                record_curves(m, g, &out.patches[p as usize], &mut curves);
+            }
             let c = *curves.entry(key).or_insert_with(|| {
                 let (lo, hi) = key;
                 if let Some(c) = crease_curve(level, lo, hi) {

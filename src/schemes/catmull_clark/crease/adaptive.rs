@@ -36,8 +36,9 @@ pub struct Level {
     pub(crate) base: MeshLevel,
     /// The level's sharp features, when the net has them.
     pub(crate) sharp: Option<Features>,
-    /// When the construction tracks its patch table: the row of each point of the level over
-    /// the input net's points (identity at level 0, composed with each refinement's stencils).
+    /// When the construction tracks its patch table: the stencils of the level's points over
+    /// the previous level's points (the refinement's own table; `None` at level 0), taken by
+    /// the tracker.
     pub(crate) rows: Option<crate::stencil::StencilTable>,
 }
 

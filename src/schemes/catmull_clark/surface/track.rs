@@ -1,52 +1,57 @@
-//! Catmull-Clark's patch stencil table tracked beside the points (issue 17): the table of
+//! Catmull-Clark's patch stencil table recorded beside the points (issue 17): the table of
 //! [`crate::surface::table`] at the cost of one construction, instead of one construction per
 //! colour class of the probe.
 //!
-//! Every point of a level carries its row over the input net's points
-//! ([`Level::rows`](super::Level): the identity at level 0, each refinement's own stencil table
-//! composed with its parent's rows in `refine_around`). An emitted regular or ring patch's rows
-//! are the fixed B-spline to Bezier conversion ([`tensor_stencils`], the stencils behind
-//! [`crate::bezier::convert::tensor_apply`]) of its net's stencils, composed with the level's
-//! rows. A G^1 cap's data (centre, tangent plane, hole segments) are the limit and tangent
-//! stencils and the segments of ring patches, whose weights are read off the segment code
+//! The rows are kept factored, as OpenSubdiv's adaptive patch tables are, in a
+//! [`LayeredTable`]: each refinement level is the stencil table `refine_around` applied to
+//! compute its points (kept, not composed with its parent's rows), and an emitted regular or
+//! ring patch records the 16 stencils of its bi-3 B-spline net over its level's points (a
+//! gather of indices, ghost points at boundaries and creases), not its Bezier coefficients: the
+//! fixed B-spline to Bezier conversion is applied to the net's points by the table
+//! ([`crate::surface::table::PatchTable::apply`], the one `tensor_apply`). A G^1 cap's data
+//! (centre, tangent plane, hole segments) are the limit and tangent stencils and the segments
+//! of ring patches over the level's points, whose weights are read off the segment code
 //! ([`super::g1::hole_rows`]). The steps not tracked (the Hermite-Coons fill, the caps of the
 //! cap schemes) leave their patches without rows: [`catmull_clark_tracked`] then returns no
 //! table and the caller probes the construction instead.
 
 use super::{CcRules, Level, g1};
+use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
 use crate::error::Result;
+use crate::geom::Point;
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, Tag, by_element};
 use crate::mesh::PolyMesh;
 use crate::mesh::tags::SubdOptions;
 use crate::schemes::catmull_clark::LimitStencils;
-use crate::stencil::{Stencil, StencilTable};
+use crate::stencil::{LayeredTable, Stencil, StencilTable};
 use std::cell::RefCell;
 use std::sync::OnceLock;
 
 /// The rows recorded while the complex is built.
 pub(crate) struct Tracker {
-    /// Rows of the coefficients of the patches so far, in the complex's order (empty rows for
+    /// The levels and, per patch so far in the complex's order, its net's 16 rows (none for
     /// G^1 cap patches).
-    coef: StencilTable,
-    /// The patches whose rows `coef` holds.
+    table: LayeredTable,
+    /// The patches whose rows `table` holds.
     patches: usize,
     /// Whether a patch was pushed without rows (an untracked step).
     broken: bool,
-    /// The caps' data rows, in the complex's cap order.
-    caps: StencilTable,
+    /// The caps' data rows over the stacked points, in the complex's cap order (appended to
+    /// the table at the end): entries and the end of each row.
+    cap_entries: Vec<(u32, f64)>,
+    cap_ends: Vec<usize>,
     /// Caps whose data were tracked.
     tracked_caps: usize,
-    /// Reusable buffers.
-    terms: Vec<(u32, f64)>,
+    /// Reusable buffer.
     scratch: Vec<(u32, f64)>,
 }
 
 /// The Catmull-Clark complex of [`super::catmull_clark_complex_with`] and, when every step it
-/// took is tracked, its patch table's rows (one per coefficient of each patch, empty for G^1 cap
-/// patches, then the caps' data rows: the layout of
-/// [`crate::surface::table::PatchTable::from_parts`]).
+/// took is tracked, its patch table's rows in factored form (16 net rows per bi-3 patch, none
+/// for G^1 cap patches, then the caps' data rows: the layout of
+/// [`crate::surface::table::PatchTable::from_layered`]).
 ///
 /// # Errors
 /// As [`super::catmull_clark_complex_with`].
@@ -54,7 +59,7 @@ pub fn catmull_clark_tracked(
     mesh: &PolyMesh,
     opts: ComplexOptions,
     subd: SubdOptions,
-) -> Result<(PatchComplex, Option<StencilTable>)> {
+) -> Result<(PatchComplex, Option<LayeredTable>)> {
     let rules = CcRules {
         caps: None,
         opts,
@@ -75,6 +80,19 @@ fn conversion() -> &'static [Stencil] {
         let net: Vec<usize> = (0..16).collect();
         crate::bezier::convert::tensor_stencils(m3, m3, &net)
     })
+}
+
+/// The bi-3 Bezier patch of a uniform bi-3 B-spline net's 16 points (`net[k * 4 + l]`, `k`
+/// along `u`): the conversion's stencils ([`crate::bezier::convert::tensor_stencils`]) applied,
+/// which are the products of [`crate::bezier::convert::tensor_apply`] summed in the same order
+/// (bit-identical results) without its loops over the zeros of the matrix. The hot path of every
+/// regular patch of the construction and of a factored patch table's apply.
+///
+/// # Panics
+/// When `net` has fewer than 16 points.
+pub fn bspline_patch(net: &[Point]) -> BezierPatch {
+    let cps = conversion().iter().map(|s| s.apply(net)).collect();
+    BezierPatch::new(3, 3, cps)
 }
 
 /// The coefficient rows of the patch of a B-spline net, over the level's points.
@@ -99,14 +117,19 @@ impl Tracker {
     /// No rows yet, over `n` input points.
     pub(crate) fn new(n: usize) -> Tracker {
         Tracker {
-            coef: StencilTable::with_capacity(n, 0, 0),
+            table: LayeredTable::new(n),
             patches: 0,
             broken: false,
-            caps: StencilTable::with_capacity(n, 0, 0),
+            cap_entries: Vec::new(),
+            cap_ends: Vec::new(),
             tracked_caps: 0,
-            terms: Vec::new(),
             scratch: Vec::new(),
         }
+    }
+
+    /// The next level, `step` over the points of the level before.
+    pub(crate) fn level(&mut self, step: StencilTable) {
+        self.table.push_level(step);
     }
 
     /// Whether patch `p` is the next one in order (else a step before it was not tracked).
@@ -117,26 +140,19 @@ impl Tracker {
 
     /// Records the rows of the regular patch of the B-spline net `net` (stencils over the
     /// level's points), pushed as patch `p`.
-    pub(crate) fn regular(&mut self, p: usize, level: &Level, net: &[Stencil]) {
-        let Some(rows) = &level.rows else { return };
+    pub(crate) fn regular(&mut self, p: usize, net: &[Stencil]) {
         if !self.next(p) {
             return;
         }
         self.patches += 1;
-        for c in conversion() {
-            self.terms.clear();
-            for &(k, w) in c.entries() {
-                let s = &net[k as usize];
-                self.terms
-                    .extend(s.entries().iter().map(|&(v, x)| (v, w * x)));
-            }
-            self.coef
-                .push_combination(rows, &self.terms, &mut self.scratch);
+        for s in net {
+            self.scratch.extend_from_slice(s.entries());
+            self.table.push_level_row(&mut self.scratch);
         }
     }
 
     /// Records the data rows of the G^1 caps `out.caps[first..]` that [`g1::g1_caps`] just
-    /// built from the marked faces `marked` of `level`.
+    /// built from the marked faces `marked` of `level` (the last level pushed).
     pub(crate) fn caps(
         &mut self,
         level: &Level,
@@ -144,13 +160,13 @@ impl Tracker {
         out: &PatchComplex,
         first: usize,
     ) {
-        let Some(rows) = &level.rows else { return };
         if self.broken || self.tracked_caps != first {
             return;
         }
         let groups = by_element(marked);
         let limits = LimitStencils::new(&level.mesh);
         let patch_rows = |g: usize| super::regular_net(level, g).map(|net| patch_terms(&net));
+        let shift = self.table.last_level_offset();
         for step in &out.caps[first..] {
             let Provenance::Cap { element, .. } = out.provenance[step.first as usize] else {
                 return;
@@ -165,12 +181,9 @@ impl Tracker {
                 return;
             };
             for t in &data {
-                self.caps.push_combination(rows, t, &mut self.scratch);
-            }
-            for p in step.first..step.first + step.count {
-                for _ in 0..out.patches[p as usize].cps.len() {
-                    self.coef.push_pairs(&[]);
-                }
+                self.cap_entries
+                    .extend(t.iter().map(|&(v, w)| (v + shift, w)));
+                self.cap_ends.push(self.cap_entries.len());
             }
             self.patches += step.count as usize;
             self.tracked_caps += 1;
@@ -178,11 +191,17 @@ impl Tracker {
     }
 
     /// The table's rows for the complex `c`, or `None` when some patch or cap was not tracked.
-    fn finish(mut self, c: &PatchComplex) -> Option<StencilTable> {
+    fn finish(mut self, c: &PatchComplex) -> Option<LayeredTable> {
         if self.broken || self.patches != c.len() || self.tracked_caps != c.caps.len() {
             return None;
         }
-        self.coef.extend_rows(&self.caps);
-        Some(self.coef)
+        let mut start = 0;
+        for &end in &self.cap_ends {
+            self.scratch
+                .extend_from_slice(&self.cap_entries[start..end]);
+            self.table.push_row(&mut self.scratch);
+            start = end;
+        }
+        Some(self.table)
     }
 }
