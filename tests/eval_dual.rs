@@ -16,13 +16,12 @@ use fairsub::schemes::registry::{ids, registry};
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, limit_along, toward_ev};
+use support::{gallery, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{all_agree, all_continuous, at_interior_vertex};
 #[path = "eval/ratios.rs"]
 mod ratios;
-use ratios::error_ratios;
 
 fn dual_schemes() -> [&'static str; 3] {
     [
@@ -73,8 +72,8 @@ fn lambda(scheme: &str, n: usize) -> f64 {
         .lambda
 }
 
-/// Errors of the limit evaluation at `2^-k` (k = 2..=12) along `at`, relative to the point
-/// at `at(0)`; asserts the ratios of successive errors are `lambda` within 10% from k = 6.
+/// The limit evaluation's centre along `at` after asserting the error ratios are `lambda`
+/// ([`ratios::converges`] with 12 rings at least).
 fn converges(
     scheme: &str,
     mesh: &PolyMesh,
@@ -82,17 +81,7 @@ fn converges(
     lambda: f64,
     what: &str,
 ) -> fairsub::geom::Point {
-    let evals = limit_along(scheme, mesh, &at, 12);
-    let (centre, ratios) = error_ratios(&evals);
-    eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
-    for (k, &ratio) in ratios.iter().enumerate().skip(4) {
-        assert!(
-            (ratio / lambda - 1.0).abs() < 0.1,
-            "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
-            k + 2
-        );
-    }
-    centre
+    ratios::converges(scheme, mesh, at, lambda, 12, what).0
 }
 
 #[test]
