@@ -9,10 +9,9 @@
 //! rate of the scheme's subdominant eigenvalue. Also Catmull-Clark's triangles, which share the
 //! dual schemes' 3-gon domain.
 
-use fairsub::analysis::report;
 use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
-use fairsub::schemes::registry::{ids, registry};
+use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
@@ -65,11 +64,7 @@ fn lambda(scheme: &str, n: usize) -> f64 {
     if scheme == ids::DOO_SABIN_CC.name() {
         return 0.5 + (2.0 * std::f64::consts::PI / n as f64).cos() / 4.0;
     }
-    let spec = registry().lookup(scheme).expect("scheme");
-    report::analyze(&spec, n, false)
-        .expect("analysis")
-        .spectrum
-        .lambda
+    ratios::lambda(scheme, n)
 }
 
 /// The limit evaluation's centre along `at` after asserting the error ratios are `lambda`

@@ -7,17 +7,16 @@
 //! dyadic grid of every face, convergence to the limit point at the scheme's `lambda` per ring;
 //! and `bi2-mixed` against `pgs` on a DS-net, where both have the same rings.
 
-use fairsub::analysis::report;
 use fairsub::bezier::complex::Provenance;
 use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::bi2::mixed::{Bi2Element, elements, fig15_like_net};
 use fairsub::schemes::bi2::pgs::ds_net;
-use fairsub::schemes::registry::{ids, registry};
+use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, limit_along, tmp, toward_ev, written_from};
+use support::{gallery, tmp, toward_ev, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{
@@ -26,20 +25,10 @@ use faces::{
 };
 #[path = "eval/ratios.rs"]
 mod ratios;
-use ratios::error_ratios;
+use ratios::lambda;
 
-/// `fairsub analyze`'s subdominant eigenvalue of `scheme` at valence `n`.
-fn lambda(scheme: &str, n: usize) -> f64 {
-    let spec = registry().lookup(scheme).expect("scheme");
-    report::analyze(&spec, n, false)
-        .expect("analysis")
-        .spectrum
-        .lambda
-}
-
-/// Errors of the limit evaluation at `2^-k` (k = 2..=12) along `at` relative to the point at
-/// `at(0)`; asserts that the ratios of successive errors are `lambda` within 10% from k = 6
-/// and returns them.
+/// The error ratios of the limit evaluation along `at` ([`ratios::converges`]: asserted to
+/// be `lambda` within 10% from k = 6).
 fn converges(
     scheme: &str,
     mesh: &PolyMesh,
@@ -48,17 +37,7 @@ fn converges(
     min_rings: usize,
     what: &str,
 ) -> Vec<f64> {
-    let evals = limit_along(scheme, mesh, &at, min_rings);
-    let (_, ratios) = error_ratios(&evals);
-    eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
-    for (k, ratio) in ratios.iter().enumerate().skip(4) {
-        assert!(
-            (ratio / lambda - 1.0).abs() < 0.1,
-            "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
-            k + 3
-        );
-    }
-    ratios
+    ratios::converges(scheme, mesh, at, lambda, min_rings, what).1
 }
 
 #[test]

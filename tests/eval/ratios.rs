@@ -4,6 +4,18 @@
 use fairsub::geom::{Point, norm, sub};
 use fairsub::surface::eval::Evaluation;
 
+/// `fairsub analyze`'s subdominant eigenvalue of `scheme` at valence `n`.
+#[allow(dead_code)]
+pub fn lambda(scheme: &str, n: usize) -> f64 {
+    let spec = fairsub::schemes::registry::registry()
+        .lookup(scheme)
+        .expect("scheme");
+    fairsub::analysis::report::analyze(&spec, n, false)
+        .expect("analysis")
+        .spectrum
+        .lambda
+}
+
 /// The last evaluation's point (the centre) and the ratios of successive distances of the
 /// other evaluations to it.
 pub fn error_ratios(evals: &[Evaluation]) -> (Point, Vec<f64>) {
