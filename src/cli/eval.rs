@@ -76,24 +76,37 @@ fn points(a: &Args) -> Result<Vec<(u32, f64, f64)>> {
 /// Runs `fairsub eval`.
 pub fn run(a: Args) -> Result<()> {
     let spec = spec::resolve(&a.scheme, &SchemeOptions::default())?;
-    let pts = points(&a)?;
-    let mesh = super::load_net(&a.net)?.mesh;
-    let build = |rings: usize, fill: bool| -> Result<Surface> {
-        super::limits::check_complex(&spec, &mesh, rings, fill)?;
-        Surface::build(&spec, &mesh, ComplexOptions { rings, fill })
+    let build = |mesh: &crate::mesh::PolyMesh, rings: usize, fill: bool| -> Result<Surface> {
+        super::limits::check_complex(&spec, mesh, rings, fill)?;
+        Surface::build(&spec, mesh, ComplexOptions { rings, fill })
     };
+    // The points are read while the net is loaded and, with --rings, its surface is built
+    // (both in parallel: the file of 10^6 points costs about as much as the construction);
+    // a bad point is reported before an error of the net.
+    let (pts, surface) = rayon::join(
+        || points(&a),
+        || -> Result<_> {
+            let mesh = super::load_net(&a.net)?.mesh;
+            let s = match a.rings {
+                Some(k) => Some(build(&mesh, k, !a.no_fill)?),
+                None => None,
+            };
+            Ok((mesh, s))
+        },
+    );
+    let pts = pts?;
+    let (mesh, surface) = surface?;
     // every point is located before the first line is written (an error writes nothing);
     // the evaluations are then computed and formatted block by block, never all held
-    let s = match a.rings {
-        Some(k) => {
-            let s = build(k, !a.no_fill)?;
+    let s = match surface {
+        Some(s) => {
             if let Some((i, e)) = s.first_unlocated(&pts) {
                 return Err(at_point(e, i, pts.len()));
             }
             s
         }
         None => {
-            let (s, rings) = limit_surface(&pts, &mut |k| build(k, true))?;
+            let (s, rings) = limit_surface(&pts, &mut |k| build(&mesh, k, true))?;
             eprintln!("limit surface: {rings} rings");
             s
         }
@@ -102,12 +115,7 @@ pub fn run(a: Args) -> Result<()> {
         let (f, u, v) = pts[i];
         s.evaluate(f, u, v).map_err(|e| at_point(e, i, pts.len()))
     };
-    let mut write = |block: &[u8]| -> Result<()> {
-        let block = std::str::from_utf8(block)
-            .map_err(|e| Error::InvalidArgument(format!("eval output: {e}")))?;
-        super::say_text(block);
-        Ok(())
-    };
+    let mut write = super::say_bytes;
     if a.json {
         text::write_json(pts.len(), &eval, &mut write)
     } else {

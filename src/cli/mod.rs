@@ -52,13 +52,30 @@ pub(crate) fn say_line(line: String) {
     });
 }
 
-/// Writes a block of complete lines (each ending in a newline) to this thread's sink: one write
-/// for many lines (`fairsub eval`'s 10^6 points).
-pub(crate) fn say_text(text: &str) {
+/// Writes a block of complete lines of ASCII or UTF-8 text (each ending in a newline) to this
+/// thread's sink: one write for many lines (`fairsub eval`'s 10^6 points), no check of the
+/// text on the way to standard output.
+///
+/// # Errors
+/// [`crate::Error::Io`] when standard output fails (a closed pipe: `fairsub eval ... | head`),
+/// [`crate::Error::InvalidOutput`] for text that is not UTF-8 while reports are collected.
+pub(crate) fn say_bytes(text: &[u8]) -> crate::Result<()> {
+    use std::io::Write;
     SINK.with(|s| match s.borrow_mut().as_mut() {
-        Some(buf) => buf.push_str(text),
-        None => print!("{text}"),
-    });
+        Some(buf) => {
+            let text = std::str::from_utf8(text)
+                .map_err(|e| crate::Error::InvalidOutput(format!("report text: {e}")))?;
+            buf.push_str(text);
+            Ok(())
+        }
+        None => std::io::stdout()
+            .lock()
+            .write_all(text)
+            .map_err(|source| crate::Error::Io {
+                path: "standard output".into(),
+                source,
+            }),
+    })
 }
 
 /// Runs `f` with the reports of commands collected instead of printed; returns them.

@@ -21,9 +21,13 @@ pub type Point = (u32, f64, f64);
 
 /// Appends `x` as the shortest text that reads back to the same `f64` (`NaN`, `inf`, `-inf`
 /// for the non-finite values, which Rust's and Python's float parsers read).
+/// Returns the text's length.
 #[inline]
-fn num(out: &mut Vec<u8>, x: f64) {
-    out.extend_from_slice(zmij::Buffer::new().format(x).as_bytes());
+fn num(out: &mut Vec<u8>, x: f64) -> usize {
+    let mut buf = zmij::Buffer::new();
+    let text = buf.format(x).as_bytes();
+    out.extend_from_slice(text);
+    text.len()
 }
 
 /// Appends an unsigned integer.
@@ -55,15 +59,26 @@ fn vec3(out: &mut Vec<u8>, p: [f64; 3]) {
 pub fn line(out: &mut Vec<u8>, e: &Evaluation) {
     int(out, u64::from(e.face));
     out.push(b':');
+    let u_start = out.len();
     num(out, e.u);
     out.push(b':');
-    num(out, e.v);
+    let v_len = num(out, e.v);
+    let (u_end, v_start, v_end) = (out.len() - v_len - 1, out.len() - v_len, out.len());
     out.extend_from_slice(b" patch ");
     int(out, e.patch as u64);
     out.extend_from_slice(b" at (");
-    num(out, e.patch_uv[0]);
+    // a patch covering its face whole has the face's parameters: their text again
+    if e.patch_uv[0].to_bits() == e.u.to_bits() {
+        out.extend_from_within(u_start..u_end);
+    } else {
+        num(out, e.patch_uv[0]);
+    }
     out.extend_from_slice(b", ");
-    num(out, e.patch_uv[1]);
+    if e.patch_uv[1].to_bits() == e.v.to_bits() {
+        out.extend_from_within(v_start..v_end);
+    } else {
+        num(out, e.patch_uv[1]);
+    }
     out.extend_from_slice(b") point");
     vec3(out, e.point);
     out.extend_from_slice(b" normal");
@@ -105,24 +120,28 @@ type FormatFn = dyn Fn(&mut Vec<u8>, usize, &Evaluation) -> Result<()> + Sync;
 /// text, in order, to `write`; at most [`AHEAD`] blocks are held at once. The first error
 /// (by block) stops it.
 fn blocks(n: usize, eval: &EvalFn, format: &FormatFn, write: &mut WriteFn) -> Result<()> {
-    let mut pending: Vec<Result<Vec<u8>>> = Vec::new();
+    // the block buffers are allocated once and reused by every group (fresh megabyte buffers
+    // per block cost a page fault per page and an unmapping per block)
+    let mut texts: Vec<Vec<u8>> = vec![Vec::new(); n.div_ceil(BLOCK).min(AHEAD)];
     for group in (0..n).step_by(BLOCK * AHEAD) {
         let end = (group + BLOCK * AHEAD).min(n);
-        (group..end)
-            .step_by(BLOCK)
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .map(|first| {
+        let blocks = (end - group).div_ceil(BLOCK);
+        texts[..blocks]
+            .par_iter_mut()
+            .enumerate()
+            .map(|(b, text)| {
+                let first = group + b * BLOCK;
                 let last = (first + BLOCK).min(end);
-                let mut text = Vec::with_capacity((last - first) * 300);
+                text.clear();
+                text.reserve((last - first) * 300);
                 for i in first..last {
-                    format(&mut text, i, &eval(i)?)?;
+                    format(text, i, &eval(i)?)?;
                 }
-                Ok(text)
+                Ok(())
             })
-            .collect_into_vec(&mut pending);
-        for text in pending.drain(..) {
-            write(&text?)?;
+            .collect::<Result<()>>()?;
+        for text in &texts[..blocks] {
+            write(text)?;
         }
     }
     Ok(())
@@ -167,23 +186,22 @@ pub fn parse_point(text: &str, what: &dyn Fn() -> String) -> Result<Point> {
         Error::InvalidArgument(format!("{}: '{text}' is not a point F:U:V ({why})", what()))
     };
     // the three fields without collecting them (10^6 lines of `--at-file`)
-    let mut parts: [&str; 3] = [""; 3];
-    let mut count = 0;
-    let fields: &mut dyn Iterator<Item = &str> = if text.contains(':') {
-        &mut text.split(':').map(str::trim)
-    } else {
-        &mut text.split_whitespace()
-    };
-    for field in fields {
-        if count < 3 {
-            parts[count] = field;
+    let fields = match text.split_once(':') {
+        Some((f, rest)) => rest
+            .split_once(':')
+            .filter(|(_, v)| !v.contains(':'))
+            .map(|(u, v)| [f.trim(), u.trim(), v.trim()]),
+        None => {
+            let mut words = text.split_whitespace();
+            match (words.next(), words.next(), words.next(), words.next()) {
+                (Some(f), Some(u), Some(v), None) => Some([f, u, v]),
+                _ => None,
+            }
         }
-        count += 1;
-    }
-    if count != 3 {
+    };
+    let Some([f, u, v]) = fields else {
         return Err(bad("three fields expected"));
-    }
-    let [f, u, v] = parts;
+    };
     let f = f
         .parse::<u32>()
         .map_err(|_| bad("the face is not a non-negative integer"))?;
@@ -192,6 +210,32 @@ pub fn parse_point(text: &str, what: &dyn Fn() -> String) -> Result<Point> {
         return Err(bad("u and v must be finite numbers"));
     };
     Ok((f, u, v))
+}
+
+/// A line `F:U:V` of digits, signs, points and exponents only (what programs write): the
+/// point [`parse_point`] reads from it, found in one pass over its bytes; `None` for any other
+/// line (comments, blanks, spaces, other characters, errors), which takes the general path.
+fn plain_point(line: &str) -> Option<Point> {
+    let mut colons = [0usize; 2];
+    let mut count = 0;
+    for (i, &b) in line.as_bytes().iter().enumerate() {
+        match b {
+            b':' if count < 2 => {
+                colons[count] = i;
+                count += 1;
+            }
+            b'0'..=b'9' | b'.' | b'-' | b'+' | b'e' | b'E' => {}
+            _ => return None,
+        }
+    }
+    if count != 2 {
+        return None;
+    }
+    // ASCII cuts, so the slices are on character boundaries
+    let f = line[..colons[0]].parse::<u32>().ok()?;
+    let u = line[colons[0] + 1..colons[1]].parse::<f64>().ok()?;
+    let v = line[colons[1] + 1..].parse::<f64>().ok()?;
+    (u.is_finite() && v.is_finite()).then_some((f, u, v))
 }
 
 /// The content of a line of a points file: without its `#` comment, trimmed.
@@ -223,6 +267,10 @@ pub fn parse_file(text: &str, path: &Path) -> Result<Vec<Point>> {
             let mut lines = 0;
             for (k, line) in text[w[0]..w[1]].lines().enumerate() {
                 lines = k + 1;
+                if let Some(p) = plain_point(line) {
+                    pts.push(p);
+                    continue;
+                }
                 let line = content(line);
                 if line.is_empty() {
                     continue;
@@ -270,7 +318,12 @@ mod tests {
                     u: x / 7.0,
                     v: 1.0 / (x + 3.0),
                     patch: 3 * i as usize,
-                    patch_uv: [x.sin(), 1e-300 * x],
+                    // a third of the points on patches covering their face whole
+                    patch_uv: match i % 3 {
+                        0 => [x / 7.0, 1.0 / (x + 3.0)],
+                        1 => [x / 7.0, 1e-300 * x],
+                        _ => [x.sin(), 1e-300 * x],
+                    },
                     point: [x.cos(), -x * 1e17, 0.1 + x],
                     normal: [0.0, -0.0, 1.0],
                     gauss: if i % 5 == 0 { f64::NAN } else { x.sqrt() },
@@ -329,6 +382,36 @@ mod tests {
                 );
             }
             assert!(same(e.gauss, w[17]) && same(e.mean, w[19]), "{l}");
+        }
+    }
+
+    #[test]
+    fn plain_lines_read_as_the_general_parser_reads_them() {
+        for line in [
+            "0:0.5:0.25",
+            "12:1e-3:-0",
+            "7:+0.5:1E0",
+            "3:.5:5.",
+            "4294967295:1:0",
+            "4294967296:1:0",
+            "-1:0.5:0.5",
+            "1:0.5",
+            "1:0.5:0.5:0.5",
+            "1::0.5",
+            "1:e:0.5",
+            "1:1e999:0",
+            "1:--1:0",
+            "1.5:0:0",
+        ] {
+            let general = parse_point(line, &String::new).ok();
+            let plain = plain_point(line);
+            assert!(plain.is_none() || plain == general, "{line}");
+            assert_eq!(plain.is_some(), general.is_some(), "{line}");
+        }
+        // anything else (spaces, comments, carriage returns) takes the general path
+        for line in ["1 0.5 0.5", "1:0.5:0.5 # c", "1:0.5:0.5\r", " 1:0.5:0.5"] {
+            assert_eq!(plain_point(line), None, "{line}");
+            assert!(parse_point(content(line), &String::new).is_ok(), "{line}");
         }
     }
 
