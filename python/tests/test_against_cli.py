@@ -191,10 +191,12 @@ def _evaluate_equals_cli(cli, src, scheme, faces=None):
     assert np.array_equal(one["point"], mine["point"][0])
 
 
-def test_evaluate_refuses_schemes_without_domains():
-    s = fairsub.surface("gallery:prism-5", "polar-bi2", rings=2)
-    with pytest.raises(ValueError, match="eval of scheme polar-bi2 is not supported yet"):
-        s.evaluate([0], [0.5], [0.5])
+def test_evaluate_refuses_points_without_domains():
+    # polar-bi2 evaluates at poles; the TPS rings of a vertex that is not a pole carry no
+    # face domain
+    s = fairsub.surface("gallery:cnet-5-saddle", "polar-bi2", rings=2)
+    with pytest.raises(ValueError, match="no patch of the surface covers face 0"):
+        s.evaluate([0], [0.1], [0.1])
 
 
 def test_level_stencils_reproduce_the_refinement():

@@ -10,7 +10,9 @@
 //! cell in thirds (the 3 x 3 grid of the ternary schemes, or thirds of any dyadic cell), see
 //! the `thirds` submodule ([`Domain::third_child`], [`Domain::third`]); their maps have the
 //! coefficients `1/3`, rounded once per level. Adjustable TPS's levels split a cell 2 x 2 at a
-//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]).
+//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]). The radial rings of
+//! a pole (PolBS) lie in cells halved along one axis (the `halves` submodule,
+//! [`Domain::half_child`]).
 //!
 //! # The parameter domain of an input face
 //!
@@ -62,6 +64,14 @@
 //! extraordinary vertices) are children in thirds of the input faces. The layout is documented
 //! with the code in `crate::schemes::bi2::surface::thirds`.
 //!
+//! # Poles (PolBS)
+//!
+//! A pole's fan triangle `(pole, A, B)` is a collapsed quad `[0, 1]^2`: `(0, 0)` at `A` (the
+//! corner after the pole), `(1, 0)` at `B`, the side `v = 1` the pole; an `n`-gon cap turned
+//! into a pole keeps the strip `[0, n] x [0, 1]`, sub-face `i` the fan triangle at its edge
+//! `i -> i + 1`. Its radial rings lie in cells halved along one axis (the `halves` submodule,
+//! documented there).
+//!
 //! # Non-box
 //!
 //! `nonbox` parametrises faces as Catmull-Clark does (quads `[0, 1]^2`, n-gons and triangles
@@ -74,6 +84,7 @@
 use serde::Serialize;
 
 mod fan;
+mod halves;
 mod ratio;
 mod thirds;
 
@@ -117,6 +128,10 @@ pub struct Domain {
     pub split_at: u64,
     /// The bits of the `f64` ratio of the levels in `split_at` (0 when there are none).
     pub ratio: u64,
+    /// Levels whose cells split in two halves along one axis (a pole's fan triangles, the
+    /// `halves` submodule, [`Domain::half_child`]): bit `l - 1` set for level `l`. 0 for the
+    /// cells of every other element.
+    pub halves: u64,
     /// The cell corner at which the patch's `(0, 0)` sits: for quads the patch's `u` runs
     /// toward corner `rot + 1`, its `v` toward corner `rot - 1`. Triangle patches have 0, except
     /// Loop's G^1 cap kites, whose `rot` is the corner of the hole's centre in their fan
@@ -343,6 +358,7 @@ impl Domain {
         thirds: 0,
         split_at: 0,
         ratio: 0,
+        halves: 0,
         rot: 0,
     };
 
@@ -394,6 +410,7 @@ impl Domain {
                 thirds: 0,
                 split_at: 0,
                 ratio: 0,
+                halves: 0,
                 rot: 0,
                 face: self.face,
             };
@@ -477,6 +494,8 @@ impl Domain {
                 Shape::third_map(self.step(l))
             } else if self.splits_at_ratio(l) {
                 Shape::ratio_map(self.ratio(), self.step(l))
+            } else if self.splits_in_halves(l) {
+                Shape::half_map(self.step(l))
             } else {
                 self.shape.child_map(self.step(l))
             };

@@ -176,8 +176,11 @@ of the incoming edge) at local (u - i, v), u toward the outgoing edge. A triangl
 barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. Under the dual schemes
 (Doo-Sabin, DS^CC, PGS) the quarter of a face at corner i (sub-face i of an n-gon) lies on
 vertex i's patch (PGS after DS^CC: on the patches of its DS^CC-refined children; the mixed
-bi-2 net: in a facet's rings at its corners); the quarters at boundary vertices, and the mixed
-net's at TPS vertices and poles, are not evaluated. EG, QAS+ (all
+bi-2 net: in a facet's rings at its corners); the quarters at boundary vertices, and those at
+TPS vertices of the mixed and polar bi-2 nets, are not evaluated. A pole's fan triangle
+(polar and mixed bi-2 nets) has (u, v) in [0,1]^2: (0,0) at the corner after the pole, (1,0) at
+the next, v = 1 the pole (u around it, v inward); an n-gon cap turned into a pole has u in
+[0,n], v in [0,1], sub-face i = floor(u) its fan triangle at edge i -> i+1. EG, QAS+ (all
 variants) and guided bi-5/bi-6 parametrise the faces around a capped vertex by their rings'
 chart: ring k of the cap
 covers the band between 2^-k and 2^-(k-1) of the face's square at the vertex, the cap the

@@ -37,6 +37,8 @@
 //! the affine maps of [`crisscross`], then evaluated as Loop's triangles are. `nonbox-4dir`'s
 //! triangles are fan triangles of the polygons its complex is built on
 //! ([`FanTriangle`], [`Surface::of_scheme`]): a point is mapped to its polygon first.
+//! A pole's fan triangles (polar bi-2) are collapsed quads whose radial rings are cells
+//! halved along one axis (`bezier::domain`'s `halves`; the tree splits such a cell in two).
 //!
 //! [`evaluate_limit`] evaluates the scheme's limit surface itself: it builds the complex with as
 //! many rings as the points need (a point at distance about `2^-k` of an extraordinary element,
@@ -111,6 +113,9 @@ pub struct Surface {
     /// The triangles whose cells are quads (a 3-gon of three quad sub-faces: the dual
     /// schemes), not barycentric triangles (Loop).
     tri_strips: Vec<bool>,
+    /// The triangles that are a pole's fan triangles (PolBS): one collapsed quad `[0, 1]^2`,
+    /// not a strip ([`crate::bezier::domain`]'s poles).
+    pole_triangles: Vec<bool>,
     /// The cells of every face and the patch or piece covering each ([`index`]).
     cells: CellTree,
     /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
@@ -185,15 +190,27 @@ impl Surface {
     fn assemble(sides: Vec<u32>, complex: PatchComplex) -> Surface {
         let fans = Vec::new();
         let mut tri_strips = vec![false; sides.len()];
+        // a triangle whose cells are halves from level 1 on (a pole's fan) and all in its
+        // first root cell is one collapsed quad; a 3-gon cap turned into a pole has halves in
+        // all three sub-faces (its strip)
+        let mut halved = vec![false; sides.len()];
+        let mut strip = vec![false; sides.len()];
         let quad_domains = (0..complex.len())
             .filter_map(|i| complex.domain(i))
             .chain(complex.pieces.iter().map(|p| p.domain));
         for d in quad_domains {
-            if let Some(t) = tri_strips.get_mut(d.face as usize) {
-                *t |= d.shape == Shape::Quad && sides[d.face as usize] == 3;
+            let f = d.face as usize;
+            if f < sides.len() && d.shape == Shape::Quad && sides[f] == 3 {
+                tri_strips[f] = true;
+                halved[f] |= d.splits_in_halves(1);
+                strip[f] |= d.sub != 0;
             }
         }
-        let cells = CellTree::new(&sides, &complex);
+        let pole_triangles: Vec<bool> = halved.iter().zip(&strip).map(|(h, s)| *h && !s).collect();
+        for (t, &p) in tri_strips.iter_mut().zip(&pole_triangles) {
+            *t &= !p;
+        }
+        let cells = CellTree::new(&sides, &pole_triangles, &complex);
         let mut kites = HashMap::new();
         for step in &complex.caps {
             if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
@@ -208,6 +225,7 @@ impl Surface {
             sides,
             fans,
             tri_strips,
+            pole_triangles,
             cells,
             kites,
         }
@@ -237,6 +255,15 @@ impl Surface {
             return Err(bad("(u and v must be finite numbers)"));
         }
         match n {
+            3 if self.pole_triangles[face as usize] => {
+                if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
+                    return Err(bad(
+                        "[0, 1] x [0, 1] (a pole's fan triangle: (0, 0) at the corner after the \
+                         pole, v = 1 the pole)",
+                    ));
+                }
+                Ok((0, Shape::Quad, [u, v]))
+            }
             3 if !self.tri_strips[face as usize] => {
                 if u < 0.0 || v < 0.0 || u + v > 1.0 + 1e-12 {
                     return Err(bad("u, v >= 0, u + v <= 1"));
@@ -298,8 +325,8 @@ impl Surface {
             Error::InvalidArgument(format!(
                 "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
                  inside the last ring is open (--no-fill), or the patches there carry no face \
-                 domain (the dual schemes' quarters of faces at boundary vertices, the mixed bi-2 \
-                 net's TPS vertices and poles)"
+                 domain (the dual schemes' quarters of faces at boundary vertices, the TPS \
+                 vertices of a mixed bi-2 or polar bi-2 net)"
             ))
         })
     }
@@ -470,8 +497,14 @@ impl Surface {
         if d <= 0.0 {
             return 0;
         }
-        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
         let dom = at.domain;
+        // a pole's cap: its cells are halves, the pole at y = 1 of the cell (halves are not
+        // turned), and each ring halves the cap's cell toward it
+        let d = if dom.halves != 0 { 1.0 - y } else { d };
+        if d <= 0.0 {
+            return 0;
+        }
+        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
         let per_ring = if dom.splits_in_thirds(dom.depth) {
             3f64.log2()
         } else if dom.splits_at_ratio(dom.depth) {

@@ -76,11 +76,12 @@ impl Descriptor for Bi2Descriptor {
     /// Refinement and exact patches; evaluation for PGS, laid out like Doo-Sabin, for PGS
     /// after DS^CC steps, whose refined net's vertices carry the input faces' cells
     /// ([`crate::schemes::doo_sabin::surface::step_cells`]), for the mixed net at its regular
-    /// vertices and PGS facets (`bi2::surface::cells`; its TPS vertices and poles are not
-    /// evaluated), and for TPS, whose rings record cells in thirds
+    /// vertices, PGS facets (`bi2::surface::cells`) and poles (`bi2::surface::poles`; its TPS
+    /// vertices are not evaluated), and for TPS, whose rings record cells in thirds
     /// (`bi2::surface::thirds`), and for adjustable TPS on its input net's faces, whose rings
-    /// record cells split at `1 - 2e` in knot coordinates (same module). PolBS (radial rings)
-    /// lies in no such cells.
+    /// record cells split at `1 - 2e` in knot coordinates (same module). PolBS evaluates
+    /// like the mixed net: its radial rings lie in halves of the fan triangles (collapsed
+    /// quads, [`crate::bezier::domain`]), the caps turned into poles are strips of them.
     fn capabilities(&self) -> Capabilities {
         Capabilities {
             eval: matches!(
@@ -88,6 +89,7 @@ impl Descriptor for Bi2Descriptor {
                 Bi2Kind::Pgs
                     | Bi2Kind::PgsDscc
                     | Bi2Kind::Mixed
+                    | Bi2Kind::Polar
                     | Bi2Kind::Tps
                     | Bi2Kind::TpsAdjustable
             ),

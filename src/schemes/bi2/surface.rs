@@ -69,8 +69,10 @@ use super::local_scheme::{LocalScheme, qnet_index};
 
 mod cells;
 mod g1;
+mod poles;
 mod thirds;
 use cells::FacetCells;
+use poles::PoleCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
     element: Element,
@@ -84,8 +86,11 @@ struct RingElement {
     /// How its rings split the hole before them (with `sectors`).
     split: thirds::Split,
     /// Where a PGS facet's rings and cap lie in the input faces ([`cells`]); `None` for the
-    /// other elements (not evaluated).
+    /// other elements.
     cells: Option<FacetCells>,
+    /// Where a pole's rings and cap lie in its fan triangles and the quads around them
+    /// ([`poles`]); `None` for the other elements.
+    pole: Option<PoleCells>,
 }
 
 fn not_separated(what: String, name: &str) -> Error {
@@ -171,6 +176,7 @@ fn pgs_element(mesh: &PolyMesh, f: usize, name: &str) -> Result<RingElement> {
         sectors: Vec::new(),
         split: thirds::Split::Thirds,
         cells: FacetCells::of(mesh, f),
+        pole: None,
     })
 }
 
@@ -211,6 +217,7 @@ fn ternary_element(
         sectors: Vec::new(),
         split: thirds::Split::Thirds,
         cells: None,
+        pole: None,
     })
 }
 
@@ -255,6 +262,7 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
         sectors: Vec::new(),
         split: thirds::Split::Thirds,
         cells: None,
+        pole: PoleCells::of(mesh, &hs),
     })
 }
 
@@ -319,6 +327,9 @@ fn assemble(
                     _ => Domain::UNTRACKED,
                 };
                 out.push_in(to_patch(&c, local), prov, cell);
+                if let (Some(pole), true) = (&el.pole, track) {
+                    pole.ring(el.start + l, i, (out.len() - 1) as u32, &mut out);
+                }
             }
             if !el.sectors.is_empty() {
                 thirds::ring_pieces(&el.sectors, l, first, el.split, &mut out);
@@ -367,6 +378,9 @@ fn assemble(
                     _ => Domain::UNTRACKED,
                 };
                 out.push_in(p, prov, cell);
+                if let (Some(pole), true) = (&el.pole, track) {
+                    pole.cap(l, sector as usize, (out.len() - 1) as u32, &mut out);
+                }
             }
             if !el.sectors.is_empty() {
                 thirds::cap_domains(&el.sectors, opts.rings, first, el.split, &mut out);
@@ -508,7 +522,8 @@ pub fn polar_complex(
     let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
     let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
     let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (c, more) = assemble(&net.mesh, false, None, None, &els, opts, progress)?;
+    let (mut c, more) = assemble(&net.mesh, true, None, None, &els, opts, progress)?;
+    poles::to_input_faces(mesh, &net, &mut c);
     notes.extend(more);
     Ok((c, notes))
 }

@@ -3,7 +3,8 @@
 //!
 //! Every node is a cell of its face: empty (no patch covers it), a leaf (the patch or piece
 //! covering it) or split into `factor^2` children (4 for the dyadic quad and triangle cells,
-//! 9 for a cell in thirds), stored contiguously so that the child holding a point is
+//! 9 for a cell in thirds; 2 for a cell halved along one axis, a pole's radial rings), stored
+//! contiguously so that the child holding a point is
 //! `first + k` with `k` the child index of [`crate::bezier::domain`]. A regular face covered
 //! by one patch is its root leaf: no descent at all. Each leaf keeps what evaluating there
 //! needs, computed once with the same functions (and so the same rounding) as before: the
@@ -29,6 +30,9 @@ enum Node {
     /// Split 2 x 2 at the ratio [`CellTree::ratios`]`[ratio]` (adjustable TPS,
     /// [`Shape::ratio_map`]), children from node `first` on.
     SplitAt { first: u32, ratio: u32 },
+    /// Halved along `axis` (0: `u`, 1: `v`; a pole's fan triangles, [`Shape::half_map`]), the
+    /// lower half at node `first`, the upper at `first + 1`.
+    Halves { first: u32, axis: u8 },
 }
 
 /// A cell covered by a patch (or a piece of one), with its maps precomputed.
@@ -120,6 +124,8 @@ pub(super) struct CellTree {
     third: [ChildInverse; 9],
     /// The ratios of the cells split at a ratio, and the inverse maps of their children.
     ratios: Vec<(f64, [ChildInverse; 4])>,
+    /// Inverse maps of a quad cell's halves ([`Shape::half_map`]).
+    halves: [ChildInverse; 4],
 }
 
 /// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
@@ -130,14 +136,15 @@ fn factor_of(d: &Domain, l: u8) -> u8 {
 
 impl CellTree {
     /// The index of `complex`'s patches and pieces over a net whose faces have `sides`
-    /// corners (a face of `n != 4` corners has `n` sub-faces; quads and Loop's triangles use
-    /// the first).
-    pub fn new(sides: &[u32], complex: &PatchComplex) -> CellTree {
+    /// corners (a face of `n != 4` corners has `n` sub-faces; quads, Loop's triangles and the
+    /// faces marked `single` (a pole's fan triangles, one collapsed quad) use the first).
+    pub fn new(sides: &[u32], single: &[bool], complex: &PatchComplex) -> CellTree {
         let mut root = Vec::with_capacity(sides.len() + 1);
         let mut total = 0u32;
-        for &n in sides {
+        for (f, &n) in sides.iter().enumerate() {
             root.push(total);
-            total += if n == 4 { 1 } else { n };
+            let one = n == 4 || single.get(f).copied().unwrap_or(false);
+            total += if one { 1 } else { n };
         }
         root.push(total);
         let mut tree = CellTree {
@@ -148,6 +155,7 @@ impl CellTree {
             triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
             third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
             ratios: Vec::new(),
+            halves: std::array::from_fn(|k| ChildInverse::of(Shape::half_map(k as u8))),
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -181,8 +189,15 @@ impl CellTree {
                 at = first as usize + usize::from(d.step(l));
                 continue;
             }
+            if d.splits_in_halves(l) {
+                let Some(first) = self.split_in_halves(at, d.step(l) / 2) else {
+                    return;
+                };
+                at = first as usize + usize::from(d.step(l) % 2);
+                continue;
+            }
             let first = match self.nodes[at] {
-                Node::Leaf(_) | Node::SplitAt { .. } => return,
+                Node::Leaf(_) | Node::SplitAt { .. } | Node::Halves { .. } => return,
                 // a cell split the other way (dyadic vs in thirds) by an earlier domain:
                 // the first indexed wins, as for a covered cell
                 Node::Split { first, factor } if factor == factor_of(&d, l) => first,
@@ -231,6 +246,21 @@ impl CellTree {
         }
     }
 
+    /// The first child of node `at` halved along `axis` (halving it when empty); `None` when
+    /// it is covered or split another way (the first indexed wins).
+    fn split_in_halves(&mut self, at: usize, axis: u8) -> Option<u32> {
+        match self.nodes[at] {
+            Node::Halves { first, axis: a } if a == axis => Some(first),
+            Node::Empty => {
+                let first = self.nodes.len() as u32;
+                self.nodes.extend(std::iter::repeat_n(Node::Empty, 2));
+                self.nodes[at] = Node::Halves { first, axis };
+                Some(first)
+            }
+            _ => None,
+        }
+    }
+
     /// The leaf covering point `p` of root cell `sub` of `face` (cell coordinates of the
     /// sub-face), and `p` in the leaf's cell coordinates; `None` where no patch covers it.
     #[inline]
@@ -265,6 +295,11 @@ impl CellTree {
                     let k = Shape::ratio_at(*t, p);
                     p = maps[usize::from(k)].apply(p);
                     at = first as usize + usize::from(k);
+                }
+                Node::Halves { first, axis } => {
+                    let k = Shape::half_at(axis, p);
+                    p = self.halves[usize::from(k)].apply(p);
+                    at = first as usize + usize::from(k % 2);
                 }
                 Node::Split { .. } => return None,
             }
