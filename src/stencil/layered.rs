@@ -72,6 +72,13 @@ impl LayeredTable {
         self.push_row(pairs);
     }
 
+    /// Appends one row per point of `points` (indices over the last level), each that point
+    /// alone with weight 1: the rows [`LayeredTable::push_level_row`] appends for `[(i, 1.0)]`.
+    pub fn push_level_points(&mut self, points: &[u32]) {
+        let shift = self.last_level_offset();
+        self.rows.push_points(points.iter().map(|&i| i + shift));
+    }
+
     /// Appends a row over the stacked points (duplicates merged, exact zeros dropped). `pairs`
     /// is left empty.
     ///

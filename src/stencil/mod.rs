@@ -76,6 +76,11 @@ impl Terms for Stencil {
 /// Sorts `(source, weight)` pairs by source (stable: duplicates are summed in the order they were
 /// added), merges duplicates and drops exact zeros, in place.
 fn merge_pairs(pairs: &mut Vec<(u32, f64)>) {
+    if pairs.len() < 2 {
+        // sorted and without duplicates already (the common single-term row)
+        pairs.retain(|e| e.1 != 0.0);
+        return;
+    }
     pairs.sort_by_key(|e| e.0);
     let mut k = 0;
     for r in 0..pairs.len() {

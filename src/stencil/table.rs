@@ -158,6 +158,27 @@ impl StencilTable {
         self.offsets.push(self.indices.len() as u32);
     }
 
+    /// Appends one row per source in `sources`, each the source alone with weight 1 (a gather:
+    /// the same rows as [`StencilTable::push_pairs`] of `[(i, 1.0)]`, without the buffer).
+    ///
+    /// # Panics
+    /// When a source is out of range.
+    pub fn push_points(&mut self, sources: impl ExactSizeIterator<Item = u32>) {
+        self.indices.reserve(sources.len());
+        self.weights.reserve(sources.len());
+        self.offsets.reserve(sources.len());
+        for i in sources {
+            assert!(
+                (i as usize) < self.num_sources,
+                "stencil source {i} out of range {}",
+                self.num_sources
+            );
+            self.indices.push(i);
+            self.weights.push(1.0);
+            self.offsets.push(self.indices.len() as u32);
+        }
+    }
+
     /// Appends a row (merging duplicate sources first).
     pub fn push(&mut self, s: Stencil) {
         let s = s.merged();

@@ -49,7 +49,7 @@
 
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{CapStep, Domain, PatchComplex, Piece, Provenance};
-use crate::bezier::g1::{Centre, Hole, Segment, cap_map, ring};
+use crate::bezier::g1::{Centre, Hole, Segment, cap_choice, cap_map, ring};
 use crate::error::{Error, Result};
 use crate::geom::{Point, cross};
 use crate::stencil::{LayeredTable, StencilTable};
@@ -215,13 +215,14 @@ impl PatchTable {
                 )));
             }
             in_cap[range].iter_mut().for_each(|c| *c = true);
-            let normal = cross(step.plane[0], step.plane[1]);
-            let built = ring::cap_in_plane(step.hole.clone(), normal, step.options)?;
+            // the degree and centre the cap map chose depend on the hole's shape only (the
+            // template's cap was built from it), so the cap is not built again here
+            let (_, _, degree, centre) = cap_choice(&step.hole, step.options)?;
             let cap = TableCap {
                 step: step.clone(),
                 data_row: r as u32,
-                degree: built.degree,
-                centre: built.centre,
+                degree,
+                centre,
             };
             r += cap.data_len() as u64;
             caps.push(cap);

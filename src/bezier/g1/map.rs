@@ -440,6 +440,33 @@ pub fn check_cap_valence(n: usize) -> Result<()> {
 /// valence above [`MAX_CAP_VALENCE`].
 pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
     let n = hole.valence();
+    let (layout, degrees, d, centre) = cap_choice(hole, opts)?;
+    let map = cap_map(n, layout, degrees, d, centre)?;
+    let compat = map.compatibility_defect(hole);
+    if compat.0 > MAX_COMPATIBILITY_DEFECT {
+        return Err(Error::InvalidArgument(format!(
+            "the hole's ring data are not C^1-compatible at the {} (relative defect {:.3e}); \
+             no C^1 + G^1 cap exists for them",
+            compat.1, compat.0
+        )));
+    }
+    Ok(Cap {
+        patches: map.apply(hole)?,
+        degree: d,
+        centre,
+        certificate: map.certificate,
+        compatibility: compat,
+    })
+}
+
+/// The hole's layout and the degree and centre condition [`g1_cap_with`] chooses for it under
+/// `opts`: they depend on the hole's valence, layout and segment degrees only (not on its
+/// points), so a patch stencil table can learn them without building the cap again.
+///
+/// # Errors
+/// As [`g1_cap_with`] for an unsupported valence or layout, or when no certified degree exists.
+pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usize, Centre)> {
+    let n = hole.valence();
     check_cap_valence(n)?;
     let (layout, degrees) = hole.layout()?;
     let (d, centre) = match opts.centre {
@@ -461,22 +488,7 @@ pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
             None => (lowest_certified_degree(n, layout, degrees, c)?, c),
         },
     };
-    let map = cap_map(n, layout, degrees, d, centre)?;
-    let compat = map.compatibility_defect(hole);
-    if compat.0 > MAX_COMPATIBILITY_DEFECT {
-        return Err(Error::InvalidArgument(format!(
-            "the hole's ring data are not C^1-compatible at the {} (relative defect {:.3e}); \
-             no C^1 + G^1 cap exists for them",
-            compat.1, compat.0
-        )));
-    }
-    Ok(Cap {
-        patches: map.apply(hole)?,
-        degree: d,
-        centre,
-        certificate: map.certificate,
-        compatibility: compat,
-    })
+    Ok((layout, degrees, d, centre))
 }
 
 /// The G^1 cap of a hole: one patch per (quad) sector, at the lowest certified degree.

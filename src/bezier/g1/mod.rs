@@ -151,6 +151,6 @@ mod tests;
 
 pub use hole::{Degrees, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{
-    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_COMPATIBILITY_DEFECT, cap_map,
-    g1_cap, g1_cap_with, lowest_certified_degree,
+    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_COMPATIBILITY_DEFECT,
+    cap_choice, cap_map, g1_cap, g1_cap_with, lowest_certified_degree,
 };

@@ -47,7 +47,7 @@ use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::tags::{SubdOptions, TriangleSubdivision};
 use crate::mesh::{MeshView, NONE, PolyMesh};
-use crate::stencil::{RowWriter, Stencil, StencilTable, Terms, axpy};
+use crate::stencil::{RowWriter, StencilTable, Terms, axpy};
 use child::{BLOCK, child_corners};
 pub(crate) use child::{edge_half, general_child_topology, half_child_edge};
 use crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
@@ -289,17 +289,48 @@ impl<const D: usize> CcTerms for Eval<'_, D> {
 }
 
 impl Rules<'_> {
-    /// The stencil of the vertex point of `v` under these rules.
-    pub(crate) fn vertex_stencil(&self, v: usize) -> Stencil {
-        let mut s = Stencil::new();
+    /// The stencil of the vertex point of `v` under these rules (the tests' reference for the
+    /// rows [`Rules::push_vertex_row`] writes).
+    #[cfg(test)]
+    pub(crate) fn vertex_stencil(&self, v: usize) -> crate::stencil::Stencil {
+        let mut s = crate::stencil::Stencil::new();
         let m = self.m;
         self.vertex(v, &mut Scratch::default(), &mut Expand { m, row: &mut s });
         s.merged()
     }
 
+    /// Appends the row of the vertex point of `v` ([`Rules::vertex_stencil`]) to `table`,
+    /// through the reusable buffers `scratch` and `row` (no allocation per row).
+    pub(crate) fn push_vertex_row(
+        &self,
+        v: usize,
+        scratch: &mut Scratch,
+        row: &mut RowWriter,
+        table: &mut StencilTable,
+    ) {
+        let m = self.m;
+        self.vertex(v, scratch, &mut Expand { m, row: &mut *row });
+        row.push_into(table);
+    }
+
+    /// Appends the row of the edge point of `e` ([`Rules::edge_stencil`]) to `table`, as
+    /// [`Rules::push_vertex_row`].
+    pub(crate) fn push_edge_row(
+        &self,
+        e: usize,
+        scratch: &mut Scratch,
+        row: &mut RowWriter,
+        table: &mut StencilTable,
+    ) {
+        let m = self.m;
+        self.edge(e, scratch, &mut Expand { m, row: &mut *row });
+        row.push_into(table);
+    }
+
     /// The stencil of the edge point of edge `e` under these rules.
-    pub(crate) fn edge_stencil(&self, e: usize) -> Stencil {
-        let mut s = Stencil::new();
+    #[cfg(test)]
+    pub(crate) fn edge_stencil(&self, e: usize) -> crate::stencil::Stencil {
+        let mut s = crate::stencil::Stencil::new();
         let m = self.m;
         self.edge(e, &mut Scratch::default(), &mut Expand { m, row: &mut s });
         s.merged()

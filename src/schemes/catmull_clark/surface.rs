@@ -41,7 +41,7 @@ mod jets;
 pub mod sharp;
 mod track;
 
-use super::regular::bi3_net;
+use super::regular::{Net, bi3_net};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::{Error, Result};
@@ -53,11 +53,12 @@ use crate::host::adaptive::{
 use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::crease::Scratch;
 pub use crate::schemes::catmull_clark::crease::adaptive::Level;
 use crate::schemes::catmull_clark::crease::adaptive::{
     child as sharp_child, crease_curve, edge_known, is_hole, is_special,
 };
-use crate::stencil::Stencil;
+use crate::stencil::{RowWriter, StencilTable, Terms};
 use std::collections::{HashMap, HashSet};
 pub use track::{bspline_patch, catmull_clark_tracked};
 
@@ -363,7 +364,7 @@ fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
 
 /// The bi-3 B-spline net of face `f` (stencils over the level's points) if the face is regular
 /// and all its net points are trusted.
-fn regular_net(level: &Level, f: usize) -> Option<Vec<Stencil>> {
+fn regular_net(level: &Level, f: usize) -> Option<Net> {
     let m = &level.mesh;
     if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
         return None;
@@ -372,24 +373,18 @@ fn regular_net(level: &Level, f: usize) -> Option<Vec<Stencil>> {
         Some(ft) => sharp::bi3_net(level, ft, f)?,
         None => bi3_net(m, f)?,
     };
-    if net.iter().any(|s| {
-        s.entries()
-            .iter()
-            .any(|&(v, _)| !level.info[v as usize].pos_ok)
-    }) {
+    if net
+        .rows()
+        .any(|r| r.iter().any(|&(v, _)| !level.info[v as usize].pos_ok))
+    {
         return None;
     }
     Some(net)
 }
 
 /// The bi-3 patch of a B-spline net of the level.
-fn net_patch(level: &Level, net: &[Stencil]) -> BezierPatch {
-    let pos = level.mesh.positions();
-    let mut pts = [[0.0; 3]; 16];
-    for (p, s) in pts.iter_mut().zip(net) {
-        *p = s.apply(pos);
-    }
-    bspline_patch(&pts)
+fn net_patch(level: &Level, net: &Net) -> BezierPatch {
+    bspline_patch(&net.points(level.mesh.positions()))
 }
 
 /// Tag of an irregular face: the element of its first extraordinary corner (or its own element
@@ -440,7 +435,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     let m = &level.mesh;
     let nf = m.num_faces();
     // Faces within two vertex-rings of the marked faces.
-    let (sel, _) = select_rings(m, marked, 2);
+    let (sel, sel_faces) = select_rings(m, marked, 2);
     let nv = m.num_vertices();
     let ne = m.num_edges();
     let rules = sharp::rules(level);
@@ -449,7 +444,9 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     let mut vid = vec![UNSET; nv];
     let mut eid = vec![UNSET; ne];
     let mut fid = vec![UNSET; nf];
-    let mut stencils: Vec<Stencil> = Vec::new();
+    // the child points' rows, written in place (no stencil per point)
+    let mut table = StencilTable::with_capacity(nv, 3 * sel_faces.len(), 9);
+    let (mut row, mut scratch) = (RowWriter::new(), Scratch::default());
     let mut info: Vec<Info> = Vec::new();
     let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let face_pos_ok = |g: u32| {
@@ -457,23 +454,29 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             .iter()
             .all(|&x| level.info[x as usize].pos_ok)
     };
-    let mut face_start = vec![0u32];
-    let mut corners = Vec::new();
-    let mut child_faces_of: HashMap<u32, Vec<u32>> = HashMap::new();
-    let marked_set: HashMap<u32, Tag> = marked.iter().copied().collect();
+    let selected = sel_faces.len();
+    let mut face_start = Vec::with_capacity(4 * selected + 1);
+    face_start.push(0u32);
+    let mut corners = Vec::with_capacity(16 * selected);
+    info.reserve(3 * selected);
+    // per marked face its first child (its children are consecutive, one per corner)
+    let mut child_first = vec![UNSET; nf];
+    let mut is_marked = vec![false; nf];
+    for &(f, _) in marked {
+        is_marked[f as usize] = true;
+    }
     for f in 0..nf {
         if !sel[f] {
             continue;
         }
         let fc = {
             if fid[f] == UNSET {
-                fid[f] = stencils.len() as u32;
-                let mut s = Stencil::new();
+                fid[f] = table.num_rows() as u32;
                 let face = m.face(f);
                 for &x in face {
-                    s.add(x as usize, 1.0 / face.len() as f64);
+                    row.add(x, 1.0 / face.len() as f64);
                 }
-                stencils.push(s.merged());
+                row.push_into(&mut table);
                 info.push(Info {
                     pos_ok: face_pos_ok(f as u32),
                     fan_ok: true,
@@ -487,11 +490,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
         for h in h0..h0 + k {
             let v = m.he_from(h) as usize;
             if vid[v] == UNSET {
-                vid[v] = stencils.len() as u32;
+                vid[v] = table.num_rows() as u32;
                 let vi = level.info[v];
                 let fan = vi.fan_ok && all_faces_selected(v);
                 let pos = vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g));
-                stencils.push(rules.vertex_stencil(v));
+                rules.push_vertex_row(v, &mut scratch, &mut row, &mut table);
                 info.push(Info {
                     pos_ok: pos,
                     fan_ok: fan,
@@ -501,31 +504,25 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             for g in [h, m.he_prev(h)] {
                 let e = m.he_edge(g) as usize;
                 if eid[e] == UNSET {
-                    eid[e] = stencils.len() as u32;
+                    eid[e] = table.num_rows() as u32;
                     let [a, b] = m.edge(e);
                     let (a_ok, b_ok) =
                         (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
                     let known = edge_known(level, e, a_ok, b_ok, a_ok || b_ok);
                     let hh = m.edge_halfedge(e);
-                    let mut faces = vec![m.he_face(hh)];
-                    if let Some(t) = m.he_twin(hh) {
-                        faces.push(m.he_face(t));
-                    }
-                    stencils.push(rules.edge_stencil(e));
+                    let faces = [Some(m.he_face(hh)), m.he_twin(hh).map(|t| m.he_face(t))];
+                    rules.push_edge_row(e, &mut scratch, &mut row, &mut table);
                     info.push(Info {
-                        pos_ok: known && faces.iter().all(|&g| face_pos_ok(g)),
-                        fan_ok: known && faces.iter().all(|&g| sel[g as usize]),
+                        pos_ok: known && faces.iter().flatten().all(|&g| face_pos_ok(g)),
+                        fan_ok: known && faces.iter().flatten().all(|&g| sel[g as usize]),
                         origin: None,
                     });
                 }
             }
             let e_out = eid[m.he_edge(h) as usize];
             let e_in = eid[m.he_edge(m.he_prev(h)) as usize];
-            if marked_set.contains_key(&(f as u32)) {
-                child_faces_of
-                    .entry(f as u32)
-                    .or_default()
-                    .push((face_start.len() - 1) as u32);
+            if is_marked[f] && h == h0 {
+                child_first[f] = (face_start.len() - 1) as u32;
             }
             corners.extend_from_slice(&[vid[v], e_out, fc, e_in]);
             face_start.push(corners.len() as u32);
@@ -537,13 +534,13 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             info[fid[f as usize] as usize].origin = Some(Element::Face(tag.input_face));
         }
     }
-    let table = crate::stencil::StencilTable::from_rows(nv, stencils, 9);
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
     let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, &vid, &eid);
     let mut active = Vec::new();
     for &(f, tag) in marked {
-        for (k, &c) in child_faces_of[&f].iter().enumerate() {
+        for k in 0..m.face_size(f as usize) {
+            let c = child_first[f as usize] + k as u32;
             let mut t = tag;
             // child k is the quad at corner k (of the face, or the sub-face k of an n-gon)
             t.domain = tag.domain.child(k as u32);

@@ -35,8 +35,7 @@ use crate::mesh::PolyMesh;
 use crate::schemes::catmull_clark::Rules;
 use crate::schemes::catmull_clark::crease::Rule;
 use crate::schemes::catmull_clark::crease::adaptive::{self, Features, is_inf, sector};
-use crate::schemes::catmull_clark::regular::bi3_net_cut;
-use crate::stencil::Stencil;
+use crate::schemes::catmull_clark::regular::{Net, bi3_net_cut};
 
 /// The rules of one refinement step of `level` (its features' options, or the defaults).
 pub(super) fn rules(level: &Level) -> Rules<'_> {
@@ -64,7 +63,7 @@ fn corner_regular(m: &PolyMesh, ft: &Features, h: u32) -> bool {
 
 /// The 4x4 net of face `f` when it is one exact bi-3 patch under the features (every corner
 /// regular, see the module documentation), the crease edges cut.
-pub(super) fn bi3_net(level: &Level, ft: &Features, f: usize) -> Option<Vec<Stencil>> {
+pub(super) fn bi3_net(level: &Level, ft: &Features, f: usize) -> Option<Net> {
     let m = &level.mesh;
     if m.face_size(f) != 4 {
         return None;

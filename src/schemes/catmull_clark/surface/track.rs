@@ -25,6 +25,7 @@ use crate::host::adaptive::{self, Tag, by_element};
 use crate::mesh::PolyMesh;
 use crate::mesh::tags::SubdOptions;
 use crate::schemes::catmull_clark::LimitStencils;
+use crate::schemes::catmull_clark::regular::Net;
 use crate::stencil::{LayeredTable, Stencil, StencilTable};
 use std::cell::RefCell;
 use std::sync::OnceLock;
@@ -91,23 +92,51 @@ fn conversion() -> &'static [Stencil] {
 /// # Panics
 /// When `net` has fewer than 16 points.
 pub fn bspline_patch(net: &[Point]) -> BezierPatch {
-    let cps = conversion().iter().map(|s| s.apply(net)).collect();
+    let net: &[Point; 16] = net[..16].try_into().expect("16 net points");
+    let (ends, terms) = kernel();
+    let mut cps = Vec::with_capacity(16);
+    let mut start = 0;
+    for &end in ends {
+        // the stencil's terms in its order, summed as `Stencil::apply` sums them
+        let mut acc = [0.0; 3];
+        for &(k, w) in &terms[start..end as usize] {
+            let p = &net[(k & 15) as usize];
+            for (a, x) in acc.iter_mut().zip(p) {
+                *a += w * x;
+            }
+        }
+        cps.push(acc);
+        start = end as usize;
+    }
     BezierPatch::new(3, 3, cps)
 }
 
+/// The end of each coefficient's terms and the terms, as [`kernel`] gives them.
+type Kernel = ([u8; 16], Vec<(u8, f64)>);
+
+/// The conversion's stencils ([`conversion`]) flattened for [`bspline_patch`]: the end of each
+/// coefficient's terms, and the terms `(net slot, weight)` in the stencils' order.
+fn kernel() -> &'static Kernel {
+    static KERNEL: OnceLock<Kernel> = OnceLock::new();
+    KERNEL.get_or_init(|| {
+        let mut ends = [0u8; 16];
+        let mut terms = Vec::new();
+        for (end, s) in ends.iter_mut().zip(conversion()) {
+            terms.extend(s.entries().iter().map(|&(k, w)| (k as u8, w)));
+            *end = terms.len() as u8;
+        }
+        (ends, terms)
+    })
+}
+
 /// The coefficient rows of the patch of a B-spline net, over the level's points.
-fn patch_terms(net: &[Stencil]) -> Vec<Vec<(u32, f64)>> {
+fn patch_terms(net: &Net) -> Vec<Vec<(u32, f64)>> {
     conversion()
         .iter()
         .map(|c| {
             c.entries()
                 .iter()
-                .flat_map(|&(k, w)| {
-                    net[k as usize]
-                        .entries()
-                        .iter()
-                        .map(move |&(v, x)| (v, w * x))
-                })
+                .flat_map(|&(k, w)| net.row(k as usize).iter().map(move |&(v, x)| (v, w * x)))
                 .collect()
         })
         .collect()
@@ -140,13 +169,17 @@ impl Tracker {
 
     /// Records the rows of the regular patch of the B-spline net `net` (stencils over the
     /// level's points), pushed as patch `p`.
-    pub(crate) fn regular(&mut self, p: usize, net: &[Stencil]) {
+    pub(crate) fn regular(&mut self, p: usize, net: &Net) {
         if !self.next(p) {
             return;
         }
         self.patches += 1;
-        for s in net {
-            self.scratch.extend_from_slice(s.entries());
+        if let Net::Grid(g) = net {
+            self.table.push_level_points(&g.map(|(i, _)| i));
+            return;
+        }
+        for r in net.rows() {
+            self.scratch.extend_from_slice(r);
             self.table.push_level_row(&mut self.scratch);
         }
     }
