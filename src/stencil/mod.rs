@@ -73,11 +73,36 @@ impl Terms for Stencil {
     }
 }
 
+/// Rows up to this many terms are merged by a linear search for each term's source (fewer
+/// operations than sorting them when, as in refinement stencils, they have few sources).
+const SHORT_ROW: usize = 48;
+
 /// Sorts `(source, weight)` pairs by source (stable: duplicates are summed in the order they were
 /// added), merges duplicates and drops exact zeros, in place.
 fn merge_pairs(pairs: &mut Vec<(u32, f64)>) {
     if pairs.len() < 2 {
         // sorted and without duplicates already (the common single-term row)
+        pairs.retain(|e| e.1 != 0.0);
+        return;
+    }
+    if pairs.len() <= SHORT_ROW {
+        // short rows (a refinement stencil through its face points: a few dozen terms over a
+        // dozen sources): each term is added to the first term of its source, in the order
+        // the terms came, which is the sum the stable sort below forms (the same bits), then
+        // the distinct sources are ordered
+        let mut k = 0;
+        for r in 0..pairs.len() {
+            let (i, w) = pairs[r];
+            match pairs[..k].iter().position(|e| e.0 == i) {
+                Some(at) => pairs[at].1 += w,
+                None => {
+                    pairs[k] = (i, w);
+                    k += 1;
+                }
+            }
+        }
+        pairs.truncate(k);
+        pairs.sort_unstable_by_key(|e| e.0);
         pairs.retain(|e| e.1 != 0.0);
         return;
     }

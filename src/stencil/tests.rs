@@ -53,3 +53,47 @@ fn parallel_apply_matches_serial() {
         assert_eq!(o[0], 0.25 * r as f64 + 0.75 * ((r + 1) % n) as f64);
     }
 }
+
+#[test]
+fn short_rows_merge_to_the_bits_of_the_stable_sort() {
+    // rows of 2..100 terms over few sources with weights whose sums depend on their order:
+    // the linear merge of short rows must give the stable sort's sums bit for bit
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    };
+    for len in 2..100usize {
+        for _ in 0..20 {
+            let sources = 1 + (next() % 16) as u32;
+            let pairs: Vec<(u32, f64)> = (0..len)
+                .map(|_| {
+                    let w = (next() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+                    let w = if next() % 7 == 0 {
+                        0.0
+                    } else {
+                        w * 1e3f64.powi((next() % 5) as i32)
+                    };
+                    ((next() % u64::from(sources)) as u32 * 3, w)
+                })
+                .collect();
+            let mut want = pairs.clone();
+            want.sort_by_key(|e| e.0);
+            let mut merged: Vec<(u32, f64)> = Vec::new();
+            for (i, w) in want {
+                match merged.last_mut() {
+                    Some(last) if last.0 == i => last.1 += w,
+                    _ => merged.push((i, w)),
+                }
+            }
+            merged.retain(|e| e.1 != 0.0);
+            let mut got = pairs;
+            merge_pairs(&mut got);
+            let bits =
+                |v: &[(u32, f64)]| v.iter().map(|e| (e.0, e.1.to_bits())).collect::<Vec<_>>();
+            assert_eq!(bits(&got), bits(&merged), "{len} terms");
+        }
+    }
+}
