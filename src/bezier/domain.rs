@@ -10,7 +10,9 @@
 //! cell in thirds (the 3 x 3 grid of the ternary schemes, or thirds of any dyadic cell), see
 //! the `thirds` submodule ([`Domain::third_child`], [`Domain::third`]); their maps have the
 //! coefficients `1/3`, rounded once per level. Adjustable TPS's levels split a cell 2 x 2 at a
-//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]).
+//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]), and after its
+//! separating whole-net steps a chain starts from a rectangle of the face at its knots with
+//! its own affine map instead of the face (the `frame` submodule, [`Domain::framed`]).
 //!
 //! # The parameter domain of an input face
 //!
@@ -74,10 +76,12 @@
 use serde::Serialize;
 
 mod fan;
+mod frame;
 mod ratio;
 mod thirds;
 
 pub use fan::FanTriangle;
+pub use frame::Frame;
 
 /// Shape of a cell: how its children split it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -124,6 +128,10 @@ pub struct Domain {
     /// `4 + k` marks triangle `k` of a quad cell's criss-cross ([`Domain::criss_cross`]), whose
     /// maps are those of `rot = 0`.
     pub rot: u8,
+    /// The rectangle of the face the cell chain starts from ([`Domain::framed`], the `frame`
+    /// submodule): [`Frame::NONE`] (the face itself) for every scheme but adjustable TPS
+    /// after a separating step.
+    pub frame: Frame,
 }
 
 /// A part of a patch that covers one cell: the patch's parameters in the box `window`
@@ -344,6 +352,7 @@ impl Domain {
         split_at: 0,
         ratio: 0,
         rot: 0,
+        frame: Frame::NONE,
     };
 
     /// The whole input face `face` with `sides` corners: a quad, a triangle (Loop) or an n-gon
@@ -396,6 +405,7 @@ impl Domain {
                 ratio: 0,
                 rot: 0,
                 face: self.face,
+                frame: Frame::NONE,
             };
         }
         if self.depth == MAX_DEPTH {
@@ -471,7 +481,7 @@ impl Domain {
     /// The map from the cell's coordinates to the face's (the sub-face's for an n-gon; add
     /// `sub` to `u` for the face's strip coordinates).
     pub fn cell_map(&self) -> Affine {
-        let mut m = Affine::IDENTITY;
+        let mut m = self.frame_or_identity();
         for l in 1..=self.depth {
             let child = if self.splits_in_thirds(l) {
                 Shape::third_map(self.step(l))

@@ -475,13 +475,15 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
 /// faces' own cells. The regular patches of `bi2-mixed` are laid out the same way.
 pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
     let patch = (out.len() - 1) as u32;
-    let cell = |g: usize| Domain::polygon(g as u32, m.face_size(g));
+    let cell = |g: usize, k: u32| Domain::polygon(g as u32, m.face_size(g)).child(k);
     vertex_quarter_pieces(m, v, patch, &cell, out);
 }
 
 /// The quarters of the four faces around the interior vertex `v` that its bi-2 patch `patch`
-/// covers ([`crate::bezier::domain`]), `face_cell(g)` being the cell face `g` of `m` is (the
-/// input face itself, or for TPS a third of one): face `i` of `v`'s fan (`u` along its first
+/// covers ([`crate::bezier::domain`]), `corner_cell(g, k)` being the cell of face `g`'s
+/// quarter at its corner `k` (child `k` of the input face itself, or for TPS of a third of
+/// one; for adjustable TPS after a separating step a framed rectangle of an input face,
+/// `(0, 0)` at the corner, `u` toward corner `k + 1`): face `i` of `v`'s fan (`u` along its first
 /// outgoing half-edge, `v` counter-clockwise) has its centroid at the patch's corner `2 + i`
 /// and at corner 2 of its quarter at `v`. Boundary vertices' patches are not recorded. Shared
 /// by the dual schemes and TPS, whose vertex patches lie alike.
@@ -489,7 +491,7 @@ pub(crate) fn vertex_quarter_pieces(
     m: &PolyMesh,
     v: usize,
     patch: u32,
-    face_cell: &dyn Fn(usize) -> Domain,
+    corner_cell: &dyn Fn(usize, u32) -> Domain,
     out: &mut PatchComplex,
 ) {
     if m.is_boundary_vertex(v) {
@@ -498,7 +500,7 @@ pub(crate) fn vertex_quarter_pieces(
     for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
         let g = m.he_face(h) as usize;
         let k = h - m.face_halfedge(g);
-        let cell = face_cell(g).child(k);
+        let cell = corner_cell(g, k);
         out.push_piece(Piece::quarter(patch, ((2 + i) % 4) as u8, cell, 2));
     }
 }

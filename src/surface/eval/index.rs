@@ -17,6 +17,8 @@
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::domain::{Affine, Domain, Shape};
 
+mod frames;
+
 /// What covers a cell.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Node {
@@ -29,6 +31,9 @@ enum Node {
     /// Split 2 x 2 at the ratio [`CellTree::ratios`]`[ratio]` (adjustable TPS,
     /// [`Shape::ratio_map`]), children from node `first` on.
     SplitAt { first: u32, ratio: u32 },
+    /// Split into the rectangles of framed cells ([`Domain::framed`]): [`CellTree::frames`]
+    /// `[set]` (adjustable TPS after a separating step, the `frames` submodule).
+    Frames { set: u32 },
 }
 
 /// A cell covered by a patch (or a piece of one), with its maps precomputed.
@@ -120,6 +125,8 @@ pub(super) struct CellTree {
     third: [ChildInverse; 9],
     /// The ratios of the cells split at a ratio, and the inverse maps of their children.
     ratios: Vec<(f64, [ChildInverse; 4])>,
+    /// The rectangles of the nodes split into framed cells.
+    frames: Vec<frames::FrameSet>,
 }
 
 /// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
@@ -148,6 +155,7 @@ impl CellTree {
             triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
             third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
             ratios: Vec::new(),
+            frames: Vec::new(),
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -156,6 +164,9 @@ impl CellTree {
         }
         for p in &complex.pieces {
             tree.insert(Leaf::new(p.patch, p.domain, Some(p.window_map())));
+        }
+        for set in &mut tree.frames {
+            set.build_grid();
         }
         tree
     }
@@ -173,6 +184,12 @@ impl CellTree {
             return;
         }
         let mut at = (lo + d.sub) as usize;
+        if let Some(map) = d.frame_map() {
+            let Some(child) = self.framed_child(at, map) else {
+                return;
+            };
+            at = child as usize;
+        }
         for l in 1..=d.depth {
             if d.splits_at_ratio(l) {
                 let Some(first) = self.split_at_ratio(at, d.ratio()) else {
@@ -182,7 +199,7 @@ impl CellTree {
                 continue;
             }
             let first = match self.nodes[at] {
-                Node::Leaf(_) | Node::SplitAt { .. } => return,
+                Node::Leaf(_) | Node::SplitAt { .. } | Node::Frames { .. } => return,
                 // a cell split the other way (dyadic vs in thirds) by an earlier domain:
                 // the first indexed wins, as for a covered cell
                 Node::Split { first, factor } if factor == factor_of(&d, l) => first,
@@ -265,6 +282,11 @@ impl CellTree {
                     let k = Shape::ratio_at(*t, p);
                     p = maps[usize::from(k)].apply(p);
                     at = first as usize + usize::from(k);
+                }
+                Node::Frames { set } => {
+                    let (node, inv) = self.frames[set as usize].find(p)?;
+                    p = inv.apply(p);
+                    at = node as usize;
                 }
                 Node::Split { .. } => return None,
             }
