@@ -49,9 +49,16 @@
 //! covers exactly that cell (its children those of the cell's four children, one per face
 //! around it), so from level 1 on dual patches have ordinary domains. The hole of an
 //! extraordinary vertex shrinks to corner `(0, 0)` of its faces' quarters, that of an `n`-gon
-//! to the centre `(1, 1)` of its sub-faces. The quarters of faces at boundary vertices are not
-//! tracked (the doubled boundary layer puts the boundary curve half a face outside the net's
-//! lattice, so they are not dyadic cells of the face): evaluating there is an error.
+//! to the centre `(1, 1)` of its sub-faces. A regular boundary vertex (two quads, or a
+//! corner with one) is the centre of its 3 x 3 net with the doubled boundary layer, so its
+//! patch spans half a face beyond the boundary edges (the boundary curve is the knot line
+//! between the phantom row and the boundary row, half a face outside the net's lattice); its
+//! parts over the vertex's faces are their quarters at it, recorded as at an interior vertex.
+//! The outer half-face strip of those patches lies over no face: the face's boundary edge is
+//! the knot line through the boundary vertices, not the boundary curve. Quarters whose
+//! vertex writes no patch (boundary mode `none`) or is refined as an extraordinary boundary
+//! element (a boundary vertex with three or more faces, an unkept corner under `edge-only`)
+//! are not tracked: evaluating there is an error.
 //!
 //! # TPS (primal ternary bi-2)
 //!
@@ -341,7 +348,7 @@ impl Domain {
     pub const WHOLE: u32 = u32::MAX;
 
     /// A domain the host does not track (schemes without face domains, the dual schemes'
-    /// quarters at boundary vertices).
+    /// cells next to extraordinary boundary elements).
     pub const UNTRACKED: Domain = Domain {
         face: u32::MAX,
         sub: 0,

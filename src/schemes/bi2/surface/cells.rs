@@ -19,8 +19,9 @@
 //!   `a_s`, corner 0) and of the quad across edge `a_s a_(s+1)` (`d`: at that edge's midpoint,
 //!   corner 3).
 //!
-//! TPS vertices and PolBS poles (ternary and radial rings, which no dyadic cell holds) and the
-//! quarters at boundary vertices are not tracked.
+//! TPS vertices and PolBS poles (ternary and radial rings, which no dyadic cell holds) are
+//! not tracked; the regular patches' quarters at boundary vertices are, as for the dual
+//! schemes.
 
 use crate::bezier::complex::Domain;
 use crate::mesh::PolyMesh;

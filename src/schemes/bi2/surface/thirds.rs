@@ -28,10 +28,10 @@
 //! of the refined net is then child `i + 3 j` in thirds of its parent face (the face children
 //! of `ternary_step`, face `9 f + 3 i + j` at `(i, j) / 3` of face `f`), so its quarters and
 //! the cells in them are cells of an input face all the same (adjustable TPS's refined faces
-//! are rectangles at its knots instead, below). As for the dual schemes, the
-//! patches of boundary vertices are not recorded (their doubled boundary layer puts the
-//! boundary curve half a face outside the face's domain), nor the faces of the boundary layer
-//! a step adds: evaluating there is an error.
+//! are rectangles at its knots instead, below). As for the dual schemes, the patch of a
+//! regular boundary vertex covers its faces' quarters (the rest of it, over the doubled
+//! boundary layer, lies over no face); the faces of the boundary layer a step adds are not
+//! tracked.
 //!
 //! # Adjustable TPS: cells split at `s = 1 - 2e`
 //!
