@@ -162,8 +162,8 @@ vertex i's patch (PGS after DS^CC: on the patches of its DS^CC-refined children;
 bi-2 net: in a facet's rings at its corners); at a boundary vertex its patch's part over the
 face (the face's boundary edge is the knot line through the boundary vertices, half a face
 inside the boundary curve); the quarters at boundary vertices under boundary mode none (no
-patch there), at corners under edge-only and pgs-dscc's, and the mixed net's at TPS vertices
-and poles, are not evaluated. EG, QAS+ (all
+patch there), at corners under edge-only and those of PGS after DS^CC, and the mixed net's at
+TPS vertices and poles, are not evaluated. EG, QAS+ (all
 variants) and guided bi-5/bi-6 parametrise the faces around a capped vertex by their rings'
 chart: ring k of the cap
 covers the band between 2^-k and 2^-(k-1) of the face's square at the vertex, the cap the

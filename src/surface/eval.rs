@@ -299,7 +299,7 @@ impl Surface {
                 "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
                  inside the last ring is open (--no-fill), or the patches there carry no face \
                  domain (the quarters at boundary vertices under boundary mode none, at corners \
-                 under edge-only and next to extraordinary boundary elements; pgs-dscc's at \
+                 under edge-only and next to extraordinary boundary elements; PGS's after DS^CC at \
                  boundary vertices; the mixed bi-2 net's TPS vertices and poles)"
             ))
         })
