@@ -291,8 +291,8 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     // polar-bi2's TPS rings (a vertex that is not a pole) carry no face domain
     let e = run("0:0.1:0.1", ids::POLAR_BI2.name(), "gallery:cnet-5-saddle");
     assert!(e.contains("face 0") && e.contains("TPS vertices"), "{e}");
-    // the dual schemes' quarters at boundary vertices are not tracked: face 0 of the c-net
-    // lies at its extraordinary vertex (interior) and reaches the boundary
+    // pgs-dscc's quarters at boundary vertices are not tracked (its DS^CC steps carry no
+    // cells there): a face of the c-net at a boundary vertex
     let net = "gallery:cnet-5-saddle";
     let mesh = gallery("cnet-5-saddle");
     let (f, k) = (0..mesh.num_faces())
@@ -310,7 +310,7 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     let corner = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]][k];
     let e = run(
         &format!("{f}:{}:{}", corner[0], corner[1]),
-        ids::DOO_SABIN.name(),
+        ids::PGS_DSCC.name(),
         net,
     );
     assert!(e.contains("boundary vertices"), "{e}");

@@ -7,9 +7,8 @@
 //! the wrong quarter or third, or transposed, jumps there), and convergence to the limit point
 //! at the rate of the characteristic map's `lambda` per ring, without `--rings`.
 
-use fairsub::analysis::report;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
-use fairsub::schemes::registry::{ids, registry};
+use fairsub::schemes::registry::ids;
 
 #[allow(dead_code)]
 #[path = "eval/support.rs"]
@@ -18,10 +17,10 @@ use support::{gallery, limit_along, toward_ev};
 #[allow(dead_code)]
 #[path = "eval/faces.rs"]
 mod faces;
-use faces::{all_agree, at_interior_vertex, jump_across, largest_jump, surface_of};
+use faces::{all_agree, jump_across, largest_jump, surface_of};
 #[path = "eval/ratios.rs"]
 mod ratios;
-use ratios::{error_ratios, limit_at_ratio};
+use ratios::{converges_at_ratio, error_ratios};
 
 fn macro_schemes() -> [&'static str; 2] {
     [ids::GUIDED_BI4_MACRO.name(), ids::GUIDED_BI3_MACRO.name()]
@@ -79,7 +78,7 @@ const S: f64 = 0.6;
 
 #[test]
 fn tps_adjustable_eval_agrees_with_the_written_patches() {
-    // c-nets (their quarters at boundary vertices are errors, as for TPS)
+    // c-nets, the quarters at boundary vertices included
     let nets = [
         "cnet-3-saddle",
         "cnet-5-saddle",
@@ -90,12 +89,8 @@ fn tps_adjustable_eval_agrees_with_the_written_patches() {
         &[ids::TPS_ADJUSTABLE.name()],
         &nets,
         &[3, 2, 1, 2],
-        &at_interior_vertex,
+        &|_, _| true,
     );
-    // a net whose extraordinary vertices need a separating whole-net step is not evaluated
-    let (_, s) = surface_of(gallery("cube"), ids::TPS_ADJUSTABLE.name(), 1);
-    let err = s.evaluate(0, 0.3, 0.3).expect_err("untracked");
-    assert!(err.to_string().contains("no patch"), "{err}");
 }
 
 #[test]
@@ -110,10 +105,10 @@ fn tps_adjustable_evaluation_is_continuous_across_patch_boundaries() {
     xs.push(0.5);
     for net in ["cnet-3-saddle", "cnet-5-saddle", "cnet-6-convex"] {
         let (mesh, s) = surface_of(gallery(net), scheme, 3);
-        let jump = jump_across(&mesh, &s, &xs, 1e-10, &at_interior_vertex);
+        let jump = jump_across(&mesh, &s, &xs, 1e-10, &|_, _| true);
         eprintln!("{net} under {scheme}, 3 rings: largest jump across ring lines {jump:.3e}");
         assert!(jump < 1e-7, "{net}: jump {jump:e}");
-        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &at_interior_vertex);
+        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
         eprintln!("{net} under {scheme}, 3 rings: largest jump across i 2^-6 {jump:.3e}");
         assert!(jump < 1e-7, "{net}: jump {jump:e}");
     }
@@ -175,28 +170,123 @@ fn tps_adjustable_first_derivatives_are_continuous() {
 
 #[test]
 fn tps_adjustable_limit_evaluation_converges_at_rate_lambda() {
-    let spec = registry()
-        .lookup(ids::TPS_ADJUSTABLE.name())
-        .expect("scheme");
     for n in [3, 5, 6] {
-        let lambda = report::analyze(&spec, n, false)
-            .expect("analysis")
-            .spectrum
-            .lambda;
+        let lambda = ratios::lambda(ids::TPS_ADJUSTABLE.name(), n);
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (_, at) = toward_ev(&mesh, n);
         // ring k lies at s^k of the quarter
-        let (evals, rings) = limit_at_ratio(ids::TPS_ADJUSTABLE.name(), &mesh, &at, S, 12);
-        let (_, ratios) = error_ratios(&evals);
-        eprintln!(
-            "tps-adjustable n = {n}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}"
+        let what = format!("n = {n}");
+        converges_at_ratio(
+            ids::TPS_ADJUSTABLE.name(),
+            &mesh,
+            &at,
+            (S, 12),
+            12,
+            lambda,
+            &what,
         );
-        for (k, ratio) in ratios.iter().enumerate().skip(3) {
-            assert!(
-                (ratio / lambda - 1.0).abs() < 0.05,
-                "n = {n}: error ratio {ratio} at k = {}, lambda {lambda}",
-                k + 3
-            );
+    }
+}
+
+/// The lines of the cells of adjustable TPS on a face of a net refined by `steps` separating
+/// whole-net steps (knot coordinates, the input knots uniform): in each direction the centres
+/// and the ends of the pieces after the steps (every piece cut `e : 1 - 2e : e`, the face
+/// `[0, 1]` spanning from the centre of one input piece to the next), and the ring lines
+/// `c -/+ h s^l` around every piece `[c - h, c + h]` (`l = 1..=4`), all inside `(0, 1)`.
+fn knot_lines(steps: usize) -> Vec<f64> {
+    let e = (1.0 - S) / 2.0;
+    let mut pieces = vec![(-0.5, 0.5), (0.5, 1.5)];
+    for _ in 0..steps {
+        pieces = pieces
+            .iter()
+            .flat_map(|&(a, b)| {
+                let w = b - a;
+                [(a, a + e * w), (a + e * w, b - e * w), (b - e * w, b)]
+            })
+            .collect();
+    }
+    let mut xs = Vec::new();
+    for &(a, b) in &pieces {
+        let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
+        xs.extend([a, c]);
+        for l in 1..=4 {
+            xs.extend([c - h * S.powi(l), c + h * S.powi(l)]);
         }
+    }
+    xs.retain(|&x| x > 1e-9 && x < 1.0 - 1e-9);
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    xs
+}
+
+/// Nets whose extraordinary vertices are separated by whole-net steps first (the cube's
+/// valence-3 corners, torus-evs): the refined net's pieces are rectangles of the input faces
+/// at the knots (framed cells), its rings cells of the quarters at the vertices split at `s`.
+const SEPARATED: [&str; 2] = ["cube", "torus-evs"];
+
+#[test]
+fn tps_adjustable_after_separating_steps_agrees_with_the_written_patches() {
+    all_agree(
+        &[ids::TPS_ADJUSTABLE.name()],
+        &SEPARATED,
+        &[1, 2],
+        &|_, _| true,
+    );
+    all_agree(
+        &[ids::TPS_ADJUSTABLE.name()],
+        &SEPARATED,
+        &[3, 1],
+        &|_, _| true,
+    );
+}
+
+#[test]
+fn tps_adjustable_after_separating_steps_is_continuous() {
+    let scheme = ids::TPS_ADJUSTABLE.name();
+    let mut xs = knot_lines(1);
+    xs.extend(knot_lines(2));
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    for net in SEPARATED {
+        let (mesh, s) = surface_of(gallery(net), scheme, 3);
+        let jump = jump_across(&mesh, &s, &xs, 1e-10, &|_, _| true);
+        eprintln!(
+            "{net} under {scheme}, 3 rings: largest jump across {} knot and ring lines {jump:.3e}",
+            xs.len()
+        );
+        assert!(jump < 1e-7, "{net}: jump {jump:e}");
+        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
+        eprintln!("{net} under {scheme}, 3 rings: largest jump across i 2^-6 {jump:.3e}");
+        assert!(jump < 1e-7, "{net}: jump {jump:e}");
+    }
+}
+
+#[test]
+fn tps_adjustable_after_separating_steps_converges_at_rate_lambda() {
+    // torus-evs: its vertices of valence 3 and 5; the cube's corners (valence 3)
+    for (net, n) in [("cube", 3), ("torus-evs", 3), ("torus-evs", 5)] {
+        let lambda = ratios::lambda(ids::TPS_ADJUSTABLE.name(), n);
+        let mesh = gallery(net);
+        let (ev, at) = toward_ev(&mesh, n);
+        let what = format!("{net} n = {n}");
+        // the quarter at the vertex is 0.3 of the face after one step: a ring or two fewer
+        let (centre, _, _) = converges_at_ratio(
+            ids::TPS_ADJUSTABLE.name(),
+            &mesh,
+            &at,
+            (S, 12),
+            10,
+            lambda,
+            &what,
+        );
+        // the limit point is TPS's (21) over the input net's 1-ring (the first step's
+        // alphas) where the 1-ring's vertices are regular (the cube's corners are neighbours,
+        // whose own rule (18) the averaged rows behind (21) do not take)
+        let lim = ratios::tps_limit_point(&mesh, ev, n);
+        let d = fairsub::geom::dist(centre, lim);
+        let ring = mesh.cnet_indices(ev, 1).expect("the 1-ring");
+        let regular = ring[1..].iter().all(|&w| mesh.valence(w as usize) == 4);
+        eprintln!("{what}: centre to TPS's limit point (21) {d:.3e} (regular 1-ring: {regular})");
+        assert!(!regular || d < 1e-12, "{what}: {centre:?} {lim:?}");
     }
 }

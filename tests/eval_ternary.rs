@@ -9,8 +9,7 @@
 //! eigenvalue per ring, without `--rings`.
 
 use fairsub::analysis::report;
-use fairsub::geom::{axpy, dist};
-use fairsub::schemes::bi2::TpsParams;
+use fairsub::geom::dist;
 use fairsub::schemes::registry::{ids, registry};
 
 // `limit_along` samples at 2^-k and asks for 12 rings; TPS's rings shrink by 3, so the
@@ -21,7 +20,7 @@ mod support;
 use support::{gallery, toward_ev};
 #[path = "eval/faces.rs"]
 mod faces;
-use faces::{all_agree, all_continuous, at_interior_vertex, largest_jump, surface_of};
+use faces::{all_agree, all_continuous, largest_jump, surface_of};
 #[path = "eval/ratios.rs"]
 mod ratios;
 use ratios::{error_ratios, limit_at_ratio};
@@ -37,12 +36,7 @@ fn tps_eval_agrees_with_the_written_patches() {
         "cnet-5-saddle",
         "cnet-6-convex",
     ];
-    all_agree(
-        &[ids::TPS.name()],
-        &nets,
-        &[1, 2, 3, 2, 1],
-        &at_interior_vertex,
-    );
+    all_agree(&[ids::TPS.name()], &nets, &[1, 2, 3, 2, 1], &|_, _| true);
 }
 
 #[test]
@@ -57,6 +51,8 @@ fn tps_evaluation_is_continuous_across_patch_boundaries() {
     }
     // and across the dyadic lines i 2^-6 (the quarters' edges at 1/2 among them)
     all_continuous(&[ids::TPS.name()], &["cube", "torus-evs"]);
+    // and on c-nets, the quarters at boundary vertices included
+    all_continuous(&[ids::TPS.name()], &["cnet-5-saddle", "cnet-3-saddle"]);
 }
 
 #[test]
@@ -70,7 +66,7 @@ fn tps_limit_evaluation_converges_at_rate_lambda() {
         let mesh = gallery(&format!("cnet-{n}-saddle"));
         let (_, at) = toward_ev(&mesh, n);
         // points at 3^-k of the face, k = 2..=10, then the vertex itself
-        let (evals, rings) = limit_at_ratio(ids::TPS.name(), &mesh, &at, 1.0 / 3.0, 10);
+        let (evals, rings) = limit_at_ratio(ids::TPS.name(), &mesh, &at, 1.0 / 3.0, 10, 10);
         let (centre, ratios) = error_ratios(&evals);
         eprintln!("tps n = {n}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}");
         for (k, ratio) in ratios.iter().enumerate().skip(2) {
@@ -80,17 +76,9 @@ fn tps_limit_evaluation_converges_at_rate_lambda() {
                 k + 3
             );
         }
-        // the centre is TPS's limit point (21), (1 - tau_1 - tau_2) q + tau_1 mean(a_i) +
-        // tau_2 mean(b_i) over the vertex's 1-ring
+        // the centre is TPS's limit point (21) over the vertex's 1-ring
         let (ev, _) = toward_ev(&mesh, n);
-        let p = TpsParams::new(n).expect("valence");
-        let ring = mesh.cnet_indices(ev, 1).expect("the 1-ring");
-        let mut lim = fairsub::geom::scale(mesh.position(ev), 1.0 - p.tau1 - p.tau2);
-        for s in 0..n {
-            let (a, b) = (ring[1 + 2 * s] as usize, ring[2 + 2 * s] as usize);
-            lim = axpy(lim, p.tau1 / n as f64, mesh.position(a));
-            lim = axpy(lim, p.tau2 / n as f64, mesh.position(b));
-        }
+        let lim = ratios::tps_limit_point(&mesh, ev, n);
         assert!(dist(centre, lim) < 1e-12, "n = {n}: {centre:?} {lim:?}");
     }
 }

@@ -10,8 +10,10 @@
 //! cell in thirds (the 3 x 3 grid of the ternary schemes, or thirds of any dyadic cell), see
 //! the `thirds` submodule ([`Domain::third_child`], [`Domain::third`]); their maps have the
 //! coefficients `1/3`, rounded once per level. Adjustable TPS's levels split a cell 2 x 2 at a
-//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]). The radial rings of
-//! a pole (PolBS) lie in cells halved along one axis (the `halves` submodule,
+//! ratio other than `1/2` (the `ratio` submodule, [`Domain::ratio_child`]), and after its
+//! separating whole-net steps a chain starts from a rectangle of the face at its knots with
+//! its own affine map instead of the face (the `frame` submodule, [`Domain::framed`]). The
+//! radial rings of a pole (PolBS) lie in cells halved along one axis (the `halves` submodule,
 //! [`Domain::half_child`]).
 //!
 //! # The parameter domain of an input face
@@ -49,9 +51,16 @@
 //! covers exactly that cell (its children those of the cell's four children, one per face
 //! around it), so from level 1 on dual patches have ordinary domains. The hole of an
 //! extraordinary vertex shrinks to corner `(0, 0)` of its faces' quarters, that of an `n`-gon
-//! to the centre `(1, 1)` of its sub-faces. The quarters of faces at boundary vertices are not
-//! tracked (the doubled boundary layer puts the boundary curve half a face outside the net's
-//! lattice, so they are not dyadic cells of the face): evaluating there is an error.
+//! to the centre `(1, 1)` of its sub-faces. A regular boundary vertex (two quads, or a
+//! corner with one) is the centre of its 3 x 3 net with the doubled boundary layer, so its
+//! patch spans half a face beyond the boundary edges (the boundary curve is the knot line
+//! between the phantom row and the boundary row, half a face outside the net's lattice); its
+//! parts over the vertex's faces are their quarters at it, recorded as at an interior vertex.
+//! The outer half-face strip of those patches lies over no face: the face's boundary edge is
+//! the knot line through the boundary vertices, not the boundary curve. Quarters whose
+//! vertex writes no patch (boundary mode `none`) or is refined as an extraordinary boundary
+//! element (a boundary vertex with three or more faces, an unkept corner under `edge-only`)
+//! are not tracked: evaluating there is an error.
 //!
 //! # TPS (primal ternary bi-2)
 //!
@@ -84,11 +93,13 @@
 use serde::Serialize;
 
 mod fan;
+mod frame;
 mod halves;
 mod ratio;
 mod thirds;
 
 pub use fan::FanTriangle;
+pub use frame::Frame;
 
 /// Shape of a cell: how its children split it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -139,6 +150,10 @@ pub struct Domain {
     /// `4 + k` marks triangle `k` of a quad cell's criss-cross ([`Domain::criss_cross`]), whose
     /// maps are those of `rot = 0`.
     pub rot: u8,
+    /// The rectangle of the face the cell chain starts from ([`Domain::framed`], the `frame`
+    /// submodule): [`Frame::NONE`] (the face itself) for every scheme but adjustable TPS
+    /// after a separating step.
+    pub frame: Frame,
 }
 
 /// A part of a patch that covers one cell: the patch's parameters in the box `window`
@@ -348,7 +363,7 @@ impl Domain {
     pub const WHOLE: u32 = u32::MAX;
 
     /// A domain the host does not track (schemes without face domains, the dual schemes'
-    /// quarters at boundary vertices).
+    /// cells next to extraordinary boundary elements).
     pub const UNTRACKED: Domain = Domain {
         face: u32::MAX,
         sub: 0,
@@ -360,6 +375,7 @@ impl Domain {
         ratio: 0,
         halves: 0,
         rot: 0,
+        frame: Frame::NONE,
     };
 
     /// The whole input face `face` with `sides` corners: a quad, a triangle (Loop) or an n-gon
@@ -413,6 +429,7 @@ impl Domain {
                 halves: 0,
                 rot: 0,
                 face: self.face,
+                frame: Frame::NONE,
             };
         }
         if self.depth == MAX_DEPTH {
@@ -488,7 +505,7 @@ impl Domain {
     /// The map from the cell's coordinates to the face's (the sub-face's for an n-gon; add
     /// `sub` to `u` for the face's strip coordinates).
     pub fn cell_map(&self) -> Affine {
-        let mut m = Affine::IDENTITY;
+        let mut m = self.frame_or_identity();
         for l in 1..=self.depth {
             let child = if self.splits_in_thirds(l) {
                 Shape::third_map(self.step(l))

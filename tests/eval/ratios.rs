@@ -43,19 +43,48 @@ pub fn converges(
     let evals = crate::support::limit_along(scheme, mesh, &at, min_rings);
     let (centre, ratios) = error_ratios(&evals);
     eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
-    for (k, &ratio) in ratios.iter().enumerate().skip(4) {
+    assert_rate(&format!("{scheme} {what}"), &ratios, lambda, 4, 0.1);
+    (centre, ratios)
+}
+
+/// Asserts that the error ratios from index `from` on are `lambda` within `tol` (relative);
+/// ratio `k` is that of the points `k + 2` and `k + 3` of the sequence.
+pub fn assert_rate(what: &str, ratios: &[f64], lambda: f64, from: usize, tol: f64) {
+    for (k, &ratio) in ratios.iter().enumerate().skip(from) {
         assert!(
-            (ratio / lambda - 1.0).abs() < 0.1,
-            "{scheme} {what}: error ratio {ratio} at k = {}, lambda {lambda}",
+            (ratio / lambda - 1.0).abs() < tol,
+            "{what}: error ratio {ratio} at k = {}, lambda {lambda}",
             k + 2
         );
     }
-    (centre, ratios)
+}
+
+/// [`converges`] for schemes whose rings shrink by `ratio` (not 2): the limit evaluation at
+/// `at(ratio^k)` (`(ratio, last)`, k = 2..=last, [`limit_at_ratio`]) and `at(0)`, whose successive errors to
+/// the centre must shrink by `lambda` within 5% from k = 5 on (one ring per point), with at
+/// least `min_rings` rings; returns the centre, the ratios and the rings used.
+#[allow(dead_code)]
+pub fn converges_at_ratio(
+    scheme: &str,
+    mesh: &fairsub::mesh::PolyMesh,
+    at: &dyn Fn(f64) -> (u32, f64, f64),
+    (ratio, last): (f64, i32),
+    min_rings: usize,
+    lambda: f64,
+    what: &str,
+) -> (Point, Vec<f64>, usize) {
+    let (evals, rings) = limit_at_ratio(scheme, mesh, at, ratio, last, min_rings);
+    let (centre, ratios) = error_ratios(&evals);
+    eprintln!("{scheme} {what}: {rings} rings, lambda {lambda:.6}, error ratios {ratios:.6?}");
+    assert_rate(&format!("{scheme} {what}"), &ratios, lambda, 3, 0.05);
+    (centre, ratios, rings)
 }
 
 /// The limit surface of `scheme` on `mesh` ([`evaluate_limit`]) at `at(ratio^k)` for
 /// `k = 2 ..= last` and, last, at `at(0)` (for schemes whose rings shrink by `ratio`, not 2:
-/// TPS's thirds, adjustable TPS's `1 - 2e`), with the rings used; asserts at least `last`.
+/// TPS's thirds, adjustable TPS's `1 - 2e`), with the rings used; asserts at least
+/// `min_rings` (`last` where ring `k` lies at `ratio^k` of the face; fewer after separating
+/// whole-net steps, whose elements are smaller than the face).
 #[allow(dead_code)]
 pub fn limit_at_ratio(
     scheme: &str,
@@ -63,6 +92,7 @@ pub fn limit_at_ratio(
     at: &dyn Fn(f64) -> (u32, f64, f64),
     ratio: f64,
     last: i32,
+    min_rings: usize,
 ) -> (Vec<Evaluation>, usize) {
     use fairsub::surface::ComplexOptions;
     use fairsub::surface::eval::{Surface, evaluate_limit};
@@ -83,8 +113,28 @@ pub fn limit_at_ratio(
     })
     .expect("limit evaluation");
     assert!(
-        rings >= last as usize,
+        rings >= min_rings,
         "{scheme}: {rings} rings for points at {ratio}^{last}"
     );
     (evals, rings)
+}
+
+/// TPS's limit point (21) of vertex `ev` of valence `n`: `(1 - tau_1 - tau_2) q + tau_1
+/// mean(a_i) + tau_2 mean(b_i)` over its 1-ring.
+#[allow(dead_code)]
+pub fn tps_limit_point(
+    mesh: &fairsub::mesh::PolyMesh,
+    ev: usize,
+    n: usize,
+) -> fairsub::geom::Point {
+    use fairsub::geom::axpy;
+    let p = fairsub::schemes::bi2::TpsParams::new(n).expect("valence");
+    let ring = mesh.cnet_indices(ev, 1).expect("the 1-ring");
+    let mut lim = fairsub::geom::scale(mesh.position(ev), 1.0 - p.tau1 - p.tau2);
+    for s in 0..n {
+        let (a, b) = (ring[1 + 2 * s] as usize, ring[2 + 2 * s] as usize);
+        lim = axpy(lim, p.tau1 / n as f64, mesh.position(a));
+        lim = axpy(lim, p.tau2 / n as f64, mesh.position(b));
+    }
+    lim
 }

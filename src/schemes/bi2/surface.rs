@@ -269,14 +269,14 @@ fn polar_element(mesh: &PolyMesh, p: usize, element: Element, name: &str) -> Res
 /// Regular patches of every regular vertex (with knot widths when given), then rings and the
 /// G^1 cap of [`g1`] (or the fill, with a note) of every element. With `track` (`mesh` is the
 /// input net, no widths) the patches record the input-face cells they cover ([`cells`]); with
-/// `face_cells` (the cell of an input face each face of `mesh` is, TPS) the regular patches
+/// `face_cells` (where each face of `mesh` lies in the input faces, TPS) the regular patches
 /// and the rings and caps of elements with `sectors` record their face domains in thirds
 /// ([`thirds`]).
 fn assemble(
     mesh: &PolyMesh,
     track: bool,
     widths: Option<&Widths>,
-    face_cells: Option<&[Domain]>,
+    face_cells: Option<&thirds::FaceCells>,
     elements: &[RingElement],
     opts: ComplexOptions,
     mut progress: impl FnMut(usize),
@@ -451,14 +451,14 @@ pub fn tps_complex(
     let mut m = mesh.clone();
     let mut w = uniform_widths(mesh);
     let mut notes = Vec::new();
-    // The cell of an input face each face of `m` is: TPS's refined faces are thirds of the
-    // input faces, adjustable TPS's are not cells (`thirds`), so they are untracked.
+    // Where each face of `m` lies in the input faces: TPS's refined faces are thirds of the
+    // input faces, adjustable TPS's rectangles at the knots (`thirds`).
     let split = if rules == TernaryRules::TPS {
         thirds::Split::Thirds
     } else {
         thirds::Split::At(1.0 - 2.0 * rules.e)
     };
-    let mut face_cells = thirds::input_face_cells(mesh);
+    let mut face_cells = thirds::FaceCells::input(mesh);
     // Validate the net as the scheme would (quads, boundary rules).
     ternary_step(&m, &w, &rules, name)?;
     for start in 0..=2 {
@@ -477,7 +477,7 @@ pub fn tps_complex(
             .collect();
         match built {
             Ok(elements) => {
-                let cells = Some(face_cells.as_slice());
+                let cells = Some(&face_cells);
                 let (c, more) =
                     assemble(&m, false, Some(&w), cells, &elements, opts, &mut progress)?;
                 notes.extend(more);
@@ -490,12 +490,7 @@ pub fn tps_complex(
                      count from the refined net"
                 ));
                 let (r, nw) = ternary_step(&m, &w, &rules, name)?;
-                face_cells = match split {
-                    thirds::Split::Thirds => {
-                        thirds::refined_face_cells(&face_cells, r.mesh.num_faces())
-                    }
-                    thirds::Split::At(_) => vec![Domain::UNTRACKED; r.mesh.num_faces()],
-                };
+                face_cells = face_cells.step(split, &m, &w, &r.mesh, &nw, rules.e);
                 m = r.mesh;
                 w = nw;
             }

@@ -71,12 +71,14 @@
 //!
 //! # Face domains (evaluation)
 //!
-//! The patch of an interior input vertex covers the quarter of each of its four faces at it:
-//! `emit` records the four as [`Piece`]s of the patch. Every later vertex lies in one cell of
+//! The patch of an input vertex covers the quarter of each of its faces at it (four at an
+//! interior vertex; at a regular boundary vertex two, or one at a corner, the rest of its
+//! patch lying in the doubled boundary layer beyond the boundary edges, over no face):
+//! `emit` records them as [`Piece`]s of the patch. Every later vertex lies in one cell of
 //! an input face, kept in its tag (`rot`: the corner of its patch's `(0, 0)`), and its children
 //! get the cell's quarters (`refine::child_domain`); the fill and the G^1 cap sectors cover
-//! their vertex's cell. The layout is in [`crate::bezier::domain`]; next to the boundary
-//! nothing is tracked.
+//! their vertex's cell. The layout is in [`crate::bezier::domain`]; the children of boundary
+//! vertices (refined next to extraordinary boundary elements) are not tracked.
 //!
 //! # Boundary modes
 //!
@@ -470,35 +472,36 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
     trusted.then(|| patch_from(m, &s))
 }
 
-/// The quarters of the four faces around the interior input vertex `v` that its patch, the
+/// The quarters of the faces around the input vertex `v` that its patch, the
 /// last of `out`, covers ([`crate::bezier::domain`]): [`vertex_quarter_pieces`] with the input
 /// faces' own cells. The regular patches of `bi2-mixed` are laid out the same way.
 pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
     let patch = (out.len() - 1) as u32;
-    let cell = |g: usize| Domain::polygon(g as u32, m.face_size(g));
+    let cell = |g: usize, k: u32| Domain::polygon(g as u32, m.face_size(g)).child(k);
     vertex_quarter_pieces(m, v, patch, &cell, out);
 }
 
-/// The quarters of the four faces around the interior vertex `v` that its bi-2 patch `patch`
-/// covers ([`crate::bezier::domain`]), `face_cell(g)` being the cell face `g` of `m` is (the
-/// input face itself, or for TPS a third of one): face `i` of `v`'s fan (`u` along its first
+/// The quarters of the faces around the vertex `v` that its bi-2 patch `patch`
+/// covers ([`crate::bezier::domain`]), `corner_cell(g, k)` being the cell of face `g`'s
+/// quarter at its corner `k` (child `k` of the input face itself, or for TPS of a third of
+/// one; for adjustable TPS after a separating step a framed rectangle of an input face,
+/// `(0, 0)` at the corner, `u` toward corner `k + 1`): face `i` of `v`'s fan (`u` along its first
 /// outgoing half-edge, `v` counter-clockwise) has its centroid at the patch's corner `2 + i`
-/// and at corner 2 of its quarter at `v`. Boundary vertices' patches are not recorded. Shared
-/// by the dual schemes and TPS, whose vertex patches lie alike.
+/// and at corner 2 of its quarter at `v`. At a regular boundary vertex (two faces, or a
+/// corner with one) the fan starts at the outgoing boundary edge, as the patch's net does
+/// (its phantom row at `v < 1/2`, beyond the boundary edges), so its faces' quarters are
+/// recorded alike. Shared by the dual schemes and TPS, whose vertex patches lie alike.
 pub(crate) fn vertex_quarter_pieces(
     m: &PolyMesh,
     v: usize,
     patch: u32,
-    face_cell: &dyn Fn(usize) -> Domain,
+    corner_cell: &dyn Fn(usize, u32) -> Domain,
     out: &mut PatchComplex,
 ) {
-    if m.is_boundary_vertex(v) {
-        return;
-    }
     for (i, h) in m.outgoing_halfedges(v).into_iter().enumerate() {
         let g = m.he_face(h) as usize;
         let k = h - m.face_halfedge(g);
-        let cell = face_cell(g).child(k);
+        let cell = corner_cell(g, k);
         out.push_piece(Piece::quarter(patch, ((2 + i) % 4) as u8, cell, 2));
     }
 }

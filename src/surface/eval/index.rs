@@ -18,6 +18,8 @@
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::domain::{Affine, Domain, Shape};
 
+mod frames;
+
 /// What covers a cell.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Node {
@@ -33,6 +35,9 @@ enum Node {
     /// Halved along `axis` (0: `u`, 1: `v`; a pole's fan triangles, [`Shape::half_map`]), the
     /// lower half at node `first`, the upper at `first + 1`.
     Halves { first: u32, axis: u8 },
+    /// Split into the rectangles of framed cells ([`Domain::framed`]): [`CellTree::frames`]
+    /// `[set]` (adjustable TPS after a separating step, the `frames` submodule).
+    Frames { set: u32 },
 }
 
 /// A cell covered by a patch (or a piece of one), with its maps precomputed.
@@ -126,6 +131,8 @@ pub(super) struct CellTree {
     ratios: Vec<(f64, [ChildInverse; 4])>,
     /// Inverse maps of a quad cell's halves ([`Shape::half_map`]).
     halves: [ChildInverse; 4],
+    /// The rectangles of the nodes split into framed cells.
+    frames: Vec<frames::FrameSet>,
 }
 
 /// How many ways level `l` (1-based) of `d` splits each side of its parent cell: 3 for a
@@ -156,6 +163,7 @@ impl CellTree {
             third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
             ratios: Vec::new(),
             halves: std::array::from_fn(|k| ChildInverse::of(Shape::half_map(k as u8))),
+            frames: Vec::new(),
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
@@ -164,6 +172,9 @@ impl CellTree {
         }
         for p in &complex.pieces {
             tree.insert(Leaf::new(p.patch, p.domain, Some(p.window_map())));
+        }
+        for set in &mut tree.frames {
+            set.build_grid();
         }
         tree
     }
@@ -181,6 +192,12 @@ impl CellTree {
             return;
         }
         let mut at = (lo + d.sub) as usize;
+        if let Some(map) = d.frame_map() {
+            let Some(child) = self.framed_child(at, map) else {
+                return;
+            };
+            at = child as usize;
+        }
         for l in 1..=d.depth {
             if d.splits_at_ratio(l) {
                 let Some(first) = self.split_at_ratio(at, d.ratio()) else {
@@ -197,7 +214,12 @@ impl CellTree {
                 continue;
             }
             let first = match self.nodes[at] {
-                Node::Leaf(_) | Node::SplitAt { .. } | Node::Halves { .. } => return,
+                Node::Leaf(_)
+                | Node::SplitAt { .. }
+                | Node::Halves { .. }
+                | Node::Frames { .. } => {
+                    return;
+                }
                 // a cell split the other way (dyadic vs in thirds) by an earlier domain:
                 // the first indexed wins, as for a covered cell
                 Node::Split { first, factor } if factor == factor_of(&d, l) => first,
@@ -300,6 +322,11 @@ impl CellTree {
                     let k = Shape::half_at(axis, p);
                     p = self.halves[usize::from(k)].apply(p);
                     at = first as usize + usize::from(k % 2);
+                }
+                Node::Frames { set } => {
+                    let (node, inv) = self.frames[set as usize].find(p)?;
+                    p = inv.apply(p);
+                    at = node as usize;
                 }
                 Node::Split { .. } => return None,
             }

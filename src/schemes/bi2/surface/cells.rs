@@ -19,8 +19,9 @@
 //!   `a_s`, corner 0) and of the quad across edge `a_s a_(s+1)` (`d`: at that edge's midpoint,
 //!   corner 3).
 //!
-//! TPS vertices (ternary rings, which no dyadic cell holds) and the quarters at boundary
-//! vertices are not tracked; PolBS poles have their own cells ([`super::poles`]).
+//! TPS vertices (ternary rings, which no dyadic cell holds) are not tracked; PolBS poles have
+//! their own cells ([`super::poles`]); the regular patches' quarters at boundary vertices are
+//! tracked, as for the dual schemes.
 
 use crate::bezier::complex::Domain;
 use crate::mesh::PolyMesh;

@@ -27,10 +27,11 @@
 //! Extraordinary vertices too close for rings are separated by whole-net steps first; a face
 //! of the refined net is then child `i + 3 j` in thirds of its parent face (the face children
 //! of `ternary_step`, face `9 f + 3 i + j` at `(i, j) / 3` of face `f`), so its quarters and
-//! the cells in them are cells of an input face all the same. As for the dual schemes, the
-//! patches of boundary vertices are not recorded (their doubled boundary layer puts the
-//! boundary curve half a face outside the face's domain), nor the faces of the boundary layer
-//! a step adds: evaluating there is an error.
+//! the cells in them are cells of an input face all the same (adjustable TPS's refined faces
+//! are rectangles at its knots instead, below). As for the dual schemes, the patch of a
+//! regular boundary vertex covers its faces' quarters (the rest of it, over the doubled
+//! boundary layer, lies over no face); the faces of the boundary layer a step adds are not
+//! tracked.
 //!
 //! # Adjustable TPS: cells split at `s = 1 - 2e`
 //!
@@ -45,19 +46,34 @@
 //! `[s, 1] x [0, s]` of sector `s` and with its half `v <= 1/2` the child `[0, s] x [s, 1]` of
 //! sector `s - 1`, turned as for TPS. The cap covers `[0, s^K]^2` from the centre. So the
 //! face parameters are the spline's own knot coordinates: the pieces join C^1 in them as the
-//! spline does. Only the input net's faces are tracked: a whole-net step (to separate
-//! extraordinary vertices) cuts a face at the knots `(1 -/+ e) / 2`, so the refined net's
-//! vertex pieces are not quarters of its faces, and those nets are not evaluated (an error).
-//! With `e = 1/3` the cells are TPS's thirds' sizes (`s = 1/3`), cut as 2 x 2 at `1/3`.
+//! spline does. With `e = 1/3` the cells are TPS's thirds' sizes (`s = 1/3`), cut as 2 x 2
+//! at `1/3`.
+//!
+//! A whole-net step (to separate extraordinary vertices) cuts every piece `e : 1 - 2e : e`,
+//! so a face of the refined net is not a dyadic or ternary child of its input face: in knot
+//! coordinates it is the rectangle between the centres of its four vertices' pieces (the
+//! children of `ternary_step`'s 4 x 4 grid of the face: vertex child at 0, edge children at
+//! `a (1 - e) / (a + b)` and `(a + e b) / (a + b)`, far vertex child at 1, `a`, `b` the
+//! pieces' widths along the side; `(1 -/+ e) / 2` on the uniform input), and its corner
+//! vertex's piece covers the part from the corner to the knot crossing, at `a / (a + b)` of
+//! each side. [`FaceCells::Knots`] tracks each refined face as that rectangle of its input
+//! face (an affine map, composed step by step) and gives each quarter its own framed cell
+//! ([`Domain::framed`]: `(0, 0)` at the corner, `u` toward the next corner). A face line of
+//! the input net runs through the middle of the middle piece of every vertex on it, so every
+//! quarter lies in one input face. The sector quarters at the extraordinary vertices are
+//! framed squares, and the rings split them at `s` as above; the boundary layer a step adds
+//! stays untracked.
 
 use crate::bezier::complex::{Domain, PatchComplex, Piece};
+use crate::bezier::domain::Affine;
 use crate::mesh::PolyMesh;
+use crate::schemes::bi2::ternary::Widths;
 
 /// The cells of the faces of the net after whole-net ternary steps: `parent` holds the cells
 /// of the faces before the step (of `before`, with `before.num_faces()` entries), the result
 /// those of the `9 F` face children of the step (then untracked boundary-layer faces up to
 /// `after_faces`).
-pub(super) fn refined_face_cells(parent: &[Domain], after_faces: usize) -> Vec<Domain> {
+fn refined_face_cells(parent: &[Domain], after_faces: usize) -> Vec<Domain> {
     let mut out = Vec::with_capacity(after_faces);
     for &d in parent {
         for i in 0..3u8 {
@@ -70,14 +86,133 @@ pub(super) fn refined_face_cells(parent: &[Domain], after_faces: usize) -> Vec<D
     out
 }
 
-/// The cells of an input net's faces (quads; other faces untracked, TPS refuses them).
-pub(super) fn input_face_cells(mesh: &PolyMesh) -> Vec<Domain> {
-    (0..mesh.num_faces())
-        .map(|f| match mesh.face_size(f) {
-            4 => Domain::polygon(f as u32, 4),
-            _ => Domain::UNTRACKED,
-        })
-        .collect()
+/// Where the faces of a TPS net (the input net, or the net after whole-net steps) lie in the
+/// input faces, and so the cell of the quarter of each face at each of its corners (the part
+/// of the corner vertex's piece in the face).
+pub(super) enum FaceCells {
+    /// Each face is a cell of an input face (the input net, and TPS's refined faces, which
+    /// are thirds): the quarter at corner `k` is its child `k`.
+    Cells(Vec<Domain>),
+    /// Adjustable TPS after whole-net steps (see the [module](self) documentation): each face
+    /// is the rectangle of input face `.0` that the map `.1` takes its `[0, 1]^2` onto (corner
+    /// 0 at `(0, 0)`, `u` toward corner 1, `v` toward corner 3; knot coordinates), `None`
+    /// for the boundary layer; `corners` the framed quarters, cut at the knot crossing.
+    Knots {
+        faces: Vec<Option<(u32, Affine)>>,
+        corners: Vec<[Domain; 4]>,
+    },
+}
+
+impl FaceCells {
+    /// The cells of an input net's faces (quads; other faces untracked, TPS refuses them).
+    pub fn input(mesh: &PolyMesh) -> FaceCells {
+        FaceCells::Cells(
+            (0..mesh.num_faces())
+                .map(|f| match mesh.face_size(f) {
+                    4 => Domain::polygon(f as u32, 4),
+                    _ => Domain::UNTRACKED,
+                })
+                .collect(),
+        )
+    }
+
+    /// The quarter of face `g` at its corner `k`, `(0, 0)` at the corner, `u` toward corner
+    /// `k + 1` (untracked for faces out of range).
+    pub fn corner(&self, g: usize, k: u32) -> Domain {
+        match self {
+            FaceCells::Cells(c) => c.get(g).map_or(Domain::UNTRACKED, |d| d.child(k)),
+            FaceCells::Knots { corners, .. } => corners
+                .get(g)
+                .map_or(Domain::UNTRACKED, |c| c[(k & 3) as usize]),
+        }
+    }
+
+    /// The cells after a whole-net step from `before` (knot widths `w`) to `after` (knot
+    /// widths `w_after`): thirds of the faces for TPS, the rectangles at the knots for
+    /// adjustable TPS (split ratio `e`).
+    pub fn step(
+        self,
+        split: Split,
+        before: &PolyMesh,
+        w: &Widths,
+        after: &PolyMesh,
+        w_after: &Widths,
+        e: f64,
+    ) -> FaceCells {
+        let nf = after.num_faces();
+        let faces: Vec<Option<(u32, Affine)>> = match (self, split) {
+            (FaceCells::Cells(c), Split::Thirds) => {
+                return FaceCells::Cells(refined_face_cells(&c, nf));
+            }
+            (FaceCells::Cells(c), Split::At(_)) => c
+                .iter()
+                .enumerate()
+                .map(|(f, d)| d.is_tracked().then_some((f as u32, Affine::IDENTITY)))
+                .collect(),
+            (FaceCells::Knots { faces, .. }, _) => faces,
+        };
+        let mut out = Vec::with_capacity(nf);
+        for (f, rect) in faces.iter().enumerate().take(before.num_faces()) {
+            let h0 = before.face_halfedge(f);
+            let h3 = h0 + 3;
+            // the child vertices' centres along the face, in its cell coordinates: the vertex
+            // child at 0, the two edge children at the centres of the end pieces next to the
+            // knot, the far vertex child at 1 (`ternary_step`'s 4 x 4 grid of the face)
+            let cuts = |a: f64, b: f64| [0.0, a * (1.0 - e) / (a + b), (a + e * b) / (a + b), 1.0];
+            let xs = cuts(w[h0 as usize][0], w[h0 as usize][1]);
+            let ys = cuts(w[h3 as usize][1], w[h3 as usize][0]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    let child = Affine {
+                        origin: [xs[i], ys[j]],
+                        e: [[xs[i + 1] - xs[i], 0.0], [0.0, ys[j + 1] - ys[j]]],
+                    };
+                    out.push(rect.map(|(face, m)| (face, m.compose(&child))));
+                }
+            }
+        }
+        out.resize(nf, None);
+        let corners = out
+            .iter()
+            .enumerate()
+            .map(|(g, rect)| match rect {
+                Some((face, m)) => knot_quarters(after, w_after, g, *face, m),
+                None => [Domain::UNTRACKED; 4],
+            })
+            .collect();
+        FaceCells::Knots {
+            faces: out,
+            corners,
+        }
+    }
+}
+
+/// The quarters of face `g` of a net with knot widths `w` (the face the rectangle `m` of
+/// input face `face`): the part of each corner vertex's piece in the face, from the corner
+/// to the knot crossing (at `a / (a + b)` of each side, `a` and `b` the pieces' widths along
+/// it), framed with `(0, 0)` at the corner and `u` toward the next corner.
+fn knot_quarters(mesh: &PolyMesh, w: &Widths, g: usize, face: u32, m: &Affine) -> [Domain; 4] {
+    const QUAD: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let h0 = mesh.face_halfedge(g) as usize;
+    let h3 = h0 + 3;
+    let x = [
+        w[h0][0] / (w[h0][0] + w[h0][1]),
+        w[h3][1] / (w[h3][1] + w[h3][0]),
+    ];
+    std::array::from_fn(|k| {
+        let c = QUAD[k];
+        let toward = |q: [f64; 2]| {
+            // the side from corner k toward corner q, as far as the knot crossing
+            let d = [q[0] - c[0], q[1] - c[1]];
+            let t = (x[0] - c[0]) * d[0] + (x[1] - c[1]) * d[1];
+            [d[0] * t, d[1] * t]
+        };
+        let quarter = Affine {
+            origin: c,
+            e: [toward(QUAD[(k + 1) % 4]), toward(QUAD[(k + 3) % 4])],
+        };
+        Domain::framed(face, m.compose(&quarter))
+    })
 }
 
 /// The quarters of the four faces around interior vertex `v` that its regular patch (patch
@@ -85,12 +220,12 @@ pub(super) fn input_face_cells(mesh: &PolyMesh) -> Vec<Domain> {
 /// dual schemes record them.
 pub(super) fn vertex_pieces(
     mesh: &PolyMesh,
-    cells: &[Domain],
+    cells: &FaceCells,
     v: usize,
     patch: u32,
     out: &mut PatchComplex,
 ) {
-    let cell = |g: usize| cells.get(g).copied().unwrap_or(Domain::UNTRACKED);
+    let cell = |g: usize, k: u32| cells.corner(g, k);
     crate::schemes::doo_sabin::surface::vertex_quarter_pieces(mesh, v, patch, &cell, out);
 }
 
@@ -98,7 +233,7 @@ pub(super) fn vertex_pieces(
 /// the face `v, a_s, b_s, a_(s+1)` of its q-net, as [`crate::mesh::PolyMesh::cnet_indices`]
 /// orders it), its `(0, 0)` at `v` and `u` along spoke `a_s`; all untracked when a face does
 /// not run counter-clockwise through `v, a_s, b_s`.
-pub(super) fn sector_cells(mesh: &PolyMesh, cells: &[Domain], v: usize) -> Vec<Domain> {
+pub(super) fn sector_cells(mesh: &PolyMesh, cells: &FaceCells, v: usize) -> Vec<Domain> {
     let Some(idx) = mesh.cnet_indices(v, 1) else {
         return Vec::new();
     };
@@ -112,8 +247,7 @@ pub(super) fn sector_cells(mesh: &PolyMesh, cells: &[Domain], v: usize) -> Vec<D
         match h {
             Some(h) => {
                 let g = mesh.he_face(h) as usize;
-                let k = h - mesh.face_halfedge(g);
-                out.push(cells.get(g).map_or(Domain::UNTRACKED, |d| d.child(k)));
+                out.push(cells.corner(g, h - mesh.face_halfedge(g)));
             }
             None => return vec![Domain::UNTRACKED; n],
         }
