@@ -38,6 +38,35 @@ pub trait AdaptiveRules {
         to: Sink<Self::Curves>,
     ) -> bool;
 
+    /// Emits every active cell of `level` (level `l`) that [`AdaptiveRules::emit`] takes, in
+    /// order, each patch with its cell's domain, and returns the others (the marked cells) in
+    /// order. The default calls `emit` per cell; a scheme may override it to compute the
+    /// patches in parallel and push them in the same order (the same complex).
+    fn emit_all(
+        &self,
+        level: &Self::Level,
+        l: usize,
+        curves: &mut Self::Curves,
+        out: &mut PatchComplex,
+    ) -> Vec<(u32, Tag)> {
+        let mut marked: Vec<(u32, Tag)> = Vec::new();
+        for &(f, tag) in level.active() {
+            let first = out.len();
+            let to = Sink {
+                curves: &mut *curves,
+                out: &mut *out,
+            };
+            if self.emit(level, f, provenance(l, tag), to) {
+                for i in first..out.len() {
+                    out.set_domain(i, tag.domain);
+                }
+            } else {
+                marked.push((f, tag));
+            }
+        }
+        marked
+    }
+
     /// The tag of a cell that is not emitted at level `l`.
     fn retag(&self, level: &Self::Level, cell: u32, tag: Tag, l: usize) -> Tag;
 
@@ -94,22 +123,8 @@ pub fn run<R: AdaptiveRules + ?Sized>(
     let mut out = PatchComplex::new();
     let mut level = rules.start(mesh, opts)?;
     for l in 0.. {
-        let mut marked: Vec<(u32, Tag)> = Vec::new();
         let mut curves = R::Curves::default();
-        for &(f, tag) in level.active() {
-            let first = out.len();
-            let to = Sink {
-                curves: &mut curves,
-                out: &mut out,
-            };
-            if rules.emit(&level, f, provenance(l, tag), to) {
-                for i in first..out.len() {
-                    out.set_domain(i, tag.domain);
-                }
-            } else {
-                marked.push((f, tag));
-            }
-        }
+        let mut marked = rules.emit_all(&level, l, &mut curves, &mut out);
         marked = rules.retag_all(&level, marked, l);
         marked = rules.caps(&level, marked, l, &mut out)?;
         if marked.is_empty() {

@@ -36,6 +36,7 @@
 //! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
 //! own boundaries. `fairsub check` measures its defects.
 
+mod emit;
 mod g1;
 mod jets;
 pub mod sharp;
@@ -166,13 +167,20 @@ impl AdaptiveRules for CcRules<'_> {
             return false;
         };
         let p = net_patch(level, &net);
-        if let Some(t) = &self.track {
-            t.borrow_mut().regular(to.out.len(), &net);
-        }
-        to.curves.push((f, to.out.len() as u32));
-        to.out.push(p, prov);
-        sharp::mark_sides(level, f as usize, to.out);
+        self.push_regular(level, f, &net, p, prov, to);
         true
+    }
+
+    /// The regular patches (nets and Bezier conversion) are computed in parallel
+    /// ([`emit::emit_all`]): the complex and table of the per-cell [`AdaptiveRules::emit`].
+    fn emit_all(
+        &self,
+        level: &Level,
+        l: usize,
+        curves: &mut Vec<(u32, u32)>,
+        out: &mut PatchComplex,
+    ) -> Vec<(u32, Tag)> {
+        emit::emit_all(self, level, l, curves, out)
     }
 
     fn retag(&self, level: &Level, f: u32, tag: Tag, _l: usize) -> Tag {

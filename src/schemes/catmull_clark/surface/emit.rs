@@ -1,0 +1,85 @@
+//! The regular patches of a Catmull-Clark level, computed in parallel blocks and pushed in
+//! the cells' order ([`emit_all`]), and the one path by which a regular patch enters the
+//! complex ([`CcRules::push_regular`]), shared with the per-cell `emit`.
+
+use super::{CcRules, Level, is_hole, net_patch, regular_net, sharp};
+use crate::bezier::BezierPatch;
+use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::host::adaptive::{self, Sink, Tag};
+use crate::schemes::catmull_clark::regular::Net;
+
+/// Cells per block of [`emit_all`]'s parallel patch computation (bounds the block's nets and
+/// patches held at once).
+const EMIT_BLOCK: usize = 4096;
+
+/// The regular patches (nets and Bezier conversion) are computed in parallel, in blocks of
+/// cells, then pushed (and tracked) in the cells' order: the complex and table of the per-cell
+/// [`AdaptiveRules::emit`](crate::host::adaptive::AdaptiveRules::emit) (one path:
+/// [`CcRules::push_regular`]).
+pub(super) fn emit_all(
+    rules: &CcRules<'_>,
+    level: &Level,
+    l: usize,
+    curves: &mut Vec<(u32, u32)>,
+    out: &mut PatchComplex,
+) -> Vec<(u32, Tag)> {
+    use rayon::prelude::*;
+    let mut marked = Vec::new();
+    // room for one patch per active cell at once (growing the complex's vectors by
+    // doubling copied them, with fresh pages, several times per level)
+    let room = out.len() + level.active.len();
+    out.patches.reserve(room - out.patches.len());
+    out.provenance.reserve(room - out.provenance.len());
+    out.domains.reserve(room.saturating_sub(out.domains.len()));
+    for block in level.active.chunks(EMIT_BLOCK) {
+        let nets: Vec<Option<(Net, BezierPatch)>> = block
+            .par_iter()
+            .map(|&(f, _)| {
+                if is_hole(level, f as usize) {
+                    return None;
+                }
+                let net = regular_net(level, f as usize)?;
+                let p = net_patch(level, &net);
+                Some((net, p))
+            })
+            .collect();
+        for (&(f, tag), built) in block.iter().zip(nets) {
+            if is_hole(level, f as usize) {
+                continue;
+            }
+            let Some((net, p)) = built else {
+                marked.push((f, tag));
+                continue;
+            };
+            let to = Sink {
+                curves: &mut *curves,
+                out: &mut *out,
+            };
+            rules.push_regular(level, f, &net, p, adaptive::provenance(l, tag), to);
+            out.set_domain(out.len() - 1, tag.domain);
+        }
+    }
+    marked
+}
+
+impl CcRules<'_> {
+    /// Pushes the regular patch `p` of cell `f` (its B-spline net `net`): tracked, its edge
+    /// curves recorded for the fill, its sharp sides marked. The one path of
+    /// [`AdaptiveRules::emit`](crate::host::adaptive::AdaptiveRules::emit) and [`AdaptiveRules::emit_all`].
+    pub(super) fn push_regular(
+        &self,
+        level: &Level,
+        f: u32,
+        net: &Net,
+        p: BezierPatch,
+        prov: Provenance,
+        to: Sink<Vec<(u32, u32)>>,
+    ) {
+        if let Some(t) = &self.track {
+            t.borrow_mut().regular(to.out.len(), net);
+        }
+        to.curves.push((f, to.out.len() as u32));
+        to.out.push(p, prov);
+        sharp::mark_sides(level, f as usize, to.out);
+    }
+}
