@@ -79,6 +79,11 @@ impl LayeredTable {
         self.rows.push_points(points.iter().map(|&i| i + shift));
     }
 
+    /// Makes room for `rows` more rows of `entries` entries in all.
+    pub fn reserve_rows(&mut self, rows: usize, entries: usize) {
+        self.rows.reserve(rows, entries);
+    }
+
     /// Appends a row over the stacked points (duplicates merged, exact zeros dropped). `pairs`
     /// is left empty.
     ///

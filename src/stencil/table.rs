@@ -158,6 +158,14 @@ impl StencilTable {
         self.offsets.push(self.indices.len() as u32);
     }
 
+    /// Makes room for `rows` more rows of `entries` entries in all (a construction that knows
+    /// its size saves the copies of growing by doubling).
+    pub fn reserve(&mut self, rows: usize, entries: usize) {
+        self.offsets.reserve(rows);
+        self.indices.reserve(entries);
+        self.weights.reserve(entries);
+    }
+
     /// Appends one row per source in `sources`, each the source alone with weight 1 (a gather:
     /// the same rows as [`StencilTable::push_pairs`] of `[(i, 1.0)]`, without the buffer).
     ///

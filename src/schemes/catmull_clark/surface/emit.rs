@@ -31,6 +31,9 @@ pub(super) fn emit_all(
     out.patches.reserve(room - out.patches.len());
     out.provenance.reserve(room - out.provenance.len());
     out.domains.reserve(room.saturating_sub(out.domains.len()));
+    if let Some(t) = &rules.track {
+        t.borrow_mut().reserve_regular(level.active.len());
+    }
     for block in level.active.chunks(EMIT_BLOCK) {
         let nets: Vec<Option<(Net, BezierPatch)>> = block
             .par_iter()

@@ -167,6 +167,11 @@ impl Tracker {
         !self.broken
     }
 
+    /// Makes room for the rows of `n` more regular nets (16 one-entry rows each).
+    pub(crate) fn reserve_regular(&mut self, n: usize) {
+        self.table.reserve_rows(16 * n, 16 * n);
+    }
+
     /// Records the rows of the regular patch of the B-spline net `net` (stencils over the
     /// level's points), pushed as patch `p`.
     pub(crate) fn regular(&mut self, p: usize, net: &Net) {
