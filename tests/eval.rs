@@ -2,7 +2,6 @@
 //! patches `subdivide --rings` writes, with the bi-3 B-spline on regular faces, convergence to
 //! the limit point at the rate of the subdominant eigenvalue, and the errors.
 
-use fairsub::cli::{capture, run_words};
 use fairsub::geom::{Point, dist, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
@@ -10,8 +9,11 @@ use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::Surface;
 
+#[path = "eval/cli.rs"]
+mod cli;
 #[path = "eval/support.rs"]
 mod support;
+use cli::eval_words;
 use support::{Lcg, gallery, limit_along, tmp, toward_ev, written};
 
 /// Random points of every face of `mesh` in its domain (quads `[0,1]^2`, n-gons `[0,n]x[0,1]`,
@@ -202,13 +204,6 @@ fn limit_evaluation_converges_to_the_limit_point_at_rate_lambda() {
             );
         }
     }
-}
-
-fn eval_words(extra: &[&str]) -> Result<String, String> {
-    let mut words = vec!["fairsub", "eval"];
-    words.extend_from_slice(extra);
-    let (r, out) = capture(|| run_words(words));
-    r.map(|()| out).map_err(|e| e.to_string())
 }
 
 #[test]

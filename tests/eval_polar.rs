@@ -8,7 +8,7 @@
 //! at `analyze`'s `lambda` per ring; `bi2-mixed` evaluates its poles the same way.
 
 use fairsub::bezier::complex::{PatchComplex, Provenance};
-use fairsub::cli::{capture, run_words};
+use fairsub::cli::run_words;
 use fairsub::geom::{Point, dist};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::bi2::polar::{find_poles, to_polar_layout};
@@ -26,8 +26,11 @@ use support::{gallery, tmp, written_from};
 #[allow(dead_code)]
 mod faces;
 use faces::{agrees_at, face_points, jump_across, largest_jump, surface_of};
+#[path = "eval/cli.rs"]
+mod cli;
 #[path = "eval/ratios.rs"]
 mod ratios;
+use cli::eval_words;
 use ratios::{converges, lambda};
 
 const POLAR: &str = "polar-bi2";
@@ -301,14 +304,6 @@ fn bi2_mixed_evaluates_its_poles_as_polar_bi2() {
     }
     eprintln!("layout-5: bi2-mixed against polar-bi2, largest difference {worst:.3e}");
     assert_eq!(worst, 0.0);
-}
-
-/// `fairsub eval` with `extra`, its output or error.
-fn eval_words(extra: &[&str]) -> Result<String, String> {
-    let mut words = vec!["fairsub", "eval"];
-    words.extend_from_slice(extra);
-    let (r, out) = capture(|| run_words(words));
-    r.map(|()| out).map_err(|e| e.to_string())
 }
 
 #[test]

@@ -33,7 +33,7 @@
 //! [`super::Piece`] with the patch's `(0, 0)` at corner 3 of the cell (the side toward the
 //! pole, `u` of the cell along the patch's `v`), so the patch's `u` points away from the pole.
 
-use super::{Affine, Domain, MAX_DEPTH, Shape};
+use super::{Affine, Domain, Shape};
 
 impl Shape {
     /// The map from half `k` (see the [module](self) documentation) of a quad cell to the
@@ -71,20 +71,10 @@ impl Domain {
     /// `(0, 0)` at corner 0. The n-gon itself, triangle cells and untracked domains give an
     /// untracked domain.
     pub fn half_child(self, k: u8) -> Domain {
-        if !self.is_tracked() || self.sub == Domain::WHOLE || self.shape != Shape::Quad {
-            return Domain {
-                depth: MAX_DEPTH + 1,
-                ..self
-            };
-        }
-        let d = self.descend(u128::from(k & 3), false);
-        if !d.is_tracked() {
-            return d;
-        }
-        Domain {
+        self.quad_child(k, true, |d| Domain {
             halves: d.halves | (1u64 << (d.depth - 1)),
             ..d
-        }
+        })
     }
 }
 

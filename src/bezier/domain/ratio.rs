@@ -11,7 +11,7 @@
 //! bits), the same at all its levels split so. The maps have the coefficients `t` and `1 - t`,
 //! rounded once per level.
 
-use super::{Affine, Domain, MAX_DEPTH, Shape};
+use super::{Affine, Domain, Shape};
 
 impl Shape {
     /// The map from child `k` of a quad cell split at `t` to the cell (see the
@@ -61,26 +61,11 @@ impl Domain {
     /// levels split at another ratio give an untracked domain.
     pub fn ratio_child(self, t: f64, k: u8) -> Domain {
         let other = self.split_at != 0 && self.ratio != t.to_bits();
-        if !self.is_tracked()
-            || self.sub == Domain::WHOLE
-            || self.shape != Shape::Quad
-            || other
-            || !(t > 0.0 && t < 1.0)
-        {
-            return Domain {
-                depth: MAX_DEPTH + 1,
-                ..self
-            };
-        }
-        let d = self.descend(u128::from(k & 3), false);
-        if !d.is_tracked() {
-            return d;
-        }
-        Domain {
+        self.quad_child(k, !other && t > 0.0 && t < 1.0, |d| Domain {
             split_at: d.split_at | (1u64 << (d.depth - 1)),
             ratio: t.to_bits(),
             ..d
-        }
+        })
     }
 }
 

@@ -71,6 +71,30 @@ impl Domain {
         (depth, self.path % place)
     }
 
+    /// Child `k` (`0..4`) one dyadic level down of a quad cell, marked by `mark` (which records
+    /// the level's kind, e.g. halves or a split ratio); untracked for the n-gon itself, triangle
+    /// cells, untracked domains, when `allowed` is false, or when the path does not fit. The
+    /// one step of the cell kinds that refine a quad cell 2 x 2 in their own way.
+    pub(super) fn quad_child(
+        self,
+        k: u8,
+        allowed: bool,
+        mark: impl FnOnce(Domain) -> Domain,
+    ) -> Domain {
+        if !allowed || !self.is_tracked() || self.sub == Domain::WHOLE || self.shape != Shape::Quad
+        {
+            return Domain {
+                depth: MAX_DEPTH + 1,
+                ..self
+            };
+        }
+        let d = self.descend(u128::from(k & 3), false);
+        if !d.is_tracked() {
+            return d;
+        }
+        mark(d)
+    }
+
     /// The child with index `k` one level down, in thirds or dyadic; untracked when the
     /// path does not fit ([`MAX_DEPTH`] levels, or the radices' product past `u128`).
     pub(super) fn descend(self, k: u128, thirds: bool) -> Domain {
