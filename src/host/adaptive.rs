@@ -180,22 +180,30 @@ pub type CapData = (crate::bezier::g1::Hole, [Point; 2], Vec<Tag>);
 /// [`crate::bezier::g1::ring::cap_in_plane`]) every element of the marked cells for which
 /// `hole_of` gives the data; the cap patches are pushed with the sectors' tags (domain and
 /// sector), and the cap's data as a [`crate::bezier::complex::CapStep`] of the complex. Returns the cells left for the
-/// scheme's C^0 fill.
+/// scheme's C^0 fill. The elements' caps are independent: they are computed in parallel and
+/// pushed in the elements' order (the same complex as one after another).
 pub fn g1_cap_elements(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
-    mut hole_of: impl FnMut(Element, &[(u32, Tag)]) -> Option<CapData>,
+    hole_of: impl Fn(Element, &[(u32, Tag)]) -> Option<CapData> + Sync,
 ) -> Vec<(u32, Tag)> {
     use crate::bezier::g1::{CapOptions, ring::cap_step};
-    let mut left = Vec::new();
-    for (element, cells) in by_element(marked) {
-        let capped = element.and_then(|e| {
-            let (hole, plane, tags) = hole_of(e, &cells)?;
-            let (patches, step) = cap_step(hole, plane, CapOptions::default(), out.len()).ok()?;
+    use rayon::prelude::*;
+    let groups = by_element(marked);
+    let caps: Vec<_> = groups
+        .par_iter()
+        .map(|(element, cells)| {
+            let e = (*element)?;
+            let (hole, plane, tags) = hole_of(e, cells)?;
+            let (patches, step) = cap_step(hole, plane, CapOptions::default(), 0).ok()?;
             Some((e, patches, tags, step))
-        });
+        })
+        .collect();
+    let mut left = Vec::new();
+    for ((_, cells), capped) in groups.into_iter().zip(caps) {
         match capped {
-            Some((element, patches, tags, step)) => {
+            Some((element, patches, tags, mut step)) => {
+                step.first = out.len() as u32;
                 out.caps.push(step);
                 for (p, tag) in patches.into_iter().zip(tags) {
                     let sector = tag.sector;

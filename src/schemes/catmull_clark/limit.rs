@@ -6,9 +6,9 @@ use super::{CatmullClark, Opts};
 use crate::geom::{self, Point};
 use crate::mesh::{MeshView, PolyMesh};
 use crate::stencil::{RowWriter, Stencil, StencilTable, Terms};
-use std::cell::OnceCell;
 use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// Limit-position stencils of single vertices of one mesh under the default options, with the
 /// mesh's sharp level built once (and the child of a mesh with non-quads built once, on first
@@ -19,7 +19,7 @@ pub struct LimitStencils<'m> {
     sharp: Option<SharpLevel<'m>>,
     /// The composed stencils of the vertices whose limit goes through the child (next to a
     /// non-quad and smooth), all computed from one child.
-    through_child: OnceCell<HashMap<usize, Stencil>>,
+    through_child: OnceLock<HashMap<usize, Stencil>>,
 }
 
 /// Terms that are dropped (to ask [`limit_terms`] only whether it applies).
@@ -35,7 +35,7 @@ impl<'m> LimitStencils<'m> {
         LimitStencils {
             mesh,
             sharp: SharpLevel::new(mesh, &Opts::default()),
-            through_child: OnceCell::new(),
+            through_child: OnceLock::new(),
         }
     }
 

@@ -3,7 +3,7 @@
 //! Every regular quad (see [`super::regular::bi3_net`]) is one exact bi-3 patch. Faces that are not
 //! regular (they touch an extraordinary vertex, a non-quad facet or an irregular boundary vertex)
 //! are refined with Catmull-Clark's own stencils ([`crate::schemes::catmull_clark`]) together with
-//! the two rings of faces around them; the children that have become regular are emitted as
+//! the ring of faces around them (every face sharing a vertex with one); the children that have become regular are emitted as
 //! ring `l` (the papers' layout: ring `l` lies at refinement level `l`, `3n` patches around an
 //! isolated vertex of valence `n`), the rest is refined again. After `rings` levels the faces
 //! still touching an extraordinary element are closed by a G^1 cap or the *Hermite-Coons fill*
@@ -13,6 +13,16 @@
 //! proportional to the number of extraordinary elements. A vertex of a partially refined level is
 //! trusted only where its position and its whole fan of faces are known to equal those of the
 //! uniformly refined mesh; regular patches are emitted only from trusted vertices.
+//!
+//! One ring of faces around the marked faces is enough: the B-spline net of a child of a marked
+//! face `F` consists of the vertex points of `F`'s corners (whose stencils read the faces around
+//! those corners: the ring), edge and face points of `F` and of the faces across its edges and
+//! corners (the ring again), and the fan of each of the child's corners consists of children of
+//! `F` and of the ring. The cap schemes' two-ring c-nets at the next level lie in the same
+//! children. Refining two rings (as before 2026-12-03) gave byte-identical complexes and tables
+//! on 680 gallery and OpenSubdiv-tagged cases (Catmull-Clark, EG, QAS+, guided bi-6, 1 and 3
+//! rings) at 56% of the refined points (quad-evs 100k: 3.4M against 6.1M); the trust flags
+//! would keep a patch back rather than emit it from an untrusted point.
 //!
 //! # Caps
 //!
@@ -60,6 +70,7 @@ use crate::schemes::catmull_clark::crease::adaptive::{
     child as sharp_child, crease_curve, edge_known, is_hole, is_special,
 };
 use crate::stencil::{RowWriter, StencilTable, Terms};
+use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 pub use track::{bspline_patch, catmull_clark_tracked};
 
@@ -436,26 +447,34 @@ fn record_curves(m: &PolyMesh, f: usize, p: &BezierPatch, curves: &mut Curves<4>
     }
 }
 
-/// Refines the marked faces and two rings of faces around them; returns the next level, whose
+/// A point of the next level in [`refine_around`]: the face, vertex or edge point of an element
+/// of the level.
+#[derive(Clone, Copy)]
+enum Child {
+    Face(u32),
+    Vertex(u32),
+    Edge(u32),
+}
+
+/// Refines the marked faces and the ring of faces around them; returns the next level, whose
 /// active faces are the children of the marked faces (with its stencils over `level`'s points
 /// in [`Level::rows`] when `keep`).
 fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Level> {
     let m = &level.mesh;
     let nf = m.num_faces();
-    // Faces within two vertex-rings of the marked faces.
-    let (sel, sel_faces) = select_rings(m, marked, 2);
+    // The marked faces and the faces sharing a vertex with them.
+    let (sel, sel_faces) = select_rings(m, marked, 1);
     let nv = m.num_vertices();
     let ne = m.num_edges();
     let rules = sharp::rules(level);
-    // Child vertex ids: vertex points, edge points, face points of selected faces' elements.
+    // Child vertex ids: vertex points, edge points, face points of selected faces' elements,
+    // numbered in one pass over the selected faces; their rows and trust are then computed in
+    // parallel blocks in that order (the same table as one after another).
     const UNSET: u32 = u32::MAX;
     let mut vid = vec![UNSET; nv];
     let mut eid = vec![UNSET; ne];
     let mut fid = vec![UNSET; nf];
-    // the child points' rows, written in place (no stencil per point)
-    let mut table = StencilTable::with_capacity(nv, 3 * sel_faces.len(), 9);
-    let (mut row, mut scratch) = (RowWriter::new(), Scratch::default());
-    let mut info: Vec<Info> = Vec::new();
+    let mut jobs: Vec<Child> = Vec::with_capacity(3 * sel_faces.len());
     let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let face_pos_ok = |g: u32| {
         m.face(g as usize)
@@ -466,65 +485,35 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     let mut face_start = Vec::with_capacity(4 * selected + 1);
     face_start.push(0u32);
     let mut corners = Vec::with_capacity(16 * selected);
-    info.reserve(3 * selected);
     // per marked face its first child (its children are consecutive, one per corner)
     let mut child_first = vec![UNSET; nf];
     let mut is_marked = vec![false; nf];
     for &(f, _) in marked {
         is_marked[f as usize] = true;
     }
+    let next_id = |jobs: &mut Vec<Child>, job: Child| {
+        jobs.push(job);
+        (jobs.len() - 1) as u32
+    };
     for f in 0..nf {
         if !sel[f] {
             continue;
         }
-        let fc = {
-            if fid[f] == UNSET {
-                fid[f] = table.num_rows() as u32;
-                let face = m.face(f);
-                for &x in face {
-                    row.add(x, 1.0 / face.len() as f64);
-                }
-                row.push_into(&mut table);
-                info.push(Info {
-                    pos_ok: face_pos_ok(f as u32),
-                    fan_ok: true,
-                    origin: None,
-                });
-            }
-            fid[f]
-        };
+        if fid[f] == UNSET {
+            fid[f] = next_id(&mut jobs, Child::Face(f as u32));
+        }
+        let fc = fid[f];
         let h0 = m.face_halfedge(f);
         let k = m.face_size(f) as u32;
         for h in h0..h0 + k {
             let v = m.he_from(h) as usize;
             if vid[v] == UNSET {
-                vid[v] = table.num_rows() as u32;
-                let vi = level.info[v];
-                let fan = vi.fan_ok && all_faces_selected(v);
-                let pos = vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g));
-                rules.push_vertex_row(v, &mut scratch, &mut row, &mut table);
-                info.push(Info {
-                    pos_ok: pos,
-                    fan_ok: fan,
-                    origin: vi.origin,
-                });
+                vid[v] = next_id(&mut jobs, Child::Vertex(v as u32));
             }
             for g in [h, m.he_prev(h)] {
                 let e = m.he_edge(g) as usize;
                 if eid[e] == UNSET {
-                    eid[e] = table.num_rows() as u32;
-                    let [a, b] = m.edge(e);
-                    let (a_ok, b_ok) =
-                        (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
-                    let known = edge_known(level, e, a_ok, b_ok, a_ok || b_ok);
-                    let hh = m.edge_halfedge(e);
-                    let faces = [Some(m.he_face(hh)), m.he_twin(hh).map(|t| m.he_face(t))];
-                    rules.push_edge_row(e, &mut scratch, &mut row, &mut table);
-                    info.push(Info {
-                        pos_ok: known && faces.iter().flatten().all(|&g| face_pos_ok(g)),
-                        fan_ok: known && faces.iter().flatten().all(|&g| sel[g as usize]),
-                        origin: None,
-                    });
+                    eid[e] = next_id(&mut jobs, Child::Edge(e as u32));
                 }
             }
             let e_out = eid[m.he_edge(h) as usize];
@@ -536,6 +525,57 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             face_start.push(corners.len() as u32);
         }
     }
+    // the child points' rows, written in place (no stencil per point)
+    let table = StencilTable::build_par(nv, jobs.len(), 9, |range, table| {
+        let (mut row, mut scratch) = (RowWriter::new(), Scratch::default());
+        for &job in &jobs[range] {
+            match job {
+                Child::Face(f) => {
+                    let face = m.face(f as usize);
+                    for &x in face {
+                        row.add(x, 1.0 / face.len() as f64);
+                    }
+                    row.push_into(table);
+                }
+                Child::Vertex(v) => {
+                    rules.push_vertex_row(v as usize, &mut scratch, &mut row, table)
+                }
+                Child::Edge(e) => rules.push_edge_row(e as usize, &mut scratch, &mut row, table),
+            }
+        }
+    });
+    let mut info: Vec<Info> = jobs
+        .par_iter()
+        .map(|&job| match job {
+            Child::Face(f) => Info {
+                pos_ok: face_pos_ok(f),
+                fan_ok: true,
+                origin: None,
+            },
+            Child::Vertex(v) => {
+                let v = v as usize;
+                let vi = level.info[v];
+                Info {
+                    pos_ok: vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g)),
+                    fan_ok: vi.fan_ok && all_faces_selected(v),
+                    origin: vi.origin,
+                }
+            }
+            Child::Edge(e) => {
+                let e = e as usize;
+                let [a, b] = m.edge(e);
+                let (a_ok, b_ok) = (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
+                let known = edge_known(level, e, a_ok, b_ok, a_ok || b_ok);
+                let hh = m.edge_halfedge(e);
+                let faces = [Some(m.he_face(hh)), m.he_twin(hh).map(|t| m.he_face(t))];
+                Info {
+                    pos_ok: known && faces.iter().flatten().all(|&g| face_pos_ok(g)),
+                    fan_ok: known && faces.iter().flatten().all(|&g| sel[g as usize]),
+                    origin: None,
+                }
+            }
+        })
+        .collect();
     // Children of a face point of a non-quad input face are extraordinary: origin = that face.
     for &(f, tag) in marked {
         if m.face_size(f as usize) != 4 {

@@ -159,14 +159,14 @@ pub fn doo_sabin_cc_complex(
 pub struct DualRules<'a> {
     /// The new point of face corner `h` (a half-edge) as a stencil over the mesh's vertices.
     /// It may read beyond the face (PGS reads the quads across a facet's edges).
-    pub corner: &'a dyn Fn(&PolyMesh, u32) -> Stencil,
+    pub corner: &'a (dyn Fn(&PolyMesh, u32) -> Stencil + Sync),
     /// All new corners of face `f` at once as positions, for faces above
     /// [`fourier::LARGE_FACE`]: the same rule as `corner`, in time linear in the face size
     /// (`n` stencils of `n` entries would cost `n^2`).
-    pub face_corners: &'a dyn Fn(&PolyMesh, usize) -> FaceCorners,
+    pub face_corners: &'a (dyn Fn(&PolyMesh, usize) -> FaceCorners + Sync),
     /// The limit point of a face that is not a quad (the centre of the fill): the centroid for
     /// Doo-Sabin and DS^CC, the point-augmented limit point (7) for PGS.
-    pub facet_limit: &'a dyn Fn(&PolyMesh, usize) -> Stencil,
+    pub facet_limit: &'a (dyn Fn(&PolyMesh, usize) -> Stencil + Sync),
 }
 
 /// The centroid of face `f` as a stencil: the limit point of a facet under Doo-Sabin and

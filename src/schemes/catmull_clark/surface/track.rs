@@ -27,8 +27,12 @@ use crate::mesh::tags::SubdOptions;
 use crate::schemes::catmull_clark::LimitStencils;
 use crate::schemes::catmull_clark::regular::Net;
 use crate::stencil::{LayeredTable, Stencil, StencilTable};
+use rayon::prelude::*;
 use std::cell::RefCell;
 use std::sync::OnceLock;
+
+/// Rows of stencils, one `(point, weight)` list per row.
+type Rows = Vec<Vec<(u32, f64)>>;
 
 /// The rows recorded while the complex is built.
 pub(crate) struct Tracker {
@@ -202,20 +206,27 @@ impl Tracker {
             return;
         }
         let groups = by_element(marked);
+        let cells_of: std::collections::HashMap<_, &[(u32, Tag)]> =
+            groups.iter().map(|(e, c)| (*e, c.as_slice())).collect();
         let limits = LimitStencils::new(&level.mesh);
         let patch_rows = |g: usize| super::regular_net(level, g).map(|net| patch_terms(&net));
         let shift = self.table.last_level_offset();
-        for step in &out.caps[first..] {
-            let Provenance::Cap { element, .. } = out.provenance[step.first as usize] else {
-                return;
-            };
+        // the caps' rows are independent: computed in parallel, appended in the caps' order
+        let data: Vec<Option<Rows>> = out.caps[first..]
+            .par_iter()
+            .map(|step| {
+                let Provenance::Cap { element, .. } = out.provenance[step.first as usize] else {
+                    return None;
+                };
+                let cells = cells_of.get(&Some(element))?;
+                g1::hole_rows(level, &limits, element, cells, &patch_rows)
+            })
+            .collect();
+        for (step, data) in out.caps[first..].iter().zip(data) {
             if !self.next(step.first as usize) {
                 return;
             }
-            let Some((_, cells)) = groups.iter().find(|(e, _)| *e == Some(element)) else {
-                return;
-            };
-            let Some(data) = g1::hole_rows(level, &limits, element, cells, &patch_rows) else {
+            let Some(data) = data else {
                 return;
             };
             for t in &data {
