@@ -64,9 +64,48 @@ pub struct CapMap {
     /// `n m^2 (d + 1)^2 x data` weights: cap coefficient `cidx(p, i, j)` from the hole's data
     /// vector.
     matrix: DMatrix<f64>,
-    /// Compatibility rows over the hole's data vector and their labels.
-    compat: DMatrix<f64>,
+    /// Labels of the compatibility rows (`sparse_compat`) over the hole's data vector.
     compat_labels: Vec<String>,
+    /// `matrix` and the compatibility rows by rows, their non-zero weights only, in column order: what
+    /// [`CapMap::apply`] and [`CapMap::compatibility_defect`] sum (the same terms in the same
+    /// order as walking the dense rows and skipping zeros, without the strided reads of a
+    /// column-major matrix: the hot path of a mesh with thousands of caps).
+    sparse: SparseRows,
+    sparse_compat: SparseRows,
+}
+
+/// The non-zero entries of a matrix, row after row: row `r` is `entries[starts[r]..starts[r + 1]]`.
+#[derive(Debug, Clone)]
+struct SparseRows {
+    starts: Vec<u32>,
+    entries: Vec<(u32, f64)>,
+}
+
+impl SparseRows {
+    fn new(m: &DMatrix<f64>) -> SparseRows {
+        let mut starts = Vec::with_capacity(m.nrows() + 1);
+        let mut entries = Vec::new();
+        starts.push(0);
+        for r in 0..m.nrows() {
+            for c in 0..m.ncols() {
+                let w = m[(r, c)];
+                if w != 0.0 {
+                    entries.push((c as u32, w));
+                }
+            }
+            starts.push(entries.len() as u32);
+        }
+        SparseRows { starts, entries }
+    }
+
+    /// Row `r` applied to `data` (`sum w * data[c]` in column order).
+    #[inline]
+    fn apply(&self, r: usize, data: &[crate::geom::Point]) -> crate::geom::Point {
+        let range = self.starts[r] as usize..self.starts[r + 1] as usize;
+        self.entries[range]
+            .iter()
+            .fold([0.0; 3], |acc, &(c, w)| axpy(acc, w, data[c as usize]))
+    }
 }
 
 /// Pseudo-inverse and null space of `a` (`rows x cols`) from the symmetric eigen-decomposition
@@ -243,6 +282,8 @@ impl CapMap {
         let resid =
             (DMatrix::identity(e_y.nrows(), e_y.nrows()) - &e_y * &e_pinv) * &b * admissible;
         let certificate = resid.amax();
+        let matrix = map.rows(0, nx) * &q;
+        let compat = gm * q;
         Ok(CapMap {
             n,
             pieces: pm,
@@ -253,8 +294,9 @@ impl CapMap {
             certificate,
             free_parameters,
             centre,
-            matrix: map.rows(0, nx) * &q,
-            compat: gm * q,
+            sparse: SparseRows::new(&matrix),
+            sparse_compat: SparseRows::new(&compat),
+            matrix,
             compat_labels: g.into_iter().map(|(l, _)| l).collect(),
         })
     }
@@ -279,13 +321,7 @@ impl CapMap {
         let size = hole_size(hole);
         let mut worst = (0.0, String::new());
         for (r, label) in self.compat_labels.iter().enumerate() {
-            let mut acc = [0.0; 3];
-            for (c, p) in data.iter().enumerate() {
-                let w = self.compat[(r, c)];
-                if w != 0.0 {
-                    acc = axpy(acc, w, *p);
-                }
-            }
+            let acc = self.sparse_compat.apply(r, &data);
             let v = crate::geom::norm(acc) / size;
             if v > worst.0 {
                 worst = (v, label.clone());
@@ -315,13 +351,7 @@ impl CapMap {
         Ok((0..self.n * self.pieces * self.pieces)
             .map(|s| {
                 let cps = (0..m)
-                    .map(|k| {
-                        let row = self.matrix.row(cidx(d, s, 0, 0) + k);
-                        row.iter()
-                            .zip(&data)
-                            .filter(|(w, _)| **w != 0.0)
-                            .fold([0.0; 3], |acc, (&w, &p)| axpy(acc, w, p))
-                    })
+                    .map(|k| self.sparse.apply(cidx(d, s, 0, 0) + k, &data))
                     .collect();
                 BezierPatch::new(d, d, cps)
             })

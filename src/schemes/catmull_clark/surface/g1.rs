@@ -43,6 +43,7 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use crate::stencil::linear_weights;
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
 pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
@@ -84,15 +85,7 @@ fn segment_rows(
 ) -> Option<Vec<Vec<(u32, f64)>>> {
     let (g, side, range) = across(level, hole_he, from)?;
     let cps = patch_rows(g)?;
-    let weights = linear_weights(cps.len(), |pts| {
-        let p = BezierPatch {
-            deg_u: 3,
-            deg_v: 3,
-            cps: pts.to_vec(),
-        };
-        let s = segment_from_ring(&p, side, range, 1.0);
-        [s.boundary, s.cross].concat()
-    });
+    let weights = segment_weights(side, range);
     Some(
         weights
             .iter()
@@ -103,6 +96,36 @@ fn segment_rows(
             })
             .collect(),
     )
+}
+
+/// Rows of weights, one `(index, weight)` list per row.
+type Rows = Vec<Vec<(u32, f64)>>;
+
+/// The weights of [`segment_from_ring`] (boundary, then cross coefficients) over the 16
+/// coefficients of a bi-3 ring patch, for the side and range [`quad_edge_side`] gives: read off
+/// the segment code once per process for each of the 8 (side, direction) pairs, not once per
+/// segment of every cap.
+fn segment_weights(side: Side, range: [f64; 2]) -> &'static [Vec<(u32, f64)>] {
+    static WEIGHTS: OnceLock<Vec<Rows>> = OnceLock::new();
+    let all = WEIGHTS.get_or_init(|| {
+        let mut all = Vec::with_capacity(8);
+        for side in Side::ALL {
+            for range in [[0.0, 1.0], [1.0, 0.0]] {
+                all.push(linear_weights(16, |pts| {
+                    let p = BezierPatch {
+                        deg_u: 3,
+                        deg_v: 3,
+                        cps: pts.to_vec(),
+                    };
+                    let s = segment_from_ring(&p, side, range, 1.0);
+                    [s.boundary, s.cross].concat()
+                }));
+            }
+        }
+        all
+    });
+    debug_assert!(range == [0.0, 1.0] || range == [1.0, 0.0]);
+    &all[2 * side.index() + usize::from(range[0] > range[1])]
 }
 
 /// The hole of one element: its centre vertex and the sectors in counter-clockwise order with
