@@ -115,11 +115,12 @@ pub fn run(a: Args) -> Result<()> {
         let (f, u, v) = pts[i];
         s.evaluate(f, u, v).map_err(|e| at_point(e, i, pts.len()))
     };
+    let face = |i: usize| pts[i].0;
     let mut write = super::say_bytes;
     if a.json {
-        text::write_json(pts.len(), &eval, &mut write)
+        text::write_json(pts.len(), &face, &eval, &mut write)
     } else {
-        text::write_lines(pts.len(), &eval, &mut write)
+        text::write_lines(pts.len(), &face, &eval, &mut write)
     }
 }
 
