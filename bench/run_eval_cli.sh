@@ -8,7 +8,7 @@
 # The net is `fairsub-bench gen quad-evs 10k` (9,984 quads, a vertex of valence 3 or 6 in
 # every 2 x 2 block: 1,248 extraordinary vertices), the points POINTS random `F:U:V` lines
 # (Python's `random`, seed 7), the output goes to a file. Prints the best wall time of REPS
-# runs for `--rings RINGS` and for the limit surface (no `--rings`), and the same with
+# runs for `--rings RINGS` (text, and `--binary` records) and for the limit surface (no `--rings`), and the same with
 # `RAYON_NUM_THREADS=1`. Environment: REPS (3), RINGS (4), POINTS (1000000),
 # OUT (target/eval-cli).
 set -euo pipefail
@@ -47,6 +47,7 @@ best() { # best wall time in seconds of REPS runs of "$@" (stdout to a file)
 echo "fairsub eval, $POINTS points of $(grep -c '^f ' "$OUT/net.obj") faces (load: $(cut -d' ' -f1-3 /proc/loadavg))"
 echo "  --rings $RINGS:          $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
 echo "  (output: $(wc -c <"$OUT/out.txt") bytes)"
+echo "  --rings $RINGS --binary: $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --binary --at-file "$OUT/points.txt")"
 echo "  --rings $RINGS, 1 thread: $(RAYON_NUM_THREADS=1 best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
 echo "  limit surface:       $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --at-file "$OUT/points.txt")"
 echo "  build only (1 point, --rings $RINGS): $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at 0:0.5:0.5)"

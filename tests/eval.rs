@@ -389,3 +389,60 @@ fn evaluate_into_is_evaluate() {
         assert!(e.to_string().contains("outside its domain"), "{e}");
     }
 }
+
+#[test]
+fn cli_binary_records_equal_the_library_bit_for_bit() {
+    let cc = ids::CATMULL_CLARK.name();
+    let pts = [
+        (0, 0.25, 0.5),
+        (3, 1.0, 1.0),
+        (5, 0.01, 0.99),
+        (2, 0.7, 0.1),
+    ];
+    let at = "0:0.25:0.5,3:1:1,5:0.01:0.99,2:0.7:0.1";
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(["eval", "gallery:cube", "--scheme", cc, "--rings", "2"])
+        .args(["--at", at, "--binary"])
+        .output()
+        .expect("fairsub runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let x: Vec<f64> = out
+        .stdout
+        .chunks(8)
+        .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")))
+        .collect();
+    assert_eq!(x.len(), 29 * pts.len());
+    let spec = registry().lookup(cc).expect("cc");
+    let opts = ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let s = Surface::build(&spec, &gallery("cube"), opts).expect("surface");
+    for (rec, &(f, u, v)) in x.chunks(29).zip(&pts) {
+        let e = s.evaluate(f, u, v).expect("point");
+        let mut want = vec![f64::from(e.face), e.u, e.v, e.patch as f64];
+        want.extend(e.patch_uv);
+        for p in [e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal] {
+            want.extend(p);
+        }
+        want.extend([e.gauss, e.mean]);
+        for (a, b) in rec.iter().zip(&want) {
+            assert_eq!(a.to_bits(), b.to_bits(), "record {rec:?} against {want:?}");
+        }
+    }
+    // --binary and --json exclude each other
+    let both = eval_words(&[
+        "gallery:cube",
+        "--scheme",
+        cc,
+        "--at",
+        at,
+        "--json",
+        "--binary",
+    ]);
+    assert!(both.is_err());
+}

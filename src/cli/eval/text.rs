@@ -267,6 +267,48 @@ pub fn write_lines(n: usize, key: &KeyFn, eval: &EvalFn, write: &mut WriteFn) ->
     )
 }
 
+/// Numbers per point of [`write_binary`].
+pub const BINARY_FIELDS: usize = 29;
+
+/// Appends the binary record of one evaluation: [`BINARY_FIELDS`] little-endian `f64` (face,
+/// u, v, patch, patch u, patch v, point x y z, du, dv, duu, duv, dvv (3 each), normal x y z,
+/// gauss, mean); the face and patch indices are exact as `f64` (below 2^53).
+pub fn record(out: &mut Vec<u8>, e: &Evaluation) {
+    let start = out.len();
+    let head = [
+        f64::from(e.face),
+        e.u,
+        e.v,
+        e.patch as f64,
+        e.patch_uv[0],
+        e.patch_uv[1],
+    ];
+    let vectors = [e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal];
+    for x in head
+        .into_iter()
+        .chain(vectors.into_iter().flatten())
+        .chain([e.gauss, e.mean])
+    {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    debug_assert_eq!(out.len() - start, BINARY_FIELDS * 8);
+}
+
+/// Writes the evaluations of points `0..n` as binary records ([`record`]: every number of the
+/// evaluation, exact, without the cost of printing it) through `write`.
+pub fn write_binary(n: usize, key: &KeyFn, eval: &EvalFn, write: &mut WriteFn) -> Result<()> {
+    blocks(
+        n,
+        key,
+        eval,
+        &|out, _, e| {
+            record(out, e);
+            Ok(())
+        },
+        write,
+    )
+}
+
 /// Writes the evaluations of points `0..n` as `serde_json::to_string_pretty` writes their
 /// array (byte for byte), then a newline, through `write`.
 pub fn write_json(n: usize, key: &KeyFn, eval: &EvalFn, write: &mut WriteFn) -> Result<()> {
@@ -415,6 +457,43 @@ pub fn parse_file(text: &str, path: &Path) -> Result<Vec<Point>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn binary_records_hold_every_number_bit_for_bit() {
+        let evals = sample();
+        let bytes =
+            collect_bytes(|w| write_binary(evals.len(), &|i| evals[i].face, &|i| Ok(evals[i]), w));
+        assert_eq!(bytes.len(), evals.len() * BINARY_FIELDS * 8);
+        for (rec, e) in bytes.chunks(BINARY_FIELDS * 8).zip(&evals) {
+            let x: Vec<f64> = rec
+                .chunks(8)
+                .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")))
+                .collect();
+            let want: Vec<f64> = [e.face as f64, e.u, e.v, e.patch as f64]
+                .into_iter()
+                .chain(e.patch_uv)
+                .chain(
+                    [e.point, e.du, e.dv, e.duu, e.duv, e.dvv, e.normal]
+                        .into_iter()
+                        .flatten(),
+                )
+                .chain([e.gauss, e.mean])
+                .collect();
+            for (a, b) in x.iter().zip(&want) {
+                assert_eq!(a.to_bits(), b.to_bits());
+            }
+        }
+    }
+
+    fn collect_bytes(run: impl FnOnce(&mut WriteFn) -> Result<()>) -> Vec<u8> {
+        let mut out = Vec::new();
+        run(&mut |b: &[u8]| {
+            out.extend_from_slice(b);
+            Ok(())
+        })
+        .expect("written");
+        out
+    }
 
     fn sample() -> Vec<Evaluation> {
         (0..9000)
