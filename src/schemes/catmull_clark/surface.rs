@@ -19,7 +19,7 @@
 //! those corners: the ring), edge and face points of `F` and of the faces across its edges and
 //! corners (the ring again), and the fan of each of the child's corners consists of children of
 //! `F` and of the ring. The cap schemes' two-ring c-nets at the next level lie in the same
-//! children. Refining two rings (as before 2026-12-03) gave byte-identical complexes and tables
+//! children. Refining two rings (as before 2026-12-04) gave byte-identical complexes and tables
 //! on 680 gallery and OpenSubdiv-tagged cases (Catmull-Clark, EG, QAS+, guided bi-6, 1 and 3
 //! rings) at 56% of the refined points (quad-evs 100k: 3.4M against 6.1M); the trust flags
 //! would keep a patch back rather than emit it from an untrusted point.
