@@ -8,6 +8,7 @@ use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_ener
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::geom::axpy;
+use crate::stencil::StencilTable;
 use nalgebra::DMatrix;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -66,46 +67,26 @@ pub struct CapMap {
     matrix: DMatrix<f64>,
     /// Labels of the compatibility rows (`sparse_compat`) over the hole's data vector.
     compat_labels: Vec<String>,
-    /// `matrix` and the compatibility rows by rows, their non-zero weights only, in column order: what
-    /// [`CapMap::apply`] and [`CapMap::compatibility_defect`] sum (the same terms in the same
-    /// order as walking the dense rows and skipping zeros, without the strided reads of a
-    /// column-major matrix: the hot path of a mesh with thousands of caps).
-    sparse: SparseRows,
-    sparse_compat: SparseRows,
+    /// `matrix` and the compatibility rows as sparse rows (zeros skipped, columns in order):
+    /// what [`CapMap::apply`] and [`CapMap::compatibility_defect`] sum, without the strided
+    /// reads of a column-major matrix by rows (the hot path of a mesh with thousands of caps).
+    sparse: StencilTable,
+    sparse_compat: StencilTable,
 }
 
-/// The non-zero entries of a matrix, row after row: row `r` is `entries[starts[r]..starts[r + 1]]`.
-#[derive(Debug, Clone)]
-struct SparseRows {
-    starts: Vec<u32>,
-    entries: Vec<(u32, f64)>,
+/// The rows of `m` as a stencil table over its columns (zeros skipped).
+fn sparse_rows(m: &DMatrix<f64>) -> StencilTable {
+    // nalgebra stores by columns: the transpose's storage is `m` by rows
+    StencilTable::from_dense(m.nrows(), m.ncols(), m.transpose().as_slice())
 }
 
-impl SparseRows {
-    fn new(m: &DMatrix<f64>) -> SparseRows {
-        let mut starts = Vec::with_capacity(m.nrows() + 1);
-        let mut entries = Vec::new();
-        starts.push(0);
-        for r in 0..m.nrows() {
-            for c in 0..m.ncols() {
-                let w = m[(r, c)];
-                if w != 0.0 {
-                    entries.push((c as u32, w));
-                }
-            }
-            starts.push(entries.len() as u32);
-        }
-        SparseRows { starts, entries }
-    }
-
-    /// Row `r` applied to `data` (`sum w * data[c]` in column order).
-    #[inline]
-    fn apply(&self, r: usize, data: &[crate::geom::Point]) -> crate::geom::Point {
-        let range = self.starts[r] as usize..self.starts[r + 1] as usize;
-        self.entries[range]
-            .iter()
-            .fold([0.0; 3], |acc, &(c, w)| axpy(acc, w, data[c as usize]))
-    }
+/// Row `r` of `t` applied to `data` (`sum w * data[c]` in column order).
+#[inline]
+fn row_point(t: &StencilTable, r: usize, data: &[crate::geom::Point]) -> crate::geom::Point {
+    let (cols, weights) = t.row(r);
+    cols.iter()
+        .zip(weights)
+        .fold([0.0; 3], |acc, (&c, &w)| axpy(acc, w, data[c as usize]))
 }
 
 /// Pseudo-inverse and null space of `a` (`rows x cols`) from the symmetric eigen-decomposition
@@ -294,8 +275,8 @@ impl CapMap {
             certificate,
             free_parameters,
             centre,
-            sparse: SparseRows::new(&matrix),
-            sparse_compat: SparseRows::new(&compat),
+            sparse: sparse_rows(&matrix),
+            sparse_compat: sparse_rows(&compat),
             matrix,
             compat_labels: g.into_iter().map(|(l, _)| l).collect(),
         })
@@ -321,7 +302,7 @@ impl CapMap {
         let size = hole_size(hole);
         let mut worst = (0.0, String::new());
         for (r, label) in self.compat_labels.iter().enumerate() {
-            let acc = self.sparse_compat.apply(r, &data);
+            let acc = row_point(&self.sparse_compat, r, &data);
             let v = crate::geom::norm(acc) / size;
             if v > worst.0 {
                 worst = (v, label.clone());
@@ -351,7 +332,7 @@ impl CapMap {
         Ok((0..self.n * self.pieces * self.pieces)
             .map(|s| {
                 let cps = (0..m)
-                    .map(|k| self.sparse.apply(cidx(d, s, 0, 0) + k, &data))
+                    .map(|k| row_point(&self.sparse, cidx(d, s, 0, 0) + k, &data))
                     .collect();
                 BezierPatch::new(d, d, cps)
             })

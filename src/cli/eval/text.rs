@@ -520,14 +520,8 @@ mod tests {
             .collect()
     }
 
-    fn collect(f: impl Fn(&mut WriteFn) -> Result<()>) -> String {
-        let mut out = Vec::new();
-        f(&mut |b| {
-            out.extend_from_slice(b);
-            Ok(())
-        })
-        .expect("formats");
-        String::from_utf8(out).expect("utf-8")
+    fn collect(f: impl FnOnce(&mut WriteFn) -> Result<()>) -> String {
+        String::from_utf8(collect_bytes(f)).expect("utf-8")
     }
 
     #[test]

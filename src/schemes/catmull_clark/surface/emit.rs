@@ -14,8 +14,8 @@ const EMIT_BLOCK: usize = 4096;
 
 /// The regular patches (nets and Bezier conversion) are computed in parallel, in blocks of
 /// cells, then pushed (and tracked) in the cells' order, each block on this thread while the
-/// next is computed (the pushes and the table's rows are serial: cube7's build 92-112 -> 64-73
-/// ms): the complex and table of the per-cell
+/// next is computed (the pushes and the table's rows are serial; overlapping them took cube7's
+/// build from 92-112 to 64-73 ms): the complex and table of the per-cell
 /// [`AdaptiveRules::emit`](crate::host::adaptive::AdaptiveRules::emit) (one path:
 /// [`CcRules::push_regular`]).
 pub(super) fn emit_all(

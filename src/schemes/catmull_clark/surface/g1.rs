@@ -45,6 +45,10 @@ use crate::stencil::linear_weights;
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
+/// Rows of weights, one `(index, weight)` list per row (stencils over a level's points, or
+/// weights over a patch's coefficients).
+pub(super) type Rows = Vec<Vec<(u32, f64)>>;
+
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
 pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
@@ -81,8 +85,8 @@ fn segment_rows(
     level: &Level,
     hole_he: u32,
     from: u32,
-    patch_rows: &impl Fn(usize) -> Option<Vec<Vec<(u32, f64)>>>,
-) -> Option<Vec<Vec<(u32, f64)>>> {
+    patch_rows: &impl Fn(usize) -> Option<Rows>,
+) -> Option<Rows> {
     let (g, side, range) = across(level, hole_he, from)?;
     let cps = patch_rows(g)?;
     let weights = segment_weights(side, range);
@@ -97,9 +101,6 @@ fn segment_rows(
             .collect(),
     )
 }
-
-/// Rows of weights, one `(index, weight)` list per row.
-type Rows = Vec<Vec<(u32, f64)>>;
 
 /// The weights of [`segment_from_ring`] (boundary, then cross coefficients) over the 16
 /// coefficients of a bi-3 ring patch, for the side and range [`quad_edge_side`] gives: read off
@@ -156,8 +157,8 @@ pub(super) fn hole_rows(
     limits: &LimitStencils<'_>,
     element: Element,
     faces: &[(u32, Tag)],
-    patch_rows: &impl Fn(usize) -> Option<Vec<Vec<(u32, f64)>>>,
-) -> Option<Vec<Vec<(u32, f64)>>> {
+    patch_rows: &impl Fn(usize) -> Option<Rows>,
+) -> Option<Rows> {
     let (x, quads, _) = hole_sectors(level, element, faces).ok()?;
     let sectors =
         quad_hole_segments(&quads, |he, from| segment_rows(level, he, from, patch_rows)).ok()?;

@@ -15,6 +15,7 @@
 //! cap schemes) leave their patches without rows: [`catmull_clark_tracked`] then returns no
 //! table and the caller probes the construction instead.
 
+use super::g1::Rows;
 use super::{CcRules, Level, g1};
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{PatchComplex, Provenance};
@@ -30,9 +31,6 @@ use crate::stencil::{LayeredTable, Stencil, StencilTable};
 use rayon::prelude::*;
 use std::cell::RefCell;
 use std::sync::OnceLock;
-
-/// Rows of stencils, one `(point, weight)` list per row.
-type Rows = Vec<Vec<(u32, f64)>>;
 
 /// The rows recorded while the complex is built.
 pub(crate) struct Tracker {
@@ -134,7 +132,7 @@ fn kernel() -> &'static Kernel {
 }
 
 /// The coefficient rows of the patch of a B-spline net, over the level's points.
-fn patch_terms(net: &Net) -> Vec<Vec<(u32, f64)>> {
+fn patch_terms(net: &Net) -> Rows {
     conversion()
         .iter()
         .map(|c| {
