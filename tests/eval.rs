@@ -446,3 +446,55 @@ fn cli_binary_records_equal_the_library_bit_for_bit() {
     ]);
     assert!(both.is_err());
 }
+
+/// `eval --rings` on one worker thread (`RAYON_NUM_THREADS=1`, or a one-core machine) on a net
+/// big enough for the regular patches to be computed in several blocks: the build runs inside
+/// the pool while a block is pushed, which deadlocked when the next block was computed on a
+/// thread that waited for the pool's only worker. The output equals the default run's.
+#[test]
+fn eval_on_one_worker_thread_finishes_and_agrees() {
+    let fairsub = env!("CARGO_BIN_EXE_fairsub");
+    let net = tmp("fairsub-eval-one-thread", "cube-l5.obj");
+    let cc = ids::CATMULL_CLARK.name();
+    let made = std::process::Command::new(fairsub)
+        .args(["subdivide", "gallery:cube", "-s", cc, "-l", "5", "-o"])
+        .arg(&net)
+        .output()
+        .expect("fairsub runs");
+    assert!(made.status.success(), "{made:?}");
+    let mesh = fairsub::io::read_mesh(&net)
+        .expect("the refined cube reads back")
+        .mesh;
+    assert!(
+        mesh.num_faces() > 4096,
+        "{} faces: one block",
+        mesh.num_faces()
+    );
+    let at = "0:0.25:0.5,6000:0.5:0.5,17:1:0";
+    let run = |threads: Option<&str>| {
+        let mut cmd = std::process::Command::new(fairsub);
+        cmd.arg("eval")
+            .arg(&net)
+            .args(["--scheme", cc, "--rings", "2", "--at", at])
+            .stdout(std::process::Stdio::piped());
+        if let Some(t) = threads {
+            cmd.env("RAYON_NUM_THREADS", t);
+        }
+        let mut child = cmd.spawn().expect("fairsub runs");
+        let start = std::time::Instant::now();
+        // a deadlock is a failure, not a hung test run
+        while child.try_wait().expect("waits").is_none() {
+            if start.elapsed() > std::time::Duration::from_secs(120) {
+                let _ = child.kill();
+                panic!("eval with RAYON_NUM_THREADS={threads:?} did not finish in 120 s");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        let out = child.wait_with_output().expect("output");
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    let one = run(Some("1"));
+    assert_eq!(one.lines().count(), 3, "{one}");
+    assert_eq!(one, run(None));
+}

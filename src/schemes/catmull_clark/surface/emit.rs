@@ -54,8 +54,16 @@ pub(super) fn emit_all(
     let mut built = blocks.first().map(|b| compute(b));
     for (k, block) in blocks.iter().enumerate() {
         let nets = built.take().unwrap_or_default();
-        built = std::thread::scope(|s| {
-            let next = blocks.get(k + 1).map(|b| s.spawn(|| compute(b)));
+        // a rayon scope, not a thread: the caller may be a pool's only worker (`eval` builds
+        // inside `rayon::join`; `RAYON_NUM_THREADS=1`), which a blocking join of a thread
+        // that needs the pool deadlocked; this thread runs the spawned block itself if no
+        // other worker has taken it when the pushes are done
+        let mut next = None;
+        rayon::in_place_scope(|s| {
+            if let Some(b) = blocks.get(k + 1) {
+                let next = &mut next;
+                s.spawn(move |_| *next = Some(compute(b)));
+            }
             for (&(f, tag), built) in block.iter().zip(nets) {
                 if is_hole(level, f as usize) {
                     continue;
@@ -71,8 +79,8 @@ pub(super) fn emit_all(
                 rules.push_regular(level, f, &net, p, adaptive::provenance(l, tag), to);
                 out.set_domain(out.len() - 1, tag.domain);
             }
-            next.map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
         });
+        built = next;
     }
     marked
 }
