@@ -286,8 +286,8 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     // polar-bi2's TPS rings (a vertex that is not a pole) carry no face domain
     let e = run("0:0.1:0.1", ids::POLAR_BI2.name(), "gallery:cnet-5-saddle");
     assert!(e.contains("face 0") && e.contains("TPS vertices"), "{e}");
-    // pgs-dscc's quarters at boundary vertices are not tracked (its DS^CC steps carry no
-    // cells there): a face of the c-net at a boundary vertex
+    // pgs-dscc's quarters at boundary vertices evaluate (its first DS^CC step hands them to
+    // the corner points; an error before 2026-12-04): a face of the c-net at a boundary vertex
     let net = "gallery:cnet-5-saddle";
     let mesh = gallery("cnet-5-saddle");
     let (f, k) = (0..mesh.num_faces())
@@ -303,12 +303,18 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
         })
         .expect("a face at the boundary");
     let corner = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]][k];
-    let e = run(
-        &format!("{f}:{}:{}", corner[0], corner[1]),
-        ids::PGS_DSCC.name(),
+    let at = format!("{f}:{}:{}", corner[0], corner[1]);
+    let words = [
         net,
-    );
-    assert!(e.contains("boundary vertices"), "{e}");
+        "--scheme",
+        ids::PGS_DSCC.name(),
+        "--rings",
+        "1",
+        "--at",
+        &at,
+    ];
+    let out = eval_words(&words).expect("a boundary quarter evaluates");
+    assert!(out.starts_with(&format!("{at} patch ")), "{out}");
     let e = run("0:0.5", cc, "gallery:cube");
     assert!(
         e.contains("--at point 1") && e.contains("three fields"),

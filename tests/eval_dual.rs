@@ -15,10 +15,13 @@ use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, toward_ev};
+use support::{gallery, tmp, toward_ev, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
-use faces::{Covered, all_agree, all_continuous, at_interior_vertex, face_points, surface_of};
+use faces::{
+    Covered, agrees_with, all_agree, all_continuous, at_interior_vertex, face_points, largest_jump,
+    surface_of,
+};
 use fairsub::mesh::Extras;
 use fairsub::mesh::tags::{BoundaryInterpolation, SubdOptions};
 #[path = "eval/ratios.rs"]
@@ -59,6 +62,72 @@ fn dual_schemes_evaluate_the_quarters_at_boundary_vertices() {
     all_continuous(&dual_schemes(), &OPEN);
 }
 
+/// Nets with extraordinary boundary vertices (no gallery net has one): an L-shaped 4 x 4 grid
+/// of curved quads whose concave corner is a boundary vertex of three quads, and
+/// `cnet-5-saddle` without one face at its centre (a boundary vertex of four quads).
+fn irregular_boundary_nets() -> Vec<(&'static str, PolyMesh)> {
+    let mut pos = Vec::new();
+    let mut faces = Vec::new();
+    let at = |i: usize, j: usize| i * 5 + j;
+    for i in 0..5 {
+        for j in 0..5 {
+            let (x, y) = (i as f64, j as f64);
+            pos.push([x, y, 0.1 * x.sin() * (1.3 * y).cos()]);
+        }
+    }
+    for i in 0..4 {
+        for j in 0..4 {
+            if i < 2 || j < 2 {
+                faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    let l_shape = PolyMesh::new(pos, &faces).expect("the L-shaped net");
+    let cnet = gallery("cnet-5-saddle");
+    let centre = (0..cnet.num_vertices())
+        .find(|&v| !cnet.is_boundary_vertex(v) && cnet.valence(v) == 5)
+        .expect("the centre");
+    let mut dropped = false;
+    let kept: Vec<Vec<usize>> = (0..cnet.num_faces())
+        .map(|f| cnet.face(f))
+        .filter(|f| {
+            let drop = !dropped && f.contains(&(centre as u32));
+            dropped |= drop;
+            !drop
+        })
+        .map(|f| f.iter().map(|&x| x as usize).collect())
+        .collect();
+    let notched = PolyMesh::new(cnet.positions().to_vec(), &kept).expect("the notched c-net");
+    assert!(notched.is_boundary_vertex(centre) && notched.vertex_faces(centre).len() == 4);
+    vec![("l-shape", l_shape), ("cnet-5-notched", notched)]
+}
+
+/// Every point of every face of nets with extraordinary boundary vertices evaluates (the
+/// quarters at those vertices were not tracked before 2026-12-04): it agrees with the patches
+/// `subdivide --rings` writes to 1e-12, points near the vertex lie on its fill, and the
+/// evaluation is continuous across the lines `i 2^-6` of every face.
+#[test]
+fn dual_schemes_evaluate_next_to_extraordinary_boundary_vertices() {
+    for (name, mesh) in irregular_boundary_nets() {
+        let path = tmp("fairsub-eval-dual-boundary", &format!("{name}.obj"));
+        fairsub::io::write_mesh(&path, &mesh, fairsub::io::MeshFormat::Obj).expect("written");
+        let src = path.to_str().expect("utf-8 path");
+        for scheme in dual_schemes().into_iter().chain([ids::PGS_DSCC.name()]) {
+            let written = written_from(src, name, scheme, 3);
+            let (mesh, s) = surface_of(mesh.clone(), scheme, 3);
+            let (worst, in_caps) = agrees_with(&written, &mesh, &s, &|_, _| true);
+            let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
+            eprintln!(
+                "{name} under {scheme}: largest difference {worst:.3e}, {in_caps} points on \
+                 caps and fills, largest jump {jump:.3e}"
+            );
+            assert!(worst <= 1e-12, "{name} under {scheme}: {worst:e}");
+            assert!(in_caps > 0, "{name} under {scheme}: no point on a fill");
+            assert!(jump < 1e-7, "{name} under {scheme}: jump {jump:e}");
+        }
+    }
+}
+
 /// `mesh` with the boundary mode `mode`.
 fn with_mode(mesh: PolyMesh, mode: BoundaryInterpolation) -> PolyMesh {
     mesh.with_extras(Some(Extras {
@@ -70,28 +139,16 @@ fn with_mode(mesh: PolyMesh, mode: BoundaryInterpolation) -> PolyMesh {
     }))
 }
 
-/// Whether a face point lies in the quarter of a quad at a corner of the net (a boundary
-/// vertex with one face).
-fn at_corner(m: &PolyMesh, (f, u, v): (u32, f64, f64)) -> bool {
-    let k = match (u >= 0.5, v >= 0.5) {
-        (false, false) => 0,
-        (true, false) => 1,
-        (true, true) => 2,
-        (false, true) => 3,
-    };
-    let w = m.face(f as usize)[k] as usize;
-    m.is_boundary_vertex(w) && m.valence(w) == 2
-}
-
 /// The boundary modes (`schemes::doo_sabin`): under `edge-only` a corner (one quad) is not
 /// kept, so it is an extraordinary element (its V-face a triangle) refined next to the
-/// boundary, where no cells are tracked: the quarter at a corner is an error, every other
-/// point evaluates. Under `none` the patches of boundary vertices are not part of the
-/// surface, so there is no surface over the quarters at boundary vertices: errors there.
+/// boundary; its corner point carries the quarter of its face, so every point evaluates (until
+/// 2026-12-04 the quarters at corners were errors). Under `none` the patches of boundary
+/// vertices are not part of the surface, so there is no surface over the quarters at boundary
+/// vertices: errors there.
 #[test]
 fn boundary_modes_decide_which_boundary_quarters_evaluate() {
     let modes: [(BoundaryInterpolation, &Covered); 2] = [
-        (BoundaryInterpolation::EdgeOnly, &|m, p| !at_corner(m, p)),
+        (BoundaryInterpolation::EdgeOnly, &|_, _| true),
         (BoundaryInterpolation::None, &at_interior_vertex),
     ];
     for scheme in dual_schemes() {

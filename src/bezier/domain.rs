@@ -57,10 +57,13 @@
 //! between the phantom row and the boundary row, half a face outside the net's lattice); its
 //! parts over the vertex's faces are their quarters at it, recorded as at an interior vertex.
 //! The outer half-face strip of those patches lies over no face: the face's boundary edge is
-//! the knot line through the boundary vertices, not the boundary curve. Quarters whose
-//! vertex writes no patch (boundary mode `none`) or is refined as an extraordinary boundary
-//! element (a boundary vertex with three or more faces, an unkept corner under `edge-only`)
-//! are not tracked: evaluating there is an error.
+//! the knot line through the boundary vertices, not the boundary curve. A boundary vertex
+//! refined as an extraordinary element (three or more faces, an unkept corner under
+//! `edge-only`) hands the quarters of its faces to its corner points, as an interior vertex
+//! does; its Chaikin points and kept corner, and their descendants, lie beyond those knot
+//! lines, over no face (tracked since 2026-12-04: `tests/eval_dual.rs` checks agreement and
+//! continuity on an L-shaped net and a notched c-net). Quarters whose vertex writes no patch
+//! (boundary mode `none`) are not tracked: evaluating there is an error.
 //!
 //! # TPS (primal ternary bi-2)
 //!
@@ -363,7 +366,7 @@ impl Domain {
     pub const WHOLE: u32 = u32::MAX;
 
     /// A domain the host does not track (schemes without face domains, the dual schemes'
-    /// cells next to extraordinary boundary elements).
+    /// boundary points, which lie over no face).
     pub const UNTRACKED: Domain = Domain {
         face: u32::MAX,
         sub: 0,

@@ -178,9 +178,9 @@ barycentric (u, v), u toward corner 1, v toward corner 2, u + v <= 1. Under the 
 vertex i's patch (PGS after DS^CC: on the patches of its DS^CC-refined children; the mixed
 bi-2 net: in a facet's rings at its corners); at a boundary vertex its patch's part over the
 face (the face's boundary edge is the knot line through the boundary vertices, half a face
-inside the boundary curve); the quarters at boundary vertices under boundary mode none (no
-patch there), at corners under edge-only and those of PGS after DS^CC, and those at TPS
-vertices of the mixed and polar bi-2 nets, are not evaluated. A pole's fan triangle
+inside the boundary curve; at an extraordinary boundary vertex, its corner point's patches);
+the quarters at boundary vertices under boundary mode none (no patch there) and those at TPS
+vertices of the mixed and polar bi-2 nets are not evaluated. A pole's fan triangle
 (polar and mixed bi-2 nets) has (u, v) in [0,1]^2: (0,0) at the corner after the pole, (1,0) at
 the next, v = 1 the pole (u around it, v inward); an n-gon cap turned into a pole has u in
 [0,n], v in [0,1], sub-face i = floor(u) its fan triangle at edge i -> i+1. EG, QAS+ (all

@@ -183,9 +183,10 @@ pub fn all_continuous(schemes: &[&str], nets: &[&str]) {
     }
 }
 
-/// Whether a face point lies in a quarter at an interior vertex (those at boundary vertices
-/// are not tracked; not every test binary has them): the quarter at corner `floor(u)` of an n-gon, at the nearest corner of a
-/// quad.
+/// Whether a face point lies in a quarter at an interior vertex (under the boundary mode
+/// `none` the dual schemes write no surface over those at boundary vertices; not every test
+/// binary uses this): the quarter at corner `floor(u)` of an n-gon, at the nearest corner of
+/// a quad.
 #[allow(dead_code)]
 pub fn at_interior_vertex(mesh: &PolyMesh, (f, u, v): (u32, f64, f64)) -> bool {
     let face = mesh.face(f as usize);

@@ -77,8 +77,11 @@
 //! `emit` records them as [`Piece`]s of the patch. Every later vertex lies in one cell of
 //! an input face, kept in its tag (`rot`: the corner of its patch's `(0, 0)`), and its children
 //! get the cell's quarters (`refine::child_domain`); the fill and the G^1 cap sectors cover
-//! their vertex's cell. The layout is in [`crate::bezier::domain`]; the children of boundary
-//! vertices (refined next to extraordinary boundary elements) are not tracked.
+//! their vertex's cell. The layout is in [`crate::bezier::domain`]. An input boundary vertex
+//! that is refined (an extraordinary boundary element, or next to one) hands the quarters of
+//! its faces to its corner points like an interior vertex; its Chaikin points and kept corner
+//! lie beyond the faces' boundary edges (knot lines inside the surface), over no face, and are
+//! not tracked.
 //!
 //! # Boundary modes
 //!
@@ -232,7 +235,7 @@ pub struct Level {
     face_origin: Vec<Option<Element>>,
     /// Vertices whose patches are still to be produced, with their tags. From level 1 on a
     /// tag's domain is the vertex's cell with `rot` the corner of its patch's `(0, 0)`
-    /// ([`crate::bezier::domain`]; untracked next to the boundary).
+    /// ([`crate::bezier::domain`]; untracked for the boundary points, which lie over no face).
     active: Vec<(u32, Tag)>,
     /// Level 0: the input net, whose vertex patches cover quarters of four faces.
     first: bool,

@@ -235,13 +235,17 @@ pub(super) fn refine_around(
     for &(v, tag) in marked {
         let v = v as usize;
         let hs = m.outgoing_halfedges(v);
-        // on the true boundary (its whole fan present): children untracked
+        // on the true boundary (its whole fan present): the corner points of an input
+        // vertex get the quarters of its faces as anywhere (their patches' sides toward the
+        // boundary edges are knot lines inside the surface, as the regular boundary vertices'
+        // are); on later levels boundary vertices are Chaikin points and kept corners, whose
+        // patches lie beyond the knot lines, over no face
         let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
         for (i, &h) in hs.iter().enumerate() {
             let w = corner_pt[h as usize];
             let mut t = tag;
             t.domain = Domain::UNTRACKED;
-            if w != UNSET && !on_boundary {
+            if w != UNSET && (level.first || !on_boundary) {
                 let g = m.he_face(h);
                 t.domain = child_domain(m, level.first, &child, h, i, tag.domain, f_face[&g], w);
             }
@@ -317,14 +321,17 @@ fn child_domain(
 /// `h`, child face `f` the F-face of face `f`), from the cells of `m`'s vertices (`None`: `m`
 /// is the input net, whose vertices' patches cover quarters of their faces). Each child of an
 /// interior vertex gets the quarter of its parent's cell toward its face, exactly as the
-/// adaptive refinement gives it (`rot` the corner of its patch's `(0, 0)`); boundary points,
-/// kept corners and the children of boundary vertices are untracked (see
+/// adaptive refinement gives it (`rot` the corner of its patch's `(0, 0)`), and so does each
+/// corner point of an input boundary vertex; boundary points (Chaikin points, kept corners)
+/// are untracked (see
 /// [`crate::bezier::domain`]). PGS after DS^CC steps (`pgs-dscc`) starts its complex from
 /// these cells ([`super::dual_complex_in_cells`]).
 pub fn step_cells(m: &PolyMesh, cells: Option<&[Domain]>, child: &PolyMesh) -> Vec<Domain> {
     let mut out = vec![Domain::UNTRACKED; child.num_vertices()];
     for v in 0..m.num_vertices() {
-        if m.is_boundary_vertex(v) {
+        // the corner points of an input boundary vertex get their quarters as in the adaptive
+        // refinement; later boundary vertices (Chaikin points, kept corners) cover no face
+        if m.is_boundary_vertex(v) && cells.is_some() {
             continue;
         }
         let cell = cells.map_or(Domain::UNTRACKED, |c| c[v]);
