@@ -283,9 +283,21 @@ fn errors_name_the_face_the_domain_and_the_scheme() {
     assert!(e.contains("[0, 5]"), "{e}");
     let e = run("0:0.7:0.7", ids::LOOP.name(), "gallery:icosahedron");
     assert!(e.contains("u + v <= 1"), "{e}");
-    // polar-bi2's TPS rings (a vertex that is not a pole) carry no face domain
-    let e = run("0:0.1:0.1", ids::POLAR_BI2.name(), "gallery:cnet-5-saddle");
-    assert!(e.contains("face 0") && e.contains("TPS vertices"), "{e}");
+    // polar-bi2's TPS rings (a vertex that is not a pole) lie in thirds of their quarters,
+    // as bi2-mixed's (an error before 2026-12-04)
+    let at = [
+        "gallery:cnet-5-saddle",
+        "--rings",
+        "1",
+        "--at",
+        "0:0.1:0.1,0:0.01:0.02",
+    ];
+    let with = |scheme: &str| {
+        let mut words = vec!["--scheme", scheme];
+        words.extend_from_slice(&at);
+        eval_words(&words).expect("a TPS vertex's quarter evaluates")
+    };
+    assert_eq!(with(ids::POLAR_BI2.name()), with(ids::BI2_MIXED.name()));
     // pgs-dscc's quarters at boundary vertices evaluate (its first DS^CC step hands them to
     // the corner points; an error before 2026-12-04): a face of the c-net at a boundary vertex
     let net = "gallery:cnet-5-saddle";

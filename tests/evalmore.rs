@@ -1,8 +1,8 @@
 //! Evaluation at `(face, u, v)` of the schemes made evaluable after the dual schemes: PGS after
 //! DS^CC steps (`pgs-dscc`), whose refined net's vertices carry the input faces' cells, and
 //! `bi2-mixed` at its PGS facets (regular patches as Doo-Sabin's, the facet's rings in its
-//! sub-faces and the quarters of the quads at its corners; TPS vertices and poles are not
-//! evaluated). Tests as for the other schemes: agreement with the patches `subdivide --rings`
+//! sub-faces and the quarters of the quads at its corners; a TPS vertex's rings in thirds of
+//! its quarters, as in `tps`; poles in their fan triangles). Tests as for the other schemes: agreement with the patches `subdivide --rings`
 //! writes at random points of every face (caps included), continuity across every line of a
 //! dyadic grid of every face, convergence to the limit point at the scheme's `lambda` per ring;
 //! and `bi2-mixed` against `pgs` on a DS-net, where both have the same rings.
@@ -10,7 +10,7 @@
 use fairsub::bezier::complex::Provenance;
 use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
-use fairsub::schemes::bi2::mixed::{Bi2Element, elements, fig15_like_net};
+use fairsub::schemes::bi2::mixed::fig15_like_net;
 use fairsub::schemes::bi2::pgs::ds_net;
 use fairsub::schemes::registry::ids;
 
@@ -19,7 +19,9 @@ mod support;
 use support::{gallery, tmp, toward_ev, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
-use faces::{agrees_with, all_agree, all_continuous, face_points, largest_jump, surface_of};
+use faces::{
+    agrees_with, all_agree, all_continuous, face_points, jump_across, largest_jump, surface_of,
+};
 #[path = "eval/ratios.rs"]
 mod ratios;
 use ratios::lambda;
@@ -78,33 +80,6 @@ fn dsnet(n: usize) -> PolyMesh {
     ds_net(n, |x, y| -0.15 * (x * x + y * y) + 0.05 * x * y).expect("DS-net")
 }
 
-/// Whether a face point of a `bi2-mixed` net lies where its patches carry face cells: in a
-/// quarter at an interior vertex that is not a TPS vertex or a pole (those of `mesh`, found
-/// once).
-fn mixed_covered(mesh: &PolyMesh) -> impl Fn(&PolyMesh, (u32, f64, f64)) -> bool + use<> {
-    let skip: std::collections::HashSet<u32> = elements(mesh)
-        .into_iter()
-        .filter_map(|e| match e {
-            Bi2Element::Vertex(x) | Bi2Element::Pole(x) => Some(x),
-            Bi2Element::Facet(_) => None,
-        })
-        .collect();
-    move |mesh: &PolyMesh, p: (u32, f64, f64)| {
-        let face = mesh.face(p.0 as usize);
-        let k = if face.len() == 4 {
-            match (p.1 >= 0.5, p.2 >= 0.5) {
-                (false, false) => 0,
-                (true, false) => 1,
-                (true, true) => 2,
-                (false, true) => 3,
-            }
-        } else {
-            (p.1.floor() as usize).min(face.len() - 1)
-        };
-        !skip.contains(&face[k])
-    }
-}
-
 /// `mesh` written to an OBJ file and read back (the CLI reads the same file).
 fn via_obj(mesh: &PolyMesh, name: &str) -> (PolyMesh, String) {
     let path = tmp("fairsub-evalmore", &format!("{name}.obj"));
@@ -124,7 +99,9 @@ fn bi2_mixed_eval_agrees_with_the_written_patches() {
         let (mesh, src) = via_obj(&net, name);
         let written = written_from(&src, name, scheme, rings);
         let (mesh, s) = surface_of(mesh, scheme, rings);
-        let (worst, in_caps) = agrees_with(&written, &mesh, &s, &mixed_covered(&mesh));
+        // every point, TPS vertices included (their rings in thirds of their quarters, as in
+        // `tps`; errors before 2026-12-04)
+        let (worst, in_caps) = agrees_with(&written, &mesh, &s, &|_, _| true);
         eprintln!(
             "{name} under {scheme}, {rings} rings: largest difference {worst:.3e}, {in_caps} points on caps"
         );
@@ -140,8 +117,19 @@ fn bi2_mixed_evaluation_is_continuous_across_patch_boundaries() {
         ("fig15-5", fig15_like_net(5).expect("net")),
     ] {
         let (mesh, s) = surface_of(net, ids::BI2_MIXED.name(), 3);
-        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &mixed_covered(&mesh));
+        let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);
         eprintln!("{name} under bi2-mixed: largest jump {jump:.3e}");
+        assert!(jump < 1e-7, "{name}: jump {jump:e}");
+        // the ring lines of a TPS vertex's quarters: k 3^-l / 2 from the face's corners
+        let mut xs = Vec::new();
+        for l in 1..=4 {
+            for k in [1.0, 2.0] {
+                let x = 0.5 * k * 3f64.powi(-l);
+                xs.extend([x, 1.0 - x]);
+            }
+        }
+        let jump = jump_across(&mesh, &s, &xs, 1e-10, &|_, _| true);
+        eprintln!("{name} under bi2-mixed: largest jump across TPS ring lines {jump:.3e}");
         assert!(jump < 1e-7, "{name}: jump {jump:e}");
     }
 }

@@ -191,12 +191,17 @@ def _evaluate_equals_cli(cli, src, scheme, faces=None):
     assert np.array_equal(one["point"], mine["point"][0])
 
 
-def test_evaluate_refuses_points_without_domains():
-    # polar-bi2 evaluates at poles; the TPS rings of a vertex that is not a pole carry no
-    # face domain
-    s = fairsub.surface("gallery:cnet-5-saddle", "polar-bi2", rings=2)
+def test_evaluate_refuses_points_without_patches():
+    # the hole inside the last ring left open: no patch covers the face next to the vertex
+    s = fairsub.surface("gallery:cube", "catmull-clark", rings=1, fill=False)
     with pytest.raises(ValueError, match="no patch of the surface covers face 0"):
-        s.evaluate([0], [0.1], [0.1])
+        s.evaluate([0], [0.01], [0.01])
+    # polar-bi2's TPS rings of a vertex that is not a pole lie in thirds of its quarters
+    # (an error before 2026-12-04), as bi2-mixed's
+    polar = fairsub.surface("gallery:cnet-5-saddle", "polar-bi2", rings=2)
+    mixed = fairsub.surface("gallery:cnet-5-saddle", "bi2-mixed", rings=2)
+    a, b = polar.evaluate([0], [0.1], [0.1]), mixed.evaluate([0], [0.1], [0.1])
+    assert np.array_equal(a["point"], b["point"])
 
 
 def test_level_stencils_reproduce_the_refinement():

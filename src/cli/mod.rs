@@ -179,8 +179,9 @@ vertex i's patch (PGS after DS^CC: on the patches of its DS^CC-refined children;
 bi-2 net: in a facet's rings at its corners); at a boundary vertex its patch's part over the
 face (the face's boundary edge is the knot line through the boundary vertices, half a face
 inside the boundary curve; at an extraordinary boundary vertex, its corner point's patches);
-the quarters at boundary vertices under boundary mode none (no patch there) and those at TPS
-vertices of the mixed and polar bi-2 nets are not evaluated. A pole's fan triangle
+the quarters at boundary vertices under boundary mode none (no patch there) are not
+evaluated; the TPS vertices of the mixed and polar bi-2 nets lay their rings in thirds of
+their quarters, as TPS does. A pole's fan triangle
 (polar and mixed bi-2 nets) has (u, v) in [0,1]^2: (0,0) at the corner after the pole, (1,0) at
 the next, v = 1 the pole (u around it, v inward); an n-gon cap turned into a pole has u in
 [0,n], v in [0,1], sub-face i = floor(u) its fan triangle at edge i -> i+1. EG, QAS+ (all

@@ -325,8 +325,7 @@ impl Surface {
             Error::InvalidArgument(format!(
                 "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
                  inside the last ring is open (--no-fill), or the patches there carry no face \
-                 domain (the quarters at boundary vertices under boundary mode none; the TPS \
-                 vertices of a mixed bi-2 or polar bi-2 net)"
+                 domain (the quarters at boundary vertices under boundary mode none)"
             ))
         })
     }

@@ -542,6 +542,9 @@ fn mixed_elements(
         }
     }
     let mut notes = Vec::new();
+    // a TPS vertex's rings and cap lie in thirds of the quarters of its faces, as in `tps`
+    // (the regular patches around it cover the same quarters as TPS's)
+    let face_cells = thirds::FaceCells::input(mesh);
     let els = elements(mesh)
         .into_iter()
         .map(|e| match e {
@@ -564,7 +567,9 @@ fn mixed_elements(
                         ids::BI2_MIXED
                     ));
                 }
-                ternary_element(mesh, v as usize, TernaryRules::TPS, name)
+                let mut el = ternary_element(mesh, v as usize, TernaryRules::TPS, name)?;
+                el.sectors = thirds::sector_cells(mesh, &face_cells, v as usize);
+                Ok(el)
             }
             Bi2Element::Pole(p) => {
                 let element = named

@@ -19,7 +19,8 @@
 //!   `a_s`, corner 0) and of the quad across edge `a_s a_(s+1)` (`d`: at that edge's midpoint,
 //!   corner 3).
 //!
-//! TPS vertices (ternary rings, which no dyadic cell holds) are not tracked; PolBS poles have
+//! TPS vertices (ternary rings, which no dyadic cell holds) lay their rings and cap in thirds
+//! of their quarters, as `tps` does ([`super::thirds`]); PolBS poles have
 //! their own cells ([`super::poles`]); the regular patches' quarters at boundary vertices are
 //! tracked, as for the dual schemes.
 
