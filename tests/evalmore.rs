@@ -182,3 +182,36 @@ fn bi2_mixed_limit_evaluation_converges_at_rate_lambda() {
         );
     }
 }
+
+/// `bi2-mixed` and `polar-bi2` at the TPS vertex of a c-net (their rings in thirds of its
+/// quarters since 2026-12-04): without `--rings` the error to the vertex shrinks by TPS's
+/// `lambda` per ring (points at `3^-k` of the face), and the centre is `tps`'s.
+#[test]
+fn tps_vertices_of_mixed_nets_converge_at_rate_lambda() {
+    for n in [3, 5, 6] {
+        let mesh = gallery(&format!("cnet-{n}-saddle"));
+        let (_, at) = toward_ev(&mesh, n);
+        let tps_lambda = lambda(ids::TPS.name(), n);
+        let (tps_centre, ..) = ratios::converges_at_ratio(
+            ids::TPS.name(),
+            &mesh,
+            &at,
+            (1.0 / 3.0, 10),
+            10,
+            tps_lambda,
+            &format!("vertex n = {n}"),
+        );
+        for scheme in [ids::BI2_MIXED.name(), ids::POLAR_BI2.name()] {
+            let (centre, ..) = ratios::converges_at_ratio(
+                scheme,
+                &mesh,
+                &at,
+                (1.0 / 3.0, 10),
+                10,
+                tps_lambda,
+                &format!("TPS vertex n = {n}"),
+            );
+            assert!(dist(centre, tps_centre) < 1e-12, "{scheme}, n = {n}");
+        }
+    }
+}
