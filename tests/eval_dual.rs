@@ -15,7 +15,7 @@ use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, tmp, toward_ev, written_from};
+use support::{gallery, toward_ev, via_obj, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{
@@ -109,11 +109,9 @@ fn irregular_boundary_nets() -> Vec<(&'static str, PolyMesh)> {
 #[test]
 fn dual_schemes_evaluate_next_to_extraordinary_boundary_vertices() {
     for (name, mesh) in irregular_boundary_nets() {
-        let path = tmp("fairsub-eval-dual-boundary", &format!("{name}.obj"));
-        fairsub::io::write_mesh(&path, &mesh, fairsub::io::MeshFormat::Obj).expect("written");
-        let src = path.to_str().expect("utf-8 path");
+        let (mesh, src) = via_obj(&mesh, name);
         for scheme in dual_schemes().into_iter().chain([ids::PGS_DSCC.name()]) {
-            let written = written_from(src, name, scheme, 3);
+            let written = written_from(&src, name, scheme, 3);
             let (mesh, s) = surface_of(mesh.clone(), scheme, 3);
             let (worst, in_caps) = agrees_with(&written, &mesh, &s, &|_, _| true);
             let jump = largest_jump(&mesh, &s, 1 << 6, 1e-10, &|_, _| true);

@@ -21,7 +21,7 @@ use std::collections::BTreeSet;
 #[path = "eval/support.rs"]
 #[allow(dead_code)]
 mod support;
-use support::{gallery, tmp, written_from};
+use support::{gallery, tmp, via_obj, written_from};
 #[path = "eval/faces.rs"]
 #[allow(dead_code)]
 mod faces;
@@ -36,14 +36,6 @@ use ratios::{converges, lambda};
 const POLAR: &str = "polar-bi2";
 /// The pole given for face 0 (the bottom cap, centroid `(0, 0, -1)`) of prism-5.
 const GIVEN: (usize, Point) = (0, [0.1, -0.05, -1.4]);
-
-/// `mesh` written to an OBJ file and read back, with the file's path.
-fn via_obj(mesh: &PolyMesh, name: &str) -> (PolyMesh, String) {
-    let path = tmp("fairsub-eval-polar", &format!("{name}.obj"));
-    fairsub::io::write_mesh(&path, mesh, fairsub::io::MeshFormat::Obj).expect("write");
-    let back = fairsub::io::read_mesh(&path).expect("read back").mesh;
-    (back, path.to_str().expect("utf-8 path").to_string())
-}
 
 /// The polar layout of prism-`n` (its caps turned into poles with fans of input triangles:
 /// quads mixed with pole triangles) as a net of its own.

@@ -2,9 +2,9 @@
 //! DS^CC steps (`pgs-dscc`), whose refined net's vertices carry the input faces' cells, and
 //! `bi2-mixed` at its PGS facets (regular patches as Doo-Sabin's, the facet's rings in its
 //! sub-faces and the quarters of the quads at its corners; a TPS vertex's rings in thirds of
-//! its quarters, as in `tps`; poles in their fan triangles). Tests as for the other schemes: agreement with the patches `subdivide --rings`
-//! writes at random points of every face (caps included), continuity across every line of a
-//! dyadic grid of every face, convergence to the limit point at the scheme's `lambda` per ring;
+//! its quarters, as in `tps`; poles in their fan triangles). Tests as for the other schemes:
+//! agreement with the patches `subdivide --rings` writes at random points of every face (caps
+//! included), continuity across every line of a dyadic grid of every face, convergence to the limit point at the scheme's `lambda` per ring;
 //! and `bi2-mixed` against `pgs` on a DS-net, where both have the same rings.
 
 use fairsub::bezier::complex::Provenance;
@@ -16,7 +16,7 @@ use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, tmp, toward_ev, written_from};
+use support::{gallery, toward_ev, via_obj, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{
@@ -78,14 +78,6 @@ fn pgs_dscc_limit_evaluation_converges_at_rate_lambda() {
 /// A DS-net of an `n`-gon (the facet and two rings of quads, a boundary), curved.
 fn dsnet(n: usize) -> PolyMesh {
     ds_net(n, |x, y| -0.15 * (x * x + y * y) + 0.05 * x * y).expect("DS-net")
-}
-
-/// `mesh` written to an OBJ file and read back (the CLI reads the same file).
-fn via_obj(mesh: &PolyMesh, name: &str) -> (PolyMesh, String) {
-    let path = tmp("fairsub-evalmore", &format!("{name}.obj"));
-    fairsub::io::write_mesh(&path, mesh, fairsub::io::MeshFormat::Obj).expect("write");
-    let back = fairsub::io::read_mesh(&path).expect("read back").mesh;
-    (back, path.to_str().expect("utf-8 path").to_string())
 }
 
 #[test]

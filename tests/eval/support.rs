@@ -35,6 +35,16 @@ pub fn tmp(prefix: &str, name: &str) -> std::path::PathBuf {
     dir.join(name)
 }
 
+/// `mesh` written to an OBJ file and read back, with the file's path (the CLI reads the same
+/// file as the library's surface).
+#[allow(dead_code)]
+pub fn via_obj(mesh: &PolyMesh, name: &str) -> (PolyMesh, String) {
+    let path = tmp("fairsub-eval-nets", &format!("{name}.obj"));
+    fairsub::io::write_mesh(&path, mesh, fairsub::io::MeshFormat::Obj).expect("write");
+    let back = fairsub::io::read_mesh(&path).expect("read back").mesh;
+    (back, path.to_str().expect("utf-8 path").to_string())
+}
+
 /// The interior vertex of valence `n` of a net (a c-net, or a triangle net for Loop), a face at it
 /// (quad or triangle), and the face point at distance `h` from it (along a fixed direction into
 /// the face).
