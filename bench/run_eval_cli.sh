@@ -7,8 +7,8 @@
 #
 # The net is `fairsub-bench gen quad-evs 10k` (9,984 quads, a vertex of valence 3 or 6 in
 # every 2 x 2 block: 1,248 extraordinary vertices), the points POINTS random `F:U:V` lines
-# (Python's `random`, seed 7), the output goes to a file. Prints the best wall time of REPS
-# runs for `--rings RINGS` (text, and `--binary` records) and for the limit surface (no `--rings`), and the same with
+# (Python's `random`, seed 7), the output goes to a file. Prints the best, median and worst
+# wall time of REPS runs for `--rings RINGS` (text, and `--binary` records) and for the limit surface (no `--rings`), and the same with
 # `RAYON_NUM_THREADS=1`. Environment: REPS (3), RINGS (4), POINTS (1000000),
 # OUT (target/eval-cli).
 set -euo pipefail
@@ -32,22 +32,30 @@ with open(out, "w") as f:
         f.write(f"{random.randrange(faces)}:{random.random()}:{random.random()}\n")
 PY
 
-best() { # best wall time in seconds of REPS runs of "$@" (stdout to a file)
-    local b=""
+# Wall times of REPS runs of "$@" (stdout to a fresh file), as "best B s, median M s, worst W s".
+# Before each run the previous output is removed and the page cache written back (`sync`,
+# outside the timing): otherwise the kernel's flusher writes the previous run's 281 MB while
+# this one runs (ext4 starts that writeback when a truncated file is closed) and the series
+# measures the runs before it. A single run on an idle machine has nothing of the kind.
+walls() {
+    local all=""
     for _ in $(seq "$REPS"); do
+        rm -f "$OUT/out.txt"
+        sync
+        sleep 0.2
         local s e
         s=$(date +%s.%N)
         "$@" >"$OUT/out.txt" 2>/dev/null
         e=$(date +%s.%N)
-        b=$(python3 -c "import sys; t=$e-$s; b='$b'; print(t if not b else min(t, float(b)))")
+        all="$all $(python3 -c "print($e - $s)")"
     done
-    printf '%.3f s' "$b"
+    python3 -c "import statistics as st, sys; t = sorted(map(float, sys.argv[1:])); print(f'best {t[0]:.3f} s, median {st.median(t):.3f} s, worst {t[-1]:.3f} s')" $all
 }
 
 echo "fairsub eval, $POINTS points of $(grep -c '^f ' "$OUT/net.obj") faces (load: $(cut -d' ' -f1-3 /proc/loadavg))"
-echo "  --rings $RINGS:          $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
+echo "  --rings $RINGS:          $(walls "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
 echo "  (output: $(wc -c <"$OUT/out.txt") bytes)"
-echo "  --rings $RINGS --binary: $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --binary --at-file "$OUT/points.txt")"
-echo "  --rings $RINGS, 1 thread: $(RAYON_NUM_THREADS=1 best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
-echo "  limit surface:       $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --at-file "$OUT/points.txt")"
-echo "  build only (1 point, --rings $RINGS): $(best "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at 0:0.5:0.5)"
+echo "  --rings $RINGS --binary: $(walls "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --binary --at-file "$OUT/points.txt")"
+echo "  --rings $RINGS, 1 thread: $(RAYON_NUM_THREADS=1 walls "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at-file "$OUT/points.txt")"
+echo "  limit surface:       $(walls "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --at-file "$OUT/points.txt")"
+echo "  build only (1 point, --rings $RINGS): $(walls "$FAIRSUB" eval "$OUT/net.obj" --scheme catmull-clark --rings "$RINGS" --at 0:0.5:0.5)"
