@@ -101,6 +101,10 @@ fn every_scheme_reapplies_to_moved_points() {
                 let got = table.apply(&pts).expect("apply to moved points");
                 let d = deviation(&what, &got, &truth.complex);
                 assert!(d < 1e-12, "{what}: moved by {size}: deviation {d:e}");
+                // into the complex at the net's points, its storage reused: the same bits
+                let mut reused = again.clone();
+                table.apply_into(&pts, &mut reused).expect("apply_into");
+                assert_same(&what, &reused, &got);
             }
             caps += table.caps().len();
             tested += 1;
@@ -347,4 +351,42 @@ fn table_files_are_validated() {
 
 fn net_named(name: &str) -> PolyMesh {
     net(name)
+}
+
+/// `a` and `b` are the same complex, bit for bit (patches, caps, provenance, domains).
+fn assert_same(what: &str, a: &PatchComplex, b: &PatchComplex) {
+    assert!(a.patches == b.patches, "{what}: patches differ");
+    assert!(a.caps == b.caps, "{what}: caps differ");
+    assert!(a.provenance == b.provenance, "{what}: provenance differs");
+    assert!(a.domains == b.domains, "{what}: domains differ");
+    assert!(a.pieces == b.pieces, "{what}: pieces differ");
+    assert!(a.sharp_sides == b.sharp_sides, "{what}: sharp sides differ");
+}
+
+/// `apply_into` refuses a complex of other shapes and writes nothing then.
+#[test]
+fn apply_into_refuses_another_complex() {
+    let spec = registry().lookup("catmull-clark").expect("registered");
+    let opts = ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let (cube, prism) = (net("cube"), net("prism-5"));
+    let table = PatchTable::build(&spec, &cube, opts).expect("table");
+    let other = fairsub::surface::build(&spec, &prism, opts, &mut |_| {})
+        .expect("prism")
+        .complex;
+    let mut target = other.clone();
+    let e = table
+        .apply_into(cube.positions(), &mut target)
+        .expect_err("another net's complex")
+        .to_string();
+    assert!(e.contains("not this table's"), "{e}");
+    assert!(target.patches == other.patches, "nothing written");
+    let mut own = table.apply(cube.positions()).expect("apply");
+    let e = table
+        .apply_into(&cube.positions()[1..], &mut own)
+        .expect_err("one point short")
+        .to_string();
+    assert!(e.contains("takes 8 points"), "{e}");
 }

@@ -87,8 +87,16 @@ fn check(what: &str, mesh: &PolyMesh, rings: usize) -> Option<usize> {
         let truth = fairsub::surface::build(&spec, &m, opts, &mut |_| {})
             .expect(what)
             .complex;
-        let d = deviation(&tracked.apply(&moved).expect(what), &truth);
+        let got = tracked.apply(&moved).expect(what);
+        let d = deviation(&got, &truth);
         assert!(d <= 1e-12 * s, "{what}: moved points (seed {seed}) {d:.3e}");
+        // the factored rows into the complex, nets converted in place: the same bits
+        let mut reused = complex.clone();
+        tracked.apply_into(&moved, &mut reused).expect(what);
+        assert!(
+            reused.patches == got.patches && reused.caps == got.caps,
+            "{what}: apply_into differs from apply (seed {seed})"
+        );
     }
     Some(tracked.caps().len())
 }

@@ -272,6 +272,23 @@ impl StencilTable {
         });
     }
 
+    /// Rows `first..first + out.len()` applied into `out`, on this thread (the values
+    /// [`StencilTable::apply_into`] gives those rows, bit for bit): a slice of the table for a
+    /// caller that runs its own parallel loop.
+    ///
+    /// # Panics
+    /// When the rows are out of range or `src` has fewer points than the table's sources.
+    pub fn apply_rows_into<const D: usize>(
+        &self,
+        src: &[[f64; D]],
+        first: usize,
+        out: &mut [[f64; D]],
+    ) {
+        assert!(first + out.len() <= self.num_rows(), "rows out of range");
+        assert!(src.len() >= self.num_sources, "too few source points");
+        self.apply_rows(src, first, out);
+    }
+
     /// The kernel: rows `r0..r0 + out.len()` into `out`, one pass over their entries.
     #[inline]
     fn apply_rows<const D: usize>(&self, src: &[[f64; D]], r0: usize, out: &mut [[f64; D]]) {

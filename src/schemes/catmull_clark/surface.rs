@@ -72,7 +72,7 @@ use crate::schemes::catmull_clark::crease::adaptive::{
 use crate::stencil::{RowWriter, StencilTable, Terms};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
-pub use track::{bspline_patch, catmull_clark_tracked};
+pub use track::{bspline_coefficients, bspline_patch, catmull_clark_tracked};
 
 /// The Catmull-Clark surface of `mesh` as a patch complex: bi-3 patches on regular faces,
 /// `opts.rings` rings of bi-3 patches around every extraordinary element and, if `opts.fill`, the

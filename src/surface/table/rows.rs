@@ -11,7 +11,7 @@
 use crate::bezier::BezierPatch;
 use crate::bezier::convert::{cubic_bspline_matrix, tensor_stencils};
 use crate::geom::Point;
-use crate::schemes::catmull_clark::surface::bspline_patch;
+use crate::schemes::catmull_clark::surface::{bspline_coefficients, bspline_patch};
 use crate::stencil::{LayeredTable, StencilTable};
 use rayon::prelude::*;
 use std::sync::OnceLock;
@@ -125,6 +125,48 @@ impl Rows {
                     .collect();
                 let data0 = nets_end(net_first, layout);
                 (patches, vals[data0..].to_vec())
+            }
+        }
+    }
+
+    /// [`Rows::values`] written into `patches` (the layout's patches, their coefficient vectors
+    /// reused; cap patches untouched): the same values bit for bit. The factored form computes
+    /// each net on the stack and converts it in place, so a moved net costs no allocation but
+    /// the stacked points; the expanded form computes [`Rows::values`] and copies.
+    pub(super) fn values_into(
+        &self,
+        layout: &Layout,
+        pts: &[Point],
+        patches: &mut [BezierPatch],
+    ) -> Vec<Point> {
+        match self {
+            Rows::Expanded(_) => {
+                let (fresh, data) = self.values(layout, pts);
+                for ((p, f), &cap) in patches.iter_mut().zip(fresh).zip(layout.in_cap) {
+                    if !cap {
+                        p.cps = f.cps;
+                    }
+                }
+                data
+            }
+            Rows::Nets {
+                layered, net_first, ..
+            } => {
+                let stacked = layered.stack(pts);
+                let rows = layered.rows();
+                patches
+                    .par_iter_mut()
+                    .enumerate()
+                    .filter(|&(p, _)| !layout.in_cap[p])
+                    .for_each(|(p, patch)| {
+                        let mut net = [[0.0; 3]; NET];
+                        rows.apply_rows_into(&stacked, net_first[p] as usize, &mut net);
+                        bspline_coefficients(&net, &mut patch.cps);
+                    });
+                let data0 = nets_end(net_first, layout);
+                let mut data = vec![[0.0; 3]; rows.num_rows() - data0];
+                rows.apply_rows_into(&stacked, data0, &mut data);
+                data
             }
         }
     }

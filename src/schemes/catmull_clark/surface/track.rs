@@ -86,19 +86,32 @@ fn conversion() -> &'static [Stencil] {
 }
 
 /// The bi-3 Bezier patch of a uniform bi-3 B-spline net's 16 points (`net[k * 4 + l]`, `k`
-/// along `u`): the conversion's stencils ([`crate::bezier::convert::tensor_stencils`]) applied,
-/// which are the products of [`crate::bezier::convert::tensor_apply`] summed in the same order
-/// (bit-identical results) without its loops over the zeros of the matrix. The hot path of every
-/// regular patch of the construction and of a factored patch table's apply.
+/// along `u`): [`bspline_coefficients`] into a new patch. The hot path of every regular patch
+/// of the construction and of a factored patch table's apply.
 ///
 /// # Panics
 /// When `net` has fewer than 16 points.
 pub fn bspline_patch(net: &[Point]) -> BezierPatch {
     let net: &[Point; 16] = net[..16].try_into().expect("16 net points");
+    let mut cps = vec![[0.0; 3]; 16];
+    bspline_coefficients(net, &mut cps);
+    BezierPatch::new(3, 3, cps)
+}
+
+/// The 16 bi-3 Bezier coefficients of a uniform bi-3 B-spline net into `cps` (row major, as
+/// [`BezierPatch::cps`]): the conversion's stencils
+/// ([`crate::bezier::convert::tensor_stencils`]) applied, which are the products of
+/// [`crate::bezier::convert::tensor_apply`] summed in the same order (bit-identical results)
+/// without its loops over the zeros of the matrix. Writes in place, for a table re-applied into
+/// an existing complex.
+///
+/// # Panics
+/// When `cps` does not hold 16 points.
+pub fn bspline_coefficients(net: &[Point; 16], cps: &mut [Point]) {
+    assert_eq!(cps.len(), 16, "a bi-3 patch has 16 coefficients");
     let (ends, terms) = kernel();
-    let mut cps = Vec::with_capacity(16);
     let mut start = 0;
-    for &end in ends {
+    for (&end, c) in ends.iter().zip(cps) {
         // the stencil's terms in its order, summed as `Stencil::apply` sums them
         let mut acc = [0.0; 3];
         for &(k, w) in &terms[start..end as usize] {
@@ -107,10 +120,9 @@ pub fn bspline_patch(net: &[Point]) -> BezierPatch {
                 *a += w * x;
             }
         }
-        cps.push(acc);
+        *c = acc;
         start = end as usize;
     }
-    BezierPatch::new(3, 3, cps)
 }
 
 /// The end of each coefficient's terms and the terms, as [`kernel`] gives them.
