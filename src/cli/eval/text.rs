@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::surface::eval::Evaluation;
 use rayon::prelude::*;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Points per block formatted (or lines per block parsed) by one parallel task.
 const BLOCK: usize = 4096;
@@ -198,8 +199,8 @@ struct Group {
     order: Vec<u64>,
     /// Per point of the group its place in `order` (and `evals`).
     slot: Vec<u32>,
-    /// The evaluations in `order`.
-    evals: Vec<Result<Evaluation>>,
+    /// The evaluations in `order` (a failed point's: a default, never formatted).
+    evals: Vec<Evaluation>,
 }
 
 impl Group {
@@ -223,26 +224,28 @@ impl Group {
         for (k, &o) in self.order.iter().enumerate() {
             self.slot[(o & 0xffff_ffff) as usize] = k as u32;
         }
+        // a failed point is noted by its index (the least one wins) and evaluated again for
+        // its error: no `Result` stored per point, and no pass over the evaluations to find it
+        let failed = AtomicUsize::new(usize::MAX);
         self.order
             .par_iter()
-            .map(|&o| eval(group + (o & 0xffff_ffff) as usize))
+            .map(|&o| {
+                let i = group + (o & 0xffff_ffff) as usize;
+                eval(i).unwrap_or_else(|_| {
+                    failed.fetch_min(i, Ordering::Relaxed);
+                    Evaluation::default()
+                })
+            })
             .collect_into_vec(&mut self.evals);
+        let failed = failed.into_inner();
+        if failed != usize::MAX {
+            return Err(eval(failed).err().unwrap_or_else(|| {
+                Error::InvalidArgument(format!("point {}: no evaluation", failed + 1))
+            }));
+        }
         // `slot` has room for a whole group: a shorter (last) group uses its first `len`
         // entries, the rest are stale (looking ahead into them indexed past `evals`)
-        let (evals, slot) = (&mut self.evals, &self.slot[..len]);
-        // the failed point of least index: the evaluations scanned where they lie, in
-        // parallel (in the points' order this was a serial pass of cache misses, a tenth of
-        // the group's time)
-        let failed = evals
-            .par_iter()
-            .zip(&self.order)
-            .filter(|(e, _)| e.is_err())
-            .map(|(_, &o)| o & 0xffff_ffff)
-            .min();
-        if let Some(i) = failed {
-            let k = slot[i as usize] as usize;
-            return std::mem::replace(&mut evals[k], Ok(Evaluation::default())).map(|_| ());
-        }
+        let (evals, slot) = (&self.evals, &self.slot[..len]);
         self.blocks = len.div_ceil(BLOCK);
         self.texts[..self.blocks]
             .par_iter_mut()
@@ -256,9 +259,7 @@ impl Group {
                     if let Some(&ahead) = slot.get(i + PREFETCH) {
                         prefetch(&evals[ahead as usize]);
                     }
-                    if let Ok(e) = &evals[slot[i] as usize] {
-                        format(text, group + i, e)?;
-                    }
+                    format(text, group + i, &evals[slot[i] as usize])?;
                 }
                 Ok(())
             })
