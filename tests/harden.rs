@@ -206,6 +206,60 @@ fn jobs_over_the_budget_are_refused_with_the_estimate_and_the_option() {
     assert_ne!(code, 0, "{err}");
 }
 
+/// `eval` sees `--max-memory` (its net and points are read on the pool's threads, which once
+/// used the default budget instead) and bounds its points file before reading it.
+#[test]
+fn eval_keeps_the_budget_and_bounds_its_points_file() {
+    let d = scratch("eval-budget");
+    let (code, err) = run(&[
+        "--max-memory",
+        "1K",
+        "eval",
+        "gallery:cube",
+        "--scheme",
+        "catmull-clark",
+        "--rings",
+        "3",
+        "--at",
+        "0:0.5:0.5",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("more than the memory budget of 1.0 KiB (set by --max-memory)"),
+        "{err}"
+    );
+    let pts = d.join("points.txt");
+    std::fs::write(&pts, "0:0.5:0.5\n".repeat(300_000)).unwrap();
+    let at = pts.to_str().unwrap();
+    let args = |max: &'static str| {
+        [
+            "--max-memory",
+            max,
+            "eval",
+            "gallery:cube",
+            "--scheme",
+            "catmull-clark",
+            "--at-file",
+            at,
+            "--binary",
+        ]
+    };
+    let (code, err) = run(&args("4M"));
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("the points file") && err.contains("(2.9 MiB) is read whole"),
+        "{err}"
+    );
+    assert!(err.contains("split the points over several runs"), "{err}");
+    // within the budget the same file evaluates
+    let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args("1G"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(o.stdout.len(), 300_000 * 29 * 8);
+}
+
 #[test]
 fn q_file_vertices_are_checked_against_the_net() {
     let d = scratch("qfile");

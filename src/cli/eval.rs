@@ -65,6 +65,7 @@ fn points(a: &Args) -> Result<Vec<(u32, f64, f64)>> {
         }
     }
     if let Some(path) = &a.at_file {
+        super::limits::check_points_file(path)?;
         let text = crate::io::read_text(path)?;
         pts.extend(text::parse_file(&text, path)?);
         if pts.len() > MAX_POINTS {
@@ -93,16 +94,21 @@ pub fn run(a: Args) -> Result<()> {
     };
     // The points are read while the net is loaded and, with --rings, its surface is built
     // (both in parallel: the file of 10^6 points costs about as much as the construction);
-    // a bad point is reported before an error of the net.
+    // a bad point is reported before an error of the net. Both run on the pool's threads,
+    // which get this command's memory budget (it is kept per thread: without it there,
+    // --max-memory was not seen by the checks).
+    let max = super::limits::max_memory();
     let (pts, surface) = rayon::join(
-        || points(&a),
-        || -> Result<_> {
-            let mesh = super::load_net(&a.net)?.mesh;
-            let s = match a.rings {
-                Some(k) => Some(build(&mesh, k, !a.no_fill)?),
-                None => None,
-            };
-            Ok((mesh, s))
+        || super::limits::with_budget(max, || points(&a)),
+        || {
+            super::limits::with_budget(max, || -> Result<_> {
+                let mesh = super::load_net(&a.net)?.mesh;
+                let s = match a.rings {
+                    Some(k) => Some(build(&mesh, k, !a.no_fill)?),
+                    None => None,
+                };
+                Ok((mesh, s))
+            })
         },
     );
     let pts = pts?;

@@ -235,6 +235,29 @@ fn element_size(mesh: &PolyMesh) -> f64 {
     s
 }
 
+/// Checks, before it is read, that `eval --at-file`'s points file fits the memory budget: it
+/// is read whole, and each of its bytes can become up to 4 more of points (a point of 24 bytes
+/// from a line of at least 6, `0:0:0` and its newline).
+///
+/// # Errors
+/// [`Error::TooLarge`] naming the file and its size; the file's own read errors.
+pub fn check_points_file(path: &std::path::Path) -> Result<()> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| crate::io::io_error(path, e))?
+        .len() as f64;
+    within_budget(
+        || {
+            format!(
+                "the points file {} ({}) is read whole and with its points",
+                path.display(),
+                human(size)
+            )
+        },
+        5.0 * size,
+        "split the points over several runs",
+    )
+}
+
 /// The patch complex of `mesh` under `spec` with `rings` rings: the ring count within
 /// [`MAX_RINGS`], the patches and one refinement step of the net (the adaptive levels refine
 /// the neighbourhoods of the elements with the scheme's rules) within the budget.
