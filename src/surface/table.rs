@@ -487,6 +487,18 @@ impl PatchTable {
         Ok(self.complex_of(patches, &data))
     }
 
+    /// An error unless `points` has one point per source.
+    fn check_points(&self, points: &[Point]) -> Result<()> {
+        if points.len() != self.num_sources() {
+            return Err(Error::InvalidArgument(format!(
+                "the table takes {} points, not {}",
+                self.num_sources(),
+                points.len()
+            )));
+        }
+        Ok(())
+    }
+
     /// Where cap `cap`'s data start in the caps' data values.
     fn data_index(&self, cap: &TableCap) -> usize {
         (cap.data_row - self.first_row[self.num_patches()]) as usize
@@ -495,13 +507,7 @@ impl PatchTable {
     /// The rows applied to `points` (plus the constants): the patches (cap patches empty) and
     /// the caps' data values.
     fn values(&self, points: &[Point]) -> Result<(Vec<BezierPatch>, Vec<Point>)> {
-        if points.len() != self.num_sources() {
-            return Err(Error::InvalidArgument(format!(
-                "the table takes {} points, not {}",
-                self.num_sources(),
-                points.len()
-            )));
-        }
+        self.check_points(points)?;
         if self.constants.is_empty() {
             return Ok(self.rows.values(&self.layout(), points));
         }

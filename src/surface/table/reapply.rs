@@ -42,13 +42,7 @@ impl PatchTable {
             *complex = self.apply(points)?;
             return Ok(());
         }
-        if points.len() != self.num_sources() {
-            return Err(Error::InvalidArgument(format!(
-                "the table takes {} points, not {}",
-                self.num_sources(),
-                points.len()
-            )));
-        }
+        self.check_points(points)?;
         let data = self
             .rows
             .values_into(&self.layout(), points, &mut complex.patches);
