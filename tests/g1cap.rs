@@ -358,6 +358,7 @@ fn regular_hole_reproduction() {
             centre: c.p,
             tangents: [c.du, c.dv],
             sectors,
+            open: false,
         };
         let cap = g1_cap_with(&hole, CapOptions::default()).unwrap();
         let mut worst: f64 = 0.0;

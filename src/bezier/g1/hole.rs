@@ -36,6 +36,13 @@
 //! segment it is part of, its `cross` **per unit of the piece's** transversal parameter (`1/m`
 //! of the sector's): for a ring piece of the same size as the cap piece, its own derivative.
 //!
+//! **Open quad layout** ([`Layout::OpenQuad`], [`Hole::open`]: a boundary vertex of `n` quads,
+//! Catmull-Clark's and its fallback schemes'). The sectors of the quad layout, numbered from
+//! the boundary: spoke `s` (`s = 0..=n`) leaves the centre with
+//! `t_s = cos(pi s / n) T0 + sin(pi s / n) T1`; spoke `0` (side `v = 0` of sector `0`) and
+//! spoke `n` (side `u = 0` of sector `n - 1`) are boundary curves of the surface, not joins.
+//! The segments are those of the quad layout.
+//!
 //! **Triangle layout** (one segment per sector: Loop; a fan of triangles `C, E_s, E_(s+1)`).
 //! Segment `s` runs from `E_s` (`t = 0`) to `E_(s+1)` (`t = 1`), `cross` is the derivative of
 //! the ring in the direction of the chart vector from the segment's midpoint `M_s` to the centre,
@@ -78,6 +85,9 @@ pub struct Hole {
     pub tangents: [Point; 2],
     /// Per sector (counterclockwise about `T0 x T1`), its one or two outer segments.
     pub sectors: Vec<Vec<Segment>>,
+    /// An open fan at a boundary vertex ([`Layout::OpenQuad`]): spokes `0` and `n` are
+    /// boundary curves of the surface; `false` for a hole closed around its centre.
+    pub open: bool,
 }
 
 /// Layout of a hole.
@@ -90,6 +100,10 @@ pub enum Layout {
     /// A quad sector split into an `m x m` grid of pieces (`m >= 2`): `2 m` segments per
     /// sector, `m` along each outer side (the inner sides of macro-patch rings).
     Split(usize),
+    /// The quad layout on an open fan of `n` sectors around a boundary vertex ([`Hole::open`]):
+    /// `n + 1` spokes over a half-turn, `t_s = cos(pi s / n) T0 + sin(pi s / n) T1`, spokes `0`
+    /// and `n` on the boundary of the surface.
+    OpenQuad,
 }
 
 impl Layout {
@@ -121,6 +135,16 @@ impl Hole {
             centre,
             tangents: [[0.0; 3]; 2],
             sectors,
+            open: false,
+        }
+    }
+
+    /// [`Hole::untangented`] for an open fan of sectors around a boundary vertex
+    /// ([`Layout::OpenQuad`]).
+    pub fn untangented_open(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
+        Hole {
+            open: true,
+            ..Hole::untangented(centre, sectors)
         }
     }
 
@@ -139,6 +163,13 @@ impl Hole {
         }
         let segs = self.sectors[0].len();
         let layout = match segs {
+            2 if self.open => Layout::OpenQuad,
+            k if self.open => {
+                return Err(Error::InvalidArgument(format!(
+                    "sector 0 of the open hole has {k} segments; an open fan takes two per \
+                     sector (quad layout)"
+                )));
+            }
             1 => Layout::Triangle,
             2 => Layout::Quad,
             k if k.is_multiple_of(2) && k <= 2 * MAX_PIECES => Layout::Split(k / 2),
@@ -238,6 +269,7 @@ impl Hole {
                 centre: self.centre,
                 tangents: self.tangents,
                 sectors,
+                open: self.open,
             },
             kappa: conv.kappa,
         })
@@ -316,7 +348,7 @@ impl Conversion {
         let (db, dc) = (deg.boundary, deg.cross);
         let seg_len = db + dc + 2;
         let (degree, kappa, nseg) = match layout {
-            Layout::Quad => (db.max(dc), 0.0, 2),
+            Layout::Quad | Layout::OpenQuad => (db.max(dc), 0.0, 2),
             Layout::Split(m) => (db.max(dc), 0.0, 2 * m),
             Layout::Triangle => (db.max(dc + 1), 1.0, 1),
         };
@@ -352,7 +384,7 @@ impl Conversion {
         for s in 0..n {
             let r = 3 + s * 4 * layout.pieces() * m;
             match layout {
-                Layout::Quad | Layout::Split(_) => {
+                Layout::Quad | Layout::OpenQuad | Layout::Split(_) => {
                     for k in 0..nseg {
                         let o = off(s, k);
                         put(r + 2 * k * m, &|t, out| {
@@ -420,8 +452,8 @@ impl Conversion {
     }
 }
 
-/// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1`.
-pub fn spoke_tangent(tangents: &[Point; 2], n: usize, s: usize) -> Point {
-    let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+/// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1` (`pi s / n` on an `open` fan).
+pub fn spoke_tangent(tangents: &[Point; 2], n: usize, open: bool, s: usize) -> Point {
+    let th = super::system::spoke_angle_at(n, open, s);
     axpy(scale(tangents[0], th.cos()), th.sin(), tangents[1])
 }

@@ -190,8 +190,9 @@ impl CapMap {
             ));
         }
         let jet = centre == Centre::QuadraticJet;
+        let open = layout == Layout::OpenQuad;
         let nu = nx + if jet { 3 } else { 0 };
-        let cond = conditions(n, d, pm, conv.kappa, jet);
+        let cond = conditions(n, open, d, pm, conv.kappa, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
         // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
@@ -257,7 +258,7 @@ impl CapMap {
             map.set_row(x, &y.row(k));
         }
         // Certificate over the data satisfying the ring's compatibility conditions.
-        let g = compatibility(n, d, pm, conv.kappa);
+        let g = compatibility(n, open, d, pm, conv.kappa);
         let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
         let (_, admissible) = pinv_and_null(&gm)?;
         let resid =

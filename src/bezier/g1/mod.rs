@@ -131,6 +131,27 @@
 //! elsewhere, guided-bi3-macro's bi-5 at every valence (the threshold is not relaxed for the
 //! larger `m = 3` systems, whose rounding is higher).
 //!
+//! # Open fans (extraordinary boundary vertices)
+//!
+//! At a boundary vertex of `n >= 3` quads the hole is an open fan ([`Layout::OpenQuad`],
+//! [`Hole::open`]): `n` quad sectors, `n + 1` spokes over a half-turn,
+//! `t_s = cos(pi s / n) T0 + sin(pi s / n) T1` (so `T0` is the boundary curve's direction at
+//! the centre, spokes `0` and `n` run along the boundary, `t_n = -t_0`). The conditions are
+//! those above with the angle `pi / n` for `2 pi / n`: C^1 to the ring (its two outer layers),
+//! centre and spoke tangents, C^0 and the relation with `w(0) = 2 cos(pi / n)` on the `n - 1`
+//! inner spokes only; spokes `0` and `n` are free boundary curves whose two outer coefficients
+//! are the ring's, so the surface's boundary is C^1 where the cap meets the ring. The ring's
+//! compatibility conditions are those of the corners and of the inner spoke ends. The chart
+//! fit of the tangents ([`ring::chart_tangents`]) takes the `n + 1` spokes (the last one off
+//! segment `b` of the last sector) and solves the 2 x 2 least squares of the half-turn.
+//!
+//! Without a closed cycle there is no circulant enclosure condition: the twists at the centre
+//! form a chain of `n - 1` equations in `n` unknowns. Measured certificates (test
+//! `open_fans_are_certified_and_g1_on_their_inner_spokes`, `n = 3..12`, data degree 3): bi-3
+//! fails (0.7 and more), **bi-4 is certified at every `n`** with the tangent plane (<= 5e-14);
+//! with the quadratic jet bi-4 only at `n = 3, 4` (1e-12; 0.14 and more above), bi-5 at every
+//! `n`. So the default cap of an open fan is bi-4, with the jet at `n = 3, 4`.
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
@@ -151,6 +172,6 @@ mod tests;
 
 pub use hole::{Degrees, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{
-    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_COMPATIBILITY_DEFECT,
-    cap_choice, cap_map, g1_cap, g1_cap_with, lowest_certified_degree,
+    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_CAP_VALENCE,
+    MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, lowest_certified_degree,
 };

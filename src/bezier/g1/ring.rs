@@ -124,21 +124,48 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     let (layout, _) = hole.layout()?;
     let q = hole.to_quad_layout()?;
     let n = q.hole.valence();
-    let mut t = [[0.0; 3]; 2];
+    // spoke s ends at segment a of sector s; the last spoke of an open fan at segment b of
+    // its last sector (`cross_b(0) = -dP/dv(0, 1)`, the derivative along that spoke)
+    let mut ends: Vec<&Segment> = q.hole.sectors.iter().map(|sec| &sec[0]).collect();
+    if hole.open {
+        ends.push(&q.hole.sectors[n - 1][1]);
+    }
     let mut size: f64 = 0.0;
-    for (s, sec) in q.hole.sectors.iter().enumerate() {
-        let a = &sec[0];
-        let e = proj(sub(a.boundary[0], hole.centre));
-        // per unit of the sector's parameter (a split sector's segments are per piece)
-        let f = proj(scale(a.cross[0], -(layout.pieces() as f64)));
-        let ts = match layout {
-            Layout::Quad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
-            Layout::Triangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
-        };
-        size = size.max(norm(e));
-        let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
-        t[0] = axpy(t[0], 2.0 * th.cos() / n as f64, ts);
-        t[1] = axpy(t[1], 2.0 * th.sin() / n as f64, ts);
+    let spokes: Vec<Point> = ends
+        .iter()
+        .map(|a| {
+            let e = proj(sub(a.boundary[0], hole.centre));
+            // per unit of the sector's parameter (a split sector's segments are per piece)
+            let f = proj(scale(a.cross[0], -(layout.pieces() as f64)));
+            size = size.max(norm(e));
+            match layout {
+                Layout::Quad | Layout::OpenQuad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
+                Layout::Triangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
+            }
+        })
+        .collect();
+    let mut t = [[0.0; 3]; 2];
+    if hole.open {
+        // least squares over the n + 1 spokes of the half-turn (cos and sin are not
+        // orthogonal there): the 2 x 2 normal equations
+        let step = std::f64::consts::PI / n as f64;
+        let (mut cc, mut cs, mut ss) = (0.0, 0.0, 0.0);
+        let mut r = [[0.0; 3]; 2];
+        for (s, ts) in spokes.iter().enumerate() {
+            let (c, si) = ((step * s as f64).cos(), (step * s as f64).sin());
+            (cc, cs, ss) = (cc + c * c, cs + c * si, ss + si * si);
+            r[0] = axpy(r[0], c, *ts);
+            r[1] = axpy(r[1], si, *ts);
+        }
+        let det = cc * ss - cs * cs;
+        t[0] = scale(axpy(scale(r[0], ss), -cs, r[1]), 1.0 / det);
+        t[1] = scale(axpy(scale(r[1], cc), -cs, r[0]), 1.0 / det);
+    } else {
+        for (s, ts) in spokes.iter().enumerate() {
+            let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+            t[0] = axpy(t[0], 2.0 * th.cos() / n as f64, *ts);
+            t[1] = axpy(t[1], 2.0 * th.sin() / n as f64, *ts);
+        }
     }
     Ok((t, n, size))
 }

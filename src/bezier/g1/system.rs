@@ -60,9 +60,39 @@ pub(crate) struct Conditions {
     pub f: Vec<Row>,
 }
 
-/// `w(u) = 2 c (1 - u)^2 + kappa u (1 - u)` in Bernstein form of degree 2.
-pub(crate) fn weight(n: usize, kappa: f64) -> [f64; 3] {
-    let c = (2.0 * std::f64::consts::PI / n as f64).cos();
+/// The angle between neighbouring spokes at the centre: `2 pi / n` around a closed hole of `n`
+/// sectors, `pi / n` across an open fan of `n` sectors at a boundary vertex (its `n + 1` spokes
+/// span a half-turn, spokes `0` and `n` along the boundary).
+pub(crate) fn spoke_angle(n: usize, open: bool) -> f64 {
+    let turn = if open {
+        std::f64::consts::PI
+    } else {
+        2.0 * std::f64::consts::PI
+    };
+    turn / n as f64
+}
+
+/// The angle of spoke `k` from spoke 0: `k` times [`spoke_angle`] (computed as `turn k / n`).
+pub(crate) fn spoke_angle_at(n: usize, open: bool, k: usize) -> f64 {
+    let turn = if open {
+        std::f64::consts::PI
+    } else {
+        2.0 * std::f64::consts::PI
+    };
+    turn * k as f64 / n as f64
+}
+
+/// The spokes that join two sectors (where C^0 and the G^1 relation are imposed): spoke `s`
+/// between sectors `s - 1` and `s`, all `n` of a closed hole, the `n - 1` inner ones of an open
+/// fan (its spokes `0` and `n` are boundary curves of the surface).
+pub(crate) fn inner_spokes(n: usize, open: bool) -> std::ops::Range<usize> {
+    if open { 1..n } else { 0..n }
+}
+
+/// `w(u) = 2 c (1 - u)^2 + kappa u (1 - u)`, `c = cos(`[`spoke_angle`]`)`, in Bernstein form of
+/// degree 2.
+pub(crate) fn weight(n: usize, open: bool, kappa: f64) -> [f64; 3] {
+    let c = spoke_angle(n, open).cos();
     [2.0 * c, kappa / 2.0, 0.0]
 }
 
@@ -73,8 +103,8 @@ pub(crate) fn binom(n: usize, k: usize) -> f64 {
 
 /// `w` of [`weight`] restricted to the `k`-th of `m` equal parts of the spoke, as a quadratic
 /// in the part's own parameter (Bernstein form, by the blossom); `m = 1` is [`weight`] itself.
-pub(crate) fn weight_part(n: usize, kappa: f64, m: usize, k: usize) -> [f64; 3] {
-    let w = weight(n, kappa);
+pub(crate) fn weight_part(n: usize, open: bool, kappa: f64, m: usize, k: usize) -> [f64; 3] {
+    let w = weight(n, open, kappa);
     if m == 1 {
         return w;
     }
@@ -126,11 +156,19 @@ pub(crate) fn spoke_rows(d: usize, w: [f64; 3], ps: usize, pq: usize) -> Vec<Row
     rows
 }
 
-/// The conditions of the cap of valence `n`, degree `d`, `m x m` pieces per sector, spoke-end
-/// twist `kappa`; with `jet` also the quadratic-jet conditions at the centre over three extra
-/// unknowns ([`jet_rows`]). Split sectors (`m > 1`) add C^`r` joins between their pieces
-/// ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1` gives the one-patch rows unchanged.
-pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) -> Conditions {
+/// The conditions of the cap of valence `n` (`open`: an open fan of `n` sectors), degree `d`,
+/// `m x m` pieces per sector, spoke-end twist `kappa`; with `jet` also the quadratic-jet
+/// conditions at the centre over three extra unknowns ([`jet_rows`]). Split sectors (`m > 1`)
+/// add C^`r` joins between their pieces ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1`
+/// gives the one-patch rows unchanged.
+pub(crate) fn conditions(
+    n: usize,
+    open: bool,
+    d: usize,
+    m: usize,
+    kappa: f64,
+    jet: bool,
+) -> Conditions {
     let qd = QuadData { d, m };
     let df = d as f64;
     let mf = m as f64;
@@ -162,7 +200,7 @@ pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) ->
             }
         }
         // the centre and the spoke tangents (per unit of the centre piece's parameter)
-        let th = |k: usize| 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+        let th = |k: usize| spoke_angle_at(n, open, k);
         let p0 = piece(m, s, 0, 0);
         let dm = df * mf;
         fix(&mut e, cidx(d, p0, 0, 0), vec![(0, 1.0)]);
@@ -178,7 +216,7 @@ pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) ->
             vec![(0, 1.0), (1, a1.cos() / dm), (2, a1.sin() / dm)],
         );
     }
-    for s in 0..n {
+    for s in inner_spokes(n, open) {
         let q = (s + n - 1) % n;
         for k in 0..m {
             let (ps, pq) = (piece(m, s, k, 0), piece(m, q, 0, k));
@@ -186,7 +224,7 @@ pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) ->
                 e.push(vec![(cidx(d, ps, i, 0), 1.0), (cidx(d, pq, 0, i), -1.0)]);
                 f.push(Vec::new());
             }
-            for r in spoke_rows(d, weight_part(n, kappa, m, k), ps, pq) {
+            for r in spoke_rows(d, weight_part(n, open, kappa, m, k), ps, pq) {
                 e.push(r);
                 f.push(Vec::new());
             }
@@ -199,7 +237,7 @@ pub(crate) fn conditions(n: usize, d: usize, m: usize, kappa: f64, jet: bool) ->
         }
     }
     if jet {
-        let (je, jf) = jet_rows(n, d, m, kappa);
+        let (je, jf) = jet_rows(n, open, d, m, kappa);
         e.extend(je);
         f.extend(jf);
     }
@@ -272,8 +310,15 @@ pub(crate) fn inner_rows(n: usize, d: usize, m: usize, r: usize) -> Vec<Row> {
 /// boundary is C^1 there) and their cross-derivative twists satisfy the spoke relation's
 /// derivative at `u = 1` (see [`super`]); for split sectors, the pieces of each side join
 /// C^[`INNER_SMOOTHNESS`] in boundary and cross derivative. Each row is labelled with the sector
-/// or spoke.
-pub(crate) fn compatibility(n: usize, d: usize, m: usize, kappa: f64) -> Vec<(String, Row)> {
+/// or spoke. An `open` fan has no conditions at the ends of its boundary spokes `0` and `n`
+/// (one sector each).
+pub(crate) fn compatibility(
+    n: usize,
+    open: bool,
+    d: usize,
+    m: usize,
+    kappa: f64,
+) -> Vec<(String, Row)> {
     let qd = QuadData { d, m };
     let df = d as f64;
     // -w'(1) of the last part of the spoke, in its own parameter
@@ -308,38 +353,40 @@ pub(crate) fn compatibility(n: usize, d: usize, m: usize, kappa: f64) -> Vec<(St
         ));
         let q = (s + n - 1) % n;
         let end = format!("end of spoke {s} (sectors {q}, {s})");
-        g.push((
-            end.clone(),
-            vec![(qd.a(s, 0, 0), 1.0), (qd.b(q, 0, 0), -1.0)],
-        ));
-        g.push((
-            end.clone(),
-            vec![
-                (qd.a(s, 0, 0), 1.0),
-                (qd.ca(s, 0, 0), 1.0 / df),
-                (qd.b(q, 0, 0), -1.0),
-                (qd.cb(q, 0, 0), -1.0 / df),
-            ],
-        ));
-        g.push((
-            end.clone(),
-            vec![
-                (qd.a(s, 0, 1), 1.0),
-                (qd.a(s, 0, 0), -1.0),
-                (qd.b(q, 0, 1), 1.0),
-                (qd.b(q, 0, 0), -1.0),
-            ],
-        ));
-        // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
-        g.push((
-            end,
-            vec![
-                (qd.ca(s, 0, 1), -df),
-                (qd.ca(s, 0, 0), df - kappa),
-                (qd.cb(q, 0, 1), -df),
-                (qd.cb(q, 0, 0), df),
-            ],
-        ));
+        if inner_spokes(n, open).contains(&s) {
+            g.push((
+                end.clone(),
+                vec![(qd.a(s, 0, 0), 1.0), (qd.b(q, 0, 0), -1.0)],
+            ));
+            g.push((
+                end.clone(),
+                vec![
+                    (qd.a(s, 0, 0), 1.0),
+                    (qd.ca(s, 0, 0), 1.0 / df),
+                    (qd.b(q, 0, 0), -1.0),
+                    (qd.cb(q, 0, 0), -1.0 / df),
+                ],
+            ));
+            g.push((
+                end.clone(),
+                vec![
+                    (qd.a(s, 0, 1), 1.0),
+                    (qd.a(s, 0, 0), -1.0),
+                    (qd.b(q, 0, 1), 1.0),
+                    (qd.b(q, 0, 0), -1.0),
+                ],
+            ));
+            // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
+            g.push((
+                end,
+                vec![
+                    (qd.ca(s, 0, 1), -df),
+                    (qd.ca(s, 0, 0), df - kappa),
+                    (qd.cb(q, 0, 1), -df),
+                    (qd.cb(q, 0, 0), df),
+                ],
+            ));
+        }
         // knots between the pieces of each side: boundary and cross C^r
         for k in 0..m.saturating_sub(1) {
             for (side, name) in [(0, "a"), (1, "b")] {
@@ -432,14 +479,20 @@ pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
 /// satisfy that derivative of the relation identically (the quadratic part cancels because
 /// `t_(s+1) + t_(s-1) = 2 c t_s`), so the cap has one quadratic expansion at the centre:
 /// curvature continuous there.
-pub(crate) fn jet_rows(n: usize, d: usize, m: usize, kappa: f64) -> (Vec<Row>, Vec<Row>) {
-    let c = (2.0 * std::f64::consts::PI / n as f64).cos();
+pub(crate) fn jet_rows(
+    n: usize,
+    open: bool,
+    d: usize,
+    m: usize,
+    kappa: f64,
+) -> (Vec<Row>, Vec<Row>) {
+    let c = spoke_angle(n, open).cos();
     // the centre piece of a split sector sees the sector's second derivatives times 1 / m^2
     let sc = 1.0 / (m * m) as f64;
     let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c)) * sc;
     let df = d as f64;
     let h0 = n * m * m * (d + 1) * (d + 1);
-    let th = |s: usize| 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+    let th = |s: usize| spoke_angle_at(n, open, s);
     let (mut e, mut f) = (Vec::new(), Vec::new());
     for s0 in 0..n {
         let s = piece(m, s0, 0, 0);

@@ -4,7 +4,7 @@
 use super::system::{QuadData, compatibility, dense};
 use super::*;
 use crate::bezier::BezierCurve;
-use crate::geom::{Point, norm, sub};
+use crate::geom::{Point, norm, scale, sub};
 use nalgebra::DMatrix;
 
 pub(crate) struct Lcg(pub u64);
@@ -26,8 +26,13 @@ pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) ->
 
 /// Like [`random_quad_hole`] with `m` pieces per sector side (`m = 1`: the quad layout).
 pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
+    random_hole(n, false, d, m, kappa, rng)
+}
+
+/// A random hole (an open fan when `open`) whose data satisfy the compatibility conditions.
+fn random_hole(n: usize, open: bool, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
     let qd = QuadData { d, m };
-    let g = compatibility(n, d, m, kappa);
+    let g = compatibility(n, open, d, m, kappa);
     let gm = dense(
         &g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(),
         qd.len(n),
@@ -80,6 +85,7 @@ pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &
         sectors: (0..n)
             .map(|s| (0..2 * m).map(|k| seg(s, k)).collect())
             .collect(),
+        open,
     }
 }
 
@@ -103,7 +109,7 @@ fn random_compatible_data_give_g1_caps() {
             let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
             let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
             for s in 0..n {
-                let (w, q) = (super::system::weight(n, 0.0), (s + n - 1) % n);
+                let (w, q) = (super::system::weight(n, false, 0.0), (s + n - 1) % n);
                 for r in super::system::spoke_rows(d, w, s, q) {
                     let v = r
                         .iter()
@@ -210,4 +216,58 @@ fn bad_holes_are_refused_with_the_place_named() {
     let mut hole = random_quad_hole(4, 5, 0.0, &mut rng);
     hole.centre[2] = f64::NAN;
     assert!(g1_cap(&hole).is_err());
+}
+
+/// Open fans (boundary vertices): certified at bi-4 with the tangent plane for every `n` (no
+/// enclosure condition closes the chain of twists; bi-3 measures 0.7 and more), the quadratic
+/// jet at bi-4 for `n = 3, 4` (bi-5 above), the relation exact on the inner spokes,
+/// C^1 to the data, spokes 0 and n free.
+#[test]
+fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let mut rng = Lcg(5);
+    let mut table = Vec::new();
+    for n in 3..=12 {
+        let plane =
+            lowest_certified_degree(n, Layout::OpenQuad, deg, Centre::TangentPlane).unwrap();
+        let jet = lowest_certified_degree(n, Layout::OpenQuad, deg, Centre::QuadraticJet).unwrap();
+        table.push(format!("{n}:{plane}/{jet}"));
+        assert_eq!(plane, 4, "n {n}");
+        // the jet ties the twists to one Hessian: bi-4 affords it for n = 3, 4 only
+        assert_eq!(jet, if n <= 4 { 4 } else { 5 }, "n {n}");
+        let d = 4;
+        let hole = random_hole(n, true, d, 1, 0.0, &mut rng);
+        let cap = g1_cap(&hole).unwrap();
+        assert_eq!(cap.len(), n);
+        let x: Vec<Point> = cap.iter().flat_map(|b| b.cps.iter().copied()).collect();
+        let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+        for s in 1..n {
+            let w = super::system::weight(n, true, 0.0);
+            for r in super::system::spoke_rows(d, w, s, s - 1) {
+                let v = r
+                    .iter()
+                    .fold([0.0; 3], |a, &(c, w)| crate::geom::axpy(a, w, x[c]));
+                assert!(norm(v) < 1e-11 * size, "n {n} spoke {s}: {:e}", norm(v));
+            }
+        }
+        for s in 0..n {
+            for k in 0..=10 {
+                let t = k as f64 / 10.0;
+                if s > 0 {
+                    assert!(norm(sub(cap[s].eval(t, 0.0), cap[s - 1].eval(0.0, t))) < 1e-10);
+                }
+                let a = &hole.sectors[s][0];
+                let want = BezierCurve::new(a.cross.clone()).eval(t);
+                assert!(norm(crate::geom::add(cap[s].derivatives(1.0, t).du, want)) < 1e-10);
+            }
+        }
+        // the spoke tangents at the centre, boundary spokes included
+        let t = super::hole::spoke_tangent(&hole.tangents, n, true, n);
+        let got = scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), d as f64);
+        assert!(norm(sub(got, t)) < 1e-10 * size, "n {n}");
+    }
+    eprintln!("open fans, lowest degree plane/jet: {}", table.join(" "));
 }

@@ -150,11 +150,7 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
         plane[0] = axpy(plane[0], c, p);
         plane[1] = axpy(plane[1], s, p);
     }
-    let hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors,
-    };
+    let hole = Hole::untangented(centre, sectors);
     Ok((hole, plane, tags))
 }
 
