@@ -15,7 +15,7 @@ use fairsub::schemes::registry::ids;
 
 #[path = "eval/support.rs"]
 mod support;
-use support::{gallery, toward_ev, via_obj, written_from};
+use support::{gallery, irregular_boundary_nets, toward_ev, via_obj, written_from};
 #[path = "eval/faces.rs"]
 mod faces;
 use faces::{
@@ -62,46 +62,6 @@ fn dual_schemes_evaluate_the_quarters_at_boundary_vertices() {
     all_continuous(&dual_schemes(), &OPEN);
 }
 
-/// Nets with extraordinary boundary vertices (no gallery net has one): an L-shaped 4 x 4 grid
-/// of curved quads whose concave corner is a boundary vertex of three quads, and
-/// `cnet-5-saddle` without one face at its centre (a boundary vertex of four quads).
-fn irregular_boundary_nets() -> Vec<(&'static str, PolyMesh)> {
-    let mut pos = Vec::new();
-    let mut faces = Vec::new();
-    let at = |i: usize, j: usize| i * 5 + j;
-    for i in 0..5 {
-        for j in 0..5 {
-            let (x, y) = (i as f64, j as f64);
-            pos.push([x, y, 0.1 * x.sin() * (1.3 * y).cos()]);
-        }
-    }
-    for i in 0..4 {
-        for j in 0..4 {
-            if i < 2 || j < 2 {
-                faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-    }
-    let l_shape = PolyMesh::new(pos, &faces).expect("the L-shaped net");
-    let cnet = gallery("cnet-5-saddle");
-    let centre = (0..cnet.num_vertices())
-        .find(|&v| !cnet.is_boundary_vertex(v) && cnet.valence(v) == 5)
-        .expect("the centre");
-    let mut dropped = false;
-    let kept: Vec<Vec<usize>> = (0..cnet.num_faces())
-        .map(|f| cnet.face(f))
-        .filter(|f| {
-            let drop = !dropped && f.contains(&(centre as u32));
-            dropped |= drop;
-            !drop
-        })
-        .map(|f| f.iter().map(|&x| x as usize).collect())
-        .collect();
-    let notched = PolyMesh::new(cnet.positions().to_vec(), &kept).expect("the notched c-net");
-    assert!(notched.is_boundary_vertex(centre) && notched.vertex_faces(centre).len() == 4);
-    vec![("l-shape", l_shape), ("cnet-5-notched", notched)]
-}
-
 /// Every point of every face of nets with extraordinary boundary vertices evaluates (the
 /// quarters at those vertices were not tracked before 2026-12-04): it agrees with the patches
 /// `subdivide --rings` writes to 1e-12, points near the vertex lie on its fill, and the
@@ -128,8 +88,7 @@ fn dual_schemes_evaluate_next_to_extraordinary_boundary_vertices() {
 
 /// The same nets' complexes are G^1 at every join (fills included) under the dual schemes, as
 /// `check` measures them (1e-14 rad on 2026-12-04). Catmull-Clark and the schemes that fall
-/// back to it close these holes with the C^0 Hermite-Coons fill instead (6.9e-3 rad on the
-/// L-shape, 0.34 rad on the notched c-net at 3 rings: the README says so).
+/// back to it close them with open-fan G^1 caps (`tests/boundary_caps.rs`).
 #[test]
 fn dual_schemes_are_g1_at_extraordinary_boundary_vertices() {
     use fairsub::analysis::continuity::check;

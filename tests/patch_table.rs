@@ -322,7 +322,7 @@ fn table_files_are_validated() {
     let dir = std::env::temp_dir().join(format!("fairsub-table-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join("bad.tab");
-    let good = "fairsub-patch-table 1\nsources 2\npatches 1\nrows 4\nentries 4\ncaps 0\ncapmaps 0\nconstants 0\np 1 1 0 linear regular\nr 1 0 1\nr 1 1 1\nr 1 0 1\nr 1 1 1\nend\n";
+    let good = "fairsub-patch-table 2\nsources 2\npatches 1\nrows 4\nentries 4\ncaps 0\ncapmaps 0\nconstants 0\np 1 1 0 linear regular\nr 1 0 1\nr 1 1 1\nr 1 0 1\nr 1 1 1\nend\n";
     std::fs::write(&p, good).unwrap();
     let t = fairsub::io::table::read_table(&p).unwrap();
     assert_eq!(t.rows.num_rows(), 4);
@@ -338,7 +338,7 @@ fn table_files_are_validated() {
         ),
         (good.replace("end\n", ""), "missing"),
         (
-            good.replace("fairsub-patch-table 1", "fairsub-patch-table 2"),
+            good.replace("fairsub-patch-table 2", "fairsub-patch-table 1"),
             ":1: expected",
         ),
     ] {

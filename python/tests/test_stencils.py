@@ -13,7 +13,7 @@ from test_against_cli import RINGS
 def read_table(path):
     """The patch table file as the README documents it: (patch lines, CSR arrays)."""
     lines = path.read_text().splitlines()
-    assert lines[0] == "fairsub-patch-table 1"
+    assert lines[0] == "fairsub-patch-table 2"
     head = dict(l.split() for l in lines[1:8])
     npatch, nrows, ncaps, nmaps = (int(head[k]) for k in ("patches", "rows", "caps", "capmaps"))
     k = 8

@@ -238,6 +238,21 @@ pub fn hole_centre(
     element: Element,
     f0: u32,
 ) -> std::result::Result<(u32, usize), NoCap> {
+    match fan_centre(m, info, element, f0)? {
+        (x, n, false) => Ok((x, n)),
+        _ => Err(NoCap::Never),
+    }
+}
+
+/// [`hole_centre`] that also takes a boundary vertex: the centre, its number of sectors (the
+/// valence of an interior vertex, the number of faces, valence - 1, of a boundary vertex) and
+/// whether the fan is open (on the boundary); `NoCap::Never` below 3 sectors.
+pub fn fan_centre(
+    m: &PolyMesh,
+    info: &[Info],
+    element: Element,
+    f0: u32,
+) -> std::result::Result<(u32, usize, bool), NoCap> {
     let x = m
         .face(f0 as usize)
         .iter()
@@ -245,10 +260,12 @@ pub fn hole_centre(
         .find(|&v| info[v as usize].origin == Some(element))
         .ok_or(NoCap::Never)?;
     let n = m.valence(x as usize);
-    if m.is_boundary_vertex(x as usize) || n < 3 {
+    let open = m.is_boundary_vertex(x as usize);
+    let sectors = if open { n - 1 } else { n };
+    if sectors < 3 {
         return Err(NoCap::Never);
     }
-    Ok((x, n))
+    Ok((x, sectors, open))
 }
 
 /// Whether some element of the marked cells would get its G^1 cap after more levels (`hole`
@@ -286,9 +303,26 @@ pub struct QuadSector {
 /// non-box's cap sectors), or `None` when one is not a quad or the walk does not close after
 /// `n` faces (a boundary).
 pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<QuadSector>> {
+    quad_fan(m, x, f0, n, false)
+}
+
+/// The `n` quads around boundary vertex `x` counter-clockwise from its boundary half-edge (an
+/// open fan: spoke 0 of sector 0 and spoke `n` of sector `n - 1` are its boundary edges), or
+/// `None` when one is not a quad or the fan does not have `n` faces.
+pub fn quad_sectors_open(m: &PolyMesh, x: u32, n: usize) -> Option<Vec<QuadSector>> {
+    let h = m.vertex_halfedge(x as usize);
+    if m.he_twin(h).is_some() {
+        return None;
+    }
+    quad_fan(m, x, m.he_face(h), n, true)
+}
+
+/// The walk of [`quad_sectors_around`] (closing at `f0`) and [`quad_sectors_open`] (ending at
+/// the boundary).
+fn quad_fan(m: &PolyMesh, x: u32, f0: u32, n: usize, open: bool) -> Option<Vec<QuadSector>> {
     let mut out = Vec::with_capacity(n);
     let mut f = f0;
-    for _ in 0..n {
+    for s in 0..n {
         let face = m.face(f as usize);
         if face.len() != 4 {
             return None;
@@ -305,9 +339,13 @@ pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Ve
             kq: he(2),
         });
         // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
-        f = m.he_face(m.he_twin(he(3))?);
+        match m.he_twin(he(3)) {
+            Some(t) => f = m.he_face(t),
+            // the open fan ends at its last sector, on the boundary
+            None => return (open && s + 1 == n).then_some(out),
+        }
     }
-    (f == f0).then_some(out)
+    (!open && f == f0).then_some(out)
 }
 
 /// The segments of a quad-layout hole over its sectors: `across(half_edge, from)` reads the

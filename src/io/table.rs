@@ -2,7 +2,7 @@
 //! record per line, numbers in shortest round-trip form (they read back bit for bit).
 //!
 //! ```text
-//! fairsub-patch-table 1
+//! fairsub-patch-table 2
 //! sources N          control points the rows read (the net's vertices as the scheme reads it)
 //! patches P
 //! rows R             P patches' coefficient rows, then the caps' data rows
@@ -11,7 +11,7 @@
 //! capmaps M
 //! constants 0|1      1: a constant line per row follows the rows
 //! p DU DV FIRST KIND GROUP        P lines: bi-degree, first row, linear|cap, provenance group
-//! c FIRST COUNT ROW MAP DEGREE CENTRE SECTORS SEGMENTS B C ...   C lines, see below
+//! c FIRST COUNT ROW MAP DEGREE CENTRE FAN SECTORS SEGMENTS B C ...   C lines, see below
 //! m ID VALENCE ROWS COLS          M blocks, each followed by ROWS lines of COLS numbers
 //! r K I1 W1 ... IK WK             R lines: row r is sum_k Wk * point[Ik]
 //! k X Y Z                         R lines when constants is 1
@@ -27,7 +27,11 @@
 //! The cap's patches are `matrix MAP x (C, T0, T1, data after A, B)`, bi-`DEGREE` per sector,
 //! rows `s (DEGREE + 1)^2 + i (DEGREE + 1) + j`, where `T0, T1` are the spoke tangents fitted in
 //! the plane with normal `A x B` ([`crate::bezier::g1::ring::chart_tangents`]; the one step that
-//! is not linear in the points). `CENTRE` is `tangent-plane` or `quadratic-jet`.
+//! is not linear in the points). `CENTRE` is `tangent-plane` or `quadratic-jet`. `FAN` is
+//! `closed` (a hole around an interior vertex, spoke `s` at the angle `2 pi s / SECTORS`) or
+//! `open` (a fan at a boundary vertex, `SECTORS + 1` spokes at the angles `pi s / SECTORS`, the
+//! first and last on the boundary; [`crate::bezier::g1::Layout::OpenQuad`]). Version 2 added
+//! `FAN`; version 1 files are refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
@@ -42,7 +46,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// The first line of the format.
-pub const MAGIC: &str = "fairsub-patch-table 1";
+pub const MAGIC: &str = "fairsub-patch-table 2";
 
 fn centre_name(c: Centre) -> &'static str {
     match c {
@@ -112,12 +116,13 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
             let shape = cap.shape();
             let _ = write!(
                 out.buf,
-                "c {} {} {} {id} {} {} {} {}",
+                "c {} {} {} {id} {} {} {} {} {}",
                 st.first,
                 st.count,
                 cap.data_row,
                 cap.degree,
                 centre_name(cap.centre),
+                if st.hole.open { "open" } else { "closed" },
                 shape.len(),
                 shape.first().map_or(0, Vec::len)
             );
@@ -248,15 +253,19 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         let v: Vec<u32> = w
             .iter()
             .enumerate()
-            .filter(|&(i, _)| i != 0 && i != 6)
+            .filter(|&(i, _)| i != 0 && i != 6 && i != 7)
             .map(|(_, x)| x.parse::<u32>())
             .collect::<std::result::Result<_, _>>()
             .map_err(|_| parse_error(path, l, "bad cap line"))?;
-        if w.first() != Some(&"c") || v.len() < 7 || v[3] as usize >= nmaps.max(1) {
+        if w.first() != Some(&"c")
+            || v.len() < 7
+            || v[3] as usize >= nmaps.max(1)
+            || !matches!(w.get(7), Some(&"open" | &"closed"))
+        {
             return Err(parse_error(
                 path,
                 l,
-                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE ...'",
+                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open or closed)",
             ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));

@@ -112,9 +112,9 @@ pub(crate) fn hole_points(hole: &Hole, plane: &[Point; 2]) -> Vec<Point> {
     d
 }
 
-/// A hole of shape `shape` read from `vals` (centre first, see [`TableCap::data_row`]), and its
-/// plane vectors.
-fn hole_from(vals: &[Point], shape: &HoleShape) -> (Hole, [Point; 2]) {
+/// A hole of shape `shape` (an open fan when `open`) read from `vals` (centre first, see
+/// [`TableCap::data_row`]), and its plane vectors.
+fn hole_from(vals: &[Point], shape: &HoleShape, open: bool) -> (Hole, [Point; 2]) {
     let mut k = 3;
     let mut take = |n: u32| {
         let v = vals[k..k + n as usize].to_vec();
@@ -132,7 +132,10 @@ fn hole_from(vals: &[Point], shape: &HoleShape) -> (Hole, [Point; 2]) {
                 .collect()
         })
         .collect();
-    let hole = Hole::untangented(vals[0], sectors);
+    let hole = Hole {
+        open,
+        ..Hole::untangented(vals[0], sectors)
+    };
     (hole, [vals[1], vals[2]])
 }
 
@@ -568,7 +571,11 @@ impl PatchTable {
             .iter()
             .map(|cap| {
                 let r = self.data_index(cap);
-                let (hole, plane) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
+                let (hole, plane) = hole_from(
+                    &data[r..r + cap.data_len()],
+                    &cap.shape(),
+                    cap.step.hole.open,
+                );
                 CapStep {
                     hole,
                     plane,
@@ -614,7 +621,11 @@ impl PatchTable {
             let (mut patches, data) = self.rows.values(&self.layout(), &pts);
             for (k, cap) in self.caps.iter().enumerate() {
                 let r = self.data_index(cap);
-                let (mut hole, _) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
+                let (mut hole, _) = hole_from(
+                    &data[r..r + cap.data_len()],
+                    &cap.shape(),
+                    cap.step.hole.open,
+                );
                 hole.tangents = ring::data_tangents(&hole)?;
                 let (layout, degrees) = hole.layout()?;
                 let map = cap_map(hole.valence(), layout, degrees, cap.degree, cap.centre)?;

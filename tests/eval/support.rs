@@ -139,3 +139,44 @@ pub fn written_from(
     let bv = fairsub::io::read_bv(&out).expect("read back");
     fairsub::render::complex_from_bv(&bv)
 }
+
+/// Nets with extraordinary boundary vertices (no gallery net has one): an L-shaped 4 x 4 grid
+/// of curved quads whose concave corner is a boundary vertex of three quads, and
+/// `cnet-5-saddle` without one face at its centre (a boundary vertex of four quads).
+#[allow(dead_code)]
+pub fn irregular_boundary_nets() -> Vec<(&'static str, PolyMesh)> {
+    let mut pos = Vec::new();
+    let mut faces = Vec::new();
+    let at = |i: usize, j: usize| i * 5 + j;
+    for i in 0..5 {
+        for j in 0..5 {
+            let (x, y) = (i as f64, j as f64);
+            pos.push([x, y, 0.1 * x.sin() * (1.3 * y).cos()]);
+        }
+    }
+    for i in 0..4 {
+        for j in 0..4 {
+            if i < 2 || j < 2 {
+                faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    let l_shape = PolyMesh::new(pos, &faces).expect("the L-shaped net");
+    let cnet = gallery("cnet-5-saddle");
+    let centre = (0..cnet.num_vertices())
+        .find(|&v| !cnet.is_boundary_vertex(v) && cnet.valence(v) == 5)
+        .expect("the centre");
+    let mut dropped = false;
+    let kept: Vec<Vec<usize>> = (0..cnet.num_faces())
+        .map(|f| cnet.face(f))
+        .filter(|f| {
+            let drop = !dropped && f.contains(&(centre as u32));
+            dropped |= drop;
+            !drop
+        })
+        .map(|f| f.iter().map(|&x| x as usize).collect())
+        .collect();
+    let notched = PolyMesh::new(cnet.positions().to_vec(), &kept).expect("the notched c-net");
+    assert!(notched.is_boundary_vertex(centre) && notched.vertex_faces(centre).len() == 4);
+    vec![("l-shape", l_shape), ("cnet-5-notched", notched)]
+}

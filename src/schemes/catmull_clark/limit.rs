@@ -216,8 +216,11 @@ impl CatmullClark {
     /// Limit tangent stencils `(t1, t2)` at vertex `v` when all faces at `v` are quads: for an
     /// interior vertex the eigenvector masks of Halstead et al. (t1 x t2 is the outward normal);
     /// for a boundary vertex of valence 3 and a corner the exact derivatives of the regular
-    /// boundary patch (ghost points mirrored across the boundary). Returns `None` for other
-    /// boundary vertices and vertices next to non-quads.
+    /// boundary patch (ghost points mirrored across the boundary); at a boundary vertex of
+    /// `k >= 3` quads the boundary curve's tangent and the subdominant eigen tangent across the
+    /// boundary ([`super::boundary_tangent`]; they span the plane its G^1 cap is centred in).
+    /// Returns `None` next to non-quads and at boundary vertices of more than
+    /// [`super::boundary_tangent::MAX_BOUNDARY_FACES`] quads.
     pub fn tangent_stencils(mesh: &PolyMesh, v: usize) -> Option<(Stencil, Stencil)> {
         let hs = mesh.outgoing_halfedges(v);
         if hs
@@ -242,7 +245,20 @@ impl CatmullClark {
                     along.add(a, 1.0).add(b, -1.0);
                     across = Self::boundary_cross_stencil(mesh, v, &hs, &nb);
                 }
-                _ => return None,
+                k1 => {
+                    // extraordinary boundary vertex of k = k1 - 1 quads: the boundary curve's
+                    // tangent and the subdominant left eigenvector (see `boundary_tangent`)
+                    let w = super::boundary_tangent::across_weights(k1 - 1)?;
+                    let diag = |h: u32| mesh.he_from(mesh.he_next(mesh.he_next(h))) as usize;
+                    along.add(a, 1.0).add(b, -1.0);
+                    across.add(v, w.1[0]);
+                    for (i, &e) in nb.iter().enumerate() {
+                        across.add(e as usize, w.1[1 + i]);
+                    }
+                    for (i, &h) in hs.iter().enumerate() {
+                        across.add(diag(h), w.1[k1 + 1 + i]);
+                    }
+                }
             }
             return Some((along.merged(), across.merged()));
         }

@@ -31,6 +31,7 @@
 //! refinement to several levels ([`CatmullClark::refine_uniform`]) keeps no tables, drops each
 //! parent level as soon as its child exists, and does not build the last level's half-edges.
 
+pub mod boundary_tangent;
 mod child;
 pub(crate) mod crease;
 pub mod descriptor;

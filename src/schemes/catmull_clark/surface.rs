@@ -28,9 +28,9 @@
 //!
 //! After `rings` levels every extraordinary element whose hole is surrounded by patches of the
 //! last level gets the G^1 cap of [`g1`] (the module documents its conditions, free parameters
-//! and the extra levels where two holes still touch). The others (extraordinary boundary
-//! vertices, and elements whose holes do not separate) are closed by the Hermite-Coons fill
-//! below, or left open (`--no-fill`).
+//! and the extra levels where two holes still touch; at a plain boundary vertex the open fan).
+//! The others (vertices on creases or with sharpness, and elements whose holes do not
+//! separate) are closed by the Hermite-Coons fill below, or left open (`--no-fill`).
 //!
 //! # The Hermite-Coons fill (fairsub's own, documented construction)
 //!

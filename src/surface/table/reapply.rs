@@ -73,7 +73,11 @@ impl PatchTable {
             .enumerate()
             .map(|(k, cap)| {
                 let r = self.data_index(cap);
-                let (hole, plane) = hole_from(&data[r..r + cap.data_len()], &cap.shape());
+                let (hole, plane) = hole_from(
+                    &data[r..r + cap.data_len()],
+                    &cap.shape(),
+                    cap.step.hole.open,
+                );
                 ring::cap_in_plane(hole, cross(plane[0], plane[1]), cap.step.options)
                     .map(|b| b.patches)
                     .map_err(|e| cap_failed(k, cap, e))

@@ -170,6 +170,25 @@ pub(crate) fn is_special(level: &Level, v: usize) -> bool {
             .any(|&e| ft.edges[e as usize] > 0.0)
 }
 
+/// Whether `v` is a plain boundary vertex of `level`: on the boundary, without sharpness of
+/// its own or at an edge inside the surface (its two boundary edges are its only sharp ones),
+/// so its rule is the boundary crease rule and its G^1 cap the open fan's.
+pub(crate) fn is_plain_boundary(level: &Level, v: usize) -> bool {
+    let m = &level.mesh;
+    if !m.is_boundary_vertex(v) {
+        return false;
+    }
+    let Some(ft) = &level.sharp else {
+        return true;
+    };
+    let hs = m.outgoing_halfedges(v);
+    ft.vertices[v] == 0.0
+        && hs
+            .iter()
+            .skip(1)
+            .all(|&h| ft.edges[m.he_edge(h) as usize] == 0.0)
+}
+
 /// The sector of a face's corner between infinitely sharp (or boundary) edges.
 pub(crate) struct Sector {
     /// The corner's rule (its own sharpness and its infinitely sharp edges).
