@@ -8,7 +8,8 @@
 //! (the limit point), `1/2` (the boundary curve's tangent, left eigenvector `e_0 - e_k`) and
 //! `lambda'`, the largest eigenvalue below 1, whose eigenvector is symmetric in the fan
 //! (`e_i <-> e_(k-i)`): measured `0.5797, 0.6111, 0.6263, 0.6348, 0.6400, 0.6433` for
-//! `k = 3 .. 8` (the sine mode of a closed fan of valence `2 k`). Its left eigenvector, applied
+//! `k = 3 .. 8`: the subdominant eigenvalue of an interior vertex of valence `2 k`
+//! (`(5 + cos(pi / k) + cos(pi / (2 k)) sqrt(18 + 2 cos(pi / k))) / 16`, tested to 1e-12). Its left eigenvector, applied
 //! to the points, is the limit derivative across the boundary (up to scale). Together with
 //! `e_0 - e_k` it spans the plane the G^1 cap of an open fan is centred in
 //! ([`crate::bezier::g1::Layout::OpenQuad`]).
@@ -117,6 +118,16 @@ mod tests {
         for (k, want) in (3..=8).zip(want) {
             let w = across_weights(k).unwrap();
             assert!((w.0 - want).abs() < 1e-5, "k {k}: {}", w.0);
+            let (c, h) = (
+                (std::f64::consts::PI / k as f64).cos(),
+                (std::f64::consts::PI / (2 * k) as f64).cos(),
+            );
+            let closed = (5.0 + c + h * (18.0 + 2.0 * c).sqrt()) / 16.0;
+            assert!(
+                (w.0 - closed).abs() < 1e-12,
+                "k {k}: {} against {closed}",
+                w.0
+            );
             // a left eigenvector, symmetric in the fan, summing to zero (a tangent)
             let s = ring_matrix(k);
             let x = nalgebra::DVector::from_vec(w.1.clone());

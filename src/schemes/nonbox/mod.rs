@@ -74,7 +74,10 @@
 //! `sum sin(2 pi j / k) F_j`, normal their cross product (outward for counter-clockwise faces).
 //! Boundary vertex: `(a + 4 v + b) / 6` (cubic B-spline limit), corner: `v`; tangent along the
 //! boundary `a - b`; across it `4 mean(F) - 2 v - a - b`, exact for two faces (the ghost
-//! formula) and fairsub's approximation otherwise (the paper analyses no boundary vertex). The
+//! formula); at a boundary vertex of `k >= 3` quads the left eigenvector of the scheme's own
+//! local matrix ([`boundary`]; the paper analyses no boundary vertex), and the `4 mean(F)`
+//! formula, an approximation, only where the two rings around the vertex are not regular
+//! quads. The
 //! limit at an FCV's parameter point (the face centre) is the limit of the face vertex it
 //! becomes after one step.
 
@@ -84,6 +87,7 @@ pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_4DIR};
 
 pub mod bezier;
+pub mod boundary;
 pub mod fourdir;
 pub mod mask;
 
@@ -383,6 +387,11 @@ impl NonBox {
                 Stencil::from_pairs([(a, 1.0), (p, -1.0)]),
                 Stencil::from_pairs([(b, 1.0), (p, -1.0)]),
             );
+        }
+        if fs.len() > 2
+            && let Some(exact) = boundary::open_fan_tangents(net, p)
+        {
+            return exact;
         }
         let along = Stencil::from_pairs([(a, 1.0), (b, -1.0)]);
         let mut across = Stencil::new();

@@ -27,21 +27,29 @@
 //! * **conditions, free parameters, degree**: those of [`crate::bezier::g1`]: bi-4 for odd `n`,
 //!   bi-5 for even `n` (bi-4 at `n = 4`).
 //!
+//! **Boundary vertices** of `k >= 3` quads get the open-fan cap
+//! ([`crate::bezier::g1::Layout::OpenQuad`]; sectors from the boundary half-edge, spokes `0`
+//! and `k` free boundary curves), centred at the boundary curve's limit point `(a + 4 v + b) / 6`
+//! in the plane of the boundary tangent `a - b` and the eigen tangent across the boundary of the
+//! scheme's own local matrix ([`crate::schemes::nonbox::boundary`]).
+//!
 //! Holes that touch another element's after the requested rings get up to
-//! [`MAX_EXTRA_LEVELS`] more levels; holes without the data (boundary vertices, non-quad
-//! cells, still touching after that) keep the C^0 Coons fill of [`super`].
+//! [`MAX_EXTRA_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
+//! whose two rings are not regular quads, still touching after that) keep the C^0 Coons fill of
+//! [`super`].
 
 use super::{Level, trusted_cell};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, axpy, scale};
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements, hole_centre,
-    quad_hole_segments, quad_sectors_around,
+    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements,
+    quad_hole_segments, quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
+use crate::schemes::nonbox::boundary::open_fan_tangents;
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
@@ -107,13 +115,18 @@ fn hole_of(
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
-    let (x, n) = hole_centre(m, &level.info, element, f0)?;
+    let (x, n, open) = fan_centre(m, &level.info, element, f0)?;
     let xu = x as usize;
     if cells.len() != n {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let quads = quad_sectors_around(m, x, f0, n).ok_or(NoCap::Never)?;
+    let quads = if open {
+        quad_sectors_open(m, x, n)
+    } else {
+        quad_sectors_around(m, x, f0, n)
+    }
+    .ok_or(NoCap::Never)?;
     // the cap patch of a sector has its (0, 0) at x, corner `sec.corner` of the sector's cell
     let tags = quads
         .iter()
@@ -127,9 +140,17 @@ fn hole_of(
         .collect::<Result<Vec<Tag>, NoCap>>()?;
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
-    let (t1, t2) = NonBox::tangent_stencils(&level.net, xu);
+    let (t1, t2) = if open {
+        open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
+    } else {
+        NonBox::tangent_stencils(&level.net, xu)
+    };
     let plane = [t1.apply(&level.points), t2.apply(&level.points)];
-    let hole = Hole::untangented(centre, sectors);
+    let hole = if open {
+        Hole::untangented_open(centre, sectors)
+    } else {
+        Hole::untangented(centre, sectors)
+    };
     Ok((hole, plane, tags))
 }
 
