@@ -487,7 +487,10 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
                 Some(d) => d,
                 None => lowest_certified_degree(n, layout, degrees, Centre::TangentPlane)?,
             };
-            let jet = cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
+            // an open fan keeps the plane: the limit at a boundary vertex has no bounded
+            // quadratic expansion to share (see the module documentation, "Open fans")
+            let jet = layout != Layout::OpenQuad
+                && cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
             let c = if jet {
                 Centre::QuadraticJet
             } else {

@@ -150,7 +150,13 @@
 //! `open_fans_are_certified_and_g1_on_their_inner_spokes`, `n = 3..12`, data degree 3): bi-3
 //! fails (0.7 and more), **bi-4 is certified at every `n`** with the tangent plane (<= 5e-14);
 //! with the quadratic jet bi-4 only at `n = 3, 4` (1e-12; 0.14 and more above), bi-5 at every
-//! `n`. So the default cap of an open fan is bi-4, with the jet at `n = 3, 4`.
+//! `n`. The default cap of an open fan ([`Centre::Auto`]) is bi-4 with the tangent plane at
+//! every `n`, without the jet even where bi-4 affords it: at a boundary vertex the limit has
+//! no bounded quadratic expansion to share (Catmull-Clark's ring curvature grows about 3x per
+//! ring at a boundary vertex of 4 quads, its subdominant eigenvalue `0.611` against the
+//! boundary's `1/2`), and the jet made the cap worse where it was tried: Gauss curvature down
+//! to -162 and `|H|` up to 21 on the notched c-net at 4 rings, against -69 and 3.5 without it
+//! (the last ring: -4.4 and 0.8); on the L-shape (3 quads) -1.6e-2 against -2.1e-2.
 //!
 //! # Data that are not enough
 //!

@@ -34,8 +34,8 @@
 //! **centre** the limit point of the boundary curve, `(e_0 + 4 x + e_k) / 6`; **tangent
 //! plane** spanned by the boundary curve's tangent `e_0 - e_k` and the subdominant eigen
 //! tangent across the boundary
-//! ([`crate::schemes::catmull_clark::boundary_tangent`]). Bi-4 for every `k` (the quadratic
-//! jet at bi-4 for `k = 3, 4`). Measured by `check` at 3 rings: 2.4e-14 rad between the cap's
+//! ([`crate::schemes::catmull_clark::boundary_tangent`]). Bi-4 for every `k`, tangent plane
+//! only (no jet: [`crate::bezier::g1`], "Open fans"). Measured by `check` at 3 rings: 2.4e-14 rad between the cap's
 //! pieces on an L-shaped grid (`k = 3`; the fill measured 6.9e-3), 1.1e-13 on `cnet-5-saddle`
 //! with a face removed at its centre (0.34 with the fill), 1.1e-14 on OpenSubdiv's
 //! `cc_boundary_valences` (`k = 3, 5`; 0.10 with the fill); the cap joins the ring C^1
