@@ -43,7 +43,6 @@ pub fn open_labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
     if m.he_twin(h).is_some() {
         return None;
     }
-    let nv = m.num_vertices();
     let v = m.he_from(h) as usize;
     let hs: Vec<u32> = m.outgoing_halfedges(v);
     if hs.first() != Some(&h) || hs.len() < 3 {
@@ -52,23 +51,9 @@ pub fn open_labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
     let mut out = vec![v];
     let mut last = None;
     for &g in &hs {
-        let grid = m.sector_grid(g, 2)?;
-        let cells = m.sector_cells(g, 2)?;
-        let p = |i: usize, j: usize| grid[i][j] as usize;
-        let f = |i: usize, j: usize| nv + m.he_face(cells[i][j]) as usize;
-        out.extend_from_slice(&[
-            p(1, 0),
-            f(0, 0),
-            p(2, 0),
-            f(1, 0),
-            p(1, 1),
-            f(0, 1),
-            p(2, 1),
-            f(1, 1),
-            p(1, 2),
-            p(2, 2),
-        ]);
-        last = Some([p(0, 1), p(0, 2)]);
+        let (labels, second_edge) = super::local::sector_labels(m, g)?;
+        out.extend_from_slice(&labels);
+        last = Some(second_edge);
     }
     out.extend(last?);
     Some(out)

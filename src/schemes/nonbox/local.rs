@@ -72,14 +72,24 @@ pub fn local_fcv_net(k: usize, rings: usize) -> FcvNet {
 /// around the start vertex of half-edge `h`, sector 0 starting at `h`, in the labelling of the
 /// [module](self) documentation. `None` when the two rings of quads around it are not regular.
 pub fn labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
-    let nv = m.num_vertices();
     let mut out = vec![m.he_from(h) as usize];
     for g in m.interior_ring_from(h)? {
-        let grid = m.sector_grid(g, 2)?;
-        let cells = m.sector_cells(g, 2)?;
-        let v = |i: usize, j: usize| grid[i][j] as usize;
-        let f = |i: usize, j: usize| nv + m.he_face(cells[i][j]) as usize;
-        out.extend_from_slice(&[
+        out.extend_from_slice(&sector_labels(m, g)?.0);
+    }
+    Some(out)
+}
+
+/// The labels `V1 .. V10` of the sector that starts at the outgoing half-edge `g` (point
+/// indices as in [`labelled_points`]), and its vertices `(0, 1)`, `(0, 2)` on the sector's
+/// second edge; `None` when its 2 x 2 cells are not regular quads.
+pub(crate) fn sector_labels(m: &PolyMesh, g: u32) -> Option<([usize; SECTOR], [usize; 2])> {
+    let nv = m.num_vertices();
+    let grid = m.sector_grid(g, 2)?;
+    let cells = m.sector_cells(g, 2)?;
+    let v = |i: usize, j: usize| grid[i][j] as usize;
+    let f = |i: usize, j: usize| nv + m.he_face(cells[i][j]) as usize;
+    Some((
+        [
             v(1, 0),
             f(0, 0),
             v(2, 0),
@@ -90,9 +100,9 @@ pub fn labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
             f(1, 1),
             v(1, 2),
             v(2, 2),
-        ]);
-    }
-    Some(out)
+        ],
+        [v(0, 1), v(0, 2)],
+    ))
 }
 
 /// Rows `rows` of a step table restricted to the sources `cols`: the local matrix's table.
