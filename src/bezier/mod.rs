@@ -130,6 +130,10 @@ impl Curvature {
 /// as undetermined.
 const DEGENERATE_REL: f64 = 1e-10;
 
+/// Smallest sine of the angle between the partials at which [`BezierPatch::curvatures`] takes
+/// the curvature of a point beside a degenerate one.
+pub const WELL_CONDITIONED: f64 = 1e-3;
+
 #[inline]
 fn norm_inf(p: Point) -> f64 {
     p[0].abs().max(p[1].abs()).max(p[2].abs())
@@ -458,17 +462,26 @@ impl BezierPatch {
     /// Gauss, mean and principal curvatures at `(u, v)` ([`Derivatives::curvature`]; signs
     /// relative to the normal `du x dv`, negative on a sphere with outward normal).
     ///
-    /// At a degenerate point (collapsed edge) the curvature is taken at the first regular point
-    /// of `(u, v) + s * inward` for `s = 1e-6, 1e-5, 1e-4` — an approximation of the limit,
-    /// which exists where the surface has bounded curvature. [`Curvature::UNDEFINED`] (all NaN)
-    /// when there is no regular point nearby.
+    /// At a degenerate point (collapsed edge) the curvature is taken at the first point of
+    /// `(u, v) + s * inward`, `s = 1e-6, 1e-5, ..., 1e-2`, where the partials are regular and
+    /// at least [`WELL_CONDITIONED`] apart in angle (sine) — an approximation of the limit,
+    /// which exists where the surface has bounded curvature. Beside a collapsed edge the
+    /// partials are far from parallel at once (`s = 1e-6`); at a straight corner (the open
+    /// triangle fans of [`g1`], where `du` and `dv` are opposite) they are only `~s` apart,
+    /// and `1e-6` away the curvature formula's rounding is `1e3` and more.
+    /// [`Curvature::UNDEFINED`] (all NaN) when there is no such point nearby.
     pub fn curvatures(&self, u: f64, v: f64) -> Curvature {
         if let Some(c) = self.derivatives(u, v).curvature() {
             return c;
         }
         let h = Self::inward(u, v);
-        for s in [1e-6, 1e-5, 1e-4] {
-            if let Some(c) = self.derivatives(u + s * h[0], v + s * h[1]).curvature() {
+        for s in [1e-6, 1e-5, 1e-4, 1e-3, 1e-2] {
+            let d = self.derivatives(u + s * h[0], v + s * h[1]);
+            let (a, b) = (norm(d.du), norm(d.dv));
+            if norm(cross(d.du, d.dv)) < WELL_CONDITIONED * a * b {
+                continue;
+            }
+            if let Some(c) = d.curvature() {
                 return c;
             }
         }

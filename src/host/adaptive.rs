@@ -238,7 +238,7 @@ pub fn hole_centre(
     element: Element,
     f0: u32,
 ) -> std::result::Result<(u32, usize), NoCap> {
-    match fan_centre(m, info, element, f0)? {
+    match fan_centre(m, info, element, f0, 3)? {
         (x, n, false) => Ok((x, n)),
         _ => Err(NoCap::Never),
     }
@@ -246,12 +246,15 @@ pub fn hole_centre(
 
 /// [`hole_centre`] that also takes a boundary vertex: the centre, its number of sectors (the
 /// valence of an interior vertex, the number of faces, valence - 1, of a boundary vertex) and
-/// whether the fan is open (on the boundary); `NoCap::Never` below 3 sectors.
+/// whether the fan is open (on the boundary); `NoCap::Never` below 3 sectors, or below
+/// `min_open` sectors of an open fan (2 for a fan of triangles, whose two sectors span a
+/// right angle each in the chart).
 pub fn fan_centre(
     m: &PolyMesh,
     info: &[Info],
     element: Element,
     f0: u32,
+    min_open: usize,
 ) -> std::result::Result<(u32, usize, bool), NoCap> {
     let x = m
         .face(f0 as usize)
@@ -262,7 +265,7 @@ pub fn fan_centre(
     let n = m.valence(x as usize);
     let open = m.is_boundary_vertex(x as usize);
     let sectors = if open { n - 1 } else { n };
-    if sectors < 3 {
+    if sectors < if open { min_open } else { 3 } {
         return Err(NoCap::Never);
     }
     Ok((x, sectors, open))

@@ -55,6 +55,22 @@
 //! unit square, its spoke `j` ends at `M_j` (so `t_j` is the derivative towards `M_j`). The
 //! kites' cross derivatives are the ring's derivatives in the bilinear map's varying direction;
 //! their spoke-end twist is `kappa = 1` ([`QuadHole::kappa`], derivation in [`super`]).
+//!
+//! **Open triangle layout** ([`Layout::OpenTriangle`], [`Hole::open`]: Loop at a boundary
+//! vertex of `n` triangles). The segments of the triangle layout, sector `0` next to the
+//! outgoing boundary edge; spokes `s = 0..=n` end at `E_s`, spokes `0` and `n` on the boundary.
+//! Kites would leave two half-triangles at the boundary spokes, so every fan triangle is one
+//! quad sector instead: the bilinear image of the unit square with corners `C, E_s, M_s,
+//! E_(s+1)` (a straight corner at `M_s`), spoke `s` its side `v = 0`, segment `a` the first half
+//! of segment `s` (`t = v / 2`), segment `b` the second half reversed (`t = 1 - u / 2`), with
+//! `cross_a(v) = (1 - v) X + T / 2` and `cross_b(u) = (1 - u) X - T / 2` (`T` the segment's
+//! derivative, `X` its median derivative). At an inner spoke end `E_s` the two fan triangles are
+//! mirror images in the ring's lattice chart, but their cross derivatives there run along the
+//! outer edges, not opposite: their sum is `-(E_s - C) / 2`, so the relation holds with
+//! `w(1) = w1 = -1/2`, and the twists `C - (E_s + E_(s+1)) / 2` and `C - (E_(s-1) + E_s) / 2`
+//! add up to `-3/2 (E_s - C)`: `kappa = 3/2` (derivation in [`super`]). One triangle (a corner
+//! under Loop's corner rule) is one sector whose spokes are `T0` and `T1` themselves (a
+//! quarter-turn of the chart).
 
 use crate::error::{Error, Result};
 use crate::geom::{Point, axpy, scale};
@@ -104,6 +120,11 @@ pub enum Layout {
     /// `n + 1` spokes over a half-turn, `t_s = cos(pi s / n) T0 + sin(pi s / n) T1`, spokes `0`
     /// and `n` on the boundary of the surface.
     OpenQuad,
+    /// The triangle layout on an open fan of `n` triangles around a boundary vertex (Loop's):
+    /// one segment per sector, each fan triangle one cap patch with a straight corner at the
+    /// segment's midpoint (module documentation), `n + 1` spokes over a half-turn as in
+    /// [`Layout::OpenQuad`].
+    OpenTriangle,
 }
 
 impl Layout {
@@ -112,6 +133,22 @@ impl Layout {
         match self {
             Layout::Split(m) => m,
             _ => 1,
+        }
+    }
+
+    /// Whether the layout is an open fan around a boundary vertex ([`Hole::open`]).
+    pub fn is_open(self) -> bool {
+        matches!(self, Layout::OpenQuad | Layout::OpenTriangle)
+    }
+
+    /// The fewest sectors a hole of this layout has: 3; 2 for an open fan of quads (two
+    /// sectors over a half-turn meet at a right angle in the chart); 1 for an open fan of
+    /// triangles (a corner: one piece between the two boundary curves, a quarter-turn).
+    pub fn min_sectors(self) -> usize {
+        match self {
+            Layout::OpenTriangle => 1,
+            Layout::OpenQuad => 2,
+            _ => 3,
         }
     }
 }
@@ -156,18 +193,24 @@ impl Hole {
     /// Checks the shape of the hole and returns its layout and segment degrees.
     pub fn layout(&self) -> Result<(Layout, Degrees)> {
         let n = self.sectors.len();
-        if n < 3 {
+        let least = match (self.open, self.sectors.first().map(Vec::len)) {
+            (true, Some(1)) => 1,
+            (true, _) => 2,
+            _ => 3,
+        };
+        if n < least {
             return Err(Error::InvalidArgument(format!(
-                "a G^1 cap needs at least 3 sectors, the hole has {n}"
+                "a G^1 cap needs at least {least} sectors, the hole has {n}"
             )));
         }
         let segs = self.sectors[0].len();
         let layout = match segs {
             2 if self.open => Layout::OpenQuad,
+            1 if self.open => Layout::OpenTriangle,
             k if self.open => {
                 return Err(Error::InvalidArgument(format!(
-                    "sector 0 of the open hole has {k} segments; an open fan takes two per \
-                     sector (quad layout)"
+                    "sector 0 of the open hole has {k} segments; an open fan takes one (a fan \
+                     of triangles) or two (quads) per sector"
                 )));
             }
             1 => Layout::Triangle,
@@ -242,9 +285,10 @@ impl Hole {
         d
     }
 
-    /// The quad-layout hole a triangle hole stands for (kites, see the module documentation);
-    /// a quad or split hole is returned as it is (its segments raised to one degree), with
-    /// `kappa = 0`. Its segments have degree `max(boundary, cross + 1)` for a triangle hole.
+    /// The quad-layout hole a triangle hole stands for (kites, or the straight-corner pieces
+    /// of an open fan, see the module documentation); a quad or split hole is returned as it
+    /// is (its segments raised to one degree), with `kappa = 0`, `w1 = 0`. Its segments have
+    /// degree `max(boundary, cross + 1)` for a triangle hole.
     pub fn to_quad_layout(&self) -> Result<QuadHole> {
         let (layout, deg) = self.layout()?;
         let data = self.data();
@@ -272,18 +316,25 @@ impl Hole {
                 open: self.open,
             },
             kappa: conv.kappa,
+            w1: conv.w1,
         })
     }
 }
 
-/// A hole in quad layout with the spoke-end twist `kappa` of its G^1 weight (0 for rings that
-/// are a tensor-product grid at the spoke ends, 1 for kites split from a triangle fan).
+/// A hole in quad layout with the spoke-end twist `kappa` and spoke-end value `w1` of its G^1
+/// weight (both 0 for rings that are a tensor-product grid at the spoke ends; `kappa = 1` for
+/// kites split from a triangle fan; `kappa = 3/2`, `w1 = -1/2` for the straight-corner pieces
+/// of an open triangle fan).
 #[derive(Debug, Clone, PartialEq)]
 pub struct QuadHole {
     /// The hole (two segments per sector).
     pub hole: Hole,
-    /// `-w'(1)` of the spoke weight `w(u) = 2 cos(2 pi / n) (1 - u)^2 + kappa u (1 - u)`.
+    /// `-w'(1)` of the spoke weight
+    /// `w(u) = 2 cos(theta) (1 - u)^2 + (2 w1 + kappa) u (1 - u) + w1 u^2`.
     pub kappa: f64,
+    /// `w(1)`: 0 where the two pieces at a spoke end are mirror images of one chart (their
+    /// cross derivatives opposite).
+    pub w1: f64,
 }
 
 /// The linear map from a hole's data vector ([`Hole::data`]) to the canonical quad data: centre,
@@ -296,6 +347,8 @@ pub(crate) struct Conversion {
     pub degree: usize,
     /// Spoke-end twist of the layout.
     pub kappa: f64,
+    /// Spoke-end value `w(1)` of the layout's weight.
+    pub w1: f64,
     /// `rows x cols` weights, row-major.
     pub rows: usize,
     pub cols: usize,
@@ -347,10 +400,11 @@ impl Conversion {
     pub(crate) fn new(n: usize, layout: Layout, deg: Degrees) -> Conversion {
         let (db, dc) = (deg.boundary, deg.cross);
         let seg_len = db + dc + 2;
-        let (degree, kappa, nseg) = match layout {
-            Layout::Quad | Layout::OpenQuad => (db.max(dc), 0.0, 2),
-            Layout::Split(m) => (db.max(dc), 0.0, 2 * m),
-            Layout::Triangle => (db.max(dc + 1), 1.0, 1),
+        let (degree, kappa, w1, nseg) = match layout {
+            Layout::Quad | Layout::OpenQuad => (db.max(dc), 0.0, 0.0, 2),
+            Layout::Split(m) => (db.max(dc), 0.0, 0.0, 2 * m),
+            Layout::Triangle => (db.max(dc + 1), 1.0, 0.0, 1),
+            Layout::OpenTriangle => (db.max(dc + 1), 1.5, -0.5, 1),
         };
         let cols = 3 + n * nseg * seg_len;
         let m = degree + 1;
@@ -399,20 +453,28 @@ impl Conversion {
                         });
                     }
                 }
+                Layout::OpenTriangle => {
+                    // Quad sector s is fan triangle s with a straight corner at M_s: a = first
+                    // half of segment s, b = second half, reversed (module documentation).
+                    let o = off(s, 0);
+                    let add = |t: f64, wv: f64, wt: f64, wx: f64, out: &mut [f64]| {
+                        add_segment(db, dc, o, t, [wv, wt, wx], out);
+                    };
+                    put(r, &|v, out| add(0.5 * v, 1.0, 0.0, 0.0, out));
+                    // cross_a(v) = (1 - v) X + T / 2 at t = v / 2
+                    put(r + m, &|v, out| add(0.5 * v, 0.0, 0.5, 1.0 - v, out));
+                    put(r + 2 * m, &|u, out| add(1.0 - 0.5 * u, 1.0, 0.0, 0.0, out));
+                    // cross_b(u) = (1 - u) X - T / 2 at t = 1 - u / 2
+                    put(r + 3 * m, &|u, out| {
+                        add(1.0 - 0.5 * u, 0.0, -0.5, 1.0 - u, out)
+                    });
+                }
                 Layout::Triangle => {
                     // Quad sector s is the kite at E_(s+1): a = second half of segment s,
                     // b = first half of segment s + 1, reversed.
                     let (oa, ob) = (off(s, 0), off((s + 1) % n, 0));
-                    // value, tangent T = d/dt, and median derivative X at segment parameter t
-                    // of the segment at offset o, added with weights (wv, wt, wx).
                     let add = |o: usize, t: f64, wv: f64, wt: f64, wx: f64, out: &mut [f64]| {
-                        let (b, b1) = (bern(db, t), bern_d1(db, t));
-                        for i in 0..=db {
-                            out[o + i] += wv * b[i] + wt * b1[i];
-                        }
-                        for (i, x) in bern(dc, t).into_iter().enumerate() {
-                            out[o + db + 1 + i] += wx * x;
-                        }
+                        add_segment(db, dc, o, t, [wv, wt, wx], out);
                     };
                     put(r, &|v, out| add(oa, 0.5 * (1.0 + v), 1.0, 0.0, 0.0, out));
                     // cross_a(v) = (1 - v) X + v (T / 4 + X / 2) at t = (1 + v) / 2
@@ -432,6 +494,7 @@ impl Conversion {
         Conversion {
             degree,
             kappa,
+            w1,
             rows,
             cols,
             w,
@@ -449,6 +512,19 @@ impl Conversion {
                     .fold([0.0; 3], |acc, (&w, &p)| axpy(acc, w, p))
             })
             .collect()
+    }
+}
+
+/// Adds to `out` the value, tangent `T = d/dt` and median derivative `X` at parameter `t` of
+/// the triangle-layout segment whose boundary (degree `db`) and cross (degree `dc`)
+/// coefficients start at offset `o` of the data vector, with weights `[wv, wt, wx]`.
+fn add_segment(db: usize, dc: usize, o: usize, t: f64, w: [f64; 3], out: &mut [f64]) {
+    let (b, b1) = (bern(db, t), bern_d1(db, t));
+    for i in 0..=db {
+        out[o + i] += w[0] * b[i] + w[1] * b1[i];
+    }
+    for (i, x) in bern(dc, t).into_iter().enumerate() {
+        out[o + db + 1 + i] += w[2] * x;
     }
 }
 

@@ -54,6 +54,8 @@ pub struct CapMap {
     pub degree: usize,
     /// Spoke-end twist of the G^1 weight.
     pub kappa: f64,
+    /// Spoke-end value `w(1)` of the G^1 weight.
+    pub w1: f64,
     /// The condition at the centre.
     pub centre: Centre,
     /// Consistency certificate: the largest residual of the cap conditions over a basis of all
@@ -163,9 +165,10 @@ impl CapMap {
         degree: usize,
         centre: Centre,
     ) -> Result<CapMap> {
-        if n < 3 {
+        if n < layout.min_sectors() {
             return Err(Error::InvalidArgument(format!(
-                "a G^1 cap needs at least 3 sectors, got {n}"
+                "a G^1 cap needs at least {} sectors, got {n}",
+                layout.min_sectors()
             )));
         }
         let conv = Conversion::new(n, layout, degrees);
@@ -190,9 +193,10 @@ impl CapMap {
             ));
         }
         let jet = centre == Centre::QuadraticJet;
-        let open = layout == Layout::OpenQuad;
+        let open = layout.is_open();
+        let ends = (conv.kappa, conv.w1);
         let nu = nx + if jet { 3 } else { 0 };
-        let cond = conditions(n, open, d, pm, conv.kappa, jet);
+        let cond = conditions(n, open, d, pm, ends, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
         // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
@@ -258,7 +262,7 @@ impl CapMap {
             map.set_row(x, &y.row(k));
         }
         // Certificate over the data satisfying the ring's compatibility conditions.
-        let g = compatibility(n, open, d, pm, conv.kappa);
+        let g = compatibility(n, open, d, pm, ends);
         let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
         let (_, admissible) = pinv_and_null(&gm)?;
         let resid =
@@ -273,6 +277,7 @@ impl CapMap {
             degrees,
             degree: d,
             kappa: conv.kappa,
+            w1: conv.w1,
             certificate,
             free_parameters,
             centre,
@@ -489,7 +494,7 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
             };
             // an open fan keeps the plane: the limit at a boundary vertex has no bounded
             // quadratic expansion to share (see the module documentation, "Open fans")
-            let jet = layout != Layout::OpenQuad
+            let jet = !layout.is_open()
                 && cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
             let c = if jet {
                 Centre::QuadraticJet

@@ -158,6 +158,27 @@
 //! to -162 and `|H|` up to 21 on the notched c-net at 4 rings, against -69 and 3.5 without it
 //! (the last ring: -4.4 and 0.8); on the L-shape (3 quads) -1.6e-2 against -2.1e-2.
 //!
+//! ## Open fans of triangles (Loop)
+//!
+//! At a boundary vertex of `n` triangles ([`Layout::OpenTriangle`], conventions in [`hole`])
+//! each fan triangle is one cap patch with a straight corner at the midpoint `M_s` of its outer
+//! edge (kites, which the closed fans use, would leave a half-triangle at each boundary spoke).
+//! The spokes end at the spoke ends `E_s` themselves, where the two fan triangles' cross
+//! derivatives are not opposite: the weight is `w(u) = 2 cos(pi / n) (1 - u)^2 + (2 w1 + kappa)
+//! u (1 - u) + w1 u^2` with `w1 = w(1) = -1/2` and `kappa = -w'(1) = 3/2`, both read off the
+//! lattice chart at `E_s` (the sum of the two pieces' cross derivatives there is `-(E_s - C) /
+//! 2`, the sum of their bilinear twists `-3/2 (E_s - C)`). With `w1 != 0` the relation's
+//! derivative at the spoke end holds the cap's own second derivative along the spoke, so it
+//! is a condition on the cap, not on the ring; the ring's compatibility at an inner spoke end is
+//! the relation itself there, `R(1) = 0`. Measured certificates (test
+//! `open_triangle_fans_are_certified`, data degrees (4, 3)): bi-4 only at `n = 1` (a corner)
+//! and `n = 3` (the regular boundary), **bi-5 at every `n = 1..12`** (<= 1.1e-12). At `M_s`
+//! the patch's parametrisation is singular (`du = -dv`), but its two outer layers along both
+//! sides make its value and derivatives up to third order there the ring's: the surface is G^1
+//! there with bounded curvature. One triangle at a corner vertex (Loop's corner rule keeps it
+//! and its two boundary edges' directions) is one sector whose spokes are `T0` and `T1`
+//! themselves: a quarter-turn of the chart, no inner spoke.
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart

@@ -140,7 +140,7 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
             size = size.max(norm(e));
             match layout {
                 Layout::Quad | Layout::OpenQuad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
-                Layout::Triangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
+                Layout::Triangle | Layout::OpenTriangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
             }
         })
         .collect();
@@ -148,7 +148,7 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     if hole.open {
         // least squares over the n + 1 spokes of the half-turn (cos and sin are not
         // orthogonal there): the 2 x 2 normal equations
-        let step = std::f64::consts::PI / n as f64;
+        let step = super::system::turn(n, true) / n as f64;
         let (mut cc, mut cs, mut ss) = (0.0, 0.0, 0.0);
         let mut r = [[0.0; 3]; 2];
         for (s, ts) in spokes.iter().enumerate() {

@@ -64,22 +64,23 @@ pub(crate) struct Conditions {
 /// sectors, `pi / n` across an open fan of `n` sectors at a boundary vertex (its `n + 1` spokes
 /// span a half-turn, spokes `0` and `n` along the boundary).
 pub(crate) fn spoke_angle(n: usize, open: bool) -> f64 {
-    let turn = if open {
-        std::f64::consts::PI
-    } else {
-        2.0 * std::f64::consts::PI
-    };
-    turn / n as f64
+    turn(n, open) / n as f64
+}
+
+/// The angle the spokes of a hole of `n` sectors span: a full turn around a closed hole, a
+/// half-turn across an open fan, a quarter-turn across an open fan of one sector (a corner:
+/// its two spokes are the two boundary curves' tangents, `T0` and `T1` themselves).
+pub(crate) fn turn(n: usize, open: bool) -> f64 {
+    match (open, n) {
+        (false, _) => 2.0 * std::f64::consts::PI,
+        (true, 1) => std::f64::consts::FRAC_PI_2,
+        (true, _) => std::f64::consts::PI,
+    }
 }
 
 /// The angle of spoke `k` from spoke 0: `k` times [`spoke_angle`] (computed as `turn k / n`).
 pub(crate) fn spoke_angle_at(n: usize, open: bool, k: usize) -> f64 {
-    let turn = if open {
-        std::f64::consts::PI
-    } else {
-        2.0 * std::f64::consts::PI
-    };
-    turn * k as f64 / n as f64
+    turn(n, open) * k as f64 / n as f64
 }
 
 /// The spokes that join two sectors (where C^0 and the G^1 relation are imposed): spoke `s`
@@ -89,11 +90,11 @@ pub(crate) fn inner_spokes(n: usize, open: bool) -> std::ops::Range<usize> {
     if open { 1..n } else { 0..n }
 }
 
-/// `w(u) = 2 c (1 - u)^2 + kappa u (1 - u)`, `c = cos(`[`spoke_angle`]`)`, in Bernstein form of
-/// degree 2.
-pub(crate) fn weight(n: usize, open: bool, kappa: f64) -> [f64; 3] {
+/// `w(u) = 2 c (1 - u)^2 + (2 w1 + kappa) u (1 - u) + w1 u^2`, `c = cos(`[`spoke_angle`]`)`,
+/// in Bernstein form of degree 2: `w(0) = 2 c`, `w(1) = w1`, `w'(1) = -kappa`.
+pub(crate) fn weight(n: usize, open: bool, kappa: f64, w1: f64) -> [f64; 3] {
     let c = spoke_angle(n, open).cos();
-    [2.0 * c, kappa / 2.0, 0.0]
+    [2.0 * c, w1 + kappa / 2.0, w1]
 }
 
 /// Binomial coefficient as f64.
@@ -103,8 +104,14 @@ pub(crate) fn binom(n: usize, k: usize) -> f64 {
 
 /// `w` of [`weight`] restricted to the `k`-th of `m` equal parts of the spoke, as a quadratic
 /// in the part's own parameter (Bernstein form, by the blossom); `m = 1` is [`weight`] itself.
-pub(crate) fn weight_part(n: usize, open: bool, kappa: f64, m: usize, k: usize) -> [f64; 3] {
-    let w = weight(n, open, kappa);
+pub(crate) fn weight_part(
+    n: usize,
+    open: bool,
+    (kappa, w1): (f64, f64),
+    m: usize,
+    k: usize,
+) -> [f64; 3] {
+    let w = weight(n, open, kappa, w1);
     if m == 1 {
         return w;
     }
@@ -157,7 +164,8 @@ pub(crate) fn spoke_rows(d: usize, w: [f64; 3], ps: usize, pq: usize) -> Vec<Row
 }
 
 /// The conditions of the cap of valence `n` (`open`: an open fan of `n` sectors), degree `d`,
-/// `m x m` pieces per sector, spoke-end twist `kappa`; with `jet` also the quadratic-jet
+/// `m x m` pieces per sector, spoke-end twist `kappa` and value `w1` ([`weight`]); with `jet`
+/// also the quadratic-jet
 /// conditions at the centre over three extra unknowns ([`jet_rows`]). Split sectors (`m > 1`)
 /// add C^`r` joins between their pieces ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1`
 /// gives the one-patch rows unchanged.
@@ -166,7 +174,7 @@ pub(crate) fn conditions(
     open: bool,
     d: usize,
     m: usize,
-    kappa: f64,
+    (kappa, w1): (f64, f64),
     jet: bool,
 ) -> Conditions {
     let qd = QuadData { d, m };
@@ -224,7 +232,7 @@ pub(crate) fn conditions(
                 e.push(vec![(cidx(d, ps, i, 0), 1.0), (cidx(d, pq, 0, i), -1.0)]);
                 f.push(Vec::new());
             }
-            for r in spoke_rows(d, weight_part(n, open, kappa, m, k), ps, pq) {
+            for r in spoke_rows(d, weight_part(n, open, (kappa, w1), m, k), ps, pq) {
                 e.push(r);
                 f.push(Vec::new());
             }
@@ -237,7 +245,7 @@ pub(crate) fn conditions(
         }
     }
     if jet {
-        let (je, jf) = jet_rows(n, open, d, m, kappa);
+        let (je, jf) = jet_rows(n, open, d, m, (kappa, w1));
         e.extend(je);
         f.extend(jf);
     }
@@ -306,9 +314,11 @@ pub(crate) fn inner_rows(n: usize, d: usize, m: usize, r: usize) -> Vec<Row> {
 
 /// The ring's compatibility conditions on canonical data, `G q = 0`: the corner block of each
 /// sector is defined consistently by both segments, and at each spoke end the two sectors agree
-/// on the end point and the spoke tangent, their boundary tangents are opposite (the ring's
-/// boundary is C^1 there) and their cross-derivative twists satisfy the spoke relation's
-/// derivative at `u = 1` (see [`super`]); for split sectors, the pieces of each side join
+/// on the end point and the spoke tangent, their boundary tangents satisfy the spoke relation
+/// at `u = 1` (opposite where `w1 = 0`: the ring's boundary is C^1 there) and, where `w1 = 0`,
+/// their cross-derivative twists satisfy the relation's derivative at `u = 1` (see [`super`];
+/// where `w1 != 0` that derivative also holds the cap's own `d_uu P_s(1, 0)`, so it is a
+/// condition on the cap, not on the data); for split sectors, the pieces of each side join
 /// C^[`INNER_SMOOTHNESS`] in boundary and cross derivative. Each row is labelled with the sector
 /// or spoke. An `open` fan has no conditions at the ends of its boundary spokes `0` and `n`
 /// (one sector each).
@@ -317,7 +327,7 @@ pub(crate) fn compatibility(
     open: bool,
     d: usize,
     m: usize,
-    kappa: f64,
+    (kappa, w1): (f64, f64),
 ) -> Vec<(String, Row)> {
     let qd = QuadData { d, m };
     let df = d as f64;
@@ -367,25 +377,29 @@ pub(crate) fn compatibility(
                     (qd.cb(q, 0, 0), -1.0 / df),
                 ],
             ));
-            g.push((
-                end.clone(),
-                vec![
-                    (qd.a(s, 0, 1), 1.0),
-                    (qd.a(s, 0, 0), -1.0),
-                    (qd.b(q, 0, 1), 1.0),
-                    (qd.b(q, 0, 0), -1.0),
-                ],
-            ));
-            // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
-            g.push((
-                end,
-                vec![
-                    (qd.ca(s, 0, 1), -df),
-                    (qd.ca(s, 0, 0), df - kappa),
-                    (qd.cb(q, 0, 1), -df),
-                    (qd.cb(q, 0, 0), df),
-                ],
-            ));
+            // R(1) / d = (a_1 - a_0) + (b_1 - b_0) + w1 cross_a(0) / d = 0
+            let mut r1 = vec![
+                (qd.a(s, 0, 1), 1.0),
+                (qd.a(s, 0, 0), -1.0),
+                (qd.b(q, 0, 1), 1.0),
+                (qd.b(q, 0, 0), -1.0),
+            ];
+            if w1 != 0.0 {
+                r1.push((qd.ca(s, 0, 0), w1 / df));
+            }
+            g.push((end.clone(), r1));
+            if w1 == 0.0 {
+                // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
+                g.push((
+                    end,
+                    vec![
+                        (qd.ca(s, 0, 1), -df),
+                        (qd.ca(s, 0, 0), df - kappa),
+                        (qd.cb(q, 0, 1), -df),
+                        (qd.cb(q, 0, 0), df),
+                    ],
+                ));
+            }
         }
         // knots between the pieces of each side: boundary and cross C^r
         for k in 0..m.saturating_sub(1) {
@@ -484,12 +498,13 @@ pub(crate) fn jet_rows(
     open: bool,
     d: usize,
     m: usize,
-    kappa: f64,
+    (kappa, w1): (f64, f64),
 ) -> (Vec<Row>, Vec<Row>) {
     let c = spoke_angle(n, open).cos();
     // the centre piece of a split sector sees the sector's second derivatives times 1 / m^2
     let sc = 1.0 / (m * m) as f64;
-    let k = (-4.0 * c + kappa) / (2.0 * (1.0 + c)) * sc;
+    // w'(0) = 2 (w1 + kappa / 2) - 4 c
+    let k = (-4.0 * c + kappa + 2.0 * w1) / (2.0 * (1.0 + c)) * sc;
     let df = d as f64;
     let h0 = n * m * m * (d + 1) * (d + 1);
     let th = |s: usize| spoke_angle_at(n, open, s);

@@ -32,7 +32,7 @@ pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &
 /// A random hole (an open fan when `open`) whose data satisfy the compatibility conditions.
 fn random_hole(n: usize, open: bool, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
     let qd = QuadData { d, m };
-    let g = compatibility(n, open, d, m, kappa);
+    let g = compatibility(n, open, d, m, (kappa, 0.0));
     let gm = dense(
         &g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(),
         qd.len(n),
@@ -109,7 +109,7 @@ fn random_compatible_data_give_g1_caps() {
             let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
             let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
             for s in 0..n {
-                let (w, q) = (super::system::weight(n, false, 0.0), (s + n - 1) % n);
+                let (w, q) = (super::system::weight(n, false, 0.0, 0.0), (s + n - 1) % n);
                 for r in super::system::spoke_rows(d, w, s, q) {
                     let v = r
                         .iter()
@@ -245,7 +245,7 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
         let x: Vec<Point> = cap.iter().flat_map(|b| b.cps.iter().copied()).collect();
         let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
         for s in 1..n {
-            let w = super::system::weight(n, true, 0.0);
+            let w = super::system::weight(n, true, 0.0, 0.0);
             for r in super::system::spoke_rows(d, w, s, s - 1) {
                 let v = r
                     .iter()
@@ -270,4 +270,30 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
         assert!(norm(sub(got, t)) < 1e-10 * size, "n {n}");
     }
     eprintln!("open fans, lowest degree plane/jet: {}", table.join(" "));
+}
+
+/// Open fans of triangles (Loop at boundary vertices): the lowest certified degree with the
+/// tangent plane is bi-5 at every `n` but the corner (`n = 1`, no inner spoke) and the
+/// regular boundary (`n = 3`), where bi-4 is; the real rings of
+/// `tests/loop_boundary_caps.rs` check the caps' joins.
+#[test]
+fn open_triangle_fans_are_certified() {
+    let deg = Degrees {
+        boundary: 4,
+        cross: 3,
+    };
+    let mut table = Vec::new();
+    for n in 1..=12 {
+        let d =
+            lowest_certified_degree(n, Layout::OpenTriangle, deg, Centre::TangentPlane).unwrap();
+        let m = cap_map(n, Layout::OpenTriangle, deg, d, Centre::TangentPlane).unwrap();
+        table.push(format!("{n}: bi-{d} ({:.1e})", m.certificate));
+        assert_eq!(d, if n == 1 || n == 3 { 4 } else { 5 }, "n {n}");
+        assert_eq!((m.kappa, m.w1), (1.5, -0.5));
+        if d == 5 {
+            let m4 = cap_map(n, Layout::OpenTriangle, deg, 4, Centre::TangentPlane).unwrap();
+            assert!(m4.certificate > 1e-2, "n {n}: bi-4 {:e}", m4.certificate);
+        }
+    }
+    eprintln!("open triangle fans: {}", table.join(", "));
 }

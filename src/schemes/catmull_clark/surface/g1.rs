@@ -205,7 +205,7 @@ fn hole_sectors(
     use crate::schemes::catmull_clark::crease::adaptive::{is_plain_boundary, is_special};
     let m = &level.mesh;
     let (f0, _) = faces[0];
-    let (x, n, open) = fan_centre(m, &level.info, element, f0)?;
+    let (x, n, open) = fan_centre(m, &level.info, element, f0, 3)?;
     let xu = x as usize;
     let special = if open {
         !is_plain_boundary(level, xu)

@@ -115,7 +115,7 @@ fn hole_of(
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
-    let (x, n, open) = fan_centre(m, &level.info, element, f0)?;
+    let (x, n, open) = fan_centre(m, &level.info, element, f0, 3)?;
     let xu = x as usize;
     if cells.len() != n {
         return Err(NoCap::Never);
