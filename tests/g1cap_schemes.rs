@@ -573,20 +573,19 @@ fn loop_caps() {
     }
 }
 
-/// Loop's extraordinary boundary vertices keep the C^0 Hermite fill (no G^1 cap, no CapStep),
-/// and `--no-fill` leaves every hole open.
+/// Loop's extraordinary boundary vertices get open-fan caps (`tests/loop_boundary_caps.rs`
+/// measures them), and `--no-fill` leaves every hole open.
 #[test]
-fn loop_boundary_holes_keep_the_fill() {
+fn loop_boundary_holes_get_open_caps_and_no_fill_leaves_them_open() {
     let net = gallery::tri_grid();
     let c = build("loop", &net, 2);
-    assert!(c.caps.is_empty(), "tri-grid: {} caps", c.caps.len());
-    assert!(
-        c.provenance
-            .iter()
-            .any(|p| matches!(p, Provenance::Cap { .. })),
-        "tri-grid: the fill"
-    );
-    for net in [gallery::icosahedron(), bipyramid(7)] {
+    let irregular = (0..net.num_vertices())
+        .filter(|&v| net.is_boundary_vertex(v) && net.vertex_faces(v).len() != 3)
+        .count();
+    assert_eq!(irregular, 4, "tri-grid's corners");
+    assert_eq!(c.caps.len(), irregular, "tri-grid: caps");
+    assert!(c.caps.iter().all(|s| s.hole.open), "tri-grid: open fans");
+    for net in [gallery::icosahedron(), bipyramid(7), gallery::tri_grid()] {
         let open = complex(
             "loop",
             &net,

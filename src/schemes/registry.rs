@@ -179,7 +179,7 @@ impl Registry {
                     About {
                         family: "classic triangle scheme [Loo87], Loop's original beta",
                         input: "triangle meshes; with --levels OpenSubdiv's boundary options (default edge-and-corner: corners stay put), sharp features and face-varying UVs (--fvar, default all)",
-                        patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; G^1 cap of n kites (bi-4/bi-5, C^1 to the last ring; Hermite fill at boundary vertices)",
+                        patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; G^1 cap of n kites (bi-4/bi-5, C^1 to the last ring; open triangle fans at boundary vertices)",
                         smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
                         valences: "all",
                         status: "available",

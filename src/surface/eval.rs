@@ -28,7 +28,10 @@
 //! triangles: a point of a fan triangle is mapped to the kite that holds it by inverting the
 //! kite's bilinear map in the triangle's lattice chart ([`kite`]), and derivatives go through
 //! the inverse function rule (the map is not affine there); `patch` names that kite and
-//! `patch_uv` its parameters. Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
+//! `patch_uv` its parameters. Loop's cap at a boundary vertex covers each fan triangle with one
+//! patch whose bilinear map has a straight corner at the outer edge's midpoint
+//! ([`fan_piece`], likewise inverted; at that one point the derivatives are one-sided limits
+//! taken just inside). Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
 //! v), v)`, are evaluated as the triangles `T` they represent (barycentric derivatives, defined at
 //! the collapsed corner too); their `patch_uv` is the stored patch's `(u, v)`. Non-box's
 //! regular cells are covered by the four cubic triangles of their criss-cross (the cell split
@@ -45,6 +48,7 @@
 //! in face parameters, needs about `k` rings), up to [`MAX_EXACT_RINGS`].
 
 mod crisscross;
+mod fan_piece;
 mod index;
 mod kite;
 mod triangle;
@@ -60,7 +64,7 @@ use crate::schemes::descriptor::Capabilities;
 use crate::schemes::{Spec, registry};
 use index::{CellTree, Leaf};
 use serde::Serialize;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Rings [`evaluate_limit`] computes at most. Points nearer an extraordinary element than about
 /// `2^-MAX_EXACT_RINGS` of their face are evaluated on the cap inside that ring, which differs
@@ -121,6 +125,9 @@ pub struct Surface {
     /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
     /// covers the other half of kite `s`'s fan triangle ([`kite`]).
     kites: HashMap<usize, usize>,
+    /// The patches of G^1 caps of open triangle fans (Loop's at boundary vertices), each over
+    /// its fan triangle whole ([`fan_piece`]).
+    fan_pieces: HashSet<usize>,
 }
 
 /// The error for a scheme whose patches do not carry face domains.
@@ -212,11 +219,16 @@ impl Surface {
         }
         let cells = CellTree::new(&sides, &pole_triangles, &complex);
         let mut kites = HashMap::new();
+        let mut fan_pieces = HashSet::new();
         for step in &complex.caps {
             if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
                 let (first, n) = (step.first as usize, step.count as usize);
                 for s in 0..n {
-                    kites.insert(first + s, first + (s + n - 1) % n);
+                    if step.hole.open {
+                        fan_pieces.insert(first + s);
+                    } else {
+                        kites.insert(first + s, first + (s + n - 1) % n);
+                    }
                 }
             }
         }
@@ -228,6 +240,7 @@ impl Surface {
             pole_triangles,
             cells,
             kites,
+            fan_pieces,
         }
     }
 
@@ -374,6 +387,11 @@ impl Surface {
                 let dp = patch.derivatives(uv[0], uv[1]);
                 let n = patch.normal_from(uv[0], uv[1], &dp);
                 (kite::to_chart(&dp, uv, neighbour), n, uv)
+            }
+            Shape::Triangle if self.fan_pieces.contains(&index) => {
+                let uv = fan_piece::locate(q);
+                let n = patch.normal_from(uv[0], uv[1], &patch.derivatives(uv[0], uv[1]));
+                (fan_piece::chart_derivatives(patch, uv), n, uv)
             }
             Shape::Triangle => {
                 let dp = triangle::derivatives(patch, q)?;

@@ -37,7 +37,7 @@ impl Descriptor for LoopDescriptor {
         })))
     }
 
-    /// Quartic box-spline triangles, rings, G^1 caps of kites (Hermite fill at boundary holes),
+    /// Quartic box-spline triangles, rings, G^1 caps of kites (open triangle fans at boundary vertices),
     /// honouring the net's sharp features under OpenSubdiv's options.
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let subd = spec.params.subd;

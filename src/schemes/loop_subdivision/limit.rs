@@ -17,6 +17,44 @@ pub(crate) fn tangent_mask(n: usize, j: usize) -> impl Iterator<Item = (f64, f64
     (0..n).map(move |i| (cos_2pi(i - j, n), sin_2pi(i - j, n)))
 }
 
+/// The rows of [`Loop::limit_tangent_stencils`] at vertex `v` (documented there), term by
+/// term: `add(k, p, w)` adds weight `w` of point `p` to tangent `k` (0 or 1). The one source
+/// of the masks for the stencil tables and for the tangent planes of the G^1 caps.
+pub(crate) fn tangent_rows(mesh: &PolyMesh, v: usize, mut add: impl FnMut(usize, u32, f64)) {
+    let vi = v as u32;
+    if !mesh.is_boundary_vertex(v) {
+        let n = mesh.outgoing(v).count();
+        for (h, (c, s)) in mesh.outgoing(v).zip(tangent_mask(n, 0)) {
+            let p = mesh.he_to(h);
+            add(0, p, c);
+            add(1, p, s);
+        }
+    } else if mesh.is_corner(v) {
+        let (p0, p1) = mesh.boundary_neighbors(v);
+        add(0, p0, 1.0);
+        add(0, vi, -1.0);
+        add(1, p1, 1.0);
+        add(1, vi, -1.0);
+    } else {
+        let (p0, pk) = mesh.boundary_neighbors(v);
+        add(0, p0, 1.0);
+        add(0, pk, -1.0);
+        let k = mesh.outgoing(v).count() as i64;
+        let sin_t = sin_2pi(1, 2 * k);
+        let s: f64 = (1..k).map(|i| sin_2pi(i, 2 * k)).sum();
+        let l = 0.375 + 0.25 * cos_2pi(1, 2 * k);
+        let b = ((0.75 - l) * sin_t - 0.375 * s) / (8.0 * (0.75 - l) * (l - 0.5) + 1.0);
+        let a = 8.0 * (l - 0.5) * b - sin_t;
+        add(1, vi, a);
+        add(1, p0, b);
+        add(1, pk, b);
+        // The interior neighbours p_1 .. p_{k-1} end the outgoing half-edges 1 .. k-1.
+        for (i, h) in mesh.outgoing(v).enumerate().skip(1) {
+            add(1, mesh.he_to(h), sin_2pi(i as i64, 2 * k));
+        }
+    }
+}
+
 impl Loop {
     /// Loop's weight `beta` of each edge neighbour of an interior vertex of valence `n >= 3`:
     /// `(5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n`; `1/16` for the regular `n = 6`.
@@ -71,38 +109,11 @@ impl Loop {
         let mut t2 = StencilTable::with_capacity(nv, nv, 7);
         let (mut r1, mut r2) = (RowBuf::default(), RowBuf::default());
         for v in 0..nv {
-            let vi = v as u32;
-            if !mesh.is_boundary_vertex(v) {
-                let n = mesh.outgoing(v).count();
-                for (h, (c, s)) in mesh.outgoing(v).zip(tangent_mask(n, 0)) {
-                    let p = mesh.he_to(h);
-                    r1.add(p, c);
-                    r2.add(p, s);
-                }
-            } else if mesh.is_corner(v) {
-                let (p0, p1) = mesh.boundary_neighbors(v);
-                r1.add(p0, 1.0);
-                r1.add(vi, -1.0);
-                r2.add(p1, 1.0);
-                r2.add(vi, -1.0);
-            } else {
-                let (p0, pk) = mesh.boundary_neighbors(v);
-                r1.add(p0, 1.0);
-                r1.add(pk, -1.0);
-                let k = mesh.outgoing(v).count() as i64;
-                let sin_t = sin_2pi(1, 2 * k);
-                let s: f64 = (1..k).map(|i| sin_2pi(i, 2 * k)).sum();
-                let l = 0.375 + 0.25 * cos_2pi(1, 2 * k);
-                let b = ((0.75 - l) * sin_t - 0.375 * s) / (8.0 * (0.75 - l) * (l - 0.5) + 1.0);
-                let a = 8.0 * (l - 0.5) * b - sin_t;
-                r2.add(vi, a);
-                r2.add(p0, b);
-                r2.add(pk, b);
-                // The interior neighbours p_1 .. p_{k-1} end the outgoing half-edges 1 .. k-1.
-                for (i, h) in mesh.outgoing(v).enumerate().skip(1) {
-                    r2.add(mesh.he_to(h), sin_2pi(i as i64, 2 * k));
-                }
-            }
+            tangent_rows(
+                mesh,
+                v,
+                |k, p, w| if k == 0 { r1.add(p, w) } else { r2.add(p, w) },
+            );
             r1.flush_into(&mut t1);
             r2.flush_into(&mut t2);
         }

@@ -64,6 +64,13 @@ pub(super) fn to_chart(d: &Derivatives, uv: [f64; 2], neighbour: bool) -> Deriva
     } else {
         ([[0.5, -0.5], [0.5 - v / 2.0, 1.0 - u / 2.0]], [0.0, -0.5])
     };
+    pull_back(d, j, twist)
+}
+
+/// The derivatives with respect to a chart of a patch whose derivatives are `d`, the patch's
+/// parameters mapped to the chart by a bilinear map with Jacobian `j` (`j[a][b] = d chart_a /
+/// d q_b`) and twist `twist` (`d^2 chart / du dv`) at that point: the inverse function rule.
+pub(super) fn pull_back(d: &Derivatives, j: [[f64; 2]; 2], twist: [f64; 2]) -> Derivatives {
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     // inv[a][b] = d q_a / d chart_b
     let inv = [
