@@ -4,8 +4,9 @@
 
 use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
+use crate::host::adaptive::RingTargets;
 use crate::surface::ComplexOptions;
-use crate::surface::eval::{Surface, limit_surface};
+use crate::surface::eval::{Surface, limit_surface_from, quad_corner_targets};
 use std::path::PathBuf;
 use text::parse_point;
 
@@ -123,7 +124,17 @@ pub fn run(a: Args) -> Result<()> {
             s
         }
         None => {
-            let (s, rings) = limit_surface(&pts, &mut |k| build(&mesh, k, true))?;
+            // Catmull-Clark refines each extraordinary vertex as far as its points need,
+            // estimated from their distances to the quads' corners (and checked)
+            let first = if spec.id == crate::schemes::registry::ids::CATMULL_CLARK {
+                quad_corner_targets(&mesh, &pts)
+            } else {
+                RingTargets {
+                    base: 2,
+                    ..RingTargets::default()
+                }
+            };
+            let (s, rings) = limit_surface_from(&pts, first, &mut |k| build(&mesh, k, true))?;
             eprintln!("limit surface: {rings} rings");
             s
         }

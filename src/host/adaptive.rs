@@ -216,6 +216,65 @@ pub fn g1_cap_elements(
     left
 }
 
+/// Per-element ring counts of one construction: the limit surface's evaluation
+/// ([`crate::surface::eval::limit_surface`]) refines each extraordinary element only as far as
+/// its own points need. Rules that honour them (Catmull-Clark without a scheme's caps) close
+/// an element's hole from the level of its count on (its rings are the same patches as with
+/// that many rings for all); the others build `max` rings everywhere. Passed down through
+/// [`with_ring_targets`] (the construction's options are shared by every scheme and caller).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RingTargets {
+    /// Rings of the elements not in `per`.
+    pub base: usize,
+    /// Rings per element.
+    pub per: HashMap<Element, usize>,
+}
+
+impl RingTargets {
+    /// The rings of `element` (`base` for none or an unlisted one).
+    pub fn of(&self, element: Option<Element>) -> usize {
+        element
+            .and_then(|e| self.per.get(&e).copied())
+            .unwrap_or(self.base)
+    }
+
+    /// The most rings of any element.
+    pub fn max(&self) -> usize {
+        self.per.values().copied().fold(self.base, usize::max)
+    }
+}
+
+thread_local! {
+    static RING_TARGETS: std::cell::RefCell<Option<(std::sync::Arc<RingTargets>, bool)>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` (a construction on this thread) with the per-element ring counts `targets`; returns
+/// its result and whether the construction honoured them ([`honour_ring_targets`]).
+pub fn with_ring_targets<T>(
+    targets: std::sync::Arc<RingTargets>,
+    f: impl FnOnce() -> T,
+) -> (T, bool) {
+    let old = RING_TARGETS.with(|t| t.replace(Some((targets, false))));
+    let out = f();
+    let honoured = RING_TARGETS
+        .with(|t| std::mem::replace(&mut *t.borrow_mut(), old))
+        .is_some_and(|(_, h)| h);
+    (out, honoured)
+}
+
+/// The per-element ring counts of the construction running on this thread, if any, noted as
+/// honoured: rules that close each element's hole from its own count on call this.
+pub fn honour_ring_targets() -> Option<std::sync::Arc<RingTargets>> {
+    RING_TARGETS.with(|t| {
+        let mut t = t.borrow_mut();
+        t.as_mut().map(|(targets, honoured)| {
+            *honoured = true;
+            targets.clone()
+        })
+    })
+}
+
 /// Levels computed beyond the requested rings, at most, so that holes that still touch
 /// separate and get their G^1 caps (Catmull-Clark, the dual bi-2 schemes, non-box).
 pub const MAX_EXTRA_CAP_LEVELS: usize = 2;

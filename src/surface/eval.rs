@@ -51,6 +51,8 @@ mod crisscross;
 mod fan_piece;
 mod index;
 mod kite;
+mod limit;
+pub use limit::{evaluate_limit, limit_surface, limit_surface_from, quad_corner_targets};
 mod triangle;
 
 use crate::bezier::Derivatives;
@@ -488,9 +490,8 @@ impl Surface {
         points
             .par_iter()
             .enumerate()
-            .map(|(i, &(f, u, v))| self.locate(f, u, v).map(|_| 0).map_err(|e| (i, e)))
-            .reduce(|| Ok(0), first_error_or_max)
-            .err()
+            .filter_map(|(i, &(f, u, v))| self.locate(f, u, v).err().map(|e| (i, e)))
+            .min_by_key(|(i, _)| *i)
     }
 
     /// Extra rings a point of a cap or fill cell needs to lie on ring patches: `k` where its
@@ -565,70 +566,5 @@ fn chain(d: &Derivatives, inv: [[f64; 2]; 2]) -> Derivatives {
         duu: d2(0, 0),
         duv: d2(0, 1),
         dvv: d2(1, 1),
-    }
-}
-
-/// Evaluations of the scheme's limit surface at `points` (`(face, u, v)`), and the rings
-/// used ([`limit_surface`]). At an extraordinary element itself the cap's corner is the
-/// scheme's limit point with the tangent plane of its limit masks (every cap and fill is built
-/// so); its derivatives and curvatures there are the cap's (the limit surface's
-/// parametrisation is singular there). `build(rings)` builds the surface (callers add their
-/// size checks and progress there).
-///
-/// # Errors
-/// Those of `build` and of [`Surface::evaluate`], for the first point that fails.
-pub fn evaluate_limit(
-    points: &[(u32, f64, f64)],
-    build: &mut dyn FnMut(usize) -> Result<Surface>,
-) -> Result<(Vec<Evaluation>, usize)> {
-    let (s, rings) = limit_surface(points, build)?;
-    let mut out = vec![Evaluation::default(); points.len()];
-    s.evaluate_into(points, &mut out).map_err(|(_, e)| e)?;
-    Ok((out, rings))
-}
-
-/// The surface on which [`evaluate_limit`] evaluates `points`, and its rings: starting from 2
-/// rings, the complex is rebuilt with as many rings as the points that fell on cap or fill
-/// patches need ([`Surface`]'s cells tell how near the extraordinary element they are), until
-/// none needs more or [`MAX_EXACT_RINGS`] is reached. Every point is located (in parallel),
-/// none evaluated: callers that stream many evaluations evaluate them afterwards.
-///
-/// # Errors
-/// Those of `build`, and [`Surface::evaluate`]'s for the first point (by index) that lies
-/// outside its face's domain or on no patch.
-pub fn limit_surface(
-    points: &[(u32, f64, f64)],
-    build: &mut dyn FnMut(usize) -> Result<Surface>,
-) -> Result<(Surface, usize)> {
-    use rayon::prelude::*;
-    let mut rings = 2;
-    loop {
-        let s = build(rings)?;
-        let need = points
-            .par_iter()
-            .enumerate()
-            .map(|(i, &(f, u, v))| match s.locate(f, u, v) {
-                Ok((at, cell, _)) => Ok(rings + s.rings_needed(at, cell)),
-                Err(e) => Err((i, e)),
-            })
-            .reduce(|| Ok(rings), first_error_or_max)
-            .map_err(|(_, e)| e)?;
-        let next = need.min(MAX_EXACT_RINGS);
-        if next <= rings {
-            return Ok((s, rings));
-        }
-        rings = next;
-    }
-}
-
-/// The error of the earlier point, else the larger count.
-fn first_error_or_max(
-    a: std::result::Result<usize, (usize, Error)>,
-    b: std::result::Result<usize, (usize, Error)>,
-) -> std::result::Result<usize, (usize, Error)> {
-    match (a, b) {
-        (Ok(x), Ok(y)) => Ok(x.max(y)),
-        (Err(x), Err(y)) => Err(if x.0 <= y.0 { x } else { y }),
-        (Err(x), Ok(_)) | (Ok(_), Err(x)) => Err(x),
     }
 }

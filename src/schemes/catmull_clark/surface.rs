@@ -215,6 +215,14 @@ impl AdaptiveRules for CcRules<'_> {
             Some(b) => apply_caps(level, marked, b, l as u32, out)?,
             None => marked,
         };
+        // per-element ring counts (the limit surface's evaluation): plain Catmull-Clark only
+        if self.caps.is_none()
+            && self.track.is_none()
+            && self.opts.fill
+            && let Some(t) = adaptive::honour_ring_targets()
+        {
+            return Ok(g1::g1_caps_by_targets(level, marked, l, &t, out));
+        }
         if self.opts.fill && l >= self.opts.rings {
             let before = out.caps.len();
             let left = g1::g1_caps(level, &marked, out);

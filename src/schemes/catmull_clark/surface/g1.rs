@@ -234,6 +234,24 @@ fn hole_sectors(
     Ok((xu, quads, tags, open))
 }
 
+/// [`g1_caps`] of the marked cells whose elements' ring counts `targets` are reached at level
+/// `l` (the limit surface's evaluation); returns the cells left, those of the other elements
+/// after them (refined further).
+pub(super) fn g1_caps_by_targets(
+    level: &Level,
+    marked: Vec<(u32, Tag)>,
+    l: usize,
+    targets: &crate::host::adaptive::RingTargets,
+    out: &mut PatchComplex,
+) -> Vec<(u32, Tag)> {
+    let (now, later): (Vec<_>, Vec<_>) = marked
+        .into_iter()
+        .partition(|(_, tag)| l >= targets.of(tag.element));
+    let mut left = g1_caps(level, &now, out);
+    left.extend(later);
+    left
+}
+
 /// Whether some marked element would get its G^1 cap after more levels (its faces still touch
 /// another element's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
