@@ -250,7 +250,10 @@ thread_local! {
 }
 
 /// Runs `f` (a construction on this thread) with the per-element ring counts `targets`; returns
-/// its result and whether the construction honoured them ([`honour_ring_targets`]).
+/// its result and whether the construction honoured them ([`honour_ring_targets`]). The counts
+/// are this thread's while `f` runs: call it outside rayon jobs (as the CLI and the tests do),
+/// since a worker thread that steals another construction while it waits inside `f` would
+/// hand that one the counts too.
 pub fn with_ring_targets<T>(
     targets: std::sync::Arc<RingTargets>,
     f: impl FnOnce() -> T,
