@@ -249,11 +249,9 @@ thread_local! {
         const { std::cell::RefCell::new(None) };
 }
 
-/// Runs `f` (a construction on this thread) with the per-element ring counts `targets`; returns
-/// its result and whether the construction honoured them ([`honour_ring_targets`]). The counts
-/// are this thread's while `f` runs: call it outside rayon jobs (as the CLI and the tests do),
-/// since a worker thread that steals another construction while it waits inside `f` would
-/// hand that one the counts too.
+/// Runs `f` (a construction on this thread) with the per-element ring counts `targets`, and
+/// says whether it honoured them ([`honour_ring_targets`]). Call it outside rayon jobs (as the
+/// CLI and the tests do): a worker stealing another construction inside `f` would pass it on.
 pub fn with_ring_targets<T>(
     targets: std::sync::Arc<RingTargets>,
     f: impl FnOnce() -> T,
