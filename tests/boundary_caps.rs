@@ -12,8 +12,7 @@
 //! patches and is continuous; the patch table is tracked and re-applies to moved points.
 
 use fairsub::analysis::continuity::check;
-use fairsub::bezier::complex::PatchComplex;
-use fairsub::geom::{cross, dist, norm, normalize, sub};
+use fairsub::geom::{dist, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::registry;
 use fairsub::surface::table::{PatchTable, probe};
@@ -24,6 +23,9 @@ use std::path::Path;
 #[allow(dead_code)]
 mod support;
 use support::{irregular_boundary_nets, via_obj, written_from};
+#[path = "eval/open_caps.rs"]
+mod open_caps;
+use open_caps::{centre_and_normal, open_caps, table_reapplies};
 #[path = "eval/faces.rs"]
 #[allow(dead_code)]
 mod faces;
@@ -73,10 +75,6 @@ fn nets() -> Vec<(String, PolyMesh, usize)> {
         .collect()
 }
 
-fn open_caps(c: &PatchComplex) -> usize {
-    c.caps.iter().filter(|s| s.hole.open).count()
-}
-
 #[test]
 fn every_join_is_g1_and_the_holes_get_open_caps() {
     for (name, mesh, want) in nets() {
@@ -111,19 +109,6 @@ fn every_join_is_g1_and_the_holes_get_open_caps() {
             }
         }
     }
-}
-
-/// The centre and unit normal there of the open cap nearest to `at`.
-fn centre_and_normal(c: &PatchComplex, at: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let step = c
-        .caps
-        .iter()
-        .filter(|s| s.hole.open)
-        .min_by(|a, b| dist(a.hole.centre, at).total_cmp(&dist(b.hole.centre, at)))
-        .expect("an open cap");
-    let p = &c.patches[step.first as usize];
-    let d = p.derivatives(0.0, 0.0);
-    (p.eval(0.0, 0.0), normalize(cross(d.du, d.dv)))
 }
 
 #[test]
@@ -232,24 +217,7 @@ fn patch_tables_track_open_caps_and_reapply() {
 /// through them like the closed ones.
 #[test]
 fn nonbox_tables_reapply_with_open_caps() {
-    let spec = registry().lookup("nonbox").expect("registered");
     for (name, mesh, want) in nets() {
-        let what = format!("{name} under nonbox");
-        let opts = ComplexOptions {
-            rings: 2,
-            fill: true,
-        };
-        let table = PatchTable::build(&spec, &mesh, opts).expect(&what);
-        let open = table.caps().iter().filter(|c| c.step.hole.open).count();
-        assert_eq!(open, want, "{what}: open caps in the table");
-        let s = probe::net_size(mesh.positions());
-        let moved = probe::moved_points(mesh.positions(), 0.05 * s, 9);
-        let mut m = mesh.clone();
-        m.set_positions(moved.clone());
-        let truth = fairsub::surface::build(&spec, &m, opts, &mut |_| {})
-            .expect(&what)
-            .complex;
-        let (d, _) = probe::max_deviation(&table.apply(&moved).expect(&what), &truth);
-        assert!(d <= 1e-12 * s, "{what}: moved points {d:.3e}");
+        table_reapplies("nonbox", &name, &mesh, want, 9);
     }
 }

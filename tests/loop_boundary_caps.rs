@@ -11,18 +11,18 @@
 //! the written patches and is continuous; the probed patch table re-applies to moved points.
 
 use fairsub::analysis::continuity::check;
-use fairsub::bezier::complex::PatchComplex;
-use fairsub::geom::{cross, dist, dot, norm, normalize, sub};
+use fairsub::geom::{dist, dot, norm, sub};
 use fairsub::mesh::PolyMesh;
 use fairsub::mesh::nets::{loop_net, tri_grid};
-use fairsub::schemes::registry::registry;
-use fairsub::surface::table::{PatchTable, probe};
 use fairsub::surface::{ComplexOptions, complex};
 
 #[path = "eval/support.rs"]
 #[allow(dead_code)]
 mod support;
 use support::{Lcg, irregular_boundary_nets, via_obj, written_from};
+#[path = "eval/open_caps.rs"]
+mod open_caps;
+use open_caps::{centre_and_normal, open_caps, table_reapplies};
 #[path = "eval/faces.rs"]
 #[allow(dead_code)]
 mod faces;
@@ -96,10 +96,6 @@ fn nets() -> Vec<(String, PolyMesh)> {
     out
 }
 
-fn open_caps(c: &PatchComplex) -> usize {
-    c.caps.iter().filter(|s| s.hole.open).count()
-}
-
 #[test]
 fn every_join_is_g1_and_every_irregular_boundary_vertex_is_capped() {
     for (name, mesh) in nets() {
@@ -121,19 +117,6 @@ fn every_join_is_g1_and_every_irregular_boundary_vertex_is_capped() {
             }
         }
     }
-}
-
-/// The centre and unit normal there of the open cap nearest to `at`.
-fn centre_and_normal(c: &PatchComplex, at: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let step = c
-        .caps
-        .iter()
-        .filter(|s| s.hole.open)
-        .min_by(|a, b| dist(a.hole.centre, at).total_cmp(&dist(b.hole.centre, at)))
-        .expect("an open cap");
-    let p = &c.patches[step.first as usize];
-    let d = p.derivatives(0.0, 0.0);
-    (p.eval(0.0, 0.0), normalize(cross(d.du, d.dv)))
 }
 
 /// Centre: the boundary curve's limit point (the cubic B-spline of the boundary polygon; a
@@ -269,28 +252,7 @@ fn eval_agrees_with_the_written_caps_and_is_continuous() {
 /// Loop's tables are probed; the open caps' steps go through them like the closed ones.
 #[test]
 fn patch_tables_reapply_with_open_caps() {
-    let spec = registry().lookup("loop").expect("registered");
     for (name, mesh) in nets() {
-        let what = format!("{name} under loop");
-        let opts = ComplexOptions {
-            rings: 2,
-            fill: true,
-        };
-        let table = PatchTable::build(&spec, &mesh, opts).expect(&what);
-        let open = table.caps().iter().filter(|c| c.step.hole.open).count();
-        assert_eq!(
-            open,
-            boundary_evs(&mesh).len(),
-            "{what}: open caps in the table"
-        );
-        let s = probe::net_size(mesh.positions());
-        let moved = probe::moved_points(mesh.positions(), 0.05 * s, 11);
-        let mut m = mesh.clone();
-        m.set_positions(moved.clone());
-        let truth = fairsub::surface::build(&spec, &m, opts, &mut |_| {})
-            .expect(&what)
-            .complex;
-        let (d, _) = probe::max_deviation(&table.apply(&moved).expect(&what), &truth);
-        assert!(d <= 1e-12 * s, "{what}: moved points {d:.3e}");
+        table_reapplies("loop", &name, &mesh, boundary_evs(&mesh).len(), 11);
     }
 }

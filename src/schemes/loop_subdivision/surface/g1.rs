@@ -208,20 +208,7 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
 /// The `n` triangles around vertex `x` counter-clockwise from face `f0`, each with the corner of
 /// `x` in it, or `None` when one is not a triangle or the walk does not close after `n` faces.
 fn fan_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<(u32, usize)>> {
-    let mut out = Vec::with_capacity(n);
-    let mut f = f0;
-    for _ in 0..n {
-        let face = m.face(f as usize);
-        if face.len() != 3 {
-            return None;
-        }
-        let k = face.iter().position(|&v| v == x)?;
-        out.push((f, k));
-        // the next triangle counter-clockwise holds the twin of E_(s+1) -> x
-        let back = m.face_halfedge(f as usize) + ((k + 2) % 3) as u32;
-        f = m.he_face(m.he_twin(back)?);
-    }
-    (f == f0).then_some(out)
+    tri_fan(m, x, f0, n, false)
 }
 
 /// The `n` triangles around boundary vertex `x` counter-clockwise from its outgoing boundary
@@ -232,8 +219,13 @@ fn fan_open(m: &PolyMesh, x: u32, n: usize) -> Option<Vec<(u32, usize)>> {
     if m.he_twin(h).is_some() {
         return None;
     }
+    tri_fan(m, x, m.he_face(h), n, true)
+}
+
+/// The walk of [`fan_around`] (closing at `f0`) and [`fan_open`] (ending at the boundary).
+fn tri_fan(m: &PolyMesh, x: u32, f0: u32, n: usize, open: bool) -> Option<Vec<(u32, usize)>> {
     let mut out = Vec::with_capacity(n);
-    let mut f = m.he_face(h);
+    let mut f = f0;
     for s in 0..n {
         let face = m.face(f as usize);
         if face.len() != 3 {
@@ -241,13 +233,15 @@ fn fan_open(m: &PolyMesh, x: u32, n: usize) -> Option<Vec<(u32, usize)>> {
         }
         let k = face.iter().position(|&v| v == x)?;
         out.push((f, k));
+        // the next triangle counter-clockwise holds the twin of E_(s+1) -> x
         let back = m.face_halfedge(f as usize) + ((k + 2) % 3) as u32;
         match m.he_twin(back) {
             Some(t) => f = m.he_face(t),
-            None => return (s + 1 == n).then_some(out),
+            // an open fan ends at its last triangle, on the boundary
+            None => return (open && s + 1 == n).then_some(out),
         }
     }
-    None
+    (!open && f == f0).then_some(out)
 }
 
 /// Whether some marked element would get its cap after more levels.
