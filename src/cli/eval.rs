@@ -4,9 +4,8 @@
 
 use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
-use crate::host::adaptive::RingTargets;
 use crate::surface::ComplexOptions;
-use crate::surface::eval::{Surface, limit_surface_from, quad_corner_targets};
+use crate::surface::eval::{Surface, first_targets, limit_surface_from, quad_corner_targets};
 use std::path::PathBuf;
 use text::parse_point;
 
@@ -129,10 +128,7 @@ pub fn run(a: Args) -> Result<()> {
             let first = if spec.id == crate::schemes::registry::ids::CATMULL_CLARK {
                 quad_corner_targets(&mesh, &pts)
             } else {
-                RingTargets {
-                    base: 2,
-                    ..RingTargets::default()
-                }
+                first_targets()
             };
             let (s, rings) = limit_surface_from(&pts, first, &mut |k| build(&mesh, k, true))?;
             eprintln!("limit surface: {rings} rings");

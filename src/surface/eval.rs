@@ -52,7 +52,10 @@ mod fan_piece;
 mod index;
 mod kite;
 mod limit;
-pub use limit::{evaluate_limit, limit_surface, limit_surface_from, quad_corner_targets};
+pub use limit::{
+    FIRST_RINGS, evaluate_limit, first_targets, limit_surface, limit_surface_from,
+    quad_corner_targets,
+};
 mod triangle;
 
 use crate::bezier::Derivatives;

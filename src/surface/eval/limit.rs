@@ -11,6 +11,31 @@ use crate::mesh::{Element, PolyMesh};
 use std::collections::HashMap;
 use std::sync::Arc;
 
+/// The rings of every element in the first complex of [`limit_surface`].
+pub const FIRST_RINGS: usize = 2;
+
+/// [`FIRST_RINGS`] for every element: the start of [`limit_surface`].
+pub fn first_targets() -> RingTargets {
+    RingTargets {
+        base: FIRST_RINGS,
+        per: HashMap::new(),
+    }
+}
+
+/// Raises element `e`'s count in `m` to at least `need`.
+fn raise(m: &mut HashMap<Element, usize>, e: Element, need: usize) {
+    let x = m.entry(e).or_insert(0);
+    *x = (*x).max(need);
+}
+
+/// The larger count per element of `a` and `b` (the reduction of the parallel folds).
+fn merge(mut a: HashMap<Element, usize>, b: HashMap<Element, usize>) -> HashMap<Element, usize> {
+    for (e, n) in b {
+        raise(&mut a, e, n);
+    }
+    a
+}
+
 /// Evaluations of the scheme's limit surface at `points` (`(face, u, v)`), and the rings
 /// used ([`limit_surface`]). At an extraordinary element itself the cap's corner is the
 /// scheme's limit point with the tangent plane of its limit masks (every cap and fill is built
@@ -46,11 +71,7 @@ pub fn limit_surface(
     points: &[(u32, f64, f64)],
     build: &mut dyn FnMut(usize) -> Result<Surface>,
 ) -> Result<(Surface, usize)> {
-    let first = RingTargets {
-        base: 2,
-        per: HashMap::new(),
-    };
-    limit_surface_from(points, first, build)
+    limit_surface_from(points, first_targets(), build)
 }
 
 /// [`limit_surface`] starting from the ring counts `first` instead of 2 rings everywhere (for
@@ -93,9 +114,7 @@ pub fn limit_surface_from(
                             {
                                 let k = s.rings_needed(at, cell);
                                 if k > 0 {
-                                    let need = level(element, at.domain.depth) + k;
-                                    let x = m.entry(element).or_insert(0);
-                                    *x = (*x).max(need);
+                                    raise(&mut m, element, level(element, at.domain.depth) + k);
                                 }
                             }
                         }
@@ -106,13 +125,7 @@ pub fn limit_surface_from(
                     m
                 },
             )
-            .reduce(HashMap::new, |mut a, b| {
-                for (e, n) in b {
-                    let x = a.entry(e).or_insert(0);
-                    *x = (*x).max(n);
-                }
-                a
-            });
+            .reduce(HashMap::new, merge);
         let failed = failed.into_inner();
         if failed != usize::MAX {
             let (f, u, v) = points[failed];
@@ -175,19 +188,15 @@ pub fn quad_corner_targets(mesh: &PolyMesh, points: &[(u32, f64, f64)]) -> RingT
                     let d: f64 = (u - c[0]).abs().max((v - c[1]).abs());
                     if d > 0.0 && d < 0.25 {
                         let need = (-d.log2()).floor() as usize + 1;
-                        let e = m.entry(Element::Vertex(x)).or_insert(0);
-                        *e = (*e).max(need.min(MAX_EXACT_RINGS));
+                        raise(&mut m, Element::Vertex(x), need.min(MAX_EXACT_RINGS));
                     }
                 }
                 m
             },
         )
-        .reduce(HashMap::new, |mut a, b| {
-            for (e, n) in b {
-                let x = a.entry(e).or_insert(0);
-                *x = (*x).max(n);
-            }
-            a
-        });
-    RingTargets { base: 2, per }
+        .reduce(HashMap::new, merge);
+    RingTargets {
+        base: FIRST_RINGS,
+        per,
+    }
 }
