@@ -67,7 +67,7 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::Scratch;
 pub use crate::schemes::catmull_clark::crease::adaptive::Level;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    child as sharp_child, crease_curve, edge_known, is_hole, is_special,
+    child as sharp_child, crease_curve, edge_known, is_hole, is_last_cap_level, is_special,
 };
 use crate::stencil::{RowWriter, StencilTable, Terms};
 use rayon::prelude::*;
@@ -235,10 +235,10 @@ impl AdaptiveRules for CcRules<'_> {
         }
     }
 
-    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still touch.
+    /// [`is_last_cap_level`]: holes that touch or wait for semi-sharp features to be spent.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
-        l >= rings
-            && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
+        let waiting = || g1::waiting(level, marked);
+        is_last_cap_level((l, rings, self.opts.fill), level, marked, 3, waiting)
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Vec<(u32, u32)>>) -> Result<()> {

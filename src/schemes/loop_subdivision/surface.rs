@@ -89,7 +89,9 @@ use crate::host::adaptive::{
 };
 use crate::mesh::PolyMesh;
 use crate::mesh::tags::SubdOptions;
-use crate::schemes::catmull_clark::crease::adaptive::{self as features, edge_known, is_hole};
+use crate::schemes::catmull_clark::crease::adaptive::{
+    self as features, edge_known, is_hole, is_last_cap_level,
+};
 use crate::stencil::{Stencil, StencilTable};
 use std::collections::HashMap;
 
@@ -236,11 +238,11 @@ impl AdaptiveRules for LoopRules {
         }
     }
 
-    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still wait
-    /// for their ring.
+    /// [`is_last_cap_level`]: holes that wait for their ring or for semi-sharp features to be
+    /// spent.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
-        l >= rings
-            && (!self.opts.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
+        let waiting = || g1::waiting(level, marked);
+        is_last_cap_level((l, rings, self.opts.fill), level, marked, 1, waiting)
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {

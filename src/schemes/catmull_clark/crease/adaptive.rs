@@ -24,7 +24,7 @@
 use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::geom::{self, Point};
-use crate::host::adaptive::{Cells, MeshLevel, Tag};
+use crate::host::adaptive::{Cells, MeshLevel, Tag, fan_centre};
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Extras, PolyMesh, SharpEdges};
 
@@ -89,6 +89,22 @@ pub struct Features {
     pub(crate) vertices: Vec<f32>,
     /// Hole faces of the level (only the input level has active holes).
     hole: Vec<bool>,
+    /// Levels since the last one that held a finite (semi-sharp) sharpness: 0 at such a
+    /// level, [`CALM`] when no level did. Holes that wait for their ring get their extra
+    /// levels counted from there ([`is_last_cap_level`]).
+    pub(crate) calm: usize,
+}
+
+/// [`Features::calm`] of a level after no semi-sharp one.
+const CALM: usize = usize::MAX / 2;
+
+/// [`Features::calm`] of a level with these sharpness values after a level with `parent`.
+fn calm_after(parent: usize, edges: &[f32], vertices: &[f32]) -> usize {
+    if edges.iter().chain(vertices).any(|&s| is_semi(s)) {
+        0
+    } else {
+        parent.saturating_add(1).min(CALM)
+    }
 }
 
 /// Whether a sharpness value is infinitely sharp.
@@ -131,6 +147,7 @@ pub(crate) fn start(mesh: &PolyMesh, opts: &SubdOptions) -> Option<(PolyMesh, Fe
     };
     let features = Features {
         opts: *opts,
+        calm: calm_after(CALM, &edges, &vertices),
         edges,
         vertices,
         hole,
@@ -169,6 +186,74 @@ pub(crate) fn is_special(level: &Level, v: usize) -> bool {
             .iter()
             .any(|&e| ft.edges[e as usize] > 0.0)
 }
+
+/// Whether every feature of the special vertex `v` is semi-sharp (its own sharpness and that
+/// of its edges inside the surface are finite): refined further it becomes a plain (boundary)
+/// vertex, whose G^1 cap then applies. Sharpness below [`INFINITE`] is spent after at most
+/// [`SPENT_BY_LEVEL`] levels under either crease method.
+pub(crate) fn spends(level: &Level, v: usize) -> bool {
+    let Some(ft) = &level.sharp else {
+        return true;
+    };
+    let m = &level.mesh;
+    let hs = m.outgoing_halfedges(v);
+    // an open fan's first outgoing half-edge and its incoming one are its boundary edges
+    let skip = usize::from(m.is_boundary_vertex(v));
+    ft.vertices[v] < INFINITE
+        && hs
+            .iter()
+            .skip(skip)
+            .all(|&h| ft.edges[m.he_edge(h) as usize] < INFINITE)
+}
+
+/// Whether the centre `x` of a G^1 cap's fan has a feature its cap does not take (anything
+/// but the boundary rule at a boundary vertex, any feature inside the surface): `Some(true)`
+/// when the feature is only semi-sharp and more levels spend it ([`spends`]), `Some(false)`
+/// when it never is, `None` without such a feature.
+pub(crate) fn cap_feature(level: &Level, x: usize) -> Option<bool> {
+    let featured = if level.mesh.is_boundary_vertex(x) {
+        !is_plain_boundary(level, x)
+    } else {
+        is_special(level, x)
+    };
+    featured.then(|| spends(level, x))
+}
+
+/// The adaptive loop's last level for the G^1 caps of Catmull-Clark and Loop: the requested
+/// `rings`, up to `MAX_EXTRA_CAP_LEVELS` more while holes still touch (`waiting`; counted from
+/// the last level with a semi-sharp feature when that is later), and up to
+/// level [`SPENT_BY_LEVEL`] while the centre of a marked element has only semi-sharp features
+/// (its cap then applies once they are spent; OpenSubdiv's adaptive isolation likewise
+/// refines semi-sharp features until they are smooth). `min_open` is the scheme's smallest
+/// capped open fan ([`fan_centre`]).
+pub(crate) fn is_last_cap_level(
+    (l, rings, fill): (usize, usize, bool),
+    level: &Level,
+    marked: &[(u32, Tag)],
+    min_open: usize,
+    waiting: impl FnOnce() -> bool,
+) -> bool {
+    use crate::host::adaptive::{MAX_EXTRA_CAP_LEVELS, NoCap, caps_waiting};
+    let spending = || {
+        level.sharp.is_some()
+            && caps_waiting(marked, |e, cells| {
+                let (x, _, _) = fan_centre(&level.mesh, &level.info, e, cells[0].0, min_open)?;
+                match cap_feature(level, x as usize) {
+                    Some(true) => Err(NoCap::Later),
+                    _ => Ok(()),
+                }
+            })
+    };
+    // waiting holes: extra levels after the requested rings, or after the last level that
+    // held a semi-sharp feature
+    let calm = level.sharp.as_ref().map_or(CALM, |ft| ft.calm);
+    let extra_over = l >= rings + MAX_EXTRA_CAP_LEVELS && calm > MAX_EXTRA_CAP_LEVELS;
+    l >= rings && (!fill || ((extra_over || !waiting()) && (l >= SPENT_BY_LEVEL || !spending())))
+}
+
+/// The level by which every finite sharpness is spent (it drops by at least 1 per level from
+/// below [`INFINITE`]).
+pub(crate) const SPENT_BY_LEVEL: usize = INFINITE as usize;
 
 /// Whether `v` is a plain boundary vertex of `level`: on the boundary, without sharpness of
 /// its own or at an edge inside the surface (its two boundary edges are its only sharp ones),
@@ -328,6 +413,7 @@ pub(crate) fn child(
     };
     let features = Features {
         opts: ft.opts,
+        calm: calm_after(ft.calm, &edges, &vertices),
         edges,
         vertices,
         hole: Vec::new(),

@@ -42,9 +42,12 @@
 //! (`tests/boundary_caps.rs`).
 //!
 //! Elements whose hole does not have these data after the requested rings (the faces of two
-//! elements still touch, as the cube's after one ring) get up to [`MAX_EXTRA_LEVELS`] more
-//! levels: their rings continue until the holes are separated by ring patches. Elements that
-//! never have them (vertices on creases or with sharpness, boundary vertices of more than
+//! elements still touch, as the cube's after one ring) get up to [`MAX_EXTRA_CAP_LEVELS`](crate::host::adaptive::MAX_EXTRA_CAP_LEVELS) more
+//! levels: their rings continue until the holes are separated by ring patches. A centre whose
+//! features are all semi-sharp is refined until they are spent (up to level
+//! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
+//! capped as a plain vertex. Elements that never have the data (vertices on infinitely sharp
+//! creases, corners or darts, boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 
@@ -55,8 +58,8 @@ use crate::bezier::g1::{Hole, Segment};
 use crate::bezier::{BezierPatch, Side};
 use crate::geom::Point;
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, QuadSector, Tag, caps_waiting, fan_centre, g1_cap_elements,
-    quad_hole_segments, quad_sectors_around, quad_sectors_open,
+    NoCap, QuadSector, Tag, caps_waiting, fan_centre, g1_cap_elements, quad_hole_segments,
+    quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
@@ -67,9 +70,6 @@ use std::sync::OnceLock;
 /// Rows of weights, one `(index, weight)` list per row (stencils over a level's points, or
 /// weights over a patch's coefficients).
 pub(super) type Rows = Vec<Vec<(u32, f64)>>;
-
-/// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// Corner index of `v` in face `f`.
 fn corner_of(m: &PolyMesh, f: usize, v: u32) -> Option<usize> {
@@ -202,18 +202,16 @@ fn hole_sectors(
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<(usize, Vec<QuadSector>, Vec<Tag>, bool), NoCap> {
-    use crate::schemes::catmull_clark::crease::adaptive::{is_plain_boundary, is_special};
+    use crate::schemes::catmull_clark::crease::adaptive::cap_feature;
     let m = &level.mesh;
     let (f0, _) = faces[0];
     let (x, n, open) = fan_centre(m, &level.info, element, f0, 3)?;
     let xu = x as usize;
-    let special = if open {
-        !is_plain_boundary(level, xu)
-    } else {
-        is_special(level, xu)
-    };
-    if faces.len() != n || special {
-        return Err(NoCap::Never);
+    match cap_feature(level, xu) {
+        Some(true) => return Err(NoCap::Later),
+        Some(false) => return Err(NoCap::Never),
+        None if faces.len() != n => return Err(NoCap::Never),
+        None => {}
     }
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
     let quads = if open {

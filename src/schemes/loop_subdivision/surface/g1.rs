@@ -85,26 +85,24 @@
 //!
 //! Holes whose ring is not complete after the requested rings (at `--rings 0` the spoke ends
 //! are input vertices, which need not be regular; another hole's cells next to it) get up to
-//! [`MAX_EXTRA_LEVELS`] more levels, as do holes whose spoke ends have a sharp feature (a
-//! crease through the one-ring: the holes shrink away from it). Holes that never have the data
-//! (a centre with a sharp feature, a fan that does not close, still incomplete after the extra
+//! [`MAX_EXTRA_CAP_LEVELS`](crate::host::adaptive::MAX_EXTRA_CAP_LEVELS) more levels, as do holes whose spoke ends have a sharp feature (a
+//! crease through the one-ring: the holes shrink away from it). A centre whose features are
+//! all semi-sharp is refined until they are spent (up to level
+//! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
+//! capped as a plain vertex. Holes that never have the data (a centre on an infinitely sharp
+//! crease, a corner or a dart, a fan that does not close, still incomplete after the extra
 //! levels) keep the C^0 Hermite fill of [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{axpy, scale};
-use crate::host::adaptive::{
-    CapData, MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements,
-};
+use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements};
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::adaptive::{is_plain_boundary, is_special};
+use crate::schemes::catmull_clark::crease::adaptive::{cap_feature, is_plain_boundary, is_special};
 use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::limit::tangent_rows;
 use std::collections::HashMap;
-
-/// Levels computed beyond the requested rings, at most, so that incomplete rings complete.
-pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// The segment of the hole along the outer edge `from -> to` of a fan triangle, read off the
 /// emitted triangle across it (see the [module](self) documentation); `None` at the boundary
@@ -143,13 +141,11 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
     let (f0, _) = cells[0];
     let (x, n, open) = fan_centre(m, &level.info, element, f0, 1)?;
     let xu = x as usize;
-    let special = if open {
-        !is_plain_boundary(level, xu)
-    } else {
-        is_special(level, xu)
-    };
-    if !level.info[xu].fan_ok || special {
-        return Err(NoCap::Never);
+    match cap_feature(level, xu) {
+        Some(true) => return Err(NoCap::Later),
+        Some(false) => return Err(NoCap::Never),
+        None if !level.info[xu].fan_ok => return Err(NoCap::Never),
+        None => {}
     }
     let fan = if open {
         fan_open(m, x, n)
