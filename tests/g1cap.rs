@@ -359,6 +359,7 @@ fn regular_hole_reproduction() {
             tangents: [c.du, c.dv],
             sectors,
             open: false,
+            crease: false,
         };
         let cap = g1_cap_with(&hole, CapOptions::default()).unwrap();
         let mut worst: f64 = 0.0;

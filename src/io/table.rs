@@ -30,13 +30,16 @@
 //! is not linear in the points). `CENTRE` is `tangent-plane` or `quadratic-jet`. `FAN` is
 //! `closed` (a hole around an interior vertex, spoke `s` at the angle `2 pi s / SECTORS`) or
 //! `open` (a fan at a boundary vertex, `SECTORS + 1` spokes at the angles `pi s / SECTORS`, the
-//! first and last on the boundary; [`crate::bezier::g1::Layout::OpenQuad`]). Version 2 added
-//! `FAN`; version 1 files are refused.
+//! first and last on the boundary; [`crate::bezier::g1::Layout::OpenQuad`]) or `crease` (an
+//! open fan beside an infinitely sharp crease, [`crate::bezier::g1::Hole::crease`]: `T0` is
+//! `A` itself, the crease's derivative, and only `T1` is fitted,
+//! [`crate::bezier::g1::ring::crease_tangents`]). Version 2 added `FAN`; version 1 files are
+//! refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
 use super::textout::{ChunkedText, push_f64, push_point};
-use crate::bezier::g1::{Centre, cap_map};
+use crate::bezier::g1::{Centre, hole_cap_map};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::stencil::StencilTable;
@@ -73,16 +76,19 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
     let mut map_of: HashMap<(usize, String), usize> = HashMap::new();
     let mut cap_map_ids = Vec::new();
     for cap in table.caps() {
-        let (layout, degrees) = cap.step.hole.layout()?;
-        let n = cap.step.hole.valence();
+        let hole = &cap.step.hole;
+        let (layout, degrees) = hole.layout()?;
         let key = (
-            n,
-            format!("{layout:?}{degrees:?}{}{:?}", cap.degree, cap.centre),
+            hole.valence(),
+            format!(
+                "{layout:?}{degrees:?}{}{:?}{}",
+                cap.degree, cap.centre, hole.crease
+            ),
         );
         let id = match map_of.get(&key) {
             Some(&id) => id,
             None => {
-                maps.push(cap_map(n, layout, degrees, cap.degree, cap.centre)?);
+                maps.push(hole_cap_map(hole, cap.degree, cap.centre)?);
                 map_of.insert(key, maps.len() - 1);
                 maps.len() - 1
             }
@@ -122,7 +128,13 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
                 cap.data_row,
                 cap.degree,
                 centre_name(cap.centre),
-                if st.hole.open { "open" } else { "closed" },
+                if st.hole.crease {
+                    "crease"
+                } else if st.hole.open {
+                    "open"
+                } else {
+                    "closed"
+                },
                 shape.len(),
                 shape.first().map_or(0, Vec::len)
             );
@@ -260,12 +272,13 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         if w.first() != Some(&"c")
             || v.len() < 7
             || v[3] as usize >= nmaps.max(1)
-            || !matches!(w.get(7), Some(&"open" | &"closed"))
+            || !matches!(w.get(7), Some(&"open" | &"closed" | &"crease"))
         {
             return Err(parse_error(
                 path,
                 l,
-                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open or closed)",
+                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open, closed or \
+                 crease)",
             ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));

@@ -49,7 +49,7 @@
 
 use crate::bezier::BezierPatch;
 use crate::bezier::complex::{CapStep, Domain, PatchComplex, Piece, Provenance};
-use crate::bezier::g1::{Centre, Hole, Segment, cap_choice, cap_map, ring};
+use crate::bezier::g1::{Centre, Hole, Segment, cap_choice, hole_cap_map, ring};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::stencil::{LayeredTable, StencilTable};
@@ -114,7 +114,7 @@ pub(crate) fn hole_points(hole: &Hole, plane: &[Point; 2]) -> Vec<Point> {
 
 /// A hole of shape `shape` (an open fan when `open`) read from `vals` (centre first, see
 /// [`TableCap::data_row`]), and its plane vectors.
-fn hole_from(vals: &[Point], shape: &HoleShape, open: bool) -> (Hole, [Point; 2]) {
+fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole, [Point; 2]) {
     let mut k = 3;
     let mut take = |n: u32| {
         let v = vals[k..k + n as usize].to_vec();
@@ -133,7 +133,8 @@ fn hole_from(vals: &[Point], shape: &HoleShape, open: bool) -> (Hole, [Point; 2]
         })
         .collect();
     let hole = Hole {
-        open,
+        open: like.open,
+        crease: like.crease,
         ..Hole::untangented(vals[0], sectors)
     };
     (hole, [vals[1], vals[2]])
@@ -571,11 +572,8 @@ impl PatchTable {
             .iter()
             .map(|cap| {
                 let r = self.data_index(cap);
-                let (hole, plane) = hole_from(
-                    &data[r..r + cap.data_len()],
-                    &cap.shape(),
-                    cap.step.hole.open,
-                );
+                let (hole, plane) =
+                    hole_from(&data[r..r + cap.data_len()], &cap.shape(), &cap.step.hole);
                 CapStep {
                     hole,
                     plane,
@@ -621,14 +619,14 @@ impl PatchTable {
             let (mut patches, data) = self.rows.values(&self.layout(), &pts);
             for (k, cap) in self.caps.iter().enumerate() {
                 let r = self.data_index(cap);
-                let (mut hole, _) = hole_from(
-                    &data[r..r + cap.data_len()],
-                    &cap.shape(),
-                    cap.step.hole.open,
-                );
-                hole.tangents = ring::data_tangents(&hole)?;
-                let (layout, degrees) = hole.layout()?;
-                let map = cap_map(hole.valence(), layout, degrees, cap.degree, cap.centre)?;
+                let (mut hole, plane) =
+                    hole_from(&data[r..r + cap.data_len()], &cap.shape(), &cap.step.hole);
+                hole.tangents = if hole.crease {
+                    ring::crease_data_tangents(&hole, plane)?
+                } else {
+                    ring::data_tangents(&hole)?
+                };
+                let map = hole_cap_map(&hole, cap.degree, cap.centre)?;
                 let built = map.apply(&hole).map_err(|e| cap_failed(k, cap, e))?;
                 self.place_cap(k, cap, built, &mut patches)?;
             }

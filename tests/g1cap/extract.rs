@@ -228,6 +228,7 @@ pub fn hole_of(c: &PatchComplex, triangles: bool, centre: Point, normal: Point) 
         tangents: [[0.0; 3]; 2],
         sectors,
         open: false,
+        crease: false,
     };
     // spoke ends of the quad layout, projected into the tangent plane, Fourier mode 1
     let q = hole.to_quad_layout().unwrap();

@@ -104,6 +104,13 @@ pub struct Hole {
     /// An open fan at a boundary vertex ([`Layout::OpenQuad`]): spokes `0` and `n` are
     /// boundary curves of the surface; `false` for a hole closed around its centre.
     pub open: bool,
+    /// An open fan beside an infinitely sharp crease: its boundary spokes `0` and `n` are the
+    /// crease's exact cubic curves, each the cubic Hermite interpolant of its end data (the
+    /// centre with `t_0` or `t_n`; the spoke end with the ring's derivative there), and `T0`
+    /// is the first plane vector its provider gives (the crease's exact derivative at the
+    /// centre) rather than fitted, so the caps on both sides of the crease share it exactly
+    /// ([`super::ring::crease_tangents`]). Only with `open`.
+    pub crease: bool,
 }
 
 /// Layout of a hole.
@@ -173,6 +180,7 @@ impl Hole {
             tangents: [[0.0; 3]; 2],
             sectors,
             open: false,
+            crease: false,
         }
     }
 
@@ -182,6 +190,15 @@ impl Hole {
         Hole {
             open: true,
             ..Hole::untangented(centre, sectors)
+        }
+    }
+
+    /// [`Hole::untangented_open`] for a sector between the two infinitely sharp edges of a
+    /// crease vertex ([`Hole::crease`]).
+    pub fn untangented_crease(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
+        Hole {
+            crease: true,
+            ..Hole::untangented_open(centre, sectors)
         }
     }
 
@@ -314,6 +331,7 @@ impl Hole {
                 tangents: self.tangents,
                 sectors,
                 open: self.open,
+                crease: self.crease,
             },
             kappa: conv.kappa,
             w1: conv.w1,

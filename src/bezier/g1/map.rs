@@ -58,6 +58,9 @@ pub struct CapMap {
     pub w1: f64,
     /// The condition at the centre.
     pub centre: Centre,
+    /// Whether the boundary spokes of an open fan are the Hermite cubics of a crease
+    /// ([`Hole::crease`]).
+    pub crease: bool,
     /// Consistency certificate: the largest residual of the cap conditions over a basis of all
     /// data that satisfy the ring's compatibility conditions (0 up to rounding when the cap
     /// exists for every compatible ring; see [`super`]).
@@ -165,6 +168,20 @@ impl CapMap {
         degree: usize,
         centre: Centre,
     ) -> Result<CapMap> {
+        CapMap::with_crease(n, layout, degrees, degree, centre, false)
+    }
+
+    /// [`CapMap::new`] with `crease`: an open fan's boundary spokes are the cubic Hermite
+    /// interpolants of their end data ([`Hole::crease`]; ignored for other layouts).
+    pub fn with_crease(
+        n: usize,
+        layout: Layout,
+        degrees: Degrees,
+        degree: usize,
+        centre: Centre,
+        crease: bool,
+    ) -> Result<CapMap> {
+        let crease = crease && layout.is_open() && layout.pieces() == 1;
         if n < layout.min_sectors() {
             return Err(Error::InvalidArgument(format!(
                 "a G^1 cap needs at least {} sectors, got {n}",
@@ -196,7 +213,7 @@ impl CapMap {
         let open = layout.is_open();
         let ends = (conv.kappa, conv.w1);
         let nu = nx + if jet { 3 } else { 0 };
-        let cond = conditions(n, open, d, pm, ends, jet);
+        let cond = conditions((n, open, crease), d, pm, ends, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
         // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
@@ -281,6 +298,7 @@ impl CapMap {
             certificate,
             free_parameters,
             centre,
+            crease,
             sparse: sparse_rows(&matrix),
             sparse_compat: sparse_rows(&compat),
             matrix,
@@ -357,7 +375,7 @@ pub(crate) fn hole_size(hole: &Hole) -> f64 {
         .fold(f64::MIN_POSITIVE, f64::max)
 }
 
-type Key = (usize, Layout, Degrees, usize, Centre);
+type Key = (usize, Layout, Degrees, usize, Centre, bool);
 
 /// The cap map for the given shape, built once per process and shared.
 pub fn cap_map(
@@ -367,13 +385,27 @@ pub fn cap_map(
     degree: usize,
     centre: Centre,
 ) -> Result<Arc<CapMap>> {
+    cached_map((n, layout, degrees, degree, centre, false))
+}
+
+/// The cap map of `hole`'s shape (valence, layout, segment degrees, crease spokes) at `degree`
+/// with `centre`, built once per process and shared.
+pub fn hole_cap_map(hole: &Hole, degree: usize, centre: Centre) -> Result<Arc<CapMap>> {
+    let (layout, degrees) = hole.layout()?;
+    let crease = hole.crease && layout.is_open() && layout.pieces() == 1;
+    cached_map((hole.valence(), layout, degrees, degree, centre, crease))
+}
+
+fn cached_map(key: Key) -> Result<Arc<CapMap>> {
     static CACHE: OnceLock<Mutex<HashMap<Key, Arc<CapMap>>>> = OnceLock::new();
     let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
-    let key = (n, layout, degrees, degree, centre);
     if let Some(m) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(m.clone());
     }
-    let m = Arc::new(CapMap::new(n, layout, degrees, degree, centre)?);
+    let (n, layout, degrees, degree, centre, crease) = key;
+    let m = Arc::new(CapMap::with_crease(
+        n, layout, degrees, degree, centre, crease,
+    )?);
     cache.lock().map_err(poisoned)?.insert(key, m.clone());
     Ok(m)
 }
@@ -456,9 +488,8 @@ pub fn check_cap_valence(n: usize) -> Result<()> {
 /// Errors name the sector or spoke end whose data are not compatible with a C^1 ring, or a
 /// valence above [`MAX_CAP_VALENCE`].
 pub fn g1_cap_with(hole: &Hole, opts: CapOptions) -> Result<Cap> {
-    let n = hole.valence();
-    let (layout, degrees, d, centre) = cap_choice(hole, opts)?;
-    let map = cap_map(n, layout, degrees, d, centre)?;
+    let (_, _, d, centre) = cap_choice(hole, opts)?;
+    let map = hole_cap_map(hole, d, centre)?;
     let compat = map.compatibility_defect(hole);
     if compat.0 > MAX_COMPATIBILITY_DEFECT {
         return Err(Error::InvalidArgument(format!(

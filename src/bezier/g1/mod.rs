@@ -179,6 +179,22 @@
 //! and its two boundary edges' directions) is one sector whose spokes are `T0` and `T1`
 //! themselves: a quarter-turn of the chart, no inner spoke.
 //!
+//! ## Crease fans
+//!
+//! Beside an infinitely sharp crease through the centre each side is an open fan
+//! ([`Hole::crease`]) whose boundary spokes must be shared exactly with the other side's cap
+//! (or its regular patches). Two changes make them so: `T0` is the provider's exact derivative
+//! of the crease at the centre instead of the chart fit (only `T1` is fitted given it,
+//! [`ring::crease_tangents`]), and each boundary spoke is the cubic Hermite interpolant of its
+//! end data: the centre with `t_0` (or `t_n`), the spoke end with the ring's derivative there
+//! (rows fixing its coefficients `2 ..= d - 2`). For a crease under OpenSubdiv's rules the
+//! crease is the cubic B-spline of its polygon and those are its own end data, so the spoke is
+//! the crease's limit curve. The fixed coefficients enter no other condition, so the open
+//! layouts keep their certificates and lowest degrees (test
+//! `crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_spokes`:
+//! `OpenQuad` n = 2..10, `OpenTriangle` n = 1..10, `d - 3` fewer free parameters per boundary
+//! spoke).
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
@@ -200,5 +216,6 @@ mod tests;
 pub use hole::{Degrees, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{
     CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_CAP_VALENCE,
-    MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, lowest_certified_degree,
+    MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, hole_cap_map,
+    lowest_certified_degree,
 };

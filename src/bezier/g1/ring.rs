@@ -121,29 +121,7 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
 /// `(3 e_s - f_s) / 2` (triangle layouts) mapped by `proj` (see the [module](self)
 /// documentation), the valence and the largest `|proj(e_s)|`.
 fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2], usize, f64)> {
-    let (layout, _) = hole.layout()?;
-    let q = hole.to_quad_layout()?;
-    let n = q.hole.valence();
-    // spoke s ends at segment a of sector s; the last spoke of an open fan at segment b of
-    // its last sector (`cross_b(0) = -dP/dv(0, 1)`, the derivative along that spoke)
-    let mut ends: Vec<&Segment> = q.hole.sectors.iter().map(|sec| &sec[0]).collect();
-    if hole.open {
-        ends.push(&q.hole.sectors[n - 1][1]);
-    }
-    let mut size: f64 = 0.0;
-    let spokes: Vec<Point> = ends
-        .iter()
-        .map(|a| {
-            let e = proj(sub(a.boundary[0], hole.centre));
-            // per unit of the sector's parameter (a split sector's segments are per piece)
-            let f = proj(scale(a.cross[0], -(layout.pieces() as f64)));
-            size = size.max(norm(e));
-            match layout {
-                Layout::Quad | Layout::OpenQuad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
-                Layout::Triangle | Layout::OpenTriangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
-            }
-        })
-        .collect();
+    let (spokes, n, size) = spoke_derivatives(hole, proj)?;
     let mut t = [[0.0; 3]; 2];
     if hole.open {
         // least squares over the n + 1 spokes of the half-turn (cos and sin are not
@@ -170,12 +148,95 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     Ok((t, n, size))
 }
 
+/// The spoke tangents of a crease's fan ([`Hole::crease`]): `T0 = t0`, the crease's exact
+/// derivative at the centre along spoke `0` as the provider gives it, and `T1` the least
+/// squares fit of the other spokes' chart derivatives (mapped by `proj`) given `T0`:
+/// `T1 = sum sin(th_s) (f_s - cos(th_s) T0) / sum sin(th_s)^2` over the `n + 1` spokes of the
+/// half-turn. Both sides of a crease thus leave the centre along it with the same derivative.
+fn crease_fit(hole: &Hole, t0: Point, proj: impl Fn(Point) -> Point) -> Result<[Point; 2]> {
+    let (spokes, n, _) = spoke_derivatives(hole, proj)?;
+    let step = super::system::turn(n, true) / n as f64;
+    let (mut ss, mut r) = (0.0, [0.0; 3]);
+    for (s, ts) in spokes.iter().enumerate() {
+        let (c, si) = ((step * s as f64).cos(), (step * s as f64).sin());
+        ss += si * si;
+        r = axpy(r, si, axpy(*ts, -c, t0));
+    }
+    Ok([t0, scale(r, 1.0 / ss)])
+}
+
+/// [`chart_tangents`] of a crease's fan: `T0 = plane[0]` (the crease's exact derivative),
+/// `T1` fitted in the plane ([`crease_fit`]).
+///
+/// # Errors
+/// As [`chart_tangents`].
+pub fn crease_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
+    let nrm = normalize(cross(plane[0], plane[1]));
+    if !nrm.iter().all(|x| x.is_finite()) {
+        return Err(Error::InvalidArgument(
+            "the limit normal of the crease's fan is not defined".into(),
+        ));
+    }
+    crease_fit(hole, plane[0], |x| project_onto_plane(x, nrm))
+}
+
+/// The chart derivatives of the spokes (`2 e_s - f_s` or `(3 e_s - f_s) / 2`, see the
+/// [module](self) documentation) mapped by `proj`, the valence and the largest `|proj(e_s)|`.
+fn spoke_derivatives(
+    hole: &Hole,
+    proj: impl Fn(Point) -> Point,
+) -> Result<(Vec<Point>, usize, f64)> {
+    let (layout, _) = hole.layout()?;
+    let q = hole.to_quad_layout()?;
+    let n = q.hole.valence();
+    // spoke s ends at segment a of sector s; the last spoke of an open fan at segment b of
+    // its last sector (`cross_b(0) = -dP/dv(0, 1)`, the derivative along that spoke)
+    let mut ends: Vec<&Segment> = q.hole.sectors.iter().map(|sec| &sec[0]).collect();
+    if hole.open {
+        ends.push(&q.hole.sectors[n - 1][1]);
+    }
+    let mut size: f64 = 0.0;
+    let spokes: Vec<Point> = ends
+        .iter()
+        .map(|a| {
+            let e = proj(sub(a.boundary[0], hole.centre));
+            // per unit of the sector's parameter (a split sector's segments are per piece)
+            let f = proj(scale(a.cross[0], -(layout.pieces() as f64)));
+            size = size.max(norm(e));
+            match layout {
+                Layout::Quad | Layout::OpenQuad | Layout::Split(_) => axpy(scale(e, 2.0), -1.0, f),
+                Layout::Triangle | Layout::OpenTriangle => scale(axpy(scale(e, 3.0), -1.0, f), 0.5),
+            }
+        })
+        .collect();
+    Ok((spokes, n, size))
+}
+
 /// The spoke tangents of a hole whose data are not positions (colours, texture coordinates:
 /// per-point data through a patch table, three components at a time): the fit of
 /// [`chart_tangents`] without the projection onto a tangent plane, which only positions have,
 /// and without its degeneracy check (constant data have zero tangents). Linear in the data.
 pub fn data_tangents(hole: &Hole) -> Result<[Point; 2]> {
     fit_tangents(hole, |x| x).map(|(t, _, _)| t)
+}
+
+/// [`data_tangents`] of a crease's fan: `T0` the data's first plane vector (the crease's
+/// derivative tabulated like the positions'), `T1` fitted given it ([`crease_fit`]).
+pub fn crease_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
+    crease_fit(hole, plane[0], |x| x)
+}
+
+/// The G^1 cap of `hole` from its provider's `plane` vectors: [`cap_in_plane`] with the
+/// plane's normal, or for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
+/// ([`crease_tangents`]).
+pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
+    if hole.crease {
+        super::map::check_cap_valence(hole.valence())?;
+        hole.tangents = crease_tangents(&hole, plane)?;
+        g1_cap_with(&hole, opts)
+    } else {
+        cap_in_plane(hole, cross(plane[0], plane[1]), opts)
+    }
 }
 
 /// The G^1 cap of `hole` (its centre set by the provider) in the tangent plane with normal
@@ -196,7 +257,7 @@ pub fn cap_step(
     opts: CapOptions,
     first: usize,
 ) -> Result<(Vec<BezierPatch>, CapStep)> {
-    let cap = cap_in_plane(hole.clone(), cross(plane[0], plane[1]), opts)?;
+    let cap = cap_from_plane(hole.clone(), plane, opts)?;
     let step = CapStep {
         first: first as u32,
         count: cap.patches.len() as u32,

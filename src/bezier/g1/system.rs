@@ -163,15 +163,15 @@ pub(crate) fn spoke_rows(d: usize, w: [f64; 3], ps: usize, pq: usize) -> Vec<Row
     rows
 }
 
-/// The conditions of the cap of valence `n` (`open`: an open fan of `n` sectors), degree `d`,
-/// `m x m` pieces per sector, spoke-end twist `kappa` and value `w1` ([`weight`]); with `jet`
-/// also the quadratic-jet
+/// The conditions of the cap of valence `n` (`open`: an open fan of `n` sectors; `crease`:
+/// its boundary spokes the cubic Hermite interpolants of their end data, [`crease_rows`]),
+/// degree `d`, `m x m` pieces per sector, spoke-end twist `kappa` and value `w1`
+/// ([`weight`]); with `jet` also the quadratic-jet
 /// conditions at the centre over three extra unknowns ([`jet_rows`]). Split sectors (`m > 1`)
 /// add C^`r` joins between their pieces ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1`
 /// gives the one-patch rows unchanged.
 pub(crate) fn conditions(
-    n: usize,
-    open: bool,
+    (n, open, crease): (usize, bool, bool),
     d: usize,
     m: usize,
     (kappa, w1): (f64, f64),
@@ -224,6 +224,11 @@ pub(crate) fn conditions(
             vec![(0, 1.0), (1, a1.cos() / dm), (2, a1.sin() / dm)],
         );
     }
+    if crease && open && m == 1 {
+        for (x, row) in crease_rows(n, d) {
+            fix(&mut e, x, row);
+        }
+    }
     for s in inner_spokes(n, open) {
         let q = (s + n - 1) % n;
         for k in 0..m {
@@ -250,6 +255,53 @@ pub(crate) fn conditions(
         f.extend(jf);
     }
     Conditions { e, f }
+}
+
+/// The boundary spokes of an open fan of `n` one-patch sectors at degree `d` as the cubic
+/// Hermite interpolants of their end data, raised to degree `d`: the rows fixing coefficients
+/// `2 ..= d - 2` of spoke `0` (`b_i0` of sector `0`) and of spoke `n` (`b_0i` of sector
+/// `n - 1`) over the canonical data. The cubic's control points are `C`, `C + t / 3` (`t` the
+/// spoke's tangent at the centre), `E + X / 3` and `E` (`E` the spoke end, `X` the ring's
+/// derivative there into the hole, `-d/du` along the spoke). Those coefficients enter no
+/// other condition (the relation of the inner spoke next to a boundary spoke reads only the
+/// two layers along that inner spoke), so the rows fix free parameters and the certificate is
+/// that of the plain open fan. Where the ring's boundary curve is a cubic B-spline (a crease
+/// or boundary under OpenSubdiv's rules, whose end data are its own), the spoke is that curve
+/// exactly.
+pub(crate) fn crease_rows(n: usize, d: usize) -> Vec<(usize, Row)> {
+    let qd = QuadData { d, m: 1 };
+    let mut out = Vec::new();
+    for last in [false, true] {
+        let (p, k) = if last { (n - 1, n) } else { (0, 0) };
+        let th = spoke_angle_at(n, true, k);
+        let (e, x) = if last {
+            (qd.b(p, 0, 0), qd.cb(p, 0, 0))
+        } else {
+            (qd.a(p, 0, 0), qd.ca(p, 0, 0))
+        };
+        let h: [Row; 4] = [
+            vec![(0, 1.0)],
+            vec![(0, 1.0), (1, th.cos() / 3.0), (2, th.sin() / 3.0)],
+            vec![(e, 1.0), (x, 1.0 / 3.0)],
+            vec![(e, 1.0)],
+        ];
+        for i in 2..=d.saturating_sub(2) {
+            let mut row = Row::new();
+            for (j, hj) in h.iter().enumerate() {
+                if j <= i && i - j <= d - 3 {
+                    let w = binom(3, j) * binom(d - 3, i - j) / binom(d, i);
+                    row.extend(hj.iter().map(|&(c, v)| (c, w * v)));
+                }
+            }
+            let unknown = if last {
+                cidx(d, p, 0, i)
+            } else {
+                cidx(d, p, i, 0)
+            };
+            out.push((unknown, row));
+        }
+    }
+    out
 }
 
 /// Smoothness of the joins between the pieces of a split sector: C^2, like the macro-patch

@@ -86,6 +86,7 @@ fn random_hole(n: usize, open: bool, d: usize, m: usize, kappa: f64, rng: &mut L
             .map(|s| (0..2 * m).map(|k| seg(s, k)).collect())
             .collect(),
         open,
+        crease: false,
     }
 }
 
@@ -296,4 +297,79 @@ fn open_triangle_fans_are_certified() {
         }
     }
     eprintln!("open triangle fans: {}", table.join(", "));
+}
+
+/// Crease fans ([`Hole::crease`]): the Hermite rows fix `d - 3` free coefficients per
+/// boundary spoke and nothing else, so every open layout keeps its certificate and lowest
+/// degree; on compatible data the boundary spokes are the cubic Hermite interpolants of their
+/// end data and the inner spokes stay G^1.
+#[test]
+fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_spokes() {
+    let quads = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let tris = Degrees {
+        boundary: 4,
+        cross: 3,
+    };
+    for (layout, deg) in [(Layout::OpenQuad, quads), (Layout::OpenTriangle, tris)] {
+        for n in layout.min_sectors()..=10 {
+            let d = lowest_certified_degree(n, layout, deg, Centre::TangentPlane).unwrap();
+            let plain = CapMap::new(n, layout, deg, d, Centre::TangentPlane).unwrap();
+            let crease =
+                CapMap::with_crease(n, layout, deg, d, Centre::TangentPlane, true).unwrap();
+            assert!(
+                crease.is_certified(),
+                "{layout:?} n {n}: {:e}",
+                crease.certificate
+            );
+            assert_eq!(
+                crease.free_parameters + 2 * (d - 3),
+                plain.free_parameters,
+                "{layout:?} n {n}"
+            );
+        }
+    }
+    let mut rng = Lcg(17);
+    for n in 2..=9 {
+        let mut hole = random_hole(n, true, 4, 1, 0.0, &mut rng);
+        hole.crease = true;
+        let cap = g1_cap(&hole).unwrap();
+        let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+        let hermite = |c: Point, t: Point, e: Point, x: Point, u: f64| {
+            let (u2, u3) = (u * u, u * u * u);
+            let w = [
+                2.0 * u3 - 3.0 * u2 + 1.0,
+                u3 - 2.0 * u2 + u,
+                -2.0 * u3 + 3.0 * u2,
+                u2 - u3,
+            ];
+            [0, 1, 2].map(|k| w[0] * c[k] + w[1] * t[k] + w[2] * e[k] + w[3] * x[k])
+        };
+        let (a, b) = (&hole.sectors[0][0], &hole.sectors[n - 1][1]);
+        let t0 = spoke_tangent(&hole.tangents, n, true, 0);
+        let tn = spoke_tangent(&hole.tangents, n, true, n);
+        for k in 0..=8 {
+            let u = k as f64 / 8.0;
+            let want = hermite(hole.centre, t0, a.boundary[0], a.cross[0], u);
+            assert!(norm(sub(cap[0].eval(u, 0.0), want)) < 1e-11 * size, "n {n}");
+            let want = hermite(hole.centre, tn, b.boundary[0], b.cross[0], u);
+            assert!(
+                norm(sub(cap[n - 1].eval(0.0, u), want)) < 1e-11 * size,
+                "n {n}"
+            );
+            for s in 1..n {
+                let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
+                let (np, nq) = (
+                    crate::geom::cross(p.du, p.dv),
+                    crate::geom::cross(q.du, q.dv),
+                );
+                if norm(np) > 1e-9 && norm(nq) > 1e-9 {
+                    let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
+                    assert!(c < 1e-9, "n {n} spoke {s} at {u}: {c:e}");
+                }
+            }
+        }
+    }
 }

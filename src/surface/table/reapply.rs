@@ -6,7 +6,7 @@ use crate::bezier::BezierPatch;
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::ring;
 use crate::error::{Error, Result};
-use crate::geom::{Point, cross};
+use crate::geom::Point;
 use rayon::prelude::*;
 
 impl PatchTable {
@@ -73,12 +73,9 @@ impl PatchTable {
             .enumerate()
             .map(|(k, cap)| {
                 let r = self.data_index(cap);
-                let (hole, plane) = hole_from(
-                    &data[r..r + cap.data_len()],
-                    &cap.shape(),
-                    cap.step.hole.open,
-                );
-                ring::cap_in_plane(hole, cross(plane[0], plane[1]), cap.step.options)
+                let (hole, plane) =
+                    hole_from(&data[r..r + cap.data_len()], &cap.shape(), &cap.step.hole);
+                ring::cap_from_plane(hole, plane, cap.step.options)
                     .map(|b| b.patches)
                     .map_err(|e| cap_failed(k, cap, e))
             })
