@@ -10,6 +10,9 @@
 //! cell that is regular and trusted becomes patches of ring `l` (regular at level 0), the rest
 //! is refined with its neighbourhood, until the rings are done.
 
+pub use super::fans::{
+    QuadSector, quad_hole_segments, quad_sectors_around, quad_sectors_between, quad_sectors_open,
+};
 use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::error::Result;
 use crate::geom::Point;
@@ -177,16 +180,20 @@ pub fn by_element(marked: &[(u32, Tag)]) -> Vec<Group> {
 pub type CapData = (crate::bezier::g1::Hole, [Point; 2], Vec<Tag>);
 
 /// Closes with the G^1 cap of [`crate::bezier::g1`] (spoke tangents from the ring's chart,
-/// [`crate::bezier::g1::ring::cap_in_plane`]) every element of the marked cells for which
-/// `hole_of` gives the data; the cap patches are pushed with the sectors' tags (domain and
+/// [`crate::bezier::g1::ring::cap_from_plane`]) every element of the marked cells for which
+/// `hole_of` gives the data (one hole, or several: the sectors of a crease vertex, capped all
+/// or none); the cap patches are pushed with the sectors' tags (domain and
 /// sector), and the cap's data as a [`crate::bezier::complex::CapStep`] of the complex. Returns the cells left for the
 /// scheme's C^0 fill. The elements' caps are independent: they are computed in parallel and
 /// pushed in the elements' order (the same complex as one after another).
-pub fn g1_cap_elements(
+pub fn g1_cap_elements<I>(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
-    hole_of: impl Fn(Element, &[(u32, Tag)]) -> Option<CapData> + Sync,
-) -> Vec<(u32, Tag)> {
+    hole_of: impl Fn(Element, &[(u32, Tag)]) -> I + Sync,
+) -> Vec<(u32, Tag)>
+where
+    I: IntoIterator<Item = CapData>,
+{
     use crate::bezier::g1::{CapOptions, ring::cap_step};
     use rayon::prelude::*;
     let groups = by_element(marked);
@@ -194,23 +201,36 @@ pub fn g1_cap_elements(
         .par_iter()
         .map(|(element, cells)| {
             let e = (*element)?;
-            let (hole, plane, tags) = hole_of(e, cells)?;
-            let (patches, step) = cap_step(hole, plane, CapOptions::default(), 0).ok()?;
-            Some((e, patches, tags, step))
+            // an element's holes (one, or one per sector of a crease vertex): all or none
+            let mut built = Vec::new();
+            for (hole, plane, tags) in hole_of(e, cells) {
+                let (patches, step) = cap_step(hole, plane, CapOptions::default(), 0).ok()?;
+                built.push((patches, tags, step));
+            }
+            (!built.is_empty()).then_some((e, built))
         })
         .collect();
     let mut left = Vec::new();
     for ((_, cells), capped) in groups.into_iter().zip(caps) {
-        match capped {
-            Some((element, patches, tags, mut step)) => {
-                step.first = out.len() as u32;
-                out.caps.push(step);
-                for (p, tag) in patches.into_iter().zip(tags) {
-                    let sector = tag.sector;
-                    out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
-                }
+        let Some((element, built)) = capped else {
+            left.extend(cells);
+            continue;
+        };
+        for (patches, tags, mut step) in built {
+            let first = out.len();
+            step.first = first as u32;
+            let crease = step.hole.crease;
+            out.caps.push(step);
+            let count = patches.len();
+            for (p, tag) in patches.into_iter().zip(tags) {
+                let sector = tag.sector;
+                out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
             }
-            None => left.extend(cells),
+            if crease {
+                // a crease's fan: its boundary spokes lie on the crease (sharp joins)
+                out.mark_sharp(first, crate::bezier::Side::V0.index());
+                out.mark_sharp(first + count - 1, crate::bezier::Side::U0.index());
+            }
         }
     }
     left
@@ -341,93 +361,6 @@ pub fn caps_waiting<T>(
         Some(e) => matches!(hole(*e, cells), Err(NoCap::Later)),
         None => false,
     })
-}
-
-/// One sector of a quad-layout hole around a vertex `x`: the quad `face = [x, p, K, q]` with
-/// `x` at corner `corner`, and the half-edges `p -> K` and `K -> q` across which the hole's
-/// segments `a` (from `p`) and `b` (from `q`) are read.
-#[derive(Debug, Clone, Copy)]
-pub struct QuadSector {
-    /// The face.
-    pub face: u32,
-    /// Corner of `x` in the face.
-    pub corner: usize,
-    /// The corner after `x` (end of spoke `s`).
-    pub p: u32,
-    /// The corner before `x` (end of spoke `s + 1`).
-    pub q: u32,
-    /// The half-edge `p -> K`.
-    pub pk: u32,
-    /// The half-edge `K -> q`.
-    pub kq: u32,
-}
-
-/// The `n` quads around vertex `x` counter-clockwise from face `f0` (Catmull-Clark's and
-/// non-box's cap sectors), or `None` when one is not a quad or the walk does not close after
-/// `n` faces (a boundary).
-pub fn quad_sectors_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<QuadSector>> {
-    quad_fan(m, x, f0, n, false)
-}
-
-/// The `n` quads around boundary vertex `x` counter-clockwise from its boundary half-edge (an
-/// open fan: spoke 0 of sector 0 and spoke `n` of sector `n - 1` are its boundary edges), or
-/// `None` when one is not a quad or the fan does not have `n` faces.
-pub fn quad_sectors_open(m: &PolyMesh, x: u32, n: usize) -> Option<Vec<QuadSector>> {
-    let h = m.vertex_halfedge(x as usize);
-    if m.he_twin(h).is_some() {
-        return None;
-    }
-    quad_fan(m, x, m.he_face(h), n, true)
-}
-
-/// The walk of [`quad_sectors_around`] (closing at `f0`) and [`quad_sectors_open`] (ending at
-/// the boundary).
-fn quad_fan(m: &PolyMesh, x: u32, f0: u32, n: usize, open: bool) -> Option<Vec<QuadSector>> {
-    let mut out = Vec::with_capacity(n);
-    let mut f = f0;
-    for s in 0..n {
-        let face = m.face(f as usize);
-        if face.len() != 4 {
-            return None;
-        }
-        let k = face.iter().position(|&v| v == x)?;
-        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
-        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
-        out.push(QuadSector {
-            face: f,
-            corner: k,
-            p: face[(k + 1) % 4],
-            q: face[(k + 3) % 4],
-            pk: he(1),
-            kq: he(2),
-        });
-        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
-        match m.he_twin(he(3)) {
-            Some(t) => f = m.he_face(t),
-            // the open fan ends at its last sector, on the boundary
-            None => return (open && s + 1 == n).then_some(out),
-        }
-    }
-    (!open && f == f0).then_some(out)
-}
-
-/// The segments of a quad-layout hole over its sectors: `across(half_edge, from)` reads the
-/// segment along a hole half-edge starting at its end `from` off the ring (`None` while the
-/// ring there is not emitted yet); segment `a` of a sector runs from `p` along `p -> K`,
-/// segment `b` from `q` along `K -> q`. `NoCap::Later` when some segment is missing.
-/// (Generic in what a segment is: its points, or the rows of a tracked patch table.)
-pub fn quad_hole_segments<T>(
-    sectors: &[QuadSector],
-    mut across: impl FnMut(u32, u32) -> Option<T>,
-) -> std::result::Result<Vec<Vec<T>>, NoCap> {
-    let mut out = Vec::with_capacity(sectors.len());
-    for sec in sectors {
-        match (across(sec.pk, sec.p), across(sec.kq, sec.q)) {
-            (Some(a), Some(b)) => out.push(vec![a, b]),
-            _ => return Err(NoCap::Later),
-        }
-    }
-    Ok(out)
 }
 
 /// Where a level's patches go: the complex being built and the level's edge curves.

@@ -4,6 +4,7 @@
 
 pub mod adaptive;
 pub mod caps;
+pub mod fans;
 
 use crate::bezier::complex::PatchComplex;
 use crate::mesh::Element;

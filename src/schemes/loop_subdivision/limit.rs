@@ -17,6 +17,19 @@ pub(crate) fn tangent_mask(n: usize, j: usize) -> impl Iterator<Item = (f64, f64
     (0..n).map(move |i| (cos_2pi(i - j, n), sin_2pi(i - j, n)))
 }
 
+/// The weights `(a, b)` of the vertex and of its two boundary neighbours in Loop's tangent
+/// across the boundary at a boundary vertex of `k` triangles (the interior neighbours `p_i`
+/// take `sin(pi i / k)`; [`Loop::limit_tangent_stencils`]).
+pub(crate) fn across_weights(k: usize) -> (f64, f64) {
+    let k = k as i64;
+    let sin_t = sin_2pi(1, 2 * k);
+    let s: f64 = (1..k).map(|i| sin_2pi(i, 2 * k)).sum();
+    let l = 0.375 + 0.25 * cos_2pi(1, 2 * k);
+    let b = ((0.75 - l) * sin_t - 0.375 * s) / (8.0 * (0.75 - l) * (l - 0.5) + 1.0);
+    let a = 8.0 * (l - 0.5) * b - sin_t;
+    (a, b)
+}
+
 /// The rows of [`Loop::limit_tangent_stencils`] at vertex `v` (documented there), term by
 /// term: `add(k, p, w)` adds weight `w` of point `p` to tangent `k` (0 or 1). The one source
 /// of the masks for the stencil tables and for the tangent planes of the G^1 caps.
@@ -40,11 +53,7 @@ pub(crate) fn tangent_rows(mesh: &PolyMesh, v: usize, mut add: impl FnMut(usize,
         add(0, p0, 1.0);
         add(0, pk, -1.0);
         let k = mesh.outgoing(v).count() as i64;
-        let sin_t = sin_2pi(1, 2 * k);
-        let s: f64 = (1..k).map(|i| sin_2pi(i, 2 * k)).sum();
-        let l = 0.375 + 0.25 * cos_2pi(1, 2 * k);
-        let b = ((0.75 - l) * sin_t - 0.375 * s) / (8.0 * (0.75 - l) * (l - 0.5) + 1.0);
-        let a = 8.0 * (l - 0.5) * b - sin_t;
+        let (a, b) = across_weights(k as usize);
         add(1, vi, a);
         add(1, p0, b);
         add(1, pk, b);

@@ -251,6 +251,33 @@ pub(crate) fn is_last_cap_level(
     l >= rings && (!fill || ((extra_over || !waiting()) && (l >= SPENT_BY_LEVEL || !spending())))
 }
 
+/// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
+/// (exactly two of its edges infinitely sharp, its own sharpness finite), and whether it is
+/// plain apart from them (no semi-sharp feature left: its rule is the crease rule, and each
+/// side of the crease refines as a boundary fan does).
+pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], bool)> {
+    let ft = level.sharp.as_ref()?;
+    let m = &level.mesh;
+    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
+        return None;
+    }
+    let hs = m.outgoing_halfedges(v);
+    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
+    let inf: Vec<u32> = hs
+        .iter()
+        .copied()
+        .filter(|&h| is_inf(sharpness(h)))
+        .collect();
+    let [a, b] = inf[..] else {
+        return None;
+    };
+    let plain = ft.vertices[v] == 0.0
+        && hs
+            .iter()
+            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
+    Some(([a, b], plain))
+}
+
 /// The level by which every finite sharpness is spent (it drops by at least 1 per level from
 /// below [`INFINITE`]).
 pub(crate) const SPENT_BY_LEVEL: usize = INFINITE as usize;

@@ -46,19 +46,22 @@
 //! levels: their rings continue until the holes are separated by ring patches. A centre whose
 //! features are all semi-sharp is refined until they are spent (up to level
 //! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
-//! capped as a plain vertex. Elements that never have the data (vertices on infinitely sharp
-//! creases, corners or darts, boundary vertices of more than
+//! capped as a plain vertex. A crease vertex (two infinitely sharp edges through an interior
+//! vertex) gets one open-fan cap per side of three or more quads, sharing the crease's exact
+//! curve ([`crease`]). Elements that never have the data (a side of one quad at a crease
+//! vertex, corners, darts, boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
+
+mod crease;
 
 use super::{Level, regular_patch};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
 use crate::bezier::{BezierPatch, Side};
-use crate::geom::Point;
 use crate::host::adaptive::{
-    NoCap, QuadSector, Tag, caps_waiting, fan_centre, g1_cap_elements, quad_hole_segments,
+    CapData, NoCap, QuadSector, Tag, caps_waiting, fan_centre, g1_cap_elements, quad_hole_segments,
     quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
@@ -155,7 +158,7 @@ fn hole_of(
     limits: &LimitStencils<'_>,
     element: Element,
     faces: &[(u32, Tag)],
-) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
+) -> Result<CapData, NoCap> {
     let (x, quads, tags, open) = hole_sectors(level, element, faces)?;
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let m = &level.mesh;
@@ -250,11 +253,26 @@ pub(super) fn g1_caps_by_targets(
     left
 }
 
+/// The holes of one element: those of a crease vertex's sides ([`crease::crease_caps`]), else
+/// the one of [`hole_of`].
+fn holes_of(
+    level: &Level,
+    limits: &LimitStencils<'_>,
+    element: Element,
+    faces: &[(u32, Tag)],
+) -> Result<Vec<CapData>, NoCap> {
+    let (x, _, open) = fan_centre(&level.mesh, &level.info, element, faces[0].0, 3)?;
+    if !open && let Some(caps) = crease::crease_caps(level, x as usize, faces)? {
+        return Ok(caps);
+    }
+    hole_of(level, limits, element, faces).map(|c| vec![c])
+}
+
 /// Whether some marked element would get its G^1 cap after more levels (its faces still touch
 /// another element's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
     let limits = LimitStencils::new(&level.mesh);
-    caps_waiting(marked, |e, faces| hole_of(level, &limits, e, faces))
+    caps_waiting(marked, |e, faces| holes_of(level, &limits, e, faces))
 }
 
 /// Caps every element of the marked faces that has its hole data (see the [module](self)
@@ -266,6 +284,6 @@ pub(super) fn g1_caps(
 ) -> Vec<(u32, Tag)> {
     let limits = LimitStencils::new(&level.mesh);
     g1_cap_elements(marked, out, |e, faces| {
-        hole_of(level, &limits, e, faces).ok()
+        holes_of(level, &limits, e, faces).unwrap_or_default()
     })
 }

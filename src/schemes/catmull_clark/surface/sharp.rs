@@ -19,13 +19,15 @@
 //! are C^2. The limit of such a face depends only on its own side of the crease, since crease
 //! points are refined from crease points alone.
 //!
-//! Everything else (semi-sharp edges and vertices, darts, crease ends, crease vertices with
-//! other sectors, corners meeting creases, edge-only boundary corners) is refined with its
-//! neighbourhood like an extraordinary element: semi-sharp values decay by one per level (or
-//! by Chaikin's rule) until they are spent and the faces become regular; what is left after
-//! the rings is closed by the Hermite-Coons fill (C^0; the derivatives at sharp vertices are
-//! the chords of the limit points, crease edges between crease or corner vertices the exact
-//! B-spline), never by a G^1 cap. Hole faces (the net's and those that boundary `none` makes)
+//! Everything else (semi-sharp edges and vertices, darts, crease ends, the sides of crease
+//! vertices other than two quads, corners meeting creases, edge-only boundary corners) is
+//! refined with its neighbourhood like an extraordinary element: semi-sharp values decay by
+//! one per level (or by Chaikin's rule) until they are spent and the faces become regular; an
+//! extraordinary vertex whose features were all semi-sharp then gets its G^1 cap, a crease
+//! vertex one G^1 cap per side of three or more quads ([`super::g1`]); what is left after the
+//! rings is closed by the Hermite-Coons fill (C^0; the derivatives at sharp vertices are the
+//! chords of the limit points, crease edges between crease or corner vertices the exact
+//! B-spline). Hole faces (the net's and those that boundary `none` makes)
 //! are refined for support but not written.
 
 use super::Level;
@@ -45,7 +47,9 @@ pub(super) fn rules(level: &Level) -> Rules<'_> {
 /// Whether the corner `v = from(h)` of the face of `h` is regular with respect to the features
 /// (see the module documentation).
 fn corner_regular(m: &PolyMesh, ft: &Features, h: u32) -> bool {
-    let Some(s) = sector(m, ft, h, 4) else {
+    // a crease vertex of any valence up to the caps' is regular on a side of two quads (the
+    // side's limit is the crease patch's, whatever lies on the other side)
+    let Some(s) = sector(m, ft, h, crate::bezier::g1::MAX_CAP_VALENCE) else {
         return false;
     };
     let v = m.he_from(h) as usize;

@@ -89,19 +89,26 @@
 //! crease through the one-ring: the holes shrink away from it). A centre whose features are
 //! all semi-sharp is refined until they are spent (up to level
 //! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
-//! capped as a plain vertex. Holes that never have the data (a centre on an infinitely sharp
-//! crease, a corner or a dart, a fan that does not close, still incomplete after the extra
+//! capped as a plain vertex. A crease vertex gets one open triangle fan per side of two or of
+//! four and more triangles ([`crease_caps`]: Catmull-Clark's construction of
+//! `catmull_clark::surface::g1::crease` on triangles; each side refines as a boundary fan
+//! under OpenSubdiv's crease rules). Holes that never have the data (a corner or a dart, a
+//! one-triangle crease side, a fan that does not close, still incomplete after the extra
 //! levels) keep the C^0 Hermite fill of [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
 use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
-use crate::geom::{axpy, scale};
+use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements};
+use crate::host::fans::faces_between;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::adaptive::{cap_feature, is_plain_boundary, is_special};
+use crate::schemes::catmull_clark::crease::adaptive::{
+    cap_feature, crease_halfedges, is_plain_boundary, is_special,
+};
+use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
-use crate::schemes::loop_subdivision::limit::tangent_rows;
+use crate::schemes::loop_subdivision::limit::{across_weights, tangent_rows};
 use std::collections::HashMap;
 
 /// The segment of the hole along the outer edge `from -> to` of a fan triangle, read off the
@@ -157,34 +164,12 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
     if cells.len() != n {
         return Err(NoCap::Later);
     }
-    let mut tags = Vec::with_capacity(n);
-    let mut sectors = Vec::with_capacity(n);
-    for &(f, corner) in &fan {
-        let tag = *tag_at.get(&f).ok_or(NoCap::Later)?;
-        tags.push(Tag {
-            domain: tag.domain.rotated(corner as u32),
-            ..tag
-        });
-        let outer = m.face_halfedge(f as usize) + ((corner + 1) % 3) as u32;
-        let mut ends = vec![m.he_from(outer) as usize];
-        if open && sectors.len() + 1 == n {
-            // the last sector of an open fan: its outer edge ends on the boundary too
-            ends.push(m.he_to(outer) as usize);
-        }
-        for spoke_end in ends {
-            // inner spoke ends: interior lattice points; the boundary spokes' ends (open fan):
-            // regular boundary vertices under the plain boundary rule
-            let ok = if m.is_boundary_vertex(spoke_end) {
-                open && is_regular(m, spoke_end) && is_plain_boundary(level, spoke_end)
-            } else {
-                is_regular(m, spoke_end) && !is_special(level, spoke_end)
-            };
-            if !ok {
-                return Err(NoCap::Later);
-            }
-        }
-        sectors.push(vec![segment_across(level, outer).ok_or(NoCap::Later)?]);
-    }
+    let (sectors, tags) = fan_sectors(
+        level,
+        &fan,
+        &tag_at,
+        if open { Ends::Open } else { Ends::Closed },
+    )?;
     let pos = m.positions();
     // the centre has no feature: the plain limit mask (the boundary curve's at a boundary
     // vertex), the plane spanned by Loop's eigen tangents (across the boundary at an open fan)
@@ -201,10 +186,136 @@ fn hole_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<CapD
     Ok((hole, plane, tags))
 }
 
+/// Which spoke ends of a fan [`fan_sectors`] checks for the lattice the cap's layout assumes.
+#[derive(Clone, Copy, PartialEq)]
+enum Ends {
+    /// Every spoke end an interior regular vertex without a feature.
+    Closed,
+    /// The inner ones so, the first and last regular boundary vertices under the plain rule.
+    Open,
+    /// The inner ones so; the first and last lie on a crease, regular on the fan's side when
+    /// the ring triangles beside them are regular patches (their segments exist).
+    Crease,
+}
+
+/// The segments and cap tags of a fan's triangles (`(face, corner of x)` counter-clockwise),
+/// or `NoCap::Later` while a spoke end is not a regular lattice point ([`Ends`]) or a segment's
+/// ring patch is missing.
+fn fan_sectors(
+    level: &Level,
+    fan: &[(u32, usize)],
+    tag_at: &HashMap<u32, Tag>,
+    ends: Ends,
+) -> Result<(Vec<Vec<Segment>>, Vec<Tag>), NoCap> {
+    let m = &level.mesh;
+    let n = fan.len();
+    let mut tags = Vec::with_capacity(n);
+    let mut sectors = Vec::with_capacity(n);
+    for (s, &(f, corner)) in fan.iter().enumerate() {
+        let tag = *tag_at.get(&f).ok_or(NoCap::Later)?;
+        tags.push(Tag {
+            domain: tag.domain.rotated(corner as u32),
+            ..tag
+        });
+        let outer = m.face_halfedge(f as usize) + ((corner + 1) % 3) as u32;
+        let mut spoke_ends = vec![(s, m.he_from(outer) as usize)];
+        if ends != Ends::Closed && s + 1 == n {
+            // the last sector of an open fan: its outer edge ends on the boundary too
+            spoke_ends.push((n, m.he_to(outer) as usize));
+        }
+        for (k, y) in spoke_ends {
+            // inner spoke ends: interior lattice points; the boundary spokes' ends (open fan):
+            // regular boundary vertices under the plain boundary rule
+            let ok = match ends {
+                Ends::Crease if k == 0 || k == n => true,
+                _ if m.is_boundary_vertex(y) => {
+                    ends == Ends::Open && is_regular(m, y) && is_plain_boundary(level, y)
+                }
+                _ => is_regular(m, y) && !is_special(level, y),
+            };
+            if !ok {
+                return Err(NoCap::Later);
+            }
+        }
+        sectors.push(vec![segment_across(level, outer).ok_or(NoCap::Later)?]);
+    }
+    Ok((sectors, tags))
+}
+
+/// The caps of the crease vertex `x` whose marked cells are `cells` (Catmull-Clark's
+/// construction, `catmull_clark::surface::g1::crease`, on triangles): `Ok(None)` when `x` is
+/// not a crease vertex; one open triangle fan ([`Hole::crease`]) per side of two or four and
+/// more triangles, centred at the crease's limit point `(e_a + 4 x + e_b) / 6`, `T0 = (e_a -
+/// e_b) / 2` the crease's exact derivative, the across tangent Loop's boundary eigen tangent of
+/// the side's `k` triangles ([`across_weights`]); a side of three triangles is regular crease
+/// patches; a side of one triangle keeps the fill.
+fn crease_caps(
+    level: &Level,
+    x: usize,
+    cells: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let Some((hs, plain)) = crease_halfedges(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let pos = m.positions();
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
+    let centre = scale(axpy(axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
+    let mut caps = Vec::new();
+    let mut covered = 0;
+    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
+        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+        let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
+        let marked = fan.iter().filter(|(f, _)| tag_at.contains_key(f)).count();
+        match (marked, k) {
+            (0, _) => continue,
+            (_, 1) => return Err(NoCap::Never),
+            (_, 3) => return Err(NoCap::Later),
+            _ if marked < k => return Err(NoCap::Later),
+            _ => {}
+        }
+        let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
+        // the side's neighbours e_0 .. e_k counter-clockwise: e_0 ends ha, e_k ends hb
+        let e = |h: u32| pos[m.he_to(h) as usize];
+        let (a, b) = across_weights(k);
+        let mut across = axpy(axpy(scale(pos[x], a), b, e(ha)), b, e(hb));
+        let mut h = ha;
+        for i in 1..k {
+            h = m.he_twin(m.he_prev(h)).ok_or(NoCap::Never)?;
+            across = axpy(across, sin_2pi(i as i64, 2 * k as i64), e(h));
+        }
+        let along = scale(sub(e(ha), e(hb)), 0.5);
+        caps.push((
+            Hole::untangented_crease(centre, sectors),
+            [along, across],
+            tags,
+        ));
+        covered += k;
+    }
+    if caps.is_empty() || covered != cells.len() {
+        return Err(NoCap::Never);
+    }
+    Ok(Some(caps))
+}
+
+/// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), else the one
+/// of [`hole_of`].
+fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec<CapData>, NoCap> {
+    let (x, _, open) = fan_centre(&level.mesh, &level.info, element, cells[0].0, 1)?;
+    if !open && let Some(caps) = crease_caps(level, x as usize, cells)? {
+        return Ok(caps);
+    }
+    hole_of(level, element, cells).map(|c| vec![c])
+}
+
 /// The `n` triangles around vertex `x` counter-clockwise from face `f0`, each with the corner of
 /// `x` in it, or `None` when one is not a triangle or the walk does not close after `n` faces.
 fn fan_around(m: &PolyMesh, x: u32, f0: u32, n: usize) -> Option<Vec<(u32, usize)>> {
-    tri_fan(m, x, f0, n, false)
+    tri_fan(m, x, f0, n, Some(false))
 }
 
 /// The `n` triangles around boundary vertex `x` counter-clockwise from its outgoing boundary
@@ -215,11 +326,18 @@ fn fan_open(m: &PolyMesh, x: u32, n: usize) -> Option<Vec<(u32, usize)>> {
     if m.he_twin(h).is_some() {
         return None;
     }
-    tri_fan(m, x, m.he_face(h), n, true)
+    tri_fan(m, x, m.he_face(h), n, Some(true))
 }
 
-/// The walk of [`fan_around`] (closing at `f0`) and [`fan_open`] (ending at the boundary).
-fn tri_fan(m: &PolyMesh, x: u32, f0: u32, n: usize, open: bool) -> Option<Vec<(u32, usize)>> {
+/// The walk of [`fan_around`] (`open = Some(false)`: closing at `f0`), [`fan_open`]
+/// (`Some(true)`: ending at the boundary) and of a crease vertex's side (`None`: `n` faces).
+fn tri_fan(
+    m: &PolyMesh,
+    x: u32,
+    f0: u32,
+    n: usize,
+    open: Option<bool>,
+) -> Option<Vec<(u32, usize)>> {
     let mut out = Vec::with_capacity(n);
     let mut f = f0;
     for s in 0..n {
@@ -234,15 +352,19 @@ fn tri_fan(m: &PolyMesh, x: u32, f0: u32, n: usize, open: bool) -> Option<Vec<(u
         match m.he_twin(back) {
             Some(t) => f = m.he_face(t),
             // an open fan ends at its last triangle, on the boundary
-            None => return (open && s + 1 == n).then_some(out),
+            None => return (open == Some(true) && s + 1 == n).then_some(out),
         }
     }
-    (!open && f == f0).then_some(out)
+    match open {
+        Some(true) => None,
+        Some(false) => (f == f0).then_some(out),
+        None => Some(out),
+    }
 }
 
 /// Whether some marked element would get its cap after more levels.
 pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
-    caps_waiting(marked, |e, cells| hole_of(level, e, cells))
+    caps_waiting(marked, |e, cells| holes_of(level, e, cells))
 }
 
 /// Caps every element of the marked cells that has its hole data; returns the cells left for
@@ -252,5 +374,7 @@ pub(super) fn g1_caps(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
-    g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok())
+    g1_cap_elements(marked, out, |e, cells| {
+        holes_of(level, e, cells).unwrap_or_default()
+    })
 }

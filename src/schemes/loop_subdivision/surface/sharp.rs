@@ -60,7 +60,9 @@ use crate::stencil::Stencil;
 fn regular_sector(m: &PolyMesh, ft: Option<&Features>, h: u32) -> Option<(Rule, Vec<u32>)> {
     let (rule, out, closed) = match ft {
         Some(ft) => {
-            let s = sector(m, ft, h, 6)?;
+            // a crease vertex of any valence up to the caps' is regular on a side of three
+            // triangles (the side's limit is the crease patch's)
+            let s = sector(m, ft, h, crate::bezier::g1::MAX_CAP_VALENCE)?;
             (s.rule, s.out, s.closed)
         }
         None => {

@@ -1,0 +1,104 @@
+//! G^1 caps at Catmull-Clark's crease vertices (two infinitely sharp edges through an
+//! extraordinary interior vertex, OpenSubdiv's crease rule at the vertex).
+//!
+//! Under the crease rules each side of the crease refines exactly as a boundary fan does: the
+//! vertex rule `(e_a + 6 x + e_b) / 8` reads only the two crease neighbours, the crease edges
+//! take their midpoints and the smooth edge and face points read faces of their own side. So
+//! each side of `k >= 3` quads is closed by the open-fan cap of a boundary vertex
+//! ([`crate::bezier::g1::Layout::OpenQuad`]), with:
+//!
+//! * **centre**: the crease curve's limit point `(e_a + 4 x + e_b) / 6`;
+//! * **tangent plane**: `T0 = (e_a - e_b) / 2`, the crease curve's exact derivative at the
+//!   centre along spoke `0` (the cubic B-spline of the crease polygon, per unit of the level's
+//!   parameter), and the subdominant eigen tangent across the boundary of a fan of `k` quads
+//!   ([`crate::schemes::catmull_clark::boundary_tangent`]) applied to the side's one-ring;
+//! * **crease spokes** ([`Hole::crease`]): `T0` is pinned, not fitted, and the boundary spokes
+//!   are the cubic Hermite interpolants of their end data, which are the crease's B-spline
+//!   itself: the caps of both sides, a regular crease patch on a side of two quads, and the
+//!   ring patches all share the crease curve, so the crease is C^0 exactly (to rounding) and
+//!   each side is G^1 inside.
+//!
+//! A side of one quad (no G^1 cap: one sector between two sharp edges is not a boundary fan
+//! the open cap takes) keeps the whole vertex on the Hermite-Coons fill; a side of two quads
+//! still marked waits (its faces become regular crease patches at the next level).
+
+use super::super::Level;
+use super::segment_across;
+use crate::bezier::g1::Hole;
+use crate::geom::{axpy, scale, sub};
+use crate::host::adaptive::{CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between};
+use crate::host::fans::faces_between;
+use crate::schemes::catmull_clark::boundary_tangent::across_weights;
+use crate::schemes::catmull_clark::crease::adaptive::crease_halfedges;
+use std::collections::HashMap;
+
+/// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is
+/// not a crease vertex (the caller's plain cap applies), one cap per side of `k >= 3` quads
+/// (sides of two quads are regular crease patches, not marked), or why there are none
+/// (`Later` while a semi-sharp feature is left or a side's ring is incomplete).
+pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
+    level: &Level,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let Some((hs, plain)) = crease_halfedges(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let pos = m.positions();
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
+    let centre = scale(axpy(axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
+    let mut caps = Vec::new();
+    let mut covered = 0;
+    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
+        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+        let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
+        let marked = quads
+            .iter()
+            .filter(|q| tag_at.contains_key(&q.face))
+            .count();
+        match (marked, k) {
+            (0, _) => continue,
+            (_, 1) => return Err(NoCap::Never),
+            (_, 2) => return Err(NoCap::Later),
+            _ if marked < k => return Err(NoCap::Later),
+            _ => {}
+        }
+        let tags = quads
+            .iter()
+            .map(|sec| {
+                let tag = tag_at[&sec.face];
+                Tag {
+                    domain: tag.domain.rotated(sec.corner as u32),
+                    ..tag
+                }
+            })
+            .collect();
+        let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+        let (p, q) = (pos[quads[0].p as usize], pos[quads[k - 1].q as usize]);
+        // the across tangent's weights over x, e_0 .. e_k, d_0 .. d_(k-1)
+        let w = across_weights(k).ok_or(NoCap::Never)?;
+        let mut across = scale(pos[x], w.1[0]);
+        for (i, sec) in quads.iter().enumerate() {
+            let far = m.face(sec.face as usize)[(sec.corner + 2) % 4];
+            across = axpy(across, w.1[1 + i], pos[sec.p as usize]);
+            across = axpy(across, w.1[k + 2 + i], pos[far as usize]);
+        }
+        across = axpy(across, w.1[1 + k], q);
+        let along = scale(sub(p, q), 0.5);
+        caps.push((
+            Hole::untangented_crease(centre, sectors),
+            [along, across],
+            tags,
+        ));
+        covered += k;
+    }
+    if caps.is_empty() || covered != faces.len() {
+        return Err(NoCap::Never);
+    }
+    Ok(Some(caps))
+}
