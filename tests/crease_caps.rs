@@ -2,7 +2,8 @@
 //! infinitely sharp edges (OpenSubdiv's crease rule). Each side of `k >= 3` quads is closed by
 //! an open-fan cap in the plane of the crease tangent and the side's across-boundary eigen
 //! tangent, its boundary spokes the crease's exact cubic curve (`bezier::g1::Hole::crease`); a
-//! side of two quads is regular crease patches. Until 2026-12-04 these holes kept the C^0
+//! side of two quads is regular crease patches, a side of one quad a crease fan of one sector
+//! (its spokes the crease's two halves). Until 2026-12-04 these holes kept the C^0
 //! Hermite fill: `check` at 3 rings measured 4.5e-2 rad between its pieces on OpenSubdiv's
 //! `cc_crease_extraordinary`.
 //!
@@ -85,6 +86,16 @@ fn nets() -> Vec<(String, PolyMesh, usize)> {
         osd("cc_crease_extraordinary"),
         1,
     )];
+    // the cube with its top face's edge loop creased: four crease vertices of valence 3, one
+    // face on the top side (a crease fan of one sector each), two regular crease patches below
+    let loop4 = [[4, 5], [5, 7], [7, 6], [6, 4]]
+        .map(|e| (e, 10.0f32))
+        .to_vec();
+    let cube = osd("cc_cube_infsharp").with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ByPair(loop4),
+        ..Extras::default()
+    }));
+    out.push(("cube, top loop creased".to_string(), cube, 4));
     for (n, j, caps) in [
         (5, 2, 1),
         (6, 3, 2),
@@ -142,8 +153,8 @@ fn crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
     }
 }
 
-/// Loop: each side of two or of four and more triangles is an open triangle fan on the crease,
-/// a side of three triangles regular crease patches.
+/// Loop: each side of one, two, or four and more triangles is an open triangle fan on the
+/// crease, a side of three triangles regular crease patches.
 #[test]
 fn loop_crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
     for (n, j, want) in [
@@ -154,6 +165,7 @@ fn loop_crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
         (8, 4, 2),
         (8, 2, 2),
         (9, 4, 2),
+        (4, 1, 1),
     ] {
         let m = creased(loop_net(n, 3), j);
         let subd = file_options(&m);

@@ -148,13 +148,13 @@ impl Layout {
         matches!(self, Layout::OpenQuad | Layout::OpenTriangle)
     }
 
-    /// The fewest sectors a hole of this layout has: 3; 2 for an open fan of quads (two
-    /// sectors over a half-turn meet at a right angle in the chart); 1 for an open fan of
-    /// triangles (a corner: one piece between the two boundary curves, a quarter-turn).
+    /// The fewest sectors a hole of this layout has: 3; 1 for an open fan (one piece between
+    /// its two boundary spokes over a quarter-turn of the chart: a corner, whose spokes are
+    /// `T0` and `T1`; or the one face on a side of a crease, whose spokes are the crease's two
+    /// halves, `T1 = -T0`, [`super::ring::crease_tangents`]).
     pub fn min_sectors(self) -> usize {
         match self {
-            Layout::OpenTriangle => 1,
-            Layout::OpenQuad => 2,
+            Layout::OpenTriangle | Layout::OpenQuad => 1,
             _ => 3,
         }
     }
@@ -210,8 +210,10 @@ impl Hole {
     /// Checks the shape of the hole and returns its layout and segment degrees.
     pub fn layout(&self) -> Result<(Layout, Degrees)> {
         let n = self.sectors.len();
+        // one sector: a corner of an open triangle fan, or the one face of a crease's side
         let least = match (self.open, self.sectors.first().map(Vec::len)) {
             (true, Some(1)) => 1,
+            (true, _) if self.crease => 1,
             (true, _) => 2,
             _ => 3,
         };

@@ -192,7 +192,7 @@
 //! the crease's limit curve. The fixed coefficients enter no other condition, so the open
 //! layouts keep their certificates and lowest degrees (test
 //! `crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_spokes`:
-//! `OpenQuad` n = 2..10, `OpenTriangle` n = 1..10, `d - 3` fewer free parameters per boundary
+//! `OpenQuad` and `OpenTriangle` n = 1..10, `d - 3` fewer free parameters per boundary
 //! spoke).
 //!
 //! # Data that are not enough

@@ -153,7 +153,13 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
 /// squares fit of the other spokes' chart derivatives (mapped by `proj`) given `T0`:
 /// `T1 = sum sin(th_s) (f_s - cos(th_s) T0) / sum sin(th_s)^2` over the `n + 1` spokes of the
 /// half-turn. Both sides of a crease thus leave the centre along it with the same derivative.
+/// A side of one face has `T1 = -T0` (its two spokes are the crease's halves).
 fn crease_fit(hole: &Hole, t0: Point, proj: impl Fn(Point) -> Point) -> Result<[Point; 2]> {
+    if hole.valence() == 1 {
+        // one face between the crease's two halves: its spokes (a quarter-turn apart in the
+        // chart) leave the centre along the crease, `t_1 = T1 = -T0`
+        return Ok([t0, scale(t0, -1.0)]);
+    }
     let (spokes, n, _) = spoke_derivatives(hole, proj)?;
     let step = super::system::turn(n, true) / n as f64;
     let (mut ss, mut r) = (0.0, [0.0; 3]);

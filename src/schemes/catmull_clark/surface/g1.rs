@@ -47,9 +47,9 @@
 //! features are all semi-sharp is refined until they are spent (up to level
 //! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
 //! capped as a plain vertex. A crease vertex (two infinitely sharp edges through an interior
-//! vertex) gets one open-fan cap per side of three or more quads, sharing the crease's exact
-//! curve ([`crease`]). Elements that never have the data (a side of one quad at a crease
-//! vertex, corners, darts, boundary vertices of more than
+//! vertex) gets one open-fan cap per side of one, or of three or more quads, sharing the
+//! crease's exact curve ([`crease`]). Elements that never have the data (corners, darts,
+//! boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 

@@ -244,11 +244,11 @@ fn fan_sectors(
 
 /// The caps of the crease vertex `x` whose marked cells are `cells` (Catmull-Clark's
 /// construction, `catmull_clark::surface::g1::crease`, on triangles): `Ok(None)` when `x` is
-/// not a crease vertex; one open triangle fan ([`Hole::crease`]) per side of two or four and
-/// more triangles, centred at the crease's limit point `(e_a + 4 x + e_b) / 6`, `T0 = (e_a -
+/// not a crease vertex; one open triangle fan ([`Hole::crease`]) per side of one, two, or four
+/// and more triangles, centred at the crease's limit point `(e_a + 4 x + e_b) / 6`, `T0 = (e_a -
 /// e_b) / 2` the crease's exact derivative, the across tangent Loop's boundary eigen tangent of
 /// the side's `k` triangles ([`across_weights`]); a side of three triangles is regular crease
-/// patches; a side of one triangle keeps the fill.
+/// patches.
 fn crease_caps(
     level: &Level,
     x: usize,
@@ -273,7 +273,6 @@ fn crease_caps(
         let marked = fan.iter().filter(|(f, _)| tag_at.contains_key(f)).count();
         match (marked, k) {
             (0, _) => continue,
-            (_, 1) => return Err(NoCap::Never),
             (_, 3) => return Err(NoCap::Later),
             _ if marked < k => return Err(NoCap::Later),
             _ => {}
@@ -287,6 +286,11 @@ fn crease_caps(
         for i in 1..k {
             h = m.he_twin(m.he_prev(h)).ok_or(NoCap::Never)?;
             across = axpy(across, sin_2pi(i as i64, 2 * k as i64), e(h));
+        }
+        if k == 1 {
+            // one triangle (its spokes the crease's halves, `T1 = -T0`): only its side of
+            // the plane matters
+            across = sub(axpy(e(ha), 1.0, e(hb)), scale(pos[x], 2.0));
         }
         let along = scale(sub(e(ha), e(hb)), 0.5);
         caps.push((

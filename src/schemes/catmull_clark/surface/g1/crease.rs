@@ -4,7 +4,7 @@
 //! Under the crease rules each side of the crease refines exactly as a boundary fan does: the
 //! vertex rule `(e_a + 6 x + e_b) / 8` reads only the two crease neighbours, the crease edges
 //! take their midpoints and the smooth edge and face points read faces of their own side. So
-//! each side of `k >= 3` quads is closed by the open-fan cap of a boundary vertex
+//! each side of `k = 1` or `k >= 3` quads is closed by the open-fan cap of a boundary vertex
 //! ([`crate::bezier::g1::Layout::OpenQuad`]), with:
 //!
 //! * **centre**: the crease curve's limit point `(e_a + 4 x + e_b) / 6`;
@@ -18,9 +18,12 @@
 //!   ring patches all share the crease curve, so the crease is C^0 exactly (to rounding) and
 //!   each side is G^1 inside.
 //!
-//! A side of one quad (no G^1 cap: one sector between two sharp edges is not a boundary fan
-//! the open cap takes) keeps the whole vertex on the Hermite-Coons fill; a side of two quads
-//! still marked waits (its faces become regular crease patches at the next level).
+//! A side of one quad is one crease fan of one sector: its two spokes are the crease's halves
+//! (`T1 = -T0`, a straight corner at the centre, where the patch's own partials are parallel)
+//! and it has no inner spoke, so it is the C^1-to-the-ring patch with the crease's exact curve
+//! on its crease sides and the fairest interior (the cube's faces inside a creased edge loop).
+//! A side of two quads still marked waits (its faces become regular crease patches at the next
+//! level).
 
 use super::super::Level;
 use super::segment_across;
@@ -63,7 +66,6 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
             .count();
         match (marked, k) {
             (0, _) => continue,
-            (_, 1) => return Err(NoCap::Never),
             (_, 2) => return Err(NoCap::Later),
             _ if marked < k => return Err(NoCap::Later),
             _ => {}
@@ -80,15 +82,23 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
             .collect();
         let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
         let (p, q) = (pos[quads[0].p as usize], pos[quads[k - 1].q as usize]);
-        // the across tangent's weights over x, e_0 .. e_k, d_0 .. d_(k-1)
-        let w = across_weights(k).ok_or(NoCap::Never)?;
-        let mut across = scale(pos[x], w.1[0]);
-        for (i, sec) in quads.iter().enumerate() {
-            let far = m.face(sec.face as usize)[(sec.corner + 2) % 4];
-            across = axpy(across, w.1[1 + i], pos[sec.p as usize]);
-            across = axpy(across, w.1[k + 2 + i], pos[far as usize]);
-        }
-        across = axpy(across, w.1[1 + k], q);
+        let far = |i: usize| {
+            let sec = &quads[i];
+            pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize]
+        };
+        let across = match across_weights(k) {
+            // the across tangent's weights over x, e_0 .. e_k, d_0 .. d_(k-1)
+            Some(w) => {
+                let mut t = axpy(scale(pos[x], w.1[0]), w.1[1 + k], q);
+                for (i, sec) in quads.iter().enumerate() {
+                    t = axpy(t, w.1[1 + i], pos[sec.p as usize]);
+                    t = axpy(t, w.1[k + 2 + i], far(i));
+                }
+                t
+            }
+            // one face: only its side of the plane matters (`T1 = -T0`), towards its far corner
+            None => sub(far(0), pos[x]),
+        };
         let along = scale(sub(p, q), 0.5);
         caps.push((
             Hole::untangented_crease(centre, sectors),
