@@ -2,7 +2,9 @@
 //! Catmull-Clark and Loop: the adaptive loop refines such a vertex until its sharpness is
 //! spent (as OpenSubdiv's adaptive isolation does) and then caps it as a plain vertex. Until
 //! 2026-12-04 these holes kept the C^0 Hermite fill: `check` at 3 rings measured 0.60 rad
-//! between the fill's pieces on `cc_pole7_crease` and 0.12 rad on `loop_chain_chaikin`.
+//! between the fill's pieces on `cc_pole7_crease` and 0.12 rad on `loop_chain_chaikin`; the
+//! regular vertices of a semi-sharp chain were filled at `rings + 2` levels before their
+//! sharpness was spent (`cc_chain_chaikin_tag`: 3.3e-2 rad at 1 to 3 rings).
 //!
 //! Tests, at 1, 2 and 3 rings and under both crease methods: every ring and regular patch is
 //! exact against the limit points of uniform refinement (`check_net`), no fill patch is left
@@ -38,8 +40,9 @@ fn fill_patches(c: &PatchComplex) -> usize {
 }
 
 /// Checks `name` under one scheme (`cc`: Catmull-Clark, else Loop) with both crease methods;
-/// at least `min_caps` G^1 caps.
+/// at least `min_caps` G^1 caps; no open side on the closed Catmull-Clark nets.
 fn semi_sharp_vertices_are_capped(name: &str, cc: bool, min_caps: usize) {
+    let closed = cc && name != "cc_chain_chaikin_tag";
     let m: PolyMesh = osd(name);
     for method in [CreaseMethod::Uniform, CreaseMethod::Chaikin] {
         let subd = SubdOptions {
@@ -58,7 +61,7 @@ fn semi_sharp_vertices_are_capped(name: &str, cc: bool, min_caps: usize) {
                 let s = loop_subdivision::Configured { options: subd };
                 (c.expect(&what), Box::new(s), triangle_samples)
             };
-            let r = check_net(&what, &m, &c, scheme.as_ref(), samples, cc, false);
+            let r = check_net(&what, &m, &c, scheme.as_ref(), samples, closed, false);
             assert!(c.caps.len() >= min_caps, "{what}: {} caps", c.caps.len());
             assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
             assert_eq!(r.sharp.pieces, 0, "{what}: no infinitely sharp edge");
@@ -96,6 +99,9 @@ fn catmull_clark_caps_semi_sharp_pole_and_chain() {
     semi_sharp_vertices_are_capped("cc_pole7_crease", true, 2);
     // valence 4 everywhere: once spent, the chain's vertices are regular (no cap, no fill)
     semi_sharp_vertices_are_capped("cc_chain_chaikin", true, 0);
+    // an open grid whose chain's vertices are regular but marked while their edges are
+    // semi-sharp: refined until spent, then regular patches (3.3e-2 rad in the fill before)
+    semi_sharp_vertices_are_capped("cc_chain_chaikin_tag", true, 0);
 }
 
 #[test]

@@ -238,7 +238,7 @@ impl AdaptiveRules for CcRules<'_> {
     /// [`is_last_cap_level`]: holes that touch or wait for semi-sharp features to be spent.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
         let waiting = || g1::waiting(level, marked);
-        is_last_cap_level((l, rings, self.opts.fill), level, marked, 3, waiting)
+        is_last_cap_level((l, rings, self.opts.fill), level, waiting)
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Vec<(u32, u32)>>) -> Result<()> {

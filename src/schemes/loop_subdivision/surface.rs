@@ -242,7 +242,7 @@ impl AdaptiveRules for LoopRules {
     /// spent.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
         let waiting = || g1::waiting(level, marked);
-        is_last_cap_level((l, rings, self.opts.fill), level, marked, 1, waiting)
+        is_last_cap_level((l, rings, self.opts.fill), level, waiting)
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<5>>) -> Result<()> {

@@ -24,7 +24,7 @@
 use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::geom::{self, Point};
-use crate::host::adaptive::{Cells, MeshLevel, Tag, fan_centre};
+use crate::host::adaptive::{Cells, MeshLevel, Tag};
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Extras, PolyMesh, SharpEdges};
 
@@ -220,35 +220,22 @@ pub(crate) fn cap_feature(level: &Level, x: usize) -> Option<bool> {
 }
 
 /// The adaptive loop's last level for the G^1 caps of Catmull-Clark and Loop: the requested
-/// `rings`, up to `MAX_EXTRA_CAP_LEVELS` more while holes still touch (`waiting`; counted from
-/// the last level with a semi-sharp feature when that is later), and up to
-/// level [`SPENT_BY_LEVEL`] while the centre of a marked element has only semi-sharp features
-/// (its cap then applies once they are spent; OpenSubdiv's adaptive isolation likewise
-/// refines semi-sharp features until they are smooth). `min_open` is the scheme's smallest
-/// capped open fan ([`fan_centre`]).
+/// `rings`; while the level holds a semi-sharp feature, up to level [`SPENT_BY_LEVEL`] (by
+/// which every finite sharpness is spent: the faces there become regular patches and an
+/// extraordinary vertex whose features were all semi-sharp gets its cap, as OpenSubdiv's
+/// adaptive isolation refines semi-sharp features until they are smooth); and up to
+/// `MAX_EXTRA_CAP_LEVELS` more while holes still touch (`waiting`), counted from the requested
+/// rings or from the last level with a semi-sharp feature, whichever is later.
 pub(crate) fn is_last_cap_level(
     (l, rings, fill): (usize, usize, bool),
     level: &Level,
-    marked: &[(u32, Tag)],
-    min_open: usize,
     waiting: impl FnOnce() -> bool,
 ) -> bool {
-    use crate::host::adaptive::{MAX_EXTRA_CAP_LEVELS, NoCap, caps_waiting};
-    let spending = || {
-        level.sharp.is_some()
-            && caps_waiting(marked, |e, cells| {
-                let (x, _, _) = fan_centre(&level.mesh, &level.info, e, cells[0].0, min_open)?;
-                match cap_feature(level, x as usize) {
-                    Some(true) => Err(NoCap::Later),
-                    _ => Ok(()),
-                }
-            })
-    };
-    // waiting holes: extra levels after the requested rings, or after the last level that
-    // held a semi-sharp feature
+    use crate::host::adaptive::MAX_EXTRA_CAP_LEVELS;
     let calm = level.sharp.as_ref().map_or(CALM, |ft| ft.calm);
+    let spending = calm == 0 && l < SPENT_BY_LEVEL;
     let extra_over = l >= rings + MAX_EXTRA_CAP_LEVELS && calm > MAX_EXTRA_CAP_LEVELS;
-    l >= rings && (!fill || ((extra_over || !waiting()) && (l >= SPENT_BY_LEVEL || !spending())))
+    l >= rings && (!fill || (!spending && (extra_over || !waiting())))
 }
 
 /// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
