@@ -210,3 +210,46 @@ fn crease_caps_reapply_through_the_patch_table() {
         assert!(d <= 1e-12 * s, "{name}: moved points {d:.3e}");
     }
 }
+
+/// A boundary vertex of one quad under the crease rule (edge-only boundary interpolation) is a
+/// crease fan of one sector: C^1 to its ring, its spokes the boundary curve's two halves (exact
+/// limit points), no fill left. Until 2026-12-05 the fill: 4.0e-3 rad to the ring on
+/// `cc_boundary_edgeonly_tag` at 1 ring, 5.2e-4 on `cc_boundary_tags`.
+#[test]
+fn edge_only_boundary_corners_get_one_piece_caps_on_the_boundary_curve() {
+    for name in ["cc_boundary_edgeonly_tag", "cc_boundary_tags"] {
+        let m = osd(name);
+        let subd = file_options(&m);
+        let scheme = Configured { options: subd };
+        for rings in [1, 2, 3] {
+            let what = format!("{name}, {rings} rings");
+            let opts = ComplexOptions { rings, fill: true };
+            let c = catmull_clark_complex_with(&m, opts, subd, |_| {}).expect(&what);
+            let r = check_net(&what, &m, &c, &scheme, quad_samples, false, false);
+            assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
+            assert!(
+                r.all.g1 < 1e-8,
+                "{what}: G^1 {:e} at {:?}",
+                r.all.g1,
+                r.all.g1_at
+            );
+            let corners: Vec<_> = c
+                .caps
+                .iter()
+                .filter(|s| s.hole.crease && s.count == 1)
+                .collect();
+            assert!(!corners.is_empty(), "{what}: no one-piece cap");
+            let levels = c.provenance.iter().filter_map(support::level_of).max();
+            let pts = limit_points(&scheme, &m, levels.unwrap_or(0) + 2);
+            for s in corners {
+                let p = &c.patches[s.first as usize];
+                for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                    for x in [p.eval(t, 0.0), p.eval(0.0, t)] {
+                        let d = nearest(&pts, x);
+                        assert!(d < 1e-11, "{what}: boundary {d:e} off the limit");
+                    }
+                }
+            }
+        }
+    }
+}

@@ -261,7 +261,10 @@ fn holes_of(
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<Vec<CapData>, NoCap> {
-    let (x, _, open) = fan_centre(&level.mesh, &level.info, element, faces[0].0, 3)?;
+    let (x, n, open) = fan_centre(&level.mesh, &level.info, element, faces[0].0, 1)?;
+    if open && n == 1 {
+        return crease::boundary_corner_cap(level, x as usize, faces).map(|c| vec![c]);
+    }
     if !open && let Some(caps) = crease::crease_caps(level, x as usize, faces)? {
         return Ok(caps);
     }

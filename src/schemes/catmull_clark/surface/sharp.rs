@@ -24,7 +24,8 @@
 //! refined with its neighbourhood like an extraordinary element: semi-sharp values decay by
 //! one per level (or by Chaikin's rule) until they are spent and the faces become regular; an
 //! extraordinary vertex whose features were all semi-sharp then gets its G^1 cap, a crease
-//! vertex one G^1 cap per side other than two quads ([`super::g1`]); what is left after the
+//! vertex one G^1 cap per side other than two quads, an edge-only boundary corner a one-piece
+//! cap on the boundary curve ([`super::g1`]); what is left after the
 //! rings is closed by the Hermite-Coons fill (C^0; the derivatives at sharp vertices are the
 //! chords of the limit points, crease edges between crease or corner vertices the exact
 //! B-spline). Hole faces (the net's and those that boundary `none` makes)

@@ -24,15 +24,21 @@
 //! on its crease sides and the fairest interior (the cube's faces inside a creased edge loop).
 //! A side of two quads still marked waits (its faces become regular crease patches at the next
 //! level).
+//!
+//! A boundary vertex of one quad under the crease rule (OpenSubdiv's edge-only boundary
+//! interpolation, [`boundary_corner_cap`]) is the same one-sector fan: the boundary curve runs
+//! smoothly through it, and its quad is closed by that cap instead of the fill.
 
 use super::super::Level;
 use super::segment_across;
 use crate::bezier::g1::Hole;
 use crate::geom::{axpy, scale, sub};
-use crate::host::adaptive::{CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between};
+use crate::host::adaptive::{
+    CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
+};
 use crate::host::fans::faces_between;
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
-use crate::schemes::catmull_clark::crease::adaptive::crease_halfedges;
+use crate::schemes::catmull_clark::crease::adaptive::{crease_halfedges, is_plain_boundary};
 use std::collections::HashMap;
 
 /// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is
@@ -111,4 +117,35 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
         return Err(NoCap::Never);
     }
     Ok(Some(caps))
+}
+
+/// The cap of a boundary vertex `x` of one quad under the crease rule (edge-only boundary: its
+/// vertex sharpness 0, no sharp edge inside): one crease fan of one sector (module
+/// documentation) centred at the boundary curve's limit point `(e_a + 4 x + e_b) / 6`, its
+/// spokes the boundary curve's two halves.
+pub(in crate::schemes::catmull_clark::surface) fn boundary_corner_cap(
+    level: &Level,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<CapData, NoCap> {
+    let m = &level.mesh;
+    if !is_plain_boundary(level, x) || faces.len() != 1 {
+        return Err(NoCap::Never);
+    }
+    let quads = quad_sectors_open(m, x as u32, 1).ok_or(NoCap::Never)?;
+    let sec = &quads[0];
+    if sec.face != faces[0].0 {
+        return Err(NoCap::Never);
+    }
+    let tag = Tag {
+        domain: faces[0].1.domain.rotated(sec.corner as u32),
+        ..faces[0].1
+    };
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    let pos = m.positions();
+    let (p, q) = (pos[sec.p as usize], pos[sec.q as usize]);
+    let far = pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize];
+    let centre = scale(axpy(axpy(p, 4.0, pos[x]), 1.0, q), 1.0 / 6.0);
+    let plane = [scale(sub(p, q), 0.5), sub(far, pos[x])];
+    Ok((Hole::untangented_crease(centre, sectors), plane, vec![tag]))
 }
