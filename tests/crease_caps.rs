@@ -16,7 +16,6 @@
 #[path = "sharp/support.rs"]
 mod support;
 
-use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::geom::dist;
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
@@ -28,7 +27,8 @@ use fairsub::schemes::loop_subdivision::surface::loop_complex_with;
 use fairsub::schemes::registry::registry;
 use fairsub::surface::table::{PatchTable, probe};
 use support::{
-    check_net, file_options, limit_points, nearest, osd, quad_samples, triangle_samples,
+    check_net, file_options, fill_patches, limit_points, nearest, osd, quad_samples,
+    triangle_samples,
 };
 
 /// The c-net of valence `n` (3 rings) with an infinitely sharp crease through its centre along
@@ -65,18 +65,6 @@ fn creased(m: PolyMesh, j: usize) -> PolyMesh {
         sharp_edges: SharpEdges::ByPair(pairs),
         ..Extras::default()
     }))
-}
-
-/// The cap patches that belong to no G^1 cap (the C^0 fill's).
-fn fill_patches(c: &PatchComplex) -> usize {
-    let capped = |i: usize| {
-        c.caps
-            .iter()
-            .any(|s| (s.first as usize..(s.first + s.count) as usize).contains(&i))
-    };
-    (0..c.len())
-        .filter(|&i| matches!(c.provenance[i], Provenance::Cap { .. }) && !capped(i))
-        .count()
 }
 
 /// The nets: name, net, crease caps expected (sides of three or more quads).

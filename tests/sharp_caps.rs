@@ -14,30 +14,19 @@
 #[path = "sharp/support.rs"]
 mod support;
 
-use fairsub::bezier::complex::{PatchComplex, Provenance};
+use fairsub::bezier::complex::PatchComplex;
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::PolyMesh;
 use fairsub::mesh::tags::{CreaseMethod, SubdOptions};
 use fairsub::schemes::Scheme;
 use fairsub::schemes::{catmull_clark, loop_subdivision};
 use support::{
-    check_net, file_options, limit_points, nearest, osd, quad_samples, triangle_samples,
+    check_net, file_options, fill_patches, limit_points, nearest, osd, quad_samples,
+    triangle_samples,
 };
 
 /// A complex, the scheme that refines the net and the scheme's parameter samples.
 type Built = (PatchComplex, Box<dyn Scheme>, fn(usize) -> Vec<(f64, f64)>);
-
-/// The cap patches that belong to no G^1 cap (the C^0 fill's).
-fn fill_patches(c: &PatchComplex) -> usize {
-    let capped = |i: usize| {
-        c.caps
-            .iter()
-            .any(|s| (s.first as usize..(s.first + s.count) as usize).contains(&i))
-    };
-    (0..c.len())
-        .filter(|&i| matches!(c.provenance[i], Provenance::Cap { .. }) && !capped(i))
-        .count()
-}
 
 /// Checks `name` under one scheme (`cc`: Catmull-Clark, else Loop) with both crease methods;
 /// at least `min_caps` G^1 caps; no open side on the closed Catmull-Clark nets.

@@ -67,7 +67,7 @@ pub fn quad_sectors_between(m: &PolyMesh, x: u32, f0: u32, k: usize) -> Option<V
 
 /// The walk of [`quad_sectors_around`] (`open = Some(false)`: closing at `f0`),
 /// [`quad_sectors_open`] (`Some(true)`: ending at the boundary) and [`quad_sectors_between`]
-/// (`None`: `n` faces).
+/// (`None`: `n` faces), on [`fan_walk`].
 fn quad_fan(
     m: &PolyMesh,
     x: u32,
@@ -75,28 +75,53 @@ fn quad_fan(
     n: usize,
     open: Option<bool>,
 ) -> Option<Vec<QuadSector>> {
+    let fan = fan_walk(m, x, f0, n, open, 4)?;
+    Some(
+        fan.into_iter()
+            .map(|(f, k)| {
+                let face = m.face(f as usize);
+                // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q.
+                let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
+                QuadSector {
+                    face: f,
+                    corner: k,
+                    p: face[(k + 1) % 4],
+                    q: face[(k + 3) % 4],
+                    pk: he(1),
+                    kq: he(2),
+                }
+            })
+            .collect(),
+    )
+}
+
+/// The `n` faces of `sides` corners around vertex `x` counter-clockwise from face `f0`, each
+/// with the corner of `x` in it: closing at `f0` (`open = Some(false)`), ending on the
+/// boundary after `n` faces (`Some(true)`), or just `n` faces (`None`: a side of a crease
+/// vertex); `None` when a face has another size or the walk does not end as asked. The one
+/// walk of the quad fans here and of Loop's triangle fans.
+pub fn fan_walk(
+    m: &PolyMesh,
+    x: u32,
+    f0: u32,
+    n: usize,
+    open: Option<bool>,
+    sides: usize,
+) -> Option<Vec<(u32, usize)>> {
     let mut out = Vec::with_capacity(n);
     let mut f = f0;
     for s in 0..n {
         let face = m.face(f as usize);
-        if face.len() != 4 {
+        if face.len() != sides {
             return None;
         }
         let k = face.iter().position(|&v| v == x)?;
-        // The face's half-edges from corner c run to corner c + 1: p -> K, K -> q, q -> x.
-        let he = |c: usize| m.face_halfedge(f as usize) + ((k + c) % 4) as u32;
-        out.push(QuadSector {
-            face: f,
-            corner: k,
-            p: face[(k + 1) % 4],
-            q: face[(k + 3) % 4],
-            pk: he(1),
-            kq: he(2),
-        });
-        // The next sector counter-clockwise holds the twin of q -> x, the half-edge x -> q.
-        match m.he_twin(he(3)) {
+        out.push((f, k));
+        // the next face counter-clockwise holds the twin of the face's half-edge into x
+        let back = m.face_halfedge(f as usize) + ((k + sides - 1) % sides) as u32;
+        match m.he_twin(back) {
             Some(t) => f = m.he_face(t),
-            // the open fan ends at its last sector, on the boundary
+            // an open fan ends at its last face, on the boundary
             None => return (open == Some(true) && s + 1 == n).then_some(out),
         }
     }

@@ -120,6 +120,18 @@ pub fn check_exact(
     (patches, count, worst)
 }
 
+/// The cap patches that belong to no G^1 cap (the C^0 fill's).
+pub fn fill_patches(c: &PatchComplex) -> usize {
+    let capped = |i: usize| {
+        c.caps
+            .iter()
+            .any(|s| (s.first as usize..(s.first + s.count) as usize).contains(&i))
+    };
+    (0..c.len())
+        .filter(|&i| matches!(c.provenance[i], Provenance::Cap { .. }) && !capped(i))
+        .count()
+}
+
 /// Runs the `fairsub` binary: (exit code, stdout, stderr).
 pub fn run(args: &[&str]) -> (i32, String, String) {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_fairsub"))

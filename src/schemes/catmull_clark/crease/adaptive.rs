@@ -24,7 +24,8 @@
 use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::geom::{self, Point};
-use crate::host::adaptive::{Cells, MeshLevel, Tag};
+use crate::host::adaptive::{Cells, MeshLevel, NoCap, Tag};
+use crate::host::fans::faces_between;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Extras, PolyMesh, SharpEdges};
 
@@ -263,6 +264,58 @@ pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], boo
             .iter()
             .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
     Some(([a, b], plain))
+}
+
+/// The limit point of a crease vertex and its sides `(ha, hb, k)` ([`crease_sides`]).
+pub(crate) type CreaseSides = (Point, Vec<(u32, u32, usize)>);
+
+/// A crease vertex `x` ([`crease_halfedges`]) as its G^1 caps see it, for Catmull-Clark and
+/// Loop alike: the crease's limit point `(e_a + 4 x + e_b) / 6` and its sides
+/// `(ha, hb, k)` that hold marked `cells` (the `k` faces counter-clockwise from the face of the
+/// outgoing crease half-edge `ha` to the one before `hb`). `Ok(None)` when `x` is not a crease
+/// vertex; `Later` while a semi-sharp feature is left at `x`, a side is only partly marked or
+/// a side of `regular` faces (the scheme's regular crease patches) is still marked; `Never`
+/// when the sides do not hold exactly the cells.
+pub(crate) fn crease_sides(
+    level: &Level,
+    x: usize,
+    cells: &[(u32, Tag)],
+    regular: usize,
+) -> Result<Option<CreaseSides>, NoCap> {
+    let Some((hs, plain)) = crease_halfedges(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let pos = m.positions();
+    let marked: std::collections::HashSet<u32> = cells.iter().map(|&(f, _)| f).collect();
+    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
+    let centre = geom::scale(geom::axpy(geom::axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
+    let mut sides = Vec::new();
+    let mut covered = 0;
+    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
+        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+        let (mut h, mut count) = (ha, 0);
+        for i in 0..k {
+            count += usize::from(marked.contains(&m.he_face(h)));
+            if i + 1 < k {
+                h = m.he_twin(m.he_prev(h)).ok_or(NoCap::Never)?;
+            }
+        }
+        match count {
+            0 => continue,
+            _ if k == regular || count < k => return Err(NoCap::Later),
+            _ => {}
+        }
+        sides.push((ha, hb, k));
+        covered += k;
+    }
+    if sides.is_empty() || covered != cells.len() {
+        return Err(NoCap::Never);
+    }
+    Ok(Some((centre, sides)))
 }
 
 /// The level by which every finite sharpness is spent (it drops by at least 1 per level from

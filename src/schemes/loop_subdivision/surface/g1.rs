@@ -101,10 +101,10 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements};
-use crate::host::fans::faces_between;
+use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    cap_feature, crease_halfedges, is_plain_boundary, is_special,
+    cap_feature, crease_sides, is_plain_boundary, is_special,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
@@ -254,29 +254,15 @@ fn crease_caps(
     x: usize,
     cells: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some((hs, plain)) = crease_halfedges(level, x) else {
+    let Some((centre, sides)) = crease_sides(level, x, cells, 3)? else {
         return Ok(None);
     };
-    if !plain {
-        return Err(NoCap::Later);
-    }
     let m = &level.mesh;
     let pos = m.positions();
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
-    let centre = scale(axpy(axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
     let mut caps = Vec::new();
-    let mut covered = 0;
-    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
-        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+    for (ha, hb, k) in sides {
         let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
-        let marked = fan.iter().filter(|(f, _)| tag_at.contains_key(f)).count();
-        match (marked, k) {
-            (0, _) => continue,
-            (_, 3) => return Err(NoCap::Later),
-            _ if marked < k => return Err(NoCap::Later),
-            _ => {}
-        }
         let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
         // the side's neighbours e_0 .. e_k counter-clockwise: e_0 ends ha, e_k ends hb
         let e = |h: u32| pos[m.he_to(h) as usize];
@@ -298,10 +284,6 @@ fn crease_caps(
             [along, across],
             tags,
         ));
-        covered += k;
-    }
-    if caps.is_empty() || covered != cells.len() {
-        return Err(NoCap::Never);
     }
     Ok(Some(caps))
 }
@@ -342,28 +324,7 @@ fn tri_fan(
     n: usize,
     open: Option<bool>,
 ) -> Option<Vec<(u32, usize)>> {
-    let mut out = Vec::with_capacity(n);
-    let mut f = f0;
-    for s in 0..n {
-        let face = m.face(f as usize);
-        if face.len() != 3 {
-            return None;
-        }
-        let k = face.iter().position(|&v| v == x)?;
-        out.push((f, k));
-        // the next triangle counter-clockwise holds the twin of E_(s+1) -> x
-        let back = m.face_halfedge(f as usize) + ((k + 2) % 3) as u32;
-        match m.he_twin(back) {
-            Some(t) => f = m.he_face(t),
-            // an open fan ends at its last triangle, on the boundary
-            None => return (open == Some(true) && s + 1 == n).then_some(out),
-        }
-    }
-    match open {
-        Some(true) => None,
-        Some(false) => (f == f0).then_some(out),
-        None => Some(out),
-    }
+    fan_walk(m, x, f0, n, open, 3)
 }
 
 /// Whether some marked element would get its cap after more levels.

@@ -36,46 +36,29 @@ use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{
     CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
 };
-use crate::host::fans::faces_between;
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
-use crate::schemes::catmull_clark::crease::adaptive::{crease_halfedges, is_plain_boundary};
+use crate::schemes::catmull_clark::crease::adaptive::{crease_sides, is_plain_boundary};
 use std::collections::HashMap;
 
 /// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is
-/// not a crease vertex (the caller's plain cap applies), one cap per side of `k >= 3` quads
-/// (sides of two quads are regular crease patches, not marked), or why there are none
-/// (`Later` while a semi-sharp feature is left or a side's ring is incomplete).
+/// not a crease vertex (the caller's plain cap applies), one cap per side of one, or of three
+/// or more quads (sides of two quads are regular crease patches, not marked;
+/// [`crease_sides`]), or why there are none (`Later` while a semi-sharp feature is left or a
+/// side's ring is incomplete).
 pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
     level: &Level,
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some((hs, plain)) = crease_halfedges(level, x) else {
+    let Some((centre, sides)) = crease_sides(level, x, faces, 2)? else {
         return Ok(None);
     };
-    if !plain {
-        return Err(NoCap::Later);
-    }
     let m = &level.mesh;
     let pos = m.positions();
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
-    let centre = scale(axpy(axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
     let mut caps = Vec::new();
-    let mut covered = 0;
-    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
-        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+    for (ha, _, k) in sides {
         let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
-        let marked = quads
-            .iter()
-            .filter(|q| tag_at.contains_key(&q.face))
-            .count();
-        match (marked, k) {
-            (0, _) => continue,
-            (_, 2) => return Err(NoCap::Later),
-            _ if marked < k => return Err(NoCap::Later),
-            _ => {}
-        }
         let tags = quads
             .iter()
             .map(|sec| {
@@ -111,10 +94,6 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
             [along, across],
             tags,
         ));
-        covered += k;
-    }
-    if caps.is_empty() || covered != faces.len() {
-        return Err(NoCap::Never);
     }
     Ok(Some(caps))
 }
