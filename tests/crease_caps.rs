@@ -241,3 +241,41 @@ fn edge_only_boundary_corners_get_one_piece_caps_on_the_boundary_curve() {
         }
     }
 }
+
+/// `subdivide --stencils` writes crease fans with their own FAN word, and the file reads back
+/// with one cap line per cap of the table.
+#[test]
+fn the_stencil_file_names_crease_fans_and_reads_back() {
+    let dir = std::env::temp_dir().join(format!("fairsub-crease-tab-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (bv, tab) = (dir.join("c.bv"), dir.join("c.tab"));
+    let net = support::osd_path("cc_crease_extraordinary");
+    let args = [
+        "subdivide",
+        &net,
+        "-s",
+        "catmull-clark",
+        "--rings",
+        "2",
+        "-o",
+    ];
+    let (bv_s, tab_s) = (bv.to_str().unwrap(), tab.to_str().unwrap());
+    let (code, _, err) = support::run(&[&args[..], &[bv_s, "--stencils", tab_s]].concat());
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&tab).unwrap();
+    let creases = text
+        .lines()
+        .filter(|l| l.starts_with("c ") && l.split_whitespace().nth(7) == Some("crease"))
+        .count();
+    assert_eq!(creases, 1, "one crease fan");
+    let file = fairsub::io::table::read_table(&tab).unwrap();
+    let spec = registry().lookup("catmull-clark").unwrap();
+    let opts = ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let table = PatchTable::build(&spec, &osd("cc_crease_extraordinary"), opts).unwrap();
+    assert_eq!(file.caps.len(), table.caps().len());
+    assert_eq!(&file.rows, table.rows());
+    std::fs::remove_dir_all(&dir).ok();
+}
