@@ -16,10 +16,12 @@
 #[path = "sharp/support.rs"]
 mod support;
 
+use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::dist;
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
+use fairsub::schemes::Scheme;
 use fairsub::schemes::catmull_clark::Configured;
 use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
 use fairsub::schemes::loop_subdivision::Configured as LoopConfigured;
@@ -100,6 +102,48 @@ fn nets() -> Vec<(String, PolyMesh, usize)> {
     out
 }
 
+/// Checks the complex `c` of `m` (`what`): rings and regular patches exact against `scheme`'s
+/// limit points (`samples` its parameter lattice), every join C^0, the crease sharp, every
+/// other join G^1 below 1e-8 rad, no fill patch, `want` crease caps, each centred at the
+/// crease's limit point with its boundary spokes on the crease's limit curve.
+fn check_crease_complex(
+    what: &str,
+    m: &PolyMesh,
+    c: &PatchComplex,
+    scheme: &dyn Scheme,
+    samples: fn(usize) -> Vec<(f64, f64)>,
+    want: usize,
+) {
+    let r = check_net(what, m, c, scheme, samples, false, true);
+    assert_eq!(fill_patches(c), 0, "{what}: fill patches left");
+    let creases: Vec<_> = c.caps.iter().filter(|s| s.hole.crease).collect();
+    assert_eq!(creases.len(), want, "{what}: crease caps");
+    assert!(
+        r.all.g1 < 1e-8,
+        "{what}: G^1 {:e} at {:?}",
+        r.all.g1,
+        r.all.g1_at
+    );
+    let levels = c.provenance.iter().filter_map(support::level_of).max();
+    let pts = limit_points(scheme, m, levels.unwrap_or(0) + 2);
+    let size = probe::net_size(m.positions());
+    for s in creases {
+        let d = nearest(&pts, s.hole.centre);
+        assert!(d < 1e-12 * size, "{what}: centre {d:e} off the limit");
+        // the boundary spokes run on the crease's limit curve: their points at the dyadic
+        // parameters of two more levels are limit points
+        let (first, last) = (s.first as usize, (s.first + s.count - 1) as usize);
+        for t in [0.25, 0.5, 0.75] {
+            for p in [c.patches[first].eval(t, 0.0), c.patches[last].eval(0.0, t)] {
+                let d = nearest(&pts, p);
+                assert!(d < 1e-11 * size, "{what}: crease spoke {d:e} off the limit");
+            }
+        }
+        let d = dist(c.patches[first].eval(0.0, 0.0), s.hole.centre);
+        assert!(d < 1e-14 * size, "{what}");
+    }
+}
+
 #[test]
 fn crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
     for (name, m, want) in nets() {
@@ -109,34 +153,7 @@ fn crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
             let what = format!("{name}, {rings} rings");
             let opts = ComplexOptions { rings, fill: true };
             let c = catmull_clark_complex_with(&m, opts, subd, |_| {}).expect(&what);
-            let r = check_net(&what, &m, &c, &scheme, quad_samples, false, true);
-            assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
-            let creases: Vec<_> = c.caps.iter().filter(|s| s.hole.crease).collect();
-            assert_eq!(creases.len(), want, "{what}: crease caps");
-            assert!(
-                r.all.g1 < 1e-8,
-                "{what}: G^1 {:e} at {:?}",
-                r.all.g1,
-                r.all.g1_at
-            );
-            let levels = c.provenance.iter().filter_map(support::level_of).max();
-            let pts = limit_points(&scheme, &m, levels.unwrap_or(0) + 2);
-            let size = probe::net_size(m.positions());
-            for s in creases {
-                let d = nearest(&pts, s.hole.centre);
-                assert!(d < 1e-12 * size, "{what}: centre {d:e} off the limit");
-                // the boundary spokes run on the crease's limit curve: their points at the
-                // dyadic parameters of two more levels are limit points
-                let (first, last) = (s.first as usize, (s.first + s.count - 1) as usize);
-                for t in [0.25, 0.5, 0.75] {
-                    for p in [c.patches[first].eval(t, 0.0), c.patches[last].eval(0.0, t)] {
-                        let d = nearest(&pts, p);
-                        assert!(d < 1e-11 * size, "{what}: crease spoke {d:e} off the limit");
-                    }
-                }
-                let d = dist(c.patches[first].eval(0.0, 0.0), s.hole.centre);
-                assert!(d < 1e-14 * size, "{what}");
-            }
+            check_crease_complex(&what, &m, &c, &scheme, quad_samples, want);
         }
     }
 }
@@ -162,16 +179,7 @@ fn loop_crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
             let what = format!("loop net {n} creased 0/{j}, {rings} rings");
             let opts = ComplexOptions { rings, fill: true };
             let c = loop_complex_with(&m, opts, subd, |_| {}).expect(&what);
-            let r = check_net(&what, &m, &c, &scheme, triangle_samples, false, true);
-            assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
-            let creases = c.caps.iter().filter(|s| s.hole.crease).count();
-            assert_eq!(creases, want, "{what}: crease caps");
-            assert!(
-                r.all.g1 < 1e-8,
-                "{what}: G^1 {:e} at {:?}",
-                r.all.g1,
-                r.all.g1_at
-            );
+            check_crease_complex(&what, &m, &c, &scheme, triangle_samples, want);
         }
     }
 }

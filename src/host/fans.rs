@@ -26,13 +26,15 @@ pub struct QuadSector {
 }
 
 /// The faces counter-clockwise around `from(ha)` from the face of `ha` to the one whose edge
-/// into the vertex is the twin of `hb` (at most the valence).
-pub fn faces_between(m: &PolyMesh, ha: u32, hb: u32) -> Option<usize> {
+/// into the vertex is the twin of `hb` (at most the valence); `None` at the boundary.
+pub fn faces_between(m: &PolyMesh, ha: u32, hb: u32) -> Option<Vec<u32>> {
     let mut h = ha;
-    for k in 1..=m.valence(m.he_from(ha) as usize) {
+    let mut faces = Vec::new();
+    for _ in 0..m.valence(m.he_from(ha) as usize) {
+        faces.push(m.he_face(h));
         let out = m.he_twin(m.he_prev(h))?;
         if out == hb {
-            return Some(k);
+            return Some(faces);
         }
         h = out;
     }

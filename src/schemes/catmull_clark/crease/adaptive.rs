@@ -266,6 +266,12 @@ pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], boo
     Some(([a, b], plain))
 }
 
+/// The limit point `(a + 4 x + b) / 6` of a vertex `x` under the crease rule between its
+/// crease (or boundary) neighbours `a` and `b`: the cubic B-spline of the crease polygon.
+pub(crate) fn crease_limit(a: Point, x: Point, b: Point) -> Point {
+    geom::scale(geom::axpy(geom::axpy(a, 4.0, x), 1.0, b), 1.0 / 6.0)
+}
+
 /// The limit point of a crease vertex and its sides `(ha, hb, k)` ([`crease_sides`]).
 pub(crate) type CreaseSides = (Point, Vec<(u32, u32, usize)>);
 
@@ -292,18 +298,15 @@ pub(crate) fn crease_sides(
     let pos = m.positions();
     let marked: std::collections::HashSet<u32> = cells.iter().map(|&(f, _)| f).collect();
     let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
-    let centre = geom::scale(geom::axpy(geom::axpy(ea, 4.0, pos[x]), 1.0, eb), 1.0 / 6.0);
+    let centre = crease_limit(ea, pos[x], eb);
     let mut sides = Vec::new();
     let mut covered = 0;
     for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
-        let k = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
-        let (mut h, mut count) = (ha, 0);
-        for i in 0..k {
-            count += usize::from(marked.contains(&m.he_face(h)));
-            if i + 1 < k {
-                h = m.he_twin(m.he_prev(h)).ok_or(NoCap::Never)?;
-            }
-        }
+        let faces = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
+        let (k, count) = (
+            faces.len(),
+            faces.iter().filter(|f| marked.contains(f)).count(),
+        );
         match count {
             0 => continue,
             _ if k == regular || count < k => return Err(NoCap::Later),

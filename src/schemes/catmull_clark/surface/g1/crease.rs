@@ -37,7 +37,9 @@ use crate::host::adaptive::{
     CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
-use crate::schemes::catmull_clark::crease::adaptive::{crease_sides, is_plain_boundary};
+use crate::schemes::catmull_clark::crease::adaptive::{
+    crease_limit, crease_sides, is_plain_boundary,
+};
 use std::collections::HashMap;
 
 /// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is
@@ -124,7 +126,7 @@ pub(in crate::schemes::catmull_clark::surface) fn boundary_corner_cap(
     let pos = m.positions();
     let (p, q) = (pos[sec.p as usize], pos[sec.q as usize]);
     let far = pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize];
-    let centre = scale(axpy(axpy(p, 4.0, pos[x]), 1.0, q), 1.0 / 6.0);
+    let centre = crease_limit(p, pos[x], q);
     let plane = [scale(sub(p, q), 0.5), sub(far, pos[x])];
     Ok((Hole::untangented_crease(centre, sectors), plane, vec![tag]))
 }
