@@ -186,24 +186,9 @@ fn loop_crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
 
 #[test]
 fn crease_caps_reapply_through_the_patch_table() {
-    let spec = registry().lookup("catmull-clark").expect("registered");
     for (name, m, _) in nets().into_iter().step_by(3) {
-        let opts = ComplexOptions {
-            rings: 2,
-            fill: true,
-        };
-        let table = PatchTable::build(&spec, &m, opts).expect(&name);
-        let creases = table.caps().iter().filter(|c| c.step.hole.crease).count();
+        let creases = support::table_reapplies("catmull-clark", &name, &m, |h| h.crease);
         assert!(creases > 0, "{name}: crease caps in the table");
-        let s = probe::net_size(m.positions());
-        let moved = probe::moved_points(m.positions(), 0.05 * s, 11);
-        let mut mm = m.clone();
-        mm.set_positions(moved.clone());
-        let truth = fairsub::surface::build(&spec, &mm, opts, &mut |_| {})
-            .expect(&name)
-            .complex;
-        let (d, _) = probe::max_deviation(&table.apply(&moved).expect(&name), &truth);
-        assert!(d <= 1e-12 * s, "{name}: moved points {d:.3e}");
     }
 }
 

@@ -360,6 +360,8 @@ fn regular_hole_reproduction() {
             sectors,
             open: false,
             crease: false,
+            dart: false,
+            wedge: None,
         };
         let cap = g1_cap_with(&hole, CapOptions::default()).unwrap();
         let mut worst: f64 = 0.0;

@@ -219,15 +219,15 @@ where
         for (patches, tags, mut step) in built {
             let first = out.len();
             step.first = first as u32;
-            let crease = step.hole.crease;
+            let sharp_ends = step.hole.fan().hermite_ends();
             out.caps.push(step);
             let count = patches.len();
             for (p, tag) in patches.into_iter().zip(tags) {
                 let sector = tag.sector;
                 out.push_in(p, Provenance::Cap { element, sector }, tag.domain);
             }
-            if crease {
-                // a crease's fan: its boundary spokes lie on the crease (sharp joins)
+            if sharp_ends {
+                // a crease's or a dart's fan: its boundary spokes lie on the sharp edge
                 out.mark_sharp(first, crate::bezier::Side::V0.index());
                 out.mark_sharp(first + count - 1, crate::bezier::Side::U0.index());
             }

@@ -33,13 +33,17 @@
 //! first and last on the boundary; [`crate::bezier::g1::Layout::OpenQuad`]) or `crease` (an
 //! open fan beside an infinitely sharp crease, [`crate::bezier::g1::Hole::crease`]: `T0` is
 //! `A` itself, the crease's derivative, and only `T1` is fitted,
-//! [`crate::bezier::g1::ring::crease_tangents`]). Version 2 added `FAN`; version 1 files are
-//! refused.
+//! [`crate::bezier::g1::ring::crease_tangents`]) or `dart` (a fan around a dart,
+//! [`crate::bezier::g1::Hole::dart`]: `SECTORS + 1` spokes at the angles `2 pi s / SECTORS`,
+//! the first and last the one sharp edge) or `wedge/M` (the `SECTORS` of the `M` sectors
+//! around an interior vertex that are not OpenSubdiv hole faces,
+//! [`crate::bezier::g1::Hole::wedge`]: spokes at the angles `2 pi s / M`, the first and last
+//! on the hole's border). Version 2 added `FAN`; version 1 files are refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
 use super::textout::{ChunkedText, push_f64, push_point};
-use crate::bezier::g1::{Centre, hole_cap_map};
+use crate::bezier::g1::{Centre, Fan, hole_cap_map};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::stencil::StencilTable;
@@ -81,8 +85,10 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
         let key = (
             hole.valence(),
             format!(
-                "{layout:?}{degrees:?}{}{:?}{}",
-                cap.degree, cap.centre, hole.crease
+                "{layout:?}{degrees:?}{}{:?}{:?}",
+                cap.degree,
+                cap.centre,
+                hole.fan()
             ),
         );
         let id = match map_of.get(&key) {
@@ -128,12 +134,12 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
                 cap.data_row,
                 cap.degree,
                 centre_name(cap.centre),
-                if st.hole.crease {
-                    "crease"
-                } else if st.hole.open {
-                    "open"
-                } else {
-                    "closed"
+                match st.hole.fan() {
+                    Fan::Closed => "closed".to_string(),
+                    Fan::Open => "open".to_string(),
+                    Fan::Crease => "crease".to_string(),
+                    Fan::Dart => "dart".to_string(),
+                    Fan::Wedge(m) => format!("wedge/{m}"),
                 },
                 shape.len(),
                 shape.first().map_or(0, Vec::len)
@@ -272,13 +278,13 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         if w.first() != Some(&"c")
             || v.len() < 7
             || v[3] as usize >= nmaps.max(1)
-            || !matches!(w.get(7), Some(&"open" | &"closed" | &"crease"))
+            || !w.get(7).is_some_and(|f| is_fan_word(f))
         {
             return Err(parse_error(
                 path,
                 l,
-                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open, closed or \
-                 crease)",
+                "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open, closed, \
+                 crease, dart or wedge/M)",
             ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));
@@ -359,4 +365,13 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         maps,
         constants,
     })
+}
+
+/// Whether `w` is a `FAN` word of a cap line: `open`, `closed`, `crease`, `dart` or `wedge/M`
+/// with a whole number `M >= 1`.
+fn is_fan_word(w: &str) -> bool {
+    match w.strip_prefix("wedge/") {
+        Some(m) => m.parse::<usize>().is_ok_and(|m| m >= 1),
+        None => matches!(w, "open" | "closed" | "crease" | "dart"),
+    }
 }

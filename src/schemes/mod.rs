@@ -9,6 +9,7 @@
 pub mod bi2;
 pub mod catmull_clark;
 pub mod circulant;
+pub mod dart;
 pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;

@@ -135,6 +135,8 @@ fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole, [Point; 2
     let hole = Hole {
         open: like.open,
         crease: like.crease,
+        dart: like.dart,
+        wedge: like.wedge,
         ..Hole::untangented(vals[0], sectors)
     };
     (hole, [vals[1], vals[2]])

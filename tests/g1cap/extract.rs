@@ -229,6 +229,8 @@ pub fn hole_of(c: &PatchComplex, triangles: bool, centre: Point, normal: Point) 
         sectors,
         open: false,
         crease: false,
+        dart: false,
+        wedge: None,
     };
     // spoke ends of the quad layout, projected into the tangent plane, Fourier mode 1
     let q = hole.to_quad_layout().unwrap();

@@ -238,3 +238,34 @@ pub fn bspline(d: [Point; 4], t: f64) -> Point {
     }
     p
 }
+
+/// Builds `scheme`'s patch table of `mesh` (`name` for messages) at 2 rings, checks that it
+/// re-applies to points moved by 5% of the net's size within 1e-12 of the recomputed complex,
+/// and returns how many of its caps `kind` selects.
+pub fn table_reapplies(
+    scheme: &str,
+    name: &str,
+    mesh: &PolyMesh,
+    kind: impl Fn(&fairsub::bezier::g1::Hole) -> bool,
+) -> usize {
+    use fairsub::surface::table::{PatchTable, probe};
+    let spec = fairsub::schemes::registry::registry()
+        .lookup(scheme)
+        .expect("registered");
+    let opts = fairsub::host::ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let table = PatchTable::build(&spec, mesh, opts).expect(name);
+    let count = table.caps().iter().filter(|c| kind(&c.step.hole)).count();
+    let s = probe::net_size(mesh.positions());
+    let moved = probe::moved_points(mesh.positions(), 0.05 * s, 11);
+    let mut mm = mesh.clone();
+    mm.set_positions(moved.clone());
+    let truth = fairsub::surface::build(&spec, &mm, opts, &mut |_| {})
+        .expect(name)
+        .complex;
+    let (d, _) = probe::max_deviation(&table.apply(&moved).expect(name), &truth);
+    assert!(d <= 1e-12 * s, "{name}: moved points {d:.3e}");
+    count
+}

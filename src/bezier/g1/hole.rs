@@ -111,6 +111,63 @@ pub struct Hole {
     /// centre) rather than fitted, so the caps on both sides of the crease share it exactly
     /// ([`super::ring::crease_tangents`]). Only with `open`.
     pub crease: bool,
+    /// An open fan around a dart (one infinitely sharp edge ending at the centre, inside the
+    /// surface): its `n + 1` spokes span a full turn, `t_s = cos(2 pi s / n) T0 +
+    /// sin(2 pi s / n) T1`, and spokes `0` and `n` are the one sharp edge, the cubic Hermite
+    /// interpolant of spoke `0`'s end data on both sides (so the two sectors beside it share
+    /// it: C^0 there, G^1 across every other spoke). `T0, T1` are fitted as for a closed hole.
+    /// Only with `open` ([`Fan::Dart`]).
+    pub dart: bool,
+    /// `Some(m)`: an open fan of `n` of the `m` sectors around an interior vertex whose other
+    /// sectors are holes (OpenSubdiv's hole faces): its `n + 1` spokes span `2 pi n / m`, the
+    /// angles of the full turn around the vertex, spokes `0` and `n` free curves on the hole's
+    /// border; the centre and tangent plane are the vertex's own (a smooth interior limit).
+    /// Only with `open` ([`Fan::Wedge`]).
+    pub wedge: Option<usize>,
+}
+
+/// How a hole's spokes run around its centre and which of them join two sectors: the shape
+/// of the G^1 conditions, read off a [`Hole`] by [`Hole::fan`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Fan {
+    /// A hole closed around its centre: `n` spokes over a full turn, every one a join.
+    Closed,
+    /// An open fan at a boundary vertex: `n + 1` spokes over a half-turn (a quarter-turn for
+    /// one sector), spokes `0` and `n` free boundary curves.
+    Open,
+    /// [`Fan::Open`] beside a crease ([`Hole::crease`]): spokes `0` and `n` the Hermite cubics
+    /// of their end data, `T0` pinned.
+    Crease,
+    /// A fan around a dart ([`Hole::dart`]): `n + 1` spokes over a full turn, spokes `0` and
+    /// `n` one Hermite cubic, the only spoke without the G^1 relation.
+    Dart,
+    /// `n` of the `m` sectors around an interior vertex, the others holes ([`Hole::wedge`]):
+    /// `n + 1` spokes over `2 pi n / m`, spokes `0` and `n` free.
+    Wedge(usize),
+}
+
+impl Fan {
+    /// Whether spokes `0` and `n` are distinct ends of the fan, not a join of two sectors.
+    pub fn is_open(self) -> bool {
+        self != Fan::Closed
+    }
+
+    /// Whether the fan's spokes `0` and `n` are the cubic Hermite interpolants of their end
+    /// data (a crease's or a dart's fan).
+    pub fn hermite_ends(self) -> bool {
+        matches!(self, Fan::Crease | Fan::Dart)
+    }
+
+    /// The fan a cap map of `layout` builds for the holes of kind `self`: closed for a closed
+    /// layout, open (at least) for an open one; a crease or dart only on the one-piece open
+    /// layouts.
+    pub fn on(self, layout: Layout) -> Fan {
+        match (layout.is_open(), self) {
+            (false, _) => Fan::Closed,
+            (true, Fan::Closed) => Fan::Open,
+            (true, f) => f,
+        }
+    }
 }
 
 /// Layout of a hole.
@@ -181,6 +238,8 @@ impl Hole {
             sectors,
             open: false,
             crease: false,
+            dart: false,
+            wedge: None,
         }
     }
 
@@ -202,6 +261,35 @@ impl Hole {
         }
     }
 
+    /// [`Hole::untangented_open`] for the fan around a dart ([`Hole::dart`]): sector `0`
+    /// starts at the sharp edge and sector `n - 1` ends at it.
+    pub fn untangented_dart(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
+        Hole {
+            dart: true,
+            ..Hole::untangented_open(centre, sectors)
+        }
+    }
+
+    /// [`Hole::untangented_open`] for `n` of the `m` sectors around an interior vertex whose
+    /// other sectors are holes ([`Hole::wedge`]).
+    pub fn untangented_wedge(centre: Point, sectors: Vec<Vec<Segment>>, m: usize) -> Hole {
+        Hole {
+            wedge: Some(m),
+            ..Hole::untangented_open(centre, sectors)
+        }
+    }
+
+    /// The shape of the hole's G^1 conditions ([`Fan`]).
+    pub fn fan(&self) -> Fan {
+        match (self.open, self.dart, self.wedge, self.crease) {
+            (false, ..) => Fan::Closed,
+            (true, true, ..) => Fan::Dart,
+            (true, false, Some(m), _) => Fan::Wedge(m),
+            (true, false, None, true) => Fan::Crease,
+            (true, false, None, false) => Fan::Open,
+        }
+    }
+
     /// Number of sectors.
     pub fn valence(&self) -> usize {
         self.sectors.len()
@@ -213,7 +301,7 @@ impl Hole {
         // one sector: a corner of an open triangle fan, or the one face of a crease's side
         let least = match (self.open, self.sectors.first().map(Vec::len)) {
             (true, Some(1)) => 1,
-            (true, _) if self.crease => 1,
+            (true, _) if self.crease || self.wedge.is_some() => 1,
             (true, _) => 2,
             _ => 3,
         };
@@ -334,6 +422,8 @@ impl Hole {
                 sectors,
                 open: self.open,
                 crease: self.crease,
+                dart: self.dart,
+                wedge: self.wedge,
             },
             kappa: conv.kappa,
             w1: conv.w1,
@@ -548,8 +638,8 @@ fn add_segment(db: usize, dc: usize, o: usize, t: f64, w: [f64; 3], out: &mut [f
     }
 }
 
-/// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1` (`pi s / n` on an `open` fan).
-pub fn spoke_tangent(tangents: &[Point; 2], n: usize, open: bool, s: usize) -> Point {
-    let th = super::system::spoke_angle_at(n, open, s);
+/// `cos(2 pi s / n) T0 + sin(2 pi s / n) T1` (`pi s / n` on an open fan, [`Fan`]).
+pub fn spoke_tangent(tangents: &[Point; 2], n: usize, fan: Fan, s: usize) -> Point {
+    let th = super::system::spoke_angle_at(n, fan, s);
     axpy(scale(tangents[0], th.cos()), th.sin(), tangents[1])
 }

@@ -3,7 +3,7 @@
 //! ([`CapMap::apply`]), and exposed as a matrix ([`CapMap::matrix`]) so that a stencil table can
 //! express every cap coefficient in the ring's coefficients.
 
-use super::hole::{Conversion, Degrees, Hole, Layout};
+use super::hole::{Conversion, Degrees, Fan, Hole, Layout};
 use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_energy};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
@@ -58,9 +58,9 @@ pub struct CapMap {
     pub w1: f64,
     /// The condition at the centre.
     pub centre: Centre,
-    /// Whether the boundary spokes of an open fan are the Hermite cubics of a crease
-    /// ([`Hole::crease`]).
-    pub crease: bool,
+    /// The shape of the conditions: closed, open, or an open fan whose boundary spokes are the
+    /// Hermite cubics of a crease ([`Hole::crease`]) or a dart ([`Hole::dart`]).
+    pub fan: Fan,
     /// Consistency certificate: the largest residual of the cap conditions over a basis of all
     /// data that satisfy the ring's compatibility conditions (0 up to rounding when the cap
     /// exists for every compatible ring; see [`super`]).
@@ -168,20 +168,22 @@ impl CapMap {
         degree: usize,
         centre: Centre,
     ) -> Result<CapMap> {
-        CapMap::with_crease(n, layout, degrees, degree, centre, false)
+        CapMap::with_fan(n, layout, degrees, degree, centre, Fan::Closed)
     }
 
-    /// [`CapMap::new`] with `crease`: an open fan's boundary spokes are the cubic Hermite
-    /// interpolants of their end data ([`Hole::crease`]; ignored for other layouts).
-    pub fn with_crease(
+    /// [`CapMap::new`] for the holes of kind `fan` ([`Hole::fan`]; a closed layout is always
+    /// [`Fan::Closed`], an open one at least [`Fan::Open`], [`Fan::on`]): a crease's or a
+    /// dart's open fan has its boundary spokes the cubic Hermite interpolants of their end
+    /// data, a dart's spokes span a full turn.
+    pub fn with_fan(
         n: usize,
         layout: Layout,
         degrees: Degrees,
         degree: usize,
         centre: Centre,
-        crease: bool,
+        fan: Fan,
     ) -> Result<CapMap> {
-        let crease = crease && layout.is_open() && layout.pieces() == 1;
+        let fan = fan.on(layout);
         if n < layout.min_sectors() {
             return Err(Error::InvalidArgument(format!(
                 "a G^1 cap needs at least {} sectors, got {n}",
@@ -210,10 +212,9 @@ impl CapMap {
             ));
         }
         let jet = centre == Centre::QuadraticJet;
-        let open = layout.is_open();
         let ends = (conv.kappa, conv.w1);
         let nu = nx + if jet { 3 } else { 0 };
-        let cond = conditions((n, open, crease), d, pm, ends, jet);
+        let cond = conditions((n, fan), d, pm, ends, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
         // compatible data), so C^1 to the ring holds to rounding. The other unknowns `y` solve
@@ -279,7 +280,7 @@ impl CapMap {
             map.set_row(x, &y.row(k));
         }
         // Certificate over the data satisfying the ring's compatibility conditions.
-        let g = compatibility(n, open, d, pm, ends);
+        let g = compatibility(n, fan, d, pm, ends);
         let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
         let (_, admissible) = pinv_and_null(&gm)?;
         let resid =
@@ -298,7 +299,7 @@ impl CapMap {
             certificate,
             free_parameters,
             centre,
-            crease,
+            fan,
             sparse: sparse_rows(&matrix),
             sparse_compat: sparse_rows(&compat),
             matrix,
@@ -375,7 +376,7 @@ pub(crate) fn hole_size(hole: &Hole) -> f64 {
         .fold(f64::MIN_POSITIVE, f64::max)
 }
 
-type Key = (usize, Layout, Degrees, usize, Centre, bool);
+type Key = (usize, Layout, Degrees, usize, Centre, Fan);
 
 /// The cap map for the given shape, built once per process and shared.
 pub fn cap_map(
@@ -385,15 +386,15 @@ pub fn cap_map(
     degree: usize,
     centre: Centre,
 ) -> Result<Arc<CapMap>> {
-    cached_map((n, layout, degrees, degree, centre, false))
+    cached_map((n, layout, degrees, degree, centre, Fan::Closed.on(layout)))
 }
 
-/// The cap map of `hole`'s shape (valence, layout, segment degrees, crease spokes) at `degree`
+/// The cap map of `hole`'s shape (valence, layout, segment degrees, [`Fan`]) at `degree`
 /// with `centre`, built once per process and shared.
 pub fn hole_cap_map(hole: &Hole, degree: usize, centre: Centre) -> Result<Arc<CapMap>> {
     let (layout, degrees) = hole.layout()?;
-    let crease = hole.crease && layout.is_open() && layout.pieces() == 1;
-    cached_map((hole.valence(), layout, degrees, degree, centre, crease))
+    let fan = hole.fan().on(layout);
+    cached_map((hole.valence(), layout, degrees, degree, centre, fan))
 }
 
 fn cached_map(key: Key) -> Result<Arc<CapMap>> {
@@ -402,10 +403,8 @@ fn cached_map(key: Key) -> Result<Arc<CapMap>> {
     if let Some(m) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(m.clone());
     }
-    let (n, layout, degrees, degree, centre, crease) = key;
-    let m = Arc::new(CapMap::with_crease(
-        n, layout, degrees, degree, centre, crease,
-    )?);
+    let (n, layout, degrees, degree, centre, fan) = key;
+    let m = Arc::new(CapMap::with_fan(n, layout, degrees, degree, centre, fan)?);
     cache.lock().map_err(poisoned)?.insert(key, m.clone());
     Ok(m)
 }
@@ -422,6 +421,18 @@ pub fn lowest_certified_degree(
     degrees: Degrees,
     centre: Centre,
 ) -> Result<usize> {
+    lowest_certified_fan(n, layout, degrees, centre, Fan::Closed)
+}
+
+/// [`lowest_certified_degree`] for the holes of kind `fan` ([`CapMap::with_fan`]).
+pub fn lowest_certified_fan(
+    n: usize,
+    layout: Layout,
+    degrees: Degrees,
+    centre: Centre,
+    fan: Fan,
+) -> Result<usize> {
+    let fan = fan.on(layout);
     let centre = if centre == Centre::Auto {
         Centre::TangentPlane
     } else {
@@ -429,7 +440,7 @@ pub fn lowest_certified_degree(
     };
     let lo = Conversion::cached(n, layout, degrees).degree.max(3);
     for d in lo..=lo + 4 {
-        if cap_map(n, layout, degrees, d, centre)?.is_certified() {
+        if cached_map((n, layout, degrees, d, centre, fan))?.is_certified() {
             return Ok(d);
         }
     }
@@ -517,11 +528,12 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
     let n = hole.valence();
     check_cap_valence(n)?;
     let (layout, degrees) = hole.layout()?;
+    let fan = hole.fan();
     let (d, centre) = match opts.centre {
         Centre::Auto => {
             let d = match opts.degree {
                 Some(d) => d,
-                None => lowest_certified_degree(n, layout, degrees, Centre::TangentPlane)?,
+                None => lowest_certified_fan(n, layout, degrees, Centre::TangentPlane, fan)?,
             };
             // an open fan keeps the plane: the limit at a boundary vertex has no bounded
             // quadratic expansion to share (see the module documentation, "Open fans")
@@ -536,7 +548,7 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
         }
         c => match opts.degree {
             Some(d) => (d, c),
-            None => (lowest_certified_degree(n, layout, degrees, c)?, c),
+            None => (lowest_certified_fan(n, layout, degrees, c, fan)?, c),
         },
     };
     Ok((layout, degrees, d, centre))

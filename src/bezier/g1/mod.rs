@@ -195,6 +195,31 @@
 //! `OpenQuad` and `OpenTriangle` n = 1..10, `d - 3` fewer free parameters per boundary
 //! spoke).
 //!
+//! ## Dart fans
+//!
+//! Around a dart (one infinitely sharp edge ending at the centre) the surface has a tangent
+//! plane at the centre but is only C^0 along the sharp edge. Its hole is an open fan whose
+//! `n + 1` spokes span the full turn ([`Fan::Dart`], [`Hole::dart`]): spokes `0` and `n` are
+//! both the sharp edge, `t_0 = t_n = T0`, and both are the cubic Hermite interpolant of spoke
+//! `0`'s end data (the rows of the crease fans), so the two sectors beside the sharp edge share
+//! it exactly; every other spoke carries the G^1 relation with `w(0) = 2 cos(2 pi / n)`, as in a
+//! closed hole, but no cycle closes around the centre. The ring's data must agree at the sharp
+//! spoke's end (one point, one derivative along the spoke: two compatibility rows). Lowest
+//! certified degrees (test `dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere`):
+//! bi-4 for quads at every `n` from 2 to 12 (bi-3 at `n = 4`), bi-5 for Loop's triangle fans
+//! (bi-4 at `n = 6`). `T0, T1` are fitted in the limit tangent plane over the full turn.
+//!
+//! ## Wedges
+//!
+//! Around an interior vertex of `m` sectors some of which are holes (OpenSubdiv's hole faces:
+//! refined, but without surface) the limit is the smooth surface with those sectors cut away.
+//! Each run of `n < m` present sectors is an open fan whose spokes keep the angles of the full
+//! turn, `2 pi s / m` ([`Fan::Wedge`], [`Hole::wedge`]), spokes `0` and `n` free curves on the
+//! holes' border, G^1 on the `n - 1` inner spokes with `w(0) = 2 cos(2 pi / m)`. All runs share
+//! the vertex's limit point and tangent plane. Lowest certified degrees (test
+//! `wedges_are_certified_at_the_angles_of_the_full_turn`, `m = 3..12`): bi-4 for quads (bi-3
+//! for one sector and at `m = 4`), bi-5 for triangles (bi-4 for one sector and at `m = 6`).
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
@@ -213,9 +238,9 @@ mod system;
 #[cfg(test)]
 mod tests;
 
-pub use hole::{Degrees, Hole, Layout, QuadHole, Segment, spoke_tangent};
+pub use hole::{Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{
     CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_CAP_VALENCE,
     MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, hole_cap_map,
-    lowest_certified_degree,
+    lowest_certified_degree, lowest_certified_fan,
 };

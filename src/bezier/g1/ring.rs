@@ -125,8 +125,9 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     let mut t = [[0.0; 3]; 2];
     if hole.open {
         // least squares over the n + 1 spokes of the half-turn (cos and sin are not
-        // orthogonal there): the 2 x 2 normal equations
-        let step = super::system::turn(n, true) / n as f64;
+        // orthogonal there; a dart's full turn counts its sharp spoke twice): the 2 x 2
+        // normal equations
+        let step = super::system::turn(n, hole.fan()) / n as f64;
         let (mut cc, mut cs, mut ss) = (0.0, 0.0, 0.0);
         let mut r = [[0.0; 3]; 2];
         for (s, ts) in spokes.iter().enumerate() {
@@ -161,7 +162,7 @@ fn crease_fit(hole: &Hole, t0: Point, proj: impl Fn(Point) -> Point) -> Result<[
         return Ok([t0, scale(t0, -1.0)]);
     }
     let (spokes, n, _) = spoke_derivatives(hole, proj)?;
-    let step = super::system::turn(n, true) / n as f64;
+    let step = super::system::turn(n, hole.fan()) / n as f64;
     let (mut ss, mut r) = (0.0, [0.0; 3]);
     for (s, ts) in spokes.iter().enumerate() {
         let (c, si) = ((step * s as f64).cos(), (step * s as f64).sin());

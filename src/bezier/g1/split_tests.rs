@@ -32,7 +32,12 @@ fn random_compatible_data_give_split_g1_caps() {
             let q = (s + n - 1) % n;
             for k in 0..m {
                 let (ps, pq) = (piece(m, s, k, 0), piece(m, q, 0, k));
-                for r in spoke_rows(d, weight_part(n, false, (0.0, 0.0), m, k), ps, pq) {
+                for r in spoke_rows(
+                    d,
+                    weight_part(n, super::hole::Fan::Closed, (0.0, 0.0), m, k),
+                    ps,
+                    pq,
+                ) {
                     assert!(resid(&r) < 1e-10 * size, "m {m} n {n} spoke {s} piece {k}");
                 }
                 for i in 0..=10 {

@@ -3,6 +3,7 @@
 //! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
 //! fairness energy. All rows are scalar and the same for x, y, z.
 
+use super::hole::Fan;
 use nalgebra::DMatrix;
 
 /// Index of coefficient `(i, j)` of cap patch `p` among the unknowns (`p` the sector in the
@@ -60,40 +61,44 @@ pub(crate) struct Conditions {
     pub f: Vec<Row>,
 }
 
-/// The angle between neighbouring spokes at the centre: `2 pi / n` around a closed hole of `n`
-/// sectors, `pi / n` across an open fan of `n` sectors at a boundary vertex (its `n + 1` spokes
-/// span a half-turn, spokes `0` and `n` along the boundary).
-pub(crate) fn spoke_angle(n: usize, open: bool) -> f64 {
-    turn(n, open) / n as f64
+/// The angle between neighbouring spokes at the centre: `2 pi / n` around a closed hole or a
+/// dart's fan of `n` sectors, `pi / n` across an open fan of `n` sectors at a boundary vertex
+/// or beside a crease (its `n + 1` spokes span a half-turn, spokes `0` and `n` along the
+/// boundary).
+pub(crate) fn spoke_angle(n: usize, fan: Fan) -> f64 {
+    turn(n, fan) / n as f64
 }
 
-/// The angle the spokes of a hole of `n` sectors span: a full turn around a closed hole, a
-/// half-turn across an open fan, a quarter-turn across an open fan of one sector (a corner:
-/// its two spokes are the two boundary curves' tangents, `T0` and `T1` themselves).
-pub(crate) fn turn(n: usize, open: bool) -> f64 {
-    match (open, n) {
-        (false, _) => 2.0 * std::f64::consts::PI,
-        (true, 1) => std::f64::consts::FRAC_PI_2,
-        (true, _) => std::f64::consts::PI,
+/// The angle the spokes of a hole of `n` sectors span: a full turn around a closed hole or a
+/// dart, `2 pi n / m` across a wedge of `n` of `m` sectors, a half-turn across an open fan, a quarter-turn across an open fan of one sector (a
+/// corner: its two spokes are the two boundary curves' tangents, `T0` and `T1` themselves).
+pub(crate) fn turn(n: usize, fan: Fan) -> f64 {
+    match (fan, n) {
+        (Fan::Closed | Fan::Dart, _) => 2.0 * std::f64::consts::PI,
+        (Fan::Wedge(m), _) => 2.0 * std::f64::consts::PI * n as f64 / m.max(1) as f64,
+        (_, 1) => std::f64::consts::FRAC_PI_2,
+        _ => std::f64::consts::PI,
     }
 }
 
-/// The angle of spoke `k` from spoke 0: `k` times [`spoke_angle`] (computed as `turn k / n`).
-pub(crate) fn spoke_angle_at(n: usize, open: bool, k: usize) -> f64 {
-    turn(n, open) * k as f64 / n as f64
+/// The angle of spoke `k` from spoke 0: `k` times [`spoke_angle`] (computed as `turn k / n`;
+/// spoke `n` of a dart's fan is its spoke `0`, angle 0 exactly).
+pub(crate) fn spoke_angle_at(n: usize, fan: Fan, k: usize) -> f64 {
+    let k = if fan == Fan::Dart { k % n } else { k };
+    turn(n, fan) * k as f64 / n as f64
 }
 
 /// The spokes that join two sectors (where C^0 and the G^1 relation are imposed): spoke `s`
 /// between sectors `s - 1` and `s`, all `n` of a closed hole, the `n - 1` inner ones of an open
-/// fan (its spokes `0` and `n` are boundary curves of the surface).
-pub(crate) fn inner_spokes(n: usize, open: bool) -> std::ops::Range<usize> {
-    if open { 1..n } else { 0..n }
+/// fan (its spokes `0` and `n` are boundary curves of the surface, or a dart's sharp edge).
+pub(crate) fn inner_spokes(n: usize, fan: Fan) -> std::ops::Range<usize> {
+    if fan.is_open() { 1..n } else { 0..n }
 }
 
 /// `w(u) = 2 c (1 - u)^2 + (2 w1 + kappa) u (1 - u) + w1 u^2`, `c = cos(`[`spoke_angle`]`)`,
 /// in Bernstein form of degree 2: `w(0) = 2 c`, `w(1) = w1`, `w'(1) = -kappa`.
-pub(crate) fn weight(n: usize, open: bool, kappa: f64, w1: f64) -> [f64; 3] {
-    let c = spoke_angle(n, open).cos();
+pub(crate) fn weight(n: usize, fan: Fan, kappa: f64, w1: f64) -> [f64; 3] {
+    let c = spoke_angle(n, fan).cos();
     [2.0 * c, w1 + kappa / 2.0, w1]
 }
 
@@ -106,12 +111,12 @@ pub(crate) fn binom(n: usize, k: usize) -> f64 {
 /// in the part's own parameter (Bernstein form, by the blossom); `m = 1` is [`weight`] itself.
 pub(crate) fn weight_part(
     n: usize,
-    open: bool,
+    fan: Fan,
     (kappa, w1): (f64, f64),
     m: usize,
     k: usize,
 ) -> [f64; 3] {
-    let w = weight(n, open, kappa, w1);
+    let w = weight(n, fan, kappa, w1);
     if m == 1 {
         return w;
     }
@@ -163,15 +168,15 @@ pub(crate) fn spoke_rows(d: usize, w: [f64; 3], ps: usize, pq: usize) -> Vec<Row
     rows
 }
 
-/// The conditions of the cap of valence `n` (`open`: an open fan of `n` sectors; `crease`:
-/// its boundary spokes the cubic Hermite interpolants of their end data, [`crease_rows`]),
+/// The conditions of the cap of valence `n` (`fan`: closed, an open fan of `n` sectors, or
+/// with its boundary spokes the cubic Hermite interpolants of their end data, [`crease_rows`]),
 /// degree `d`, `m x m` pieces per sector, spoke-end twist `kappa` and value `w1`
 /// ([`weight`]); with `jet` also the quadratic-jet
 /// conditions at the centre over three extra unknowns ([`jet_rows`]). Split sectors (`m > 1`)
 /// add C^`r` joins between their pieces ([`inner_rows`], `r` = [`INNER_SMOOTHNESS`]); `m = 1`
 /// gives the one-patch rows unchanged.
 pub(crate) fn conditions(
-    (n, open, crease): (usize, bool, bool),
+    (n, fan): (usize, Fan),
     d: usize,
     m: usize,
     (kappa, w1): (f64, f64),
@@ -208,7 +213,7 @@ pub(crate) fn conditions(
             }
         }
         // the centre and the spoke tangents (per unit of the centre piece's parameter)
-        let th = |k: usize| spoke_angle_at(n, open, k);
+        let th = |k: usize| spoke_angle_at(n, fan, k);
         let p0 = piece(m, s, 0, 0);
         let dm = df * mf;
         fix(&mut e, cidx(d, p0, 0, 0), vec![(0, 1.0)]);
@@ -224,12 +229,12 @@ pub(crate) fn conditions(
             vec![(0, 1.0), (1, a1.cos() / dm), (2, a1.sin() / dm)],
         );
     }
-    if crease && open && m == 1 {
-        for (x, row) in crease_rows(n, d) {
+    if fan.hermite_ends() && m == 1 {
+        for (x, row) in crease_rows(n, d, fan) {
             fix(&mut e, x, row);
         }
     }
-    for s in inner_spokes(n, open) {
+    for s in inner_spokes(n, fan) {
         let q = (s + n - 1) % n;
         for k in 0..m {
             let (ps, pq) = (piece(m, s, k, 0), piece(m, q, 0, k));
@@ -237,7 +242,7 @@ pub(crate) fn conditions(
                 e.push(vec![(cidx(d, ps, i, 0), 1.0), (cidx(d, pq, 0, i), -1.0)]);
                 f.push(Vec::new());
             }
-            for r in spoke_rows(d, weight_part(n, open, (kappa, w1), m, k), ps, pq) {
+            for r in spoke_rows(d, weight_part(n, fan, (kappa, w1), m, k), ps, pq) {
                 e.push(r);
                 f.push(Vec::new());
             }
@@ -250,7 +255,7 @@ pub(crate) fn conditions(
         }
     }
     if jet {
-        let (je, jf) = jet_rows(n, open, d, m, (kappa, w1));
+        let (je, jf) = jet_rows(n, fan, d, m, (kappa, w1));
         e.extend(je);
         f.extend(jf);
     }
@@ -267,17 +272,19 @@ pub(crate) fn conditions(
 /// two layers along that inner spoke), so the rows fix free parameters and the certificate is
 /// that of the plain open fan. Where the ring's boundary curve is a cubic B-spline (a crease
 /// or boundary under OpenSubdiv's rules, whose end data are its own), the spoke is that curve
-/// exactly.
-pub(crate) fn crease_rows(n: usize, d: usize) -> Vec<(usize, Row)> {
+/// exactly. A dart's fan ([`Fan::Dart`]) gives spoke `n` spoke `0`'s end data (the same
+/// point and derivative of a ring that is C^0 along the sharp edge), so both are one curve.
+pub(crate) fn crease_rows(n: usize, d: usize, fan: Fan) -> Vec<(usize, Row)> {
     let qd = QuadData { d, m: 1 };
     let mut out = Vec::new();
     for last in [false, true] {
         let (p, k) = if last { (n - 1, n) } else { (0, 0) };
-        let th = spoke_angle_at(n, true, k);
-        let (e, x) = if last {
+        let th = spoke_angle_at(n, fan, k);
+        let (e, x) = if last && fan != Fan::Dart {
             (qd.b(p, 0, 0), qd.cb(p, 0, 0))
         } else {
-            (qd.a(p, 0, 0), qd.ca(p, 0, 0))
+            // spoke 0's end (a dart's spoke n too)
+            (qd.a(0, 0, 0), qd.ca(0, 0, 0))
         };
         let h: [Row; 4] = [
             vec![(0, 1.0)],
@@ -372,11 +379,12 @@ pub(crate) fn inner_rows(n: usize, d: usize, m: usize, r: usize) -> Vec<Row> {
 /// where `w1 != 0` that derivative also holds the cap's own `d_uu P_s(1, 0)`, so it is a
 /// condition on the cap, not on the data); for split sectors, the pieces of each side join
 /// C^[`INNER_SMOOTHNESS`] in boundary and cross derivative. Each row is labelled with the sector
-/// or spoke. An `open` fan has no conditions at the ends of its boundary spokes `0` and `n`
-/// (one sector each).
+/// or spoke. An open fan ([`Fan::is_open`]) has no conditions at the ends of its boundary
+/// spokes `0` and `n` (one sector each), except that a dart's two sides of its sharp spoke end
+/// at one point with one derivative along the spoke (the ring is C^0 along the sharp edge).
 pub(crate) fn compatibility(
     n: usize,
-    open: bool,
+    fan: Fan,
     d: usize,
     m: usize,
     (kappa, w1): (f64, f64),
@@ -415,7 +423,7 @@ pub(crate) fn compatibility(
         ));
         let q = (s + n - 1) % n;
         let end = format!("end of spoke {s} (sectors {q}, {s})");
-        if inner_spokes(n, open).contains(&s) {
+        if inner_spokes(n, fan).contains(&s) {
             g.push((
                 end.clone(),
                 vec![(qd.a(s, 0, 0), 1.0), (qd.b(q, 0, 0), -1.0)],
@@ -476,6 +484,15 @@ pub(crate) fn compatibility(
                 }
             }
         }
+    }
+    if fan == Fan::Dart {
+        // the sharp spoke's two sides end at one point with one derivative along it
+        let end = format!("end of the dart's sharp spoke (sectors {}, 0)", n - 1);
+        g.push((
+            end.clone(),
+            vec![(qd.a(0, 0, 0), 1.0), (qd.b(n - 1, 0, 0), -1.0)],
+        ));
+        g.push((end, vec![(qd.ca(0, 0, 0), 1.0), (qd.cb(n - 1, 0, 0), -1.0)]));
     }
     g
 }
@@ -547,19 +564,19 @@ pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
 /// curvature continuous there.
 pub(crate) fn jet_rows(
     n: usize,
-    open: bool,
+    fan: Fan,
     d: usize,
     m: usize,
     (kappa, w1): (f64, f64),
 ) -> (Vec<Row>, Vec<Row>) {
-    let c = spoke_angle(n, open).cos();
+    let c = spoke_angle(n, fan).cos();
     // the centre piece of a split sector sees the sector's second derivatives times 1 / m^2
     let sc = 1.0 / (m * m) as f64;
     // w'(0) = 2 (w1 + kappa / 2) - 4 c
     let k = (-4.0 * c + kappa + 2.0 * w1) / (2.0 * (1.0 + c)) * sc;
     let df = d as f64;
     let h0 = n * m * m * (d + 1) * (d + 1);
-    let th = |s: usize| spoke_angle_at(n, open, s);
+    let th = |s: usize| spoke_angle_at(n, fan, s);
     let (mut e, mut f) = (Vec::new(), Vec::new());
     for s0 in 0..n {
         let s = piece(m, s0, 0, 0);

@@ -26,13 +26,13 @@ pub(crate) fn random_quad_hole(n: usize, d: usize, kappa: f64, rng: &mut Lcg) ->
 
 /// Like [`random_quad_hole`] with `m` pieces per sector side (`m = 1`: the quad layout).
 pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
-    random_hole(n, false, d, m, kappa, rng)
+    random_hole(n, Fan::Closed, d, m, kappa, rng)
 }
 
-/// A random hole (an open fan when `open`) whose data satisfy the compatibility conditions.
-fn random_hole(n: usize, open: bool, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
+/// A random hole of kind `fan` whose data satisfy the compatibility conditions.
+fn random_hole(n: usize, fan: Fan, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
     let qd = QuadData { d, m };
-    let g = compatibility(n, open, d, m, (kappa, 0.0));
+    let g = compatibility(n, fan, d, m, (kappa, 0.0));
     let gm = dense(
         &g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(),
         qd.len(n),
@@ -85,8 +85,13 @@ fn random_hole(n: usize, open: bool, d: usize, m: usize, kappa: f64, rng: &mut L
         sectors: (0..n)
             .map(|s| (0..2 * m).map(|k| seg(s, k)).collect())
             .collect(),
-        open,
-        crease: false,
+        open: fan.is_open(),
+        crease: fan == Fan::Crease,
+        dart: fan == Fan::Dart,
+        wedge: match fan {
+            Fan::Wedge(m) => Some(m),
+            _ => None,
+        },
     }
 }
 
@@ -110,7 +115,10 @@ fn random_compatible_data_give_g1_caps() {
             let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
             let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
             for s in 0..n {
-                let (w, q) = (super::system::weight(n, false, 0.0, 0.0), (s + n - 1) % n);
+                let (w, q) = (
+                    super::system::weight(n, Fan::Closed, 0.0, 0.0),
+                    (s + n - 1) % n,
+                );
                 for r in super::system::spoke_rows(d, w, s, q) {
                     let v = r
                         .iter()
@@ -240,13 +248,13 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
         // the jet ties the twists to one Hessian: bi-4 affords it for n = 3, 4 only
         assert_eq!(jet, if n <= 4 { 4 } else { 5 }, "n {n}");
         let d = 4;
-        let hole = random_hole(n, true, d, 1, 0.0, &mut rng);
+        let hole = random_hole(n, Fan::Open, d, 1, 0.0, &mut rng);
         let cap = g1_cap(&hole).unwrap();
         assert_eq!(cap.len(), n);
         let x: Vec<Point> = cap.iter().flat_map(|b| b.cps.iter().copied()).collect();
         let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
         for s in 1..n {
-            let w = super::system::weight(n, true, 0.0, 0.0);
+            let w = super::system::weight(n, Fan::Open, 0.0, 0.0);
             for r in super::system::spoke_rows(d, w, s, s - 1) {
                 let v = r
                     .iter()
@@ -266,7 +274,7 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
             }
         }
         // the spoke tangents at the centre, boundary spokes included
-        let t = super::hole::spoke_tangent(&hole.tangents, n, true, n);
+        let t = super::hole::spoke_tangent(&hole.tangents, n, Fan::Open, n);
         let got = scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), d as f64);
         assert!(norm(sub(got, t)) < 1e-10 * size, "n {n}");
     }
@@ -318,7 +326,7 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
             let d = lowest_certified_degree(n, layout, deg, Centre::TangentPlane).unwrap();
             let plain = CapMap::new(n, layout, deg, d, Centre::TangentPlane).unwrap();
             let crease =
-                CapMap::with_crease(n, layout, deg, d, Centre::TangentPlane, true).unwrap();
+                CapMap::with_fan(n, layout, deg, d, Centre::TangentPlane, Fan::Crease).unwrap();
             assert!(
                 crease.is_certified(),
                 "{layout:?} n {n}: {:e}",
@@ -333,8 +341,7 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
     }
     let mut rng = Lcg(17);
     for n in 2..=9 {
-        let mut hole = random_hole(n, true, 4, 1, 0.0, &mut rng);
-        hole.crease = true;
+        let hole = random_hole(n, Fan::Crease, 4, 1, 0.0, &mut rng);
         let cap = g1_cap(&hole).unwrap();
         let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
         let hermite = |c: Point, t: Point, e: Point, x: Point, u: f64| {
@@ -348,8 +355,8 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
             [0, 1, 2].map(|k| w[0] * c[k] + w[1] * t[k] + w[2] * e[k] + w[3] * x[k])
         };
         let (a, b) = (&hole.sectors[0][0], &hole.sectors[n - 1][1]);
-        let t0 = spoke_tangent(&hole.tangents, n, true, 0);
-        let tn = spoke_tangent(&hole.tangents, n, true, n);
+        let t0 = spoke_tangent(&hole.tangents, n, Fan::Crease, 0);
+        let tn = spoke_tangent(&hole.tangents, n, Fan::Crease, n);
         for k in 0..=8 {
             let u = k as f64 / 8.0;
             let want = hermite(hole.centre, t0, a.boundary[0], a.cross[0], u);
@@ -372,4 +379,142 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
             }
         }
     }
+}
+
+/// Dart fans ([`Hole::dart`]): certified at the degree of the plain open fan or one above; on
+/// compatible data the two sides of the sharp spoke are one curve (C^0), every inner spoke is
+/// G^1 and every spoke leaves the centre in the plane of `T0, T1` at the full turn's angles.
+#[test]
+fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let mut rng = Lcg(23);
+    let mut table = Vec::new();
+    for n in 2..=12 {
+        let d = lowest_certified_fan(n, Layout::OpenQuad, deg, Centre::TangentPlane, Fan::Dart)
+            .unwrap();
+        table.push(format!("{n}:{d}"));
+        assert!(d <= 5, "n {n}: {d}");
+        let hole = random_hole(n, Fan::Dart, d, 1, 0.0, &mut rng);
+        let cap = g1_cap(&hole).unwrap();
+        assert_eq!(cap.len(), n);
+        let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+        for k in 0..=10 {
+            let u = k as f64 / 10.0;
+            let c0 = norm(sub(cap[0].eval(u, 0.0), cap[n - 1].eval(0.0, u)));
+            assert!(c0 < 1e-11 * size, "n {n} sharp spoke at {u}: {c0:e}");
+            for s in 1..n {
+                let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
+                assert!(norm(sub(p.p, q.p)) < 1e-11 * size);
+                let (np, nq) = (
+                    crate::geom::cross(p.du, p.dv),
+                    crate::geom::cross(q.du, q.dv),
+                );
+                if norm(np) > 1e-9 && norm(nq) > 1e-9 {
+                    let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
+                    assert!(c < 1e-9, "n {n} spoke {s} at {u}: {c:e}");
+                }
+            }
+        }
+        for s in 0..=n {
+            let t = spoke_tangent(&hole.tangents, n, Fan::Dart, s);
+            let th = 2.0 * std::f64::consts::PI * s as f64 / n as f64;
+            let want = crate::geom::axpy(
+                scale(hole.tangents[0], th.cos()),
+                th.sin(),
+                hole.tangents[1],
+            );
+            assert!(norm(sub(t, want)) < 1e-12 * size, "n {n} spoke {s}");
+            let got = if s < n {
+                scale(sub(cap[s].cp(1, 0), cap[s].cp(0, 0)), d as f64)
+            } else {
+                scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), d as f64)
+            };
+            assert!(norm(sub(got, t)) < 1e-10 * size, "n {n} spoke {s}");
+        }
+    }
+    eprintln!("dart fans, lowest degree: {}", table.join(" "));
+    // Loop's darts: open triangle fans over the full turn
+    let tris = Degrees {
+        boundary: 4,
+        cross: 3,
+    };
+    let mut table = Vec::new();
+    for n in 3..=12 {
+        let d = lowest_certified_fan(
+            n,
+            Layout::OpenTriangle,
+            tris,
+            Centre::TangentPlane,
+            Fan::Dart,
+        )
+        .unwrap();
+        table.push(format!("{n}:{d}"));
+        assert!(d <= 6, "n {n}: {d}");
+    }
+    eprintln!("dart triangle fans, lowest degree: {}", table.join(" "));
+}
+
+/// Wedges ([`Hole::wedge`]): `k` of the `m` sectors around a vertex whose others are holes,
+/// quads and Loop's triangles: certified at every `k < m` up to `m = 12`, at most bi-5 (quads)
+/// and bi-6 (triangles); on compatible quad data the inner spokes are G^1 and the spokes leave
+/// the centre at the angles `2 pi s / m`.
+#[test]
+fn wedges_are_certified_at_the_angles_of_the_full_turn() {
+    let quads = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let tris = Degrees {
+        boundary: 4,
+        cross: 3,
+    };
+    let mut rng = Lcg(29);
+    let mut table = Vec::new();
+    for m in 3..=12 {
+        for k in 1..m {
+            let fan = Fan::Wedge(m);
+            let d = lowest_certified_fan(k, Layout::OpenQuad, quads, Centre::TangentPlane, fan)
+                .unwrap();
+            let dt = lowest_certified_fan(k, Layout::OpenTriangle, tris, Centre::TangentPlane, fan)
+                .unwrap();
+            table.push(format!("{k}/{m}:{d}/{dt}"));
+            assert!(d <= 5 && dt <= 6, "{k} of {m}: {d} {dt}");
+            let hole = random_hole(k, fan, d, 1, 0.0, &mut rng);
+            let cap = g1_cap(&hole).unwrap();
+            let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+            for s in 0..=k {
+                let th = 2.0 * std::f64::consts::PI * s as f64 / m as f64;
+                let want = crate::geom::axpy(
+                    scale(hole.tangents[0], th.cos()),
+                    th.sin(),
+                    hole.tangents[1],
+                );
+                let got = if s < k {
+                    scale(sub(cap[s].cp(1, 0), cap[s].cp(0, 0)), d as f64)
+                } else {
+                    scale(sub(cap[k - 1].cp(0, 1), cap[k - 1].cp(0, 0)), d as f64)
+                };
+                assert!(norm(sub(got, want)) < 1e-10 * size, "{k} of {m}: spoke {s}");
+            }
+            for s in 1..k {
+                for j in 0..=10 {
+                    let u = j as f64 / 10.0;
+                    let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
+                    assert!(norm(sub(p.p, q.p)) < 1e-11 * size);
+                    let (np, nq) = (
+                        crate::geom::cross(p.du, p.dv),
+                        crate::geom::cross(q.du, q.dv),
+                    );
+                    if norm(np) > 1e-9 && norm(nq) > 1e-9 {
+                        let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
+                        assert!(c < 1e-9, "{k} of {m} spoke {s} at {u}: {c:e}");
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("wedges k/m: quad/triangle degree: {}", table.join(" "));
 }

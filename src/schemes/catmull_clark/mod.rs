@@ -34,6 +34,7 @@
 pub mod boundary_tangent;
 mod child;
 pub(crate) mod crease;
+pub mod dart;
 pub mod descriptor;
 mod limit;
 pub mod local;

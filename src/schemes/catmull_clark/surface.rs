@@ -67,7 +67,7 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::Scratch;
 pub use crate::schemes::catmull_clark::crease::adaptive::Level;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    child as sharp_child, crease_curve, edge_known, is_hole, is_last_cap_level, is_special,
+    child as sharp_child, crease_curve, edge_known, is_hole, is_last_cap_level, touches_features,
 };
 use crate::stencil::{RowWriter, StencilTable, Terms};
 use rayon::prelude::*;
@@ -252,21 +252,6 @@ impl AdaptiveRules for CcRules<'_> {
         }
         Ok(next)
     }
-}
-
-/// Whether a vertex of the c-net `idx` has a sharp feature ([`is_special`]) or one of
-/// its faces is a hole: the cap schemes' rules then do not apply.
-fn touches_features(level: &Level, idx: &[u32]) -> bool {
-    level.sharp.is_some()
-        && idx.iter().any(|&w| {
-            let w = w as usize;
-            is_special(level, w)
-                || level
-                    .mesh
-                    .vertex_faces(w)
-                    .iter()
-                    .any(|&f| is_hole(level, f as usize))
-        })
 }
 
 /// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
@@ -493,6 +478,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     let mut face_start = Vec::with_capacity(4 * selected + 1);
     face_start.push(0u32);
     let mut corners = Vec::with_capacity(16 * selected);
+    let mut hole = Vec::with_capacity(4 * selected); // per child face: a hole's descendant
     // per marked face its first child (its children are consecutive, one per corner)
     let mut child_first = vec![UNSET; nf];
     let mut is_marked = vec![false; nf];
@@ -531,6 +517,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             }
             corners.extend_from_slice(&[vid[v], e_out, fc, e_in]);
             face_start.push(corners.len() as u32);
+            hole.push(is_hole(level, f));
         }
     }
     // the child points' rows, written in place (no stencil per point)
@@ -592,7 +579,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     }
     let positions = table.apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, &vid, &eid);
+    let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, (&vid, &eid), hole);
     let mut active = Vec::new();
     for &(f, tag) in marked {
         for k in 0..m.face_size(f as usize) {

@@ -36,6 +36,7 @@
 //! `(ab, bc, ca)`, oriented like the parent.
 
 mod child;
+pub mod dart;
 pub mod descriptor;
 mod limit;
 pub mod local;

@@ -376,6 +376,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let mut face_start = vec![0u32];
     let mut corners: Vec<u32> = Vec::new();
     let mut children: HashMap<u32, u32> = HashMap::new();
+    let mut hole = Vec::new(); // per child triangle: a hole's descendant
     for &f in &sel_faces {
         let fu = f as usize;
         let h0 = m.face_halfedge(fu);
@@ -421,10 +422,11 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             corners.extend_from_slice(&tri);
             face_start.push(corners.len() as u32);
         }
+        hole.extend([is_hole(level, fu); 4]);
     }
     let positions = StencilTable::from_rows(nv, stencils, 7).apply(m.positions());
     let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let (child, sharp) = features::child(level, rules.sharp(), child, &vid, &eid);
+    let (child, sharp) = features::child(level, rules.sharp(), child, (&vid, &eid), hole);
     let mut active = child_active(marked, |f| (children[&f], 4));
     // four children per marked triangle, in the order of the corners above: the child domains
     for (i, (_, t)) in active.iter_mut().enumerate() {

@@ -88,7 +88,9 @@ pub struct Features {
     pub(crate) edges: Vec<f32>,
     /// Sharpness per vertex.
     pub(crate) vertices: Vec<f32>,
-    /// Hole faces of the level (only the input level has active holes).
+    /// Hole faces of the level: the input's hole faces and, on later levels, their
+    /// descendants (never active: they exist as neighbours of active faces, and tell the G^1
+    /// caps which sectors around a vertex are cut away).
     hole: Vec<bool>,
     /// Levels since the last one that held a finite (semi-sharp) sharpness: 0 at such a
     /// level, [`CALM`] when no level did. Holes that wait for their ring get their extra
@@ -174,6 +176,21 @@ fn spoke_edges(m: &PolyMesh, v: usize) -> Vec<u32> {
         out.push(m.he_edge(m.he_prev(last)));
     }
     out
+}
+
+/// Whether a vertex of the c-net `idx` has a sharp feature ([`is_special`]) or one of
+/// its faces is a hole: the cap schemes' rules then do not apply.
+pub(crate) fn touches_features(level: &Level, idx: &[u32]) -> bool {
+    level.sharp.is_some()
+        && idx.iter().any(|&w| {
+            let w = w as usize;
+            is_special(level, w)
+                || level
+                    .mesh
+                    .vertex_faces(w)
+                    .iter()
+                    .any(|&f| is_hole(level, f as usize))
+        })
 }
 
 /// Whether vertex `v` of `level` has a sharp feature (a sharp incident edge, boundary edges
@@ -264,6 +281,28 @@ pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], boo
             .iter()
             .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
     Some(([a, b], plain))
+}
+
+/// The one infinitely sharp outgoing half-edge of `v` when it is an interior dart (exactly one
+/// of its edges infinitely sharp, its own sharpness finite), and whether it is plain apart from
+/// it (no semi-sharp feature left: the dart's rules, [`crate::schemes::catmull_clark::dart`]).
+pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
+    let ft = level.sharp.as_ref()?;
+    let m = &level.mesh;
+    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
+        return None;
+    }
+    let hs = m.outgoing_halfedges(v);
+    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
+    let mut inf = hs.iter().copied().filter(|&h| is_inf(sharpness(h)));
+    let (Some(h), None) = (inf.next(), inf.next()) else {
+        return None;
+    };
+    let plain = ft.vertices[v] == 0.0
+        && hs
+            .iter()
+            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
+    Some((h, plain))
 }
 
 /// The limit point `(a + 4 x + b) / 6` of a vertex `x` under the crease rule between its
@@ -430,8 +469,8 @@ pub(crate) fn child(
     level: &Level,
     sl: Option<&SharpLevel<'_>>,
     child: PolyMesh,
-    vid: &[u32],
-    eid: &[u32],
+    (vid, eid): (&[u32], &[u32]),
+    hole: Vec<bool>,
 ) -> (PolyMesh, Option<Features>) {
     let Some(ft) = &level.sharp else {
         return (child, None);
@@ -486,7 +525,11 @@ pub(crate) fn child(
         calm: calm_after(ft.calm, &edges, &vertices),
         edges,
         vertices,
-        hole: Vec::new(),
+        hole: if hole.contains(&true) {
+            hole
+        } else {
+            Vec::new()
+        },
     };
     (child, Some(features))
 }

@@ -48,12 +48,16 @@
 //! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
 //! capped as a plain vertex. A crease vertex (two infinitely sharp edges through an interior
 //! vertex) gets one open-fan cap per side of one, or of three or more quads, sharing the
-//! crease's exact curve ([`crease`]). Elements that never have the data (corners, darts,
-//! boundary vertices of more than
+//! crease's exact curve ([`crease`]). A dart (one infinitely sharp edge ending at an interior
+//! vertex) gets one fan cap over the full turn from its sharp edge, which is its only C^0
+//! spoke, centred at the dart's own limit point in its own tangent plane
+//! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Hole::dart`]). Elements that
+//! never have the data (corners, boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 
 mod crease;
+mod wedge;
 
 use super::{Level, regular_patch};
 use crate::bezier::complex::PatchComplex;
@@ -253,8 +257,9 @@ pub(super) fn g1_caps_by_targets(
     left
 }
 
-/// The holes of one element: those of a crease vertex's sides ([`crease::crease_caps`]), else
-/// the one of [`hole_of`].
+/// The holes of one element: those of a crease vertex's sides ([`crease::crease_caps`]), of a
+/// dart ([`crease::dart_cap`]), of the runs of quads between hole faces
+/// ([`wedge::wedge_caps`]), else the one of [`hole_of`].
 fn holes_of(
     level: &Level,
     limits: &LimitStencils<'_>,
@@ -266,6 +271,12 @@ fn holes_of(
         return crease::boundary_corner_cap(level, x as usize, faces).map(|c| vec![c]);
     }
     if !open && let Some(caps) = crease::crease_caps(level, x as usize, faces)? {
+        return Ok(caps);
+    }
+    if !open && let Some(cap) = crease::dart_cap(level, x as usize, faces)? {
+        return Ok(vec![cap]);
+    }
+    if !open && let Some(caps) = wedge::wedge_caps(level, limits, x as usize, faces)? {
         return Ok(caps);
     }
     hole_of(level, limits, element, faces).map(|c| vec![c])

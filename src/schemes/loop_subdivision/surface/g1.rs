@@ -92,9 +92,12 @@
 //! capped as a plain vertex. A crease vertex gets one open triangle fan per side of two or of
 //! four and more triangles ([`crease_caps`]: Catmull-Clark's construction of
 //! `catmull_clark::surface::g1::crease` on triangles; each side refines as a boundary fan
-//! under OpenSubdiv's crease rules). Holes that never have the data (a corner or a dart, a
-//! one-triangle crease side, a fan that does not close, still incomplete after the extra
-//! levels) keep the C^0 Hermite fill of [`super`].
+//! under OpenSubdiv's crease rules). A dart (one infinitely sharp edge ending at an interior
+//! vertex) gets one open triangle fan over the full turn from its sharp edge ([`dart_cap`],
+//! [`Hole::dart`]), centred at the dart's own limit point
+//! ([`crate::schemes::loop_subdivision::dart`]). Holes that never have the data (a corner, a
+//! fan that does not close, still incomplete after the extra levels) keep the C^0 Hermite fill
+//! of [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
 use crate::bezier::complex::PatchComplex;
@@ -104,10 +107,11 @@ use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_ca
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    cap_feature, crease_sides, is_plain_boundary, is_special,
+    cap_feature, crease_sides, dart_halfedge, is_hole, is_plain_boundary, is_special,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
+use crate::schemes::loop_subdivision::dart::dart_masks;
 use crate::schemes::loop_subdivision::limit::{across_weights, tangent_rows};
 use std::collections::HashMap;
 
@@ -196,6 +200,9 @@ enum Ends {
     /// The inner ones so; the first and last lie on a crease, regular on the fan's side when
     /// the ring triangles beside them are regular patches (their segments exist).
     Crease,
+    /// Every spoke end, the first and last included, an interior regular vertex without a
+    /// feature (a run of triangles between hole faces, [`wedge_caps`]).
+    Wedge,
 }
 
 /// The segments and cap tags of a fan's triangles (`(face, corner of x)` counter-clockwise),
@@ -288,11 +295,104 @@ fn crease_caps(
     Ok(Some(caps))
 }
 
-/// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), else the one
-/// of [`hole_of`].
+/// The cap of the dart `x` whose marked cells are `cells` (Catmull-Clark's construction,
+/// `catmull_clark::surface::g1::crease::dart_cap`, on triangles): `Ok(None)` when `x` is not a
+/// dart; one open triangle fan over the full turn ([`Hole::dart`]) from the sharp edge (its
+/// spokes `0` and `n`, one Hermite cubic), centred at the dart's own limit point in the plane of
+/// its own eigen tangents ([`dart_masks`]).
+fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
+    let Some((h, plain)) = dart_halfedge(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let n = m.outgoing_halfedges(x).len();
+    let masks = dart_masks(n).ok_or(NoCap::Never)?;
+    if cells.len() != n {
+        return Err(NoCap::Later);
+    }
+    let fan = tri_fan(m, x as u32, m.he_face(h), n, None).ok_or(NoCap::Never)?;
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
+    // the masks' points: x, e_0 .. e_(n-1) (each fan triangle's corner after x)
+    let pos = m.positions();
+    let ring: Vec<_> = std::iter::once(pos[x])
+        .chain(
+            fan.iter()
+                .map(|&(f, c)| pos[m.face(f as usize)[(c + 1) % 3] as usize]),
+        )
+        .collect();
+    let (centre, plane) = masks.apply(&ring);
+    Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
+}
+
+/// The caps of the interior vertex `x` whose marked cells are `cells` next to OpenSubdiv hole
+/// faces (Catmull-Clark's construction, `catmull_clark::surface::g1::wedge`, on triangles):
+/// `Ok(None)` when no triangle around `x` is a hole; one open triangle fan ([`Hole::wedge`])
+/// per run of `k` present triangles between holes, over `2 pi k / n`, its first and last
+/// spokes free on the holes' border, centred at `x`'s plain limit point in the plane of its
+/// eigen tangents (a hole changes no rule).
+fn wedge_caps(
+    level: &Level,
+    x: usize,
+    cells: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let m = &level.mesh;
+    if m.is_boundary_vertex(x) {
+        return Ok(None);
+    }
+    let hs = m.outgoing_halfedges(x);
+    if !hs.iter().any(|&h| is_hole(level, m.he_face(h) as usize)) {
+        return Ok(None);
+    }
+    match cap_feature(level, x) {
+        Some(true) => return Err(NoCap::Later),
+        Some(false) => return Err(NoCap::Never),
+        None => {}
+    }
+    let n = hs.len();
+    let all = fan_around(m, x as u32, m.he_face(hs[0]), n).ok_or(NoCap::Never)?;
+    let hole: Vec<bool> = all
+        .iter()
+        .map(|&(f, _)| is_hole(level, f as usize))
+        .collect();
+    if cells.len() != hole.iter().filter(|&&h| !h).count() {
+        return Err(NoCap::Later);
+    }
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let pos = m.positions();
+    let centre = Rules::plain(m).limit_stencil(x).apply(pos);
+    let mut plane = [[0.0; 3]; 2];
+    tangent_rows(m, x, |k, p, w| {
+        plane[k] = axpy(plane[k], w, pos[p as usize])
+    });
+    let mut caps = Vec::new();
+    // each run starts after a hole
+    for start in (0..n).filter(|&s| !hole[s] && hole[(s + n - 1) % n]) {
+        let run: Vec<(u32, usize)> = (0..n)
+            .map(|i| all[(start + i) % n])
+            .take_while(|&(f, _)| !is_hole(level, f as usize))
+            .collect();
+        let (sectors, tags) = fan_sectors(level, &run, &tag_at, Ends::Wedge)?;
+        caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
+    }
+    Ok(Some(caps))
+}
+
+/// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), of a dart
+/// ([`dart_cap`]) or of the runs of triangles between hole faces ([`wedge_caps`]), else the
+/// one of [`hole_of`].
 fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec<CapData>, NoCap> {
     let (x, _, open) = fan_centre(&level.mesh, &level.info, element, cells[0].0, 1)?;
     if !open && let Some(caps) = crease_caps(level, x as usize, cells)? {
+        return Ok(caps);
+    }
+    if !open && let Some(cap) = dart_cap(level, x as usize, cells)? {
+        return Ok(vec![cap]);
+    }
+    if !open && let Some(caps) = wedge_caps(level, x as usize, cells)? {
         return Ok(caps);
     }
     hole_of(level, element, cells).map(|c| vec![c])

@@ -38,8 +38,9 @@ use crate::host::adaptive::{
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    crease_limit, crease_sides, is_plain_boundary,
+    crease_limit, crease_sides, dart_halfedge, is_plain_boundary,
 };
+use crate::schemes::catmull_clark::dart::dart_masks;
 use std::collections::HashMap;
 
 /// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is
@@ -129,4 +130,53 @@ pub(in crate::schemes::catmull_clark::surface) fn boundary_corner_cap(
     let centre = crease_limit(p, pos[x], q);
     let plane = [scale(sub(p, q), 0.5), sub(far, pos[x])];
     Ok((Hole::untangented_crease(centre, sectors), plane, vec![tag]))
+}
+
+/// The cap of the dart `x` whose marked cells are `faces` ([`Hole::dart`]): `Ok(None)` when
+/// `x` is not a dart, `Later` while a semi-sharp feature is left at `x`, `Never` when its `n`
+/// faces are not exactly the cells or not all quads. The fan starts at the sharp edge (spoke
+/// `0` and spoke `n`); centre and tangent plane are the dart's own limit and eigen tangents
+/// ([`dart_masks`]); `T0, T1` are fitted in that plane over the full turn.
+pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
+    level: &Level,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<Option<CapData>, NoCap> {
+    let Some((h, plain)) = dart_halfedge(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let n = m.outgoing_halfedges(x).len();
+    let masks = dart_masks(n).ok_or(NoCap::Never)?;
+    if faces.len() != n {
+        return Err(NoCap::Never);
+    }
+    let quads = quad_sectors_between(m, x as u32, m.he_face(h), n).ok_or(NoCap::Never)?;
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let tags = quads
+        .iter()
+        .map(|sec| {
+            let tag = tag_at.get(&sec.face).ok_or(NoCap::Never)?;
+            Ok(Tag {
+                domain: tag.domain.rotated(sec.corner as u32),
+                ..*tag
+            })
+        })
+        .collect::<Result<Vec<_>, NoCap>>()?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    let pos = m.positions();
+    // the masks' points: x, e_0 .. e_(n-1), f_0 .. f_(n-1)
+    let ring: Vec<_> = std::iter::once(pos[x])
+        .chain(quads.iter().map(|sec| pos[sec.p as usize]))
+        .chain(
+            quads
+                .iter()
+                .map(|sec| pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize]),
+        )
+        .collect();
+    let (centre, plane) = masks.apply(&ring);
+    Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
 }
