@@ -43,26 +43,7 @@ fn creased_cnet(n: usize, j: usize, shape: CnetShape) -> PolyMesh {
 /// continued straight (across regular vertices: valence 4 for quads, 6 for triangles) to the
 /// boundary.
 fn creased(m: PolyMesh, j: usize) -> PolyMesh {
-    let regular = if m.face_size(0) == 3 { 6 } else { 4 };
-    let hs = m.outgoing_halfedges(0);
-    let mut pairs = Vec::new();
-    for &start in [hs[0], hs[j]].iter() {
-        let mut h = start;
-        loop {
-            let (a, b) = (m.he_from(h), m.he_to(h));
-            pairs.push(([a, b], 10.0f32));
-            let out = m.outgoing_halfedges(b as usize);
-            if m.is_boundary_vertex(b as usize) || out.len() != regular {
-                break;
-            }
-            // the edge opposite b -> a around the regular vertex b
-            let back = out
-                .iter()
-                .position(|&g| m.he_to(g) == a)
-                .expect("edge back");
-            h = out[(back + regular / 2) % regular];
-        }
-    }
+    let pairs = support::sharp_chains(&m, &[0, j]);
     m.with_extras(Some(Extras {
         sharp_edges: SharpEdges::ByPair(pairs),
         ..Extras::default()

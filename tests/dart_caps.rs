@@ -35,22 +35,7 @@ use support::{check_net, file_options, fill_patches, osd, quad_samples, triangle
 /// straight across regular vertices (valence 4 for quads, 6 for triangles) to the boundary: a
 /// dart at vertex 0.
 fn with_dart(m: PolyMesh) -> PolyMesh {
-    let regular = if m.face_size(0) == 3 { 6 } else { 4 };
-    let mut pairs = Vec::new();
-    let mut h = m.outgoing_halfedges(0)[0];
-    loop {
-        let (a, b) = (m.he_from(h), m.he_to(h));
-        pairs.push(([a, b], 10.0f32));
-        let out = m.outgoing_halfedges(b as usize);
-        if m.is_boundary_vertex(b as usize) || out.len() != regular {
-            break;
-        }
-        let back = out
-            .iter()
-            .position(|&g| m.he_to(g) == a)
-            .expect("edge back");
-        h = out[(back + regular / 2) % regular];
-    }
+    let pairs = support::sharp_chains(&m, &[0]);
     m.with_extras(Some(Extras {
         sharp_edges: SharpEdges::ByPair(pairs),
         ..Extras::default()

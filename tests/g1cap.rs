@@ -362,6 +362,7 @@ fn regular_hole_reproduction() {
             crease: false,
             dart: false,
             wedge: None,
+            corner: None,
         };
         let cap = g1_cap_with(&hole, CapOptions::default()).unwrap();
         let mut worst: f64 = 0.0;

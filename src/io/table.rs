@@ -38,12 +38,14 @@
 //! the first and last the one sharp edge) or `wedge/M` (the `SECTORS` of the `M` sectors
 //! around an interior vertex that are not OpenSubdiv hole faces,
 //! [`crate::bezier::g1::Hole::wedge`]: spokes at the angles `2 pi s / M`, the first and last
-//! on the hole's border). Version 2 added `FAN`; version 1 files are refused.
+//! on the hole's border) or `corner` (a sector between two sharp edges at a corner,
+//! [`crate::bezier::g1::Hole::corner`]: spokes over a quarter-turn, `T0, T1` are `A, B`
+//! themselves; `corner/reflex`: over three quarters, the last spoke along `-B`). Version 2 added `FAN`; version 1 files are refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
 use super::textout::{ChunkedText, push_f64, push_point};
-use crate::bezier::g1::{Centre, Fan, hole_cap_map};
+use crate::bezier::g1::{Centre, CornerAngle, Fan, hole_cap_map};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::stencil::StencilTable;
@@ -140,6 +142,8 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
                     Fan::Crease => "crease".to_string(),
                     Fan::Dart => "dart".to_string(),
                     Fan::Wedge(m) => format!("wedge/{m}"),
+                    Fan::Corner(CornerAngle::Convex) => "corner".to_string(),
+                    Fan::Corner(CornerAngle::Reflex) => "corner/reflex".to_string(),
                 },
                 shape.len(),
                 shape.first().map_or(0, Vec::len)
@@ -284,7 +288,7 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
                 path,
                 l,
                 "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open, closed, \
-                 crease, dart or wedge/M)",
+                 crease, dart, corner, corner/reflex or wedge/M)",
             ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));
@@ -367,11 +371,15 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
     })
 }
 
-/// Whether `w` is a `FAN` word of a cap line: `open`, `closed`, `crease`, `dart` or `wedge/M`
+/// Whether `w` is a `FAN` word of a cap line: `open`, `closed`, `crease`, `dart`, `corner`,
+/// `corner/reflex` or `wedge/M`
 /// with a whole number `M >= 1`.
 fn is_fan_word(w: &str) -> bool {
     match w.strip_prefix("wedge/") {
         Some(m) => m.parse::<usize>().is_ok_and(|m| m >= 1),
-        None => matches!(w, "open" | "closed" | "crease" | "dart"),
+        None => matches!(
+            w,
+            "open" | "closed" | "crease" | "dart" | "corner" | "corner/reflex"
+        ),
     }
 }

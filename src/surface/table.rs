@@ -137,6 +137,7 @@ fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole, [Point; 2
         crease: like.crease,
         dart: like.dart,
         wedge: like.wedge,
+        corner: like.corner,
         ..Hole::untangented(vals[0], sectors)
     };
     (hole, [vals[1], vals[2]])
@@ -623,11 +624,7 @@ impl PatchTable {
                 let r = self.data_index(cap);
                 let (mut hole, plane) =
                     hole_from(&data[r..r + cap.data_len()], &cap.shape(), &cap.step.hole);
-                hole.tangents = if hole.crease {
-                    ring::crease_data_tangents(&hole, plane)?
-                } else {
-                    ring::data_tangents(&hole)?
-                };
+                hole.tangents = ring::hole_data_tangents(&hole, plane)?;
                 let map = hole_cap_map(&hole, cap.degree, cap.centre)?;
                 let built = map.apply(&hole).map_err(|e| cap_failed(k, cap, e))?;
                 self.place_cap(k, cap, built, &mut patches)?;

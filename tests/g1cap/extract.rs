@@ -231,6 +231,7 @@ pub fn hole_of(c: &PatchComplex, triangles: bool, centre: Point, normal: Point) 
         crease: false,
         dart: false,
         wedge: None,
+        corner: None,
     };
     // spoke ends of the quad layout, projected into the tangent plane, Fourier mode 1
     let q = hole.to_quad_layout().unwrap();

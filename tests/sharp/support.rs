@@ -269,3 +269,30 @@ pub fn table_reapplies(
     assert!(d <= 1e-12 * s, "{name}: moved points {d:.3e}");
     count
 }
+
+/// Infinitely sharp edge chains from vertex 0 of `m` along its spokes `spokes` (indices into
+/// its outgoing half-edges), each continued straight across regular vertices (valence 4 for
+/// quads, 6 for triangles) to the boundary, as vertex pairs with sharpness 10.
+pub fn sharp_chains(m: &PolyMesh, spokes: &[usize]) -> Vec<([u32; 2], f32)> {
+    let regular = if m.face_size(0) == 3 { 6 } else { 4 };
+    let hs = m.outgoing_halfedges(0);
+    let mut pairs = Vec::new();
+    for &j in spokes {
+        let mut h = hs[j];
+        loop {
+            let (a, b) = (m.he_from(h), m.he_to(h));
+            pairs.push(([a, b], 10.0f32));
+            let out = m.outgoing_halfedges(b as usize);
+            if m.is_boundary_vertex(b as usize) || out.len() != regular {
+                break;
+            }
+            // the edge opposite b -> a around the regular vertex b
+            let back = out
+                .iter()
+                .position(|&g| m.he_to(g) == a)
+                .expect("edge back");
+            h = out[(back + regular / 2) % regular];
+        }
+    }
+    pairs
+}

@@ -124,6 +124,27 @@ pub struct Hole {
     /// border; the centre and tangent plane are the vertex's own (a smooth interior limit).
     /// Only with `open` ([`Fan::Wedge`]).
     pub wedge: Option<usize>,
+    /// An open fan between two infinitely sharp edges at a corner (a vertex of sharpness
+    /// infinity, or with three or more infinitely sharp edges: OpenSubdiv's corner rule, the
+    /// vertex is its limit): its `n + 1` spokes span a quarter-turn of the chart, spokes `0` and
+    /// `n` are the two sharp edges' exact cubic curves (the Hermite interpolants of their end
+    /// data, as [`Hole::crease`]), and both `T0` and `T1` are pinned: the two curves'
+    /// derivatives at the corner as the provider gives them, so the caps on both sides of each
+    /// sharp edge share it. `Some(angle)`: the chart angle of the sector, a quarter-turn for
+    /// a convex sector and three quarters for a reflex one (spoke `n` leaves along `T1`, or
+    /// `-T1`). Only with `open` ([`Fan::Corner`]).
+    pub corner: Option<CornerAngle>,
+}
+
+/// The chart angle of a corner's sector ([`Hole::corner`]): a quarter-turn when the sector is
+/// convex (its sharp edges less than a half-turn apart around it), three quarters when it is
+/// reflex, so that the chart turns the way the surface does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CornerAngle {
+    /// A quarter-turn: spoke `n` leaves the centre along `T1`.
+    Convex,
+    /// Three quarters of a turn: spoke `n` leaves the centre along `-T1`.
+    Reflex,
 }
 
 /// How a hole's spokes run around its centre and which of them join two sectors: the shape
@@ -144,6 +165,10 @@ pub enum Fan {
     /// `n` of the `m` sectors around an interior vertex, the others holes ([`Hole::wedge`]):
     /// `n + 1` spokes over `2 pi n / m`, spokes `0` and `n` free.
     Wedge(usize),
+    /// A sector between two sharp edges at a corner ([`Hole::corner`]): `n + 1` spokes over a
+    /// quarter-turn (convex) or three (reflex), spokes `0` and `n` the Hermite cubics of their
+    /// end data, `T0` and `T1` pinned.
+    Corner(CornerAngle),
 }
 
 impl Fan {
@@ -155,7 +180,7 @@ impl Fan {
     /// Whether the fan's spokes `0` and `n` are the cubic Hermite interpolants of their end
     /// data (a crease's or a dart's fan).
     pub fn hermite_ends(self) -> bool {
-        matches!(self, Fan::Crease | Fan::Dart)
+        matches!(self, Fan::Crease | Fan::Dart | Fan::Corner(_))
     }
 
     /// The fan a cap map of `layout` builds for the holes of kind `self`: closed for a closed
@@ -240,6 +265,7 @@ impl Hole {
             crease: false,
             dart: false,
             wedge: None,
+            corner: None,
         }
     }
 
@@ -279,10 +305,24 @@ impl Hole {
         }
     }
 
+    /// [`Hole::untangented_open`] for a sector between two sharp edges at a corner
+    /// ([`Hole::corner`]).
+    pub fn untangented_corner(
+        centre: Point,
+        sectors: Vec<Vec<Segment>>,
+        angle: CornerAngle,
+    ) -> Hole {
+        Hole {
+            corner: Some(angle),
+            ..Hole::untangented_open(centre, sectors)
+        }
+    }
+
     /// The shape of the hole's G^1 conditions ([`Fan`]).
     pub fn fan(&self) -> Fan {
         match (self.open, self.dart, self.wedge, self.crease) {
             (false, ..) => Fan::Closed,
+            _ if self.corner.is_some() => Fan::Corner(self.corner.unwrap_or(CornerAngle::Convex)),
             (true, true, ..) => Fan::Dart,
             (true, false, Some(m), _) => Fan::Wedge(m),
             (true, false, None, true) => Fan::Crease,
@@ -301,7 +341,7 @@ impl Hole {
         // one sector: a corner of an open triangle fan, or the one face of a crease's side
         let least = match (self.open, self.sectors.first().map(Vec::len)) {
             (true, Some(1)) => 1,
-            (true, _) if self.crease || self.wedge.is_some() => 1,
+            (true, _) if self.crease || self.corner.is_some() || self.wedge.is_some() => 1,
             (true, _) => 2,
             _ => 3,
         };
@@ -424,6 +464,7 @@ impl Hole {
                 crease: self.crease,
                 dart: self.dart,
                 wedge: self.wedge,
+                corner: self.corner,
             },
             kappa: conv.kappa,
             w1: conv.w1,

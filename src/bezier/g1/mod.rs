@@ -220,6 +220,19 @@
 //! `wedges_are_certified_at_the_angles_of_the_full_turn`, `m = 3..12`): bi-4 for quads (bi-3
 //! for one sector and at `m = 4`), bi-5 for triangles (bi-4 for one sector and at `m = 6`).
 //!
+//! ## Corner sectors
+//!
+//! At a corner with sharp edges (OpenSubdiv's corner rule: the vertex is its own limit) each
+//! sector between two consecutive sharp edges is an open fan ([`Fan::Corner`],
+//! [`Hole::corner`]) whose boundary spokes are the sharp edges' limit curves (the Hermite rows
+//! of the crease fans) and whose `T0`, `T1` are both pinned to those curves' derivatives at the
+//! corner, so neighbouring sectors share each sharp edge exactly. The chart turns a quarter
+//! (spoke `n` along `T1`) or, for a reflex sector, three quarters (along `-T1`), so the cap
+//! turns the way its ring does instead of folding over. The corner itself is a cone point:
+//! the sectors meet there C^0 only, across their sharp spokes. Lowest certified degree
+//! (test `corner_sectors_are_certified_with_both_sharp_spokes_pinned`, `n = 1..10`): bi-4,
+//! bi-3 for one sector.
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
@@ -238,7 +251,7 @@ mod system;
 #[cfg(test)]
 mod tests;
 
-pub use hole::{Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
+pub use hole::{CornerAngle, Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{
     CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_CAP_VALENCE,
     MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, hole_cap_map,

@@ -233,11 +233,29 @@ pub fn crease_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]
     crease_fit(hole, plane[0], |x| x)
 }
 
+/// The spoke tangents of a hole of per-point data (not positions) from its provider's `plane`
+/// vectors (tabulated like the positions'): a corner's both ([`Hole::corner`]), a crease's fan
+/// `T0` with `T1` fitted ([`crease_data_tangents`]), else both fitted ([`data_tangents`]).
+pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
+    if hole.corner.is_some() {
+        Ok(plane)
+    } else if hole.crease {
+        crease_data_tangents(hole, plane)
+    } else {
+        data_tangents(hole)
+    }
+}
+
 /// The G^1 cap of `hole` from its provider's `plane` vectors: [`cap_in_plane`] with the
-/// plane's normal, or for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
+/// plane's normal; for a corner's sector ([`Hole::corner`]) with `[T0, T1] = plane` (the two
+/// sharp edges' derivatives), for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
 /// ([`crease_tangents`]).
 pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
-    if hole.crease {
+    if hole.corner.is_some() {
+        super::map::check_cap_valence(hole.valence())?;
+        hole.tangents = plane;
+        g1_cap_with(&hole, opts)
+    } else if hole.crease {
         super::map::check_cap_valence(hole.valence())?;
         hole.tangents = crease_tangents(&hole, plane)?;
         g1_cap_with(&hole, opts)

@@ -3,7 +3,7 @@
 //! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
 //! fairness energy. All rows are scalar and the same for x, y, z.
 
-use super::hole::Fan;
+use super::hole::{CornerAngle, Fan};
 use nalgebra::DMatrix;
 
 /// Index of coefficient `(i, j)` of cap patch `p` among the unknowns (`p` the sector in the
@@ -70,12 +70,15 @@ pub(crate) fn spoke_angle(n: usize, fan: Fan) -> f64 {
 }
 
 /// The angle the spokes of a hole of `n` sectors span: a full turn around a closed hole or a
-/// dart, `2 pi n / m` across a wedge of `n` of `m` sectors, a half-turn across an open fan, a quarter-turn across an open fan of one sector (a
+/// dart, `2 pi n / m` across a wedge of `n` of `m` sectors, a quarter-turn (three quarters when
+/// reflex) across a corner's sector between two sharp edges, a half-turn across an open fan, a quarter-turn across an open fan of one sector (a
 /// corner: its two spokes are the two boundary curves' tangents, `T0` and `T1` themselves).
 pub(crate) fn turn(n: usize, fan: Fan) -> f64 {
     match (fan, n) {
         (Fan::Closed | Fan::Dart, _) => 2.0 * std::f64::consts::PI,
         (Fan::Wedge(m), _) => 2.0 * std::f64::consts::PI * n as f64 / m.max(1) as f64,
+        (Fan::Corner(CornerAngle::Convex), _) => std::f64::consts::FRAC_PI_2,
+        (Fan::Corner(CornerAngle::Reflex), _) => 3.0 * std::f64::consts::FRAC_PI_2,
         (_, 1) => std::f64::consts::FRAC_PI_2,
         _ => std::f64::consts::PI,
     }

@@ -92,6 +92,10 @@ fn random_hole(n: usize, fan: Fan, d: usize, m: usize, kappa: f64, rng: &mut Lcg
             Fan::Wedge(m) => Some(m),
             _ => None,
         },
+        corner: match fan {
+            Fan::Corner(a) => Some(a),
+            _ => None,
+        },
     }
 }
 
@@ -517,4 +521,46 @@ fn wedges_are_certified_at_the_angles_of_the_full_turn() {
         }
     }
     eprintln!("wedges k/m: quad/triangle degree: {}", table.join(" "));
+}
+
+/// Corner sectors ([`Hole::corner`]): certified at every `n` up to 10, convex and reflex, with
+/// spoke `n` leaving the centre along `T1` (convex) or `-T1` (reflex) and both boundary spokes
+/// the Hermite cubics of their end data.
+#[test]
+fn corner_sectors_are_certified_with_both_sharp_spokes_pinned() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let mut rng = Lcg(37);
+    let mut table = Vec::new();
+    for angle in [CornerAngle::Convex, CornerAngle::Reflex] {
+        for n in 1..=10 {
+            let fan = Fan::Corner(angle);
+            let d =
+                lowest_certified_fan(n, Layout::OpenQuad, deg, Centre::TangentPlane, fan).unwrap();
+            table.push(format!("{angle:?} {n}:{d}"));
+            assert!(d <= 5, "{angle:?} n {n}: {d}");
+            let hole = random_hole(n, fan, d.max(4), 1, 0.0, &mut rng);
+            let cap = g1_cap(&hole).unwrap();
+            let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+            let sign = if angle == CornerAngle::Convex {
+                1.0
+            } else {
+                -1.0
+            };
+            let dd = d.max(4) as f64;
+            let t0 = scale(sub(cap[0].cp(1, 0), cap[0].cp(0, 0)), dd);
+            let tn = scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), dd);
+            assert!(
+                norm(sub(t0, hole.tangents[0])) < 1e-10 * size,
+                "{angle:?} n {n}"
+            );
+            assert!(
+                norm(sub(tn, scale(hole.tangents[1], sign))) < 1e-9 * size,
+                "{angle:?} n {n}"
+            );
+        }
+    }
+    eprintln!("corner sectors, lowest degree: {}", table.join(" "));
 }

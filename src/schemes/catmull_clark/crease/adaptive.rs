@@ -24,12 +24,14 @@
 use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::geom::{self, Point};
-use crate::host::adaptive::{Cells, MeshLevel, NoCap, Tag};
-use crate::host::fans::faces_between;
+use crate::host::adaptive::{Cells, MeshLevel, Tag};
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Extras, PolyMesh, SharpEdges};
 
 use super::{INFINITE, Rule, Scratch, SharpLevel, classify, decrement};
+
+mod sides;
+pub(crate) use sides::*;
 
 /// One level of the adaptive refinement of a mesh-based scheme with OpenSubdiv's features.
 pub struct Level {
@@ -254,110 +256,6 @@ pub(crate) fn is_last_cap_level(
     let spending = calm == 0 && l < SPENT_BY_LEVEL;
     let extra_over = l >= rings + MAX_EXTRA_CAP_LEVELS && calm > MAX_EXTRA_CAP_LEVELS;
     l >= rings && (!fill || (!spending && (extra_over || !waiting())))
-}
-
-/// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
-/// (exactly two of its edges infinitely sharp, its own sharpness finite), and whether it is
-/// plain apart from them (no semi-sharp feature left: its rule is the crease rule, and each
-/// side of the crease refines as a boundary fan does).
-pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], bool)> {
-    let ft = level.sharp.as_ref()?;
-    let m = &level.mesh;
-    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
-        return None;
-    }
-    let hs = m.outgoing_halfedges(v);
-    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let inf: Vec<u32> = hs
-        .iter()
-        .copied()
-        .filter(|&h| is_inf(sharpness(h)))
-        .collect();
-    let [a, b] = inf[..] else {
-        return None;
-    };
-    let plain = ft.vertices[v] == 0.0
-        && hs
-            .iter()
-            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
-    Some(([a, b], plain))
-}
-
-/// The one infinitely sharp outgoing half-edge of `v` when it is an interior dart (exactly one
-/// of its edges infinitely sharp, its own sharpness finite), and whether it is plain apart from
-/// it (no semi-sharp feature left: the dart's rules, [`crate::schemes::catmull_clark::dart`]).
-pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
-    let ft = level.sharp.as_ref()?;
-    let m = &level.mesh;
-    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
-        return None;
-    }
-    let hs = m.outgoing_halfedges(v);
-    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let mut inf = hs.iter().copied().filter(|&h| is_inf(sharpness(h)));
-    let (Some(h), None) = (inf.next(), inf.next()) else {
-        return None;
-    };
-    let plain = ft.vertices[v] == 0.0
-        && hs
-            .iter()
-            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
-    Some((h, plain))
-}
-
-/// The limit point `(a + 4 x + b) / 6` of a vertex `x` under the crease rule between its
-/// crease (or boundary) neighbours `a` and `b`: the cubic B-spline of the crease polygon.
-pub(crate) fn crease_limit(a: Point, x: Point, b: Point) -> Point {
-    geom::scale(geom::axpy(geom::axpy(a, 4.0, x), 1.0, b), 1.0 / 6.0)
-}
-
-/// The limit point of a crease vertex and its sides `(ha, hb, k)` ([`crease_sides`]).
-pub(crate) type CreaseSides = (Point, Vec<(u32, u32, usize)>);
-
-/// A crease vertex `x` ([`crease_halfedges`]) as its G^1 caps see it, for Catmull-Clark and
-/// Loop alike: the crease's limit point `(e_a + 4 x + e_b) / 6` and its sides
-/// `(ha, hb, k)` that hold marked `cells` (the `k` faces counter-clockwise from the face of the
-/// outgoing crease half-edge `ha` to the one before `hb`). `Ok(None)` when `x` is not a crease
-/// vertex; `Later` while a semi-sharp feature is left at `x`, a side is only partly marked or
-/// a side of `regular` faces (the scheme's regular crease patches) is still marked; `Never`
-/// when the sides do not hold exactly the cells.
-pub(crate) fn crease_sides(
-    level: &Level,
-    x: usize,
-    cells: &[(u32, Tag)],
-    regular: usize,
-) -> Result<Option<CreaseSides>, NoCap> {
-    let Some((hs, plain)) = crease_halfedges(level, x) else {
-        return Ok(None);
-    };
-    if !plain {
-        return Err(NoCap::Later);
-    }
-    let m = &level.mesh;
-    let pos = m.positions();
-    let marked: std::collections::HashSet<u32> = cells.iter().map(|&(f, _)| f).collect();
-    let (ea, eb) = (pos[m.he_to(hs[0]) as usize], pos[m.he_to(hs[1]) as usize]);
-    let centre = crease_limit(ea, pos[x], eb);
-    let mut sides = Vec::new();
-    let mut covered = 0;
-    for (ha, hb) in [(hs[0], hs[1]), (hs[1], hs[0])] {
-        let faces = faces_between(m, ha, hb).ok_or(NoCap::Never)?;
-        let (k, count) = (
-            faces.len(),
-            faces.iter().filter(|f| marked.contains(f)).count(),
-        );
-        match count {
-            0 => continue,
-            _ if k == regular || count < k => return Err(NoCap::Later),
-            _ => {}
-        }
-        sides.push((ha, hb, k));
-        covered += k;
-    }
-    if sides.is_empty() || covered != cells.len() {
-        return Err(NoCap::Never);
-    }
-    Ok(Some((centre, sides)))
 }
 
 /// The level by which every finite sharpness is spent (it drops by at least 1 per level from

@@ -51,8 +51,11 @@
 //! crease's exact curve ([`crease`]). A dart (one infinitely sharp edge ending at an interior
 //! vertex) gets one fan cap over the full turn from its sharp edge, which is its only C^0
 //! spoke, centred at the dart's own limit point in its own tangent plane
-//! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Hole::dart`]). Elements that
-//! never have the data (corners, boundary vertices of more than
+//! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Hole::dart`]). A corner with
+//! sharp edges gets one open fan per side of two or more quads between them, its sharp spokes
+//! the edges' exact curves ([`crease::corner_caps`]); each run of quads between OpenSubdiv hole
+//! faces one open fan at the full turn's angles ([`wedge`]). Elements that never have the data
+//! (corners without sharp edges to cut them: cone points; boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 
@@ -258,7 +261,8 @@ pub(super) fn g1_caps_by_targets(
 }
 
 /// The holes of one element: those of a crease vertex's sides ([`crease::crease_caps`]), of a
-/// dart ([`crease::dart_cap`]), of the runs of quads between hole faces
+/// dart ([`crease::dart_cap`]), of a corner's sides ([`crease::corner_caps`]), of the runs of
+/// quads between hole faces
 /// ([`wedge::wedge_caps`]), else the one of [`hole_of`].
 fn holes_of(
     level: &Level,
@@ -275,6 +279,9 @@ fn holes_of(
     }
     if !open && let Some(cap) = crease::dart_cap(level, x as usize, faces)? {
         return Ok(vec![cap]);
+    }
+    if !open && let Some(caps) = crease::corner_caps(level, x as usize, faces)? {
+        return Ok(caps);
     }
     if !open && let Some(caps) = wedge::wedge_caps(level, limits, x as usize, faces)? {
         return Ok(caps);

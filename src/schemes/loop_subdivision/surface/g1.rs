@@ -95,9 +95,12 @@
 //! under OpenSubdiv's crease rules). A dart (one infinitely sharp edge ending at an interior
 //! vertex) gets one open triangle fan over the full turn from its sharp edge ([`dart_cap`],
 //! [`Hole::dart`]), centred at the dart's own limit point
-//! ([`crate::schemes::loop_subdivision::dart`]). Holes that never have the data (a corner, a
-//! fan that does not close, still incomplete after the extra levels) keep the C^0 Hermite fill
-//! of [`super`].
+//! ([`crate::schemes::loop_subdivision::dart`]). A corner with sharp edges gets one open
+//! triangle fan per side of two or more triangles between them ([`corner_caps`]), each run of
+//! triangles between OpenSubdiv hole faces one at the full turn's angles ([`wedge_caps`]).
+//! Holes that never have the data (a corner no two sharp edges cut: a cone point; a fan that
+//! does not close, still incomplete after the extra levels) keep the C^0 Hermite fill of
+//! [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
 use crate::bezier::complex::PatchComplex;
@@ -107,7 +110,8 @@ use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_ca
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    cap_feature, crease_sides, dart_halfedge, is_hole, is_plain_boundary, is_special,
+    cap_feature, corner_plane, corner_sides, crease_sides, dart_halfedge, is_hole,
+    is_plain_boundary, is_special,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
@@ -381,8 +385,38 @@ fn wedge_caps(
     Ok(Some(caps))
 }
 
+/// The caps of the corner `x` whose marked cells are `cells` (Catmull-Clark's construction,
+/// `catmull_clark::surface::g1::crease::corner_caps`, on triangles): `Ok(None)` when `x` is not
+/// a corner with sharp edges; one open triangle fan ([`Hole::corner`]) per side between
+/// consecutive sharp edges (one triangle included: its spokes `T0` and `T1` themselves),
+/// centred at `x` in the plane of the sharp edges' derivatives ([`corner_plane`]).
+fn corner_caps(
+    level: &Level,
+    x: usize,
+    cells: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let Some(sides) = corner_sides(level, x, cells, usize::MAX)? else {
+        return Ok(None);
+    };
+    let m = &level.mesh;
+    let pos = m.positions();
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let mut caps = Vec::new();
+    for (ha, hb, k) in sides {
+        let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
+        let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
+        let (angle, plane) = corner_plane(m, x, (ha, hb, k))?;
+        caps.push((
+            Hole::untangented_corner(pos[x], sectors, angle),
+            plane,
+            tags,
+        ));
+    }
+    Ok(Some(caps))
+}
+
 /// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), of a dart
-/// ([`dart_cap`]) or of the runs of triangles between hole faces ([`wedge_caps`]), else the
+/// ([`dart_cap`]), of a corner's sides ([`corner_caps`]) or of the runs of triangles between hole faces ([`wedge_caps`]), else the
 /// one of [`hole_of`].
 fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec<CapData>, NoCap> {
     let (x, _, open) = fan_centre(&level.mesh, &level.info, element, cells[0].0, 1)?;
@@ -391,6 +425,9 @@ fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec
     }
     if !open && let Some(cap) = dart_cap(level, x as usize, cells)? {
         return Ok(vec![cap]);
+    }
+    if !open && let Some(caps) = corner_caps(level, x as usize, cells)? {
+        return Ok(caps);
     }
     if !open && let Some(caps) = wedge_caps(level, x as usize, cells)? {
         return Ok(caps);

@@ -34,11 +34,11 @@ use super::segment_across;
 use crate::bezier::g1::Hole;
 use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{
-    CapData, NoCap, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
+    CapData, NoCap, QuadSector, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    crease_limit, crease_sides, dart_halfedge, is_plain_boundary,
+    corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge, is_plain_boundary,
 };
 use crate::schemes::catmull_clark::dart::dart_masks;
 use std::collections::HashMap;
@@ -62,16 +62,7 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
     let mut caps = Vec::new();
     for (ha, _, k) in sides {
         let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
-        let tags = quads
-            .iter()
-            .map(|sec| {
-                let tag = tag_at[&sec.face];
-                Tag {
-                    domain: tag.domain.rotated(sec.corner as u32),
-                    ..tag
-                }
-            })
-            .collect();
+        let tags = sector_tags(&quads, &tag_at)?;
         let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
         let (p, q) = (pos[quads[0].p as usize], pos[quads[k - 1].q as usize]);
         let far = |i: usize| {
@@ -156,16 +147,7 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
     }
     let quads = quad_sectors_between(m, x as u32, m.he_face(h), n).ok_or(NoCap::Never)?;
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let tags = quads
-        .iter()
-        .map(|sec| {
-            let tag = tag_at.get(&sec.face).ok_or(NoCap::Never)?;
-            Ok(Tag {
-                domain: tag.domain.rotated(sec.corner as u32),
-                ..*tag
-            })
-        })
-        .collect::<Result<Vec<_>, NoCap>>()?;
+    let tags = sector_tags(&quads, &tag_at)?;
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let pos = m.positions();
     // the masks' points: x, e_0 .. e_(n-1), f_0 .. f_(n-1)
@@ -179,4 +161,54 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
         .collect();
     let (centre, plane) = masks.apply(&ring);
     Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
+}
+
+/// The cap tags of a fan's quads: each marked face's tag with its domain turned so that the cap
+/// patch's `(0, 0)` is the fan's centre; `Never` when a quad is not marked.
+pub(super) fn sector_tags(
+    quads: &[QuadSector],
+    tag_at: &HashMap<u32, Tag>,
+) -> Result<Vec<Tag>, NoCap> {
+    quads
+        .iter()
+        .map(|sec| {
+            let tag = tag_at.get(&sec.face).ok_or(NoCap::Never)?;
+            Ok(Tag {
+                domain: tag.domain.rotated(sec.corner as u32),
+                ..*tag
+            })
+        })
+        .collect()
+}
+
+/// The caps of the corner `x` whose marked cells are `faces` ([`Hole::corner`]): `Ok(None)`
+/// when `x` is not a corner with sharp edges ([`corner_sides`]); one cap per side of two or
+/// more quads between consecutive sharp edges (a side of one quad is a regular corner patch),
+/// centred at `x` (the corner rule keeps it) in the plane of the two sharp edges' derivatives
+/// there ([`corner_plane`]; a reflex side's chart turns three quarters), its boundary spokes
+/// those edges' limit curves' first segments, exactly.
+pub(in crate::schemes::catmull_clark::surface) fn corner_caps(
+    level: &Level,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let Some(sides) = corner_sides(level, x, faces, 1)? else {
+        return Ok(None);
+    };
+    let m = &level.mesh;
+    let pos = m.positions();
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let mut caps = Vec::new();
+    for (ha, hb, k) in sides {
+        let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
+        let tags = sector_tags(&quads, &tag_at)?;
+        let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+        let (angle, plane) = corner_plane(m, x, (ha, hb, k))?;
+        caps.push((
+            Hole::untangented_corner(pos[x], sectors, angle),
+            plane,
+            tags,
+        ));
+    }
+    Ok(Some(caps))
 }

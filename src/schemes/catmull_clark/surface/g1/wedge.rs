@@ -63,16 +63,7 @@ pub(in crate::schemes::catmull_clark::surface) fn wedge_caps(
             .map(|i| all[(start + i) % n])
             .take_while(|sec| !is_hole(level, sec.face as usize))
             .collect();
-        let tags = run
-            .iter()
-            .map(|sec| {
-                let tag = tag_at.get(&sec.face).ok_or(NoCap::Never)?;
-                Ok(Tag {
-                    domain: tag.domain.rotated(sec.corner as u32),
-                    ..*tag
-                })
-            })
-            .collect::<Result<Vec<_>, NoCap>>()?;
+        let tags = super::crease::sector_tags(&run, &tag_at)?;
         let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
         caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
     }
