@@ -19,13 +19,10 @@
 #[path = "sharp/support.rs"]
 mod support;
 
-use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::{Point, axpy, dist};
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
-use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
-use fairsub::schemes::loop_subdivision::surface::loop_complex_with;
 use fairsub::schemes::registry::registry;
 use fairsub::schemes::{Scheme, catmull_clark, loop_subdivision, refine_levels};
 use fairsub::surface::table::{PatchTable, probe};
@@ -161,17 +158,6 @@ fn dart_limit_mask_is_invariant_under_the_schemes_refinement() {
     }
 }
 
-/// The complex of `m` at `rings` rings with the file's options.
-fn complex(loop_: bool, m: &PolyMesh, rings: usize) -> PatchComplex {
-    let subd = file_options(m);
-    let opts = ComplexOptions { rings, fill: true };
-    if loop_ {
-        loop_complex_with(m, opts, subd, |_| {}).expect("complex")
-    } else {
-        catmull_clark_complex_with(m, opts, subd, |_| {}).expect("complex")
-    }
-}
-
 /// Checks every net at 1..3 rings (module documentation) and the probed patch table at 2.
 fn darts_are_capped(loop_: bool, nets: Vec<Net>) {
     for (name, m, darts, closed) in nets {
@@ -183,7 +169,7 @@ fn darts_are_capped(loop_: bool, nets: Vec<Net>) {
         };
         for rings in 1..=3 {
             let what = format!("{name}, {rings} rings");
-            let c = complex(loop_, &m, rings);
+            let c = support::complex_of(loop_, &m, rings);
             let r = check_net(&what, &m, &c, scheme.as_ref(), samples, closed, true);
             assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
             assert!(

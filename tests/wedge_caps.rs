@@ -15,12 +15,8 @@
 #[path = "sharp/support.rs"]
 mod support;
 
-use fairsub::bezier::complex::PatchComplex;
-use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh};
-use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
-use fairsub::schemes::loop_subdivision::surface::loop_complex_with;
 use fairsub::schemes::{Scheme, catmull_clark, loop_subdivision};
 use fairsub::surface::table::probe;
 use support::{
@@ -68,17 +64,6 @@ fn nets(loop_: bool) -> Vec<Net> {
     out
 }
 
-/// The complex of `m` at `rings` rings with the file's options.
-fn complex(loop_: bool, m: &PolyMesh, rings: usize) -> PatchComplex {
-    let subd = file_options(m);
-    let opts = ComplexOptions { rings, fill: true };
-    if loop_ {
-        loop_complex_with(m, opts, subd, |_| {}).expect("complex")
-    } else {
-        catmull_clark_complex_with(m, opts, subd, |_| {}).expect("complex")
-    }
-}
-
 /// Checks every net (module documentation).
 fn wedges_are_capped(loop_: bool, nets: Vec<Net>) {
     for (name, m, runs) in nets {
@@ -95,7 +80,7 @@ fn wedges_are_capped(loop_: bool, nets: Vec<Net>) {
         };
         for rings in 1..=3 {
             let what = format!("{name}, {rings} rings");
-            let c = complex(loop_, &m, rings);
+            let c = support::complex_of(loop_, &m, rings);
             let r = check_net(&what, &m, &c, scheme.as_ref(), samples, false, false);
             assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
             assert!(r.open_sides > 0, "{what}: the holes' borders are open");

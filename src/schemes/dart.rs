@@ -135,3 +135,21 @@ pub(crate) fn masks_of(s: &DMatrix<f64>) -> Option<DartMasks> {
         tangents: [it.next()?, it.next()?],
     })
 }
+
+/// The tests' check of masks computed from the ring matrix `s`: the limit mask a left
+/// eigenvector of 1 summing to 1, each tangent mask a left eigenvector of its eigenvalue
+/// summing to 0 (`what` names the case in messages).
+#[cfg(test)]
+pub(crate) fn assert_left_eigenvectors(s: &DMatrix<f64>, m: &DartMasks, what: &str) {
+    let lim = nalgebra::DVector::from_vec(m.limit.clone());
+    assert!((s.transpose() * &lim - &lim).amax() < 1e-12, "{what}");
+    assert!((lim.sum() - 1.0).abs() < 1e-12, "{what}");
+    for (k, t) in m.tangents.iter().enumerate() {
+        let v = nalgebra::DVector::from_vec(t.clone());
+        assert!(
+            (s.transpose() * &v - &v * m.lambda[k]).amax() < 1e-9,
+            "{what}"
+        );
+        assert!(v.sum().abs() < 1e-9, "{what}");
+    }
+}

@@ -296,3 +296,16 @@ pub fn sharp_chains(m: &PolyMesh, spokes: &[usize]) -> Vec<([u32; 2], f32)> {
     }
     pairs
 }
+
+/// The complex of `m` at `rings` rings (with the fill) under Loop (`loop_`) or Catmull-Clark,
+/// with the net's own options.
+pub fn complex_of(loop_: bool, m: &PolyMesh, rings: usize) -> PatchComplex {
+    let subd = file_options(m);
+    let opts = fairsub::host::ComplexOptions { rings, fill: true };
+    if loop_ {
+        fairsub::schemes::loop_subdivision::surface::loop_complex_with(m, opts, subd, |_| {})
+    } else {
+        fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with(m, opts, subd, |_| {})
+    }
+    .expect("complex")
+}

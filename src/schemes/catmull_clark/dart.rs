@@ -88,18 +88,8 @@ mod tests {
         }
         for n in 3..=12 {
             let m = dart_masks(n).unwrap();
-            let s = ring_matrix(n, true);
-            let lim = nalgebra::DVector::from_vec(m.limit.clone());
-            assert!((s.transpose() * &lim - &lim).amax() < 1e-12, "n {n}");
-            assert!((lim.sum() - 1.0).abs() < 1e-12, "n {n}");
-            for (k, t) in m.tangents.iter().enumerate() {
-                let v = nalgebra::DVector::from_vec(t.clone());
-                assert!(
-                    (s.transpose() * &v - &v * m.lambda[k]).amax() < 1e-9,
-                    "n {n}"
-                );
-                assert!(v.sum().abs() < 1e-9, "n {n}");
-            }
+            let what = format!("n {n}");
+            crate::schemes::dart::assert_left_eigenvectors(&ring_matrix(n, true), &m, &what);
             // not the smooth limit mask: the sharp edge's end weighs differently
             let (e0, e1) = (m.limit[1], m.limit[2]);
             assert!((e0 - e1).abs() > 1e-3, "n {n}: {e0} {e1}");

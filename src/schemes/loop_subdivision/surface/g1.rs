@@ -110,8 +110,8 @@ use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_ca
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    cap_feature, corner_plane, corner_sides, crease_sides, dart_halfedge, is_hole,
-    is_plain_boundary, is_special,
+    beside_holes, cap_feature, corner_plane, corner_sides, crease_sides, dart_halfedge,
+    is_plain_boundary, is_special, present_runs,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
@@ -343,28 +343,14 @@ fn wedge_caps(
     x: usize,
     cells: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
+    if !beside_holes(level, x)? {
+        return Ok(None);
+    }
     let m = &level.mesh;
-    if m.is_boundary_vertex(x) {
-        return Ok(None);
-    }
-    let hs = m.outgoing_halfedges(x);
-    if !hs.iter().any(|&h| is_hole(level, m.he_face(h) as usize)) {
-        return Ok(None);
-    }
-    match cap_feature(level, x) {
-        Some(true) => return Err(NoCap::Later),
-        Some(false) => return Err(NoCap::Never),
-        None => {}
-    }
-    let n = hs.len();
-    let all = fan_around(m, x as u32, m.he_face(hs[0]), n).ok_or(NoCap::Never)?;
-    let hole: Vec<bool> = all
-        .iter()
-        .map(|&(f, _)| is_hole(level, f as usize))
-        .collect();
-    if cells.len() != hole.iter().filter(|&&h| !h).count() {
-        return Err(NoCap::Later);
-    }
+    let n = m.valence(x);
+    let all = fan_around(m, x as u32, m.he_face(m.vertex_halfedge(x)), n).ok_or(NoCap::Never)?;
+    let fan: Vec<u32> = all.iter().map(|&(f, _)| f).collect();
+    let runs = present_runs(level, &fan, cells.len()).ok_or(NoCap::Later)?;
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
     let pos = m.positions();
     let centre = Rules::plain(m).limit_stencil(x).apply(pos);
@@ -373,12 +359,8 @@ fn wedge_caps(
         plane[k] = axpy(plane[k], w, pos[p as usize])
     });
     let mut caps = Vec::new();
-    // each run starts after a hole
-    for start in (0..n).filter(|&s| !hole[s] && hole[(s + n - 1) % n]) {
-        let run: Vec<(u32, usize)> = (0..n)
-            .map(|i| all[(start + i) % n])
-            .take_while(|&(f, _)| !is_hole(level, f as usize))
-            .collect();
+    for run in runs {
+        let run: Vec<(u32, usize)> = run.into_iter().map(|i| all[i]).collect();
         let (sectors, tags) = fan_sectors(level, &run, &tag_at, Ends::Wedge)?;
         caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
     }

@@ -2,18 +2,18 @@
 //! half-edges of crease vertices, darts and corners, the limit point of a crease, the sides
 //! between sharp edges that hold marked cells, and a corner side's chart.
 
-use super::{Level, is_inf};
+use super::{Level, cap_feature, is_hole, is_inf};
 use crate::bezier::g1::CornerAngle;
 use crate::geom::{self, Point};
 use crate::host::adaptive::{NoCap, Tag};
 use crate::host::fans::faces_between;
 use crate::mesh::PolyMesh;
 
-/// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
-/// (exactly two of its edges infinitely sharp, its own sharpness finite), and whether it is
-/// plain apart from them (no semi-sharp feature left: its rule is the crease rule, and each
-/// side of the crease refines as a boundary fan does).
-pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], bool)> {
+/// The infinitely sharp outgoing half-edges of the interior vertex `v` of finite sharpness
+/// (in the order of its outgoing half-edges) and whether it is plain apart from them (its own
+/// sharpness and every other edge's 0: no semi-sharp feature left); `None` at a boundary
+/// vertex, a vertex of infinite sharpness or without the level's features.
+fn sharp_halfedges(level: &Level, v: usize) -> Option<(Vec<u32>, bool)> {
     let ft = level.sharp.as_ref()?;
     let m = &level.mesh;
     if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
@@ -21,41 +21,76 @@ pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], boo
     }
     let hs = m.outgoing_halfedges(v);
     let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let inf: Vec<u32> = hs
-        .iter()
-        .copied()
-        .filter(|&h| is_inf(sharpness(h)))
-        .collect();
-    let [a, b] = inf[..] else {
-        return None;
-    };
     let plain = ft.vertices[v] == 0.0
         && hs
             .iter()
             .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
-    Some(([a, b], plain))
+    Some((
+        hs.into_iter().filter(|&h| is_inf(sharpness(h))).collect(),
+        plain,
+    ))
+}
+
+/// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
+/// (exactly two of its edges infinitely sharp, its own sharpness finite), and whether it is
+/// plain apart from them (no semi-sharp feature left: its rule is the crease rule, and each
+/// side of the crease refines as a boundary fan does).
+pub(crate) fn crease_halfedges(level: &Level, v: usize) -> Option<([u32; 2], bool)> {
+    match sharp_halfedges(level, v)? {
+        (hs, plain) if hs.len() == 2 => Some(([hs[0], hs[1]], plain)),
+        _ => None,
+    }
 }
 
 /// The one infinitely sharp outgoing half-edge of `v` when it is an interior dart (exactly one
 /// of its edges infinitely sharp, its own sharpness finite), and whether it is plain apart from
 /// it (no semi-sharp feature left: the dart's rules, [`crate::schemes::catmull_clark::dart`]).
 pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
-    let ft = level.sharp.as_ref()?;
+    match sharp_halfedges(level, v)? {
+        (hs, plain) if hs.len() == 1 => Some((hs[0], plain)),
+        _ => None,
+    }
+}
+
+/// Whether the interior vertex `x` has OpenSubdiv hole faces around it, so its G^1 caps are
+/// wedges (one per run of present faces): `Ok(false)` at a boundary vertex or without holes,
+/// `Later` while a semi-sharp feature is left at `x`, `Never` for other features.
+pub(crate) fn beside_holes(level: &Level, x: usize) -> Result<bool, NoCap> {
     let m = &level.mesh;
-    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
+    if m.is_boundary_vertex(x) {
+        return Ok(false);
+    }
+    let hs = m.outgoing_halfedges(x);
+    if !hs.iter().any(|&h| is_hole(level, m.he_face(h) as usize)) {
+        return Ok(false);
+    }
+    match cap_feature(level, x) {
+        Some(true) => Err(NoCap::Later),
+        Some(false) => Err(NoCap::Never),
+        None => Ok(true),
+    }
+}
+
+/// The runs of present faces among a closed fan's `faces` (in fan order) between hole faces,
+/// as index lists into `faces`, each starting after a hole; `None` when there are not exactly
+/// `cells` present faces (the element's marked cells).
+pub(crate) fn present_runs(level: &Level, faces: &[u32], cells: usize) -> Option<Vec<Vec<usize>>> {
+    let n = faces.len();
+    let hole: Vec<bool> = faces.iter().map(|&f| is_hole(level, f as usize)).collect();
+    if hole.iter().filter(|&&h| !h).count() != cells {
         return None;
     }
-    let hs = m.outgoing_halfedges(v);
-    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let mut inf = hs.iter().copied().filter(|&h| is_inf(sharpness(h)));
-    let (Some(h), None) = (inf.next(), inf.next()) else {
-        return None;
-    };
-    let plain = ft.vertices[v] == 0.0
-        && hs
-            .iter()
-            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
-    Some((h, plain))
+    Some(
+        (0..n)
+            .filter(|&s| !hole[s] && hole[(s + n - 1) % n])
+            .map(|start| {
+                (0..n)
+                    .map(|i| (start + i) % n)
+                    .take_while(|&i| !hole[i])
+                    .collect()
+            })
+            .collect(),
+    )
 }
 
 /// The limit point `(a + 4 x + b) / 6` of a vertex `x` under the crease rule between its

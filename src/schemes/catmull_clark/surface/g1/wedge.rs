@@ -14,7 +14,7 @@ use super::super::Level;
 use super::segment_across;
 use crate::bezier::g1::Hole;
 use crate::host::adaptive::{CapData, NoCap, Tag, quad_hole_segments, quad_sectors_around};
-use crate::schemes::catmull_clark::crease::adaptive::{cap_feature, is_hole};
+use crate::schemes::catmull_clark::crease::adaptive::{beside_holes, present_runs};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use std::collections::HashMap;
 
@@ -29,40 +29,23 @@ pub(in crate::schemes::catmull_clark::surface) fn wedge_caps(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
+    if !beside_holes(level, x)? {
+        return Ok(None);
+    }
     let m = &level.mesh;
-    if m.is_boundary_vertex(x) {
-        return Ok(None);
-    }
-    let hs = m.outgoing_halfedges(x);
-    if !hs.iter().any(|&h| is_hole(level, m.he_face(h) as usize)) {
-        return Ok(None);
-    }
-    match cap_feature(level, x) {
-        Some(true) => return Err(NoCap::Later),
-        Some(false) => return Err(NoCap::Never),
-        None => {}
-    }
-    let n = hs.len();
-    let all = quad_sectors_around(m, x as u32, m.he_face(hs[0]), n).ok_or(NoCap::Never)?;
-    let hole: Vec<bool> = all
-        .iter()
-        .map(|s| is_hole(level, s.face as usize))
-        .collect();
+    let n = m.valence(x);
+    let f0 = m.he_face(m.vertex_halfedge(x));
+    let all = quad_sectors_around(m, x as u32, f0, n).ok_or(NoCap::Never)?;
+    let fan: Vec<u32> = all.iter().map(|sec| sec.face).collect();
+    let runs = present_runs(level, &fan, faces.len()).ok_or(NoCap::Never)?;
     let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    if faces.len() != hole.iter().filter(|&&h| !h).count() {
-        return Err(NoCap::Never);
-    }
     let pos = m.positions();
     let centre = limits.limit(x);
     let (t1, t2) = CatmullClark::tangent_stencils(m, x).ok_or(NoCap::Never)?;
     let plane = [t1.apply(pos), t2.apply(pos)];
     let mut caps = Vec::new();
-    // each run starts after a hole face
-    for start in (0..n).filter(|&s| !hole[s] && hole[(s + n - 1) % n]) {
-        let run: Vec<_> = (0..n)
-            .map(|i| all[(start + i) % n])
-            .take_while(|sec| !is_hole(level, sec.face as usize))
-            .collect();
+    for run in runs {
+        let run: Vec<_> = run.into_iter().map(|i| all[i]).collect();
         let tags = super::crease::sector_tags(&run, &tag_at)?;
         let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
         caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
