@@ -17,17 +17,10 @@
 mod support;
 
 use fairsub::geom::{cross, dot};
-use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
-use fairsub::schemes::catmull_clark::surface::catmull_clark_complex_with;
-use fairsub::schemes::loop_subdivision::surface::loop_complex_with;
-use fairsub::schemes::{Scheme, catmull_clark, loop_subdivision};
 use fairsub::surface::table::probe;
-use support::{
-    check_net, file_options, fill_patches, limit_points, nearest, quad_samples, sharp_chains,
-    table_reapplies, triangle_samples,
-};
+use support::{check_capped, limit_points, nearest, sharp_chains, table_reapplies};
 
 /// `m` with sharp chains along the spokes `spokes` of its vertex 0, which is of infinite
 /// sharpness when `tagged`.
@@ -83,34 +76,11 @@ fn nets(loop_: bool) -> Vec<(String, PolyMesh, usize)> {
 /// Checks the nets of one scheme (module documentation).
 fn corners_are_capped(loop_: bool) {
     for (name, m, want) in nets(loop_) {
-        let subd = file_options(&m);
-        let scheme: Box<dyn Scheme> = if loop_ {
-            Box::new(loop_subdivision::Configured { options: subd })
-        } else {
-            Box::new(catmull_clark::Configured { options: subd })
-        };
-        let samples = if loop_ {
-            triangle_samples
-        } else {
-            quad_samples
-        };
+        let (scheme, samples) = support::scheme_of(loop_, &m);
         for rings in [1, 2, 3] {
             let what = format!("{name}, {rings} rings");
-            let opts = ComplexOptions { rings, fill: true };
-            let c = if loop_ {
-                loop_complex_with(&m, opts, subd, |_| {})
-            } else {
-                catmull_clark_complex_with(&m, opts, subd, |_| {})
-            }
-            .expect(&what);
-            let r = check_net(&what, &m, &c, scheme.as_ref(), samples, false, true);
-            assert_eq!(fill_patches(&c), 0, "{what}: fill patches left");
-            assert!(
-                r.all.g1 < 1e-8,
-                "{what}: G^1 {:e} at {:?}",
-                r.all.g1,
-                r.all.g1_at
-            );
+            let c = support::complex_of(loop_, &m, rings);
+            check_capped(&what, &m, &c, scheme.as_ref(), samples, false, true);
             let corners: Vec<_> = c.caps.iter().filter(|s| s.hole.corner.is_some()).collect();
             assert_eq!(corners.len(), want, "{what}: corner caps");
             let levels = c.provenance.iter().filter_map(support::level_of).max();

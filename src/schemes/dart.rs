@@ -153,3 +153,28 @@ pub(crate) fn assert_left_eigenvectors(s: &DMatrix<f64>, m: &DartMasks, what: &s
         assert!(v.sum().abs() < 1e-9, "{what}");
     }
 }
+
+/// The tests' check of a scheme's rules: the smooth ring matrix `smooth` has the subdominant
+/// eigenvalue `want` (double, to 1e-7), and the dart keeps it (its antisymmetric mode has no
+/// weight on the sharp edge's end).
+#[cfg(test)]
+pub(crate) fn assert_smooth_pair_kept(smooth: &DMatrix<f64>, m: &DartMasks, want: f64, what: &str) {
+    let mut ev: Vec<f64> = smooth
+        .complex_eigenvalues()
+        .iter()
+        .map(|z| z.re)
+        .filter(|&r| r < 1.0 - 1e-9)
+        .collect();
+    ev.sort_by(|a, b| b.total_cmp(a));
+    let close = |l: f64| (l - want).abs() < 1e-7;
+    assert!(
+        close(ev[0]) && close(ev[1]),
+        "{what}: {:?} against {want}",
+        &ev[..3]
+    );
+    assert!(
+        m.lambda.iter().any(|&l| close(l)),
+        "{what}: {:?} against {want}",
+        m.lambda
+    );
+}

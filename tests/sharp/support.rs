@@ -309,3 +309,44 @@ pub fn complex_of(loop_: bool, m: &PolyMesh, rings: usize) -> PatchComplex {
     }
     .expect("complex")
 }
+
+/// [`check_net`] of a complex whose holes are all capped: additionally no fill patch is left
+/// and every join but the sharp ones is G^1 below 1e-8 rad.
+pub fn check_capped(
+    what: &str,
+    m: &PolyMesh,
+    c: &PatchComplex,
+    scheme: &dyn Scheme,
+    samples: fn(usize) -> Vec<(f64, f64)>,
+    closed: bool,
+    sharp: bool,
+) -> fairsub::analysis::continuity::ContinuityReport {
+    let r = check_net(what, m, c, scheme, samples, closed, sharp);
+    assert_eq!(fill_patches(c), 0, "{what}: fill patches left");
+    assert!(
+        r.all.g1 < 1e-8,
+        "{what}: G^1 {:e} at {:?}",
+        r.all.g1,
+        r.all.g1_at
+    );
+    r
+}
+
+/// A scheme's parameter samples of a patch (`k` per side).
+pub type Samples = fn(usize) -> Vec<(f64, f64)>;
+
+/// Loop (`loop_`) or Catmull-Clark with the net's own options, and its parameter samples.
+pub fn scheme_of(loop_: bool, m: &PolyMesh) -> (Box<dyn Scheme>, Samples) {
+    let options = file_options(m);
+    if loop_ {
+        (
+            Box::new(fairsub::schemes::loop_subdivision::Configured { options }),
+            triangle_samples,
+        )
+    } else {
+        (
+            Box::new(fairsub::schemes::catmull_clark::Configured { options }),
+            quad_samples,
+        )
+    }
+}

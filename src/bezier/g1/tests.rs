@@ -279,7 +279,7 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
         }
         // the spoke tangents at the centre, boundary spokes included
         let t = super::hole::spoke_tangent(&hole.tangents, n, Fan::Open, n);
-        let got = scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), d as f64);
+        let got = centre_derivative(&cap, n);
         assert!(norm(sub(got, t)) < 1e-10 * size, "n {n}");
     }
     eprintln!("open fans, lowest degree plane/jet: {}", table.join(" "));
@@ -371,15 +371,7 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
                 "n {n}"
             );
             for s in 1..n {
-                let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
-                let (np, nq) = (
-                    crate::geom::cross(p.du, p.dv),
-                    crate::geom::cross(q.du, q.dv),
-                );
-                if norm(np) > 1e-9 && norm(nq) > 1e-9 {
-                    let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
-                    assert!(c < 1e-9, "n {n} spoke {s} at {u}: {c:e}");
-                }
+                assert_spoke_g1(&cap, s, u, size, &format!("n {n}"));
             }
         }
     }
@@ -410,16 +402,7 @@ fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
             let c0 = norm(sub(cap[0].eval(u, 0.0), cap[n - 1].eval(0.0, u)));
             assert!(c0 < 1e-11 * size, "n {n} sharp spoke at {u}: {c0:e}");
             for s in 1..n {
-                let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
-                assert!(norm(sub(p.p, q.p)) < 1e-11 * size);
-                let (np, nq) = (
-                    crate::geom::cross(p.du, p.dv),
-                    crate::geom::cross(q.du, q.dv),
-                );
-                if norm(np) > 1e-9 && norm(nq) > 1e-9 {
-                    let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
-                    assert!(c < 1e-9, "n {n} spoke {s} at {u}: {c:e}");
-                }
+                assert_spoke_g1(&cap, s, u, size, &format!("n {n}"));
             }
         }
         for s in 0..=n {
@@ -431,11 +414,7 @@ fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
                 hole.tangents[1],
             );
             assert!(norm(sub(t, want)) < 1e-12 * size, "n {n} spoke {s}");
-            let got = if s < n {
-                scale(sub(cap[s].cp(1, 0), cap[s].cp(0, 0)), d as f64)
-            } else {
-                scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), d as f64)
-            };
+            let got = centre_derivative(&cap, s);
             assert!(norm(sub(got, t)) < 1e-10 * size, "n {n} spoke {s}");
         }
     }
@@ -496,26 +475,12 @@ fn wedges_are_certified_at_the_angles_of_the_full_turn() {
                     th.sin(),
                     hole.tangents[1],
                 );
-                let got = if s < k {
-                    scale(sub(cap[s].cp(1, 0), cap[s].cp(0, 0)), d as f64)
-                } else {
-                    scale(sub(cap[k - 1].cp(0, 1), cap[k - 1].cp(0, 0)), d as f64)
-                };
+                let got = centre_derivative(&cap, s);
                 assert!(norm(sub(got, want)) < 1e-10 * size, "{k} of {m}: spoke {s}");
             }
             for s in 1..k {
                 for j in 0..=10 {
-                    let u = j as f64 / 10.0;
-                    let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
-                    assert!(norm(sub(p.p, q.p)) < 1e-11 * size);
-                    let (np, nq) = (
-                        crate::geom::cross(p.du, p.dv),
-                        crate::geom::cross(q.du, q.dv),
-                    );
-                    if norm(np) > 1e-9 && norm(nq) > 1e-9 {
-                        let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
-                        assert!(c < 1e-9, "{k} of {m} spoke {s} at {u}: {c:e}");
-                    }
+                    assert_spoke_g1(&cap, s, j as f64 / 10.0, size, &format!("{k} of {m}"));
                 }
             }
         }
@@ -549,9 +514,7 @@ fn corner_sectors_are_certified_with_both_sharp_spokes_pinned() {
             } else {
                 -1.0
             };
-            let dd = d.max(4) as f64;
-            let t0 = scale(sub(cap[0].cp(1, 0), cap[0].cp(0, 0)), dd);
-            let tn = scale(sub(cap[n - 1].cp(0, 1), cap[n - 1].cp(0, 0)), dd);
+            let (t0, tn) = (centre_derivative(&cap, 0), centre_derivative(&cap, n));
             assert!(
                 norm(sub(t0, hole.tangents[0])) < 1e-10 * size,
                 "{angle:?} n {n}"
@@ -563,4 +526,36 @@ fn corner_sectors_are_certified_with_both_sharp_spokes_pinned() {
         }
     }
     eprintln!("corner sectors, lowest degree: {}", table.join(" "));
+}
+
+/// Asserts that cap patches `s` (its side `v = 0`) and `s - 1` (its side `u = 0`) meet at
+/// parameter `u` of spoke `s` C^0 (to 1e-11 of `size`) and G^1 (normals within 1e-9 rad where
+/// both are defined).
+fn assert_spoke_g1(cap: &[crate::bezier::BezierPatch], s: usize, u: f64, size: f64, what: &str) {
+    let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
+    assert!(
+        norm(sub(p.p, q.p)) < 1e-11 * size,
+        "{what} spoke {s} at {u}: C^0"
+    );
+    let (np, nq) = (
+        crate::geom::cross(p.du, p.dv),
+        crate::geom::cross(q.du, q.dv),
+    );
+    if norm(np) > 1e-9 && norm(nq) > 1e-9 {
+        let c = norm(crate::geom::cross(np, nq)) / (norm(np) * norm(nq));
+        assert!(c < 1e-9, "{what} spoke {s} at {u}: {c:e}");
+    }
+}
+
+/// The derivative at the centre along spoke `s` of a fan's cap patches (spoke `n` of an open
+/// fan is the last patch's side `u = 0`), per unit of the cap's parameter.
+fn centre_derivative(cap: &[crate::bezier::BezierPatch], s: usize) -> Point {
+    let d = cap[0].deg_u as f64;
+    match cap.get(s) {
+        Some(p) => scale(sub(p.cp(1, 0), p.cp(0, 0)), d),
+        None => {
+            let p = &cap[s - 1];
+            scale(sub(p.cp(0, 1), p.cp(0, 0)), d)
+        }
+    }
 }
