@@ -126,11 +126,26 @@ pub struct ContinuityReport {
 const SAMPLES: usize = 9;
 
 /// Derivatives across side `side` of `p` at side parameter `t`, pointing out of the patch:
-/// `(point, first, second, normal)`.
+/// `(point, first, second, normal)`. Where the patch is singular (its partials vanish or are
+/// parallel: the apex of a cone point's cap, a pole) the normal is the limit along the side,
+/// from the side's middle: the tangent plane along the join, which two patches G^1 across
+/// the side share even at an apex that has no tangent plane of its own; elsewhere on a
+/// singular point, and where that limit does not exist, the limit from the interior
+/// ([`BezierPatch::normal_from`]).
 fn across(p: &BezierPatch, side: Side, t: f64) -> (Point, Point, Point, Point) {
     let [u, v] = side.domain_point(t);
     let d = p.derivatives(u, v);
-    let n = p.normal_from(u, v, &d);
+    let toward = if t < 0.5 { 1.0 } else { -1.0 };
+    let along = match side {
+        Side::U0 | Side::U1 => [0.0, toward],
+        Side::V0 | Side::V1 => [toward, 0.0],
+    };
+    let n = if d.is_regular() {
+        p.normal_from(u, v, &d)
+    } else {
+        d.normal_toward(along)
+            .unwrap_or_else(|| p.normal_from(u, v, &d))
+    };
     match side {
         Side::U1 => (d.p, d.du, d.duu, n),
         Side::U0 => (d.p, geom::scale(d.du, -1.0), d.duu, n),
