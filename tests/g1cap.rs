@@ -355,14 +355,8 @@ fn regular_hole_reproduction() {
             .collect();
         let c = eval(0.0, 0.0);
         let hole = Hole {
-            centre: c.p,
             tangents: [c.du, c.dv],
-            sectors,
-            open: false,
-            crease: false,
-            dart: false,
-            wedge: None,
-            corner: None,
+            ..Hole::untangented(c.p, sectors)
         };
         let cap = g1_cap_with(&hole, CapOptions::default()).unwrap();
         let mut worst: f64 = 0.0;

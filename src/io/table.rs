@@ -40,7 +40,10 @@
 //! [`crate::bezier::g1::Hole::wedge`]: spokes at the angles `2 pi s / M`, the first and last
 //! on the hole's border) or `corner` (a sector between two sharp edges at a corner,
 //! [`crate::bezier::g1::Hole::corner`]: spokes over a quarter-turn, `T0, T1` are `A, B`
-//! themselves; `corner/reflex`: over three quarters, the last spoke along `-B`). Version 2 added `FAN`; version 1 files are refused.
+//! themselves; `corner/reflex`: over three quarters, the last spoke along `-B`) or `cone` (a
+//! hole closed around a cone point, [`crate::bezier::g1::Hole::cone`]: `T0 = T1 = 0`, `A, B`
+//! are zero rows, `w(0) = 2 cos(pi / SECTORS)`) or `cone/dart` (a dart's fan around a cone
+//! point, the same). Version 2 added `FAN`; version 1 files are refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
@@ -144,6 +147,8 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
                     Fan::Wedge(m) => format!("wedge/{m}"),
                     Fan::Corner(CornerAngle::Convex) => "corner".to_string(),
                     Fan::Corner(CornerAngle::Reflex) => "corner/reflex".to_string(),
+                    Fan::Cone => "cone".to_string(),
+                    Fan::DartCone => "cone/dart".to_string(),
                 },
                 shape.len(),
                 shape.first().map_or(0, Vec::len)
@@ -288,7 +293,7 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
                 path,
                 l,
                 "expected 'c FIRST COUNT ROW MAP DEGREE CENTRE FAN ...' (FAN: open, closed, \
-                 crease, dart, corner, corner/reflex or wedge/M)",
+                 crease, dart, corner, corner/reflex, cone, cone/dart or wedge/M)",
             ));
         }
         caps.push((v[0], v[1], v[2], v[3], v[4]));
@@ -372,14 +377,21 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
 }
 
 /// Whether `w` is a `FAN` word of a cap line: `open`, `closed`, `crease`, `dart`, `corner`,
-/// `corner/reflex` or `wedge/M`
+/// `corner/reflex`, `cone`, `cone/dart` or `wedge/M`
 /// with a whole number `M >= 1`.
 fn is_fan_word(w: &str) -> bool {
     match w.strip_prefix("wedge/") {
         Some(m) => m.parse::<usize>().is_ok_and(|m| m >= 1),
         None => matches!(
             w,
-            "open" | "closed" | "crease" | "dart" | "corner" | "corner/reflex"
+            "open"
+                | "closed"
+                | "crease"
+                | "dart"
+                | "corner"
+                | "corner/reflex"
+                | "cone"
+                | "cone/dart"
         ),
     }
 }

@@ -138,6 +138,7 @@ fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole, [Point; 2
         dart: like.dart,
         wedge: like.wedge,
         corner: like.corner,
+        cone: like.cone,
         ..Hole::untangented(vals[0], sectors)
     };
     (hole, [vals[1], vals[2]])

@@ -223,16 +223,7 @@ pub fn hole_of(c: &PatchComplex, triangles: bool, centre: Point, normal: Point) 
             .collect()
     };
     let n = sectors.len();
-    let mut hole = Hole {
-        centre,
-        tangents: [[0.0; 3]; 2],
-        sectors,
-        open: false,
-        crease: false,
-        dart: false,
-        wedge: None,
-        corner: None,
-    };
+    let mut hole = Hole::untangented(centre, sectors);
     // spoke ends of the quad layout, projected into the tangent plane, Fourier mode 1
     let q = hole.to_quad_layout().unwrap();
     let mut t = [[0.0; 3]; 2];

@@ -529,7 +529,13 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
     check_cap_valence(n)?;
     let (layout, degrees) = hole.layout()?;
     let fan = hole.fan();
-    let (d, centre) = match opts.centre {
+    // a cone point has no tangent plane, let alone a quadratic expansion to share
+    let requested = if fan.is_cone() {
+        Centre::TangentPlane
+    } else {
+        opts.centre
+    };
+    let (d, centre) = match requested {
         Centre::Auto => {
             let d = match opts.degree {
                 Some(d) => d,

@@ -229,9 +229,31 @@
 //! corner, so neighbouring sectors share each sharp edge exactly. The chart turns a quarter
 //! (spoke `n` along `T1`) or, for a reflex sector, three quarters (along `-T1`), so the cap
 //! turns the way its ring does instead of folding over. The corner itself is a cone point:
-//! the sectors meet there C^0 only, across their sharp spokes. Lowest certified degree
+//! the sectors meet there C^0 only, across their sharp spokes (a corner without two sharp
+//! edges: "Cone points" below). Lowest certified degree
 //! (test `corner_sectors_are_certified_with_both_sharp_spokes_pinned`, `n = 1..10`): bi-4,
 //! bi-3 for one sector.
+//!
+//! ## Cone points
+//!
+//! A vertex the corner rule keeps (sharpness infinity) with no infinitely sharp edge, or one,
+//! has no tangent plane: the limit surface has a tangent cone there, smooth along every other
+//! direction. Its hole is closed ([`Fan::Cone`]) or a dart's fan ([`Fan::DartCone`]), centred
+//! at the vertex with every spoke tangent zero ([`Hole::cone`]): the cap's corners at the apex
+//! are singular, and the G^1 relation `D_v P_s + D_u P_(s-1) = w D_u P_s` along each spoke,
+//! whose three terms all vanish at the apex, holds as the polynomial identity it is. Divided
+//! by the spoke's parameter it still holds at the apex itself, on the second-order data: near
+//! the apex sector `s` is `Q_s(u, v) = a_s u^2 + b_s u v + a_(s+1) v^2`, the relation there
+//! reads `b_(s-1) + b_s = 2 w(0) a_s`, so each pair of sectors shares the plane of `a_s` and
+//! `b_(s-1) + b_s` along their spoke: G^1 along the spoke up to the apex, where the planes of
+//! different spokes differ (the cone). `w(0) = 2 cos(pi / n)`, the chart of a half-turn: in
+//! the model of a plane `Q_s = (u e_s + v e_(s+1))^2` (complex numbers, `e_s = exp(i pi s / n)`:
+//! squaring doubles the chart's angles to the full turn) the relation holds with that weight.
+//! No jet at the centre. The free coefficients minimise the fairness functional. Lowest
+//! certified degrees (test `cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes`,
+//! `n = 3..12`): closed, bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles);
+//! a dart's fan bi-4 for quads, bi-5 for triangles (bi-4 at `n = 3`). Not a published
+//! construction.
 //!
 //! # Data that are not enough
 //!
@@ -242,6 +264,7 @@
 //! PolBS's own collapsed bi-2 cap is G^1 there (see `schemes::bi2::surface`). Triangle
 //! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
+mod fan;
 pub mod hole;
 mod map;
 pub mod ring;

@@ -234,10 +234,11 @@ pub fn crease_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]
 }
 
 /// The spoke tangents of a hole of per-point data (not positions) from its provider's `plane`
-/// vectors (tabulated like the positions'): a corner's both ([`Hole::corner`]), a crease's fan
+/// vectors (tabulated like the positions'): a corner's both ([`Hole::corner`]; a cone's, zero,
+/// [`Hole::cone`]), a crease's fan
 /// `T0` with `T1` fitted ([`crease_data_tangents`]), else both fitted ([`data_tangents`]).
 pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
-    if hole.corner.is_some() {
+    if hole.corner.is_some() || hole.cone {
         Ok(plane)
     } else if hole.crease {
         crease_data_tangents(hole, plane)
@@ -249,9 +250,14 @@ pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> 
 /// The G^1 cap of `hole` from its provider's `plane` vectors: [`cap_in_plane`] with the
 /// plane's normal; for a corner's sector ([`Hole::corner`]) with `[T0, T1] = plane` (the two
 /// sharp edges' derivatives), for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
-/// ([`crease_tangents`]).
+/// ([`crease_tangents`]); around a cone point ([`Hole::cone`]) `plane` is not read (its spoke
+/// tangents are zero).
 pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
-    if hole.corner.is_some() {
+    if hole.cone {
+        super::map::check_cap_valence(hole.valence())?;
+        hole.tangents = [[0.0; 3]; 2];
+        g1_cap_with(&hole, opts)
+    } else if hole.corner.is_some() {
         super::map::check_cap_valence(hole.valence())?;
         hole.tangents = plane;
         g1_cap_with(&hole, opts)

@@ -79,6 +79,8 @@ pub(crate) fn turn(n: usize, fan: Fan) -> f64 {
         (Fan::Wedge(m), _) => 2.0 * std::f64::consts::PI * n as f64 / m.max(1) as f64,
         (Fan::Corner(CornerAngle::Convex), _) => std::f64::consts::FRAC_PI_2,
         (Fan::Corner(CornerAngle::Reflex), _) => 3.0 * std::f64::consts::FRAC_PI_2,
+        // a cone's chart: a half-turn (the cap's sectors near the apex are `z^2` of it)
+        (Fan::Cone | Fan::DartCone, _) => std::f64::consts::PI,
         (_, 1) => std::f64::consts::FRAC_PI_2,
         _ => std::f64::consts::PI,
     }
@@ -87,7 +89,7 @@ pub(crate) fn turn(n: usize, fan: Fan) -> f64 {
 /// The angle of spoke `k` from spoke 0: `k` times [`spoke_angle`] (computed as `turn k / n`;
 /// spoke `n` of a dart's fan is its spoke `0`, angle 0 exactly).
 pub(crate) fn spoke_angle_at(n: usize, fan: Fan, k: usize) -> f64 {
-    let k = if fan == Fan::Dart { k % n } else { k };
+    let k = if fan.is_dart() { k % n } else { k };
     turn(n, fan) * k as f64 / n as f64
 }
 
@@ -221,16 +223,8 @@ pub(crate) fn conditions(
         let dm = df * mf;
         fix(&mut e, cidx(d, p0, 0, 0), vec![(0, 1.0)]);
         let (a0, a1) = (th(s), th(s + 1));
-        fix(
-            &mut e,
-            cidx(d, p0, 1, 0),
-            vec![(0, 1.0), (1, a0.cos() / dm), (2, a0.sin() / dm)],
-        );
-        fix(
-            &mut e,
-            cidx(d, p0, 0, 1),
-            vec![(0, 1.0), (1, a1.cos() / dm), (2, a1.sin() / dm)],
-        );
+        fix(&mut e, cidx(d, p0, 1, 0), tangent_row(fan, a0, dm));
+        fix(&mut e, cidx(d, p0, 0, 1), tangent_row(fan, a1, dm));
     }
     if fan.hermite_ends() && m == 1 {
         for (x, row) in crease_rows(n, d, fan) {
@@ -265,6 +259,17 @@ pub(crate) fn conditions(
     Conditions { e, f }
 }
 
+/// The row over the canonical data of the spoke's first coefficient after the centre:
+/// `C + (cos a T0 + sin a T1) / scale` for the spoke at angle `a`; `C` itself around a cone
+/// ([`Fan::is_cone`]: every spoke tangent zero, whatever `T0, T1` the data hold).
+fn tangent_row(fan: Fan, a: f64, scale: f64) -> Row {
+    if fan.is_cone() {
+        vec![(0, 1.0)]
+    } else {
+        vec![(0, 1.0), (1, a.cos() / scale), (2, a.sin() / scale)]
+    }
+}
+
 /// The boundary spokes of an open fan of `n` one-patch sectors at degree `d` as the cubic
 /// Hermite interpolants of their end data, raised to degree `d`: the rows fixing coefficients
 /// `2 ..= d - 2` of spoke `0` (`b_i0` of sector `0`) and of spoke `n` (`b_0i` of sector
@@ -283,7 +288,7 @@ pub(crate) fn crease_rows(n: usize, d: usize, fan: Fan) -> Vec<(usize, Row)> {
     for last in [false, true] {
         let (p, k) = if last { (n - 1, n) } else { (0, 0) };
         let th = spoke_angle_at(n, fan, k);
-        let (e, x) = if last && fan != Fan::Dart {
+        let (e, x) = if last && !fan.is_dart() {
             (qd.b(p, 0, 0), qd.cb(p, 0, 0))
         } else {
             // spoke 0's end (a dart's spoke n too)
@@ -291,7 +296,7 @@ pub(crate) fn crease_rows(n: usize, d: usize, fan: Fan) -> Vec<(usize, Row)> {
         };
         let h: [Row; 4] = [
             vec![(0, 1.0)],
-            vec![(0, 1.0), (1, th.cos() / 3.0), (2, th.sin() / 3.0)],
+            tangent_row(fan, th, 3.0),
             vec![(e, 1.0), (x, 1.0 / 3.0)],
             vec![(e, 1.0)],
         ];
@@ -488,7 +493,7 @@ pub(crate) fn compatibility(
             }
         }
     }
-    if fan == Fan::Dart {
+    if fan.is_dart() {
         // the sharp spoke's two sides end at one point with one derivative along it
         let end = format!("end of the dart's sharp spoke (sectors {}, 0)", n - 1);
         g.push((

@@ -87,7 +87,8 @@ fn random_hole(n: usize, fan: Fan, d: usize, m: usize, kappa: f64, rng: &mut Lcg
             .collect(),
         open: fan.is_open(),
         crease: fan == Fan::Crease,
-        dart: fan == Fan::Dart,
+        dart: fan.is_dart(),
+        cone: fan.is_cone(),
         wedge: match fan {
             Fan::Wedge(m) => Some(m),
             _ => None,
@@ -438,6 +439,65 @@ fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
         assert!(d <= 6, "n {n}: {d}");
     }
     eprintln!("dart triangle fans, lowest degree: {}", table.join(" "));
+}
+
+/// Cone points ([`Hole::cone`]): closed holes and darts' fans certified at every valence up
+/// to 12, at most bi-5 (quads) and bi-6 (Loop's triangles); on compatible quad data every spoke
+/// tangent is zero and every join spoke G^1 up to the apex (the relation divided by the
+/// parameter: the normals on both sides agree at `u = 1e-3` as well as further out).
+#[test]
+fn cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes() {
+    let quads = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    let tris = Degrees {
+        boundary: 4,
+        cross: 3,
+    };
+    let mut rng = Lcg(31);
+    let mut table = Vec::new();
+    for fan in [Fan::Cone, Fan::DartCone] {
+        for n in 3..=12 {
+            let (open, tri) = if fan == Fan::Cone {
+                (Layout::Quad, Layout::Triangle)
+            } else {
+                (Layout::OpenQuad, Layout::OpenTriangle)
+            };
+            let c = Centre::TangentPlane;
+            let d = lowest_certified_fan(n, open, quads, c, fan).unwrap();
+            let dt = lowest_certified_fan(n, tri, tris, c, fan).unwrap();
+            table.push(format!("{fan:?} {n}:{d}/{dt}"));
+            assert!(d <= 5 && dt <= 6, "{fan:?} {n}: {d} {dt}");
+            let hole = random_hole(n, fan, d, 1, 0.0, &mut rng);
+            assert_eq!(hole.fan(), fan);
+            let cap = g1_cap(&hole).unwrap();
+            let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
+            for s in 0..n {
+                assert!(
+                    norm(centre_derivative(&cap, s)) < 1e-12 * size,
+                    "{fan:?} {n} {s}"
+                );
+            }
+            // spoke 0 of the closed cone joins sectors n - 1 and 0; a dart's is its sharp edge
+            let around: Vec<_> = [cap[n - 1].clone(), cap[0].clone()].into();
+            for u in [1e-3, 0.01, 0.1, 0.25, 0.5, 0.75, 1.0] {
+                for s in 1..n {
+                    assert_spoke_g1(&cap, s, u, size, &format!("{fan:?} n {n}"));
+                }
+                if fan == Fan::Cone {
+                    assert_spoke_g1(&around, 1, u, size, &format!("cone n {n}"));
+                } else {
+                    let c0 = norm(sub(cap[0].eval(u, 0.0), cap[n - 1].eval(0.0, u)));
+                    assert!(c0 < 1e-11 * size, "n {n} sharp spoke at {u}: {c0:e}");
+                }
+            }
+        }
+    }
+    eprintln!(
+        "cone fans, lowest degree quads/triangles: {}",
+        table.join(" ")
+    );
 }
 
 /// Wedges ([`Hole::wedge`]): `k` of the `m` sectors around a vertex whose others are holes,

@@ -54,8 +54,10 @@
 //! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Hole::dart`]). A corner with
 //! sharp edges gets one open fan per side of two or more quads between them, its sharp spokes
 //! the edges' exact curves ([`crease::corner_caps`]); each run of quads between OpenSubdiv hole
-//! faces one open fan at the full turn's angles ([`wedge`]). Elements that never have the data
-//! (corners without sharp edges to cut them: cone points; boundary vertices of more than
+//! faces one open fan at the full turn's angles ([`wedge`]). A cone point (a vertex of
+//! sharpness infinity without two sharp edges) gets a closed cap, or a dart's fan along its one
+//! sharp edge, centred at the vertex with zero spoke tangents ([`crease::cone_cap`],
+//! [`crate::bezier::g1::Hole::cone`]). Elements that never have the data (boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 
@@ -282,6 +284,9 @@ fn holes_of(
     }
     if !open && let Some(caps) = crease::corner_caps(level, x as usize, faces)? {
         return Ok(caps);
+    }
+    if !open && let Some(cap) = crease::cone_cap(level, x as usize, faces)? {
+        return Ok(vec![cap]);
     }
     if !open && let Some(caps) = wedge::wedge_caps(level, limits, x as usize, faces)? {
         return Ok(caps);

@@ -98,8 +98,9 @@
 //! ([`crate::schemes::loop_subdivision::dart`]). A corner with sharp edges gets one open
 //! triangle fan per side of two or more triangles between them ([`corner_caps`]), each run of
 //! triangles between OpenSubdiv hole faces one at the full turn's angles ([`wedge_caps`]).
-//! Holes that never have the data (a corner no two sharp edges cut: a cone point; a fan that
-//! does not close, still incomplete after the extra levels) keep the C^0 Hermite fill of
+//! A cone point (a corner no two sharp edges cut) gets a closed cap or a dart's fan with zero
+//! spoke tangents ([`cone_cap`]). Holes that never have the data (a fan that does not close,
+//! still incomplete after the extra levels) keep the C^0 Hermite fill of
 //! [`super`].
 
 use super::{Level, is_regular, tri_index, trusted_net};
@@ -110,8 +111,8 @@ use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_ca
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    beside_holes, cap_feature, corner_plane, corner_sides, crease_sides, dart_halfedge,
-    is_plain_boundary, is_special, present_runs,
+    beside_holes, cap_feature, cone_halfedge, corner_plane, corner_sides, crease_sides,
+    dart_halfedge, is_plain_boundary, is_special, present_runs,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
@@ -332,6 +333,39 @@ fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapD
     Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
 }
 
+/// The cap of the cone point `x` whose marked cells are `cells` (Catmull-Clark's
+/// construction, `catmull_clark::surface::g1::crease::cone_cap`, on triangles): `Ok(None)` when
+/// `x` is not a cone point; a closed triangle hole, or an open triangle fan over the full turn
+/// from its one sharp edge, centred at `x` (the corner rule keeps it), every spoke tangent zero
+/// ([`Hole::cone`]).
+fn cone_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
+    let Some((sharp, plain)) = cone_halfedge(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let hs = m.outgoing_halfedges(x);
+    let n = hs.len();
+    if cells.len() != n {
+        return Err(NoCap::Later);
+    }
+    let (fan, ends) = match sharp {
+        Some(h) => (tri_fan(m, x as u32, m.he_face(h), n, None), Ends::Crease),
+        None => (fan_around(m, x as u32, m.he_face(hs[0]), n), Ends::Closed),
+    };
+    let fan = fan.ok_or(NoCap::Never)?;
+    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
+    let (sectors, tags) = fan_sectors(level, &fan, &tag_at, ends)?;
+    let centre = m.positions()[x];
+    let hole = match sharp {
+        Some(_) => Hole::untangented_dart(centre, sectors),
+        None => Hole::untangented(centre, sectors),
+    };
+    Ok(Some((hole.into_cone(), [[0.0; 3]; 2], tags)))
+}
+
 /// The caps of the interior vertex `x` whose marked cells are `cells` next to OpenSubdiv hole
 /// faces (Catmull-Clark's construction, `catmull_clark::surface::g1::wedge`, on triangles):
 /// `Ok(None)` when no triangle around `x` is a hole; one open triangle fan ([`Hole::wedge`])
@@ -398,7 +432,8 @@ fn corner_caps(
 }
 
 /// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), of a dart
-/// ([`dart_cap`]), of a corner's sides ([`corner_caps`]) or of the runs of triangles between hole faces ([`wedge_caps`]), else the
+/// ([`dart_cap`]), of a corner's sides ([`corner_caps`]), of a cone point ([`cone_cap`]) or of
+/// the runs of triangles between hole faces ([`wedge_caps`]), else the
 /// one of [`hole_of`].
 fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec<CapData>, NoCap> {
     let (x, _, open) = fan_centre(&level.mesh, &level.info, element, cells[0].0, 1)?;
@@ -410,6 +445,9 @@ fn holes_of(level: &Level, element: Element, cells: &[(u32, Tag)]) -> Result<Vec
     }
     if !open && let Some(caps) = corner_caps(level, x as usize, cells)? {
         return Ok(caps);
+    }
+    if !open && let Some(cap) = cone_cap(level, x as usize, cells)? {
+        return Ok(vec![cap]);
     }
     if !open && let Some(caps) = wedge_caps(level, x as usize, cells)? {
         return Ok(caps);

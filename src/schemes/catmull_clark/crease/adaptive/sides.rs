@@ -52,6 +52,34 @@ pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
     }
 }
 
+/// The infinitely sharp outgoing half-edge (at most one) of `v` when it is an interior cone
+/// point: a vertex of infinite sharpness (the corner rule keeps it) with fewer than two
+/// infinitely sharp edges, so no two sharp edges span a tangent plane there
+/// ([`crate::bezier::g1::Hole::cone`]); and whether it is plain apart from it (every other
+/// edge's sharpness 0: no semi-sharp feature left).
+pub(crate) fn cone_halfedge(level: &Level, v: usize) -> Option<(Option<u32>, bool)> {
+    let ft = level.sharp.as_ref()?;
+    let m = &level.mesh;
+    if m.is_boundary_vertex(v) || !is_inf(ft.vertices[v]) {
+        return None;
+    }
+    let hs = m.outgoing_halfedges(v);
+    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
+    let sharp: Vec<u32> = hs
+        .iter()
+        .copied()
+        .filter(|&h| is_inf(sharpness(h)))
+        .collect();
+    let plain = hs
+        .iter()
+        .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
+    match sharp.as_slice() {
+        [] => Some((None, plain)),
+        [h] => Some((Some(*h), plain)),
+        _ => None,
+    }
+}
+
 /// Whether the interior vertex `x` has OpenSubdiv hole faces around it, so its G^1 caps are
 /// wedges (one per run of present faces): `Ok(false)` at a boundary vertex or without holes,
 /// `Later` while a semi-sharp feature is left at `x`, `Never` for other features.

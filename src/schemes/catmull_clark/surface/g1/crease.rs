@@ -38,7 +38,8 @@ use crate::host::adaptive::{
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge, is_plain_boundary,
+    cone_halfedge, corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge,
+    is_plain_boundary,
 };
 use crate::schemes::catmull_clark::dart::dart_masks;
 use std::collections::HashMap;
@@ -161,6 +162,40 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
         .collect();
     let (centre, plane) = masks.apply(&ring);
     Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
+}
+
+/// The cap of the cone point `x` whose marked cells are `faces` ([`Hole::cone`]): `Ok(None)`
+/// when `x` is not a cone point ([`cone_halfedge`]), `Later` while a semi-sharp edge is left at
+/// `x`, `Never` when its `n` faces are not exactly the cells or not all quads. A closed hole
+/// (no sharp edge) or a dart's fan from its one sharp edge, centred at `x` itself (the corner
+/// rule keeps it), every spoke tangent zero.
+pub(in crate::schemes::catmull_clark::surface) fn cone_cap(
+    level: &Level,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<Option<CapData>, NoCap> {
+    let Some((sharp, plain)) = cone_halfedge(level, x) else {
+        return Ok(None);
+    };
+    if !plain {
+        return Err(NoCap::Later);
+    }
+    let m = &level.mesh;
+    let hs = m.outgoing_halfedges(x);
+    if faces.len() != hs.len() {
+        return Err(NoCap::Never);
+    }
+    let start = m.he_face(sharp.unwrap_or(hs[0]));
+    let quads = quad_sectors_between(m, x as u32, start, hs.len()).ok_or(NoCap::Never)?;
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let tags = sector_tags(&quads, &tag_at)?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    let centre = m.positions()[x];
+    let hole = match sharp {
+        Some(_) => Hole::untangented_dart(centre, sectors),
+        None => Hole::untangented(centre, sectors),
+    };
+    Ok(Some((hole.into_cone(), [[0.0; 3]; 2], tags)))
 }
 
 /// The cap tags of a fan's quads: each marked face's tag with its domain turned so that the cap
