@@ -249,11 +249,14 @@
 //! different spokes differ (the cone). `w(0) = 2 cos(pi / n)`, the chart of a half-turn: in
 //! the model of a plane `Q_s = (u e_s + v e_(s+1))^2` (complex numbers, `e_s = exp(i pi s / n)`:
 //! squaring doubles the chart's angles to the full turn) the relation holds with that weight.
-//! No jet at the centre. The free coefficients minimise the fairness functional. Lowest
-//! certified degrees (test `cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes`,
-//! `n = 3..12`): closed, bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles);
-//! a dart's fan bi-4 for quads, bi-5 for triangles (bi-4 at `n = 3`). Not a published
-//! construction.
+//! No jet at the centre. In a dart's fan the sharp spoke is the cubic `C, C, E + X / 3, E` of
+//! its end data and each inner spoke's second-order coefficient is that cubic's
+//! (`system::cone_spoke_rows`: left free, the fairness functional bent them towards the sharp
+//! spoke and folded a sector over). The free coefficients minimise the fairness functional.
+//! Lowest certified degrees (test
+//! `cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes`, `n = 3..12`): closed,
+//! bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles); a dart's fan bi-4 for
+//! quads, bi-6 for triangles (bi-5 at `n = 3`). Not a published construction.
 //!
 //! # Data that are not enough
 //!

@@ -231,6 +231,11 @@ pub(crate) fn conditions(
             fix(&mut e, x, row);
         }
     }
+    if fan == Fan::DartCone && m == 1 {
+        for (x, row) in cone_spoke_rows(n, d) {
+            fix(&mut e, x, row);
+        }
+    }
     for s in inner_spokes(n, fan) {
         let q = (s + n - 1) % n;
         for k in 0..m {
@@ -317,6 +322,27 @@ pub(crate) fn crease_rows(n: usize, d: usize, fan: Fan) -> Vec<(usize, Row)> {
         }
     }
     out
+}
+
+/// The inner spokes of a dart's fan around a cone point ([`Fan::DartCone`]) at degree `d`:
+/// the rows fixing each one's coefficient `2` (its second-order term at the apex, the first
+/// free one: the tangent is zero) to that of the cubic `C, C, E + X / 3, E` of its end data
+/// raised to degree `d`, as its sharp spoke is whole ([`crease_rows`]), so every spoke leaves
+/// the apex towards its own end. Left to the fairness functional, which barely sees the apex,
+/// the inner spokes of Loop's flat valence-3 cone with one sharp edge left it bent 60 degrees
+/// towards the sharp one and the middle sector folded over at 1 ring; pinned, the cap folds
+/// only where the scheme's own mesh does (`tests/cone_caps.rs`). Not for the closed cone: at
+/// even `n` the relation at the apex, `b_(s-1) + b_s = 2 w(0) a_s` around the cycle, then asks
+/// the data for `sum (-1)^s a_s = 0`, and no cap is certified.
+pub(crate) fn cone_spoke_rows(n: usize, d: usize) -> Vec<(usize, Row)> {
+    let qd = QuadData { d, m: 1 };
+    let k = 3.0 / binom(d, 2);
+    (1..n)
+        .map(|s| {
+            let (end, x) = (qd.a(s, 0, 0), qd.ca(s, 0, 0));
+            (cidx(d, s, 2, 0), vec![(0, 1.0 - k), (end, k), (x, k / 3.0)])
+        })
+        .collect()
 }
 
 /// Smoothness of the joins between the pieces of a split sector: C^2, like the macro-patch
