@@ -5,8 +5,8 @@
 # BEFORE is a fairsub binary built before the caps of issue 17's second round (the README's
 # pictures: main at 7a6822f; Loop's: main at 3f0d61c; QAS+^3's and guided-bi4-macro's split
 # caps: main at 10bee89; guided-bi3-macro's and adjustable TPS's: 7a6822f; Doo-Sabin's and
-# PGS's: e860dfb, before their caps); without it only the "after" pictures are
-# made.
+# PGS's: e860dfb, before their caps; the cone point's: b941ba1); without it only the "after"
+# pictures are made.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
@@ -35,3 +35,12 @@ for c in "${cases[@]}"; do
     "$BEFORE" render "$net" -s "$scheme" "${look[@]}" ${extra:-} -o "docs/images/cap-$family-$name-before.png" >/dev/null
   fi
 done
+# a cone point (OpenSubdiv's corner tag 10 on a cube vertex without sharp edges), seen along
+# the cube's diagonal, the cap and its last ring
+cone=(--rings 4 --mode highlight --zoom-rings 5..5 --size 300x300 --stripes 16 --azimuth 45
+  --elevation 35 --focus vertex:7)
+net=tests/data/osd/cc_corner_tags.obj
+$F render "$net" -s catmull-clark "${cone[@]}" -o docs/images/cap-cone-cc_corner_tags-after.png >/dev/null
+if [ -n "${BEFORE:-}" ]; then
+  "$BEFORE" render "$net" -s catmull-clark "${cone[@]}" -o docs/images/cap-cone-cc_corner_tags-before.png >/dev/null
+fi
