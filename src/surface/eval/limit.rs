@@ -40,8 +40,10 @@ fn merge(mut a: HashMap<Element, usize>, b: HashMap<Element, usize>) -> HashMap<
 /// used ([`limit_surface`]). At an extraordinary element itself the cap's corner is the
 /// scheme's limit point with the tangent plane of its limit masks (every cap and fill is built
 /// so); its derivatives and curvatures there are the cap's (the limit surface's
-/// parametrisation is singular there). `build(rings)` builds the surface (callers add their
-/// size checks and progress there).
+/// parametrisation is singular there). A cone point (a corner tag without two sharp edges,
+/// [`crate::bezier::g1::Hole::cone`]) has no tangent plane: there the normal is the cap
+/// piece's limit from its interior and the curvatures are NaN. `build(rings)` builds the
+/// surface (callers add their size checks and progress there).
 ///
 /// # Errors
 /// Those of `build` and of [`Surface::evaluate`], for the first point that fails.
