@@ -26,11 +26,9 @@
 mod support;
 
 use fairsub::geom::{cross, dist, dot};
-use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
-use fairsub::schemes::registry::registry;
-use fairsub::surface::table::{PatchTable, probe};
+use fairsub::surface::table::probe;
 use support::{check_capped, osd};
 
 /// `m` with vertex 0 of sharpness 10 and sharp chains along its spokes `spokes` (none or one).
@@ -194,33 +192,14 @@ fn loop_cone_points_are_capped_g1_along_every_spoke() {
 /// with one cap line per cap of the table.
 #[test]
 fn stencil_files_name_cone_fans_and_read_back() {
-    let dir = std::env::temp_dir().join(format!("fairsub-cone-tab-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
     for (net, scheme, word) in [
         ("cc_corner_tags", "catmull-clark", "cone"),
         ("loop_icosa_infsharp", "loop", "cone/dart"),
     ] {
-        let (bv, tab) = (dir.join("c.bv"), dir.join("c.tab"));
-        let path = support::osd_path(net);
-        let args = ["subdivide", &path, "-s", scheme, "--rings", "2", "-o"];
-        let (bv_s, tab_s) = (bv.to_str().unwrap(), tab.to_str().unwrap());
-        let (code, _, err) = support::run(&[&args[..], &[bv_s, "--stencils", tab_s]].concat());
-        assert_eq!(code, 0, "{err}");
-        let text = std::fs::read_to_string(&tab).unwrap();
-        let named = text
-            .lines()
-            .filter(|l| l.starts_with("c ") && l.split_whitespace().nth(7) == Some(word))
-            .count();
-        assert_eq!(named, 1, "{net}: {word} caps");
-        let file = fairsub::io::table::read_table(&tab).unwrap();
-        let spec = registry().lookup(scheme).unwrap();
-        let opts = ComplexOptions {
-            rings: 2,
-            fill: true,
-        };
-        let table = PatchTable::build(&spec, &osd(net), opts).unwrap();
-        assert_eq!(file.caps.len(), table.caps().len(), "{net}");
-        assert_eq!(&file.rows, table.rows(), "{net}");
+        assert_eq!(
+            support::stencil_caps_named(net, scheme, word),
+            1,
+            "{net}: {word}"
+        );
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

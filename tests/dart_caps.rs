@@ -20,12 +20,10 @@
 mod support;
 
 use fairsub::geom::{Point, axpy, dist};
-use fairsub::host::ComplexOptions;
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
-use fairsub::schemes::registry::registry;
 use fairsub::schemes::{catmull_clark, loop_subdivision, refine_levels};
-use fairsub::surface::table::{PatchTable, probe};
+use fairsub::surface::table::probe;
 use support::{check_capped, osd};
 
 /// `m` with an infinitely sharp edge chain from vertex 0 along its first spoke, continued
@@ -216,33 +214,11 @@ fn loop_darts_are_capped_g1_and_c0_along_their_sharp_edge() {
 /// vertex they are cut from), and the files read back with one cap line per cap of the table.
 #[test]
 fn stencil_files_name_dart_and_wedge_fans_and_read_back() {
-    let dir = std::env::temp_dir().join(format!("fairsub-dart-tab-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
     for (net, scheme, word, count) in [
         ("cc_torus_dart", "catmull-clark", "dart", 2),
         ("loop_holes_isolated", "loop", "wedge/5", 4),
     ] {
-        let (bv, tab) = (dir.join("c.bv"), dir.join("c.tab"));
-        let path = support::osd_path(net);
-        let args = ["subdivide", &path, "-s", scheme, "--rings", "2", "-o"];
-        let (bv_s, tab_s) = (bv.to_str().unwrap(), tab.to_str().unwrap());
-        let (code, _, err) = support::run(&[&args[..], &[bv_s, "--stencils", tab_s]].concat());
-        assert_eq!(code, 0, "{err}");
-        let text = std::fs::read_to_string(&tab).unwrap();
-        let named = text
-            .lines()
-            .filter(|l| l.starts_with("c ") && l.split_whitespace().nth(7) == Some(word))
-            .count();
+        let named = support::stencil_caps_named(net, scheme, word);
         assert_eq!(named, count, "{net}: {word} caps");
-        let file = fairsub::io::table::read_table(&tab).unwrap();
-        let spec = registry().lookup(scheme).unwrap();
-        let opts = ComplexOptions {
-            rings: 2,
-            fill: true,
-        };
-        let table = PatchTable::build(&spec, &osd(net), opts).unwrap();
-        assert_eq!(file.caps.len(), table.caps().len(), "{net}");
-        assert_eq!(&file.rows, table.rows(), "{net}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -350,3 +350,40 @@ pub fn scheme_of(loop_: bool, m: &PolyMesh) -> (Box<dyn Scheme>, Samples) {
         )
     }
 }
+
+/// `subdivide` of OpenSubdiv's net `net` under `scheme` at 2 rings with `--stencils`: the number
+/// of the file's cap lines whose `FAN` word is `word`. The file must read back with the cap
+/// count and rows of the library's table of the same complex.
+pub fn stencil_caps_named(net: &str, scheme: &str, word: &str) -> usize {
+    use fairsub::surface::table::PatchTable;
+    let dir = std::env::temp_dir().join(format!(
+        "fairsub-tab-{}-{}",
+        std::process::id(),
+        word.replace('/', "-")
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (bv, tab) = (dir.join("c.bv"), dir.join("c.tab"));
+    let path = osd_path(net);
+    let args = ["subdivide", &path, "-s", scheme, "--rings", "2", "-o"];
+    let (bv_s, tab_s) = (bv.to_str().unwrap(), tab.to_str().unwrap());
+    let (code, _, err) = run(&[&args[..], &[bv_s, "--stencils", tab_s]].concat());
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&tab).unwrap();
+    let named = text
+        .lines()
+        .filter(|l| l.starts_with("c ") && l.split_whitespace().nth(7) == Some(word))
+        .count();
+    let file = fairsub::io::table::read_table(&tab).unwrap();
+    let spec = fairsub::schemes::registry::registry()
+        .lookup(scheme)
+        .unwrap();
+    let opts = fairsub::host::ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let table = PatchTable::build(&spec, &osd(net), opts).unwrap();
+    assert_eq!(file.caps.len(), table.caps().len(), "{net}");
+    assert_eq!(&file.rows, table.rows(), "{net}");
+    std::fs::remove_dir_all(&dir).ok();
+    named
+}
