@@ -250,14 +250,10 @@ pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> 
 /// The G^1 cap of `hole` from its provider's `plane` vectors: [`cap_in_plane`] with the
 /// plane's normal; for a corner's sector ([`Hole::corner`]) with `[T0, T1] = plane` (the two
 /// sharp edges' derivatives), for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
-/// ([`crease_tangents`]); around a cone point ([`Hole::cone`]) `plane` is not read (its spoke
-/// tangents are zero).
+/// ([`crease_tangents`]); around a cone point ([`Hole::cone`]) with `[T0, T1] = plane` too,
+/// which its provider gives as zero and its cap map does not read (every spoke tangent zero).
 pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
-    if hole.cone {
-        super::map::check_cap_valence(hole.valence())?;
-        hole.tangents = [[0.0; 3]; 2];
-        g1_cap_with(&hole, opts)
-    } else if hole.corner.is_some() {
+    if hole.corner.is_some() || hole.cone {
         super::map::check_cap_valence(hole.valence())?;
         hole.tangents = plane;
         g1_cap_with(&hole, opts)

@@ -9,26 +9,35 @@ use crate::host::adaptive::{NoCap, Tag};
 use crate::host::fans::faces_between;
 use crate::mesh::PolyMesh;
 
-/// The infinitely sharp outgoing half-edges of the interior vertex `v` of finite sharpness
-/// (in the order of its outgoing half-edges) and whether it is plain apart from them (its own
-/// sharpness and every other edge's 0: no semi-sharp feature left); `None` at a boundary
-/// vertex, a vertex of infinite sharpness or without the level's features.
-fn sharp_halfedges(level: &Level, v: usize) -> Option<(Vec<u32>, bool)> {
+/// The infinitely sharp outgoing half-edges of the interior vertex `v` (in the order of its
+/// outgoing half-edges), its own sharpness, and whether every other edge of it is smooth
+/// (sharpness 0: no semi-sharp edge left); `None` at a boundary vertex or without the level's
+/// features.
+fn sharp_fan(level: &Level, v: usize) -> Option<(Vec<u32>, f32, bool)> {
     let ft = level.sharp.as_ref()?;
     let m = &level.mesh;
-    if m.is_boundary_vertex(v) || is_inf(ft.vertices[v]) {
+    if m.is_boundary_vertex(v) {
         return None;
     }
     let hs = m.outgoing_halfedges(v);
     let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let plain = ft.vertices[v] == 0.0
-        && hs
-            .iter()
-            .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
+    let smooth = hs
+        .iter()
+        .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
     Some((
         hs.into_iter().filter(|&h| is_inf(sharpness(h))).collect(),
-        plain,
+        ft.vertices[v],
+        smooth,
     ))
+}
+
+/// The infinitely sharp outgoing half-edges of the interior vertex `v` of finite sharpness
+/// ([`sharp_fan`]) and whether it is plain apart from them (its own sharpness and every other
+/// edge's 0: no semi-sharp feature left); `None` at a boundary vertex, a vertex of infinite
+/// sharpness or without the level's features.
+fn sharp_halfedges(level: &Level, v: usize) -> Option<(Vec<u32>, bool)> {
+    let (hs, sharpness, smooth) = sharp_fan(level, v)?;
+    (!is_inf(sharpness)).then_some((hs, smooth && sharpness == 0.0))
 }
 
 /// The two infinitely sharp outgoing half-edges of `v` when it is an interior crease vertex
@@ -58,24 +67,10 @@ pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
 /// ([`crate::bezier::g1::Hole::cone`]); and whether it is plain apart from it (every other
 /// edge's sharpness 0: no semi-sharp feature left).
 pub(crate) fn cone_halfedge(level: &Level, v: usize) -> Option<(Option<u32>, bool)> {
-    let ft = level.sharp.as_ref()?;
-    let m = &level.mesh;
-    if m.is_boundary_vertex(v) || !is_inf(ft.vertices[v]) {
-        return None;
-    }
-    let hs = m.outgoing_halfedges(v);
-    let sharpness = |h: u32| ft.edges[m.he_edge(h) as usize];
-    let sharp: Vec<u32> = hs
-        .iter()
-        .copied()
-        .filter(|&h| is_inf(sharpness(h)))
-        .collect();
-    let plain = hs
-        .iter()
-        .all(|&h| sharpness(h) == 0.0 || is_inf(sharpness(h)));
-    match sharp.as_slice() {
-        [] => Some((None, plain)),
-        [h] => Some((Some(*h), plain)),
+    match sharp_fan(level, v)? {
+        (_, sharpness, _) if !is_inf(sharpness) => None,
+        (hs, _, smooth) if hs.is_empty() => Some((None, smooth)),
+        (hs, _, smooth) if hs.len() == 1 => Some((Some(hs[0]), smooth)),
         _ => None,
     }
 }
