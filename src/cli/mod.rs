@@ -60,7 +60,6 @@ pub(crate) fn say_line(line: String) {
 /// [`crate::Error::Io`] when standard output fails (a closed pipe: `fairsub eval ... | head`),
 /// [`crate::Error::InvalidOutput`] for text that is not UTF-8 while reports are collected.
 pub(crate) fn say_bytes(text: &[u8]) -> crate::Result<()> {
-    use std::io::Write;
     SINK.with(|s| match s.borrow_mut().as_mut() {
         Some(buf) => {
             let text = std::str::from_utf8(text)
@@ -68,14 +67,42 @@ pub(crate) fn say_bytes(text: &[u8]) -> crate::Result<()> {
             buf.push_str(text);
             Ok(())
         }
-        None => std::io::stdout()
-            .lock()
-            .write_all(text)
-            .map_err(|source| crate::Error::Io {
-                path: "standard output".into(),
-                source,
-            }),
+        None => raw_stdout(text).map_err(|source| crate::Error::Io {
+            path: "standard output".into(),
+            source,
+        }),
     })
+}
+
+/// Writes `text` to standard output past its line buffer (through a copy of its descriptor,
+/// made on first use): blocks of whole lines need no buffering, and the line buffer searched
+/// every block of `fairsub eval`'s 281 MB for its last newline.
+#[cfg(unix)]
+fn raw_stdout(text: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    thread_local! {
+        static RAW: RefCell<Option<std::fs::File>> = RefCell::new({
+            use std::os::fd::AsFd;
+            // what was printed through the buffer goes first
+            let _ = std::io::stdout().flush();
+            std::io::stdout()
+                .as_fd()
+                .try_clone_to_owned()
+                .ok()
+                .map(std::fs::File::from)
+        });
+    }
+    RAW.with(|raw| match raw.borrow_mut().as_mut() {
+        Some(file) => file.write_all(text),
+        None => std::io::stdout().lock().write_all(text),
+    })
+}
+
+/// Writes `text` to standard output.
+#[cfg(not(unix))]
+fn raw_stdout(text: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    std::io::stdout().lock().write_all(text)
 }
 
 /// Runs `f` with the reports of commands collected instead of printed; returns them.
