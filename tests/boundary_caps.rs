@@ -192,7 +192,11 @@ fn patch_tables_track_open_caps_and_reapply() {
             let (base, table) = PatchTable::tracked(&spec, &mesh, opts)
                 .expect(&what)
                 .unwrap_or_else(|| panic!("{what}: not tracked"));
-            let open = table.caps().iter().filter(|c| c.step.hole.open).count();
+            let open = table
+                .caps()
+                .iter()
+                .filter(|c| c.step.hole.is_open())
+                .count();
             assert_eq!(open, want, "{what}: open caps in the table");
             let s = probe::net_size(mesh.positions());
             for seed in [3, 4] {

@@ -1,7 +1,7 @@
 //! G^1 caps at cone points of Catmull-Clark and Loop: an interior vertex of infinite sharpness
 //! (the corner rule keeps it) with no infinitely sharp edge, or with one. No two sharp edges
 //! span a tangent plane there: the limit surface has a tangent cone at the vertex, not a plane.
-//! The hole is closed by the cap of `bezier::g1::Hole::cone`: every spoke tangent zero (the
+//! The hole is closed by the cap of `bezier::g1::Fan::Cone`: every spoke tangent zero (the
 //! cap's corners at the apex are singular), the G^1 relation with `w(0) = 2 cos(pi / n)` on
 //! every spoke but a sharp one, so each pair of sectors shares the tangent plane along their
 //! spoke up to the apex. Until 2026-12-05 these holes kept the C^0 Hermite fill: `check` at 3
@@ -129,10 +129,10 @@ fn cones_are_capped(loop_: bool, nets: Vec<Net>) {
             let what = format!("{name}, {rings} rings");
             let c = support::complex_of(loop_, &m, rings);
             check_capped(&what, &m, &c, scheme.as_ref(), samples, closed, sharp);
-            let caps: Vec<_> = c.caps.iter().filter(|s| s.hole.cone).collect();
+            let caps: Vec<_> = c.caps.iter().filter(|s| s.hole.kind.is_cone()).collect();
             assert_eq!(caps.len(), cones.len(), "{what}: cone caps");
             for (s, x) in caps.iter().zip(&cones) {
-                assert_eq!(s.hole.dart, sharp, "{what}: the dart's fan");
+                assert_eq!(s.hole.kind.is_dart(), sharp, "{what}: the dart's fan");
                 if let Some(x) = x {
                     let d = dist(s.hole.centre, m.positions()[*x as usize]);
                     assert!(d < 1e-14 * size, "{what}: centre {d:e} off the vertex");
@@ -158,7 +158,7 @@ fn cones_are_capped(loop_: bool, nets: Vec<Net>) {
             }
         }
         let scheme_name = if loop_ { "loop" } else { "catmull-clark" };
-        let in_table = support::table_reapplies(scheme_name, &name, &m, |h| h.cone);
+        let in_table = support::table_reapplies(scheme_name, &name, &m, |h| h.kind.is_cone());
         assert_eq!(in_table, cones.len(), "{name}: cone caps in the table");
     }
 }

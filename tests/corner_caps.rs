@@ -1,7 +1,7 @@
 //! G^1 caps at Catmull-Clark's and Loop's corners with sharp edges: an interior vertex with three or more
 //! infinitely sharp edges, or of infinite sharpness with two (OpenSubdiv's corner rule: the
 //! vertex is its own limit). Each side of two or more quads between consecutive sharp edges is
-//! closed by an open fan (`bezier::g1::Hole::corner`) centred at the vertex, its spokes over a
+//! closed by an open fan (`bezier::g1::Fan::Corner`) centred at the vertex, its spokes over a
 //! quarter-turn (three quarters on a reflex side), its boundary spokes the sharp edges' exact
 //! limit curves (`T0, T1` their derivatives at the corner, pinned), so every side shares its
 //! sharp edges with its neighbours. Until 2026-12-05 these holes kept the C^0 Hermite fill.
@@ -81,7 +81,11 @@ fn corners_are_capped(loop_: bool) {
             let what = format!("{name}, {rings} rings");
             let c = support::complex_of(loop_, &m, rings);
             check_capped(&what, &m, &c, scheme.as_ref(), samples, false, true);
-            let corners: Vec<_> = c.caps.iter().filter(|s| s.hole.corner.is_some()).collect();
+            let corners: Vec<_> = c
+                .caps
+                .iter()
+                .filter(|s| s.hole.kind.corner().is_some())
+                .collect();
             assert_eq!(corners.len(), want, "{what}: corner caps");
             let levels = c.provenance.iter().filter_map(support::level_of).max();
             let pts = limit_points(scheme.as_ref(), &m, levels.unwrap_or(0) + 2);
@@ -126,7 +130,7 @@ fn corner_caps_reapply_through_the_patch_table() {
     for loop_ in [false, true] {
         let scheme = if loop_ { "loop" } else { "catmull-clark" };
         for (name, m, want) in nets(loop_).into_iter().step_by(3) {
-            let corners = table_reapplies(scheme, &name, &m, |h| h.corner.is_some());
+            let corners = table_reapplies(scheme, &name, &m, |h| h.kind.corner().is_some());
             assert_eq!(corners, want, "{name}: corner caps in the table");
         }
     }

@@ -1,7 +1,7 @@
 //! G^1 caps at Catmull-Clark's crease vertices: an extraordinary interior vertex with two
 //! infinitely sharp edges (OpenSubdiv's crease rule). Each side of `k >= 3` quads is closed by
 //! an open-fan cap in the plane of the crease tangent and the side's across-boundary eigen
-//! tangent, its boundary spokes the crease's exact cubic curve (`bezier::g1::Hole::crease`); a
+//! tangent, its boundary spokes the crease's exact cubic curve (`bezier::g1::fairsub::bezier::g1::Fan::Crease`); a
 //! side of two quads is regular crease patches, a side of one quad a crease fan of one sector
 //! (its spokes the crease's two halves). Until 2026-12-04 these holes kept the C^0
 //! Hermite fill: `check` at 3 rings measured 4.5e-2 rad between its pieces on OpenSubdiv's
@@ -95,7 +95,11 @@ fn check_crease_complex(
     want: usize,
 ) {
     check_capped(what, m, c, scheme, samples, false, true);
-    let creases: Vec<_> = c.caps.iter().filter(|s| s.hole.crease).collect();
+    let creases: Vec<_> = c
+        .caps
+        .iter()
+        .filter(|s| s.hole.kind == fairsub::bezier::g1::Fan::Crease)
+        .collect();
     assert_eq!(creases.len(), want, "{what}: crease caps");
     let levels = c.provenance.iter().filter_map(support::level_of).max();
     let pts = limit_points(scheme, m, levels.unwrap_or(0) + 2);
@@ -160,7 +164,9 @@ fn loop_crease_vertices_get_one_g1_cap_per_side_sharing_the_crease() {
 #[test]
 fn crease_caps_reapply_through_the_patch_table() {
     for (name, m, _) in nets().into_iter().step_by(3) {
-        let creases = support::table_reapplies("catmull-clark", &name, &m, |h| h.crease);
+        let creases = support::table_reapplies("catmull-clark", &name, &m, |h| {
+            h.kind == fairsub::bezier::g1::Fan::Crease
+        });
         assert!(creases > 0, "{name}: crease caps in the table");
     }
 }
@@ -183,7 +189,7 @@ fn edge_only_boundary_corners_get_one_piece_caps_on_the_boundary_curve() {
             let corners: Vec<_> = c
                 .caps
                 .iter()
-                .filter(|s| s.hole.crease && s.count == 1)
+                .filter(|s| s.hole.kind == fairsub::bezier::g1::Fan::Crease && s.count == 1)
                 .collect();
             assert!(!corners.is_empty(), "{what}: no one-piece cap");
             let levels = c.provenance.iter().filter_map(support::level_of).max();

@@ -1,6 +1,6 @@
 //! G^1 caps at Catmull-Clark's and Loop's darts: an interior vertex with exactly one infinitely
 //! sharp edge (a crease ending inside the surface). The dart's fan is closed by the cap of
-//! `bezier::g1::Hole::dart`: `n` sectors over a full turn from the sharp edge, which is the
+//! `bezier::g1::Fan::Dart`: `n` sectors over a full turn from the sharp edge, which is the
 //! cap's only spoke without the G^1 relation (C^0, shared by its two sides), centred at the
 //! dart's own limit point in its own tangent plane (`schemes::catmull_clark::dart`,
 //! `schemes::loop_subdivision::dart`). Until 2026-12-05 these holes kept the C^0 Hermite
@@ -154,7 +154,7 @@ fn darts_are_capped(loop_: bool, nets: Vec<Net>) {
             let what = format!("{name}, {rings} rings");
             let c = support::complex_of(loop_, &m, rings);
             check_capped(&what, &m, &c, scheme.as_ref(), samples, closed, true);
-            let dart_caps: Vec<_> = c.caps.iter().filter(|s| s.hole.dart).collect();
+            let dart_caps: Vec<_> = c.caps.iter().filter(|s| s.hole.kind.is_dart()).collect();
             assert_eq!(dart_caps.len(), darts.len(), "{what}: dart caps");
             // the test nets' dart: centred at the dart's limit point (level 0's mask)
             if let [(x, e0)] = darts[..]
@@ -172,7 +172,7 @@ fn darts_are_capped(loop_: bool, nets: Vec<Net>) {
         }
         // the probed table re-applies to moved points
         let scheme_name = if loop_ { "loop" } else { "catmull-clark" };
-        let in_table = support::table_reapplies(scheme_name, &name, &m, |h| h.dart);
+        let in_table = support::table_reapplies(scheme_name, &name, &m, |h| h.kind.is_dart());
         assert_eq!(in_table, darts.len(), "{name}: dart caps in the table");
     }
 }

@@ -584,7 +584,10 @@ fn loop_boundary_holes_get_open_caps_and_no_fill_leaves_them_open() {
         .count();
     assert_eq!(irregular, 4, "tri-grid's corners");
     assert_eq!(c.caps.len(), irregular, "tri-grid: caps");
-    assert!(c.caps.iter().all(|s| s.hole.open), "tri-grid: open fans");
+    assert!(
+        c.caps.iter().all(|s| s.hole.is_open()),
+        "tri-grid: open fans"
+    );
     for net in [gallery::icosahedron(), bipyramid(7), gallery::tri_grid()] {
         let open = complex(
             "loop",

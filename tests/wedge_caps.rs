@@ -1,7 +1,7 @@
 //! G^1 caps at extraordinary vertices next to OpenSubdiv hole faces, under Catmull-Clark and
 //! Loop. A hole face is refined but has no surface, so the limit around such a vertex is its
 //! smooth limit with the hole's sectors cut away: each run of `k` present faces of the `n`
-//! around it is closed by an open fan over `2 pi k / n` (`bezier::g1::Hole::wedge`) centred at
+//! around it is closed by an open fan over `2 pi k / n` (`bezier::g1::Fan::Wedge`) centred at
 //! the vertex's plain limit point in its tangent plane, its first and last spokes free on the
 //! hole's border. Until 2026-12-05 these holes kept the C^0 Hermite fill: `check` at 3 rings
 //! measured 0.32 rad on the valence-12 c-net with a hole face at its centre and 1.6e-2 on
@@ -69,7 +69,11 @@ fn wedges_are_capped(loop_: bool, nets: Vec<Net>) {
             let c = support::complex_of(loop_, &m, rings);
             let r = check_capped(&what, &m, &c, scheme.as_ref(), samples, false, false);
             assert!(r.open_sides > 0, "{what}: the holes' borders are open");
-            let wedges: Vec<_> = c.caps.iter().filter(|s| s.hole.wedge.is_some()).collect();
+            let wedges: Vec<_> = c
+                .caps
+                .iter()
+                .filter(|s| s.hole.kind.wedge().is_some())
+                .collect();
             assert_eq!(wedges.len(), runs, "{what}: wedge caps");
             let levels = c.provenance.iter().filter_map(support::level_of).max();
             let pts = limit_points(scheme.as_ref(), &m, levels.unwrap_or(0) + 1);
@@ -80,7 +84,8 @@ fn wedges_are_capped(loop_: bool, nets: Vec<Net>) {
             }
         }
         let scheme_name = if loop_ { "loop" } else { "catmull-clark" };
-        let in_table = support::table_reapplies(scheme_name, &name, &m, |h| h.wedge.is_some());
+        let in_table =
+            support::table_reapplies(scheme_name, &name, &m, |h| h.kind.wedge().is_some());
         assert_eq!(in_table, runs, "{name}: wedge caps in the table");
     }
 }

@@ -31,17 +31,17 @@
 //! `closed` (a hole around an interior vertex, spoke `s` at the angle `2 pi s / SECTORS`) or
 //! `open` (a fan at a boundary vertex, `SECTORS + 1` spokes at the angles `pi s / SECTORS`, the
 //! first and last on the boundary; [`crate::bezier::g1::Layout::OpenQuad`]) or `crease` (an
-//! open fan beside an infinitely sharp crease, [`crate::bezier::g1::Hole::crease`]: `T0` is
+//! open fan beside an infinitely sharp crease, [`crate::bezier::g1::Fan::Crease`]: `T0` is
 //! `A` itself, the crease's derivative, and only `T1` is fitted,
 //! [`crate::bezier::g1::ring::crease_tangents`]) or `dart` (a fan around a dart,
-//! [`crate::bezier::g1::Hole::dart`]: `SECTORS + 1` spokes at the angles `2 pi s / SECTORS`,
+//! [`crate::bezier::g1::Fan::Dart`]: `SECTORS + 1` spokes at the angles `2 pi s / SECTORS`,
 //! the first and last the one sharp edge) or `wedge/M` (the `SECTORS` of the `M` sectors
 //! around an interior vertex that are not OpenSubdiv hole faces,
-//! [`crate::bezier::g1::Hole::wedge`]: spokes at the angles `2 pi s / M`, the first and last
+//! [`crate::bezier::g1::Fan::Wedge`]: spokes at the angles `2 pi s / M`, the first and last
 //! on the hole's border) or `corner` (a sector between two sharp edges at a corner,
-//! [`crate::bezier::g1::Hole::corner`]: spokes over a quarter-turn, `T0, T1` are `A, B`
+//! [`crate::bezier::g1::Fan::Corner`]: spokes over a quarter-turn, `T0, T1` are `A, B`
 //! themselves; `corner/reflex`: over three quarters, the last spoke along `-B`) or `cone` (a
-//! hole closed around a cone point, [`crate::bezier::g1::Hole::cone`]: `T0 = T1 = 0`, `A, B`
+//! hole closed around a cone point, [`crate::bezier::g1::Fan::Cone`]: `T0 = T1 = 0`, `A, B`
 //! are zero rows, `w(0) = 2 cos(pi / SECTORS)`) or `cone/dart` (a dart's fan around a cone
 //! point, the same). Version 2 added `FAN`; version 1 files are refused.
 

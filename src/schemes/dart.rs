@@ -10,7 +10,7 @@
 //! eigenvectors of the two subdominant eigenvalues (real, above the rest of the spectrum: the
 //! antisymmetric mode about the sharp edge keeps the smooth vertex's value, the symmetric one
 //! changes) applied to the points span the limit tangent plane. That plane is where the dart's
-//! G^1 cap ([`crate::bezier::g1::Hole::dart`]) is centred.
+//! G^1 cap ([`crate::bezier::g1::Fan::Dart`]) is centred.
 
 use nalgebra::DMatrix;
 use std::collections::HashMap;

@@ -229,7 +229,7 @@ impl Surface {
             if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
                 let (first, n) = (step.first as usize, step.count as usize);
                 for s in 0..n {
-                    if step.hole.open {
+                    if step.hole.is_open() {
                         fan_pieces.insert(first + s);
                     } else {
                         kites.insert(first + s, first + (s + n - 1) % n);

@@ -132,15 +132,7 @@ fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole, [Point; 2
                 .collect()
         })
         .collect();
-    let hole = Hole {
-        open: like.open,
-        crease: like.crease,
-        dart: like.dart,
-        wedge: like.wedge,
-        corner: like.corner,
-        cone: like.cone,
-        ..Hole::untangented(vals[0], sectors)
-    };
+    let hole = Hole::untangented_as(vals[0], sectors, like.kind);
     (hole, [vals[1], vals[2]])
 }
 

@@ -10,7 +10,7 @@ use fairsub::surface::table::{PatchTable, probe};
 
 /// The number of open-fan caps of a complex.
 pub fn open_caps(c: &PatchComplex) -> usize {
-    c.caps.iter().filter(|s| s.hole.open).count()
+    c.caps.iter().filter(|s| s.hole.is_open()).count()
 }
 
 /// The centre and unit normal there of the open cap nearest to `at`.
@@ -18,7 +18,7 @@ pub fn centre_and_normal(c: &PatchComplex, at: [f64; 3]) -> ([f64; 3], [f64; 3])
     let step = c
         .caps
         .iter()
-        .filter(|s| s.hole.open)
+        .filter(|s| s.hole.is_open())
         .min_by(|a, b| dist(a.hole.centre, at).total_cmp(&dist(b.hole.centre, at)))
         .expect("an open cap");
     let p = &c.patches[step.first as usize];
@@ -36,7 +36,11 @@ pub fn table_reapplies(scheme: &str, name: &str, mesh: &PolyMesh, want: usize, s
         fill: true,
     };
     let table = PatchTable::build(&spec, mesh, opts).expect(&what);
-    let open = table.caps().iter().filter(|c| c.step.hole.open).count();
+    let open = table
+        .caps()
+        .iter()
+        .filter(|c| c.step.hole.is_open())
+        .count();
     assert_eq!(open, want, "{what}: open caps in the table");
     let s = probe::net_size(mesh.positions());
     let moved = probe::moved_points(mesh.positions(), 0.05 * s, seed);

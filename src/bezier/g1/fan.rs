@@ -5,7 +5,7 @@
 #[cfg(doc)]
 use super::hole::Hole;
 
-/// The chart angle of a corner's sector ([`Hole::corner`]): a quarter-turn when the sector is
+/// The chart angle of a corner's sector ([`Fan::Corner`]): a quarter-turn when the sector is
 /// convex (its sharp edges less than a half-turn apart around it), three quarters when it is
 /// reflex, so that the chart turns the way the surface does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -25,26 +25,25 @@ pub enum Fan {
     /// An open fan at a boundary vertex: `n + 1` spokes over a half-turn (a quarter-turn for
     /// one sector), spokes `0` and `n` free boundary curves.
     Open,
-    /// [`Fan::Open`] beside a crease ([`Hole::crease`]): spokes `0` and `n` the Hermite cubics
+    /// [`Fan::Open`] beside a crease: spokes `0` and `n` the Hermite cubics
     /// of their end data, `T0` pinned.
     Crease,
-    /// A fan around a dart ([`Hole::dart`]): `n + 1` spokes over a full turn, spokes `0` and
+    /// A fan around a dart: `n + 1` spokes over a full turn, spokes `0` and
     /// `n` one Hermite cubic, the only spoke without the G^1 relation.
     Dart,
-    /// `n` of the `m` sectors around an interior vertex, the others holes ([`Hole::wedge`]):
+    /// `n` of the `m` sectors around an interior vertex, the others holes:
     /// `n + 1` spokes over `2 pi n / m`, spokes `0` and `n` free.
     Wedge(usize),
-    /// A sector between two sharp edges at a corner ([`Hole::corner`]): `n + 1` spokes over a
+    /// A sector between two sharp edges at a corner: `n + 1` spokes over a
     /// quarter-turn (convex) or three (reflex), spokes `0` and `n` the Hermite cubics of their
     /// end data, `T0` and `T1` pinned.
     Corner(CornerAngle),
-    /// A hole closed around a cone point ([`Hole::cone`]: a vertex the corner rule keeps
+    /// A hole closed around a cone point (a vertex the corner rule keeps
     /// without two sharp edges to give it a tangent plane): the spokes of [`Fan::Closed`],
     /// every one a join, but every spoke tangent pinned to zero (the cap's corners at the apex
     /// are singular) and `w(0) = 2 cos(pi / n)`, the angles of a half-turn.
     Cone,
-    /// [`Fan::Dart`] around a cone point with one sharp edge ([`Hole::cone`] and
-    /// [`Hole::dart`]): spokes `0` and `n` the sharp edge, every spoke tangent zero, the
+    /// [`Fan::Dart`] around a cone point with one sharp edge: spokes `0` and `n` the sharp edge, every spoke tangent zero, the
     /// weights of [`Fan::Cone`].
     DartCone,
 }
@@ -65,6 +64,29 @@ impl Fan {
     /// [`Fan::DartCone`]).
     pub fn is_dart(self) -> bool {
         matches!(self, Fan::Dart | Fan::DartCone)
+    }
+
+    /// Whether the provider's two plane vectors are the spoke tangents `T0, T1` themselves,
+    /// not fitted: a corner's sector (the two sharp edges' derivatives) and a cone point's
+    /// fans (zero).
+    pub fn pins_plane(self) -> bool {
+        matches!(self, Fan::Corner(_)) || self.is_cone()
+    }
+
+    /// `Some(m)` for `n` of the `m` sectors around a vertex ([`Fan::Wedge`]).
+    pub fn wedge(self) -> Option<usize> {
+        match self {
+            Fan::Wedge(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// `Some(angle)` for a corner's sector ([`Fan::Corner`]).
+    pub fn corner(self) -> Option<CornerAngle> {
+        match self {
+            Fan::Corner(a) => Some(a),
+            _ => None,
+        }
     }
 
     /// Whether the fan's spokes `0` and `n` are the cubic Hermite interpolants of their end
@@ -99,7 +121,7 @@ pub enum Layout {
     /// A quad sector split into an `m x m` grid of pieces (`m >= 2`): `2 m` segments per
     /// sector, `m` along each outer side (the inner sides of macro-patch rings).
     Split(usize),
-    /// The quad layout on an open fan of `n` sectors around a boundary vertex ([`Hole::open`]):
+    /// The quad layout on an open fan of `n` sectors around a boundary vertex ([`Hole::is_open`]):
     /// `n + 1` spokes over a half-turn, `t_s = cos(pi s / n) T0 + sin(pi s / n) T1`, spokes `0`
     /// and `n` on the boundary of the surface.
     OpenQuad,
@@ -119,7 +141,7 @@ impl Layout {
         }
     }
 
-    /// Whether the layout is an open fan around a boundary vertex ([`Hole::open`]).
+    /// Whether the layout is an open fan around a boundary vertex ([`Hole::is_open`]).
     pub fn is_open(self) -> bool {
         matches!(self, Layout::OpenQuad | Layout::OpenTriangle)
     }

@@ -36,7 +36,7 @@
 //! segment it is part of, its `cross` **per unit of the piece's** transversal parameter (`1/m`
 //! of the sector's): for a ring piece of the same size as the cap piece, its own derivative.
 //!
-//! **Open quad layout** ([`Layout::OpenQuad`], [`Hole::open`]: a boundary vertex of `n` quads,
+//! **Open quad layout** ([`Layout::OpenQuad`], [`Hole::is_open`]: a boundary vertex of `n` quads,
 //! Catmull-Clark's and its fallback schemes'). The sectors of the quad layout, numbered from
 //! the boundary: spoke `s` (`s = 0..=n`) leaves the centre with
 //! `t_s = cos(pi s / n) T0 + sin(pi s / n) T1`; spoke `0` (side `v = 0` of sector `0`) and
@@ -56,7 +56,7 @@
 //! kites' cross derivatives are the ring's derivatives in the bilinear map's varying direction;
 //! their spoke-end twist is `kappa = 1` ([`QuadHole::kappa`], derivation in [`super`]).
 //!
-//! **Open triangle layout** ([`Layout::OpenTriangle`], [`Hole::open`]: Loop at a boundary
+//! **Open triangle layout** ([`Layout::OpenTriangle`], [`Hole::is_open`]: Loop at a boundary
 //! vertex of `n` triangles). The segments of the triangle layout, sector `0` next to the
 //! outgoing boundary edge; spokes `s = 0..=n` end at `E_s`, spokes `0` and `n` on the boundary.
 //! Kites would leave two half-triangles at the boundary spokes, so every fan triangle is one
@@ -102,47 +102,22 @@ pub struct Hole {
     pub tangents: [Point; 2],
     /// Per sector (counterclockwise about `T0 x T1`), its one or two outer segments.
     pub sectors: Vec<Vec<Segment>>,
-    /// An open fan at a boundary vertex ([`Layout::OpenQuad`]): spokes `0` and `n` are
-    /// boundary curves of the surface; `false` for a hole closed around its centre.
-    pub open: bool,
-    /// An open fan beside an infinitely sharp crease: its boundary spokes `0` and `n` are the
-    /// crease's exact cubic curves, each the cubic Hermite interpolant of its end data (the
-    /// centre with `t_0` or `t_n`; the spoke end with the ring's derivative there), and `T0`
-    /// is the first plane vector its provider gives (the crease's exact derivative at the
-    /// centre) rather than fitted, so the caps on both sides of the crease share it exactly
-    /// ([`super::ring::crease_tangents`]). Only with `open`.
-    pub crease: bool,
-    /// An open fan around a dart (one infinitely sharp edge ending at the centre, inside the
-    /// surface): its `n + 1` spokes span a full turn, `t_s = cos(2 pi s / n) T0 +
-    /// sin(2 pi s / n) T1`, and spokes `0` and `n` are the one sharp edge, the cubic Hermite
-    /// interpolant of spoke `0`'s end data on both sides (so the two sectors beside it share
-    /// it: C^0 there, G^1 across every other spoke). `T0, T1` are fitted as for a closed hole.
-    /// Only with `open` ([`Fan::Dart`]).
-    pub dart: bool,
-    /// `Some(m)`: an open fan of `n` of the `m` sectors around an interior vertex whose other
-    /// sectors are holes (OpenSubdiv's hole faces): its `n + 1` spokes span `2 pi n / m`, the
-    /// angles of the full turn around the vertex, spokes `0` and `n` free curves on the hole's
-    /// border; the centre and tangent plane are the vertex's own (a smooth interior limit).
-    /// Only with `open` ([`Fan::Wedge`]).
-    pub wedge: Option<usize>,
-    /// An open fan between two infinitely sharp edges at a corner (a vertex of sharpness
-    /// infinity, or with three or more infinitely sharp edges: OpenSubdiv's corner rule, the
-    /// vertex is its limit): its `n + 1` spokes span a quarter-turn of the chart, spokes `0` and
-    /// `n` are the two sharp edges' exact cubic curves (the Hermite interpolants of their end
-    /// data, as [`Hole::crease`]), and both `T0` and `T1` are pinned: the two curves'
-    /// derivatives at the corner as the provider gives them, so the caps on both sides of each
-    /// sharp edge share it. `Some(angle)`: the chart angle of the sector, a quarter-turn for
-    /// a convex sector and three quarters for a reflex one (spoke `n` leaves along `T1`, or
-    /// `-T1`). Only with `open` ([`Fan::Corner`]).
-    pub corner: Option<CornerAngle>,
-    /// A cone point: the centre is a vertex the corner rule keeps (sharpness infinity) with
-    /// fewer than two infinitely sharp edges, so the limit surface has no tangent plane there,
-    /// only a tangent cone. The cap's spoke tangents are all zero (its corners at the centre
-    /// are singular, [`Fan::Cone`]): the G^1 relation then holds along every spoke up to the
-    /// apex, where each pair of sectors shares the plane of their spoke's second-order
-    /// direction. With a closed hole ([`Fan::Cone`]) or a dart's fan (one sharp edge,
-    /// [`Fan::DartCone`]); the provider's plane vectors are zero.
-    pub cone: bool,
+    /// The kind of fan the hole is and so the shape of its G^1 conditions ([`Fan`]): closed
+    /// around its centre ([`Fan::Closed`]); an open fan at a boundary vertex, whose spokes `0`
+    /// and `n` are boundary curves ([`Fan::Open`], [`Layout::OpenQuad`]); beside an infinitely
+    /// sharp crease, spokes `0` and `n` the crease's exact cubics and `T0` pinned to its
+    /// derivative at the centre, so the caps on both sides share it
+    /// ([`Fan::Crease`], [`super::ring::crease_tangents`]); around a dart, `n + 1` spokes over
+    /// a full turn with spokes `0` and `n` the one sharp edge ([`Fan::Dart`]); `n` of the `m`
+    /// sectors around an interior vertex whose other sectors are holes (OpenSubdiv's hole
+    /// faces: [`Fan::Wedge`], the centre and plane the vertex's own); a sector between two
+    /// sharp edges at a corner, both `T0` and `T1` pinned ([`Fan::Corner`], the chart angle of
+    /// the sector); a cone point, a vertex the corner rule keeps with fewer than two sharp
+    /// edges and so a tangent cone, not a plane: every spoke tangent zero, the G^1 relation
+    /// holding along every spoke up to the apex ([`Fan::Cone`] closed, [`Fan::DartCone`] with
+    /// one sharp edge; the provider's plane vectors are zero). One field, not a flag per kind:
+    /// no hole can be two kinds at once.
+    pub kind: Fan,
 }
 
 /// The degrees of a hole's segments: every boundary has degree `boundary`, every cross
@@ -160,85 +135,72 @@ impl Hole {
     /// which the schemes hand their hole data to [`super::ring::cap_in_plane`], which fits the
     /// tangents in the limit tangent plane.
     pub fn untangented(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
+        Hole::untangented_as(centre, sectors, Fan::Closed)
+    }
+
+    /// [`Hole::untangented`] of the given kind.
+    pub fn untangented_as(centre: Point, sectors: Vec<Vec<Segment>>, kind: Fan) -> Hole {
         Hole {
             centre,
             tangents: [[0.0; 3]; 2],
             sectors,
-            open: false,
-            crease: false,
-            dart: false,
-            wedge: None,
-            corner: None,
-            cone: false,
+            kind,
         }
     }
 
-    /// This hole as a cone point's ([`Hole::cone`]).
+    /// This hole as a cone point's ([`Fan::Cone`] for a closed hole, [`Fan::DartCone`] for a
+    /// dart's fan; other kinds unchanged).
     pub fn into_cone(self) -> Hole {
-        Hole { cone: true, ..self }
+        let kind = match self.kind {
+            Fan::Closed => Fan::Cone,
+            Fan::Dart => Fan::DartCone,
+            k => k,
+        };
+        Hole { kind, ..self }
     }
 
     /// [`Hole::untangented`] for an open fan of sectors around a boundary vertex
-    /// ([`Layout::OpenQuad`]).
+    /// ([`Fan::Open`], [`Layout::OpenQuad`]).
     pub fn untangented_open(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
-        Hole {
-            open: true,
-            ..Hole::untangented(centre, sectors)
-        }
+        Hole::untangented_as(centre, sectors, Fan::Open)
     }
 
-    /// [`Hole::untangented_open`] for a sector between the two infinitely sharp edges of a
-    /// crease vertex ([`Hole::crease`]).
+    /// [`Hole::untangented`] for a sector between the two infinitely sharp edges of a crease
+    /// vertex ([`Fan::Crease`]).
     pub fn untangented_crease(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
-        Hole {
-            crease: true,
-            ..Hole::untangented_open(centre, sectors)
-        }
+        Hole::untangented_as(centre, sectors, Fan::Crease)
     }
 
-    /// [`Hole::untangented_open`] for the fan around a dart ([`Hole::dart`]): sector `0`
-    /// starts at the sharp edge and sector `n - 1` ends at it.
+    /// [`Hole::untangented`] for the fan around a dart ([`Fan::Dart`]): sector `0` starts at
+    /// the sharp edge and sector `n - 1` ends at it.
     pub fn untangented_dart(centre: Point, sectors: Vec<Vec<Segment>>) -> Hole {
-        Hole {
-            dart: true,
-            ..Hole::untangented_open(centre, sectors)
-        }
+        Hole::untangented_as(centre, sectors, Fan::Dart)
     }
 
-    /// [`Hole::untangented_open`] for `n` of the `m` sectors around an interior vertex whose
-    /// other sectors are holes ([`Hole::wedge`]).
+    /// [`Hole::untangented`] for `n` of the `m` sectors around an interior vertex whose other
+    /// sectors are holes ([`Fan::Wedge`]).
     pub fn untangented_wedge(centre: Point, sectors: Vec<Vec<Segment>>, m: usize) -> Hole {
-        Hole {
-            wedge: Some(m),
-            ..Hole::untangented_open(centre, sectors)
-        }
+        Hole::untangented_as(centre, sectors, Fan::Wedge(m))
     }
 
-    /// [`Hole::untangented_open`] for a sector between two sharp edges at a corner
-    /// ([`Hole::corner`]).
+    /// [`Hole::untangented`] for a sector between two sharp edges at a corner
+    /// ([`Fan::Corner`]).
     pub fn untangented_corner(
         centre: Point,
         sectors: Vec<Vec<Segment>>,
         angle: CornerAngle,
     ) -> Hole {
-        Hole {
-            corner: Some(angle),
-            ..Hole::untangented_open(centre, sectors)
-        }
+        Hole::untangented_as(centre, sectors, Fan::Corner(angle))
+    }
+
+    /// Whether the hole is an open fan (spokes `0` and `n` not a join: [`Fan::is_open`]).
+    pub fn is_open(&self) -> bool {
+        self.kind.is_open()
     }
 
     /// The shape of the hole's G^1 conditions ([`Fan`]).
     pub fn fan(&self) -> Fan {
-        match (self.open, self.dart, self.wedge, self.crease) {
-            (false, ..) if self.cone => Fan::Cone,
-            (false, ..) => Fan::Closed,
-            (true, true, ..) if self.cone => Fan::DartCone,
-            _ if self.corner.is_some() => Fan::Corner(self.corner.unwrap_or(CornerAngle::Convex)),
-            (true, true, ..) => Fan::Dart,
-            (true, false, Some(m), _) => Fan::Wedge(m),
-            (true, false, None, true) => Fan::Crease,
-            (true, false, None, false) => Fan::Open,
-        }
+        self.kind
     }
 
     /// Number of sectors.
@@ -250,9 +212,10 @@ impl Hole {
     pub fn layout(&self) -> Result<(Layout, Degrees)> {
         let n = self.sectors.len();
         // one sector: a corner of an open triangle fan, or the one face of a crease's side
-        let least = match (self.open, self.sectors.first().map(Vec::len)) {
+        let open = self.is_open();
+        let least = match (open, self.sectors.first().map(Vec::len)) {
             (true, Some(1)) => 1,
-            (true, _) if self.crease || self.corner.is_some() || self.wedge.is_some() => 1,
+            (true, _) if matches!(self.kind, Fan::Crease | Fan::Corner(_) | Fan::Wedge(_)) => 1,
             (true, _) => 2,
             _ => 3,
         };
@@ -263,9 +226,9 @@ impl Hole {
         }
         let segs = self.sectors[0].len();
         let layout = match segs {
-            2 if self.open => Layout::OpenQuad,
-            1 if self.open => Layout::OpenTriangle,
-            k if self.open => {
+            2 if open => Layout::OpenQuad,
+            1 if open => Layout::OpenTriangle,
+            k if open => {
                 return Err(Error::InvalidArgument(format!(
                     "sector 0 of the open hole has {k} segments; an open fan takes one (a fan \
                      of triangles) or two (quads) per sector"

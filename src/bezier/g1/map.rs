@@ -59,7 +59,7 @@ pub struct CapMap {
     /// The condition at the centre.
     pub centre: Centre,
     /// The shape of the conditions: closed, open, or an open fan whose boundary spokes are the
-    /// Hermite cubics of a crease ([`Hole::crease`]) or a dart ([`Hole::dart`]).
+    /// Hermite cubics of a crease ([`Fan::Crease`]) or a dart ([`Fan::Dart`]).
     pub fan: Fan,
     /// Consistency certificate: the largest residual of the cap conditions over a basis of all
     /// data that satisfy the ring's compatibility conditions (0 up to rounding when the cap

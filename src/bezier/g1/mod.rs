@@ -134,7 +134,7 @@
 //! # Open fans (extraordinary boundary vertices)
 //!
 //! At a boundary vertex of `n >= 3` quads the hole is an open fan ([`Layout::OpenQuad`],
-//! [`Hole::open`]): `n` quad sectors, `n + 1` spokes over a half-turn,
+//! [`Hole::is_open`]): `n` quad sectors, `n + 1` spokes over a half-turn,
 //! `t_s = cos(pi s / n) T0 + sin(pi s / n) T1` (so `T0` is the boundary curve's direction at
 //! the centre, spokes `0` and `n` run along the boundary, `t_n = -t_0`). The conditions are
 //! those above with the angle `pi / n` for `2 pi / n`: C^1 to the ring (its two outer layers),
@@ -182,7 +182,7 @@
 //! ## Crease fans
 //!
 //! Beside an infinitely sharp crease through the centre each side is an open fan
-//! ([`Hole::crease`]) whose boundary spokes must be shared exactly with the other side's cap
+//! ([`Fan::Crease`]) whose boundary spokes must be shared exactly with the other side's cap
 //! (or its regular patches). Two changes make them so: `T0` is the provider's exact derivative
 //! of the crease at the centre instead of the chart fit (only `T1` is fitted given it,
 //! [`ring::crease_tangents`]), and each boundary spoke is the cubic Hermite interpolant of its
@@ -199,7 +199,7 @@
 //!
 //! Around a dart (one infinitely sharp edge ending at the centre) the surface has a tangent
 //! plane at the centre but is only C^0 along the sharp edge. Its hole is an open fan whose
-//! `n + 1` spokes span the full turn ([`Fan::Dart`], [`Hole::dart`]): spokes `0` and `n` are
+//! `n + 1` spokes span the full turn ([`Fan::Dart`]): spokes `0` and `n` are
 //! both the sharp edge, `t_0 = t_n = T0`, and both are the cubic Hermite interpolant of spoke
 //! `0`'s end data (the rows of the crease fans), so the two sectors beside the sharp edge share
 //! it exactly; every other spoke carries the G^1 relation with `w(0) = 2 cos(2 pi / n)`, as in a
@@ -214,7 +214,7 @@
 //! Around an interior vertex of `m` sectors some of which are holes (OpenSubdiv's hole faces:
 //! refined, but without surface) the limit is the smooth surface with those sectors cut away.
 //! Each run of `n < m` present sectors is an open fan whose spokes keep the angles of the full
-//! turn, `2 pi s / m` ([`Fan::Wedge`], [`Hole::wedge`]), spokes `0` and `n` free curves on the
+//! turn, `2 pi s / m` ([`Fan::Wedge`]), spokes `0` and `n` free curves on the
 //! holes' border, G^1 on the `n - 1` inner spokes with `w(0) = 2 cos(2 pi / m)`. All runs share
 //! the vertex's limit point and tangent plane. Lowest certified degrees (test
 //! `wedges_are_certified_at_the_angles_of_the_full_turn`, `m = 3..12`): bi-4 for quads (bi-3
@@ -224,7 +224,7 @@
 //!
 //! At a corner with sharp edges (OpenSubdiv's corner rule: the vertex is its own limit) each
 //! sector between two consecutive sharp edges is an open fan ([`Fan::Corner`],
-//! [`Hole::corner`]) whose boundary spokes are the sharp edges' limit curves (the Hermite rows
+//! [`Fan::Corner`]) whose boundary spokes are the sharp edges' limit curves (the Hermite rows
 //! of the crease fans) and whose `T0`, `T1` are both pinned to those curves' derivatives at the
 //! corner, so neighbouring sectors share each sharp edge exactly. The chart turns a quarter
 //! (spoke `n` along `T1`) or, for a reflex sector, three quarters (along `-T1`), so the cap
@@ -239,7 +239,7 @@
 //! A vertex the corner rule keeps (sharpness infinity) with no infinitely sharp edge, or one,
 //! has no tangent plane: the limit surface has a tangent cone there, smooth along every other
 //! direction. Its hole is closed ([`Fan::Cone`]) or a dart's fan ([`Fan::DartCone`]), centred
-//! at the vertex with every spoke tangent zero ([`Hole::cone`]): the cap's corners at the apex
+//! at the vertex with every spoke tangent zero ([`Fan::Cone`]): the cap's corners at the apex
 //! are singular, and the G^1 relation `D_v P_s + D_u P_(s-1) = w D_u P_s` along each spoke,
 //! whose three terms all vanish at the apex, holds as the polynomial identity it is. Divided
 //! by the spoke's parameter it still holds at the apex itself, on the second-order data: near

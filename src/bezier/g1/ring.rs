@@ -33,7 +33,7 @@
 //! `schemes::loop_subdivision::surface::g1`). Quad holes keep the quadratic fit their caps were
 //! measured with (Catmull-Clark's largest exponent, at valence 3, is `a = 1.29`).
 
-use super::hole::{Hole, Layout, Segment};
+use super::hole::{Fan, Hole, Layout, Segment};
 use super::map::{Cap, CapOptions, g1_cap_with};
 use crate::bezier::complex::CapStep;
 use crate::bezier::{BezierPatch, Side, curve};
@@ -123,7 +123,7 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
 fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2], usize, f64)> {
     let (spokes, n, size) = spoke_derivatives(hole, proj)?;
     let mut t = [[0.0; 3]; 2];
-    if hole.open {
+    if hole.is_open() {
         // least squares over the n + 1 spokes of the half-turn (cos and sin are not
         // orthogonal there; a dart's full turn counts its sharp spoke twice): the 2 x 2
         // normal equations
@@ -149,7 +149,7 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     Ok((t, n, size))
 }
 
-/// The spoke tangents of a crease's fan ([`Hole::crease`]): `T0 = t0`, the crease's exact
+/// The spoke tangents of a crease's fan ([`Fan::Crease`]): `T0 = t0`, the crease's exact
 /// derivative at the centre along spoke `0` as the provider gives it, and `T1` the least
 /// squares fit of the other spokes' chart derivatives (mapped by `proj`) given `T0`:
 /// `T1 = sum sin(th_s) (f_s - cos(th_s) T0) / sum sin(th_s)^2` over the `n + 1` spokes of the
@@ -199,7 +199,7 @@ fn spoke_derivatives(
     // spoke s ends at segment a of sector s; the last spoke of an open fan at segment b of
     // its last sector (`cross_b(0) = -dP/dv(0, 1)`, the derivative along that spoke)
     let mut ends: Vec<&Segment> = q.hole.sectors.iter().map(|sec| &sec[0]).collect();
-    if hole.open {
+    if hole.is_open() {
         ends.push(&q.hole.sectors[n - 1][1]);
     }
     let mut size: f64 = 0.0;
@@ -234,13 +234,13 @@ pub fn crease_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]
 }
 
 /// The spoke tangents of a hole of per-point data (not positions) from its provider's `plane`
-/// vectors (tabulated like the positions'): a corner's both ([`Hole::corner`]; a cone's, zero,
-/// [`Hole::cone`]), a crease's fan
+/// vectors (tabulated like the positions'): a corner's both ([`Fan::Corner`]; a cone's, zero,
+/// [`Fan::is_cone`]), a crease's fan
 /// `T0` with `T1` fitted ([`crease_data_tangents`]), else both fitted ([`data_tangents`]).
 pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
-    if hole.corner.is_some() || hole.cone {
+    if hole.kind.pins_plane() {
         Ok(plane)
-    } else if hole.crease {
+    } else if hole.kind == Fan::Crease {
         crease_data_tangents(hole, plane)
     } else {
         data_tangents(hole)
@@ -248,16 +248,16 @@ pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> 
 }
 
 /// The G^1 cap of `hole` from its provider's `plane` vectors: [`cap_in_plane`] with the
-/// plane's normal; for a corner's sector ([`Hole::corner`]) with `[T0, T1] = plane` (the two
-/// sharp edges' derivatives), for a crease's fan ([`Hole::crease`]) with `T0 = plane[0]`
-/// ([`crease_tangents`]); around a cone point ([`Hole::cone`]) with `[T0, T1] = plane` too,
+/// plane's normal; for a corner's sector ([`Fan::Corner`]) with `[T0, T1] = plane` (the two
+/// sharp edges' derivatives), for a crease's fan ([`Fan::Crease`]) with `T0 = plane[0]`
+/// ([`crease_tangents`]); around a cone point ([`Fan::is_cone`]) with `[T0, T1] = plane` too,
 /// which its provider gives as zero and its cap map does not read (every spoke tangent zero).
 pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
-    if hole.corner.is_some() || hole.cone {
+    if hole.kind.pins_plane() {
         super::map::check_cap_valence(hole.valence())?;
         hole.tangents = plane;
         g1_cap_with(&hole, opts)
-    } else if hole.crease {
+    } else if hole.kind == Fan::Crease {
         super::map::check_cap_valence(hole.valence())?;
         hole.tangents = crease_tangents(&hole, plane)?;
         g1_cap_with(&hole, opts)

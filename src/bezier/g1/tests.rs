@@ -85,18 +85,7 @@ fn random_hole(n: usize, fan: Fan, d: usize, m: usize, kappa: f64, rng: &mut Lcg
         sectors: (0..n)
             .map(|s| (0..2 * m).map(|k| seg(s, k)).collect())
             .collect(),
-        open: fan.is_open(),
-        crease: fan == Fan::Crease,
-        dart: fan.is_dart(),
-        cone: fan.is_cone(),
-        wedge: match fan {
-            Fan::Wedge(m) => Some(m),
-            _ => None,
-        },
-        corner: match fan {
-            Fan::Corner(a) => Some(a),
-            _ => None,
-        },
+        kind: fan,
     }
 }
 
@@ -312,7 +301,7 @@ fn open_triangle_fans_are_certified() {
     eprintln!("open triangle fans: {}", table.join(", "));
 }
 
-/// Crease fans ([`Hole::crease`]): the Hermite rows fix `d - 3` free coefficients per
+/// Crease fans ([`Fan::Crease`]): the Hermite rows fix `d - 3` free coefficients per
 /// boundary spoke and nothing else, so every open layout keeps its certificate and lowest
 /// degree; on compatible data the boundary spokes are the cubic Hermite interpolants of their
 /// end data and the inner spokes stay G^1.
@@ -378,7 +367,7 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
     }
 }
 
-/// Dart fans ([`Hole::dart`]): certified at the degree of the plain open fan or one above; on
+/// Dart fans ([`Fan::Dart`]): certified at the degree of the plain open fan or one above; on
 /// compatible data the two sides of the sharp spoke are one curve (C^0), every inner spoke is
 /// G^1 and every spoke leaves the centre in the plane of `T0, T1` at the full turn's angles.
 #[test]
@@ -441,7 +430,7 @@ fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
     eprintln!("dart triangle fans, lowest degree: {}", table.join(" "));
 }
 
-/// Cone points ([`Hole::cone`]): closed holes and darts' fans certified at every valence up
+/// Cone points ([`Fan::Cone`]): closed holes and darts' fans certified at every valence up
 /// to 12, at most bi-5 (quads) and bi-6 (Loop's triangles); on compatible quad data every spoke
 /// tangent is zero and every join spoke G^1 up to the apex (the relation divided by the
 /// parameter: the normals on both sides agree at `u = 1e-3` as well as further out).
@@ -500,7 +489,7 @@ fn cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes() {
     );
 }
 
-/// Wedges ([`Hole::wedge`]): `k` of the `m` sectors around a vertex whose others are holes,
+/// Wedges ([`Fan::Wedge`]): `k` of the `m` sectors around a vertex whose others are holes,
 /// quads and Loop's triangles: certified at every `k < m` up to `m = 12`, at most bi-5 (quads)
 /// and bi-6 (triangles); on compatible quad data the inner spokes are G^1 and the spokes leave
 /// the centre at the angles `2 pi s / m`.
@@ -548,7 +537,7 @@ fn wedges_are_certified_at_the_angles_of_the_full_turn() {
     eprintln!("wedges k/m: quad/triangle degree: {}", table.join(" "));
 }
 
-/// Corner sectors ([`Hole::corner`]): certified at every `n` up to 10, convex and reflex, with
+/// Corner sectors ([`Fan::Corner`]): certified at every `n` up to 10, convex and reflex, with
 /// spoke `n` leaving the centre along `T1` (convex) or `-T1` (reflex) and both boundary spokes
 /// the Hermite cubics of their end data.
 #[test]

@@ -18,7 +18,7 @@
 //! eigenvectors applied to the points span the limit tangent plane (the surface near the dart
 //! is `c + lambda_a^k a + lambda_b^k b` to first order in the ring's chart, with both modes'
 //! characteristic directions independent), which is the plane the dart's G^1 cap is centred in
-//! ([`crate::bezier::g1::Hole::dart`]).
+//! ([`crate::bezier::g1::Fan::Dart`]).
 //!
 //! The masks are computed once per valence ([`crate::schemes::dart`]: null vectors of a small
 //! dense matrix) and cached.

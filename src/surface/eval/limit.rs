@@ -41,7 +41,7 @@ fn merge(mut a: HashMap<Element, usize>, b: HashMap<Element, usize>) -> HashMap<
 /// scheme's limit point with the tangent plane of its limit masks (every cap and fill is built
 /// so); its derivatives and curvatures there are the cap's (the limit surface's
 /// parametrisation is singular there). A cone point (a corner tag without two sharp edges,
-/// [`crate::bezier::g1::Hole::cone`]) has no tangent plane: there the normal is the cap
+/// [`crate::bezier::g1::Fan::Cone`]) has no tangent plane: there the normal is the cap
 /// piece's limit from its interior and the curvatures are NaN. `build(rings)` builds the
 /// surface (callers add their size checks and progress there).
 ///

@@ -51,13 +51,13 @@
 //! crease's exact curve ([`crease`]). A dart (one infinitely sharp edge ending at an interior
 //! vertex) gets one fan cap over the full turn from its sharp edge, which is its only C^0
 //! spoke, centred at the dart's own limit point in its own tangent plane
-//! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Hole::dart`]). A corner with
+//! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Fan::Dart`]). A corner with
 //! sharp edges gets one open fan per side of two or more quads between them, its sharp spokes
 //! the edges' exact curves ([`crease::corner_caps`]); each run of quads between OpenSubdiv hole
 //! faces one open fan at the full turn's angles ([`wedge`]). A cone point (a vertex of
 //! sharpness infinity without two sharp edges) gets a closed cap, or a dart's fan along its one
 //! sharp edge, centred at the vertex with zero spoke tangents ([`crease::cone_cap`],
-//! [`crate::bezier::g1::Hole::cone`]). Elements that never have the data (boundary vertices of more than
+//! [`crate::bezier::g1::Fan::Cone`]). Elements that never have the data (boundary vertices of more than
 //! [`crate::bezier::g1::MAX_CAP_VALENCE`] quads, `--rings 0` around an n-gon) keep the
 //! Hermite-Coons fill of [`super`] (C^0).
 

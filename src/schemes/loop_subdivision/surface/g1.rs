@@ -94,7 +94,7 @@
 //! `catmull_clark::surface::g1::crease` on triangles; each side refines as a boundary fan
 //! under OpenSubdiv's crease rules). A dart (one infinitely sharp edge ending at an interior
 //! vertex) gets one open triangle fan over the full turn from its sharp edge ([`dart_cap`],
-//! [`Hole::dart`]), centred at the dart's own limit point
+//! [`Fan::Dart`]), centred at the dart's own limit point
 //! ([`crate::schemes::loop_subdivision::dart`]). A corner with sharp edges gets one open
 //! triangle fan per side of two or more triangles between them ([`corner_caps`]), each run of
 //! triangles between OpenSubdiv hole faces one at the full turn's angles ([`wedge_caps`]).
@@ -256,7 +256,7 @@ fn fan_sectors(
 
 /// The caps of the crease vertex `x` whose marked cells are `cells` (Catmull-Clark's
 /// construction, `catmull_clark::surface::g1::crease`, on triangles): `Ok(None)` when `x` is
-/// not a crease vertex; one open triangle fan ([`Hole::crease`]) per side of one, two, or four
+/// not a crease vertex; one open triangle fan ([`Fan::Crease`]) per side of one, two, or four
 /// and more triangles, centred at the crease's limit point `(e_a + 4 x + e_b) / 6`, `T0 = (e_a -
 /// e_b) / 2` the crease's exact derivative, the across tangent Loop's boundary eigen tangent of
 /// the side's `k` triangles ([`across_weights`]); a side of three triangles is regular crease
@@ -302,7 +302,7 @@ fn crease_caps(
 
 /// The cap of the dart `x` whose marked cells are `cells` (Catmull-Clark's construction,
 /// `catmull_clark::surface::g1::crease::dart_cap`, on triangles): `Ok(None)` when `x` is not a
-/// dart; one open triangle fan over the full turn ([`Hole::dart`]) from the sharp edge (its
+/// dart; one open triangle fan over the full turn ([`Fan::Dart`]) from the sharp edge (its
 /// spokes `0` and `n`, one Hermite cubic), centred at the dart's own limit point in the plane of
 /// its own eigen tangents ([`dart_masks`]).
 fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
@@ -337,7 +337,7 @@ fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapD
 /// construction, `catmull_clark::surface::g1::crease::cone_cap`, on triangles): `Ok(None)` when
 /// `x` is not a cone point; a closed triangle hole, or an open triangle fan over the full turn
 /// from its one sharp edge, centred at `x` (the corner rule keeps it), every spoke tangent zero
-/// ([`Hole::cone`]).
+/// ([`Fan::Cone`]).
 fn cone_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
     let Some((sharp, plain)) = cone_halfedge(level, x) else {
         return Ok(None);
@@ -368,7 +368,7 @@ fn cone_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapD
 
 /// The caps of the interior vertex `x` whose marked cells are `cells` next to OpenSubdiv hole
 /// faces (Catmull-Clark's construction, `catmull_clark::surface::g1::wedge`, on triangles):
-/// `Ok(None)` when no triangle around `x` is a hole; one open triangle fan ([`Hole::wedge`])
+/// `Ok(None)` when no triangle around `x` is a hole; one open triangle fan ([`Fan::Wedge`])
 /// per run of `k` present triangles between holes, over `2 pi k / n`, its first and last
 /// spokes free on the holes' border, centred at `x`'s plain limit point in the plane of its
 /// eigen tangents (a hole changes no rule).
@@ -403,7 +403,7 @@ fn wedge_caps(
 
 /// The caps of the corner `x` whose marked cells are `cells` (Catmull-Clark's construction,
 /// `catmull_clark::surface::g1::crease::corner_caps`, on triangles): `Ok(None)` when `x` is not
-/// a corner with sharp edges; one open triangle fan ([`Hole::corner`]) per side between
+/// a corner with sharp edges; one open triangle fan ([`Fan::Corner`]) per side between
 /// consecutive sharp edges (one triangle included: its spokes `T0` and `T1` themselves),
 /// centred at `x` in the plane of the sharp edges' derivatives ([`corner_plane`]).
 fn corner_caps(

@@ -64,7 +64,7 @@ pub(crate) fn dart_halfedge(level: &Level, v: usize) -> Option<(u32, bool)> {
 /// The infinitely sharp outgoing half-edge (at most one) of `v` when it is an interior cone
 /// point: a vertex of infinite sharpness (the corner rule keeps it) with fewer than two
 /// infinitely sharp edges, so no two sharp edges span a tangent plane there
-/// ([`crate::bezier::g1::Hole::cone`]); and whether it is plain apart from it (every other
+/// ([`crate::bezier::g1::Fan::Cone`]); and whether it is plain apart from it (every other
 /// edge's sharpness 0: no semi-sharp feature left).
 pub(crate) fn cone_halfedge(level: &Level, v: usize) -> Option<(Option<u32>, bool)> {
     match sharp_fan(level, v)? {

@@ -12,7 +12,7 @@
 //!   centre along spoke `0` (the cubic B-spline of the crease polygon, per unit of the level's
 //!   parameter), and the subdominant eigen tangent across the boundary of a fan of `k` quads
 //!   ([`crate::schemes::catmull_clark::boundary_tangent`]) applied to the side's one-ring;
-//! * **crease spokes** ([`Hole::crease`]): `T0` is pinned, not fitted, and the boundary spokes
+//! * **crease spokes** ([`Fan::Crease`]): `T0` is pinned, not fitted, and the boundary spokes
 //!   are the cubic Hermite interpolants of their end data, which are the crease's B-spline
 //!   itself: the caps of both sides, a regular crease patch on a side of two quads, and the
 //!   ring patches all share the crease curve, so the crease is C^0 exactly (to rounding) and
@@ -124,7 +124,7 @@ pub(in crate::schemes::catmull_clark::surface) fn boundary_corner_cap(
     Ok((Hole::untangented_crease(centre, sectors), plane, vec![tag]))
 }
 
-/// The cap of the dart `x` whose marked cells are `faces` ([`Hole::dart`]): `Ok(None)` when
+/// The cap of the dart `x` whose marked cells are `faces` ([`Fan::Dart`]): `Ok(None)` when
 /// `x` is not a dart, `Later` while a semi-sharp feature is left at `x`, `Never` when its `n`
 /// faces are not exactly the cells or not all quads. The fan starts at the sharp edge (spoke
 /// `0` and spoke `n`); centre and tangent plane are the dart's own limit and eigen tangents
@@ -164,7 +164,7 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
     Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
 }
 
-/// The cap of the cone point `x` whose marked cells are `faces` ([`Hole::cone`]): `Ok(None)`
+/// The cap of the cone point `x` whose marked cells are `faces` ([`Fan::Cone`]): `Ok(None)`
 /// when `x` is not a cone point ([`cone_halfedge`]), `Later` while a semi-sharp edge is left at
 /// `x`, `Never` when its `n` faces are not exactly the cells or not all quads. A closed hole
 /// (no sharp edge) or a dart's fan from its one sharp edge, centred at `x` itself (the corner
@@ -216,7 +216,7 @@ pub(super) fn sector_tags(
         .collect()
 }
 
-/// The caps of the corner `x` whose marked cells are `faces` ([`Hole::corner`]): `Ok(None)`
+/// The caps of the corner `x` whose marked cells are `faces` ([`Fan::Corner`]): `Ok(None)`
 /// when `x` is not a corner with sharp edges ([`corner_sides`]); one cap per side of two or
 /// more quads between consecutive sharp edges (a side of one quad is a regular corner patch),
 /// centred at `x` (the corner rule keeps it) in the plane of the two sharp edges' derivatives

@@ -3,7 +3,7 @@
 //! A hole face takes part in refinement but has no surface: the limit surface around an
 //! interior vertex `x` with hole faces among its `m` quads is the smooth surface around `x`
 //! with those sectors cut away. So each maximal run of `n < m` present quads between hole
-//! faces is closed by an open fan over `2 pi n / m` ([`crate::bezier::g1::Hole::wedge`]): the
+//! faces is closed by an open fan over `2 pi n / m` ([`crate::bezier::g1::Fan::Wedge`]): the
 //! sectors of the closed cap's layout at the angles of the full turn, spokes `0` and `n` free
 //! curves on the hole's border (C^1 to the ring's border curves at their ends through the
 //! fixed outer layers), the G^1 relation on the `n - 1` inner spokes; **centre** `x`'s limit
