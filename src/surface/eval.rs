@@ -2,7 +2,7 @@
 //! second derivatives with respect to the face's parameters, normal, Gauss and mean curvature,
 //! and which patch (and where in it) the point lies in.
 //!
-//! A [`Surface`] is a patch complex whose patches carry the [`Domain`] of their input face (the
+//! A [`Surface`] is a patch complex whose patches carry the [`Domain`](crate::bezier::domain::Domain) of their input face (the
 //! adaptive host records it for the schemes whose [`Capabilities`] say `eval`: Catmull-Clark,
 //! Loop, and EG, the QAS+ family and guided subdivision, whose caps tile each sector's face in
 //! their rings' chart, see [`crate::schemes::eg::surface`] and [`crate::schemes::guided::surface`];

@@ -82,7 +82,7 @@ pub fn classify(mesh: &PolyMesh) -> (bool, bool, bool) {
 }
 
 /// The mixed bi-2 scheme (name `bi2-mixed`). Its exact surface (`--rings K`) takes any mix of
-/// elements ([`crate::surface::bi2::mixed_complex`]); its net refinement only a net with one
+/// elements ([`crate::schemes::bi2::surface::mixed_complex`]); its net refinement only a net with one
 /// kind of element (see the [module](self) documentation).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Bi2Mixed;

@@ -13,7 +13,7 @@
 //!   refined cells `(1,0), (1,1), (0,1)`), with Catmull-Clark's lambda.
 //! * [`ChiKind::Half`]: the bi-4 characteristic map of QAS+ (Section 3 of the QAS+ paper,
 //!   [`crate::schemes::qas::chi`], valences 5..10), lambda = 1/2; the paper's Section 6.3 uses the
-//!   map of [KP09], which is not in the corpus and has the same role.
+//!   map of \[KP09\], which is not in the corpus and has the same role.
 
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};

@@ -110,7 +110,7 @@ impl Loop {
     /// boundary rules, and the tangent plane there is not guaranteed.
     ///
     /// # Errors
-    /// [`Error::Unsupported`] for a face that is not a triangle.
+    /// [`Error::Unsupported`](crate::error::Error::Unsupported) for a face that is not a triangle.
     pub fn limit_tangent_stencils(&self, mesh: &PolyMesh) -> Result<[StencilTable; 2]> {
         check_triangles(mesh)?;
         let nv = mesh.num_vertices();
@@ -133,7 +133,7 @@ impl Loop {
     /// normalised; the zero vector where the net is degenerate).
     ///
     /// # Errors
-    /// [`Error::Unsupported`] for a face that is not a triangle.
+    /// [`Error::Unsupported`](crate::error::Error::Unsupported) for a face that is not a triangle.
     pub fn limit_normals(&self, mesh: &PolyMesh) -> Result<Vec<Point>> {
         let [t1, t2] = self.limit_tangent_stencils(mesh)?;
         let (a, b) = (t1.apply(mesh.positions()), t2.apply(mesh.positions()));

@@ -163,7 +163,7 @@ pub fn eval_triangle(tri: &[Point; 15], l: [f64; 3]) -> Point {
 /// each refinement level.
 ///
 /// # Errors
-/// [`Error::Unsupported`] naming the first face that is not a triangle.
+/// [`Error::Unsupported`](crate::error::Error::Unsupported) naming the first face that is not a triangle.
 pub fn loop_complex(
     mesh: &PolyMesh,
     opts: ComplexOptions,
@@ -176,7 +176,7 @@ pub fn loop_complex(
 /// holes as [`sharp`] documents.
 ///
 /// # Errors
-/// [`Error::Unsupported`] naming the first face that is not a triangle.
+/// [`Error::Unsupported`](crate::error::Error::Unsupported) naming the first face that is not a triangle.
 pub fn loop_complex_with(
     mesh: &PolyMesh,
     opts: ComplexOptions,

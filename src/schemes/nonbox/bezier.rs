@@ -44,7 +44,7 @@
 //!
 //! A cubic triangle `T` is stored either as the degenerate bi-3 patch `X(u, v) = T(u (1 - v), v)`
 //! ([`triangle_to_tensor`]; side `v = 1` collapses to `P2`, the other sides are the triangle's
-//! edges with linear parameters, the layout of [`crate::surface::loop_patches`]), or, where a
+//! edges with linear parameters, the layout of [`crate::schemes::loop_subdivision::surface::loop_complex`]), or, where a
 //! collapsed corner would spoil a Jacobian certificate (the characteristic map), as three
 //! non-degenerate bi-3 patches ([`triangle_to_quads`]): the triangle cut by its medians into the
 //! quads `(P_k, mid(P_k P_k+1), centroid, mid(P_k-1 P_k))`, each an exact bilinear

@@ -5,7 +5,7 @@
 //! boundary vertex with one or two faces), the limit over it is four cubic triangles of the S_3^1
 //! spline ([`crate::schemes::nonbox::bezier`]), each stored as the degenerate bi-3 patch
 //! `T(u (1 - v), v)` (side `v = 1` collapsed to the cell centre; the layout of
-//! [`super::loop_patches`]). Other cells (at extraordinary vertices, at boundary vertices with
+//! [`crate::schemes::loop_subdivision::surface::loop_complex`]). Other cells (at extraordinary vertices, at boundary vertices with
 //! more than two faces, and the non-quad faces of the input) are refined with the
 //! scheme's own rules ([`crate::schemes::nonbox`]) together with the faces around their
 //! corners; their regular children are emitted as ring `l` at level `l` (three cells, twelve

@@ -30,7 +30,7 @@
 //!
 //! # The guide's target: `guide-fit F_4` (fairsub's reconstruction)
 //!
-//! The paper fits the free set `P` to the bi-5 surface of [KP15], which is not in the corpus.
+//! The paper fits the free set `P` to the bi-5 surface of \[KP15\], which is not in the corpus.
 //! fairsub's target: `P` minimises
 //!
 //! `sum over sectors and outer coefficients of ring 0 of |sampled - prolonged|^2 + w F_4(g)`,
