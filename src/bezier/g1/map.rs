@@ -7,7 +7,7 @@ use super::hole::{Conversion, Degrees, Fan, Hole, Layout};
 use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_energy};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::geom::axpy;
+use crate::geom::{add, axpy};
 use crate::stencil::StencilTable;
 use nalgebra::DMatrix;
 use std::collections::HashMap;
@@ -323,7 +323,9 @@ impl CapMap {
     /// The largest violation of the ring's compatibility conditions by `hole`, relative to the
     /// hole's size, and the label of the condition.
     pub fn compatibility_defect(&self, hole: &Hole) -> (f64, String) {
-        let data = hole.data();
+        // the conditions vanish on translations: measured about the centre, to the rounding
+        // of the hole's own size
+        let data = hole.data_about_centre();
         let size = hole_size(hole);
         let mut worst = (0.0, String::new());
         for (r, label) in self.compat_labels.iter().enumerate() {
@@ -351,13 +353,16 @@ impl CapMap {
                 self.degrees
             )));
         }
-        let data = hole.data();
+        // applied about the centre ([`Hole::data_about_centre`]: the map's error then scales
+        // with the hole, not with its distance from the origin), the centre added back
+        let data = hole.data_about_centre();
+        let c = hole.centre;
         let d = self.degree;
         let m = (d + 1) * (d + 1);
         Ok((0..self.n * self.pieces * self.pieces)
             .map(|s| {
                 let cps = (0..m)
-                    .map(|k| row_point(&self.sparse, cidx(d, s, 0, 0) + k, &data))
+                    .map(|k| add(c, row_point(&self.sparse, cidx(d, s, 0, 0) + k, &data)))
                     .collect();
                 BezierPatch::new(d, d, cps)
             })
