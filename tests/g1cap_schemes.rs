@@ -225,6 +225,44 @@ fn caps_far_from_the_origin_stay_g1_as_the_hole_shrinks() {
     }
 }
 
+/// A hole no G^1 cap closes is named in a note: `nonbox-4dir` reads the octahedron as a pillow
+/// of two quads whose four corners have valence 2 (no cap below 3 sectors: the C^0 fill, 0.11
+/// rad), and `check` would otherwise show only `cap|cap` defects. Nets whose holes are all
+/// capped get no such note.
+#[test]
+fn holes_without_a_cap_are_named_in_a_note() {
+    let notes = |scheme: &str, net: &PolyMesh| {
+        let spec = fairsub::schemes::registry::registry()
+            .lookup(scheme)
+            .expect("scheme");
+        let opts = ComplexOptions {
+            rings: 2,
+            fill: true,
+        };
+        fairsub::surface::build(&spec, net, opts, &mut |_| {})
+            .unwrap_or_else(|e| panic!("{scheme}: {e}"))
+            .notes
+            .into_iter()
+            .filter(|n| n.starts_with("no G^1 cap"))
+            .collect::<Vec<_>>()
+    };
+    let oct = notes("nonbox-4dir", &gallery::octahedron());
+    assert_eq!(oct.len(), 1, "{oct:?}");
+    assert!(oct[0].contains("a hole of 2 sectors"), "{oct:?}");
+    for v in 0..4 {
+        assert!(oct[0].contains(&format!("vertex {v}")), "{oct:?}");
+    }
+    for (scheme, net) in [
+        ("catmull-clark", gallery::cube()),
+        ("nonbox-4dir", gallery::tetrahedron()),
+        ("qas-plus-bi3", gallery::cnet(5, CnetShape::Saddle, 3)),
+        ("loop", gallery::icosahedron()),
+    ] {
+        let n = notes(scheme, &net);
+        assert!(n.is_empty(), "{scheme}: {n:?}");
+    }
+}
+
 /// The normal of a cap at its centre (the first patch's corner `(0, 0)`).
 fn centre_normal(c: &PatchComplex) -> [f64; 3] {
     let i = c

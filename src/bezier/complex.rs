@@ -77,6 +77,11 @@ pub struct PatchComplex {
     /// a construction that is not linear in the control points (its tangent plane), which a
     /// patch stencil table ([`crate::surface::table`]) repeats instead of tabulating.
     pub caps: Vec<CapStep>,
+    /// Elements whose hole no G^1 cap closes although the scheme caps holes of its kind, with
+    /// the reason (a valence below 3 or above the largest cap, ring data that are not
+    /// C^1-compatible, ...): the scheme's C^0 fill closes them (`--no-fill` leaves them open).
+    /// [`crate::surface::build`] turns them into a note for the user.
+    pub uncapped: Vec<(Element, String)>,
 }
 
 /// Patches `first .. first + count` of a complex are the G^1 cap
@@ -171,6 +176,7 @@ impl PatchComplex {
         self.provenance.extend(other.provenance);
         self.sharp_sides
             .extend(other.sharp_sides.into_iter().map(|(p, m)| (p + base, m)));
+        self.uncapped.extend(other.uncapped);
     }
 
     /// Marks side `side` (its [`Side::index`](super::Side::index)) of patch `patch` as lying

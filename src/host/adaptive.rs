@@ -185,7 +185,9 @@ pub type CapData = (crate::bezier::g1::Hole, [Point; 2], Vec<Tag>);
 /// or none); the cap patches are pushed with the sectors' tags (domain and
 /// sector), and the cap's data as a [`crate::bezier::complex::CapStep`] of the complex. Returns the cells left for the
 /// scheme's C^0 fill. The elements' caps are independent: they are computed in parallel and
-/// pushed in the elements' order (the same complex as one after another).
+/// pushed in the elements' order (the same complex as one after another). An element whose
+/// hole data exist but whose cap cannot be built is recorded with the reason in
+/// [`PatchComplex::uncapped`] (the user is told; the fill closes it).
 pub fn g1_cap_elements<I>(
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
@@ -204,17 +206,28 @@ where
             // an element's holes (one, or one per sector of a crease vertex): all or none
             let mut built = Vec::new();
             for (hole, plane, tags) in hole_of(e, cells) {
-                let (patches, step) = cap_step(hole, plane, CapOptions::default(), 0).ok()?;
-                built.push((patches, tags, step));
+                match cap_step(hole, plane, CapOptions::default(), 0) {
+                    Ok((patches, step)) => built.push((patches, tags, step)),
+                    Err(why) => return Some(Err((e, why.to_string()))),
+                }
             }
-            (!built.is_empty()).then_some((e, built))
+            (!built.is_empty()).then_some(Ok((e, built)))
         })
         .collect();
     let mut left = Vec::new();
     for ((_, cells), capped) in groups.into_iter().zip(caps) {
-        let Some((element, built)) = capped else {
-            left.extend(cells);
-            continue;
+        let (element, built) = match capped {
+            Some(Ok(c)) => c,
+            Some(Err(why)) => {
+                // the hole is there and the cap failed: the fill closes it, the user is told
+                out.uncapped.push(why);
+                left.extend(cells);
+                continue;
+            }
+            None => {
+                left.extend(cells);
+                continue;
+            }
         };
         for (patches, tags, mut step) in built {
             let first = out.len();

@@ -36,10 +36,84 @@ pub fn build(
     progress: &mut dyn FnMut(usize),
 ) -> Result<SurfaceOutput> {
     let rules = registry().descriptor(spec.id).patch_rules(spec)?;
-    match rules {
-        Some(r) => r.build(mesh, opts, progress),
-        None => Err(no_patch_output(spec.name())),
+    let mut out = match rules {
+        Some(r) => r.build(mesh, opts, progress)?,
+        None => return Err(no_patch_output(spec.name())),
+    };
+    out.notes.extend(uncapped_notes(&out.complex, opts.fill));
+    Ok(out)
+}
+
+/// The notes on the complex's holes that no G^1 cap closes
+/// ([`PatchComplex::uncapped`](crate::bezier::complex::PatchComplex::uncapped)): one per
+/// reason, naming the first few elements (a user reading `check`'s `cap|cap` defects of a C^0
+/// fill learns why).
+fn uncapped_notes(complex: &PatchComplex, fill: bool) -> Vec<String> {
+    use crate::mesh::Element;
+    use std::collections::{BTreeMap, HashMap, HashSet};
+    let mut by_reason: BTreeMap<String, Vec<Element>> = BTreeMap::new();
+    for (e, why) in &complex.uncapped {
+        let elements = by_reason.entry(why.clone()).or_default();
+        if !elements.contains(e) {
+            elements.push(*e);
+        }
     }
+    // holes of fewer than 3 sectors (a valence-2 vertex, as the corners of a pillow of two
+    // quads): no provider builds them a hole, so they are found here, by their fill's patches
+    let capped: HashSet<Element> = complex
+        .caps
+        .iter()
+        .filter_map(|c| match complex.provenance.get(c.first as usize) {
+            Some(Provenance::Cap { element, .. }) => Some(*element),
+            _ => None,
+        })
+        .collect();
+    let mut order: Vec<Element> = Vec::new();
+    let mut sectors: HashMap<Element, HashSet<u32>> = HashMap::new();
+    for p in &complex.provenance {
+        if let Provenance::Cap { element, sector } = p
+            && !capped.contains(element)
+        {
+            sectors
+                .entry(*element)
+                .or_insert_with(|| {
+                    order.push(*element);
+                    HashSet::new()
+                })
+                .insert(*sector);
+        }
+    }
+    for e in order {
+        let k = sectors[&e].len();
+        if k < 3 {
+            by_reason
+                .entry(format!(
+                    "a hole of {k} sectors (a G^1 cap needs at least 3)"
+                ))
+                .or_default()
+                .push(e);
+        }
+    }
+    const NAMED: usize = 4;
+    by_reason
+        .into_iter()
+        .map(|(why, elements)| {
+            let mut named: Vec<String> = elements
+                .iter()
+                .take(NAMED)
+                .map(|&e| crate::host::caps::describe(e))
+                .collect();
+            if elements.len() > NAMED {
+                named.push(format!("{} more", elements.len() - NAMED));
+            }
+            let closed = if fill {
+                "the scheme's C^0 fill closes the hole (not G^1 there)"
+            } else {
+                "left open (--no-fill)"
+            };
+            format!("no G^1 cap at {}: {why}; {closed}", named.join(", "))
+        })
+        .collect()
 }
 
 /// The error for a scheme name without patch output, listing the schemes that have it.

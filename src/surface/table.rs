@@ -559,6 +559,8 @@ impl PatchTable {
             domains: self.domains.clone(),
             pieces: self.pieces.clone(),
             caps,
+            // the construction's notes on holes without a cap are not repeated
+            uncapped: Vec::new(),
         }
     }
 
