@@ -23,133 +23,75 @@ const AHEAD: usize = 16;
 /// A point `F:U:V` of the command line or of a file.
 pub type Point = (u32, f64, f64);
 
-/// The longest text of one number: zmij writes at most 24 bytes (`-1.2345678901234567e-308`).
-const NUM_MAX: usize = 24;
-
-/// One text line being built on the stack: every piece is copied in with copies of a size
-/// known at compile time (the numbers as two overlapping 8- or 16-byte copies), the line then
-/// appended at once. Appending each number to the output as it came (a `memmove` call per
-/// number, 12 a line) took a seventh of `fairsub eval`'s time on 10^6 points.
-struct Line {
-    bytes: [u8; Line::CAP],
-    len: usize,
+/// Appends `x` as the shortest text that reads back to the same `f64` (`NaN`, `inf`, `-inf`
+/// for the non-finite values, which Rust's and Python's float parsers read).
+/// Returns the text's length.
+#[inline]
+fn num(out: &mut Vec<u8>, x: f64) -> usize {
+    let mut buf = zmij::Buffer::new();
+    let text = buf.format(x).as_bytes();
+    out.extend_from_slice(text);
+    text.len()
 }
 
-impl Line {
-    /// Room for the longest line (12 numbers, two integers and the words: 388 bytes) and the
-    /// copies' overshoot.
-    const CAP: usize = 512;
-
-    fn new() -> Self {
-        Line {
-            bytes: [0; Line::CAP],
-            len: 0,
+/// Appends an unsigned integer.
+#[inline]
+fn int(out: &mut Vec<u8>, mut k: u64) {
+    let mut digits = [0u8; 20];
+    let mut i = digits.len();
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (k % 10) as u8;
+        k /= 10;
+        if k == 0 {
+            break;
         }
     }
+    out.extend_from_slice(&digits[i..]);
+}
 
-    /// Appends `text` (at most [`NUM_MAX`] bytes).
-    #[inline(always)]
-    fn short(&mut self, text: &[u8]) {
-        let (at, n) = (self.len, text.len());
-        let to = &mut self.bytes[at..at + 2 * NUM_MAX];
-        if n >= 16 {
-            to[..16].copy_from_slice(&text[..16]);
-            to[n - 16..n].copy_from_slice(&text[n - 16..]);
-        } else if n >= 8 {
-            to[..8].copy_from_slice(&text[..8]);
-            to[n - 8..n].copy_from_slice(&text[n - 8..]);
-        } else {
-            to[..n].copy_from_slice(text);
-        }
-        self.len = at + n;
-    }
-
-    /// Appends a word of the layout.
-    #[inline(always)]
-    fn word<const N: usize>(&mut self, w: &[u8; N]) {
-        self.bytes[self.len..self.len + N].copy_from_slice(w);
-        self.len += N;
-    }
-
-    /// Appends `x` as the shortest text that reads back to the same `f64` (`NaN`, `inf`,
-    /// `-inf` for the non-finite values, which Rust's and Python's float parsers read);
-    /// returns where its text lies.
-    #[inline(always)]
-    fn num(&mut self, x: f64) -> std::ops::Range<usize> {
-        let mut buf = zmij::Buffer::new();
-        let start = self.len;
-        self.short(buf.format(x).as_bytes());
-        start..self.len
-    }
-
-    /// Appends an unsigned integer.
-    #[inline(always)]
-    fn int(&mut self, mut k: u64) {
-        let mut digits = [0u8; 20];
-        let mut i = digits.len();
-        loop {
-            i -= 1;
-            digits[i] = b'0' + (k % 10) as u8;
-            k /= 10;
-            if k == 0 {
-                break;
-            }
-        }
-        self.short(&digits[i..]);
-    }
-
-    /// Appends the text at `range` of the line again.
-    #[inline(always)]
-    fn again(&mut self, range: std::ops::Range<usize>) {
-        let len = self.len;
-        self.bytes.copy_within(range.clone(), len);
-        self.len += range.len();
-    }
-
-    /// Appends ` x y z`.
-    #[inline(always)]
-    fn vec3(&mut self, p: [f64; 3]) {
-        for x in p {
-            self.word(b" ");
-            self.num(x);
-        }
+/// Appends ` x y z`.
+fn vec3(out: &mut Vec<u8>, p: [f64; 3]) {
+    for x in p {
+        out.push(b' ');
+        num(out, x);
     }
 }
 
 /// Appends the text line of one evaluation (with its newline):
 /// `F:U:V patch P at (PU, PV) point X Y Z normal X Y Z gauss G mean M`.
 pub fn line(out: &mut Vec<u8>, e: &Evaluation) {
-    let mut l = Line::new();
-    l.int(u64::from(e.face));
-    l.word(b":");
-    let u = l.num(e.u);
-    l.word(b":");
-    let v = l.num(e.v);
-    l.word(b" patch ");
-    l.int(e.patch as u64);
-    l.word(b" at (");
+    int(out, u64::from(e.face));
+    out.push(b':');
+    let u_start = out.len();
+    num(out, e.u);
+    out.push(b':');
+    let v_len = num(out, e.v);
+    let (u_end, v_start, v_end) = (out.len() - v_len - 1, out.len() - v_len, out.len());
+    out.extend_from_slice(b" patch ");
+    int(out, e.patch as u64);
+    out.extend_from_slice(b" at (");
     // a patch covering its face whole has the face's parameters: their text again
     if e.patch_uv[0].to_bits() == e.u.to_bits() {
-        l.again(u);
+        out.extend_from_within(u_start..u_end);
     } else {
-        l.num(e.patch_uv[0]);
+        num(out, e.patch_uv[0]);
     }
-    l.word(b", ");
+    out.extend_from_slice(b", ");
     if e.patch_uv[1].to_bits() == e.v.to_bits() {
-        l.again(v);
+        out.extend_from_within(v_start..v_end);
     } else {
-        l.num(e.patch_uv[1]);
+        num(out, e.patch_uv[1]);
     }
-    l.word(b") point");
-    l.vec3(e.point);
-    l.word(b" normal");
-    l.vec3(e.normal);
-    l.word(b" gauss ");
-    l.num(e.gauss);
-    l.word(b" mean ");
-    l.num(e.mean);
-    l.word(b"\n");
-    out.extend_from_slice(&l.bytes[..l.len]);
+    out.extend_from_slice(b") point");
+    vec3(out, e.point);
+    out.extend_from_slice(b" normal");
+    vec3(out, e.normal);
+    out.extend_from_slice(b" gauss ");
+    num(out, e.gauss);
+    out.extend_from_slice(b" mean ");
+    num(out, e.mean);
+    out.push(b'\n');
 }
 
 /// One evaluation as `serde_json::to_string_pretty` writes it inside the array (indented one
