@@ -111,8 +111,8 @@ use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_ca
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::crease::adaptive::{
-    beside_holes, cap_feature, cone_halfedge, corner_plane, corner_sides, crease_sides,
-    dart_halfedge, is_plain_boundary, is_special, present_runs,
+    beside_holes, cap_feature, cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge,
+    is_plain_boundary, is_special, present_runs,
 };
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
@@ -339,12 +339,9 @@ fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapD
 /// from its one sharp edge, centred at `x` (the corner rule keeps it), every spoke tangent zero
 /// ([`Fan::Cone`]).
 fn cone_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
-    let Some((sharp, plain)) = cone_halfedge(level, x) else {
+    let Some(sharp) = cone_point(level, x)? else {
         return Ok(None);
     };
-    if !plain {
-        return Err(NoCap::Later);
-    }
     let m = &level.mesh;
     let hs = m.outgoing_halfedges(x);
     let n = hs.len();

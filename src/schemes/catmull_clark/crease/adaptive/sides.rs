@@ -75,6 +75,17 @@ pub(crate) fn cone_halfedge(level: &Level, v: usize) -> Option<(Option<u32>, boo
     }
 }
 
+/// The opening of every cone point's cap provider (Catmull-Clark's and Loop's): `Ok(None)`
+/// when `v` is not a cone point ([`cone_halfedge`]), `Later` while a semi-sharp edge is left
+/// at it, else `Ok(Some(sharp))` with its one infinitely sharp half-edge, if any.
+pub(crate) fn cone_point(level: &Level, v: usize) -> Result<Option<Option<u32>>, NoCap> {
+    match cone_halfedge(level, v) {
+        None => Ok(None),
+        Some((_, false)) => Err(NoCap::Later),
+        Some((sharp, true)) => Ok(Some(sharp)),
+    }
+}
+
 /// Whether the interior vertex `x` has OpenSubdiv hole faces around it, so its G^1 caps are
 /// wedges (one per run of present faces): `Ok(false)` at a boundary vertex or without holes,
 /// `Later` while a semi-sharp feature is left at `x`, `Never` for other features.

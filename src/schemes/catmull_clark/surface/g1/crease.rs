@@ -38,7 +38,7 @@ use crate::host::adaptive::{
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::crease::adaptive::{
-    cone_halfedge, corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge,
+    cone_point, corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge,
     is_plain_boundary,
 };
 use crate::schemes::catmull_clark::dart::dart_masks;
@@ -165,7 +165,7 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
 }
 
 /// The cap of the cone point `x` whose marked cells are `faces` ([`Fan::Cone`]): `Ok(None)`
-/// when `x` is not a cone point ([`cone_halfedge`]), `Later` while a semi-sharp edge is left at
+/// when `x` is not a cone point ([`cone_point`]), `Later` while a semi-sharp edge is left at
 /// `x`, `Never` when its `n` faces are not exactly the cells or not all quads. A closed hole
 /// (no sharp edge) or a dart's fan from its one sharp edge, centred at `x` itself (the corner
 /// rule keeps it), every spoke tangent zero.
@@ -174,12 +174,9 @@ pub(in crate::schemes::catmull_clark::surface) fn cone_cap(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<CapData>, NoCap> {
-    let Some((sharp, plain)) = cone_halfedge(level, x) else {
+    let Some(sharp) = cone_point(level, x)? else {
         return Ok(None);
     };
-    if !plain {
-        return Err(NoCap::Later);
-    }
     let m = &level.mesh;
     let hs = m.outgoing_halfedges(x);
     if faces.len() != hs.len() {
