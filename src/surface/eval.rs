@@ -356,15 +356,17 @@ impl Surface {
     /// outside the face's domain, or a point no patch covers (the hole left open).
     pub fn evaluate(&self, face: u32, u: f64, v: f64) -> Result<Evaluation> {
         let (at, cell, fan) = self.locate(face, u, v)?;
-        let d = at.domain;
+        let maps = self.cells.maps(at);
         let mut index = at.patch as usize;
         let patch = &self.complex.patches[index];
-        let mut q = at.corner_point(cell);
-        if let Some(w) = at.window {
+        let mut q = maps.corner_point(cell);
+        if let Some(w) = maps.window {
             q = w.apply(q);
         }
-        let (dp, normal, patch_uv) = match d.shape {
-            Shape::Quad if d.criss_cross_triangle().is_some() && index + 3 < self.complex.len() => {
+        let (dp, normal, patch_uv) = match at.shape {
+            Shape::Quad
+                if at.criss_cross_triangle().is_some() && index + 3 < self.complex.len() =>
+            {
                 let (k, st, jac) = crisscross::locate(q);
                 index += k;
                 let dp = triangle::derivatives(&self.complex.patches[index], st)?;
@@ -410,7 +412,7 @@ impl Surface {
                 (dp, n, uv)
             }
         };
-        let mut df = chain(&dp, at.chain);
+        let mut df = chain(&dp, maps.chain);
         if let Some(jac) = fan {
             df = chain(&df, jac);
         }
@@ -508,7 +510,7 @@ impl Surface {
             return 0;
         }
         let [x, y] = cell;
-        let d = match at.domain.shape {
+        let d = match at.shape {
             Shape::Quad => [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
                 .iter()
                 .map(|c: &[f64; 2]| (x - c[0]).abs().max((y - c[1]).abs()))
@@ -518,7 +520,7 @@ impl Surface {
         if d <= 0.0 {
             return 0;
         }
-        let dom = at.domain;
+        let dom = at.domain(&self.complex);
         // a pole's cap: its cells are halves, the pole at y = 1 of the cell (halves are not
         // turned), and each ring halves the cap's cell toward it
         let d = if dom.halves != 0 { 1.0 - y } else { d };

@@ -6,17 +6,18 @@
 //! 9 for a cell in thirds; 2 for a cell halved along one axis, a pole's radial rings), stored
 //! contiguously so that the child holding a point is
 //! `first + k` with `k` the child index of [`crate::bezier::domain`]. A regular face covered
-//! by one patch is its root leaf: no descent at all. Each leaf keeps what evaluating there
-//! needs, computed once with the same functions (and so the same rounding) as before: the
-//! patch's domain, the window of a piece, the inverse of the cell's corner map and the
-//! inverse linear part of the map from the patch's parameters to the face's.
+//! by one patch is its root leaf: no descent at all. Each leaf points at what evaluating there
+//! needs ([`LeafMaps`]), computed once with the same functions (and so the same rounding) as
+//! before: the window of a piece, the inverse of the cell's corner map and the inverse linear
+//! part of the map from the patch's parameters to the face's; root cells of one shape and
+//! corner share theirs. (Patch indices stay below 2^31, the flag of a piece's domain.)
 //!
 //! The tree answers exactly as the per-level look-up it replaces: the first domain indexed
 //! for a cell wins, and a cell covered by a patch hides every deeper cell below it (the
 //! descent stops at the shallowest covered cell).
 
 use crate::bezier::complex::PatchComplex;
-use crate::bezier::domain::{Affine, Domain, Shape};
+use crate::bezier::domain::{Affine, Domain, Frame, Shape};
 
 mod frames;
 
@@ -40,13 +41,48 @@ enum Node {
     Frames { set: u32 },
 }
 
-/// A cell covered by a patch (or a piece of one), with its maps precomputed.
+/// A cell covered by a patch (or a piece of one): 16 bytes, its maps in
+/// [`CellTree::maps`] (shared by every leaf of a face's root cell with the same shape and
+/// corner; on a mostly regular net of 100k faces the index was 25 MB of 256-byte leaves, each
+/// with its domain and maps, and most of its build was the fresh memory).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Leaf {
     /// The patch.
     pub patch: u32,
-    /// The domain the patch (or piece) covers.
-    pub domain: Domain,
+    /// Where the domain the leaf covers is kept: the patch's domain in the complex, or
+    /// (with [`PIECE`] set) that of the complex's piece `source & !PIECE`.
+    source: u32,
+    /// Its maps, [`CellTree::maps`]`[maps]`.
+    maps: u32,
+    /// The domain's shape and `rot` (what evaluating reads of it).
+    pub shape: Shape,
+    rot: u8,
+}
+
+/// [`Leaf::source`]'s flag of a piece.
+const PIECE: u32 = 1 << 31;
+
+impl Leaf {
+    /// The domain the leaf covers, kept in `complex` (the complex the tree indexes).
+    pub fn domain(&self, complex: &PatchComplex) -> Domain {
+        if self.source & PIECE != 0 {
+            complex.pieces[(self.source & !PIECE) as usize].domain
+        } else {
+            complex.domains[self.source as usize].expect("an indexed patch has a domain")
+        }
+    }
+
+    /// [`Domain::criss_cross_triangle`] of the leaf's domain.
+    pub fn criss_cross_triangle(&self) -> Option<u8> {
+        (self.shape == Shape::Quad && self.rot >= 4).then_some(self.rot - 4)
+    }
+}
+
+/// A leaf's maps, computed once with the same functions (and so the same rounding) as before:
+/// the window of a piece, the inverse of the cell's corner map and the inverse linear part of
+/// the map from the patch's parameters to the face's.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct LeafMaps {
     /// The map from the cell's frame to the patch's parameters for a piece, else `None`.
     pub window: Option<Affine>,
     /// The cell corner map's origin and inverse linear part ([`Affine::invert`] split up).
@@ -56,16 +92,14 @@ pub(super) struct Leaf {
     pub chain: [[f64; 2]; 2],
 }
 
-impl Leaf {
-    fn new(patch: u32, domain: Domain, window: Option<Affine>) -> Leaf {
+impl LeafMaps {
+    fn new(domain: &Domain, window: Option<Affine>) -> LeafMaps {
         let corner = domain.shape.corner_map(domain.rot);
         let mut patch_map = domain.patch_map();
         if let Some(w) = window {
             patch_map = patch_map.compose(&w.inverse());
         }
-        Leaf {
-            patch,
-            domain,
+        LeafMaps {
             window,
             corner_origin: corner.origin,
             corner_inv: corner.inverse_linear(),
@@ -122,6 +156,11 @@ pub(super) struct CellTree {
     root: Vec<u32>,
     nodes: Vec<Node>,
     leaves: Vec<Leaf>,
+    /// The leaves' maps: the shared maps of root cells ([`CellTree::root_maps`]), then one
+    /// per deeper leaf and piece.
+    maps: Vec<LeafMaps>,
+    /// The index in `maps` of the root cell maps of shape `[shape][rot]`, once computed.
+    root_maps: [[Option<u32>; 8]; 2],
     /// Inverse child maps of quad cells, then of triangle cells.
     quad: [ChildInverse; 4],
     triangle: [ChildInverse; 4],
@@ -158,6 +197,8 @@ impl CellTree {
             root,
             nodes: vec![Node::Empty; total as usize],
             leaves: Vec::with_capacity(complex.len() + complex.pieces.len()),
+            maps: Vec::new(),
+            root_maps: [[None; 8]; 2],
             quad: std::array::from_fn(|k| ChildInverse::of(Shape::Quad.child_map(k as u8))),
             triangle: std::array::from_fn(|k| ChildInverse::of(Shape::Triangle.child_map(k as u8))),
             third: std::array::from_fn(|k| ChildInverse::of(Shape::third_map(k as u8))),
@@ -167,11 +208,12 @@ impl CellTree {
         };
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
-                tree.insert(Leaf::new(i as u32, d, None));
+                tree.insert(i as u32, i as u32, &d, None);
             }
         }
-        for p in &complex.pieces {
-            tree.insert(Leaf::new(p.patch, p.domain, Some(p.window_map())));
+        for (k, p) in complex.pieces.iter().enumerate() {
+            let window = Some(p.window_map());
+            tree.insert(p.patch, k as u32 | PIECE, &p.domain, window);
         }
         for set in &mut tree.frames {
             set.build_grid();
@@ -182,8 +224,9 @@ impl CellTree {
     /// Adds a leaf at its domain's cell (ignored where a shallower cell is covered already or
     /// the same cell was indexed before; the domain of a face or sub-face the net does not
     /// have is never looked up).
-    fn insert(&mut self, leaf: Leaf) {
-        let d = leaf.domain;
+    /// `patch` is the patch, `source` where the domain `d` is kept ([`Leaf::source`]) and
+    /// `window` a piece's window.
+    fn insert(&mut self, patch: u32, source: u32, d: &Domain, window: Option<Affine>) {
         let face = d.face as usize;
         let Some((&lo, &hi)) = self.root.get(face).zip(self.root.get(face + 1)) else {
             return;
@@ -222,10 +265,10 @@ impl CellTree {
                 }
                 // a cell split the other way (dyadic vs in thirds) by an earlier domain:
                 // the first indexed wins, as for a covered cell
-                Node::Split { first, factor } if factor == factor_of(&d, l) => first,
+                Node::Split { first, factor } if factor == factor_of(d, l) => first,
                 Node::Split { .. } => return,
                 Node::Empty => {
-                    let f = factor_of(&d, l);
+                    let f = factor_of(d, l);
                     let first = self.nodes.len() as u32;
                     let count = usize::from(f) * usize::from(f);
                     self.nodes.extend(std::iter::repeat_n(Node::Empty, count));
@@ -236,9 +279,38 @@ impl CellTree {
             at = first as usize + usize::from(d.step(l));
         }
         if !matches!(self.nodes[at], Node::Leaf(_)) {
+            let maps = self.maps_of(d, window);
             self.nodes[at] = Node::Leaf(self.leaves.len() as u32);
-            self.leaves.push(leaf);
+            self.leaves.push(Leaf {
+                patch,
+                source,
+                maps,
+                shape: d.shape,
+                rot: d.rot,
+            });
         }
+    }
+
+    /// The index of the maps of a leaf of domain `d` (and `window`): shared by the root cells
+    /// of one shape and corner without a frame or window, whose maps depend on nothing else.
+    fn maps_of(&mut self, d: &Domain, window: Option<Affine>) -> u32 {
+        let root = d.depth == 0 && d.frame == Frame::NONE && window.is_none() && d.rot < 8;
+        let slot = (d.shape == Shape::Triangle) as usize;
+        if root && let Some(i) = self.root_maps[slot][d.rot as usize] {
+            return i;
+        }
+        let i = self.maps.len() as u32;
+        self.maps.push(LeafMaps::new(d, window));
+        if root {
+            self.root_maps[slot][d.rot as usize] = Some(i);
+        }
+        i
+    }
+
+    /// The maps of `leaf`.
+    #[inline]
+    pub fn maps(&self, leaf: &Leaf) -> &LeafMaps {
+        &self.maps[leaf.maps as usize]
     }
 
     /// The first child of node `at` split at ratio `t` (splitting it when empty); `None` when

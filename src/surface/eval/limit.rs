@@ -116,7 +116,11 @@ pub fn limit_surface_from(
                             {
                                 let k = s.rings_needed(at, cell);
                                 if k > 0 {
-                                    raise(&mut m, element, level(element, at.domain.depth) + k);
+                                    raise(
+                                        &mut m,
+                                        element,
+                                        level(element, at.domain(&s.complex).depth) + k,
+                                    );
                                 }
                             }
                         }
