@@ -398,10 +398,13 @@ pub struct MeshLevel {
 impl MeshLevel {
     /// Level 0 of an input net: every vertex trusted, every face active and untagged.
     pub fn input(mesh: &PolyMesh) -> MeshLevel {
+        // the copy of the mesh beside the cells (both fresh memory, about 1 and 4 ms on a
+        // net of 100k faces)
+        let (mesh_copy, active) = rayon::join(|| mesh.clone(), || input_active_in(mesh));
         MeshLevel {
-            mesh: mesh.clone(),
+            mesh: mesh_copy,
             info: input_vertex_info(mesh.num_vertices()),
-            active: input_active_in(mesh),
+            active,
         }
     }
 }
@@ -452,30 +455,36 @@ pub fn input_vertex_info(n: usize) -> Vec<Info> {
 
 /// The active cells of an input net with `n` faces: every face, untagged.
 pub fn input_active(n: usize) -> Vec<(u32, Tag)> {
-    (0..n as u32)
-        .map(|f| {
-            (
-                f,
-                Tag {
-                    element: None,
-                    sector: 0,
-                    input_face: f,
-                    domain: Domain::UNTRACKED,
-                },
-            )
-        })
-        .collect()
+    (0..n as u32).map(|f| (f, untagged(f))).collect()
+}
+
+/// The tag of input face `f` as a cell of level 0: no element, its domain untracked.
+fn untagged(f: u32) -> Tag {
+    Tag {
+        element: None,
+        sector: 0,
+        input_face: f,
+        domain: Domain::UNTRACKED,
+    }
 }
 
 /// The active cells of an input net: every face, untagged, each covering its whole
 /// [`Domain::face`] (for schemes whose cells lie in input faces and whose `refine_around` tracks
 /// the children's domains).
 pub fn input_active_in(mesh: &PolyMesh) -> Vec<(u32, Tag)> {
-    let mut active = input_active(mesh.num_faces());
-    for (f, tag) in &mut active {
-        tag.domain = Domain::face(*f, mesh.face_size(*f as usize));
-    }
-    active
+    use rayon::prelude::*;
+    // one pass, in parallel: a cell is 160 bytes, and on a net of 100k faces the serial
+    // two passes over fresh memory were 4 ms of the construction's serial start
+    (0..mesh.num_faces() as u32)
+        .into_par_iter()
+        .map(|f| {
+            let tag = Tag {
+                domain: Domain::face(f, mesh.face_size(f as usize)),
+                ..untagged(f)
+            };
+            (f, tag)
+        })
+        .collect()
 }
 
 /// The provenance of a cell with tag `tag` emitted at level `l`: regular at level 0 or without

@@ -163,9 +163,12 @@ impl AdaptiveRules for CcRules<'_> {
         let mut level = Level::input(mesh, self.subd.as_ref());
         // Catmull-Clark splits a triangle into three quads like any n-gon: its domain is the
         // 3-gon's strip of quad sub-faces, not Loop's barycentric triangle
+        // (the two differ on triangles only: no pass over the cells of an all-quad net)
         let base = &mut level.base;
-        for (f, tag) in &mut base.active {
-            tag.domain = Domain::polygon(*f, base.mesh.face_size(*f as usize));
+        if !base.mesh.is_all_quads() {
+            for (f, tag) in &mut base.active {
+                tag.domain = Domain::polygon(*f, base.mesh.face_size(*f as usize));
+            }
         }
         Ok(level)
     }
