@@ -181,7 +181,7 @@ impl AdaptiveRules for CcRules<'_> {
             return false;
         };
         let p = net_patch(level, &net);
-        self.push_regular(level, f, &net, p, prov, to);
+        self.push_regular(level, f, emit::NetRows::Net(&net), p, prov, to);
         true
     }
 

@@ -49,7 +49,8 @@ pub(super) fn emit_all(
     if let Some(t) = &rules.track {
         t.borrow_mut().reserve_regular(level.active.len() + later);
     }
-    let compute = |block: &[(u32, Tag)]| -> Vec<Option<(Net, BezierPatch)>> {
+    let tracked = rules.track.is_some();
+    let compute = |block: &[(u32, Tag)]| -> Vec<Option<(Rows, BezierPatch)>> {
         block
             .par_iter()
             .map(|&(f, _)| {
@@ -58,7 +59,7 @@ pub(super) fn emit_all(
                 }
                 let net = regular_net(level, f as usize)?;
                 let p = net_patch(level, &net);
-                Some((net, p))
+                Some((Rows::of(net, tracked), p))
             })
             .collect()
     };
@@ -77,25 +78,74 @@ pub(super) fn emit_all(
                 let next = &mut next;
                 s.spawn(move |_| *next = Some(compute(b)));
             }
-            for (&(f, tag), built) in block.iter().zip(nets) {
+            for (cell, built) in block.iter().zip(nets) {
+                let f = cell.0;
                 if is_hole(level, f as usize) {
                     continue;
                 }
-                let Some((net, p)) = built else {
-                    marked.push((f, tag));
+                let Some((rows, p)) = built else {
+                    marked.push(*cell);
                     continue;
                 };
                 let to = Sink {
                     curves: &mut *curves,
                     out: &mut *out,
                 };
-                rules.push_regular(level, f, &net, p, adaptive::provenance(l, tag), to);
-                out.set_domain(out.len() - 1, tag.domain);
+                rules.push_regular(
+                    level,
+                    f,
+                    rows.as_ref(),
+                    p,
+                    adaptive::provenance(l, cell.1),
+                    to,
+                );
+                out.set_domain(out.len() - 1, cell.1.domain);
             }
         });
         built = next;
     }
     marked
+}
+
+/// What the pushes of [`emit_all`] keep of a regular cell's net: the 16 point indices of a
+/// grid (64 bytes, where the net holds 16 `(index, weight)` pairs: each block's results are
+/// written by the workers and read by the pushes, and the 256-byte nets were most of that
+/// copying), a ghosted net, or nothing when the table is not tracked.
+enum Rows {
+    Grid([u32; 16]),
+    Ghosted(Box<Net>),
+    Untracked,
+}
+
+impl Rows {
+    fn of(net: Net, tracked: bool) -> Rows {
+        match net {
+            _ if !tracked => Rows::Untracked,
+            Net::Grid(g) => Rows::Grid(g.map(|(i, _)| i)),
+            net => Rows::Ghosted(Box::new(net)),
+        }
+    }
+
+    fn as_ref(&self) -> NetRows<'_> {
+        match self {
+            Rows::Grid(g) => NetRows::Grid(g),
+            Rows::Ghosted(net) => NetRows::Net(net),
+            Rows::Untracked => NetRows::Untracked,
+        }
+    }
+}
+
+/// The rows of a regular patch's B-spline net for the tracker ([`Tracker::regular`]).
+///
+/// [`Tracker::regular`]: super::track::Tracker::regular
+#[derive(Clone, Copy)]
+pub(crate) enum NetRows<'a> {
+    /// A grid: one point per slot, weight 1.
+    Grid(&'a [u32; 16]),
+    /// Any net.
+    Net(&'a Net),
+    /// None kept (the table is not tracked).
+    Untracked,
 }
 
 impl CcRules<'_> {
@@ -106,7 +156,7 @@ impl CcRules<'_> {
         &self,
         level: &Level,
         f: u32,
-        net: &Net,
+        net: NetRows<'_>,
         p: BezierPatch,
         prov: Provenance,
         to: Sink<Vec<(u32, u32)>>,

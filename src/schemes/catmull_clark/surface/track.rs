@@ -217,15 +217,30 @@ impl Tracker {
 
     /// Records the rows of the regular patch of the B-spline net `net` (stencils over the
     /// level's points), pushed as patch `p`.
-    pub(crate) fn regular(&mut self, p: usize, net: &Net) {
+    pub(crate) fn regular(&mut self, p: usize, net: super::emit::NetRows<'_>) {
+        use super::emit::NetRows;
         if !self.next(p) {
             return;
         }
+        let net = match net {
+            NetRows::Grid(g) => {
+                self.patches += 1;
+                self.table.push_level_points(g);
+                return;
+            }
+            NetRows::Net(Net::Grid(g)) => {
+                self.patches += 1;
+                self.table.push_level_points(&g.map(|(i, _)| i));
+                return;
+            }
+            NetRows::Net(net) => net,
+            // a push without rows: the table is broken from here on
+            NetRows::Untracked => {
+                self.broken = true;
+                return;
+            }
+        };
         self.patches += 1;
-        if let Net::Grid(g) = net {
-            self.table.push_level_points(&g.map(|(i, _)| i));
-            return;
-        }
         for r in net.rows() {
             self.scratch.extend_from_slice(r);
             self.table.push_level_row(&mut self.scratch);
