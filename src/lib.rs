@@ -8,7 +8,7 @@
 //! Architecture (`ARCHITECTURE.md` in the repository): a control net ([`mesh::PolyMesh`]) is
 //! refined by a scheme ([`schemes`]) whose rules are written once as stencils ([`stencil`]);
 //! every scheme has one folder under [`schemes`] and one row in the registry
-//! ([`schemes::registry`]), through which the front ends ([`cli`]) find its rules; exact
+//! ([`schemes::registry`](mod@schemes::registry)), through which the front ends ([`cli`]) find its rules; exact
 //! surfaces are [`surface::PatchComplex`]es of [`bezier::BezierPatch`]es, built by the
 //! schemes on the adaptive host ([`host`]) and written by [`io`]. Layers only point down:
 //! core ([`geom`], [`error`], [`stencil`], [`linalg`]) < [`mesh`] < [`bezier`] < [`host`] <

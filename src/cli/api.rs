@@ -143,7 +143,7 @@ pub fn report(words: &[String]) -> Result<String> {
     r.map(|()| out)
 }
 
-/// `fairsub check --json`'s report of a complex (see [`super::check::report_json`]).
+/// `fairsub check --json`'s report of a complex (see `super::check::report_json`).
 pub fn check_json(
     source: &str,
     complex: &PatchComplex,

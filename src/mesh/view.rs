@@ -96,7 +96,7 @@ impl<'a> MeshView<'a> {
 }
 
 /// The outgoing half-edges of a vertex, counter-clockwise; for a boundary vertex starting at its
-/// boundary half-edge (rotating from `h` to `twin(prev(h))`). Built by [`MeshView::outgoing`] or
+/// boundary half-edge (rotating from `h` to `twin(prev(h))`). Built by `MeshView::outgoing` or
 /// [`PolyMesh::outgoing`](super::PolyMesh::outgoing); walks without allocating.
 pub struct Outgoing<'a> {
     view: MeshView<'a>,

@@ -1,7 +1,7 @@
 //! What the rest of fairsub needs to know about a scheme, in one trait per scheme.
 //!
 //! A scheme is named by a [`SchemeId`] (its canonical command-line name, spelled once, in the
-//! [registry](super::registry)) and configured by typed [`Params`]; the two together are a
+//! [registry](mod@super::registry)) and configured by typed [`Params`]; the two together are a
 //! [`Spec`]. Its registry row carries the catalogue text ([`About`]); its [`Descriptor`] says
 //! which typed options it takes ([`ParamKind`]) and hands out its rules:
 //!

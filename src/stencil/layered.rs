@@ -17,7 +17,7 @@
 
 use super::StencilTable;
 
-/// Rows over the stacked points of a stack of refinement levels (see the [module](self)
+/// Rows over the stacked points of a stack of refinement levels (see the module
 /// documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayeredTable {

@@ -26,18 +26,18 @@
 //! coordinates rotated to the centre corner; the Hermite-Coons fill and Loop's fill have the
 //! cell's own corners. Loop's G^1 cap is made of kites, each covering halves of two fan
 //! triangles: a point of a fan triangle is mapped to the kite that holds it by inverting the
-//! kite's bilinear map in the triangle's lattice chart ([`kite`]), and derivatives go through
+//! kite's bilinear map in the triangle's lattice chart (`kite`), and derivatives go through
 //! the inverse function rule (the map is not affine there); `patch` names that kite and
 //! `patch_uv` its parameters. Loop's cap at a boundary vertex covers each fan triangle with one
 //! patch whose bilinear map has a straight corner at the outer edge's midpoint
-//! ([`fan_piece`], likewise inverted; at that one point the derivatives are one-sided limits
+//! (`fan_piece`, likewise inverted; at that one point the derivatives are one-sided limits
 //! taken just inside). Loop's triangles, stored as collapsed bi-4 patches `X(u, v) = T(u (1 -
 //! v), v)`, are evaluated as the triangles `T` they represent (barycentric derivatives, defined at
 //! the collapsed corner too); their `patch_uv` is the stored patch's `(u, v)`. Non-box's
 //! regular cells are covered by the four cubic triangles of their criss-cross (the cell split
 //! by both diagonals, [`Domain::criss_cross`](crate::bezier::domain::Domain::criss_cross)):
 //! the cell is one leaf, and a point is mapped to its triangle's barycentric parameters by
-//! the affine maps of [`crisscross`], then evaluated as Loop's triangles are. `nonbox-4dir`'s
+//! the affine maps of `crisscross`, then evaluated as Loop's triangles are. `nonbox-4dir`'s
 //! triangles are fan triangles of the polygons its complex is built on
 //! ([`FanTriangle`], [`Surface::of_scheme`]): a point is mapped to its polygon first.
 //! A pole's fan triangles (polar bi-2) are collapsed quads whose radial rings are cells

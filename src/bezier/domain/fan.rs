@@ -26,7 +26,7 @@
 //! Every map has a positive Jacobian determinant, so normals and curvatures keep their sign.
 
 /// An input face that is the fan triangle `(corner edge, corner edge + 1, centre)` of a host
-/// face (see the [module](self) documentation).
+/// face (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FanTriangle {
     /// The host face (of the net the patches were built on).

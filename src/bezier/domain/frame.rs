@@ -65,7 +65,7 @@ impl Frame {
 impl Domain {
     /// The cell of quad face `face` that `map` (an orientation-preserving or reversing affine
     /// map, invertible) takes `[0, 1]^2` onto, as a cell of depth 0 with the patch's `(0, 0)`
-    /// at its corner 0 (see the [module](self) documentation). A degenerate map gives an
+    /// at its corner 0 (see the module documentation). A degenerate map gives an
     /// untracked domain.
     pub fn framed(face: u32, map: Affine) -> Domain {
         let det = map.e[0][0] * map.e[1][1] - map.e[1][0] * map.e[0][1];

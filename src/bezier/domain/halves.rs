@@ -36,7 +36,7 @@
 use super::{Affine, Domain, Shape};
 
 impl Shape {
-    /// The map from half `k` (see the [module](self) documentation) of a quad cell to the
+    /// The map from half `k` (see the module documentation) of a quad cell to the
     /// cell.
     pub fn half_map(k: u8) -> Affine {
         match k & 3 {
@@ -57,7 +57,7 @@ impl Shape {
 
 impl Domain {
     /// The whole fan triangle `face` at a pole as its collapsed quad (see the
-    /// [module](self) documentation): the root of its halves.
+    /// module documentation): the root of its halves.
     pub fn pole_triangle(face: u32) -> Domain {
         Domain::polygon(face, 4)
     }
@@ -67,7 +67,7 @@ impl Domain {
         (1..=64).contains(&l) && (self.halves >> (l - 1)) & 1 == 1
     }
 
-    /// Half `k` of this quad cell (see the [module](self) documentation), with the patch's
+    /// Half `k` of this quad cell (see the module documentation), with the patch's
     /// `(0, 0)` at corner 0. The n-gon itself, triangle cells and untracked domains give an
     /// untracked domain.
     pub fn half_child(self, k: u8) -> Domain {

@@ -15,7 +15,7 @@ use super::{Affine, Domain, Shape};
 
 impl Shape {
     /// The map from child `k` of a quad cell split at `t` to the cell (see the
-    /// [module](self) documentation).
+    /// module documentation).
     pub fn ratio_map(t: f64, k: u8) -> Affine {
         let (x, y) = ratio_box(t, k);
         Affine::new([x[0], y[0]], [x[1] - x[0], 0.0], [0.0, y[1] - y[0]])

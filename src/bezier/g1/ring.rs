@@ -173,7 +173,7 @@ fn crease_fit(hole: &Hole, t0: Point, proj: impl Fn(Point) -> Point) -> Result<[
 }
 
 /// [`chart_tangents`] of a crease's fan: `T0 = plane[0]` (the crease's exact derivative),
-/// `T1` fitted in the plane ([`crease_fit`]).
+/// `T1` fitted in the plane (`crease_fit`).
 ///
 /// # Errors
 /// As [`chart_tangents`].
@@ -228,7 +228,7 @@ pub fn data_tangents(hole: &Hole) -> Result<[Point; 2]> {
 }
 
 /// [`data_tangents`] of a crease's fan: `T0` the data's first plane vector (the crease's
-/// derivative tabulated like the positions'), `T1` fitted given it ([`crease_fit`]).
+/// derivative tabulated like the positions'), `T1` fitted given it (`crease_fit`).
 pub fn crease_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
     crease_fit(hole, plane[0], |x| x)
 }

@@ -45,7 +45,7 @@
 //!
 //! The fills meet at the limit point with tangents towards the first inner coefficients, so
 //! they are tangent-continuous there exactly when those are coplanar (always for the
-//! characteristic nets). They are written only where the G^1 cap of [`g1`] cannot be built
+//! characteristic nets). They are written only where the G^1 cap of `g1` cannot be built
 //! (with a note): the cap reads its hole data off the fill's outer layers and closes the hole
 //! G^1 in the element's limit tangent plane (quad-layout caps for TPS, adjustable TPS and PGS
 //! elements; PolBS's collapsed fill is kept as its cap once checked to be G^1). `--no-fill`

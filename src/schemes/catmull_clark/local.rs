@@ -45,7 +45,7 @@ pub fn local_sparse(n: usize) -> Result<SparseLocal> {
 /// step, the exact bi-3 patches of the level-1 cells `(1, 0), (1, 1), (0, 1)` of every sector),
 /// sector by sector, and lambda. Each patch is parameterised like its child face (Catmull-Clark's
 /// child face `h` starts at the vertex point of parent corner `h`), i.e. the chart cells of
-/// [`characteristic_cells`] turned by one, two and three quarter turns (exact permutations).
+/// `characteristic_cells` turned by one, two and three quarter turns (exact permutations).
 /// The one builder of this ring: analysis certifies it, guided subdivision samples through it.
 pub fn characteristic_ring(n: usize) -> Result<(Vec<BezierPatch>, f64)> {
     let (cells, lambda) = characteristic_cells(n)?;

@@ -10,7 +10,7 @@
 //!
 //! Sharp features (crease and corner sharpness, semi-sharp values decaying level by level,
 //! uniform and Chaikin creasing, the boundary options, holes, non-manifold features) follow
-//! OpenSubdiv's rules, written once in [`crease`] for Catmull-Clark and Loop as plans that
+//! OpenSubdiv's rules, written once in `crease` for Catmull-Clark and Loop as plans that
 //! combine this scheme's smooth masks with crease and corner masks; the smooth-triangle option
 //! changes the smooth edge mask next to triangles. Only the vertices and edges that need them
 //! take those rules: the plain rules stay the hot loop.
@@ -18,7 +18,7 @@
 //! Child vertex order: one vertex point per parent vertex, then one edge point per parent edge
 //! (edge index order), then one face point per parent face. Child face `h` is the quad of parent
 //! corner (half-edge) `h`: (vertex point, edge point of the outgoing edge, face point, edge point
-//! of the incoming edge), so child faces inherit the parent orientation (see [`child`]).
+//! of the incoming edge), so child faces inherit the parent orientation (see `child`).
 //!
 //! # One source of truth, two ways to apply it
 //!

@@ -27,7 +27,7 @@
 //! # Caps
 //!
 //! After `rings` levels every extraordinary element whose hole is surrounded by patches of the
-//! last level gets the G^1 cap of [`g1`] (the module documents its conditions, free parameters
+//! last level gets the G^1 cap of `g1` (the module documents its conditions, free parameters
 //! and the extra levels where two holes still touch; at a plain boundary vertex the open fan).
 //! The others (vertices on creases or with sharpness, and elements whose holes do not
 //! separate) are closed by the Hermite-Coons fill below, or left open (`--no-fill`).
@@ -136,7 +136,7 @@ pub fn capped_complex(
 pub struct CcRules<'a> {
     /// The cap builder, if any.
     pub caps: Option<&'a dyn CapBuilder>,
-    /// Rings and fill (the G^1 caps of [`g1`] come after `opts.rings` levels when filling).
+    /// Rings and fill (the G^1 caps of `g1` come after `opts.rings` levels when filling).
     pub opts: ComplexOptions,
     /// OpenSubdiv's options when the net's sharp features are honoured ([`sharp`]); `None`
     /// refines every net with the plain rules (the cap schemes on a net without features).
@@ -148,7 +148,7 @@ pub struct CcRules<'a> {
 impl AdaptiveRules for CcRules<'_> {
     type Level = Level;
     /// The faces emitted at the level and their patches: the fill reads the edge curves it
-    /// shares with them off these patches ([`fill`]), so a level that needs no fill records
+    /// shares with them off these patches (`fill`), so a level that needs no fill records
     /// nothing per patch but the pair.
     type Curves = Vec<(u32, u32)>;
 
@@ -186,7 +186,7 @@ impl AdaptiveRules for CcRules<'_> {
     }
 
     /// The regular patches (nets and Bezier conversion) are computed in parallel
-    /// ([`emit::emit_all`]): the complex and table of the per-cell [`AdaptiveRules::emit`].
+    /// (`emit::emit_all`): the complex and table of the per-cell [`AdaptiveRules::emit`].
     fn emit_all(
         &self,
         level: &Level,
@@ -238,7 +238,7 @@ impl AdaptiveRules for CcRules<'_> {
         }
     }
 
-    /// [`is_last_cap_level`]: holes that touch or wait for semi-sharp features to be spent.
+    /// `is_last_cap_level`: holes that touch or wait for semi-sharp features to be spent.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
         let waiting = || g1::waiting(level, marked);
         is_last_cap_level((l, rings, self.opts.fill), level, waiting)

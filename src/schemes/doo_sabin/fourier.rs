@@ -121,10 +121,10 @@ pub(crate) fn refine_net_with(
     Ok(child)
 }
 
-/// One DS^CC step of the net alone ([`refine_net_with`] with DS^CC's rules).
+/// One DS^CC step of the net alone (`refine_net_with` with DS^CC's rules).
 ///
 /// # Errors
-/// As [`super::refine_dual_with`].
+/// As `super::refine_dual_with`.
 pub fn refine_cc_net(mesh: &PolyMesh) -> Result<PolyMesh> {
     let mut rules = super::RuleCache::new(super::DooSabinCc::weights);
     refine_net_with(

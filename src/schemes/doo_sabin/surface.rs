@@ -66,7 +66,7 @@
 //! n-gon is interior, touches no other n-gon, and its outer neighbours are ring vertices), the
 //! fill patches of the n-gon's corners are replaced by the G^1 cap of [`crate::bezier::g1`],
 //! centred at the facet's limit point with the limit tangent plane: conditions, free
-//! parameters and the extra levels that separate touching holes in [`g1`]. Only the other
+//! parameters and the extra levels that separate touching holes in `g1`. Only the other
 //! elements keep the centroid fill above.
 //!
 //! # Face domains (evaluation)
@@ -476,7 +476,7 @@ fn trusted_patch(level: &Level, v: usize) -> Option<BezierPatch> {
 }
 
 /// The quarters of the faces around the input vertex `v` that its patch, the
-/// last of `out`, covers ([`crate::bezier::domain`]): [`vertex_quarter_pieces`] with the input
+/// last of `out`, covers ([`crate::bezier::domain`]): `vertex_quarter_pieces` with the input
 /// faces' own cells. The regular patches of `bi2-mixed` are laid out the same way.
 pub fn input_vertex_pieces(m: &PolyMesh, v: usize, out: &mut PatchComplex) {
     let patch = (out.len() - 1) as u32;

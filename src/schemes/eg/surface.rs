@@ -1,5 +1,5 @@
 //! EG subdivision surfaces of whole meshes: bi-3 patches on regular faces, an EG cap of `K` bi-4
-//! rings at every extraordinary vertex with published rules, and the G^1 cap of [`g1`] (or the
+//! rings at every extraordinary vertex with published rules, and the G^1 cap of `g1` (or the
 //! documented fill).
 //!
 //! Built on Catmull-Clark's adaptive loop ([`crate::schemes::catmull_clark::surface`]): every extraordinary vertex whose c-net is clean
@@ -32,9 +32,9 @@
 //!   differences) of the net.
 //!
 //! The fill is C^1 to the last ring and C^0 between its sectors (not G^1 at the spokes for
-//! `n != 4`). It is written only where the G^1 cap of [`g1`] (read off the fill's outer
+//! `n != 4`). It is written only where the G^1 cap of `g1` (read off the fill's outer
 //! layers, in the limit tangent plane) cannot be built, with a note; QAS+^3's bi-3 rings get
-//! the split G^1 cap of [`g1`] (2 x 2 pieces per sector), their C^0 Coons fill ([`fill`]) only
+//! the split G^1 cap of `g1` (2 x 2 pieces per sector), their C^0 Coons fill (`fill`) only
 //! where that cannot be built. `fairsub check` reports the measured defects. `--no-fill`
 //! leaves the hole open.
 //!

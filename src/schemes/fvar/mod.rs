@@ -10,12 +10,12 @@
 //!   each face side gets the midpoint of its two values;
 //! - a vertex point of a vertex whose value topology matches takes the vertex's own stencil
 //!   (sharpness, boundary and transition rules included), each parent vertex read as its value
-//!   in a face around the vertex; otherwise each value refines by its [`level::Tag`]: it stays
+//!   in a face around the vertex; otherwise each value refines by its `level::Tag`: it stays
 //!   (a corner), follows the crease rule `3/4 u + 1/8 (u_a + u_b)` along its span's fvar
 //!   boundary, or blends the two while the semi-sharp features inside its span decay;
 //! - with `all` everything is linear (values stay, midpoints, centroids).
 //!
-//! The face-varying topology of each level ([`level::FvLevel`]) is derived from that level's
+//! The face-varying topology of each level (`level::FvLevel`) is derived from that level's
 //! values. The rules are those of OpenSubdiv 3.5's `Vtr::FVarLevel`, `Vtr::FVarRefinement` and
 //! `Far::PrimvarRefiner` (`docs/opensubdiv-rules.md` section 9); `tests/osd_peer.rs` checks
 //! them value by value.
@@ -54,7 +54,7 @@ pub struct FvarRules {
 /// The face-varying data of `child`, one step of `parent` (whose data is `uv`) under `rules`;
 /// `stencils` are the step's vertex stencils (row `i` gives child vertex `i`). `base`: the
 /// parent is the net as read (its values are grouped per vertex as OpenSubdiv groups the base
-/// level's, [`FvLevel::new`]); refined parents carry the values this function gave them.
+/// level's, `FvLevel::new`); refined parents carry the values this function gave them.
 pub fn refine(
     parent: &PolyMesh,
     uv: &FaceVarying,

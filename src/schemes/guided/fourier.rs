@@ -29,7 +29,7 @@
 //!
 //! A Bloch guide is determined by its sector 0, and each relation of the guide space reads
 //! only neighbouring sectors, `g^(+-1) = zeta^(+-w) g^0`. So block `w` costs O(1): for each
-//! basis vector, sector 0 of its guide ([`bloch_sector`]: the central and free coefficients,
+//! basis vector, sector 0 of its guide (`bloch_sector`: the central and free coefficients,
 //! (4) as `(zeta^w + 2 c) g^0_12 = r_0` (the minimum-norm solution, 0, at the singular
 //! frequency, like the pseudo-inverse of the dense path), Appendix A at ray 0 for the acute
 //! side of sector 0 and at ray 1, `zeta^w` times ray 0's values, for its grave side, all by

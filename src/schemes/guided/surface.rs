@@ -32,7 +32,7 @@
 //! ([`crate::bezier::g1`], `Layout::Split(m)`) cover `[0, 2^-K]^2` from the centre as an
 //! `m x m` grid of pieces in the same way (piece `(a, b)` on `[a/m, (a+1)/m] x [b/m, (b+1)/m]`
 //! of the cap's square, `(0, 0)` at the centre), so the bi-3 caps' pieces are thirds too
-//! ([`piece_cell`]).
+//! (`piece_cell`).
 
 use super::cap::CapTables;
 use super::chi::ChiKind;

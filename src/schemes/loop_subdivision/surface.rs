@@ -8,7 +8,7 @@
 //! with the triangles around their corners; regular children are emitted as ring `l` at level
 //! `l`, the rest refined again; after `K` levels the hole around an interior extraordinary
 //! vertex is closed by a G^1 cap of kites, the hole at an extraordinary boundary vertex by an
-//! open fan cap ([`g1`]: C^1 to the last ring, centred at Loop's limit point with its limit
+//! open fan cap (`g1`: C^1 to the last ring, centred at Loop's limit point with its limit
 //! tangent plane), other holes by the C^0 fill below.
 //!
 //! # Storage as tensor-product patches
@@ -61,7 +61,7 @@
 //! # The Hermite fill (fairsub's own, documented construction)
 //!
 //! The holes without a G^1 cap (a centre or boundary with a sharp feature, holes whose ring is
-//! not complete after the extra levels, see [`g1`]; extraordinary boundary vertices until
+//! not complete after the extra levels, see `g1`; extraordinary boundary vertices until
 //! 2026-12-04) are filled (`fill.rs`).
 //! Each triangle left after the last ring becomes one quartic triangle. Its three edge curves
 //! are defined once per edge and shared by both triangles at the edge, so the fill is C^0: an

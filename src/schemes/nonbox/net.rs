@@ -82,7 +82,7 @@ impl FcvNet {
     }
 
     /// The layout mesh of this net: the mesh's vertices, then the FCVs as extra vertices (one per
-    /// face, in face order) that no face uses. See the [module](self) documentation.
+    /// face, in face order) that no face uses. See the module documentation.
     pub fn to_layout_mesh(&self) -> PolyMesh {
         PolyMesh::from_refinement(
             self.points(),

@@ -32,7 +32,7 @@
 //!
 //! The fill is C^0 to the last ring and between fill patches, not G^1 across its edges; with
 //! `K` rings it covers a region of size about `lambda^K`. It closes only the holes that get no
-//! G^1 cap ([`g1`]: read off the ring triangles across the hole's edges, centred at the limit
+//! G^1 cap (`g1`: read off the ring triangles across the hole's edges, centred at the limit
 //! point in the limit tangent plane; up to two more levels while holes touch).
 //!
 //! # Evaluation domains

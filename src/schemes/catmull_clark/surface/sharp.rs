@@ -2,7 +2,7 @@
 //! corners, semi-sharp ones, the boundary options and holes, as OpenSubdiv's adaptive patches
 //! treat them.
 //!
-//! The levels carry their sharpness as [`crate::schemes::catmull_clark::crease::adaptive`]
+//! The levels carry their sharpness as `crate::schemes::catmull_clark::crease::adaptive`
 //! describes (shared with Loop). A quad is one exact bi-3 patch when every corner is regular
 //! *with respect to the features*: all its edges and itself of sharpness 0 or infinite, quads
 //! around it, and the sector of the face between infinitely sharp edges (or boundary edges)
@@ -25,7 +25,7 @@
 //! one per level (or by Chaikin's rule) until they are spent and the faces become regular; an
 //! extraordinary vertex whose features were all semi-sharp then gets its G^1 cap, a crease
 //! vertex one G^1 cap per side other than two quads, an edge-only boundary corner a one-piece
-//! cap on the boundary curve ([`super::g1`]); what is left after the
+//! cap on the boundary curve (`super::g1`); what is left after the
 //! rings is closed by the Hermite-Coons fill (C^0; the derivatives at sharp vertices are the
 //! chords of the limit points, crease edges between crease or corner vertices the exact
 //! B-spline). Hole faces (the net's and those that boundary `none` makes)

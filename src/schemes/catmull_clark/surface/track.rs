@@ -105,7 +105,7 @@ pub fn bspline_patch(net: &[Point]) -> BezierPatch {
 /// without its loops over the zeros of the matrix. Writes in place, for a table re-applied into
 /// an existing complex.
 ///
-/// Four sums at a time run side by side, one term of each per step ([`Kernel`]), so that the
+/// Four sums at a time run side by side, one term of each per step (`Kernel`), so that the
 /// CPU overlaps independent chains of additions instead of waiting on one (summed one
 /// coefficient after another, this was the largest single cost of building cube7's complex;
 /// side by side, cube7's patch-table build is 1.5 to 3 ms faster; all 16 at once, with

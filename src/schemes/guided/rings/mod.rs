@@ -434,7 +434,7 @@ impl RingTables {
 }
 
 /// The limit point's stencil on the c-net at valence `n` (the first row of [`Guided::fit`]),
-/// in time linear in `n` from the fit's frequency-0 part ([`fit::limit_row`]) for the bi-5
+/// in time linear in `n` from the fit's frequency-0 part (`fit::limit_row`) for the bi-5
 /// guide in the paper's coordinates.
 ///
 /// # Errors

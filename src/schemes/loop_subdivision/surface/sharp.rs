@@ -1,6 +1,6 @@
 //! Loop patch output with OpenSubdiv's sharp features: infinitely sharp creases and corners,
 //! semi-sharp ones, the boundary options and holes, as OpenSubdiv's adaptive Loop patches treat
-//! them, on the levels of [`crate::schemes::catmull_clark::crease::adaptive`] (shared with
+//! them, on the levels of `crate::schemes::catmull_clark::crease::adaptive` (shared with
 //! Catmull-Clark).
 //!
 //! # Regular triangles
