@@ -111,7 +111,8 @@ pub fn bspline_patch(net: &[Point]) -> BezierPatch {
 /// side by side, cube7's patch-table build is 1.5 to 3 ms faster; all 16 at once, with
 /// accumulators beyond the registers, was slower). Each sum still adds its own terms in its
 /// own order; a coefficient of fewer terms starts with terms of weight 0, which leave its sum
-/// at the `+0.0` it starts from.
+/// at the `+0.0` it starts from (for finite net points: the padding reads the stencil's first
+/// slot, and an infinite point there gives NaN where the sum alone gave an infinity).
 ///
 /// # Panics
 /// When `cps` does not hold 16 points.
