@@ -364,9 +364,7 @@ impl Surface {
             q = w.apply(q);
         }
         let (dp, normal, patch_uv) = match at.shape {
-            Shape::Quad
-                if at.criss_cross_triangle().is_some() && index + 3 < self.complex.len() =>
-            {
+            Shape::Quad if at.criss_cross.is_some() && index + 3 < self.complex.len() => {
                 let (k, st, jac) = crisscross::locate(q);
                 index += k;
                 let dp = triangle::derivatives(&self.complex.patches[index], st)?;

@@ -181,7 +181,8 @@ impl AdaptiveRules for CcRules<'_> {
             return false;
         };
         let p = net_patch(level, &net);
-        self.push_regular(level, f, emit::NetRows::Net(&net), p, prov, to);
+        let rows = emit::NetRows::of(net, self.track.is_some());
+        self.push_regular(level, f, rows, p, prov, to);
         true
     }
 

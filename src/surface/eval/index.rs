@@ -54,9 +54,9 @@ pub(super) struct Leaf {
     source: u32,
     /// Its maps, [`CellTree::maps`]`[maps]`.
     maps: u32,
-    /// The domain's shape and `rot` (what evaluating reads of it).
+    /// The domain's shape and [`Domain::criss_cross_triangle`] (what evaluating reads of it).
     pub shape: Shape,
-    rot: u8,
+    pub criss_cross: Option<u8>,
 }
 
 /// [`Leaf::source`]'s flag of a piece.
@@ -70,11 +70,6 @@ impl Leaf {
         } else {
             complex.domains[self.source as usize].expect("an indexed patch has a domain")
         }
-    }
-
-    /// [`Domain::criss_cross_triangle`] of the leaf's domain.
-    pub fn criss_cross_triangle(&self) -> Option<u8> {
-        (self.shape == Shape::Quad && self.rot >= 4).then_some(self.rot - 4)
     }
 }
 
@@ -206,6 +201,10 @@ impl CellTree {
             halves: std::array::from_fn(|k| ChildInverse::of(Shape::half_map(k as u8))),
             frames: Vec::new(),
         };
+        debug_assert!(
+            complex.len() < PIECE as usize,
+            "patch indices below the piece flag"
+        );
         for i in 0..complex.len() {
             if let Some(d) = complex.domain(i) {
                 tree.insert(i as u32, i as u32, &d, None);
@@ -286,7 +285,7 @@ impl CellTree {
                 source,
                 maps,
                 shape: d.shape,
-                rot: d.rot,
+                criss_cross: d.criss_cross_triangle(),
             });
         }
     }

@@ -50,7 +50,7 @@ pub(super) fn emit_all(
         t.borrow_mut().reserve_regular(level.active.len() + later);
     }
     let tracked = rules.track.is_some();
-    let compute = |block: &[(u32, Tag)]| -> Vec<Option<(Rows, BezierPatch)>> {
+    let compute = |block: &[(u32, Tag)]| -> Vec<Option<(NetRows, BezierPatch)>> {
         block
             .par_iter()
             .map(|&(f, _)| {
@@ -59,7 +59,7 @@ pub(super) fn emit_all(
                 }
                 let net = regular_net(level, f as usize)?;
                 let p = net_patch(level, &net);
-                Some((Rows::of(net, tracked), p))
+                Some((NetRows::of(net, tracked), p))
             })
             .collect()
     };
@@ -91,14 +91,7 @@ pub(super) fn emit_all(
                     curves: &mut *curves,
                     out: &mut *out,
                 };
-                rules.push_regular(
-                    level,
-                    f,
-                    rows.as_ref(),
-                    p,
-                    adaptive::provenance(l, cell.1),
-                    to,
-                );
+                rules.push_regular(level, f, rows, p, adaptive::provenance(l, cell.1), to);
                 out.set_domain(out.len() - 1, cell.1.domain);
             }
         });
@@ -107,56 +100,43 @@ pub(super) fn emit_all(
     marked
 }
 
-/// What the pushes of [`emit_all`] keep of a regular cell's net: the 16 point indices of a
-/// grid (64 bytes, where the net holds 16 `(index, weight)` pairs: each block's results are
-/// written by the workers and read by the pushes, and the 256-byte nets were most of that
-/// copying), a ghosted net, or nothing when the table is not tracked.
-enum Rows {
-    Grid([u32; 16]),
-    Ghosted(Box<Net>),
-    Untracked,
-}
-
-impl Rows {
-    fn of(net: Net, tracked: bool) -> Rows {
-        match net {
-            _ if !tracked => Rows::Untracked,
-            Net::Grid(g) => Rows::Grid(g.map(|(i, _)| i)),
-            net => Rows::Ghosted(Box::new(net)),
-        }
-    }
-
-    fn as_ref(&self) -> NetRows<'_> {
-        match self {
-            Rows::Grid(g) => NetRows::Grid(g),
-            Rows::Ghosted(net) => NetRows::Net(net),
-            Rows::Untracked => NetRows::Untracked,
-        }
-    }
-}
-
-/// The rows of a regular patch's B-spline net for the tracker ([`Tracker::regular`]).
+/// What a pushed regular patch keeps of its B-spline net for the tracker
+/// ([`Tracker::regular`]): the 16 point indices of a grid (64 bytes, where the net holds 16
+/// `(index, weight)` pairs: each block of [`emit_all`] is written by the workers and read by
+/// the pushes, and the 256-byte nets were most of that copying), a ghosted net, or nothing
+/// when the table is not tracked.
 ///
 /// [`Tracker::regular`]: super::track::Tracker::regular
-#[derive(Clone, Copy)]
-pub(crate) enum NetRows<'a> {
+pub(crate) enum NetRows {
     /// A grid: one point per slot, weight 1.
-    Grid(&'a [u32; 16]),
-    /// Any net.
-    Net(&'a Net),
+    Grid([u32; 16]),
+    /// A net with ghost points.
+    Ghosted(Box<Net>),
     /// None kept (the table is not tracked).
     Untracked,
 }
 
+impl NetRows {
+    /// What to keep of `net` (nothing unless `tracked`).
+    pub(super) fn of(net: Net, tracked: bool) -> NetRows {
+        match net {
+            _ if !tracked => NetRows::Untracked,
+            Net::Grid(g) => NetRows::Grid(g.map(|(i, _)| i)),
+            net => NetRows::Ghosted(Box::new(net)),
+        }
+    }
+}
+
 impl CcRules<'_> {
-    /// Pushes the regular patch `p` of cell `f` (its B-spline net `net`): tracked, its edge
+    /// Pushes the regular patch `p` of cell `f` (`net`: what the tracker keeps of its B-spline
+    /// net): tracked, its edge
     /// curves recorded for the fill, its sharp sides marked. The one path of
     /// [`AdaptiveRules::emit`](crate::host::adaptive::AdaptiveRules::emit) and [`AdaptiveRules::emit_all`].
     pub(super) fn push_regular(
         &self,
         level: &Level,
         f: u32,
-        net: NetRows<'_>,
+        net: NetRows,
         p: BezierPatch,
         prov: Provenance,
         to: Sink<Vec<(u32, u32)>>,

@@ -216,9 +216,9 @@ impl Tracker {
         self.table.reserve_rows(16 * n, 16 * n);
     }
 
-    /// Records the rows of the regular patch of the B-spline net `net` (stencils over the
-    /// level's points), pushed as patch `p`.
-    pub(crate) fn regular(&mut self, p: usize, net: super::emit::NetRows<'_>) {
+    /// Records the rows of the regular patch pushed as patch `p`, whose B-spline net (stencils
+    /// over the level's points) the push kept as `net`.
+    pub(crate) fn regular(&mut self, p: usize, net: super::emit::NetRows) {
         use super::emit::NetRows;
         if !self.next(p) {
             return;
@@ -226,15 +226,10 @@ impl Tracker {
         let net = match net {
             NetRows::Grid(g) => {
                 self.patches += 1;
-                self.table.push_level_points(g);
+                self.table.push_level_points(&g);
                 return;
             }
-            NetRows::Net(Net::Grid(g)) => {
-                self.patches += 1;
-                self.table.push_level_points(&g.map(|(i, _)| i));
-                return;
-            }
-            NetRows::Net(net) => net,
+            NetRows::Ghosted(net) => net,
             // a push without rows: the table is broken from here on
             NetRows::Untracked => {
                 self.broken = true;
