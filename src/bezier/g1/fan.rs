@@ -156,4 +156,14 @@ impl Layout {
             _ => 3,
         }
     }
+
+    /// The fewest sectors of a hole of this layout and kind: [`Layout::min_sectors`], but 2
+    /// for a closed hole of quad sectors (one patch or split), the half-plane cap of a
+    /// valence-2 vertex ([`super`], "Two sectors").
+    pub fn min_sectors_of(self, fan: Fan) -> usize {
+        match (self, fan) {
+            (Layout::Quad | Layout::Split(_), Fan::Closed) => 2,
+            _ => self.min_sectors(),
+        }
+    }
 }

@@ -3,7 +3,8 @@
 //!
 //! # Conventions
 //!
-//! A hole has `n >= 3` sectors numbered counterclockwise around the normal `T0 x T1` of the
+//! A hole has `n >= 3` sectors (2 for a closed hole of quad sectors, the half-plane cap of
+//! [`super`], "Two sectors") numbered counterclockwise around the normal `T0 x T1` of the
 //! given tangent plane. Sector `s` lies between spoke `s` and spoke `s + 1` (indices mod `n`);
 //! spoke `s` starts at the centre `C` with the derivative
 //! `t_s = cos(2 pi s / n) T0 + sin(2 pi s / n) T1` (per unit of the cap's parameter) and ends at
@@ -217,6 +218,8 @@ impl Hole {
             (true, Some(1)) => 1,
             (true, _) if matches!(self.kind, Fan::Crease | Fan::Corner(_) | Fan::Wedge(_)) => 1,
             (true, _) => 2,
+            // two quad (or split) sectors: the half-plane cap of a valence-2 vertex
+            (false, Some(k)) if self.kind == Fan::Closed && k >= 2 && k.is_multiple_of(2) => 2,
             _ => 3,
         };
         if n < least {

@@ -3,6 +3,7 @@
 //! ([`CapMap::apply`]), and exposed as a matrix ([`CapMap::matrix`]) so that a stencil table can
 //! express every cap coefficient in the ring's coefficients.
 
+use super::centre::{centre_unknowns, is_half_plane};
 use super::hole::{Conversion, Degrees, Fan, Hole, Layout};
 use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_energy};
 use crate::bezier::BezierPatch;
@@ -184,10 +185,10 @@ impl CapMap {
         fan: Fan,
     ) -> Result<CapMap> {
         let fan = fan.on(layout);
-        if n < layout.min_sectors() {
+        if n < layout.min_sectors_of(fan) {
             return Err(Error::InvalidArgument(format!(
                 "a G^1 cap needs at least {} sectors, got {n}",
-                layout.min_sectors()
+                layout.min_sectors_of(fan)
             )));
         }
         let conv = Conversion::new(n, layout, degrees);
@@ -213,7 +214,7 @@ impl CapMap {
         }
         let jet = centre == Centre::QuadraticJet;
         let ends = (conv.kappa, conv.w1);
-        let nu = nx + if jet { 3 } else { 0 };
+        let nu = nx + centre_unknowns(n, fan, jet);
         let cond = conditions((n, fan), d, pm, ends, jet);
         // Unknowns set directly by a data row (the C^1 layers, the centre, the spoke tangents)
         // are eliminated exactly: their value is the mean of their defining rows (all equal for
@@ -534,8 +535,9 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
     check_cap_valence(n)?;
     let (layout, degrees) = hole.layout()?;
     let fan = hole.fan();
-    // a cone point has no tangent plane, let alone a quadratic expansion to share
-    let requested = if fan.is_cone() {
+    // a cone point has no tangent plane, let alone a quadratic expansion to share; two
+    // sectors always take the half-plane jet, which the plain plane names
+    let requested = if fan.is_cone() || is_half_plane(n, fan.on(layout)) {
         Centre::TangentPlane
     } else {
         opts.centre

@@ -258,6 +258,47 @@
 //! bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles); a dart's fan bi-4 for
 //! quads, bi-6 for triangles (bi-5 at `n = 3`). Not a published construction.
 //!
+//! # Two sectors (valence 2)
+//!
+//! A closed hole of two quad sectors (an interior vertex of valence 2: Catmull-Clark's after a
+//! pentagon's first step, non-box's pillow of two cells) has opposite spoke tangents,
+//! `t_1 = -t_0 = -T0` (`w(0) = 2 cos(pi) = -2`), so each sector's corner at the centre is
+//! singular and the spokes fix no tangent plane: the conditions above leave the normal at the
+//! centre to the fairness functional. The centre condition of two sectors is instead the
+//! **half-plane jet** (`centre::half_plane_rows`, always on for `n = 2`, whatever [`Centre`]):
+//! each sector is `q o phi_s + O(3)` for the half-plane charts
+//! `phi_s(u, v) = u e_s + v e_(s+1) + (w'(0) / 4) (u^2 e_s + v^2 e_(s+1)) + k u v f_s`,
+//! `e_0 = -e_1 = T0`, `f_0 = -f_1 = T1`, `k = 1`, and a quadratic `q` whose one free vector is
+//! the coefficient `H` of `x^2 / 2` (the other Hessian terms are of third order through the
+//! chart). The charts satisfy the spoke relation with `w(0) = -2` and its first derivative at
+//! the centre, and `det D phi_s = k (u + v) + O(2) > 0` on the sector, so every sector's normal
+//! tends to `T0 x T1` from every direction: the cap is G^1 at the centre. Given the relation,
+//! the rows are also necessary for that: the relation leaves `d_uu P_0` and `d_uv P_0` free at
+//! the centre, and sector 0's normal there is
+//! `u T0 x (d_uu + d_uv) P_0 + v T0 x (d_uv + d_vv) P_0`, along the plane's normal for every
+//! direction only if `(d_uv + d_vv) P_0` lies in the plane with a positive `T1` part; a linear
+//! condition fixes that part (here `k T1 - (w'(0) / 2) T0`) and leaves `H`.
+//!
+//! `T0` is the least squares fit of the two spokes' chart derivatives (`(s_0 - s_1) / 2`),
+//! `T1` the half-difference of the two sectors' corners, projected into the plane
+//! (`phi_0(1, 1) = k T1`; [`ring::chart_tangents`]); a provider gives the plane (Catmull-Clark:
+//! the eigen tangents `e_0 - e_1`, `f_0 - f_1`, non-box: the spoke ends' and FCVs' differences).
+//! Measured certificates (test `two_sector_certificates`): bi-3 6.0, bi-4 1.2, **bi-5
+//! 8.6e-14** (13 free parameters per coordinate), for the split layouts bi-4 1.1e-2 (`m = 2`)
+//! and 1.4e-3 (`m = 3`), bi-5 9.9e-13 and 5.3e-12: the cap of two sectors is bi-5 on every
+//! quad layout. Loop's triangle fans and the other fans keep at least 3 sectors.
+//!
+//! Since `phi_s` is singular at the centre (`|phi_s| ~ u^2` along the diagonal), the cubic
+//! terms of the cap are of order `|x|^(3/2)` in the chart there, and the cap's curvature grows
+//! without bound towards the centre (measured by `check` on the split-edge cube at 3 rings,
+//! Catmull-Clark: Gauss curvature up to 4.7e8 in the cap, 1.9e2 in the last ring). The
+//! schemes' own limits are no better at valence 2: Catmull-Clark's local matrix on `v, e_i,
+//! f_i` has the double subdominant eigenvalue 1/4 (modes `e_0 - e_1`, `f_0 - f_1`) and a
+//! symmetric eigenvalue -1/4 of the same modulus, so its limit has no tangent plane there (the
+//! ring normals oscillate by up to 0.18 rad at every scale) and its ring curvature grows
+//! (Gauss curvature up to 2.6e6 in ring 8). The cap is still G^1 at every join and at the
+//! centre, with `T0 x T1` the plane of the two subdominant modes.
+//!
 //! # Data that are not enough
 //!
 //! The cap needs value and first cross derivative of a ring that is C^1 in the layout's chart
@@ -267,6 +308,7 @@
 //! PolBS's own collapsed bi-2 cap is G^1 there (see `schemes::bi2::surface`). Triangle
 //! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
+mod centre;
 mod fan;
 pub mod hole;
 mod map;
@@ -276,6 +318,8 @@ mod split_tests;
 mod system;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod two_tests;
 
 pub use hole::{CornerAngle, Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
 pub use map::{

@@ -121,9 +121,24 @@ pub fn chart_tangents(hole: &Hole, normal: Point) -> Result<[Point; 2]> {
 /// `(3 e_s - f_s) / 2` (triangle layouts) mapped by `proj` (see the [module](self)
 /// documentation), the valence and the largest `|proj(e_s)|`.
 fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2], usize, f64)> {
-    let (spokes, n, size) = spoke_derivatives(hole, proj)?;
+    let (spokes, n, size) = spoke_derivatives(hole, &proj)?;
     let mut t = [[0.0; 3]; 2];
-    if hole.is_open() {
+    if super::centre::is_half_plane(n, hole.fan()) {
+        // two sectors: the spokes are opposite, `t_1 = -T0`, and say nothing across them;
+        // `T1` is fitted to the sectors' corners, `phi_0(1, 1) = k T1` in the half-plane
+        // chart (`centre::half_plane_rows`)
+        let q = hole.to_quad_layout()?;
+        let m = hole.layout()?.0.pieces();
+        let corner = |s: usize| {
+            *q.hole.sectors[s][m - 1]
+                .boundary
+                .last()
+                .unwrap_or(&hole.centre)
+        };
+        t[0] = scale(sub(spokes[0], spokes[1]), 0.5);
+        let across = proj(scale(sub(corner(0), corner(1)), 0.5));
+        t[1] = scale(across, 1.0 / super::centre::HALF_PLANE_TWIST);
+    } else if hole.is_open() {
         // least squares over the n + 1 spokes of the half-turn (cos and sin are not
         // orthogonal there; a dart's full turn counts its sharp spoke twice): the 2 x 2
         // normal equations
@@ -161,7 +176,7 @@ fn crease_fit(hole: &Hole, t0: Point, proj: impl Fn(Point) -> Point) -> Result<[
         // chart) leave the centre along the crease, `t_1 = T1 = -T0`
         return Ok([t0, scale(t0, -1.0)]);
     }
-    let (spokes, n, _) = spoke_derivatives(hole, proj)?;
+    let (spokes, n, _) = spoke_derivatives(hole, &proj)?;
     let step = super::system::turn(n, hole.fan()) / n as f64;
     let (mut ss, mut r) = (0.0, [0.0; 3]);
     for (s, ts) in spokes.iter().enumerate() {
@@ -191,7 +206,7 @@ pub fn crease_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> {
 /// [module](self) documentation) mapped by `proj`, the valence and the largest `|proj(e_s)|`.
 fn spoke_derivatives(
     hole: &Hole,
-    proj: impl Fn(Point) -> Point,
+    proj: &impl Fn(Point) -> Point,
 ) -> Result<(Vec<Point>, usize, f64)> {
     let (layout, _) = hole.layout()?;
     let q = hole.to_quad_layout()?;

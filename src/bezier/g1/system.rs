@@ -3,6 +3,7 @@
 //! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
 //! fairness energy. All rows are scalar and the same for x, y, z.
 
+use super::centre::{half_plane_rows, is_half_plane, jet_rows};
 use super::hole::{CornerAngle, Fan};
 use nalgebra::DMatrix;
 
@@ -256,7 +257,11 @@ pub(crate) fn conditions(
             f.push(Vec::new());
         }
     }
-    if jet {
+    if is_half_plane(n, fan) {
+        let (je, jf) = half_plane_rows(n, fan, d, m, (kappa, w1));
+        e.extend(je);
+        f.extend(jf);
+    } else if jet {
         let (je, jf) = jet_rows(n, fan, d, m, (kappa, w1));
         e.extend(je);
         f.extend(jf);
@@ -584,59 +589,4 @@ pub(crate) fn dense(rows: &[Row], cols: usize) -> DMatrix<f64> {
         }
     }
     m
-}
-
-/// The centre's quadratic jet: every cap patch's second derivatives at the centre are those of
-/// one quadratic `q` composed with the planar sector maps `phi_s`, whose 2-jets are
-/// `phi_s(u, v) = u e_s + v e_(s+1) + k u v (e_s + e_(s+1))` (spokes straight to second order),
-/// `k = w'(0) / (2 (1 + c))`, the symmetric solution of the spoke relation's `u`-derivative at the
-/// centre for the planar map. With `H` the Hessian of `q` on the tangent plane, three vectors
-/// `H00 = H(T0, T0)`, `H01 = H(T0, T1)`, `H11 = H(T1, T1)` (extra unknowns `n (d + 1)^2 + 0..3`):
-/// `d_uu P_s(0,0) = H(t_s, t_s)`, `d_uv P_s(0,0) = k (t_s + t_(s+1)) + H(t_s, t_(s+1))`. These
-/// satisfy that derivative of the relation identically (the quadratic part cancels because
-/// `t_(s+1) + t_(s-1) = 2 c t_s`), so the cap has one quadratic expansion at the centre:
-/// curvature continuous there.
-pub(crate) fn jet_rows(
-    n: usize,
-    fan: Fan,
-    d: usize,
-    m: usize,
-    (kappa, w1): (f64, f64),
-) -> (Vec<Row>, Vec<Row>) {
-    let c = spoke_angle(n, fan).cos();
-    // the centre piece of a split sector sees the sector's second derivatives times 1 / m^2
-    let sc = 1.0 / (m * m) as f64;
-    // w'(0) = 2 (w1 + kappa / 2) - 4 c
-    let k = (-4.0 * c + kappa + 2.0 * w1) / (2.0 * (1.0 + c)) * sc;
-    let df = d as f64;
-    let h0 = n * m * m * (d + 1) * (d + 1);
-    let th = |s: usize| spoke_angle_at(n, fan, s);
-    let (mut e, mut f) = (Vec::new(), Vec::new());
-    for s0 in 0..n {
-        let s = piece(m, s0, 0, 0);
-        let (a, b) = (th(s0), th(s0 + 1));
-        let (ca, sa, cb, sb) = (a.cos(), a.sin(), b.cos(), b.sin());
-        // d(d-1)(b20 - 2 b10 + b00) - H(t_s, t_s) = 0
-        e.push(vec![
-            (cidx(d, s, 2, 0), df * (df - 1.0)),
-            (cidx(d, s, 1, 0), -2.0 * df * (df - 1.0)),
-            (cidx(d, s, 0, 0), df * (df - 1.0)),
-            (h0, -ca * ca * sc),
-            (h0 + 1, -2.0 * ca * sa * sc),
-            (h0 + 2, -sa * sa * sc),
-        ]);
-        f.push(Vec::new());
-        // d^2 (b11 - b10 - b01 + b00) - H(t_s, t_(s+1)) = k (t_s + t_(s+1))
-        e.push(vec![
-            (cidx(d, s, 1, 1), df * df),
-            (cidx(d, s, 1, 0), -df * df),
-            (cidx(d, s, 0, 1), -df * df),
-            (cidx(d, s, 0, 0), df * df),
-            (h0, -ca * cb * sc),
-            (h0 + 1, -(ca * sb + sa * cb) * sc),
-            (h0 + 2, -sa * sb * sc),
-        ]);
-        f.push(vec![(1, k * (ca + cb)), (2, k * (sa + sb))]);
-    }
-    (e, f)
 }

@@ -30,7 +30,14 @@ pub(crate) fn random_split_hole(n: usize, d: usize, m: usize, kappa: f64, rng: &
 }
 
 /// A random hole of kind `fan` whose data satisfy the compatibility conditions.
-fn random_hole(n: usize, fan: Fan, d: usize, m: usize, kappa: f64, rng: &mut Lcg) -> Hole {
+pub(crate) fn random_hole(
+    n: usize,
+    fan: Fan,
+    d: usize,
+    m: usize,
+    kappa: f64,
+    rng: &mut Lcg,
+) -> Hole {
     let qd = QuadData { d, m };
     let g = compatibility(n, fan, d, m, (kappa, 0.0));
     let gm = dense(
@@ -580,7 +587,13 @@ fn corner_sectors_are_certified_with_both_sharp_spokes_pinned() {
 /// Asserts that cap patches `s` (its side `v = 0`) and `s - 1` (its side `u = 0`) meet at
 /// parameter `u` of spoke `s` C^0 (to 1e-11 of `size`) and G^1 (normals within 1e-9 rad where
 /// both are defined).
-fn assert_spoke_g1(cap: &[crate::bezier::BezierPatch], s: usize, u: f64, size: f64, what: &str) {
+pub(crate) fn assert_spoke_g1(
+    cap: &[crate::bezier::BezierPatch],
+    s: usize,
+    u: f64,
+    size: f64,
+    what: &str,
+) {
     let (p, q) = (cap[s].derivatives(u, 0.0), cap[s - 1].derivatives(0.0, u));
     assert!(
         norm(sub(p.p, q.p)) < 1e-11 * size,
