@@ -225,10 +225,11 @@ fn caps_far_from_the_origin_stay_g1_as_the_hole_shrinks() {
     }
 }
 
-/// A hole no G^1 cap closes is named in a note: `nonbox-4dir` reads the octahedron as a pillow
-/// of two quads whose four corners have valence 2 (no cap below 3 sectors: the C^0 fill, 0.11
-/// rad), and `check` would otherwise show only `cap|cap` defects. Nets whose holes are all
-/// capped get no such note.
+/// A hole no G^1 cap closes is named in a note (`check` would otherwise show only `cap|cap`
+/// defects): a vertex of more quads than a cap takes ([`fairsub::bezier::g1::MAX_CAP_VALENCE`])
+/// keeps the C^0 fill and is named with the reason. Nets whose holes are all capped get no such
+/// note, the octahedron under `nonbox-4dir` (a pillow of two quads, four corners of valence 2)
+/// among them since the half-plane caps.
 #[test]
 fn holes_without_a_cap_are_named_in_a_note() {
     let notes = |scheme: &str, net: &PolyMesh| {
@@ -246,20 +247,84 @@ fn holes_without_a_cap_are_named_in_a_note() {
             .filter(|n| n.starts_with("no G^1 cap"))
             .collect::<Vec<_>>()
     };
-    let oct = notes("nonbox-4dir", &gallery::octahedron());
-    assert_eq!(oct.len(), 1, "{oct:?}");
-    assert!(oct[0].contains("a hole of 2 sectors"), "{oct:?}");
-    for v in 0..4 {
-        assert!(oct[0].contains(&format!("vertex {v}")), "{oct:?}");
-    }
+    let n = fairsub::bezier::g1::MAX_CAP_VALENCE + 1;
+    let big = notes("catmull-clark", &gallery::cnet(n, CnetShape::Convex, 2));
+    assert_eq!(big.len(), 1, "{big:?}");
+    assert!(
+        big[0].contains("vertex 0") && big[0].contains(&format!("valence {n}")),
+        "{big:?}"
+    );
     for (scheme, net) in [
         ("catmull-clark", gallery::cube()),
         ("nonbox-4dir", gallery::tetrahedron()),
+        ("nonbox-4dir", gallery::octahedron()),
+        ("catmull-clark", gallery::split_edge_cube()),
         ("qas-plus-bi3", gallery::cnet(5, CnetShape::Saddle, 3)),
         ("loop", gallery::icosahedron()),
     ] {
         let n = notes(scheme, &net);
         assert!(n.is_empty(), "{scheme}: {n:?}");
+    }
+}
+
+/// Valence-2 vertices get the half-plane cap (two bi-5 patches, [`fairsub::bezier::g1`], "Two
+/// sectors") under every quad scheme that reaches them: Catmull-Clark and, on its rings, EG,
+/// QAS+ and guided subdivision (the split-edge cube), non-box (the octahedron read as a pillow
+/// by `nonbox-4dir`, and the split-edge cube). G^1 below 1e-8 rad at every join, C^1 between
+/// the last ring and the cap (non-box: in the cells' chart, see `nonbox_caps`), closed; Catmull-Clark's cap is centred at the eigen limit
+/// `(4 v + 4 sum e + sum f) / 14`, the same point at 3 and 8 rings (the rings converge to it),
+/// not at the level's vertex (OpenSubdiv's valence-2 limit mask).
+#[test]
+fn valence_two_vertices_get_half_plane_caps() {
+    let cube = gallery::split_edge_cube();
+    // the README's pictures read the same net from docs/nets
+    let file = fairsub::io::read_mesh(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/nets/split-edge-cube.obj"
+    )))
+    .expect("docs/nets/split-edge-cube.obj")
+    .mesh;
+    assert_eq!(file.positions(), cube.positions());
+    assert!(file.faces().eq(cube.faces()), "the file's faces");
+    let oct = gallery::octahedron();
+    for (scheme, name, net) in [
+        ("catmull-clark", "split-edge cube", &cube),
+        ("eg", "split-edge cube", &cube),
+        ("qas-plus", "split-edge cube", &cube),
+        ("guided-bi5", "split-edge cube", &cube),
+        ("nonbox", "split-edge cube", &cube),
+        ("nonbox-4dir", "octahedron", &oct),
+    ] {
+        let mut centres = Vec::new();
+        for rings in [3, 8] {
+            let c = build(scheme, net, rings);
+            // non-box's caps join the ring C^1 in the cells' chart, not in the patches'
+            // parameters (`nonbox_caps`)
+            let c1 = (!scheme.starts_with("nonbox")).then_some(1e-10);
+            let r = assert_g1(scheme, name, &c, c1);
+            assert_eq!(r.open_sides, 0, "{scheme} {name}");
+            let pairs: Vec<_> = c.caps.iter().filter(|s| s.hole.valence() == 2).collect();
+            let want = if name == "octahedron" { 4 } else { 1 };
+            assert_eq!(
+                pairs.len(),
+                want,
+                "{scheme} {name} {rings}: two-sector caps"
+            );
+            for step in &pairs {
+                assert_eq!(step.count, 2, "{scheme} {name}");
+                let p = &c.patches[step.first as usize];
+                assert_eq!((p.deg_u, p.deg_v), (5, 5), "{scheme} {name}");
+            }
+            centres.push(pairs[0].hole.centre);
+            print_curvature(scheme, name, &c);
+        }
+        if scheme != "nonbox" && scheme != "nonbox-4dir" {
+            let d = fairsub::geom::norm(fairsub::geom::sub(centres[0], centres[1]));
+            assert!(
+                d < 1e-14,
+                "{scheme}: centre moved by {d:e} from 3 to 8 rings"
+            );
+        }
     }
 }
 

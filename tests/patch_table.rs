@@ -80,32 +80,13 @@ fn every_scheme_reapplies_to_moved_points() {
                 continue;
             };
             let what = format!("{} on {name}", e.name);
-            let table = match PatchTable::build(&spec, &mesh, opts) {
+            let table = match assert_reapplies(&spec, &mesh, opts, &base.complex, &what) {
                 Ok(t) => t,
                 Err(err) => {
-                    failures.push(format!("{what}: {err}"));
+                    failures.push(err);
                     continue;
                 }
             };
-            assert_eq!(table.num_sources(), mesh.num_vertices(), "{what}");
-            // at the net's own points: the complex itself
-            let again = table.apply(mesh.positions()).expect("apply");
-            let d0 = deviation(&what, &again, &base.complex);
-            assert!(d0 < 1e-12, "{what}: at the net's points {d0:e}");
-            for (seed, size) in [(7u64, 0.1), (11, 0.3)] {
-                let pts = probe::moved_points(mesh.positions(), size, seed);
-                let mut m = mesh.clone();
-                m.set_positions(pts.clone());
-                let truth = fairsub::surface::build(&spec, &m, opts, &mut |_| {})
-                    .unwrap_or_else(|err| panic!("{what} moved: {err}"));
-                let got = table.apply(&pts).expect("apply to moved points");
-                let d = deviation(&what, &got, &truth.complex);
-                assert!(d < 1e-12, "{what}: moved by {size}: deviation {d:e}");
-                // into the complex at the net's points, its storage reused: the same bits
-                let mut reused = again.clone();
-                table.apply_into(&pts, &mut reused).expect("apply_into");
-                assert_same(&what, &reused, &got);
-            }
             caps += table.caps().len();
             tested += 1;
         }
@@ -119,6 +100,67 @@ fn every_scheme_reapplies_to_moved_points() {
     // of more quads than a cap takes, `cli_writes_the_table_the_library_builds`).
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert_eq!(summary.len(), registry().names_with(|c| c.patches).len());
+}
+
+/// Builds the table of `spec` on `mesh` and asserts that it reproduces `base` (the complex
+/// of `mesh`) and, applied to moved points, the complex built from them (1e-12); `Err` when
+/// the table cannot be built.
+fn assert_reapplies(
+    spec: &fairsub::schemes::Spec,
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    base: &PatchComplex,
+    what: &str,
+) -> Result<PatchTable, String> {
+    let table = PatchTable::build(spec, mesh, opts).map_err(|err| format!("{what}: {err}"))?;
+    assert_eq!(table.num_sources(), mesh.num_vertices(), "{what}");
+    // at the net's own points: the complex itself
+    let again = table.apply(mesh.positions()).expect("apply");
+    let d0 = deviation(what, &again, base);
+    assert!(d0 < 1e-12, "{what}: at the net's points {d0:e}");
+    for (seed, size) in [(7u64, 0.1), (11, 0.3)] {
+        let pts = probe::moved_points(mesh.positions(), size, seed);
+        let mut m = mesh.clone();
+        m.set_positions(pts.clone());
+        let truth = fairsub::surface::build(spec, &m, opts, &mut |_| {})
+            .unwrap_or_else(|err| panic!("{what} moved: {err}"));
+        let got = table.apply(&pts).expect("apply to moved points");
+        let d = deviation(what, &got, &truth.complex);
+        assert!(d < 1e-12, "{what}: moved by {size}: deviation {d:e}");
+        // into the complex at the net's points, its storage reused: the same bits
+        let mut reused = again.clone();
+        table.apply_into(&pts, &mut reused).expect("apply_into");
+        assert_same(what, &reused, &got);
+    }
+    Ok(table)
+}
+
+/// The half-plane caps of valence-2 vertices are re-applied like every other cap: the
+/// split-edge cube under Catmull-Clark (and EG, guided subdivision on its rings) and non-box,
+/// the octahedron under `nonbox-4dir`.
+#[test]
+fn two_sector_caps_reapply_to_moved_points() {
+    let opts = ComplexOptions {
+        rings: 3,
+        fill: true,
+    };
+    let cube = fairsub::gallery::split_edge_cube();
+    let oct = net("octahedron");
+    for (scheme, mesh) in [
+        ("catmull-clark", &cube),
+        ("eg", &cube),
+        ("guided-bi5", &cube),
+        ("nonbox", &cube),
+        ("nonbox-4dir", &oct),
+    ] {
+        let spec = registry().lookup(scheme).expect("registered");
+        let base = fairsub::surface::build(&spec, mesh, opts, &mut |_| {}).expect("complex");
+        let what = format!("{scheme} (valence 2)");
+        let table = assert_reapplies(&spec, mesh, opts, &base.complex, &what).unwrap();
+        let pairs = base.complex.caps.iter().filter(|c| c.hole.valence() == 2);
+        assert!(pairs.count() > 0, "{what}: no two-sector cap");
+        assert!(!table.caps().is_empty(), "{what}");
+    }
 }
 
 #[test]

@@ -349,6 +349,19 @@ pub fn fan_centre(
     f0: u32,
     min_open: usize,
 ) -> std::result::Result<(u32, usize, bool), NoCap> {
+    fan_centre_from(m, info, element, f0, (min_open, 3))
+}
+
+/// [`fan_centre`] with the fewest sectors of an open and of a closed fan: `(min_open, 2)`
+/// for the providers that close a valence-2 vertex with the half-plane cap of two quad
+/// sectors ([`crate::bezier::g1`], "Two sectors").
+pub fn fan_centre_from(
+    m: &PolyMesh,
+    info: &[Info],
+    element: Element,
+    f0: u32,
+    (min_open, min_closed): (usize, usize),
+) -> std::result::Result<(u32, usize, bool), NoCap> {
     let x = m
         .face(f0 as usize)
         .iter()
@@ -358,7 +371,7 @@ pub fn fan_centre(
     let n = m.valence(x as usize);
     let open = m.is_boundary_vertex(x as usize);
     let sectors = if open { n - 1 } else { n };
-    if sectors < if open { min_open } else { 3 } {
+    if sectors < if open { min_open } else { min_closed } {
         return Err(NoCap::Never);
     }
     Ok((x, sectors, open))

@@ -180,6 +180,30 @@ pub fn tetrahedron() -> PolyMesh {
     PolyMesh::new(p, &f).expect("tetrahedron")
 }
 
+/// The cube with one top edge split by a vertex pushed outwards to `(0, -1.3, 1.3)`: two
+/// pentagons, whose first Catmull-Clark step leaves that vertex with valence 2, the quad
+/// schemes' valence-2 case (a half-plane G^1 cap, [`crate::bezier::g1`], "Two sectors"). Not
+/// in the gallery's [`crate::gallery::all`]: the dual schemes refuse an interior vertex of
+/// valence 2 (refine once first), and the gallery is every scheme's test bed.
+pub fn split_edge_cube() -> PolyMesh {
+    let mut p = Vec::with_capacity(9);
+    for z in [-1.0, 1.0] {
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            p.push([x, y, z]);
+        }
+    }
+    p.push([0.0, -1.3, 1.3]);
+    let f: [&[usize]; 6] = [
+        &[0, 3, 2, 1],
+        &[4, 8, 5, 6, 7],
+        &[0, 1, 5, 8, 4],
+        &[1, 2, 6, 5],
+        &[2, 3, 7, 6],
+        &[3, 0, 4, 7],
+    ];
+    PolyMesh::new(p, &f).expect("split-edge cube")
+}
+
 /// The regular octahedron (8 triangles, valence 4).
 pub fn octahedron() -> PolyMesh {
     let p = vec![

@@ -58,8 +58,9 @@ fn uncapped_notes(complex: &PatchComplex, fill: bool) -> Vec<String> {
             elements.push(*e);
         }
     }
-    // holes of fewer than 3 sectors (a valence-2 vertex, as the corners of a pillow of two
-    // quads): no provider builds them a hole, so they are found here, by their fill's patches
+    // holes of fewer than 3 sectors that no provider builds a hole for (the quad-layout
+    // providers close two sectors with the half-plane cap): found here, by their fill's
+    // patches
     let capped: HashSet<Element> = complex
         .caps
         .iter()

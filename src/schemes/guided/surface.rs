@@ -127,6 +127,25 @@ impl GuidedCaps {
 
 impl CapBuilder for GuidedCaps {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
+        if n < 3 {
+            // a valence-2 vertex: no guide (its Fourier modes need n >= 3); Catmull-Clark's
+            // rings and their half-plane G^1 cap, as EG and QAS+ do
+            if self.opts.fallback == Fallback::Error {
+                return Err(Error::UnsupportedValence {
+                    valence: n,
+                    msg: format!(
+                        "{} has valence {n}: guided subdivision starts at valence 3; use --fallback {}",
+                        describe(element),
+                        ids::CATMULL_CLARK
+                    ),
+                });
+            }
+            self.notes.note(format!(
+                "{} (valence {n}) is below guided subdivision's valences 3..{MAX_VALENCE}: Catmull-Clark rings and cap there",
+                describe(element)
+            ));
+            return Ok(false);
+        }
         if n == 4 || n > MAX_VALENCE {
             if n > MAX_VALENCE && self.opts.fallback == Fallback::Error {
                 return Err(Error::UnsupportedValence {

@@ -23,6 +23,29 @@
 //!   coefficients minimise the fairness functional `F_4`. Degree: the lowest certified, bi-4
 //!   for odd `n`, bi-5 for even `n != 4` (bi-4 at `n = 4`, where the cap is the regular case).
 //!
+//! # Valence 2
+//!
+//! An interior vertex of two quads (a pentagon's vertex after the first step, a pillow's
+//! corners) is closed by the half-plane cap of two bi-5 patches ([`crate::bezier::g1`], "Two
+//! sectors"). Its data are those above; its centre and plane come from the local matrix on
+//! `v`, `e_0, e_1`, `f_0, f_1` (this 1-ring is invariant at valence 2: the new face points,
+//! edge points and vertex use only its points; every edge at `v` lies on both faces). In the
+//! antisymmetric modes `e_0 - e_1` and `f_0 - f_1` the step is `1/4` times the identity: a
+//! double subdominant eigenvalue 1/4, both differences left eigenvectors, and they span the
+//! cap's plane (`cap_plane`; Halstead's masks, which take `cos(2 pi i / n)` and
+//! `cos(pi / n)`, vanish at `n = 2`). On the means `v, (e_0 + e_1) / 2, (f_0 + f_1) / 2` the
+//! step is `[1, 6, 1; 3, 4, 1; 2, 4, 2] / 8`, eigenvalues 1, 1/8 and -1/4, the left
+//! eigenvector of 1 being `(4 v + 4 (e_0 + e_1) + f_0 + f_1) / 14`: the general mask
+//! `(n^2 v + 4 sum e + sum f) / (n (n + 5))` at `n = 2`, the point the rings converge to and
+//! the cap's centre (`cap_centre`). The limit stencil of [`LimitStencils`] keeps the vertex
+//! itself there, as OpenSubdiv's does (it treats valence 2 as a corner), 5e-5 off at 6 rings
+//! of the split-edge cube. The eigenvalue -1/4 has the subdominant modulus, so the limit has no
+//! tangent plane at a valence-2 vertex: the ring normals oscillate by up to 0.18 rad at every
+//! scale (measured with `eval` on [`crate::gallery::split_edge_cube`] from `1e-2` to `1e-6` of
+//! a face). The cap is nevertheless G^1 at every join and at its centre (`check`: 2.0e-13 rad
+//! at 3 rings, 2.4e-11 at 6), C^1 to the last ring, in the plane of the two subdominant modes.
+//! EG, QAS+ and guided subdivision run Catmull-Clark's rings at valence 2 and get this cap.
+//!
 //! # Extraordinary boundary vertices: open fans
 //!
 //! A plain boundary vertex `x` of `k >= 3` quads (no sharpness of its own, no sharp edge
@@ -70,12 +93,12 @@ use crate::bezier::g1::ring::{quad_edge_side, segment_from_ring};
 use crate::bezier::g1::{Hole, Segment};
 use crate::bezier::{BezierPatch, Side};
 use crate::host::adaptive::{
-    CapData, NoCap, QuadSector, Tag, caps_waiting, fan_centre, g1_cap_elements, quad_hole_segments,
-    quad_sectors_around, quad_sectors_open,
+    CapData, NoCap, QuadSector, Tag, caps_waiting, fan_centre_from, g1_cap_elements,
+    quad_hole_segments, quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
-use crate::stencil::linear_weights;
+use crate::stencil::{Stencil, linear_weights};
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
@@ -160,6 +183,70 @@ fn segment_weights(side: Side, range: [f64; 2]) -> &'static [Vec<(u32, f64)>] {
     &all[2 * side.index() + usize::from(range[0] > range[1])]
 }
 
+/// Whether `x` is an interior vertex of exactly two faces, both quads: the centre of a
+/// half-plane cap ([`crate::bezier::g1`], "Two sectors").
+fn two_quads(m: &PolyMesh, x: usize) -> Option<[u32; 2]> {
+    if m.is_boundary_vertex(x) {
+        return None;
+    }
+    match m.outgoing_halfedges(x)[..] {
+        [a, b]
+            if [a, b]
+                .iter()
+                .all(|&h| m.face_size(m.he_face(h) as usize) == 4) =>
+        {
+            Some([a, b])
+        }
+        _ => None,
+    }
+}
+
+/// The centre of `x`'s cap: its limit point ([`LimitStencils`]), except at an interior vertex
+/// of two quads, whose limit stencil is the vertex itself (as OpenSubdiv's, which treats it as a
+/// corner) while the rings converge to the eigen limit `(4 v + 4 (e_0 + e_1) + f_0 + f_1) / 14`:
+/// the left eigenvector of eigenvalue 1 of the local matrix on `v, e_i, f_i`, which `n^2 v + 4
+/// sum e + sum f` over `n (n + 5)` continues to `n = 2` (derivation in the module
+/// documentation, "Valence 2").
+fn cap_centre(limits: &LimitStencils<'_>, m: &PolyMesh, x: usize) -> Stencil {
+    match two_quads(m, x) {
+        Some(hs) => {
+            let mut s = Stencil::new();
+            s.add(x, 4.0 / 14.0);
+            for h in hs {
+                s.add(m.he_to(h) as usize, 4.0 / 14.0)
+                    .add(opposite(m, h), 1.0 / 14.0);
+            }
+            s.merged()
+        }
+        None => limits.stencil(x),
+    }
+}
+
+/// The corner of the face of `x`'s outgoing half-edge `h` opposite `x` (a quad's).
+fn opposite(m: &PolyMesh, h: u32) -> usize {
+    m.he_from(m.he_next(m.he_next(h))) as usize
+}
+
+/// The two vectors that span the plane of `x`'s cap: the limit tangents
+/// ([`CatmullClark::tangent_stencils`]), except at an interior vertex of two quads, where
+/// Halstead's masks vanish: there `e_0 - e_1` (along the spokes) and `f_0 - f_1` (across
+/// them, towards sector 0), the two left eigenvectors of the double eigenvalue 1/4 (module
+/// documentation, "Valence 2").
+fn cap_plane(m: &PolyMesh, x: usize) -> Option<(Stencil, Stencil)> {
+    match two_quads(m, x) {
+        Some([a, b]) => {
+            let mut along = Stencil::new();
+            along
+                .add(m.he_to(a) as usize, 1.0)
+                .add(m.he_to(b) as usize, -1.0);
+            let mut across = Stencil::new();
+            across.add(opposite(m, a), 1.0).add(opposite(m, b), -1.0);
+            Some((along, across))
+        }
+        None => CatmullClark::tangent_stencils(m, x),
+    }
+}
+
 /// The hole of one element: its centre vertex and the sectors in counter-clockwise order with
 /// the marked face (and tag) of each, or why there is none.
 fn hole_of(
@@ -172,8 +259,8 @@ fn hole_of(
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let m = &level.mesh;
     let pos = m.positions();
-    let centre = limits.limit(x);
-    let (t1, t2) = CatmullClark::tangent_stencils(m, x).ok_or(NoCap::Never)?;
+    let centre = cap_centre(limits, m, x).apply(pos);
+    let (t1, t2) = cap_plane(m, x).ok_or(NoCap::Never)?;
     let plane = [t1.apply(pos), t2.apply(pos)];
     let hole = if open {
         Hole::untangented_open(centre, sectors)
@@ -197,8 +284,8 @@ pub(super) fn hole_rows(
     let (x, quads, _, _) = hole_sectors(level, element, faces).ok()?;
     let sectors =
         quad_hole_segments(&quads, |he, from| segment_rows(level, he, from, patch_rows)).ok()?;
-    let (t1, t2) = CatmullClark::tangent_stencils(&level.mesh, x)?;
-    let mut rows = vec![limits.stencil(x), t1, t2]
+    let (t1, t2) = cap_plane(&level.mesh, x)?;
+    let mut rows = vec![cap_centre(limits, &level.mesh, x), t1, t2]
         .into_iter()
         .map(|s| s.entries().to_vec())
         .collect::<Vec<_>>();
@@ -217,7 +304,7 @@ fn hole_sectors(
     use crate::schemes::catmull_clark::crease::adaptive::cap_feature;
     let m = &level.mesh;
     let (f0, _) = faces[0];
-    let (x, n, open) = fan_centre(m, &level.info, element, f0, 3)?;
+    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (3, 2))?;
     let xu = x as usize;
     match cap_feature(level, xu) {
         Some(true) => return Err(NoCap::Later),
@@ -272,7 +359,7 @@ fn holes_of(
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<Vec<CapData>, NoCap> {
-    let (x, n, open) = fan_centre(&level.mesh, &level.info, element, faces[0].0, 1)?;
+    let (x, n, open) = fan_centre_from(&level.mesh, &level.info, element, faces[0].0, (1, 2))?;
     if open && n == 1 {
         return crease::boundary_corner_cap(level, x as usize, faces).map(|c| vec![c]);
     }

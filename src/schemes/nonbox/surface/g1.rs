@@ -27,6 +27,12 @@
 //! * **conditions, free parameters, degree**: those of [`crate::bezier::g1`]: bi-4 for odd `n`,
 //!   bi-5 for even `n` (bi-4 at `n = 4`).
 //!
+//! **Valence 2** (the octahedron read by `nonbox-4dir` as a pillow of two quads, a pentagon's
+//! vertex after the first step): the half-plane cap of two bi-5 patches
+//! ([`crate::bezier::g1`], "Two sectors") in the plane of `p_0 - p_1` and `c_0 - c_1`
+//! (`two_cell_plane`); G^1 at every join (`check` on the octahedron: 3.2e-14 rad at 3 rings,
+//! 2.5e-11 at 8, where the C^0 fill measured 0.11 rad).
+//!
 //! **Boundary vertices** of `k >= 3` quads get the open-fan cap
 //! ([`crate::bezier::g1::Layout::OpenQuad`]; sectors from the boundary half-edge, spokes `0`
 //! and `k` free boundary curves), centred at the boundary curve's limit point `(a + 4 v + b) / 6`
@@ -43,13 +49,14 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, axpy, scale};
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements,
+    MAX_EXTRA_CAP_LEVELS, NoCap, QuadSector, Tag, caps_waiting, fan_centre_from, g1_cap_elements,
     quad_hole_segments, quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use crate::schemes::nonbox::boundary::open_fan_tangents;
+use crate::stencil::Stencil;
 use std::collections::HashMap;
 
 /// Levels computed beyond the requested rings, at most, so that touching holes separate.
@@ -115,7 +122,7 @@ fn hole_of(
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
-    let (x, n, open) = fan_centre(m, &level.info, element, f0, 3)?;
+    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (3, 2))?;
     let xu = x as usize;
     if cells.len() != n {
         return Err(NoCap::Never);
@@ -142,6 +149,8 @@ fn hole_of(
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = if open {
         open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
+    } else if n == 2 {
+        two_cell_plane(m, &quads)
     } else {
         NonBox::tangent_stencils(&level.net, xu)
     };
@@ -152,6 +161,23 @@ fn hole_of(
         Hole::untangented(centre, sectors)
     };
     Ok((hole, plane, tags))
+}
+
+/// The plane of the half-plane cap of a vertex of two cells ([`crate::bezier::g1`], "Two
+/// sectors"): `p_0 - p_1` along the spokes (their ends) and `c_0 - c_1` across them towards
+/// sector 0 (the cells' FCVs). The paper's tangents are Fourier mode 1 of the FCVs, of which
+/// two FCVs have only the cosine part: `c_0 - c_1` is the left eigenvector of the vertex's
+/// invariant ring `x, c_0, c_1` at the subdominant eigenvalue `1/2 + cos(pi) / 4 = 1/4`; the
+/// direction along the spokes lies outside that ring and is taken from the spoke ends at the
+/// last level (their chord through the centre).
+fn two_cell_plane(m: &PolyMesh, quads: &[QuadSector]) -> (Stencil, Stencil) {
+    let nv = m.num_vertices();
+    let along = Stencil::from_pairs([(quads[0].p as usize, 1.0), (quads[1].p as usize, -1.0)]);
+    let across = Stencil::from_pairs([
+        (nv + quads[0].face as usize, 1.0),
+        (nv + quads[1].face as usize, -1.0),
+    ]);
+    (along, across)
 }
 
 /// Whether some marked element would get its cap after more levels.
