@@ -5,7 +5,7 @@
 # BEFORE is a fairsub binary built before the caps of issue 17's second round (the README's
 # pictures: main at 7a6822f; Loop's: main at 3f0d61c; QAS+^3's and guided-bi4-macro's split
 # caps: main at 10bee89; guided-bi3-macro's and adjustable TPS's: 7a6822f; Doo-Sabin's and
-# PGS's: e860dfb, before their caps; the cone point's: b941ba1); without it only the "after"
+# PGS's: e860dfb, before their caps; the cone point's: b941ba1; valence 2: c070068); without it only the "after"
 # pictures are made.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,3 +44,17 @@ $F render "$net" -s catmull-clark "${cone[@]}" -o docs/images/cap-cone-cc_corner
 if [ -n "${BEFORE:-}" ]; then
   "$BEFORE" render "$net" -s catmull-clark "${cone[@]}" -o docs/images/cap-cone-cc_corner_tags-before.png >/dev/null
 fi
+# valence 2 (half-plane caps): a pentagon's vertex after the first step, and the octahedron read
+# by nonbox-4dir as a pillow of two quads (seen from above vertex 0, the cap alone)
+for c in "cc catmull-clark docs/nets/split-edge-cube.obj --focus vertex:8 --zoom-rings 4..5" \
+         "nonbox-4dir nonbox-4dir gallery:octahedron --focus vertex:0 --zoom-rings 5..5 --azimuth 10 --elevation 20"; do
+  read -r family scheme net view <<<"$c"
+  name=$(basename "$net" .obj)
+  name=${name#gallery:}
+  # shellcheck disable=SC2206
+  two=(--rings 4 --mode highlight --size 300x300 --stripes 16 $view)
+  $F render "$net" -s "$scheme" "${two[@]}" -o "docs/images/cap-valence2-$family-$name-after.png" >/dev/null
+  if [ -n "${BEFORE:-}" ]; then
+    "$BEFORE" render "$net" -s "$scheme" "${two[@]}" -o "docs/images/cap-valence2-$family-$name-before.png" >/dev/null
+  fi
+done
