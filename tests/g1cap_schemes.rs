@@ -254,6 +254,20 @@ fn holes_without_a_cap_are_named_in_a_note() {
         big[0].contains("vertex 0") && big[0].contains(&format!("valence {n}")),
         "{big:?}"
     );
+    // OpenSubdiv's flat pillow (two quads back to back): its valence-2 holes have no plane
+    // (the two sectors coincide); each is named once, with that reason
+    let pillow = fairsub::io::read_mesh(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/osd/cc_pillow_uv.obj"
+    )))
+    .expect("cc_pillow_uv")
+    .mesh;
+    let flat = notes("catmull-clark", &pillow);
+    let named: usize = (0..4)
+        .map(|v| flat.iter().filter(|n| n.contains(&format!("vertex {v}"))).count())
+        .sum();
+    assert_eq!(named, 4, "{flat:?}");
+    assert!(flat.iter().all(|n| !n.contains("sectors")), "{flat:?}");
     for (scheme, net) in [
         ("catmull-clark", gallery::cube()),
         ("nonbox-4dir", gallery::tetrahedron()),

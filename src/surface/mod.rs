@@ -84,12 +84,14 @@ fn uncapped_notes(complex: &PatchComplex, fill: bool) -> Vec<String> {
                 .insert(*sector);
         }
     }
+    // an element whose cap failed is named with its own reason above
+    let failed: HashSet<Element> = complex.uncapped.iter().map(|(e, _)| *e).collect();
     for e in order {
         let k = sectors[&e].len();
-        if k < 3 {
+        if k < 3 && !failed.contains(&e) {
             by_reason
                 .entry(format!(
-                    "a hole of {k} sectors (a G^1 cap needs at least 3)"
+                    "a hole of {k} sectors, which this scheme's G^1 caps do not take"
                 ))
                 .or_default()
                 .push(e);
