@@ -204,6 +204,44 @@ pub fn split_edge_cube() -> PolyMesh {
     PolyMesh::new(p, &f).expect("split-edge cube")
 }
 
+/// The cube with every edge split at its midpoint pushed outwards by 1.2: six octagons, whose
+/// first Catmull-Clark step leaves twelve vertices of valence 2 (each on a ridge, the two
+/// sectors mirror images). Not in [`crate::gallery::all`], as [`split_edge_cube`].
+pub fn all_edges_split_cube() -> PolyMesh {
+    let mut p: Vec<[f64; 3]> = Vec::with_capacity(20);
+    for z in [-1.0, 1.0] {
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            p.push([x, y, z]);
+        }
+    }
+    let quads = [
+        [0, 3, 2, 1],
+        [4, 5, 6, 7],
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+    ];
+    let mut mid = std::collections::HashMap::new();
+    let faces: Vec<Vec<usize>> = quads
+        .iter()
+        .map(|q| {
+            let mut f = Vec::with_capacity(8);
+            for k in 0..4 {
+                let (a, b) = (q[k], q[(k + 1) % 4]);
+                f.push(a);
+                let m = *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    p.push(std::array::from_fn(|i| 0.6 * (p[a][i] + p[b][i])));
+                    p.len() - 1
+                });
+                f.push(m);
+            }
+            f
+        })
+        .collect();
+    PolyMesh::new(p, &faces).expect("all-edges-split cube")
+}
+
 /// The regular octahedron (8 triangles, valence 4).
 pub fn octahedron() -> PolyMesh {
     let p = vec![

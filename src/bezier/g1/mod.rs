@@ -279,10 +279,14 @@
 //! direction only if `(d_uv + d_vv) P_0` lies in the plane with a positive `T1` part; a linear
 //! condition fixes that part (here `k T1 - (w'(0) / 2) T0`) and leaves `H`.
 //!
-//! `T0` is the least squares fit of the two spokes' chart derivatives (`(s_0 - s_1) / 2`),
-//! `T1` the half-difference of the two sectors' corners, projected into the plane
-//! (`phi_0(1, 1) = k T1`; [`ring::chart_tangents`]); a provider gives the plane (Catmull-Clark:
-//! the eigen tangents `e_0 - e_1`, `f_0 - f_1`, non-box: the spoke ends' and FCVs' differences).
+//! `T0` and `T1` are fitted to chords of the chart, projected into the plane
+//! ([`ring::chart_tangents`]): the spoke ends, `phi_0(1, 0) = (1 + w'(0) / 4) T0 = 2 T0`, and
+//! the sectors' corners, `phi_0(1, 1) = k T1`. Not to the spoke derivatives of the other holes:
+//! at valence 2 Catmull-Clark's and non-box's rings contract by 1/4 per step, so their spokes
+//! are quadratic at the centre and that fit vanishes (1e-8 of the hole: a cusp whose corner
+//! normals were rounding, 3.14 rad apart at 8 rings on the cube with every edge split). A
+//! provider gives the plane (Catmull-Clark: the eigen tangents `e_0 - e_1`, `f_0 - f_1`,
+//! non-box: the spoke ends' and FCVs' differences).
 //! Measured certificates (test `two_sector_certificates`): bi-3 6.0, bi-4 1.2, **bi-5
 //! 8.6e-14** (13 free parameters per coordinate), for the split layouts bi-4 1.1e-2 (`m = 2`)
 //! and 1.4e-3 (`m = 3`), bi-5 9.9e-13 and 5.3e-12: the cap of two sectors is bi-5 on every
@@ -291,13 +295,20 @@
 //! Since `phi_s` is singular at the centre (`|phi_s| ~ u^2` along the diagonal), the cubic
 //! terms of the cap are of order `|x|^(3/2)` in the chart there, and the cap's curvature grows
 //! without bound towards the centre (measured by `check` on the split-edge cube at 3 rings,
-//! Catmull-Clark: Gauss curvature up to 4.7e8 in the cap, 1.9e2 in the last ring). The
+//! Catmull-Clark: Gauss curvature in `[22, 2.7e5]` in the cap, `[-1.5, 1.9e2]` in the last
+//! ring; `nonbox-4dir`'s octahedron `[19, 1.1e6]` against `[14, 43]`; the chart's scale `k`
+//! moves these maxima by factors of 2 to 4 either way, not in order). The
 //! schemes' own limits are no better at valence 2: Catmull-Clark's local matrix on `v, e_i,
 //! f_i` has the double subdominant eigenvalue 1/4 (modes `e_0 - e_1`, `f_0 - f_1`) and a
 //! symmetric eigenvalue -1/4 of the same modulus, so its limit has no tangent plane there (the
 //! ring normals oscillate by up to 0.18 rad at every scale) and its ring curvature grows
 //! (Gauss curvature up to 2.6e6 in ring 8). The cap is still G^1 at every join and at the
-//! centre, with `T0 x T1` the plane of the two subdominant modes.
+//! centre, with `T0 x T1` the plane of the two subdominant modes. The contraction 1/4 has a
+//! price in precision: the ring data's rounding, relative to the hole, grows 4 times per ring
+//! (2 times at other valences). Catmull-Clark on the cube with every edge split: G^1 at most
+//! 2.2e-10 rad at 8 rings, 3.0e-9 at 10, 1.7e-8 at 12 (the rings' own joins there: 5.5e-9);
+//! at 15 the data fail the compatibility check (relative defect 7e-7) and the fill closes
+//! the hole, with a note.
 //!
 //! # Data that are not enough
 //!

@@ -124,9 +124,14 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
     let (spokes, n, size) = spoke_derivatives(hole, &proj)?;
     let mut t = [[0.0; 3]; 2];
     if super::centre::is_half_plane(n, hole.fan()) {
-        // two sectors: the spokes are opposite, `t_1 = -T0`, and say nothing across them;
-        // `T1` is fitted to the sectors' corners, `phi_0(1, 1) = k T1` in the half-plane
-        // chart (`centre::half_plane_rows`)
+        // two sectors: the spokes are opposite, `t_1 = -T0`, and say nothing across them.
+        // Both vectors are fitted to chords of the half-plane chart
+        // (`centre::half_plane_rows`): its spoke ends `phi_0(1, 0) = -phi_1(1, 0) =
+        // (1 + w'(0) / 4) T0` and its corners `phi_0(1, 1) = -phi_1(1, 1) = k T1`. Not to the
+        // spoke derivatives `2 e_s - f_s` of the other holes: at valence 2 Catmull-Clark's and
+        // non-box's rings contract by 1/4 per step, their spokes are quadratic at the centre
+        // (`|x|^2`, `f_s = 2 e_s`) and that fit vanishes (measured 1e-8 of the hole's size:
+        // a cusp whose corner normals were rounding, 3.14 rad apart at 8 rings)
         let q = hole.to_quad_layout()?;
         let m = hole.layout()?.0.pieces();
         let corner = |s: usize| {
@@ -135,7 +140,15 @@ fn fit_tangents(hole: &Hole, proj: impl Fn(Point) -> Point) -> Result<([Point; 2
                 .last()
                 .unwrap_or(&hole.centre)
         };
-        t[0] = scale(sub(spokes[0], spokes[1]), 0.5);
+        let end = |s: usize| {
+            *q.hole.sectors[s][0]
+                .boundary
+                .first()
+                .unwrap_or(&hole.centre)
+        };
+        let w = super::system::weight(2, Fan::Closed, q.kappa, q.w1);
+        let reach = 1.0 + (w[1] - w[0]) / 2.0;
+        t[0] = scale(proj(sub(end(0), end(1))), 0.5 / reach);
         let across = proj(scale(sub(corner(0), corner(1)), 0.5));
         t[1] = scale(across, 1.0 / super::centre::HALF_PLANE_TWIST);
     } else if hole.is_open() {
