@@ -159,10 +159,11 @@ impl Layout {
 
     /// The fewest sectors of a hole of this layout and kind: [`Layout::min_sectors`], but 2
     /// for a closed hole of quad sectors (one patch or split), the half-plane cap of a
-    /// valence-2 vertex ([`super`], "Two sectors").
+    /// valence-2 vertex ([`super`], "Two sectors"), or a cone point's ([`Fan::Cone`]: a
+    /// half-turn chart, `w(0) = 0`, certified from bi-3 on).
     pub fn min_sectors_of(self, fan: Fan) -> usize {
         match (self, fan) {
-            (Layout::Quad | Layout::Split(_), Fan::Closed) => 2,
+            (Layout::Quad | Layout::Split(_), Fan::Closed | Fan::Cone) => 2,
             _ => self.min_sectors(),
         }
     }

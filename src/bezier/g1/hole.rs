@@ -219,7 +219,13 @@ impl Hole {
             (true, _) if matches!(self.kind, Fan::Crease | Fan::Corner(_) | Fan::Wedge(_)) => 1,
             (true, _) => 2,
             // two quad (or split) sectors: the half-plane cap of a valence-2 vertex
-            (false, Some(k)) if self.kind == Fan::Closed && k >= 2 && k.is_multiple_of(2) => 2,
+            (false, Some(k))
+                if matches!(self.kind, Fan::Closed | Fan::Cone)
+                    && k >= 2
+                    && k.is_multiple_of(2) =>
+            {
+                2
+            }
             _ => 3,
         };
         if n < least {

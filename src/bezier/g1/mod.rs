@@ -255,7 +255,10 @@
 //! spoke and folded a sector over). The free coefficients minimise the fairness functional.
 //! Lowest certified degrees (test
 //! `cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes`, `n = 3..12`): closed,
-//! bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles); a dart's fan bi-4 for
+//! bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles), bi-3 for two quad
+//! sectors (`w(0) = 2 cos(pi / 2) = 0`; test `cones_of_two_sectors_are_certified`, a corner
+//! tag on a valence-2 vertex; its apex is sharper, neighbouring normals near it up to 40
+//! degrees apart on a 40 x 40 grid, `tests/cone_caps.rs`); a dart's fan bi-4 for
 //! quads, bi-6 for triangles (bi-5 at `n = 3`). Not a published construction.
 //!
 //! # Two sectors (valence 2)

@@ -84,3 +84,20 @@ fn two_sectors_are_g1_on_both_spokes_and_at_the_centre() {
         }
     }
 }
+
+/// A cone point of two sectors ([`Fan::Cone`], a corner tag on a valence-2 vertex): the
+/// half-turn chart's weight is `w(0) = 2 cos(pi / 2) = 0`, and the cap is certified from bi-3
+/// on (measured 1.7e-15 at bi-3, 1.5e-14 at bi-5).
+#[test]
+fn cones_of_two_sectors_are_certified() {
+    let deg = Degrees {
+        boundary: 3,
+        cross: 3,
+    };
+    for d in 3..=6 {
+        let m = CapMap::with_fan(2, Layout::Quad, deg, d, Centre::TangentPlane, Fan::Cone).unwrap();
+        assert!(m.is_certified(), "d {d}: {:e}", m.certificate);
+    }
+    let low = lowest_certified_fan(2, Layout::Quad, deg, Centre::TangentPlane, Fan::Cone);
+    assert_eq!(low.unwrap(), 3);
+}
