@@ -6,7 +6,8 @@
 //! `schemes::loop_subdivision::dart`). Until 2026-12-05 these holes kept the C^0 Hermite
 //! fill: `check` at 3 rings measured 0.29 rad on OpenSubdiv's `cc_torus_dart`, 4.9e-2 on
 //! `cc_cube_infsharp`, 0.86 on `cc_cube_semisharp`, 5.7e-3 on `cc_grid_uv_creases` and 1.3
-//! on `loop_octa_semisharp`.
+//! on `loop_octa_semisharp`; a dart of valence 2 (the split-edge cube with one sharp edge)
+//! kept it until 2026-12-05 too (3.14 rad).
 //!
 //! Tests, at 1, 2 and 3 rings: every ring and regular patch is exact against the limit points
 //! of uniform refinement, every join C^0 (the sharp ones too), every join but the sharp ones
@@ -193,6 +194,19 @@ fn catmull_clark_darts_are_capped_g1_and_c0_along_their_sharp_edge() {
         let closed = name != "cc_grid_uv_creases";
         all.push((name.to_string(), osd(name), vec![(0, 0); darts], closed));
     }
+    // a dart of valence 2: the split-edge cube's vertex 8 (valence 2 after the first step)
+    // with a sharp edge to vertex 4, whose other end is a dart too (masks from the two
+    // positive modes, `catmull_clark::dart`; the fill measured 3.14 rad there)
+    let two = fairsub::gallery::split_edge_cube().with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ByPair(vec![([4, 8], 10.0)]),
+        ..Extras::default()
+    }));
+    all.push((
+        "split-edge cube, dart of 2".into(),
+        two,
+        vec![(0, 0); 2],
+        true,
+    ));
     darts_are_capped(false, all);
 }
 

@@ -60,14 +60,28 @@ pub(crate) fn cached_masks(
     n: usize,
     matrix: impl FnOnce(usize) -> DMatrix<f64>,
 ) -> Option<Arc<DartMasks>> {
-    if !(3..=MAX_DART_VALENCE).contains(&n) {
+    cached_masks_with(cache, n, (3, masks_of), matrix)
+}
+
+/// How a dart's masks are read off its 1-ring matrix ([`masks_of`], [`masks_of_positive`]).
+pub(crate) type MasksOf = fn(&DMatrix<f64>) -> Option<DartMasks>;
+
+/// [`cached_masks`] from valence `lowest` on, the masks computed by `masks` ([`masks_of`], or
+/// [`masks_of_positive`] for a valence-2 dart).
+pub(crate) fn cached_masks_with(
+    cache: &'static MaskCache,
+    n: usize,
+    (lowest, masks): (usize, MasksOf),
+    matrix: impl FnOnce(usize) -> DMatrix<f64>,
+) -> Option<Arc<DartMasks>> {
+    if !(lowest..=MAX_DART_VALENCE).contains(&n) {
         return None;
     }
     let cache = cache.get_or_init(|| Mutex::new(HashMap::new()));
     if let Some(w) = cache.lock().ok()?.get(&n) {
         return Some(w.clone());
     }
-    let out = Arc::new(masks_of(&matrix(n))?);
+    let out = Arc::new(masks(&matrix(n))?);
     cache.lock().ok()?.insert(n, out.clone());
     Some(out)
 }
@@ -115,6 +129,28 @@ pub(crate) fn masks_of(s: &DMatrix<f64>) -> Option<DartMasks> {
     if rest >= lb - 1e-9 {
         return None;
     }
+    masks_at(s, la, lb)
+}
+
+/// The masks of a dart's 1-ring matrix `s` from its two largest positive real eigenvalues
+/// below 1, whatever the rest of the spectrum: at a valence-2 dart of Catmull-Clark the
+/// spectrum is `1, 0.3878, -0.2811, 0.25, 0.1433`, a negative eigenvalue of larger modulus
+/// than the second tangent mode's, so (as at a smooth vertex of valence 2) the limit has no
+/// tangent plane and [`masks_of`] declines; the two positive modes still span the plane of the
+/// rings' first-order shape, in which the cap is centred.
+pub(crate) fn masks_of_positive(s: &DMatrix<f64>) -> Option<DartMasks> {
+    let mut ev: Vec<f64> = s
+        .complex_eigenvalues()
+        .iter()
+        .filter(|z| z.im.abs() < 1e-9 && z.re > 1e-9 && z.re < 1.0 - 1e-9)
+        .map(|z| z.re)
+        .collect();
+    ev.sort_by(|a, b| b.total_cmp(a));
+    masks_at(s, *ev.first()?, *ev.get(1)?)
+}
+
+/// The limit mask and the tangent masks of eigenvalues `la >= lb` of `s`.
+fn masks_at(s: &DMatrix<f64>, la: f64, lb: f64) -> Option<DartMasks> {
     let mut limit = left_null(s, 1.0, 1)?.pop()?;
     let sum: f64 = limit.iter().sum();
     limit.iter_mut().for_each(|w| *w /= sum);

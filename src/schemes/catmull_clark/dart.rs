@@ -20,11 +20,16 @@
 //! characteristic directions independent), which is the plane the dart's G^1 cap is centred in
 //! ([`crate::bezier::g1::Fan::Dart`]).
 //!
+//! At valence 2 the spectrum is `1, 0.3878, -0.2811, 0.25, 0.1433`: the negative eigenvalue
+//! outweighs the second tangent mode, so, as at a smooth vertex of valence 2, the limit has no
+//! tangent plane; the cap is centred in the plane of the two positive modes
+//! (`schemes::dart::masks_of_positive`).
+//!
 //! The masks are computed once per valence ([`crate::schemes::dart`]: null vectors of a small
 //! dense matrix) and cached.
 
 pub use crate::schemes::dart::{DartMasks, MAX_DART_VALENCE};
-use crate::schemes::dart::{MaskCache, cached_masks};
+use crate::schemes::dart::{MaskCache, cached_masks, cached_masks_with, masks_of_positive};
 use nalgebra::DMatrix;
 use std::sync::{Arc, OnceLock};
 
@@ -61,9 +66,14 @@ fn ring_matrix(n: usize, dart: bool) -> DMatrix<f64> {
 }
 
 /// The masks of a Catmull-Clark dart of valence `n` over `x, e_0 .. e_(n-1), f_0 .. f_(n-1)`
-/// (`None` below 3 or above [`MAX_DART_VALENCE`]).
+/// (`None` below 2 or above [`MAX_DART_VALENCE`]; at 2 from its positive modes, module documentation).
 pub fn dart_masks(n: usize) -> Option<Arc<DartMasks>> {
     static CACHE: MaskCache = OnceLock::new();
+    if n == 2 {
+        // the negative eigenvalue -0.2811 outweighs the second tangent mode's 1/4 (module
+        // documentation): the two positive modes span the cap's plane
+        return cached_masks_with(&CACHE, n, (2, masks_of_positive), |n| ring_matrix(n, true));
+    }
     cached_masks(&CACHE, n, |n| ring_matrix(n, true))
 }
 
@@ -94,7 +104,12 @@ mod tests {
             let (e0, e1) = (m.limit[1], m.limit[2]);
             assert!((e0 - e1).abs() > 1e-3, "n {n}: {e0} {e1}");
         }
-        assert!(dart_masks(2).is_none());
+        // valence 2: the two positive subdominant modes, past a negative eigenvalue of larger
+        // modulus (no tangent plane in the limit; module documentation)
+        let m = dart_masks(2).unwrap();
+        assert!((m.lambda[0] - 0.38785).abs() < 1e-4, "{:?}", m.lambda);
+        assert!((m.lambda[1] - 0.25).abs() < 1e-12, "{:?}", m.lambda);
+        crate::schemes::dart::assert_left_eigenvectors(&ring_matrix(2, true), &m, "n 2");
     }
 
     /// Without the dart the matrix is Catmull-Clark's smooth one: its subdominant eigenvalue is
