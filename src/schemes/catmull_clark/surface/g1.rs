@@ -43,7 +43,7 @@
 //! tangent plane at a valence-2 vertex: the ring normals oscillate by up to 0.18 rad at every
 //! scale (measured with `eval` on [`crate::gallery::split_edge_cube`] from `1e-2` to `1e-6` of
 //! a face). The cap is nevertheless G^1 at every join and at its centre (`check`: 2.0e-13 rad
-//! at 3 rings, 2.4e-11 at 6), C^1 to the last ring, in the plane of the two subdominant modes.
+//! at 3 rings, 2.5e-11 at 6), C^1 to the last ring, in the plane of the two subdominant modes.
 //! EG, QAS+ and guided subdivision run Catmull-Clark's rings at valence 2 and get this cap.
 //!
 //! # Extraordinary boundary vertices: open fans
