@@ -145,18 +145,15 @@ pub fn unit_cube() -> PolyMesh {
     PolyMesh::new(pos, &faces).expect("cube is valid")
 }
 
-/// The unit cube (8 vertices of valence 3).
-pub fn cube() -> PolyMesh {
-    let p = vec![
-        [-1.0, -1.0, -1.0],
-        [1.0, -1.0, -1.0],
-        [1.0, 1.0, -1.0],
-        [-1.0, 1.0, -1.0],
-        [-1.0, -1.0, 1.0],
-        [1.0, -1.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [-1.0, 1.0, 1.0],
-    ];
+/// The corners of [`cube`] (`[-1, 1]^3`, the bottom square counter-clockwise, then the top)
+/// and its six quads, outward: the one definition the split cubes start from too.
+fn cube_corners_and_quads() -> (Vec<[f64; 3]>, [[usize; 4]; 6]) {
+    let mut p = Vec::with_capacity(8);
+    for z in [-1.0, 1.0] {
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            p.push([x, y, z]);
+        }
+    }
     let f = [
         [0, 3, 2, 1],
         [4, 5, 6, 7],
@@ -165,6 +162,12 @@ pub fn cube() -> PolyMesh {
         [2, 3, 7, 6],
         [3, 0, 4, 7],
     ];
+    (p, f)
+}
+
+/// The unit cube (8 vertices of valence 3).
+pub fn cube() -> PolyMesh {
+    let (p, f) = cube_corners_and_quads();
     PolyMesh::new(p, &f).expect("cube")
 }
 
@@ -186,13 +189,9 @@ pub fn tetrahedron() -> PolyMesh {
 /// in the gallery's [`crate::gallery::all`]: the dual schemes refuse an interior vertex of
 /// valence 2 (refine once first), and the gallery is every scheme's test bed.
 pub fn split_edge_cube() -> PolyMesh {
-    let mut p = Vec::with_capacity(9);
-    for z in [-1.0, 1.0] {
-        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            p.push([x, y, z]);
-        }
-    }
+    let (mut p, _) = cube_corners_and_quads();
     p.push([0.0, -1.3, 1.3]);
+    // the cube's top and front quads with vertex 8 on their common edge 4 -> 5
     let f: [&[usize]; 6] = [
         &[0, 3, 2, 1],
         &[4, 8, 5, 6, 7],
@@ -208,20 +207,7 @@ pub fn split_edge_cube() -> PolyMesh {
 /// first Catmull-Clark step leaves twelve vertices of valence 2 (each on a ridge, the two
 /// sectors mirror images). Not in [`crate::gallery::all`], as [`split_edge_cube`].
 pub fn all_edges_split_cube() -> PolyMesh {
-    let mut p: Vec<[f64; 3]> = Vec::with_capacity(20);
-    for z in [-1.0, 1.0] {
-        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            p.push([x, y, z]);
-        }
-    }
-    let quads = [
-        [0, 3, 2, 1],
-        [4, 5, 6, 7],
-        [0, 1, 5, 4],
-        [1, 2, 6, 5],
-        [2, 3, 7, 6],
-        [3, 0, 4, 7],
-    ];
+    let (mut p, quads) = cube_corners_and_quads();
     let mut mid = std::collections::HashMap::new();
     let faces: Vec<Vec<usize>> = quads
         .iter()

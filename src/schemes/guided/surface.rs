@@ -127,42 +127,34 @@ impl GuidedCaps {
 
 impl CapBuilder for GuidedCaps {
     fn accepts(&self, n: usize, element: Element) -> Result<bool> {
-        if n < 3 {
-            // a valence-2 vertex: no guide (its Fourier modes need n >= 3); Catmull-Clark's
-            // rings and their half-plane G^1 cap, as EG and QAS+ do
+        // outside the guided tables (a valence-2 vertex has no guide: its Fourier modes need
+        // n >= 3): Catmull-Clark's rings and G^1 cap there, as EG and QAS+ do
+        if !(3..=MAX_VALENCE).contains(&n) {
+            let (side, limit) = if n < 3 {
+                ("below", "starts at valence 3".to_string())
+            } else {
+                (
+                    "beyond",
+                    format!("is tabulated for valences 3..{MAX_VALENCE}"),
+                )
+            };
             if self.opts.fallback == Fallback::Error {
                 return Err(Error::UnsupportedValence {
                     valence: n,
                     msg: format!(
-                        "{} has valence {n}: guided subdivision starts at valence 3; use --fallback {}",
+                        "{} has valence {n}: guided subdivision {limit}; use --fallback {}",
                         describe(element),
                         ids::CATMULL_CLARK
                     ),
                 });
             }
             self.notes.note(format!(
-                "{} (valence {n}) is below guided subdivision's valences 3..{MAX_VALENCE}: Catmull-Clark rings and cap there",
+                "{} (valence {n}) is {side} guided subdivision's valences 3..{MAX_VALENCE}: Catmull-Clark rings and cap there",
                 describe(element)
             ));
             return Ok(false);
         }
-        if n == 4 || n > MAX_VALENCE {
-            if n > MAX_VALENCE && self.opts.fallback == Fallback::Error {
-                return Err(Error::UnsupportedValence {
-                    valence: n,
-                    msg: format!(
-                        "{} has valence {n}: guided subdivision is tabulated for valences 3..{MAX_VALENCE}; use --fallback {}",
-                        describe(element),
-                        ids::CATMULL_CLARK
-                    ),
-                });
-            }
-            if n > MAX_VALENCE {
-                self.notes.note(format!(
-                    "{} (valence {n}) is beyond guided subdivision's valences 3..{MAX_VALENCE}: Catmull-Clark rings and fill there",
-                    describe(element)
-                ));
-            }
+        if n == 4 {
             return Ok(false);
         }
         if self.opts.scheme.chi == ChiKind::Half && !(5..=10).contains(&n) {
