@@ -8,7 +8,9 @@
 //! second derivatives (allocation-free for degrees below [`curve::STACK_DEGREE`], since the
 //! renderer calls them per pixel), unit normals that stay defined at collapsed corners,
 //! Gauss / mean / principal curvatures, de Casteljau splitting, sub-patches, degree raising and
-//! boundary extraction. [`curve`] holds the univariate rules these are built from and
+//! boundary extraction. A patch may be rational (BezierView's type 8): then it carries a weight
+//! per coefficient and every operation here works on its homogeneous form (`rational`).
+//! [`curve`] holds the univariate rules these are built from and
 //! [`convert`] the B-spline to Bezier conversions, as matrices that also yield stencils.
 //!
 //! # Conventions
@@ -22,13 +24,18 @@
 
 pub mod complex;
 pub mod convert;
+mod coons;
 pub mod curve;
+mod derivatives;
 pub mod domain;
 pub mod g1;
+mod rational;
+
+pub use derivatives::WELL_CONDITIONED;
 
 pub use curve::BezierCurve;
 
-use crate::geom::{Point, add, cross, dot, norm, scale};
+use crate::geom::{Point, cross, norm, scale};
 use curve::STACK_DEGREE;
 
 /// A tensor-product Bezier patch of bi-degree `(deg_u, deg_v)`.
@@ -40,6 +47,10 @@ pub struct BezierPatch {
     pub deg_v: usize,
     /// Coefficients, `b[i][j]` at `i * (deg_v + 1) + j`.
     pub cps: Vec<Point>,
+    /// The weights of a rational patch, one per coefficient (positive; `cps` then holds the
+    /// Euclidean control points, the homogeneous coefficients divided by their weights);
+    /// `None` for a polynomial patch, which every surface fairsub builds is.
+    pub weights: Option<Vec<f64>>,
 }
 
 /// A side of the unit square domain of a patch.
@@ -126,92 +137,6 @@ impl Curvature {
     };
 }
 
-/// Relative size below which a tangent vector counts as vanished (collapsed edge) and a normal
-/// as undetermined.
-const DEGENERATE_REL: f64 = 1e-10;
-
-/// Smallest sine of the angle between the partials at which [`BezierPatch::curvatures`] takes
-/// the curvature of a point beside a degenerate one.
-pub const WELL_CONDITIONED: f64 = 1e-3;
-
-#[inline]
-fn norm_inf(p: Point) -> f64 {
-    p[0].abs().max(p[1].abs()).max(p[2].abs())
-}
-
-impl Derivatives {
-    /// Whether the tangent plane is determined by `du`, `dv` alone: neither vector is negligible
-    /// (relative to the other and to the rounding level of the point's coordinates) and they are
-    /// not parallel (sine of their angle above `1e-10`).
-    pub fn is_regular(&self) -> bool {
-        let (a, b) = (norm(self.du), norm(self.dv));
-        let floor = 1e-12 * (norm_inf(self.p) + a.max(b));
-        a > floor && b > floor && norm(cross(self.du, self.dv)) > DEGENERATE_REL * a * b
-    }
-
-    /// The unit normal `du x dv / |du x dv|`. Where that vanishes (a collapsed edge or corner,
-    /// see [`Derivatives::is_regular`]) it returns the limit of the normal approached from the
-    /// domain direction `toward = (hu, hv)`: with `a = hu duu + hv duv` and `b = hu duv + hv dvv`
-    /// (the change of `du` and `dv` along that direction) the normal at parameter offset `s`
-    /// is `du x dv + s (a x dv + du x b) + s^2 (a x b) + ...`, and the first term that does not
-    /// vanish gives the limit direction. This is exact at a collapsed edge (one partial is zero
-    /// along it) and at a corner where both partials vanish. Returns `None` when all three
-    /// terms vanish (then [`BezierPatch::normal`] falls back to a small inward offset).
-    pub fn normal_toward(&self, toward: [f64; 2]) -> Option<Point> {
-        if self.is_regular() {
-            return Some(scale(
-                cross(self.du, self.dv),
-                1.0 / norm(cross(self.du, self.dv)),
-            ));
-        }
-        let [hu, hv] = toward;
-        let a = add(scale(self.duu, hu), scale(self.duv, hv));
-        let b = add(scale(self.duv, hu), scale(self.dvv, hv));
-        let n1 = add(cross(a, self.dv), cross(self.du, b));
-        let scale1 = (norm(a) + norm(self.du)) * (norm(b) + norm(self.dv));
-        if norm(n1) > DEGENERATE_REL * scale1 && scale1 > 0.0 {
-            return Some(scale(n1, 1.0 / norm(n1)));
-        }
-        let n2 = cross(a, b);
-        if norm(n2) > DEGENERATE_REL * norm(a) * norm(b) && norm(n2) > 0.0 {
-            return Some(scale(n2, 1.0 / norm(n2)));
-        }
-        None
-    }
-
-    /// Curvatures from the first fundamental form `E, F, G` (of `du`, `dv`) and the second
-    /// `L, M, N` (`duu`, `duv`, `dvv` dotted with the unit normal `du x dv / |du x dv|`):
-    /// `K = (LN - M^2) / (EG - F^2)`, `H = (EN - 2FM + GL) / (2 (EG - F^2))`,
-    /// `k1,2 = H +- sqrt(H^2 - K)` (`k1 >= k2`). Sign convention: see [`Curvature`]. `None` when
-    /// the first fundamental form is singular ([`Derivatives::is_regular`] is false).
-    pub fn curvature(&self) -> Option<Curvature> {
-        if !self.is_regular() {
-            return None;
-        }
-        let n = cross(self.du, self.dv);
-        let n = scale(n, 1.0 / norm(n));
-        let (e, f, g) = (
-            dot(self.du, self.du),
-            dot(self.du, self.dv),
-            dot(self.dv, self.dv),
-        );
-        let (l, m, nn) = (dot(self.duu, n), dot(self.duv, n), dot(self.dvv, n));
-        let det = e * g - f * f;
-        if det <= 0.0 {
-            return None;
-        }
-        let gauss = (l * nn - m * m) / det;
-        let mean = (e * nn - 2.0 * f * m + g * l) / (2.0 * det);
-        let disc = (mean * mean - gauss).max(0.0).sqrt();
-        Some(Curvature {
-            gauss,
-            mean,
-            k1: mean + disc,
-            k2: mean - disc,
-        })
-    }
-}
-
 /// Runs `f` on a zeroed scratch slice of `n` values, on the stack for `n <= STACK_DEGREE`.
 #[inline]
 fn with_values<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
@@ -238,50 +163,6 @@ fn with_values6<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
 }
 
 impl BezierPatch {
-    /// The bilinearly blended Coons patch of four boundary curves of degree `d` (`d + 1`
-    /// coefficients each, in increasing parameter order: `v0` along `v = 0`, `u1` along `u = 1`,
-    /// `v1` along `v = 1`, `u0` along `u = 0`). Its coefficients are
-    /// `b_ij = (1-s) b_0j + s b_dj + (1-t) b_i0 + t b_id - bilinear(corners)` with
-    /// `s = i/d`, `t = j/d`, which is the Coons patch in Bezier form; the boundary is reproduced
-    /// exactly. The corners are taken from `v0` and `v1`.
-    ///
-    /// # Panics
-    /// Panics when a curve does not have `d + 1` coefficients.
-    pub fn coons(d: usize, v0: &[Point], u1: &[Point], v1: &[Point], u0: &[Point]) -> BezierPatch {
-        for c in [v0, u1, v1, u0] {
-            assert_eq!(c.len(), d + 1, "Coons boundary curve of the wrong degree");
-        }
-        let mut b = vec![[0.0; 3]; (d + 1) * (d + 1)];
-        let at = |i: usize, j: usize| i * (d + 1) + j;
-        for i in 0..=d {
-            b[at(i, 0)] = v0[i];
-            b[at(i, d)] = v1[i];
-        }
-        for j in 1..d {
-            b[at(0, j)] = u0[j];
-            b[at(d, j)] = u1[j];
-        }
-        let df = d as f64;
-        for i in 1..d {
-            for j in 1..d {
-                let (s, t) = (i as f64 / df, j as f64 / df);
-                let mut p = [0.0; 3];
-                for k in 0..3 {
-                    p[k] = (1.0 - s) * b[at(0, j)][k]
-                        + s * b[at(d, j)][k]
-                        + (1.0 - t) * b[at(i, 0)][k]
-                        + t * b[at(i, d)][k]
-                        - ((1.0 - s) * (1.0 - t) * b[at(0, 0)][k]
-                            + s * (1.0 - t) * b[at(d, 0)][k]
-                            + (1.0 - s) * t * b[at(0, d)][k]
-                            + s * t * b[at(d, d)][k]);
-                }
-                b[at(i, j)] = p;
-            }
-        }
-        BezierPatch::new(d, d, b)
-    }
-
     /// A patch from its coefficients (`(deg_u + 1) * (deg_v + 1)` of them, row-major, `i` along u).
     ///
     /// # Panics
@@ -292,7 +173,12 @@ impl BezierPatch {
             (deg_u + 1) * (deg_v + 1),
             "coefficient count does not match degrees"
         );
-        BezierPatch { deg_u, deg_v, cps }
+        BezierPatch {
+            deg_u,
+            deg_v,
+            cps,
+            weights: None,
+        }
     }
 
     /// A patch whose coefficient `b[i][j]` is `f(i, j)`.
@@ -303,7 +189,12 @@ impl BezierPatch {
                 cps.push(f(i, j));
             }
         }
-        BezierPatch { deg_u, deg_v, cps }
+        BezierPatch {
+            deg_u,
+            deg_v,
+            cps,
+            weights: None,
+        }
     }
 
     /// Coefficient `b[i][j]`.
@@ -343,21 +234,40 @@ impl BezierPatch {
         BezierPatch::from_fn(du, nv - 1, |i, j| rows[i][j])
     }
 
-    /// Applies a curve operation to every `u`-curve (column).
+    /// Applies a curve operation to every `u`-curve (column); to a rational patch's
+    /// homogeneous form.
     fn map_u_curves(&self, f: impl Fn(&[Point]) -> Vec<Point>) -> BezierPatch {
-        let cols: Vec<Vec<Point>> = (0..=self.deg_v).map(|j| f(&self.column(j))).collect();
-        BezierPatch::from_columns(&cols)
+        let f: &dyn Fn(&[Point]) -> Vec<Point> = &f;
+        let poly = |p: &BezierPatch| {
+            let cols: Vec<Vec<Point>> = (0..=p.deg_v).map(|j| f(&p.column(j))).collect();
+            BezierPatch::from_columns(&cols)
+        };
+        match self.weights {
+            Some(_) => rational::map(self, poly),
+            None => poly(self),
+        }
     }
 
-    /// Applies a curve operation to every `v`-curve (row).
+    /// Applies a curve operation to every `v`-curve (row); to a rational patch's homogeneous
+    /// form.
     fn map_v_curves(&self, f: impl Fn(&[Point]) -> Vec<Point>) -> BezierPatch {
-        let rows: Vec<Vec<Point>> = (0..=self.deg_u).map(|i| f(self.row(i))).collect();
-        BezierPatch::from_rows(&rows)
+        let f: &dyn Fn(&[Point]) -> Vec<Point> = &f;
+        let poly = |p: &BezierPatch| {
+            let rows: Vec<Vec<Point>> = (0..=p.deg_u).map(|i| f(p.row(i))).collect();
+            BezierPatch::from_rows(&rows)
+        };
+        match self.weights {
+            Some(_) => rational::map(self, poly),
+            None => poly(self),
+        }
     }
 
     /// The point at `(u, v)` (tensor-product Bernstein sum; no allocation for degrees below
     /// [`curve::STACK_DEGREE`]).
     pub fn eval(&self, u: f64, v: f64) -> Point {
+        if let Some(w) = &self.weights {
+            return rational::eval(self, w, u, v);
+        }
         let (nu, nv) = (self.deg_u + 1, self.deg_v + 1);
         with_values(nu, |bu| {
             with_values(nv, |bv| {
@@ -385,6 +295,9 @@ impl BezierPatch {
     /// values and their derivatives (the derivative-net formulas), contracting `v` first. No
     /// allocation for degrees below [`curve::STACK_DEGREE`].
     pub fn derivatives(&self, u: f64, v: f64) -> Derivatives {
+        if let Some(w) = &self.weights {
+            return rational::derivatives(self, w, u, v);
+        }
         // the common degrees with their sizes known at compile time (the same operations in
         // the same order, so the same bits, unrolled)
         match (self.deg_u, self.deg_v) {
@@ -491,6 +404,9 @@ impl BezierPatch {
     /// De Casteljau split at `u = t`: the patches over `[0, t] x [0, 1]` and `[t, 1] x [0, 1]`,
     /// each reparametrised over the unit square.
     pub fn split_u(&self, t: f64) -> (BezierPatch, BezierPatch) {
+        if self.weights.is_some() {
+            return rational::map2(self, |p| p.split_u(t));
+        }
         let (l, r): (Vec<_>, Vec<_>) = (0..=self.deg_v)
             .map(|j| curve::split(&self.column(j), t))
             .unzip();
@@ -499,6 +415,9 @@ impl BezierPatch {
 
     /// De Casteljau split at `v = t`: the patches over `[0, 1] x [0, t]` and `[0, 1] x [t, 1]`.
     pub fn split_v(&self, t: f64) -> (BezierPatch, BezierPatch) {
+        if self.weights.is_some() {
+            return rational::map2(self, |p| p.split_v(t));
+        }
         let (l, r): (Vec<_>, Vec<_>) = (0..=self.deg_u)
             .map(|i| curve::split(self.row(i), t))
             .unzip();
@@ -540,16 +459,25 @@ impl BezierPatch {
 
     /// The patch with `u` and `v` swapped (`b'[j][i] = b[i][j]`). Flips the normal.
     pub fn transposed(&self) -> BezierPatch {
+        if self.weights.is_some() {
+            return rational::map(self, |p| p.transposed());
+        }
         BezierPatch::from_fn(self.deg_v, self.deg_u, |i, j| self.cp(j, i))
     }
 
     /// The patch with `u` reversed (`b'[i][j] = b[du - i][j]`). Flips the normal.
     pub fn reversed_u(&self) -> BezierPatch {
+        if self.weights.is_some() {
+            return rational::map(self, |p| p.reversed_u());
+        }
         BezierPatch::from_fn(self.deg_u, self.deg_v, |i, j| self.cp(self.deg_u - i, j))
     }
 
     /// The patch with `v` reversed (`b'[i][j] = b[i][dv - j]`). Flips the normal.
     pub fn reversed_v(&self) -> BezierPatch {
+        if self.weights.is_some() {
+            return rational::map(self, |p| p.reversed_v());
+        }
         BezierPatch::from_fn(self.deg_u, self.deg_v, |i, j| self.cp(i, self.deg_v - j))
     }
 
@@ -578,12 +506,14 @@ impl BezierPatch {
         crate::geom::bounding_box(self.cps.iter().copied()).unwrap_or(([0.0; 3], [0.0; 3]))
     }
 
-    /// The patch with every coefficient mapped by `f` (exact image for affine `f`).
+    /// The patch with every coefficient mapped by `f` (exact image for affine `f`; a rational
+    /// patch keeps its weights).
     pub fn map_points(&self, f: impl FnMut(Point) -> Point) -> BezierPatch {
         BezierPatch {
             deg_u: self.deg_u,
             deg_v: self.deg_v,
             cps: self.cps.iter().copied().map(f).collect(),
+            weights: self.weights.clone(),
         }
     }
 

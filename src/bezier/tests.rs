@@ -3,7 +3,7 @@
 //! surfaces), a polar patch with a collapsed edge, splitting and degree raising identities.
 
 use super::*;
-use crate::geom::{dist, normalize, sub};
+use crate::geom::{dist, dot, normalize, sub};
 
 struct Lcg(u64);
 impl Lcg {

@@ -5,7 +5,7 @@ use super::spec::{self, SchemeOptions};
 use crate::analysis::{continuity, curvature, scaled};
 use crate::error::{Error, Result};
 use crate::schemes::Spec;
-use crate::surface::{PatchComplex, Provenance};
+use crate::surface::PatchComplex;
 use serde::Serialize;
 use std::path::Path;
 
@@ -35,6 +35,10 @@ pub struct CheckArgs {
 #[derive(Debug, Serialize)]
 struct CheckReport {
     source: String,
+    /// What a `.bv` file held, by kind (every kind is checked; polyhedron faces as flat
+    /// patches whose joins are sharp).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    kinds: Option<crate::io::BvCounts>,
     continuity: continuity::ContinuityReport,
     curvature: Vec<curvature::ElementCurvature>,
     /// C^1 up to a per-piece affine reparametrisation (bi-2 schemes, whose polar and
@@ -64,6 +68,7 @@ fn build_report(
     };
     CheckReport {
         source: source.to_string(),
+        kinds: None,
         continuity: continuity::check(complex),
         curvature: curvature::ring_curvature(complex),
         c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(complex)),
@@ -81,27 +86,6 @@ pub fn report_json(
 ) -> String {
     let r = build_report(source, complex, spec, notes);
     serde_json::to_string_pretty(&r).expect("serialisable")
-}
-
-/// Maps BezierView group names written by fairsub (`regular`, `ringK`, `cap`) back to provenance.
-fn provenance_of_group(name: Option<&str>) -> Provenance {
-    let e = crate::mesh::Element::Vertex(0);
-    match name {
-        Some("regular") => Provenance::Regular { face: 0 },
-        Some("cap") => Provenance::Cap {
-            element: e,
-            sector: 0,
-        },
-        Some(g) if g.starts_with("ring") => match g[4..].parse::<u32>() {
-            Ok(ring) => Provenance::Ring {
-                element: e,
-                ring,
-                sector: 0,
-            },
-            Err(_) => Provenance::Unknown,
-        },
-        _ => Provenance::Unknown,
-    }
 }
 
 /// Runs `fairsub check`.
@@ -123,6 +107,7 @@ pub fn check(a: CheckArgs) -> Result<()> {
         None => None,
     };
     let mut notes = Vec::new();
+    let mut kinds = None;
     let complex = match &spec {
         Some(s) => {
             let net = super::load_net(&a.input)?.mesh;
@@ -148,15 +133,19 @@ pub fn check(a: CheckArgs) -> Result<()> {
             for w in &f.warnings {
                 eprintln!("warning: {}: {w}", a.input);
             }
-            let mut c = f.patches;
-            for (k, g) in f.patch_groups.iter().enumerate() {
-                let name = g.and_then(|g| f.groups.get(g)).map(|g| g.name.as_str());
-                c.provenance[k] = provenance_of_group(name);
+            let n = f.counts();
+            if n.tensor + n.rational + n.triangular + n.polyhedron_faces == 0 {
+                return Err(Error::InvalidArgument(format!(
+                    "{}: no patches or polyhedron faces to check",
+                    a.input
+                )));
             }
-            c
+            kinds = Some(n);
+            crate::render::complex_from_bv_with(&f, true)
         }
     };
-    let r = build_report(&a.input, &complex, spec.as_ref(), notes);
+    let mut r = build_report(&a.input, &complex, spec.as_ref(), notes);
+    r.kinds = kinds;
     if a.json {
         say!(
             "{}",
@@ -173,6 +162,17 @@ pub fn check(a: CheckArgs) -> Result<()> {
         c.open_sides,
         c.size
     );
+    if let Some(n) = &r.kinds {
+        say!(
+            "  read: {} tensor-product, {} rational, {} triangular patches (as collapsed \
+             tensor-product patches), {} polyhedra with {} faces (as flat patches, sharp joins)",
+            n.tensor,
+            n.rational,
+            n.triangular,
+            n.polyhedra,
+            n.polyhedron_faces
+        );
+    }
     say!(
         "  {:<22} {:>7} {:>10} {:>10} {:>10} {:>10}",
         "join",

@@ -7,7 +7,7 @@
 
 use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
-use crate::io::BvFile;
+use crate::io::{BvCounts, BvFile};
 use crate::mesh::PolyMesh;
 use crate::render::{
     self, Mode, Overlays, RenderOptions, Scene, ShadeOptions, View, camera, stats,
@@ -227,33 +227,39 @@ pub(super) fn is_bv(path: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("bv"))
 }
 
-/// A `.bv` file as a scene: its tensor-product patches with provenance from the group names
-/// (its first polyhedron, if any, as the net); only polyhedra: the first one as a mesh.
-pub(super) fn bv_scene(path: &str) -> Result<Scene> {
+/// A `.bv` file's patches of every kind, as BezierView draws them: tensor-product, rational and
+/// triangular patches and the faces of its polyhedra (flat), with provenance from the group
+/// names, and its first polyhedron, if any, as the net of the overlays. Also what it held, by
+/// kind.
+pub(super) fn bv_complex(
+    path: &str,
+) -> Result<(crate::surface::PatchComplex, Option<PolyMesh>, BvCounts)> {
     let file: BvFile = crate::io::read_bv(Path::new(path))?;
     for w in &file.warnings {
         eprintln!("warning: {path}: {w}");
     }
-    if !file.tri_patches.is_empty() {
-        eprintln!(
-            "warning: {path}: {} triangular patches are not drawn (only tensor-product patches)",
-            file.tri_patches.len()
-        );
+    let n = file.counts();
+    if n.tensor + n.rational + n.triangular + n.polyhedron_faces == 0 {
+        return Err(Error::InvalidArgument(format!(
+            "{path}: no patches or polyhedron faces to draw"
+        )));
     }
     let poly = file.polyhedra.first().and_then(|p| {
         PolyMesh::new(p.positions.clone(), &p.faces)
             .map_err(|e| eprintln!("warning: {path}: polyhedron not usable as a net: {e}"))
             .ok()
     });
-    if file.patches.is_empty() {
-        return match poly {
-            Some(m) => Ok(Scene::mesh(&m)),
-            None => Err(Error::InvalidArgument(format!(
-                "{path}: no tensor-product patches or polyhedra to draw"
-            ))),
-        };
-    }
-    Ok(Scene::patches(render::complex_from_bv(&file), poly))
+    Ok((render::complex_from_bv_with(&file, true), poly, n))
+}
+
+/// A `.bv` file as a scene ([`bv_complex`]); a file of one polyhedron only: the polyhedron as
+/// a mesh.
+pub(super) fn bv_scene(path: &str) -> Result<Scene> {
+    let (c, poly, n) = bv_complex(path)?;
+    Ok(match poly {
+        Some(m) if n.polyhedra == 1 && n.tensor + n.rational + n.triangular == 0 => Scene::mesh(&m),
+        poly => Scene::patches(c, poly),
+    })
 }
 
 /// The patch complex of a scheme as a scene with its net.

@@ -268,11 +268,19 @@ pub const BV_ELEMENT: Element = Element::Vertex(u32::MAX);
 /// The patch complex of a `.bv` file with provenance recovered from its group names: `regular`
 /// gives [`Provenance::Regular`] (face unknown: `u32::MAX`), `ringK` gives ring `K` and `cap`
 /// the cap, both of the unrecorded element [`BV_ELEMENT`] (sector 0); other groups stay
-/// [`Provenance::Unknown`].
+/// [`Provenance::Unknown`]. Triangular patches are included as exact tensor-product patches
+/// ([`BvFile::all_patches`]), polyhedra are not (see [`complex_from_bv_with`]).
 pub fn complex_from_bv(file: &BvFile) -> PatchComplex {
-    let mut c = file.patches.clone();
+    complex_from_bv_with(file, false)
+}
+
+/// [`complex_from_bv`], with the faces of the file's polyhedra as flat patches when
+/// `polyhedra` is true.
+pub fn complex_from_bv_with(file: &BvFile, polyhedra: bool) -> PatchComplex {
+    let all = file.all_patches(polyhedra);
+    let mut c = all.complex;
     for (k, prov) in c.provenance.iter_mut().enumerate() {
-        let Some(Some(g)) = file.patch_groups.get(k) else {
+        let Some(Some(g)) = all.groups.get(k) else {
             continue;
         };
         let Some(group) = file.groups.get(*g) else {

@@ -22,8 +22,11 @@
 //!   exactly fairsub's [`BezierPatch`](crate::bezier::BezierPatch) layout `cps[i * (deg_v + 1) + j]`, `i` along u, so
 //!   coefficients are written and read in storage order with no transposition.
 //! * Type `8`, rational tensor-product patch: `degu degv`, points `x y z w` in homogeneous form
-//!   (BezierView divides by `w`). Read when all weights are equal (a polynomial patch); else
-//!   rejected.
+//!   (BezierView divides by `w`; weights must be positive). Read as a rational
+//!   [`BezierPatch`](crate::bezier::BezierPatch) (its weights kept, its points divided by them),
+//!   or as a polynomial patch when all weights are equal. Types 6 (trim curves) and 7 (B-spline
+//!   patches) are named in BezierView's sources but not loaded by it; fairsub rejects them as
+//!   unknown, naming the line.
 //! * Type `3`, triangular (total-degree) patch: `deg`, then `(deg+1)(deg+2)/2` points in
 //!   "row-ascending" order: for `deg = 3` the indices are laid out as
 //!   ```text
@@ -46,10 +49,15 @@
 //! `#k` depth hint, which fairsub does not use); it takes time linear in the size of the file,
 //! also with many groups.
 //!
-//! `write` holds the writer, `read` the reader.
+//! `write` holds the writer, `read` the reader, `kinds` every kind as tensor-product patches
+//! (exact: triangles as collapsed tensor-product patches, polyhedron faces as flat ones), which
+//! `check`, `render` and `view` use.
 
+mod kinds;
 mod read;
 mod write;
+
+pub use kinds::{BvCounts, BvPatches, triangle_as_tensor};
 
 use crate::geom::Point;
 use crate::surface::PatchComplex;
@@ -114,7 +122,8 @@ pub struct BvPolyhedron {
 pub struct BvFile {
     /// Groups in order of first appearance.
     pub groups: Vec<BvGroup>,
-    /// Tensor-product patches (types 4, 5, polynomial 8, 10), with [`Provenance::Unknown`](crate::surface::Provenance::Unknown).
+    /// Tensor-product patches (types 4, 5, 8, 10; rational ones carry their weights), with
+    /// [`Provenance::Unknown`](crate::surface::Provenance::Unknown).
     pub patches: PatchComplex,
     /// Group of each tensor-product patch (index into `groups`).
     pub patch_groups: Vec<Option<usize>>,
@@ -124,7 +133,8 @@ pub struct BvFile {
     pub tri_groups: Vec<Option<usize>>,
     /// Polyhedra (type 1).
     pub polyhedra: Vec<BvPolyhedron>,
-    /// Notes about what was read but dropped (normals of PN patches).
+    /// Notes about what was read but dropped (normals of PN patches) or read differently
+    /// (type 8 patches with equal weights read as polynomial ones).
     pub warnings: Vec<String>,
 }
 

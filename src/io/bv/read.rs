@@ -6,7 +6,7 @@ use super::super::groups::FirstSeen;
 use super::super::text::{Lines, parse_error, read_file};
 use super::{BvFile, BvGroup, BvPolyhedron, MAX_DEGREE, TriPatch};
 use crate::bezier::BezierPatch;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geom::Point;
 use crate::surface::Provenance;
 use std::path::Path;
@@ -160,31 +160,33 @@ impl<'a> Cursor<'a> {
         Ok(faces)
     }
 
-    /// `n` homogeneous points `x y z w` of a rational patch (`segment` says which), divided by
-    /// their weight; unequal weights (a truly rational patch) are unsupported.
+    /// `n` homogeneous points `x y z w` of a rational patch: the Euclidean points (divided by
+    /// their weights) and the weights, which must be positive.
     fn rational_points(
         &mut self,
         n: usize,
         what: &dyn Fn(&str) -> String,
-        segment: &str,
-    ) -> Result<Vec<Point>> {
+    ) -> Result<(Vec<Point>, Vec<f64>)> {
         let mut cps = Vec::with_capacity(n.min(self.remaining() / 4 + 1));
-        let mut w0 = None;
+        let mut ws = Vec::with_capacity(n.min(self.remaining() / 4 + 1));
         for k in 0..n {
             let p = self.point(&|| what(&format!("control point {k}")))?;
             let line = self.line_ahead();
             let w = self.real(&|| what(&format!("the weight of control point {k}")))?;
-            let w0 = *w0.get_or_insert(w);
-            if w == 0.0 || (w - w0).abs() > 1e-12 * w0.abs() {
-                return Err(Error::Unsupported(format!(
-                    "{}:{line}: rational patch ({segment}) has weights {w0} and {w}; only \
-                     rational patches with equal weights (polynomial ones) can be read",
-                    self.path.display()
-                )));
+            if !(w.is_finite() && w > 0.0) {
+                return Err(parse_error(
+                    self.path,
+                    line,
+                    format!(
+                        "{} is {w}; weights must be positive",
+                        what(&format!("the weight of control point {k}"))
+                    ),
+                ));
             }
             cps.push([p[0] / w, p[1] / w, p[2] / w]);
+            ws.push(w);
         }
-        Ok(cps)
+        Ok((cps, ws))
     }
 }
 
@@ -292,11 +294,17 @@ pub(super) fn parse_bv_bytes(bytes: &[u8], path: &Path) -> Result<BvFile> {
                     None
                 };
                 let n = (du + 1) * (dv + 1);
-                let cps = if kind == 8 {
-                    rational += 1;
-                    cur.rational_points(n, &what, &format!("segment {seg}, line {at}"))?
+                let (cps, weights) = if kind == 8 {
+                    let (cps, ws) = cur.rational_points(n, &what)?;
+                    // equal weights: a polynomial patch
+                    let equal = ws.iter().all(|&w| (w - ws[0]).abs() <= 1e-12 * ws[0]);
+                    rational += usize::from(equal);
+                    (cps, (!equal).then_some(ws))
                 } else {
-                    cur.points(n, &|k| what(&format!("control point {k}")))?
+                    (
+                        cur.points(n, &|k| what(&format!("control point {k}")))?,
+                        None,
+                    )
                 };
                 if let Some((a, b)) = ndeg {
                     cur.points((a + 1) * (b + 1), &|k| {
@@ -309,6 +317,7 @@ pub(super) fn parse_bv_bytes(bytes: &[u8], path: &Path) -> Result<BvFile> {
                         deg_u: du,
                         deg_v: dv,
                         cps,
+                        weights,
                     },
                     Provenance::Unknown,
                 );

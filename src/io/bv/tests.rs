@@ -185,15 +185,46 @@ fn errors_name_lines() {
             ("5 2 1000000\n", 1, &["1000000"]),
         ],
     );
+    // a weight must be positive
     let e = parse_bv(
-        "8 1 1\n0 0 0 1\n1 0 0 2\n0 1 0 1\n1 1 0 1\n",
+        "8 1 1\n0 0 0 1\n1 0 0 0\n0 1 0 1\n1 1 0 1\n",
         Path::new("e.bv"),
     )
     .unwrap_err();
     assert!(
-        matches!(e, Error::Unsupported(_)) && e.to_string().contains("e.bv:3"),
+        matches!(e, Error::Parse { .. }) && e.to_string().contains("e.bv:3"),
         "{e}"
     );
+}
+
+#[test]
+fn rational_patches_keep_their_weights_and_round_trip() {
+    // homogeneous coefficients: the second point (1, 0, 0) with weight 2
+    let f = parse_bv(
+        "8 1 1\n0 0 0 1\n2 0 0 2\n0 1 0 1\n1 1 0 1\n",
+        Path::new("r.bv"),
+    )
+    .unwrap();
+    let p = &f.patches.patches[0];
+    assert_eq!(p.weights.as_deref(), Some(&[1.0, 2.0, 1.0, 1.0][..]));
+    assert_eq!(p.cps[1], [1.0, 0.0, 0.0]);
+    // along u = 0 (b00 with weight 1, b01 = (1, 0, 0) with weight 2): x = 2 v / (1 + v)
+    let q = p.eval(0.5, 0.0);
+    assert_eq!(q, [0.0, 0.5, 0.0]);
+    let q = p.eval(0.0, 0.5);
+    assert!((q[0] - 2.0 / 3.0).abs() < 1e-15 && q[1] == 0.0, "{q:?}");
+    let text = bv_to_string(&f.patches).unwrap();
+    assert!(text.starts_with("group 1 patches\n8 1 1\n"), "{text}");
+    let back = parse_bv(&text, Path::new("r2.bv")).unwrap();
+    assert_eq!(back.patches.patches[0], *p);
+    assert_eq!(f.counts().rational, 1);
+    // equal weights: a polynomial patch, with a note
+    let f = parse_bv(
+        "8 1 1\n0 0 0 2\n2 0 0 2\n0 2 0 2\n2 2 0 2\n",
+        Path::new("r.bv"),
+    )
+    .unwrap();
+    assert!(f.patches.patches[0].weights.is_none() && f.warnings.len() == 1);
 }
 
 #[test]

@@ -23,6 +23,13 @@ fn check_patch(k: usize, p: &BezierPatch) -> Result<()> {
             (p.deg_u + 1) * (p.deg_v + 1)
         )));
     }
+    if let Some(w) = &p.weights
+        && (w.len() != p.cps.len() || w.iter().any(|x| !(x.is_finite() && *x > 0.0)))
+    {
+        return Err(Error::InvalidArgument(format!(
+            "rational patch {k}: its weights must be one positive number per coefficient"
+        )));
+    }
     if let Some(c) = p.cps.iter().position(|q| !q.iter().all(|x| x.is_finite())) {
         return Err(Error::InvalidArgument(format!(
             "patch {k}: coefficient b[{}][{}] = {:?} is not finite",
@@ -92,9 +99,23 @@ impl GroupTracker {
     }
 }
 
-/// A tensor-product patch: `4 deg` or `5 degu degv`, then its coefficients in storage order.
+/// A tensor-product patch: `4 deg` or `5 degu degv`, then its coefficients in storage order; a
+/// rational one `8 degu degv`, then its homogeneous coefficients `w x, w y, w z, w`.
 fn emit_patch(out: &mut ChunkedText<'_>, p: &BezierPatch) -> std::io::Result<()> {
     use std::fmt::Write as _;
+    if let Some(w) = &p.weights {
+        let _ = writeln!(out.buf, "8 {} {}", p.deg_u, p.deg_v);
+        for (c, &wi) in p.cps.iter().zip(w) {
+            for x in [c[0] * wi, c[1] * wi, c[2] * wi] {
+                super::super::textout::push_f64(&mut out.buf, x);
+                out.buf.push(' ');
+            }
+            super::super::textout::push_f64(&mut out.buf, wi);
+            out.buf.push('\n');
+            out.maybe_flush()?;
+        }
+        return Ok(());
+    }
     if p.deg_u == p.deg_v {
         let _ = writeln!(out.buf, "4 {}", p.deg_u);
     } else {

@@ -195,5 +195,6 @@ pub(super) fn surface_128(params: &[String]) -> std::result::Result<BezierPatch,
         deg_u: k1,
         deg_v: k2,
         cps,
+        weights: None,
     })
 }

@@ -134,15 +134,19 @@ fn delimited(mut params: Vec<String>) -> Vec<String> {
 fn at_least_linear(p: &BezierPatch) -> BezierPatch {
     let (du, dv) = (p.deg_u.max(1), p.deg_v.max(1));
     let mut cps = Vec::with_capacity((du + 1) * (dv + 1));
+    let mut weights = Vec::with_capacity((du + 1) * (dv + 1));
     for i in 0..=du {
         for j in 0..=dv {
-            cps.push(p.cp(i.min(p.deg_u), j.min(p.deg_v)));
+            let k = i.min(p.deg_u) * (p.deg_v + 1) + j.min(p.deg_v);
+            cps.push(p.cps[k]);
+            weights.push(p.weights.as_ref().map_or(1.0, |w| w[k]));
         }
     }
     BezierPatch {
         deg_u: du,
         deg_v: dv,
         cps,
+        weights: p.weights.as_ref().map(|_| weights),
     }
 }
 
@@ -162,7 +166,8 @@ fn entity_128(p: &BezierPatch) -> Vec<String> {
         &dv.to_string(),
         "0",
         "0",
-        "1",
+        // PROP3: 1 polynomial, 0 rational
+        if p.is_rational() { "0" } else { "1" },
         "0",
         "0",
     ]
@@ -173,7 +178,16 @@ fn entity_128(p: &BezierPatch) -> Vec<String> {
         v.extend(std::iter::repeat_n("0.0".to_string(), d + 1));
         v.extend(std::iter::repeat_n("1.0".to_string(), d + 1));
     }
-    v.extend(std::iter::repeat_n("1.0".to_string(), (du + 1) * (dv + 1)));
+    for j in 0..=dv {
+        for i in 0..=du {
+            let w = p.weights.as_ref().map_or(1.0, |w| w[i * (dv + 1) + j]);
+            v.push(if p.is_rational() {
+                iges_real(w)
+            } else {
+                "1.0".to_string()
+            });
+        }
+    }
     for j in 0..=dv {
         for i in 0..=du {
             for c in p.cp(i, j) {

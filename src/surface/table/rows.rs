@@ -178,6 +178,7 @@ fn empty(du: u32, dv: u32) -> BezierPatch {
         deg_u: du as usize,
         deg_v: dv as usize,
         cps: Vec::new(),
+        weights: None,
     }
 }
 

@@ -171,6 +171,7 @@ fn segment_weights(side: Side, range: [f64; 2]) -> &'static [Vec<(u32, f64)>] {
                         deg_u: 3,
                         deg_v: 3,
                         cps: pts.to_vec(),
+                        weights: None,
                     };
                     let s = segment_from_ring(&p, side, range, 1.0);
                     [s.boundary, s.cross].concat()
