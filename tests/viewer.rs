@@ -54,11 +54,18 @@ fn start(args: &[&str]) -> Viewer {
     Viewer { child, url, port }
 }
 
-/// Status and body of a raw GET of `path` (sent as it is, no normalisation).
+/// Status and body of a raw GET of `path` (sent as it is, no normalisation), addressed to the
+/// server itself (`Host: 127.0.0.1:PORT`).
 fn get(port: u16, path: &str) -> (u16, Vec<u8>) {
+    get_as(port, path, Some(&format!("127.0.0.1:{port}")))
+}
+
+/// [`get`] with the given `Host` header (none with `None`).
+fn get_as(port: u16, path: &str, host: Option<&str>) -> (u16, Vec<u8>) {
     let mut s = TcpStream::connect(("127.0.0.1", port)).expect("connect");
     s.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
-    write!(s, "GET {path} HTTP/1.0\r\nHost: x\r\n\r\n").unwrap();
+    let host = host.map(|h| format!("Host: {h}\r\n")).unwrap_or_default();
+    write!(s, "GET {path} HTTP/1.0\r\n{host}\r\n").unwrap();
     let mut buf = Vec::new();
     s.read_to_end(&mut buf).expect("reply");
     let head_end = buf
@@ -79,6 +86,37 @@ fn get(port: u16, path: &str) -> (u16, Vec<u8>) {
 fn serves_only_its_routes_and_only_on_loopback() {
     let v = start(&["gallery:cube", "--scheme", "catmull-clark", "--rings", "2"]);
     assert_eq!(get(v.port, "/").0, 200);
+    assert_eq!(
+        get_as(v.port, "/", Some(&format!("localhost:{}", v.port))).0,
+        200
+    );
+    // Only requests addressed to the server itself are answered: a page of another site that
+    // rebinds its own name to 127.0.0.1 sends its own name as Host, and gets nothing.
+    let other_port = format!("127.0.0.1:{}", v.port.wrapping_add(1));
+    let rebound = format!("attacker.example:{}", v.port);
+    for host in [
+        Some(rebound.as_str()),
+        Some("attacker.example"),
+        Some(other_port.as_str()),
+        Some("127.0.0.1"),
+        None,
+    ] {
+        for path in [
+            "/",
+            "/api/info",
+            "/api/surface?scheme=catmull-clark&rings=2",
+        ] {
+            let (status, body) = get_as(v.port, path, host);
+            let text = String::from_utf8_lossy(&body);
+            assert_eq!(status, 421, "Host {host:?}, {path}: {text}");
+            assert!(
+                text.contains("answers only requests to http://127.0.0.1:")
+                    && !text.contains("FSV1")
+                    && !text.contains("vertices"),
+                "Host {host:?}, {path}: {text}"
+            );
+        }
+    }
     assert_eq!(get(v.port, "/viewer.js").0, 200);
     for bad in [
         "/../Cargo.toml",

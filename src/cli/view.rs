@@ -6,6 +6,11 @@
 //! path is a 404, so nothing outside the embedded assets can be read (no file system access by
 //! path at all). Surfaces are recomputed on the server when the page asks for another scheme or
 //! ring count, within the CLI's limits.
+//!
+//! Only requests addressed to the server itself are answered: the `Host` header must name its
+//! own loopback address and port (`127.0.0.1:PORT`, or `localhost:PORT`); any other `Host`, or
+//! none, gets 421 and a short message. A web page elsewhere could otherwise reach the server
+//! through DNS rebinding (its own name resolved to 127.0.0.1) and make it compute for it.
 
 mod api;
 
@@ -101,7 +106,7 @@ pub fn run(a: ViewArgs) -> Result<()> {
     let mut state = state;
     while !STOP.load(Ordering::SeqCst) {
         match server.recv_timeout(Duration::from_millis(200)) {
-            Ok(Some(req)) => respond(&mut state, req),
+            Ok(Some(req)) => respond(&mut state, req, port),
             Ok(None) => {}
             Err(e) => eprintln!("warning: fairsub view: {e}"),
         }
@@ -223,9 +228,46 @@ fn route(state: &mut api::State, url: &str) -> Reply {
     }
 }
 
-/// Answers one request (only GET is served).
-fn respond(state: &mut api::State, req: tiny_http::Request) {
-    let reply = if *req.method() == tiny_http::Method::Get {
+/// Whether a `Host` header value names this server: `127.0.0.1:PORT` or `localhost:PORT`
+/// (case-insensitive; a trailing dot of the name is not accepted). Without the port, or with
+/// another one, it is not this server.
+fn host_is_own(host: &str, port: u16) -> bool {
+    let Some((name, p)) = host.trim().rsplit_once(':') else {
+        return false;
+    };
+    p.parse::<u16>() == Ok(port) && (name == "127.0.0.1" || name.eq_ignore_ascii_case("localhost"))
+}
+
+/// The reply to a request whose `Host` is not this server's (see the module notes), if so.
+fn foreign_host(req: &tiny_http::Request, port: u16) -> Option<Reply> {
+    let hosts: Vec<&str> = req
+        .headers()
+        .iter()
+        .filter(|h| h.field.equiv("Host"))
+        .map(|h| h.value.as_str())
+        .collect();
+    match hosts[..] {
+        [h] if host_is_own(h, port) => None,
+        _ => Some(Reply::error(
+            421,
+            &format!(
+                "this fairsub viewer answers only requests to http://127.0.0.1:{port}/ (Host \
+                 header {})",
+                if hosts.is_empty() {
+                    "missing".to_string()
+                } else {
+                    format!("'{}'", hosts.join("', '"))
+                }
+            ),
+        )),
+    }
+}
+
+/// Answers one request (only GET to this server's own `Host` is served).
+fn respond(state: &mut api::State, req: tiny_http::Request, port: u16) {
+    let reply = if let Some(r) = foreign_host(&req, port) {
+        r
+    } else if *req.method() == tiny_http::Method::Get {
         route(state, req.url())
     } else {
         Reply::error(405, "only GET is served")
@@ -252,5 +294,31 @@ mod tests {
         assert_eq!(q[1], ("rings".into(), "3".into()));
         assert_eq!(q[2], ("x".into(), "".into()));
         assert_eq!(percent_decode("%2e%2E/%zz%"), "../%zz%");
+    }
+
+    #[test]
+    fn only_the_own_host_and_port_are_served() {
+        for ok in [
+            "127.0.0.1:8765",
+            "localhost:8765",
+            "LocalHost:8765",
+            " 127.0.0.1:8765 ",
+        ] {
+            assert!(host_is_own(ok, 8765), "{ok}");
+        }
+        for bad in [
+            "127.0.0.1",
+            "127.0.0.1:8766",
+            "localhost",
+            "evil.example:8765",
+            "127.0.0.1.evil.example:8765",
+            "localhost.:8765",
+            "[::1]:8765",
+            "127.0.0.2:8765",
+            "",
+            ":8765",
+        ] {
+            assert!(!host_is_own(bad, 8765), "{bad}");
+        }
     }
 }

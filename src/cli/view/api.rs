@@ -31,8 +31,8 @@ const CACHE: usize = 4;
 enum Source {
     /// A control net, whose surface the page's scheme builds.
     Net(PolyMesh),
-    /// The patches of a BezierView file and its polyhedron, if any.
-    Bv(PatchComplex, Option<PolyMesh>),
+    /// The patches of a BezierView file (every kind), its polyhedron, if any, and what it held.
+    Bv(PatchComplex, Option<PolyMesh>, crate::io::BvCounts),
 }
 
 /// A built surface and what was computed from it.
@@ -88,11 +88,8 @@ impl State {
                         .into(),
                 ));
             }
-            let scene = super::super::render::bv_scene(&a.input)?;
-            let c = scene.complex().cloned().ok_or_else(|| {
-                Error::InvalidArgument(format!("{}: no tensor-product patches to show", a.input))
-            })?;
-            Source::Bv(c, scene.net)
+            let (c, net, kinds) = super::super::render::bv_complex(&a.input)?;
+            Source::Bv(c, net, kinds)
         } else {
             Source::Net(super::super::load_net(&a.input)?.mesh)
         };
@@ -252,7 +249,7 @@ impl State {
             self.cache.push(b);
         } else {
             let (spec, complex, notes) = match &self.source {
-                Source::Bv(c, _) => (None, c.clone(), Vec::new()),
+                Source::Bv(c, _, _) => (None, c.clone(), Vec::new()),
                 Source::Net(_) => {
                     // `fairsub subdivide WORDS`'s own path: the same parsing, loading, limits
                     // and construction as the command line and the Python package.
@@ -283,7 +280,7 @@ impl State {
     fn net(&self) -> Option<&PolyMesh> {
         match &self.source {
             Source::Net(m) => Some(m),
-            Source::Bv(_, p) => p.as_ref(),
+            Source::Bv(_, p, _) => p.as_ref(),
         }
     }
 
@@ -316,8 +313,8 @@ impl State {
 
     fn info(&self) -> Reply {
         match (&self.source, self.net()) {
-            (Source::Bv(c, _), None) => Reply::json(&serde_json::json!({
-                "source": self.input, "patches": c.len()
+            (Source::Bv(c, _, kinds), None) => Reply::json(&serde_json::json!({
+                "source": self.input, "patches": c.len(), "kinds": kinds
             })),
             (_, Some(m)) => Reply::json(&super::super::info::report(&self.input, m)),
             (Source::Net(_), None) => unreachable!("a net source has its net"),

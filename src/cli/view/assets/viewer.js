@@ -360,13 +360,88 @@ function rendererName() {
   return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
 }
 
+// The side panel's tables: built as DOM nodes with textContent (the reports name files and
+// elements; nothing from them is parsed as HTML).
+function el(tag, text, cls) {
+  const e = document.createElement(tag);
+  if (text !== undefined) e.textContent = text;
+  if (cls) e.className = cls;
+  return e;
+}
+
+// A table of rows (arrays of cells), with a header row when `head` is given.
+function table(rows, head) {
+  const t = el("table");
+  if (head) { const tr = t.insertRow(); for (const h of head) tr.appendChild(el("th", h)); }
+  for (const r of rows) {
+    const tr = t.insertRow();
+    r.forEach((c, i) => tr.appendChild(el(i === 0 && !head ? "th" : "td", String(c))));
+  }
+  return t;
+}
+
+const num = (x) => (typeof x === "number" ? (Number.isInteger(x) ? String(x) : x.toExponential(2)) : x == null ? "-" : String(x));
+const counts = (m) => Object.entries(m || {}).map(([k, v]) => `${k}: ${v}`).join(", ") || "none";
+const elementName = (e) => (e && typeof e === "object" ? Object.entries(e).map(([k, v]) => `${k.toLowerCase()} ${v}`).join(" ") : String(e));
+const listed = (a, f, n = 6) => (a.length ? a.slice(0, n).map(f).join(", ") + (a.length > n ? `, ... (${a.length})` : "") : "none");
+
+// The net's `info` report (or a .bv file's counts) as a table of its facts.
+function showInfo(i) {
+  const box = $("info");
+  box.replaceChildren();
+  if (i.patches !== undefined) {
+    const k = i.kinds || {};
+    box.appendChild(table([["file", i.source], ["patches", i.patches], ["tensor-product", num(k.tensor)], ["rational", num(k.rational)],
+      ["triangular", num(k.triangular)], ["polyhedra", `${num(k.polyhedra)} (${num(k.polyhedron_faces)} faces)`]]));
+    return;
+  }
+  const bb = i.bounding_box || [[], []];
+  const rows = [["file", i.source], ["vertices", i.vertices], ["edges", i.edges], ["faces", i.faces],
+    ["Euler char.", i.euler_characteristic], ["face sizes", counts(i.face_sizes)],
+    ["interior valences", counts(i.interior_valences)], ["boundary valences", counts(i.boundary_valences)],
+    ["boundary loops", i.boundary_loops.length ? i.boundary_loops.join(", ") : "none"],
+    ["extraord. vertices", listed(i.extraordinary_vertices, (v) => `${v.vertex} (n=${v.valence}${v.boundary ? ", boundary" : ""})`)],
+    ["extraord. faces", listed(i.extraordinary_faces, (f) => `${f.face} (${f.sides} sides)`)],
+    ["box min", bb[0].map((x) => x.toPrecision(4)).join(" ")], ["box max", bb[1].map((x) => x.toPrecision(4)).join(" ")]];
+  if (i.dropped_vertices && i.dropped_vertices.length) rows.push(["dropped vertices", listed(i.dropped_vertices, String)]);
+  if (i.non_manifold) rows.push(["non-manifold", `${i.non_manifold.edges.length} edges, ${i.non_manifold.vertices.length} vertices`]);
+  box.appendChild(table(rows));
+  const rules = Object.entries(i.rules_by_valence || {});
+  if (rules.length) {
+    box.appendChild(el("div", "rules at the extraordinary valences", "sub"));
+    box.appendChild(table(rules.map(([s, rs]) => [s, rs.map((r) => `n=${r.valence}: ${r.rules}`).join("; ")]), ["scheme", "rules"]));
+  }
+  for (const p of i.problems || []) box.appendChild(el("div", "problem: " + p, "note"));
+}
+
+// `check --json`'s report as tables: the joins by kind, C^1 up to scaling, curvature per ring.
 function showCheck(r) {
-  const c = r.continuity, a = c.all || {};
-  const lines = [`patches ${c.patches}`, `open sides ${c.open_sides}`];
-  for (const [k, v] of Object.entries(a)) lines.push(`${k}: ${typeof v === "number" ? v.toExponential(2) : JSON.stringify(v)}`);
-  for (const e of r.curvature || []) lines.push(JSON.stringify(e).slice(0, 300));
-  for (const n of r.notes || []) lines.push("note: " + n);
-  $("check").textContent = lines.join("\n");
+  const c = r.continuity, box = $("check");
+  box.replaceChildren(el("div", `patches ${c.patches}, open sides ${c.open_sides}, size ${num(c.size)}`, "sum"));
+  if (r.kinds) {
+    const k = r.kinds;
+    box.appendChild(el("div", `read: ${k.tensor} tensor-product, ${k.rational} rational, ${k.triangular} triangular, ${k.polyhedron_faces} polyhedron faces`, "note"));
+  }
+  const row = (name, d) => [name, d.pieces, num(d.c0), num(d.c1), num(d.c2), num(d.g1)];
+  const joins = Object.entries(c.by_kind || {}).map(([k, d]) => row(k, d));
+  if (c.sharp && c.sharp.pieces > 0) joins.push(row("sharp (C0)", c.sharp));
+  if (c.all) joins.push(row("all", c.all));
+  box.appendChild(table(joins, ["join", "pieces", "C0", "C1", "C2", "G1 rad"]));
+  const sc = r.c1_up_to_scaling;
+  if (sc && Object.keys(sc.by_kind || {}).length) {
+    box.appendChild(el("div", "C1 up to per-piece scaling", "sub"));
+    box.appendChild(table(Object.entries(sc.by_kind).map(([k, d]) => [k, d.pieces, num(d.c1_relative), num(d.kappa_min), num(d.kappa_max), num(d.g1)]),
+      ["join", "pieces", "C1 rel.", "kappa min", "kappa max", "G1 rad"]));
+  }
+  const curv = [];
+  for (const e of r.curvature || []) for (const g of e.rings) {
+    curv.push([elementName(e.element), g.ring === 0 ? "cap" : `ring ${g.ring}`, num(g.gauss_min), num(g.gauss_max), num(g.mean_min), num(g.mean_max)]);
+  }
+  if (curv.length) {
+    box.appendChild(el("div", "curvature per ring", "sub"));
+    box.appendChild(table(curv, ["element", "ring", "K min", "K max", "H min", "H max"]));
+  }
+  for (const n of r.notes || []) box.appendChild(el("div", "note: " + n, "note"));
 }
 
 // The option controls of the shown schemes (left, then right), built from the option words
@@ -487,7 +562,7 @@ async function main() {
     meta = await fetchOk("/api/schemes", "json");
     readUrl();
     bindControls();
-    fetchOk("/api/info", "json").then((i) => ($("info").textContent = JSON.stringify(i, null, 1)), (e) => ($("info").textContent = e.message));
+    fetchOk("/api/info", "json").then(showInfo, (e) => ($("info").textContent = e.message));
   } catch (e) {
     showError(e.message);
     return;
