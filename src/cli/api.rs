@@ -248,6 +248,7 @@ pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
     match crate::io::OutputFormat::choose(path, None)? {
         crate::io::OutputFormat::Mesh(mf) => crate::io::write_mesh(path, m, mf),
         crate::io::OutputFormat::Bv => crate::io::write_bv_mesh(path, m),
+        crate::io::OutputFormat::Scene(sf) => subdivide::scene::write_net(path, m, None, sf),
         crate::io::OutputFormat::Iges => Err(Error::InvalidArgument(
             "IGES holds patches: write a surface, not a net".into(),
         )),

@@ -11,6 +11,7 @@ use std::path::PathBuf;
 pub(crate) mod features;
 mod nonbox;
 mod options;
+pub mod scene;
 
 pub use features::FeatureArgs;
 pub use options::{AlphaRuleArg, SchemeArgs};
@@ -56,9 +57,14 @@ pub struct Args {
     /// every Bezier coefficient of the written complex; format in the README, `fairsub::io::table`).
     #[arg(long, value_name = "FILE")]
     pub stencils: Option<PathBuf>,
-    /// Output format (obj, off, ply, ply-ascii, bv, igs), instead of the extension.
+    /// Output format (obj, off, ply, ply-ascii, bv, igs, usda, usdc, usdz, glb, gltf), instead
+    /// of the extension.
     #[arg(long)]
     pub format: Option<String>,
+    /// USD and glTF tessellations (--rings): colour the vertices by mean or Gaussian curvature
+    /// or by the patches' provenance (glTF COLOR_0, USD primvars:displayColor).
+    #[arg(long, value_enum, value_name = "BY")]
+    pub vertex_colors: Option<scene::VertexColors>,
 }
 
 impl Args {
@@ -108,8 +114,29 @@ pub enum Computed {
 pub fn run(a: Args) -> Result<()> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
     let p = prepare(&a, None)?;
+    if let (OutputFormat::Scene(sf), Some(0)) = (fmt, a.levels) {
+        // the control net itself, with its scheme and tags
+        scene::write_net(&a.output, &p.mesh, Some(&p.spec), sf)?;
+        wrote(&p.mesh, 0, &p.label, &a.output);
+        return Ok(());
+    }
     let (computed, label) = finish(&a, &p)?;
     match computed {
+        Computed::Complex(complex, _) if matches!(fmt, OutputFormat::Scene(_)) => {
+            let OutputFormat::Scene(sf) = fmt else {
+                unreachable!("matched above")
+            };
+            crate::surface::validate::check_finite(&complex)?;
+            scene::write_complex(&a.output, &complex, a.tess, a.vertex_colors, sf)?;
+            eprintln!(
+                "wrote the tessellation of {} patches ({} rings, {}, {} samples per edge) to {}",
+                complex.len(),
+                a.rings.unwrap_or(DEFAULT_RINGS),
+                label,
+                a.tess,
+                a.output.display()
+            );
+        }
         Computed::Complex(complex, _) => {
             let table = match &a.stencils {
                 Some(_) => Some(patch_table(&a, &p, &complex)?),
@@ -151,6 +178,7 @@ pub fn run(a: Args) -> Result<()> {
                     crate::io::write_mesh(&a.output, &refined, mf)?
                 }
                 OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
+                OutputFormat::Scene(sf) => scene::write_net(&a.output, &refined, None, sf)?,
                 OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
             }
             wrote(&refined, a.levels.unwrap_or(1), &label, &a.output);
@@ -303,6 +331,13 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
     if a.tess == 0 {
         return Err(Error::InvalidArgument("--tess must be at least 1".into()));
     }
+    if a.vertex_colors.is_some() && !(patches && matches!(fmt, OutputFormat::Scene(_))) {
+        return Err(Error::InvalidArgument(
+            "--vertex-colors colours the tessellation of the exact surface in USD or glTF \
+             output: give --rings K and -o OUT.glb, .gltf, .usda, .usd or .usdz"
+                .into(),
+        ));
+    }
     let mesh = if features::takes_features(&spec) {
         features::load_net(&mut spec, &a.features, &a.net, !patches, net)?
     } else {
@@ -423,5 +458,6 @@ pub fn write_complex(
             drop(t);
             crate::io::write_mesh(path, &mesh, mf)
         }
+        OutputFormat::Scene(sf) => scene::write_complex(path, c, tess, None, sf),
     }
 }

@@ -36,16 +36,46 @@ pub enum OutputFormat {
     Bv,
     /// IGES 5.3, one entity 128 per patch.
     Iges,
+    /// A scene format (USD, glTF): a mesh with normals, texture coordinates, curvature.
+    Scene(SceneFormat),
+}
+
+/// The scene formats fairsub writes ([`crate::io::usd`], [`crate::io::gltf`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneFormat {
+    /// USD in one of its encodings.
+    Usd(crate::io::usd::UsdFlavor),
+    /// glTF 2.0 in one of its containers.
+    Gltf(crate::io::gltf::GltfFlavor),
 }
 
 /// The `--format` names [`OutputFormat::choose`] accepts, for help texts and errors.
-pub const FORMAT_NAMES: &str = "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges";
+pub const FORMAT_NAMES: &str =
+    "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges, usda / usd, usdz, glb, gltf";
+
+/// The scene format of a `--format` name or extension (`usd` is the crate encoding).
+fn scene_format(name: &str) -> Option<OutputFormat> {
+    use crate::io::gltf::GltfFlavor;
+    use crate::io::usd::UsdFlavor;
+    let f = match name {
+        "usda" | "usd" => SceneFormat::Usd(UsdFlavor::Usda),
+        "usdz" => SceneFormat::Usd(UsdFlavor::Usdz),
+        "glb" => SceneFormat::Gltf(GltfFlavor::Glb),
+        "gltf" => SceneFormat::Gltf(GltfFlavor::Gltf),
+        _ => return None,
+    };
+    Some(OutputFormat::Scene(f))
+}
 
 impl OutputFormat {
     /// Chooses the output format: by `format` (a `--format` name, case-insensitive) when given,
     /// else by the extension of `path` (`.obj .off .ply .bv .igs .iges`). PLY is binary unless
     /// `ply-ascii` is asked for. Unknown names or extensions give an error listing the choices.
     pub fn choose(path: &Path, format: Option<&str>) -> Result<OutputFormat> {
+        let name = format.map(|f| f.trim().to_ascii_lowercase());
+        if name.as_deref().or(extension_lowercase(path).as_deref()) == Some("usdc") {
+            return Err(Error::Unsupported(crate::io::usd::NO_USDC.to_string()));
+        }
         if let Some(name) = format {
             return match name.trim().to_ascii_lowercase().as_str() {
                 "obj" => Ok(OutputFormat::Mesh(MeshFormat::Obj)),
@@ -56,6 +86,7 @@ impl OutputFormat {
                 "ply-ascii" | "ply_ascii" => Ok(OutputFormat::Mesh(MeshFormat::PlyAscii)),
                 "bv" => Ok(OutputFormat::Bv),
                 "igs" | "iges" => Ok(OutputFormat::Iges),
+                n if scene_format(n).is_some() => Ok(scene_format(n).expect("checked")),
                 _ => Err(Error::InvalidArgument(format!(
                     "unknown output format '{name}' (choose one of: {FORMAT_NAMES})"
                 ))),
@@ -67,14 +98,16 @@ impl OutputFormat {
             Some("ply") => Ok(OutputFormat::Mesh(MeshFormat::PlyBinary)),
             Some("bv") => Ok(OutputFormat::Bv),
             Some("igs") | Some("iges") => Ok(OutputFormat::Iges),
+            Some(ext) if scene_format(ext).is_some() => Ok(scene_format(ext).expect("checked")),
             Some(ext) => Err(Error::InvalidArgument(format!(
                 "cannot tell the output format of '{}' from its extension '.{ext}': use .obj, .off, \
-                 .ply, .bv, .igs or .iges, or give --format ({FORMAT_NAMES})",
+                 .ply, .bv, .igs, .iges, .usda, .usd, .usdz, .glb or .gltf, or give --format \
+                 ({FORMAT_NAMES})",
                 path.display()
             ))),
             None => Err(Error::InvalidArgument(format!(
-                "'{}' has no extension to tell the output format: use .obj, .off, .ply, .bv, .igs \
-                 or .iges, or give --format ({FORMAT_NAMES})",
+                "'{}' has no extension to tell the output format: use .obj, .off, .ply, .bv, .igs, \
+                 .iges, .usda, .usd, .usdz, .glb or .gltf, or give --format ({FORMAT_NAMES})",
                 path.display()
             ))),
         }

@@ -15,6 +15,9 @@
 //! | [`ply`] | PLY reader (ascii, binary little and big endian; header and binary data via `ply-rs-bw`) and writers |
 //! | [`bv`] | BezierView `.bv` writer and reader (tensor, triangular patches, polyhedra, groups) |
 //! | [`iges`] | IGES 5.3 writer (entity 128 per patch) and a validating reader |
+//! | [`usd`] | USD (`.usda`, `.usdc`, `.usdz`) `UsdGeomMesh` reader and writer (via `openusd`) |
+//! | [`gltf`] | glTF 2.0 writer (`.glb`, `.gltf`; JSON via `gltf-json`) |
+//! | [`scene`] | [`SceneMesh`]: what the USD and glTF writers write of a mesh (normals, texture coordinates, curvature, colours, tags) |
 //! | [`table`] | the patch stencil table file (`subdivide --stencils`): writer and validating reader |
 //! | [`fcv`] | FCV side files, OBJ nets with FCVs and OBJ limit meshes with normals (non-box schemes) |
 //! | `format` | [`MeshFormat`], [`OutputFormat`] and the choice by name or extension |
@@ -28,17 +31,20 @@ mod atomic;
 pub mod bv;
 pub mod fcv;
 mod format;
+pub mod gltf;
 mod groups;
 pub mod iges;
 pub mod obj;
 pub mod off;
 pub mod ply;
 mod polygons;
+pub mod scene;
 pub mod table;
 #[cfg(test)]
 mod testutil;
 mod text;
 mod textout;
+pub mod usd;
 
 use crate::error::{Error, MeshError, Result};
 use crate::geom::Point;
@@ -49,11 +55,12 @@ use std::path::Path;
 
 pub use atomic::write_atomically;
 pub use bv::{
-    BvFile, BvGroup, BvPolyhedron, TriPatch, bv_to_string, parse_bv, read_bv, write_bv,
-    write_bv_mesh,
+    BvCounts, BvFile, BvGroup, BvPatches, BvPolyhedron, TriPatch, bv_to_string, parse_bv, read_bv,
+    write_bv, write_bv_mesh,
 };
-pub use format::{FORMAT_NAMES, MeshFormat, OutputFormat};
+pub use format::{FORMAT_NAMES, MeshFormat, OutputFormat, SceneFormat};
 pub use iges::{iges_to_string, parse_iges, read_iges, write_iges};
+pub use scene::SceneMesh;
 pub use text::read_text;
 
 pub(crate) use atomic::write_bytes_atomically;
@@ -69,7 +76,8 @@ pub struct LoadedMesh {
     pub warnings: Vec<String>,
 }
 
-/// Reads a mesh, choosing the format by extension (`.obj`, `.off`, `.ply`, case-insensitive).
+/// Reads a mesh, choosing the format by extension (`.obj`, `.off`, `.ply`, `.usd`, `.usda`,
+/// `.usdc`, `.usdz`; case-insensitive).
 pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
     read_mesh_as(path, false)
 }
@@ -80,6 +88,9 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
 /// OBJ tags and texture coordinates and PLY vertex properties are read in both modes.
 pub fn read_mesh_as(path: &Path, tolerant: bool) -> Result<LoadedMesh> {
     let ext = format::extension_lowercase(path);
+    if let Some("usd" | "usda" | "usdc" | "usdz") = ext.as_deref() {
+        return usd::read_usd_with(path, tolerant);
+    }
     let reader = match ext.as_deref() {
         Some("obj") => obj::read_obj_with,
         Some("off") => off::read_off_with,
@@ -90,7 +101,8 @@ pub fn read_mesh_as(path: &Path, tolerant: bool) -> Result<LoadedMesh> {
                 None => "no extension".to_string(),
             };
             return Err(Error::Unsupported(format!(
-                "cannot read '{}': {what}; supported mesh formats are .obj, .off and .ply",
+                "cannot read '{}': {what}; supported mesh formats are .obj, .off, .ply and USD \
+                 (.usd, .usda, .usdc, .usdz)",
                 path.display()
             )));
         }
