@@ -406,19 +406,40 @@ fn layout_and_panels(b: &mut cdp::Browser, v: &Viewer) -> Vec<u8> {
         "document.getElementById('check').textContent.startsWith('patches')",
         60,
     );
-    let info = b.eval("document.getElementById('info').textContent");
     let check = b.eval("document.getElementById('check').textContent");
-    assert!(
-        info.as_str().unwrap().contains("\"vertices\": 48"),
-        "{info}"
-    );
     assert!(
         check
             .as_str()
             .unwrap()
-            .starts_with(&format!("patches {patches}\n")),
+            .starts_with(&format!("patches {patches}, open sides 0")),
         "{check} (the buffer has {patches} patches)"
     );
+    // Readable tables, not JSON: the net's facts as rows, the joins and the curvature per ring
+    // under their headers.
+    let rows = |id: &str| -> Vec<Vec<String>> {
+        let js = format!(
+            "[...document.querySelectorAll('#{id} tr')].map(r => [...r.cells].map(c => c.textContent))"
+        );
+        serde_json::from_value(b.eval(&js)).unwrap()
+    };
+    let info = rows("info");
+    let row = |t: &[Vec<String>], k: &str| t.iter().find(|r| r[0] == k).cloned();
+    assert_eq!(row(&info, "vertices"), Some(vec!["vertices".into(), "48".into()]), "{info:?}");
+    assert_eq!(row(&info, "faces"), Some(vec!["faces".into(), "48".into()]), "{info:?}");
+    assert!(
+        row(&info, "extraord. vertices").is_some_and(|r| r[1].contains("(n=3)")),
+        "{info:?}"
+    );
+    assert!(!b.eval("document.getElementById('info').textContent").as_str().unwrap().contains('{'));
+    let joins = rows("check");
+    assert_eq!(joins[0], ["join", "pieces", "C0", "C1", "C2", "G1 rad"], "{joins:?}");
+    let all = row(&joins, "all").expect("an 'all' row");
+    assert!(all[1].parse::<u64>().unwrap() > 0, "{all:?}");
+    assert!(
+        joins.iter().any(|r| r[0] == "element") && joins.iter().any(|r| r[1] == "ring 1"),
+        "the curvature table: {joins:?}"
+    );
+    assert!(!check.as_str().unwrap().contains('{'), "{check}");
     body
 }
 
@@ -848,6 +869,7 @@ fn bv_file_is_served_and_drawn() {
     assert_eq!(status, 200);
     let info: serde_json::Value = serde_json::from_slice(&info).unwrap();
     assert_eq!(info["patches"], n);
+    assert_eq!(info["kinds"]["tensor"], n);
     let Some(exe) = chromium() else { return };
     let mut b = cdp::Browser::launch(&exe, W, H);
     b.open(&format!("{}?mode=gauss", v.url));
