@@ -13,8 +13,15 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn fairsub(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_fairsub")).args(args).output().expect("fairsub runs");
-    assert!(out.status.success(), "fairsub {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .expect("fairsub runs");
+    assert!(
+        out.status.success(),
+        "fairsub {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -39,7 +46,11 @@ fn octant(sg: [f64; 3]) -> BezierPatch {
     let p = BezierPatch::rational(2, 2, cps, ws).unwrap();
     let q = p.eval(0.4, 0.3);
     let n = p.normal(0.4, 0.3);
-    if n[0] * q[0] + n[1] * q[1] + n[2] * q[2] < 0.0 { p.transposed() } else { p }
+    if n[0] * q[0] + n[1] * q[1] + n[2] * q[2] < 0.0 {
+        p.transposed()
+    } else {
+        p
+    }
 }
 
 fn sphere() -> BvFile {
@@ -69,7 +80,10 @@ fn paraboloid() -> BvFile {
         TriPatch { deg: 2, cps }
     };
     BvFile {
-        tri_patches: vec![tri([0., 0.], [1., 0.], [0., 1.]), tri([1., 0.], [1., 1.], [0., 1.])],
+        tri_patches: vec![
+            tri([0., 0.], [1., 0.], [0., 1.]),
+            tri([1., 0.], [1., 1.], [0., 1.]),
+        ],
         tri_groups: vec![None, None],
         ..BvFile::default()
     }
@@ -91,11 +105,22 @@ fn check(path: &Path) -> Value {
 fn render(path: &Path, mode: &str) -> Value {
     let png = path.with_extension(format!("{mode}.png"));
     let out = fairsub(&[
-        "render", path.to_str().unwrap(), "--mode", mode, "--size", "160x120", "--json", "-o",
+        "render",
+        path.to_str().unwrap(),
+        "--mode",
+        mode,
+        "--size",
+        "160x120",
+        "--json",
+        "-o",
         png.to_str().unwrap(),
     ]);
     let r: Value = serde_json::from_str(&out).unwrap();
-    assert!(r["frame"]["covered"].as_u64().unwrap() > 2000, "{}: {r}", path.display());
+    assert!(
+        r["frame"]["covered"].as_u64().unwrap() > 2000,
+        "{}: {r}",
+        path.display()
+    );
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
     r
 }
@@ -104,7 +129,11 @@ fn render(path: &Path, mode: &str) -> Value {
 fn rational_sphere_is_exact_and_g1() {
     let path = dir().join("sphere.bv");
     fairsub::io::bv::write_bv_file(&path, &sphere()).unwrap();
-    assert!(std::fs::read_to_string(&path).unwrap().contains("\n8 2 2\n"));
+    assert!(
+        std::fs::read_to_string(&path)
+            .unwrap()
+            .contains("\n8 2 2\n")
+    );
     let c = check(&path);
     assert_eq!(c["kinds"]["rational"], 8, "{c}");
     let k = &c["continuity"];
@@ -163,7 +192,10 @@ fn polyhedra_are_flat_patches_with_sharp_joins() {
     assert!(sharp["c0"].as_f64().unwrap() < 1e-15, "{sharp}");
     // the outward normals of two faces meet at arccos(-1/3) (the dihedral angle's supplement)
     let angle = (-1.0f64 / 3.0).acos();
-    assert!((sharp["g1"].as_f64().unwrap() - angle).abs() < 1e-12, "{sharp}");
+    assert!(
+        (sharp["g1"].as_f64().unwrap() - angle).abs() < 1e-12,
+        "{sharp}"
+    );
     render(&path, "shaded");
 }
 
@@ -179,12 +211,31 @@ fn a_file_of_every_kind_is_read_and_drawn_whole() {
         q[0] += 4.0;
     }
     f.polyhedra.push(t);
-    f.patches.push(BezierPatch::new(1, 2, vec![[0., 3., 0.], [1., 3., 1.], [2., 3., 0.], [0., 4., 0.], [1., 4., 1.], [2., 4., 0.]]), Provenance::Unknown);
+    f.patches.push(
+        BezierPatch::new(
+            1,
+            2,
+            vec![
+                [0., 3., 0.],
+                [1., 3., 1.],
+                [2., 3., 0.],
+                [0., 4., 0.],
+                [1., 4., 1.],
+                [2., 4., 0.],
+            ],
+        ),
+        Provenance::Unknown,
+    );
     fairsub::io::bv::write_bv_file(&path, &f).unwrap();
     let c = check(&path);
     let k = &c["kinds"];
     assert_eq!(
-        [&k["tensor"], &k["rational"], &k["triangular"], &k["polyhedron_faces"]],
+        [
+            &k["tensor"],
+            &k["rational"],
+            &k["triangular"],
+            &k["polyhedron_faces"]
+        ],
         [1, 8, 2, 4],
         "{c}"
     );

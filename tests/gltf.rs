@@ -33,7 +33,11 @@ fn validate(modules: &Path, files: &[PathBuf]) -> Vec<Value> {
         .env("NODE_PATH", modules)
         .output()
         .expect("node runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout)
         .lines()
         .map(|l| serde_json::from_str(l).expect("a JSON report"))
@@ -41,8 +45,15 @@ fn validate(modules: &Path, files: &[PathBuf]) -> Vec<Value> {
 }
 
 fn fairsub(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_fairsub")).args(args).output().expect("fairsub runs");
-    assert!(out.status.success(), "fairsub {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
+        .args(args)
+        .output()
+        .expect("fairsub runs");
+    assert!(
+        out.status.success(),
+        "fairsub {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
@@ -65,10 +76,50 @@ fn khronos_validator_finds_no_error_and_no_warning() {
     let s = |p: &Path| p.to_str().unwrap().to_string();
     // (arguments, file, triangles written)
     let jobs: Vec<(Vec<String>, PathBuf, u64)> = vec![
-        (vec![s(&grid), "--scheme".into(), "catmull-clark".into(), "--levels".into(), "2".into()], p("refined.glb"), 2 * 64),
-        (vec![s(&grid), "--scheme".into(), "catmull-clark".into(), "--levels".into(), "2".into()], p("refined.gltf"), 2 * 64),
-        (vec![s(&grid), "--scheme".into(), "catmull-clark".into(), "--levels".into(), "0".into()], p("net.gltf"), 2 * 4),
-        (vec!["gallery:icosahedron".into(), "--scheme".into(), "loop".into(), "--levels".into(), "2".into()], p("loop.glb"), 20 * 16),
+        (
+            vec![
+                s(&grid),
+                "--scheme".into(),
+                "catmull-clark".into(),
+                "--levels".into(),
+                "2".into(),
+            ],
+            p("refined.glb"),
+            2 * 64,
+        ),
+        (
+            vec![
+                s(&grid),
+                "--scheme".into(),
+                "catmull-clark".into(),
+                "--levels".into(),
+                "2".into(),
+            ],
+            p("refined.gltf"),
+            2 * 64,
+        ),
+        (
+            vec![
+                s(&grid),
+                "--scheme".into(),
+                "catmull-clark".into(),
+                "--levels".into(),
+                "0".into(),
+            ],
+            p("net.gltf"),
+            2 * 4,
+        ),
+        (
+            vec![
+                "gallery:icosahedron".into(),
+                "--scheme".into(),
+                "loop".into(),
+                "--levels".into(),
+                "2".into(),
+            ],
+            p("loop.glb"),
+            20 * 16,
+        ),
     ];
     let mut files = Vec::new();
     let mut triangles = Vec::new();
@@ -83,14 +134,35 @@ fn khronos_validator_finds_no_error_and_no_warning() {
     for colors in ["mean", "gauss", "provenance"] {
         let file = p(&format!("tess-{colors}.glb"));
         fairsub(&[
-            "subdivide", "gallery:cube", "--scheme", "eg", "--rings", "2", "--tess", "4",
-            "--vertex-colors", colors, "-o", &s(&file),
+            "subdivide",
+            "gallery:cube",
+            "--scheme",
+            "eg",
+            "--rings",
+            "2",
+            "--tess",
+            "4",
+            "--vertex-colors",
+            colors,
+            "-o",
+            &s(&file),
         ]);
         files.push(file);
         triangles.push(None);
     }
     let file = p("tess-guided.gltf");
-    fairsub(&["subdivide", "gallery:prism-5", "--scheme", "guided-bi5", "--rings", "2", "--tess", "3", "-o", &s(&file)]);
+    fairsub(&[
+        "subdivide",
+        "gallery:prism-5",
+        "--scheme",
+        "guided-bi5",
+        "--rings",
+        "2",
+        "--tess",
+        "3",
+        "-o",
+        &s(&file),
+    ]);
     files.push(file);
     triangles.push(None);
     let reports = validate(&modules, &files);

@@ -8,7 +8,7 @@ use crate::geom::{Point, add, cross, dot, norm, scale};
 /// as undetermined.
 const DEGENERATE_REL: f64 = 1e-10;
 
-/// Smallest sine of the angle between the partials at which [`BezierPatch::curvatures`] takes
+/// Smallest sine of the angle between the partials at which [`BezierPatch::curvatures`](super::BezierPatch::curvatures) takes
 /// the curvature of a point beside a degenerate one.
 pub const WELL_CONDITIONED: f64 = 1e-3;
 
@@ -34,7 +34,7 @@ impl Derivatives {
     /// is `du x dv + s (a x dv + du x b) + s^2 (a x b) + ...`, and the first term that does not
     /// vanish gives the limit direction. This is exact at a collapsed edge (one partial is zero
     /// along it) and at a corner where both partials vanish. Returns `None` when all three
-    /// terms vanish (then [`BezierPatch::normal`] falls back to a small inward offset).
+    /// terms vanish (then [`BezierPatch::normal`](super::BezierPatch::normal) falls back to a small inward offset).
     pub fn normal_toward(&self, toward: [f64; 2]) -> Option<Point> {
         if self.is_regular() {
             return Some(scale(

@@ -88,7 +88,7 @@ impl Builder {
         target: json::buffer::Target,
         bounds: Option<(Vec<f32>, Vec<f32>)>,
     ) -> json::Index<json::Accessor> {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -243,7 +243,7 @@ fn document(m: &SceneMesh, name: &str) -> Result<(json::Root, Vec<u8>)> {
         min_version: None,
         version: "2.0".to_string(),
     };
-    while b.bin.len() % 4 != 0 {
+    while !b.bin.len().is_multiple_of(4) {
         b.bin.push(0);
     }
     Ok((b.root, b.bin))
@@ -276,7 +276,7 @@ pub(crate) fn gltf_bytes(m: &SceneMesh, name: &str, flavor: GltfFlavor) -> Resul
                 extras: Default::default(),
             });
             let mut text = root.to_vec().map_err(json_err)?;
-            while text.len() % 4 != 0 {
+            while !text.len().is_multiple_of(4) {
                 text.push(b' ');
             }
             let total = 12 + 8 + text.len() + 8 + bin.len();

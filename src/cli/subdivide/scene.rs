@@ -36,7 +36,8 @@ fn usd_scheme(spec: &Spec) -> Option<&'static str> {
     if spec.id == ids::CATMULL_CLARK {
         Some("catmullClark")
     } else if spec.id == ids::LOOP {
-        Some("loop")
+        // USD's token for Loop's scheme is the registry's name
+        Some(ids::LOOP.name())
     } else {
         None
     }

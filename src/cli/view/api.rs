@@ -32,7 +32,7 @@ enum Source {
     /// A control net, whose surface the page's scheme builds.
     Net(PolyMesh),
     /// The patches of a BezierView file (every kind), its polyhedron, if any, and what it held.
-    Bv(PatchComplex, Option<PolyMesh>, crate::io::BvCounts),
+    Bv(PatchComplex, Option<PolyMesh>, Box<crate::io::BvCounts>),
 }
 
 /// A built surface and what was computed from it.
@@ -89,7 +89,7 @@ impl State {
                 ));
             }
             let (c, net, kinds) = super::super::render::bv_complex(&a.input)?;
-            Source::Bv(c, net, kinds)
+            Source::Bv(c, net, Box::new(kinds))
         } else {
             Source::Net(super::super::load_net(&a.input)?.mesh)
         };

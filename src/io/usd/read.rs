@@ -524,7 +524,11 @@ fn scheme_note(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<()> {
     let s = token(prim, "subdivisionScheme", path, w)?;
     match s.as_deref() {
         None | Some("catmullClark") => {}
-        Some("loop") => w.push(format!("{} asks for subdivisionScheme loop: give --scheme loop to refine it as the file says", prim.path())),
+        // USD's token for Loop's scheme is the registry's name
+        Some(s) if s == crate::schemes::registry::ids::LOOP.name() => w.push(format!(
+            "{} asks for subdivisionScheme {s}: give --scheme {s} to refine it as the file says",
+            prim.path()
+        )),
         Some(other) => w.push(format!(
             "{} has subdivisionScheme {other}: fairsub refines it with the scheme the command names",
             prim.path()

@@ -380,9 +380,15 @@ function table(rows, head) {
   return t;
 }
 
-const num = (x) => (typeof x === "number" ? (Number.isInteger(x) ? String(x) : x.toExponential(2)) : x == null ? "-" : String(x));
+// Numbers as short as they stay readable: integers whole, 0.01..1000 to 3 digits, else 1.2e-5.
+const num = (x) => {
+  if (typeof x !== "number") return x == null ? "-" : String(x);
+  if (Number.isInteger(x)) return String(x);
+  const a = Math.abs(x);
+  return a >= 0.01 && a < 1000 ? x.toPrecision(3) : x.toExponential(1).replace("e+", "e");
+};
 const counts = (m) => Object.entries(m || {}).map(([k, v]) => `${k}: ${v}`).join(", ") || "none";
-const elementName = (e) => (e && typeof e === "object" ? Object.entries(e).map(([k, v]) => `${k.toLowerCase()} ${v}`).join(" ") : String(e));
+const elementName = (e) => (e && typeof e === "object" ? (e.type !== undefined ? `${e.type} ${e.index}` : Object.values(e).join(" ")) : String(e));
 const listed = (a, f, n = 6) => (a.length ? a.slice(0, n).map(f).join(", ") + (a.length > n ? `, ... (${a.length})` : "") : "none");
 
 // The net's `info` report (or a .bv file's counts) as a table of its facts.
@@ -405,11 +411,15 @@ function showInfo(i) {
     ["box min", bb[0].map((x) => x.toPrecision(4)).join(" ")], ["box max", bb[1].map((x) => x.toPrecision(4)).join(" ")]];
   if (i.dropped_vertices && i.dropped_vertices.length) rows.push(["dropped vertices", listed(i.dropped_vertices, String)]);
   if (i.non_manifold) rows.push(["non-manifold", `${i.non_manifold.edges.length} edges, ${i.non_manifold.vertices.length} vertices`]);
-  box.appendChild(table(rows));
+  const facts = table(rows);
+  facts.className = "facts";
+  box.appendChild(facts);
   const rules = Object.entries(i.rules_by_valence || {});
   if (rules.length) {
     box.appendChild(el("div", "rules at the extraordinary valences", "sub"));
-    box.appendChild(table(rules.map(([s, rs]) => [s, rs.map((r) => `n=${r.valence}: ${r.rules}`).join("; ")]), ["scheme", "rules"]));
+    const t = table(rules.map(([s, rs]) => [s, rs.map((r) => `n=${r.valence}: ${r.rules}`).join("; ")]), ["scheme", "rules"]);
+    t.className = "text";
+    box.appendChild(t);
   }
   for (const p of i.problems || []) box.appendChild(el("div", "problem: " + p, "note"));
 }
