@@ -157,6 +157,11 @@ impl LocalScheme {
     /// [`ternary_step`] on the q-net with uniform widths (first step) and with the stationary
     /// pattern `1, r, r^2` (later steps).
     pub fn ternary(n: usize, rules: TernaryRules) -> Result<LocalScheme> {
+        if n < 3 {
+            return Err(Error::InvalidArgument(format!(
+                "valence {n}: TPS's rule (18) and its q-net need a valence of at least 3"
+            )));
+        }
         let net = nets::cnet(n, CnetShape::Convex, 2);
         let rows = ternary_rows(&net, n);
         let size = 1 + 6 * n;
