@@ -29,6 +29,10 @@ pub struct CheckArgs {
     /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
     #[arg(long, value_enum)]
     pub rules: Option<spec::RulesArg>,
+    /// With --scheme: prepare a net the scheme's rules do not take (auto, the default) or
+    /// refuse it (none), as `subdivide --prepare`.
+    #[arg(long, value_enum, default_value_t = spec::PrepareArg::Auto)]
+    pub prepare: spec::PrepareArg,
 }
 
 /// The `check` report.
@@ -95,6 +99,7 @@ pub fn check(a: CheckArgs) -> Result<()> {
             s,
             &SchemeOptions {
                 rules: a.rules.map(Into::into),
+                prepare: a.prepare.into(),
                 ..SchemeOptions::default()
             },
         )?),

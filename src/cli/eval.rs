@@ -48,6 +48,10 @@ pub struct Args {
     /// (`numpy.fromfile(FILE, "<f8").reshape(-1, 29)`).
     #[arg(long, conflicts_with = "json")]
     pub binary: bool,
+    /// Prepare a net the scheme's rules do not take (auto, the default) or refuse it (none),
+    /// as `subdivide --prepare`: points stay on the input net's faces either way.
+    #[arg(long, value_enum, default_value_t = spec::PrepareArg::Auto)]
+    pub prepare: spec::PrepareArg,
 }
 
 /// The points of `--at` and `--at-file`, in order.
@@ -93,7 +97,13 @@ pub fn run(a: Args) -> Result<()> {
             "--binary writes binary records: redirect the output to a file or a pipe".into(),
         ));
     }
-    let spec = spec::resolve(&a.scheme, &SchemeOptions::default())?;
+    let spec = spec::resolve(
+        &a.scheme,
+        &SchemeOptions {
+            prepare: a.prepare.into(),
+            ..SchemeOptions::default()
+        },
+    )?;
     let build = |mesh: &crate::mesh::PolyMesh, rings: usize, fill: bool| -> Result<Surface> {
         super::limits::check_complex(&spec, mesh, rings, fill)?;
         Surface::build(&spec, mesh, ComplexOptions { rings, fill })

@@ -8,6 +8,7 @@
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::{RulesOrigin, Spec, ValenceRules};
+use crate::schemes::prepare::Applied;
 use crate::schemes::registry;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -102,6 +103,50 @@ pub struct InfoReport {
     /// The non-manifold edges, vertices and repeated-vertex faces (omitted when there are none).
     #[serde(skip_serializing_if = "NonManifoldReport::is_empty")]
     non_manifold: NonManifoldReport,
+    /// With `--scheme`: what would be prepared for it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    preparation: Option<PreparationReport>,
+}
+
+/// What `--prepare auto` would do to the net for one scheme.
+#[derive(Debug, Serialize)]
+pub struct PreparationReport {
+    scheme: String,
+    /// For patches (`--rings`), evaluation and patch tables.
+    patches: Vec<Applied>,
+    /// For net refinement (`--levels`); empty for schemes without it.
+    levels: Vec<Applied>,
+    /// The prepared net for patches: vertices and faces (the input's when nothing applies).
+    prepared_vertices: usize,
+    prepared_faces: usize,
+}
+
+/// What would be prepared for `scheme` on `m` (see [`crate::schemes::prepare`]).
+///
+/// # Errors
+/// An unknown scheme; those of a preparation step.
+pub fn preparation(scheme: &str, m: &PolyMesh) -> Result<PreparationReport> {
+    use crate::schemes::prepare::{Purpose, prepare};
+    let spec = registry().lookup(scheme)?;
+    let entry = registry().entry(spec.id);
+    let caps = entry.capabilities();
+    let patches = if caps.patches {
+        prepare(entry.descriptor, &spec, m, Purpose::Patches)?
+    } else {
+        crate::schemes::prepare::Prepared::unchanged(m)
+    };
+    let levels = if caps.refine {
+        prepare(entry.descriptor, &spec, m, Purpose::Refine)?.applied
+    } else {
+        Vec::new()
+    };
+    Ok(PreparationReport {
+        scheme: spec.name().to_string(),
+        prepared_vertices: patches.mesh.num_vertices(),
+        prepared_faces: patches.mesh.num_faces(),
+        patches: patches.applied,
+        levels,
+    })
 }
 
 /// The valences a quad scheme's caps meet: interior vertices of valence other than 4, and the
@@ -303,13 +348,17 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
         problems,
         dropped_vertices: m.dropped_vertices().to_vec(),
         non_manifold,
+        preparation: None,
     }
 }
 
-/// Runs `fairsub info`.
-pub fn run(net: &str, json: bool) -> Result<()> {
+/// Runs `fairsub info` (with `scheme`: what would be prepared for it).
+pub fn run(net: &str, scheme: Option<&str>, json: bool) -> Result<()> {
     let loaded = super::load_net_as(net, true)?;
-    let r = report(net, &loaded.mesh);
+    let mut r = report(net, &loaded.mesh);
+    if let Some(s) = scheme {
+        r.preparation = Some(preparation(s, &loaded.mesh)?);
+    }
     if json {
         say!(
             "{}",
@@ -422,5 +471,47 @@ pub fn run(net: &str, json: bool) -> Result<()> {
     for p in &r.problems {
         say!("  note: {p}");
     }
+    if let Some(p) = &r.preparation {
+        say_preparation(p);
+    }
     Ok(())
+}
+
+/// The text report of what would be prepared.
+fn say_preparation(p: &PreparationReport) {
+    use crate::schemes::prepare::Kind;
+    for (what, steps) in [("patches", &p.patches), ("levels", &p.levels)] {
+        if steps.is_empty() {
+            say!("  {} {what}: nothing to prepare", p.scheme);
+            continue;
+        }
+        for a in steps {
+            let how = match a.kind {
+                Kind::Applied => "applied",
+                Kind::Own => "taken by the scheme's own construction",
+                Kind::Skipped => "not applied (it does not carry the net's sharp-feature tags)",
+            };
+            say!(
+                "  {} {what}: {} ({how}); {} {} ({}{})",
+                p.scheme,
+                a.step,
+                p.scheme,
+                a.need,
+                a.elements.join(", "),
+                if a.count > a.elements.len() {
+                    format!(" and {} more", a.count - a.elements.len())
+                } else {
+                    String::new()
+                }
+            );
+        }
+    }
+    if !p.patches.is_empty() {
+        say!(
+            "  {} prepared net: {} vertices, {} faces",
+            p.scheme,
+            p.prepared_vertices,
+            p.prepared_faces
+        );
+    }
 }

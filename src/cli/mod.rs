@@ -180,6 +180,10 @@ enum Command {
     Info {
         /// The control net (file or gallery:NAME).
         net: String,
+        /// Also say what would be prepared for this scheme (`--prepare auto`): the steps, the
+        /// needs they meet and the elements in the way, for patches and for net refinement.
+        #[arg(long, short)]
+        scheme: Option<String>,
         /// Print the report as JSON.
         #[arg(long)]
         json: bool,
@@ -273,7 +277,7 @@ pub fn run(cli: Cli) -> Result<()> {
 
 fn run_command(command: Command) -> Result<()> {
     match command {
-        Command::Info { net, json } => info::run(&net, json),
+        Command::Info { net, scheme, json } => info::run(&net, scheme.as_deref(), json),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Render(args) => render::run_render(args),

@@ -5,6 +5,7 @@
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::schemes::descriptor::{AlphaRule, ChiKind, Fallback, ParamKind, RulesChoice};
+use crate::schemes::prepare::Mode;
 use crate::schemes::{Spec, registry};
 use std::path::Path;
 
@@ -31,6 +32,8 @@ pub struct SchemeOptions<'a> {
     pub subd: crate::mesh::tags::SubdOptions,
     /// Whether `--creases` was given.
     pub creases: bool,
+    /// `--prepare` (every scheme).
+    pub prepare: Mode,
 }
 
 /// The names of the schemes that take `kind`, in catalogue order.
@@ -154,6 +157,7 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
     if let Some(f) = o.fallback {
         spec.params.fallback = f;
     }
+    spec.params.prepare = o.prepare;
     Ok(spec)
 }
 
@@ -185,6 +189,26 @@ impl From<RulesArg> for RulesChoice {
         match r {
             RulesArg::Printed => RulesChoice::Printed,
             RulesArg::Derived => RulesChoice::Derived,
+        }
+    }
+}
+
+/// `--prepare` values.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum PrepareArg {
+    /// Apply the smallest documented step a scheme's rules need (one Catmull-Clark step for
+    /// TPS on a net with triangles, ...; named in a note).
+    #[default]
+    Auto,
+    /// Apply nothing: a scheme refuses a net its rules do not take, naming the element.
+    None,
+}
+
+impl From<PrepareArg> for Mode {
+    fn from(p: PrepareArg) -> Self {
+        match p {
+            PrepareArg::Auto => Mode::Auto,
+            PrepareArg::None => Mode::None,
         }
     }
 }

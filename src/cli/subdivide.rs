@@ -84,6 +84,7 @@ impl Args {
                 rules: o.rules.map(Into::into),
                 subd: self.features.options(),
                 creases: self.features.creases.is_some(),
+                prepare: o.prepare.into(),
             },
         )
     }
@@ -235,6 +236,16 @@ pub fn finish(a: &Args, p: &Prepared) -> Result<(Computed, String)> {
     }
     let levels = a.levels.unwrap_or(1);
     let scheme = mesh_rules(spec)?;
+    let prepared = crate::schemes::prepare::prepare(
+        registry().descriptor(spec.id),
+        spec,
+        mesh,
+        crate::schemes::prepare::Purpose::Refine,
+    )?;
+    for n in prepared.notes(spec.name()) {
+        eprintln!("note: {n}");
+    }
+    let mesh = &prepared.mesh;
     super::limits::check_levels(scheme.as_ref(), mesh, levels)?;
     if scheme.fcv_layout() != crate::schemes::FcvLayout::None {
         // the non-box reports name the scheme's rules, and the limit
@@ -424,11 +435,12 @@ pub fn build_complex_noted(
     rings: usize,
     fill: bool,
 ) -> Result<(PatchComplex, Vec<String>)> {
-    super::limits::check_complex(spec, mesh, rings, fill)?;
+    let prepared = crate::surface::prepare(spec, mesh)?;
+    super::limits::check_complex(spec, &prepared.mesh, rings, fill)?;
     let pb = super::progress_bar(rings as u64, &format!("{} rings", spec.name()));
-    let o = crate::surface::build(spec, mesh, ComplexOptions { rings, fill }, &mut |l| {
-        pb.set_position(l as u64)
-    })?;
+    let opts = ComplexOptions { rings, fill };
+    let o =
+        crate::surface::build_prepared(spec, &prepared, opts, &mut |l| pb.set_position(l as u64))?;
     pb.finish_and_clear();
     for n in &o.notes {
         eprintln!("note: {n}");

@@ -177,6 +177,9 @@ pub struct Params {
     /// triangle subdivision, face-varying interpolation); unset ones fall to the net's tags,
     /// then to the defaults.
     pub subd: crate::mesh::tags::SubdOptions,
+    /// Every scheme: whether a net the scheme's rules do not take is prepared by the smallest
+    /// documented step (`--prepare`, [`super::prepare`]).
+    pub prepare: super::prepare::Mode,
 }
 
 /// A scheme with its parameters: what a front end passes down.
@@ -518,6 +521,19 @@ pub trait Descriptor: Sync + Send {
     ) -> Result<Option<Vec<crate::bezier::domain::FanTriangle>>> {
         let _ = (spec, mesh);
         Ok(None)
+    }
+
+    /// What the scheme's rules need of a net for `purpose`, each need with the step that meets
+    /// it ([`super::prepare`]; applied by [`super::prepare::prepare`], which front ends call
+    /// before the rules); empty (the default): the rules take every net the scheme accepts, or
+    /// refuse it with a reason no preparation removes.
+    fn preparation(
+        &self,
+        spec: &Spec,
+        purpose: super::prepare::Purpose,
+    ) -> Vec<super::prepare::Requirement> {
+        let _ = (spec, purpose);
+        Vec::new()
     }
 
     /// Local rules for analysis with these parameters (`None`: no analysis).

@@ -19,6 +19,7 @@ pub mod guided;
 pub mod local;
 pub mod loop_subdivision;
 pub mod nonbox;
+pub mod prepare;
 pub mod qas;
 pub mod registry;
 

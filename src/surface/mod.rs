@@ -21,10 +21,13 @@ pub use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
+use crate::schemes::prepare::{Prepared, Purpose};
 use crate::schemes::{Spec, registry};
 
 /// The exact surface of `mesh` under a scheme with its parameters: the registry's descriptor
-/// builds it. `progress(ring)` is called as rings are produced.
+/// builds it on the net [`prepare`] makes ready for it (with `spec.params.prepare`), and the
+/// patches' domains are moved back into `mesh`'s faces. `progress(ring)` is called as rings are
+/// produced.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for a scheme without patch output (listing those with one);
@@ -35,11 +38,40 @@ pub fn build(
     opts: ComplexOptions,
     progress: &mut dyn FnMut(usize),
 ) -> Result<SurfaceOutput> {
+    let prepared = prepare(spec, mesh)?;
+    build_prepared(spec, &prepared, opts, progress)
+}
+
+/// The net the scheme's patch rules take: `mesh` prepared by the smallest documented step its
+/// descriptor declares ([`crate::schemes::prepare`]), or `mesh` itself.
+///
+/// # Errors
+/// Those of a preparation step.
+pub fn prepare(spec: &Spec, mesh: &PolyMesh) -> Result<Prepared> {
+    let desc = registry().descriptor(spec.id);
+    crate::schemes::prepare::prepare(desc, spec, mesh, Purpose::Patches)
+}
+
+/// [`build`] on a net [`prepare`] made ready: the complex's domains refer to the input net's
+/// faces, and the notes start with the preparation's.
+///
+/// # Errors
+/// As [`build`].
+pub fn build_prepared(
+    spec: &Spec,
+    prepared: &Prepared,
+    opts: ComplexOptions,
+    progress: &mut dyn FnMut(usize),
+) -> Result<SurfaceOutput> {
     let rules = registry().descriptor(spec.id).patch_rules(spec)?;
     let mut out = match rules {
-        Some(r) => r.build(mesh, opts, progress)?,
+        Some(r) => r.build(&prepared.mesh, opts, progress)?,
         None => return Err(no_patch_output(spec.name())),
     };
+    prepared.lift(&mut out.complex);
+    let mut notes = prepared.notes(spec.name());
+    notes.append(&mut out.notes);
+    out.notes = notes;
     out.notes.extend(uncapped_notes(&out.complex, opts.fill));
     Ok(out)
 }

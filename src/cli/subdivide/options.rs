@@ -39,6 +39,13 @@ pub struct SchemeArgs {
     /// the other valences), or fairsub's derived rules everywhere (to compare).
     #[arg(long, value_enum)]
     pub rules: Option<super::spec::RulesArg>,
+    /// Every scheme: prepare a net the scheme's rules do not take by the smallest documented
+    /// step (auto: one Catmull-Clark step for TPS on triangles and n-gons, one step of the
+    /// scheme itself for the dual schemes at interior vertices of valence 2, ...; each named
+    /// in a note, see the user guide's preparation page), or refuse it naming the element
+    /// (none). `--levels` refines, and `--rings` builds on, the prepared net.
+    #[arg(long, value_enum, default_value_t = super::spec::PrepareArg::Auto)]
+    pub prepare: super::spec::PrepareArg,
 }
 
 /// The name of a value of a clap value enum, as the command line spells it.
@@ -80,6 +87,9 @@ impl SchemeArgs {
         }
         if let Some(r) = &self.rules {
             w.push(("rules", value_name(r)));
+        }
+        if self.prepare != super::spec::PrepareArg::Auto {
+            w.push(("prepare", value_name(&self.prepare)));
         }
         w.into_iter()
             .flat_map(|(k, v)| [format!("--{k}"), v])

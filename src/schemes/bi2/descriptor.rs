@@ -13,6 +13,7 @@ use crate::schemes::descriptor::{
     SurfaceOutput, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
+use crate::schemes::prepare::{Need, NetStep, Purpose, Requirement, Step};
 
 /// The default split ratio of adjustable TPS (the paper's figures use 0.2).
 pub const DEFAULT_E: f64 = 0.2;
@@ -144,7 +145,7 @@ impl Descriptor for Bi2Descriptor {
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let (kind, rules) = (self.kind, Self::ternary_rules(spec)?);
         let poles = spec.params.poles.clone();
-        let name = spec.name();
+        let (name, mode) = (spec.name(), spec.params.prepare);
         patch_fn(move |mesh, opts, progress| {
             crate::schemes::doo_sabin::sharp::on_cut_net(mesh, name, |mesh| {
                 use super::surface as s;
@@ -170,17 +171,71 @@ impl Descriptor for Bi2Descriptor {
                         PgsOptions { dscc_steps: 2 },
                         progress,
                     )?),
-                    Bi2Kind::Polar => with_notes(s::polar_complex(mesh, opts, &poles, progress)?),
+                    Bi2Kind::Polar => {
+                        with_notes(s::polar_complex(mesh, opts, &poles, mode, progress)?)
+                    }
                     Bi2Kind::Tps => {
                         with_notes(s::tps_complex(mesh, opts, TernaryRules::TPS, progress)?)
                     }
                     Bi2Kind::TpsAdjustable => {
                         with_notes(s::tps_complex(mesh, opts, rules, progress)?)
                     }
-                    Bi2Kind::Mixed => with_notes(s::mixed_complex(mesh, opts, progress)?),
+                    Bi2Kind::Mixed => with_notes(s::mixed_complex(mesh, opts, mode, progress)?),
                 })
             })
         })
+    }
+
+    /// TPS and adjustable TPS take quad nets without interior vertices of valence 2 and with
+    /// regular boundary vertices: one Doo-Sabin step then one Catmull-Clark step where the
+    /// net has the first two, one Catmull-Clark step where it has only faces that are not
+    /// quads. PGS's patches (and the mixed and polar nets, whose elements become PGS facets)
+    /// take no interior vertex of valence 2: one PGS step. The mixed and polar nets separate
+    /// their elements by the family's own constructions (`super::surface`'s elements); the
+    /// mixed net's refinement takes one kind of element: one PGS step makes every element a
+    /// facet.
+    fn preparation(&self, _: &Spec, purpose: Purpose) -> Vec<Requirement> {
+        const DUAL_THEN_QUADS: &[NetStep] = &[NetStep::DooSabin, NetStep::CatmullClark];
+        let net = |need, steps| Requirement {
+            need,
+            step: Step::Net(steps),
+        };
+        let no_valence_2 = net(Need::NoInteriorValence2, &[NetStep::Pgs]);
+        match (self.kind, purpose) {
+            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, _) => vec![
+                net(Need::NoInteriorValence2, DUAL_THEN_QUADS),
+                net(Need::RegularBoundary, DUAL_THEN_QUADS),
+                net(Need::Quads, &[NetStep::CatmullClark]),
+            ],
+            (Bi2Kind::Pgs, Purpose::Patches) => vec![no_valence_2],
+            (Bi2Kind::Mixed | Bi2Kind::Polar, Purpose::Patches) => vec![
+                no_valence_2,
+                Requirement {
+                    need: Need::Scheme {
+                        what: "needs its extraordinary elements separated by regular \
+                               vertices, facets with a DS-net and regular boundary vertices",
+                        test: if self.kind == Bi2Kind::Mixed {
+                            super::surface::unseparated
+                        } else {
+                            super::surface::unseparated_polar
+                        },
+                    },
+                    step: Step::Own(
+                        "the family's own separating construction: TPS's whole-net steps on \
+                         a net of extraordinary vertices, else the PGS step, which makes every \
+                         element a facet (PGS's construction)",
+                    ),
+                },
+            ],
+            (Bi2Kind::Mixed, Purpose::Refine) => vec![net(
+                Need::Scheme {
+                    what: "refines nets whose elements are of one kind",
+                    test: super::mixed::mixed_kinds,
+                },
+                &[NetStep::Pgs],
+            )],
+            _ => Vec::new(),
+        }
     }
 
     fn local_rules(&self, spec: &Spec) -> Result<Option<Box<dyn LocalRules>>> {

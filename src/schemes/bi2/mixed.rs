@@ -22,7 +22,7 @@
 use super::{Pgs, PolarBi2, Tps};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
-use crate::mesh::PolyMesh;
+use crate::mesh::{Element, PolyMesh};
 use crate::schemes::registry::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::StencilTable;
@@ -79,6 +79,23 @@ pub fn classify(mesh: &PolyMesh) -> (bool, bool, bool) {
         el.iter().any(|e| matches!(e, Bi2Element::Vertex(_))),
         el.iter().any(|e| matches!(e, Bi2Element::Pole(_))),
     )
+}
+
+/// The elements of a net with more than one kind of element (none when all are of one kind):
+/// what the mixed net's refinement cannot take (the preparation's test,
+/// [`crate::schemes::prepare::Need::Scheme`]).
+pub fn mixed_kinds(mesh: &PolyMesh, _: &crate::schemes::descriptor::Spec) -> Vec<Element> {
+    let (f, v, p) = classify(mesh);
+    if u8::from(f) + u8::from(v) + u8::from(p) <= 1 {
+        return Vec::new();
+    }
+    elements(mesh)
+        .into_iter()
+        .map(|e| match e {
+            Bi2Element::Facet(f) => Element::Face(f),
+            Bi2Element::Vertex(v) | Bi2Element::Pole(v) => Element::Vertex(v),
+        })
+        .collect()
 }
 
 /// The mixed bi-2 scheme (name `bi2-mixed`). Its exact surface (`--rings K`) takes any mix of

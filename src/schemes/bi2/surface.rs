@@ -68,10 +68,12 @@ use crate::stencil::Stencil;
 use super::local_scheme::{LocalScheme, qnet_index};
 
 mod cells;
+mod elements;
 mod g1;
 mod poles;
 mod thirds;
 use cells::FacetCells;
+pub use elements::{mixed_complex, polar_complex, unseparated, unseparated_polar};
 use poles::PoleCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
@@ -498,106 +500,6 @@ pub fn tps_complex(
         }
     }
     unreachable!("the loop returns")
-}
-
-/// The PolBS surface of a polar net, or of a prism-like net whose caps become poles at their
-/// centroids or at the given points ([`crate::schemes::bi2::polar::to_polar_layout`]): regular
-/// bi-2 patches, `n` patches per ring around every pole, the polar cap. Elements that are not
-/// poles (extraordinary vertices, facets that are not prism-like caps) get the rings of
-/// `bi2-mixed` (TPS, PGS), reported in the notes.
-///
-/// # Errors
-/// As [`mixed_complex`].
-pub fn polar_complex(
-    mesh: &PolyMesh,
-    opts: ComplexOptions,
-    poles: &[(usize, Point)],
-    progress: impl FnMut(usize),
-) -> Result<(PatchComplex, Vec<String>)> {
-    let net = crate::schemes::bi2::polar::to_polar_layout(mesh, poles)?;
-    let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
-    let (els, mut notes) = mixed_elements(&net.mesh, ids::POLAR_BI2.name(), &named)?;
-    let (mut c, more) = assemble(&net.mesh, true, None, None, &els, opts, progress)?;
-    poles::to_input_faces(mesh, &net, &mut c);
-    notes.extend(more);
-    Ok((c, notes))
-}
-
-/// The elements of a mixed net with their local nets; poles named by `named` (else by their
-/// vertex). Notes list the elements that are not poles (for `polar-bi2`).
-fn mixed_elements(
-    mesh: &PolyMesh,
-    name: &str,
-    named: &[(u32, Element)],
-) -> Result<(Vec<RingElement>, Vec<String>)> {
-    use crate::schemes::bi2::mixed::{Bi2Element, elements};
-    for v in 0..mesh.num_vertices() {
-        if mesh.is_boundary_vertex(v) && !regular(mesh, v) {
-            return Err(Error::Unsupported(format!(
-                "boundary vertex {v} is not regular (two quads, or one at a corner); {name} \
-                 has no boundary rules for it (way out: {} or {})",
-                ids::PGS,
-                ids::DOO_SABIN
-            )));
-        }
-    }
-    let mut notes = Vec::new();
-    // a TPS vertex's rings and cap lie in thirds of the quarters of its faces, as in `tps`
-    // (the regular patches around it cover the same quarters as TPS's)
-    let face_cells = thirds::FaceCells::input(mesh);
-    let els = elements(mesh)
-        .into_iter()
-        .map(|e| match e {
-            Bi2Element::Facet(f) => {
-                if name == ids::POLAR_BI2.name() {
-                    notes.push(format!(
-                        "face {f} ({} sides) is not a prism-like cap: PGS rings there, as in \
-                         {}",
-                        mesh.face_size(f as usize),
-                        ids::BI2_MIXED
-                    ));
-                }
-                pgs_element(mesh, f as usize, name)
-            }
-            Bi2Element::Vertex(v) => {
-                if name == ids::POLAR_BI2.name() {
-                    notes.push(format!(
-                        "vertex {v} (valence {}) is not a pole: TPS rings there, as in {}",
-                        mesh.valence(v as usize),
-                        ids::BI2_MIXED
-                    ));
-                }
-                let mut el = ternary_element(mesh, v as usize, TernaryRules::TPS, name)?;
-                el.sectors = thirds::sector_cells(mesh, &face_cells, v as usize);
-                Ok(el)
-            }
-            Bi2Element::Pole(p) => {
-                let element = named
-                    .iter()
-                    .find(|x| x.0 == p)
-                    .map(|x| x.1)
-                    .unwrap_or(Element::Vertex(p));
-                polar_element(mesh, p as usize, element, name)
-            }
-        })
-        .collect::<Result<_>>()?;
-    Ok((els, notes))
-}
-
-/// The surface of a mixed bi-2 net (Fig. 15 of the paper): regular bi-2 patches, PGS rings
-/// at facets, TPS rings at extraordinary vertices, polar rings at poles (see
-/// [`crate::schemes::bi2::mixed`]), with the notes of holes that keep their fill.
-///
-/// # Errors
-/// [`Error::Unsupported`] when elements are not separated (a vertex next to a hole is not
-/// regular) or a facet has no DS-net, naming the element and the way out.
-pub fn mixed_complex(
-    mesh: &PolyMesh,
-    opts: ComplexOptions,
-    progress: impl FnMut(usize),
-) -> Result<(PatchComplex, Vec<String>)> {
-    let (els, _) = mixed_elements(mesh, ids::BI2_MIXED.name(), &[])?;
-    assemble(mesh, true, None, None, &els, opts, progress)
 }
 
 /// `n`-valent extraordinary element's ring `l` patches from explicit local-net points (the

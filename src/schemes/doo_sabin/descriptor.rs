@@ -7,6 +7,7 @@ use crate::schemes::descriptor::{
     Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput,
     matrix_and_rows, patch_fn,
 };
+use crate::schemes::prepare::{Need, NetStep, Purpose, Requirement, Step};
 
 /// Doo-Sabin (`cc = false`) or DS^CC (`cc = true`).
 #[derive(Debug)]
@@ -64,6 +65,23 @@ impl Descriptor for DsDescriptor {
                 c.map(SurfaceOutput::plain)
             })
         })
+    }
+
+    /// The patches take no interior vertex of valence 2: one step of the scheme itself removes
+    /// them ([`crate::schemes::prepare`]; the refinement leaves out their 2-sided V-faces).
+    fn preparation(&self, _: &Spec, purpose: Purpose) -> Vec<Requirement> {
+        if purpose == Purpose::Refine {
+            return Vec::new();
+        }
+        let step: &'static [NetStep] = if self.cc {
+            &[NetStep::DooSabinCc]
+        } else {
+            &[NetStep::DooSabin]
+        };
+        vec![Requirement {
+            need: Need::NoInteriorValence2,
+            step: Step::Net(step),
+        }]
     }
 
     /// Doo-Sabin's local analysis: the block of an `n`-gon facet (none for DS^CC).

@@ -52,7 +52,9 @@ fn classify(mesh: &PolyMesh, name: &str) -> Result<Vec<VKind>> {
                     k if k >= 3 => Ok(VKind::Extraordinary),
                     _ => Err(Error::Unsupported(format!(
                         "vertex {v} is an interior vertex of valence {k}; {name} needs valence \
-                         at least 3 (refine once with {} to remove it)",
+                         at least 3 (no primal step changes a valence: one {} step removes it, \
+                         then one {} step makes the net quads again, as --prepare auto does)",
+                        ids::DOO_SABIN,
                         ids::CATMULL_CLARK
                     ))),
                 }

@@ -1,0 +1,270 @@
+//! The extraordinary elements of mixed and polar bi-2 nets (facets, extraordinary vertices,
+//! poles) with their local nets, and what the two schemes do when the elements are not
+//! separated.
+//!
+//! # Elements that are not separated (fairsub's documented step)
+//!
+//! Each element's rings are computed from its local net alone (see
+//! [`crate::schemes::bi2::mixed`]), so every vertex around its hole must be regular. PGS and
+//! TPS separate their own elements: TPS by whole-net ternary steps ([`tps_complex`]), exact
+//! because a ternary step refines the same spline and applies TPS's own rule at the
+//! extraordinary vertices; PGS by the refinement of its construction (the first step turns
+//! every extraordinary vertex into a facet, and further levels separate touching facets;
+//! [`pgs_complex`]). No single net refinement holds binary, ternary and radial rules at once,
+//! so `bi2-mixed` and `polar-bi2` take the step of the family member whose elements the net
+//! has, when the preparation is on (`--prepare auto`,
+//! [`crate::schemes::prepare::Step::Own`]):
+//!
+//! - a quad net whose elements are all extraordinary vertices (interior, valence 3 or more,
+//!   with regular boundary vertices) is a TPS net: its `bi2-mixed` surface is TPS's, and TPS's
+//!   whole-net steps separate the vertices (exact, as for `tps`);
+//! - any other net gets the PGS step, after which every element is a facet, and a net of
+//!   facets under `bi2-mixed` is a PGS net: the surface is PGS's, whose construction takes
+//!   that step itself and separates touching facets by its own levels (boundaries included,
+//!   by the dual schemes' boundary rules). Poles that are not separated become facets too.
+//!
+//! The note names the elements that were not separated and the construction taken. Under
+//! `--prepare none` the schemes refuse such nets, naming the element.
+
+use super::*;
+use crate::schemes::bi2::mixed::{Bi2Element, elements};
+use crate::schemes::descriptor::Spec;
+use crate::schemes::prepare::Mode;
+
+/// The PolBS surface of a polar net, or of a prism-like net whose caps become poles at their
+/// centroids or at the given points ([`crate::schemes::bi2::polar::to_polar_layout`]): regular
+/// bi-2 patches, `n` patches per ring around every pole, the polar cap. Elements that are not
+/// poles (extraordinary vertices, facets that are not prism-like caps) get the rings of
+/// `bi2-mixed` (TPS, PGS), reported in the notes.
+///
+/// Poles and elements that are not separated get the family's own separating construction
+/// under [`Mode::Auto`], as in [`mixed_complex`].
+///
+/// # Errors
+/// As [`mixed_complex`].
+pub fn polar_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    poles: &[(usize, Point)],
+    mode: Mode,
+    progress: impl FnMut(usize),
+) -> Result<(PatchComplex, Vec<String>)> {
+    let name = ids::POLAR_BI2.name();
+    let built = crate::schemes::bi2::polar::to_polar_layout(mesh, poles).and_then(|net| {
+        let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
+        let (els, notes) = mixed_elements(&net.mesh, name, &named)?;
+        Ok((net, els, notes))
+    });
+    let (net, els, mut notes) = match built {
+        Ok(b) => b,
+        Err(e) if mode == Mode::None || matches!(e, Error::InvalidArgument(_)) => return Err(e),
+        Err(_) => {
+            let mut spec = Spec::new(ids::POLAR_BI2);
+            spec.params.poles = poles.to_vec();
+            let bad = unseparated_polar(mesh, &spec);
+            return separated(mesh, opts, name, &bad, progress);
+        }
+    };
+    let (mut c, more) = assemble(&net.mesh, true, None, None, &els, opts, progress)?;
+    poles::to_input_faces(mesh, &net, &mut c);
+    notes.extend(more);
+    Ok((c, notes))
+}
+
+/// The elements of a mixed net with their local nets; poles named by `named` (else by their
+/// vertex). Notes list the elements that are not poles (for `polar-bi2`).
+fn mixed_elements(
+    mesh: &PolyMesh,
+    name: &str,
+    named: &[(u32, Element)],
+) -> Result<(Vec<RingElement>, Vec<String>)> {
+    for v in 0..mesh.num_vertices() {
+        if mesh.is_boundary_vertex(v) && !regular(mesh, v) {
+            return Err(Error::Unsupported(format!(
+                "boundary vertex {v} is not regular (two quads, or one at a corner); {name} \
+                 has no boundary rules for it (way out: {} or {})",
+                ids::PGS,
+                ids::DOO_SABIN
+            )));
+        }
+    }
+    let mut notes = Vec::new();
+    // a TPS vertex's rings and cap lie in thirds of the quarters of its faces, as in `tps`
+    // (the regular patches around it cover the same quarters as TPS's)
+    let face_cells = thirds::FaceCells::input(mesh);
+    let els = elements(mesh)
+        .into_iter()
+        .map(|e| match e {
+            Bi2Element::Facet(f) => {
+                if name == ids::POLAR_BI2.name() {
+                    notes.push(format!(
+                        "face {f} ({} sides) is not a prism-like cap: PGS rings there, as in \
+                         {}",
+                        mesh.face_size(f as usize),
+                        ids::BI2_MIXED
+                    ));
+                }
+                pgs_element(mesh, f as usize, name)
+            }
+            Bi2Element::Vertex(v) => {
+                if name == ids::POLAR_BI2.name() {
+                    notes.push(format!(
+                        "vertex {v} (valence {}) is not a pole: TPS rings there, as in {}",
+                        mesh.valence(v as usize),
+                        ids::BI2_MIXED
+                    ));
+                }
+                let mut el = ternary_element(mesh, v as usize, TernaryRules::TPS, name)?;
+                el.sectors = thirds::sector_cells(mesh, &face_cells, v as usize);
+                Ok(el)
+            }
+            Bi2Element::Pole(p) => {
+                let element = named
+                    .iter()
+                    .find(|x| x.0 == p)
+                    .map(|x| x.1)
+                    .unwrap_or(Element::Vertex(p));
+                polar_element(mesh, p as usize, element, name)
+            }
+        })
+        .collect::<Result<_>>()?;
+    Ok((els, notes))
+}
+
+/// The surface of a mixed bi-2 net (Fig. 15 of the paper): regular bi-2 patches, PGS rings
+/// at facets, TPS rings at extraordinary vertices, polar rings at poles (see
+/// [`crate::schemes::bi2::mixed`]), with the notes of holes that keep their fill. Elements that
+/// are not separated get the family's own separating construction under [`Mode::Auto`] (see
+/// the [module](self) documentation).
+///
+/// # Errors
+/// Under [`Mode::None`], [`Error::Unsupported`] when elements are not separated (a vertex next
+/// to a hole is not regular) or a facet has no DS-net, naming the element and the way out.
+pub fn mixed_complex(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    mode: Mode,
+    progress: impl FnMut(usize),
+) -> Result<(PatchComplex, Vec<String>)> {
+    let name = ids::BI2_MIXED.name();
+    match mixed_elements(mesh, name, &[]) {
+        Ok((els, _)) => assemble(mesh, true, None, None, &els, opts, progress),
+        Err(e) if mode == Mode::None => Err(e),
+        Err(_) => separated(
+            mesh,
+            opts,
+            name,
+            &unseparated(mesh, &Spec::new(ids::BI2_MIXED)),
+            progress,
+        ),
+    }
+}
+
+/// The elements of a mixed net whose rings cannot be built: boundary vertices that are not
+/// regular, elements not separated by regular vertices, facets without a DS-net (the
+/// preparation's test, [`crate::schemes::prepare::Need::Scheme`]).
+pub fn unseparated(mesh: &PolyMesh, _: &Spec) -> Vec<Element> {
+    unseparated_in(mesh, &[])
+}
+
+/// [`unseparated`] for `polar-bi2` (`spec`'s poles): of the net with its prism-like caps
+/// turned into poles (elements of that net), every facet when the caps cannot be turned.
+pub fn unseparated_polar(mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
+    let poles: Vec<(usize, Point)> = spec.params.poles.clone();
+    match crate::schemes::bi2::polar::to_polar_layout(mesh, &poles) {
+        Ok(net) => {
+            let named: Vec<(u32, Element)> =
+                net.poles.iter().map(|p| (p.vertex, p.element)).collect();
+            unseparated_in(&net.mesh, &named)
+        }
+        Err(_) => (0..mesh.num_faces())
+            .filter(|&f| mesh.face_size(f) != 4)
+            .map(|f| Element::Face(f as u32))
+            .collect(),
+    }
+}
+
+/// [`unseparated`] with poles named by `named`.
+fn unseparated_in(mesh: &PolyMesh, named: &[(u32, Element)]) -> Vec<Element> {
+    let name = ids::BI2_MIXED.name();
+    let mut out: Vec<Element> = (0..mesh.num_vertices())
+        .filter(|&v| mesh.is_boundary_vertex(v) && !regular(mesh, v))
+        .map(|v| Element::Vertex(v as u32))
+        .collect();
+    for e in elements(mesh) {
+        let (built, element) = match e {
+            Bi2Element::Facet(f) => (
+                pgs_element(mesh, f as usize, name).is_ok(),
+                Element::Face(f),
+            ),
+            Bi2Element::Vertex(v) => (
+                mesh.valence(v as usize) >= 3
+                    && ternary_element(mesh, v as usize, TernaryRules::TPS, name).is_ok(),
+                Element::Vertex(v),
+            ),
+            Bi2Element::Pole(p) => {
+                let element = named
+                    .iter()
+                    .find(|x| x.0 == p)
+                    .map(|x| x.1)
+                    .unwrap_or(Element::Vertex(p));
+                (
+                    polar_element(mesh, p as usize, element, name).is_ok(),
+                    element,
+                )
+            }
+        };
+        if !built {
+            out.push(element);
+        }
+    }
+    out
+}
+
+/// The surface of a mixed or polar net whose elements `bad` are not separated: TPS's when the
+/// net is a TPS net, else PGS's (see the [module](self) documentation), with the note.
+fn separated(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    name: &str,
+    bad: &[Element],
+    progress: impl FnMut(usize),
+) -> Result<(PatchComplex, Vec<String>)> {
+    let els = elements(mesh);
+    let tps_net = mesh.is_all_quads()
+        && els.iter().all(|e| matches!(e, Bi2Element::Vertex(_)))
+        && (0..mesh.num_vertices()).all(|v| {
+            if mesh.is_boundary_vertex(v) {
+                (1..=2).contains(&mesh.vertex_faces(v).len())
+            } else {
+                mesh.valence(v) >= 3
+            }
+        });
+    let mut named: Vec<String> = bad.iter().take(4).map(|e| e.describe()).collect();
+    if bad.len() > 4 {
+        named.push(format!("{} more", bad.len() - 4));
+    }
+    let at = named.join(", ");
+    if tps_net {
+        let (c, mut notes) = tps_complex(mesh, opts, TernaryRules::TPS, progress)?;
+        notes.insert(
+            0,
+            format!(
+                "{name}: the extraordinary vertices are not separated ({at}); a net whose \
+                 elements are all extraordinary vertices is a {} net, and its whole-net steps \
+                 separate them (exact)",
+                ids::TPS
+            ),
+        );
+        return Ok((c, notes));
+    }
+    let c = pgs_complex(mesh, opts, PgsOptions::default(), progress)?;
+    let note = format!(
+        "{name}: the elements are not separated ({at}); one {} step makes every element a \
+         facet, and a net of facets is a {} net: its construction takes that step and \
+         separates touching facets itself",
+        ids::PGS,
+        ids::PGS
+    );
+    Ok((c, vec![note]))
+}

@@ -1,0 +1,91 @@
+//! The whole-net steps of the preparation: each is one step of a scheme's own refinement
+//! (its stencils, its topology), applied to the net before the prepared-for scheme's rules.
+
+use super::map::ParamMap;
+use crate::error::Result;
+use crate::mesh::PolyMesh;
+use crate::schemes::descriptor::Spec;
+use crate::schemes::{Scheme, catmull_clark, doo_sabin};
+
+/// A whole-net step of the preparation (see the [module](super) documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NetStep {
+    /// One Catmull-Clark step (OpenSubdiv's rules, with the net's options and sharp features).
+    CatmullClark,
+    /// One Doo-Sabin step (with the dual schemes' boundary rules).
+    DooSabin,
+    /// One DS^CC step.
+    DooSabinCc,
+    /// One PGS step (Doo-Sabin's topology, the point-augmented rule at facets).
+    Pgs,
+}
+
+impl NetStep {
+    /// The step in words.
+    pub fn words(self) -> &'static str {
+        match self {
+            NetStep::CatmullClark => "one Catmull-Clark step",
+            NetStep::DooSabin => "one Doo-Sabin step",
+            NetStep::DooSabinCc => "one DS^CC step",
+            NetStep::Pgs => "one PGS step",
+        }
+    }
+
+    /// Whether the step is dual (a face per vertex; it does not carry sharp-feature tags).
+    pub fn is_dual(self) -> bool {
+        self != NetStep::CatmullClark
+    }
+
+    /// The step's refinement rules for `spec`'s net `mesh` (Catmull-Clark with the scheme's
+    /// OpenSubdiv options, unset ones from the net's tags).
+    fn scheme(self, spec: &Spec, mesh: &PolyMesh) -> Box<dyn Scheme> {
+        match self {
+            NetStep::CatmullClark => {
+                let tags = mesh.extras().map(|e| e.options).unwrap_or_default();
+                Box::new(catmull_clark::Configured {
+                    options: spec.params.subd.or(tags),
+                })
+            }
+            NetStep::DooSabin => Box::new(doo_sabin::DooSabin),
+            NetStep::DooSabinCc => Box::new(doo_sabin::DooSabinCc),
+            NetStep::Pgs => Box::new(crate::schemes::bi2::Pgs),
+        }
+    }
+
+    /// The step applied to `mesh` (whose faces lie in the input faces as `map` says; `None`:
+    /// `mesh` is the input net): the child net and where its faces lie.
+    ///
+    /// # Errors
+    /// Those of the refinement.
+    pub(super) fn apply(
+        self,
+        spec: &Spec,
+        mesh: &PolyMesh,
+        map: Option<&ParamMap>,
+    ) -> Result<(PolyMesh, ParamMap)> {
+        let child = self.scheme(spec, mesh).refine(mesh)?.mesh;
+        let input;
+        let map = match map {
+            Some(m) => m,
+            None => {
+                input = ParamMap::input(mesh);
+                &input
+            }
+        };
+        let next = if self.is_dual() {
+            map.dual_step(mesh, &child)
+        } else {
+            map.catmull_clark_step(mesh)
+        };
+        Ok((child, next))
+    }
+}
+
+/// Steps in words, joined ("one Doo-Sabin step, then one Catmull-Clark step").
+pub(super) fn words(steps: &[NetStep]) -> String {
+    steps
+        .iter()
+        .map(|s| s.words())
+        .collect::<Vec<_>>()
+        .join(", then ")
+}

@@ -1,0 +1,150 @@
+use super::map::{Cell, FaceCell};
+use super::*;
+use crate::bezier::domain::{Affine, Shape};
+use crate::mesh::nets;
+use crate::schemes::registry::{ids, registry};
+
+fn prepared(id: crate::schemes::SchemeId, mesh: &PolyMesh, mode: Mode) -> Prepared {
+    let mut spec = Spec::new(id);
+    spec.params.prepare = mode;
+    prepare(registry().descriptor(id), &spec, mesh, Purpose::Patches).expect("prepared")
+}
+
+/// The area of the image of `[0, 1]^2` under a cell's map.
+fn area(c: &Cell) -> f64 {
+    (c.map.e[0][0] * c.map.e[1][1] - c.map.e[0][1] * c.map.e[1][0]).abs()
+}
+
+/// The area each input face (sub-face) gets from the cells of `map`'s faces (quarters, or
+/// the whole face).
+fn covered_area(mesh: &PolyMesh, map: &ParamMap) -> std::collections::BTreeMap<(u32, u32), f64> {
+    let mut out = std::collections::BTreeMap::new();
+    for (g, c) in map.faces.iter().enumerate() {
+        let cells: Vec<Cell> = match c {
+            FaceCell::Whole(c) => vec![*c],
+            FaceCell::Quarters(q) => q.iter().flatten().copied().collect(),
+            FaceCell::Nowhere => Vec::new(),
+        };
+        let _ = (g, mesh);
+        for c in cells {
+            *out.entry((c.face, c.sub)).or_insert(0.0) += area(&c);
+        }
+    }
+    out
+}
+
+#[test]
+fn the_catmull_clark_step_makes_quads_of_the_quarters() {
+    let mesh = nets::octahedron();
+    let p = prepared(ids::TPS, &mesh, Mode::Auto);
+    assert!(p.mesh.is_all_quads());
+    assert_eq!(p.applied.len(), 1);
+    assert_eq!(p.applied[0].step, "one Catmull-Clark step");
+    assert_eq!(p.applied[0].count, 8);
+    let map = p.map.as_ref().expect("a map");
+    assert_eq!(map.faces.len(), p.mesh.num_faces());
+    // child face h of parent corner h is sub-face k of the triangle, with its own corner 0 at
+    // the sub-face's corner 0
+    for (h, c) in map.faces.iter().enumerate() {
+        let g = mesh.he_face(h as u32);
+        let k = h as u32 - mesh.face_halfedge(g as usize);
+        assert_eq!(
+            *c,
+            FaceCell::Whole(Cell {
+                face: g,
+                sub: k,
+                map: Affine::IDENTITY
+            })
+        );
+    }
+    // every sub-face is covered once
+    for (_, a) in covered_area(&p.mesh, map) {
+        assert_eq!(a, 1.0);
+    }
+}
+
+fn dual_child(m: &PolyMesh) -> PolyMesh {
+    use crate::schemes::Scheme;
+    crate::schemes::DooSabin.refine(m).expect("a step").mesh
+}
+
+#[test]
+fn the_dual_step_tiles_the_quarters_of_the_input_faces() {
+    // the cube: every quad's four quarters split in four, each by one child face
+    let mesh = nets::cube();
+    let p = prepared(ids::BI2_MIXED, &nets::split_edge_cube(), Mode::Auto);
+    assert_eq!(p.applied[0].step, "one PGS step");
+    assert_eq!(p.applied[0].kind, Kind::Applied);
+    let map = ParamMap::input(&mesh).dual_step(&mesh, &dual_child(&mesh));
+    for (_, a) in covered_area(&mesh, &map) {
+        assert!((a - 1.0).abs() < 1e-15, "{a}");
+    }
+    // the quarter of a child face at a corner point is the child of the parent quarter
+    // toward that face, (0, 0) at the quarter's centre
+    let q = map.faces[0].quarter(0, 4).expect("a quarter");
+    let want = Shape::Quad
+        .child_map(0)
+        .compose(&Shape::Quad.child_map(2))
+        .compose(&Shape::Quad.corner_map(2));
+    assert_eq!(q.map, want);
+    // the split-edge cube: the child toward the valence-2 vertex of its quarters lies over
+    // no face (the step leaves its V-face out), everything else is covered once
+    let m = nets::split_edge_cube();
+    let map = ParamMap::input(&m).dual_step(&m, &dual_child(&m));
+    let v2 = (0..m.num_vertices())
+        .find(|&v| m.valence(v) == 2)
+        .expect("the valence-2 vertex");
+    for ((f, sub), a) in covered_area(&m, &map) {
+        let corner = if m.face_size(f as usize) == 4 {
+            None
+        } else {
+            Some(m.face(f as usize)[sub as usize] as usize)
+        };
+        let want = if corner == Some(v2) { 0.75 } else { 1.0 };
+        assert!((a - want).abs() < 1e-15, "face {f} sub-face {sub}: {a}");
+    }
+}
+
+#[test]
+fn nothing_is_applied_without_need_or_under_none() {
+    let cube = nets::cube();
+    for id in [ids::TPS, ids::DOO_SABIN, ids::PGS, ids::CATMULL_CLARK] {
+        let p = prepared(id, &cube, Mode::Auto);
+        assert!(!p.changed(), "{id}");
+        assert!(p.notes(id.name()).is_empty());
+    }
+    let p = prepared(ids::TPS, &nets::octahedron(), Mode::None);
+    assert!(!p.changed());
+    assert_eq!(p.mesh.num_faces(), 8);
+}
+
+#[test]
+fn the_dual_steps_leave_tagged_nets_to_the_scheme() {
+    // an infinitely sharp crease on the split-edge cube: the Doo-Sabin step does not carry
+    // it, so the net is given to the scheme as it is, with a note
+    let m = nets::split_edge_cube();
+    let tags = crate::mesh::Extras {
+        sharp_edges: crate::mesh::SharpEdges::ById(vec![(0, 10.0)]),
+        ..Default::default()
+    };
+    let m = m.with_extras(Some(tags));
+    let p = prepared(ids::DOO_SABIN, &m, Mode::Auto);
+    assert!(!p.changed());
+    let notes = p.notes(ids::DOO_SABIN.name());
+    assert_eq!(notes.len(), 1);
+    assert!(
+        notes[0].contains("does not carry the net's sharp-feature tags"),
+        "{}",
+        notes[0]
+    );
+    // the Catmull-Clark step carries them (each sharp edge becomes two)
+    let t = crate::mesh::nets::prism(3);
+    let tags = crate::mesh::Extras {
+        sharp_edges: crate::mesh::SharpEdges::ById(vec![(0, 10.0)]),
+        ..Default::default()
+    };
+    let p = prepared(ids::TPS, &t.with_extras(Some(tags)), Mode::Auto);
+    assert!(p.changed());
+    let ex = p.mesh.extras().expect("tags");
+    assert_eq!(ex.sharp_edges.len(), 2);
+}
