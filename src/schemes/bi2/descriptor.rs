@@ -151,7 +151,13 @@ impl Descriptor for Bi2Descriptor {
                 use super::surface as s;
                 if !matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) {
                     crate::schemes::doo_sabin::sharp::refuse_kept_corners_with_faces(mesh, name)?;
-                    crate::schemes::doo_sabin::sharp::refuse_boundary_modes(mesh, name)?;
+                    // the mixed and polar nets give such boundaries to PGS's construction
+                    // (super::surface's elements) when preparing
+                    let separates = matches!(kind, Bi2Kind::Mixed | Bi2Kind::Polar)
+                        && mode == crate::schemes::prepare::Mode::Auto;
+                    if !separates {
+                        crate::schemes::doo_sabin::sharp::refuse_boundary_modes(mesh, name)?;
+                    }
                 }
                 let with_notes = |(complex, notes)| SurfaceOutput {
                     complex,

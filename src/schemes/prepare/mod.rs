@@ -1,5 +1,5 @@
 //! The preparation stage shared by every scheme: what a scheme's rules need of a net, declared
-//! in its [`Descriptor`](super::Descriptor) ([`Descriptor::preparation`](super::Descriptor::preparation)),
+//! in its [`super::Descriptor`] ([`super::Descriptor::preparation`]),
 //! and the smallest documented step that gives it, applied here (or, where the scheme's own
 //! construction takes that step locally and exactly, named here and taken there).
 //!
@@ -239,11 +239,16 @@ fn unmet(need: &Need, mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
             .filter(|&v| interior(v) && mesh.valence(v) < 3)
             .map(|v| Element::Vertex(v as u32))
             .collect(),
+        // a corner of one face that the boundary mode edge-only does not keep is not regular
+        // either: the schemes' rules keep every corner
         Need::RegularBoundary => (0..mesh.num_vertices())
             .filter(|&v| {
                 mesh.is_boundary_vertex(v)
                     && !mesh.is_nonmanifold_vertex(v)
-                    && !(1..=2).contains(&mesh.vertex_faces(v).len())
+                    && match mesh.vertex_faces(v).len() {
+                        1 => !crate::schemes::doo_sabin::sharp::is_kept_corner(mesh, v),
+                        k => k != 2,
+                    }
             })
             .map(|v| Element::Vertex(v as u32))
             .collect(),
@@ -258,7 +263,7 @@ impl Need {
             Need::Quads => "needs every face a quad",
             Need::NoInteriorValence2 => "needs every interior vertex of valence 3 or more",
             Need::RegularBoundary => {
-                "needs every boundary vertex regular (two faces, or one at a corner)"
+                "needs every boundary vertex regular (two faces, or one at a corner it keeps)"
             }
             Need::Scheme { what, .. } => what,
         }

@@ -19,7 +19,7 @@ pub struct TableCap {
     /// the boundary coefficients followed by the cross coefficients.
     pub data_row: u32,
     /// The cap map the construction chose for this hole (degree and centre condition): the
-    /// map [`PatchTable::apply_data`] applies.
+    /// map [`super::PatchTable::apply_data`] applies.
     pub degree: usize,
     /// See [`TableCap::degree`].
     pub centre: Centre,

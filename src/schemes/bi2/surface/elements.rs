@@ -50,11 +50,14 @@ pub fn polar_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let name = ids::POLAR_BI2.name();
-    let built = crate::schemes::bi2::polar::to_polar_layout(mesh, poles).and_then(|net| {
-        let named: Vec<(u32, Element)> = net.poles.iter().map(|p| (p.vertex, p.element)).collect();
-        let (els, notes) = mixed_elements(&net.mesh, name, &named)?;
-        Ok((net, els, notes))
-    });
+    let built = boundary_modes(mesh, mode, name)
+        .and_then(|()| crate::schemes::bi2::polar::to_polar_layout(mesh, poles))
+        .and_then(|net| {
+            let named: Vec<(u32, Element)> =
+                net.poles.iter().map(|p| (p.vertex, p.element)).collect();
+            let (els, notes) = mixed_elements(&net.mesh, name, &named)?;
+            Ok((net, els, notes))
+        });
     let (net, els, mut notes) = match built {
         Ok(b) => b,
         Err(e) if mode == Mode::None || matches!(e, Error::InvalidArgument(_)) => return Err(e),
@@ -134,8 +137,8 @@ fn mixed_elements(
 /// The surface of a mixed bi-2 net (Fig. 15 of the paper): regular bi-2 patches, PGS rings
 /// at facets, TPS rings at extraordinary vertices, polar rings at poles (see
 /// [`crate::schemes::bi2::mixed`]), with the notes of holes that keep their fill. Elements that
-/// are not separated get the family's own separating construction under [`Mode::Auto`] (see
-/// the [module](self) documentation).
+/// are not separated get the family's own separating construction under [`Mode::Auto`]
+/// (TPS's whole-net steps on a net of extraordinary vertices, else PGS's construction).
 ///
 /// # Errors
 /// Under [`Mode::None`], [`Error::Unsupported`] when elements are not separated (a vertex next
@@ -147,7 +150,8 @@ pub fn mixed_complex(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let name = ids::BI2_MIXED.name();
-    match mixed_elements(mesh, name, &[]) {
+    let built = boundary_modes(mesh, mode, name).and_then(|()| mixed_elements(mesh, name, &[]));
+    match built {
         Ok((els, _)) => assemble(mesh, true, None, None, &els, opts, progress),
         Err(e) if mode == Mode::None => Err(e),
         Err(_) => separated(
@@ -188,7 +192,7 @@ pub fn unseparated_polar(mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
 fn unseparated_in(mesh: &PolyMesh, named: &[(u32, Element)]) -> Vec<Element> {
     let name = ids::BI2_MIXED.name();
     let mut out: Vec<Element> = (0..mesh.num_vertices())
-        .filter(|&v| mesh.is_boundary_vertex(v) && !regular(mesh, v))
+        .filter(|&v| mesh.is_boundary_vertex(v) && !(regular(mesh, v) && takes_mode(mesh, v)))
         .map(|v| Element::Vertex(v as u32))
         .collect();
     for e in elements(mesh) {
@@ -221,8 +225,33 @@ fn unseparated_in(mesh: &PolyMesh, named: &[(u32, Element)]) -> Vec<Element> {
     out
 }
 
+/// Under [`Mode::Auto`], an error when the boundary mode asks for what the mixed net's
+/// boundary rules do not do (the construction then goes to PGS's, which takes the modes);
+/// under [`Mode::None`] the descriptor has refused such nets already.
+fn boundary_modes(mesh: &PolyMesh, mode: Mode, name: &str) -> Result<()> {
+    match (0..mesh.num_vertices()).find(|&v| mesh.is_boundary_vertex(v) && !takes_mode(mesh, v)) {
+        Some(v) if mode == Mode::Auto => Err(Error::Unsupported(format!(
+            "boundary vertex {v}: {name}'s boundary rules do not take the boundary mode {}",
+            crate::mesh::tags::Named::name(crate::schemes::doo_sabin::boundary_mode(mesh))
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Whether the boundary mode leaves boundary vertex `v` to the mixed net's boundary rules, which
+/// keep every corner of one face and write every boundary patch (see
+/// [`crate::schemes::doo_sabin::sharp::refuse_boundary_modes`]).
+fn takes_mode(mesh: &PolyMesh, v: usize) -> bool {
+    use crate::mesh::tags::BoundaryInterpolation;
+    use crate::schemes::doo_sabin::{boundary_mode, sharp::is_kept_corner};
+    match boundary_mode(mesh) {
+        BoundaryInterpolation::None => false,
+        _ => !mesh.is_corner(v) || is_kept_corner(mesh, v),
+    }
+}
+
 /// The surface of a mixed or polar net whose elements `bad` are not separated: TPS's when the
-/// net is a TPS net, else PGS's (see the [module](self) documentation), with the note.
+/// net is a TPS net, else PGS's, with the note.
 fn separated(
     mesh: &PolyMesh,
     opts: ComplexOptions,
@@ -235,7 +264,7 @@ fn separated(
         && els.iter().all(|e| matches!(e, Bi2Element::Vertex(_)))
         && (0..mesh.num_vertices()).all(|v| {
             if mesh.is_boundary_vertex(v) {
-                (1..=2).contains(&mesh.vertex_faces(v).len())
+                (1..=2).contains(&mesh.vertex_faces(v).len()) && takes_mode(mesh, v)
             } else {
                 mesh.valence(v) >= 3
             }
