@@ -38,6 +38,10 @@ const IRREMOVABLE: &[(&str, &str)] = &[
         "sharp features in non-box patches (issue 45's crease item)",
     ),
     ("is a dart", "a crease ending inside the surface"),
+    (
+        "cannot keep an interior point",
+        "a sharp corner inside the surface with no crease (bi-2)",
+    ),
     ("not manifold", "non-manifold net"),
     ("non-manifold", "non-manifold net"),
 ];

@@ -155,8 +155,13 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
         }
     }
     // Kept corners; darts refused.
+    // A vertex only the removed hole faces had is in no face now: nothing to keep there.
+    let in_a_face = |v: usize| mesh.vertex_halfedge(v) != NONE;
     let mut keep = vec![false; nv];
     for (v, k) in keep.iter_mut().enumerate() {
+        if !in_a_face(v) {
+            continue;
+        }
         let c = crease_valence[v];
         let boundary = mesh.is_boundary_vertex(v);
         if c == 1 && !boundary {
@@ -177,6 +182,9 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
             )));
         }
         let v = v as usize;
+        if !in_a_face(v) {
+            continue;
+        }
         if crease_valence[v] == 0 && !mesh.is_boundary_vertex(v) {
             return Err(Error::Unsupported(format!(
                 "vertex {v} is tagged as a corner but lies inside the surface with no crease \
@@ -192,7 +200,7 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
     // the other side, instead of staying put as a corner would.
     if mode == BoundaryInterpolation::EdgeAndCorner {
         for (v, k) in keep.iter_mut().enumerate() {
-            *k |= mesh.is_boundary_vertex(v) && mesh.is_corner(v);
+            *k |= in_a_face(v) && mesh.is_boundary_vertex(v) && mesh.is_corner(v);
         }
     }
     let mut face_start = Vec::with_capacity(mesh.num_faces() + 1);

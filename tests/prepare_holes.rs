@@ -1,0 +1,100 @@
+//! Hole tags (`t hole`) whose faces are all a vertex has: the bi-2 schemes remove the hole
+//! faces before their patches, which leaves such a vertex in no face (OpenSubdiv's
+//! `catmark_hole_test3`). The surface must be built (no panic), and be the surface of the net
+//! with those faces deleted outright, patch for patch.
+
+use fairsub::geom::{Point, dist};
+use fairsub::mesh::{Extras, PolyMesh};
+use fairsub::schemes::registry::registry;
+use fairsub::surface::ComplexOptions;
+
+/// A 4 x 4 grid of quads (25 vertices), lifted into a bowl so no patch is planar.
+fn grid() -> (Vec<Point>, Vec<Vec<usize>>) {
+    let mut pos = Vec::new();
+    for j in 0..5 {
+        for i in 0..5 {
+            let (x, y) = (i as f64, j as f64);
+            pos.push([x, y, 0.1 * (x - 2.0).powi(2) + 0.07 * (y - 2.0).powi(2)]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..4 {
+        for i in 0..4 {
+            let a = 5 * j + i;
+            faces.push(vec![a, a + 1, a + 6, a + 5]);
+        }
+    }
+    (pos, faces)
+}
+
+/// The faces of the 2 x 2 block at the grid's corner: vertex 0 (a corner) and vertex 6 (an
+/// interior vertex) are in hole faces only.
+const HOLES: [usize; 4] = [0, 1, 4, 5];
+
+/// Patches sorted by the centroid of their control points, for comparing two builds whose
+/// vertices and faces are numbered differently.
+fn sorted(patches: &[fairsub::bezier::BezierPatch]) -> Vec<Vec<Point>> {
+    let mut out: Vec<(Point, Vec<Point>)> = patches
+        .iter()
+        .map(|p| {
+            let n = p.cps.len() as f64;
+            let c = p.cps.iter().fold([0.0; 3], |a, q| {
+                [a[0] + q[0] / n, a[1] + q[1] / n, a[2] + q[2] / n]
+            });
+            (c, p.cps.clone())
+        })
+        .collect();
+    out.sort_by(|a, b| a.0.partial_cmp(&b.0).expect("finite"));
+    out.into_iter().map(|(_, c)| c).collect()
+}
+
+#[test]
+fn hole_faces_leaving_a_vertex_in_no_face_are_removed_and_the_surface_built() {
+    let (pos, faces) = grid();
+    let ex = Extras {
+        holes: HOLES.iter().map(|&f| f as u32).collect(),
+        ..Extras::default()
+    };
+    let tagged = PolyMesh::new(pos.clone(), &faces)
+        .expect("the grid")
+        .with_extras(Some(ex));
+    let kept: Vec<Vec<usize>> = faces
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| !HOLES.contains(f))
+        .map(|(_, f)| f.clone())
+        .collect();
+    let deleted = PolyMesh::new(pos, &kept).expect("the grid without the block");
+    assert_eq!(deleted.num_faces(), 12);
+    let opts = ComplexOptions {
+        rings: 3,
+        fill: true,
+    };
+    for name in ["doo-sabin", "doo-sabin-cc", "pgs", "bi2-mixed"] {
+        let spec = registry().lookup(name).expect("registered");
+        let out = fairsub::surface::build(&spec, &tagged, opts, &mut |_| {})
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(
+            out.notes.iter().any(|n| n.contains("4 hole faces removed")),
+            "{name}: {:?}",
+            out.notes
+        );
+        let want = fairsub::surface::build(&spec, &deleted, opts, &mut |_| {})
+            .unwrap_or_else(|e| panic!("{name} without the block: {e}"));
+        let (a, b) = (sorted(&out.complex.patches), sorted(&want.complex.patches));
+        assert_eq!(a.len(), b.len(), "{name}: patch counts");
+        assert!(!a.is_empty(), "{name}: no patches");
+        let worst = a
+            .iter()
+            .zip(&b)
+            .flat_map(|(p, q)| {
+                assert_eq!(p.len(), q.len(), "{name}: degrees");
+                p.iter().zip(q).map(|(x, y)| dist(*x, *y))
+            })
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-12, "{name}: control points differ by {worst:e}");
+        let c = fairsub::analysis::continuity::check(&out.complex);
+        let g1 = c.by_kind.values().map(|d| d.g1).fold(0.0f64, f64::max);
+        assert!(g1 < 1e-8, "{name}: G^1 {g1:e}");
+    }
+}
