@@ -39,6 +39,10 @@ const IRREMOVABLE: &[(&str, &str)] = &[
     ),
     ("is a dart", "a crease ending inside the surface"),
     (
+        "asks for the boundary mode none",
+        "creases under the boundary mode none (bi-2)",
+    ),
+    (
         "cannot keep an interior point",
         "a sharp corner inside the surface with no crease (bi-2)",
     ),
