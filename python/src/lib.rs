@@ -5,7 +5,11 @@
 //! is written here. Long work runs with the GIL released.
 
 mod evaluate;
+mod net;
+mod shape;
 mod table;
+
+use net::Net;
 
 use fairsub::cli::{Computed, api};
 use fairsub::mesh::PolyMesh;
@@ -75,109 +79,6 @@ fn csr_arrays<'py>(py: Python<'py>, table: &StencilTable) -> Csr<'py> {
         idx.into_pyarray(py),
         w.into_pyarray(py),
     )
-}
-
-/// A control net: a validated polygon mesh, with the file or gallery name it was read from.
-#[pyclass(module = "fairsub._fairsub", frozen)]
-pub struct Net {
-    mesh: PolyMesh,
-    /// The file (or `gallery:NAME`) it was read from: commands re-read it the way the command
-    /// line reads it for their scheme (tags, FCVs, non-manifold nets), so results are the CLI's.
-    source: Option<String>,
-    warnings: Vec<String>,
-}
-
-#[pymethods]
-impl Net {
-    /// A net from vertices (n, 3) and faces (lists of vertex indices, counterclockwise);
-    /// raises ValueError naming the first problem (as `fairsub info` would).
-    #[new]
-    fn new(vertices: PyReadonlyArray2<'_, f64>, faces: Vec<Vec<usize>>) -> PyResult<Net> {
-        let pts = points_from(&vertices, "vertices")?;
-        let mesh = PolyMesh::new(pts, &faces).map_err(err)?;
-        Ok(Net {
-            mesh,
-            source: None,
-            warnings: Vec::new(),
-        })
-    }
-
-    /// The vertex positions, float64 array (n, 3).
-    #[getter]
-    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        points_array(py, self.mesh.positions())
-    }
-
-    /// The faces, lists of vertex indices.
-    #[getter]
-    fn faces(&self) -> Vec<Vec<u32>> {
-        self.mesh.faces().map(|f| f.to_vec()).collect()
-    }
-
-    /// Number of vertices.
-    #[getter]
-    fn num_vertices(&self) -> usize {
-        self.mesh.num_vertices()
-    }
-
-    /// Number of faces.
-    #[getter]
-    fn num_faces(&self) -> usize {
-        self.mesh.num_faces()
-    }
-
-    /// The file or gallery name the net was read from (None for a net made from arrays).
-    #[getter]
-    fn source(&self) -> Option<String> {
-        self.source.clone()
-    }
-
-    /// What the reader noted (dropped vertices, ignored statements).
-    #[getter]
-    fn warnings(&self) -> Vec<String> {
-        self.warnings.clone()
-    }
-
-    /// `fairsub info --json` of the net, as a JSON string.
-    fn info_json(&self) -> String {
-        api::info_json(self.source.as_deref().unwrap_or("<array net>"), &self.mesh)
-    }
-
-    /// Writes the net (.obj, .off, .ply, .bv by extension).
-    fn write(&self, py: Python<'_>, path: &str) -> PyResult<()> {
-        py.detach(|| api::write_net(&self.mesh, Path::new(path)))
-            .map_err(err)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "Net({} vertices, {} faces{})",
-            self.mesh.num_vertices(),
-            self.mesh.num_faces(),
-            self.source
-                .as_deref()
-                .map(|s| format!(", from {s}"))
-                .unwrap_or_default()
-        )
-    }
-}
-
-impl Net {
-    /// The NET word and the mesh that stands for it (None: the command re-reads the source).
-    fn as_input(&self) -> (String, Option<PolyMesh>) {
-        match &self.source {
-            Some(s) => (s.clone(), None),
-            None => ("<array net>".to_string(), Some(self.mesh.clone())),
-        }
-    }
-
-    fn refined(mesh: PolyMesh) -> Net {
-        Net {
-            mesh,
-            source: None,
-            warnings: Vec::new(),
-        }
-    }
 }
 
 /// Reads a net (.obj, .off, .ply or `gallery:NAME`) as `fairsub info` reads it: strictly,
@@ -315,6 +216,13 @@ impl Surface {
             .expect("triangles")
             .into_pyarray(py);
         Ok((points_array(py, mesh.positions()), f))
+    }
+
+    /// The tessellation of `tessellate(n)` with, per vertex, the exact normal, patch, patch
+    /// domain point and Gauss and mean curvature: a dict of arrays vertices, normals, patch_uv
+    /// (n, 3 / 2), patch, gauss, mean (n), triangles (m, 3), triangle_patch (m).
+    fn tessellation<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyDict>> {
+        shape::tessellation(py, &self.complex, n)
     }
 
     /// Evaluates the complex at parameters (u, v) of input faces (arrays of equal length), in
@@ -537,6 +445,8 @@ fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(level_stencils_words, m)?)?;
     m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_function(wrap_pyfunction!(render_words, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::scheme_options_json, m)?)?;
+    m.add_function(wrap_pyfunction!(shape::curvature_colours, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -41,6 +41,8 @@ __all__ = [
     "render",
     "level_stencils",
     "info",
+    "scheme_options",
+    "curvature_colours",
 ]
 __version__ = _fairsub.__version__
 
@@ -99,6 +101,27 @@ Net.info.__doc__ = "``fairsub info --json`` of the net, as a dict."
 def schemes():
     """The catalogue (``fairsub schemes --json``): a list of dicts, one per scheme."""
     return _json.loads(_fairsub.report(["schemes", "--json"]))
+
+
+def scheme_options(scheme):
+    """The options ``scheme`` takes (beside ``levels`` / ``rings``), as the command line
+    defines them: a list of dicts ``name`` (``"split-ratio"``; as a keyword ``split_ratio``),
+    ``help``, ``choices`` (the values, when they are a fixed set), ``file`` (it names a file),
+    ``flag`` (a switch without value) and ``repeated`` (it may be given several times).
+
+    >>> [o["name"] for o in scheme_options("catmull-clark")][:3]
+    ['boundary', 'crease-method', 'fvar']
+    """
+    return _json.loads(_fairsub.scheme_options_json(scheme))
+
+
+def curvature_colours(values, range=None, percentile=0.98):
+    """Curvature values (a 1-D array, e.g. ``Surface.tessellation(n)["mean"]``) as the colours
+    ``render --mode mean|gauss`` paints them: blue negative, white 0, red positive, over the
+    symmetric range ``[-range, range]`` (given, or the ``percentile`` of ``|value|`` rounded up
+    to two significant digits). Returns ``(colours (n, 3) in 0..1, range)``."""
+    v = _np.ascontiguousarray(values, dtype=_np.float64).reshape(-1)
+    return _fairsub.curvature_colours(v, range, percentile)
 
 
 def subdivide(net, scheme, levels=1, limit=False, **options):

@@ -12,11 +12,47 @@ FloatArray = npt.NDArray[np.float64]
 class Net:
     """A validated control net (polygon mesh)."""
 
-    def __init__(self, vertices: npt.ArrayLike, faces: Sequence[Sequence[int]]) -> None: ...
+    def __init__(
+        self,
+        vertices: npt.ArrayLike,
+        faces: Union[Sequence[Sequence[int]], Tuple[npt.ArrayLike, npt.ArrayLike]],
+        *,
+        tolerant: bool = False,
+        creases: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        corners: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        holes: Optional[npt.ArrayLike] = None,
+        uv: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+    ) -> None:
+        """A net from vertices (n, 3) and faces (vertex-index lists, or the flat pair
+        ``(sizes, indices)`` of numpy arrays), with OpenSubdiv's tags ``creases=(edges (m, 2),
+        sharpness (m,))``, ``corners=(vertices (k,), sharpness (k,))``, ``holes=faces`` and
+        face-varying texture coordinates ``uv=(values (t, 2), indices (one per face corner))``.
+        ``tolerant=True`` accepts non-manifold nets and keeps unused vertices in place."""
+        ...
     @property
     def vertices(self) -> FloatArray: ...
     @property
     def faces(self) -> List[List[int]]: ...
+    @property
+    def face_arrays(self) -> Tuple[npt.NDArray[np.uint32], npt.NDArray[np.uint32]]:
+        """The faces as the flat pair (sizes, indices)."""
+        ...
+    @property
+    def creases(self) -> Tuple[npt.NDArray[np.uint32], npt.NDArray[np.float32]]:
+        """Sharp edges (edges (m, 2), sharpness (m,)); on a refined Catmull-Clark or Loop net
+        the refined sharpness, with boundary and non-manifold edges at 10 (infinitely sharp)."""
+        ...
+    @property
+    def corners(self) -> Tuple[npt.NDArray[np.uint32], npt.NDArray[np.float32]]:
+        """Sharp vertices (vertices (k,), sharpness (k,)), refined like ``creases``."""
+        ...
+    @property
+    def holes(self) -> npt.NDArray[np.uint32]: ...
+    @property
+    def uv(self) -> Optional[Tuple[FloatArray, npt.NDArray[np.uint32]]]:
+        """Face-varying texture coordinates (values (t, 2), one index per face corner), refined
+        by OpenSubdiv's face-varying rules on a refined Catmull-Clark or Loop net."""
+        ...
     @property
     def num_vertices(self) -> int: ...
     @property
@@ -49,6 +85,10 @@ class Surface:
         self, face: npt.NDArray[np.int64], u: FloatArray, v: FloatArray
     ) -> Dict[str, Any]: ...
     def tessellate(self, n: int) -> Tuple[FloatArray, npt.NDArray[np.uint32]]: ...
+    def tessellation(self, n: int) -> Dict[str, Any]:
+        """``tessellate(n)`` with per vertex the exact ``normals``, ``patch``, ``patch_uv`` and
+        ``gauss``, ``mean`` curvature, and per triangle its ``triangle_patch``."""
+        ...
     def check(self) -> Dict[str, Any]: ...
     def check_json(self) -> str: ...
     def write(self, path: str, tess: int = 8) -> None: ...
@@ -132,6 +172,10 @@ def render(
     size: Tuple[int, int] = (800, 800),
     **look: Any,
 ) -> npt.NDArray[np.uint8]: ...
+def scheme_options(scheme: str) -> List[Dict[str, Any]]: ...
+def curvature_colours(
+    values: npt.ArrayLike, range: Optional[float] = None, percentile: float = 0.98
+) -> Tuple[FloatArray, float]: ...
 def level_stencils(
     net: Union[Net, str], scheme: str, levels: int = 1, **options: Any
 ) -> Tuple[Net, Stencils]: ...
