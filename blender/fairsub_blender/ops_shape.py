@@ -42,21 +42,21 @@ def exact_surface(context, ob):
     return s, recipe, notes
 
 
-def _mesh_poll(context):
-    ob = context.active_object
-    return ob is not None and ob.type == "MESH" and ob.mode == "OBJECT"
+class _OnMesh:
+    """The shape tools run on an active mesh object in Object Mode."""
+
+    @classmethod
+    def poll(cls, context):
+        ob = context.active_object
+        return ob is not None and ob.type == "MESH" and ob.mode == "OBJECT"
 
 
-class FAIRSUB_OT_measure(bpy.types.Operator):
+class FAIRSUB_OT_measure(_OnMesh, bpy.types.Operator):
     """Area, volume and centroid of the exact surface (of a fairsub result, or of the active
     mesh under the fairsub settings)"""
 
     bl_idname = "fairsub.measure"
     bl_label = "Measure Exact Surface"
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_poll(context)
 
     def execute(self, context):
         ob = context.active_object
@@ -78,7 +78,7 @@ class FAIRSUB_OT_measure(bpy.types.Operator):
         return {"FINISHED"}
 
 
-class FAIRSUB_OT_highlight_lines(bpy.types.Operator):
+class FAIRSUB_OT_highlight_lines(_OnMesh, bpy.types.Operator):
     """Show highlight lines on the active object (a material of parallel light lines above
     it: a break shows a jump of the normal, a kink one of the curvature)"""
 
@@ -90,10 +90,6 @@ class FAIRSUB_OT_highlight_lines(bpy.types.Operator):
         name="Stripes", description="Light lines across the object", default=materials.STRIPES,
         min=1.0, soft_max=60.0,
     )
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_poll(context)
 
     def execute(self, context):
         ob = context.active_object
@@ -125,7 +121,7 @@ def _viewer(context, centre):
     return np.array([0.0, -1.0, 0.0]), np.array([1.0, 0.0, 0.0])
 
 
-class FAIRSUB_OT_curvature(bpy.types.Operator):
+class FAIRSUB_OT_curvature(_OnMesh, bpy.types.Operator):
     """Colour an exact-surface result by its exact curvature (blue negative, white 0, red
     positive, as fairsub's renderer)"""
 
@@ -141,10 +137,6 @@ class FAIRSUB_OT_curvature(bpy.types.Operator):
         name="Range", description="Colour range +-range (0: the 98th percentile of |value|)",
         default=0.0, min=0.0,
     )
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_poll(context)
 
     def execute(self, context):
         ob = context.active_object
@@ -171,7 +163,7 @@ RENDER_MODES = [
 ]
 
 
-class FAIRSUB_OT_render(bpy.types.Operator):
+class FAIRSUB_OT_render(_OnMesh, bpy.types.Operator):
     """fairsub's own picture of the exact surface (exact normals and curvature per pixel), as
     an image to compare with Blender's render"""
 
@@ -181,10 +173,6 @@ class FAIRSUB_OT_render(bpy.types.Operator):
     mode: bpy.props.EnumProperty(name="Mode", items=RENDER_MODES)
     width: bpy.props.IntProperty(name="Width", default=640, min=16, max=4096)
     height: bpy.props.IntProperty(name="Height", default=480, min=16, max=4096)
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_poll(context)
 
     def execute(self, context):
         ob = context.active_object
@@ -208,7 +196,7 @@ class FAIRSUB_OT_render(bpy.types.Operator):
         return {"FINISHED"}
 
 
-class FAIRSUB_OT_export(bpy.types.Operator, ExportHelper):
+class FAIRSUB_OT_export(_OnMesh, bpy.types.Operator, ExportHelper):
     """Write the exact surface: IGES (.igs, B-spline surfaces for CAD), BezierView (.bv), or a
     tessellated mesh (.obj, .ply)"""
 
@@ -221,10 +209,6 @@ class FAIRSUB_OT_export(bpy.types.Operator, ExportHelper):
         name="Density", description="Samples per patch edge of a tessellated mesh", default=8,
         min=1, max=128,
     )
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_poll(context)
 
     def execute(self, context):
         try:

@@ -15,12 +15,17 @@ class FairsubSettings(bpy.types.PropertyGroup):
     annotations are filled from the catalogue when the add-on registers."""
 
 
-class FAIRSUB_PT_subdivide(bpy.types.Panel):
-    bl_label = "Subdivide"
-    bl_idname = "FAIRSUB_PT_subdivide"
+class _Sidebar:
+    """The 3D viewport's sidebar, tab fairsub."""
+
     bl_space_type = "VIEW_3D"
     bl_region_type = "UI"
     bl_category = "fairsub"
+
+
+class FAIRSUB_PT_subdivide(_Sidebar, bpy.types.Panel):
+    bl_label = "Subdivide"
+    bl_idname = "FAIRSUB_PT_subdivide"
 
     def draw(self, context):
         settings = context.scene.fairsub
@@ -30,12 +35,9 @@ class FAIRSUB_PT_subdivide(bpy.types.Panel):
             setattr(op, key, getattr(settings, key))
 
 
-class FAIRSUB_PT_shape(bpy.types.Panel):
+class FAIRSUB_PT_shape(_Sidebar, bpy.types.Panel):
     bl_label = "Shape"
     bl_idname = "FAIRSUB_PT_shape"
-    bl_space_type = "VIEW_3D"
-    bl_region_type = "UI"
-    bl_category = "fairsub"
 
     def draw(self, context):
         layout = self.layout

@@ -30,22 +30,29 @@ fn as_array<'py>(x: &Bound<'py, PyAny>, dtype: &str) -> PyResult<Bound<'py, PyAn
     np.call_method1("ascontiguousarray", (x, dtype))
 }
 
-/// A 1-D integer array (indices), with the name of the argument in errors.
-fn indices(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<i64>> {
-    let a = as_array(x, "int64")?;
-    let a: PyReadonlyArray1<'_, i64> = a
+/// A 1-D array of `dtype` as a vector, with the name of the argument and what its values are in
+/// errors.
+fn vector<T: numpy::Element + Copy>(
+    x: &Bound<'_, PyAny>,
+    dtype: &str,
+    what: &str,
+    values: &str,
+) -> PyResult<Vec<T>> {
+    let a = as_array(x, dtype)?;
+    let a: PyReadonlyArray1<'_, T> = a
         .extract()
-        .map_err(|_| PyValueError::new_err(format!("{what} must be a 1-D array of integers")))?;
+        .map_err(|_| PyValueError::new_err(format!("{what} must be a 1-D array of {values}")))?;
     Ok(a.as_slice()?.to_vec())
+}
+
+/// A 1-D integer array (indices).
+fn indices(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<i64>> {
+    vector(x, "int64", what, "integers")
 }
 
 /// A 1-D float array.
 fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
-    let a = as_array(x, "float64")?;
-    let a: PyReadonlyArray1<'_, f64> = a
-        .extract()
-        .map_err(|_| PyValueError::new_err(format!("{what} must be a 1-D array of numbers")))?;
-    Ok(a.as_slice()?.to_vec())
+    vector(x, "float64", what, "numbers")
 }
 
 /// An (n, k) float array as rows.
