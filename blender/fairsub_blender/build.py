@@ -115,7 +115,9 @@ def refine(src, recipe):
     """The refined net of ``recipe["levels"]`` steps: a dict of ``vertices`` (n, 3),
     ``sizes``, ``corners`` (the faces), ``uv`` (name -> (values, indices)), ``creases``,
     ``corners_sharp`` (the refined sharpness, as ``fairsub.Net`` gives it), ``parent`` (the
-    source face of every face, when known) and ``notes``."""
+    source face of every face, when known), ``loose_edges`` (the mesh's loose edges refined as
+    Blender's modifier refines them, for OpenSubdiv's schemes; their points and the loose
+    vertices follow the surface's in ``vertices``) and ``notes``."""
     _check(recipe)
     notes = []
     uv_names = src.uv_names if recipe["use_uv"] and catalogue.takes(recipe["scheme"], "fvar") else []
@@ -137,8 +139,12 @@ def refine(src, recipe):
         other = fairsub.subdivide(m, recipe["scheme"], levels=recipe["levels"], limit=recipe["limit"], **kw)
         if other.uv is not None:
             uv[name] = other.uv
+    vertices, loose_edges = out.vertices, None
+    if catalogue.takes(recipe["scheme"], "creases"):
+        vertices, loose_edges = _with_loose_geometry(src.arrays, recipe["levels"], vertices)
     return {
-        "vertices": out.vertices,
+        "vertices": vertices,
+        "loose_edges": loose_edges,
         "sizes": sizes,
         "corners": corners,
         "uv": uv,
@@ -149,6 +155,25 @@ def refine(src, recipe):
         ),
         "notes": notes,
     }
+
+
+def _with_loose_geometry(a, levels, vertices):
+    """The refined surface's vertices followed by the mesh's loose vertices and the points of
+    its refined loose edges (``convert.loose_geometry``), and those edges (None when the mesh
+    has no loose geometry)."""
+    used = np.zeros(len(a.vertices), dtype=bool)
+    used[a.corners] = True
+    loose = a.edges[a.edge_faces == 0]
+    if used.all() and len(loose) == 0:
+        return vertices, None
+    surface_index = np.where(used, 0, -1)
+    # a loose edge's vertex on the surface is infinitely sharp: its refined vertex is where it
+    # was, found by position
+    for v in np.unique(loose[used[loose]]):
+        d = np.abs(vertices - a.vertices[v].astype(np.float64)).max(axis=1)
+        surface_index[v] = int(np.argmin(d))
+    points, edges = convert.loose_geometry(a, levels, surface_index, len(vertices))
+    return np.vstack([vertices, points]), edges
 
 
 def surface(src, recipe):

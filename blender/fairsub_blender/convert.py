@@ -7,6 +7,12 @@ here from that understanding):
 - an edge or vertex crease ``c`` (the float attributes ``crease_edge`` on edges and
   ``crease_vert`` on points) is the OpenSubdiv sharpness ``s = c * c * 10`` in single
   precision;
+- loose vertices are kept where they are, and every loose edge is cut into ``2^levels``
+  segments whose points lie on the uniform cubic B-spline through the edge's two vertices and
+  one neighbour on each side (the other vertex of the only other edge at that vertex; where a
+  vertex has no other edge or more than one, the edge is extended by its own length): so
+  chains of loose edges come out smoothed, their inner vertices at ``(a + 4 v + b) / 6``, and
+  a lone edge stays straight (:func:`loose_geometry`);
 - a UV map becomes one face-varying channel: the corners around a vertex share a value when
   their UVs differ by less than 1e-4 in both coordinates from the first corner of the group
   (the corners taken in the reverse of their order, as Blender's list is built) and their faces
@@ -190,6 +196,61 @@ def net_arguments(a, use_creases=True, uv=None):
     return a.vertices[kept].astype(np.float64), faces, kw, kept
 
 
+def _bspline_weights(u):
+    """The uniform cubic B-spline's four weights at ``u`` in [0, 1] (u, 4)."""
+    u = np.asarray(u, dtype=np.float64)[:, None]
+    return np.hstack(
+        [(1 - u) ** 3, 3 * u**3 - 6 * u**2 + 4, -3 * u**3 + 3 * u**2 + 3 * u + 1, u**3]
+    ) / 6.0
+
+
+def loose_geometry(a, levels, surface_index, base):
+    """The loose vertices and loose edges of mesh arrays ``a`` as Blender's modifier refines
+    them ``levels`` times (see the module documentation), for a result whose first ``base``
+    vertices are the refined surface: ``surface_index`` gives the result vertex of every
+    source vertex that a face uses (-1 for the others, the loose ones). Returns the new points
+    (k, 3), to append after the surface's vertices, and the result's loose edges (m, 2)."""
+    nv = len(a.vertices)
+    loose_edges = a.edges[a.edge_faces == 0]
+    loose_verts = np.flatnonzero(surface_index < 0)
+    index = surface_index.copy()
+    index[loose_verts] = base + np.arange(len(loose_verts))
+    pos = a.vertices.astype(np.float64)
+    moved = pos[loose_verts]
+    if len(loose_edges) == 0:
+        return moved, np.zeros((0, 2), dtype=np.int64)
+    # a vertex of two edges: its two partners (the first and the last edge written)
+    degree = np.bincount(a.edges.reshape(-1), minlength=nv)
+    ends, partner = a.edges.reshape(-1), a.edges[:, ::-1].reshape(-1)
+    last = np.full(nv, -1, dtype=np.int64)
+    last[ends] = partner
+    first = np.full(nv, -1, dtype=np.int64)
+    first[ends[::-1]] = partner[::-1]
+
+    def outer(v, w):
+        # the point beyond v on the edge (v, w): the other edge's vertex, or the edge extended
+        n = np.where(last[v] == w, first[v], last[v])
+        n = np.where(degree[v] == 2, n, -1)
+        return np.where((n >= 0)[:, None], pos[np.maximum(n, 0)], 2 * pos[v] - pos[w])
+
+    v0, v1 = loose_edges[:, 0], loose_edges[:, 1]
+    ctrl = np.stack([outer(v0, v1), pos[v0], pos[v1], outer(v1, v0)], axis=1)  # (m, 4, 3)
+    # the loose vertices of the edges at their B-spline position (u = 0 and 1)
+    for u, v in ((0.0, v0), (1.0, v1)):
+        free = surface_index[v] < 0
+        moved[index[v[free]] - base] = np.einsum("j,mjc->mc", _bspline_weights([u])[0], ctrl[free])
+    segments = 2**levels
+    inner = _bspline_weights(np.arange(1, segments) / segments)  # (segments - 1, 4)
+    inner_points = np.einsum("sj,mjc->msc", inner, ctrl).reshape(-1, 3)
+    start = base + len(loose_verts)
+    chain = np.empty((len(loose_edges), segments + 1), dtype=np.int64)
+    chain[:, 0] = index[v0]
+    chain[:, -1] = index[v1]
+    chain[:, 1:-1] = start + np.arange(len(inner_points)).reshape(len(loose_edges), segments - 1)
+    edges = np.stack([chain[:, :-1], chain[:, 1:]], axis=2).reshape(-1, 2)
+    return np.vstack([moved, inner_points]), edges
+
+
 def uv_map_values(mesh, name, corner_loops):
     """The corner UVs of the UV map ``name`` in face corner order (corners, 2)."""
     layer = mesh.uv_layers[name]
@@ -212,12 +273,16 @@ def parent_faces(sizes, scheme, levels, refined_faces):
     return parent if len(parent) == refined_faces else None
 
 
-def build_mesh(bpy_data, name, vertices, sizes, corners):
-    """A new Blender mesh from vertices (n, 3) and faces as sizes and corner vertices; edges
-    are made by Blender (``update(calc_edges=True)``)."""
+def build_mesh(bpy_data, name, vertices, sizes, corners, loose_edges=None):
+    """A new Blender mesh from vertices (n, 3) and faces as sizes and corner vertices; the
+    faces' edges are made by Blender (``update(calc_edges=True)``), after ``loose_edges``
+    (m, 2) when given."""
     me = bpy_data.meshes.new(name)
     me.vertices.add(len(vertices))
     me.vertices.foreach_set("co", np.ascontiguousarray(vertices, dtype=np.float32).reshape(-1))
+    if loose_edges is not None and len(loose_edges):
+        me.edges.add(len(loose_edges))
+        me.edges.foreach_set("vertices", np.ascontiguousarray(loose_edges, dtype=np.int32).reshape(-1))
     me.loops.add(len(corners))
     me.loops.foreach_set("vertex_index", np.ascontiguousarray(corners, dtype=np.int32))
     me.polygons.add(len(sizes))

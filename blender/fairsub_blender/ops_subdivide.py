@@ -2,8 +2,10 @@
 or its exact surface tessellated (``levels=0``, ``rings``, ``density``), as a new object beside
 the source, which is left as it was.
 
-The refined mesh carries the source's UV maps (refined by OpenSubdiv's face-varying rules),
-its materials and flat/smooth shading per face (for Catmull-Clark and Loop, whose child faces
+The refined mesh keeps the source's loose vertices and refines its loose edges as Blender's
+modifier does (for OpenSubdiv's schemes; see :func:`convert.loose_geometry`). It carries the
+source's UV maps (refined by OpenSubdiv's face-varying rules), its materials and flat/smooth
+shading per face (for Catmull-Clark and Loop, whose child faces
 follow their parent), and its creases refined: each edge and vertex gets the crease of its
 refined sharpness (``sharpness_to_crease``), so that subdividing the result again, by fairsub or
 by Blender's modifier, continues the same surface (Blender's modifier itself copies a parent's
@@ -138,7 +140,8 @@ def _place(context, src_ob, mesh, suffix):
 def _refined_object(context, src_ob, src, recipe, r):
     """The Blender object of a refined net (see the module documentation)."""
     me = convert.build_mesh(
-        bpy.data, f"{src_ob.data.name} {recipe['scheme']}", r["vertices"], r["sizes"], r["corners"]
+        bpy.data, f"{src_ob.data.name} {recipe['scheme']}", r["vertices"], r["sizes"], r["corners"],
+        r["loose_edges"],
     )
     for name, (values, idx) in r["uv"].items():
         layer = me.uv_layers.new(name=name)

@@ -36,6 +36,7 @@ PRIMITIVES = {
     "open_cylinder": lambda: bpy.ops.mesh.primitive_cylinder_add(end_fill_type="NOTHING"),
     "cone": lambda: bpy.ops.mesh.primitive_cone_add(),
     "grid": lambda: bpy.ops.mesh.primitive_grid_add(),
+    "plane": lambda: bpy.ops.mesh.primitive_plane_add(),
     "torus": lambda: bpy.ops.mesh.primitive_torus_add(),
     "ico_sphere": lambda: bpy.ops.mesh.primitive_ico_sphere_add(),
     "suzanne": lambda: bpy.ops.mesh.primitive_monkey_add(),

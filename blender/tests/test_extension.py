@@ -3,7 +3,8 @@ fairsub wheel (``$FAIRSUB_WHEEL``, else the newest ``target/wheels/fairsub-*.whl
 own extension tool builds and validates the package; then a fresh Blender (the ``bpy`` module,
 with its own user folder) installs it through Blender's "Install from Disk" operator
 (``extensions.package_install_files``), which installs the bundled wheel into the extension's
-own site-packages and enables the add-on, and the operator runs from there. In that Blender the
+own site-packages and enables the add-on, and the operator runs from there. Blender's
+``extension validate`` passes on the package and on the add-on's folder. In that Blender the
 ``fairsub`` module may come only from the bundled wheel (a finder refuses any other copy)."""
 
 import json
@@ -48,6 +49,16 @@ print("RESULT " + json.dumps({
 """
 
 
+def extension_tool():
+    """Blender's extension tool as ``build_extension.py`` finds it."""
+    sys.path.insert(0, str(REPO / "blender"))
+    try:
+        import build_extension
+    finally:
+        sys.path.pop(0)
+    return build_extension.blender_ext_command(None)
+
+
 def wheel():
     given = os.environ.get("FAIRSUB_WHEEL")
     if given:
@@ -69,6 +80,13 @@ def test_the_extension_installs_and_runs_in_blender(tmp_path):
     assert built.returncode == 0, built.stderr
     package = pathlib.Path(built.stdout.strip().splitlines()[-1])
     assert package.is_file() and package.suffix == ".zip"
+    # Blender's extension validator (the checks of extensions.blender.org's upload) passes on
+    # the package as built, with its wheel and platforms, and on the add-on's folder
+    for target in (package, REPO / "blender" / "fairsub_blender"):
+        checked = subprocess.run(
+            extension_tool() + ["validate", str(target)], capture_output=True, text=True, timeout=120
+        )
+        assert checked.returncode == 0 and "Success" in checked.stdout, checked.stdout + checked.stderr
     user = tmp_path / "user"
     env = dict(os.environ, BLENDER_USER_RESOURCES=str(user))
     env.pop("PYTHONPATH", None)
