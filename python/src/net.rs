@@ -88,6 +88,16 @@ fn pair<'py>(
     Ok((t.get_item(0)?, t.get_item(1)?))
 }
 
+/// An error unless there are as many sharpness values as tagged elements (`what`).
+fn same_length(n: usize, what: &str, values: usize) -> PyResult<()> {
+    if n == values {
+        return Ok(());
+    }
+    Err(PyValueError::new_err(format!(
+        "{n} {what} but {values} sharpness values"
+    )))
+}
+
 /// An index that must lie in `0..n`, as `u32`.
 fn index_in(i: i64, n: usize, what: &str, at: usize) -> PyResult<u32> {
     u32::try_from(i)
@@ -168,13 +178,7 @@ fn tags(
         let (e, s) = pair(c, "creases")?;
         let ends = rows::<2>(&e, "the crease edges")?;
         let s = floats(&s, "the crease sharpness")?;
-        if s.len() != ends.len() {
-            return Err(PyValueError::new_err(format!(
-                "{} crease edges but {} sharpness values",
-                ends.len(),
-                s.len()
-            )));
-        }
+        same_length(ends.len(), "crease edges", s.len())?;
         for (i, (ab, &x)) in ends.iter().zip(&s).enumerate() {
             let [a, b] = ab.map(|v| v as i64);
             t.creases.push(CreaseTag {
@@ -189,13 +193,7 @@ fn tags(
         let (v, s) = pair(c, "corners")?;
         let v = indices(&v, "the corner vertices")?;
         let s = floats(&s, "the corner sharpness")?;
-        if s.len() != v.len() {
-            return Err(PyValueError::new_err(format!(
-                "{} corner vertices but {} sharpness values",
-                v.len(),
-                s.len()
-            )));
-        }
+        same_length(v.len(), "corner vertices", s.len())?;
         for (i, (&v, &x)) in v.iter().zip(&s).enumerate() {
             t.corners.push(CornerTag {
                 vertex: index_in(v, nv, "corner vertices", i)?,
