@@ -131,8 +131,13 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
     }
     let s = o.subd;
     let boundary_only = s.crease_method.is_none() && s.fvar.is_none() && !o.creases;
+    let crease_only =
+        s.fvar.is_none() && (s.boundary.is_none() || takes(&spec, ParamKind::BoundaryMode));
     if s.boundary.is_some() && boundary_only && takes(&spec, ParamKind::BoundaryMode) {
         // the dual schemes' boundary modes: the front end puts the option on the net
+    } else if crease_only && takes(&spec, ParamKind::Creases) {
+        // crease tags and the crease method of the schemes with a crease construction of
+        // their own: the front end puts them on the net
     } else if (s.boundary.is_some() || s.crease_method.is_some() || s.fvar.is_some() || o.creases)
         && !takes(&spec, ParamKind::SharpFeatures)
     {

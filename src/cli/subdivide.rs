@@ -353,7 +353,7 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
         features::load_net(&mut spec, &a.features, &a.net, !patches, net)?
     } else {
         let m = nonbox::load_net(&spec, &a.net, &a.options.fcv, net)?;
-        features::with_boundary_mode(&spec, m)
+        features::with_net_options(&spec, &a.features, m)?
     };
     if let Some(q) = &a.options.q_file {
         // the expansions name vertices of this net: check them against it, at their lines

@@ -84,6 +84,11 @@ pub enum ParamKind {
     /// dual schemes (`crate::schemes::doo_sabin`), for schemes without the rest of
     /// [`ParamKind::SharpFeatures`].
     BoundaryMode,
+    /// The net's crease and corner tags (OpenSubdiv's `t crease`, `t corner`), `--creases`
+    /// and `--crease-method`, for schemes that refine them with a construction of their own
+    /// (the bi-2 family, non-box: fairsub's crease constructions) without the rest of
+    /// [`ParamKind::SharpFeatures`]; the options are put on the net.
+    Creases,
 }
 
 impl ParamKind {
@@ -101,6 +106,7 @@ impl ParamKind {
             ParamKind::SharpFeatures => "--boundary / --crease-method / --fvar / --creases",
             ParamKind::SmoothTriangles => "--smooth-triangles",
             ParamKind::BoundaryMode => "--boundary",
+            ParamKind::Creases => "--creases / --crease-method",
         }
     }
 }

@@ -111,18 +111,48 @@ pub fn load_net(
     Ok(mesh)
 }
 
-/// For a scheme that takes the boundary modes alone (the dual schemes): the net with
-/// `--boundary` (when given) as its `interpolateboundary` option, overriding the net's tag; the
-/// scheme reads the mode from there ([`crate::schemes::doo_sabin::boundary_mode`]).
-pub fn with_boundary_mode(spec: &Spec, mesh: PolyMesh) -> PolyMesh {
-    match spec.params.subd.boundary {
-        Some(b) if takes(spec, ParamKind::BoundaryMode) => {
-            let mut ex = mesh.extras().cloned().unwrap_or_default();
-            ex.options.boundary = Some(b);
-            mesh.with_extras(Some(ex))
+/// For a scheme that reads its options from the net (the dual schemes' boundary modes, the
+/// crease constructions of the bi-2 family and non-box): the net with `--boundary` (when the
+/// scheme takes the boundary modes) and `--crease-method` (when it takes creases) as its
+/// options, overriding the net's tags, and with the `--creases` file's tags (when it takes
+/// creases); the scheme reads them from there
+/// ([`crate::schemes::doo_sabin::boundary_mode`], [`crate::schemes::doo_sabin::sharp`]).
+///
+/// # Errors
+/// Those of reading the `--creases` file and applying its tags.
+pub fn with_net_options(spec: &Spec, a: &FeatureArgs, mesh: PolyMesh) -> Result<PolyMesh> {
+    let creases = takes(spec, ParamKind::Creases);
+    let mut mesh = mesh;
+    if let (Some(file), true) = (&a.creases, creases) {
+        let (tags, warnings) = crate::io::obj::read_tag_file(file)?;
+        for w in warnings {
+            eprintln!("warning: {}: {w}", file.display());
         }
-        _ => mesh,
+        mesh = mesh.with_tags(&tags, file)?;
     }
+    let boundary = spec
+        .params
+        .subd
+        .boundary
+        .filter(|_| takes(spec, ParamKind::BoundaryMode));
+    let method = spec.params.subd.crease_method.filter(|_| creases);
+    if boundary.is_none() && method.is_none() {
+        return Ok(mesh);
+    }
+    let mut ex = mesh.extras().cloned().unwrap_or_default();
+    if boundary.is_some() {
+        ex.options.boundary = boundary;
+    }
+    if method.is_some() {
+        ex.options.crease_method = method;
+    }
+    Ok(mesh.with_extras(Some(ex)))
+}
+
+/// Whether the scheme refines the net's crease and corner tags with a construction of its own
+/// ([`ParamKind::Creases`]).
+pub fn takes_creases(spec: &Spec) -> bool {
+    takes(spec, ParamKind::Creases)
 }
 
 fn takes(spec: &Spec, kind: ParamKind) -> bool {
@@ -138,7 +168,9 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
     let Some(ex) = mesh.extras() else {
         return Ok(());
     };
-    if ex.has_features() {
+    if takes_creases(spec) && ex.holes.is_empty() {
+        // creases and corners are the scheme's own; the crease method is read off the net
+    } else if ex.has_features() {
         return Err(Error::Unsupported(format!(
             "{arg} tags sharp features ({} sharp edges, {} sharp vertices, {} holes), which {what}; \
              refine it with --levels and a scheme with OpenSubdiv's rules (Catmull-Clark, Loop), or remove \
@@ -153,9 +185,16 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
         ..ex.options
     }
     .is_empty();
+    let creases_only = SubdOptions {
+        boundary: None,
+        crease_method: None,
+        ..ex.options
+    }
+    .is_empty();
     if !ex.options.is_empty()
         && !takes_features(spec)
         && (!boundary_only || !takes(spec, ParamKind::BoundaryMode))
+        && !(creases_only && takes_creases(spec))
     {
         eprintln!(
             "warning: {arg}: OpenSubdiv option tags (interpolateboundary, creasemethod, ...) are \

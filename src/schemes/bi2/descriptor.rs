@@ -107,7 +107,7 @@ impl Descriptor for Bi2Descriptor {
             Bi2Kind::Polar => &[ParamKind::Poles],
             Bi2Kind::TpsAdjustable => &[ParamKind::SplitRatio, ParamKind::AlphaRule],
             // the dual host's boundary modes (crate::schemes::doo_sabin)
-            Bi2Kind::Pgs | Bi2Kind::PgsDscc => &[ParamKind::BoundaryMode],
+            Bi2Kind::Pgs | Bi2Kind::PgsDscc => &[ParamKind::BoundaryMode, ParamKind::Creases],
             _ => &[],
         }
     }
@@ -147,7 +147,8 @@ impl Descriptor for Bi2Descriptor {
         let poles = spec.params.poles.clone();
         let (name, mode) = (spec.name(), spec.params.prepare);
         patch_fn(move |mesh, opts, progress| {
-            crate::schemes::doo_sabin::sharp::on_cut_net(mesh, name, |mesh| {
+            let semi = matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc);
+            crate::schemes::doo_sabin::sharp::on_cut_net(mesh, name, semi, |mesh| {
                 use super::surface as s;
                 if !matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) {
                     crate::schemes::doo_sabin::sharp::refuse_kept_corners_with_faces(mesh, name)?;

@@ -120,6 +120,11 @@ impl<'a> SharpLevel<'a> {
         Some(level)
     }
 
+    /// Whether semi-sharp edges decay by OpenSubdiv's Chaikin rule (else uniformly).
+    pub fn chaikin(&self) -> bool {
+        self.chaikin
+    }
+
     /// Number of sides (faces) of edge `e`.
     fn edge_faces(&self, e: u32) -> usize {
         match self.nm {

@@ -32,9 +32,10 @@ impl Descriptor for DsDescriptor {
     }
 
     /// The boundary modes (`--boundary`, the net's `interpolateboundary` tag): see
-    /// [`super`].
+    /// [`super`]; the net's creases and corners with fairsub's crease construction
+    /// ([`super::sharp`]).
     fn params(&self) -> &'static [ParamKind] {
-        &[ParamKind::BoundaryMode]
+        &[ParamKind::BoundaryMode, ParamKind::Creases]
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
@@ -45,8 +46,8 @@ impl Descriptor for DsDescriptor {
         }))
     }
 
-    /// Infinitely sharp creases and corners: the net is cut along them
-    /// ([`super::sharp`]); semi-sharp features are refused.
+    /// Creases and corners: the net is cut along infinitely sharp ones; semi-sharp ones are
+    /// refined until spent ([`super::sharp`]).
     fn patches_take_features(&self) -> bool {
         true
     }
@@ -56,7 +57,7 @@ impl Descriptor for DsDescriptor {
     fn patch_rules(&self, spec: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let (cc, name) = (self.cc, spec.name());
         patch_fn(move |mesh, opts, progress| {
-            super::sharp::on_cut_net(mesh, name, |mesh| {
+            super::sharp::on_cut_net(mesh, name, true, |mesh| {
                 let c = if cc {
                     super::surface::doo_sabin_cc_complex(mesh, opts, progress)
                 } else {

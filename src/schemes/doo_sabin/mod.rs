@@ -301,6 +301,19 @@ pub(crate) fn refine_dual_with(
     name: &str,
     mut corner_rule: impl FnMut(&PolyMesh, u32, &mut RowBuf),
 ) -> Result<Refinement> {
+    if let Some(c) = sharp::step::Creases::of(mesh, name)? {
+        // fairsub's crease construction ([`sharp`]), laid out as documented there
+        check_child_size(
+            name,
+            mesh.num_halfedges() + 2 * mesh.num_edges() + mesh.num_vertices(),
+        )?;
+        let mut row = RowBuf::default();
+        let mut corner = |m: &PolyMesh, h: u32| {
+            corner_rule(m, h, &mut row);
+            row.take_stencil()
+        };
+        return sharp::levels::refine_creased(mesh, &c, &mut corner);
+    }
     let (nv, ne, nf, nh) = (
         mesh.num_vertices(),
         mesh.num_edges(),

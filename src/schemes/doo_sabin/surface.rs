@@ -110,6 +110,9 @@ use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
 use crate::mesh::tags::BoundaryInterpolation;
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::crease::adaptive::{
+    CALM, SPENT_BY_LEVEL, is_last_cap_level_calm,
+};
 use crate::schemes::registry::ids;
 use crate::stencil::Stencil;
 use std::collections::HashMap;
@@ -242,6 +245,53 @@ pub struct Level {
     /// Boundary mode `none` (else `None`): per point, whether it is computed without any
     /// boundary rule (the module's boundary modes).
     rule_free: Option<Vec<bool>>,
+    /// Where the level has sharp edges inside the surface (`None`: nowhere): the patches of
+    /// the vertices of their faces wait until the crease is spent (fairsub's crease
+    /// construction, [`crate::schemes::doo_sabin::sharp`]).
+    creased: Option<super::sharp::LevelCreases>,
+    /// Levels since the last one with a semi-sharp feature
+    /// ([`crate::schemes::catmull_clark::crease::adaptive::calm_after`]).
+    calm: usize,
+}
+
+impl Level {
+    /// A level from its net and bookkeeping; `parent_calm` is the parent level's `calm`
+    /// ([`CALM`] for the input net).
+    fn new(
+        mesh: PolyMesh,
+        info: Vec<Info>,
+        face_origin: Vec<Option<Element>>,
+        active: Vec<(u32, Tag)>,
+        rule_free: Option<Vec<bool>>,
+        parent_calm: usize,
+        first: bool,
+    ) -> Level {
+        let (creased, calm) = super::sharp::level_creases(&mesh, parent_calm);
+        Level {
+            mesh,
+            info,
+            face_origin,
+            active,
+            first,
+            rule_free,
+            creased,
+            calm,
+        }
+    }
+
+    /// Whether a face of vertex `v` has a crease: its patch is not final yet.
+    fn near_crease(&self, v: usize) -> bool {
+        self.creased.as_ref().is_some_and(|c| {
+            self.mesh
+                .outgoing(v)
+                .any(|h| c.faces[self.mesh.he_face(h) as usize])
+        })
+    }
+
+    /// Whether `v` is an end of a sharp edge inside the surface.
+    fn on_crease(&self, v: usize) -> bool {
+        self.creased.as_ref().is_some_and(|c| c.vertices[v])
+    }
 }
 
 impl Cells for Level {
@@ -318,14 +368,19 @@ impl AdaptiveRules for DualHost<'_, '_> {
             })
             .collect();
         let none = super::boundary_mode(mesh) == BoundaryInterpolation::None;
-        Ok(Level {
-            mesh: mesh.clone(),
+        // the crease data are checked here, once, with the element named
+        super::sharp::step::Creases::of(mesh, name)?;
+        let rule_free = none.then(|| vec![true; mesh.num_vertices()]);
+        let first = self.cells.is_none();
+        Ok(Level::new(
+            mesh.clone(),
             info,
             face_origin,
             active,
-            first: self.cells.is_none(),
-            rule_free: none.then(|| vec![true; mesh.num_vertices()]),
-        })
+            rule_free,
+            CALM,
+            first,
+        ))
     }
 
     fn emit(&self, level: &Level, v: u32, prov: Provenance, to: Sink<()>) -> bool {
@@ -334,6 +389,9 @@ impl AdaptiveRules for DualHost<'_, '_> {
         if level.rule_free.is_some() && on_boundary {
             // boundary `none`: the region of a boundary vertex is not part of the surface
             return true;
+        }
+        if level.near_crease(v as usize) {
+            return false;
         }
         let Some(p) = trusted_patch(level, v as usize) else {
             return false;
@@ -353,12 +411,21 @@ impl AdaptiveRules for DualHost<'_, '_> {
         retag(level, v as usize, tag, l == 0)
     }
 
-    /// The requested rings, and up to [`g1::MAX_EXTRA_LEVELS`] more while holes still touch.
+    /// The requested rings, the levels that spend semi-sharp creases, and up to
+    /// [`g1::MAX_EXTRA_LEVELS`] more while holes still touch (the decision Catmull-Clark and
+    /// Loop make, [`is_last_cap_level_calm`]).
+    /// After creases, a level may hold vertices that no patch can fill (a kept point of
+    /// valence 3, a dart's tip): one more level makes them facets.
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
-        l >= rings
-            && (!self.fill
-                || l >= rings + g1::MAX_EXTRA_LEVELS
-                || !g1::waiting(level, self.rules, marked))
+        let unfillable = || {
+            level.calm < CALM
+                && marked
+                    .iter()
+                    .any(|&(v, _)| vertex_net(&level.mesh, v as usize).is_none())
+        };
+        is_last_cap_level_calm((l, rings, self.fill), level.calm, || {
+            g1::waiting(level, self.rules, marked)
+        }) && (l > SPENT_BY_LEVEL || !unfillable())
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<()>) -> Result<()> {
@@ -384,7 +451,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
     }
 
     fn refine_around(&self, level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-        refine_around(level, marked, self.rules)
+        refine_around(level, marked, self.rules, self.name)
     }
 }
 
@@ -514,7 +581,8 @@ pub(crate) fn vertex_quarter_pieces(
 /// is the vertex's corner index in that face). Otherwise the inherited tag.
 fn retag(level: &Level, v: usize, tag: Tag, first: bool) -> Tag {
     let m = &level.mesh;
-    if first && vertex_net(m, v).is_none() {
+    // a crease vertex is an element too: the sectors of its V-face may be facets
+    if first && (vertex_net(m, v).is_none() || level.on_crease(v)) {
         return Tag {
             element: Some(Element::Vertex(v as u32)),
             sector: 0,
@@ -598,6 +666,7 @@ pub(crate) fn mark_boundary_sides(m: &PolyMesh, v: usize, out: &mut PatchComplex
 
 mod g1;
 mod refine;
+pub(crate) mod step;
 pub use refine::step_cells;
 use refine::{refine_around, rule_free};
 #[cfg(test)]

@@ -101,10 +101,11 @@ pub struct Features {
 }
 
 /// [`Features::calm`] of a level after no semi-sharp one.
-const CALM: usize = usize::MAX / 2;
+pub(crate) const CALM: usize = usize::MAX / 2;
 
-/// [`Features::calm`] of a level with these sharpness values after a level with `parent`.
-fn calm_after(parent: usize, edges: &[f32], vertices: &[f32]) -> usize {
+/// [`Features::calm`] of a level with these sharpness values after a level with `parent`
+/// (the dual bi-2 schemes and non-box count their levels the same way).
+pub(crate) fn calm_after(parent: usize, edges: &[f32], vertices: &[f32]) -> usize {
     if edges.iter().chain(vertices).any(|&s| is_semi(s)) {
         0
     } else {
@@ -251,8 +252,19 @@ pub(crate) fn is_last_cap_level(
     level: &Level,
     waiting: impl FnOnce() -> bool,
 ) -> bool {
-    use crate::host::adaptive::MAX_EXTRA_CAP_LEVELS;
     let calm = level.sharp.as_ref().map_or(CALM, |ft| ft.calm);
+    is_last_cap_level_calm((l, rings, fill), calm, waiting)
+}
+
+/// [`is_last_cap_level`] for a level `calm` levels after the last one with a semi-sharp
+/// feature ([`CALM`] when none had one): the one decision of every adaptive host that spends
+/// semi-sharp features (Catmull-Clark, Loop, the dual bi-2 schemes, non-box).
+pub(crate) fn is_last_cap_level_calm(
+    (l, rings, fill): (usize, usize, bool),
+    calm: usize,
+    waiting: impl FnOnce() -> bool,
+) -> bool {
+    use crate::host::adaptive::MAX_EXTRA_CAP_LEVELS;
     let spending = calm == 0 && l < SPENT_BY_LEVEL;
     let extra_over = l >= rings + MAX_EXTRA_CAP_LEVELS && calm > MAX_EXTRA_CAP_LEVELS;
     l >= rings && (!fill || (!spending && (extra_over || !waiting())))

@@ -48,6 +48,7 @@ use crate::bezier::{BezierPatch, Side};
 use crate::geom::{Point, axpy};
 use crate::host::adaptive::{MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements};
 use crate::mesh::Element;
+use crate::schemes::catmull_clark::crease::adaptive::CALM;
 use crate::schemes::doo_sabin::surface::DualRules;
 use std::collections::{HashMap, HashSet};
 
@@ -60,24 +61,63 @@ fn turned(p: BezierPatch, r: usize) -> BezierPatch {
     (0..r).fold(p, |q, _| q.transposed().reversed_v())
 }
 
-/// The hole of element `element` whose marked vertices are `verts`, its centre, two vectors
-/// spanning its tangent plane, and the tag of each sector (in the hole's sector order).
-fn hole_of(
+/// The holes of element `element` whose marked vertices are `verts`: one per facet of the
+/// element (several for the sectors of a crease vertex, fairsub's crease construction), each
+/// with its centre, two vectors spanning its tangent plane, and the tag of each sector (in the
+/// hole's sector order). All or none.
+fn holes_of(
     level: &Level,
     rules: &DualRules<'_>,
     element: Element,
     verts: &[(u32, Tag)],
     marked: &HashSet<u32>,
-) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
+) -> Result<Vec<CapHole>, NoCap> {
     let m = &level.mesh;
-    let (v0, _) = verts[0];
-    let vn0 = vertex_net(m, v0 as usize).ok_or(NoCap::Never)?;
-    let &[(_, f)] = vn0.ngons.as_slice() else {
-        return Err(NoCap::Never);
+    // facets touching at a corner separate after more levels when creases made them
+    let touching = if level.calm < CALM {
+        NoCap::Later
+    } else {
+        NoCap::Never
     };
-    if level.face_origin[f as usize] != Some(element) {
-        return Err(NoCap::Never);
+    let mut facets: Vec<u32> = Vec::new();
+    let mut of_facet: HashMap<u32, Vec<(u32, Tag)>> = HashMap::new();
+    for &(v, tag) in verts {
+        let vn = vertex_net(m, v as usize).ok_or(NoCap::Never)?;
+        let f = match vn.ngons.as_slice() {
+            &[(_, f)] => f,
+            [] => return Err(NoCap::Never),
+            _ => return Err(touching),
+        };
+        if level.face_origin[f as usize] != Some(element) {
+            return Err(NoCap::Never);
+        }
+        of_facet
+            .entry(f)
+            .or_insert_with(|| {
+                facets.push(f);
+                Vec::new()
+            })
+            .push((v, tag));
     }
+    facets
+        .iter()
+        .map(|f| hole_of(level, rules, *f, &of_facet[f], marked))
+        .collect()
+}
+
+/// One hole's cap data: the hole, two vectors spanning its tangent plane, the sectors' tags.
+type CapHole = (Hole, [Point; 2], Vec<Tag>);
+
+/// The hole of facet `f` whose marked corners are `verts`, its centre, two vectors spanning its
+/// tangent plane, and the tag of each sector (in the hole's sector order).
+fn hole_of(
+    level: &Level,
+    rules: &DualRules<'_>,
+    f: u32,
+    verts: &[(u32, Tag)],
+    marked: &HashSet<u32>,
+) -> Result<CapHole, NoCap> {
+    let m = &level.mesh;
     let face = m.face(f as usize).to_vec();
     let n = face.len();
     if verts.len() != n || n < 3 {
@@ -160,7 +200,7 @@ fn hole_of(
 /// another's): the adaptive loop then goes on.
 pub(super) fn waiting(level: &Level, rules: &DualRules<'_>, marked: &[(u32, Tag)]) -> bool {
     let set: HashSet<u32> = marked.iter().map(|&(v, _)| v).collect();
-    caps_waiting(marked, |e, verts| hole_of(level, rules, e, verts, &set))
+    caps_waiting(marked, |e, verts| holes_of(level, rules, e, verts, &set))
 }
 
 /// Caps every element of the marked vertices that has its hole data (see the [module](self)
@@ -173,6 +213,6 @@ pub(super) fn g1_caps(
 ) -> Vec<(u32, Tag)> {
     let set: HashSet<u32> = marked.iter().map(|&(v, _)| v).collect();
     g1_cap_elements(marked, out, |e, verts| {
-        hole_of(level, rules, e, verts, &set).ok()
+        holes_of(level, rules, e, verts, &set).unwrap_or_default()
     })
 }

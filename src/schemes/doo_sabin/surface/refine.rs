@@ -1,31 +1,30 @@
 //! One adaptive step of the dual schemes: the faces around the marked vertices refined with the
-//! scheme's own rules (corner points, Chaikin boundary points, kept corners), the children of
-//! the marked vertices the next level's active vertices. Split from the parent module, which
-//! holds the host, the regular patches and the centroid fill.
+//! scheme's own rules (corner points, Chaikin points on boundary and sharp edges, kept
+//! corners; [`super::step`]), the children of the marked vertices the next level's active
+//! vertices. Split from the parent module, which holds the host, the regular patches and the
+//! centroid fill.
 
+use super::step::{StepIn, UNSET, dual_step};
 use super::{DualRules, Level};
 use crate::bezier::domain::Domain;
-use crate::error::{Error, Result};
-use crate::geom::Point;
-use crate::host::adaptive::{Info, Tag};
+use crate::error::Result;
+use crate::host::adaptive::Tag;
 use crate::mesh::PolyMesh;
-use crate::schemes::doo_sabin::boundary_edge_point_stencil;
-use crate::schemes::doo_sabin::fourier::LARGE_FACE;
-use crate::stencil::{Stencil, StencilTable};
+use crate::schemes::doo_sabin::sharp::step::Creases;
 use std::collections::HashMap;
 
-/// Refines the faces around the marked vertices with the scheme's rules; the next level's
-/// active vertices are the children of the marked vertices (they tile the marked patches'
-/// regions), each inheriting its parent's tag.
+/// Refines the faces around the marked vertices with the scheme's rules ([`dual_step`], with
+/// the level's creases); the next level's active vertices are the children of the marked
+/// vertices (they tile the marked patches' regions), each inheriting its parent's tag.
 pub(super) fn refine_around(
     level: &Level,
     marked: &[(u32, Tag)],
     rules: &DualRules<'_>,
+    name: &str,
 ) -> Result<Level> {
-    const UNSET: u32 = u32::MAX;
     let m = &level.mesh;
-    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
-    let mut sel = vec![false; nf];
+    let creases = Creases::of(m, name)?;
+    let mut sel = vec![false; m.num_faces()];
     let mut sel_faces = Vec::new();
     for &(v, _) in marked {
         for f in m.vertex_faces(v as usize) {
@@ -35,198 +34,22 @@ pub(super) fn refine_around(
             }
         }
     }
-    sel_faces.sort_unstable();
-    // Whether a corner of a selected face has its whole fan selected, found once per vertex
-    // (asking per corner walks a fan of valence n for each of its n faces).
-    let mut fan_selected = vec![false; nv];
-    let mut fan_known = vec![false; nv];
-    for &f in &sel_faces {
-        for &x in m.face(f as usize) {
-            let x = x as usize;
-            if !fan_known[x] {
-                fan_known[x] = true;
-                fan_selected[x] =
-                    level.info[x].fan_ok && m.outgoing(x).all(|h| sel[m.he_face(h) as usize]);
-            }
-        }
-    }
-    let whole_fan = |v: usize| fan_selected[v];
-    // A boundary edge of the partial mesh is a true boundary edge when an end has its true fan.
-    let true_boundary = |h: u32| {
-        m.he_twin(h).is_none()
-            && (level.info[m.he_from(h) as usize].fan_ok || level.info[m.he_to(h) as usize].fan_ok)
+    let inp = StepIn {
+        mesh: m,
+        info: &level.info,
+        rule_free: level.rule_free.as_deref(),
+        face_origin: &level.face_origin,
+        face_corners: Some(rules.face_corners),
     };
-    let mut stencils: Vec<Stencil> = Vec::new();
-    let mut info: Vec<Info> = Vec::new();
-    // Boundary `none`: whether each new point is computed without a boundary rule (see the
-    // parent module's boundary modes); the Chaikin points and kept corners are not.
-    let free = |x: u32| level.rule_free.as_ref().is_none_or(|r| r[x as usize]);
-    let mut rule_free: Vec<bool> = Vec::new();
-    let mut corner_pt = vec![UNSET; m.num_halfedges()];
-    let mut edge_pt = vec![[UNSET; 2]; ne];
-    let mut kept = vec![UNSET; nv];
-    fn push(s: Stencil, i: Info, stencils: &mut Vec<Stencil>, info: &mut Vec<Info>) -> u32 {
-        stencils.push(s);
-        info.push(i);
-        (stencils.len() - 1) as u32
-    }
-    // Corners of large faces come as positions (`fixed`), their stencils left empty.
-    let mut fixed: Vec<(u32, Point)> = Vec::new();
-    for &f in &sel_faces {
-        let f = f as usize;
-        let h0 = m.face_halfedge(f);
-        let large = (m.face_size(f) > LARGE_FACE).then(|| {
-            let fc = (rules.face_corners)(m, f);
-            let ok = fc.reads.iter().all(|&x| level.info[x as usize].pos_ok);
-            let rf = fc.reads.iter().all(|&x| free(x));
-            (fc.points, ok, rf)
-        });
-        for h in h0..h0 + m.face_size(f) as u32 {
-            let v = m.he_from(h) as usize;
-            let (st, pos) = match &large {
-                Some((points, ok, rf)) => {
-                    fixed.push((stencils.len() as u32, points[(h - h0) as usize]));
-                    rule_free.push(*rf);
-                    (Stencil::new(), *ok)
-                }
-                None => {
-                    let st = (rules.corner)(m, h);
-                    // Trusted when every point the rule reads is (it may reach beyond the face).
-                    let pos = st
-                        .entries()
-                        .iter()
-                        .all(|&(x, _)| level.info[x as usize].pos_ok);
-                    rule_free.push(st.entries().iter().all(|&(x, _)| free(x)));
-                    (st, pos)
-                }
-            };
-            corner_pt[h as usize] = push(
-                st,
-                Info {
-                    pos_ok: pos,
-                    fan_ok: whole_fan(v),
-                    origin: None,
-                },
-                &mut stencils,
-                &mut info,
-            );
-            if true_boundary(h) {
-                let e = m.he_edge(h) as usize;
-                let (a, b) = (v, m.he_to(h) as usize);
-                let pos = level.info[a].pos_ok && level.info[b].pos_ok;
-                for (k, end) in [a, b].into_iter().enumerate() {
-                    rule_free.push(false);
-                    edge_pt[e][k] = push(
-                        boundary_edge_point_stencil(m, h, k == 1),
-                        Info {
-                            pos_ok: pos,
-                            fan_ok: whole_fan(end),
-                            origin: None,
-                        },
-                        &mut stencils,
-                        &mut info,
-                    );
-                }
-            }
-        }
-        for &x in m.face(f) {
-            let x = x as usize;
-            if kept[x] == UNSET
-                && level.info[x].fan_ok
-                && crate::schemes::doo_sabin::sharp::is_kept_corner(m, x)
-            {
-                rule_free.push(false);
-                kept[x] = push(
-                    Stencil::point(x),
-                    Info {
-                        pos_ok: level.info[x].pos_ok,
-                        fan_ok: whole_fan(x),
-                        origin: None,
-                    },
-                    &mut stencils,
-                    &mut info,
-                );
-            }
-        }
-    }
-    // Faces: F-faces, E-faces, V-faces (the layout of `refine_dual`).
-    let mut face_start = vec![0u32];
-    let mut corners: Vec<u32> = Vec::new();
-    let mut face_origin = Vec::new();
-    for &f in &sel_faces {
-        let h0 = m.face_halfedge(f as usize);
-        for h in h0..h0 + m.face_size(f as usize) as u32 {
-            corners.push(corner_pt[h as usize]);
-        }
-        face_start.push(corners.len() as u32);
-        face_origin.push(level.face_origin[f as usize]);
-    }
-    for (e, pts) in edge_pt.iter().enumerate() {
-        let h = m.edge_halfedge(e);
-        let quad = match m.he_twin(h) {
-            Some(t) if sel[m.he_face(h) as usize] && sel[m.he_face(t) as usize] => [
-                corner_pt[m.he_next(h) as usize],
-                corner_pt[h as usize],
-                corner_pt[m.he_next(t) as usize],
-                corner_pt[t as usize],
-            ],
-            None if pts[0] != UNSET => [
-                corner_pt[m.he_next(h) as usize],
-                corner_pt[h as usize],
-                pts[0],
-                pts[1],
-            ],
-            _ => continue,
-        };
-        corners.extend_from_slice(&quad);
-        face_start.push(corners.len() as u32);
-        face_origin.push(None);
-    }
-    let mut done = vec![false; nv];
-    for &f in &sel_faces {
-        for &x in m.face(f as usize) {
-            let v = x as usize;
-            if done[v] || !whole_fan(v) {
-                continue;
-            }
-            done[v] = true;
-            let start = corners.len();
-            let hs = m.outgoing_halfedges(v);
-            let boundary = m.is_boundary_vertex(v);
-            if boundary {
-                corners.push(edge_pt[m.he_edge(hs[0]) as usize][0]);
-            }
-            corners.extend(hs.iter().map(|&h| corner_pt[h as usize]));
-            if boundary {
-                let last = *hs.last().expect("a vertex has a face");
-                corners.push(edge_pt[m.he_edge(m.he_prev(last)) as usize][1]);
-                if kept[v] != UNSET {
-                    corners.push(kept[v]);
-                }
-            }
-            let size = corners.len() - start;
-            face_start.push(corners.len() as u32);
-            face_origin.push(if size != 4 {
-                level.info[v].origin
-            } else {
-                None
-            });
-        }
-    }
-    if corners.contains(&UNSET) {
-        return Err(Error::Unsupported(
-            "adaptive Doo-Sabin refinement met an inconsistent neighbourhood (a boundary edge \
-             whose Chaikin points are unknown); refine the net once with --levels 1 and retry"
-                .into(),
-        ));
-    }
-    let mut positions = StencilTable::from_rows(nv, stencils, 6).apply(m.positions());
-    for (i, p) in fixed {
-        positions[i as usize] = p;
-    }
-    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
+    let mut corner = |mm: &PolyMesh, h: u32| (rules.corner)(mm, h);
+    let out = dual_step(&inp, sel_faces, &mut corner, creases.as_ref())?;
+    let positions = out.positions(m.positions());
+    let child =
+        PolyMesh::from_partial_refinement(positions, out.face_start.clone(), out.corners.clone())?
+            .with_extras(out.extras.clone());
     // The F-face of each selected face in the child (the first faces, in `sel_faces` order).
-    let f_face: HashMap<u32, u32> = sel_faces
+    let f_face: HashMap<u32, u32> = out
+        .sel_faces
         .iter()
         .enumerate()
         .map(|(i, &f)| (f, i as u32))
@@ -242,7 +65,7 @@ pub(super) fn refine_around(
         // patches lie beyond the knot lines, over no face
         let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
         for (i, &h) in hs.iter().enumerate() {
-            let w = corner_pt[h as usize];
+            let w = out.corner_pt[h as usize];
             let mut t = tag;
             t.domain = Domain::UNTRACKED;
             if w != UNSET && (level.first || !on_boundary) {
@@ -251,31 +74,61 @@ pub(super) fn refine_around(
             }
             active.push((w, t));
         }
-        if m.is_boundary_vertex(v) {
-            let untracked = Tag {
-                domain: Domain::UNTRACKED,
-                ..tag
-            };
-            let first = hs[0];
-            let last = *hs.last().expect("a vertex has a face");
-            active.push((edge_pt[m.he_edge(first) as usize][0], untracked));
-            active.push((edge_pt[m.he_edge(m.he_prev(last)) as usize][1], untracked));
-            if kept[v] != UNSET {
-                active.push((kept[v], untracked));
-            }
+        // the Chaikin points near v of its sharp edges (boundary edges: the outgoing one
+        // first, the incoming one last) and its kept point: over no face
+        let untracked = Tag {
+            domain: Domain::UNTRACKED,
+            ..tag
+        };
+        for e in sharp_spokes(m, v, &hs, creases.as_ref()) {
+            let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
+            active.push((out.edge_pt[e as usize][k], untracked));
+        }
+        if out.kept[v] != UNSET {
+            active.push((out.kept[v], untracked));
         }
     }
     // Children that could not be made (a cut the bookkeeping did not trust) stay out.
     active.retain(|&(x, _)| x != UNSET);
-    debug_assert_eq!(rule_free.len(), info.len());
-    Ok(Level {
-        mesh: child,
+    debug_assert_eq!(out.rule_free.len(), out.info.len());
+    // a child descends from its parent's element: a V-face it makes later (a sector of a
+    // crease vertex, a dart's tip, a kept point of valence 3) is a facet of that element
+    let mut info = out.info;
+    for &(x, tag) in &active {
+        let o = &mut info[x as usize].origin;
+        if o.is_none() {
+            *o = tag.element;
+        }
+    }
+    let rule_free = level.rule_free.as_ref().map(|_| out.rule_free);
+    Ok(Level::new(
+        child,
         info,
-        face_origin,
+        out.face_origin,
         active,
-        first: false,
-        rule_free: level.rule_free.as_ref().map(|_| rule_free),
-    })
+        rule_free,
+        level.calm,
+        false,
+    ))
+}
+
+/// The sharp edges at `v` whose Chaikin points near `v` are its children: on the boundary the
+/// outgoing boundary edge, the sharp edges inside the surface counter-clockwise, the incoming
+/// boundary edge; inside the surface its sharp edges counter-clockwise.
+fn sharp_spokes(m: &PolyMesh, v: usize, hs: &[u32], creases: Option<&Creases<'_>>) -> Vec<u32> {
+    let boundary = m.is_boundary_vertex(v);
+    let mut out = Vec::new();
+    for (i, &h) in hs.iter().enumerate() {
+        let e = m.he_edge(h);
+        if (boundary && i == 0) || creases.is_some_and(|c| c.is_crease(e as usize)) {
+            out.push(e);
+        }
+    }
+    if boundary {
+        let last = *hs.last().expect("a vertex has a face");
+        out.push(m.he_edge(m.he_prev(last)));
+    }
+    out
 }
 
 /// The domain of the child `w` (in `child`) of a vertex `v` of `m` that is the new corner

@@ -48,6 +48,9 @@ use crate::schemes::catmull_clark::crease::INFINITE;
 use crate::schemes::descriptor::SurfaceOutput;
 use std::collections::HashMap;
 
+pub(crate) mod levels;
+pub(crate) mod step;
+
 /// A net cut along its creases, with what the cut did (for the notes).
 #[derive(Debug)]
 pub struct CutNet {
@@ -251,8 +254,16 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
 pub fn on_cut_net(
     mesh: &PolyMesh,
     name: &str,
+    semi_sharp: bool,
     build: impl FnOnce(&PolyMesh) -> Result<SurfaceOutput>,
 ) -> Result<SurfaceOutput> {
+    if let Some((net, mut notes)) = semi_sharp_net(mesh, name, semi_sharp)? {
+        let mut out = build(&net)?;
+        keep_crease_sides(&mut out.complex);
+        notes.append(&mut out.notes);
+        out.notes = notes;
+        return Ok(out);
+    }
     match cut_along_creases(mesh, name)? {
         None => {
             let mut out = build(mesh)?;
@@ -271,13 +282,140 @@ pub fn on_cut_net(
     }
 }
 
+/// Whether `mesh` tags a semi-sharp feature (a finite positive sharpness).
+pub fn has_semi_sharp(mesh: &PolyMesh) -> bool {
+    mesh.extras().is_some_and(|ex| {
+        let semi = |s: f32| s > 0.0 && s < INFINITE;
+        ex.sharp_vertices.iter().any(|&(_, s)| semi(s))
+            || match &ex.sharp_edges {
+                SharpEdges::ById(v) => v.iter().any(|&(_, s)| semi(s)),
+                SharpEdges::ByPair(v) => v.iter().any(|&(_, s)| semi(s)),
+            }
+    })
+}
+
+/// For a net with semi-sharp features: the net the builder refines with its creases in place
+/// (holes removed, as for the cut), with the notes; `None` for a net without them (it is cut
+/// along its infinitely sharp creases instead). `takes` says whether the scheme's patches take
+/// semi-sharp features; a scheme whose patches do not refuses the net, naming an element.
+///
+/// # Errors
+/// [`Error::Unsupported`] for a scheme without semi-sharp patches, and for infinitely sharp
+/// darts, which the patches cannot finish (they are refined forever).
+fn semi_sharp_net(
+    mesh: &PolyMesh,
+    name: &str,
+    takes: bool,
+) -> Result<Option<(PolyMesh, Vec<String>)>> {
+    if !has_semi_sharp(mesh) {
+        return Ok(None);
+    }
+    let ex = mesh.extras().cloned().unwrap_or_default();
+    if !takes {
+        // the first semi-sharp edge or vertex names the refusal, as before
+        sharp_edge_flags(mesh, &ex, name)?;
+        if let Some(&(v, s)) = ex.sharp_vertices.iter().find(|p| p.1 < INFINITE) {
+            return Err(Error::Unsupported(format!(
+                "vertex {v} has the semi-sharp corner value {s}; {name}'s patches take \
+                 infinitely sharp features only (sharpness 10 or more)"
+            )));
+        }
+    }
+    let mut notes = Vec::new();
+    let holes = ex.holes.len();
+    let net = if holes > 0 {
+        notes.push(format!(
+            "{holes} hole faces removed before the patches ({name}'s patches span four faces, \
+             so a hole cannot be refined for support and left out): the surface ends on the \
+             hole's boundary curve"
+        ));
+        mesh.clone().without_holes()
+    } else {
+        mesh.clone()
+    };
+    let sharpness = edge_sharpness(&net, &net.extras().cloned().unwrap_or_default())?;
+    let mut infinite = vec![0u32; net.num_vertices()];
+    for (e, &s) in sharpness.iter().enumerate() {
+        let h = net.edge_halfedge(e);
+        if s >= INFINITE && net.he_twin(h).is_some() {
+            infinite[net.he_from(h) as usize] += 1;
+            infinite[net.he_to(h) as usize] += 1;
+        }
+    }
+    if let Some(v) =
+        (0..net.num_vertices()).find(|&v| infinite[v] == 1 && !net.is_boundary_vertex(v))
+    {
+        return Err(Error::Unsupported(format!(
+            "vertex {v} is a dart of an infinitely sharp crease (it ends there, inside the \
+             surface); {name}'s patches cannot fade an infinitely sharp crease out: extend the \
+             crease to a boundary or another crease, give it a finite sharpness, or refine \
+             with Catmull-Clark or Loop"
+        )));
+    }
+    notes.push(format!(
+        "semi-sharp features: fairsub's crease construction for {name} (the creases' sharp \
+         rules, the Chaikin points of both sides, for as many levels as their sharpness, \
+         OpenSubdiv's fractional blend on the last; see docs/guide sharp-features-bi2-nonbox); \
+         the patches are refined until every finite sharpness is spent"
+    ));
+    Ok(Some((net, notes)))
+}
+
+/// Where one level of the adaptive host has creases (sharp edges inside the surface).
+#[derive(Debug, Clone)]
+pub(crate) struct LevelCreases {
+    /// Per face: it has a crease edge.
+    pub faces: Vec<bool>,
+    /// Per vertex: it is an end of a crease edge.
+    pub vertices: Vec<bool>,
+}
+
+/// The crease data of one level of the adaptive host (`None` when it has no crease), and the
+/// level's `calm` after a parent level with `parent_calm` (0 when it holds a semi-sharp value).
+pub(crate) fn level_creases(mesh: &PolyMesh, parent_calm: usize) -> (Option<LevelCreases>, usize) {
+    use crate::schemes::catmull_clark::crease::adaptive::calm_after;
+    let Some(ex) = mesh.extras() else {
+        return (None, calm_after(parent_calm, &[], &[]));
+    };
+    let mut values = Vec::new();
+    let mut at = LevelCreases {
+        faces: vec![false; mesh.num_faces()],
+        vertices: vec![false; mesh.num_vertices()],
+    };
+    let mut any = false;
+    let mut mark = |e: Option<u32>, s: f32| {
+        values.push(s);
+        let Some(e) = e else { return };
+        let h = mesh.edge_halfedge(e as usize);
+        if let (true, Some(t)) = (s > 0.0, mesh.he_twin(h)) {
+            at.faces[mesh.he_face(h) as usize] = true;
+            at.faces[mesh.he_face(t) as usize] = true;
+            at.vertices[mesh.he_from(h) as usize] = true;
+            at.vertices[mesh.he_to(h) as usize] = true;
+            any = true;
+        }
+    };
+    match &ex.sharp_edges {
+        SharpEdges::ById(v) => v.iter().for_each(|&(e, s)| mark(Some(e), s)),
+        SharpEdges::ByPair(v) => v
+            .iter()
+            .for_each(|&([a, b], s)| mark(mesh.find_edge(a, b), s)),
+    }
+    let vertices: Vec<f32> = ex.sharp_vertices.iter().map(|p| p.1).collect();
+    let calm = calm_after(parent_calm, &values, &vertices);
+    (any.then_some(at), calm)
+}
+
 /// Of the sides the host marked as lying on the cut net's boundary (the Doo-Sabin host marks
-/// them as it emits the patches), keeps those that meet another marked side: the two sides of
-/// a crease, which end on the same curve, so that `check` reports the crease as a sharp join.
-/// The others are the surface's boundary and are cleared. Two sides meet when their end points
-/// and midpoints agree to `1e-9` of the complex's size, found through a grid of cells of
-/// `1e-6` of its size (a side's midpoint is compared with those of the 27 cells around it).
+/// them as it emits the patches), keeps those that lie along another marked side: the two sides
+/// of a crease, which end on the same curve, so that `check` reports the crease as a sharp
+/// join. The others are the surface's boundary and are cleared. The two sides of a crease may
+/// be refined to different levels (a regular patch on one side, ring patches on the other), so
+/// a side is kept when its midpoint is a dyadic point (`t = k / 2^SPLIT`) of another marked
+/// side or another marked side's midpoint is one of its own: points agreeing to `1e-9` of the
+/// complex's size, found through a grid of cells of `1e-6` of its size.
 fn keep_crease_sides(c: &mut PatchComplex) {
+    const SPLIT: u32 = 6;
     let marks = std::mem::take(&mut c.sharp_sides);
     if marks.is_empty() {
         return;
@@ -293,7 +431,7 @@ fn keep_crease_sides(c: &mut PatchComplex) {
     let (tol, cell) = (1e-9 * size, 1e-6 * size);
     let key =
         |x: Point| std::array::from_fn::<i64, 3, _>(|k| ((x[k] - lo[k]) / cell).floor() as i64);
-    let sides: Vec<(u32, Side, [Point; 3])> = marks
+    let sides: Vec<(u32, Side)> = marks
         .iter()
         .flat_map(|&(p, m)| {
             Side::ALL
@@ -301,37 +439,66 @@ fn keep_crease_sides(c: &mut PatchComplex) {
                 .filter(move |s| m & (1 << s.index()) != 0)
                 .map(move |s| (p, s))
         })
-        .map(|(p, s)| {
+        .collect();
+    let n = 1u32 << SPLIT;
+    // the dyadic points of every side (the midpoint is point n / 2)
+    let points: Vec<Vec<Point>> = sides
+        .iter()
+        .map(|&(p, s)| {
             let patch = &c.patches[p as usize];
-            let at = |t: f64| {
-                let [u, v] = s.domain_point(t);
-                patch.eval(u, v)
-            };
-            (p, s, [at(0.0), at(0.5), at(1.0)])
+            (0..=n)
+                .map(|k| {
+                    let [u, v] = s.domain_point(f64::from(k) / f64::from(n));
+                    patch.eval(u, v)
+                })
+                .collect()
         })
         .collect();
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-    for (i, s) in sides.iter().enumerate() {
-        grid.entry(key(s.2[1])).or_default().push(i);
+    let mut grid: HashMap<[i64; 3], Vec<(usize, u32)>> = HashMap::new();
+    for (i, pts) in points.iter().enumerate() {
+        for (k, &x) in pts.iter().enumerate().skip(1).take(n as usize - 1) {
+            grid.entry(key(x)).or_default().push((i, k as u32));
+        }
     }
-    let close = |a: Point, b: Point| dist(a, b) <= tol;
-    for (i, &(p, side, [a, m, b])) in sides.iter().enumerate() {
-        let k = key(m);
-        let met = (0..27).any(|d| {
+    // the sides other than `i` with x as an inner dyadic point (the side, the point's index)
+    let found = |x: Point, i: usize| -> Vec<(usize, u32)> {
+        let k = key(x);
+        let mut out = Vec::new();
+        for d in 0..27 {
             let cell = [k[0] + d % 3 - 1, k[1] + d / 3 % 3 - 1, k[2] + d / 9 - 1];
-            grid.get(&cell).is_some_and(|js| {
-                js.iter().any(|&j| {
-                    let [a2, m2, b2] = sides[j].2;
-                    j != i
-                        && close(m, m2)
-                        && ((close(a, a2) && close(b, b2)) || (close(a, b2) && close(b, a2)))
-                })
-            })
-        });
-        if met {
+            if let Some(js) = grid.get(&cell) {
+                out.extend(
+                    js.iter()
+                        .filter(|&&(j, q)| j != i && dist(points[j][q as usize], x) <= tol),
+                );
+            }
+        }
+        out
+    };
+    let mut keep = vec![false; sides.len()];
+    for i in 0..sides.len() {
+        let mid = points[i][n as usize / 2];
+        // a side j with an inner dyadic point at i's midpoint: i lies along j when its ends
+        // and midpoint are points of j (j as long or longer; a longer i finds a shorter j
+        // the other way round, from j's midpoint)
+        for (j, _) in found(mid, i) {
+            if same_curve(&points[i], &points[j], tol) {
+                keep[i] = true;
+                keep[j] = true;
+            }
+        }
+    }
+    for (i, &(p, side)) in sides.iter().enumerate() {
+        if keep[i] {
             c.mark_sharp(p as usize, side.index());
         }
     }
+}
+
+/// Whether side `a` lies along side `b`: its ends and its midpoint are dyadic points of `b`.
+fn same_curve(a: &[Point], b: &[Point], tol: f64) -> bool {
+    let on_b = |x: Point| b.iter().any(|&y| dist(x, y) <= tol);
+    on_b(a[0]) && on_b(a[a.len() - 1]) && on_b(a[a.len() / 2])
 }
 
 /// For the bi-2 schemes whose boundary rules keep only single-face corners (TPS, adjustable
@@ -394,23 +561,33 @@ pub fn refuse_boundary_modes(mesh: &PolyMesh, name: &str) -> Result<()> {
 
 /// Per edge: infinitely sharp. Semi-sharp edges are refused.
 fn sharp_edge_flags(mesh: &PolyMesh, ex: &Extras, name: &str) -> Result<Vec<bool>> {
-    let mut sharp = vec![false; mesh.num_edges()];
-    let mut set = |e: usize, a: u32, b: u32, s: f32| {
-        if s < INFINITE {
+    let values = edge_sharpness(mesh, ex)?;
+    let mut sharp = vec![false; values.len()];
+    for (e, &s) in values.iter().enumerate() {
+        if s > 0.0 && s < INFINITE {
+            let h = mesh.edge_halfedge(e);
+            let (a, b) = (mesh.he_from(h), mesh.he_to(h));
             return Err(Error::Unsupported(format!(
                 "the edge {a}-{b} has the semi-sharp crease value {s}; {name}'s patches take \
                  infinitely sharp creases only (sharpness 10 or more); refine with \
                  Catmull-Clark or Loop for semi-sharp creases"
             )));
         }
-        sharp[e] = true;
-        Ok(())
-    };
+        sharp[e] = s > 0.0;
+    }
+    Ok(sharp)
+}
+
+/// The sharpness of every edge as the extras tag it (0 where they do not).
+///
+/// # Errors
+/// [`Error::Unsupported`] for a tagged pair that is not an edge of the net.
+fn edge_sharpness(mesh: &PolyMesh, ex: &Extras) -> Result<Vec<f32>> {
+    let mut out = vec![0f32; mesh.num_edges()];
     match &ex.sharp_edges {
         SharpEdges::ById(v) => {
             for &(e, s) in v {
-                let h = mesh.edge_halfedge(e as usize);
-                set(e as usize, mesh.he_from(h), mesh.he_to(h), s)?;
+                out[e as usize] = s;
             }
         }
         SharpEdges::ByPair(v) => {
@@ -418,11 +595,11 @@ fn sharp_edge_flags(mesh: &PolyMesh, ex: &Extras, name: &str) -> Result<Vec<bool
                 let e = mesh.find_edge(a, b).ok_or_else(|| {
                     Error::Unsupported(format!("the sharp edge {a}-{b} is not an edge of the net"))
                 })?;
-                set(e as usize, a, b, s)?;
+                out[e as usize] = s;
             }
         }
     }
-    Ok(sharp)
+    Ok(out)
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {

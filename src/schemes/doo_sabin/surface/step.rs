@@ -1,0 +1,605 @@
+//! One dual step on a selection of faces: the child points (corner points by the scheme's rule,
+//! Chaikin points on sharp edges, kept points), their trust, and the child faces (F-, E- and
+//! V-faces). The adaptive host refines the faces around its marked vertices with it
+//! ([`super::refine`]); a whole net with sharp features is refined with all its faces selected
+//! ([`crate::schemes::doo_sabin::refine_dual_with`]).
+//!
+//! Without creases ([`Creases`]) the points and faces are those of the boundary rules of
+//! [`crate::schemes::doo_sabin`] in the order the adaptive host has always used. With creases
+//! they follow fairsub's crease construction ([`crate::schemes::doo_sabin::sharp`]): a sharp
+//! edge inside the surface gets the two Chaikin points of its sides (shared by both sides),
+//! its E-face splits into one half per side, a vertex's V-face into the sectors between its
+//! sharp edges, and a point whose feature decays this step blends from its sharp position
+//! toward the smooth one ([`Derived`]).
+
+#[cfg(doc)]
+use super::DualRules;
+use crate::error::{Error, Result};
+use crate::geom::Point;
+use crate::host::adaptive::Info;
+use crate::mesh::tags::SubdOptions;
+use crate::mesh::{Element, Extras, PolyMesh, SharpEdges};
+use crate::schemes::catmull_clark::crease::{Scratch, VertexMask, VertexPlan};
+use crate::schemes::doo_sabin::fourier::FaceCorners;
+use crate::schemes::doo_sabin::fourier::LARGE_FACE;
+use crate::schemes::doo_sabin::sharp::step::{Creases, Sector};
+use crate::schemes::doo_sabin::{CHAIKIN, sharp::is_kept_corner};
+use crate::stencil::{Stencil, StencilTable};
+
+/// A point not made yet.
+pub(crate) const UNSET: u32 = u32::MAX;
+
+/// What one step reads: a level's net, the trust of its points and, under the boundary mode
+/// `none`, which of them are rule-free.
+pub(crate) struct StepIn<'a> {
+    /// The net (a whole net, or a partially refined level).
+    pub mesh: &'a PolyMesh,
+    /// Trust of its points.
+    pub info: &'a [Info],
+    /// Boundary `none`: per point, whether no boundary rule entered it.
+    pub rule_free: Option<&'a [bool]>,
+    /// Input element of each non-quad face.
+    pub face_origin: &'a [Option<Element>],
+    /// All new corners of a face at once as positions, for the faces above [`LARGE_FACE`]
+    /// (the adaptive host); `None`: stencils for every corner (a stencil table is wanted).
+    pub face_corners: Option<&'a FaceCornersFn<'a>>,
+}
+
+/// The rule giving all new corners of a face at once ([`DualRules::face_corners`]).
+pub(crate) type FaceCornersFn<'a> = dyn Fn(&PolyMesh, usize) -> FaceCorners + Sync + 'a;
+
+/// A child point whose position adds weighted child points to its stencil's (the blend of a
+/// decaying feature toward the smooth position, made of other child points).
+#[derive(Debug, Clone)]
+pub(crate) struct Derived {
+    /// The point.
+    pub point: u32,
+    /// Child points and their weights.
+    pub parts: Vec<(u32, f64)>,
+}
+
+/// The child of one step (see the [module](self) documentation).
+pub(crate) struct StepOut {
+    /// Per child point: its stencil over the parent's points (empty for `fixed` ones).
+    pub stencils: Vec<Stencil>,
+    /// Per child point: its trust.
+    pub info: Vec<Info>,
+    /// Per child point: rule-free (boundary `none`).
+    pub rule_free: Vec<bool>,
+    /// Corners of large faces, as positions.
+    pub fixed: Vec<(u32, Point)>,
+    /// Blended points, in an order where parts come first.
+    pub derived: Vec<Derived>,
+    /// The corner point of each parent half-edge (`UNSET` outside the selection).
+    pub corner_pt: Vec<u32>,
+    /// The two Chaikin points of each sharp parent edge (near the start, near the end of its
+    /// edge half-edge).
+    pub edge_pt: Vec<[u32; 2]>,
+    /// The kept point of each parent vertex.
+    pub kept: Vec<u32>,
+    /// Child faces.
+    pub face_start: Vec<u32>,
+    /// Child face corners.
+    pub corners: Vec<u32>,
+    /// Input element of each child face that is not a quad.
+    pub face_origin: Vec<Option<Element>>,
+    /// The selected parent faces (the F-faces are the first child faces, in this order).
+    pub sel_faces: Vec<u32>,
+    /// The child's sharp features (with creases only).
+    pub extras: Option<Extras>,
+}
+
+impl StepOut {
+    /// The child positions: the stencils applied to `parent`, the fixed positions, then the
+    /// blended points.
+    pub fn positions(&self, parent: &[Point]) -> Vec<Point> {
+        let rows = self.stencils.clone();
+        let mut pos = StencilTable::from_rows(parent.len(), rows, 6).apply(parent);
+        for &(i, p) in &self.fixed {
+            pos[i as usize] = p;
+        }
+        for d in &self.derived {
+            let mut p = pos[d.point as usize];
+            for &(x, w) in &d.parts {
+                p = crate::geom::axpy(p, w, pos[x as usize]);
+            }
+            pos[d.point as usize] = p;
+        }
+        pos
+    }
+
+    /// The stencils with the blended points composed in (no fixed positions).
+    pub fn composed_stencils(&self) -> Vec<Stencil> {
+        let mut st = self.stencils.clone();
+        for d in &self.derived {
+            let mut s = std::mem::take(&mut st[d.point as usize]);
+            for &(x, w) in &d.parts {
+                s.add_scaled(&st[x as usize], w);
+            }
+            st[d.point as usize] = s.merged();
+        }
+        st
+    }
+}
+
+/// One step of the faces `sel_faces` of `inp` (see the [module](self) documentation).
+pub(crate) fn dual_step(
+    inp: &StepIn<'_>,
+    mut sel_faces: Vec<u32>,
+    corner: &mut dyn FnMut(&PolyMesh, u32) -> Stencil,
+    creases: Option<&Creases<'_>>,
+) -> Result<StepOut> {
+    let m = inp.mesh;
+    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    sel_faces.sort_unstable();
+    let mut sel = vec![false; nf];
+    for &f in &sel_faces {
+        sel[f as usize] = true;
+    }
+    let mut fan_selected = vec![false; nv];
+    let mut fan_known = vec![false; nv];
+    for &f in &sel_faces {
+        for &x in m.face(f as usize) {
+            let x = x as usize;
+            if !fan_known[x] {
+                fan_known[x] = true;
+                fan_selected[x] =
+                    inp.info[x].fan_ok && m.outgoing(x).all(|h| sel[m.he_face(h) as usize]);
+            }
+        }
+    }
+    let whole_fan = |v: usize| fan_selected[v];
+    // A parent edge gets Chaikin points when it is sharp: with creases, by its sharpness
+    // (boundary edges are infinitely sharp); without, when it is a true boundary edge (of the
+    // partial net: an end has its true fan).
+    let sharp_edge = |h: u32| match creases {
+        Some(c) => c.is_sharp(m.he_edge(h) as usize),
+        None => {
+            m.he_twin(h).is_none()
+                && (inp.info[m.he_from(h) as usize].fan_ok || inp.info[m.he_to(h) as usize].fan_ok)
+        }
+    };
+    let free = |x: u32| inp.rule_free.is_none_or(|r| r[x as usize]);
+    let mut o = StepOut {
+        stencils: Vec::new(),
+        info: Vec::new(),
+        rule_free: Vec::new(),
+        fixed: Vec::new(),
+        derived: Vec::new(),
+        corner_pt: vec![UNSET; m.num_halfedges()],
+        edge_pt: vec![[UNSET; 2]; ne],
+        kept: vec![UNSET; nv],
+        face_start: vec![0],
+        corners: Vec::new(),
+        face_origin: Vec::new(),
+        sel_faces: Vec::new(),
+        extras: None,
+    };
+    let push = |o: &mut StepOut, s: Stencil, i: Info, rf: bool| -> u32 {
+        o.stencils.push(s);
+        o.info.push(i);
+        o.rule_free.push(rf);
+        (o.stencils.len() - 1) as u32
+    };
+    let mut scratch = Scratch::default();
+    let mut blends: Vec<(u32, usize, usize)> = Vec::new();
+    let mut kept_blends: Vec<(u32, usize, VertexPlan)> = Vec::new();
+    for &f in &sel_faces {
+        let f = f as usize;
+        let h0 = m.face_halfedge(f);
+        let alone = creases
+            .is_some_and(|c| c.touches(f))
+            .then(|| FaceAlone::new(m, f));
+        let large = inp
+            .face_corners
+            .filter(|_| m.face_size(f) > LARGE_FACE)
+            .map(|rule| {
+                let rule: &FaceCornersFn<'_> = rule;
+                let fc = match &alone {
+                    Some(a) => a.face_corners(rule),
+                    None => rule(m, f),
+                };
+                let ok = fc.reads.iter().all(|&x| inp.info[x as usize].pos_ok);
+                let rf = fc.reads.iter().all(|&x| free(x));
+                (fc.points, ok, rf)
+            });
+        for h in h0..h0 + m.face_size(f) as u32 {
+            let v = m.he_from(h) as usize;
+            let (st, pos, rf) = match &large {
+                Some((points, ok, rf)) => {
+                    o.fixed
+                        .push((o.stencils.len() as u32, points[(h - h0) as usize]));
+                    (Stencil::new(), *ok, *rf)
+                }
+                None => {
+                    let st = match &alone {
+                        Some(a) => a.corner(corner, (h - h0) as usize),
+                        None => corner(m, h),
+                    };
+                    // trusted when every point the rule reads is (it may reach beyond the face)
+                    let pos = st
+                        .entries()
+                        .iter()
+                        .all(|&(x, _)| inp.info[x as usize].pos_ok);
+                    let rf = st.entries().iter().all(|&(x, _)| free(x));
+                    (st, pos, rf)
+                }
+            };
+            let info = Info {
+                pos_ok: pos,
+                fan_ok: whole_fan(v),
+                origin: None,
+            };
+            o.corner_pt[h as usize] = push(&mut o, st, info, rf);
+            let e = m.he_edge(h) as usize;
+            if sharp_edge(h) && o.edge_pt[e][0] == UNSET {
+                let eh = m.edge_halfedge(e);
+                let (a, b) = (m.he_from(eh) as usize, m.he_to(eh) as usize);
+                let pos = inp.info[a].pos_ok && inp.info[b].pos_ok;
+                let w = creases.map_or(1.0, |c| c.weight(e));
+                for (k, end) in [a, b].into_iter().enumerate() {
+                    let (wa, wb) = CHAIKIN[k];
+                    let mut s = Stencil::new();
+                    s.add(a, wa * w).add(b, wb * w);
+                    let info = Info {
+                        pos_ok: pos,
+                        fan_ok: whole_fan(end),
+                        origin: None,
+                    };
+                    o.edge_pt[e][k] = push(&mut o, s, info, false);
+                    if w < 1.0 {
+                        blends.push((o.edge_pt[e][k], e, k));
+                    }
+                }
+            }
+        }
+        for &x in m.face(f) {
+            let x = x as usize;
+            if o.kept[x] != UNSET || !inp.info[x].fan_ok {
+                continue;
+            }
+            let plan = match creases {
+                Some(c) => c.kept(x, &mut scratch),
+                None => is_kept_corner(m, x).then_some(VertexPlan::Single(VertexMask::Corner)),
+            };
+            let Some(plan) = plan else { continue };
+            let w = match plan {
+                VertexPlan::Blend { w, .. } => w,
+                VertexPlan::Single(_) => 1.0,
+            };
+            let info = Info {
+                pos_ok: inp.info[x].pos_ok,
+                fan_ok: whole_fan(x),
+                origin: None,
+            };
+            o.kept[x] = push(&mut o, Stencil::from_pairs([(x, w)]), info, false);
+            if w < 1.0 {
+                kept_blends.push((o.kept[x], x, plan));
+            }
+        }
+    }
+    blend_chaikin_points(m, &mut o, &blends);
+    if let Some(c) = creases {
+        blend_kept_points(m, c, &mut o, &kept_blends);
+    }
+    o.sel_faces = sel_faces;
+    faces(inp, &sel, &whole_fan, creases, &mut o)?;
+    Ok(o)
+}
+
+/// The blends of the Chaikin points of decaying creases: toward the midpoint of the two corner
+/// points they sit between (the E-face's side at that end), with the weight left by the
+/// edge's fractional sharpness. A point whose corner points are not made is not trusted.
+fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[(u32, usize, usize)]) {
+    for &(p, e, k) in blends {
+        let h = m.edge_halfedge(e);
+        let Some(t) = m.he_twin(h) else { continue };
+        // the corners at the end `k` of the two faces of the edge
+        let (c1, c2) = if k == 0 {
+            (o.corner_pt[h as usize], o.corner_pt[m.he_next(t) as usize])
+        } else {
+            (o.corner_pt[m.he_next(h) as usize], o.corner_pt[t as usize])
+        };
+        let w = o.stencils[p as usize].weight_sum();
+        if c1 == UNSET || c2 == UNSET {
+            o.info[p as usize].pos_ok = false;
+            continue;
+        }
+        let ok = o.info[c1 as usize].pos_ok && o.info[c2 as usize].pos_ok;
+        o.info[p as usize].pos_ok &= ok;
+        let r = 0.5 * (1.0 - w);
+        o.derived.push(Derived {
+            point: p,
+            parts: vec![(c1, r), (c2, r)],
+        });
+    }
+}
+
+/// The blends of the kept points of decaying corners: toward the midpoint of the Chaikin points
+/// of the two edges that stay sharp when the child's rule is the crease rule, else toward the
+/// centroid of the vertex's corner points.
+fn blend_kept_points(
+    m: &PolyMesh,
+    c: &Creases<'_>,
+    o: &mut StepOut,
+    blends: &[(u32, usize, VertexPlan)],
+) {
+    let mut spokes = Vec::new();
+    for &(p, v, plan) in blends {
+        let VertexPlan::Blend { child, w, .. } = plan else {
+            continue;
+        };
+        let rest = 1.0 - w;
+        let parts: Vec<(u32, f64)> = match child {
+            VertexMask::Crease(a, b) => [a, b]
+                .into_iter()
+                .map(|to| {
+                    let pt = c.spoke_to(v, to, &mut spokes).map_or(UNSET, |e| {
+                        let e = e as usize;
+                        let near = usize::from(m.he_from(m.edge_halfedge(e)) as usize != v);
+                        o.edge_pt[e][near]
+                    });
+                    (pt, 0.5 * rest)
+                })
+                .collect(),
+            _ => {
+                let hs = m.outgoing_halfedges(v);
+                let k = hs.len() as f64;
+                hs.iter()
+                    .map(|&h| (o.corner_pt[h as usize], rest / k))
+                    .collect()
+            }
+        };
+        if parts.iter().any(|&(x, _)| x == UNSET) {
+            o.info[p as usize].pos_ok = false;
+            continue;
+        }
+        let ok = parts.iter().all(|&(x, _)| o.info[x as usize].pos_ok);
+        o.info[p as usize].pos_ok &= ok;
+        o.derived.push(Derived { point: p, parts });
+    }
+}
+
+/// The corner points of one face computed on the face alone (a one-face net): the corner
+/// rule of a net cut along its creases at a face whose corner lies on one, where that corner
+/// is a boundary vertex (PGS then falls back to Doo-Sabin's rule; Doo-Sabin's and DS^CC's
+/// rules read the face alone anyway).
+struct FaceAlone {
+    net: PolyMesh,
+    verts: Vec<u32>,
+}
+
+impl FaceAlone {
+    fn new(m: &PolyMesh, f: usize) -> FaceAlone {
+        let verts = m.face(f).to_vec();
+        let pos = verts.iter().map(|&v| m.positions()[v as usize]).collect();
+        let face: Vec<usize> = (0..verts.len()).collect();
+        let net =
+            PolyMesh::new(pos, &[face]).expect("a face of a valid net is a valid one-face net");
+        FaceAlone { net, verts }
+    }
+
+    fn corner(&self, rule: &mut dyn FnMut(&PolyMesh, u32) -> Stencil, k: usize) -> Stencil {
+        let s = rule(&self.net, k as u32);
+        Stencil::from_pairs(
+            s.entries()
+                .iter()
+                .map(|&(x, w)| (self.verts[x as usize] as usize, w)),
+        )
+    }
+
+    fn face_corners(&self, rule: &FaceCornersFn<'_>) -> FaceCorners {
+        let mut fc = rule(&self.net, 0);
+        for r in &mut fc.reads {
+            *r = self.verts[*r as usize];
+        }
+        fc
+    }
+}
+
+/// The child faces: F-faces of the selected faces, E-faces (halves at sharp edges), V-faces of
+/// the vertices with their whole fan selected (one per sector between sharp edges); with
+/// creases also the child's sharpness.
+fn faces(
+    inp: &StepIn<'_>,
+    sel: &[bool],
+    whole_fan: &dyn Fn(usize) -> bool,
+    creases: Option<&Creases<'_>>,
+    o: &mut StepOut,
+) -> Result<()> {
+    let m = inp.mesh;
+    let mut sharp_edges: Vec<([u32; 2], f32)> = Vec::new();
+    let mut sharp_vertices: Vec<(u32, f32)> = Vec::new();
+    let mut scratch = Scratch::default();
+    for &f in &o.sel_faces.clone() {
+        let h0 = m.face_halfedge(f as usize);
+        for h in h0..h0 + m.face_size(f as usize) as u32 {
+            o.corners.push(o.corner_pt[h as usize]);
+        }
+        o.face_start.push(o.corners.len() as u32);
+        o.face_origin.push(inp.face_origin[f as usize]);
+    }
+    for e in 0..m.num_edges() {
+        let h = m.edge_halfedge(e);
+        let pts = o.edge_pt[e];
+        let half = |s: u32, o: &StepOut| {
+            let (near_from, near_to) = if s == h {
+                (pts[0], pts[1])
+            } else {
+                (pts[1], pts[0])
+            };
+            [
+                o.corner_pt[m.he_next(s) as usize],
+                o.corner_pt[s as usize],
+                near_from,
+                near_to,
+            ]
+        };
+        let mut quads: Vec<[u32; 4]> = Vec::new();
+        match m.he_twin(h) {
+            Some(t) if pts[0] != UNSET => {
+                // a crease: one half per selected side
+                for s in [h, t] {
+                    if sel[m.he_face(s) as usize] {
+                        quads.push(half(s, o));
+                    }
+                }
+            }
+            Some(t) if sel[m.he_face(h) as usize] && sel[m.he_face(t) as usize] => {
+                quads.push([
+                    o.corner_pt[m.he_next(h) as usize],
+                    o.corner_pt[h as usize],
+                    o.corner_pt[m.he_next(t) as usize],
+                    o.corner_pt[t as usize],
+                ]);
+            }
+            None if pts[0] != UNSET => quads.push(half(h, o)),
+            _ => continue,
+        }
+        if let Some(c) = creases {
+            if pts[0] != UNSET {
+                let s = c.middle(e, &mut scratch);
+                if s > 0.0 {
+                    sharp_edges.push((pts, s));
+                }
+            }
+        }
+        for q in quads {
+            o.corners.extend_from_slice(&q);
+            o.face_start.push(o.corners.len() as u32);
+            o.face_origin.push(None);
+        }
+    }
+    let mut done = vec![false; m.num_vertices()];
+    for &f in &o.sel_faces.clone() {
+        for &x in m.face(f as usize) {
+            let v = x as usize;
+            if done[v] || !whole_fan(v) {
+                continue;
+            }
+            done[v] = true;
+            let hs = m.outgoing_halfedges(v);
+            let sectors = match creases {
+                Some(c) => c.sectors(v, &hs),
+                None => plain_sectors(m, v, &hs),
+            };
+            for sector in &sectors {
+                let poly = sector_face(m, v, &hs, sector, o);
+                if poly.len() < 3 {
+                    // interior valence 2: the 2-sided V-face is dropped
+                    continue;
+                }
+                if let Some(c) = creases {
+                    sector_sharpness(c, v, sector, &poly, o, &mut scratch, &mut sharp_edges);
+                }
+                let size = poly.len();
+                o.corners.extend_from_slice(&poly);
+                o.face_start.push(o.corners.len() as u32);
+                o.face_origin
+                    .push(if size != 4 { inp.info[v].origin } else { None });
+            }
+            if let Some(c) = creases {
+                let s = c.child_vertex(v);
+                if o.kept[v] != UNSET && s > 0.0 {
+                    sharp_vertices.push((o.kept[v], s));
+                }
+            }
+        }
+    }
+    if o.corners.contains(&UNSET) {
+        return Err(Error::Unsupported(
+            "adaptive Doo-Sabin refinement met an inconsistent neighbourhood (a boundary edge \
+             whose Chaikin points are unknown); refine the net once with --levels 1 and retry"
+                .into(),
+        ));
+    }
+    if creases.is_some() {
+        sharp_vertices.sort_unstable_by_key(|p| p.0);
+        let options = m.extras().map(|e| e.options).unwrap_or_default();
+        o.extras = Some(Extras {
+            sharp_edges: SharpEdges::ByPair(sharp_edges),
+            sharp_vertices,
+            sharpened: true,
+            options: SubdOptions {
+                boundary: options.boundary,
+                crease_method: options.crease_method,
+                ..SubdOptions::default()
+            },
+            ..Extras::default()
+        });
+    }
+    Ok(())
+}
+
+/// The one sector of a vertex without creases: its whole fan, between its boundary edges on
+/// the boundary.
+fn plain_sectors(m: &PolyMesh, v: usize, hs: &[u32]) -> Vec<Sector> {
+    let boundary = m.is_boundary_vertex(v).then(|| {
+        let last = *hs.last().expect("a vertex has a face");
+        (m.he_edge(hs[0]), m.he_edge(m.he_prev(last)))
+    });
+    vec![Sector {
+        faces: (0..hs.len()).collect(),
+        open: boundary.map(|b| b.0),
+        close: boundary.map(|b| b.1),
+    }]
+}
+
+/// The Chaikin point of edge `e` near its end `v`.
+fn near(m: &PolyMesh, o: &StepOut, e: u32, v: usize) -> u32 {
+    let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
+    o.edge_pt[e as usize][k]
+}
+
+/// The V-face of one sector of `v`: the Chaikin point of its opening edge near `v`, its
+/// corner points, the Chaikin point of its closing edge (once at a dart) and the kept point.
+fn sector_face(m: &PolyMesh, v: usize, hs: &[u32], s: &Sector, o: &StepOut) -> Vec<u32> {
+    let mut poly = Vec::with_capacity(s.faces.len() + 3);
+    if let Some(e) = s.open {
+        poly.push(near(m, o, e, v));
+    }
+    poly.extend(s.faces.iter().map(|&i| o.corner_pt[hs[i] as usize]));
+    if let Some(e) = s.close {
+        if s.open != Some(e) {
+            poly.push(near(m, o, e, v));
+        }
+    }
+    if o.kept[v] != UNSET {
+        poly.push(o.kept[v]);
+    }
+    poly
+}
+
+/// The child sharpness along one sector's V-face: its chord (no kept point) or its two edges
+/// to the kept point.
+fn sector_sharpness(
+    c: &Creases<'_>,
+    v: usize,
+    s: &Sector,
+    poly: &[u32],
+    o: &StepOut,
+    scratch: &mut Scratch,
+    out: &mut Vec<([u32; 2], f32)>,
+) {
+    let (Some(open), Some(close)) = (s.open, s.close) else {
+        return;
+    };
+    let (first, n) = (poly[0], poly.len());
+    let mut push = |a: u32, b: u32, x: f32| {
+        if x > 0.0 {
+            out.push(([a, b], x));
+        }
+    };
+    if o.kept[v] != UNSET {
+        let kp = poly[n - 1];
+        let before = poly[n - 2];
+        push(before, kp, c.half(close as usize, v, scratch));
+        push(kp, first, c.half(open as usize, v, scratch));
+    } else if open != close {
+        push(
+            poly[n - 1],
+            first,
+            c.chord(open as usize, close as usize, v, scratch),
+        );
+    }
+}
