@@ -322,7 +322,7 @@ fn dual_complex(
 struct DualHost<'a, 'b> {
     rules: &'a DualRules<'b>,
     name: &'a str,
-    /// Whether the holes are closed (then up to [`g1::MAX_EXTRA_LEVELS`] more levels separate
+    /// Whether the holes are closed (then up to [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels separate
     /// touching holes for their G^1 caps).
     fill: bool,
     /// The cells of the start net's vertices when it is not the input net ([`step_cells`]).
@@ -412,7 +412,7 @@ impl AdaptiveRules for DualHost<'_, '_> {
     }
 
     /// The requested rings, the levels that spend semi-sharp creases, and up to
-    /// [`g1::MAX_EXTRA_LEVELS`] more while holes still touch (the decision Catmull-Clark and
+    /// [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more while holes still touch (the decision Catmull-Clark and
     /// Loop make, [`is_last_cap_level_calm`]).
     /// After creases, a level may hold vertices that no patch can fill (a kept point of
     /// valence 3, a dart's tip): one more level makes them facets.

@@ -38,8 +38,15 @@ impl Descriptor for NonBoxDescriptor {
         }
     }
 
+    /// The FCVs; the net's creases and corners with OpenSubdiv's rules carried over
+    /// ([`super::sharp`], fairsub's construction).
     fn params(&self) -> &'static [ParamKind] {
-        &[ParamKind::Fcv]
+        &[ParamKind::Fcv, ParamKind::Creases]
+    }
+
+    /// Creases and corners, infinitely sharp and semi-sharp ([`super::sharp`]).
+    fn patches_take_features(&self) -> bool {
+        true
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
@@ -55,11 +62,15 @@ impl Descriptor for NonBoxDescriptor {
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let four_dir = self.four_dir;
         patch_fn(move |mesh, opts, progress| {
-            let complex = if four_dir {
+            let mut complex = if four_dir {
                 super::surface::nonbox_4dir_mesh_complex(mesh, opts, progress)?
             } else {
                 super::surface::nonbox_mesh_complex(mesh, opts, progress)?
             };
+            if mesh.extras().is_some_and(|e| e.has_features()) {
+                // the sides marked on the boundary of the cut net: crease sides kept
+                crate::schemes::doo_sabin::sharp::keep_crease_sides(&mut complex);
+            }
             Ok(SurfaceOutput {
                 complex,
                 fell_back: Vec::new(),

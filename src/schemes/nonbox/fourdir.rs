@@ -64,8 +64,19 @@ pub fn triangulate(net: &FcvNet) -> FourDirNet {
             face_start.push(corners.len() as u32);
         }
     }
+    // the polygons' vertices keep their numbers: their sharp features carry over by pairs
+    let extras = net.mesh.extras().map(|ex| {
+        let mut ex = ex.clone();
+        if let crate::mesh::SharpEdges::ById(v) = &ex.sharp_edges {
+            ex.sharp_edges = crate::mesh::SharpEdges::ByPair(
+                v.iter().map(|&(e, s)| (m.edge(e as usize), s)).collect(),
+            );
+        }
+        ex
+    });
     let mesh = PolyMesh::from_refinement(net.points(), face_start, corners)
-        .expect("the triangulation of a valid net is valid");
+        .expect("the triangulation of a valid net is valid")
+        .with_extras(extras);
     let mut type2 = vec![false; net.num_points()];
     for t in &mut type2[nv..] {
         *t = true;
@@ -315,11 +326,54 @@ impl FourDirNet {
                 "the type-1 polygons of the triangle mesh do not form a valid net ({e})"
             ))
         })?;
+        let poly = match m.extras() {
+            Some(ex) => poly.with_extras(Some(polygon_extras(m, ex, &new_of_old)?)),
+            None => poly,
+        };
         let net = FcvNet::new(poly, fcv)?;
         let mut map = type1;
         map.extend(fcv_vertex);
         Ok((net, map))
     }
+}
+
+/// The sharp features of a four-directional triangle mesh on its polygon net (type-1 vertices
+/// renumbered by `new_of_old`): creases must join two type-1 vertices (the polygons' edges),
+/// corners be type-1 vertices.
+fn polygon_extras(
+    m: &PolyMesh,
+    ex: &crate::mesh::Extras,
+    new_of_old: &[usize],
+) -> Result<crate::mesh::Extras> {
+    let map = |v: u32, what: &str| -> Result<u32> {
+        match new_of_old[v as usize] {
+            usize::MAX => Err(Error::Unsupported(format!(
+                "{what} at vertex {v}, a face centre (type-2 vertex) of the four-directional \
+                 mesh; its sharp features must lie on the polygons' edges and corners"
+            ))),
+            n => Ok(n as u32),
+        }
+    };
+    let pairs: Vec<([u32; 2], f32)> = match &ex.sharp_edges {
+        crate::mesh::SharpEdges::ById(v) => {
+            v.iter().map(|&(e, s)| (m.edge(e as usize), s)).collect()
+        }
+        crate::mesh::SharpEdges::ByPair(v) => v.clone(),
+    };
+    let mut out = ex.clone();
+    out.sharp_edges = crate::mesh::SharpEdges::ByPair(
+        pairs
+            .into_iter()
+            .map(|([a, b], s)| Ok(([map(a, "a crease")?, map(b, "a crease")?], s)))
+            .collect::<Result<_>>()?,
+    );
+    out.sharp_vertices = ex
+        .sharp_vertices
+        .iter()
+        .map(|&(v, s)| Ok((map(v, "a corner")?, s)))
+        .collect::<Result<_>>()?;
+    out.sharp_vertices.sort_unstable_by_key(|p| p.0);
+    Ok(out)
 }
 
 /// Reads the four-directional net a plain mesh stands for: a layout mesh (triangulated with its

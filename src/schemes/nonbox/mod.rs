@@ -90,6 +90,7 @@ pub mod bezier;
 pub mod boundary;
 pub mod fourdir;
 pub mod mask;
+pub(crate) mod sharp;
 
 pub use fourdir::{FourDirNet, NonBox4Dir};
 
@@ -98,6 +99,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
 use crate::schemes::CatmullClark;
+use crate::schemes::catmull_clark::crease::Scratch;
 use crate::stencil::{Stencil, StencilTable};
 use std::f64::consts::PI;
 
@@ -209,13 +211,39 @@ fn across(mesh: &PolyMesh, g: u32, f0: usize) -> Stencil {
 /// Stencil of the new FCV of the child quad at parent corner (half-edge) `h`: the NFCV rule,
 /// with ghosts across boundary edges (see the [module](self) documentation).
 pub fn nfcv_stencil(mesh: &PolyMesh, h: u32) -> Stencil {
+    nfcv_stencil_with(mesh, h, None)
+}
+
+/// [`nfcv_stencil`] on a net with sharp features: across a sharp edge the ghost, with the
+/// weight of the edge's crease rule ([`sharp`]).
+pub(crate) fn nfcv_stencil_with(
+    mesh: &PolyMesh,
+    h: u32,
+    mut creases: Option<(&sharp::NonBoxCreases<'_>, &mut Scratch)>,
+) -> Stencil {
     let v0 = mesh.he_from(h) as usize;
     let f0 = mesh.num_vertices() + mesh.he_face(h) as usize;
     let mut s = Stencil::new();
     s.add(v0, 0.25);
     s.add(f0, 0.5);
-    s.add_scaled(&across(mesh, h, f0), 0.125);
-    s.add_scaled(&across(mesh, mesh.he_prev(h), f0), 0.125);
+    for g in [h, mesh.he_prev(h)] {
+        let plain = across(mesh, g, f0);
+        let w = match (&mut creases, mesh.he_twin(g)) {
+            (Some((c, scratch)), Some(_)) => c.crease_weight(mesh.he_edge(g) as usize, scratch),
+            _ => 0.0,
+        };
+        if w == 0.0 {
+            s.add_scaled(&plain, 0.125);
+        } else {
+            let ghost = Stencil::from_pairs([
+                (mesh.he_from(g) as usize, 1.0),
+                (mesh.he_to(g) as usize, 1.0),
+                (f0, -1.0),
+            ]);
+            s.add_scaled(&ghost, 0.125 * w);
+            s.add_scaled(&plain, 0.125 * (1.0 - w));
+        }
+    }
     s.merged()
 }
 
@@ -223,26 +251,67 @@ pub fn nfcv_stencil(mesh: &PolyMesh, h: u32) -> Stencil {
 /// (V-vertices, E-vertices, face vertices, then one NFCV per parent half-edge), sources the
 /// parent points (vertices, then FCVs).
 pub fn step_stencils(mesh: &PolyMesh) -> StencilTable {
+    step_stencils_with(mesh, None)
+}
+
+/// [`step_stencils`] with the net's sharp features ([`sharp`]) when given.
+pub(crate) fn step_stencils_with(
+    mesh: &PolyMesh,
+    creases: Option<&sharp::NonBoxCreases<'_>>,
+) -> StencilTable {
     let (nv, ne, nf, nh) = (
         mesh.num_vertices(),
         mesh.num_edges(),
         mesh.num_faces(),
         mesh.num_halfedges(),
     );
+    let mut scratch = Scratch::default();
     let mut t = StencilTable::with_capacity(nv + nf, nv + ne + nf + nh, 5);
     for v in 0..nv {
-        t.push(v_vertex_stencil(mesh, v));
+        t.push(v_vertex_stencil_with(mesh, v, creases, &mut scratch));
     }
     for e in 0..ne {
-        t.push(e_vertex_stencil(mesh, e));
+        t.push(e_vertex_stencil_with(mesh, e, creases, &mut scratch));
     }
     for f in 0..nf {
         t.push(fcv_rule_stencil(mesh, f));
     }
     for h in 0..nh as u32 {
-        t.push(nfcv_stencil(mesh, h));
+        t.push(nfcv_stencil_with(
+            mesh,
+            h,
+            creases.map(|c| (c, &mut scratch)),
+        ));
     }
     t
+}
+
+/// The V-vertex of `v`, by the vertex plan of the net's sharp features when given.
+pub(crate) fn v_vertex_stencil_with(
+    mesh: &PolyMesh,
+    v: usize,
+    creases: Option<&sharp::NonBoxCreases<'_>>,
+    scratch: &mut Scratch,
+) -> Stencil {
+    let plain = v_vertex_stencil(mesh, v);
+    match creases {
+        Some(c) => c.v_vertex(v, &plain, scratch),
+        None => plain,
+    }
+}
+
+/// The E-vertex of `e`, by the edge plan of the net's sharp features when given.
+pub(crate) fn e_vertex_stencil_with(
+    mesh: &PolyMesh,
+    e: usize,
+    creases: Option<&sharp::NonBoxCreases<'_>>,
+    scratch: &mut Scratch,
+) -> Stencil {
+    let plain = e_vertex_stencil(mesh, e);
+    match creases {
+        Some(c) if c.edge(e) > 0.0 => c.e_vertex(e, &plain, scratch),
+        _ => plain,
+    }
 }
 
 /// Interior limit stencil of vertex `v` with the FCVs `fs` of its faces (Section 4).
@@ -291,11 +360,14 @@ impl NonBox {
     /// documentation).
     pub fn step(net: &FcvNet) -> Result<FcvStep> {
         let mesh = &net.mesh;
-        let st = step_stencils(mesh);
+        let creases = sharp::NonBoxCreases::of(mesh)?;
+        let st = step_stencils_with(mesh, creases.as_ref());
         let (fs, cn) = CatmullClark::child_topology(mesh);
         let pts = st.apply(&net.points());
+        let nv = mesh.num_vertices() as u32;
         let nc = mesh.num_vertices() + mesh.num_edges() + mesh.num_faces();
-        let child = PolyMesh::from_refinement(pts[..nc].to_vec(), fs, cn)?;
+        let child = PolyMesh::from_refinement(pts[..nc].to_vec(), fs, cn)?
+            .with_extras(creases.map(|c| c.child_extras(|v| v, |e| nv + e)));
         let net = FcvNet::new(child, pts[nc..].to_vec())?;
         Ok(FcvStep { net, stencils: st })
     }
@@ -324,7 +396,7 @@ impl NonBox {
         }
         if mesh.is_boundary_vertex(p) {
             let nb = mesh.vertex_neighbors(p);
-            if mesh.vertex_faces(p).len() == 1 {
+            if sharp::is_corner(mesh, p) {
                 return Stencil::point(p);
             }
             let (a, b) = (nb[0] as usize, nb[nb.len() - 1] as usize);

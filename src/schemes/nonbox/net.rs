@@ -74,7 +74,8 @@ impl FcvNet {
             mesh.face_starts().to_vec(),
             mesh.corners().to_vec(),
         )
-        .ok()?;
+        .ok()?
+        .with_extras(mesh.extras().cloned());
         Some(FcvNet {
             mesh: m,
             fcv: pos[nv..].to_vec(),
@@ -90,6 +91,7 @@ impl FcvNet {
             self.mesh.corners().to_vec(),
         )
         .expect("the faces of a valid net stay valid")
+        .with_extras(self.mesh.extras().cloned())
     }
 
     /// Number of points: vertices plus FCVs.

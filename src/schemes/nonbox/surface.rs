@@ -51,11 +51,11 @@
 //! ([`nonbox_4dir_fan_faces`]).
 
 use super::bezier::{CubicTriangle, cell_stencils, corner_fcvs, tri_index, triangle_to_tensor};
-use super::{FcvNet, NonBox, e_vertex_stencil, fcv_rule_stencil, nfcv_stencil, v_vertex_stencil};
-use crate::bezier::BezierPatch;
+use super::{FcvNet, NonBox, fcv_rule_stencil};
 use crate::bezier::complex::{Domain, PatchComplex, Provenance};
 use crate::bezier::convert::cubic_bspline_to_bezier;
 use crate::bezier::domain::FanTriangle;
+use crate::bezier::{BezierPatch, Side};
 use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
@@ -64,12 +64,17 @@ use crate::host::adaptive::{
     input_active, input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
+use crate::schemes::catmull_clark::crease::Scratch;
+use crate::schemes::catmull_clark::crease::adaptive::{CALM, is_last_cap_level_calm};
+use crate::schemes::nonbox::sharp::{NonBoxCreases, is_regular};
+use crate::schemes::nonbox::{e_vertex_stencil_with, nfcv_stencil_with, v_vertex_stencil_with};
 use crate::stencil::{Stencil, StencilTable};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
 mod g1;
+mod sharp;
 
 /// One level of the adaptive refinement: the net with its FCVs.
 pub struct Level {
@@ -77,6 +82,41 @@ pub struct Level {
     points: Vec<Point>,
     info: Vec<Info>,
     active: Vec<(u32, Tag)>,
+    /// Per vertex: within one face of a semi-sharp feature ([`sharp`]; `None`: none).
+    near_semi: Option<Vec<bool>>,
+    /// Levels since the last one with a semi-sharp feature.
+    calm: usize,
+}
+
+impl Level {
+    /// A level from its net; when it holds no semi-sharp value, the net cut along its
+    /// infinitely sharp creases ([`sharp`]).
+    fn new(
+        net: FcvNet,
+        points: Vec<Point>,
+        info: Vec<Info>,
+        active: Vec<(u32, Tag)>,
+        parent_calm: usize,
+    ) -> Result<Level> {
+        let mut ls = sharp::level_sharp(&net, parent_calm)?;
+        let (net, info, points) = match &ls.cut {
+            Some(cut) if ls.calm > 0 => {
+                let (cut_net, cut_info) = sharp::cut_net(&net, &info, cut)?;
+                ls = sharp::level_sharp(&cut_net, ls.calm - 1)?;
+                let points = cut_net.points();
+                (cut_net, cut_info, points)
+            }
+            _ => (net, info, points),
+        };
+        Ok(Level {
+            net,
+            points,
+            info,
+            active,
+            near_semi: ls.near_semi,
+            calm: ls.calm,
+        })
+    }
 }
 
 impl Cells for Level {
@@ -141,15 +181,16 @@ impl AdaptiveRules for NonBoxRules<'_> {
         for (f, tag) in &mut active {
             tag.domain = Domain::polygon(*f, m.face_size(*f as usize));
         }
-        Ok(Level {
-            points: self.net.points(),
-            net: self.net.clone(),
-            info,
-            active,
-        })
+        Level::new(self.net.clone(), self.net.points(), info, active, CALM)
     }
 
     fn emit(&self, level: &Level, f: u32, prov: Provenance, to: Sink<Curves<4>>) -> bool {
+        let m = &level.net.mesh;
+        if let Some(near) = &level.near_semi
+            && m.face(f as usize).iter().any(|&v| near[v as usize])
+        {
+            return false;
+        }
         let Some(tris) = trusted_cell(level, f as usize) else {
             return false;
         };
@@ -160,6 +201,7 @@ impl AdaptiveRules for NonBoxRules<'_> {
         for t in &tris {
             to.out.push(triangle_to_tensor(t), prov);
         }
+        mark_boundary_sides(m, f as usize, to.out);
         true
     }
 
@@ -172,13 +214,15 @@ impl AdaptiveRules for NonBoxRules<'_> {
     }
 
     /// Non-quad faces are always refined (their first ring is at level 1); with a fill, up to
-    /// [`g1::MAX_EXTRA_LEVELS`] more levels while holes touch.
+    /// [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels while holes touch.
+    /// The levels that spend semi-sharp features go on too ([`is_last_cap_level_calm`]).
     fn is_last(&self, l: usize, rings: usize, level: &Level, marked: &[(u32, Tag)]) -> bool {
-        l >= rings
-            && marked
-                .iter()
-                .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
-            && (!self.fill || l >= rings + g1::MAX_EXTRA_LEVELS || !g1::waiting(level, marked))
+        marked
+            .iter()
+            .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
+            && is_last_cap_level_calm((l, rings, self.fill), level.calm, || {
+                g1::waiting(level, marked)
+            })
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
@@ -240,23 +284,30 @@ pub fn nonbox_4dir_fan_faces(mesh: &PolyMesh) -> Result<Option<Vec<FanTriangle>>
     Ok(own.then(|| net.fan_triangles()))
 }
 
-/// Whether `v` is a regular vertex: interior of valence 4, or boundary with two faces or one
-/// (a corner), where ghost FCVs complete the net.
-fn is_regular(m: &PolyMesh, v: usize) -> bool {
-    // At most five half-edges are counted: O(1) at a vertex of high valence too (this is
-    // asked for every corner of every cell around it).
-    let n = m.outgoing(v).take(5).count();
-    if m.is_boundary_vertex(v) {
-        n <= 2
-    } else {
-        n == 4
+/// Marks the sides of the four triangles just pushed for cell `f` (the last four patches of
+/// `out`) that lie on the boundary of a net with sharp features (its extras): on a net cut
+/// along its creases they are crease sides or the surface's boundary;
+/// [`crate::schemes::doo_sabin::sharp::keep_crease_sides`] keeps the crease sides only.
+fn mark_boundary_sides(m: &PolyMesh, f: usize, out: &mut PatchComplex) {
+    if m.extras().is_none() {
+        return;
+    }
+    let first = out.len() - 4;
+    let h0 = m.face_halfedge(f);
+    for k in 0..4u32 {
+        if m.he_twin(h0 + k).is_none() {
+            out.mark_sharp(first + k as usize, Side::V0.index());
+        }
     }
 }
 
 /// The four cubic triangles of cell `f` if it is regular and all its data are trusted.
 fn trusted_cell(level: &Level, f: usize) -> Option<[CubicTriangle; 4]> {
     let m = &level.net.mesh;
-    if m.face(f).iter().any(|&v| !level.info[v as usize].fan_ok) {
+    if m.face(f)
+        .iter()
+        .any(|&v| !level.info[v as usize].fan_ok || !is_regular(m, v as usize))
+    {
         return None;
     }
     let st = cell_stencils(m, f)?;
@@ -308,6 +359,8 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     const UNSET: u32 = u32::MAX;
     let m = &level.net.mesh;
     let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    let creases = NonBoxCreases::of(m)?;
+    let mut scratch = Scratch::default();
     let (sel, sel_faces) = select_around(m, marked);
     let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();
     let info = &level.info;
@@ -336,7 +389,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             let v = m.he_from(h) as usize;
             if vid[v] == UNSET {
                 vid[v] = stencils.len() as u32;
-                let s = v_vertex_stencil(m, v);
+                let s = v_vertex_stencil_with(m, v, creases.as_ref(), &mut scratch);
                 child_info.push(Info {
                     pos_ok: info[v].fan_ok && sources_ok(&s),
                     fan_ok: whole_fan(v),
@@ -347,7 +400,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             let e = m.he_edge(h) as usize;
             if eid[e] == UNSET {
                 eid[e] = stencils.len() as u32;
-                let s = e_vertex_stencil(m, e);
+                let s = e_vertex_stencil_with(m, e, creases.as_ref(), &mut scratch);
                 let both = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
                 child_info.push(Info {
                     pos_ok: known(h) && sources_ok(&s),
@@ -376,7 +429,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             let e_in = m.he_edge(m.he_prev(h)) as usize;
             corners.extend_from_slice(&[vid[v], eid[e_out], fc, eid[e_in]]);
             face_start.push(corners.len() as u32);
-            let s = nfcv_stencil(m, h);
+            let s = nfcv_stencil_with(m, h, creases.as_ref().map(|c| (c, &mut scratch)));
             fcv_info.push(Info {
                 pos_ok: known(h) && known(m.he_prev(h)) && sources_ok(&s),
                 fan_ok: true,
@@ -389,7 +442,9 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let nc = stencils.len();
     let table = StencilTable::from_rows(nv + nf, stencils.into_iter().chain(fcv_stencils), 6);
     let points = table.apply(&level.points);
-    let mesh = PolyMesh::from_partial_refinement(points[..nc].to_vec(), face_start, corners)?;
+    let extras = creases.map(|c| c.child_extras(|v| vid[v as usize], |e| eid[e as usize]));
+    let mesh = PolyMesh::from_partial_refinement(points[..nc].to_vec(), face_start, corners)?
+        .with_extras(extras);
     let net = FcvNet {
         mesh,
         fcv: points[nc..].to_vec(),
@@ -407,12 +462,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             at += 1;
         }
     }
-    Ok(Level {
-        net,
-        points,
-        info: child_info,
-        active,
-    })
+    Level::new(net, points, child_info, active, level.calm)
 }
 
 /// The derivative of the limit surface at vertex `a` along its edge to `b` (unit edge
@@ -493,7 +543,7 @@ fn boundary_continuation(level: &Level, v: usize, w: usize) -> Point {
     let m = &level.net.mesh;
     let pos = &level.points;
     let nb = m.vertex_neighbors(v);
-    if m.vertex_faces(v).len() == 1 {
+    if crate::schemes::nonbox::sharp::is_corner(m, v) {
         return geom::sub(geom::scale(pos[v], 2.0), pos[w]);
     }
     let (first, last) = (nb[0] as usize, nb[nb.len() - 1] as usize);
@@ -555,5 +605,15 @@ fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<4>, out: &mut 
             },
             tag.domain,
         );
+        if m.extras().is_some() {
+            // sides on the boundary of a net with sharp features: crease sides or the boundary
+            let h0 = m.face_halfedge(f as usize);
+            let sides = [Side::V0, Side::U1, Side::V1, Side::U0];
+            for (k, side) in sides.into_iter().enumerate() {
+                if m.he_twin(h0 + k as u32).is_none() {
+                    out.mark_sharp(out.len() - 1, side.index());
+                }
+            }
+        }
     }
 }

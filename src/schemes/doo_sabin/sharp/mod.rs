@@ -115,39 +115,13 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
     };
     let ex = mesh.extras().cloned().unwrap_or_default();
     let sharp = sharp_edge_flags(&mesh, &ex, name)?;
-    let nh = mesh.num_halfedges();
     let nv = mesh.num_vertices();
 
-    // Sectors: union the two corners of every smooth interior edge at each of its ends.
-    let mut parent: Vec<u32> = (0..nh as u32).collect();
-    for e in 0..mesh.num_edges() {
-        let h = mesh.edge_halfedge(e);
-        let Some(t) = mesh.he_twin(h) else { continue };
-        if sharp[e] {
-            continue;
-        }
-        union(&mut parent, h, mesh.he_next(t));
-        union(&mut parent, t, mesh.he_next(h));
-    }
-    // A vertex per sector: the first sector of a vertex keeps its index.
-    let mut id = vec![NONE; nh];
-    let mut used = vec![false; nv];
-    let mut positions = mesh.positions().to_vec();
-    let mut origin: Vec<u32> = (0..nv as u32).collect();
-    for h in 0..nh as u32 {
-        let r = find(&mut parent, h) as usize;
-        if id[r] == NONE {
-            let v = mesh.he_from(h) as usize;
-            id[r] = if used[v] {
-                positions.push(positions[v]);
-                origin.push(v as u32);
-                (positions.len() - 1) as u32
-            } else {
-                used[v] = true;
-                v as u32
-            };
-        }
-    }
+    let Cut {
+        positions,
+        origin,
+        corners,
+    } = cut(&mesh, &sharp);
     // Interior sharp edges per vertex (a sharp boundary edge is a boundary already).
     let mut crease_valence = vec![0u32; nv];
     for e in (0..mesh.num_edges()).filter(|&e| sharp[e]) {
@@ -206,16 +180,7 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
             *k |= in_a_face(v) && mesh.is_boundary_vertex(v) && mesh.is_corner(v);
         }
     }
-    let mut face_start = Vec::with_capacity(mesh.num_faces() + 1);
-    face_start.push(0u32);
-    let mut corners = Vec::with_capacity(nh);
-    for f in 0..mesh.num_faces() {
-        let h0 = mesh.face_halfedge(f);
-        for h in h0..h0 + mesh.face_size(f) as u32 {
-            corners.push(id[find(&mut parent, h) as usize]);
-        }
-        face_start.push(corners.len() as u32);
-    }
+    let face_start = mesh.face_starts().to_vec();
     let kept: Vec<(u32, f32)> = (0..positions.len() as u32)
         .filter(|&v| keep[origin[v as usize] as usize])
         .map(|v| (v, INFINITE))
@@ -414,7 +379,7 @@ pub(crate) fn level_creases(mesh: &PolyMesh, parent_calm: usize) -> (Option<Leve
 /// a side is kept when its midpoint is a dyadic point (`t = k / 2^SPLIT`) of another marked
 /// side or another marked side's midpoint is one of its own: points agreeing to `1e-9` of the
 /// complex's size, found through a grid of cells of `1e-6` of its size.
-fn keep_crease_sides(c: &mut PatchComplex) {
+pub(crate) fn keep_crease_sides(c: &mut PatchComplex) {
     const SPLIT: u32 = 6;
     let marks = std::mem::take(&mut c.sharp_sides);
     if marks.is_empty() {
@@ -600,6 +565,122 @@ fn edge_sharpness(mesh: &PolyMesh, ex: &Extras) -> Result<Vec<f32>> {
         }
     }
     Ok(out)
+}
+
+/// A net cut along some of its edges: a vertex per sector between the cut edges.
+pub(crate) struct Cut {
+    /// Positions: the net's, then one copy per further sector of a vertex.
+    pub positions: Vec<Point>,
+    /// The net's vertex of each vertex of the cut net.
+    pub origin: Vec<u32>,
+    /// The face corners (the net's faces in order).
+    pub corners: Vec<u32>,
+}
+
+/// `mesh` cut along the edges inside the surface that `sharp` flags: the corners of a vertex
+/// are grouped into the sectors between its cut edges (faces that share an uncut edge at the
+/// vertex are in one sector), and each sector gets its own copy of the vertex (the first keeps
+/// the vertex's index, further copies are numbered after the net's vertices).
+pub(crate) fn cut(mesh: &PolyMesh, sharp: &[bool]) -> Cut {
+    let (nh, nv) = (mesh.num_halfedges(), mesh.num_vertices());
+    // Sectors: union the two corners of every smooth interior edge at each of its ends.
+    let mut parent: Vec<u32> = (0..nh as u32).collect();
+    for e in 0..mesh.num_edges() {
+        let h = mesh.edge_halfedge(e);
+        let Some(t) = mesh.he_twin(h) else { continue };
+        if sharp[e] {
+            continue;
+        }
+        union(&mut parent, h, mesh.he_next(t));
+        union(&mut parent, t, mesh.he_next(h));
+    }
+    // A vertex per sector: the first sector of a vertex keeps its index.
+    let mut id = vec![NONE; nh];
+    let mut used = vec![false; nv];
+    let mut positions = mesh.positions().to_vec();
+    let mut origin: Vec<u32> = (0..nv as u32).collect();
+    let mut corners = Vec::with_capacity(nh);
+    for h in 0..nh as u32 {
+        let r = find(&mut parent, h) as usize;
+        if id[r] == NONE {
+            let v = mesh.he_from(h) as usize;
+            id[r] = if used[v] {
+                positions.push(positions[v]);
+                origin.push(v as u32);
+                (positions.len() - 1) as u32
+            } else {
+                used[v] = true;
+                v as u32
+            };
+        }
+        // half-edges are numbered face after face, corner after corner
+        corners.push(id[r]);
+    }
+    Cut {
+        positions,
+        origin,
+        corners,
+    }
+}
+
+/// The level of the adaptive host cut along its creases once all of them are infinitely sharp
+/// (the last semi-sharp value spent): from there on its crease sides are boundaries, refined
+/// by the boundary rules and patched like boundaries, as the net cut along its creases at the
+/// start is ([`cut_along_creases`]). Returns the cut net, the net's vertex of each of its
+/// vertices, and the cut net's extras (its kept corners: the vertices OpenSubdiv's rules make
+/// corners, tagged infinitely sharp; the boundary mode edge-only).
+///
+/// # Errors
+/// [`Error::Unsupported`] for a dart of an infinitely sharp crease (a semi-sharp crease that
+/// carried it on has been spent) and those of building the cut net.
+pub(crate) fn cut_level(mesh: &PolyMesh, name: &str) -> Result<(PolyMesh, Vec<u32>)> {
+    let ex = mesh.extras().cloned().unwrap_or_default();
+    let values = edge_sharpness(mesh, &ex)?;
+    let sharp: Vec<bool> = (0..mesh.num_edges())
+        .map(|e| values[e] > 0.0 && mesh.he_twin(mesh.edge_halfedge(e)).is_some())
+        .collect();
+    let mut crease_valence = vec![0u32; mesh.num_vertices()];
+    for e in (0..mesh.num_edges()).filter(|&e| sharp[e]) {
+        let h = mesh.edge_halfedge(e);
+        crease_valence[mesh.he_from(h) as usize] += 1;
+        crease_valence[mesh.he_to(h) as usize] += 1;
+    }
+    let tagged = |v: usize| is_tagged_corner(mesh, v);
+    let keep: Vec<bool> = (0..mesh.num_vertices())
+        .map(|v| {
+            let c = crease_valence[v];
+            tagged(v) || (c > 0 && (c != 2 || mesh.is_boundary_vertex(v)))
+        })
+        .collect();
+    if let Some(v) =
+        (0..mesh.num_vertices()).find(|&v| crease_valence[v] == 1 && !mesh.is_boundary_vertex(v))
+    {
+        return Err(Error::Unsupported(format!(
+            "a semi-sharp crease carried an infinitely sharp one on at a point that becomes a \
+             dart (vertex {v} of a refined level); {name}'s patches cannot fade an infinitely \
+             sharp crease out: extend it to a boundary or another infinitely sharp crease"
+        )));
+    }
+    let Cut {
+        positions,
+        origin,
+        corners,
+    } = cut(mesh, &sharp);
+    let kept: Vec<(u32, f32)> = (0..positions.len() as u32)
+        .filter(|&v| keep[origin[v as usize] as usize])
+        .map(|v| (v, INFINITE))
+        .collect();
+    let out = PolyMesh::from_partial_refinement(positions, mesh.face_starts().to_vec(), corners)?;
+    let extras = Extras {
+        sharp_vertices: kept,
+        options: SubdOptions {
+            boundary: Some(BoundaryInterpolation::EdgeOnly),
+            ..SubdOptions::default()
+        },
+        sharpened: true,
+        ..Extras::default()
+    };
+    Ok((out.with_extras(Some(extras)), origin))
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {

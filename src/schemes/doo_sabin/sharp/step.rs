@@ -101,11 +101,6 @@ impl<'a> Creases<'a> {
         }))
     }
 
-    /// The sharpness of edge `e` (boundary edges are infinitely sharp).
-    pub fn sharpness(&self, e: usize) -> f32 {
-        self.sl.edges[e]
-    }
-
     /// Whether edge `e` is sharp at this level: it gets the Chaikin points of its sides.
     pub fn is_sharp(&self, e: usize) -> bool {
         self.sl.edges[e] > 0.0
@@ -130,11 +125,6 @@ impl<'a> Creases<'a> {
             .face(f)
             .iter()
             .any(|&v| self.on_crease[v as usize])
-    }
-
-    /// Whether vertex `v` has a crease.
-    pub fn on_crease(&self, v: usize) -> bool {
-        self.on_crease[v]
     }
 
     /// The plan of the point vertex `v` keeps this step, when its rule is OpenSubdiv's corner

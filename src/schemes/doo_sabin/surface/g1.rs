@@ -35,7 +35,7 @@
 //!   bi-4 for odd `n`, bi-5 for even `n`.
 //!
 //! Elements that are not of this form after the requested rings (holes that still touch, as
-//! the V-faces of the cube after one level) get up to [`MAX_EXTRA_LEVELS`] more levels; those
+//! the V-faces of the cube after one level) get up to [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; those
 //! that never are (an `n`-gon at the boundary, corners next to two `n`-gons, `--rings 0`) keep
 //! the centroid fill of the parent module (C^0 across the spokes).
 
@@ -46,14 +46,11 @@ use crate::bezier::g1::Hole;
 use crate::bezier::g1::ring::segment_from_inside;
 use crate::bezier::{BezierPatch, Side};
 use crate::geom::{Point, axpy};
-use crate::host::adaptive::{MAX_EXTRA_CAP_LEVELS, NoCap, Tag, caps_waiting, g1_cap_elements};
+use crate::host::adaptive::{NoCap, Tag, caps_waiting, g1_cap_elements};
 use crate::mesh::Element;
 use crate::schemes::catmull_clark::crease::adaptive::CALM;
 use crate::schemes::doo_sabin::surface::DualRules;
 use std::collections::{HashMap, HashSet};
-
-/// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// `p` turned (orientation kept) so that its corner `r` (counter-clockwise from `(0, 0)`:
 /// `(0, 0), (1, 0), (1, 1), (0, 1)`) becomes `(0, 0)`: `r` times `Q(u, v) = P(1 - v, u)`.

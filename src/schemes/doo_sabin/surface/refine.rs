@@ -101,13 +101,44 @@ pub(super) fn refine_around(
         }
     }
     let rule_free = level.rule_free.as_ref().map(|_| out.rule_free);
-    Ok(Level::new(
+    let child = Level::new(
         child,
         info,
         out.face_origin,
         active,
         rule_free,
         level.calm,
+        false,
+    );
+    if child.calm > 0 && child.creased.is_some() {
+        // every semi-sharp value is spent and infinitely sharp creases are left: from here on
+        // they are boundaries of the net cut along them, as for a net without semi-sharp ones
+        return cut_child(child, name);
+    }
+    Ok(child)
+}
+
+/// `level` cut along its (infinitely sharp) creases ([`crate::schemes::doo_sabin::sharp::cut_level`]):
+/// each vertex's copies keep its trust and its tag.
+fn cut_child(level: Level, name: &str) -> Result<Level> {
+    let (mesh, origin) = crate::schemes::doo_sabin::sharp::cut_level(&level.mesh, name)?;
+    let info = origin.iter().map(|&o| level.info[o as usize]).collect();
+    let mut copies: Vec<Vec<u32>> = vec![Vec::new(); level.mesh.num_vertices()];
+    for (c, &o) in origin.iter().enumerate() {
+        copies[o as usize].push(c as u32);
+    }
+    let active = level
+        .active
+        .iter()
+        .flat_map(|&(v, tag)| copies[v as usize].iter().map(move |&c| (c, tag)))
+        .collect();
+    Ok(Level::new(
+        mesh,
+        info,
+        level.face_origin,
+        active,
+        None,
+        level.calm - 1,
         false,
     ))
 }

@@ -40,7 +40,7 @@
 //! scheme's own local matrix ([`crate::schemes::nonbox::boundary`]).
 //!
 //! Holes that touch another element's after the requested rings get up to
-//! [`MAX_EXTRA_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
+//! [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
 //! whose two rings are not regular quads, still touching after that) keep the C^0 Coons fill of
 //! [`super`].
 
@@ -49,8 +49,8 @@ use crate::bezier::complex::PatchComplex;
 use crate::bezier::g1::{Hole, Segment};
 use crate::geom::{Point, axpy, scale};
 use crate::host::adaptive::{
-    MAX_EXTRA_CAP_LEVELS, NoCap, QuadSector, Tag, caps_waiting, fan_centre_from, g1_cap_elements,
-    quad_hole_segments, quad_sectors_around, quad_sectors_open,
+    NoCap, QuadSector, Tag, caps_waiting, fan_centre_from, g1_cap_elements, quad_hole_segments,
+    quad_sectors_around, quad_sectors_open,
 };
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
@@ -58,9 +58,6 @@ use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use crate::schemes::nonbox::boundary::open_fan_tangents;
 use crate::stencil::Stencil;
 use std::collections::HashMap;
-
-/// Levels computed beyond the requested rings, at most, so that touching holes separate.
-pub const MAX_EXTRA_LEVELS: usize = MAX_EXTRA_CAP_LEVELS;
 
 /// The inverse of the cubic Bernstein collocation matrix at `0, 1/3, 2/3, 1`.
 const COLLOCATION3: [[f64; 4]; 4] = [
@@ -124,6 +121,10 @@ fn hole_of(
     let (f0, _) = cells[0];
     let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (3, 2))?;
     let xu = x as usize;
+    if open && crate::schemes::nonbox::sharp::is_corner(m, xu) {
+        // a kept corner of a net cut along its creases: the fill closes it
+        return Err(NoCap::Never);
+    }
     if cells.len() != n {
         return Err(NoCap::Never);
     }
