@@ -161,16 +161,25 @@ fn what_a_cut_cannot_take_is_refused_by_name() {
         f(&mut ex);
         base.clone().with_extras(Some(ex))
     };
-    // A semi-sharp edge: the dual hosts refine it until spent (fairsub's crease
-    // construction); a scheme whose patches do not take it yet names it.
-    let semi = with(&|ex| {
+    // A semi-sharp crease loop: the dual hosts refine it until spent (fairsub's crease
+    // construction); a scheme whose patches do not take it yet names it; one semi-sharp edge
+    // in an infinitely sharp loop leaves two infinitely sharp darts, refused.
+    let equator = creased_cube_with(false);
+    let mut ex = equator.extras().cloned().unwrap();
+    if let SharpEdges::ById(v) = &mut ex.sharp_edges {
+        v.iter_mut().for_each(|p| p.1 = 2.5);
+    }
+    let semi = equator.with_extras(Some(ex));
+    assert!(build("doo-sabin", &semi).is_ok());
+    let e = build("bi2-mixed", &semi).unwrap_err().to_string();
+    assert!(e.contains("semi-sharp crease value 2.5"), "{e}");
+    let one = with(&|ex| {
         if let SharpEdges::ById(v) = &mut ex.sharp_edges {
             v[0].1 = 2.5;
         }
     });
-    assert!(build("doo-sabin", &semi).is_ok());
-    let e = build("bi2-mixed", &semi).unwrap_err().to_string();
-    assert!(e.contains("semi-sharp crease value 2.5"), "{e}");
+    let e = build("doo-sabin", &one).unwrap_err().to_string();
+    assert!(e.contains("is a dart of an infinitely sharp crease"), "{e}");
     // A dart: only the first edge of the list sharp.
     let dart = with(&|ex| {
         if let SharpEdges::ById(v) = &mut ex.sharp_edges {

@@ -194,7 +194,7 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
     if !ex.options.is_empty()
         && !takes_features(spec)
         && (!boundary_only || !takes(spec, ParamKind::BoundaryMode))
-        && !(creases_only && takes_creases(spec))
+        && (!creases_only || !takes_creases(spec))
     {
         eprintln!(
             "warning: {arg}: OpenSubdiv option tags (interpolateboundary, creasemethod, ...) are \

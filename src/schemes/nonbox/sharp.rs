@@ -1,5 +1,5 @@
 //! OpenSubdiv's sharp features (creases, corners, their semi-sharp decay) under non-box
-//! subdivision: fairsub's construction, documented in `docs/guide/src/sharp-features-bi2-nonbox.md`.
+//! subdivision: fairsub's construction, documented in `docs/guide/src/creases.md`.
 //!
 //! Non-box refinement has the topology of Catmull-Clark's ([`crate::schemes::nonbox`]), and its
 //! boundary rules are the cubic B-spline rules of the boundary polygon (`(a + 6 v + b) / 8`,

@@ -84,6 +84,8 @@ pub struct Level {
     active: Vec<(u32, Tag)>,
     /// Per vertex: within one face of a semi-sharp feature ([`sharp`]; `None`: none).
     near_semi: Option<Vec<bool>>,
+    /// Per edge: an infinitely sharp crease left inside the surface ([`sharp`]).
+    uncut: Option<Vec<bool>>,
     /// Levels since the last one with a semi-sharp feature.
     calm: usize,
 }
@@ -114,6 +116,7 @@ impl Level {
             info,
             active,
             near_semi: ls.near_semi,
+            uncut: ls.uncut,
             calm: ls.calm,
         })
     }
@@ -606,11 +609,17 @@ fn fill(level: &Level, marked: &[(u32, Tag)], curves: &mut Curves<4>, out: &mut 
             tag.domain,
         );
         if m.extras().is_some() {
-            // sides on the boundary of a net with sharp features: crease sides or the boundary
+            // sides on the boundary of a net with sharp features (crease sides or the
+            // boundary) and on a crease left inside the surface
             let h0 = m.face_halfedge(f as usize);
             let sides = [Side::V0, Side::U1, Side::V1, Side::U0];
             for (k, side) in sides.into_iter().enumerate() {
-                if m.he_twin(h0 + k as u32).is_none() {
+                let h = h0 + k as u32;
+                let crease = level
+                    .uncut
+                    .as_ref()
+                    .is_some_and(|u| u[m.he_edge(h) as usize]);
+                if m.he_twin(h).is_none() || crease {
                     out.mark_sharp(out.len() - 1, side.index());
                 }
             }

@@ -320,7 +320,7 @@ fn semi_sharp_net(
     notes.push(format!(
         "semi-sharp features: fairsub's crease construction for {name} (the creases' sharp \
          rules, the Chaikin points of both sides, for as many levels as their sharpness, \
-         OpenSubdiv's fractional blend on the last; see docs/guide sharp-features-bi2-nonbox); \
+         OpenSubdiv's fractional blend on the last; see docs/guide/src/creases.md); \
          the patches are refined until every finite sharpness is spent"
     ));
     Ok(Some((net, notes)))
@@ -534,8 +534,13 @@ fn sharp_edge_flags(mesh: &PolyMesh, ex: &Extras, name: &str) -> Result<Vec<bool
             let (a, b) = (mesh.he_from(h), mesh.he_to(h));
             return Err(Error::Unsupported(format!(
                 "the edge {a}-{b} has the semi-sharp crease value {s}; {name}'s patches take \
-                 infinitely sharp creases only (sharpness 10 or more); refine with \
-                 Catmull-Clark or Loop for semi-sharp creases"
+                 infinitely sharp creases only (sharpness 10 or more); for semi-sharp \
+                 creases use {}, {}, {} or {} (fairsub's crease construction), or \
+                 Catmull-Clark or Loop",
+                crate::schemes::registry::ids::DOO_SABIN,
+                crate::schemes::registry::ids::DOO_SABIN_CC,
+                crate::schemes::registry::ids::PGS,
+                crate::schemes::registry::ids::NONBOX
             )));
         }
         sharp[e] = s > 0.0;

@@ -1,5 +1,5 @@
 //! The crease rules of one dual step (fairsub's construction, documented in the parent module
-//! and in `docs/guide/src/sharp-features-bi2-nonbox.md`): which child points a level's sharp
+//! and in `docs/guide/src/creases.md`): which child points a level's sharp
 //! features add, how those points blend while a semi-sharp feature decays, how a vertex's
 //! V-face splits into the sectors between its sharp edges, and the sharpness of the child's
 //! edges and vertices.

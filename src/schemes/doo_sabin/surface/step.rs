@@ -456,12 +456,12 @@ fn faces(
             None if pts[0] != UNSET => quads.push(half(h, o)),
             _ => continue,
         }
-        if let Some(c) = creases {
-            if pts[0] != UNSET {
-                let s = c.middle(e, &mut scratch);
-                if s > 0.0 {
-                    sharp_edges.push((pts, s));
-                }
+        if let Some(c) = creases
+            && pts[0] != UNSET
+        {
+            let s = c.middle(e, &mut scratch);
+            if s > 0.0 {
+                sharp_edges.push((pts, s));
             }
         }
         for q in quads {
@@ -559,10 +559,10 @@ fn sector_face(m: &PolyMesh, v: usize, hs: &[u32], s: &Sector, o: &StepOut) -> V
         poly.push(near(m, o, e, v));
     }
     poly.extend(s.faces.iter().map(|&i| o.corner_pt[hs[i] as usize]));
-    if let Some(e) = s.close {
-        if s.open != Some(e) {
-            poly.push(near(m, o, e, v));
-        }
+    if let Some(e) = s.close
+        && s.open != Some(e)
+    {
+        poly.push(near(m, o, e, v));
     }
     if o.kept[v] != UNSET {
         poly.push(o.kept[v]);

@@ -37,6 +37,9 @@ pub(super) struct LevelSharp {
     /// Per edge: an infinitely sharp crease inside the surface, to cut along once the level
     /// holds no semi-sharp value (`None`: none).
     pub cut: Option<Vec<bool>>,
+    /// Per edge: an infinitely sharp crease inside the surface that is not cut (a chain ending
+    /// at a dart): the fill's sides along it are sharp joins (`None`: none).
+    pub uncut: Option<Vec<bool>>,
 }
 
 /// The sharp features of a level of `net` after a parent level with `parent_calm`.
@@ -50,6 +53,7 @@ pub(super) fn level_sharp(net: &FcvNet, parent_calm: usize) -> Result<LevelSharp
             near_semi: None,
             calm: calm_after(parent_calm, &[], &[]),
             cut: None,
+            uncut: None,
         });
     };
     let nv = m.num_vertices();
@@ -75,6 +79,9 @@ pub(super) fn level_sharp(net: &FcvNet, parent_calm: usize) -> Result<LevelSharp
             *flag |= s < INFINITE;
         }
     }
+    let infinite = cut.clone();
+    prune_darts(m, &mut cut);
+    let uncut: Vec<bool> = infinite.iter().zip(&cut).map(|(&i, &c)| i && !c).collect();
     let calm = calm_after(parent_calm, &values, &[]);
     let near_semi = semi.contains(&true).then(|| {
         let mut out = semi.clone();
@@ -91,7 +98,38 @@ pub(super) fn level_sharp(net: &FcvNet, parent_calm: usize) -> Result<LevelSharp
         near_semi,
         calm,
         cut: cut.contains(&true).then_some(cut),
+        uncut: uncut.contains(&true).then_some(uncut),
     })
+}
+
+/// Leaves out of the cut the chains of infinitely sharp creases that end at a dart (an interior
+/// vertex with one of them): cut there, the net would get a slit whose end the boundary rules
+/// do not refine as OpenSubdiv's dart rule does. Those creases stay inside the surface, their
+/// cells wait, and the host's fill closes them (C^0).
+fn prune_darts(m: &PolyMesh, cut: &mut [bool]) {
+    let mut valence = vec![0u32; m.num_vertices()];
+    for e in (0..cut.len()).filter(|&e| cut[e]) {
+        let h = m.edge_halfedge(e);
+        valence[m.he_from(h) as usize] += 1;
+        valence[m.he_to(h) as usize] += 1;
+    }
+    let mut stack: Vec<usize> = (0..valence.len())
+        .filter(|&v| valence[v] == 1 && !m.is_boundary_vertex(v))
+        .collect();
+    while let Some(v) = stack.pop() {
+        for h in m.outgoing_halfedges(v) {
+            let e = m.he_edge(h) as usize;
+            if cut[e] {
+                cut[e] = false;
+                valence[v] -= 1;
+                let w = m.he_to(h) as usize;
+                valence[w] -= 1;
+                if valence[w] == 1 && !m.is_boundary_vertex(w) {
+                    stack.push(w);
+                }
+            }
+        }
+    }
 }
 
 /// `net` cut along the edges `cut` flags, with the trust of its points (`info`: vertices, then

@@ -1,0 +1,407 @@
+//! Creases and corners under the dual bi-2 schemes (Doo-Sabin, DS^CC, PGS, PGS after DS^CC
+//! steps) and non-box: fairsub's crease constructions (`schemes::doo_sabin::sharp`,
+//! `schemes::nonbox::sharp`, `docs/guide/src/creases.md`) on the team's
+//! tagged nets and on nets built here. Closed creased nets give closed surfaces, every smooth
+//! join is G^1, the patches are the limit of `--levels`, evaluation and patch tables work
+//! through the construction, sharpness 10 is the infinitely sharp crease, and the distance to
+//! it halves with every unit of sharpness.
+
+#[path = "sharp/support.rs"]
+mod support;
+use support::{osd, table_reapplies};
+
+use fairsub::analysis::continuity;
+use fairsub::bezier::complex::PatchComplex;
+use fairsub::geom::{Point, dist};
+use fairsub::host::ComplexOptions;
+use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
+use fairsub::schemes::registry::registry;
+use fairsub::surface::eval::Surface;
+
+/// The schemes with creases of their own.
+const SCHEMES: &[&str] = &[
+    "doo-sabin",
+    "doo-sabin-cc",
+    "pgs",
+    "pgs-dscc",
+    "nonbox",
+    "nonbox-4dir",
+];
+
+fn complex(scheme: &str, mesh: &PolyMesh, rings: usize) -> PatchComplex {
+    let spec = registry().lookup(scheme).expect("scheme");
+    let opts = ComplexOptions { rings, fill: true };
+    fairsub::surface::build(&spec, mesh, opts, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{scheme}: {e}"))
+        .complex
+}
+
+/// The gallery cube refined twice by Catmull-Clark (96 quads, eight valence-3 vertices), with
+/// the crease loop `z = 0` of sharpness `equator` (none for 0) and, when `top` is positive,
+/// the loop of the four edges around the centre of the face `z = 1` with that sharpness.
+fn cube(equator: f32, top: f32) -> PolyMesh {
+    let cube = fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == "cube")
+        .expect("gallery cube")
+        .1;
+    let cc = fairsub::schemes::by_name("catmull-clark").expect("catmull-clark");
+    let m = fairsub::schemes::refine_levels(cc.as_ref(), &cube, 2, |_| {}).expect("refine");
+    let p = m.positions();
+    let zmax = p.iter().map(|x| x[2]).fold(f64::MIN, f64::max);
+    let centre = (0..m.num_vertices())
+        .find(|&v| (p[v][2] - zmax).abs() < 1e-12 && p[v][0].abs() < 1e-12 && p[v][1].abs() < 1e-12)
+        .expect("the top face's centre");
+    let around: Vec<u32> = m
+        .outgoing_halfedges(centre)
+        .iter()
+        .map(|&h| m.he_to(h))
+        .collect();
+    let mut sharp = Vec::new();
+    for e in 0..m.num_edges() {
+        let h = m.edge_halfedge(e);
+        let (a, b) = (m.he_from(h), m.he_to(h));
+        let on_equator = p[a as usize][2].abs() < 1e-12 && p[b as usize][2].abs() < 1e-12;
+        let on_top = around.contains(&a) && around.contains(&b);
+        if on_equator && equator > 0.0 {
+            sharp.push((e as u32, equator));
+        } else if on_top && top > 0.0 {
+            sharp.push((e as u32, top));
+        }
+    }
+    m.with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Extras::default()
+    }))
+}
+
+#[test]
+fn closed_creased_nets_give_closed_g1_surfaces() {
+    let nets = [
+        ("cc_pole7_crease", osd("cc_pole7_crease")),
+        ("cc_chain_chaikin", osd("cc_chain_chaikin")),
+        ("cube 2.5 / 0.7", cube(2.5, 0.7)),
+        ("cube 10 / 1.5", cube(10.0, 1.5)),
+    ];
+    for scheme in SCHEMES {
+        for (name, net) in &nets {
+            let c = complex(scheme, net, 2);
+            let r = continuity::check(&c);
+            eprintln!(
+                "{scheme} {name}: {} patches, open {}, C0 {:.1e}, G1 {:.1e}, sharp {} (C0 {:.1e})",
+                c.len(),
+                r.open_sides,
+                r.all.c0,
+                r.all.g1,
+                r.sharp.pieces,
+                r.sharp.c0
+            );
+            assert_eq!(r.open_sides, 0, "{scheme} {name}: cracks");
+            assert!(r.all.c0 < 1e-12 && r.sharp.c0 < 1e-12, "{scheme} {name}");
+            assert!(r.all.g1 < 1e-8, "{scheme} {name}: G1 {:e}", r.all.g1);
+            // the infinitely sharp equator is reported as a sharp join, nothing else is
+            assert_eq!(r.sharp.pieces > 0, name.contains("10"), "{scheme} {name}");
+        }
+    }
+}
+
+/// The limit points of the faces of `mesh` refined `levels` times by the dual scheme `scheme`:
+/// its corner rules keep every face's centroid, which is the limit point of the face.
+fn dual_face_limits(scheme: &str, mesh: &PolyMesh, levels: usize) -> Vec<Point> {
+    let s = fairsub::schemes::by_name(scheme).expect("scheme");
+    let m = fairsub::schemes::refine_levels(s.as_ref(), mesh, levels, |_| {}).expect("refine");
+    let mut pts: Vec<Point> = (0..m.num_faces()).map(|f| m.face_centroid(f)).collect();
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    pts
+}
+
+#[test]
+fn dual_patches_are_the_limit_of_the_refined_nets() {
+    // every corner of a patch of the adaptive host is the limit point of a face, kept by every
+    // later level: it is a face centroid of the net refined uniformly (--levels) as deep
+    for scheme in ["doo-sabin", "doo-sabin-cc"] {
+        for (name, net) in [
+            ("cube 2.5 / 0.7", cube(2.5, 0.7)),
+            ("cc_chain_chaikin", osd("cc_chain_chaikin")),
+        ] {
+            let c = complex(scheme, &net, 1);
+            let deepest = c
+                .provenance
+                .iter()
+                .filter_map(support::level_of)
+                .max()
+                .unwrap_or(0);
+            let pts = dual_face_limits(scheme, &net, deepest);
+            let mut worst: f64 = 0.0;
+            let mut checked = 0;
+            for (p, prov) in c.patches.iter().zip(&c.provenance) {
+                if support::level_of(prov) != Some(deepest) {
+                    continue;
+                }
+                for (u, v) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+                    worst = worst.max(support::nearest(&pts, p.eval(u, v)));
+                    checked += 1;
+                }
+            }
+            eprintln!("{scheme} {name}: level {deepest}, {checked} corners, worst {worst:.1e}");
+            assert!(checked > 0 && worst < 1e-12, "{scheme} {name}: {worst:e}");
+        }
+    }
+}
+
+#[test]
+fn levels_keep_closed_creased_nets_closed() {
+    for scheme in SCHEMES {
+        let s = fairsub::schemes::by_name(scheme).expect("scheme");
+        for name in ["cc_pole7_crease", "cc_chain_chaikin"] {
+            let net = osd(name);
+            let m = fairsub::schemes::refine_levels(s.as_ref(), &net, 3, |_| {}).expect(name);
+            assert!(m.boundary_loops().is_empty(), "{scheme} {name}: a boundary");
+        }
+    }
+}
+
+/// The points of the faces of the cube's lower half (every corner at `z <= 0`: the faces along
+/// the equator and those below, away from the top loop), on a grid of each.
+fn lower_points(mesh: &PolyMesh) -> Vec<(u32, f64, f64)> {
+    let p = mesh.positions();
+    let mut out = Vec::new();
+    for f in 0..mesh.num_faces() {
+        if mesh.face(f).iter().all(|&v| p[v as usize][2] < 1e-12) {
+            for i in 0..=4 {
+                for j in 0..=4 {
+                    out.push((f as u32, f64::from(i) / 4.0, f64::from(j) / 4.0));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn evaluate(scheme: &str, mesh: &PolyMesh, pts: &[(u32, f64, f64)]) -> Vec<Point> {
+    let spec = registry().lookup(scheme).expect("scheme");
+    let s = Surface::build(
+        &spec,
+        mesh,
+        ComplexOptions {
+            rings: 2,
+            fill: true,
+        },
+    )
+    .expect("surface");
+    pts.iter()
+        .map(|&(f, u, v)| s.evaluate(f, u, v).expect("a face point").point)
+        .collect()
+}
+
+fn largest(a: &[Point], b: &[Point]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| dist(*x, *y))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn sharpness_ten_is_the_infinitely_sharp_crease() {
+    let reference = cube(10.0, 0.0);
+    let pts = lower_points(&reference);
+    assert!(pts.len() > 500);
+    for scheme in ["doo-sabin", "pgs", "nonbox"] {
+        // the net cut along the crease from the start (no semi-sharp feature)
+        let cut = evaluate(scheme, &reference, &pts);
+        // the same crease refined by the semi-sharp construction (the top loop is semi-sharp):
+        // its sharp rules until the top loop is spent, then the cut
+        let infinite = evaluate(scheme, &cube(10.0, 0.5), &pts);
+        let same = largest(&cut, &infinite);
+        // a finite sharpness gives another surface near the crease (non-box: its faces reach
+        // the crease; the dual schemes' faces end a strip short of it, see the guide)
+        let finite = largest(&evaluate(scheme, &cube(2.0, 0.5), &pts), &infinite);
+        eprintln!(
+            "{scheme}: sharpness 10 against the cut net {same:.1e}, sharpness 2 {finite:.1e}"
+        );
+        assert!(same < 1e-9, "{scheme}: {same:e}");
+        if scheme == "nonbox" {
+            assert!(finite > 1e-3, "{scheme}: {finite:e}");
+        }
+    }
+}
+
+/// The points of `mesh` refined `levels` times by `scheme` (`--levels`).
+fn refined(scheme: &str, mesh: &PolyMesh, levels: usize) -> Vec<Point> {
+    let s = fairsub::schemes::by_name(scheme).expect("scheme");
+    let m = fairsub::schemes::refine_levels(s.as_ref(), mesh, levels, |_| {}).expect("refine");
+    m.positions().to_vec()
+}
+
+fn largest_pointwise(a: &[Point], b: &[Point]) -> f64 {
+    assert_eq!(a.len(), b.len(), "the same child layout");
+    largest(a, b)
+}
+
+#[test]
+fn sharpness_at_least_the_levels_is_the_infinitely_sharp_crease() {
+    // --levels 3: a crease of sharpness 3 or more is sharp on every step, so the refined net
+    // is point for point the one of the infinitely sharp crease; below 3 it is not
+    for scheme in SCHEMES {
+        let infinite = refined(scheme, &cube(10.0, 0.0), 3);
+        for s in [3.0f32, 3.5, 6.0, 9.9] {
+            let d = largest_pointwise(&refined(scheme, &cube(s, 0.0), 3), &infinite);
+            assert!(d < 1e-12, "{scheme} sharpness {s}: {d:e}");
+        }
+        let below = refined(scheme, &cube(2.5, 0.0), 3);
+        let d = largest_pointwise(&below, &infinite);
+        eprintln!("{scheme}: sharpness 2.5 against infinite after 3 levels {d:.3e}");
+        assert!(d > 1e-4, "{scheme}: {d:e}");
+    }
+}
+
+#[test]
+fn the_last_step_blends_linearly_in_the_fractional_sharpness() {
+    // sharpness 1 + t: sharp on the first step, OpenSubdiv's blend with weight t on the second;
+    // every point of the second level is linear in t (the child layout is the same for t > 0)
+    for scheme in SCHEMES {
+        let at = |t: f32| refined(scheme, &cube(1.0 + t, 0.0), 2);
+        let (p25, p50, p75, p100) = (at(0.25), at(0.5), at(0.75), at(1.0));
+        let mut worst: f64 = 0.0;
+        for i in 0..p50.len() {
+            for k in 0..3 {
+                worst = worst.max((p50[i][k] - 0.5 * (p25[i][k] + p75[i][k])).abs());
+                worst = worst.max((p100[i][k] - (2.0 * p75[i][k] - p50[i][k])).abs());
+            }
+        }
+        let moved = largest_pointwise(&p25, &p100);
+        eprintln!("{scheme}: linear to {worst:.1e}, t = 1/4 to 1 moves {moved:.3e}");
+        assert!(worst < 1e-12, "{scheme}: {worst:e}");
+        assert!(moved > 1e-3, "{scheme}: {moved:e}");
+    }
+}
+
+#[test]
+fn the_chaikin_points_of_a_fractional_crease_have_the_blend_s_values() {
+    // one Doo-Sabin step of the cube with its equator at sharpness w < 1: the two points of a
+    // crease edge (a, b) are w (3/4 a + 1/4 b) + (1 - w) (c1 + c2) / 2, where c1, c2 are the
+    // corner points at a of the two faces of the edge (the smooth E-face's side there), laid
+    // out after the corner points (child point h: the corner of half-edge h), two per sharp
+    // edge in edge order
+    let s = fairsub::schemes::by_name("doo-sabin").expect("scheme");
+    for w in [0.25f32, 0.6, 1.0] {
+        let net = cube(w, 0.0);
+        let child = fairsub::schemes::refine_levels(s.as_ref(), &net, 1, |_| {}).expect("refine");
+        let (p, q) = (net.positions(), child.positions());
+        let w = f64::from(w);
+        let mut k = net.num_halfedges();
+        let mut worst: f64 = 0.0;
+        let mut sharp: Vec<usize> = match &net.extras().expect("tags").sharp_edges {
+            SharpEdges::ById(v) => v.iter().map(|x| x.0 as usize).collect(),
+            SharpEdges::ByPair(_) => unreachable!("the cube tags edges by id"),
+        };
+        sharp.sort_unstable();
+        for e in sharp {
+            let h = net.edge_halfedge(e);
+            let t = net.he_twin(h).expect("a closed net");
+            let (a, b) = (net.he_from(h) as usize, net.he_to(h) as usize);
+            let corners = [
+                (h as usize, net.he_next(t) as usize),
+                (net.he_next(h) as usize, t as usize),
+            ];
+            for ((c1, c2), (x, y)) in [(corners[0], (a, b)), (corners[1], (b, a))] {
+                let along =
+                    |u: Point, v: Point, t: f64| [0, 1, 2].map(|i| u[i] + t * (v[i] - u[i]));
+                let chaikin = along(p[x], p[y], 0.25);
+                let mid = along(q[c1], q[c2], 0.5);
+                let expect = along(mid, chaikin, w);
+                worst = worst.max(dist(q[k], expect));
+                k += 1;
+            }
+        }
+        assert!(worst < 1e-14, "w {w}: {worst:e}");
+    }
+}
+
+#[test]
+fn evaluation_and_patch_tables_work_through_creases() {
+    let net = osd("cc_pole7_crease");
+    for scheme in ["doo-sabin", "pgs", "nonbox"] {
+        let spec = registry().lookup(scheme).expect("scheme");
+        let s = Surface::build(
+            &spec,
+            &net,
+            ComplexOptions {
+                rings: 2,
+                fill: true,
+            },
+        )
+        .expect("surface");
+        // every face point lies on the patch evaluation names
+        let mut worst: f64 = 0.0;
+        for f in 0..net.num_faces() as u32 {
+            let n = net.face_size(f as usize);
+            let width = if n == 4 { 1.0 } else { n as f64 };
+            for i in 0..=6 {
+                for j in 0..=6 {
+                    let (u, v) = (width * f64::from(i) / 6.0, f64::from(j) / 6.0);
+                    let e = s.evaluate(f, u, v).expect("a face point");
+                    let p = s.complex().patches[e.patch].eval(e.patch_uv[0], e.patch_uv[1]);
+                    worst = worst.max(dist(p, e.point));
+                }
+            }
+        }
+        assert!(worst < 1e-12, "{scheme}: {worst:e}");
+        table_reapplies(scheme, "cc_pole7_crease", &net, |_| true);
+    }
+}
+
+#[test]
+fn what_the_constructions_do_not_take_is_refused_by_name() {
+    let spec = |s: &str| registry().lookup(s).expect("scheme");
+    let opts = ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    // infinitely sharp darts: the dual patches cannot fade the crease out
+    let e = fairsub::surface::build(&spec("doo-sabin"), &osd("cc_torus_dart"), opts, &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("vertex 0 is a dart of an infinitely sharp crease"),
+        "{e}"
+    );
+    // the bi-2 schemes with element rings take infinitely sharp creases only
+    let e = fairsub::surface::build(&spec("tps"), &cube(2.5, 0.0), opts, &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("semi-sharp crease value 2.5"), "{e}");
+    // a corner tag inside the surface
+    let mut net = cube(2.5, 0.0);
+    let mut ex = net.extras().cloned().unwrap();
+    ex.sharp_vertices = vec![(0, 3.0)];
+    net = net.with_extras(Some(ex));
+    let e = fairsub::surface::build(&spec("pgs"), &net, opts, &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("vertex 0 is tagged as a corner"), "{e}");
+}
+
+#[test]
+fn nonbox_keeps_creases_ending_at_darts_inside_the_surface_closed() {
+    // cc_cube_infsharp: infinitely sharp edges 0-1 and 0-2 end at darts (vertices 1 and 2),
+    // which the dual schemes refuse; non-box leaves that chain uncut (its sides are sharp
+    // joins of the fill) and cuts the rest
+    let net = osd("cc_cube_infsharp");
+    for scheme in ["nonbox", "nonbox-4dir"] {
+        let c = complex(scheme, &net, 2);
+        let r = continuity::check(&c);
+        eprintln!(
+            "{scheme}: {} patches, open {}, C0 {:.1e}, G1 {:.1e}, sharp {} (C0 {:.1e})",
+            c.len(),
+            r.open_sides,
+            r.all.c0,
+            r.all.g1,
+            r.sharp.pieces,
+            r.sharp.c0
+        );
+        assert_eq!(r.open_sides, 0, "{scheme}: cracks");
+        assert!(r.all.c0 < 1e-12 && r.sharp.c0 < 1e-12, "{scheme}");
+        assert!(r.sharp.pieces > 0, "{scheme}: the creases are sharp joins");
+    }
+}
