@@ -102,17 +102,7 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
         )));
     }
     let mut notes = Vec::new();
-    let holes = ex.holes.len();
-    let mesh = if holes > 0 {
-        notes.push(format!(
-            "{holes} hole faces removed before the patches ({name}'s patches span four faces, \
-             so a hole cannot be refined for support and left out): the surface ends on the \
-             hole's boundary curve"
-        ));
-        mesh.clone().without_holes()
-    } else {
-        mesh.clone()
-    };
+    let mesh = without_holes(mesh, ex.holes.len(), name, &mut notes);
     let ex = mesh.extras().cloned().unwrap_or_default();
     let sharp = sharp_edge_flags(&mesh, &ex, name)?;
     let nv = mesh.num_vertices();
@@ -287,17 +277,7 @@ fn semi_sharp_net(
         }
     }
     let mut notes = Vec::new();
-    let holes = ex.holes.len();
-    let net = if holes > 0 {
-        notes.push(format!(
-            "{holes} hole faces removed before the patches ({name}'s patches span four faces, \
-             so a hole cannot be refined for support and left out): the surface ends on the \
-             hole's boundary curve"
-        ));
-        mesh.clone().without_holes()
-    } else {
-        mesh.clone()
-    };
+    let net = without_holes(mesh, ex.holes.len(), name, &mut notes);
     let sharpness = edge_sharpness(&net, &net.extras().cloned().unwrap_or_default())?;
     let mut infinite = vec![0u32; net.num_vertices()];
     for (e, &s) in sharpness.iter().enumerate() {
@@ -522,6 +502,20 @@ pub fn refuse_boundary_modes(mesh: &PolyMesh, name: &str) -> Result<()> {
         ))),
         None => Ok(()),
     }
+}
+
+/// `mesh` without its `holes` tagged hole faces, with a note when there are any: a bi-2 patch
+/// spans the quarters of four faces, so a hole cannot be refined for support and left out.
+fn without_holes(mesh: &PolyMesh, holes: usize, name: &str, notes: &mut Vec<String>) -> PolyMesh {
+    if holes == 0 {
+        return mesh.clone();
+    }
+    notes.push(format!(
+        "{holes} hole faces removed before the patches ({name}'s patches span four faces, so a \
+         hole cannot be refined for support and left out): the surface ends on the hole's \
+         boundary curve"
+    ));
+    mesh.clone().without_holes()
 }
 
 /// Per edge: infinitely sharp. Semi-sharp edges are refused.
