@@ -215,34 +215,26 @@ pub fn check(c: &PatchComplex) -> ContinuityReport {
         .map(|(lo, hi)| geom::dist(lo, hi))
         .unwrap_or(0.0);
     // Open sides: non-collapsed sides whose parameter range is not fully covered.
-    let mut covered: Vec<[f64; 4]> = vec![[0.0; 4]; c.len()];
-    for sb in &shared {
-        covered[sb.a][sb.side_a.index()] += sb.t[1] - sb.t[0];
-        covered[sb.b][sb.side_b.index()] += 1.0;
-    }
-    let mut open_sides = 0;
-    let mut open = Vec::new();
-    for (i, p) in c.patches.iter().enumerate() {
-        for side in Side::ALL {
-            if !p.is_collapsed(side, tol) && covered[i][side.index()] < 1.0 - 1e-9 {
-                open_sides += 1;
-                if open.len() < MAX_LISTED_OPEN_SIDES {
-                    let [u, v] = side.domain_point(0.5);
-                    open.push(OpenSide {
-                        patch: i,
-                        side: match side {
-                            Side::U0 => "U0",
-                            Side::U1 => "U1",
-                            Side::V0 => "V0",
-                            Side::V1 => "V1",
-                        },
-                        provenance: c.provenance[i],
-                        midpoint: p.eval(u, v),
-                    });
-                }
+    let uncovered = crate::surface::adjacency::open_sides(c, &shared, tol);
+    let open_sides = uncovered.len();
+    let open = uncovered
+        .iter()
+        .take(MAX_LISTED_OPEN_SIDES)
+        .map(|&(i, side)| {
+            let [u, v] = side.domain_point(0.5);
+            OpenSide {
+                patch: i,
+                side: match side {
+                    Side::U0 => "U0",
+                    Side::U1 => "U1",
+                    Side::V0 => "V0",
+                    Side::V1 => "V1",
+                },
+                provenance: c.provenance[i],
+                midpoint: c.patches[i].eval(u, v),
             }
-        }
-    }
+        })
+        .collect();
     let mut all = Defects::default();
     let mut sharp = Defects::default();
     let mut by_kind: BTreeMap<String, Defects> = BTreeMap::new();

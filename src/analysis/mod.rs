@@ -11,6 +11,7 @@ pub mod certify;
 pub mod continuity;
 pub mod curvature;
 pub mod local;
+pub mod moments;
 pub mod report;
 pub mod scaled;
 

@@ -92,6 +92,69 @@ pub fn report_json(
     serde_json::to_string_pretty(&r).expect("serialisable")
 }
 
+/// A patch complex a command reads: a net's surface under a scheme, or a `.bv` file's patches.
+pub(super) struct LoadedComplex {
+    pub complex: PatchComplex,
+    /// The scheme's notes.
+    pub notes: Vec<String>,
+    /// The net (`None` for a `.bv` file).
+    pub net: Option<crate::mesh::PolyMesh>,
+    /// The scheme with the net's features (creases, corners) set.
+    pub spec: Option<Spec>,
+    /// The kinds of patches of a `.bv` file (`None` for a net).
+    pub kinds: Option<crate::io::BvCounts>,
+}
+
+/// The complex of `input`: the surface of the net `input` under `spec` with `rings` (and the
+/// fill), or the patches of the `.bv` file `input` without a spec: every kind it holds, its
+/// polyhedra's faces as flat patches ([`crate::render::complex_from_bv_with`]).
+pub(super) fn load_complex(
+    input: &str,
+    spec: Option<&Spec>,
+    (rings, fill): (usize, bool),
+) -> Result<LoadedComplex> {
+    if let Some(s) = spec {
+        let net = super::load_net(input)?.mesh;
+        let mut s = s.clone();
+        super::subdivide::features::patch_features(&mut s, &net, input)?;
+        let (complex, notes) = super::subdivide::build_complex_noted(&s, &net, rings, fill)?;
+        return Ok(LoadedComplex {
+            complex,
+            notes,
+            net: Some(net),
+            spec: Some(s),
+            kinds: None,
+        });
+    }
+    let path = Path::new(input);
+    let is_bv = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("bv"));
+    if !is_bv {
+        return Err(Error::InvalidArgument(format!(
+            "'{input}' is not a .bv file: give a BezierView file, or a net with --scheme"
+        )));
+    }
+    let f = crate::io::read_bv(path)?;
+    for w in &f.warnings {
+        eprintln!("warning: {input}: {w}");
+    }
+    let n = f.counts();
+    if n.tensor + n.rational + n.triangular + n.polyhedron_faces == 0 {
+        return Err(Error::InvalidArgument(format!(
+            "{input}: no patches or polyhedron faces to check"
+        )));
+    }
+    Ok(LoadedComplex {
+        complex: crate::render::complex_from_bv_with(&f, true),
+        notes: Vec::new(),
+        net: None,
+        spec: None,
+        kinds: Some(n),
+    })
+}
+
 /// Runs `fairsub check`.
 pub fn check(a: CheckArgs) -> Result<()> {
     let spec = match &a.scheme {
@@ -111,46 +174,9 @@ pub fn check(a: CheckArgs) -> Result<()> {
         }
         None => None,
     };
-    let mut notes = Vec::new();
-    let mut kinds = None;
-    let complex = match &spec {
-        Some(s) => {
-            let net = super::load_net(&a.input)?.mesh;
-            let mut s = s.clone();
-            super::subdivide::features::patch_features(&mut s, &net, &a.input)?;
-            let (c, n) = super::subdivide::build_complex_noted(&s, &net, a.rings, !a.no_fill)?;
-            notes = n;
-            c
-        }
-        None => {
-            let path = Path::new(&a.input);
-            let is_bv = path
-                .extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| e.eq_ignore_ascii_case("bv"));
-            if !is_bv {
-                return Err(Error::InvalidArgument(format!(
-                    "'{}' is not a .bv file: give a BezierView file, or a net with --scheme",
-                    a.input
-                )));
-            }
-            let f = crate::io::read_bv(path)?;
-            for w in &f.warnings {
-                eprintln!("warning: {}: {w}", a.input);
-            }
-            let n = f.counts();
-            if n.tensor + n.rational + n.triangular + n.polyhedron_faces == 0 {
-                return Err(Error::InvalidArgument(format!(
-                    "{}: no patches or polyhedron faces to check",
-                    a.input
-                )));
-            }
-            kinds = Some(n);
-            crate::render::complex_from_bv_with(&f, true)
-        }
-    };
-    let mut r = build_report(&a.input, &complex, spec.as_ref(), notes);
-    r.kinds = kinds;
+    let loaded = load_complex(&a.input, spec.as_ref(), (a.rings, !a.no_fill))?;
+    let mut r = build_report(&a.input, &loaded.complex, spec.as_ref(), loaded.notes);
+    r.kinds = loaded.kinds;
     if a.json {
         say!(
             "{}",

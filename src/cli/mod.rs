@@ -20,6 +20,8 @@ mod demo;
 mod eval;
 mod info;
 pub mod limits;
+mod measure;
+mod project;
 mod render;
 mod spec;
 mod subdivide;
@@ -155,6 +157,8 @@ Examples:
   fairsub charmap --scheme {cat} --valence 5 -o chi5.svg
   fairsub check surface.bv
   fairsub check gallery:cnet-5-saddle --scheme {cat} --rings 6
+  fairsub measure gallery:cube --scheme {cat} --json
+  fairsub project gallery:cube --scheme {cat} --points points.txt
 
 A NET argument is a file (.obj, .off, .ply) or gallery:NAME for a net of the built-in gallery
 (`fairsub gallery --list`)."
@@ -226,6 +230,12 @@ the last ring. Without --rings the
 scheme's limit surface is evaluated (as many rings as each point needs, the limit point at an
 extraordinary vertex); with --rings K the complex `subdivide --rings K` writes.")]
     Eval(eval::Args),
+    /// Area, enclosed volume, centroids and inertia tensors of the exact surface, integrated
+    /// exactly from its Bezier patches.
+    Measure(measure::MeasureArgs),
+    /// The closest points of the exact surface to points in space: input face, parameters (as
+    /// `eval` takes them), point, distance and normal.
+    Project(project::ProjectArgs),
     /// Draw highlight lines, reflection lines, isophotes, curvature or provenance as a PNG.
     Render(render::RenderArgs),
     /// A labelled PNG grid of schemes x modes with one camera, light set and curvature range.
@@ -280,6 +290,8 @@ fn run_command(command: Command) -> Result<()> {
         Command::Info { net, scheme, json } => info::run(&net, scheme.as_deref(), json),
         Command::Subdivide(args) => subdivide::run(args),
         Command::Eval(args) => eval::run(args),
+        Command::Measure(args) => measure::run(args),
+        Command::Project(args) => project::run(args),
         Command::Render(args) => render::run_render(args),
         Command::Compare(args) => render::run_compare(args),
         Command::Schemes { json } => schemes(json),

@@ -326,6 +326,45 @@ pub fn shared_boundaries(c: &PatchComplex, tol: f64) -> Vec<SharedBoundary> {
     out
 }
 
+/// The non-collapsed sides of the complex's patches that `shared` (its
+/// [`shared_boundaries`] at `tol`) does not cover whole: the surface's open boundary, empty
+/// for a closed surface. In patch and [`Side::ALL`] order.
+pub fn open_sides(c: &PatchComplex, shared: &[SharedBoundary], tol: f64) -> Vec<(usize, Side)> {
+    let mut covered: Vec<[f64; 4]> = vec![[0.0; 4]; c.len()];
+    for sb in shared {
+        covered[sb.a][sb.side_a.index()] += sb.t[1] - sb.t[0];
+        covered[sb.b][sb.side_b.index()] += 1.0;
+    }
+    let mut out = Vec::new();
+    for (i, p) in c.patches.iter().enumerate() {
+        for side in Side::ALL {
+            if covered[i][side.index()] < 1.0 - 1e-9 && !p.is_collapsed(side, tol) {
+                out.push((i, side));
+            }
+        }
+    }
+    out
+}
+
+/// How many of the `shared` pieces join two patches whose orientations (`du x dv`) disagree:
+/// along a shared piece, consistently oriented patches run their boundaries (counter-clockwise
+/// in their own domains) in opposite directions. 0 on an orientable complex built
+/// consistently; a closed surface's enclosed volume needs it.
+pub fn orientation_conflicts(shared: &[SharedBoundary]) -> usize {
+    // +1 where the counter-clockwise boundary runs with the side's parameter
+    let ccw = |s: Side| match s {
+        Side::V0 | Side::U1 => 1.0,
+        Side::U0 | Side::V1 => -1.0,
+    };
+    shared
+        .iter()
+        .filter(|sb| {
+            let dir_b = if sb.is_reversed() { -1.0 } else { 1.0 };
+            ccw(sb.side_a) == ccw(sb.side_b) * dir_b
+        })
+        .count()
+}
+
 /// A found piece: side `y` covers `[tc, tf]` of the walked side, with `y`'s parameter `sc` at
 /// `tc` and `sf` at `tf`; the walk continues at vertex `far`.
 struct Piece {

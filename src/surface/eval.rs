@@ -47,6 +47,7 @@
 //! many rings as the points need (a point at distance about `2^-k` of an extraordinary element,
 //! in face parameters, needs about `k` rings), up to [`MAX_EXACT_RINGS`].
 
+pub(crate) mod charts;
 mod crisscross;
 mod fan_piece;
 mod index;
@@ -127,6 +128,8 @@ pub struct Surface {
     pole_triangles: Vec<bool>,
     /// The cells of every face and the patch or piece covering each ([`index`]).
     cells: CellTree,
+    /// The spatial index of [`Surface::closest_point`], built on first use.
+    pub(crate) projection: std::sync::OnceLock<crate::surface::closest::ProjectionIndex>,
     /// The kites of G^1 caps of triangle holes (Loop's): kite `s` -> kite `s - 1`, which
     /// covers the other half of kite `s`'s fan triangle ([`kite`]).
     kites: HashMap<usize, usize>,
@@ -244,6 +247,7 @@ impl Surface {
             tri_strips,
             pole_triangles,
             cells,
+            projection: std::sync::OnceLock::new(),
             kites,
             fan_pieces,
         }
@@ -356,6 +360,20 @@ impl Surface {
     /// outside the face's domain, or a point no patch covers (the hole left open).
     pub fn evaluate(&self, face: u32, u: f64, v: f64) -> Result<Evaluation> {
         let (at, cell, fan) = self.locate(face, u, v)?;
+        self.evaluate_located(face, u, v, at, cell, fan)
+    }
+
+    /// [`Surface::evaluate`] at the point `cell` of leaf `at` (with `fan`, the derivative of
+    /// the host face's parameters by the input face's), recorded as `(face, u, v)`.
+    fn evaluate_located(
+        &self,
+        face: u32,
+        u: f64,
+        v: f64,
+        at: &Leaf,
+        cell: [f64; 2],
+        fan: Option<Jacobian>,
+    ) -> Result<Evaluation> {
         let maps = self.cells.maps(at);
         let mut index = at.patch as usize;
         let patch = &self.complex.patches[index];

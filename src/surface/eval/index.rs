@@ -306,6 +306,38 @@ impl CellTree {
         i
     }
 
+    /// Every leaf with its domain that a point of its cell finds (a leaf hidden below a
+    /// shallower covered cell is left out), and its root cell.
+    pub fn reachable_leaves<'a>(
+        &'a self,
+        complex: &'a PatchComplex,
+    ) -> impl Iterator<Item = (&'a Leaf, Domain)> + 'a {
+        self.leaves.iter().filter_map(move |leaf| {
+            let d = leaf.domain(complex);
+            let centre = match d.shape {
+                Shape::Quad => [0.5, 0.5],
+                Shape::Triangle => [1.0 / 3.0, 1.0 / 3.0],
+            };
+            let p = d.cell_map().apply(centre);
+            let sub = if self.root_count(d.face) == 1 {
+                0
+            } else {
+                d.sub
+            };
+            let (found, _) = self.locate(d.face, sub, d.shape, p)?;
+            std::ptr::eq(found, leaf).then_some((leaf, d))
+        })
+    }
+
+    /// Number of root cells of `face` (1, or its sub-faces).
+    fn root_count(&self, face: u32) -> u32 {
+        let f = face as usize;
+        match (self.root.get(f), self.root.get(f + 1)) {
+            (Some(a), Some(b)) => b - a,
+            _ => 0,
+        }
+    }
+
     /// The maps of `leaf`.
     #[inline]
     pub fn maps(&self, leaf: &Leaf) -> &LeafMaps {

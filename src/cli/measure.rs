@@ -1,0 +1,183 @@
+//! `fairsub measure`: area, enclosed volume, centroids and inertia tensors of a net's exact
+//! surface or of a `.bv` file's patches, integrated exactly from the Bezier patches
+//! ([`crate::analysis::moments`]).
+
+use super::check::load_complex;
+use super::spec::{self, SchemeOptions};
+use crate::analysis::moments::{self, FaceAreas, MeasureOptions, Measurement};
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+/// Arguments of `fairsub measure`.
+#[derive(Debug, clap::Args)]
+pub struct MeasureArgs {
+    /// A control net (file or gallery:NAME) with --scheme, or a BezierView file (.bv).
+    pub input: String,
+    /// Build the surface of a net with this scheme.
+    #[arg(long, short)]
+    pub scheme: Option<String>,
+    /// Rings around extraordinary elements (the complex `subdivide --rings K` writes).
+    #[arg(long, short, default_value_t = 6)]
+    pub rings: usize,
+    /// Leave the hole inside the last ring open (the surface is then open: no volume).
+    #[arg(long)]
+    pub no_fill: bool,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// With --json: the area over each input face (needs a scheme that evaluates, see
+    /// `fairsub eval --help`).
+    #[arg(long, requires = "json")]
+    pub per_face: bool,
+    /// Relative tolerance of the area integrals (the polynomial moments are exact).
+    #[arg(long, default_value_t = moments::AREA_TOLERANCE)]
+    pub tolerance: f64,
+    /// EG and QAS+ only: the printed rules where they exist (default) or the derived ones.
+    #[arg(long, value_enum)]
+    pub rules: Option<spec::RulesArg>,
+}
+
+/// The JSON report.
+#[derive(Serialize)]
+struct Report<'a> {
+    source: &'a str,
+    #[serde(flatten)]
+    measurement: &'a Measurement,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    faces: Option<FaceAreas>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    notes: Vec<String>,
+}
+
+/// Runs `fairsub measure`.
+pub fn run(a: MeasureArgs) -> Result<()> {
+    if !(a.tolerance > 0.0 && a.tolerance < 1.0) {
+        return Err(Error::InvalidArgument(format!(
+            "--tolerance {} must lie between 0 and 1 (relative)",
+            a.tolerance
+        )));
+    }
+    let spec = match &a.scheme {
+        Some(s) => Some(spec::resolve(
+            s,
+            &SchemeOptions {
+                rules: a.rules.map(Into::into),
+                ..SchemeOptions::default()
+            },
+        )?),
+        None if a.rules.is_some() => {
+            return Err(Error::InvalidArgument(
+                "--rules chooses the rules of a --scheme; a .bv file holds its patches already"
+                    .into(),
+            ));
+        }
+        None => None,
+    };
+    let loaded = load_complex(&a.input, spec.as_ref(), (a.rings, !a.no_fill))?;
+    let opts = MeasureOptions {
+        area_tolerance: a.tolerance,
+    };
+    let m = moments::measure(&loaded.complex, &opts);
+    let faces = if a.per_face {
+        Some(per_face(&loaded, a.tolerance)?)
+    } else {
+        None
+    };
+    for n in &loaded.notes {
+        eprintln!("note: {n}");
+    }
+    if a.json {
+        let r = Report {
+            source: &a.input,
+            measurement: &m,
+            faces,
+            notes: loaded.notes,
+        };
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&r).expect("serialisable")
+        );
+        return Ok(());
+    }
+    print_text(&a.input, &m);
+    Ok(())
+}
+
+/// The area per input face of a net's surface.
+fn per_face(loaded: &super::check::LoadedComplex, tol: f64) -> Result<FaceAreas> {
+    let (Some(net), Some(spec)) = (&loaded.net, &loaded.spec) else {
+        return Err(Error::InvalidArgument(
+            "--per-face needs a net and its --scheme (a .bv file's patches carry no input faces)"
+                .into(),
+        ));
+    };
+    crate::surface::eval::supported(spec).map_err(|e| {
+        Error::InvalidArgument(format!("--per-face needs the input faces' domains: {e}"))
+    })?;
+    let d = crate::schemes::registry().descriptor(spec.id);
+    if d.eval_faces(spec, net)?.is_some() {
+        return Err(Error::InvalidArgument(format!(
+            "--per-face: {}'s input faces are fan triangles of the polygons its surface is \
+             built on; per-face areas of those are not supported yet",
+            spec.name()
+        )));
+    }
+    Ok(moments::face_areas(&loaded.complex, net.num_faces(), tol))
+}
+
+fn matrix_lines(name: &str, m: &[[f64; 3]; 3]) {
+    say!("  {name}");
+    for row in m {
+        say!("    {:+.15e} {:+.15e} {:+.15e}", row[0], row[1], row[2]);
+    }
+}
+
+fn print_text(source: &str, m: &Measurement) {
+    let rules: Vec<String> = m
+        .rules
+        .iter()
+        .map(|r| format!("{}x{} ({}x{} points)", r[0], r[1], r[2], r[3]))
+        .collect();
+    say!(
+        "{source}: {} patches of bi-degree {}",
+        m.patches,
+        rules.join(", ")
+    );
+    if m.closed {
+        say!(
+            "  closed surface (closure |int n dA| / area = {:.2e})",
+            m.closure
+        );
+    } else {
+        say!(
+            "  open surface: {} open sides, {} joins of opposite orientation; no volume \
+             (closure {:.2e})",
+            m.open_sides,
+            m.orientation_conflicts,
+            m.closure
+        );
+    }
+    say!(
+        "  area             {:.17e} (estimated quadrature error {:.1e})",
+        m.area,
+        m.area_error
+    );
+    let [x, y, z] = m.area_centroid;
+    say!("  area centroid    {x:+.17e} {y:+.17e} {z:+.17e}");
+    if let Some(v) = &m.volume {
+        say!(
+            "  volume           {:.17e} ({} normals)",
+            v.volume,
+            if v.outward { "outward" } else { "inward" }
+        );
+        let [x, y, z] = v.centroid;
+        say!("  centroid         {x:+.17e} {y:+.17e} {z:+.17e}");
+        matrix_lines("inertia about the centroid (unit density):", &v.inertia);
+        let [a, b, c] = v.principal_moments;
+        say!("  principal moments {a:.15e} {b:.15e} {c:.15e}");
+    }
+    matrix_lines(
+        "shell inertia about the area centroid (unit area density):",
+        &m.area_inertia,
+    );
+}

@@ -1,0 +1,276 @@
+//! Closest points on the exact surface and the inverse of evaluation: for a point `q` in
+//! space, the nearest point of a [`Surface`] with its input-face parameters `(face, u, v)`
+//! (those [`Surface::evaluate`] takes), distance and normal (`fairsub project`,
+//! `fairsub check --against`).
+//!
+//! # The search
+//!
+//! The surface is cut into charts, one per cell of the evaluation index (`eval::charts`),
+//! each with a box that holds it (its patches' control points: the convex hull property) and
+//! a grid of sample points. An R*-tree (the `rstar` crate) over the boxes yields the charts in
+//! increasing box distance from `q`; that distance is a lower bound of the chart's, so the
+//! search stops at the first box farther than the best point found (branch and bound). Within
+//! the charts it reaches, the samples give an upper bound and a starting point; a chart whose
+//! samples come within its sample spacing of the best distance gets a Newton search
+//! ([`newton`]) from its best sample, minimising `|S(x) - q|^2` over the local coordinates
+//! of the chart's face (it may leave the cell, not the face), with the face's domain as a
+//! box or triangle constraint. The result is the evaluation at the parameters found, so
+//! `evaluate(face, u, v)` returns exactly the point reported.
+//!
+//! At an interior minimum the residual `q - S` is orthogonal to the surface (to rounding,
+//! `1e-12` relative here); at a point of the surface's boundary it is orthogonal to the
+//! boundary curve only (`on_boundary`).
+
+mod newton;
+
+use super::eval::Surface;
+use super::eval::charts::{Chart, Local};
+use crate::error::Result;
+use crate::geom::{Point, dist};
+use rayon::prelude::*;
+use rstar::RTree;
+use rstar::primitives::{GeomWithData, Rectangle};
+use serde::Serialize;
+
+/// Samples per side of a quad chart's grid (and of a triangle chart's).
+const GRID: usize = 5;
+
+/// The nearest point of the surface to a query point.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct Closest {
+    /// The input face.
+    pub face: u32,
+    /// The face parameter `u` (as [`Surface::evaluate`] takes it).
+    pub u: f64,
+    /// The face parameter `v`.
+    pub v: f64,
+    /// The point of the surface.
+    pub point: Point,
+    /// Its distance to the query point.
+    pub distance: f64,
+    /// The unit normal there.
+    pub normal: Point,
+    /// Whether the point lies on the boundary of the face's domain with the residual not
+    /// orthogonal to the surface (the surface's own boundary, or a point no patch reaches).
+    pub on_boundary: bool,
+}
+
+type Boxed = GeomWithData<Rectangle<[f64; 3]>, u32>;
+
+/// The charts, their boxes in an R*-tree and their sample grids: what
+/// [`Surface::closest_point`] searches (built once per surface).
+#[derive(Debug, Clone)]
+pub struct ProjectionIndex {
+    charts: Vec<Chart>,
+    tree: RTree<Boxed>,
+    /// Samples of chart `c`: `samples[start[c] .. start[c + 1]]`, local point and position.
+    samples: Vec<([f64; 2], Point)>,
+    start: Vec<u32>,
+    /// Half the largest distance between neighbouring samples of each chart.
+    spacing: Vec<f64>,
+}
+
+/// The sample grid of a cell in its own coordinates.
+fn grid(shape: crate::bezier::domain::Shape) -> Vec<[f64; 2]> {
+    let n = (GRID - 1) as f64;
+    let mut out = Vec::new();
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let (x, y) = (i as f64 / n, j as f64 / n);
+            if shape == crate::bezier::domain::Shape::Quad || x + y <= 1.0 + 1e-12 {
+                out.push([x, y]);
+            }
+        }
+    }
+    out
+}
+
+impl ProjectionIndex {
+    /// The index of `s`.
+    pub fn new(s: &Surface) -> ProjectionIndex {
+        let charts = s.charts();
+        let per: Vec<Vec<([f64; 2], Point)>> = charts
+            .par_iter()
+            .map(|c| {
+                grid(c.shape)
+                    .into_iter()
+                    .filter_map(|g| {
+                        let p = c.cell.apply(g);
+                        let p = clamp_local(c.local, p);
+                        s.evaluate_local(c.face, c.sub, p)
+                            .ok()
+                            .map(|e| (p, e.point))
+                    })
+                    .collect()
+            })
+            .collect();
+        let spacing = per
+            .iter()
+            .map(|samples| {
+                // half the largest distance from a sample to its nearest other sample, times 2
+                // for the surface between them (a generous radius of the cell around a sample)
+                let mut r: f64 = 0.0;
+                for (i, a) in samples.iter().enumerate() {
+                    let near = samples
+                        .iter()
+                        .enumerate()
+                        .filter(|(j, _)| *j != i)
+                        .map(|(_, b)| dist(a.1, b.1))
+                        .fold(f64::INFINITY, f64::min);
+                    if near.is_finite() {
+                        r = r.max(near);
+                    }
+                }
+                r
+            })
+            .collect();
+        let mut start = Vec::with_capacity(per.len() + 1);
+        let mut samples = Vec::new();
+        for p in per {
+            start.push(samples.len() as u32);
+            samples.extend(p);
+        }
+        start.push(samples.len() as u32);
+        let boxes = charts
+            .iter()
+            .enumerate()
+            .map(|(i, c)| GeomWithData::new(Rectangle::from_corners(c.bbox.0, c.bbox.1), i as u32))
+            .collect();
+        ProjectionIndex {
+            charts,
+            tree: RTree::bulk_load(boxes),
+            samples,
+            start,
+            spacing,
+        }
+    }
+
+    fn samples_of(&self, c: usize) -> &[([f64; 2], Point)] {
+        &self.samples[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+
+    /// The nearest point of `s` (whose index this is) to `q`; `None` for a surface without
+    /// charts or a query that is not finite.
+    pub fn closest(&self, s: &Surface, q: Point) -> Option<Closest> {
+        if !q.iter().all(|x| x.is_finite()) {
+            return None;
+        }
+        // the charts within reach, with their best sample, until the boxes are farther than
+        // the best sample found (the true distance is at most that)
+        let mut upper = f64::INFINITY;
+        let mut cands: Vec<(f64, usize, usize)> = Vec::new();
+        for (b, d2) in self.tree.nearest_neighbor_iter_with_distance_2(q) {
+            if d2 > upper * upper {
+                break;
+            }
+            let c = b.data as usize;
+            let best = self
+                .samples_of(c)
+                .iter()
+                .enumerate()
+                .map(|(k, (_, p))| (dist2(*p, q), k))
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((d2s, k)) = best {
+                let d = d2s.sqrt();
+                upper = upper.min(d);
+                cands.push((d - self.spacing[c], c, k));
+            }
+        }
+        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut best: Option<(f64, newton::Found)> = None;
+        for &(lower, c, k) in &cands {
+            if best.as_ref().is_some_and(|(d, _)| lower >= *d) {
+                break;
+            }
+            let chart = &self.charts[c];
+            let start = self.samples_of(c)[k].0;
+            if let Some(found) = newton::minimise(s, c, chart, start, q) {
+                let d = dist(found.point, q);
+                if best.as_ref().is_none_or(|(bd, _)| d < *bd) {
+                    best = Some((d, found));
+                }
+            }
+        }
+        let (_, f) = best?;
+        let chart = &self.charts[f.chart];
+        let [u, v] = s.face_params(chart.face, chart.sub, f.local);
+        let e = s.evaluate(chart.face, u, v).ok()?;
+        Some(Closest {
+            face: chart.face,
+            u,
+            v,
+            point: e.point,
+            distance: dist(e.point, q),
+            normal: e.normal,
+            on_boundary: f.on_boundary,
+        })
+    }
+}
+
+/// The squared distance of two points.
+fn dist2(a: Point, b: Point) -> f64 {
+    let d = crate::geom::sub(a, b);
+    crate::geom::dot(d, d)
+}
+
+/// `p` moved into the local domain.
+fn clamp_local(local: Local, p: [f64; 2]) -> [f64; 2] {
+    newton::project(local, p)
+}
+
+impl Surface {
+    /// The index [`Surface::closest_point`] searches (built on first use, in parallel).
+    pub fn projection_index(&self) -> &ProjectionIndex {
+        self.projection.get_or_init(|| ProjectionIndex::new(self))
+    }
+
+    /// The nearest point of the surface to `q`, with its input-face parameters (see the
+    /// [module](self) documentation); `None` when the surface has no evaluable patch or `q`
+    /// is not finite.
+    pub fn closest_point(&self, q: Point) -> Option<Closest> {
+        self.projection_index().closest(self, q)
+    }
+
+    /// [`Surface::closest_point`] of many points, in parallel, in the order of `points`.
+    pub fn closest_points(&self, points: &[Point]) -> Vec<Option<Closest>> {
+        let index = self.projection_index();
+        points
+            .par_iter()
+            .with_min_len(256)
+            .map(|&q| index.closest(self, q))
+            .collect()
+    }
+}
+
+/// Nothing to search: the error of a query on a surface without charts.
+pub fn no_chart() -> crate::error::Error {
+    crate::error::Error::InvalidArgument(
+        "the surface has no patch that carries an input-face domain: nothing to project onto"
+            .into(),
+    )
+}
+
+/// [`Surface::closest_points`], failing with [`no_chart`] (or naming the point) where a
+/// point has no closest point.
+///
+/// # Errors
+/// A point that is not finite (named by its index), or a surface without charts.
+pub fn closest_points(s: &Surface, points: &[Point]) -> Result<Vec<Closest>> {
+    let out = s.closest_points(points);
+    out.into_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            c.ok_or_else(|| {
+                if points[i].iter().all(|x| x.is_finite()) {
+                    no_chart()
+                } else {
+                    crate::error::Error::InvalidArgument(format!(
+                        "point {}: {:?} is not a finite point",
+                        i + 1,
+                        points[i]
+                    ))
+                }
+            })
+        })
+        .collect()
+}
