@@ -193,6 +193,67 @@ impl Surface {
         py.detach(|| api::check_json(&self.source, &self.complex, Some(&self.spec), &self.notes))
     }
 
+    /// `fairsub measure NET --scheme S --rings K --json [--per-face]` of the surface, as a
+    /// JSON string: area, volume (closed surfaces), centroids, inertia tensors, exact from the
+    /// patches (the area to the relative `tolerance`).
+    #[pyo3(signature = (tolerance = 1e-14, per_face = false))]
+    fn measure_json(&self, py: Python<'_>, tolerance: f64, per_face: bool) -> PyResult<String> {
+        if !(tolerance > 0.0 && tolerance < 1.0) {
+            return Err(PyValueError::new_err(format!(
+                "tolerance {tolerance} must lie between 0 and 1 (relative)"
+            )));
+        }
+        py.detach(|| {
+            api::measure_json(
+                &self.source,
+                &self.complex,
+                &self.spec,
+                &self.net,
+                per_face,
+                tolerance,
+            )
+        })
+        .map_err(err)
+    }
+
+    /// The closest points of the surface to `points` (n, 3), in parallel: a dict of arrays
+    /// face (n, uint32), u, v, distance (n, float64), point, normal (n, 3) and on_boundary
+    /// (n, bool), the parameters as `evaluate` takes them.
+    fn closest_arrays<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        eval::supported(&self.spec).map_err(err)?;
+        let pts = points_from(&points, "points")?;
+        let ev = self.evaluator()?;
+        let found = py
+            .detach(|| fairsub::surface::closest::closest_points(ev, &pts))
+            .map_err(err)?;
+        let d = PyDict::new(py);
+        let col = |f: &dyn Fn(&fairsub::surface::closest::Closest) -> f64| -> Vec<f64> {
+            found.iter().map(f).collect()
+        };
+        d.set_item(
+            "face",
+            found
+                .iter()
+                .map(|c| c.face)
+                .collect::<Vec<u32>>()
+                .into_pyarray(py),
+        )?;
+        d.set_item("u", col(&|c| c.u).into_pyarray(py))?;
+        d.set_item("v", col(&|c| c.v).into_pyarray(py))?;
+        d.set_item("distance", col(&|c| c.distance).into_pyarray(py))?;
+        let pt: Vec<[f64; 3]> = found.iter().map(|c| c.point).collect();
+        let nm: Vec<[f64; 3]> = found.iter().map(|c| c.normal).collect();
+        d.set_item("point", points_array(py, &pt))?;
+        d.set_item("normal", points_array(py, &nm))?;
+        let b: Vec<bool> = found.iter().map(|c| c.on_boundary).collect();
+        d.set_item("on_boundary", b.into_pyarray(py))?;
+        Ok(d)
+    }
+
     /// Writes the complex as `subdivide --rings` does (.bv, .igs, or a tessellated .obj/.ply
     /// with `tess` samples per patch edge).
     #[pyo3(signature = (path, tess = 8))]

@@ -153,6 +153,31 @@ pub fn check_json(
     super::check::report_json(source, complex, spec, notes.to_vec())
 }
 
+/// `fairsub measure --json`'s report of a complex built by `spec` on `net` (with the area
+/// per input face when `per_face`), areas to the relative `tolerance`.
+///
+/// # Errors
+/// `per_face` with a scheme whose input faces carry no domains.
+pub fn measure_json(
+    source: &str,
+    complex: &PatchComplex,
+    spec: &Spec,
+    net: &PolyMesh,
+    per_face: bool,
+    tolerance: f64,
+) -> Result<String> {
+    let opts = crate::analysis::moments::MeasureOptions {
+        area_tolerance: tolerance,
+    };
+    super::measure::json_report(
+        source,
+        complex,
+        per_face.then_some((spec, net)),
+        opts,
+        Vec::new(),
+    )
+}
+
 /// `fairsub info --json`'s report of a net.
 pub fn info_json(source: &str, mesh: &PolyMesh) -> String {
     serde_json::to_string_pretty(&super::info::report(source, mesh)).expect("serialisable")

@@ -33,6 +33,11 @@ pub struct CheckArgs {
     /// refuse it (none), as `subdivide --prepare`.
     #[arg(long, value_enum, default_value_t = spec::PrepareArg::Auto)]
     pub prepare: spec::PrepareArg,
+    /// A mesh (a scan, another scheme's result; .obj, .off, .ply): report how far its
+    /// vertices lie from the surface (max, mean, RMS, where the max is). Needs a net and a
+    /// --scheme that evaluates (see `fairsub eval --help`).
+    #[arg(long, requires = "scheme")]
+    pub against: Option<String>,
 }
 
 /// The `check` report.
@@ -52,6 +57,9 @@ struct CheckReport {
     /// The scheme's notes: elements that fell back, caps with derived or borrowed rules.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     notes: Vec<String>,
+    /// `--against`: the mesh's vertices' distances from the surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    deviation: Option<crate::surface::closest::Deviation>,
 }
 
 /// The report of `complex` (read from `source`, built by `spec` with `notes`, or a `.bv` file
@@ -77,6 +85,7 @@ fn build_report(
         curvature: curvature::ring_curvature(complex),
         c1_up_to_scaling: scaled.then(|| scaled::continuity_up_to_scaling(complex)),
         notes,
+        deviation: None,
     }
 }
 
@@ -155,28 +164,53 @@ pub(super) fn load_complex(
     })
 }
 
-/// Runs `fairsub check`.
-pub fn check(a: CheckArgs) -> Result<()> {
-    let spec = match &a.scheme {
-        Some(s) => Some(spec::resolve(
+/// The deviation of the vertices of the mesh file `mesh` from the surface of `loaded`.
+fn deviation_of(loaded: &LoadedComplex, mesh: &str) -> Result<crate::surface::closest::Deviation> {
+    let (Some(net), Some(spec)) = (&loaded.net, &loaded.spec) else {
+        return Err(Error::InvalidArgument(
+            "--against needs a net and its --scheme (a .bv file has no input faces)".into(),
+        ));
+    };
+    crate::surface::eval::supported(spec)?;
+    let s = crate::surface::eval::Surface::of_scheme(spec, net, loaded.complex.clone())?;
+    let other = super::load_net_as(mesh, true)?.mesh;
+    crate::surface::closest::deviation(&s, other.positions())
+}
+
+/// The scheme of `--scheme` with `--rules`, if one is given (`--rules` alone is an error: a
+/// `.bv` file holds its patches already).
+pub(super) fn optional_spec(
+    scheme: Option<&str>,
+    rules: Option<spec::RulesArg>,
+    prepare: spec::PrepareArg,
+) -> Result<Option<Spec>> {
+    match scheme {
+        Some(s) => Ok(Some(spec::resolve(
             s,
             &SchemeOptions {
-                rules: a.rules.map(Into::into),
-                prepare: a.prepare.into(),
+                rules: rules.map(Into::into),
+                prepare: prepare.into(),
                 ..SchemeOptions::default()
             },
-        )?),
-        None if a.rules.is_some() => {
-            return Err(Error::InvalidArgument(
-                "--rules chooses the rules of a --scheme; a .bv file holds its patches already"
-                    .into(),
-            ));
-        }
+        )?)),
+        None if rules.is_some() => Err(Error::InvalidArgument(
+            "--rules chooses the rules of a --scheme; a .bv file holds its patches already".into(),
+        )),
+        None => Ok(None),
+    }
+}
+
+/// Runs `fairsub check`.
+pub fn check(a: CheckArgs) -> Result<()> {
+    let spec = optional_spec(a.scheme.as_deref(), a.rules, a.prepare)?;
+    let loaded = load_complex(&a.input, spec.as_ref(), (a.rings, !a.no_fill))?;
+    let deviation = match &a.against {
+        Some(mesh) => Some(deviation_of(&loaded, mesh)?),
         None => None,
     };
-    let loaded = load_complex(&a.input, spec.as_ref(), (a.rings, !a.no_fill))?;
     let mut r = build_report(&a.input, &loaded.complex, spec.as_ref(), loaded.notes);
     r.kinds = loaded.kinds;
+    r.deviation = deviation;
     if a.json {
         say!(
             "{}",
@@ -271,6 +305,25 @@ pub fn check(a: CheckArgs) -> Result<()> {
                 d.g1
             );
         }
+    }
+    if let (Some(d), Some(m)) = (&r.deviation, &a.against) {
+        let c = &d.max_closest;
+        say!(
+            "  deviation of {m}'s {} vertices: max {:.6e}, mean {:.6e}, rms {:.6e}",
+            d.points,
+            d.max,
+            d.mean,
+            d.rms
+        );
+        say!(
+            "    max at vertex {} {:?}, nearest surface point {:?} (face {} at ({}, {}))",
+            d.max_index,
+            d.max_point,
+            c.point,
+            c.face,
+            c.u,
+            c.v
+        );
     }
     for e in &r.curvature {
         say!("  curvature around {:?}:", e.element);

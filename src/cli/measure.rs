@@ -2,8 +2,8 @@
 //! surface or of a `.bv` file's patches, integrated exactly from the Bezier patches
 //! ([`crate::analysis::moments`]).
 
-use super::check::load_complex;
-use super::spec::{self, SchemeOptions};
+use super::check::{load_complex, optional_spec};
+use super::spec;
 use crate::analysis::moments::{self, FaceAreas, MeasureOptions, Measurement};
 use crate::error::{Error, Result};
 use serde::Serialize;
@@ -57,60 +57,71 @@ pub fn run(a: MeasureArgs) -> Result<()> {
             a.tolerance
         )));
     }
-    let spec = match &a.scheme {
-        Some(s) => Some(spec::resolve(
-            s,
-            &SchemeOptions {
-                rules: a.rules.map(Into::into),
-                ..SchemeOptions::default()
-            },
-        )?),
-        None if a.rules.is_some() => {
-            return Err(Error::InvalidArgument(
-                "--rules chooses the rules of a --scheme; a .bv file holds its patches already"
-                    .into(),
-            ));
-        }
-        None => None,
-    };
+    let spec = optional_spec(a.scheme.as_deref(), a.rules, spec::PrepareArg::Auto)?;
     let loaded = load_complex(&a.input, spec.as_ref(), (a.rings, !a.no_fill))?;
     let opts = MeasureOptions {
         area_tolerance: a.tolerance,
-    };
-    let m = moments::measure(&loaded.complex, &opts);
-    let faces = if a.per_face {
-        Some(per_face(&loaded, a.tolerance)?)
-    } else {
-        None
     };
     for n in &loaded.notes {
         eprintln!("note: {n}");
     }
     if a.json {
-        let r = Report {
-            source: &a.input,
-            measurement: &m,
-            faces,
-            notes: loaded.notes,
+        let per = if a.per_face {
+            match (&loaded.spec, &loaded.net) {
+                (Some(s), Some(n)) => Some((s, n)),
+                _ => {
+                    return Err(Error::InvalidArgument(
+                        "--per-face needs a net and its --scheme (a .bv file's patches carry \
+                         no input faces)"
+                            .into(),
+                    ));
+                }
+            }
+        } else {
+            None
         };
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&r).expect("serialisable")
-        );
+        let text = json_report(&a.input, &loaded.complex, per, opts, loaded.notes)?;
+        say!("{text}");
         return Ok(());
     }
+    let m = moments::measure(&loaded.complex, &opts);
     print_text(&a.input, &m);
     Ok(())
 }
 
-/// The area per input face of a net's surface.
-fn per_face(loaded: &super::check::LoadedComplex, tol: f64) -> Result<FaceAreas> {
-    let (Some(net), Some(spec)) = (&loaded.net, &loaded.spec) else {
-        return Err(Error::InvalidArgument(
-            "--per-face needs a net and its --scheme (a .bv file's patches carry no input faces)"
-                .into(),
-        ));
+/// `fairsub measure --json`'s report of `complex` (from `source`), with the area per input
+/// face of the net under the scheme `per_face` gives.
+///
+/// # Errors
+/// `per_face` with a scheme that does not evaluate, or whose input faces are fan triangles.
+pub(super) fn json_report(
+    source: &str,
+    complex: &crate::surface::PatchComplex,
+    per_face: Option<(&crate::schemes::Spec, &crate::mesh::PolyMesh)>,
+    opts: MeasureOptions,
+    notes: Vec<String>,
+) -> Result<String> {
+    let faces = match per_face {
+        Some((spec, net)) => Some(face_areas(complex, spec, net, opts.area_tolerance)?),
+        None => None,
     };
+    let m = moments::measure(complex, &opts);
+    let r = Report {
+        source,
+        measurement: &m,
+        faces,
+        notes,
+    };
+    Ok(serde_json::to_string_pretty(&r).expect("serialisable"))
+}
+
+/// The area per input face of a net's surface.
+fn face_areas(
+    complex: &crate::surface::PatchComplex,
+    spec: &crate::schemes::Spec,
+    net: &crate::mesh::PolyMesh,
+    tol: f64,
+) -> Result<FaceAreas> {
     crate::surface::eval::supported(spec).map_err(|e| {
         Error::InvalidArgument(format!("--per-face needs the input faces' domains: {e}"))
     })?;
@@ -122,7 +133,7 @@ fn per_face(loaded: &super::check::LoadedComplex, tol: f64) -> Result<FaceAreas>
             spec.name()
         )));
     }
-    Ok(moments::face_areas(&loaded.complex, net.num_faces(), tol))
+    Ok(moments::face_areas(complex, net.num_faces(), tol))
 }
 
 fn matrix_lines(name: &str, m: &[[f64; 3]; 3]) {

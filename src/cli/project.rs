@@ -133,7 +133,7 @@ fn line(c: &Closest) -> String {
     let [x, y, z] = c.point;
     let [a, b, n] = c.normal;
     format!(
-        "{}:{}:{} point {x} {y} {z} distance {} normal {a} {b} {n}{}",
+        "{}:{:?}:{:?} point {x:?} {y:?} {z:?} distance {:?} normal {a:?} {b:?} {n:?}{}",
         c.face,
         c.u,
         c.v,

@@ -66,19 +66,18 @@ pub struct ProjectionIndex {
     /// Samples of chart `c`: `samples[start[c] .. start[c + 1]]`, local point and position.
     samples: Vec<([f64; 2], Point)>,
     start: Vec<u32>,
-    /// Half the largest distance between neighbouring samples of each chart.
+    /// The largest distance between neighbouring samples of each chart (diagonals included).
     spacing: Vec<f64>,
 }
 
-/// The sample grid of a cell in its own coordinates.
-fn grid(shape: crate::bezier::domain::Shape) -> Vec<[f64; 2]> {
+/// The sample grid of a cell in its own coordinates, with each sample's grid indices.
+fn grid(shape: crate::bezier::domain::Shape) -> Vec<(usize, usize, [f64; 2])> {
     let n = (GRID - 1) as f64;
     let mut out = Vec::new();
     for i in 0..GRID {
         for j in 0..GRID {
-            let (x, y) = (i as f64 / n, j as f64 / n);
-            if shape == crate::bezier::domain::Shape::Quad || x + y <= 1.0 + 1e-12 {
-                out.push([x, y]);
+            if shape == crate::bezier::domain::Shape::Quad || i + j < GRID {
+                out.push((i, j, [i as f64 / n, j as f64 / n]));
             }
         }
     }
@@ -89,44 +88,36 @@ impl ProjectionIndex {
     /// The index of `s`.
     pub fn new(s: &Surface) -> ProjectionIndex {
         let charts = s.charts();
-        let per: Vec<Vec<([f64; 2], Point)>> = charts
+        let per: Vec<(Vec<([f64; 2], Point)>, f64)> = charts
             .par_iter()
             .map(|c| {
-                grid(c.shape)
+                let grid: Vec<(usize, usize, Option<([f64; 2], Point)>)> = grid(c.shape)
                     .into_iter()
-                    .filter_map(|g| {
-                        let p = c.cell.apply(g);
-                        let p = clamp_local(c.local, p);
-                        s.evaluate_local(c.face, c.sub, p)
-                            .ok()
-                            .map(|e| (p, e.point))
+                    .map(|(i, j, g)| {
+                        let p = clamp_local(c.local, c.cell.apply(g));
+                        let e = s.evaluate_local(c.face, c.sub, p).ok();
+                        (i, j, e.map(|e| (p, e.point)))
                     })
-                    .collect()
-            })
-            .collect();
-        let spacing = per
-            .iter()
-            .map(|samples| {
-                // half the largest distance from a sample to its nearest other sample, times 2
-                // for the surface between them (a generous radius of the cell around a sample)
+                    .collect();
+                // the largest distance between grid neighbours (diagonals included): every
+                // point over a grid cell lies about that close to one of its corners
                 let mut r: f64 = 0.0;
-                for (i, a) in samples.iter().enumerate() {
-                    let near = samples
-                        .iter()
-                        .enumerate()
-                        .filter(|(j, _)| *j != i)
-                        .map(|(_, b)| dist(a.1, b.1))
-                        .fold(f64::INFINITY, f64::min);
-                    if near.is_finite() {
-                        r = r.max(near);
+                for (i, j, a) in &grid {
+                    for (k, l, b) in &grid {
+                        if i.abs_diff(*k) <= 1 && j.abs_diff(*l) <= 1 {
+                            if let (Some(a), Some(b)) = (a, b) {
+                                r = r.max(dist(a.1, b.1));
+                            }
+                        }
                     }
                 }
-                r
+                (grid.into_iter().filter_map(|x| x.2).collect(), r)
             })
             .collect();
+        let spacing = per.iter().map(|x| x.1).collect();
         let mut start = Vec::with_capacity(per.len() + 1);
         let mut samples = Vec::new();
-        for p in per {
+        for (p, _) in per {
             start.push(samples.len() as u32);
             samples.extend(p);
         }
@@ -273,4 +264,52 @@ pub fn closest_points(s: &Surface, points: &[Point]) -> Result<Vec<Closest>> {
             })
         })
         .collect()
+}
+
+/// How far points (a scan's, another surface's vertices) lie from the surface
+/// (`fairsub check --against`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Deviation {
+    /// Number of points.
+    pub points: usize,
+    /// Largest distance.
+    pub max: f64,
+    /// Mean distance.
+    pub mean: f64,
+    /// Root mean square distance.
+    pub rms: f64,
+    /// The point farthest from the surface (its index among the points).
+    pub max_index: usize,
+    /// That point.
+    pub max_point: Point,
+    /// Its closest point on the surface.
+    pub max_closest: Closest,
+}
+
+/// The [`Deviation`] of `points` from `s`.
+///
+/// # Errors
+/// Those of [`closest_points`]; no points.
+pub fn deviation(s: &Surface, points: &[Point]) -> Result<Deviation> {
+    if points.is_empty() {
+        return Err(crate::error::Error::InvalidArgument(
+            "no points to measure the deviation of".into(),
+        ));
+    }
+    let found = closest_points(s, points)?;
+    let n = found.len() as f64;
+    let (k, far) = found
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))
+        .expect("points");
+    Ok(Deviation {
+        points: found.len(),
+        max: far.distance,
+        mean: found.iter().map(|c| c.distance).sum::<f64>() / n,
+        rms: (found.iter().map(|c| c.distance * c.distance).sum::<f64>() / n).sqrt(),
+        max_index: k,
+        max_point: points[k],
+        max_closest: *far,
+    })
 }

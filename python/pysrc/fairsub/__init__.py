@@ -188,6 +188,33 @@ Surface.check.__doc__ = (
 )
 
 
+
+def _measure(self, tolerance=1e-14, per_face=False):
+    """``fairsub measure NET --scheme S --rings K --json`` of the surface, as a dict: ``area``
+    (to the relative ``tolerance``), ``area_centroid``, ``area_inertia``, ``closed`` and, for
+    a closed surface, ``volume`` (volume, centroid, inertia about it, principal moments),
+    integrated exactly from the patches; ``per_face=True`` adds ``faces`` (the area over each
+    input face)."""
+    return _json.loads(self.measure_json(tolerance, per_face))
+
+
+def _closest(self, points):
+    """The closest points of the surface to ``points`` ((n, 3) or (3,)): a dict of arrays
+    ``face``, ``u``, ``v`` (the parameters ``evaluate`` takes: evaluating there gives
+    ``point``), ``point``, ``distance``, ``normal`` and ``on_boundary``, as ``fairsub
+    project`` reports them."""
+    p = _np.asarray(points, dtype=_np.float64)
+    single = p.ndim == 1
+    r = self.closest_arrays(_np.ascontiguousarray(_np.atleast_2d(p)))
+    if single:
+        return {k: a[0] for k, a in r.items()}
+    return r
+
+
+Surface.measure = _measure
+Surface.closest = _closest
+
+
 def analyze(scheme, valence, replicated_centre=False, **options):
     """``fairsub analyze --scheme S --valence N --json`` as a dict: spectrum, limit stencil,
     characteristic-map certificate, published numbers with their differences."""

@@ -82,9 +82,22 @@ pub(super) fn minimise(
     q: Point,
 ) -> Option<Found> {
     let eval = |p: [f64; 2]| s.evaluate_local(chart.face, chart.sub, p).ok();
-    let mut p = project(chart.local, start);
+    // start a hair inside the cell (a sample at a cell corner may be a point where the
+    // face's parameters are singular: an extraordinary vertex)
+    let centre = chart.cell.apply(match chart.shape {
+        crate::bezier::domain::Shape::Quad => [0.5, 0.5],
+        crate::bezier::domain::Shape::Triangle => [1.0 / 3.0, 1.0 / 3.0],
+    });
+    let inside = [
+        start[0] + 1e-3 * (centre[0] - start[0]),
+        start[1] + 1e-3 * (centre[1] - start[1]),
+    ];
+    let mut p = project(chart.local, inside);
     let mut e = eval(p)?;
     let mut f = norm(sub(e.point, q));
+    // distances equal to rounding: a step that changes the distance by less still counts
+    // (the tangential residual is resolved past what the distance itself shows)
+    let slack = 4.0 * f64::EPSILON * (norm(q) + norm(e.point));
     let mut on_boundary = false;
     for _ in 0..MAX_STEPS {
         let r = sub(e.point, q);
@@ -93,6 +106,10 @@ pub(super) fn minimise(
         let tol = [1e-13 * norm(r) * ee.sqrt(), 1e-13 * norm(r) * gg.sqrt()];
         let hold = active(chart.local, p, g, tol);
         on_boundary = hold.iter().any(|h| *h);
+        let free_small = (0..2).all(|k| hold[k] || g[k].abs() <= 0.01 * tol[k]);
+        if free_small && !hold[2] {
+            break;
+        }
         let newton = [
             [ee + dot(r, e.duu), ff + dot(r, e.duv)],
             [ff + dot(r, e.duv), gg + dot(r, e.dvv)],
@@ -106,12 +123,8 @@ pub(super) fn minimise(
         };
         let mut d = step(h, g, [hold[0], hold[1]]);
         if !d.iter().all(|x| x.is_finite()) {
-            // a degenerate point (collapsed corner): a small gradient step instead
-            let gn = (g[0] * g[0] + g[1] * g[1]).sqrt();
-            if gn == 0.0 {
-                break;
-            }
-            d = [-g[0] / gn * 1e-3, -g[1] / gn * 1e-3];
+            // a degenerate point: a small step toward the cell's centre instead
+            d = [1e-3 * (centre[0] - p[0]), 1e-3 * (centre[1] - p[1])];
         }
         let mut t = 1.0;
         let mut accepted = None;
@@ -122,7 +135,7 @@ pub(super) fn minimise(
             }
             if let Some(ec) = eval(cand) {
                 let fc = norm(sub(ec.point, q));
-                if fc <= f {
+                if fc <= f + slack {
                     accepted = Some((cand, ec, fc));
                     break;
                 }
@@ -135,9 +148,8 @@ pub(super) fn minimise(
         let moved = (cand[0] - p[0]).abs().max((cand[1] - p[1]).abs());
         p = cand;
         e = ec;
-        let gain = f - fc;
-        f = fc;
-        if moved < 1e-15 || (gain <= 0.0 && moved < 1e-12) {
+        f = fc.min(f);
+        if moved < 1e-16 {
             break;
         }
     }
