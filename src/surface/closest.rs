@@ -57,6 +57,9 @@ pub struct Closest {
 
 type Boxed = GeomWithData<Rectangle<[f64; 3]>, u32>;
 
+/// A sample: its local point and position.
+type Sample = ([f64; 2], Point);
+
 /// The charts, their boxes in an R*-tree and their sample grids: what
 /// [`Surface::closest_point`] searches (built once per surface).
 #[derive(Debug, Clone)]
@@ -88,10 +91,10 @@ impl ProjectionIndex {
     /// The index of `s`.
     pub fn new(s: &Surface) -> ProjectionIndex {
         let charts = s.charts();
-        let per: Vec<(Vec<([f64; 2], Point)>, f64)> = charts
+        let per: Vec<(Vec<Sample>, f64)> = charts
             .par_iter()
             .map(|c| {
-                let grid: Vec<(usize, usize, Option<([f64; 2], Point)>)> = grid(c.shape)
+                let grid: Vec<(usize, usize, Option<Sample>)> = grid(c.shape)
                     .into_iter()
                     .map(|(i, j, g)| {
                         let p = clamp_local(c.local, c.cell.apply(g));
@@ -104,10 +107,11 @@ impl ProjectionIndex {
                 let mut r: f64 = 0.0;
                 for (i, j, a) in &grid {
                     for (k, l, b) in &grid {
-                        if i.abs_diff(*k) <= 1 && j.abs_diff(*l) <= 1 {
-                            if let (Some(a), Some(b)) = (a, b) {
-                                r = r.max(dist(a.1, b.1));
-                            }
+                        if let (Some(a), Some(b)) = (a, b)
+                            && i.abs_diff(*k) <= 1
+                            && j.abs_diff(*l) <= 1
+                        {
+                            r = r.max(dist(a.1, b.1));
                         }
                     }
                 }
