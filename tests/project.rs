@@ -7,9 +7,11 @@ use fairsub::geom::{Point, cross, dist, dot, norm, sub};
 use fairsub::surface::eval::Surface;
 
 #[path = "eval/support.rs"]
+#[allow(dead_code)]
 mod support;
 use support::{Lcg, gallery};
 #[path = "eval/faces.rs"]
+#[allow(dead_code)]
 mod faces;
 use faces::{face_points, surface_of};
 
