@@ -98,8 +98,8 @@ impl ProjectionIndex {
                     .into_iter()
                     .map(|(i, j, g)| {
                         let p = clamp_local(c.local, c.cell.apply(g));
-                        let e = s.evaluate_local(c.face, c.sub, p).ok();
-                        (i, j, e.map(|e| (p, e.point)))
+                        let e = s.derivatives_local(c.face, c.sub, p).ok();
+                        (i, j, e.map(|e| (p, e.p)))
                     })
                     .collect();
                 // the largest distance between grid neighbours (diagonals included): every

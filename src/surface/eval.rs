@@ -60,7 +60,7 @@ pub use limit::{
 mod triangle;
 
 use crate::bezier::Derivatives;
-use crate::bezier::complex::{PatchComplex, Provenance};
+use crate::bezier::complex::PatchComplex;
 use crate::bezier::domain::{FanTriangle, Shape};
 use crate::error::{Error, Result};
 use crate::geom::Point;
@@ -374,61 +374,7 @@ impl Surface {
         cell: [f64; 2],
         fan: Option<Jacobian>,
     ) -> Result<Evaluation> {
-        let maps = self.cells.maps(at);
-        let mut index = at.patch as usize;
-        let patch = &self.complex.patches[index];
-        let mut q = maps.corner_point(cell);
-        if let Some(w) = maps.window {
-            q = w.apply(q);
-        }
-        let (dp, normal, patch_uv) = match at.shape {
-            Shape::Quad if at.criss_cross.is_some() && index + 3 < self.complex.len() => {
-                let (k, st, jac) = crisscross::locate(q);
-                index += k;
-                let dp = triangle::derivatives(&self.complex.patches[index], st)?;
-                let n = dp
-                    .normal_toward([1.0 / 3.0 - st[0], 1.0 / 3.0 - st[1]])
-                    .unwrap_or([f64::NAN; 3]);
-                let uv = if st[1] < 1.0 {
-                    [st[0] / (1.0 - st[1]), st[1]]
-                } else {
-                    [0.0, 1.0]
-                };
-                (crisscross::to_cell(&dp, jac), n, uv)
-            }
-            Shape::Quad => {
-                let dp = patch.derivatives(q[0], q[1]);
-                let n = patch.normal_from(q[0], q[1], &dp);
-                (dp, n, q)
-            }
-            Shape::Triangle if self.kites.contains_key(&index) => {
-                let (neighbour, uv) = kite::locate(q);
-                if neighbour {
-                    index = self.kites[&index];
-                }
-                let patch = &self.complex.patches[index];
-                let dp = patch.derivatives(uv[0], uv[1]);
-                let n = patch.normal_from(uv[0], uv[1], &dp);
-                (kite::to_chart(&dp, uv, neighbour), n, uv)
-            }
-            Shape::Triangle if self.fan_pieces.contains(&index) => {
-                let uv = fan_piece::locate(q);
-                let n = patch.normal_from(uv[0], uv[1], &patch.derivatives(uv[0], uv[1]));
-                (fan_piece::chart_derivatives(patch, uv), n, uv)
-            }
-            Shape::Triangle => {
-                let dp = triangle::derivatives(patch, q)?;
-                let toward = [1.0 / 3.0 - q[0], 1.0 / 3.0 - q[1]];
-                let n = dp.normal_toward(toward).unwrap_or([f64::NAN; 3]);
-                let uv = if q[1] < 1.0 {
-                    [q[0] / (1.0 - q[1]), q[1]]
-                } else {
-                    [0.0, 1.0]
-                };
-                (dp, n, uv)
-            }
-        };
-        let mut df = chain(&dp, maps.chain);
+        let (mut df, index, patch_uv, normal) = self.leaf_derivatives(at, cell, true)?;
         if let Some(jac) = fan {
             df = chain(&df, jac);
         }
@@ -449,6 +395,79 @@ impl Surface {
             gauss: curv.map_or(f64::NAN, |c| c.gauss),
             mean: curv.map_or(f64::NAN, |c| c.mean),
         })
+    }
+
+    /// The surface at the point `cell` of leaf `at`, with its derivatives by the face's
+    /// parameters (before a fan triangle's map), the patch evaluated, where in it, and (with
+    /// `with_normal`, else NaN) the unit normal: [`Surface::evaluate`] without the search and
+    /// the curvature (what `closest`'s Newton steps need).
+    fn leaf_derivatives(
+        &self,
+        at: &Leaf,
+        cell: [f64; 2],
+        with_normal: bool,
+    ) -> Result<(Derivatives, usize, [f64; 2], Point)> {
+        let maps = self.cells.maps(at);
+        let mut index = at.patch as usize;
+        let patch = &self.complex.patches[index];
+        let mut q = maps.corner_point(cell);
+        if let Some(w) = maps.window {
+            q = w.apply(q);
+        }
+        let none = [f64::NAN; 3];
+        let (dp, normal, patch_uv) = match at.shape {
+            Shape::Quad if at.criss_cross.is_some() && index + 3 < self.complex.len() => {
+                let (k, st, jac) = crisscross::locate(q);
+                index += k;
+                let dp = triangle::derivatives(&self.complex.patches[index], st)?;
+                let n = with_normal
+                    .then(|| dp.normal_toward([1.0 / 3.0 - st[0], 1.0 / 3.0 - st[1]]))
+                    .flatten()
+                    .unwrap_or(none);
+                (crisscross::to_cell(&dp, jac), n, triangle::stored_uv(st))
+            }
+            Shape::Quad => {
+                let dp = patch.derivatives(q[0], q[1]);
+                let n = if with_normal {
+                    patch.normal_from(q[0], q[1], &dp)
+                } else {
+                    none
+                };
+                (dp, n, q)
+            }
+            Shape::Triangle if self.kites.contains_key(&index) => {
+                let (neighbour, uv) = kite::locate(q);
+                if neighbour {
+                    index = self.kites[&index];
+                }
+                let patch = &self.complex.patches[index];
+                let dp = patch.derivatives(uv[0], uv[1]);
+                let n = if with_normal {
+                    patch.normal_from(uv[0], uv[1], &dp)
+                } else {
+                    none
+                };
+                (kite::to_chart(&dp, uv, neighbour), n, uv)
+            }
+            Shape::Triangle if self.fan_pieces.contains(&index) => {
+                let uv = fan_piece::locate(q);
+                let n = if with_normal {
+                    patch.normal_from(uv[0], uv[1], &patch.derivatives(uv[0], uv[1]))
+                } else {
+                    none
+                };
+                (fan_piece::chart_derivatives(patch, uv), n, uv)
+            }
+            Shape::Triangle => {
+                let dp = triangle::derivatives(patch, q)?;
+                let n = with_normal
+                    .then(|| dp.normal_toward([1.0 / 3.0 - q[0], 1.0 / 3.0 - q[1]]))
+                    .flatten()
+                    .unwrap_or(none);
+                (dp, n, triangle::stored_uv(q))
+            }
+        };
+        Ok((chain(&dp, maps.chain), index, patch_uv, normal))
     }
 
     /// [`Surface::evaluate`] at many points, in parallel; the results in the order of `points`.
@@ -513,46 +532,6 @@ impl Surface {
             .enumerate()
             .filter_map(|(i, &(f, u, v))| self.locate(f, u, v).err().map(|e| (i, e)))
             .min_by_key(|(i, _)| *i)
-    }
-
-    /// Extra rings a point of a cap or fill cell needs to lie on ring patches: `k` where its
-    /// distance to the nearest cell corner (the extraordinary element is one of them) is about
-    /// `2^-k` of the cell; 0 for points of ring and regular patches and for the corners.
-    fn rings_needed(&self, at: &Leaf, cell: [f64; 2]) -> usize {
-        if !matches!(
-            self.complex.provenance[at.patch as usize],
-            Provenance::Cap { .. }
-        ) {
-            return 0;
-        }
-        let [x, y] = cell;
-        let d = match at.shape {
-            Shape::Quad => [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-                .iter()
-                .map(|c: &[f64; 2]| (x - c[0]).abs().max((y - c[1]).abs()))
-                .fold(f64::INFINITY, f64::min),
-            Shape::Triangle => (x + y).min(1.0 - x).min(1.0 - y),
-        };
-        if d <= 0.0 {
-            return 0;
-        }
-        let dom = at.domain(&self.complex);
-        // a pole's cap: its cells are halves, the pole at y = 1 of the cell (halves are not
-        // turned), and each ring halves the cap's cell toward it
-        let d = if dom.halves != 0 { 1.0 - y } else { d };
-        if d <= 0.0 {
-            return 0;
-        }
-        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
-        let per_ring = if dom.splits_in_thirds(dom.depth) {
-            3f64.log2()
-        } else if dom.splits_at_ratio(dom.depth) {
-            // adjustable TPS: the hole shrinks by its ratio
-            -dom.ratio().log2()
-        } else {
-            1.0
-        };
-        (-d.log2() / per_ring).floor().max(0.0) as usize + 1
     }
 }
 

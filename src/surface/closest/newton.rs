@@ -1,6 +1,6 @@
 //! The local search of [`super::ProjectionIndex::closest`]: a projected Newton iteration for
 //! `min |S(x) - q|^2 / 2` over a chart's local coordinates `x` (the face's domain, a square or
-//! a triangle), evaluated through [`Surface::evaluate_local`].
+//! a triangle), evaluated through `Surface::derivatives_local`.
 //!
 //! With `r = S - q`, the gradient is `g = (r . S_u, r . S_v)` and the Hessian
 //! `H = [[S_u . S_u + r . S_uu, S_u . S_v + r . S_uv], [.., S_v . S_v + r . S_vv]]`. Where `H`
@@ -81,7 +81,7 @@ pub(super) fn minimise(
     start: [f64; 2],
     q: Point,
 ) -> Option<Found> {
-    let eval = |p: [f64; 2]| s.evaluate_local(chart.face, chart.sub, p).ok();
+    let eval = |p: [f64; 2]| s.derivatives_local(chart.face, chart.sub, p).ok();
     // start a hair inside the cell (a sample at a cell corner may be a point where the
     // face's parameters are singular: an extraordinary vertex)
     let centre = chart.cell.apply(match chart.shape {
@@ -94,13 +94,13 @@ pub(super) fn minimise(
     ];
     let mut p = project(chart.local, inside);
     let mut e = eval(p)?;
-    let mut f = norm(sub(e.point, q));
+    let mut f = norm(sub(e.p, q));
     // distances equal to rounding: a step that changes the distance by less still counts
     // (the tangential residual is resolved past what the distance itself shows)
-    let slack = 4.0 * f64::EPSILON * (norm(q) + norm(e.point));
+    let slack = 4.0 * f64::EPSILON * (norm(q) + norm(e.p));
     let mut on_boundary = false;
     for _ in 0..MAX_STEPS {
-        let r = sub(e.point, q);
+        let r = sub(e.p, q);
         let g = [dot(r, e.du), dot(r, e.dv)];
         let (ee, ff, gg) = (dot(e.du, e.du), dot(e.du, e.dv), dot(e.dv, e.dv));
         let tol = [1e-13 * norm(r) * ee.sqrt(), 1e-13 * norm(r) * gg.sqrt()];
@@ -134,7 +134,7 @@ pub(super) fn minimise(
                 break;
             }
             if let Some(ec) = eval(cand) {
-                let fc = norm(sub(ec.point, q));
+                let fc = norm(sub(ec.p, q));
                 if fc <= f + slack {
                     accepted = Some((cand, ec, fc));
                     break;
@@ -156,7 +156,7 @@ pub(super) fn minimise(
     Some(Found {
         chart: index,
         local: p,
-        point: e.point,
+        point: e.p,
         on_boundary,
     })
 }

@@ -145,31 +145,36 @@ impl Surface {
         [f64::from((sub + 1) % n) + y, 1.0]
     }
 
-    /// [`Surface::evaluate`] at local point `p` of root cell `sub` of `face`, with the
-    /// derivatives by the local coordinates; recorded with the face parameters of
-    /// [`Surface::face_params`].
+    /// The surface at local point `p` of root cell `sub` of `face`, with its derivatives by
+    /// the local coordinates: [`Surface::evaluate`] without the normal and the curvature
+    /// (what the closest-point search's samples and Newton steps need).
     ///
     /// # Errors
     /// Those of [`Surface::evaluate`] (a point no patch covers).
-    pub(crate) fn evaluate_local(
+    pub(crate) fn derivatives_local(
         &self,
         face: u32,
         sub: u32,
         p: [f64; 2],
-    ) -> Result<super::Evaluation> {
-        if !self.has_strip(face) {
-            return self.evaluate(face, p[0], p[1]);
-        }
-        let [u, v] = self.face_params(face, sub, p);
-        let q = [p[0].clamp(0.0, 1.0), p[1].clamp(0.0, 1.0)];
-        let (at, cell) = self
-            .cells
-            .locate(face, sub, Shape::Quad, q)
-            .ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "no patch of the surface covers sub-face {sub} of face {face} at {q:?}"
-                ))
-            })?;
-        self.evaluate_located(face, u, v, at, cell, None)
+    ) -> Result<crate::bezier::Derivatives> {
+        let (at, cell, fan) = if self.has_strip(face) {
+            let q = [p[0].clamp(0.0, 1.0), p[1].clamp(0.0, 1.0)];
+            let (at, cell) = self
+                .cells
+                .locate(face, sub, Shape::Quad, q)
+                .ok_or_else(|| {
+                    Error::InvalidArgument(format!(
+                        "no patch of the surface covers sub-face {sub} of face {face} at {q:?}"
+                    ))
+                })?;
+            (at, cell, None)
+        } else {
+            self.locate(face, p[0], p[1])?
+        };
+        let (df, ..) = self.leaf_derivatives(at, cell, false)?;
+        Ok(match fan {
+            Some(jac) => super::chain(&df, jac),
+            None => df,
+        })
     }
 }

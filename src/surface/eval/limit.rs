@@ -3,8 +3,10 @@
 //! need where the scheme honours per-element ring counts ([`RingTargets`]: Catmull-Clark), and
 //! an estimate of those counts for quad meshes ([`quad_corner_targets`]).
 
+use super::index::Leaf;
 use super::{Evaluation, MAX_EXACT_RINGS, Surface};
 use crate::bezier::complex::Provenance;
+use crate::bezier::domain::Shape;
 use crate::error::{Error, Result};
 use crate::host::adaptive::{RingTargets, with_ring_targets};
 use crate::mesh::{Element, PolyMesh};
@@ -204,5 +206,47 @@ pub fn quad_corner_targets(mesh: &PolyMesh, points: &[(u32, f64, f64)]) -> RingT
     RingTargets {
         base: FIRST_RINGS,
         per,
+    }
+}
+
+impl Surface {
+    /// Extra rings a point of a cap or fill cell needs to lie on ring patches: `k` where its
+    /// distance to the nearest cell corner (the extraordinary element is one of them) is about
+    /// `2^-k` of the cell; 0 for points of ring and regular patches and for the corners.
+    fn rings_needed(&self, at: &Leaf, cell: [f64; 2]) -> usize {
+        if !matches!(
+            self.complex.provenance[at.patch as usize],
+            Provenance::Cap { .. }
+        ) {
+            return 0;
+        }
+        let [x, y] = cell;
+        let d = match at.shape {
+            Shape::Quad => [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+                .iter()
+                .map(|c: &[f64; 2]| (x - c[0]).abs().max((y - c[1]).abs()))
+                .fold(f64::INFINITY, f64::min),
+            Shape::Triangle => (x + y).min(1.0 - x).min(1.0 - y),
+        };
+        if d <= 0.0 {
+            return 0;
+        }
+        let dom = at.domain(&self.complex);
+        // a pole's cap: its cells are halves, the pole at y = 1 of the cell (halves are not
+        // turned), and each ring halves the cap's cell toward it
+        let d = if dom.halves != 0 { 1.0 - y } else { d };
+        if d <= 0.0 {
+            return 0;
+        }
+        // each ring shrinks the hole by 3 where the cap's cell is a third (TPS), else by 2
+        let per_ring = if dom.splits_in_thirds(dom.depth) {
+            3f64.log2()
+        } else if dom.splits_at_ratio(dom.depth) {
+            // adjustable TPS: the hole shrinks by its ratio
+            -dom.ratio().log2()
+        } else {
+            1.0
+        };
+        (-d.log2() / per_ring).floor().max(0.0) as usize + 1
     }
 }

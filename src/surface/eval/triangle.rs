@@ -38,6 +38,16 @@ fn factorial(n: usize) -> f64 {
     (1..=n).map(|k| k as f64).product()
 }
 
+/// The stored patch's `(u, v)` at barycentric `(s, t)` of its triangle (`X(u, v) = T(u (1 - v),
+/// v)`; the collapsed corner `t = 1` as `(0, 1)`).
+pub fn stored_uv(st: [f64; 2]) -> [f64; 2] {
+    if st[1] < 1.0 {
+        [st[0] / (1.0 - st[1]), st[1]]
+    } else {
+        [0.0, 1.0]
+    }
+}
+
 /// Position and derivatives of the triangle stored in `patch` at barycentric `(s, t)`
 /// (`s` toward corner 1, `t` toward corner 2).
 ///
