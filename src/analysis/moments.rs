@@ -17,8 +17,12 @@
 //! floating-point rounding. Triangular patches are integrated as the collapsed tensor patches
 //! `T(u (1 - v), v)` fairsub stores them as (Loop, non-box; a `.bv` file's type 3 patches are
 //! converted so): the same rule on the collapsed square is Stroud's conical product rule on
-//! the triangle, exact for the same reason. fairsub writes no rational patch (a `.bv` file's
-//! type 8 patches are read only when their weights are equal, i.e. when they are polynomial).
+//! the triangle, exact for the same reason.
+//!
+//! A rational patch (a `.bv` file's type 8 with unequal weights) has rational integrands: no
+//! finite rule is exact for them either, so its terms are integrated like the area below,
+//! split until two rules agree to the tolerance (relative to the patch's area times the
+//! coordinates' scale to each term's degree); [`Measurement::rational`] counts such patches.
 //!
 //! The area element `|N|` is the square root of a polynomial, not a polynomial: no finite
 //! rule integrates it exactly. It is analytic wherever `N != 0`, so Gauss-Legendre converges
@@ -105,6 +109,9 @@ pub struct Measurement {
     /// Gauss-Legendre points per direction used for each bi-degree `(m, n)` present:
     /// `[m, n, qu, qv]`.
     pub rules: Vec<[usize; 4]>,
+    /// Rational patches: their volume moments are integrated to the area's tolerance, not
+    /// exactly (see the module documentation).
+    pub rational: usize,
 }
 
 /// Options of [`measure`].
@@ -254,14 +261,19 @@ pub(crate) fn area_moments(
         tol: tol * coarse[0].abs().max(f64::MIN_POSITIVE),
         scale,
     };
-    refine_area(patch, region, coarse, &goal, 0, &mut budget)
+    // each term against the tolerance of the area times the scale to its degree
+    let terms = Terms {
+        f: area_terms,
+        degree: &[0, 1, 1, 1, 2, 2, 2, 2, 2, 2],
+    };
+    refine(patch, region, coarse, &goal, &terms, 0, &mut budget)
 }
 
 /// Parts one area integral splits into at most (beyond, the parts left are accepted as they
 /// are: only a patch whose area element is singular along a curve could need more).
 const MAX_PARTS: usize = 1 << 14;
 
-/// What [`refine_area`] aims at: the rule's points, the absolute tolerance of the area (the
+/// What [`refine`] aims at: the rule's points, the absolute tolerance of the area (the
 /// relative tolerance times the whole region's area: a part near a singular corner need not
 /// be accurate relative to its own tiny area) and the coordinates' scale.
 struct Goal {
@@ -270,42 +282,48 @@ struct Goal {
     scale: f64,
 }
 
-/// [`area_moments`] from the region's `coarse` estimate, `depth` splits down, with `budget`
-/// parts left to split into.
-fn refine_area(
+/// The integrand of [`refine`]: the terms of one sample, and each term's degree in the
+/// coordinates beyond the area's (its tolerance is the area's times the scale to it).
+struct Terms<'a, const K: usize, F: Fn(&Sample) -> [f64; K]> {
+    f: F,
+    degree: &'a [i32; K],
+}
+
+/// The integral of `terms` over `region` from its `coarse` estimate, `depth` splits down,
+/// with `budget` parts left to split into; and the estimated error of its first term.
+fn refine<const K: usize, F: Fn(&Sample) -> [f64; K]>(
     patch: &BezierPatch,
     region: Region,
-    coarse: [f64; 10],
+    coarse: [f64; K],
     goal: &Goal,
+    terms: &Terms<'_, K, F>,
     depth: usize,
     budget: &mut usize,
-) -> ([f64; 10], f64) {
-    let parts: Vec<(Region, [f64; 10])> = region
+) -> ([f64; K], f64) {
+    let parts: Vec<(Region, [f64; K])> = region
         .split()
         .into_iter()
-        .map(|r| (r, integrate(patch, &r.rule(goal.q.0, goal.q.1), area_terms)))
+        .map(|r| (r, integrate(patch, &r.rule(goal.q.0, goal.q.1), &terms.f)))
         .collect();
-    let mut fine = [0.0; 10];
+    let mut fine = [0.0; K];
     for (_, p) in &parts {
         for (f, x) in fine.iter_mut().zip(p) {
             *f += x;
         }
     }
-    // each term against the tolerance of the area times the scale to its degree
-    let degree = [0, 1, 1, 1, 2, 2, 2, 2, 2, 2];
     let converged = fine
         .iter()
         .zip(&coarse)
-        .zip(degree)
-        .all(|((f, c), d)| (f - c).abs() <= goal.tol * goal.scale.powi(d) + 1e-300);
+        .zip(terms.degree)
+        .all(|((f, c), &d)| (f - c).abs() <= goal.tol * goal.scale.powi(d) + 1e-300);
     *budget = budget.saturating_sub(parts.len());
     if converged || depth >= MAX_DEPTH || *budget == 0 {
         return (fine, (fine[0] - coarse[0]).abs());
     }
-    let mut out = [0.0; 10];
+    let mut out = [0.0; K];
     let mut err = 0.0;
     for (r, c) in parts {
-        let (m, e) = refine_area(patch, r, c, goal, depth + 1, budget);
+        let (m, e) = refine(patch, r, c, goal, terms, depth + 1, budget);
         for (o, x) in out.iter_mut().zip(m) {
             *o += x;
         }
@@ -340,7 +358,25 @@ fn patch_sums(p: &BezierPatch, origin: Point, tol: f64) -> PatchSums {
     let (qu, qv) = (exact_points(p.deg_u), exact_points(p.deg_v));
     let rule = Region::WHOLE.rule(qu, qv);
     let exact = integrate(&p, &rule, exact_terms);
-    let (area, area_error) = area_moments(&p, Region::WHOLE, tol, size(&p));
+    let scale = size(&p);
+    let (area, area_error) = area_moments(&p, Region::WHOLE, tol, scale);
+    let exact = if p.weights.is_some() {
+        // the terms scale as the area times length to the degrees below
+        let goal = Goal {
+            q: (qu, qv),
+            tol: tol * area[0].abs().max(f64::MIN_POSITIVE),
+            scale,
+        };
+        let degree = [1, 2, 2, 2, 3, 3, 3, 3, 3, 3, 0, 0, 0];
+        let mut budget = MAX_PARTS;
+        let terms = Terms {
+            f: exact_terms,
+            degree: &degree,
+        };
+        refine(&p, Region::WHOLE, exact, &goal, &terms, 0, &mut budget).0
+    } else {
+        exact
+    };
     PatchSums {
         exact,
         area,
@@ -455,6 +491,7 @@ pub fn measure(c: &PatchComplex, opts: &MeasureOptions) -> Measurement {
         closure,
         volume,
         rules,
+        rational: c.patches.iter().filter(|p| p.weights.is_some()).count(),
     }
 }
 

@@ -154,6 +154,13 @@ fn print_text(source: &str, m: &Measurement) {
         m.patches,
         rules.join(", ")
     );
+    if m.rational > 0 {
+        say!(
+            "  {} rational patches: their volume moments integrated to the area's tolerance, \
+             not exactly",
+            m.rational
+        );
+    }
     if m.closed {
         say!(
             "  closed surface (closure |int n dA| / area = {:.2e})",

@@ -104,8 +104,24 @@ pub struct Sample {
 }
 
 /// Calls `f(sample, weight)` at every point of `rule` on `patch` (`u` contracted first per
-/// column, then `v` per point).
+/// column, then `v` per point; a rational patch through [`BezierPatch::derivatives`]).
 pub fn for_each_sample(patch: &BezierPatch, rule: &Columns, mut f: impl FnMut(Sample, f64)) {
+    if patch.weights.is_some() {
+        // a rational patch: the quotient rule's derivatives, point by point
+        for (u, col) in rule {
+            for &(v, w) in col {
+                let d = patch.derivatives(*u, v);
+                f(
+                    Sample {
+                        p: d.p,
+                        n: cross(d.du, d.dv),
+                    },
+                    w,
+                );
+            }
+        }
+        return;
+    }
     let (du, dv) = (patch.deg_u, patch.deg_v);
     let (nu, nv) = (du + 1, dv + 1);
     let n = nu.max(nv);
