@@ -10,21 +10,25 @@
 //! a grid of sample points. An R*-tree (the `rstar` crate) over the boxes yields the charts in
 //! increasing box distance from `q`; that distance is a lower bound of the chart's, so the
 //! search stops at the first box farther than the best point found (branch and bound). Within
-//! the charts it reaches, the samples give an upper bound and a starting point; a chart whose
-//! samples come within its sample spacing of the best distance gets a Newton search
-//! ([`newton`]) from its best sample, minimising `|S(x) - q|^2` over the local coordinates
-//! of the chart's face (it may leave the cell, not the face), with the face's domain as a
-//! box or triangle constraint. The result is the evaluation at the parameters found, so
+//! the charts it reaches, the samples give an upper bound; a chart whose samples come within
+//! its sample spacing of the best distance is bounded more tightly by the triangles of its
+//! sample grid less the surface's measured deviation from them ([`linear`]), and the charts
+//! whose bound is below the best distance found get, nearest first, a Newton search
+//! ([`newton`]) from the closest point of those triangles, minimising `|S(x) - q|^2` over the
+//! local coordinates of the chart's face (it may leave the cell, not the face), with the
+//! face's domain as a box or triangle constraint. The result is the evaluation at the parameters found, so
 //! `evaluate(face, u, v)` returns exactly the point reported.
 //!
 //! At an interior minimum the residual `q - S` is orthogonal to the surface (to rounding,
 //! `1e-12` relative here); at a point of the surface's boundary it is orthogonal to the
 //! boundary curve only (`on_boundary`).
 
+mod linear;
 mod newton;
 
 use super::eval::Surface;
 use super::eval::charts::{Chart, Local};
+use crate::bezier::domain::Shape;
 use crate::error::Result;
 use crate::geom::{Point, dist};
 use rayon::prelude::*;
@@ -71,6 +75,11 @@ pub struct ProjectionIndex {
     start: Vec<u32>,
     /// The largest distance between neighbouring samples of each chart (diagonals included).
     spacing: Vec<f64>,
+    /// How far each chart's surface strays from the triangles of its sample grid (twice the
+    /// largest deviation measured, [`linear`]); NaN where a sample is missing.
+    deviation: Vec<f64>,
+    /// The triangles of a quad chart's grid and of a triangle chart's ([`linear::triangles`]).
+    triangles: [Vec<[usize; 3]>; 2],
 }
 
 /// The sample grid of a cell in its own coordinates, with each sample's grid indices.
@@ -91,7 +100,7 @@ impl ProjectionIndex {
     /// The index of `s`.
     pub fn new(s: &Surface) -> ProjectionIndex {
         let charts = s.charts();
-        let per: Vec<(Vec<Sample>, f64)> = charts
+        let per: Vec<(Vec<Sample>, f64, f64)> = charts
             .par_iter()
             .map(|c| {
                 let grid: Vec<(usize, usize, Option<Sample>)> = grid(c.shape)
@@ -115,13 +124,21 @@ impl ProjectionIndex {
                         }
                     }
                 }
-                (grid.into_iter().filter_map(|x| x.2).collect(), r)
+                let complete = grid.iter().all(|x| x.2.is_some());
+                let samples: Vec<Sample> = grid.into_iter().filter_map(|x| x.2).collect();
+                let dev = if complete {
+                    linear_deviation(s, c, &samples, &linear::triangles(c.shape, GRID))
+                } else {
+                    f64::NAN
+                };
+                (samples, r, dev)
             })
             .collect();
         let spacing = per.iter().map(|x| x.1).collect();
+        let deviation = per.iter().map(|x| x.2).collect();
         let mut start = Vec::with_capacity(per.len() + 1);
         let mut samples = Vec::new();
-        for (p, _) in per {
+        for (p, ..) in per {
             start.push(samples.len() as u32);
             samples.extend(p);
         }
@@ -137,7 +154,33 @@ impl ProjectionIndex {
             samples,
             start,
             spacing,
+            deviation,
+            triangles: [
+                linear::triangles(Shape::Quad, GRID),
+                linear::triangles(Shape::Triangle, GRID),
+            ],
         }
+    }
+
+    /// The lower bound of chart `c`'s distance to `q` by its triangles (see [`linear`]) and
+    /// the local point of the closest point on them; `None` for a chart without them.
+    fn linear_bound(&self, c: usize, q: Point) -> Option<(f64, [f64; 2])> {
+        let dev = self.deviation[c];
+        if !dev.is_finite() {
+            return None;
+        }
+        let samples = self.samples_of(c);
+        let tris = &self.triangles[usize::from(self.charts[c].shape == Shape::Triangle)];
+        let mut best = (f64::INFINITY, [0.0; 2]);
+        for t in tris {
+            let pos = t.map(|i| samples[i].1);
+            let w = linear::closest_on_triangle(q, pos);
+            let d2 = dist2(linear::combine(w, pos), q);
+            if d2 < best.0 {
+                best = (d2, linear::combine_local(w, t.map(|i| samples[i].0)));
+            }
+        }
+        Some((best.0.sqrt() - dev, best.1))
     }
 
     fn samples_of(&self, c: usize) -> &[([f64; 2], Point)] {
@@ -171,14 +214,23 @@ impl ProjectionIndex {
                 cands.push((d - self.spacing[c], c, k));
             }
         }
+        // the charts that may come closer than the best sample, bounded by their triangles
+        // where they have them, started from the closest point of those
+        let mut cands: Vec<(f64, usize, [f64; 2])> = cands
+            .into_iter()
+            .filter(|&(lower, ..)| lower <= upper)
+            .map(|(lower, c, k)| match self.linear_bound(c, q) {
+                Some((l, start)) => (l.max(lower), c, start),
+                None => (lower, c, self.samples_of(c)[k].0),
+            })
+            .collect();
         cands.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut best: Option<(f64, newton::Found)> = None;
-        for &(lower, c, k) in &cands {
+        for &(lower, c, start) in &cands {
             if best.as_ref().is_some_and(|(d, _)| lower >= *d) {
                 break;
             }
             let chart = &self.charts[c];
-            let start = self.samples_of(c)[k].0;
             if let Some(found) = newton::minimise(s, c, chart, start, q) {
                 let d = dist(found.point, q);
                 if best.as_ref().is_none_or(|(bd, _)| d < *bd) {
@@ -200,6 +252,31 @@ impl ProjectionIndex {
             on_boundary: f.on_boundary,
         })
     }
+}
+
+/// Twice the largest distance, at the centroids and edge midpoints of the grid's triangles
+/// `tris`, between chart `c`'s surface and the linear interpolant of its `samples` (the full
+/// grid, in grid order) at the same local point ([`linear`]).
+fn linear_deviation(s: &Surface, c: &Chart, samples: &[Sample], tris: &[[usize; 3]]) -> f64 {
+    let third = 1.0 / 3.0;
+    let at = [
+        [third, third, third],
+        [0.5, 0.5, 0.0],
+        [0.0, 0.5, 0.5],
+        [0.5, 0.0, 0.5],
+    ];
+    let mut dev: f64 = 0.0;
+    for t in tris {
+        let (local, pos) = (t.map(|i| samples[i].0), t.map(|i| samples[i].1));
+        for w in at {
+            let x = clamp_local(c.local, linear::combine_local(w, local));
+            match s.derivatives_local(c.face, c.sub, x) {
+                Ok(e) => dev = dev.max(dist(e.p, linear::combine(w, pos))),
+                Err(_) => return f64::NAN,
+            }
+        }
+    }
+    2.0 * dev
 }
 
 /// The squared distance of two points.
