@@ -93,8 +93,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
 /// face of the net under the scheme `per_face` gives.
 ///
 /// # Errors
-/// `per_face` with a scheme that does not evaluate, or (fan-triangle input faces) a patch
-/// that straddles two of them.
+/// `per_face` with a scheme that does not evaluate, or whose input faces are fan triangles.
 pub(super) fn json_report(
     source: &str,
     complex: &crate::surface::PatchComplex,
@@ -127,10 +126,14 @@ fn face_areas(
         Error::InvalidArgument(format!("--per-face needs the input faces' domains: {e}"))
     })?;
     let d = crate::schemes::registry().descriptor(spec.id);
-    match d.eval_faces(spec, net)? {
-        Some(fans) => moments::fan_face_areas(complex, &fans, tol),
-        None => Ok(moments::face_areas(complex, net.num_faces(), tol)),
+    if d.eval_faces(spec, net)?.is_some() {
+        return Err(Error::InvalidArgument(format!(
+            "--per-face: {}'s input faces are fan triangles of the polygons its surface is \
+             built on; per-face areas of those are not supported yet",
+            spec.name()
+        )));
     }
+    Ok(moments::face_areas(complex, net.num_faces(), tol))
 }
 
 fn matrix_lines(name: &str, m: &[[f64; 3]; 3]) {

@@ -8,14 +8,10 @@
 //! strip beyond the net's boundary edges) is reported as `unassigned`. A kite of Loop's G^1 cap
 //! (`crate::surface::eval`'s `kite`) covers halves of two fan triangles: its half `u >= v`
 //! lies in its own domain's face, its half `v >= u` in the next kite's. Patches without a
-//! domain (schemes without `eval`) are unassigned too. Where the input faces are fan triangles
-//! of the faces the complex is built on (`nonbox-4dir`), [`fan_face_areas`] gives each patch to
-//! the fan triangle its cell lies in.
+//! domain (schemes without `eval`) are unassigned too.
 
 use super::{Region, area_moments, size};
 use crate::bezier::BezierPatch;
-use crate::bezier::domain::{Domain, FanTriangle, Shape};
-use crate::error::{Error, Result};
 use crate::surface::PatchComplex;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -106,95 +102,7 @@ fn parts(c: &PatchComplex) -> Vec<Part> {
 /// The area over each of the `num_faces` input faces of the surface `c` (integrated as in
 /// [`super::measure`], to relative tolerance `tol`).
 pub fn face_areas(c: &PatchComplex, num_faces: usize, tol: f64) -> FaceAreas {
-    areas_of_parts(c, parts(c), num_faces, tol)
-}
-
-/// [`face_areas`] where the input faces are fan triangles of the faces the patches' domains
-/// refer to (`nonbox-4dir`, [`FanTriangle`]): each patch goes to the fan triangle its cell
-/// lies in (a criss-cross triangle of a quad host is one quarter of it; a sub-face cell of an
-/// n-gon host lies on one side of the sub-face's diagonal `y = x`, the border between two fan
-/// triangles); the host's input faces are `fans`.
-///
-/// # Errors
-/// A patch whose cell straddles two fan triangles (its corners on both sides of a border),
-/// named.
-pub fn fan_face_areas(c: &PatchComplex, fans: &[FanTriangle], tol: f64) -> Result<FaceAreas> {
-    let by_edge: HashMap<(u32, u32), u32> = fans
-        .iter()
-        .enumerate()
-        .map(|(k, f)| ((f.host, f.edge % f.sides), k as u32))
-        .collect();
-    let sides: HashMap<u32, u32> = fans.iter().map(|f| (f.host, f.sides)).collect();
-    let mut parts = parts(c);
-    for part in &mut parts {
-        let Some(host) = part.face else { continue };
-        let d = c
-            .domain(part.patch)
-            .expect("a part with a face has a domain");
-        let n = sides.get(&host).copied();
-        part.face = match n.and_then(|n| fan_edge(&d, n)) {
-            Some(edge) => by_edge.get(&(host, edge)).copied(),
-            None if n.is_none() || d.sub == Domain::WHOLE => None,
-            None => {
-                return Err(Error::InvalidArgument(format!(
-                    "patch {} (a cell of face {host}, sub-face {}) straddles two of its fan \
-                     triangles: its area cannot be given to one input face",
-                    part.patch, d.sub
-                )));
-            }
-        };
-    }
-    Ok(areas_of_parts(c, parts, fans.len(), tol))
-}
-
-/// The host edge whose fan triangle holds the cell of `d` (a face of `n` sides), or `None`
-/// when its corners lie in no common one.
-fn fan_edge(d: &Domain, n: u32) -> Option<u32> {
-    const QUAD: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    if d.sub == Domain::WHOLE {
-        return None;
-    }
-    let corners: Vec<[f64; 2]> = match (d.criss_cross_triangle(), d.shape) {
-        (Some(k), _) => {
-            let k = usize::from(k);
-            vec![QUAD[k], QUAD[(k + 1) % 4], [0.5, 0.5]]
-        }
-        (None, Shape::Quad) => QUAD.to_vec(),
-        (None, Shape::Triangle) => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-    };
-    let map = d.cell_map();
-    // the edges whose fan triangle holds every corner (a corner on a border is in both)
-    let eps = 1e-12;
-    let mut common: Option<Vec<u32>> = None;
-    for c in corners {
-        let [x, y] = map.apply(c);
-        let mut here = Vec::with_capacity(2);
-        if n == 4 {
-            let quarter = [
-                y <= x + eps && x + y <= 1.0 + eps,
-                y <= x + eps && x + y >= 1.0 - eps,
-                y >= x - eps && x + y >= 1.0 - eps,
-                y >= x - eps && x + y <= 1.0 + eps,
-            ];
-            here.extend((0..4).filter(|&i| quarter[i as usize]));
-        } else {
-            if y <= x + eps {
-                here.push(d.sub);
-            }
-            if y >= x - eps {
-                here.push((d.sub + n - 1) % n);
-            }
-        }
-        common = Some(match common {
-            None => here,
-            Some(c) => c.into_iter().filter(|e| here.contains(e)).collect(),
-        });
-    }
-    common.and_then(|c| c.first().copied())
-}
-
-/// The areas of `parts` of `c`'s patches, summed per face (see [`face_areas`]).
-fn areas_of_parts(c: &PatchComplex, parts: Vec<Part>, num_faces: usize, tol: f64) -> FaceAreas {
+    let parts = parts(c);
     let area_of =
         |patch: &BezierPatch, region: Region| area_moments(patch, region, tol, size(patch)).0[0];
     let areas: Vec<f64> = parts
