@@ -15,6 +15,7 @@ macro_rules! say {
 
 mod analyze;
 pub mod api;
+pub mod batch;
 mod check;
 mod demo;
 mod eval;
@@ -264,6 +265,14 @@ extraordinary vertex); with --rings K the complex `subdivide --rings K` writes."
     /// Interactive viewer in the browser: a local page (127.0.0.1) with highlight lines,
     /// curvature, overlays and scheme menu.
     View(view::ViewArgs),
+    /// Run the jobs of a manifest (JSON Lines or CSV: nets, schemes, outputs, metrics) in
+    /// parallel worker processes, with a result row per job in DIR/results.jsonl; a re-run
+    /// skips what is done. --max-memory is per job.
+    Batch(batch::Args),
+    /// A worker process of `fairsub batch` (tasks on standard input, outcomes on standard
+    /// output).
+    #[command(hide = true)]
+    BatchWorker,
     /// Write the built-in gallery of control nets as OBJ files (or list their names).
     Gallery {
         /// Folder to write into.
@@ -300,6 +309,8 @@ fn run_command(command: Command) -> Result<()> {
         Command::Charmap(a) => analyze::charmap(a),
         Command::Check(a) => check::check(a),
         Command::View(a) => view::run(a),
+        Command::Batch(a) => batch::run(a),
+        Command::BatchWorker => batch::serve(std::io::stdin().lock(), std::io::stdout().lock()),
         Command::Gallery { out, list } => gallery(out, list),
     }
 }

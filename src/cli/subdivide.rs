@@ -113,22 +113,29 @@ pub enum Computed {
 
 /// Runs `fairsub subdivide`.
 pub fn run(a: Args) -> Result<()> {
+    run_keeping(&a).map(|_| ())
+}
+
+/// Runs `fairsub subdivide` and hands back the prepared job and what it wrote (`fairsub
+/// batch` measures the same surface).
+pub(crate) fn run_keeping(a: &Args) -> Result<(Prepared, Computed)> {
     let fmt = OutputFormat::choose(&a.output, a.format.as_deref())?;
-    let p = prepare(&a, None)?;
+    let p = prepare(a, None)?;
     if let (OutputFormat::Scene(sf), Some(0)) = (fmt, a.levels) {
         // the control net itself, with its scheme and tags
         scene::write_net(&a.output, &p.mesh, Some(&p.spec), sf)?;
         wrote(&p.mesh, 0, &p.label, &a.output);
-        return Ok(());
+        let net = p.mesh.clone();
+        return Ok((p, Computed::Net(net)));
     }
-    let (computed, label) = finish(&a, &p)?;
-    match computed {
+    let (computed, label) = finish(a, &p)?;
+    match &computed {
         Computed::Complex(complex, _) if matches!(fmt, OutputFormat::Scene(_)) => {
             let OutputFormat::Scene(sf) = fmt else {
                 unreachable!("matched above")
             };
-            crate::surface::validate::check_finite(&complex)?;
-            scene::write_complex(&a.output, &complex, a.tess, a.vertex_colors, sf)?;
+            crate::surface::validate::check_finite(complex)?;
+            scene::write_complex(&a.output, complex, a.tess, a.vertex_colors, sf)?;
             eprintln!(
                 "wrote the tessellation of {} patches ({} rings, {}, {} samples per edge) to {}",
                 complex.len(),
@@ -140,10 +147,10 @@ pub fn run(a: Args) -> Result<()> {
         }
         Computed::Complex(complex, _) => {
             let table = match &a.stencils {
-                Some(_) => Some(patch_table(&a, &p, &complex)?),
+                Some(_) => Some(patch_table(a, &p, complex)?),
                 None => None,
             };
-            write_complex(&complex, fmt, &a.output, a.tess)?;
+            write_complex(complex, fmt, &a.output, a.tess)?;
             if let (Some(path), Some(t)) = (&a.stencils, &table) {
                 crate::io::table::write_table(path, t)?;
                 eprintln!(
@@ -163,29 +170,29 @@ pub fn run(a: Args) -> Result<()> {
             );
         }
         Computed::LimitMesh(m, normals) => {
-            nonbox::write_limit(&m, &normals, fmt, &a.output)?;
-            wrote(&m, a.levels.unwrap_or(1), &label, &a.output);
+            nonbox::write_limit(m, normals, fmt, &a.output)?;
+            wrote(m, a.levels.unwrap_or(1), &label, &a.output);
         }
         Computed::FcvNet(m) => {
-            nonbox::write_refined(&m, fmt, &a.output)?;
-            wrote(&m, a.levels.unwrap_or(1), &label, &a.output);
+            nonbox::write_refined(m, fmt, &a.output)?;
+            wrote(m, a.levels.unwrap_or(1), &label, &a.output);
         }
         Computed::Net(refined) => {
             match fmt {
                 OutputFormat::Mesh(mf) => {
-                    for note in crate::io::lost_in(&refined, mf) {
+                    for note in crate::io::lost_in(refined, mf) {
                         eprintln!("warning: {}: {note}", a.output.display());
                     }
-                    crate::io::write_mesh(&a.output, &refined, mf)?
+                    crate::io::write_mesh(&a.output, refined, mf)?
                 }
-                OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, &refined)?,
-                OutputFormat::Scene(sf) => scene::write_net(&a.output, &refined, None, sf)?,
+                OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, refined)?,
+                OutputFormat::Scene(sf) => scene::write_net(&a.output, refined, None, sf)?,
                 OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
             }
-            wrote(&refined, a.levels.unwrap_or(1), &label, &a.output);
+            wrote(refined, a.levels.unwrap_or(1), &label, &a.output);
         }
     }
-    Ok(())
+    Ok((p, computed))
 }
 
 /// The patch stencil table of the complex `finish` built for a prepared `--rings` job (the

@@ -22,7 +22,7 @@
 //! | [`fcv`] | FCV side files, OBJ nets with FCVs and OBJ limit meshes with normals (non-box schemes) |
 //! | `format` | [`MeshFormat`], [`OutputFormat`] and the choice by name or extension |
 //! | `text`, `textout` | the text rule and errors of the readers; number formatting and line sinks of the writers |
-//! | `atomic`, `polygons`, `groups` | atomic file output; checked polygon arrays; numbering names by first appearance |
+//! | `atomic`, `polygons`, `groups` | atomic file output (and staged output, committed in groups); checked polygon arrays; numbering names by first appearance |
 //!
 //! Mesh formats are chosen by [`read_mesh`] from the file extension; output formats by
 //! [`OutputFormat::choose`] from a `--format` name or the extension.
@@ -53,7 +53,9 @@ use std::fs::File;
 use std::io::Write;
 use std::path::Path;
 
-pub use atomic::write_atomically;
+pub use atomic::{
+    Durability, Staged, commit, discard, remove_stale_temps, staged, write_atomically,
+};
 pub use bv::{
     BvCounts, BvFile, BvGroup, BvPatches, BvPolyhedron, TriPatch, bv_to_string, parse_bv, read_bv,
     write_bv, write_bv_mesh,
