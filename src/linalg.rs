@@ -4,6 +4,18 @@
 
 use nalgebra::{Complex, ComplexField, DMatrix, DVector};
 
+/// Makes `faer` work on the calling thread from now on (for the whole process): its default
+/// splits a decomposition by the number of threads, and the rounding of that split changed
+/// the last bits of results between one thread and several (a cap's coefficients under
+/// `RAYON_NUM_THREADS=1`, on a one-core machine or container), so the same job wrote
+/// different files on different machines. The dense problems here are small enough that one
+/// thread costs little. The command line and the Python package call this on start, and
+/// [`crate::surface::build`] before it builds a surface.
+pub fn deterministic() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| faer::set_global_parallelism(faer::Par::Seq));
+}
+
 /// Complex numbers of the eigen computations.
 pub type C64 = Complex<f64>;
 

@@ -4,6 +4,7 @@
 //! words, so every option, default, limit and error message is the command line's own; no rule
 //! is written here. Long work runs with the GIL released.
 
+mod batch;
 mod evaluate;
 mod net;
 mod shape;
@@ -497,6 +498,8 @@ fn render_words<'py>(
 /// The extension module.
 #[pymodule]
 fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // results that do not depend on the machine's number of threads
+    fairsub::linalg::deterministic();
     m.add_class::<Net>()?;
     m.add_class::<Surface>()?;
     m.add_class::<Stencils>()?;
@@ -508,6 +511,7 @@ fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render_words, m)?)?;
     m.add_function(wrap_pyfunction!(shape::scheme_options_json, m)?)?;
     m.add_function(wrap_pyfunction!(shape::curvature_colours, m)?)?;
+    batch::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -286,6 +286,7 @@ extraordinary vertex); with --rings K the complex `subdivide --rings K` writes."
 
 /// Runs a parsed command line (within its memory budget, see [`Cli`]'s `--max-memory`).
 pub fn run(cli: Cli) -> Result<()> {
+    crate::linalg::deterministic();
     let budget = cli
         .max_memory
         .as_deref()

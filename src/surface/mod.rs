@@ -64,6 +64,8 @@ pub fn build_prepared(
     opts: ComplexOptions,
     progress: &mut dyn FnMut(usize),
 ) -> Result<SurfaceOutput> {
+    // the caps' decompositions round alike on every machine
+    crate::linalg::deterministic();
     let rules = registry().descriptor(spec.id).patch_rules(spec)?;
     let mut out = match rules {
         Some(r) => r.build(&prepared.mesh, opts, progress)?,

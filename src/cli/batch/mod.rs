@@ -152,6 +152,30 @@ pub fn plan(manifest: &Path, out: &Path, budget: u64) -> Result<Plan> {
     Ok(plan)
 }
 
+/// The default memory budget of a job when `slots` jobs run at once: the command line's
+/// default budget (half of what the process may use) shared by the slots.
+pub fn default_budget(slots: usize) -> u64 {
+    (super::limits::default_budget().bytes / slots.max(1) as f64) as u64
+}
+
+/// Appends rows to `DIR/results.jsonl` (one write per row, then a sync).
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be opened or written.
+pub fn append_rows(out: &Path, rows: &[Row]) -> Result<()> {
+    results::Log::open(out)?.append(rows)
+}
+
+/// Removes what stopped jobs left of their outputs' temporary files (call it when no job of
+/// `plan` runs any more).
+pub fn remove_stale_temps(plan: &[Planned]) {
+    for p in plan {
+        if let Some(t) = &p.task.output {
+            crate::io::remove_stale_temps(t);
+        }
+    }
+}
+
 /// Creates a folder (and its parents).
 fn mkdir(d: &Path) -> Result<()> {
     std::fs::create_dir_all(d).map_err(|source| Error::Io {
@@ -247,7 +271,8 @@ pub fn run(a: Args) -> Result<()> {
         path: "the fairsub executable".into(),
         source,
     })?;
-    let s = run_with(&a, &[exe.into_os_string(), "batch-worker".into()])?;
+    let worker = [exe.into_os_string(), "batch-worker".into()];
+    let s = run_with(&a, &worker, super::limits::max_memory())?;
     if s.error > 0 {
         return Err(Error::InvalidArgument(format!(
             "{} of {} jobs failed; their rows in {} say why",
@@ -267,15 +292,14 @@ const GROUP_WAIT: Duration = Duration::from_millis(500);
 
 /// Runs a batch with `worker` as the command of the worker processes (the `fairsub` binary's
 /// `batch-worker`, or the Python package's worker module); the budget per job is
-/// `--max-memory`, or the default budget shared by the slots.
-pub fn run_with(a: &Args, worker: &[OsString]) -> Result<Summary> {
+/// `max_memory` (bytes), or the default budget shared by the slots.
+pub fn run_with(a: &Args, worker: &[OsString], max_memory: Option<u64>) -> Result<Summary> {
     let start = Instant::now();
     let slots = a
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
         .max(1);
-    let budget = super::limits::max_memory()
-        .unwrap_or((super::limits::default_budget().bytes / slots as f64) as u64);
+    let budget = max_memory.unwrap_or_else(|| default_budget(slots));
     mkdir(&a.out)?;
     let _lock = lock(&a.out)?;
     let plan = plan(&a.manifest, &a.out, budget)?;
