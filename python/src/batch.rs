@@ -10,14 +10,19 @@ use std::path::PathBuf;
 use super::err;
 
 /// JSON of a serialisable value.
-fn json<T: serde::Serialize>(v: &T) -> String {
-    serde_json::to_string(v).expect("serialisable")
+macro_rules! json {
+    ($v:expr) => {
+        serde_json::to_string($v).expect("serialisable")
+    };
 }
 
-/// A value from JSON, or ValueError.
-fn parse<T: serde::de::DeserializeOwned>(text: &str, what: &str) -> PyResult<T> {
-    serde_json::from_str(text)
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("not a batch {what}: {e}")))
+/// A value of type `$t` from JSON `$text`, or ValueError.
+macro_rules! parse {
+    ($t:ty, $text:expr, $what:expr) => {
+        serde_json::from_str::<$t>($text).map_err(|e| {
+            pyo3::exceptions::PyValueError::new_err(format!("not a batch {}: {e}", $what))
+        })
+    };
 }
 
 /// The plan of a run (JSON: `todo` [{row, task}], `settled` rows, `unreadable` lines):
@@ -25,7 +30,7 @@ fn parse<T: serde::de::DeserializeOwned>(text: &str, what: &str) -> PyResult<T> 
 #[pyfunction]
 fn batch_plan(py: Python<'_>, manifest: PathBuf, out: PathBuf, budget: u64) -> PyResult<String> {
     py.detach(|| batch::plan(&manifest, &out, budget))
-        .map(|p| json(&p))
+        .map(|p| json!(&p))
         .map_err(err)
 }
 
@@ -33,16 +38,16 @@ fn batch_plan(py: Python<'_>, manifest: PathBuf, out: PathBuf, budget: u64) -> P
 /// an outcome with `error`, never an exception).
 #[pyfunction]
 fn batch_run_task(py: Python<'_>, task: &str) -> PyResult<String> {
-    let task: batch::Task = parse(task, "task")?;
-    Ok(json(&py.detach(|| batch::run_and_commit(&task))))
+    let task = parse!(batch::Task, task, "task")?;
+    Ok(json!(&py.detach(|| batch::run_and_commit(&task))))
 }
 
 /// The row of a planned job (`row`, JSON) from its outcome (JSON).
 #[pyfunction]
 fn batch_settle(row: &str, outcome: &str) -> PyResult<String> {
-    Ok(json(&batch::settle(
-        parse(row, "row")?,
-        parse(outcome, "outcome")?,
+    Ok(json!(&batch::settle(
+        parse!(batch::Row, row, "row")?,
+        parse!(batch::Outcome, outcome, "outcome")?,
     )))
 }
 
@@ -51,7 +56,7 @@ fn batch_settle(row: &str, outcome: &str) -> PyResult<String> {
 fn batch_append(py: Python<'_>, out: PathBuf, rows: Vec<String>) -> PyResult<()> {
     let rows = rows
         .iter()
-        .map(|r| parse(r, "row"))
+        .map(|r| parse!(batch::Row, r, "row"))
         .collect::<PyResult<Vec<batch::Row>>>()?;
     py.detach(|| batch::append_rows(&out, &rows)).map_err(err)
 }
@@ -59,7 +64,7 @@ fn batch_append(py: Python<'_>, out: PathBuf, rows: Vec<String>) -> PyResult<()>
 /// Removes the temporary files that stopped jobs of a plan (JSON) left.
 #[pyfunction]
 fn batch_remove_temps(plan: &str) -> PyResult<()> {
-    let plan: batch::Plan = parse(plan, "plan")?;
+    let plan = parse!(batch::Plan, plan, "plan")?;
     batch::remove_stale_temps(&plan.todo);
     Ok(())
 }
@@ -91,7 +96,7 @@ fn batch_run(
     };
     let worker: Vec<std::ffi::OsString> = worker.into_iter().map(Into::into).collect();
     py.detach(|| batch::run_with(&args, &worker, max_memory))
-        .map(|s| json(&s))
+        .map(|s| json!(&s))
         .map_err(err)
 }
 
