@@ -533,3 +533,120 @@ fn rows_tolerant(out: &Path) -> Vec<Value> {
         .filter_map(|l| serde_json::from_str(l).ok())
         .collect()
 }
+
+#[test]
+fn csv_manifests_defaults_duplicates_and_the_time_limit() {
+    let dir = scratch("csv");
+    std::fs::create_dir_all(dir.join("nets")).unwrap();
+    std::fs::write(dir.join("nets/g.obj"), grid_obj(3, 2, 1)).unwrap();
+    // the same jobs as JSON Lines (with a defaults line) and as CSV
+    let jsonl = [
+        json!({"defaults": {"scheme": "catmull-clark", "options": {"boundary": "edge-only"}}}),
+        json!({"input": "nets/g.obj", "levels": 2, "output": "a.obj"}),
+        json!({"input": "gallery:cnet-5-saddle", "scheme": "eg", "rings": 3, "output": "b.bv", "measure": true, "options": {"boundary": null}}),
+        json!({"input": "gallery:cube", "levels": 1, "output": "a.obj"}),
+    ];
+    let lines: Vec<String> = jsonl.iter().map(Value::to_string).collect();
+    std::fs::write(dir.join("m.jsonl"), lines.join("\n")).unwrap();
+    let csv = "input,scheme,levels,rings,output,options,measure\n\
+               nets/g.obj,catmull-clark,2,,a.obj,\"{\"\"boundary\"\": \"\"edge-only\"\"}\",\n\
+               gallery:cnet-5-saddle,eg,,3,b.bv,,true\n\
+               gallery:cube,catmull-clark,1,,a.obj,,\n";
+    std::fs::write(dir.join("m.csv"), csv).unwrap();
+    for m in ["m.jsonl", "m.csv"] {
+        let out = dir.join(format!("out-{m}"));
+        let (ok, err) = fairsub(&[
+            "batch",
+            dir.join(m).to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!ok, "{err}");
+        let rs = rows(&out);
+        assert_eq!(rs.len(), 3, "{rs:?}");
+        let errors: Vec<&Value> = rs.iter().filter(|r| r["status"] == "error").collect();
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        let dup = errors[0];
+        assert!(
+            dup["error"]
+                .as_str()
+                .unwrap()
+                .contains("'a.obj' is written by line"),
+            "{dup}"
+        );
+        let measured = rs.iter().find(|r| r["output"] == "b.bv").unwrap();
+        let m = &measured["metrics"];
+        assert_eq!(
+            m["check"]["continuity"]["patches"],
+            measured["counts"]["patches"]
+        );
+        assert!(
+            m["check"]["continuity"]["all"]["c0"].as_f64().unwrap() < 1e-9,
+            "{m}"
+        );
+        assert!(
+            m["curvature"]["gauss"][0].as_f64().unwrap()
+                <= m["curvature"]["gauss"][1].as_f64().unwrap()
+        );
+    }
+    let (a, b) = (dir.join("out-m.jsonl"), dir.join("out-m.csv"));
+    for f in ["a.obj", "b.bv"] {
+        assert_eq!(
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    let r = dir.join("ref.obj");
+    fairsub(&[
+        "subdivide",
+        dir.join("nets/g.obj").to_str().unwrap(),
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "2",
+        "--boundary",
+        "edge-only",
+        "-o",
+        r.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read(a.join("a.obj")).unwrap(),
+        std::fs::read(r).unwrap()
+    );
+    // a job over the time limit is stopped: an error row, no file, the next job still runs
+    let slow = [
+        json!({"input": "gallery:torus-evs", "scheme": "catmull-clark", "levels": 9, "output": "slow.ply"}),
+        json!({"input": "gallery:cube", "scheme": "catmull-clark", "levels": 1, "output": "fast.obj"}),
+    ];
+    let lines: Vec<String> = slow.iter().map(Value::to_string).collect();
+    std::fs::write(dir.join("slow.jsonl"), lines.join("\n")).unwrap();
+    let out = dir.join("out-slow");
+    let (_, err) = fairsub(&[
+        "batch",
+        dir.join("slow.jsonl").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "1",
+        "--timeout",
+        "0.2",
+        "--max-memory",
+        "8G",
+    ]);
+    let rs = rows(&out);
+    let slow = rs.iter().find(|r| r["output"] == "slow.ply").unwrap();
+    assert!(
+        slow["error"]
+            .as_str()
+            .unwrap()
+            .contains("time limit of 0.2 s"),
+        "{slow} {err}"
+    );
+    assert!(
+        rs.iter()
+            .any(|r| r["output"] == "fast.obj" && r["status"] == "ok")
+    );
+    assert_eq!(files(&out), BTreeSet::from(["fast.obj".to_string()]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
