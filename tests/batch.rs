@@ -33,6 +33,12 @@ fn fairsub(args: &[&str]) -> (bool, String) {
     )
 }
 
+/// `fairsub batch MANIFEST --out OUT --jobs 2`.
+fn run_batch(manifest: &Path, out: &Path) -> (bool, String) {
+    let (m, o) = (manifest.to_str().unwrap(), out.to_str().unwrap());
+    fairsub(&["batch", m, "--out", o, "--jobs", "2"])
+}
+
 /// The rows of `results.jsonl` (every line must be a row).
 fn rows(out: &Path) -> Vec<Value> {
     std::fs::read_to_string(out.join("results.jsonl"))
@@ -286,38 +292,43 @@ fn make_inputs(dir: &Path) -> Manifest {
             "too large".into(),
         );
     }
-    let missing = job(
-        "nets/no-such-file.obj",
-        "catmull-clark",
-        ("levels", 1),
-        "bad/missing.obj",
-        json!({}),
-    );
-    bad.push((missing, "no-such-file.obj".into()));
-    let unknown = job(
-        "gallery:cube",
-        "no-such-scheme",
-        ("levels", 1),
-        "bad/unknown.obj",
-        json!({}),
-    );
-    bad.push((unknown, "unknown scheme 'no-such-scheme'".into()));
-    let escape = job(
-        "gallery:cube",
-        "catmull-clark",
-        ("levels", 1),
-        "../outside.obj",
-        json!({}),
-    );
-    bad.push((escape, "must be a file path relative to --out".into()));
-    let option = job(
-        "gallery:cube",
-        "catmull-clark",
-        ("levels", 1),
-        "bad/option.obj",
-        json!({"no-such-option": 1}),
-    );
-    bad.push((option, "--no-such-option".into()));
+    let cube = "gallery:cube";
+    let cc = "catmull-clark";
+    for (input, scheme, output, options, expect) in [
+        (
+            "nets/no-such-file.obj",
+            cc,
+            "bad/missing.obj",
+            json!({}),
+            "no-such-file.obj",
+        ),
+        (
+            cube,
+            "no-such-scheme",
+            "bad/unknown.obj",
+            json!({}),
+            "unknown scheme 'no-such-scheme'",
+        ),
+        (
+            cube,
+            cc,
+            "../outside.obj",
+            json!({}),
+            "must be a file path relative to --out",
+        ),
+        (
+            cube,
+            cc,
+            "bad/option.obj",
+            json!({"no-such-option": 1}),
+            "--no-such-option",
+        ),
+    ] {
+        bad.push((
+            job(input, scheme, ("levels", 1), output, options),
+            expect.into(),
+        ));
+    }
     Manifest { good, bad }
 }
 
@@ -378,14 +389,7 @@ fn a_few_hundred_jobs_with_bad_ones_resume_and_equal_the_single_file_command() {
     );
     let manifest = write_manifest(&dir, &m);
     let out = dir.join("out");
-    let (ok, err) = fairsub(&[
-        "batch",
-        manifest.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-    ]);
+    let (ok, err) = run_batch(&manifest, &out);
     assert!(!ok, "failed jobs make the exit code non-zero");
     assert!(
         err.contains(&format!(
@@ -456,14 +460,7 @@ fn a_few_hundred_jobs_with_bad_ones_resume_and_equal_the_single_file_command() {
     // the second run does no work: every good job skipped, its file untouched
     let stamp = |o: &str| std::fs::metadata(out.join(o)).unwrap().modified().unwrap();
     let before: Vec<_> = expected.iter().map(|o| stamp(o)).collect();
-    fairsub(&[
-        "batch",
-        manifest.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-    ]);
+    run_batch(&manifest, &out);
     let second = rows(&out);
     let run2 = by_output(&second, first.len());
     assert_eq!(second.len(), 2 * first.len());
@@ -495,14 +492,7 @@ fn a_few_hundred_jobs_with_bad_ones_resume_and_equal_the_single_file_command() {
     let at = text.find(&needle).unwrap();
     let text = format!("{}{}", &text[..at], &text[at + 12..]);
     std::fs::write(out.join("results.jsonl"), text).unwrap();
-    let (_, err) = fairsub(&[
-        "batch",
-        manifest.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-    ]);
+    let (_, err) = run_batch(&manifest, &out);
     assert!(err.contains("are not result rows"), "{err}");
     let third = rows_tolerant(&out);
     let redone: BTreeSet<String> = third[second.len() - 1..]
