@@ -9,9 +9,10 @@
 //! over a hard limit aborts the whole process (Rust cannot unwind out of an allocation
 //! failure). A process can be killed, and its memory limited by the kernel: so the slot kills
 //! a worker that runs over `--timeout` and starts a new one, and each worker caps its address
-//! space at its size after start-up plus twice the job's budget (the budget counts the large
-//! arrays; the estimates refuse most jobs over it before they allocate). The workers live for
-//! the whole run, so their start-up (a few milliseconds) is paid once per slot, not per job.
+//! space at its size after start-up plus twice the job's budget, at least 256 MiB (the budget
+//! counts the large arrays; the estimates refuse most jobs over it before they allocate). The
+//! workers live for the whole run, so their start-up (a few milliseconds) is paid once per
+//! slot, not per job.
 
 use super::job::{self, Outcome, Task};
 use crate::error::{Error, Result};
@@ -39,6 +40,9 @@ pub fn serve(input: impl BufRead, mut output: impl Write) -> Result<()> {
         let task: Task = serde_json::from_str(&line)
             .map_err(|e| Error::InvalidArgument(format!("not a batch task: {e}")))?;
         if !limited {
+            // the thread pool's stacks are reserved before the cap: started lazily under a
+            // small cap, the pool failed to start and every job of the worker with it
+            rayon::current_num_threads();
             cap_address_space(task.budget);
             limited = true;
         }
@@ -51,8 +55,14 @@ pub fn serve(input: impl BufRead, mut output: impl Write) -> Result<()> {
     Ok(())
 }
 
-/// Caps this process's address space at its present size plus twice `budget` (Linux; a no-op
-/// elsewhere): the kernel then refuses what a job would take beyond it, and the process stops.
+/// The least room a worker's address space keeps above its size at start-up, whatever the
+/// budget: the parsing, the hash maps and the output buffers of a job that the estimates
+/// (which count the large arrays) let through must fit.
+const MIN_HEADROOM: u64 = 256 << 20;
+
+/// Caps this process's address space at its present size plus twice `budget`, and at least
+/// [`MIN_HEADROOM`] more (Linux; a no-op elsewhere): the kernel then refuses what a job would
+/// take beyond it, and the process stops.
 fn cap_address_space(budget: u64) {
     #[cfg(target_os = "linux")]
     {
@@ -64,7 +74,7 @@ fn cap_address_space(budget: u64) {
         };
         // SAFETY: sysconf reads a system parameter.
         let page = unsafe { libc::sysconf(libc::_SC_PAGESIZE) }.max(4096) as u64;
-        let limit = (pages * page).saturating_add(budget.saturating_mul(2));
+        let limit = (pages * page).saturating_add(budget.saturating_mul(2).max(MIN_HEADROOM));
         let mut r = libc::rlimit {
             rlim_cur: 0,
             rlim_max: 0,
