@@ -68,7 +68,8 @@ def rows(out: pathlib.Path):
 
 
 def command_line(manifest, out):
-    r = subprocess.run([cli_path(), "batch", str(manifest), "--out", str(out)], capture_output=True, text=True)
+    r = subprocess.run([cli_path(), "batch", str(manifest), "--out", str(out)], capture_output=True, text=True,
+                       timeout=300)
     assert r.returncode == 1 and "2 of" in r.stderr, r.stderr  # the two bad jobs
     return files(out)
 
@@ -100,6 +101,10 @@ def test_without_a_client_the_files_are_the_command_lines(tmp_path):
     assert (again["ok"], again["error"], again["skipped"]) == (0, 2, n - 2)
 
 
+# The longest the Dask run may take (it takes about 20 s on 2 busy cores).
+DASK_SECONDS = 300
+
+
 def dask_or_skip():
     if os.environ.get("FAIRSUB_REQUIRE_DASK") == "1":
         import distributed  # noqa: F401  (required: fail here when missing)
@@ -129,10 +134,18 @@ def test_dask_cluster_with_a_worker_killed_gives_the_same_files(tmp_path):
         os.kill(pid, signal.SIGKILL)
         killed[worker] = list(processing[worker])
 
+    def too_long(signum, frame):
+        raise TimeoutError("the Dask run took over %d s" % DASK_SECONDS)
+
     seen = []
+    # bounded in time: a run that hangs (a task never retried) fails instead of stalling CI
+    previous = signal.signal(signal.SIGALRM, too_long)
+    signal.alarm(DASK_SECONDS)
     try:
         summary = fairsub.batch.run(manifest, tmp_path / "dask", client=client, on_row=on_row)
     finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
         client.close()
         cluster.close()
     assert killed, "no worker was killed: the run ended too early"
