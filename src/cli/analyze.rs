@@ -191,7 +191,7 @@ pub fn charmap(a: CharmapArgs) -> Result<()> {
         _ => match OutputFormat::choose(&a.output, None)? {
             OutputFormat::Bv => crate::io::write_bv(&a.output, &c)?,
             OutputFormat::Iges => crate::io::write_iges(&a.output, &c)?,
-            OutputFormat::Mesh(_) | OutputFormat::Scene(_) => {
+            OutputFormat::Mesh(_) | OutputFormat::Scene(_) | OutputFormat::Step => {
                 return Err(Error::InvalidArgument(
                     "charmap writes .bv, .igs or .svg".into(),
                 ));

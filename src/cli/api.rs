@@ -274,9 +274,11 @@ pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
         crate::io::OutputFormat::Mesh(mf) => crate::io::write_mesh(path, m, mf),
         crate::io::OutputFormat::Bv => crate::io::write_bv_mesh(path, m),
         crate::io::OutputFormat::Scene(sf) => subdivide::scene::write_net(path, m, None, sf),
-        crate::io::OutputFormat::Iges => Err(Error::InvalidArgument(
-            "IGES holds patches: write a surface, not a net".into(),
-        )),
+        crate::io::OutputFormat::Iges | crate::io::OutputFormat::Step => {
+            Err(Error::InvalidArgument(
+                "IGES and STEP hold surfaces: write a surface, not a net".into(),
+            ))
+        }
     }
 }
 

@@ -16,6 +16,7 @@ macro_rules! say {
 mod analyze;
 pub mod api;
 pub mod batch;
+mod cad;
 mod check;
 mod demo;
 mod eval;

@@ -5,6 +5,7 @@ use crate::error::{Error, Result};
 use crate::io::OutputFormat;
 use crate::mesh::PolyMesh;
 use crate::schemes::{Scheme, Spec, registry};
+use crate::surface::cad::FaceMode;
 use crate::surface::{ComplexOptions, PatchComplex};
 use std::path::PathBuf;
 
@@ -57,14 +58,18 @@ pub struct Args {
     /// every Bezier coefficient of the written complex; format in the README, `fairsub::io::table`).
     #[arg(long, value_name = "FILE")]
     pub stencils: Option<PathBuf>,
-    /// Output format (obj, off, ply, ply-ascii, bv, igs, usda, usdc, usdz, glb, gltf), instead
-    /// of the extension.
+    /// Output format (obj, off, ply, ply-ascii, bv, igs, step, usda, usdc, usdz, glb, gltf),
+    /// instead of the extension.
     #[arg(long)]
     pub format: Option<String>,
     /// USD and glTF tessellations (--rings): colour the vertices by mean or Gaussian curvature
     /// or by the patches' provenance (glTF COLOR_0, USD primvars:displayColor).
     #[arg(long, value_enum, value_name = "BY")]
     pub vertex_colors: Option<scene::VertexColors>,
+    /// CAD faces of STEP and IGES output: one per input face (default; per quad sub-face of
+    /// an n-gon), packed into rectangles of the quad layout, or one per Bezier patch.
+    #[arg(long, value_enum, default_value_t)]
+    pub faces: FaceMode,
 }
 
 impl Args {
@@ -150,7 +155,11 @@ pub(crate) fn run_keeping(a: &Args) -> Result<(Prepared, Computed)> {
                 Some(_) => Some(patch_table(a, &p, complex)?),
                 None => None,
             };
-            write_complex(complex, fmt, &a.output, a.tess)?;
+            let cad = Cad {
+                mesh: &p.mesh,
+                faces: a.faces,
+            };
+            write_complex_as(complex, fmt, &a.output, a.tess, Some(cad))?;
             if let (Some(path), Some(t)) = (&a.stencils, &table) {
                 crate::io::table::write_table(path, t)?;
                 eprintln!(
@@ -187,7 +196,9 @@ pub(crate) fn run_keeping(a: &Args) -> Result<(Prepared, Computed)> {
                 }
                 OutputFormat::Bv => crate::io::write_bv_mesh(&a.output, refined)?,
                 OutputFormat::Scene(sf) => scene::write_net(&a.output, refined, None, sf)?,
-                OutputFormat::Iges => unreachable!("IGES net output was rejected above"),
+                OutputFormat::Iges | OutputFormat::Step => {
+                    unreachable!("CAD net output was rejected above")
+                }
             }
             wrote(refined, a.levels.unwrap_or(1), &label, &a.output);
         }
@@ -302,7 +313,11 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
         // An unknown name: the error lists the schemes for what was asked.
         Err(Error::UnknownScheme { name, .. }) => {
             let wants_patches = a.rings.is_some()
-                || (a.levels.is_none() && matches!(fmt, OutputFormat::Bv | OutputFormat::Iges));
+                || (a.levels.is_none()
+                    && matches!(
+                        fmt,
+                        OutputFormat::Bv | OutputFormat::Iges | OutputFormat::Step
+                    ));
             return Err(if wants_patches {
                 crate::surface::no_patch_output(&name)
             } else {
@@ -331,12 +346,12 @@ pub fn prepare(a: &Args, net: Option<PolyMesh>) -> Result<Prepared> {
     let patches = match (fmt, a.levels, a.rings) {
         (_, _, Some(_)) => true,
         (_, None, None) if !caps.refine && caps.patches => true,
-        (OutputFormat::Iges, Some(_), None) => {
+        (OutputFormat::Iges | OutputFormat::Step, Some(_), None) => {
             return Err(Error::InvalidArgument(
-                "IGES holds patches: use --rings K instead of --levels".into(),
+                "IGES and STEP hold surfaces: use --rings K instead of --levels".into(),
             ));
         }
-        (OutputFormat::Iges, None, None) | (OutputFormat::Bv, None, None) => true,
+        (OutputFormat::Iges | OutputFormat::Step | OutputFormat::Bv, None, None) => true,
         (_, _, None) => false,
     };
     if a.stencils.is_some() && !patches {
@@ -457,17 +472,50 @@ pub fn build_complex_noted(
 
 /// Writes a patch complex in the chosen format (meshes get a watertight tessellation), after
 /// checking that the output will be valid: finite coefficients, a tessellation within the
-/// budget that is a valid mesh.
+/// budget that is a valid mesh. IGES gets one face per patch, STEP one per input face
+/// ([`write_complex_as`] chooses).
 pub fn write_complex(
     c: &PatchComplex,
     fmt: OutputFormat,
     path: &std::path::Path,
     tess: usize,
 ) -> Result<()> {
+    write_complex_as(c, fmt, path, tess, None)
+}
+
+/// The CAD faces of IGES and STEP output: the net the complex was built on and the
+/// [`FaceMode`].
+#[derive(Debug, Clone, Copy)]
+pub struct Cad<'a> {
+    /// The net.
+    pub mesh: &'a PolyMesh,
+    /// Which faces.
+    pub faces: FaceMode,
+}
+
+/// [`write_complex`] with the CAD faces of IGES and STEP output (`None`: IGES per patch, STEP
+/// per input face).
+pub fn write_complex_as(
+    c: &PatchComplex,
+    fmt: OutputFormat,
+    path: &std::path::Path,
+    tess: usize,
+    cad: Option<Cad>,
+) -> Result<()> {
     crate::surface::validate::check_finite(c)?;
     match fmt {
         OutputFormat::Bv => crate::io::write_bv(path, c),
-        OutputFormat::Iges => crate::io::write_iges(path, c),
+        OutputFormat::Iges => match cad {
+            Some(cad) if cad.faces != FaceMode::Patches => {
+                let f = crate::surface::cad::faces(c, Some(cad.mesh), cad.faces)?;
+                crate::io::iges::write_iges_faces(path, &f)
+            }
+            _ => crate::io::write_iges(path, c),
+        },
+        OutputFormat::Step => {
+            let faces = cad.map_or(FaceMode::Input, |x| x.faces);
+            super::cad::write_step(c, cad.map(|x| x.mesh), faces, path)
+        }
         OutputFormat::Mesh(mf) => {
             super::limits::check_tessellation(c, tess)?;
             let t = crate::surface::tessellate::tessellate(c, tess);

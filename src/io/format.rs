@@ -34,10 +34,12 @@ pub enum OutputFormat {
     Mesh(MeshFormat),
     /// BezierView `.bv` patches.
     Bv,
-    /// IGES 5.3, one entity 128 per patch.
+    /// IGES 5.3, one entity 128 per face.
     Iges,
     /// A scene format (USD, glTF): a mesh with normals, texture coordinates, curvature.
     Scene(SceneFormat),
+    /// STEP (ISO 10303-21, AP214): B-spline faces with B-rep topology.
+    Step,
 }
 
 /// The scene formats fairsub writes ([`crate::io::usd`], [`crate::io::gltf`]).
@@ -51,7 +53,7 @@ pub enum SceneFormat {
 
 /// The `--format` names [`OutputFormat::choose`] accepts, for help texts and errors.
 pub const FORMAT_NAMES: &str =
-    "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges, usda / usd, usdz, glb, gltf";
+    "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges, step / stp, usda / usd, usdz, glb, gltf";
 
 /// The scene format of a `--format` name or extension (`usd` is the crate encoding).
 fn scene_format(name: &str) -> Option<OutputFormat> {
@@ -86,6 +88,7 @@ impl OutputFormat {
                 "ply-ascii" | "ply_ascii" => Ok(OutputFormat::Mesh(MeshFormat::PlyAscii)),
                 "bv" => Ok(OutputFormat::Bv),
                 "igs" | "iges" => Ok(OutputFormat::Iges),
+                "step" | "stp" => Ok(OutputFormat::Step),
                 n if scene_format(n).is_some() => Ok(scene_format(n).expect("checked")),
                 _ => Err(Error::InvalidArgument(format!(
                     "unknown output format '{name}' (choose one of: {FORMAT_NAMES})"
@@ -98,16 +101,18 @@ impl OutputFormat {
             Some("ply") => Ok(OutputFormat::Mesh(MeshFormat::PlyBinary)),
             Some("bv") => Ok(OutputFormat::Bv),
             Some("igs") | Some("iges") => Ok(OutputFormat::Iges),
+            Some("step") | Some("stp") => Ok(OutputFormat::Step),
             Some(ext) if scene_format(ext).is_some() => Ok(scene_format(ext).expect("checked")),
             Some(ext) => Err(Error::InvalidArgument(format!(
                 "cannot tell the output format of '{}' from its extension '.{ext}': use .obj, .off, \
-                 .ply, .bv, .igs, .iges, .usda, .usd, .usdz, .glb or .gltf, or give --format \
-                 ({FORMAT_NAMES})",
+                 .ply, .bv, .igs, .iges, .step, .stp, .usda, .usd, .usdz, .glb or .gltf, or give \
+                 --format ({FORMAT_NAMES})",
                 path.display()
             ))),
             None => Err(Error::InvalidArgument(format!(
                 "'{}' has no extension to tell the output format: use .obj, .off, .ply, .bv, .igs, \
-                 .iges, .usda, .usd, .usdz, .glb or .gltf, or give --format ({FORMAT_NAMES})",
+                 .iges, .step, .stp, .usda, .usd, .usdz, .glb or .gltf, or give --format \
+                 ({FORMAT_NAMES})",
                 path.display()
             ))),
         }

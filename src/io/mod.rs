@@ -14,7 +14,8 @@
 //! | [`off`] | OFF / COFF / NOFF reader and writer |
 //! | [`ply`] | PLY reader (ascii, binary little and big endian; header and binary data via `ply-rs-bw`) and writers |
 //! | [`bv`] | BezierView `.bv` writer and reader (tensor, triangular patches, polyhedra, groups) |
-//! | [`iges`] | IGES 5.3 writer (entity 128 per patch) and a validating reader |
+//! | [`iges`] | IGES 5.3 writer (entity 128 per patch or per CAD face) and a validating reader |
+//! | [`step`] | STEP AP214 writer: B-spline faces with B-rep topology (solid or open shell) |
 //! | [`usd`] | USD (`.usda`, `.usdc`, `.usdz`) `UsdGeomMesh` reader and writer (via `openusd`) |
 //! | [`gltf`] | glTF 2.0 writer (`.glb`, `.gltf`; JSON via `gltf-json`) |
 //! | [`scene`] | [`SceneMesh`]: what the USD and glTF writers write of a mesh (normals, texture coordinates, curvature, colours, tags) |
@@ -39,6 +40,7 @@ pub mod off;
 pub mod ply;
 mod polygons;
 pub mod scene;
+pub mod step;
 pub mod table;
 #[cfg(test)]
 mod testutil;
@@ -63,6 +65,7 @@ pub use bv::{
 pub use format::{FORMAT_NAMES, MeshFormat, OutputFormat, SceneFormat};
 pub use iges::{iges_to_string, parse_iges, read_iges, write_iges};
 pub use scene::SceneMesh;
+pub use step::{step_to_string, write_step};
 pub use text::read_text;
 
 pub(crate) use atomic::write_bytes_atomically;

@@ -7,6 +7,7 @@
 //! the extraordinary elements ([`Element`]) in [`crate::mesh`]; both are re-exported here.
 
 pub mod adjacency;
+pub mod cad;
 pub mod closest;
 pub mod eval;
 pub mod table;

@@ -154,8 +154,8 @@ fn write_plain(m: &PolyMesh, fmt: OutputFormat, output: &Path) -> Result<()> {
         OutputFormat::Mesh(mf) => crate::io::write_mesh(output, m, mf),
         OutputFormat::Bv => crate::io::write_bv_mesh(output, m),
         OutputFormat::Scene(sf) => super::scene::write_net(output, m, None, sf),
-        OutputFormat::Iges => Err(Error::InvalidArgument(
-            "IGES holds patches: use --rings K instead of --levels".into(),
+        OutputFormat::Iges | OutputFormat::Step => Err(Error::InvalidArgument(
+            "IGES and STEP hold surfaces: use --rings K instead of --levels".into(),
         )),
     }
 }

@@ -49,7 +49,8 @@ mod read;
 mod write;
 
 pub use read::{parse_iges, read_iges};
-pub use write::{iges_to_string, write_iges};
+pub(crate) use write::now_date as file_date;
+pub use write::{iges_faces_to_string, iges_to_string, write_iges, write_iges_faces};
 
 #[cfg(test)]
 mod tests;

@@ -7,6 +7,8 @@ use crate::io::bv::check_complex;
 use crate::io::groups::FirstSeen;
 use crate::io::write_bytes_atomically;
 use crate::surface::PatchComplex;
+use crate::surface::cad::spline::SplineSurface;
+use crate::surface::cad::{CadFaces, FaceSource};
 use std::path::Path;
 
 /// Keeps an ASCII string of safe characters for a Hollerith constant or label.
@@ -67,7 +69,7 @@ pub(super) fn iges_date(unix_secs: i64) -> String {
 }
 
 /// The file date: `SOURCE_DATE_EPOCH` when set (reproducible builds), else now.
-fn now_date() -> String {
+pub(crate) fn now_date() -> String {
     let secs = std::env::var("SOURCE_DATE_EPOCH")
         .ok()
         .and_then(|v| v.trim().parse::<i64>().ok())
@@ -210,18 +212,97 @@ pub fn iges_to_string(complex: &PatchComplex, file_name: &str) -> Result<String>
 pub(super) fn iges_text(complex: &PatchComplex, file_name: &str, date: &str) -> Result<String> {
     check_complex(complex)?;
     let n = complex.len();
-
-    let mut s = Section::new('S');
-    s.push(&format!(
-        "fairsub {}: {n} Bezier patches as IGES 5.3 entity 128 surfaces",
-        env!("CARGO_PKG_VERSION")
-    ));
-    s.push("(polynomial B-splines with one span each). Model units: millimetres.");
-
-    let max_coord = complex
+    let start = [
+        format!(
+            "fairsub {}: {n} Bezier patches as IGES 5.3 entity 128 surfaces",
+            env!("CARGO_PKG_VERSION")
+        ),
+        "(polynomial B-splines with one span each). Model units: millimetres.".to_string(),
+    ];
+    let entities = complex
         .patches
         .iter()
-        .flat_map(|p| p.cps.iter())
+        .zip(&complex.provenance)
+        .map(|(patch, prov)| (entity_128(patch), prov.group_name()));
+    let points = complex.patches.iter().flat_map(|p| p.cps.iter());
+    Ok(sections(&start, entities, points, file_name, date))
+}
+
+/// The IGES text for CAD faces ([`crate::surface::cad`]): one entity 128 per face, labelled
+/// `face` (an input face), `packed` or the patch's group.
+pub fn iges_faces_to_string(faces: &CadFaces, file_name: &str) -> Result<String> {
+    iges_faces_text(faces, file_name, &now_date())
+}
+
+fn iges_faces_text(faces: &CadFaces, file_name: &str, date: &str) -> Result<String> {
+    let start = [
+        format!(
+            "fairsub {}: {} B-spline faces as IGES 5.3 entity 128 surfaces",
+            env!("CARGO_PKG_VERSION"),
+            faces.len()
+        ),
+        "(polynomial, knots as merged). Model units: millimetres.".to_string(),
+    ];
+    let entities = faces.surfaces.iter().zip(&faces.sources).map(|(s, src)| {
+        let label = match src {
+            FaceSource::Input { .. } => "face",
+            FaceSource::Packed { .. } => "packed",
+            FaceSource::Patch { .. } => "patch",
+        };
+        (spline_128(s), label.to_string())
+    });
+    let points = faces.surfaces.iter().flat_map(|s| s.cps.iter());
+    Ok(sections(&start, entities, points, file_name, date))
+}
+
+/// The parameters of entity 128 for a polynomial B-spline surface.
+fn spline_128(s: &SplineSurface) -> Vec<String> {
+    let [nu, nv] = s.counts();
+    let [du, dv] = s.deg;
+    let mut v: Vec<String> = vec![
+        "128".into(),
+        (nu - 1).to_string(),
+        (nv - 1).to_string(),
+        du.to_string(),
+        dv.to_string(),
+        "0".into(),
+        "0".into(),
+        "1".into(),
+        "0".into(),
+        "0".into(),
+    ];
+    for k in &s.knots {
+        v.extend(k.iter().map(|&x| iges_real(x)));
+    }
+    v.extend(std::iter::repeat_n("1.0".to_string(), nu * nv));
+    for j in 0..nv {
+        for i in 0..nu {
+            for c in s.cp(i, j) {
+                v.push(iges_real(c));
+            }
+        }
+    }
+    let r = s.range();
+    for x in [r[0][0], r[0][1], r[1][0], r[1][1]] {
+        v.push(iges_real(x));
+    }
+    v
+}
+
+/// The five sections: start text, the global section, and one entity 128 per `(parameters,
+/// group name)`.
+fn sections<'a>(
+    start: &[String],
+    entities: impl Iterator<Item = (Vec<String>, String)>,
+    points: impl Iterator<Item = &'a crate::geom::Point>,
+    file_name: &str,
+    date: &str,
+) -> String {
+    let mut s = Section::new('S');
+    for l in start {
+        s.push(l);
+    }
+    let max_coord = points
         .flat_map(|q| q.iter())
         .fold(0.0f64, |m, x| m.max(x.abs()));
     let name = sanitize(file_name, 60);
@@ -273,8 +354,7 @@ pub(super) fn iges_text(complex: &PatchComplex, file_name: &str, date: &str) -> 
     // The entity subscript: the number of the patch within its group.
     let mut group_numbers = FirstSeen::default();
     let mut group_counts: Vec<usize> = Vec::new();
-    for (patch, prov) in complex.patches.iter().zip(&complex.provenance) {
-        let gname = prov.group_name();
+    for (params, gname) in entities {
         let (gk, new) = group_numbers.number(&gname);
         if new {
             group_counts.push(0);
@@ -283,7 +363,7 @@ pub(super) fn iges_text(complex: &PatchComplex, file_name: &str, date: &str) -> 
         let label = sanitize(&gname, 8);
         let de_seq = d.lines.len() + 1;
         let p_start = p.lines.len() + 1;
-        let count = p.push_params(&delimited(entity_128(patch)), 64, &format!(" {de_seq:>7}"));
+        let count = p.push_params(&delimited(params), 64, &format!(" {de_seq:>7}"));
         d.push(&format!(
             "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
             128, p_start, 0, 0, 0, 0, 0, 0, "00000000"
@@ -310,7 +390,16 @@ pub(super) fn iges_text(complex: &PatchComplex, file_name: &str, date: &str) -> 
             out.push('\n');
         }
     }
-    Ok(out)
+    out
+}
+
+/// Writes CAD faces as an IGES 5.3 file (atomically).
+pub fn write_iges_faces(path: &Path, faces: &CadFaces) -> Result<()> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    write_bytes_atomically(path, iges_faces_to_string(faces, &name)?.as_bytes())
 }
 
 /// Writes a patch complex as an IGES 5.3 file (atomically).

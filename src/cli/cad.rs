@@ -1,0 +1,61 @@
+//! STEP output of `fairsub subdivide`: the CAD faces of a complex ([`crate::surface::cad`]),
+//! their topology and the file, with a report of what was written.
+
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::surface::PatchComplex;
+use crate::surface::cad::{self, FaceMode, brep};
+use std::path::Path;
+
+/// The distance accuracy a STEP file states: ten times the welding tolerance (`1e-9` of the
+/// model's size), and never below `1e-7` (OpenCASCADE's and most kernels' confusion
+/// tolerance, in the file's millimetres).
+pub fn step_tolerance(weld: f64) -> f64 {
+    (10.0 * weld).max(1e-7)
+}
+
+/// Writes `complex` (built on `mesh`) as a STEP file with faces `mode`.
+pub fn write_step(
+    complex: &PatchComplex,
+    mesh: Option<&PolyMesh>,
+    mode: FaceMode,
+    path: &Path,
+) -> Result<()> {
+    let mut faces = cad::faces(complex, mesh, mode)?;
+    let weld = crate::surface::adjacency::default_tolerance(complex);
+    let topo = brep::build(&mut faces.surfaces, weld);
+    if topo.nonmanifold > 0 {
+        return Err(Error::InvalidArgument(format!(
+            "{}: {} face sides meet more than one other side (a non-manifold surface); STEP \
+             output needs a manifold net",
+            path.display(),
+            topo.nonmanifold
+        )));
+    }
+    crate::io::write_step(path, &faces.surfaces, &topo, step_tolerance(weld))?;
+    let shell = if topo.is_closed() {
+        "a closed solid".to_string()
+    } else {
+        format!("an open shell with {} boundary edges", topo.free_edges)
+    };
+    eprintln!(
+        "STEP: {} faces ({:?}), {} edges, {} vertices: {shell}{}",
+        faces.len(),
+        mode,
+        topo.edges.len(),
+        topo.vertices.len(),
+        if topo.misoriented > 0 {
+            format!("; {} edges with inconsistent orientation", topo.misoriented)
+        } else {
+            String::new()
+        }
+    );
+    if faces.unmerged > 0 {
+        eprintln!(
+            "note: {} input faces could not be merged into one B-spline (their patches are \
+             faces of their own)",
+            faces.unmerged
+        );
+    }
+    Ok(())
+}

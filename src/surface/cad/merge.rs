@@ -1,0 +1,461 @@
+//! One B-spline face per input face: the patches (and dual pieces) that lie in one input face
+//! (one quad sub-face of an n-gon) merged exactly into one tensor-product B-spline in the
+//! face's own parameters.
+//!
+//! Every patch of a complex whose [`Domain`] is tracked covers an axis-parallel rectangle of
+//! its face's `[0, 1]^2` (the maps of dyadic cells, cells in thirds, ratio cells and halves are
+//! all axis-parallel; a patch's own axes may be swapped or reversed against the face's, which
+//! re-indexing its coefficients undoes exactly). The rectangles of one face tile it; the
+//! union of their sides, extended across the face, is a tensor grid whose cells each lie in
+//! one patch. The merged face is the B-spline on that grid:
+//!
+//! * **degree**: the largest of the face's patches in each direction (the others are degree
+//!   raised, exactly);
+//! * **knots**: each grid line `u = u_a` gets multiplicity `p - r`, where `r` is the order of
+//!   continuity that holds across the whole line, measured: for every pair of grid cells across
+//!   it that lie in different patches, the jumps of the derivatives of order `0, 1, ...` (in
+//!   face parameters, scaled by `w^j / j!` with `w` the narrower cell's width, so a jump is the
+//!   size of the change it makes to the points of the cells) must be at most the tolerance
+//!   (`1e-13` of the complex's size). So rings of Catmull-Clark's bi-3 patches (C^2) give
+//!   multiplicity `p - 2`, the line to a C^1 cap `p - 1`, a line that is only C^0 `p`;
+//! * **control points**: by blossoming (`spline`): control point `i` is the blossom of the
+//!   patch covering the widest grid cell of its support at the knots `t_{i+1}, ..., t_{i+p}`.
+//!
+//! A face whose patches do not tile it (a domain the host did not track, triangles, the
+//! criss-cross triangles of non-box, Loop's kites) is not merged: its patches stay faces of
+//! their own. A merged face is checked against its patches at points of every patch; one that
+//! deviates by more than `1e-10` of the complex's size (which would be a bug) is not used.
+
+use super::spline::{SplineSurface, support_spans};
+use crate::bezier::domain::{Domain, Shape};
+use crate::bezier::{BezierPatch, curve};
+use crate::geom::{Point, dist};
+use crate::surface::PatchComplex;
+use std::collections::BTreeMap;
+
+/// Part of a patch over a rectangle of an input face, as a Bezier patch in the face's own
+/// parameter directions.
+#[derive(Debug, Clone)]
+pub(crate) struct FacePiece {
+    /// The patch of the complex it comes from.
+    pub patch: usize,
+    /// The part of the patch's parameter square it is (`[lo, hi]`).
+    pub window: [[f64; 2]; 2],
+    /// `[[u0, u1], [v0, v1]]` in the face's (sub-face's) parameters.
+    pub rect: [[f64; 2]; 2],
+    /// The piece over `rect`, `u` along the face's `u`.
+    pub bezier: BezierPatch,
+}
+
+/// Key of an input face's (sub-face's) group: `(face, sub)`.
+pub(crate) type FaceKey = (u32, u32);
+
+/// The patch (or its part `window`) over an axis-parallel rectangle of its face, or `None`
+/// when the domain's map is not axis-parallel or the domain cannot be merged.
+fn face_piece(
+    patch: usize,
+    bezier: &BezierPatch,
+    window: Option<[[f64; 2]; 2]>,
+    d: &Domain,
+) -> Option<(FaceKey, FacePiece)> {
+    if !d.is_tracked()
+        || d.shape != Shape::Quad
+        || d.criss_cross_triangle().is_some()
+        || d.sub == Domain::WHOLE
+    {
+        return None;
+    }
+    let m = d.patch_map();
+    let [[a, b], [c, e]] = m.e; // e0 = (a, b), e1 = (c, e)
+    let swap = if b == 0.0 && c == 0.0 && a != 0.0 && e != 0.0 {
+        false
+    } else if a == 0.0 && e == 0.0 && b != 0.0 && c != 0.0 {
+        true
+    } else {
+        return None;
+    };
+    let mut p = match window {
+        Some([lo, hi]) => bezier.subpatch(lo[0], hi[0], lo[1], hi[1]),
+        None => bezier.clone(),
+    };
+    // in face terms: the patch's u runs along face u (no swap) or face v (swap); after the
+    // transposition the piece's u (the patch's v) runs along face u with scale c
+    let (du, dv) = if swap { (c, b) } else { (a, e) };
+    if swap {
+        p = p.transposed();
+    }
+    if du < 0.0 {
+        p = p.reversed_u();
+    }
+    if dv < 0.0 {
+        p = p.reversed_v();
+    }
+    let o = m.origin;
+    let rect = [
+        [o[0].min(o[0] + du), o[0].max(o[0] + du)],
+        [o[1].min(o[1] + dv), o[1].max(o[1] + dv)],
+    ];
+    let inside = rect
+        .iter()
+        .all(|r| r[0] >= -1e-12 && r[1] <= 1.0 + 1e-12 && r[1] > r[0]);
+    inside.then_some((
+        (d.face, d.sub),
+        FacePiece {
+            patch,
+            window: window.unwrap_or([[0.0, 0.0], [1.0, 1.0]]),
+            rect,
+            bezier: p,
+        },
+    ))
+}
+
+/// The pieces of the complex grouped by input face (sub-face), and for every patch the part of
+/// its parameter square that no group holds (as windows `[lo, hi]`; empty when a patch is
+/// covered whole).
+pub(crate) struct Grouped {
+    /// The groups, by face key.
+    pub groups: BTreeMap<FaceKey, Vec<FacePiece>>,
+    /// For every patch, the windows of its parameter square left over.
+    pub leftover: Vec<Vec<[[f64; 2]; 2]>>,
+}
+
+/// Groups the patches and pieces of the complex by input face.
+pub(crate) fn group(c: &PatchComplex) -> Grouped {
+    let mut groups: BTreeMap<FaceKey, Vec<FacePiece>> = BTreeMap::new();
+    let mut windows: Vec<Vec<[[f64; 2]; 2]>> = vec![Vec::new(); c.len()];
+    for i in 0..c.len() {
+        if std::env::var("FAIRSUB_DEBUG_MERGE").is_ok() {
+            if let Some(d) = c.domain(i) {
+                if face_piece(i, &c.patches[i], None, &d).is_none() {
+                    eprintln!("rejected {i}: {:?} map {:?}", d, d.patch_map());
+                }
+            } else {
+                eprintln!("no domain {i}: {:?}", c.provenance[i]);
+            }
+        }
+        if let Some(d) = c.domain(i)
+            && let Some((k, fp)) = face_piece(i, &c.patches[i], None, &d)
+        {
+            groups.entry(k).or_default().push(fp);
+            windows[i].push([[0.0, 0.0], [1.0, 1.0]]);
+        }
+    }
+    for pc in &c.pieces {
+        let i = pc.patch as usize;
+        if i >= c.len() {
+            continue;
+        }
+        if let Some((k, fp)) = face_piece(i, &c.patches[i], Some(pc.window), &pc.domain) {
+            groups.entry(k).or_default().push(fp);
+            windows[i].push(pc.window);
+        }
+    }
+    let leftover = windows.iter().map(|w| uncovered(w)).collect();
+    Grouped { groups, leftover }
+}
+
+/// The parts of `[0, 1]^2` outside the union of the windows, as the cells of the grid of the
+/// windows' sides.
+fn uncovered(windows: &[[[f64; 2]; 2]]) -> Vec<[[f64; 2]; 2]> {
+    let lines = |k: usize| {
+        let mut v: Vec<f64> = vec![0.0, 1.0];
+        for w in windows {
+            v.push(w[0][k].clamp(0.0, 1.0));
+            v.push(w[1][k].clamp(0.0, 1.0));
+        }
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12);
+        v
+    };
+    let (us, vs) = (lines(0), lines(1));
+    let mut out = Vec::new();
+    for a in us.windows(2) {
+        for b in vs.windows(2) {
+            let mid = [0.5 * (a[0] + a[1]), 0.5 * (b[0] + b[1])];
+            let covered = windows
+                .iter()
+                .any(|w| (0..2).all(|k| mid[k] > w[0][k] && mid[k] < w[1][k]));
+            if !covered {
+                out.push([[a[0], b[0]], [a[1], b[1]]]);
+            }
+        }
+    }
+    out
+}
+
+/// The sorted distinct values of the rectangles' sides in direction `k` (values closer than
+/// `1e-12` are one: the maps of cells in thirds round once per level).
+fn grid_lines(pieces: &[FacePiece], k: usize) -> Vec<f64> {
+    let mut v: Vec<f64> = pieces
+        .iter()
+        .flat_map(|p| [p.rect[k][0], p.rect[k][1]])
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12);
+    v
+}
+
+/// Index of the grid line nearest `x`.
+fn line_index(lines: &[f64], x: f64) -> usize {
+    let i = lines.partition_point(|&l| l < x);
+    if i == 0 {
+        0
+    } else if i == lines.len() || (x - lines[i - 1]) < (lines[i] - x) {
+        i - 1
+    } else {
+        i
+    }
+}
+
+/// The tensor grid of a face's pieces: the grid lines and the piece covering each cell, or
+/// `None` when the pieces do not tile `[0, 1]^2` once.
+struct Grid {
+    lines: [Vec<f64>; 2],
+    /// `owner[a * nb + b]`: the piece over cell `(a, b)`.
+    owner: Vec<usize>,
+}
+
+impl Grid {
+    fn new(pieces: &[FacePiece]) -> Option<Grid> {
+        let lines = [grid_lines(pieces, 0), grid_lines(pieces, 1)];
+        let full = |l: &Vec<f64>| {
+            l.len() >= 2 && l[0].abs() <= 1e-12 && (l[l.len() - 1] - 1.0).abs() <= 1e-12
+        };
+        if !full(&lines[0]) || !full(&lines[1]) {
+            return None;
+        }
+        let nb = lines[1].len() - 1;
+        let mut owner = vec![usize::MAX; (lines[0].len() - 1) * nb];
+        for (k, p) in pieces.iter().enumerate() {
+            let a0 = line_index(&lines[0], p.rect[0][0]);
+            let a1 = line_index(&lines[0], p.rect[0][1]);
+            let b0 = line_index(&lines[1], p.rect[1][0]);
+            let b1 = line_index(&lines[1], p.rect[1][1]);
+            for a in a0..a1 {
+                for b in b0..b1 {
+                    if owner[a * nb + b] != usize::MAX {
+                        return None;
+                    }
+                    owner[a * nb + b] = k;
+                }
+            }
+        }
+        owner
+            .iter()
+            .all(|&o| o != usize::MAX)
+            .then_some(Grid { lines, owner })
+    }
+
+    fn nb(&self) -> usize {
+        self.lines[1].len() - 1
+    }
+
+    fn owner(&self, a: usize, b: usize) -> usize {
+        self.owner[a * self.nb() + b]
+    }
+}
+
+/// The piece `k` over grid cell `[[u0, u1], [v0, v1]]`, raised to `(p, q)`.
+fn over_cell(
+    piece: &BezierPatch,
+    rect: [[f64; 2]; 2],
+    cell: [[f64; 2]; 2],
+    p: usize,
+    q: usize,
+) -> BezierPatch {
+    let loc = |x: f64, k: usize| (x - rect[k][0]) / (rect[k][1] - rect[k][0]);
+    piece
+        .subpatch(
+            loc(cell[0][0], 0),
+            loc(cell[0][1], 0),
+            loc(cell[1][0], 1),
+            loc(cell[1][1], 1),
+        )
+        .raised_to(p, q)
+        .expect("p, q are the largest degrees")
+}
+
+/// The scaled jumps of the derivatives of order `0..=p` across the common side of `left`
+/// (ending at `u = 1`) and `right` (starting at `u = 0`), both of degree `(p, q)` and widths
+/// `wl`, `wr` in face parameters: the largest order `r` whose jumps (and all below) are at
+/// most `tol`, `p + 1` when all are (one polynomial), `None` when the sides do not even meet.
+fn continuity(
+    left: &BezierPatch,
+    right: &BezierPatch,
+    wl: f64,
+    wr: f64,
+    tol: f64,
+) -> Option<usize> {
+    let p = left.deg_u;
+    let q = left.deg_v;
+    let w = wl.min(wr);
+    let mut fact = 1.0;
+    let mut falling = 1.0;
+    for j in 0..=p {
+        if j > 0 {
+            fact *= j as f64;
+            falling *= (p + 1 - j) as f64;
+        }
+        let mut worst: f64 = 0.0;
+        for l in 0..=q {
+            let dl = difference(|i| left.cp(p - j + i, l), j);
+            let dr = difference(|i| right.cp(i, l), j);
+            let sl = falling / wl.powi(j as i32);
+            let sr = falling / wr.powi(j as i32);
+            let jump: Vec<f64> = (0..3).map(|c| dl[c] * sl - dr[c] * sr).collect();
+            let size = jump.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            worst = worst.max(size * w.powi(j as i32) / fact);
+        }
+        if worst > tol {
+            return j.checked_sub(1);
+        }
+    }
+    Some(p + 1)
+}
+
+/// The forward difference of order `j` of the points `f(0), ..., f(j)`.
+fn difference(f: impl Fn(usize) -> Point, j: usize) -> Point {
+    let mut pts: Vec<Point> = (0..=j).map(&f).collect();
+    for r in 0..j {
+        for i in 0..j - r {
+            for c in 0..3 {
+                pts[i][c] = pts[i + 1][c] - pts[i][c];
+            }
+        }
+    }
+    pts[0]
+}
+
+/// What [`merge_face`] found: the surface and its knot lines' orders of continuity.
+pub(crate) struct Merged {
+    /// The face's B-spline.
+    pub surface: SplineSurface,
+    /// Largest deviation from the pieces at the sample points (face size units).
+    pub deviation: f64,
+}
+
+/// Merges the pieces of one input face into one B-spline surface on `[0, 1]^2` (see the
+/// module doc); `None` when they do not tile the face or the result deviates.
+pub(crate) fn merge_face(pieces: &[FacePiece], tol: f64) -> Option<Merged> {
+    let dbg = std::env::var("FAIRSUB_DEBUG_MERGE").is_ok();
+    let grid = Grid::new(pieces);
+    if dbg && grid.is_none() {
+        eprintln!(
+            "grid failed: {:?}",
+            pieces.iter().map(|p| p.rect).collect::<Vec<_>>()
+        );
+    }
+    let grid = grid?;
+    let p = pieces.iter().map(|x| x.bezier.deg_u).max()?.max(1);
+    let q = pieces.iter().map(|x| x.bezier.deg_v).max()?.max(1);
+    let raised: Vec<BezierPatch> = pieces
+        .iter()
+        .map(|x| x.bezier.raised_to(p, q).expect("largest degrees"))
+        .collect();
+    let cell = |a: usize, b: usize| {
+        [
+            [grid.lines[0][a], grid.lines[0][a + 1]],
+            [grid.lines[1][b], grid.lines[1][b + 1]],
+        ]
+    };
+    let (na, nb) = (grid.lines[0].len() - 1, grid.nb());
+    // continuity across the interior lines u = u_a
+    let mut knots_u = vec![grid.lines[0][0]; p + 1];
+    for a in 1..na {
+        let mut r = usize::MAX;
+        for b in 0..nb {
+            let (kl, kr) = (grid.owner(a - 1, b), grid.owner(a, b));
+            if kl == kr {
+                continue;
+            }
+            let (cl, cr) = (cell(a - 1, b), cell(a, b));
+            let l = over_cell(&raised[kl], pieces[kl].rect, cl, p, q);
+            let rr = over_cell(&raised[kr], pieces[kr].rect, cr, p, q);
+            let c = continuity(&l, &rr, cl[0][1] - cl[0][0], cr[0][1] - cr[0][0], tol);
+            if dbg && c.is_none() {
+                eprintln!("gap across u = {}", grid.lines[0][a]);
+            }
+            r = r.min(c?);
+        }
+        knots_u.extend(std::iter::repeat_n(grid.lines[0][a], p.saturating_sub(r)));
+    }
+    knots_u.extend(std::iter::repeat_n(grid.lines[0][na], p + 1));
+    let mut knots_v = vec![grid.lines[1][0]; q + 1];
+    for b in 1..nb {
+        let mut r = usize::MAX;
+        for a in 0..na {
+            let (kl, kr) = (grid.owner(a, b - 1), grid.owner(a, b));
+            if kl == kr {
+                continue;
+            }
+            let (cl, cr) = (cell(a, b - 1), cell(a, b));
+            let l = over_cell(&raised[kl], pieces[kl].rect, cl, p, q).transposed();
+            let rr = over_cell(&raised[kr], pieces[kr].rect, cr, p, q).transposed();
+            r = r.min(continuity(
+                &l,
+                &rr,
+                cl[1][1] - cl[1][0],
+                cr[1][1] - cr[1][0],
+                tol,
+            )?);
+        }
+        knots_v.extend(std::iter::repeat_n(grid.lines[1][b], q.saturating_sub(r)));
+    }
+    knots_v.extend(std::iter::repeat_n(grid.lines[1][nb], q + 1));
+    let su = support_spans(&knots_u, p);
+    let sv = support_spans(&knots_v, q);
+    let mut cps = Vec::with_capacity(su.len() * sv.len());
+    for (i, &ka) in su.iter().enumerate() {
+        let a = line_index(&grid.lines[0], knots_u[ka]);
+        for (j, &kb) in sv.iter().enumerate() {
+            let b = line_index(&grid.lines[1], knots_v[kb]);
+            let k = grid.owner(a.min(na - 1), b.min(nb - 1));
+            cps.push(blossom(
+                &raised[k],
+                pieces[k].rect,
+                &knots_u[i + 1..=i + p],
+                &knots_v[j + 1..=j + q],
+            ));
+        }
+    }
+    let surface = SplineSurface {
+        deg: [p, q],
+        knots: [knots_u, knots_v],
+        cps,
+    };
+    let deviation = deviation(&surface, pieces);
+    if dbg {
+        eprintln!(
+            "merged: knots {:?} {:?} deviation {deviation:e}",
+            surface.knots[0], surface.knots[1]
+        );
+    }
+    (deviation <= 1000.0 * tol).then_some(Merged { surface, deviation })
+}
+
+/// The tensor blossom of `b` (over `rect` of the face) at face parameters `us`, `vs`.
+fn blossom(b: &BezierPatch, rect: [[f64; 2]; 2], us: &[f64], vs: &[f64]) -> Point {
+    let loc = |x: f64, k: usize| (x - rect[k][0]) / (rect[k][1] - rect[k][0]);
+    let su: Vec<f64> = us.iter().map(|&x| loc(x, 0)).collect();
+    let sv: Vec<f64> = vs.iter().map(|&x| loc(x, 1)).collect();
+    let col: Vec<Point> = (0..=b.deg_v)
+        .map(|l| {
+            let c: Vec<Point> = (0..=b.deg_u).map(|i| b.cp(i, l)).collect();
+            curve::blossom(&c, &su)
+        })
+        .collect();
+    curve::blossom(&col, &sv)
+}
+
+/// Largest distance between the surface and its pieces at 5 points of every piece.
+fn deviation(s: &SplineSurface, pieces: &[FacePiece]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for pc in pieces {
+        for (x, y) in [(0.5, 0.5), (0.1, 0.2), (0.9, 0.15), (0.2, 0.85), (0.8, 0.9)] {
+            let u = pc.rect[0][0] + x * (pc.rect[0][1] - pc.rect[0][0]);
+            let v = pc.rect[1][0] + y * (pc.rect[1][1] - pc.rect[1][0]);
+            worst = worst.max(dist(s.eval(u, v), pc.bezier.eval(x, y)));
+        }
+    }
+    worst
+}

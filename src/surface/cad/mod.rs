@@ -1,0 +1,196 @@
+//! CAD faces and B-rep topology of an exact surface: what the STEP and IGES writers hand to a
+//! CAD system.
+//!
+//! A patch complex is a soup of Bezier patches. CAD wants few faces and a watertight shell, so
+//! this module turns a complex into [`CadFaces`], polynomial B-spline surfaces
+//! ([`spline::SplineSurface`]), in one of three [`FaceMode`]s:
+//!
+//! * [`FaceMode::Patches`]: one face per patch (what IGES output always was);
+//! * [`FaceMode::Input`]: one face per input face, per quad sub-face of an n-gon (the
+//!   `merge` submodule: the face's regular patch, its rings and its share of the cap on one
+//!   tensor grid in the face's parameters, knot multiplicities from the continuity measured
+//!   across each knot line); patches whose domain the scheme does not track, or that are
+//!   triangles (Loop, non-box), stay faces of their own;
+//! * [`FaceMode::Packed`]: the input faces of the net's regular quad regions merged further
+//!   into rectangles of the quad layout (the `packed` submodule).
+//!
+//! [`brep::Brep`] then finds the topology from the geometry: corner points welded into
+//! vertices, a face side that meets two shorter sides split at the T-point, each edge shared
+//! by the two faces that use it with opposite senses.
+
+pub mod brep;
+mod merge;
+mod packed;
+pub mod spline;
+
+use crate::error::{Error, Result};
+use crate::mesh::PolyMesh;
+use crate::surface::PatchComplex;
+use spline::SplineSurface;
+
+/// Which faces a CAD file gets (`subdivide --faces`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum FaceMode {
+    /// One face per Bezier patch.
+    Patches,
+    /// One B-spline face per input face (per quad sub-face of an n-gon).
+    #[default]
+    Input,
+    /// The input faces of regular regions merged into rectangles of the quad layout.
+    Packed,
+}
+
+/// Where a CAD face comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FaceSource {
+    /// Input face `face` (sub-face `sub` of an n-gon, 0 otherwise): the surface's `(u, v)` are
+    /// the face's (sub-face's) parameters ([`crate::bezier::domain`]).
+    Input {
+        /// The input face.
+        face: u32,
+        /// The sub-face of an n-gon, 0 for a quad.
+        sub: u32,
+    },
+    /// The part `window` (`[lo, hi]` of its parameters) of patch `patch`, over `[0, 1]^2`.
+    Patch {
+        /// The patch of the complex.
+        patch: u32,
+        /// The window of the patch's parameters.
+        window: [[f64; 2]; 2],
+    },
+    /// A rectangle of `size` input faces of the quad layout, its corner face first.
+    Packed {
+        /// The input face at the rectangle's `(0, 0)` corner.
+        corner: u32,
+        /// Faces along `u` and `v`; the surface's parameters are `[0, size[0]] x [0, size[1]]`.
+        size: [u32; 2],
+    },
+}
+
+/// The faces of a surface for a CAD file.
+#[derive(Debug, Clone, Default)]
+pub struct CadFaces {
+    /// The surfaces.
+    pub surfaces: Vec<SplineSurface>,
+    /// Where each comes from.
+    pub sources: Vec<FaceSource>,
+    /// Largest deviation of a merged face from the patches it holds, at sample points.
+    pub deviation: f64,
+    /// Input faces (sub-faces) that could not be merged, so their patches are faces of their
+    /// own.
+    pub unmerged: usize,
+}
+
+impl CadFaces {
+    /// Number of faces.
+    pub fn len(&self) -> usize {
+        self.surfaces.len()
+    }
+
+    /// Whether there are no faces.
+    pub fn is_empty(&self) -> bool {
+        self.surfaces.is_empty()
+    }
+
+    fn push(&mut self, s: SplineSurface, src: FaceSource) {
+        self.surfaces.push(s);
+        self.sources.push(src);
+    }
+}
+
+/// The tolerance of the continuity tests of a merge: `1e-13` of the complex's size.
+pub fn merge_tolerance(c: &PatchComplex) -> f64 {
+    super::adjacency::default_tolerance(c) * 1e-4
+}
+
+/// The faces of `complex` (built on `mesh`; packed faces need it, and are the input faces
+/// without it) in `mode`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for an empty complex.
+pub fn faces(complex: &PatchComplex, mesh: Option<&PolyMesh>, mode: FaceMode) -> Result<CadFaces> {
+    if complex.is_empty() {
+        return Err(Error::InvalidArgument(
+            "the surface has no patches: nothing to write".into(),
+        ));
+    }
+    match mode {
+        FaceMode::Patches => Ok(patch_faces(complex)),
+        FaceMode::Input => Ok(input_faces(complex)),
+        FaceMode::Packed => Ok(match mesh {
+            Some(m) => packed::packed_faces(complex, m, input_faces(complex)),
+            None => input_faces(complex),
+        }),
+    }
+}
+
+/// One face per patch.
+fn patch_faces(c: &PatchComplex) -> CadFaces {
+    let mut out = CadFaces::default();
+    for (i, p) in c.patches.iter().enumerate() {
+        out.push(
+            SplineSurface::from_bezier(p),
+            FaceSource::Patch {
+                patch: i as u32,
+                window: [[0.0, 0.0], [1.0, 1.0]],
+            },
+        );
+    }
+    out
+}
+
+/// One face per input face where the pieces merge, the rest per patch (or per part of one).
+fn input_faces(c: &PatchComplex) -> CadFaces {
+    use rayon::prelude::*;
+    let tol = merge_tolerance(c);
+    let grouped = merge::group(c);
+    let groups: Vec<_> = grouped.groups.into_iter().collect();
+    let merged: Vec<Option<merge::Merged>> = groups
+        .par_iter()
+        .map(|(_, pieces)| merge::merge_face(pieces, tol))
+        .collect();
+    let mut out = CadFaces::default();
+    let mut extra: Vec<(usize, [[f64; 2]; 2])> = Vec::new();
+    for ((key, pieces), m) in groups.iter().zip(merged) {
+        match m {
+            Some(m) => {
+                out.deviation = out.deviation.max(m.deviation);
+                out.push(
+                    m.surface,
+                    FaceSource::Input {
+                        face: key.0,
+                        sub: key.1,
+                    },
+                );
+            }
+            None => {
+                out.unmerged += 1;
+                extra.extend(pieces.iter().map(|p| (p.patch, p.window)));
+            }
+        }
+    }
+    for (i, rest) in grouped.leftover.iter().enumerate() {
+        extra.extend(rest.iter().map(|w| (i, *w)));
+    }
+    extra.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.1[0][0].total_cmp(&b.1[0][0]))
+            .then(a.1[0][1].total_cmp(&b.1[0][1]))
+    });
+    for (i, w) in extra {
+        let p = &c.patches[i];
+        let part = if w == [[0.0, 0.0], [1.0, 1.0]] {
+            p.clone()
+        } else {
+            p.subpatch(w[0][0], w[1][0], w[0][1], w[1][1])
+        };
+        out.push(
+            SplineSurface::from_bezier(&part),
+            FaceSource::Patch {
+                patch: i as u32,
+                window: w,
+            },
+        );
+    }
+    out
+}
