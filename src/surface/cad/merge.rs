@@ -124,15 +124,6 @@ pub(crate) fn group(c: &PatchComplex) -> Grouped {
     let mut groups: BTreeMap<FaceKey, Vec<FacePiece>> = BTreeMap::new();
     let mut windows: Vec<Vec<[[f64; 2]; 2]>> = vec![Vec::new(); c.len()];
     for i in 0..c.len() {
-        if std::env::var("FAIRSUB_DEBUG_MERGE").is_ok() {
-            if let Some(d) = c.domain(i) {
-                if face_piece(i, &c.patches[i], None, &d).is_none() {
-                    eprintln!("rejected {i}: {:?} map {:?}", d, d.patch_map());
-                }
-            } else {
-                eprintln!("no domain {i}: {:?}", c.provenance[i]);
-            }
-        }
         if let Some(d) = c.domain(i)
             && let Some((k, fp)) = face_piece(i, &c.patches[i], None, &d)
         {
@@ -275,10 +266,13 @@ fn over_cell(
         .expect("p, q are the largest degrees")
 }
 
-/// The scaled jumps of the derivatives of order `0..=p` across the common side of `left`
-/// (ending at `u = 1`) and `right` (starting at `u = 0`), both of degree `(p, q)` and widths
-/// `wl`, `wr` in face parameters: the largest order `r` whose jumps (and all below) are at
-/// most `tol`, `p + 1` when all are (one polynomial), `None` when the sides do not even meet.
+/// The order of continuity across the common side of `left` (ending at `u = 1`) and `right`
+/// (starting at `u = 0`), both of degree `(p, q)` over cells of widths `wl`, `wr` in face
+/// parameters: the largest `r` such that for every order `j <= r` the jump of the `j`-th
+/// derivative (in face parameters) is rounding noise, either small at the face's scale
+/// (`jump / j! <= tol`, the change it would make to points one face width away) or relative to
+/// the derivative itself (`jump <= 1e-11 max |d_j|`); `p + 1` when every order passes (one
+/// polynomial), `None` when the sides do not even meet.
 fn continuity(
     left: &BezierPatch,
     right: &BezierPatch,
@@ -288,7 +282,6 @@ fn continuity(
 ) -> Option<usize> {
     let p = left.deg_u;
     let q = left.deg_v;
-    let w = wl.min(wr);
     let mut fact = 1.0;
     let mut falling = 1.0;
     for j in 0..=p {
@@ -296,17 +289,18 @@ fn continuity(
             fact *= j as f64;
             falling *= (p + 1 - j) as f64;
         }
-        let mut worst: f64 = 0.0;
-        for l in 0..=q {
+        let sl = falling / wl.powi(j as i32);
+        let sr = falling / wr.powi(j as i32);
+        let holds = (0..=q).all(|l| {
             let dl = difference(|i| left.cp(p - j + i, l), j);
             let dr = difference(|i| right.cp(i, l), j);
-            let sl = falling / wl.powi(j as i32);
-            let sr = falling / wr.powi(j as i32);
-            let jump: Vec<f64> = (0..3).map(|c| dl[c] * sl - dr[c] * sr).collect();
-            let size = jump.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            worst = worst.max(size * w.powi(j as i32) / fact);
-        }
-        if worst > tol {
+            (0..3).all(|c| {
+                let (a, b) = (dl[c] * sl, dr[c] * sr);
+                let jump = (a - b).abs();
+                jump / fact <= tol || jump <= 1e-11 * a.abs().max(b.abs())
+            })
+        });
+        if !holds {
             return j.checked_sub(1);
         }
     }
@@ -326,111 +320,138 @@ fn difference(f: impl Fn(usize) -> Point, j: usize) -> Point {
     pts[0]
 }
 
-/// What [`merge_face`] found: the surface and its knot lines' orders of continuity.
+/// What [`merge_face`] found: the surface and how far it is from the pieces.
 pub(crate) struct Merged {
     /// The face's B-spline.
     pub surface: SplineSurface,
-    /// Largest deviation from the pieces at the sample points (face size units).
+    /// Largest deviation from the pieces at the sample points.
     pub deviation: f64,
+    /// Whether the measured continuity had to be given up for multiplicity `p` (C^0) at every
+    /// knot, because the spline with the measured multiplicities deviated from the pieces.
+    pub c0: bool,
+}
+
+/// The pieces, their grid and common degree.
+struct Layout<'a> {
+    pieces: &'a [FacePiece],
+    grid: Grid,
+    deg: [usize; 2],
+    /// The pieces raised to `deg`.
+    raised: Vec<BezierPatch>,
+}
+
+impl Layout<'_> {
+    /// Cell `(a, b)` as `[[u0, u1], [v0, v1]]`.
+    fn cell(&self, a: usize, b: usize) -> [[f64; 2]; 2] {
+        let l = &self.grid.lines;
+        [[l[0][a], l[0][a + 1]], [l[1][b], l[1][b + 1]]]
+    }
+
+    /// The continuity across interior line `k` of direction `dir` (0: `u = u_k`), the least
+    /// over the cells along it; `None` where the sides do not meet.
+    fn line_continuity(&self, dir: usize, k: usize, tol: f64) -> Option<usize> {
+        let n_other = self.grid.lines[1 - dir].len() - 1;
+        let [p, q] = self.deg;
+        let mut r = usize::MAX;
+        for o in 0..n_other {
+            let ((a0, b0), (a1, b1)) = if dir == 0 {
+                ((k - 1, o), (k, o))
+            } else {
+                ((o, k - 1), (o, k))
+            };
+            let (kl, kr) = (self.grid.owner(a0, b0), self.grid.owner(a1, b1));
+            if kl == kr {
+                continue;
+            }
+            let (cl, cr) = (self.cell(a0, b0), self.cell(a1, b1));
+            let mut l = over_cell(&self.raised[kl], self.pieces[kl].rect, cl, p, q);
+            let mut rr = over_cell(&self.raised[kr], self.pieces[kr].rect, cr, p, q);
+            if dir == 1 {
+                l = l.transposed();
+                rr = rr.transposed();
+            }
+            let (wl, wr) = (cl[dir][1] - cl[dir][0], cr[dir][1] - cr[dir][0]);
+            r = r.min(continuity(&l, &rr, wl, wr, tol)?);
+        }
+        Some(r)
+    }
+
+    /// The knot vector of direction `dir`: interior lines with multiplicity `p - r` for the
+    /// measured continuity `r`, or `p` everywhere (`full`).
+    fn knots(&self, dir: usize, tol: f64, full: bool) -> Option<Vec<f64>> {
+        let lines = &self.grid.lines[dir];
+        let p = self.deg[dir];
+        let mut knots = vec![lines[0]; p + 1];
+        for k in 1..lines.len() - 1 {
+            let mult = if full {
+                p
+            } else {
+                p.saturating_sub(self.line_continuity(dir, k, tol)?)
+            };
+            knots.extend(std::iter::repeat_n(lines[k], mult));
+        }
+        knots.extend(std::iter::repeat_n(lines[lines.len() - 1], p + 1));
+        Some(knots)
+    }
+
+    /// The spline on knot vectors `ku`, `kv` whose control points are the blossoms of the
+    /// pieces (exact when the pieces lie in its space).
+    fn spline(&self, ku: Vec<f64>, kv: Vec<f64>) -> SplineSurface {
+        let [p, q] = self.deg;
+        let (na, nb) = (self.grid.lines[0].len() - 1, self.grid.nb());
+        let su = support_spans(&ku, p);
+        let sv = support_spans(&kv, q);
+        let mut cps = Vec::with_capacity(su.len() * sv.len());
+        for (i, &ka) in su.iter().enumerate() {
+            let a = line_index(&self.grid.lines[0], ku[ka]).min(na - 1);
+            for (j, &kb) in sv.iter().enumerate() {
+                let b = line_index(&self.grid.lines[1], kv[kb]).min(nb - 1);
+                let k = self.grid.owner(a, b);
+                cps.push(blossom(
+                    &self.raised[k],
+                    self.pieces[k].rect,
+                    &ku[i + 1..=i + p],
+                    &kv[j + 1..=j + q],
+                ));
+            }
+        }
+        SplineSurface {
+            deg: [p, q],
+            knots: [ku, kv],
+            cps,
+        }
+    }
 }
 
 /// Merges the pieces of one input face into one B-spline surface on `[0, 1]^2` (see the
-/// module doc); `None` when they do not tile the face or the result deviates.
-pub(crate) fn merge_face(pieces: &[FacePiece], tol: f64) -> Option<Merged> {
-    let dbg = std::env::var("FAIRSUB_DEBUG_MERGE").is_ok();
-    let grid = Grid::new(pieces);
-    if dbg && grid.is_none() {
-        eprintln!(
-            "grid failed: {:?}",
-            pieces.iter().map(|p| p.rect).collect::<Vec<_>>()
-        );
-    }
-    let grid = grid?;
+/// module doc); `None` when they do not tile the face, do not meet, or the result deviates by
+/// more than `limit` even with C^0 knots.
+pub(crate) fn merge_face(pieces: &[FacePiece], tol: f64, limit: f64) -> Option<Merged> {
+    let grid = Grid::new(pieces)?;
     let p = pieces.iter().map(|x| x.bezier.deg_u).max()?.max(1);
     let q = pieces.iter().map(|x| x.bezier.deg_v).max()?.max(1);
-    let raised: Vec<BezierPatch> = pieces
+    let raised = pieces
         .iter()
         .map(|x| x.bezier.raised_to(p, q).expect("largest degrees"))
         .collect();
-    let cell = |a: usize, b: usize| {
-        [
-            [grid.lines[0][a], grid.lines[0][a + 1]],
-            [grid.lines[1][b], grid.lines[1][b + 1]],
-        ]
-    };
-    let (na, nb) = (grid.lines[0].len() - 1, grid.nb());
-    // continuity across the interior lines u = u_a
-    let mut knots_u = vec![grid.lines[0][0]; p + 1];
-    for a in 1..na {
-        let mut r = usize::MAX;
-        for b in 0..nb {
-            let (kl, kr) = (grid.owner(a - 1, b), grid.owner(a, b));
-            if kl == kr {
-                continue;
-            }
-            let (cl, cr) = (cell(a - 1, b), cell(a, b));
-            let l = over_cell(&raised[kl], pieces[kl].rect, cl, p, q);
-            let rr = over_cell(&raised[kr], pieces[kr].rect, cr, p, q);
-            let c = continuity(&l, &rr, cl[0][1] - cl[0][0], cr[0][1] - cr[0][0], tol);
-            if dbg && c.is_none() {
-                eprintln!("gap across u = {}", grid.lines[0][a]);
-            }
-            r = r.min(c?);
-        }
-        knots_u.extend(std::iter::repeat_n(grid.lines[0][a], p.saturating_sub(r)));
-    }
-    knots_u.extend(std::iter::repeat_n(grid.lines[0][na], p + 1));
-    let mut knots_v = vec![grid.lines[1][0]; q + 1];
-    for b in 1..nb {
-        let mut r = usize::MAX;
-        for a in 0..na {
-            let (kl, kr) = (grid.owner(a, b - 1), grid.owner(a, b));
-            if kl == kr {
-                continue;
-            }
-            let (cl, cr) = (cell(a, b - 1), cell(a, b));
-            let l = over_cell(&raised[kl], pieces[kl].rect, cl, p, q).transposed();
-            let rr = over_cell(&raised[kr], pieces[kr].rect, cr, p, q).transposed();
-            r = r.min(continuity(
-                &l,
-                &rr,
-                cl[1][1] - cl[1][0],
-                cr[1][1] - cr[1][0],
-                tol,
-            )?);
-        }
-        knots_v.extend(std::iter::repeat_n(grid.lines[1][b], q.saturating_sub(r)));
-    }
-    knots_v.extend(std::iter::repeat_n(grid.lines[1][nb], q + 1));
-    let su = support_spans(&knots_u, p);
-    let sv = support_spans(&knots_v, q);
-    let mut cps = Vec::with_capacity(su.len() * sv.len());
-    for (i, &ka) in su.iter().enumerate() {
-        let a = line_index(&grid.lines[0], knots_u[ka]);
-        for (j, &kb) in sv.iter().enumerate() {
-            let b = line_index(&grid.lines[1], knots_v[kb]);
-            let k = grid.owner(a.min(na - 1), b.min(nb - 1));
-            cps.push(blossom(
-                &raised[k],
-                pieces[k].rect,
-                &knots_u[i + 1..=i + p],
-                &knots_v[j + 1..=j + q],
-            ));
-        }
-    }
-    let surface = SplineSurface {
+    let layout = Layout {
+        pieces,
+        grid,
         deg: [p, q],
-        knots: [knots_u, knots_v],
-        cps,
+        raised,
     };
-    let deviation = deviation(&surface, pieces);
-    if dbg {
-        eprintln!(
-            "merged: knots {:?} {:?} deviation {deviation:e}",
-            surface.knots[0], surface.knots[1]
-        );
+    for full in [false, true] {
+        let surface = layout.spline(layout.knots(0, tol, full)?, layout.knots(1, tol, full)?);
+        let deviation = deviation(&surface, pieces);
+        if deviation <= limit {
+            return Some(Merged {
+                surface,
+                deviation,
+                c0: full,
+            });
+        }
     }
-    (deviation <= 1000.0 * tol).then_some(Merged { surface, deviation })
+    None
 }
 
 /// The tensor blossom of `b` (over `rect` of the face) at face parameters `us`, `vs`.

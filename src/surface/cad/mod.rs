@@ -79,6 +79,9 @@ pub struct CadFaces {
     /// Input faces (sub-faces) that could not be merged, so their patches are faces of their
     /// own.
     pub unmerged: usize,
+    /// Merged faces whose measured knot multiplicities gave a spline off its patches by more
+    /// than rounding, so every knot got multiplicity `p` (C^0; exact, more control points).
+    pub c0_faces: usize,
 }
 
 impl CadFaces {
@@ -143,11 +146,13 @@ fn patch_faces(c: &PatchComplex) -> CadFaces {
 fn input_faces(c: &PatchComplex) -> CadFaces {
     use rayon::prelude::*;
     let tol = merge_tolerance(c);
+    // a merged face may differ from its patches by rounding only
+    let limit = 10.0 * tol;
     let grouped = merge::group(c);
     let groups: Vec<_> = grouped.groups.into_iter().collect();
     let merged: Vec<Option<merge::Merged>> = groups
         .par_iter()
-        .map(|(_, pieces)| merge::merge_face(pieces, tol))
+        .map(|(_, pieces)| merge::merge_face(pieces, tol, limit))
         .collect();
     let mut out = CadFaces::default();
     let mut extra: Vec<(usize, [[f64; 2]; 2])> = Vec::new();
@@ -155,6 +160,7 @@ fn input_faces(c: &PatchComplex) -> CadFaces {
         match m {
             Some(m) => {
                 out.deviation = out.deviation.max(m.deviation);
+                out.c0_faces += usize::from(m.c0);
                 out.push(
                     m.surface,
                     FaceSource::Input {
