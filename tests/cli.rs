@@ -126,6 +126,8 @@ fn every_gallery_net_every_scheme_every_format() {
                     "2",
                     "--tess",
                     "3",
+                    "--faces",
+                    "patches",
                     "-o",
                     out.to_str().unwrap(),
                 ]);

@@ -146,6 +146,8 @@ fn cases() -> Vec<Case> {
             "catmull-clark",
             "--rings",
             "2",
+            "--faces",
+            "patches",
             "-o",
             "{out}/surface.igs",
         ],

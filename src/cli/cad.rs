@@ -33,10 +33,12 @@ pub fn write_step(
         )));
     }
     crate::io::write_step(path, &faces.surfaces, &topo, step_tolerance(weld))?;
-    let shell = if topo.is_closed() {
-        "a closed solid".to_string()
-    } else {
-        format!("an open shell with {} boundary edges", topo.free_edges)
+    let open = topo.closed.iter().filter(|c| !**c).count();
+    let shell = match (topo.shells(), open) {
+        (1, 0) => "a closed solid".to_string(),
+        (n, 0) => format!("{n} closed solids"),
+        (1, 1) => format!("an open shell with {} boundary edges", topo.free_edges),
+        (n, k) => format!("{n} shells ({k} open, {} boundary edges)", topo.free_edges),
     };
     eprintln!(
         "STEP: {} faces ({:?}), {} edges, {} vertices: {shell}{}",

@@ -15,10 +15,10 @@
 //!   of `distance_accuracy_value`), `GLOBAL_UNIT_ASSIGNED_CONTEXT` (millimetre, radian,
 //!   steradian: fairsub coordinates are unitless, one unit is written as one millimetre, as in
 //!   IGES output) and `REPRESENTATION_CONTEXT`.
-//! * **Shape**: a closed shell becomes `ADVANCED_BREP_SHAPE_REPRESENTATION` of a
-//!   `MANIFOLD_SOLID_BREP` of a `CLOSED_SHELL`; anything else a
-//!   `MANIFOLD_SURFACE_SHAPE_REPRESENTATION` of a `SHELL_BASED_SURFACE_MODEL` of one
-//!   `OPEN_SHELL`. Both hold an `AXIS2_PLACEMENT_3D` at the origin.
+//! * **Shape**: one shell per connected component of the faces. When every shell is closed,
+//!   an `ADVANCED_BREP_SHAPE_REPRESENTATION` of one `MANIFOLD_SOLID_BREP` per `CLOSED_SHELL`;
+//!   otherwise a `MANIFOLD_SURFACE_SHAPE_REPRESENTATION` of a `SHELL_BASED_SURFACE_MODEL` of
+//!   the `OPEN_SHELL`s and `CLOSED_SHELL`s. Both hold an `AXIS2_PLACEMENT_3D` at the origin.
 //! * **Topology and geometry** ([`crate::surface::cad::brep`]): a `VERTEX_POINT` per vertex,
 //!   an `EDGE_CURVE` (with its `B_SPLINE_CURVE_WITH_KNOTS`) per edge, used by its faces through
 //!   `ORIENTED_EDGE`s in one `EDGE_LOOP` per face (`FACE_OUTER_BOUND`), and an `ADVANCED_FACE`
@@ -249,15 +249,36 @@ pub fn step_to_string(
         let surf = surface(&mut d, s);
         faces.push(d.add(&format!("ADVANCED_FACE('',(#{bound}),#{surf},.T.)")));
     }
+    // one shell per connected component: all closed, solids; otherwise a surface model
+    let shells: Vec<(usize, bool)> = brep
+        .shell_faces()
+        .iter()
+        .zip(&brep.closed)
+        .map(|(fs, &c)| {
+            let kind = if c { "CLOSED_SHELL" } else { "OPEN_SHELL" };
+            (
+                d.add(&format!(
+                    "{kind}('',{})",
+                    refs(fs.iter().map(|&f| faces[f]))
+                )),
+                c,
+            )
+        })
+        .collect();
     let rep = if closed {
-        let shell = d.add(&format!("CLOSED_SHELL('',{})", refs(faces)));
-        let solid = d.add(&format!("MANIFOLD_SOLID_BREP('{stem}',#{shell})"));
+        let solids: Vec<usize> = shells
+            .iter()
+            .map(|(s, _)| d.add(&format!("MANIFOLD_SOLID_BREP('{stem}',#{s})")))
+            .collect();
         d.add(&format!(
-            "ADVANCED_BREP_SHAPE_REPRESENTATION('{stem}',(#{axis},#{solid}),#{ctx})"
+            "ADVANCED_BREP_SHAPE_REPRESENTATION('{stem}',{},#{ctx})",
+            refs(std::iter::once(axis).chain(solids))
         ))
     } else {
-        let shell = d.add(&format!("OPEN_SHELL('',{})", refs(faces)));
-        let model = d.add(&format!("SHELL_BASED_SURFACE_MODEL('{stem}',(#{shell}))"));
+        let model = d.add(&format!(
+            "SHELL_BASED_SURFACE_MODEL('{stem}',{})",
+            refs(shells.iter().map(|(s, _)| *s))
+        ));
         d.add(&format!(
             "MANIFOLD_SURFACE_SHAPE_REPRESENTATION('{stem}',(#{axis},#{model}),#{ctx})"
         ))

@@ -179,7 +179,7 @@ impl Registry {
                     About {
                         family: "classic triangle scheme [Loo87], Loop's original beta",
                         input: "triangle meshes; with --levels OpenSubdiv's boundary options (default edge-and-corner: corners stay put), sharp features and face-varying UVs (--fvar, default all)",
-                        patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; G^1 cap of n kites (bi-4/bi-5, C^1 to the last ring; open triangle fans at boundary vertices)",
+                        patches: "quartic box-spline triangles (as degenerate bi-4 patches), regular boundary triangles included; rings of 3n triangles per extraordinary vertex; G^1 cap of n kites (bi-4/bi-5, C^1 to the last ring; open triangle fans at boundary vertices); CAD faces (STEP, IGES): one per patch in every --faces mode (triangles form no tensor grid)",
                         smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
                         valences: "all",
                         status: "available",
@@ -192,7 +192,7 @@ impl Registry {
                     About {
                         family: "non-box subdivision [Huang]: four-directional S_3^1 non-box splines, quad variant with face control vertices (FCVs)",
                         input: "any polygon mesh (FCVs: face barycentres, scaled barycentres or an FCV file); boundaries: cubic B-spline V/E rules, ghost-FCV NFCV rule (fairsub's reconstruction)",
-                        patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; G^1 cap (bi-4/bi-5, C^1 to the ring in the cells' chart; Coons fill where the ring is incomplete)",
+                        patches: "cubic S_3^1 triangles (4 per regular quad cell, as degenerate bi-3 patches); rings of 12n triangles per extraordinary vertex; G^1 cap (bi-4/bi-5, C^1 to the ring in the cells' chart; Coons fill where the ring is incomplete); CAD faces (STEP, IGES): one per patch in every --faces mode (triangles form no tensor grid)",
                         smoothness: "C^1 with the convex hull property (all weights non-negative); C^1 at extraordinary vertices (lambda = 1/2 + cos(2 pi / k) / 4)",
                         valences: "all",
                         status: "available",

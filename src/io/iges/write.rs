@@ -229,7 +229,7 @@ pub(super) fn iges_text(complex: &PatchComplex, file_name: &str, date: &str) -> 
 }
 
 /// The IGES text for CAD faces ([`crate::surface::cad`]): one entity 128 per face, labelled
-/// `face` (an input face), `packed` or the patch's group.
+/// `face` (an input face) or `patch`.
 pub fn iges_faces_to_string(faces: &CadFaces, file_name: &str) -> Result<String> {
     iges_faces_text(faces, file_name, &now_date())
 }
@@ -246,7 +246,6 @@ fn iges_faces_text(faces: &CadFaces, file_name: &str, date: &str) -> Result<Stri
     let entities = faces.surfaces.iter().zip(&faces.sources).map(|(s, src)| {
         let label = match src {
             FaceSource::Input { .. } => "face",
-            FaceSource::Packed { .. } => "packed",
             FaceSource::Patch { .. } => "patch",
         };
         (spline_128(s), label.to_string())

@@ -12,10 +12,11 @@
 //!    coefficients at one point: a pole, the tip of a triangle) is no edge at all (CAD readers
 //!    add their degenerate edges themselves).
 //! 4. Each face's loop runs counter-clockwise in its parameters: side `v = 0`, `u = 1`, `v = 1`,
-//!    `u = 0`, so the face normal `S_u x S_v` is the loop's left-hand normal. When a closed
-//!    shell encloses a negative volume (the net is oriented inward), every surface is
-//!    transposed (its `u` and `v` swapped) and the topology built again, so that CAD sees an
-//!    outward solid.
+//!    `u = 0`, so the face normal `S_u x S_v` is the loop's left-hand normal.
+//! 5. Faces connected through shared edges form a shell; a shell all of whose edges are shared
+//!    is closed. When a closed shell encloses a negative volume (its part of the net is
+//!    oriented inward), its surfaces are transposed (`u` and `v` swapped) and the topology
+//!    built again, so that CAD sees outward solids.
 
 use super::spline::{SplineCurve, SplineSurface};
 use crate::bezier::Side;
@@ -48,14 +49,68 @@ pub struct Brep {
     pub nonmanifold: usize,
     /// Edges whose two faces run them the same way (inconsistent orientation).
     pub misoriented: usize,
-    /// Whether the surfaces were transposed to make a closed shell enclose a positive volume.
-    pub flipped: bool,
+    /// The connected component (shell) of every face, numbered from 0 in order of first face.
+    pub shell_of: Vec<u32>,
+    /// Whether each shell is closed (every edge of its faces shared by two of them).
+    pub closed: Vec<bool>,
+    /// Faces whose surfaces were transposed to make their closed shell enclose a positive
+    /// volume.
+    pub flipped: usize,
 }
 
 impl Brep {
-    /// Whether every edge is shared by two faces (a closed shell).
+    /// Whether every edge is shared by two faces (every shell closed).
     pub fn is_closed(&self) -> bool {
         self.free_edges == 0 && self.nonmanifold == 0 && !self.edges.is_empty()
+    }
+
+    /// Number of shells (connected components of faces).
+    pub fn shells(&self) -> usize {
+        self.closed.len()
+    }
+
+    /// The faces of every shell, in face order.
+    pub fn shell_faces(&self) -> Vec<Vec<usize>> {
+        let mut out = vec![Vec::new(); self.closed.len()];
+        for (f, &s) in self.shell_of.iter().enumerate() {
+            out[s as usize].push(f);
+        }
+        out
+    }
+
+    /// The shells (connected through shared edges) and whether each is closed.
+    fn find_shells(&mut self) {
+        let n = self.loops.len();
+        let mut uf = crate::surface::adjacency::UnionFind::new(n);
+        let mut first_face = vec![u32::MAX; self.edges.len()];
+        let mut uses = vec![0u8; self.edges.len()];
+        for (f, lp) in self.loops.iter().enumerate() {
+            for &(e, _) in lp {
+                let e = e as usize;
+                uses[e] = uses[e].saturating_add(1);
+                if first_face[e] == u32::MAX {
+                    first_face[e] = f as u32;
+                } else {
+                    uf.union(first_face[e], f as u32);
+                }
+            }
+        }
+        let mut id = vec![u32::MAX; n];
+        self.shell_of = Vec::with_capacity(n);
+        self.closed.clear();
+        for f in 0..n {
+            let r = uf.find(f as u32) as usize;
+            if id[r] == u32::MAX {
+                id[r] = self.closed.len() as u32;
+                self.closed.push(true);
+            }
+            self.shell_of.push(id[r]);
+        }
+        for (f, lp) in self.loops.iter().enumerate() {
+            if lp.iter().any(|&(e, _)| uses[e as usize] < 2) || lp.is_empty() {
+                self.closed[self.shell_of[f] as usize] = false;
+            }
+        }
     }
 }
 
@@ -78,15 +133,33 @@ struct Segment {
 }
 
 /// Builds the topology of `surfaces` with welding tolerance `tol`; transposes the surfaces
-/// when a closed shell comes out inward (see the [module](self) doc).
+/// of a closed shell that comes out inward (see the [module](self) doc).
 pub fn build(surfaces: &mut [SplineSurface], tol: f64) -> Brep {
     let b = topology(surfaces, tol);
-    if b.is_closed() && signed_volume(surfaces) < 0.0 {
-        surfaces.par_iter_mut().for_each(|s| *s = s.transposed());
-        let mut b = topology(surfaces, tol);
-        b.flipped = true;
+    let mut flip = vec![false; surfaces.len()];
+    let mut flipped = 0;
+    for (s, faces) in b.shell_faces().iter().enumerate() {
+        if !b.closed[s] {
+            continue;
+        }
+        let own: Vec<SplineSurface> = faces.iter().map(|&f| surfaces[f].clone()).collect();
+        if signed_volume(&own) < 0.0 {
+            for &f in faces {
+                flip[f] = true;
+                flipped += 1;
+            }
+        }
+    }
+    if flipped == 0 {
         return b;
     }
+    surfaces
+        .par_iter_mut()
+        .zip(flip.par_iter())
+        .filter(|(_, f)| **f)
+        .for_each(|(s, _)| *s = s.transposed());
+    let mut b = topology(surfaces, tol);
+    b.flipped = flipped;
     b
 }
 
@@ -215,6 +288,7 @@ fn topology(surfaces: &[SplineSurface], tol: f64) -> Brep {
         brep.loops.push(lp);
     }
     brep.misoriented = direction.iter().filter(|&&d| d == 2 || d == 8).count();
+    brep.find_shells();
     brep
 }
 

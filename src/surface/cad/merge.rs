@@ -14,10 +14,13 @@
 //! * **knots**: each grid line `u = u_a` gets multiplicity `p - r`, where `r` is the order of
 //!   continuity that holds across the whole line, measured: for every pair of grid cells across
 //!   it that lie in different patches, the jumps of the derivatives of order `0, 1, ...` (in
-//!   face parameters, scaled by `w^j / j!` with `w` the narrower cell's width, so a jump is the
-//!   size of the change it makes to the points of the cells) must be at most the tolerance
-//!   (`1e-13` of the complex's size). So rings of Catmull-Clark's bi-3 patches (C^2) give
-//!   multiplicity `p - 2`, the line to a C^1 cap `p - 1`, a line that is only C^0 `p`;
+//!   face parameters) must be rounding noise: at most the tolerance (`1e-13` of the complex's
+//!   size) at the face's scale, or `1e-11` of the derivative, or (first try) within the
+//!   rounding level that cells as narrow as a semi-sharp crease's `2^-6` amplify. The spline
+//!   is then checked against every patch; near patches it misses, the lines take the orders of
+//!   the strict test, and when that misses too every knot gets multiplicity `p` (C^0: exact,
+//!   more control points). So rings of Catmull-Clark's bi-3 patches (C^2) give multiplicity
+//!   `p - 2`, the line to a C^1 cap `p - 1`;
 //! * **control points**: by blossoming (`spline`): control point `i` is the blossom of the
 //!   patch covering the widest grid cell of its support at the knots `t_{i+1}, ..., t_{i+p}`.
 //!
@@ -279,9 +282,18 @@ fn continuity(
     wl: f64,
     wr: f64,
     tol: f64,
+    lenient: bool,
 ) -> Option<usize> {
     let p = left.deg_u;
     let q = left.deg_v;
+    // the rounding level of the coefficients, and of a j-th derivative computed from them
+    let size = left
+        .cps
+        .iter()
+        .chain(&right.cps)
+        .flat_map(|x| x.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let w = wl.min(wr);
     let mut fact = 1.0;
     let mut falling = 1.0;
     for j in 0..=p {
@@ -297,7 +309,10 @@ fn continuity(
             (0..3).all(|c| {
                 let (a, b) = (dl[c] * sl, dr[c] * sr);
                 let jump = (a - b).abs();
-                jump / fact <= tol || jump <= 1e-11 * a.abs().max(b.abs())
+                let noise = 256.0 * f64::EPSILON * size * falling * (2.0 / w).powi(j as i32);
+                jump / fact <= tol
+                    || jump <= 1e-11 * a.abs().max(b.abs())
+                    || (lenient && jump <= noise)
             })
         });
         if !holds {
@@ -349,7 +364,7 @@ impl Layout<'_> {
 
     /// The continuity across interior line `k` of direction `dir` (0: `u = u_k`), the least
     /// over the cells along it; `None` where the sides do not meet.
-    fn line_continuity(&self, dir: usize, k: usize, tol: f64) -> Option<usize> {
+    fn line_continuity(&self, dir: usize, k: usize, tol: f64, lenient: bool) -> Option<usize> {
         let n_other = self.grid.lines[1 - dir].len() - 1;
         let [p, q] = self.deg;
         let mut r = usize::MAX;
@@ -371,27 +386,40 @@ impl Layout<'_> {
                 rr = rr.transposed();
             }
             let (wl, wr) = (cl[dir][1] - cl[dir][0], cr[dir][1] - cr[dir][0]);
-            r = r.min(continuity(&l, &rr, wl, wr, tol)?);
+            r = r.min(continuity(&l, &rr, wl, wr, tol, lenient)?);
         }
         Some(r)
     }
 
-    /// The knot vector of direction `dir`: interior lines with multiplicity `p - r` for the
-    /// measured continuity `r`, or `p` everywhere (`full`).
-    fn knots(&self, dir: usize, tol: f64, full: bool) -> Option<Vec<f64>> {
+    /// The continuity across every interior line of direction `dir`.
+    fn orders(&self, dir: usize, tol: f64, lenient: bool) -> Option<Vec<usize>> {
+        (1..self.grid.lines[dir].len() - 1)
+            .map(|k| self.line_continuity(dir, k, tol, lenient))
+            .collect()
+    }
+
+    /// The knot vector of direction `dir` with interior line `k` at multiplicity `p - r_k`.
+    fn knots(&self, dir: usize, orders: &[usize]) -> Vec<f64> {
         let lines = &self.grid.lines[dir];
         let p = self.deg[dir];
         let mut knots = vec![lines[0]; p + 1];
-        for k in 1..lines.len() - 1 {
-            let mult = if full {
-                p
-            } else {
-                p.saturating_sub(self.line_continuity(dir, k, tol)?)
-            };
-            knots.extend(std::iter::repeat_n(lines[k], mult));
+        for (k, &r) in orders.iter().enumerate() {
+            knots.extend(std::iter::repeat_n(lines[k + 1], p.saturating_sub(r)));
         }
         knots.extend(std::iter::repeat_n(lines[lines.len() - 1], p + 1));
-        Some(knots)
+        knots
+    }
+
+    /// The grid lines of direction `dir` within `p + 1` cells of piece `k` (interior line
+    /// indices, 0-based as in [`Layout::orders`]).
+    fn lines_near(&self, dir: usize, k: usize) -> std::ops::Range<usize> {
+        let lines = &self.grid.lines[dir];
+        let r = self.pieces[k].rect[dir];
+        let (a0, a1) = (line_index(lines, r[0]), line_index(lines, r[1]));
+        let reach = self.deg[dir] + 1;
+        let lo = a0.saturating_sub(reach).max(1) - 1;
+        let hi = (a1 + reach).min(lines.len() - 2);
+        lo..hi.max(lo)
     }
 
     /// The spline on knot vectors `ku`, `kv` whose control points are the blossoms of the
@@ -440,16 +468,42 @@ pub(crate) fn merge_face(pieces: &[FacePiece], tol: f64, limit: f64) -> Option<M
         deg: [p, q],
         raised,
     };
-    for full in [false, true] {
-        let surface = layout.spline(layout.knots(0, tol, full)?, layout.knots(1, tol, full)?);
-        let deviation = deviation(&surface, pieces);
+    let strict = [layout.orders(0, tol, false)?, layout.orders(1, tol, false)?];
+    let lenient = [layout.orders(0, tol, true)?, layout.orders(1, tol, true)?];
+    let zero = [vec![0; strict[0].len()], vec![0; strict[1].len()]];
+    let mut tries = vec![lenient.clone(), strict.clone(), zero];
+    if lenient == strict {
+        tries.remove(0);
+    }
+    let mut k = 0;
+    while k < tries.len() {
+        let orders = tries[k].clone();
+        let surface = layout.spline(layout.knots(0, &orders[0]), layout.knots(1, &orders[1]));
+        let devs = deviations(&surface, pieces);
+        let deviation = devs.iter().fold(0.0f64, |m, &d| m.max(d));
         if deviation <= limit {
             return Some(Merged {
                 surface,
                 deviation,
-                c0: full,
+                c0: orders.iter().flatten().all(|&r| r == 0)
+                    && strict.iter().flatten().any(|&r| r > 0),
             });
         }
+        if k == 0 && orders == lenient && lenient != strict {
+            // the lenient orders where the pieces agree, the strict ones near those that do not
+            let mut mixed = lenient.clone();
+            for (piece, _) in devs.iter().enumerate().filter(|(_, d)| **d > limit) {
+                for dir in 0..2 {
+                    for line in layout.lines_near(dir, piece) {
+                        mixed[dir][line] = strict[dir][line];
+                    }
+                }
+            }
+            if mixed != strict {
+                tries.insert(1, mixed);
+            }
+        }
+        k += 1;
     }
     None
 }
@@ -468,15 +522,18 @@ fn blossom(b: &BezierPatch, rect: [[f64; 2]; 2], us: &[f64], vs: &[f64]) -> Poin
     curve::blossom(&col, &sv)
 }
 
-/// Largest distance between the surface and its pieces at 5 points of every piece.
-fn deviation(s: &SplineSurface, pieces: &[FacePiece]) -> f64 {
-    let mut worst: f64 = 0.0;
-    for pc in pieces {
-        for (x, y) in [(0.5, 0.5), (0.1, 0.2), (0.9, 0.15), (0.2, 0.85), (0.8, 0.9)] {
-            let u = pc.rect[0][0] + x * (pc.rect[0][1] - pc.rect[0][0]);
-            let v = pc.rect[1][0] + y * (pc.rect[1][1] - pc.rect[1][0]);
-            worst = worst.max(dist(s.eval(u, v), pc.bezier.eval(x, y)));
-        }
-    }
-    worst
+/// The largest distance between the surface and each piece at 5 points of the piece.
+fn deviations(s: &SplineSurface, pieces: &[FacePiece]) -> Vec<f64> {
+    pieces
+        .iter()
+        .map(|pc| {
+            let mut worst: f64 = 0.0;
+            for (x, y) in [(0.5, 0.5), (0.1, 0.2), (0.9, 0.15), (0.2, 0.85), (0.8, 0.9)] {
+                let u = pc.rect[0][0] + x * (pc.rect[0][1] - pc.rect[0][0]);
+                let v = pc.rect[1][0] + y * (pc.rect[1][1] - pc.rect[1][0]);
+                worst = worst.max(dist(s.eval(u, v), pc.bezier.eval(x, y)));
+            }
+            worst
+        })
+        .collect()
 }

@@ -12,7 +12,7 @@
 //!   across each knot line); patches whose domain the scheme does not track, or that are
 //!   triangles (Loop, non-box), stay faces of their own;
 //! * [`FaceMode::Packed`]: the input faces of the net's regular quad regions merged further
-//!   into rectangles of the quad layout (the `packed` submodule).
+//!   into rectangles of the quad layout: not built yet (an error says so).
 //!
 //! [`brep::Brep`] then finds the topology from the geometry: corner points welded into
 //! vertices, a face side that meets two shorter sides split at the T-point, each edge shared
@@ -20,7 +20,6 @@
 
 pub mod brep;
 mod merge;
-mod packed;
 pub mod spline;
 
 use crate::error::{Error, Result};
@@ -36,7 +35,8 @@ pub enum FaceMode {
     /// One B-spline face per input face (per quad sub-face of an n-gon).
     #[default]
     Input,
-    /// The input faces of regular regions merged into rectangles of the quad layout.
+    /// The input faces of regular regions merged into rectangles of the quad layout (not
+    /// built yet: [`faces`] returns an error).
     Packed,
 }
 
@@ -57,13 +57,6 @@ pub enum FaceSource {
         patch: u32,
         /// The window of the patch's parameters.
         window: [[f64; 2]; 2],
-    },
-    /// A rectangle of `size` input faces of the quad layout, its corner face first.
-    Packed {
-        /// The input face at the rectangle's `(0, 0)` corner.
-        corner: u32,
-        /// Faces along `u` and `v`; the surface's parameters are `[0, size[0]] x [0, size[1]]`.
-        size: [u32; 2],
     },
 }
 
@@ -106,11 +99,11 @@ pub fn merge_tolerance(c: &PatchComplex) -> f64 {
     super::adjacency::default_tolerance(c) * 1e-4
 }
 
-/// The faces of `complex` (built on `mesh`; packed faces need it, and are the input faces
-/// without it) in `mode`.
+/// The faces of `complex` (built on `mesh`, which packed faces will need) in `mode`.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] for an empty complex.
+/// [`Error::InvalidArgument`] for an empty complex; [`Error::Unsupported`] for
+/// [`FaceMode::Packed`].
 pub fn faces(complex: &PatchComplex, mesh: Option<&PolyMesh>, mode: FaceMode) -> Result<CadFaces> {
     if complex.is_empty() {
         return Err(Error::InvalidArgument(
@@ -120,10 +113,11 @@ pub fn faces(complex: &PatchComplex, mesh: Option<&PolyMesh>, mode: FaceMode) ->
     match mode {
         FaceMode::Patches => Ok(patch_faces(complex)),
         FaceMode::Input => Ok(input_faces(complex)),
-        FaceMode::Packed => Ok(match mesh {
-            Some(m) => packed::packed_faces(complex, m, input_faces(complex)),
-            None => input_faces(complex),
-        }),
+        FaceMode::Packed => Err(Error::Unsupported(
+            "--faces packed (input faces merged into rectangles of the quad layout) is not \
+             built yet: use --faces input (one B-spline face per input face)"
+                .into(),
+        )),
     }
 }
 

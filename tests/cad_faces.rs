@@ -1,0 +1,193 @@
+//! CAD faces (`subdivide --faces`, `fairsub::surface::cad`): the merged faces are the patch
+//! complex, exactly; their counts; their continuity as `check` reports it; and the B-rep
+//! topology of the STEP file (closed solids, shared edges, T-points split).
+
+use fairsub::analysis::continuity;
+use fairsub::bezier::complex::PatchComplex;
+use fairsub::mesh::PolyMesh;
+use fairsub::schemes::registry;
+use fairsub::surface::cad::{self, FaceMode, FaceSource, brep};
+use fairsub::surface::eval::Surface;
+use fairsub::surface::{ComplexOptions, build};
+
+fn net(name: &str) -> PolyMesh {
+    fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no gallery net {name}"))
+        .1
+}
+
+fn complex(scheme: &str, mesh: &PolyMesh, rings: usize) -> PatchComplex {
+    let spec = registry().lookup(scheme).unwrap();
+    build(
+        &spec,
+        mesh,
+        ComplexOptions { rings, fill: true },
+        &mut |_| {},
+    )
+    .unwrap()
+    .complex
+}
+
+/// A small deterministic generator of points in `[0, 1)`.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The schemes that evaluate at `(face, u, v)` and take quad nets.
+const EVAL_SCHEMES: &[&str] = &[
+    "catmull-clark",
+    "doo-sabin",
+    "doo-sabin-cc",
+    "pgs",
+    "pgs-dscc",
+    "tps",
+    "tps-adjustable",
+    "eg",
+    "qas-plus",
+    "qas-plus-bi3",
+    "guided-bi5",
+    "guided-bi6",
+];
+
+#[test]
+fn input_faces_evaluate_to_the_patch_complex() {
+    for scheme in EVAL_SCHEMES {
+        for name in ["cube", "prism-5", "torus-evs", "open-grid"] {
+            let mesh = net(name);
+            let spec = registry().lookup(scheme).unwrap();
+            let c = complex(scheme, &mesh, 3);
+            let faces = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+            let surface = Surface::of_scheme(&spec, &mesh, c.clone()).unwrap();
+            let mut rng = Lcg(7);
+            let mut worst: f64 = 0.0;
+            let mut merged = 0;
+            for (s, src) in faces.surfaces.iter().zip(&faces.sources) {
+                let FaceSource::Input { face, sub } = *src else {
+                    continue;
+                };
+                merged += 1;
+                for _ in 0..20 {
+                    let (u, v) = (rng.next(), rng.next());
+                    let want = surface.evaluate(face, u + f64::from(sub), v).unwrap().point;
+                    worst = worst.max(fairsub::geom::dist(s.eval(u, v), want));
+                }
+            }
+            assert!(merged > 0, "{scheme} on {name}: no merged face");
+            assert!(
+                worst <= 1e-12,
+                "{scheme} on {name}: merged faces off the complex by {worst:e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn one_face_per_input_quad_on_closed_nets() {
+    for (scheme, name, want) in [
+        ("catmull-clark", "cube", 6),
+        ("catmull-clark", "torus-evs", 48),
+        ("guided-bi6", "cube", 6),
+        ("eg", "icosahedron", 60), // triangles: three quad sub-faces each
+        ("pgs", "cube", 6),
+        ("tps", "cube", 6),
+    ] {
+        let mesh = net(name);
+        let c = complex(scheme, &mesh, 3);
+        let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+        assert_eq!(f.len(), want, "{scheme} on {name}");
+        assert_eq!(f.unmerged, 0, "{scheme} on {name}");
+        assert_eq!(f.c0_faces, 0, "{scheme} on {name}");
+        let patches = cad::faces(&c, Some(&mesh), FaceMode::Patches).unwrap();
+        assert_eq!(patches.len(), c.len());
+    }
+}
+
+#[test]
+fn knot_multiplicities_state_the_continuity() {
+    // Catmull-Clark on the cube: bi-4 faces (the cap's degree), rings C^2 (multiplicity 2),
+    // the cap C^1 to the last ring (3), the face's own regular patch C^2 to the rings.
+    let mesh = net("cube");
+    let c = complex("catmull-clark", &mesh, 3);
+    let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+    for s in &f.surfaces {
+        assert_eq!(s.deg, [4, 4]);
+        let (vals, mult) = cad::spline::distinct(&s.knots[0]);
+        assert_eq!(vals, [0.0, 0.125, 0.25, 0.5, 0.75, 0.875, 1.0]);
+        assert_eq!(mult, [5, 3, 2, 2, 2, 3, 5]);
+    }
+}
+
+/// The merged faces cut back into Bezier patches, as a complex `check` can read.
+fn as_complex(faces: &cad::CadFaces) -> PatchComplex {
+    let mut c = PatchComplex::new();
+    for s in &faces.surfaces {
+        for (_, b) in s.bezier_pieces() {
+            c.push(b, fairsub::surface::Provenance::Unknown);
+        }
+    }
+    c
+}
+
+#[test]
+fn check_reports_the_same_g1_figures_on_merged_faces() {
+    for (scheme, name) in [
+        ("catmull-clark", "cube"),
+        ("catmull-clark", "prism-5"),
+        ("guided-bi6", "torus-evs"),
+        ("doo-sabin", "cube"),
+        ("eg", "tetrahedron"),
+    ] {
+        let mesh = net(name);
+        let c = complex(scheme, &mesh, 3);
+        let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+        let a = continuity::check(&c);
+        let b = continuity::check(&as_complex(&f));
+        assert_eq!(b.open_sides, a.open_sides, "{scheme} on {name}");
+        assert!(
+            (a.all.g1 - b.all.g1).abs() <= 1e-9 && (a.all.c0 - b.all.c0).abs() <= 1e-9 * a.size,
+            "{scheme} on {name}: G^1 {:e} vs {:e}, C^0 {:e} vs {:e}",
+            a.all.g1,
+            b.all.g1,
+            a.all.c0,
+            b.all.c0
+        );
+    }
+}
+
+#[test]
+fn topology_is_closed_with_t_points_split() {
+    // prism-5's n-gon caps are split into quad sub-faces, so each rim edge of a cap meets two
+    // sub-faces on one side and one quad on the other: a T-point splits the quad's side.
+    let mesh = net("prism-5");
+    let c = complex("catmull-clark", &mesh, 3);
+    let weld = fairsub::surface::adjacency::default_tolerance(&c);
+    for mode in [FaceMode::Patches, FaceMode::Input] {
+        let mut f = cad::faces(&c, Some(&mesh), mode).unwrap();
+        let b = brep::build(&mut f.surfaces, weld);
+        assert!(b.is_closed(), "{mode:?}: {} free edges", b.free_edges);
+        assert_eq!(b.misoriented, 0, "{mode:?}");
+        // Euler: V - E + F = 2 for a sphere
+        let chi = b.vertices.len() as i64 - b.edges.len() as i64 + f.len() as i64;
+        assert_eq!(chi, 2, "{mode:?}");
+        assert!(brep::signed_volume(&f.surfaces) > 0.0);
+    }
+    // one face per quad, per quad sub-face of the caps
+    let want: usize = (0..mesh.num_faces())
+        .map(|f| match mesh.face_size(f) {
+            4 => 1,
+            n => n,
+        })
+        .sum();
+    let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+    assert_eq!(f.len(), want);
+}

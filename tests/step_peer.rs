@@ -1,0 +1,254 @@
+//! STEP output read by a real CAD kernel: OpenCASCADE 7.6 (Debian's libocct-*-dev, the kernel
+//! FreeCAD reads STEP with), through `tests/peer/occt_step.cpp`, built by
+//! `tests/peer/build_occt.sh`.
+//!
+//! For every scheme that writes patches, on closed gallery nets and open ones, in `--faces
+//! input` and `--faces patches`: every face is read, `BRepCheck_Analyzer` finds the shape
+//! valid, no edge is free beyond the net's boundary (no sewing is done), a closed net gives
+//! one closed solid with positive volume, and OpenCASCADE's `BRepGProp` volume, area and
+//! centroid equal the ones integrated here from the patch complex (Gauss-Legendre rules of the
+//! integrand's degree for volume and centroid, which are polynomial; 24 points per patch
+//! direction for the area) to `1e-9` relative.
+//!
+//! The peer is built by CI (`.ci/run`); without it the test skips with a message, unless
+//! `FAIRSUB_REQUIRE_OCCT=1` makes that a failure.
+
+use fairsub::bezier::BezierPatch;
+use fairsub::geom::{Point, cross, dot, norm};
+use fairsub::schemes::guided::bern::gauss_legendre;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn peer() -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/peer/occt_step");
+    if p.exists() {
+        return Some(p);
+    }
+    if std::env::var("FAIRSUB_REQUIRE_OCCT").is_ok_and(|v| v == "1") {
+        panic!(
+            "FAIRSUB_REQUIRE_OCCT=1 but {} is missing: run tests/peer/build_occt.sh",
+            p.display()
+        );
+    }
+    eprintln!("skipping: the OpenCASCADE peer is not built (tests/peer/build_occt.sh)");
+    None
+}
+
+fn fairsub() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_fairsub"))
+}
+
+/// Volume, area and the volume's (closed) or area's (open) first moments of a patch complex.
+#[derive(Debug, Default, Clone, Copy)]
+struct Moments {
+    volume: f64,
+    area: f64,
+    /// `int x dV` (closed) or `int x dA`.
+    first: Point,
+    area_first: Point,
+}
+
+fn moments(patches: &[BezierPatch]) -> Moments {
+    let mut m = Moments::default();
+    let ga = gauss_legendre(24);
+    for b in patches {
+        let gu = gauss_legendre((3 * b.deg_u).div_ceil(2) + 2);
+        let gv = gauss_legendre((3 * b.deg_v).div_ceil(2) + 2);
+        for &(x, wx) in &gu {
+            for &(y, wy) in &gv {
+                let d = b.derivatives(x, y);
+                let n = cross(d.du, d.dv);
+                m.volume += wx * wy * dot(d.p, n) / 3.0;
+                for k in 0..3 {
+                    // div (x_k^2 / 2 e_k) = x_k
+                    m.first[k] += wx * wy * 0.5 * d.p[k] * d.p[k] * n[k];
+                }
+            }
+        }
+        for &(x, wx) in &ga {
+            for &(y, wy) in &ga {
+                let d = b.derivatives(x, y);
+                let a = norm(cross(d.du, d.dv));
+                m.area += wx * wy * a;
+                for k in 0..3 {
+                    m.area_first[k] += wx * wy * a * d.p[k];
+                }
+            }
+        }
+    }
+    m
+}
+
+fn close(a: f64, b: f64, scale: f64) -> bool {
+    (a - b).abs() <= 1e-9 * scale
+}
+
+/// Writes `net` under `scheme` as STEP with `faces`, reads it with OpenCASCADE and checks it;
+/// `closed` says whether the net is closed.
+fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: bool) {
+    let step = dir.join(format!("{net}-{scheme}-{faces}.step"));
+    let bv = dir.join(format!("{net}-{scheme}.bv"));
+    let run = |out: &Path, extra: &[&str]| {
+        let o = fairsub()
+            .args([
+                "subdivide",
+                &format!("gallery:{net}"),
+                "--scheme",
+                scheme,
+                "--rings",
+                "3",
+            ])
+            .args(extra)
+            .arg("-o")
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "{scheme} {net}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let said = run(&step, &["--faces", faces]);
+    run(&bv, &[]);
+    let text = std::fs::read_to_string(&step).unwrap();
+    let faces_written = text.matches("=ADVANCED_FACE(").count();
+    let o = Command::new(occt).arg(&step).arg("1e-12").output().unwrap();
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        step.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let r: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let ctx = format!("{scheme} on {net}, --faces {faces}: {r}\n{said}");
+    assert_eq!(
+        r["faces_in_file"].as_u64().unwrap() as usize,
+        faces_written,
+        "{ctx}"
+    );
+    assert_eq!(
+        r["faces"].as_u64().unwrap() as usize,
+        faces_written,
+        "{ctx}"
+    );
+    assert_eq!(r["valid"], Value::Bool(true), "{ctx}");
+    let patches = fairsub::io::read_bv(&bv).unwrap().patches;
+    let m = moments(&patches);
+    let size = patches
+        .iter()
+        .flat_map(|p| p.cps.iter())
+        .flat_map(|q| q.iter())
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    if closed {
+        assert_eq!(r["free_edges"], 0, "{ctx}");
+        assert_eq!(r["solids"], 1, "{ctx}");
+        assert_eq!(r["closed_shells"], 1, "{ctx}");
+        let v = r["volume"].as_f64().unwrap();
+        assert!(v > 0.0, "{ctx}");
+        assert!(
+            close(v, m.volume, m.volume.abs()),
+            "{ctx}: volume {v} vs {}",
+            m.volume
+        );
+        for k in 0..3 {
+            let c = r["centroid"][k].as_f64().unwrap();
+            assert!(close(c, m.first[k] / m.volume, size), "{ctx}: centroid {k}");
+        }
+    } else {
+        // the free edges are the net's boundary, as fairsub counted them
+        let said_free: usize = said
+            .split("with ")
+            .nth(1)
+            .and_then(|s| s.split(' ').next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{ctx}: no boundary edge count"));
+        assert!(said_free > 0, "{ctx}");
+        assert_eq!(
+            r["free_edges"].as_u64().unwrap() as usize,
+            said_free,
+            "{ctx}"
+        );
+        for k in 0..3 {
+            let c = r["centroid"][k].as_f64().unwrap();
+            assert!(
+                close(c, m.area_first[k] / m.area, size),
+                "{ctx}: centroid {k}"
+            );
+        }
+    }
+    let a = r["area"].as_f64().unwrap();
+    assert!(close(a, m.area, m.area), "{ctx}: area {a} vs {}", m.area);
+}
+
+/// The schemes with patch output that take quad nets.
+const QUAD_SCHEMES: &[&str] = &[
+    "catmull-clark",
+    "doo-sabin",
+    "doo-sabin-cc",
+    "nonbox",
+    "nonbox-4dir",
+    "eg",
+    "qas-plus",
+    "qas-plus-bi3",
+    "qas-0.4",
+    "qas-0.5-0.4",
+    "pgs",
+    "pgs-dscc",
+    "tps",
+    "tps-adjustable",
+    "guided-bi5",
+    "guided-bi6",
+];
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("fairsub-step-peer-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn opencascade_reads_closed_solids_of_every_scheme() {
+    let Some(occt) = peer() else { return };
+    let dir = scratch("closed");
+    for &scheme in QUAD_SCHEMES {
+        for faces in ["input", "patches"] {
+            check(&occt, &dir, "cube", scheme, faces, true);
+        }
+    }
+    for (net, scheme) in [
+        ("prism-5", "catmull-clark"),
+        ("prism-3", "polar-bi2"),
+        ("torus-evs", "guided-bi6"),
+        ("torus-evs", "tps"),
+        ("octahedron", "loop"),
+        ("icosahedron", "eg"),
+        ("tetrahedron", "pgs-dscc"),
+    ] {
+        for faces in ["input", "patches"] {
+            check(&occt, &dir, net, scheme, faces, true);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn opencascade_reads_open_shells() {
+    let Some(occt) = peer() else { return };
+    let dir = scratch("open");
+    for (net, scheme) in [
+        ("open-grid", "catmull-clark"),
+        ("open-pipe", "catmull-clark"),
+        ("cnet-5-convex", "guided-bi6"),
+        ("open-grid", "doo-sabin"),
+        ("open-pipe", "eg"),
+        ("tri-grid", "loop"),
+    ] {
+        for faces in ["input", "patches"] {
+            check(&occt, &dir, net, scheme, faces, false);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
