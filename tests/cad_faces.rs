@@ -63,10 +63,13 @@ const EVAL_SCHEMES: &[&str] = &[
 fn input_faces_evaluate_to_the_patch_complex() {
     for scheme in EVAL_SCHEMES {
         for name in ["cube", "prism-5", "torus-evs", "open-grid"] {
+            if scheme.starts_with("tps") && name == "prism-5" {
+                continue; // TPS takes quad nets only
+            }
             let mesh = net(name);
             let spec = registry().lookup(scheme).unwrap();
             let c = complex(scheme, &mesh, 3);
-            let faces = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+            let faces = cad::faces(&c, FaceMode::Input).unwrap();
             let surface = Surface::of_scheme(&spec, &mesh, c.clone()).unwrap();
             let mut rng = Lcg(7);
             let mut worst: f64 = 0.0;
@@ -103,11 +106,11 @@ fn one_face_per_input_quad_on_closed_nets() {
     ] {
         let mesh = net(name);
         let c = complex(scheme, &mesh, 3);
-        let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+        let f = cad::faces(&c, FaceMode::Input).unwrap();
         assert_eq!(f.len(), want, "{scheme} on {name}");
         assert_eq!(f.unmerged, 0, "{scheme} on {name}");
         assert_eq!(f.c0_faces, 0, "{scheme} on {name}");
-        let patches = cad::faces(&c, Some(&mesh), FaceMode::Patches).unwrap();
+        let patches = cad::faces(&c, FaceMode::Patches).unwrap();
         assert_eq!(patches.len(), c.len());
     }
 }
@@ -118,7 +121,7 @@ fn knot_multiplicities_state_the_continuity() {
     // the cap C^1 to the last ring (3), the face's own regular patch C^2 to the rings.
     let mesh = net("cube");
     let c = complex("catmull-clark", &mesh, 3);
-    let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+    let f = cad::faces(&c, FaceMode::Input).unwrap();
     for s in &f.surfaces {
         assert_eq!(s.deg, [4, 4]);
         let (vals, mult) = cad::spline::distinct(&s.knots[0]);
@@ -149,7 +152,7 @@ fn check_reports_the_same_g1_figures_on_merged_faces() {
     ] {
         let mesh = net(name);
         let c = complex(scheme, &mesh, 3);
-        let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+        let f = cad::faces(&c, FaceMode::Input).unwrap();
         let a = continuity::check(&c);
         let b = continuity::check(&as_complex(&f));
         assert_eq!(b.open_sides, a.open_sides, "{scheme} on {name}");
@@ -172,7 +175,7 @@ fn topology_is_closed_with_t_points_split() {
     let c = complex("catmull-clark", &mesh, 3);
     let weld = fairsub::surface::adjacency::default_tolerance(&c);
     for mode in [FaceMode::Patches, FaceMode::Input] {
-        let mut f = cad::faces(&c, Some(&mesh), mode).unwrap();
+        let mut f = cad::faces(&c, mode).unwrap();
         let b = brep::build(&mut f.surfaces, weld);
         assert!(b.is_closed(), "{mode:?}: {} free edges", b.free_edges);
         assert_eq!(b.misoriented, 0, "{mode:?}");
@@ -188,6 +191,6 @@ fn topology_is_closed_with_t_points_split() {
             n => n,
         })
         .sum();
-    let f = cad::faces(&c, Some(&mesh), FaceMode::Input).unwrap();
+    let f = cad::faces(&c, FaceMode::Input).unwrap();
     assert_eq!(f.len(), want);
 }

@@ -2,7 +2,6 @@
 //! their topology and the file, with a report of what was written.
 
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
 use crate::surface::PatchComplex;
 use crate::surface::cad::{self, FaceMode, brep};
 use std::path::Path;
@@ -14,14 +13,9 @@ pub fn step_tolerance(weld: f64) -> f64 {
     (10.0 * weld).max(1e-7)
 }
 
-/// Writes `complex` (built on `mesh`) as a STEP file with faces `mode`.
-pub fn write_step(
-    complex: &PatchComplex,
-    mesh: Option<&PolyMesh>,
-    mode: FaceMode,
-    path: &Path,
-) -> Result<()> {
-    let mut faces = cad::faces(complex, mesh, mode)?;
+/// Writes `complex` as a STEP file with faces `mode`.
+pub fn write_step(complex: &PatchComplex, mode: FaceMode, path: &Path) -> Result<()> {
+    let mut faces = cad::faces(complex, mode)?;
     let weld = crate::surface::adjacency::default_tolerance(complex);
     let topo = brep::build(&mut faces.surfaces, weld);
     if topo.nonmanifold > 0 {

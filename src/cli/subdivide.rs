@@ -155,11 +155,7 @@ pub(crate) fn run_keeping(a: &Args) -> Result<(Prepared, Computed)> {
                 Some(_) => Some(patch_table(a, &p, complex)?),
                 None => None,
             };
-            let cad = Cad {
-                mesh: &p.mesh,
-                faces: a.faces,
-            };
-            write_complex_as(complex, fmt, &a.output, a.tess, Some(cad))?;
+            write_complex_as(complex, fmt, &a.output, a.tess, Some(a.faces))?;
             if let (Some(path), Some(t)) = (&a.stencils, &table) {
                 crate::io::table::write_table(path, t)?;
                 eprintln!(
@@ -483,16 +479,6 @@ pub fn write_complex(
     write_complex_as(c, fmt, path, tess, None)
 }
 
-/// The CAD faces of IGES and STEP output: the net the complex was built on and the
-/// [`FaceMode`].
-#[derive(Debug, Clone, Copy)]
-pub struct Cad<'a> {
-    /// The net.
-    pub mesh: &'a PolyMesh,
-    /// Which faces.
-    pub faces: FaceMode,
-}
-
 /// [`write_complex`] with the CAD faces of IGES and STEP output (`None`: IGES per patch, STEP
 /// per input face).
 pub fn write_complex_as(
@@ -500,22 +486,19 @@ pub fn write_complex_as(
     fmt: OutputFormat,
     path: &std::path::Path,
     tess: usize,
-    cad: Option<Cad>,
+    faces: Option<FaceMode>,
 ) -> Result<()> {
     crate::surface::validate::check_finite(c)?;
     match fmt {
         OutputFormat::Bv => crate::io::write_bv(path, c),
-        OutputFormat::Iges => match cad {
-            Some(cad) if cad.faces != FaceMode::Patches => {
-                let f = crate::surface::cad::faces(c, Some(cad.mesh), cad.faces)?;
+        OutputFormat::Iges => match faces {
+            Some(mode) if mode != FaceMode::Patches => {
+                let f = crate::surface::cad::faces(c, mode)?;
                 crate::io::iges::write_iges_faces(path, &f)
             }
             _ => crate::io::write_iges(path, c),
         },
-        OutputFormat::Step => {
-            let faces = cad.map_or(FaceMode::Input, |x| x.faces);
-            super::cad::write_step(c, cad.map(|x| x.mesh), faces, path)
-        }
+        OutputFormat::Step => super::cad::write_step(c, faces.unwrap_or_default(), path),
         OutputFormat::Mesh(mf) => {
             super::limits::check_tessellation(c, tess)?;
             let t = crate::surface::tessellate::tessellate(c, tess);

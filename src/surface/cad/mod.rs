@@ -23,7 +23,6 @@ mod merge;
 pub mod spline;
 
 use crate::error::{Error, Result};
-use crate::mesh::PolyMesh;
 use crate::surface::PatchComplex;
 use spline::SplineSurface;
 
@@ -99,12 +98,12 @@ pub fn merge_tolerance(c: &PatchComplex) -> f64 {
     super::adjacency::default_tolerance(c) * 1e-4
 }
 
-/// The faces of `complex` (built on `mesh`, which packed faces will need) in `mode`.
+/// The faces of `complex` in `mode`.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for an empty complex; [`Error::Unsupported`] for
 /// [`FaceMode::Packed`].
-pub fn faces(complex: &PatchComplex, mesh: Option<&PolyMesh>, mode: FaceMode) -> Result<CadFaces> {
+pub fn faces(complex: &PatchComplex, mode: FaceMode) -> Result<CadFaces> {
     if complex.is_empty() {
         return Err(Error::InvalidArgument(
             "the surface has no patches: nothing to write".into(),
