@@ -135,7 +135,7 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
         "{ctx}"
     );
     assert_eq!(r["valid"], Value::Bool(true), "{ctx}");
-    let patches = fairsub::io::read_bv(&bv).unwrap().patches;
+    let patches = fairsub::io::read_bv(&bv).unwrap().patches.patches;
     let m = moments(&patches);
     let size = patches
         .iter()
