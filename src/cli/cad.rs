@@ -48,8 +48,10 @@ pub fn write_step(complex: &PatchComplex, mode: FaceMode, path: &Path) -> Result
     );
     if faces.unmerged > 0 {
         eprintln!(
-            "note: {} input faces could not be merged into one B-spline (their patches are \
-             faces of their own)",
+            "note: {} input faces are not merged into one B-spline (their patches are faces \
+             of their own): their patches are triangles, do not tile the face, or a tensor \
+             grid across the face would be more than 8 times finer than its patches (deep \
+             semi-sharp crease refinement)",
             faces.unmerged
         );
     }

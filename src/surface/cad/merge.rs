@@ -335,6 +335,9 @@ fn difference(f: impl Fn(usize) -> Point, j: usize) -> Point {
     pts[0]
 }
 
+/// Most grid cells per piece a merged face may have (see [`merge_face`]).
+const MAX_INFLATION: usize = 8;
+
 /// What [`merge_face`] found: the surface and how far it is from the pieces.
 pub(crate) struct Merged {
     /// The face's B-spline.
@@ -452,10 +455,18 @@ impl Layout<'_> {
 }
 
 /// Merges the pieces of one input face into one B-spline surface on `[0, 1]^2` (see the
-/// module doc); `None` when they do not tile the face, do not meet, or the result deviates by
-/// more than `limit` even with C^0 knots.
+/// module doc); `None` when they do not tile the face, do not meet, their grid has more than
+/// [`MAX_INFLATION`] cells per piece (plus 64), or the result deviates by more than `limit`
+/// even with C^0 knots.
 pub(crate) fn merge_face(pieces: &[FacePiece], tol: f64, limit: f64) -> Option<Merged> {
     let grid = Grid::new(pieces)?;
+    // a tensor grid much finer than the pieces (deep crease refinement along one side of the
+    // face, extended across all of it) would cost far more control points than the patches
+    // themselves: those faces keep their patches
+    let cells = (grid.lines[0].len() - 1) * grid.nb();
+    if cells > MAX_INFLATION * pieces.len() + 64 {
+        return None;
+    }
     let p = pieces.iter().map(|x| x.bezier.deg_u).max()?.max(1);
     let q = pieces.iter().map(|x| x.bezier.deg_v).max()?.max(1);
     let raised = pieces
