@@ -179,8 +179,14 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
             );
         }
     }
+    // A collapsed side (a pole of polar-bi2, the apex of Loop's degenerate triangles) makes
+    // |S_u x S_v| a square root there, where the fixed Gauss rule of `moments` converges
+    // slowly: the area of those schemes is compared to 1e-6 (volume and centroid, polynomial
+    // integrands, keep 1e-9).
+    let collapsed = matches!(scheme, "polar-bi2" | "loop");
     let a = r["area"].as_f64().unwrap();
-    assert!(close(a, m.area, m.area), "{ctx}: area {a} vs {}", m.area);
+    let rel = if collapsed { 1e-6 } else { 1e-9 };
+    assert!((a - m.area).abs() <= rel * m.area, "{ctx}: area {a} vs {}", m.area);
 }
 
 /// The schemes with patch output that take quad nets.
