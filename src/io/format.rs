@@ -52,8 +52,7 @@ pub enum SceneFormat {
 }
 
 /// The `--format` names [`OutputFormat::choose`] accepts, for help texts and errors.
-pub const FORMAT_NAMES: &str =
-    "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges, step / stp, usda / usd, usdz, glb, gltf";
+pub const FORMAT_NAMES: &str = "obj, off, ply (binary), ply-ascii, ply-binary, bv, igs / iges, step / stp, usda / usd, usdz, glb, gltf";
 
 /// The scene format of a `--format` name or extension (`usd` is the crate encoding).
 fn scene_format(name: &str) -> Option<OutputFormat> {

@@ -247,6 +247,7 @@ fn iges_faces_text(faces: &CadFaces, file_name: &str, date: &str) -> Result<Stri
         let label = match src {
             FaceSource::Input { .. } => "face",
             FaceSource::Patch { .. } => "patch",
+            FaceSource::Packed { .. } => "packed",
         };
         (spline_128(s), label.to_string())
     });

@@ -12,7 +12,7 @@
 //!   across each knot line); patches whose domain the scheme does not track, or that are
 //!   triangles (Loop, non-box), stay faces of their own;
 //! * [`FaceMode::Packed`]: the input faces of the net's regular quad regions merged further
-//!   into rectangles of the quad layout: not built yet (an error says so).
+//!   into rectangles of the quad layout (the `pack` submodule), each one B-spline.
 //!
 //! [`brep::Brep`] then finds the topology from the geometry: corner points welded into
 //! vertices, a face side that meets two shorter sides split at the T-point, each edge shared
@@ -20,6 +20,7 @@
 
 pub mod brep;
 mod merge;
+mod pack;
 pub mod spline;
 
 use crate::error::{Error, Result};
@@ -34,8 +35,7 @@ pub enum FaceMode {
     /// One B-spline face per input face (per quad sub-face of an n-gon).
     #[default]
     Input,
-    /// The input faces of regular regions merged into rectangles of the quad layout (not
-    /// built yet: [`faces`] returns an error).
+    /// The input faces of regular regions merged into rectangles of the quad layout.
     Packed,
 }
 
@@ -49,6 +49,16 @@ pub enum FaceSource {
         face: u32,
         /// The sub-face of an n-gon, 0 for a quad.
         sub: u32,
+    },
+    /// A rectangle of `size[0] x size[1]` input faces of a regular region, the first (at
+    /// `(u, v) = (0, 0)`) input face `face` (sub-face `sub`).
+    Packed {
+        /// The input face at the rectangle's origin.
+        face: u32,
+        /// Its sub-face.
+        sub: u32,
+        /// The rectangle's size in input faces.
+        size: [u32; 2],
     },
     /// The part `window` (`[lo, hi]` of its parameters) of patch `patch`, over `[0, 1]^2`.
     Patch {
@@ -101,8 +111,7 @@ pub fn merge_tolerance(c: &PatchComplex) -> f64 {
 /// The faces of `complex` in `mode`.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] for an empty complex; [`Error::Unsupported`] for
-/// [`FaceMode::Packed`].
+/// [`Error::InvalidArgument`] for an empty complex.
 pub fn faces(complex: &PatchComplex, mode: FaceMode) -> Result<CadFaces> {
     if complex.is_empty() {
         return Err(Error::InvalidArgument(
@@ -112,11 +121,7 @@ pub fn faces(complex: &PatchComplex, mode: FaceMode) -> Result<CadFaces> {
     match mode {
         FaceMode::Patches => Ok(patch_faces(complex)),
         FaceMode::Input => Ok(input_faces(complex)),
-        FaceMode::Packed => Err(Error::Unsupported(
-            "--faces packed (input faces merged into rectangles of the quad layout) is not \
-             built yet: use --faces input (one B-spline face per input face)"
-                .into(),
-        )),
+        FaceMode::Packed => Ok(packed_faces(complex)),
     }
 }
 
@@ -190,6 +195,55 @@ fn input_faces(c: &PatchComplex) -> CadFaces {
                 window: w,
             },
         );
+    }
+    out
+}
+
+/// The input faces, with those of regular regions (one polynomial piece each) packed into
+/// rectangles of the quad layout.
+fn packed_faces(c: &PatchComplex) -> CadFaces {
+    let input = input_faces(c);
+    let regular: Vec<bool> = input
+        .surfaces
+        .iter()
+        .zip(&input.sources)
+        .map(|(s, src)| matches!(src, FaceSource::Input { .. }) && pack::is_single_span(s))
+        .collect();
+    let tol = merge_tolerance(c);
+    let weld = super::adjacency::default_tolerance(c);
+    let packs = pack::pack(&input.surfaces, &regular, weld, tol, 10.0 * tol);
+    let mut out = CadFaces {
+        deviation: input.deviation,
+        unmerged: input.unmerged,
+        c0_faces: input.c0_faces,
+        ..CadFaces::default()
+    };
+    let mut placed = vec![false; input.len()];
+    for p in packs {
+        for &f in &p.faces {
+            placed[f] = true;
+        }
+        match p.surface {
+            Some(s) => {
+                out.deviation = out.deviation.max(p.deviation);
+                let (face, sub) = match input.sources[p.faces[0]] {
+                    FaceSource::Input { face, sub } => (face, sub),
+                    _ => unreachable!("only input faces are packed"),
+                };
+                let size = [p.size[0] as u32, p.size[1] as u32];
+                out.push(s, FaceSource::Packed { face, sub, size });
+            }
+            None => {
+                for &f in &p.faces {
+                    out.push(input.surfaces[f].clone(), input.sources[f]);
+                }
+            }
+        }
+    }
+    for (f, done) in placed.iter().enumerate() {
+        if !done {
+            out.push(input.surfaces[f].clone(), input.sources[f]);
+        }
     }
     out
 }
