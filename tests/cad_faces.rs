@@ -2,33 +2,14 @@
 //! complex, exactly; their counts; their continuity as `check` reports it; and the B-rep
 //! topology of the STEP file (closed solids, shared edges, T-points split).
 
+mod cad_common;
+
+use cad_common::{complex, net};
 use fairsub::analysis::continuity;
 use fairsub::bezier::complex::PatchComplex;
-use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry;
 use fairsub::surface::cad::{self, FaceMode, FaceSource, brep};
 use fairsub::surface::eval::Surface;
-use fairsub::surface::{ComplexOptions, build};
-
-fn net(name: &str) -> PolyMesh {
-    fairsub::gallery::all()
-        .into_iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("no gallery net {name}"))
-        .1
-}
-
-fn complex(scheme: &str, mesh: &PolyMesh, rings: usize) -> PatchComplex {
-    let spec = registry().lookup(scheme).unwrap();
-    build(
-        &spec,
-        mesh,
-        ComplexOptions { rings, fill: true },
-        &mut |_| {},
-    )
-    .unwrap()
-    .complex
-}
 
 /// A small deterministic generator of points in `[0, 1)`.
 struct Lcg(u64);

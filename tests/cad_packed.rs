@@ -5,33 +5,12 @@
 //! interior knots (C^2); and the B-rep of the packed faces is closed (T-points where a
 //! rectangle's side meets several faces are split).
 
+mod cad_common;
+
+use cad_common::{complex, net};
 use fairsub::bezier::BezierPatch;
-use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::dist;
-use fairsub::mesh::PolyMesh;
-use fairsub::schemes::registry;
 use fairsub::surface::cad::{self, FaceMode, FaceSource, brep};
-use fairsub::surface::{ComplexOptions, build};
-
-fn net(name: &str) -> PolyMesh {
-    fairsub::gallery::all()
-        .into_iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("no gallery net {name}"))
-        .1
-}
-
-fn complex(scheme: &str, mesh: &PolyMesh, rings: usize) -> PatchComplex {
-    let spec = registry().lookup(scheme).unwrap();
-    build(
-        &spec,
-        mesh,
-        ComplexOptions { rings, fill: true },
-        &mut |_| {},
-    )
-    .unwrap()
-    .complex
-}
 
 /// The largest distance between `a` and `b` at a grid of points, the least over the four
 /// rotations of `b`'s parameter square.
