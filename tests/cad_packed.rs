@@ -114,9 +114,9 @@ fn catmull_clark_rectangles_have_simple_knots() {
         if let FaceSource::Packed { size, .. } = *src {
             rects += 1;
             assert_eq!(s.deg, [3, 3]);
-            for k in 0..2 {
-                let (vals, mult) = cad::spline::distinct(&s.knots[k]);
-                assert_eq!(vals.len() as u32, size[k] + 1);
+            for (knots, n) in s.knots.iter().zip(size) {
+                let (vals, mult) = cad::spline::distinct(knots);
+                assert_eq!(vals.len() as u32, n + 1);
                 assert!(mult[1..mult.len() - 1].iter().all(|&m| m == 1), "{mult:?}");
             }
         }
