@@ -60,9 +60,9 @@ fn moments(patches: &[BezierPatch]) -> Moments {
                 let d = b.derivatives(x, y);
                 let n = cross(d.du, d.dv);
                 m.volume += wx * wy * dot(d.p, n) / 3.0;
-                for k in 0..3 {
+                for (k, nk) in n.iter().enumerate() {
                     // div (x_k^2 / 2 e_k) = x_k
-                    m.first[k] += wx * wy * 0.5 * d.p[k] * d.p[k] * n[k];
+                    m.first[k] += wx * wy * 0.5 * d.p[k] * d.p[k] * nk;
                 }
             }
         }
