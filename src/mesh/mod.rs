@@ -17,8 +17,10 @@ mod extras;
 mod general;
 mod halfedge;
 pub mod nets;
+pub mod sqrt3_split;
 pub mod tags;
 mod topology;
+pub mod tri_split;
 mod view;
 mod walk;
 

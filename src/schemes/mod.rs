@@ -7,6 +7,7 @@
 //! table, so every rule exists exactly once.
 
 pub mod bi2;
+pub mod butterfly;
 pub mod catmull_clark;
 pub mod circulant;
 pub mod dart;
@@ -22,6 +23,7 @@ pub mod nonbox;
 pub mod prepare;
 pub mod qas;
 pub mod registry;
+pub mod sqrt3;
 
 mod common;
 

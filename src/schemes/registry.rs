@@ -13,7 +13,9 @@ use super::descriptor::{
     About, Capabilities, ChiKind, Descriptor, GuideDegree, ParamKind, Params, RulesChoice,
     SchemeId, Spec,
 };
-use super::{bi2, catmull_clark, doo_sabin, eg, guided, loop_subdivision, nonbox, qas};
+use super::{
+    bi2, butterfly, catmull_clark, doo_sabin, eg, guided, loop_subdivision, nonbox, qas, sqrt3,
+};
 use crate::error::{Error, Result};
 use std::sync::{LazyLock, RwLock};
 
@@ -66,6 +68,10 @@ pub mod ids {
     pub const GUIDED_BI4_MACRO: SchemeId = SchemeId::new("guided-bi4-macro");
     /// Guided subdivision, bi-3 macro-patch rings.
     pub const GUIDED_BI3_MACRO: SchemeId = SchemeId::new("guided-bi3-macro");
+    /// Kobbelt's sqrt(3) subdivision.
+    pub const SQRT3: SchemeId = SchemeId::new("sqrt3");
+    /// The modified butterfly scheme.
+    pub const BUTTERFLY: SchemeId = SchemeId::new("butterfly");
 }
 
 /// The guided schemes' suffixes: `-g4` / `-g3` (guide degree), then `-half` (contraction 1/2).
@@ -416,6 +422,32 @@ impl Registry {
                     &guided::descriptor::BI3_MACRO,
                 )
                 .with_suffixes(GUIDED_SUFFIXES),
+                Entry::new(
+                    SQRT3,
+                    &["sqrt-3"],
+                    About {
+                        family: "Kobbelt's sqrt(3) subdivision [Kob00]: face points, edge flips; approximating",
+                        input: "triangle meshes; boundaries: Kobbelt's rule (boundary kept on odd steps, trisected by the ternary cubic B-spline rule on even steps)",
+                        patches: "none (--levels, --limit only; no --rings)",
+                        smoothness: "C^2 on regular parts, C^1 at extraordinary vertices",
+                        valences: "all",
+                        status: "available (refinement, limit positions, analysis)",
+                    },
+                    &sqrt3::DESCRIPTOR,
+                ),
+                Entry::new(
+                    BUTTERFLY,
+                    &["modified-butterfly"],
+                    About {
+                        family: "modified butterfly [ZSS96]: interpolating triangle scheme, 8-point regular stencil (tension w = 0), extraordinary rules for valence 3, 4, >= 5",
+                        input: "triangle meshes; boundaries: 4-point rule on boundary edges, ghost points by reflection near the boundary (OpenMesh's rules)",
+                        patches: "none (--levels only; the vertices are their own limit points, --limit keeps them; no --rings)",
+                        smoothness: "C^1 (interpolating)",
+                        valences: "all",
+                        status: "available (refinement, analysis on the one-ring)",
+                    },
+                    &butterfly::DESCRIPTOR,
+                ),
             ],
         }
     }
