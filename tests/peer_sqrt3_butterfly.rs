@@ -117,7 +117,10 @@ fn closed_nets() -> Vec<(&'static str, PolyMesh)> {
         ("bipyramid-9", bipyramid(9)),
         ("bipyramid-3", bipyramid(3)),
         ("torus-6x5", tri_torus(6, 5)),
-        ("torus-evs-triangulated", triangulated(&nets::torus_with_evs())),
+        (
+            "torus-evs-triangulated",
+            triangulated(&nets::torus_with_evs()),
+        ),
     ]
     .into_iter()
     .map(|(n, m)| (n, perturbed(&m)))
@@ -132,8 +135,11 @@ fn open_nets() -> Vec<(&'static str, PolyMesh)> {
         ("fan-7-two-rings", nets::loop_net(7, 2)),
         (
             "triangle",
-            PolyMesh::new(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]])
-                .unwrap(),
+            PolyMesh::new(
+                vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                &[[0, 1, 2]],
+            )
+            .unwrap(),
         ),
     ]
     .into_iter()
@@ -173,10 +179,18 @@ fn write_obj(mesh: &PolyMesh, path: &std::path::Path) {
 }
 
 /// The peer's refined net: points and faces.
-fn run_peer(bin: &std::path::Path, mesh: &PolyMesh, levels: usize, tag: &str) -> (Vec<Point>, Vec<Vec<usize>>) {
+fn run_peer(
+    bin: &std::path::Path,
+    mesh: &PolyMesh,
+    levels: usize,
+    tag: &str,
+) -> (Vec<Point>, Vec<Vec<usize>>) {
     let dir = std::env::temp_dir().join(format!("fairsub-tri-peer-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (input, output) = (dir.join(format!("{tag}.obj")), dir.join(format!("{tag}.txt")));
+    let (input, output) = (
+        dir.join(format!("{tag}.obj")),
+        dir.join(format!("{tag}.txt")),
+    );
     write_obj(mesh, &input);
     let st = Command::new(bin)
         .arg(levels.to_string())
@@ -244,7 +258,10 @@ fn compare(ours: &PolyMesh, peer: &(Vec<Point>, Vec<Vec<usize>>), tol: f64, what
             .map(|(j, q)| (j, dist(p, q)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .unwrap();
-        assert!(d <= tol, "{what}: fairsub vertex {v} {p:?} is {d:e} from the nearest peer point");
+        assert!(
+            d <= tol,
+            "{what}: fairsub vertex {v} {p:?} is {d:e} from the nearest peer point"
+        );
         assert!(!used[j], "{what}: peer point {j} matched twice");
         used[j] = true;
         map[v] = j;
@@ -267,7 +284,9 @@ fn refine(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> PolyMesh {
 
 #[test]
 fn sqrt3_equals_cgal() {
-    let Some(bin) = peer("cgal_sqrt3") else { return };
+    let Some(bin) = peer("cgal_sqrt3") else {
+        return;
+    };
     let s = by_name("sqrt3").unwrap();
     let mut worst: f64 = 0.0;
     let mut cases = 0;
@@ -285,7 +304,9 @@ fn sqrt3_equals_cgal() {
 
 #[test]
 fn butterfly_equals_openmesh() {
-    let Some(bin) = peer("om_butterfly") else { return };
+    let Some(bin) = peer("om_butterfly") else {
+        return;
+    };
     let s = by_name("butterfly").unwrap();
     let mut worst: f64 = 0.0;
     let mut cases = 0;

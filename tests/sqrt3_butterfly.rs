@@ -40,14 +40,20 @@ fn open_net() -> PolyMesh {
 fn boundary_points(mesh: &PolyMesh) -> Vec<Point> {
     let loops = mesh.boundary_loops();
     assert_eq!(loops.len(), 1);
-    loops[0].iter().map(|&v| mesh.position(v as usize)).collect()
+    loops[0]
+        .iter()
+        .map(|&v| mesh.position(v as usize))
+        .collect()
 }
 
 /// Every point of `want` has a point of `have` within 1e-12 and the counts agree.
 fn same_point_set(have: &[Point], want: &[Point], what: &str) {
     assert_eq!(have.len(), want.len(), "{what}: counts");
     for w in want {
-        let d = have.iter().map(|h| dist(h, w)).fold(f64::INFINITY, f64::min);
+        let d = have
+            .iter()
+            .map(|h| dist(h, w))
+            .fold(f64::INFINITY, f64::min);
         assert!(d < 1e-12, "{what}: {w:?} missing (nearest {d:e})");
     }
 }
@@ -66,7 +72,12 @@ fn sqrt3_boundary_follows_kobbelts_rule() {
     let n = b0.len();
     let mut want = Vec::new();
     for i in 0..n {
-        let (r, p, q, t) = (&b0[(i + n - 1) % n], &b0[i], &b0[(i + 1) % n], &b0[(i + 2) % n]);
+        let (r, p, q, t) = (
+            &b0[(i + n - 1) % n],
+            &b0[i],
+            &b0[(i + 1) % n],
+            &b0[(i + 2) % n],
+        );
         want.push(lerp3(r, 4.0 / 27.0, p, 19.0 / 27.0, q, 4.0 / 27.0));
         want.push(lerp3(r, 1.0 / 27.0, p, 16.0 / 27.0, q, 10.0 / 27.0));
         want.push(lerp3(p, 10.0 / 27.0, q, 16.0 / 27.0, t, 1.0 / 27.0));
@@ -88,7 +99,12 @@ fn sqrt3_limit_positions_are_invariant_and_approached() {
         let two = s.refine_uniform(&net, 2, &mut |_| {}).unwrap();
         let l2 = s.limit_stencils(&two).unwrap().apply(two.positions());
         for v in 0..net.num_vertices() {
-            assert!(dist(&l0[v], &l2[v]) < 1e-12, "vertex {v}: {:?} vs {:?}", l0[v], l2[v]);
+            assert!(
+                dist(&l0[v], &l2[v]) < 1e-12,
+                "vertex {v}: {:?} vs {:?}",
+                l0[v],
+                l2[v]
+            );
         }
         // The vertices converge to them.
         let d = |levels: usize| {
@@ -127,7 +143,11 @@ fn sqrt3_spectrum_is_kobbelts() {
         let sub = (2.0 + 2.0 * (std::f64::consts::TAU / n as f64).cos()) / 9.0;
         assert!(((2.0 / 3.0 - a).powi(2) - sub * sub).abs() < 1e-14);
         let sp = spectrum(&m.matrix);
-        assert!((sp.lambda - sub).abs() < 1e-10, "n = {n}: lambda {}", sp.lambda);
+        assert!(
+            (sp.lambda - sub).abs() < 1e-10,
+            "n = {n}: lambda {}",
+            sp.lambda
+        );
     }
 }
 
@@ -218,21 +238,81 @@ fn both_run_from_the_command_line() {
     ]);
     r.unwrap();
     // Quads are refused with the face named.
-    let (r, _) = run(&["subdivide", "gallery:cube", "--scheme", "sqrt3", "--levels", "1", "-o", obj.to_str().unwrap()]);
+    let (r, _) = run(&[
+        "subdivide",
+        "gallery:cube",
+        "--scheme",
+        "sqrt3",
+        "--levels",
+        "1",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
     let e = r.unwrap_err().to_string();
     assert!(e.contains("face 0"), "{e}");
     // No exact patches.
-    let (r, _) = run(&["subdivide", "gallery:icosahedron", "--scheme", "butterfly", "--rings", "2", "-o", obj.to_str().unwrap()]);
+    let (r, _) = run(&[
+        "subdivide",
+        "gallery:icosahedron",
+        "--scheme",
+        "butterfly",
+        "--rings",
+        "2",
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
     assert!(r.is_err());
     // The spectrum from the command line.
     let (r, out) = run(&["analyze", "--scheme", "sqrt3", "--valence", "5", "--json"]);
     r.unwrap();
     let a: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let lambda = a["spectrum"]["lambda"].as_f64().unwrap_or_else(|| panic!("{a}"));
+    let lambda = a["spectrum"]["lambda"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{a}"));
     let want = (2.0 + 2.0 * (std::f64::consts::TAU / 5.0).cos()) / 9.0;
     assert!((lambda - want).abs() < 1e-10, "{lambda}");
-    let (r, _) = run(&["analyze", "--scheme", "butterfly", "--valence", "7", "--json"]);
+    let (r, _) = run(&[
+        "analyze",
+        "--scheme",
+        "butterfly",
+        "--valence",
+        "7",
+        "--json",
+    ]);
     r.unwrap();
     let _ = by_name("sqrt-3").unwrap();
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn step_sizes_bound_the_real_steps() {
+    use fairsub::schemes::growth::NetSize;
+    for name in ["sqrt3", "butterfly"] {
+        let s = by_name(name).unwrap();
+        for net in [nets::icosahedron(), open_net(), nets::tri_grid()] {
+            let mut m = net.clone();
+            for level in 0..3 {
+                let bound = s.step_size(&NetSize::of(&m));
+                let r = match name {
+                    "sqrt3" => sqrt3::Sqrt3.step(&m, level % 2 == 1).unwrap(),
+                    _ => s.refine(&m).unwrap(),
+                };
+                let real = NetSize::of(&r.mesh);
+                let what = format!("{name} level {level}");
+                assert!(real.vertices <= bound.vertices, "{what}: vertices");
+                assert!(real.faces <= bound.faces, "{what}: faces");
+                assert!(real.edges <= bound.edges, "{what}: edges");
+                assert!(real.corners <= bound.corners, "{what}: corners");
+                assert!(
+                    real.valence_squares <= bound.valence_squares,
+                    "{what}: valences"
+                );
+                assert!(
+                    r.stencils.num_entries() as f64 <= bound.stencil,
+                    "{what}: stencil"
+                );
+                m = r.mesh;
+            }
+        }
+    }
 }

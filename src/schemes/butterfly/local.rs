@@ -46,5 +46,9 @@ pub fn local_sparse(n: usize) -> Result<SparseLocal> {
         .select_rows(&rows)
         .restrict_sources(&cols)
         .ok_or_else(|| Error::Unsupported("the butterfly one-ring is not invariant".into()))?;
-    Ok(SparseLocal::from_table(ids::BUTTERFLY.name(), (1, 1, n), &t))
+    Ok(SparseLocal::from_table(
+        ids::BUTTERFLY.name(),
+        (1, 1, n),
+        &t,
+    ))
 }
