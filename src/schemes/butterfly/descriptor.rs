@@ -24,7 +24,10 @@ impl Descriptor for ButterflyDescriptor {
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
-        crate::schemes::loop_subdivision::require_triangles(mesh, "the butterfly scheme needs")
+        crate::schemes::loop_subdivision::require_triangles(
+            mesh,
+            &format!("{} needs", crate::schemes::registry::ids::BUTTERFLY),
+        )
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {

@@ -26,11 +26,11 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
 pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     check_valence(n)?;
     if n == 6 {
-        return Err(Error::Unsupported(
-            "valence 6: the regular butterfly stencil reaches beyond the one-ring, which is \
-             then not invariant; the one-ring matrix exists at valences other than 6"
-                .into(),
-        ));
+        return Err(Error::Unsupported(format!(
+            "valence 6: the regular stencil of {} reaches beyond the one-ring, which is then \
+             not invariant; the one-ring matrix exists at valences other than 6",
+            ids::BUTTERFLY
+        )));
     }
     let net = nets::loop_net(n, 2);
     let r = Butterfly.refine(&net)?;
@@ -45,7 +45,9 @@ pub fn local_sparse(n: usize) -> Result<SparseLocal> {
         .stencils
         .select_rows(&rows)
         .restrict_sources(&cols)
-        .ok_or_else(|| Error::Unsupported("the butterfly one-ring is not invariant".into()))?;
+        .ok_or_else(|| {
+            Error::Unsupported(format!("the {} one-ring is not invariant", ids::BUTTERFLY))
+        })?;
     Ok(SparseLocal::from_table(
         ids::BUTTERFLY.name(),
         (1, 1, n),
