@@ -282,22 +282,29 @@ fn refine(scheme: &dyn Scheme, mesh: &PolyMesh, levels: usize) -> PolyMesh {
     scheme.refine_uniform(mesh, levels, &mut |_| {}).unwrap()
 }
 
+/// Every net, one and two steps, `scheme` against the peer `bin`: returns the number of cases
+/// and the largest distance.
+fn against_peer(bin: &std::path::Path, scheme: &str) -> (usize, f64) {
+    let s = by_name(scheme).unwrap();
+    let mut worst: f64 = 0.0;
+    let mut cases = 0;
+    for (name, net) in closed_nets().into_iter().chain(open_nets()) {
+        for levels in [1, 2] {
+            let tag = format!("{scheme}-{name}-{levels}");
+            let theirs = run_peer(bin, &net, levels, &tag);
+            worst = worst.max(compare(&refine(&*s, &net, levels), &theirs, TOL, &tag));
+            cases += 1;
+        }
+    }
+    (cases, worst)
+}
+
 #[test]
 fn sqrt3_equals_cgal() {
     let Some(bin) = peer("cgal_sqrt3") else {
         return;
     };
-    let s = by_name("sqrt3").unwrap();
-    let mut worst: f64 = 0.0;
-    let mut cases = 0;
-    for (name, net) in closed_nets().into_iter().chain(open_nets()) {
-        for levels in [1, 2] {
-            let tag = format!("sqrt3-{name}-{levels}");
-            let theirs = run_peer(&bin, &net, levels, &tag);
-            worst = worst.max(compare(&refine(&*s, &net, levels), &theirs, TOL, &tag));
-            cases += 1;
-        }
-    }
+    let (cases, worst) = against_peer(&bin, "sqrt3");
     println!("sqrt3 vs CGAL: {cases} cases, largest distance {worst:e}");
     assert_eq!(cases, 24);
 }
@@ -307,17 +314,7 @@ fn butterfly_equals_openmesh() {
     let Some(bin) = peer("om_butterfly") else {
         return;
     };
-    let s = by_name("butterfly").unwrap();
-    let mut worst: f64 = 0.0;
-    let mut cases = 0;
-    for (name, net) in closed_nets().into_iter().chain(open_nets()) {
-        for levels in [1, 2] {
-            let tag = format!("butterfly-{name}-{levels}");
-            let theirs = run_peer(&bin, &net, levels, &tag);
-            worst = worst.max(compare(&refine(&*s, &net, levels), &theirs, TOL, &tag));
-            cases += 1;
-        }
-    }
+    let (cases, worst) = against_peer(&bin, "butterfly");
     println!("butterfly vs OpenMesh: {cases} cases, largest distance {worst:e}");
     assert_eq!(cases, 24);
 }

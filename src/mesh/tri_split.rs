@@ -21,15 +21,7 @@ pub fn tri_split(mesh: &PolyMesh) -> Result<Vec<u32>> {
     }
     let mut corners = Vec::with_capacity(12 * mesh.num_faces());
     for f in 0..mesh.num_faces() {
-        if mesh.face_size(f) != 3 {
-            return Err(Error::UnsupportedFace {
-                face: f,
-                msg: format!(
-                    "the triangle 1-4 split needs a triangle net, but face {f} has {} corners",
-                    mesh.face_size(f)
-                ),
-            });
-        }
+        require_triangle(mesh, f, "the triangle 1-4 split")?;
         let h = mesh.face_halfedge(f);
         let hs = [h, mesh.he_next(h), mesh.he_prev(h)];
         let [a, b, c] = hs.map(|h| mesh.he_from(h));
@@ -37,6 +29,31 @@ pub fn tri_split(mesh: &PolyMesh) -> Result<Vec<u32>> {
         corners.extend_from_slice(&[a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca]);
     }
     Ok(corners)
+}
+
+/// The error of a split that needs triangles (`what`) when face `f` is not one.
+pub(crate) fn require_triangle(mesh: &PolyMesh, f: usize, what: &str) -> Result<()> {
+    let k = mesh.face_size(f);
+    if k == 3 {
+        return Ok(());
+    }
+    Err(Error::UnsupportedFace {
+        face: f,
+        msg: format!("{what} needs a triangle net, but face {f} has {k} corners"),
+    })
+}
+
+/// The child rows and parent columns of the one-ring of vertex `v` in one 1-4 split of
+/// `mesh`: `v` and the points of its edges, `v` and its neighbours, both counter-clockwise
+/// from the same edge (the local matrix of a scheme on this split is its table's rows `rows`
+/// restricted to the sources `cols`).
+pub fn one_ring_rows(mesh: &PolyMesh, v: usize) -> (Vec<usize>, Vec<usize>) {
+    let nv = mesh.num_vertices();
+    let mut rows = vec![v];
+    rows.extend(mesh.outgoing(v).map(|h| nv + mesh.he_edge(h) as usize));
+    let mut cols = vec![v];
+    cols.extend(mesh.vertex_neighbors(v).iter().map(|&u| u as usize));
+    (rows, cols)
 }
 
 /// Face offsets of a child made of `corners.len() / 3` triangles.

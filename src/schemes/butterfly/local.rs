@@ -11,6 +11,7 @@
 use super::Butterfly;
 use crate::error::{Error, Result};
 use crate::mesh::nets;
+use crate::mesh::tri_split::one_ring_rows;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
@@ -34,13 +35,7 @@ pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     }
     let net = nets::loop_net(n, 2);
     let r = Butterfly.refine(&net)?;
-    let nv = net.num_vertices();
-    let mut rows = vec![0usize];
-    for h in net.outgoing_halfedges(0) {
-        rows.push(nv + net.he_edge(h) as usize);
-    }
-    let mut cols = vec![0usize];
-    cols.extend(net.vertex_neighbors(0).iter().map(|&v| v as usize));
+    let (rows, cols) = one_ring_rows(&net, 0);
     let t = r
         .stencils
         .select_rows(&rows)

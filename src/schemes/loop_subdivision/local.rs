@@ -4,6 +4,7 @@
 use super::Loop;
 use crate::error::{Error, Result};
 use crate::mesh::nets;
+use crate::mesh::tri_split::one_ring_rows;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
@@ -20,14 +21,9 @@ pub fn local_sparse(n: usize) -> Result<SparseLocal> {
     check_valence(n)?;
     let net = nets::loop_net(n, 2);
     let r = Loop.refine(&net)?;
-    // Child of the centre is vertex 0; its neighbours are the edge points of the centre's edges.
-    let nv = net.num_vertices();
-    let mut rows = vec![0usize];
-    for h in net.outgoing_halfedges(0) {
-        rows.push(nv + net.he_edge(h) as usize);
-    }
-    let mut cols = vec![0usize];
-    cols.extend(net.vertex_neighbors(0).iter().map(|&v| v as usize));
+    // Child of the centre is vertex 0; its neighbours are the edge points of the centre's edges
+    // (Loop's child layout is the 1-4 split's).
+    let (rows, cols) = one_ring_rows(&net, 0);
     let t = r
         .stencils
         .select_rows(&rows)
