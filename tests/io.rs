@@ -247,10 +247,18 @@ fn format_choice_matches_writers() {
         OutputFormat::Mesh(MeshFormat::PlyAscii)
     );
     assert_eq!(MeshFormat::PlyAscii.extension(), "ply");
-    let e = OutputFormat::choose(Path::new("b.step"), None)
+    assert_eq!(
+        OutputFormat::choose(Path::new("b.step"), None).unwrap(),
+        OutputFormat::Step
+    );
+    assert_eq!(
+        OutputFormat::choose(Path::new("b.STP"), None).unwrap(),
+        OutputFormat::Step
+    );
+    let e = OutputFormat::choose(Path::new("b.xyz"), None)
         .unwrap_err()
         .to_string();
-    assert!(e.contains(".step") && e.contains("--format"), "{e}");
+    assert!(e.contains(".xyz") && e.contains("--format"), "{e}");
 }
 
 /// Deterministic mutation fuzzing: corrupted variants of valid files must give errors (or
