@@ -12,9 +12,9 @@
 //! search stops at the first box farther than the best point found (branch and bound). Within
 //! the charts it reaches, the samples give an upper bound; a chart whose samples come within
 //! its sample spacing of the best distance is bounded more tightly by the triangles of its
-//! sample grid less the surface's measured deviation from them ([`linear`]), and the charts
+//! sample grid less the surface's measured deviation from them (`linear`), and the charts
 //! whose bound is below the best distance found get, nearest first, a Newton search
-//! ([`newton`]) from the closest point of those triangles, minimising `|S(x) - q|^2` over the
+//! (`newton`) from the closest point of those triangles, minimising `|S(x) - q|^2` over the
 //! local coordinates of the chart's face (it may leave the cell, not the face), with the
 //! face's domain as a box or triangle constraint. The result is the evaluation at the parameters found, so
 //! `evaluate(face, u, v)` returns exactly the point reported.

@@ -39,12 +39,12 @@ impl Descriptor for NonBoxDescriptor {
     }
 
     /// The FCVs; the net's creases and corners with OpenSubdiv's rules carried over
-    /// ([`super::sharp`], fairsub's construction).
+    /// (`nonbox::sharp`, fairsub's construction).
     fn params(&self) -> &'static [ParamKind] {
         &[ParamKind::Fcv, ParamKind::Creases]
     }
 
-    /// Creases and corners, infinitely sharp and semi-sharp ([`super::sharp`]).
+    /// Creases and corners, infinitely sharp and semi-sharp (`nonbox::sharp`).
     fn patches_take_features(&self) -> bool {
         true
     }
