@@ -17,6 +17,8 @@ REFINE = {
     "doo-sabin": "prism-5",
     "doo-sabin-cc": "prism-5",
     "loop": "icosahedron",
+    "sqrt3": "icosahedron",
+    "butterfly": "icosahedron",
     "nonbox": "cnet-5-convex",
     "nonbox-4dir": "nonbox-cube-fcv-1",
     "pgs": "prism-5",
