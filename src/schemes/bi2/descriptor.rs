@@ -217,6 +217,14 @@ impl Descriptor for Bi2Descriptor {
             (Bi2Kind::Pgs, Purpose::Patches) => vec![no_valence_2],
             (Bi2Kind::Mixed | Bi2Kind::Polar, Purpose::Patches) => vec![
                 no_valence_2,
+                net(
+                    Need::Scheme {
+                        what: "keeps only corners of one face (a crease end of the net cut \
+                               along its creases with more faces on one side would open)",
+                        test: crate::schemes::doo_sabin::sharp::kept_corners_with_faces,
+                    },
+                    &[NetStep::Pgs],
+                ),
                 Requirement {
                     need: Need::Scheme {
                         what: "needs its extraordinary elements separated by regular \

@@ -113,6 +113,14 @@ impl ParamMap {
         }
     }
 
+    /// The map of a net made of some of this map's net's faces, in the order `kept` lists
+    /// them (hole faces removed, the net cut along its creases: the faces stay the same).
+    pub fn select(&self, kept: &[usize]) -> ParamMap {
+        ParamMap {
+            faces: kept.iter().map(|&f| self.faces[f].clone()).collect(),
+        }
+    }
+
     /// The quarter at corner `k` of face `g` of the net this map belongs to.
     pub fn quarter(&self, mesh: &PolyMesh, g: usize, k: usize) -> Option<Cell> {
         self.faces

@@ -45,8 +45,16 @@
 //!   family's own constructions, as PGS and TPS take it for themselves
 //!   ([`Step::Own`], documented in `crate::schemes::bi2::surface`).
 //!
-//! Nets that tag sharp features get the Catmull-Clark step (which carries the tags) but not
-//! the dual steps (which do not): such a net is given to the scheme as it is, with a note, and
+//! Sharp features. The Catmull-Clark step carries every tag; the dual steps carry boundaries
+//! and kept corners (infinitely sharp boundary corners) but no crease or hole. For patches on
+//! a net that tags only infinitely sharp features, the needs are tested on the net cut along
+//! its creases with its hole faces removed (`crate::schemes::doo_sabin::sharp`, as the bi-2
+//! schemes' patches cut it themselves): where that net needs a whole-net step, the cut is the
+//! first step (its faces are the input's faces minus the holes, the map picks them) and the
+//! steps follow on the cut net, whose crease sides stay one curve (both sides refine the same
+//! crease polygon); where it needs none, the net is given to the scheme uncut, which cuts it.
+//! Nets with semi-sharp tags, or features the cut refuses, and nets refined whole
+//! (`--levels`) get no dual step: they are given to the scheme as they are, with a note, and
 //! the scheme's own sharp-feature rules decide.
 
 pub mod map;
@@ -132,6 +140,9 @@ pub struct Applied {
     pub count: usize,
     /// Whether the step was applied here, is taken by the scheme, or could not be applied.
     pub kind: Kind,
+    /// Whether the step is the cut along the net's creases that precedes the steps on a
+    /// tagged net (its note is the cut's own).
+    pub cut: bool,
 }
 
 /// What became of a step [`prepare`] found needed.
@@ -156,6 +167,11 @@ impl Applied {
             at.push_str(&format!(" and {more} more"));
         }
         match self.kind {
+            Kind::Applied if self.cut => format!(
+                "prepared for {name}: the net is cut along its creases before the steps below, \
+                 since {name} {} ({})",
+                self.need, self.step
+            ),
             Kind::Applied => format!(
                 "prepared for {name}: {} first, since {name} {} ({at}); rings and levels count \
                  from the prepared net, and elements named below are the prepared net's",
@@ -247,7 +263,10 @@ fn unmet(need: &Need, mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
                     && !mesh.is_nonmanifold_vertex(v)
                     && match mesh.vertex_faces(v).len() {
                         1 => !crate::schemes::doo_sabin::sharp::is_kept_corner(mesh, v),
-                        k => k != 2,
+                        // a kept corner (a crease end of a cut net) with two faces on one
+                        // side: the rules keep corners of one face only
+                        2 => crate::schemes::doo_sabin::sharp::is_tagged_corner(mesh, v),
+                        _ => true,
                     }
             })
             .map(|v| Element::Vertex(v as u32))
@@ -293,13 +312,114 @@ pub fn prepare(
     if spec.params.prepare == Mode::None || requirements.is_empty() {
         return Ok(Prepared::unchanged(mesh));
     }
-    let mut net = mesh.clone();
-    let mut map: Option<ParamMap> = None;
-    let mut applied = Vec::new();
+    if purpose == Purpose::Patches
+        && let Some(cut) = cut_first(spec, mesh)
+    {
+        // the steps on the cut net; nothing to do there: the scheme cuts the net itself
+        let prepared = run(
+            &requirements,
+            spec,
+            cut.mesh,
+            Some(cut.map),
+            vec![cut.applied],
+        )?;
+        if prepared
+            .applied
+            .iter()
+            .any(|a| a.kind == Kind::Applied && !a.cut)
+        {
+            return Ok(prepared);
+        }
+    }
+    run(&requirements, spec, mesh.clone(), None, Vec::new())
+}
+
+/// A net cut along its infinitely sharp creases (hole faces removed) before the steps, with
+/// the map from its faces to the input faces and the note of the cut.
+struct CutFirst {
+    mesh: PolyMesh,
+    map: ParamMap,
+    applied: Applied,
+}
+
+/// For patches on a net tagging sharp features: the net cut along its infinitely sharp creases,
+/// as the dual schemes' patches cut it (`crate::schemes::doo_sabin::sharp`), so that the dual
+/// steps, which carry the cut net's kept corners but no crease or hole, can be applied. `None`
+/// where the net tags nothing, tags semi-sharp features (the steps would lose them) or has
+/// features the cut refuses (the scheme refuses them with its own message).
+fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
+    use crate::schemes::doo_sabin::sharp;
+    if !has_features(mesh) || sharp::has_semi_sharp(mesh) {
+        return None;
+    }
+    let cut = sharp::cut_along_creases(mesh, spec.name()).ok()??;
+    let cut_mesh = without_unused_vertices(cut.mesh)?;
+    let kept: Vec<usize> = (0..mesh.num_faces())
+        .filter(|&f| !mesh.is_hole(f))
+        .collect();
+    Some(CutFirst {
+        map: ParamMap::input(mesh).select(&kept),
+        applied: Applied {
+            step: cut.notes.join("; "),
+            need: "needs its steps to carry the net's sharp features (the dual steps carry \
+                   boundaries and kept corners, not creases or holes)"
+                .to_string(),
+            elements: Vec::new(),
+            count: 0,
+            kind: Kind::Applied,
+            cut: true,
+        },
+        mesh: cut_mesh,
+    })
+}
+
+/// `mesh` without the vertices that lie in no face (those of removed hole faces only: the
+/// steps have no rule for them), its vertex tags renumbered; `None` if it cannot be rebuilt.
+fn without_unused_vertices(mesh: PolyMesh) -> Option<PolyMesh> {
+    let nv = mesh.num_vertices();
+    let mut new = vec![u32::MAX; nv];
+    for f in 0..mesh.num_faces() {
+        for &v in mesh.face(f) {
+            new[v as usize] = 0;
+        }
+    }
+    if new.iter().all(|&n| n == 0) {
+        return Some(mesh);
+    }
+    let mut positions = Vec::new();
+    for (v, n) in new.iter_mut().enumerate() {
+        if *n == 0 {
+            *n = positions.len() as u32;
+            positions.push(mesh.positions()[v]);
+        }
+    }
+    let corners: Vec<u32> = (0..mesh.num_faces())
+        .flat_map(|f| mesh.face(f).iter().map(|&v| new[v as usize]))
+        .collect();
+    let mut ex = mesh.extras().cloned().unwrap_or_default();
+    ex.sharp_vertices = ex
+        .sharp_vertices
+        .iter()
+        .filter(|p| new[p.0 as usize] != u32::MAX)
+        .map(|&(v, s)| (new[v as usize], s))
+        .collect();
+    let out = PolyMesh::from_flat(positions, mesh.face_starts().to_vec(), corners).ok()?;
+    Some(out.with_extras(Some(ex)))
+}
+
+/// [`prepare`]'s rounds on `net` (whose faces lie in the input faces as `map` says; `None`:
+/// `net` is the input net), after the steps `applied` already.
+fn run(
+    requirements: &[Requirement],
+    spec: &Spec,
+    mut net: PolyMesh,
+    mut map: Option<ParamMap>,
+    mut applied: Vec<Applied>,
+) -> Result<Prepared> {
     let mut own = Vec::new();
     'rounds: for _ in 0..MAX_ROUNDS {
         own.clear();
-        for r in &requirements {
+        for r in requirements {
             let bad = unmet(&r.need, &net, spec);
             if bad.is_empty() {
                 continue;
@@ -314,11 +434,12 @@ pub fn prepare(
                     .collect(),
                 count: bad.len(),
                 kind,
+                cut: false,
             };
             match r.step {
                 Step::Own(words) => own.push(record(words.to_string(), Kind::Own)),
                 Step::Net(steps) => {
-                    if steps.iter().any(|s| s.is_dual()) && has_features(&net) {
+                    if steps.iter().any(|s| s.is_dual()) && !dual_carries(&net) {
                         own.push(record(steps::words(steps), Kind::Skipped));
                         continue;
                     }
@@ -345,6 +466,21 @@ pub fn prepare(
 /// Whether the net tags sharp features (creases, corners, holes).
 fn has_features(mesh: &PolyMesh) -> bool {
     mesh.extras().is_some_and(|e| e.has_features())
+}
+
+/// Whether the dual steps carry the net's sharp features: none, or only infinitely sharp
+/// corners on the boundary (the kept corners of a net cut along its creases, which a dual
+/// step keeps; see `crate::schemes::doo_sabin`).
+fn dual_carries(mesh: &PolyMesh) -> bool {
+    let Some(ex) = mesh.extras().filter(|e| e.has_features()) else {
+        return true;
+    };
+    ex.holes.is_empty()
+        && ex.sharp_edges.is_empty()
+        && ex.sharp_vertices.iter().all(|&(v, s)| {
+            s >= crate::schemes::catmull_clark::crease::INFINITE
+                && mesh.is_boundary_vertex(v as usize)
+        })
 }
 
 #[cfg(test)]

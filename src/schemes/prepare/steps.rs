@@ -63,6 +63,21 @@ impl NetStep {
         mesh: &PolyMesh,
         map: Option<&ParamMap>,
     ) -> Result<(PolyMesh, ParamMap)> {
+        // A dual step's child marks its extras as a refined level (`sharpened`), but only
+        // Catmull-Clark's own levels have their boundaries sharpened: the Catmull-Clark step
+        // after a dual step sharpens them (boundary edges and kept corners), as for a net read
+        let unsharpened;
+        let mesh = match mesh.extras() {
+            Some(ex)
+                if self == NetStep::CatmullClark && ex.sharpened && ex.sharp_edges.is_empty() =>
+            {
+                let mut ex = ex.clone();
+                ex.sharpened = false;
+                unsharpened = mesh.clone().with_extras(Some(ex));
+                &unsharpened
+            }
+            _ => mesh,
+        };
         let child = self.scheme(spec, mesh).refine(mesh)?.mesh;
         let input;
         let map = match map {

@@ -472,6 +472,28 @@ pub fn refuse_kept_corners_with_faces(mesh: &PolyMesh, name: &str) -> Result<()>
     Ok(())
 }
 
+/// The kept corners with more than one face ([`refuse_kept_corners_with_faces`]), as the
+/// preparation's test (`crate::schemes::prepare::Need::Scheme`): one dual step makes each a
+/// corner of one face (its V-face).
+pub fn kept_corners_with_faces(
+    mesh: &PolyMesh,
+    _: &crate::schemes::descriptor::Spec,
+) -> Vec<crate::mesh::Element> {
+    let Some(ex) = mesh.extras() else {
+        return Vec::new();
+    };
+    let in_a_face = |v: usize| v < mesh.num_vertices() && mesh.vertex_halfedge(v) != NONE;
+    ex.sharp_vertices
+        .iter()
+        .map(|&(v, _)| v)
+        .filter(|&v| {
+            let v = v as usize;
+            in_a_face(v) && mesh.is_boundary_vertex(v) && !mesh.is_corner(v)
+        })
+        .map(crate::mesh::Element::Vertex)
+        .collect()
+}
+
 /// For the bi-2 schemes whose boundary rules keep single-face corners and have no others (TPS,
 /// adjustable TPS, polar bi-2, the mixed scheme): refuses the boundary mode `none` on a net with
 /// a boundary, and `edge-only` where a boundary vertex has a single face (its V-face would be a
