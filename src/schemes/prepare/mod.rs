@@ -315,7 +315,10 @@ pub fn prepare(
     if purpose == Purpose::Patches
         && let Some(cut) = cut_first(spec, mesh)
     {
-        // the steps on the cut net; nothing to do there: the scheme cuts the net itself
+        // the steps on the cut net; nothing to do there: the scheme cuts the net itself,
+        // unless hole faces were removed (the map then keeps addressing the input faces, and
+        // the vertices of hole faces only are gone)
+        let holes = mesh.extras().is_some_and(|e| !e.holes.is_empty());
         let prepared = run(
             &requirements,
             spec,
@@ -323,10 +326,11 @@ pub fn prepare(
             Some(cut.map),
             vec![cut.applied],
         )?;
-        if prepared
-            .applied
-            .iter()
-            .any(|a| a.kind == Kind::Applied && !a.cut)
+        if holes
+            || prepared
+                .applied
+                .iter()
+                .any(|a| a.kind == Kind::Applied && !a.cut)
         {
             return Ok(prepared);
         }
@@ -353,7 +357,6 @@ fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
         return None;
     }
     let cut = sharp::cut_along_creases(mesh, spec.name()).ok()??;
-    let cut_mesh = without_unused_vertices(cut.mesh)?;
     let kept: Vec<usize> = (0..mesh.num_faces())
         .filter(|&f| !mesh.is_hole(f))
         .collect();
@@ -369,42 +372,8 @@ fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
             kind: Kind::Applied,
             cut: true,
         },
-        mesh: cut_mesh,
+        mesh: cut.mesh,
     })
-}
-
-/// `mesh` without the vertices that lie in no face (those of removed hole faces only: the
-/// steps have no rule for them), its vertex tags renumbered; `None` if it cannot be rebuilt.
-fn without_unused_vertices(mesh: PolyMesh) -> Option<PolyMesh> {
-    let nv = mesh.num_vertices();
-    let mut new = vec![u32::MAX; nv];
-    for f in 0..mesh.num_faces() {
-        for &v in mesh.face(f) {
-            new[v as usize] = 0;
-        }
-    }
-    if new.iter().all(|&n| n == 0) {
-        return Some(mesh);
-    }
-    let mut positions = Vec::new();
-    for (v, n) in new.iter_mut().enumerate() {
-        if *n == 0 {
-            *n = positions.len() as u32;
-            positions.push(mesh.positions()[v]);
-        }
-    }
-    let corners: Vec<u32> = (0..mesh.num_faces())
-        .flat_map(|f| mesh.face(f).iter().map(|&v| new[v as usize]))
-        .collect();
-    let mut ex = mesh.extras().cloned().unwrap_or_default();
-    ex.sharp_vertices = ex
-        .sharp_vertices
-        .iter()
-        .filter(|p| new[p.0 as usize] != u32::MAX)
-        .map(|&(v, s)| (new[v as usize], s))
-        .collect();
-    let out = PolyMesh::from_flat(positions, mesh.face_starts().to_vec(), corners).ok()?;
-    Some(out.with_extras(Some(ex)))
 }
 
 /// [`prepare`]'s rounds on `net` (whose faces lie in the input faces as `map` says; `None`:

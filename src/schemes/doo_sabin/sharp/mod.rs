@@ -178,6 +178,14 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
     let cut_edges = crease_valence.iter().sum::<u32>() / 2;
     let copies = positions.len() - nv;
     let out = PolyMesh::from_flat(positions, face_start, corners)?;
+    // the net drops the vertices in no face (those of removed hole faces only): the kept
+    // corners follow the renumbering
+    let dropped = out.dropped_vertices();
+    let kept: Vec<(u32, f32)> = kept
+        .into_iter()
+        .filter(|p| dropped.binary_search(&(p.0 as usize)).is_err())
+        .map(|(v, s)| (v - dropped.partition_point(|&d| d < v as usize) as u32, s))
+        .collect();
     let extras = Extras {
         sharp_vertices: kept.clone(),
         options: SubdOptions {
