@@ -1,7 +1,7 @@
 //! Hole tags (`t hole`) whose faces are all a vertex has: the bi-2 schemes remove the hole
 //! faces before their patches, which leaves such a vertex in no face (OpenSubdiv's
-//! `catmark_hole_test3`). The surface must be built (no panic) and be G^1; that it is the surface
-//! of the net with those faces deleted outright is a known gap (the ignored test below).
+//! `catmark_hole_test3`). The surface must be built (no panic), be G^1, and be the surface of
+//! the net with those faces deleted outright, patch for patch.
 
 use fairsub::geom::{Point, dist};
 use fairsub::mesh::{Extras, PolyMesh};
@@ -88,9 +88,17 @@ fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
     (sorted(&out.complex.patches), sorted(&want.complex.patches))
 }
 
-/// bi2-mixed refuses the cut net (a crease end with 2 faces on one side, by name): a gap of
-/// issue 45 that `tests/prepare_holes.rs` does not hide.
-const SCHEMES: [&str; 3] = ["doo-sabin", "doo-sabin-cc", "pgs"];
+/// The bi-2 schemes (TPS, adjustable TPS, the mixed and polar nets through the preparation's cut
+/// and dual step, `tests/prepare_tagged.rs`).
+const SCHEMES: [&str; 7] = [
+    "doo-sabin",
+    "doo-sabin-cc",
+    "pgs",
+    "bi2-mixed",
+    "polar-bi2",
+    "tps",
+    "tps-adjustable",
+];
 
 #[test]
 fn hole_faces_leaving_a_vertex_in_no_face_are_removed_and_the_surface_built() {
@@ -99,13 +107,11 @@ fn hole_faces_leaving_a_vertex_in_no_face_are_removed_and_the_surface_built() {
     }
 }
 
-/// Known gap (measured 2026-12-06): a net with hole tags goes through the sharp-feature path
-/// (`doo_sabin::sharp::cut_along_creases`), which keeps the 5 corners of the L-shaped rest as
-/// interpolated corners; the same net with the faces deleted and no tags goes through the plain
-/// boundary rules, which do not. Under doo-sabin the two differ: 149 against 55 patches, areas
-/// 12.3080 against 12.4401. Which corners an untagged net keeps is to be settled (issue 45).
+/// Measured 2026-12-06 on main: under doo-sabin 149 against 55 patches (areas 12.3080 against
+/// 12.4401). The cause: the cut's net (`doo_sabin::sharp::cut_along_creases`) is built by
+/// `PolyMesh::from_flat`, which drops the vertices in no face, and its kept-corner tags were
+/// numbered before the drop, so they tagged wrong vertices; they now follow the renumbering.
 #[test]
-#[ignore = "untagged and tagged boundaries treat corners differently; see the doc comment"]
 fn hole_faces_give_the_surface_of_the_net_without_them() {
     for name in SCHEMES {
         let (a, b) = both(name);
