@@ -78,7 +78,16 @@ impl NetStep {
             }
             _ => mesh,
         };
-        let child = self.scheme(spec, mesh).refine(mesh)?.mesh;
+        let mut child = self.scheme(spec, mesh).refine(mesh)?.mesh;
+        // Catmull-Clark's child extras carry the sharp features but not the net's options
+        // (boundary mode, ...): the scheme after the step must read the same ones
+        if let Some(opts) = mesh.extras().map(|e| e.options).filter(|o| !o.is_empty())
+            && self == NetStep::CatmullClark
+        {
+            let mut ex = child.extras().cloned().unwrap_or_default();
+            ex.options = opts.or(ex.options);
+            child = child.with_extras(Some(ex));
+        }
         let input;
         let map = match map {
             Some(m) => m,
