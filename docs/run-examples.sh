@@ -120,10 +120,11 @@ while IFS=$'\t' read -r i page line; do
   rc=$?
   set -e
   after=$(repo_state)
+  wrote=0
   if [ $rc -eq 0 ] && [ "$before" != "$after" ]; then
     rc=1
-    printf '%s\n' "the block changed the repository (git status):" >> "$work/err-$i"
-    diff <(printf '%s\n' "$before") <(printf '%s\n' "$after") | sed -n 's/^> //p' >> "$work/err-$i"
+    wrote=1
+    diff <(printf '%s\n' "$before") <(printf '%s\n' "$after") | sed -n 's/^> //p' >> "$work/err-$i"  || true
   fi
   if [ $rc -eq 0 ]; then
     passed=$((passed + 1))
@@ -136,6 +137,7 @@ while IFS=$'\t' read -r i page line; do
       where=$line
       cmd="(the block)"
       [ $rc -eq 124 ] && cmd="(the block ran over ${limit} s)"
+      [ $wrote -eq 1 ] && cmd="(the block wrote into the repository; git status shows)"
     fi
     echo "FAILED $page:$where: $cmd (exit code $rc)"
     sed 's/^/  | /' "$work/err-$i" | tail -n 40
