@@ -24,6 +24,7 @@ mod info;
 pub mod limits;
 mod measure;
 mod project;
+mod reference;
 mod render;
 mod spec;
 mod subdivide;
@@ -247,6 +248,9 @@ extraordinary vertex); with --rings K the complex `subdivide --rings K` writes."
         /// Print the list as JSON.
         #[arg(long)]
         json: bool,
+        /// Print the catalogue as a Markdown page (the guide's reference/schemes.md).
+        #[arg(long, conflicts_with = "json")]
+        markdown: bool,
     },
     /// Run the main job on the embedded default net and write the results into a folder.
     Demo {
@@ -274,6 +278,9 @@ extraordinary vertex); with --rings K the complex `subdivide --rings K` writes."
     /// output).
     #[command(hide = true)]
     BatchWorker,
+    /// Print this command-line reference as a Markdown page (the guide's reference/cli.md).
+    #[command(hide = true)]
+    HelpMarkdown,
     /// Write the built-in gallery of control nets as OBJ files (or list their names).
     Gallery {
         /// Folder to write into.
@@ -305,7 +312,7 @@ fn run_command(command: Command) -> Result<()> {
         Command::Project(args) => project::run(args),
         Command::Render(args) => render::run_render(args),
         Command::Compare(args) => render::run_compare(args),
-        Command::Schemes { json } => schemes(json),
+        Command::Schemes { json, markdown } => schemes(json, markdown),
         Command::Demo { out } => demo::run(&out),
         Command::Analyze(a) => analyze::analyze(a),
         Command::Charmap(a) => analyze::charmap(a),
@@ -314,6 +321,11 @@ fn run_command(command: Command) -> Result<()> {
         Command::Batch(a) => batch::run(a),
         Command::BatchWorker => batch::serve(std::io::stdin().lock(), std::io::stdout().lock()),
         Command::Gallery { out, list } => gallery(out, list),
+        Command::HelpMarkdown => {
+            use clap::CommandFactory;
+            say!("{}", reference::cli_markdown(Cli::command()));
+            Ok(())
+        }
     }
 }
 
@@ -432,9 +444,10 @@ fn ranges_words(rs: &[RulesRange]) -> String {
         .join(", ")
 }
 
-fn schemes(json: bool) -> Result<()> {
+/// The catalogue's rows, in registry order.
+fn catalogue_rows() -> Vec<CatalogueRow> {
     let reg = crate::schemes::registry();
-    let rows: Vec<CatalogueRow> = crate::schemes::catalog()
+    crate::schemes::catalog()
         .into_iter()
         .zip(reg.entries())
         .map(|(info, e)| {
@@ -453,7 +466,16 @@ fn schemes(json: bool) -> Result<()> {
                 rules_by_valence_derived: b.filter(|_| changed),
             }
         })
-        .collect();
+        .collect()
+}
+
+fn schemes(json: bool, markdown: bool) -> Result<()> {
+    let rows = catalogue_rows();
+    if markdown {
+        let entries = crate::schemes::registry().entries();
+        say!("{}", reference::schemes_markdown(&rows, entries));
+        return Ok(());
+    }
     if json {
         say!(
             "{}",
