@@ -22,6 +22,8 @@ pub mod analysis;
 pub mod bezier;
 pub(crate) mod buffers;
 pub mod cli;
+#[cfg(doctest)]
+mod doctests;
 pub mod error;
 pub mod gallery;
 pub mod geom;
