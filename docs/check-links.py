@@ -9,7 +9,7 @@ page (or of the page itself), by the slug rule mdBook and GitHub share: the head
 lower case, whitespace to `-`, characters other than letters, digits, `-` and `_` dropped, a
 repeated slug numbered `-1`, `-2`, ...; `{#id}` attributes and HTML `id`/`name` count too.
 Every fenced block must say what it is (an info string: `sh`, `console`, `text`, `rust`, ...):
-rustdoc would compile a bare one as Rust (the pages are doctests, src/doctests.rs).
+rustdoc would compile a bare one as Rust (the pages are doctests: src/lib.rs, `doctests`).
 
 --book DIR (after `mdbook build`): every local `href`/`src` of the rendered HTML pages must
 name a file of the book, and its `#anchor` an `id` of that file; this catches what only the

@@ -1,5 +1,6 @@
 //! The guide's generated reference pages equal what the binary prints (`docs/make-reference.sh`
-//! writes them), and every page with a Rust snippet is a doctest (`src/doctests.rs`).
+//! writes them), and every page with a Rust snippet is a doctest (the `doctests` module of
+//! `src/lib.rs`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -148,8 +149,7 @@ fn pages() -> Vec<PathBuf> {
 
 #[test]
 fn pages_with_rust_snippets_are_doctests() {
-    let doctests =
-        std::fs::read_to_string(repo().join("src/doctests.rs")).expect("src/doctests.rs");
+    let doctests = std::fs::read_to_string(repo().join("src/lib.rs")).expect("src/lib.rs");
     let mut missing = Vec::new();
     for page in pages() {
         let text = std::fs::read_to_string(&page).expect("read a page");
@@ -166,7 +166,7 @@ fn pages_with_rust_snippets_are_doctests() {
     }
     assert!(
         missing.is_empty(),
-        "pages with ```rust blocks that src/doctests.rs does not include (add \
-         `#[doc = include_str!(\"../PAGE\")] pub struct Name;` per page): {missing:?}"
+        "pages with ```rust blocks that the doctests module of src/lib.rs does not include \
+         (add `#[doc = include_str!(\"../PAGE\")] pub struct Name;` per page): {missing:?}"
     );
 }
