@@ -159,31 +159,36 @@ fn raise_canonical(n: usize, m: usize, from: usize, to: usize) -> DMatrix<f64> {
     mat
 }
 
-impl CapMap {
-    /// Builds the map for valence `n`, layout, input segment degrees and cap bi-degree `degree`
-    /// (at least the degree of the quad data, see [`Hole::to_quad_layout`], and at least 3).
-    pub fn new(
-        n: usize,
-        layout: Layout,
-        degrees: Degrees,
-        degree: usize,
-        centre: Centre,
-    ) -> Result<CapMap> {
-        CapMap::with_fan(n, layout, degrees, degree, centre, Fan::Closed)
-    }
+/// The conditions of one cap shape solved for their least-norm solution and null space, with
+/// the certificate: everything of [`CapMap::with_fan`] but the fairness energy. The degree
+/// search ([`lowest_certified_fan`]) needs only the certificate, so it stops here
+/// ([`certificate`]); [`Solved::finish`] adds the energy and the matrix for the map that is
+/// used. (On a `3 x 3` split hole of valence 10 the energy and the final products are about a
+/// third of a map's time, and the search builds two or three maps it does not use.)
+struct Solved {
+    key: Key,
+    kappa: f64,
+    w1: f64,
+    pm: usize,
+    nx: usize,
+    nu: usize,
+    free: Vec<usize>,
+    /// Rows of the unknowns set directly by data (`nu x nq`), zero elsewhere.
+    a_fixed: DMatrix<f64>,
+    /// The least-norm solution of the remaining rows for the free unknowns (`free x nq`).
+    y_p: DMatrix<f64>,
+    /// Null space of the remaining rows over the free unknowns.
+    z: DMatrix<f64>,
+    /// Canonical data from the hole's data vector.
+    q: DMatrix<f64>,
+    /// The compatibility rows over the canonical data, and their labels.
+    gm: DMatrix<f64>,
+    compat_labels: Vec<String>,
+    certificate: f64,
+}
 
-    /// [`CapMap::new`] for the holes of kind `fan` ([`Hole::fan`]; a closed layout is always
-    /// [`Fan::Closed`], an open one at least [`Fan::Open`], [`Fan::on`]): a crease's or a
-    /// dart's open fan has its boundary spokes the cubic Hermite interpolants of their end
-    /// data, a dart's spokes span a full turn.
-    pub fn with_fan(
-        n: usize,
-        layout: Layout,
-        degrees: Degrees,
-        degree: usize,
-        centre: Centre,
-        fan: Fan,
-    ) -> Result<CapMap> {
+impl Solved {
+    fn new((n, layout, degrees, degree, centre, fan): Key) -> Result<Solved> {
         let fan = fan.on(layout);
         if n < layout.min_sectors_of(fan) {
             return Err(Error::InvalidArgument(format!(
@@ -245,19 +250,68 @@ impl CapMap {
             nu,
         );
         let f_rest = DMatrix::from_fn(rest.len(), nq, |r, c| fdense[(rest[r], c)]);
+        drop(fdense);
         let b = &f_rest - &e_rest * &a_fixed;
+        drop(f_rest);
         let e_y = DMatrix::from_fn(rest.len(), free.len(), |r, k| e_rest[(r, free[k])]);
+        drop(e_rest);
         let (e_pinv, z) = pinv_and_null(&e_y)?;
-        // Fairness energy of every patch.
+        let y_p = &e_pinv * &b; // free x nq
+        // Certificate over the data satisfying the ring's compatibility conditions: the part
+        // of `b` on them that `E_y` cannot reach, `(I - E_y E_y^+) b A`, evaluated as
+        // `b A - E_y (E_y^+ (b A))` (the same value to rounding; the product `E_y E_y^+` was a
+        // `rest x rest` matrix and the largest product of the whole map).
+        let g = compatibility(n, fan, d, pm, ends);
+        let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
+        let (_, admissible) = pinv_and_null(&gm)?;
+        let ba = &b * admissible;
+        let resid = &ba - &e_y * (&e_pinv * &ba);
+        let certificate = resid.amax();
+        Ok(Solved {
+            key: (n, layout, degrees, degree, centre, fan),
+            kappa: conv.kappa,
+            w1: conv.w1,
+            pm,
+            nx,
+            nu,
+            free,
+            a_fixed,
+            y_p,
+            z,
+            q,
+            gm,
+            compat_labels: g.into_iter().map(|(l, _)| l).collect(),
+            certificate,
+        })
+    }
+
+    /// The map: the free unknowns minimise the fairness energy of all patches over the null
+    /// space.
+    fn finish(self) -> Result<CapMap> {
+        let (n, layout, degrees, d, centre, fan) = self.key;
+        let Solved {
+            pm,
+            nx,
+            nu,
+            free,
+            a_fixed,
+            y_p,
+            z,
+            ..
+        } = self;
+        // Fairness energy of every patch: block diagonal, one `(d + 1)^2` block per patch (the
+        // centre unknowns have none); only its rows of the free unknowns are needed.
         let hp = patch_energy(d, FAIRNESS_ORDER);
         let m = (d + 1) * (d + 1);
-        let mut h = DMatrix::zeros(nu, nu);
-        for s in 0..np {
-            h.view_mut((s * m, s * m), (m, m)).copy_from(&hp);
-        }
-        let h_yy = DMatrix::from_fn(free.len(), free.len(), |a, c| h[(free[a], free[c])]);
-        let h_yf = DMatrix::from_fn(free.len(), nu, |a, c| h[(free[a], c)]);
-        let y_p = &e_pinv * &b; // free x nq
+        let h = |a: usize, c: usize| -> f64 {
+            if a < nx && c < nx && a / m == c / m {
+                hp[(a % m, c % m)]
+            } else {
+                0.0
+            }
+        };
+        let h_yy = DMatrix::from_fn(free.len(), free.len(), |a, c| h(free[a], free[c]));
+        let h_yf = DMatrix::from_fn(free.len(), nu, |a, c| h(free[a], c));
         let free_parameters = z.ncols();
         let y = if free_parameters > 0 {
             let mut zhz = z.transpose() * &h_yy * &z;
@@ -280,32 +334,54 @@ impl CapMap {
         for (k, &x) in free.iter().enumerate() {
             map.set_row(x, &y.row(k));
         }
-        // Certificate over the data satisfying the ring's compatibility conditions.
-        let g = compatibility(n, fan, d, pm, ends);
-        let gm = dense(&g.iter().map(|(_, r)| r.clone()).collect::<Vec<_>>(), nq);
-        let (_, admissible) = pinv_and_null(&gm)?;
-        let resid =
-            (DMatrix::identity(e_y.nrows(), e_y.nrows()) - &e_y * &e_pinv) * &b * admissible;
-        let certificate = resid.amax();
-        let matrix = map.rows(0, nx) * &q;
-        let compat = gm * q;
+        let matrix = map.rows(0, nx) * &self.q;
+        let compat = self.gm * self.q;
         Ok(CapMap {
             n,
             pieces: pm,
             layout,
             degrees,
             degree: d,
-            kappa: conv.kappa,
-            w1: conv.w1,
-            certificate,
+            kappa: self.kappa,
+            w1: self.w1,
+            certificate: self.certificate,
             free_parameters,
             centre,
             fan,
             sparse: sparse_rows(&matrix),
             sparse_compat: sparse_rows(&compat),
             matrix,
-            compat_labels: g.into_iter().map(|(l, _)| l).collect(),
+            compat_labels: self.compat_labels,
         })
+    }
+}
+
+impl CapMap {
+    /// Builds the map for valence `n`, layout, input segment degrees and cap bi-degree `degree`
+    /// (at least the degree of the quad data, see [`Hole::to_quad_layout`], and at least 3).
+    pub fn new(
+        n: usize,
+        layout: Layout,
+        degrees: Degrees,
+        degree: usize,
+        centre: Centre,
+    ) -> Result<CapMap> {
+        CapMap::with_fan(n, layout, degrees, degree, centre, Fan::Closed)
+    }
+
+    /// [`CapMap::new`] for the holes of kind `fan` ([`Hole::fan`]; a closed layout is always
+    /// [`Fan::Closed`], an open one at least [`Fan::Open`], [`Fan::on`]): a crease's or a
+    /// dart's open fan has its boundary spokes the cubic Hermite interpolants of their end
+    /// data, a dart's spokes span a full turn.
+    pub fn with_fan(
+        n: usize,
+        layout: Layout,
+        degrees: Degrees,
+        degree: usize,
+        centre: Centre,
+        fan: Fan,
+    ) -> Result<CapMap> {
+        Solved::new((n, layout, degrees, degree, centre, fan))?.finish()
     }
 
     /// Whether the certificate shows that the cap exists for every compatible ring.
@@ -404,15 +480,59 @@ pub fn hole_cap_map(hole: &Hole, degree: usize, centre: Centre) -> Result<Arc<Ca
 }
 
 fn cached_map(key: Key) -> Result<Arc<CapMap>> {
-    static CACHE: OnceLock<Mutex<HashMap<Key, Arc<CapMap>>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let cache = MAPS.get_or_init(|| Mutex::new(HashMap::new()));
     if let Some(m) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(m.clone());
     }
-    let (n, layout, degrees, degree, centre, fan) = key;
-    let m = Arc::new(CapMap::with_fan(n, layout, degrees, degree, centre, fan)?);
+    // the system the degree search solved, if it is this one
+    let last = {
+        let mut kept = LAST_SOLVED.lock().map_err(poisoned)?;
+        kept.iter()
+            .position(|s| s.key == key)
+            .map(|i| kept.remove(i))
+    };
+    let solved = match last {
+        Some(s) => s,
+        None => Solved::new(key)?,
+    };
+    let m = Arc::new(solved.finish()?);
     cache.lock().map_err(poisoned)?.insert(key, m.clone());
     Ok(m)
+}
+
+static MAPS: OnceLock<Mutex<HashMap<Key, Arc<CapMap>>>> = OnceLock::new();
+
+/// The last two systems [`certificate`] solved, kept for [`cached_map`]: the map that is then
+/// built is the degree search's last step (tangent plane) or the centre condition tried after
+/// it (quadratic jet, [`cap_choice`]). Two at a time, so the memory they hold is bounded.
+static LAST_SOLVED: Mutex<Vec<Solved>> = Mutex::new(Vec::new());
+const KEPT_SOLVED: usize = 2;
+
+/// The certificate of a shape ([`CapMap::certificate`]), from the map if it was built, else
+/// from its solved conditions alone (cached per process; the energy is left out).
+fn certificate(key: Key) -> Result<f64> {
+    static CERTS: OnceLock<Mutex<HashMap<Key, f64>>> = OnceLock::new();
+    if let Some(m) = MAPS
+        .get_or_init(|| Mutex::new(HashMap::new()))
+        .lock()
+        .map_err(poisoned)?
+        .get(&key)
+    {
+        return Ok(m.certificate);
+    }
+    let certs = CERTS.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(&c) = certs.lock().map_err(poisoned)?.get(&key) {
+        return Ok(c);
+    }
+    let s = Solved::new(key)?;
+    let c = s.certificate;
+    certs.lock().map_err(poisoned)?.insert(key, c);
+    let mut kept = LAST_SOLVED.lock().map_err(poisoned)?;
+    if kept.len() == KEPT_SOLVED {
+        kept.remove(0);
+    }
+    kept.push(s);
+    Ok(c)
 }
 
 fn poisoned<T>(_: T) -> Error {
@@ -446,7 +566,7 @@ pub fn lowest_certified_fan(
     };
     let lo = Conversion::cached(n, layout, degrees).degree.max(3);
     for d in lo..=lo + 4 {
-        if cached_map((n, layout, degrees, d, centre, fan))?.is_certified() {
+        if certificate((n, layout, degrees, d, centre, fan))? < CERTIFIED {
             return Ok(d);
         }
     }
@@ -551,7 +671,14 @@ pub fn cap_choice(hole: &Hole, opts: CapOptions) -> Result<(Layout, Degrees, usi
             // an open fan keeps the plane: the limit at a boundary vertex has no bounded
             // quadratic expansion to share (see the module documentation, "Open fans")
             let jet = !layout.is_open()
-                && cap_map(n, layout, degrees, d, Centre::QuadraticJet)?.is_certified();
+                && certificate((
+                    n,
+                    layout,
+                    degrees,
+                    d,
+                    Centre::QuadraticJet,
+                    Fan::Closed.on(layout),
+                ))? < CERTIFIED;
             let c = if jet {
                 Centre::QuadraticJet
             } else {
