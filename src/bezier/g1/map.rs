@@ -106,6 +106,7 @@ fn pinv_and_null(a: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     let c = a.ncols();
     let ata = a.transpose() * a;
     let fa = faer::Mat::<f64>::from_fn(c, c, |i, j| ata[(i, j)]);
+    drop(ata); // the eigen-decomposition holds two more c x c matrices
     let eig = fa.self_adjoint_eigen(faer::Side::Lower).map_err(|e| {
         Error::Unsupported(format!("eigen-decomposition of the cap conditions: {e:?}"))
     })?;
