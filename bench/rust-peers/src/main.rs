@@ -25,7 +25,6 @@
 //! `f32` (1/9 or 1/36 rounded to 24 bits: about 3e-8 relative per level), while fairsub's are
 //! `f64`. The largest distance is printed either way.
 
-#[allow(dead_code)]
 #[path = "../../meshes.rs"]
 mod meshes;
 
@@ -399,4 +398,41 @@ fn check(a: &Refined, b: &Refined, tol: f64) -> Res<f64> {
         return Err("the points match but the faces differ".into());
     }
     Ok(worst / diag)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refined(net: &Flat) -> Refined {
+        run_fairsub(net, 1).expect("the cube refines")
+    }
+
+    /// The check passes on a renumbered copy and fails on a moved point or a changed face.
+    #[test]
+    fn check_can_fail() {
+        let a = refined(&cube());
+        let n = a.points.len() as u32;
+        // Renumber: reverse the vertex order.
+        let rev = |i: u32| n - 1 - i;
+        let b = Refined {
+            points: a.points.iter().rev().copied().collect(),
+            face_start: a.face_start.clone(),
+            corners: a.corners.iter().map(|&i| rev(i)).collect(),
+        };
+        assert_eq!(check(&a, &b, 1e-9).expect("same mesh"), 0.0);
+        let mut moved = Refined {
+            points: b.points.clone(),
+            ..b
+        };
+        moved.points[5][1] += 1e-6;
+        assert!(check(&a, &moved, 1e-9).is_err());
+        let mut flipped = Refined {
+            points: a.points.clone(),
+            face_start: a.face_start.clone(),
+            corners: a.corners.clone(),
+        };
+        flipped.corners.swap(0, 1);
+        assert!(check(&a, &flipped, 1e-9).is_err());
+    }
 }
