@@ -18,7 +18,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("analysis", &["analysis"]),
     ("io", &["io", "gallery"]),
     ("render", &["render"]),
-    ("front ends", &["cli", "lib", "main"]),
+    ("front ends", &["cli", "facade", "lib", "main"]),
 ];
 
 fn layer_of(module: &str) -> Option<usize> {

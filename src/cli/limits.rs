@@ -39,7 +39,7 @@ mod budget;
 
 pub use budget::{Budget, budget, default_budget, human, parse_memory};
 use budget::{count, within_budget, within_indices};
-pub(super) use budget::{max_memory, with_budget};
+pub(crate) use budget::{max_memory, with_budget};
 
 /// Most rings per extraordinary element.
 pub const MAX_RINGS: usize = 100;

@@ -17,7 +17,7 @@ mod analyze;
 pub mod api;
 pub mod batch;
 mod cad;
-mod check;
+pub(crate) mod check;
 mod demo;
 mod eval;
 mod info;
@@ -26,8 +26,8 @@ mod measure;
 mod project;
 mod reference;
 mod render;
-mod spec;
-mod subdivide;
+pub(crate) mod spec;
+pub(crate) mod subdivide;
 mod view;
 
 pub use subdivide::Computed;
@@ -373,16 +373,16 @@ pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
 const CATALOGUE_VALENCES: std::ops::RangeInclusive<usize> = 3..=64;
 
 /// Consecutive valences with rules of one origin.
-#[derive(serde::Serialize)]
-struct RulesRange {
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RulesRange {
     /// First valence.
-    from: usize,
+    pub from: usize,
     /// Last valence (`None`: and every valence above).
-    to: Option<usize>,
+    pub to: Option<usize>,
     /// Where the rules come from.
-    origin: crate::schemes::descriptor::RulesOrigin,
+    pub origin: crate::schemes::descriptor::RulesOrigin,
     /// The rules at the first valence of the range, in words.
-    rules: String,
+    pub rules: String,
 }
 
 /// The rules of a scheme by valence ranges, if its rules differ by valence.
@@ -409,17 +409,18 @@ fn rules_ranges(spec: &crate::schemes::Spec) -> Option<Vec<RulesRange>> {
     Some(out)
 }
 
-/// A catalogue row with the rules by valence.
-#[derive(serde::Serialize)]
-struct CatalogueRow {
+/// A catalogue row (`fairsub schemes`): the scheme's catalogue text and its rules by valence.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct CatalogueRow {
+    /// Name, family, input, patches, smoothness, status.
     #[serde(flatten)]
-    info: crate::schemes::SchemeInfo,
+    pub info: crate::schemes::SchemeInfo,
     /// Rules by valence (default options), for schemes whose rules differ by valence.
     #[serde(skip_serializing_if = "Option::is_none")]
-    rules_by_valence: Option<Vec<RulesRange>>,
+    pub rules_by_valence: Option<Vec<RulesRange>>,
     /// The same with `--rules derived`, where that changes them.
     #[serde(skip_serializing_if = "Option::is_none")]
-    rules_by_valence_derived: Option<Vec<RulesRange>>,
+    pub rules_by_valence_derived: Option<Vec<RulesRange>>,
 }
 
 /// `3 printed, 4 regular, 6..16 derived, 17+ fallback (...)`.
@@ -444,8 +445,8 @@ fn ranges_words(rs: &[RulesRange]) -> String {
         .join(", ")
 }
 
-/// The catalogue's rows, in registry order.
-fn catalogue_rows() -> Vec<CatalogueRow> {
+/// The catalogue rows of every scheme, in the registry's order.
+pub(crate) fn catalogue() -> Vec<CatalogueRow> {
     let reg = crate::schemes::registry();
     crate::schemes::catalog()
         .into_iter()
@@ -470,7 +471,7 @@ fn catalogue_rows() -> Vec<CatalogueRow> {
 }
 
 fn schemes(json: bool, markdown: bool) -> Result<()> {
-    let rows = catalogue_rows();
+    let rows = catalogue();
     if markdown {
         let entries = crate::schemes::registry().entries();
         say!("{}", reference::schemes_markdown(&rows, entries));

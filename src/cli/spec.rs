@@ -198,6 +198,15 @@ impl From<RulesArg> for RulesChoice {
     }
 }
 
+impl From<RulesChoice> for RulesArg {
+    fn from(r: RulesChoice) -> Self {
+        match r {
+            RulesChoice::Printed => RulesArg::Printed,
+            RulesChoice::Derived => RulesArg::Derived,
+        }
+    }
+}
+
 /// `--prepare` values.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum PrepareArg {
@@ -214,6 +223,15 @@ impl From<PrepareArg> for Mode {
         match p {
             PrepareArg::Auto => Mode::Auto,
             PrepareArg::None => Mode::None,
+        }
+    }
+}
+
+impl From<Mode> for PrepareArg {
+    fn from(p: Mode) -> Self {
+        match p {
+            Mode::Auto => PrepareArg::Auto,
+            Mode::None => PrepareArg::None,
         }
     }
 }

@@ -15,6 +15,7 @@ mod options;
 pub mod scene;
 
 pub use features::FeatureArgs;
+pub use nonbox::FcvArgs;
 pub use options::{AlphaRuleArg, SchemeArgs};
 
 /// Arguments of `fairsub subdivide`.

@@ -22,7 +22,7 @@ pub struct Budget {
 }
 
 /// Runs `f` with the budget `max` (bytes; `None`: the default) for the commands on this thread.
-pub(in crate::cli) fn with_budget<T>(max: Option<u64>, f: impl FnOnce() -> T) -> T {
+pub(crate) fn with_budget<T>(max: Option<u64>, f: impl FnOnce() -> T) -> T {
     let old = BUDGET.with(|b| b.replace(max));
     let r = f();
     BUDGET.with(|b| b.set(old));
@@ -30,7 +30,7 @@ pub(in crate::cli) fn with_budget<T>(max: Option<u64>, f: impl FnOnce() -> T) ->
 }
 
 /// The `--max-memory` of the command running on this thread, if one was given.
-pub(in crate::cli) fn max_memory() -> Option<u64> {
+pub(crate) fn max_memory() -> Option<u64> {
     BUDGET.with(Cell::get)
 }
 

@@ -125,6 +125,27 @@ pub enum AlphaRuleArg {
     RegularSpectrum,
 }
 
+impl From<Fallback> for FallbackArg {
+    fn from(f: Fallback) -> Self {
+        match f {
+            Fallback::CatmullClark => FallbackArg::CatmullClark,
+            Fallback::Error => FallbackArg::Error,
+        }
+    }
+}
+
+impl AlphaRuleArg {
+    /// The option value of a rule, `None` for TPS's published alphas (the `tps` scheme's own,
+    /// not an option of tps-adjustable).
+    pub fn of(a: AlphaRule) -> Option<Self> {
+        match a {
+            AlphaRule::Published => None,
+            AlphaRule::TpsLimitPoint => Some(AlphaRuleArg::TpsLimitPoint),
+            AlphaRule::RegularSpectrum => Some(AlphaRuleArg::RegularSpectrum),
+        }
+    }
+}
+
 impl From<AlphaRuleArg> for AlphaRule {
     fn from(a: AlphaRuleArg) -> Self {
         match a {
