@@ -1,22 +1,22 @@
 //! fairsub's Python bindings (the extension module `fairsub._fairsub`): thin PyO3 wrappers over
-//! the library's command paths (`fairsub::cli::api`), numpy arrays in and out. The Python
-//! package (`python/pysrc/fairsub/__init__.py`) turns keyword options into the command line's
-//! words, so every option, default, limit and error message is the command line's own; no rule
-//! is written here. Long work runs with the GIL released.
+//! the library's API (`fairsub::{refine, surface, level_stencils, analyze, schemes, ...}`),
+//! numpy arrays in and out. Keyword options become the typed `fairsub::Options`
+//! (`options.rs`); the library runs the command line's own code paths, so every option,
+//! default, limit and error message is the command line's; no rule is written here. Long work
+//! runs with the GIL released.
 
 mod batch;
 mod evaluate;
 mod net;
+mod options;
 mod shape;
 mod table;
 
 use net::Net;
 
-use fairsub::cli::{Computed, api};
-use fairsub::mesh::PolyMesh;
-use fairsub::schemes::Spec;
-use fairsub::stencil::StencilTable;
-use fairsub::surface::{PatchComplex, eval};
+use fairsub::StencilTable;
+use fairsub::cli::api;
+use fairsub::surface::eval;
 use numpy::PyUntypedArrayMethods;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2};
@@ -24,7 +24,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
-use std::sync::OnceLock;
 
 /// A fairsub error as Python's `ValueError`, with the command line's message.
 fn err(e: fairsub::Error) -> PyErr {
@@ -87,29 +86,20 @@ fn csr_arrays<'py>(py: Python<'py>, table: &StencilTable) -> Csr<'py> {
 #[pyfunction]
 #[pyo3(signature = (path, tolerant = false))]
 fn read(py: Python<'_>, path: &str, tolerant: bool) -> PyResult<Net> {
-    let loaded = py
-        .detach(|| fairsub::cli::load_net_as(path, tolerant))
+    let (mesh, warnings) = py
+        .detach(|| fairsub::read_net(path, tolerant))
         .map_err(err)?;
     Ok(Net {
-        mesh: loaded.mesh,
+        mesh,
         source: Some(path.to_string()),
-        warnings: loaded.warnings,
+        warnings,
     })
 }
 
 /// An exact patch complex with its provenance, built by a scheme on a net.
 #[pyclass(module = "fairsub._fairsub", frozen)]
 pub struct Surface {
-    complex: PatchComplex,
-    spec: Spec,
-    label: String,
-    notes: Vec<String>,
-    net: PolyMesh,
-    source: String,
-    evaluator: OnceLock<eval::Surface>,
-    /// The `subdivide` words that built it and the in-memory net (for `stencils`).
-    words: Vec<String>,
-    given: Option<PolyMesh>,
+    inner: fairsub::Surface,
 }
 
 /// The `(face, u, v)` triples of three parallel arrays (the shortest length; faces clamped
@@ -126,15 +116,9 @@ fn parameter_points(
 }
 
 impl Surface {
-    /// The evaluator of the complex, built once ([`eval::Surface::of_scheme`]: the input faces
-    /// as the scheme evaluates them).
+    /// The evaluator of the complex, built once (the input faces as the scheme evaluates them).
     fn evaluator(&self) -> PyResult<&eval::Surface> {
-        if let Some(ev) = self.evaluator.get() {
-            return Ok(ev);
-        }
-        let ev =
-            eval::Surface::of_scheme(&self.spec, &self.net, self.complex.clone()).map_err(err)?;
-        Ok(self.evaluator.get_or_init(|| ev))
+        self.inner.evaluator().map_err(err)
     }
 }
 
@@ -143,22 +127,21 @@ impl Surface {
     /// The patch stencil table of this surface (`subdivide ... --rings K --stencils FILE`'s,
     /// by the same code path): `apply(points)` maps moved control points to the patches.
     fn stencils(&self, py: Python<'_>) -> PyResult<table::PatchTable> {
-        let (t, _) = py
-            .detach(|| api::patch_table(&self.words, self.given.clone()))
-            .map_err(err)?;
+        let t = py.detach(|| self.inner.stencils()).map_err(err)?;
         Ok(table::PatchTable { table: t })
     }
 
     /// Number of patches.
     fn __len__(&self) -> usize {
-        self.complex.len()
+        self.inner.complex().len()
     }
 
     /// The Bezier patches: a list of float64 arrays of shape (deg_u + 1, deg_v + 1, 3),
     /// `b[i, j]` the coefficient of `B_i(u) B_j(v)`.
     #[getter]
     fn patches<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray3<f64>>> {
-        self.complex
+        self.inner
+            .complex()
             .patches
             .iter()
             .map(|p| {
@@ -174,24 +157,24 @@ impl Surface {
     /// "face": F}`, `{"kind": "ring", "element": {"type": "vertex", "index": V}, "ring": K,
     /// "sector": S}`, `{"kind": "cap", ...}`.
     fn provenance_json(&self) -> String {
-        serde_json::to_string(&self.complex.provenance).expect("serialisable")
+        serde_json::to_string(&self.inner.complex().provenance).expect("serialisable")
     }
 
     /// The scheme's notes (fallbacks, derived rules).
     #[getter]
     fn notes(&self) -> Vec<String> {
-        self.notes.clone()
+        self.inner.notes().to_vec()
     }
 
     /// The scheme as reports name it.
     #[getter]
     fn scheme(&self) -> String {
-        self.label.clone()
+        self.inner.label().to_string()
     }
 
     /// `fairsub check NET --scheme S --rings K --json` of the complex, as a JSON string.
     fn check_json(&self, py: Python<'_>) -> String {
-        py.detach(|| api::check_json(&self.source, &self.complex, Some(&self.spec), &self.notes))
+        py.detach(|| self.inner.check_json())
     }
 
     /// `fairsub measure NET --scheme S --rings K --json [--per-face]` of the surface, as a
@@ -204,17 +187,8 @@ impl Surface {
                 "tolerance {tolerance} must lie between 0 and 1 (relative)"
             )));
         }
-        py.detach(|| {
-            api::measure_json(
-                &self.source,
-                &self.complex,
-                &self.spec,
-                &self.net,
-                per_face,
-                tolerance,
-            )
-        })
-        .map_err(err)
+        py.detach(|| self.inner.measure_json(tolerance, per_face))
+            .map_err(err)
     }
 
     /// The closest points of the surface to `points` (n, 3), in parallel: a dict of arrays
@@ -225,12 +199,8 @@ impl Surface {
         py: Python<'py>,
         points: PyReadonlyArray2<'_, f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        eval::supported(&self.spec).map_err(err)?;
         let pts = points_from(&points, "points")?;
-        let ev = self.evaluator()?;
-        let found = py
-            .detach(|| fairsub::surface::closest::closest_points(ev, &pts))
-            .map_err(err)?;
+        let found = py.detach(|| self.inner.closest(&pts)).map_err(err)?;
         let d = PyDict::new(py);
         let col = |f: &dyn Fn(&fairsub::surface::closest::Closest) -> f64| -> Vec<f64> {
             found.iter().map(f).collect()
@@ -259,19 +229,14 @@ impl Surface {
     /// with `tess` samples per patch edge).
     #[pyo3(signature = (path, tess = 8))]
     fn write(&self, py: Python<'_>, path: &str, tess: usize) -> PyResult<()> {
-        py.detach(|| api::write_complex(&self.complex, Path::new(path), tess))
+        py.detach(|| self.inner.write(Path::new(path), tess))
             .map_err(err)
     }
 
     /// The watertight tessellation `subdivide --rings K --tess n -o X.obj` writes:
     /// (vertices (n, 3) float64, triangles (m, 3) uint32).
     fn tessellate<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Tessellated<'py>> {
-        let mesh = py
-            .detach(|| {
-                fairsub::cli::limits::check_tessellation(&self.complex, n)?;
-                fairsub::surface::tessellate::tessellate(&self.complex, n).to_mesh(&self.complex)
-            })
-            .map_err(err)?;
+        let mesh = py.detach(|| self.inner.tessellate(n)).map_err(err)?;
         let tris: Vec<u32> = mesh.corners().to_vec();
         let m = tris.len() / 3;
         let f = Array2::from_shape_vec((m, 3), tris)
@@ -284,7 +249,7 @@ impl Surface {
     /// domain point and Gauss and mean curvature: a dict of arrays vertices, normals, patch_uv
     /// (n, 3 / 2), patch, gauss, mean (n), triangles (m, 3), triangle_patch (m).
     fn tessellation<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyDict>> {
-        shape::tessellation(py, &self.complex, n)
+        shape::tessellation(py, self.inner.complex(), n)
     }
 
     /// Evaluates the complex at parameters (u, v) of input faces (arrays of equal length), in
@@ -298,7 +263,6 @@ impl Surface {
         u: PyReadonlyArray1<'_, f64>,
         v: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        eval::supported(&self.spec).map_err(err)?;
         let (f, u, v) = (face.as_slice()?, u.as_slice()?, v.as_slice()?);
         if f.len() != u.len() || u.len() != v.len() {
             return Err(PyValueError::new_err(format!(
@@ -364,42 +328,51 @@ impl Surface {
     }
 
     fn __repr__(&self) -> String {
-        format!("Surface({} patches, {})", self.complex.len(), self.label)
+        format!(
+            "Surface({} patches, {})",
+            self.inner.complex().len(),
+            self.inner.label()
+        )
     }
 }
 
-/// Runs `fairsub subdivide NET WORDS...` on `net`: a Net (refined net), a (Net, normals) pair
-/// (non-box limit mesh with its exact normals) or a Surface (`--rings`).
+/// `fairsub subdivide NET --scheme SCHEME` on `net` with typed options: with `rings`, the
+/// exact Surface (`--rings`, `fill=False`: `--no-fill`); else the net refined `levels` times
+/// (`--levels`, `limit`: `--limit`): a Net, or a (Net, normals) pair (non-box limit mesh with
+/// its exact normals).
 #[pyfunction]
-fn subdivide_words(py: Python<'_>, net: &Net, words: Vec<String>) -> PyResult<Py<PyAny>> {
-    let (word, given) = net.as_input();
-    let mut all = vec![word.clone()];
-    all.extend(words);
+#[pyo3(signature = (net, scheme, levels = None, rings = None, limit = false, fill = true, options = None))]
+#[allow(clippy::too_many_arguments)]
+fn subdivide(
+    py: Python<'_>,
+    net: &Net,
+    scheme: &str,
+    levels: Option<usize>,
+    rings: Option<usize>,
+    limit: bool,
+    fill: bool,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Py<PyAny>> {
+    let o = options::options(options)?;
+    let source = net.input();
+    if let Some(rings) = rings {
+        let inner = py
+            .detach(|| fairsub::surface(source, scheme, rings, fill, &o))
+            .map_err(err)?;
+        return Ok(Surface { inner }.into_pyobject(py)?.into_any().unbind());
+    }
+    let levels = levels.unwrap_or(1);
     let out = py
-        .detach(|| api::subdivide(&all, given.clone()))
+        .detach(|| fairsub::refine(source, scheme, levels, limit, &o))
         .map_err(err)?;
-    Ok(match out.computed {
-        Computed::Net(m) | Computed::FcvNet(m) => {
+    Ok(match out {
+        fairsub::Refined::Net(m) | fairsub::Refined::FcvNet(m) => {
             Net::refined(m).into_pyobject(py)?.into_any().unbind()
         }
-        Computed::LimitMesh(m, normals) => {
+        fairsub::Refined::LimitMesh(m, normals) => {
             let n = points_array(py, &normals);
             (Net::refined(m), n).into_pyobject(py)?.into_any().unbind()
         }
-        Computed::Complex(complex, notes) => Surface {
-            complex,
-            spec: out.spec,
-            label: out.label,
-            notes,
-            net: out.net,
-            source: word,
-            evaluator: OnceLock::new(),
-            words: all,
-            given,
-        }
-        .into_pyobject(py)?
-        .into_any()
-        .unbind(),
     })
 }
 
@@ -448,26 +421,46 @@ impl Stencils {
     }
 }
 
-/// `subdivide NET WORDS... --levels N`'s stencil table and refined net.
+/// The stencil table of `levels`-fold refinement of `net` by `scheme` (typed options), and
+/// the refined net.
 #[pyfunction]
-fn level_stencils_words(
+#[pyo3(signature = (net, scheme, levels = 1, options = None))]
+fn level_stencils(
     py: Python<'_>,
     net: &Net,
-    words: Vec<String>,
+    scheme: &str,
+    levels: usize,
+    options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(Net, Stencils)> {
-    let (word, given) = net.as_input();
-    let mut all = vec![word];
-    all.extend(words);
+    let o = options::options(options)?;
+    let source = net.input();
     let (m, table) = py
-        .detach(|| api::level_stencils(&all, given))
+        .detach(|| fairsub::level_stencils(source, scheme, levels, &o))
         .map_err(err)?;
     Ok((Net::refined(m), Stencils { table }))
 }
 
-/// What a reporting command prints (`schemes --json`, `analyze ... --json`, ...).
+/// The catalogue as `fairsub schemes --json` prints it.
 #[pyfunction]
-fn report(py: Python<'_>, words: Vec<String>) -> PyResult<String> {
-    py.detach(|| api::report(&words)).map_err(err)
+fn schemes_json() -> String {
+    serde_json::to_string_pretty(&fairsub::schemes()).expect("serialisable")
+}
+
+/// `fairsub analyze --scheme SCHEME --valence VALENCE --json` with typed options.
+#[pyfunction]
+#[pyo3(signature = (scheme, valence, replicated_centre = false, options = None))]
+fn analyze_json(
+    py: Python<'_>,
+    scheme: &str,
+    valence: usize,
+    replicated_centre: bool,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let o = options::options(options)?;
+    let r = py
+        .detach(|| fairsub::analyze(scheme, valence, replicated_centre, &o))
+        .map_err(err)?;
+    Ok(serde_json::to_string_pretty(&r).expect("serialisable"))
 }
 
 /// A picture as `fairsub render` draws it, (height, width, 3) uint8; `words` are render's look
@@ -479,8 +472,8 @@ fn render_words<'py>(
     words: Vec<String>,
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
     let image = if let Ok(s) = what.cast::<Surface>() {
-        let s = s.get();
-        py.detach(|| api::render(Some(&s.complex), Some(&s.net), &words))
+        let s = &s.get().inner;
+        py.detach(|| api::render(Some(s.complex()), Some(s.net()), &words))
     } else if let Ok(n) = what.cast::<Net>() {
         let n = n.get();
         py.detach(|| api::render(None, Some(&n.mesh), &words))
@@ -505,9 +498,10 @@ fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Stencils>()?;
     m.add_class::<table::PatchTable>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
-    m.add_function(wrap_pyfunction!(subdivide_words, m)?)?;
-    m.add_function(wrap_pyfunction!(level_stencils_words, m)?)?;
-    m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(subdivide, m)?)?;
+    m.add_function(wrap_pyfunction!(level_stencils, m)?)?;
+    m.add_function(wrap_pyfunction!(schemes_json, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
     m.add_function(wrap_pyfunction!(render_words, m)?)?;
     m.add_function(wrap_pyfunction!(shape::scheme_options_json, m)?)?;
     m.add_function(wrap_pyfunction!(shape::curvature_colours, m)?)?;

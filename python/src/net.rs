@@ -426,10 +426,12 @@ impl Net {
 
 impl Net {
     /// The NET word and the mesh that stands for it (None: the command re-reads the source).
-    pub(crate) fn as_input(&self) -> (String, Option<PolyMesh>) {
+    /// Where the library reads the net: its file (re-read for each scheme, the way the
+    /// command line reads it), or the arrays.
+    pub(crate) fn input(&self) -> fairsub::Source {
         match &self.source {
-            Some(s) => (s.clone(), None),
-            None => ("<array net>".to_string(), Some(self.mesh.clone())),
+            Some(s) => fairsub::Source::Path(s.clone()),
+            None => fairsub::Source::Net(self.mesh.clone()),
         }
     }
 

@@ -5,10 +5,11 @@ QAS+, guided and non-box subdivision) beside Catmull-Clark, Doo-Sabin and Loop: 
 exact Bezier patch complexes, evaluation, continuity checks, spectra and pictures, with numpy
 arrays in and out.
 
-Every call runs the same Rust code as the ``fairsub`` command line: keyword options are the
-command line's options (``split_ratio=0.3`` is ``--split-ratio 0.3``, ``smooth_triangles=True``
-is ``--smooth-triangles``), with the same defaults, limits and error messages (raised as
-``ValueError``).
+Every call goes through the Rust library's API (``fairsub::refine``, ``surface``, ``analyze``,
+...), which runs the same code as the ``fairsub`` command line: keyword options are its typed
+``Options`` and the command line's options of the same name (``split_ratio=0.3`` is
+``--split-ratio 0.3``, ``smooth_triangles=True`` is ``--smooth-triangles``), with the same
+defaults, limits and error messages (raised as ``ValueError``).
 
 Example::
 
@@ -48,8 +49,9 @@ __version__ = _fairsub.__version__
 
 
 def _words(options):
-    """Command-line words of keyword options: ``a_b=x`` -> ``--a-b x``; ``True`` -> a flag;
-    ``False`` / ``None`` -> nothing; a list or tuple -> the option repeated (``pole=[...]``)."""
+    """Command-line words of keyword options (``render``'s look options): ``a_b=x`` ->
+    ``--a-b x``; ``True`` -> a flag; ``False`` / ``None`` -> nothing; a list or tuple -> the
+    option repeated."""
     words = []
     for key, value in options.items():
         flag = "--" + key.rstrip("_").replace("_", "-")
@@ -100,7 +102,7 @@ Net.info.__doc__ = "``fairsub info --json`` of the net, as a dict."
 
 def schemes():
     """The catalogue (``fairsub schemes --json``): a list of dicts, one per scheme."""
-    return _json.loads(_fairsub.report(["schemes", "--json"]))
+    return _json.loads(_fairsub.schemes_json())
 
 
 def scheme_options(scheme):
@@ -136,10 +138,7 @@ def subdivide(net, scheme, levels=1, limit=False, **options):
     >>> fine.num_faces
     96
     """
-    words = ["--scheme", scheme, "--levels", str(levels)] + _words(
-        dict(limit=limit, **options)
-    )
-    return _fairsub.subdivide_words(_net(net), words)
+    return _fairsub.subdivide(_net(net), scheme, levels=levels, limit=limit, options=options)
 
 
 def surface(net, scheme, rings=6, fill=True, **options):
@@ -147,10 +146,7 @@ def surface(net, scheme, rings=6, fill=True, **options):
     a Surface with ``patches`` ((du+1, dv+1, 3) arrays), ``provenance``, ``evaluate``,
     ``tessellate``, ``check`` and ``write``. ``fill=False`` leaves the hole inside the last
     ring open (``--no-fill``)."""
-    words = ["--scheme", scheme, "--rings", str(rings)] + _words(
-        dict(no_fill=not fill, **options)
-    )
-    return _fairsub.subdivide_words(_net(net), words)
+    return _fairsub.subdivide(_net(net), scheme, rings=rings, fill=fill, options=options)
 
 
 def _provenance(self):
@@ -218,9 +214,7 @@ Surface.closest = _closest
 def analyze(scheme, valence, replicated_centre=False, **options):
     """``fairsub analyze --scheme S --valence N --json`` as a dict: spectrum, limit stencil,
     characteristic-map certificate, published numbers with their differences."""
-    words = ["analyze", "--scheme", scheme, "--valence", str(valence), "--json"]
-    words += _words(dict(replicated_centre=replicated_centre, **options))
-    return _json.loads(_fairsub.report(words))
+    return _json.loads(_fairsub.analyze_json(scheme, valence, replicated_centre, options))
 
 
 def render(what, mode="shaded", size=(800, 800), **look):
@@ -239,5 +233,4 @@ def level_stencils(net, scheme, levels=1, **options):
     """The stencil table from the control points of ``net`` to its ``levels``-fold refinement:
     ``(refined_net, stencils)``; ``stencils.apply(points)`` maps moved control points (n, 3)
     to the refined points, ``stencils.csr()`` gives (indptr, indices, weights)."""
-    words = ["--scheme", scheme, "--levels", str(levels)] + _words(options)
-    return _fairsub.level_stencils_words(_net(net), words)
+    return _fairsub.level_stencils(_net(net), scheme, levels, options)
