@@ -188,7 +188,9 @@ pub struct RenderArgs {
 pub struct CompareArgs {
     /// The control net (file or gallery:NAME).
     pub net: String,
-    /// Schemes with patch output, comma-separated [default: all of them].
+    /// Schemes, comma-separated [default: all with patch output that take the net]. A scheme
+    /// without exact patches is drawn as its net refined 4 times (no curvature or provenance
+    /// modes).
     #[arg(long, value_delimiter = ',')]
     pub schemes: Vec<String>,
     /// Contraction of the guided schemes among them (0.5; default Catmull-Clark's lambda).
@@ -447,10 +449,30 @@ fn compare_panel(
     let mut scenes = Vec::new();
     for s in schemes {
         let spec = spec::resolve(s, &SchemeOptions::default())?;
-        scenes.push((s.clone(), complex_scene(&spec, net, rings, fill)?));
+        let caps = crate::schemes::registry().entry(spec.id).capabilities();
+        let scene = if caps.refine && !caps.patches {
+            refined_scene(&spec, net)?
+        } else {
+            complex_scene(&spec, net, rings, fill)?
+        };
+        scenes.push((s.clone(), scene));
     }
     let panel = render::compare(&scenes, modes, opts)?;
     Ok((panel, scenes))
+}
+
+/// Levels of refinement `compare` draws for a scheme without exact patches.
+const COMPARE_LEVELS: usize = 4;
+
+/// A scheme without exact patches as `compare` draws it: its net refined [`COMPARE_LEVELS`]
+/// times (as `render --scheme S --levels 4`), with the control net for the net overlay.
+fn refined_scene(scheme: &Spec, net: &PolyMesh) -> Result<Scene> {
+    let rules = super::subdivide::mesh_rules(scheme)?;
+    super::limits::check_levels(rules.as_ref(), net, COMPARE_LEVELS)?;
+    let fine = super::subdivide::refine_with(rules.as_ref(), net, COMPARE_LEVELS, false)?;
+    let mut scene = Scene::mesh(&fine);
+    scene.net = Some(net.clone());
+    Ok(scene)
 }
 
 /// The schemes with patch output that take this net (Loop only takes triangle nets).
