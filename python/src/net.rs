@@ -431,7 +431,7 @@ impl Net {
     pub(crate) fn input(&self) -> fairsub::Source {
         match &self.source {
             Some(s) => fairsub::Source::Path(s.clone()),
-            None => fairsub::Source::Net(self.mesh.clone()),
+            None => fairsub::Source::Net(Box::new(self.mesh.clone())),
         }
     }
 

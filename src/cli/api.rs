@@ -15,7 +15,7 @@ use crate::schemes::descriptor::ParamKind;
 use crate::surface::PatchComplex;
 use clap::Parser;
 
-/// What [`subdivide`] computed.
+/// What [`subdivide`](fn@subdivide) computed.
 #[derive(Debug, Clone)]
 pub struct Outcome {
     /// The refined net, the limit mesh or the patch complex.

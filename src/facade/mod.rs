@@ -35,7 +35,7 @@ pub enum Source {
     /// A path (`.obj`, `.off`, `.ply`) or `gallery:NAME`.
     Path(String),
     /// A net in memory (its own tags and texture coordinates are kept).
-    Net(PolyMesh),
+    Net(Box<PolyMesh>),
 }
 
 impl Source {
@@ -43,7 +43,7 @@ impl Source {
     fn split(&self) -> (String, Option<PolyMesh>) {
         match self {
             Source::Path(p) => (p.clone(), None),
-            Source::Net(m) => ("<net>".to_string(), Some(m.clone())),
+            Source::Net(m) => ("<net>".to_string(), Some(PolyMesh::clone(m))),
         }
     }
 }
@@ -62,13 +62,13 @@ impl From<&Path> for Source {
 
 impl From<PolyMesh> for Source {
     fn from(m: PolyMesh) -> Self {
-        Source::Net(m)
+        Source::Net(Box::new(m))
     }
 }
 
 impl From<&PolyMesh> for Source {
     fn from(m: &PolyMesh) -> Self {
-        Source::Net(m.clone())
+        Source::Net(Box::new(m.clone()))
     }
 }
 
