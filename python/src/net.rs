@@ -407,7 +407,7 @@ impl Net {
 
     /// Writes the net (.obj, .off, .ply, .bv by extension).
     fn write(&self, py: Python<'_>, path: &str) -> PyResult<()> {
-        py.detach(|| api::write_net(&self.mesh, Path::new(path)))
+        py.detach(|| fairsub::write_net(&self.mesh, Path::new(path)))
             .map_err(err)
     }
 

@@ -1,7 +1,8 @@
-//! The commands as library calls, for front ends other than the command line (the Python
-//! package in `python/`): the same argument words, parsed by the same clap definitions, the
-//! same loading, limits, construction and reports, with the results handed back instead of
-//! written. Nothing here is a second copy of a rule or of a command's logic: each function is
+//! The commands as library calls for front ends that hold command-line words (the viewer's
+//! page, the Python package's render options) and the writers the library API shares: the
+//! same argument words, parsed by the same clap definitions, the same loading, limits,
+//! construction and reports, with the results handed back instead of written. Typed calls go
+//! through the crate root's API (`crate::facade`). Nothing here is a second copy of a rule or of a command's logic: each function is
 //! the command's own code path (`subdivide::prepare` and `finish`, `check::report_json`, ...) with an
 //! in-memory net in place of a file where one is given.
 
@@ -135,24 +136,6 @@ pub fn subdivide(words: &[String], given: Option<PolyMesh>) -> Result<Outcome> {
     })
 }
 
-/// Runs a command that reports (`schemes --json`, `analyze ... --json`, `info NET --json`,
-/// `charmap`, ...) and returns what it printed.
-pub fn report(words: &[String]) -> Result<String> {
-    let cli = parse(words)?;
-    let (r, out) = super::capture(|| super::run(cli));
-    r.map(|()| out)
-}
-
-/// `fairsub check --json`'s report of a complex (see `super::check::report_json`).
-pub fn check_json(
-    source: &str,
-    complex: &PatchComplex,
-    spec: Option<&Spec>,
-    notes: &[String],
-) -> String {
-    super::check::report_json(source, complex, spec, notes.to_vec())
-}
-
 /// `fairsub measure --json`'s report of a complex built by `spec` on `net` (with the area
 /// per input face when `per_face`), areas to the relative `tolerance`.
 ///
@@ -212,45 +195,6 @@ pub fn render(
     };
     crate::render::check_mode(&scene, mode)?;
     Ok(crate::render::render(&scene, &opts)?.image)
-}
-
-/// The stencil table from the control points of the net to the points of its `--levels N`
-/// refinement (`subdivide WORDS...`'s scheme, options and net), with the refined net.
-pub fn level_stencils(
-    words: &[String],
-    given: Option<PolyMesh>,
-) -> Result<(PolyMesh, crate::stencil::StencilTable)> {
-    let (args, budget) = subdivide_args(words)?;
-    limits::with_budget(budget, || {
-        let p = subdivide::prepare(&args, given)?;
-        let scheme = subdivide::mesh_rules(&p.spec)?;
-        let levels = args.levels.unwrap_or(1);
-        limits::check_levels(scheme.as_ref(), &p.mesh, levels)?;
-        crate::schemes::level_stencils(scheme.as_ref(), &p.mesh, levels)
-    })
-}
-
-/// The patch stencil table `subdivide WORDS... --rings K --stencils FILE` writes (the same
-/// scheme, options, net, limits and construction), with the complex it was read off.
-pub fn patch_table(
-    words: &[String],
-    given: Option<PolyMesh>,
-) -> Result<(crate::surface::table::PatchTable, PatchComplex)> {
-    let (args, budget) = subdivide_args(words)?;
-    limits::with_budget(budget, || {
-        let p = subdivide::prepare(&args, given)?;
-        if !p.patches {
-            return Err(Error::InvalidArgument(
-                "a patch table needs a complex: give --rings K".into(),
-            ));
-        }
-        let (computed, _) = subdivide::finish(&args, &p)?;
-        let Computed::Complex(complex, _) = computed else {
-            unreachable!("a --rings job computes a complex")
-        };
-        let table = subdivide::patch_table(&args, &p, &complex)?;
-        Ok((table, complex))
-    })
 }
 
 /// Writes a patch stencil table as `subdivide --stencils` does (validated, atomic).
