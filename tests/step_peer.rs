@@ -14,8 +14,8 @@
 //! `FAIRSUB_REQUIRE_OCCT=1` makes that a failure.
 
 use fairsub::bezier::BezierPatch;
+use fairsub::bezier::bern::gauss_legendre;
 use fairsub::geom::{Point, cross, dot, norm};
-use fairsub::schemes::guided::bern::gauss_legendre;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;

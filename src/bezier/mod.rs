@@ -22,6 +22,7 @@
 //! - A [`Side`] is traversed in increasing parameter order: `U0`/`U1` (the sides `u = 0` / `u =
 //!   1`) are parametrised by `v`, `V0`/`V1` by `u` ([`BezierPatch::boundary`]).
 
+pub mod bern;
 pub mod complex;
 pub mod convert;
 mod coons;

@@ -185,7 +185,7 @@ pub struct FaceVarying {
     /// its own class); on a refined level the class of the parent value a vertex point's
     /// value comes from (OpenSubdiv inherits a refined level's seams from the parent level
     /// instead of comparing value indices again, and a base vertex may give one value two
-    /// siblings, see `schemes::fvar`), a new class for every other value.
+    /// siblings, see `schemes::sdc::fvar`), a new class for every other value.
     pub classes: Vec<u32>,
 }
 

@@ -4,7 +4,7 @@
 //! edge), and vertices no face uses.
 //!
 //! Catmull-Clark and Loop refine such nets as OpenSubdiv does (their non-manifold features are
-//! infinitely sharp, see `schemes::catmull_clark::crease`), so they need one representation for
+//! infinitely sharp, see `schemes::sdc::crease`), so they need one representation for
 //! them. It is the ordinary [`Topology`] with two relaxations:
 //!
 //! - edges are identified as OpenSubdiv's `Vtr::Level` identifies them, not by twins: a face

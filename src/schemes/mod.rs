@@ -10,11 +10,10 @@ pub mod bi2;
 pub mod butterfly;
 pub mod catmull_clark;
 pub mod circulant;
-pub mod dart;
+
 pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;
-pub mod fvar;
 pub mod growth;
 pub mod guided;
 pub mod local;
@@ -23,6 +22,7 @@ pub mod nonbox;
 pub mod prepare;
 pub mod qas;
 pub mod registry;
+pub mod sdc;
 pub mod sqrt3;
 
 mod common;
@@ -130,8 +130,8 @@ pub trait Scheme: Sync {
     }
 
     /// How the scheme refines face-varying data (texture coordinates), if it does: Catmull-Clark
-    /// and Loop with OpenSubdiv's face-varying rules ([`fvar`]); `None` drops the data.
-    fn face_varying(&self) -> Option<fvar::FvarRules> {
+    /// and Loop with OpenSubdiv's face-varying rules ([`sdc::fvar`]); `None` drops the data.
+    fn face_varying(&self) -> Option<sdc::fvar::FvarRules> {
         None
     }
 
@@ -161,7 +161,7 @@ pub enum FcvLayout {
 /// after each. A net with per-vertex data ([`crate::mesh::VertexData`]) or face-varying data
 /// that the scheme refines is refined step by step ([`Scheme::refine_steps`]): each step's
 /// stencil table, the one that made the child's positions, is applied to the per-vertex data
-/// ([`crate::mesh::VertexData::through`]) and drives the face-varying rules ([`fvar::refine`]).
+/// ([`crate::mesh::VertexData::through`]) and drives the face-varying rules ([`sdc::fvar::refine`]).
 /// Plain nets keep the scheme's direct kernel.
 pub fn refine_levels(
     scheme: &dyn Scheme,
@@ -180,7 +180,7 @@ pub fn refine_levels(
     scheme.refine_steps(mesh, levels, &mut |parent, r| {
         let pex = parent.extras();
         let refined_uv = match (pex.and_then(|e| e.uv.as_ref()), &fv_rules) {
-            (Some(uv), Some(rules)) => Some(fvar::refine(
+            (Some(uv), Some(rules)) => Some(sdc::fvar::refine(
                 parent,
                 uv,
                 level == 0,

@@ -6,9 +6,9 @@
 //! the outgoing edge, face point, edge point of the incoming edge). Child half-edge `4h + k` is
 //! side `k` of child face `h`.
 
-use super::crease::{ChildEdge, SharpLevel};
 use crate::geom::Point;
 use crate::mesh::{FaceIndex, MeshParts, MeshView, NONE, PolyMesh, Topology, number_edges};
+use crate::schemes::sdc::crease::{ChildEdge, SharpLevel};
 use rayon::prelude::*;
 
 /// Child points (or parent half-edges) per parallel task.

@@ -23,13 +23,13 @@
 //! At valence 2 the spectrum is `1, 0.3878, -0.2811, 0.25, 0.1433`: the negative eigenvalue
 //! outweighs the second tangent mode, so, as at a smooth vertex of valence 2, the limit has no
 //! tangent plane; the cap is centred in the plane of the two positive modes
-//! (`schemes::dart::masks_of_positive`).
+//! (`schemes::sdc::dart::masks_of_positive`).
 //!
-//! The masks are computed once per valence ([`crate::schemes::dart`]: null vectors of a small
+//! The masks are computed once per valence ([`crate::schemes::sdc::dart`]: null vectors of a small
 //! dense matrix) and cached.
 
-pub use crate::schemes::dart::{DartMasks, MAX_DART_VALENCE};
-use crate::schemes::dart::{MaskCache, cached_masks, cached_masks_with, masks_of_positive};
+pub use crate::schemes::sdc::dart::{DartMasks, MAX_DART_VALENCE};
+use crate::schemes::sdc::dart::{MaskCache, cached_masks, cached_masks_with, masks_of_positive};
 use nalgebra::DMatrix;
 use std::sync::{Arc, OnceLock};
 
@@ -99,7 +99,7 @@ mod tests {
         for n in 3..=12 {
             let m = dart_masks(n).unwrap();
             let what = format!("n {n}");
-            crate::schemes::dart::assert_left_eigenvectors(&ring_matrix(n, true), &m, &what);
+            crate::schemes::sdc::dart::assert_left_eigenvectors(&ring_matrix(n, true), &m, &what);
             // not the smooth limit mask: the sharp edge's end weighs differently
             let (e0, e1) = (m.limit[1], m.limit[2]);
             assert!((e0 - e1).abs() > 1e-3, "n {n}: {e0} {e1}");
@@ -109,7 +109,7 @@ mod tests {
         let m = dart_masks(2).unwrap();
         assert!((m.lambda[0] - 0.38785).abs() < 1e-4, "{:?}", m.lambda);
         assert!((m.lambda[1] - 0.25).abs() < 1e-12, "{:?}", m.lambda);
-        crate::schemes::dart::assert_left_eigenvectors(&ring_matrix(2, true), &m, "n 2");
+        crate::schemes::sdc::dart::assert_left_eigenvectors(&ring_matrix(2, true), &m, "n 2");
     }
 
     /// Without the dart the matrix is Catmull-Clark's smooth one: its subdominant eigenvalue is
@@ -123,7 +123,12 @@ mod tests {
             let want = (5.0 + c + (pi / n as f64).cos() * (18.0 + 2.0 * c).sqrt()) / 16.0;
             let what = format!("n {n}");
             let m = dart_masks(n).unwrap();
-            crate::schemes::dart::assert_smooth_pair_kept(&ring_matrix(n, false), &m, want, &what);
+            crate::schemes::sdc::dart::assert_smooth_pair_kept(
+                &ring_matrix(n, false),
+                &m,
+                want,
+                &what,
+            );
         }
     }
 }

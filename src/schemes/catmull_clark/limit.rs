@@ -1,10 +1,10 @@
 //! Catmull-Clark's limit positions (plain and with sharp features), limit tangents and limit
 //! normals.
 
-use super::crease::{Emit, LimitPlan, Scratch, SharpLevel};
 use super::{CatmullClark, Opts};
 use crate::geom::{self, Point};
 use crate::mesh::{MeshView, PolyMesh};
+use crate::schemes::sdc::crease::{Emit, LimitPlan, Scratch, SharpLevel};
 use crate::stencil::{RowWriter, Stencil, StencilTable, Terms};
 use std::collections::HashMap;
 use std::f64::consts::PI;

@@ -33,7 +33,7 @@
 
 pub mod boundary_tangent;
 mod child;
-pub(crate) mod crease;
+use crate::schemes::sdc::crease;
 pub mod dart;
 pub mod descriptor;
 mod limit;
@@ -599,9 +599,9 @@ impl Scheme for Configured {
         Ok(CatmullClark::limit_stencils_with(mesh, &self.options))
     }
 
-    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
-        Some(super::fvar::FvarRules {
-            split: super::fvar::Split::Quads,
+    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
+        Some(crate::schemes::sdc::fvar::FvarRules {
+            split: crate::schemes::sdc::fvar::Split::Quads,
             options: self.options,
         })
     }
@@ -629,7 +629,7 @@ impl Scheme for CatmullClark {
         Configured::default().limit_stencils(mesh)
     }
 
-    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
         Configured::default().face_varying()
     }
 }

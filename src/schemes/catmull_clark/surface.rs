@@ -64,9 +64,9 @@ use crate::host::adaptive::{
 use crate::host::caps::CapBuilder;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::Scratch;
-pub use crate::schemes::catmull_clark::crease::adaptive::Level;
-use crate::schemes::catmull_clark::crease::adaptive::{
+use crate::schemes::sdc::crease::Scratch;
+pub use crate::schemes::sdc::crease::adaptive::Level;
+use crate::schemes::sdc::crease::adaptive::{
     child as sharp_child, crease_curve, edge_known, is_hole, is_last_cap_level, touches_features,
 };
 use crate::stencil::{RowWriter, StencilTable, Terms};

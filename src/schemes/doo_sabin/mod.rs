@@ -111,7 +111,7 @@ pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};
 use crate::error::{Error, Result};
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, NONE, PolyMesh};
-use crate::schemes::catmull_clark::crease::INFINITE;
+use crate::schemes::sdc::crease::INFINITE;
 use crate::stencil::{Stencil, StencilTable};
 
 use super::common::{RowBuf, check_child_size, cos_2pi};

@@ -110,10 +110,8 @@ use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
 use crate::mesh::tags::BoundaryInterpolation;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::adaptive::{
-    CALM, SPENT_BY_LEVEL, is_last_cap_level_calm,
-};
 use crate::schemes::registry::ids;
+use crate::schemes::sdc::crease::adaptive::{CALM, SPENT_BY_LEVEL, is_last_cap_level_calm};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
@@ -250,7 +248,7 @@ pub struct Level {
     /// construction, [`crate::schemes::doo_sabin::sharp`]).
     creased: Option<super::sharp::LevelCreases>,
     /// Levels since the last one with a semi-sharp feature
-    /// ([`crate::schemes::catmull_clark::crease::adaptive::calm_after`]).
+    /// ([`crate::schemes::sdc::crease::adaptive::calm_after`]).
     calm: usize,
 }
 

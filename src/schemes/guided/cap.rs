@@ -29,12 +29,12 @@
 //! the rings, its tangent plane theirs); the samples satisfy (6) there, measured. All of it is
 //! one linear map per valence, tabulated.
 
-use super::bern::{bernstein_derivs, kron, raise, subsegment};
 use super::chi::CharRing;
 use super::guide::cos_n;
 use super::jets::{block_entry, corner_block, patch_series};
 use super::rings::fairness_gram;
 use crate::bezier::BezierPatch;
+use crate::bezier::bern::{bernstein_derivs, kron, raise, subsegment};
 use crate::error::{Error, Result};
 use nalgebra::DMatrix;
 

@@ -201,8 +201,8 @@ impl GuidedBlocks {
             members[w].push(j);
         }
         let restrict = {
-            let s = super::bern::subsegment(5, 0.0, lambda);
-            super::bern::kron(&s, &s)
+            let s = crate::bezier::bern::subsegment(5, 0.0, lambda);
+            crate::bezier::bern::kron(&s, &s)
         };
         let zero = C64::default();
         let mut leakage: f64 = 0.0;

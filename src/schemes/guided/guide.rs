@@ -48,7 +48,7 @@
 //! recorded in the module tests as numeric checks): the printed accents of (3) and of Appendix A
 //! hold except for one term; (4) holds with the accents above.
 
-use super::bern::{bernstein_derivs, subsegment};
+use crate::bezier::bern::{bernstein_derivs, subsegment};
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
@@ -258,7 +258,7 @@ pub fn shear_coeffs(n: usize, d: usize) -> DMatrix<f64> {
 /// Block-diagonal restriction of every sector to `[0, lambda]^2` (`n (d+1)^2` square).
 pub fn restriction(n: usize, d: usize, lambda: f64) -> DMatrix<f64> {
     let s = subsegment(d, 0.0, lambda);
-    let k = super::bern::kron(&s, &s);
+    let k = crate::bezier::bern::kron(&s, &s);
     let m = (d + 1) * (d + 1);
     let mut r = DMatrix::zeros(n * m, n * m);
     for sec in 0..n {

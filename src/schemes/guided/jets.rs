@@ -8,8 +8,8 @@
 //! the `(dg + 1)^2` coefficients of a guide sector to the `k x k` BB coefficients of degree `d` at
 //! one corner of the sampled patch (the paper's tabulation).
 
-use super::bern::{bernstein_taylor, power_to_bezier};
 use crate::bezier::BezierPatch;
+use crate::bezier::bern::{bernstein_taylor, power_to_bezier};
 use nalgebra::DMatrix;
 
 /// A bivariate Taylor series truncated to degree `< k` in each variable.
@@ -179,8 +179,8 @@ mod tests {
                 }
             }
         }
-        let s = super::super::bern::subsegment(5, 0.2, 0.6);
-        let exact = super::super::bern::kron(&s, &s) * gm;
+        let s = crate::bezier::bern::subsegment(5, 0.2, 0.6);
+        let exact = crate::bezier::bern::kron(&s, &s) * gm;
         for (a, e) in assembled.iter().zip(exact.iter()) {
             assert!((a - e).abs() < 1e-11, "{a} vs {e}");
         }

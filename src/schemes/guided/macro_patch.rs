@@ -36,7 +36,7 @@
 //! hole with its own split-sector G^1 cap of [`crate::bezier::g1`] (`m x m` pieces per sector,
 //! C^1 to the last ring, see [`super::surface`]), a reconstruction, not the paper's cap.
 
-use super::bern::{bernstein_derivs, kron};
+use crate::bezier::bern::{bernstein_derivs, kron};
 use nalgebra::DMatrix;
 
 /// The macro-patch variants.

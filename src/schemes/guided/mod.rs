@@ -5,9 +5,8 @@
 //! characteristic reparameterization `L^-1 o lambda^l chi` ([`chi`]), by corner jets
 //! ([`jets`]); the outer layers of every ring are the C^2 prolongation of the previous ring
 //! (of the surrounding bi-3 surface for the first ring) ([`rings`]). The G^1 bi-6 cap is in
-//! [`cap`], the bi-4 / bi-3 macro-patch variants of Section 6.2 in [`macro_patch`].
+//! [`cap`], the bi-4 / bi-3 macro-patch variants of Section 6.2 in [`macro_patch`]. The Bernstein-Bezier matrices they use are in [`crate::bezier::bern`].
 
-pub mod bern;
 pub mod cap;
 pub mod chi;
 pub mod descriptor;

@@ -8,8 +8,8 @@
 //! point of edge `3f + k` to the next.
 
 use crate::mesh::{NONE, PolyMesh, Topology, number_edges};
-use crate::schemes::catmull_clark::crease::SharpLevel;
 use crate::schemes::catmull_clark::{edge_half, general_child_topology, half_child_edge};
+use crate::schemes::sdc::crease::SharpLevel;
 use rayon::prelude::*;
 
 /// Child points (or parent half-edges) per parallel task.
@@ -133,7 +133,7 @@ pub(super) fn general_halfedges(mesh: &PolyMesh, child_corners: &[u32]) -> Topol
     general_child_topology(mesh, child_corners, 3, &raw, 3 * nf, nv + ne)
 }
 
-/// The sharp features of the child (see `catmull_clark::crease`); `topo` is the child's
+/// The sharp features of the child (see `sdc::crease`); `topo` is the child's
 /// connectivity, or `None` when the child is not given one (sharp edges named by end points).
 pub(super) fn child_extras(
     mesh: &PolyMesh,

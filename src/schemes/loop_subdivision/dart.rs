@@ -4,14 +4,14 @@
 //! `3/8 (x + e_i) + 1/8 (e_(i-1) + e_(i+1))`; the sharp edge its midpoint `(x + e_0) / 2`).
 //! The 1-ring `x, e_0 .. e_(n-1)` (counter-clockwise from the sharp edge's end `e_0`) is mapped
 //! onto itself; the left eigenvectors of its `(n + 1)^2` matrix are the dart's limit and
-//! tangent masks ([`crate::schemes::dart`]). Spectrum (tested): `1`, then `0.3983` and `1/4`
+//! tangent masks ([`crate::schemes::sdc::dart`]). Spectrum (tested): `1`, then `0.3983` and `1/4`
 //! at `n = 3`, `0.4518` and `0.375` at `n = 4`, `1/2` double at `n = 6`, `0.5518` and `0.5268`
 //! at `n = 8`; the antisymmetric mode keeps the smooth vertex's subdominant eigenvalue
 //! `3/8 + cos(2 pi / n) / 4`.
 
 use super::Loop;
-pub use crate::schemes::dart::{DartMasks, MAX_DART_VALENCE};
-use crate::schemes::dart::{MaskCache, cached_masks};
+pub use crate::schemes::sdc::dart::{DartMasks, MAX_DART_VALENCE};
+use crate::schemes::sdc::dart::{MaskCache, cached_masks};
 use nalgebra::DMatrix;
 use std::sync::{Arc, OnceLock};
 
@@ -67,13 +67,13 @@ mod tests {
             let smooth = 0.375 + 0.25 * (2.0 * std::f64::consts::PI / n as f64).cos();
             let m = dart_masks(n).unwrap();
             let what = format!("n {n}");
-            crate::schemes::dart::assert_smooth_pair_kept(
+            crate::schemes::sdc::dart::assert_smooth_pair_kept(
                 &ring_matrix(n, false),
                 &m,
                 smooth,
                 &what,
             );
-            crate::schemes::dart::assert_left_eigenvectors(&ring_matrix(n, true), &m, &what);
+            crate::schemes::sdc::dart::assert_left_eigenvectors(&ring_matrix(n, true), &m, &what);
         }
     }
 }

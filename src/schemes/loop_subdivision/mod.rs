@@ -26,7 +26,7 @@
 //!
 //! Sharp features (creases, corners, semi-sharp decay, uniform and Chaikin creasing, the
 //! boundary options `edge-only` and `none`, holes, non-manifold features) are OpenSubdiv's,
-//! the same machinery as Catmull-Clark's (`catmull_clark::crease`) with Loop's smooth masks.
+//! the same machinery as Catmull-Clark's (`sdc::crease`) with Loop's smooth masks.
 //!
 //! # Layout of one step
 //!
@@ -50,9 +50,9 @@ use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
 use rayon::prelude::*;
 
 use super::catmull_clark::Opts;
-use super::catmull_clark::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use super::common::{RowBuf, check_child_size};
 use super::{Refinement, Scheme};
+use crate::schemes::sdc::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use child::{BLOCK, child_corners};
 
 /// Loop subdivision of triangle nets (scheme name `loop`) with the default options. See the
@@ -563,9 +563,9 @@ impl Scheme for Configured {
         Loop::limit_stencils_with(mesh, &self.options)
     }
 
-    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
-        Some(super::fvar::FvarRules {
-            split: super::fvar::Split::Triangles,
+    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
+        Some(crate::schemes::sdc::fvar::FvarRules {
+            split: crate::schemes::sdc::fvar::Split::Triangles,
             options: self.options,
         })
     }
@@ -597,7 +597,7 @@ impl Scheme for Loop {
         Configured::default().limit_stencils(mesh)
     }
 
-    fn face_varying(&self) -> Option<super::fvar::FvarRules> {
+    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
         Configured::default().face_varying()
     }
 }

@@ -89,7 +89,7 @@ use crate::host::adaptive::{
 };
 use crate::mesh::PolyMesh;
 use crate::mesh::tags::SubdOptions;
-use crate::schemes::catmull_clark::crease::adaptive::{
+use crate::schemes::sdc::crease::adaptive::{
     self as features, edge_known, is_hole, is_last_cap_level,
 };
 use crate::stencil::{Stencil, StencilTable};

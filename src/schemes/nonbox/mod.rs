@@ -99,7 +99,7 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::PolyMesh;
 use crate::schemes::CatmullClark;
-use crate::schemes::catmull_clark::crease::Scratch;
+use crate::schemes::sdc::crease::Scratch;
 use crate::stencil::{Stencil, StencilTable};
 use std::f64::consts::PI;
 

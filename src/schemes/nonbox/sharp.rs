@@ -6,7 +6,7 @@
 //! `(a + b) / 2`, a corner stays) with ghost FCVs `a + b - F` across boundary edges. So a crease
 //! is a boundary on both of its sides, exactly as Catmull-Clark's crease rules are its boundary
 //! rules, and OpenSubdiv's rules carry over rule for rule, read through the shared machinery of
-//! [`crate::schemes::catmull_clark::crease`] ([`SharpLevel`]):
+//! [`crate::schemes::sdc::crease`] ([`SharpLevel`]):
 //!
 //! - **V-vertex**: OpenSubdiv's vertex plan with the non-box V-vertex rule as its smooth mask
 //!   (crease `3/4 v + 1/8 (a + b)`, corner `v`, the blend while a feature decays);
@@ -26,7 +26,7 @@
 use crate::error::{Error, Result};
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, PolyMesh};
-use crate::schemes::catmull_clark::crease::{ChildEdge, Emit, LimitPlan, Scratch, SharpLevel};
+use crate::schemes::sdc::crease::{ChildEdge, Emit, LimitPlan, Scratch, SharpLevel};
 use crate::stencil::Stencil;
 
 /// The sharp features of one level of a non-box net, when it has any beyond its boundary.

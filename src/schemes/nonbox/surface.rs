@@ -64,10 +64,10 @@ use crate::host::adaptive::{
     input_active, input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::Scratch;
-use crate::schemes::catmull_clark::crease::adaptive::{CALM, is_last_cap_level_calm};
 use crate::schemes::nonbox::sharp::{NonBoxCreases, is_regular};
 use crate::schemes::nonbox::{e_vertex_stencil_with, nfcv_stencil_with, v_vertex_stencil_with};
+use crate::schemes::sdc::crease::Scratch;
+use crate::schemes::sdc::crease::adaptive::{CALM, is_last_cap_level_calm};
 use crate::stencil::{Stencil, StencilTable};
 use std::cell::RefCell;
 use std::collections::HashMap;

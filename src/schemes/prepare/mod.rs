@@ -447,8 +447,7 @@ fn dual_carries(mesh: &PolyMesh) -> bool {
     ex.holes.is_empty()
         && ex.sharp_edges.is_empty()
         && ex.sharp_vertices.iter().all(|&(v, s)| {
-            s >= crate::schemes::catmull_clark::crease::INFINITE
-                && mesh.is_boundary_vertex(v as usize)
+            s >= crate::schemes::sdc::crease::INFINITE && mesh.is_boundary_vertex(v as usize)
         })
 }
 

@@ -171,10 +171,8 @@ pub fn signed_volume(surfaces: &[SplineSurface]) -> f64 {
         .map(|s| {
             let mut v = 0.0;
             for (_, b) in s.bezier_pieces() {
-                let gu =
-                    crate::schemes::guided::bern::gauss_legendre((3 * b.deg_u).div_ceil(2) + 1);
-                let gv =
-                    crate::schemes::guided::bern::gauss_legendre((3 * b.deg_v).div_ceil(2) + 1);
+                let gu = crate::bezier::bern::gauss_legendre((3 * b.deg_u).div_ceil(2) + 1);
+                let gv = crate::bezier::bern::gauss_legendre((3 * b.deg_v).div_ceil(2) + 1);
                 for &(x, wx) in &gu {
                     for &(y, wy) in &gv {
                         let d = b.derivatives(x, y);

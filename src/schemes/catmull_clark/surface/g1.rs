@@ -68,7 +68,7 @@
 //! elements still touch, as the cube's after one ring) get up to [`MAX_EXTRA_CAP_LEVELS`](crate::host::adaptive::MAX_EXTRA_CAP_LEVELS) more
 //! levels: their rings continue until the holes are separated by ring patches. A centre whose
 //! features are all semi-sharp is refined until they are spent (up to level
-//! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
+//! [`SPENT_BY_LEVEL`](crate::schemes::sdc::crease::adaptive::SPENT_BY_LEVEL)), then
 //! capped as a plain vertex. A crease vertex (two infinitely sharp edges through an interior
 //! vertex) gets one open-fan cap per side of one, or of three or more quads, sharing the
 //! crease's exact curve ([`crease`]). A dart (one infinitely sharp edge ending at an interior
@@ -302,7 +302,7 @@ fn hole_sectors(
     element: Element,
     faces: &[(u32, Tag)],
 ) -> Result<(usize, Vec<QuadSector>, Vec<Tag>, bool), NoCap> {
-    use crate::schemes::catmull_clark::crease::adaptive::cap_feature;
+    use crate::schemes::sdc::crease::adaptive::cap_feature;
     let m = &level.mesh;
     let (f0, _) = faces[0];
     let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (3, 2))?;

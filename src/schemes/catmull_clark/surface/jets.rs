@@ -31,7 +31,7 @@ pub(super) struct Jets<'m> {
     limits: LimitStencils<'m>,
     cache: HashMap<usize, Option<Jet>>,
     /// With sharp features: the vertices whose derivatives are the chords of the limit points
-    /// ([`crate::schemes::catmull_clark::crease::adaptive::chord_vertices`]).
+    /// ([`crate::schemes::sdc::crease::adaptive::chord_vertices`]).
     chord: Option<Vec<bool>>,
 }
 
@@ -41,7 +41,7 @@ impl<'m> Jets<'m> {
         Jets {
             limits: LimitStencils::new(mesh),
             cache: HashMap::new(),
-            chord: crate::schemes::catmull_clark::crease::adaptive::chord_vertices(mesh),
+            chord: crate::schemes::sdc::crease::adaptive::chord_vertices(mesh),
         }
     }
 

@@ -2,7 +2,7 @@
 //! corners, semi-sharp ones, the boundary options and holes, as OpenSubdiv's adaptive patches
 //! treat them.
 //!
-//! The levels carry their sharpness as `crate::schemes::catmull_clark::crease::adaptive`
+//! The levels carry their sharpness as `crate::schemes::sdc::crease::adaptive`
 //! describes (shared with Loop). A quad is one exact bi-3 patch when every corner is regular
 //! *with respect to the features*: all its edges and itself of sharpness 0 or infinite, quads
 //! around it, and the sector of the face between infinitely sharp edges (or boundary edges)
@@ -36,9 +36,9 @@ use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::mesh::PolyMesh;
 use crate::schemes::catmull_clark::Rules;
-use crate::schemes::catmull_clark::crease::Rule;
-use crate::schemes::catmull_clark::crease::adaptive::{self, Features, is_inf, sector};
 use crate::schemes::catmull_clark::regular::{Net, bi3_net_cut};
+use crate::schemes::sdc::crease::Rule;
+use crate::schemes::sdc::crease::adaptive::{self, Features, is_inf, sector};
 
 /// The rules of one refinement step of `level` (its features' options, or the defaults).
 pub(super) fn rules(level: &Level) -> Rules<'_> {

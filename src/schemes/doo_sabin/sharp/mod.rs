@@ -44,8 +44,8 @@ use crate::error::{Error, Result};
 use crate::geom::{Point, dist};
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, NONE, PolyMesh, SharpEdges};
-use crate::schemes::catmull_clark::crease::INFINITE;
 use crate::schemes::descriptor::SurfaceOutput;
+use crate::schemes::sdc::crease::INFINITE;
 use std::collections::HashMap;
 
 pub(crate) mod levels;
@@ -329,7 +329,7 @@ pub(crate) struct LevelCreases {
 /// The crease data of one level of the adaptive host (`None` when it has no crease), and the
 /// level's `calm` after a parent level with `parent_calm` (0 when it holds a semi-sharp value).
 pub(crate) fn level_creases(mesh: &PolyMesh, parent_calm: usize) -> (Option<LevelCreases>, usize) {
-    use crate::schemes::catmull_clark::crease::adaptive::calm_after;
+    use crate::schemes::sdc::crease::adaptive::calm_after;
     let Some(ex) = mesh.extras() else {
         return (None, calm_after(parent_calm, &[], &[]));
     };

@@ -5,7 +5,7 @@
 //! edges and vertices.
 //!
 //! The sharpness values, their decay (uniform or Chaikin) and the blend weights are
-//! OpenSubdiv's, read through the shared machinery of [`crate::schemes::catmull_clark::crease`]
+//! OpenSubdiv's, read through the shared machinery of [`crate::schemes::sdc::crease`]
 //! ([`SharpLevel`]): a dual step only maps them onto its own child points. A level's boundary
 //! edges are infinitely sharp there (OpenSubdiv's sharpening), so the boundary rules of
 //! [`crate::schemes::doo_sabin`] are the special case of a sharp edge with one side.
@@ -13,7 +13,7 @@
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::mesh::tags::BoundaryInterpolation;
-use crate::schemes::catmull_clark::crease::{
+use crate::schemes::sdc::crease::{
     INFINITE, Scratch, SharpLevel, VertexMask, VertexPlan, decrement,
 };
 
@@ -239,7 +239,7 @@ impl<'a> Creases<'a> {
         &self,
         v: usize,
         to: u32,
-        scratch: &mut Vec<crate::schemes::catmull_clark::crease::Spoke>,
+        scratch: &mut Vec<crate::schemes::sdc::crease::Spoke>,
     ) -> Option<u32> {
         self.sl.spokes(v as u32, scratch);
         scratch.iter().find(|s| s.other == to).map(|s| s.edge)

@@ -48,8 +48,8 @@ use crate::bezier::{BezierPatch, Side};
 use crate::geom::{Point, axpy};
 use crate::host::adaptive::{NoCap, Tag, caps_waiting, g1_cap_elements};
 use crate::mesh::Element;
-use crate::schemes::catmull_clark::crease::adaptive::CALM;
 use crate::schemes::doo_sabin::surface::DualRules;
+use crate::schemes::sdc::crease::adaptive::CALM;
 use std::collections::{HashMap, HashSet};
 
 /// `p` turned (orientation kept) so that its corner `r` (counter-clockwise from `(0, 0)`:

@@ -19,11 +19,11 @@ use crate::geom::Point;
 use crate::host::adaptive::Info;
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, Extras, PolyMesh, SharpEdges};
-use crate::schemes::catmull_clark::crease::{Scratch, VertexMask, VertexPlan};
 use crate::schemes::doo_sabin::fourier::FaceCorners;
 use crate::schemes::doo_sabin::fourier::LARGE_FACE;
 use crate::schemes::doo_sabin::sharp::step::{Creases, Sector};
 use crate::schemes::doo_sabin::{CHAIKIN, sharp::is_kept_corner};
+use crate::schemes::sdc::crease::{Scratch, VertexMask, VertexPlan};
 use crate::stencil::{Stencil, StencilTable};
 
 /// A point not made yet.

@@ -25,7 +25,7 @@
 //! reproduced exactly) and all polynomials (so the fit reproduces what its fairness functional
 //! annihilates).
 
-use crate::schemes::guided::bern::{bernstein_derivs, binom, gauss_legendre};
+use crate::bezier::bern::{bernstein_derivs, binom, gauss_legendre};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
 

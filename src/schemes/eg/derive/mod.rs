@@ -218,7 +218,7 @@ pub fn derive_rules(n: usize, opts: &EgDeriveOptions) -> Result<EgRules> {
 /// parallelogram (sector 0's shear; the same for every sector up to a rotation, under which
 /// `F_k` is invariant).
 fn plane_gram(n: usize, k: usize) -> DMatrix<f64> {
-    use crate::schemes::guided::bern::{bernstein_derivs, binom, gauss_legendre};
+    use crate::bezier::bern::{bernstein_derivs, binom, gauss_legendre};
     let l = guide::shear(n, 0);
     // (u, v) = L^-1 (x, y): d/dx = a d/du + b d/dv with [a b] the first column of L^-T.
     let det = l[0][0] * l[1][1] - l[1][0] * l[0][1];

@@ -229,7 +229,7 @@ pub fn jet_from_block(block: &[[f64; 3]; 3], u_forward: bool, v_forward: bool) -
 /// Bernstein (degree `d`) to monomial coefficients: `m[p][k]` is the coefficient of `t^p` in
 /// `B_k^d(t)`.
 pub fn bernstein_to_monomial(d: usize) -> DMatrix<f64> {
-    use crate::schemes::guided::bern::binom;
+    use crate::bezier::bern::binom;
     DMatrix::from_fn(d + 1, d + 1, |p, k| {
         if p < k {
             0.0

@@ -55,11 +55,11 @@
 //! tables in their virtual bi-5 form; only the prolongation of the previous ring differs
 //! ([`super::macro_patch`]).
 
-use super::bern::{bernstein_derivs, binom, gauss_legendre, kron, raise, subsegment};
 use super::chi::{CharRing, ChiKind};
 use super::guide::{GuideDegree, GuideSpace};
 use super::jets::{block_entry, corner_block, patch_series};
 use super::macro_patch::MacroKind;
+use crate::bezier::bern::{bernstein_derivs, binom, gauss_legendre, kron, raise, subsegment};
 use crate::error::{Error, Result};
 use nalgebra::DMatrix;
 

@@ -9,10 +9,10 @@ use crate::bezier::convert::cubic_bspline_to_bezier;
 use crate::geom::{self, Point};
 use crate::host::adaptive::{Curves, Tag, edge_curve};
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::adaptive::{chord_vertices, crease_curve};
 use crate::schemes::common::{cos_2pi, sin_2pi};
 use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::limit::tangent_mask;
+use crate::schemes::sdc::crease::adaptive::{chord_vertices, crease_curve};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 

@@ -88,7 +88,7 @@
 //! [`MAX_EXTRA_CAP_LEVELS`](crate::host::adaptive::MAX_EXTRA_CAP_LEVELS) more levels, as do holes whose spoke ends have a sharp feature (a
 //! crease through the one-ring: the holes shrink away from it). A centre whose features are
 //! all semi-sharp is refined until they are spent (up to level
-//! [`SPENT_BY_LEVEL`](crate::schemes::catmull_clark::crease::adaptive::SPENT_BY_LEVEL)), then
+//! [`SPENT_BY_LEVEL`](crate::schemes::sdc::crease::adaptive::SPENT_BY_LEVEL)), then
 //! capped as a plain vertex. A crease vertex gets one open triangle fan per side of two or of
 //! four and more triangles ([`crease_caps`]: Catmull-Clark's construction of
 //! `catmull_clark::surface::g1::crease` on triangles; each side refines as a boundary fan
@@ -110,14 +110,14 @@ use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{CapData, NoCap, Tag, caps_waiting, fan_centre, g1_cap_elements};
 use crate::host::fans::fan_walk;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::catmull_clark::crease::adaptive::{
-    beside_holes, cap_feature, cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge,
-    is_plain_boundary, is_special, present_runs,
-};
 use crate::schemes::common::sin_2pi;
 use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::dart::dart_masks;
 use crate::schemes::loop_subdivision::limit::{across_weights, tangent_rows};
+use crate::schemes::sdc::crease::adaptive::{
+    beside_holes, cap_feature, cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge,
+    is_plain_boundary, is_special, present_runs,
+};
 use std::collections::HashMap;
 
 /// The segment of the hole along the outer edge `from -> to` of a fan triangle, read off the

@@ -1,6 +1,6 @@
 //! Loop patch output with OpenSubdiv's sharp features: infinitely sharp creases and corners,
 //! semi-sharp ones, the boundary options and holes, as OpenSubdiv's adaptive Loop patches treat
-//! them, on the levels of `crate::schemes::catmull_clark::crease::adaptive` (shared with
+//! them, on the levels of `crate::schemes::sdc::crease::adaptive` (shared with
 //! Catmull-Clark).
 //!
 //! # Regular triangles
@@ -49,8 +49,8 @@ use super::Level;
 use crate::bezier::Side;
 use crate::bezier::complex::PatchComplex;
 use crate::mesh::PolyMesh;
-use crate::schemes::catmull_clark::crease::Rule;
-use crate::schemes::catmull_clark::crease::adaptive::{self, Features, sector};
+use crate::schemes::sdc::crease::Rule;
+use crate::schemes::sdc::crease::adaptive::{self, Features, sector};
 use crate::stencil::Stencil;
 
 /// The sector of corner `v = from(h)` when it is regular for the box spline: its rule and its

@@ -5,7 +5,7 @@
 //! - A cell with a corner within one face of a vertex where a *semi-sharp* feature lies (or an
 //!   infinitely sharp crease, while the level is not cut) is refined further (its patches are
 //!   not final until the feature is spent), as Catmull-Clark's host does; the levels go on until every finite sharpness is spent
-//!   ([`crate::schemes::catmull_clark::crease::adaptive::is_last_cap_level_calm`]).
+//!   ([`crate::schemes::sdc::crease::adaptive::is_last_cap_level_calm`]).
 //! - Once a level holds no semi-sharp value, it is cut along its *infinitely sharp* creases
 //!   (at level 0 when the net has no semi-sharp feature): the non-box boundary rules are the
 //!   crease rules ([`crate::schemes::nonbox::sharp`]), so each side is a boundary of the cut
@@ -22,10 +22,10 @@ use crate::error::Result;
 use crate::host::adaptive::Info;
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, PolyMesh};
-use crate::schemes::catmull_clark::crease::INFINITE;
-use crate::schemes::catmull_clark::crease::adaptive::calm_after;
 use crate::schemes::nonbox::FcvNet;
 use crate::schemes::nonbox::sharp::NonBoxCreases;
+use crate::schemes::sdc::crease::INFINITE;
+use crate::schemes::sdc::crease::adaptive::calm_after;
 
 /// What one level's sharp features ask of the host.
 pub(super) struct LevelSharp {

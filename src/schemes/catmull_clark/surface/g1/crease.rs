@@ -37,11 +37,11 @@ use crate::host::adaptive::{
     CapData, NoCap, QuadSector, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
 };
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
-use crate::schemes::catmull_clark::crease::adaptive::{
+use crate::schemes::catmull_clark::dart::dart_masks;
+use crate::schemes::sdc::crease::adaptive::{
     cone_point, corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge,
     is_plain_boundary,
 };
-use crate::schemes::catmull_clark::dart::dart_masks;
 use std::collections::HashMap;
 
 /// The caps of the crease vertex `x` whose marked cells are `faces`: `Ok(None)` when `x` is

@@ -14,8 +14,8 @@ use super::super::Level;
 use super::segment_across;
 use crate::bezier::g1::Hole;
 use crate::host::adaptive::{CapData, NoCap, Tag, quad_hole_segments, quad_sectors_around};
-use crate::schemes::catmull_clark::crease::adaptive::{beside_holes, present_runs};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
+use crate::schemes::sdc::crease::adaptive::{beside_holes, present_runs};
 use std::collections::HashMap;
 
 /// The caps of the interior vertex `x` whose marked cells are `faces`: `Ok(None)` when no face

@@ -11,7 +11,7 @@
 
 use crate::mesh::tags::{BoundaryInterpolation, FvarInterpolation, SubdOptions};
 use crate::mesh::{MeshView, NONE, PolyMesh};
-use crate::schemes::catmull_clark::crease::{Scratch, SharpLevel, decrement};
+use crate::schemes::sdc::crease::{Scratch, SharpLevel, decrement};
 
 /// Infinite sharpness (OpenSubdiv's `SHARPNESS_INFINITE`).
 const INFINITE: f32 = 10.0;

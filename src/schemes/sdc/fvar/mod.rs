@@ -26,7 +26,7 @@ mod tests;
 
 use crate::mesh::tags::{FvarInterpolation, SubdOptions};
 use crate::mesh::{FaceVarying, PolyMesh};
-use crate::schemes::catmull_clark::crease::CREASE_VERTEX;
+use crate::schemes::sdc::crease::CREASE_VERTEX;
 use crate::stencil::StencilTable;
 use level::{FvLevel, Tag};
 

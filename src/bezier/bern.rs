@@ -1,5 +1,5 @@
-//! Univariate Bernstein-Bezier tools as matrices, for the linear maps of guided subdivision:
-//! derivative values, Taylor coefficients at a point, restriction to a sub-interval (also an
+//! Univariate Bernstein-Bezier tools as matrices, for the linear maps of guided subdivision and
+//! EG's derivation: derivative values, Taylor coefficients at a point, restriction to a sub-interval (also an
 //! extrapolating one, by blossoming), degree raising, power-to-Bernstein conversion at a corner,
 //! and Gauss-Legendre quadrature. Tensor-product maps are Kronecker products of these.
 
