@@ -75,7 +75,12 @@ fn lower_degree_guides_have_the_paper_counts() {
 
 use fairsub::analysis::{self, catmull_clark_lambda, certify, continuity, curvature, local};
 use fairsub::gallery::{self, CnetShape};
-use fairsub::schemes::guided::descriptor::options_of as parse_scheme;
+use fairsub::schemes::guided::descriptor::options_of;
+
+/// The guided options of a scheme name (`None`: not a guided scheme).
+fn parse_scheme(name: &str) -> Option<fairsub::schemes::guided::rings::GuidedOptions> {
+    options_of(&fairsub::schemes::registry().lookup(name).ok()?)
+}
 use fairsub::schemes::guided::surface::{GuidedComplexOptions, guided_complex};
 use fairsub::surface::Fallback;
 

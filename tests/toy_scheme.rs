@@ -7,9 +7,9 @@ use fairsub::bezier::BezierPatch;
 use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::descriptor::{
-    About, Capabilities, ComplexOptions, Descriptor, LocalRules, PatchRules, SchemeId, Spec,
-    SurfaceOutput,
+    Capabilities, ComplexOptions, Descriptor, LocalRules, PatchRules, SchemeId, Spec, SurfaceOutput,
 };
+use fairsub::schemes::entry::About;
 use fairsub::schemes::local::LocalMatrix;
 use fairsub::schemes::registry::{Entry, register};
 use fairsub::schemes::{CatmullClark, Refinement, Scheme};

@@ -141,7 +141,7 @@ pub fn run(a: Args) -> Result<()> {
         None => {
             // Catmull-Clark refines each extraordinary vertex as far as its points need,
             // estimated from their distances to the quads' corners (and checked)
-            let first = if spec.id == crate::schemes::registry::ids::CATMULL_CLARK {
+            let first = if spec.id == crate::schemes::options::ids::CATMULL_CLARK {
                 quad_corner_targets(&mesh, &pts)
             } else {
                 first_targets()

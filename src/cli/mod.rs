@@ -34,7 +34,7 @@ pub use subdivide::Computed;
 
 use crate::error::Result;
 use crate::io::LoadedMesh;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::RefCell;

@@ -13,7 +13,7 @@ use crate::render::{
     self, Mode, Overlays, RenderOptions, Scene, ShadeOptions, View, camera, stats,
 };
 use crate::schemes::Spec;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 

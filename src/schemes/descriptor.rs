@@ -1,8 +1,8 @@
 //! What the rest of fairsub needs to know about a scheme, in one trait per scheme.
 //!
-//! A scheme is named by a [`SchemeId`] (its canonical command-line name, spelled once, in the
-//! [registry](mod@super::registry)) and configured by typed [`Params`]; the two together are a
-//! [`Spec`]. Its registry row carries the catalogue text ([`About`]); its [`Descriptor`] says
+//! A scheme is named by a [`SchemeId`] (its canonical command-line name, spelled in
+//! [`super::options::ids`] and its family's `entry.rs`) and configured by typed [`Params`]; the two together are a
+//! [`Spec`]. Its registry row carries the catalogue text ([`super::entry::About`]); its [`Descriptor`] says
 //! which typed options it takes ([`ParamKind`]) and hands out its rules:
 //!
 //! * mesh rules ([`super::Scheme`]: whole-net refinement, limit masks) for `--levels`;
@@ -18,119 +18,14 @@ use super::circulant::{SparseLocal, choose};
 use super::local::{LocalMatrix, LocalOperator};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
-use crate::geom::Point;
 use crate::mesh::PolyMesh;
 
 pub use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use serde::Serialize;
 
-/// A scheme's identity: its canonical command-line name. The built-in ids are the constants of
-/// [`super::registry::ids`]; a scheme defined outside fairsub makes its own with
-/// [`SchemeId::new`] and adds a registry row.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct SchemeId(&'static str);
-
-impl SchemeId {
-    /// The id of the scheme with this canonical name.
-    pub const fn new(name: &'static str) -> SchemeId {
-        SchemeId(name)
-    }
-
-    /// The canonical command-line name.
-    pub const fn name(self) -> &'static str {
-        self.0
-    }
-}
-
-impl std::fmt::Display for SchemeId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.0)
-    }
-}
-
-impl Serialize for SchemeId {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.serialize_str(self.0)
-    }
-}
-
-/// The typed options that some schemes take (the front ends check that an option given applies
-/// to the scheme chosen).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ParamKind {
-    /// `--fallback`: what happens at valences without rules.
-    Fallback,
-    /// `--lambda` / the `-half` suffix: the contraction of guided subdivision.
-    Contraction,
-    /// `--split-ratio`: adjustable TPS's `e`.
-    SplitRatio,
-    /// `--alpha-rule`: how adjustable TPS's alphas are chosen.
-    AlphaRule,
-    /// `--pole FACE:X,Y,Z`: poles of polar bi-2 caps.
-    Poles,
-    /// `--q-file`: user-given quadratic expansions of QAS+.
-    QFile,
-    /// `--fcv-scale`, `--fcv-file`: the face control vertices of the non-box schemes.
-    Fcv,
-    /// `--rules printed|derived` (or the `-derived` name suffix): the paper's printed rules or
-    /// fairsub's derived ones where both exist (EG, QAS+).
-    Rules,
-    /// OpenSubdiv's sharp features and options: `--boundary`, `--crease-method`, `--fvar`,
-    /// `--creases`, the net's crease, corner and hole tags, non-manifold nets.
-    SharpFeatures,
-    /// `--smooth-triangles`: OpenSubdiv's smooth triangle option (Catmull-Clark).
-    SmoothTriangles,
-    /// `--boundary` alone (and the net's `interpolateboundary` tag): the boundary modes of the
-    /// dual schemes (`crate::schemes::doo_sabin`), for schemes without the rest of
-    /// [`ParamKind::SharpFeatures`].
-    BoundaryMode,
-    /// The net's crease and corner tags (OpenSubdiv's `t crease`, `t corner`), `--creases`
-    /// and `--crease-method`, for schemes that refine them with a construction of their own
-    /// (the bi-2 family, non-box: fairsub's crease constructions) without the rest of
-    /// [`ParamKind::SharpFeatures`]; the options are put on the net.
-    Creases,
-}
-
-impl ParamKind {
-    /// The command-line option that sets it.
-    pub fn option(self) -> &'static str {
-        match self {
-            ParamKind::Fallback => "--fallback",
-            ParamKind::Contraction => "--lambda",
-            ParamKind::SplitRatio => "--split-ratio",
-            ParamKind::AlphaRule => "--alpha-rule",
-            ParamKind::Poles => "--pole",
-            ParamKind::QFile => "--q-file",
-            ParamKind::Fcv => "--fcv-scale / --fcv-file",
-            ParamKind::Rules => "--rules",
-            ParamKind::SharpFeatures => "--boundary / --crease-method / --fvar / --creases",
-            ParamKind::SmoothTriangles => "--smooth-triangles",
-            ParamKind::BoundaryMode => "--boundary",
-            ParamKind::Creases => "--creases / --crease-method",
-        }
-    }
-}
-
-/// How adjustable TPS chooses rule (18)'s alphas.
-pub use super::bi2::ternary::AlphaRule;
-/// The characteristic map a guided scheme samples through (`-half` suffix, `--lambda 0.5`).
-pub use super::guided::chi::ChiKind;
-/// The degree of a guided scheme's guide (`-g4`, `-g3` name suffixes).
-pub use super::guided::guide::GuideDegree;
-/// A user-given quadratic expansion of QAS+ (`--q-file`).
-pub use super::qas::QSpec;
-
-/// Which rules a scheme with printed and derived rules uses where the paper prints them
-/// (`--rules`); elsewhere it uses its derived rules either way.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum RulesChoice {
-    /// The paper's printed rules where they exist (the default).
-    #[default]
-    Printed,
-    /// fairsub's derived rules also where printed ones exist (to compare the two).
-    Derived,
-}
+pub use super::options::{
+    AlphaRule, ChiKind, GuideDegree, ParamKind, Params, QSpec, RulesChoice, SchemeId, Spec,
+};
 
 /// Where the rules a scheme uses at one valence come from ([`Descriptor::valence_rules`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -157,77 +52,6 @@ pub struct ValenceRules {
     pub origin: RulesOrigin,
     /// The rules in words (e.g. `eg (derived rules, n = 7)`, `Catmull-Clark rings and fill`).
     pub rules: String,
-}
-
-/// Typed parameters of a scheme. Each field applies to the schemes whose descriptor lists its
-/// [`ParamKind`]; `None` / empty means the scheme's default.
-#[derive(Debug, Clone, Default)]
-pub struct Params {
-    /// Valences without rules.
-    pub fallback: Fallback,
-    /// Guided: degree of the guide.
-    pub guide: Option<GuideDegree>,
-    /// Guided: the characteristic map (and so the contraction).
-    pub chi: Option<ChiKind>,
-    /// Adjustable TPS: the split ratio `e`.
-    pub split_ratio: Option<f64>,
-    /// Adjustable TPS: the alpha rule.
-    pub alpha_rule: Option<AlphaRule>,
-    /// Polar bi-2: poles given by the user (input face, position).
-    pub poles: Vec<(usize, Point)>,
-    /// QAS+: quadratic expansions given by the user, per input vertex.
-    pub q_overrides: std::collections::BTreeMap<u32, QSpec>,
-    /// EG, QAS+: printed or derived rules where both exist.
-    pub rules: RulesChoice,
-    /// Catmull-Clark, Loop: OpenSubdiv's options (boundary interpolation, crease method,
-    /// triangle subdivision, face-varying interpolation); unset ones fall to the net's tags,
-    /// then to the defaults.
-    pub subd: crate::mesh::tags::SubdOptions,
-    /// Every scheme: whether a net the scheme's rules do not take is prepared by the smallest
-    /// documented step (`--prepare`, [`super::prepare`]).
-    pub prepare: super::prepare::Mode,
-}
-
-/// A scheme with its parameters: what a front end passes down.
-#[derive(Debug, Clone)]
-pub struct Spec {
-    /// The scheme.
-    pub id: SchemeId,
-    /// Its parameters.
-    pub params: Params,
-}
-
-impl Spec {
-    /// The scheme with default parameters.
-    pub fn new(id: SchemeId) -> Spec {
-        Spec {
-            id,
-            params: Params::default(),
-        }
-    }
-
-    /// The canonical name.
-    pub fn name(&self) -> &'static str {
-        self.id.name()
-    }
-}
-
-/// The catalogue row of a scheme (`fairsub schemes`): what it takes, what it gives, what its
-/// paper proves, where it applies, and how complete fairsub's implementation is.
-#[derive(Debug, Clone, Copy)]
-pub struct About {
-    /// Family and paper.
-    pub family: &'static str,
-    /// Input nets it accepts.
-    pub input: &'static str,
-    /// Patches it outputs (degree and layout), if it has exact patch output.
-    pub patches: &'static str,
-    /// Smoothness claimed by its paper (or the classical result).
-    pub smoothness: &'static str,
-    /// Valences / element sizes with rules.
-    pub valences: &'static str,
-    /// Implementation status.
-    pub status: &'static str,
 }
 
 /// What a scheme offers, known without building anything.
@@ -466,7 +290,7 @@ pub fn matrix_and_rows(
     Ok(Some(Box::new(MatrixOnly(matrix, Some(rows)))))
 }
 
-/// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`About`],
+/// Everything the rest of fairsub needs to know about one scheme (its catalogue text, [`super::entry::About`],
 /// is in its registry row).
 pub trait Descriptor: Sync + Send {
     /// What it offers (default: exact patches only).
@@ -536,8 +360,8 @@ pub trait Descriptor: Sync + Send {
     fn preparation(
         &self,
         spec: &Spec,
-        purpose: super::prepare::Purpose,
-    ) -> Vec<super::prepare::Requirement> {
+        purpose: super::needs::Purpose,
+    ) -> Vec<super::needs::Requirement> {
         let _ = (spec, purpose);
         Vec::new()
     }

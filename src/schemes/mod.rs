@@ -1,27 +1,39 @@
 //! Subdivision schemes, one module per family, each written once as stencils.
 //!
 //! A scheme that refines whole control nets implements [`Scheme`]: one refinement step returns
-//! the child net together with the [`StencilTable`] that computes every child point from the
+//! the child net together with the [`StencilTable`](crate::stencil::StencilTable) that computes every child point from the
 //! parent points. Applying a scheme to positions, composing several levels, building the local
 //! subdivision matrix for analysis or re-applying the step to moved points all reuse that one
 //! table, so every rule exists exactly once.
+//!
+//! The folders, from the bottom up: [`options`] (scheme ids and typed options; imports no
+//! scheme), [`sdc`] (OpenSubdiv's rules shared by several schemes: creases, corners, darts,
+//! face-varying data), the shared vocabulary ([`descriptor`], [`entry`], [`local`],
+//! [`circulant`], [`growth`], the [`Scheme`] trait), the scheme families (one folder each, with
+//! its rules, surfaces, analysis, descriptor and registry rows), the preparation stage
+//! ([`prepare`], which applies families' steps), and on top the [`registry`], which lists the
+//! families' rows. Arrows only point down: no family imports the registry or the preparation
+//! stage's steps, and there is no import circle between these folders (`tests/architecture.rs`).
 
 pub mod bi2;
 pub mod butterfly;
 pub mod catmull_clark;
 pub mod circulant;
-
 pub mod descriptor;
 pub mod doo_sabin;
 pub mod eg;
+pub mod entry;
 pub mod growth;
 pub mod guided;
 pub mod local;
 pub mod loop_subdivision;
+pub mod needs;
 pub mod nonbox;
+pub mod options;
 pub mod prepare;
 pub mod qas;
 pub mod registry;
+mod scheme;
 pub mod sdc;
 pub mod sqrt3;
 
@@ -32,270 +44,8 @@ pub use doo_sabin::{DooSabin, DooSabinCc};
 pub use loop_subdivision::Loop;
 pub use nonbox::{NonBox, NonBox4Dir};
 
-use crate::error::Result;
-use crate::mesh::PolyMesh;
-use crate::stencil::StencilTable;
-
-/// The result of one refinement step.
-#[derive(Debug, Clone)]
-pub struct Refinement {
-    /// The child net, its positions already computed by `stencils`.
-    pub mesh: PolyMesh,
-    /// Row `i` computes child vertex `i` from the parent's vertices.
-    pub stencils: StencilTable,
-}
-
-/// A subdivision scheme acting on whole control nets.
-pub trait Scheme: Sync {
-    /// The scheme's name as used on the command line (`catmull-clark`, `loop`, ...).
-    fn name(&self) -> &'static str;
-
-    /// One refinement step of the whole net. Errors name the element the scheme cannot handle
-    /// (for example a non-triangle face for Loop).
-    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement>;
-
-    /// `levels` refinement steps for output: the refined net only. Schemes with a direct kernel
-    /// override it to skip the stencil tables, drop each parent level as soon as its child
-    /// exists and keep the peak memory close to the size of the result; the default repeats
-    /// [`Scheme::refine`]. `progress(level)` is called after each step. Schemes whose steps
-    /// depend on more than the net (the knot widths of adjustable TPS, the DS^CC pre-processing
-    /// steps of PGS) override it too.
-    fn refine_uniform(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<PolyMesh> {
-        let mut m: Option<PolyMesh> = None;
-        for l in 0..levels {
-            m = Some(self.refine(m.as_ref().unwrap_or(mesh))?.mesh);
-            progress(l + 1);
-        }
-        Ok(m.unwrap_or_else(|| mesh.clone()))
-    }
-
-    /// `levels` steps as [`Scheme::refine_uniform`] takes them, each with its stencil table:
-    /// `step(parent, refinement)` sees every step (row `i` of its table gives child vertex `i`
-    /// from the parent's) and may attach data to the child, as the per-vertex and face-varying
-    /// data are attached ([`refine_levels`]). The default repeats [`Scheme::refine`]; schemes
-    /// whose `refine_uniform` carries state from step to step override it with the same state.
-    fn refine_steps(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
-    ) -> Result<PolyMesh> {
-        let mut m: Option<PolyMesh> = None;
-        for _ in 0..levels {
-            let parent = m.as_ref().unwrap_or(mesh);
-            let mut r = self.refine(parent)?;
-            step(parent, &mut r)?;
-            m = Some(r.mesh);
-        }
-        Ok(m.unwrap_or_else(|| mesh.clone()))
-    }
-
-    /// The size of the child of a net of size `s` after one step, with the entries of the
-    /// step's stencil table: what a front end checks against its memory budget before
-    /// refining (see [`growth`]). The default is Catmull-Clark's primal quad split
-    /// ([`growth::primal_quad`]); schemes of other topologies override it.
-    fn step_size(&self, s: &growth::NetSize) -> growth::NetSize {
-        growth::primal_quad(s)
-    }
-
-    /// How the scheme's nets carry face control vertices (the non-box schemes): their input is
-    /// read, and their refined nets and limit meshes are written, with the FCVs.
-    fn fcv_layout(&self) -> FcvLayout {
-        FcvLayout::None
-    }
-
-    /// Notes for the user on how the scheme reads `mesh` (where FCVs come from, reconstructed
-    /// boundary rules, ...).
-    fn input_notes(&self, mesh: &PolyMesh) -> Vec<String> {
-        let _ = mesh;
-        Vec::new()
-    }
-
-    /// The limit surface after `levels` steps as a mesh with exact normals per vertex, for
-    /// schemes whose limit is not the refined net's own layout (non-box: the refined quads
-    /// split into triangles around their FCVs); `None` where the limit positions of the refined
-    /// net are the limit mesh.
-    fn limit_mesh_with_normals(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-    ) -> Option<Result<(PolyMesh, Vec<crate::geom::Point>)>> {
-        let _ = (mesh, levels);
-        None
-    }
-
-    /// How the scheme refines face-varying data (texture coordinates), if it does: Catmull-Clark
-    /// and Loop with OpenSubdiv's face-varying rules ([`sdc::fvar`]); `None` drops the data.
-    fn face_varying(&self) -> Option<sdc::fvar::FvarRules> {
-        None
-    }
-
-    /// Stencils of the limit positions of the net's vertices (row `v` for vertex `v`), where the
-    /// scheme has closed-form limit masks.
-    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
-        let _ = mesh;
-        Err(crate::error::Error::Unsupported(format!(
-            "scheme {} has no limit-position masks",
-            self.name()
-        )))
-    }
-}
-
-/// How a scheme's nets carry face control vertices (FCVs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FcvLayout {
-    /// No FCVs.
-    None,
-    /// Quad nets with one FCV per face, stored after the vertices (non-box).
-    Quads,
-    /// Triangle nets whose type-2 vertices are the FCVs (four-directional non-box).
-    Triangles,
-}
-
-/// Applies `levels` refinement steps ([`Scheme::refine_uniform`]), calling `progress(level)`
-/// after each. A net with per-vertex data ([`crate::mesh::VertexData`]) or face-varying data
-/// that the scheme refines is refined step by step ([`Scheme::refine_steps`]): each step's
-/// stencil table, the one that made the child's positions, is applied to the per-vertex data
-/// ([`crate::mesh::VertexData::through`]) and drives the face-varying rules ([`sdc::fvar::refine`]).
-/// Plain nets keep the scheme's direct kernel.
-pub fn refine_levels(
-    scheme: &dyn Scheme,
-    mesh: &PolyMesh,
-    levels: usize,
-    mut progress: impl FnMut(usize),
-) -> Result<PolyMesh> {
-    let ex = mesh.extras();
-    let fv_rules = scheme.face_varying();
-    let uv = ex.is_some_and(|e| e.uv.is_some()) && fv_rules.is_some();
-    let data = ex.is_some_and(|e| e.vertex_data.is_some());
-    if !uv && !data {
-        return scheme.refine_uniform(mesh, levels, &mut progress);
-    }
-    let mut level = 0;
-    scheme.refine_steps(mesh, levels, &mut |parent, r| {
-        let pex = parent.extras();
-        let refined_uv = match (pex.and_then(|e| e.uv.as_ref()), &fv_rules) {
-            (Some(uv), Some(rules)) => Some(sdc::fvar::refine(
-                parent,
-                uv,
-                level == 0,
-                &r.mesh,
-                &r.stencils,
-                rules,
-            )),
-            _ => None,
-        };
-        let refined_data = pex
-            .and_then(|e| e.vertex_data.as_ref())
-            .map(|d| d.through(&r.stencils));
-        if refined_uv.is_some() || refined_data.is_some() {
-            let mut cex = r.mesh.take_extras().unwrap_or_default();
-            cex.uv = refined_uv;
-            cex.vertex_data = refined_data;
-            r.mesh.set_extras(Some(cex));
-        }
-        level += 1;
-        progress(level);
-        Ok(())
-    })
-}
-
-/// The stencil table from the control points of `mesh` to the points of its `levels`-th uniform
-/// refinement (each step's table composed with the previous ones), with that refined net.
-///
-/// This is the precomputed form for animation: the topology stays, the control points move, and
-/// [`StencilTable::apply_into`] maps new control positions (or any per-point data) straight to
-/// the refined level, in parallel over rows and without allocating. `levels = 0` gives the
-/// identity.
-///
-/// The steps are those of [`Scheme::refine_steps`], so for schemes whose
-/// [`Scheme::refine_uniform`] carries state from step to step (the knot widths of adjustable
-/// TPS, the DS^CC pre-processing of `pgs-dscc`, the pole conversion of polar nets) the table
-/// follows that state, as refinement does.
-///
-/// # Errors
-/// Whatever [`Scheme::refine`] reports (for example a face the scheme cannot handle).
-pub fn level_stencils(
-    scheme: &dyn Scheme,
-    mesh: &PolyMesh,
-    levels: usize,
-) -> Result<(PolyMesh, StencilTable)> {
-    let mut table: Option<StencilTable> = None;
-    let fine = scheme.refine_steps(mesh, levels, &mut |_, r| {
-        let step = std::mem::replace(&mut r.stencils, StencilTable::new(0));
-        table = Some(match table.take() {
-            None => step,
-            Some(t) => step.compose(&t),
-        });
-        Ok(())
-    })?;
-    let table = table.unwrap_or_else(|| StencilTable::identity(mesh.num_vertices()));
-    Ok((fine, table))
-}
-
-/// Builds the child mesh from topology and stencils: positions are the stencils applied to the
-/// parent positions.
-pub(crate) fn finish_refinement(
-    parent: &PolyMesh,
-    stencils: StencilTable,
-    face_start: Vec<u32>,
-    corners: Vec<u32>,
-) -> Result<Refinement> {
-    let positions = stencils.apply(parent.positions());
-    let mesh = PolyMesh::from_refinement(positions, face_start, corners)?;
-    Ok(Refinement { mesh, stencils })
-}
-
-/// What `fairsub schemes` tells about a scheme.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct SchemeInfo {
-    /// Command-line name.
-    pub name: &'static str,
-    /// Family and paper.
-    pub family: &'static str,
-    /// Input nets it accepts.
-    pub input: &'static str,
-    /// Patches it outputs (degree and layout), if it has exact patch output.
-    pub patches: &'static str,
-    /// Smoothness claimed by its paper (or the classical result).
-    pub smoothness: &'static str,
-    /// Valences / element sizes with rules.
-    pub valences: &'static str,
-    /// Whether refinement (`--levels`) is available.
-    pub refine: bool,
-    /// Whether exact patch output (`--rings`) is available.
-    pub rings: bool,
-    /// Implementation status.
-    pub status: &'static str,
-}
-
-/// Every scheme fairsub knows, with its properties (the registry's catalogue).
-pub fn catalog() -> Vec<SchemeInfo> {
-    registry::registry().catalog()
-}
-
-/// The refinement scheme of a command-line name (default parameters); the error lists the
-/// names available for refinement.
-pub fn by_name(name: &str) -> Result<Box<dyn Scheme>> {
-    let r = registry::registry();
-    let spec = r.lookup_for(name, " for refinement", |c| c.refine)?;
-    r.descriptor(spec.id)
-        .mesh_rules(&spec)?
-        .ok_or_else(|| unreachable_rules(&spec))
-}
-
-/// The error of a descriptor that claims a capability it does not deliver.
-fn unreachable_rules(spec: &descriptor::Spec) -> crate::error::Error {
-    crate::error::Error::InvalidArgument(format!(
-        "scheme '{}' has no rules for this operation",
-        spec.name()
-    ))
-}
-
-pub use descriptor::{Descriptor, SchemeId, Spec};
-pub use registry::{Registry, registry};
+pub use descriptor::Descriptor;
+pub use options::{SchemeId, Spec};
+pub use registry::{Registry, SchemeInfo, by_name, catalog, registry};
+pub(crate) use scheme::finish_refinement;
+pub use scheme::{FcvLayout, Refinement, Scheme, level_stencils, refine_levels};

@@ -32,7 +32,7 @@ fn write(path: &Path, m: &SceneMesh, f: SceneFormat) -> Result<()> {
 
 /// The USD scheme token of a scheme whose nets USD subdivides itself (OpenSubdiv's schemes).
 fn usd_scheme(spec: &Spec) -> Option<&'static str> {
-    use crate::schemes::registry::ids;
+    use crate::schemes::options::ids;
     if spec.id == ids::CATMULL_CLARK {
         Some("catmullClark")
     } else if spec.id == ids::LOOP {

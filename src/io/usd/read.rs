@@ -525,7 +525,7 @@ fn scheme_note(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<()> {
     match s.as_deref() {
         None | Some("catmullClark") => {}
         // USD's token for Loop's scheme is the registry's name
-        Some(s) if s == crate::schemes::registry::ids::LOOP.name() => w.push(format!(
+        Some(s) if s == crate::schemes::options::ids::LOOP.name() => w.push(format!(
             "{} asks for subdivisionScheme {s}: give --scheme {s} to refine it as the file says",
             prim.path()
         )),

@@ -13,7 +13,7 @@ use crate::schemes::descriptor::{
     SurfaceOutput, patch_fn,
 };
 use crate::schemes::local::LocalMatrix;
-use crate::schemes::prepare::{Need, NetStep, Purpose, Requirement, Step};
+use crate::schemes::needs::{Need, NetStep, Purpose, Requirement, Step};
 
 /// The default split ratio of adjustable TPS (the paper's figures use 0.2).
 pub const DEFAULT_E: f64 = 0.2;
@@ -155,7 +155,7 @@ impl Descriptor for Bi2Descriptor {
                     // the mixed and polar nets give such boundaries to PGS's construction
                     // (super::surface's elements) when preparing
                     let separates = matches!(kind, Bi2Kind::Mixed | Bi2Kind::Polar)
-                        && mode == crate::schemes::prepare::Mode::Auto;
+                        && mode == crate::schemes::options::PrepareMode::Auto;
                     if !separates {
                         crate::schemes::doo_sabin::sharp::refuse_boundary_modes(mesh, name)?;
                     }

@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::schemes::Scheme;
 use crate::schemes::circulant::{SparseLocal, choose};
 use crate::schemes::local::{FourierBlock, LocalMatrix, LocalOperator};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::Stencil;
 use nalgebra::DMatrix;
 

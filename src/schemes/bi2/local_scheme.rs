@@ -14,7 +14,7 @@ use crate::schemes::bi2::ternary::{
     uniform_widths,
 };
 use crate::schemes::bi2::{Pgs, bi2_patch_stencils, blossom_weights};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::{Stencil, StencilTable};
 
 /// The kind of an element's local scheme.

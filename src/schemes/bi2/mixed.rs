@@ -23,7 +23,7 @@ use super::{Pgs, PolarBi2, Tps};
 use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::StencilTable;
 
@@ -144,7 +144,7 @@ impl Scheme for Bi2Mixed {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::BI2_MIXED.name()
+        crate::schemes::options::ids::BI2_MIXED.name()
     }
 
     /// One step of the net's single kind of scheme (PGS when there is no element); an error

@@ -24,6 +24,7 @@
 //! neighbours' pieces have widths `wl` (left) and `wr` (right).
 
 pub mod descriptor;
+pub mod entry;
 pub mod local;
 pub mod local_scheme;
 pub mod mixed;

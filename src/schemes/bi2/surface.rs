@@ -62,7 +62,7 @@ use crate::schemes::bi2::Pgs;
 use crate::schemes::bi2::pgs::{PgsOptions, ds_net_index};
 use crate::schemes::bi2::ternary::{TernaryRules, Widths, ternary_step, uniform_widths};
 use crate::schemes::doo_sabin::surface as ds;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::Stencil;
 
 use super::local_scheme::{LocalScheme, qnet_index};

@@ -26,7 +26,7 @@ impl Descriptor for ButterflyDescriptor {
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
         crate::schemes::loop_subdivision::require_triangles(
             mesh,
-            &format!("{} needs", crate::schemes::registry::ids::BUTTERFLY),
+            &format!("{} needs", crate::schemes::options::ids::BUTTERFLY),
         )
     }
 

@@ -15,7 +15,7 @@ use crate::mesh::tri_split::one_ring_rows;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// The matrix on the one-ring of valence `n` (`n + 1` points: centre, then its neighbours
 /// counter-clockwise).

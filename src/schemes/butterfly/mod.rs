@@ -27,11 +27,12 @@
 //! paper's own boundary stencils.
 
 pub mod descriptor;
+pub mod entry;
 pub mod local;
 pub use descriptor::DESCRIPTOR;
 
 use super::common::{RowBuf, cos_2pi};
-use super::registry::ids;
+use super::options::ids;
 use super::{Refinement, Scheme, finish_refinement, growth};
 use crate::error::Result;
 use crate::mesh::PolyMesh;

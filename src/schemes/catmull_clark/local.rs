@@ -10,7 +10,7 @@ use crate::mesh::nets::{self, CnetShape};
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// Catmull-Clark on the c-net of valence `n` (`6n + 1` points: centre, then 6 per sector at
 /// chart points `(i, j)`, `i = 1, 2`, `j = 0, 1, 2`).

@@ -36,6 +36,7 @@ mod child;
 use crate::schemes::sdc::crease;
 pub mod dart;
 pub mod descriptor;
+pub mod entry;
 mod limit;
 pub mod local;
 pub mod regular;
@@ -342,12 +343,12 @@ impl Rules<'_> {
 /// Fails when a child net would not fit fairsub's 32-bit indices.
 fn check_sizes(mesh: &PolyMesh) -> Result<()> {
     check_child_size(
-        crate::schemes::registry::ids::CATMULL_CLARK.name(),
+        crate::schemes::options::ids::CATMULL_CLARK.name(),
         mesh.num_vertices() + mesh.num_edges() + mesh.num_faces(),
     )?;
     // Child half-edges (4 per parent corner) are indexed by u32 below NONE.
     check_child_size(
-        crate::schemes::registry::ids::CATMULL_CLARK.name(),
+        crate::schemes::options::ids::CATMULL_CLARK.name(),
         4 * mesh.num_halfedges() + 1,
     )
 }
@@ -575,7 +576,7 @@ impl super::common::OneShot for CatmullClark {
 
 impl Scheme for Configured {
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::CATMULL_CLARK.name()
+        crate::schemes::options::ids::CATMULL_CLARK.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

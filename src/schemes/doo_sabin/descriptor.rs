@@ -7,7 +7,7 @@ use crate::schemes::descriptor::{
     Capabilities, Descriptor, LocalRules, ParamKind, PatchRules, Spec, SurfaceOutput,
     matrix_and_rows, patch_fn,
 };
-use crate::schemes::prepare::{Need, NetStep, Purpose, Requirement, Step};
+use crate::schemes::needs::{Need, NetStep, Purpose, Requirement, Step};
 
 /// Doo-Sabin (`cc = false`) or DS^CC (`cc = true`).
 #[derive(Debug)]

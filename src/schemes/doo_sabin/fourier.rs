@@ -129,7 +129,7 @@ pub fn refine_cc_net(mesh: &PolyMesh) -> Result<PolyMesh> {
     let mut rules = super::RuleCache::new(super::DooSabinCc::weights);
     refine_net_with(
         mesh,
-        crate::schemes::registry::ids::DOO_SABIN_CC.name(),
+        crate::schemes::options::ids::DOO_SABIN_CC.name(),
         |m, h, row| super::add_corner_point(m, &mut rules, h, 1.0, row),
         doo_sabin_cc,
     )

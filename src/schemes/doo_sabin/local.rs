@@ -7,7 +7,7 @@ use crate::mesh::nets;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// Doo-Sabin's `n x n` block of an `n`-gon facet: the child points of the facet's corners in
 /// terms of its corners (the facet of a prism cap).

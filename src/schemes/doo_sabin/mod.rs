@@ -102,6 +102,7 @@
 //! corner, the corner.
 
 pub mod descriptor;
+pub mod entry;
 pub mod fourier;
 pub mod local;
 pub mod sharp;
@@ -166,7 +167,7 @@ impl Scheme for DooSabin {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::DOO_SABIN.name()
+        crate::schemes::options::ids::DOO_SABIN.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
@@ -185,7 +186,7 @@ impl Scheme for DooSabinCc {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::DOO_SABIN_CC.name()
+        crate::schemes::options::ids::DOO_SABIN_CC.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
@@ -493,8 +494,8 @@ pub(crate) fn refuse_reaching_rule_at_trimmed_boundary(mesh: &PolyMesh, name: &s
              use {} or {}, whose rules read the face alone, or --rings, whose patches take \
              none here)",
             mesh.face_size(f),
-            crate::schemes::registry::ids::DOO_SABIN,
-            crate::schemes::registry::ids::DOO_SABIN_CC
+            crate::schemes::options::ids::DOO_SABIN,
+            crate::schemes::options::ids::DOO_SABIN_CC
         ))),
         None => Ok(()),
     }

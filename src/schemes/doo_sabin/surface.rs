@@ -110,7 +110,7 @@ use crate::host::ComplexOptions;
 use crate::host::adaptive::{self, AdaptiveRules, Cells, Info, Sink, Tag, input_vertex_info};
 use crate::mesh::tags::BoundaryInterpolation;
 use crate::mesh::{Element, PolyMesh};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::schemes::sdc::crease::adaptive::{CALM, SPENT_BY_LEVEL, is_last_cap_level_calm};
 use crate::stencil::Stencil;
 use std::collections::HashMap;

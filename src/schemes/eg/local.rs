@@ -6,7 +6,7 @@ use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::geom::Point;
 use crate::schemes::local::{LocalMatrix, check_valence, dense};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// EG subdivision's matrix `A_n` of the printed rules on the local vector `(c0, d-net)`
 /// (`12 n + 1` points).

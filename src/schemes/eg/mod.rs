@@ -33,6 +33,7 @@
 
 pub mod derive;
 pub mod descriptor;
+pub mod entry;
 pub mod facts;
 pub mod local;
 pub mod select;

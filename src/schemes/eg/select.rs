@@ -14,7 +14,7 @@ use super::derive::{self, MAX_VALENCE};
 use super::{EgRules, tables};
 use crate::error::Result;
 use crate::schemes::descriptor::{Fallback, RulesChoice, RulesOrigin, ValenceRules};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// The rules of one valence with their origin.
 #[derive(Debug, Clone)]

@@ -64,7 +64,7 @@ use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
 use crate::schemes::descriptor::{RulesChoice, RulesOrigin};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::StencilTable;
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};

@@ -18,17 +18,8 @@
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::catmull_clark::catmull_clark_lambda;
+pub use crate::schemes::options::ChiKind;
 use std::f64::consts::PI;
-
-/// Which characteristic map the rings are sampled through.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ChiKind {
-    /// Catmull-Clark's characteristic ring and lambda (the paper's default).
-    #[default]
-    CatmullClark,
-    /// The QAS+ characteristic map, lambda = 1/2 (`--lambda 0.5`, valences 5..10).
-    Half,
-}
 
 /// One sector of a characteristic ring with its contraction.
 #[derive(Debug, Clone)]

@@ -159,11 +159,11 @@ impl LocalRules for GuidedLocal {
     }
 }
 
-/// The guided options a scheme name selects (`guided-bi6-g4-half`), or `None` for a name that
-/// is not a guided scheme.
-pub fn options_of(name: &str) -> Option<GuidedOptions> {
-    use crate::schemes::registry::{ids, registry};
-    let spec = registry().lookup(name).ok()?;
+/// The guided options a scheme selects (the name `guided-bi6-g4-half` looked up in the
+/// registry gives a [`Spec`] with the suffixes' parameters), or `None` for a scheme that is not
+/// a guided scheme.
+pub fn options_of(spec: &Spec) -> Option<GuidedOptions> {
+    use crate::schemes::options::ids;
     let d = match spec.id {
         ids::GUIDED_BI5 => &BI5,
         ids::GUIDED_BI6 => &BI6,
@@ -171,5 +171,5 @@ pub fn options_of(name: &str) -> Option<GuidedOptions> {
         ids::GUIDED_BI3_MACRO => &BI3_MACRO,
         _ => return None,
     };
-    Some(d.options(&spec))
+    Some(d.options(spec))
 }

@@ -50,24 +50,13 @@
 
 use crate::bezier::bern::{bernstein_derivs, subsegment};
 use crate::error::{Error, Result};
+pub use crate::schemes::options::GuideDegree;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 /// The one correction Appendix A needs.
 pub const APPENDIX_A_ERRATUM: &str = "Appendix A, p''_41: the last term reads c/(4 d1) (p'_52 - p''_52) \
 (printed c/(4 d1) (p''_52 - p'_52)); with the printed accents the relation is not implied by (1)-(2)";
-
-/// Degree of the guide (Section 6.1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum GuideDegree {
-    /// Bi-5, the paper's main guide.
-    #[default]
-    Bi5,
-    /// Bi-4 (Section 6.1).
-    Bi4,
-    /// Bi-3 (Section 6.1).
-    Bi3,
-}
 
 impl GuideDegree {
     /// The polynomial degree.

@@ -10,6 +10,7 @@
 pub mod cap;
 pub mod chi;
 pub mod descriptor;
+pub mod entry;
 pub mod fourier;
 pub mod guide;
 pub mod jets;

@@ -49,7 +49,7 @@ use crate::host::caps::{CapBuilder, CapNotes, RING_CELLS, describe, sector_squar
 use crate::host::{ComplexOptions, Fallback, SurfaceOutput};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::catmull_clark::surface::capped_complex;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 

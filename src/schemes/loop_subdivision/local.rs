@@ -8,7 +8,7 @@ use crate::mesh::tri_split::one_ring_rows;
 use crate::schemes::Scheme;
 use crate::schemes::circulant::SparseLocal;
 use crate::schemes::local::{LocalMatrix, check_valence};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// Loop on the one-ring of a vertex of valence `n` (`n + 1` points: centre, then its neighbours
 /// in counter-clockwise order).

@@ -38,6 +38,7 @@
 mod child;
 pub mod dart;
 pub mod descriptor;
+pub mod entry;
 mod limit;
 pub mod local;
 pub mod surface;
@@ -85,7 +86,7 @@ pub(crate) fn require_triangles(mesh: &PolyMesh, what: &str) -> Result<()> {
             msg: format!(
                 "{what} a triangle net, but face {f} has {} corners; triangulate the net or use {}",
                 mesh.face_size(f),
-                crate::schemes::registry::ids::CATMULL_CLARK
+                crate::schemes::options::ids::CATMULL_CLARK
             ),
         }),
     }
@@ -287,11 +288,11 @@ pub fn limit_point_stencil(mesh: &PolyMesh, v: usize) -> Stencil {
 /// Fails when a child net would need more points than fairsub's 32-bit indices.
 fn check_sizes(p: &PolyMesh) -> Result<()> {
     check_child_size(
-        crate::schemes::registry::ids::LOOP.name(),
+        crate::schemes::options::ids::LOOP.name(),
         p.num_vertices() + p.num_edges(),
     )?;
     check_child_size(
-        crate::schemes::registry::ids::LOOP.name(),
+        crate::schemes::options::ids::LOOP.name(),
         4 * p.num_halfedges() + 1,
     )
 }
@@ -536,7 +537,7 @@ impl Scheme for Configured {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::LOOP.name()
+        crate::schemes::options::ids::LOOP.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

@@ -36,7 +36,7 @@ use super::{FcvNet, NonBox, fcv_insertion, layout_vertex_count};
 use crate::bezier::domain::FanTriangle;
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -505,7 +505,7 @@ impl Scheme for NonBox4Dir {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::NONBOX_4DIR.name()
+        crate::schemes::options::ids::NONBOX_4DIR.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

@@ -46,7 +46,7 @@ use crate::schemes::local::{LocalMatrix, LocalOperator};
 use crate::schemes::nonbox::bezier::{cell_stencils, triangle_to_quads};
 use crate::schemes::nonbox::fourdir::{NonBox4Dir, triangulate};
 use crate::schemes::nonbox::{FcvNet, NonBox, a_k, subdominant_eigenvalue};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::{Stencil, StencilTable};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;

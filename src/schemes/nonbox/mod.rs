@@ -82,6 +82,7 @@
 //! becomes after one step.
 
 pub mod descriptor;
+pub mod entry;
 pub mod local;
 pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_4DIR};
@@ -520,7 +521,7 @@ pub fn input_notes(four_dir: bool, mesh: &PolyMesh) -> Vec<String> {
     } else if let Some(nv) = layout_vertex_count(mesh) {
         notes.push(format!(
             "{}: the last {} vertices are the FCVs of the {} faces (layout mesh)",
-            crate::schemes::registry::ids::NONBOX,
+            crate::schemes::options::ids::NONBOX,
             mesh.num_vertices() - nv,
             mesh.num_faces()
         ));
@@ -561,7 +562,7 @@ impl Scheme for NonBox {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::NONBOX.name()
+        crate::schemes::options::ids::NONBOX.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {

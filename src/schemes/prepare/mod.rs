@@ -63,68 +63,11 @@ mod steps;
 use crate::error::Result;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::descriptor::{Descriptor, Spec};
+pub use crate::schemes::options::PrepareMode as Mode;
 use serde::Serialize;
 
+pub use crate::schemes::needs::{Need, NetStep, Purpose, Requirement, Step};
 pub use map::ParamMap;
-pub use steps::NetStep;
-
-/// Whether nets are prepared (`--prepare`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Mode {
-    /// Apply the smallest documented step a scheme's rules need (the default).
-    #[default]
-    Auto,
-    /// Apply nothing: a scheme refuses a net its rules do not take, naming the element.
-    None,
-}
-
-/// What the prepared net is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Purpose {
-    /// Whole-net refinement (`--levels`).
-    Refine,
-    /// Exact patches (`--rings`), evaluation, patch tables.
-    Patches,
-}
-
-/// What a scheme's rules need of a net.
-#[derive(Debug, Clone, Copy)]
-pub enum Need {
-    /// Every face a quad.
-    Quads,
-    /// Every interior vertex of valence 3 or more.
-    NoInteriorValence2,
-    /// Every boundary vertex regular: two faces, or one at a corner.
-    RegularBoundary,
-    /// A property only the scheme can test: `what` it is (for notes, after "needs"), `test`
-    /// the elements where it fails.
-    Scheme {
-        /// The property in words.
-        what: &'static str,
-        /// The elements of a net where it fails (empty: met).
-        test: fn(&PolyMesh, &Spec) -> Vec<Element>,
-    },
-}
-
-/// How a need is met.
-#[derive(Debug, Clone, Copy)]
-pub enum Step {
-    /// Whole-net steps applied here, in order.
-    Net(&'static [NetStep]),
-    /// A step the scheme's own construction takes (locally and exactly, with its own note),
-    /// described in words; [`prepare`] leaves the net as it is and reports it.
-    Own(&'static str),
-}
-
-/// One need of a scheme and the step that meets it.
-#[derive(Debug, Clone, Copy)]
-pub struct Requirement {
-    /// What the rules need.
-    pub need: Need,
-    /// The step that gives it.
-    pub step: Step,
-}
 
 /// A step [`prepare`] applied (or found that the scheme will take itself), with the need it
 /// met and the elements of the net it was applied to that were in the way.
@@ -272,20 +215,6 @@ fn unmet(need: &Need, mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
             .map(|v| Element::Vertex(v as u32))
             .collect(),
         Need::Scheme { test, .. } => test(mesh, spec),
-    }
-}
-
-impl Need {
-    /// The need in words, after the scheme's name ("tps needs ...").
-    pub fn words(&self) -> &'static str {
-        match self {
-            Need::Quads => "needs every face a quad",
-            Need::NoInteriorValence2 => "needs every interior vertex of valence 3 or more",
-            Need::RegularBoundary => {
-                "needs every boundary vertex regular (two faces, or one at a corner it keeps)"
-            }
-            Need::Scheme { what, .. } => what,
-        }
     }
 }
 

@@ -5,37 +5,10 @@ use super::map::ParamMap;
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use crate::schemes::descriptor::Spec;
+use crate::schemes::needs::NetStep;
 use crate::schemes::{Scheme, catmull_clark, doo_sabin};
 
-/// A whole-net step of the preparation (see the [module](super) documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NetStep {
-    /// One Catmull-Clark step (OpenSubdiv's rules, with the net's options and sharp features).
-    CatmullClark,
-    /// One Doo-Sabin step (with the dual schemes' boundary rules).
-    DooSabin,
-    /// One DS^CC step.
-    DooSabinCc,
-    /// One PGS step (Doo-Sabin's topology, the point-augmented rule at facets).
-    Pgs,
-}
-
 impl NetStep {
-    /// The step in words.
-    pub fn words(self) -> &'static str {
-        match self {
-            NetStep::CatmullClark => "one Catmull-Clark step",
-            NetStep::DooSabin => "one Doo-Sabin step",
-            NetStep::DooSabinCc => "one DS^CC step",
-            NetStep::Pgs => "one PGS step",
-        }
-    }
-
-    /// Whether the step is dual (a face per vertex; it does not carry sharp-feature tags).
-    pub fn is_dual(self) -> bool {
-        self != NetStep::CatmullClark
-    }
-
     /// The step's refinement rules for `spec`'s net `mesh` (Catmull-Clark with the scheme's
     /// OpenSubdiv options, unset ones from the net's tags).
     fn scheme(self, spec: &Spec, mesh: &PolyMesh) -> Box<dyn Scheme> {

@@ -18,7 +18,7 @@ use crate::schemes::eg::derive::MAX_VALENCE;
 use crate::schemes::eg::select as eg_select;
 use crate::schemes::eg::surface::EgOptions;
 use crate::schemes::local::LocalMatrix;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 
 /// Which QAS+ variant.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

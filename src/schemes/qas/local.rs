@@ -8,7 +8,7 @@ use crate::bezier::BezierPatch;
 use crate::error::Result;
 use crate::schemes::eg::local::dnet_ring_patches;
 use crate::schemes::local::{LocalMatrix, check_valence, dense};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::stencil::StencilTable;
 use nalgebra::DMatrix;
 

@@ -29,6 +29,7 @@
 //!   keep the tables and change only `S`, as the paper's Section 7 describes).
 
 pub mod descriptor;
+pub mod entry;
 pub mod local;
 pub mod select;
 pub mod surface;
@@ -45,6 +46,7 @@ pub mod tables;
 
 use crate::error::{Error, Result};
 use crate::schemes::eg::{self, EgStep};
+pub use crate::schemes::options::{QKind, QSpec};
 use crate::stencil::Stencil;
 use std::f64::consts::PI;
 
@@ -56,18 +58,6 @@ pub fn q_index(n: usize, s: usize, k: usize) -> usize {
 /// Number of sources of the QAS+ local vector.
 pub fn num_sources(n: usize) -> usize {
     1 + 17 * n
-}
-
-/// Kinds of the quadratic expansion `q` (Section 4.2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum QKind {
-    /// C^2 between sectors: one quadratic polynomial (6 free coefficients).
-    #[default]
-    C2,
-    /// C^1 between sectors: `p`, the tangent plane and `q_5^s` free (`3 + n`).
-    C1,
-    /// Tangent plane only, sectors C^0: `p`, the tangent plane, `q_3^s`, `q_5^s` free (`3 + 2n`).
-    C1C0,
 }
 
 /// The QAS+ tables of one valence, as weights.
@@ -318,39 +308,6 @@ mod tests {
             ];
             for k in 0..6 {
                 assert!((r[k] - expect[k]).abs() < 1e-12, "s={s} k={k}");
-            }
-        }
-    }
-}
-
-/// A user-given quadratic expansion for one extraordinary vertex (from a q file).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct QSpec {
-    /// The kind the coefficients must satisfy.
-    pub kind: QKind,
-    /// The central point, if given.
-    pub p: Option<[f64; 3]>,
-    /// Given coefficients `(sector, k, value)`, `k = 2..6`.
-    pub q: Vec<(usize, usize, [f64; 3])>,
-    /// The q file's line of each entry of `q` (1-based), for errors found against the net.
-    pub q_lines: Vec<usize>,
-    /// The q file this section comes from (empty when built in code).
-    pub path: std::path::PathBuf,
-    /// The line of the section's `vertex V` statement (1-based; 0 when built in code).
-    pub line: usize,
-}
-
-impl QSpec {
-    /// An error about this section found against the net: a parse error at `line` of the q file
-    /// when the section came from one, otherwise an invalid argument.
-    pub fn error(&self, line: usize, msg: String) -> Error {
-        if self.path.as_os_str().is_empty() || line == 0 {
-            Error::InvalidArgument(msg)
-        } else {
-            Error::Parse {
-                path: self.path.clone(),
-                line,
-                msg,
             }
         }
     }

@@ -145,6 +145,6 @@ pub fn no_rules(id: SchemeId, n: usize) -> String {
     format!(
         "valence {n}: {id} has rules for valences 3..={MAX_VALENCE} only (printed tables for 5, 6, 7, \
          EG's rules at 3, regular bi-4 at 4, fairsub's derived tables elsewhere); use --fallback {}",
-        crate::schemes::registry::ids::CATMULL_CLARK
+        crate::schemes::options::ids::CATMULL_CLARK
     )
 }

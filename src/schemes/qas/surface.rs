@@ -19,9 +19,9 @@ use crate::schemes::descriptor::{RulesChoice, RulesOrigin, SchemeId};
 use crate::schemes::eg::derive::MAX_VALENCE;
 use crate::schemes::eg::surface::{DnetRules, EgOptions, Used, dnet_complex};
 use crate::schemes::eg::{Eg, EgStep};
+use crate::schemes::options::ids;
 use crate::schemes::qas;
 use crate::schemes::qas::QSpec;
-use crate::schemes::registry::ids;
 use crate::stencil::StencilTable;
 use std::collections::BTreeMap;
 

@@ -66,7 +66,7 @@ pub fn local_matrix(n: usize) -> Result<LocalMatrix> {
         })
         .collect();
     Ok(LocalMatrix {
-        scheme: crate::schemes::registry::ids::SQRT3.name().into(),
+        scheme: crate::schemes::options::ids::SQRT3.name().into(),
         n,
         centre: 1,
         sector: 1,

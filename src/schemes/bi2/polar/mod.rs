@@ -34,7 +34,7 @@ use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::Element;
 use crate::mesh::PolyMesh;
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::schemes::{Refinement, Scheme, finish_refinement};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -318,7 +318,7 @@ impl Scheme for PolarBi2 {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::POLAR_BI2.name()
+        crate::schemes::options::ids::POLAR_BI2.name()
     }
 
     /// Converts caps to poles (no-op on a polar layout), then one radial step; a net without

@@ -29,7 +29,7 @@
 use super::*;
 use crate::schemes::bi2::mixed::{Bi2Element, elements};
 use crate::schemes::descriptor::Spec;
-use crate::schemes::prepare::Mode;
+use crate::schemes::options::PrepareMode as Mode;
 
 /// The PolBS surface of a polar net, or of a prism-like net whose caps become poles at their
 /// centroids or at the given points ([`crate::schemes::bi2::polar::to_polar_layout`]): regular

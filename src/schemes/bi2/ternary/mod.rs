@@ -63,7 +63,8 @@ use super::{end_child_weight, middle_child_weights};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::schemes::common::check_child_size;
-use crate::schemes::registry::ids;
+pub use crate::schemes::options::AlphaRule;
+use crate::schemes::options::ids;
 use crate::schemes::{Refinement, Scheme, finish_refinement};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -146,21 +147,6 @@ pub fn adjustable_lambda(e: f64, c: f64) -> f64 {
     let a = e * e * (1.0 + 2.0 * c) + (1.0 - e) * (1.0 - e);
     let b = (c + 1.0) * (e * e * c + (1.0 - e) * (1.0 - e));
     (1.0 - 2.0 * e) * (a + 2.0 * e * b.max(0.0).sqrt())
-}
-
-/// How rule (18)'s `alpha_1, alpha_2` are chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum AlphaRule {
-    /// TPS's published values.
-    Published,
-    /// Adjustable TPS as the paper states it: the stationary limit point is TPS's (21) (with
-    /// the valence-3 fallback of [`TernaryRules::stationary_alphas`]).
-    #[default]
-    TpsLimitPoint,
-    /// fairsub's alternative for adjustable TPS: the stationary frequency-0 eigenvalues are
-    /// `lambda^2, lambda^4` as in the regular case (`mu / lambda^2 = 1` in that block); the
-    /// surface's limit point is still TPS's, through the first step's `alpha`s.
-    RegularSpectrum,
 }
 
 /// The rules of one ternary scheme: the split ratio and the rule at extraordinary vertices.
@@ -397,7 +383,7 @@ impl Scheme for Tps {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::TPS.name()
+        crate::schemes::options::ids::TPS.name()
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
@@ -418,7 +404,7 @@ impl Scheme for AdjustableTps {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::TPS_ADJUSTABLE.name()
+        crate::schemes::options::ids::TPS_ADJUSTABLE.name()
     }
 
     /// One exact step from a uniform net (every input net is uniform).

@@ -1,7 +1,38 @@
-//! A registry row ([`Entry`]) and the name suffixes that set typed parameters ([`Suffix`]):
-//! the types of the table in [`super`], which alone spells the names.
+//! A registry row ([`Entry`]): a scheme's id, aliases, the name suffixes that set typed
+//! parameters ([`Suffix`]), its catalogue text ([`About`]) and its descriptor.
+//!
+//! Each family writes its own rows in its `entry.rs` (the only files that spell scheme names),
+//! beside its rules; the registry ([`super::registry`]) lists the families' rows in catalogue
+//! order.
 
-use crate::schemes::descriptor::{About, Capabilities, Descriptor, Params, SchemeId};
+use crate::schemes::descriptor::{Capabilities, Descriptor};
+use crate::schemes::options::{Params, RulesChoice, SchemeId};
+
+/// The catalogue row of a scheme (`fairsub schemes`): what it takes, what it gives, what its
+/// paper proves, where it applies, and how complete fairsub's implementation is.
+#[derive(Debug, Clone, Copy)]
+pub struct About {
+    /// Family and paper.
+    pub family: &'static str,
+    /// Input nets it accepts.
+    pub input: &'static str,
+    /// Patches it outputs (degree and layout), if it has exact patch output.
+    pub patches: &'static str,
+    /// Smoothness claimed by its paper (or the classical result).
+    pub smoothness: &'static str,
+    /// Valences / element sizes with rules.
+    pub valences: &'static str,
+    /// Implementation status.
+    pub status: &'static str,
+}
+
+/// The `-derived` suffix of the schemes with printed and derived rules (EG and the QAS+
+/// schemes: `eg-derived`, `qas-plus-derived`): fairsub's derived rules also where the paper
+/// prints rules, as `--rules derived`.
+pub const DERIVED_SUFFIX: &[Suffix] = &[Suffix {
+    text: "-derived",
+    set: |p| p.rules = RulesChoice::Derived,
+}];
 
 /// A name suffix that sets a typed parameter (`guided-bi6-g4-half`); suffixes are read in the
 /// order of the row's list.
