@@ -59,7 +59,7 @@ use crate::mesh::PolyMesh;
 use crate::schemes::common::RowBuf;
 use crate::schemes::doo_sabin::fourier::{self, FaceCorners};
 use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, refine_dual_with};
-use crate::schemes::registry::ids;
+use crate::schemes::options::ids;
 use crate::schemes::{Refinement, Scheme};
 use crate::stencil::{Stencil, StencilTable};
 
@@ -366,51 +366,21 @@ impl Scheme for PgsPreprocessed {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::PGS_DSCC.name()
+        crate::schemes::options::ids::PGS_DSCC.name()
     }
 
     /// The first step of the sequence: DS^CC (PGS when no pre-processing is asked for).
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        if self.opts.dscc_steps > 0 {
+        self.refine_at(mesh, 0)
+    }
+
+    /// The pre-processing steps first (DS^CC), then PGS.
+    fn refine_at(&self, mesh: &PolyMesh, level: usize) -> Result<Refinement> {
+        if level < self.opts.dscc_steps {
             DooSabinCc.refine(mesh)
         } else {
             Pgs.refine(mesh)
         }
-    }
-
-    /// `levels` steps: the pre-processing steps first, then PGS (those of `refine_steps`).
-    fn refine_uniform(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<PolyMesh> {
-        let mut l = 0;
-        self.refine_steps(mesh, levels, &mut |_, _| {
-            l += 1;
-            progress(l);
-            Ok(())
-        })
-    }
-
-    /// The pre-processing steps first (DS^CC), then PGS, each with its stencils.
-    fn refine_steps(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
-    ) -> Result<PolyMesh> {
-        let mut m = mesh.clone();
-        for l in 0..levels {
-            let mut r = if l < self.opts.dscc_steps {
-                DooSabinCc.refine(&m)?
-            } else {
-                Pgs.refine(&m)?
-            };
-            step(&m, &mut r)?;
-            m = r.mesh;
-        }
-        Ok(m)
     }
 
     /// Refused: the limit of a net depends on how many pre-processing steps remain, which the
@@ -458,7 +428,7 @@ impl Scheme for Pgs {
     }
 
     fn name(&self) -> &'static str {
-        crate::schemes::registry::ids::PGS.name()
+        crate::schemes::options::ids::PGS.name()
     }
 
     /// One PGS step: Doo-Sabin topology and boundary rules, rule (4) at every facet with a

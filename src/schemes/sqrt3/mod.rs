@@ -31,11 +31,12 @@
 //! open net the near-boundary interior differs, since the next step would be a border step.
 
 pub mod descriptor;
+pub mod entry;
 pub mod local;
 pub use descriptor::DESCRIPTOR;
 
 use super::common::{RowBuf, cos_2pi};
-use super::registry::ids;
+use super::options::ids;
 use super::{Refinement, Scheme, finish_refinement, growth};
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -129,34 +130,10 @@ impl Scheme for Sqrt3 {
         self.step(mesh, false)
     }
 
-    fn refine_uniform(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<PolyMesh> {
-        let mut level = 0;
-        self.refine_steps(mesh, levels, &mut |_, _| {
-            level += 1;
-            progress(level);
-            Ok(())
-        })
-    }
-
-    fn refine_steps(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        step: &mut dyn FnMut(&PolyMesh, &mut Refinement) -> Result<()>,
-    ) -> Result<PolyMesh> {
-        let mut m: Option<PolyMesh> = None;
-        for l in 0..levels {
-            let parent = m.as_ref().unwrap_or(mesh);
-            let mut r = self.step(parent, l % 2 == 1)?;
-            step(parent, &mut r)?;
-            m = Some(r.mesh);
-        }
-        Ok(m.unwrap_or_else(|| mesh.clone()))
+    /// Kobbelt's boundary rule alternates: the border is kept on even steps (0, 2, ...) and
+    /// trisected on odd ones.
+    fn refine_at(&self, mesh: &PolyMesh, level: usize) -> Result<Refinement> {
+        self.step(mesh, level % 2 == 1)
     }
 
     fn step_size(&self, s: &growth::NetSize) -> growth::NetSize {
