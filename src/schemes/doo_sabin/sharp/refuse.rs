@@ -25,8 +25,8 @@ pub fn refuse_kept_corners_with_faces(mesh: &PolyMesh, name: &str) -> Result<()>
                  {} faces on one side; {name}'s boundary rules keep only corners with one \
                  face, so the crease would open there (way out: {} or {}, which keep it)",
                 mesh.outgoing(v).count(),
-                crate::schemes::registry::ids::PGS,
-                crate::schemes::registry::ids::DOO_SABIN
+                crate::schemes::options::ids::PGS,
+                crate::schemes::options::ids::DOO_SABIN
             )));
         }
     }
@@ -79,9 +79,9 @@ pub fn refuse_boundary_modes(mesh: &PolyMesh, name: &str) -> Result<()> {
              edge-only there (way out: {}, {} or {}, which take them, or --boundary \
              edge-and-corner)",
             mode.name(),
-            crate::schemes::registry::ids::PGS,
-            crate::schemes::registry::ids::DOO_SABIN,
-            crate::schemes::registry::ids::DOO_SABIN_CC
+            crate::schemes::options::ids::PGS,
+            crate::schemes::options::ids::DOO_SABIN,
+            crate::schemes::options::ids::DOO_SABIN_CC
         ))),
         None => Ok(()),
     }
