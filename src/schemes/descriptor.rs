@@ -74,6 +74,12 @@ impl Capabilities {
         patches: true,
         eval: false,
     };
+    /// Exact patches with evaluation, without whole-net refinement: the cap schemes on
+    /// Catmull-Clark's host (EG, QAS+, guided), whose rings and caps tile the input faces.
+    pub const PATCHES_AND_EVAL: Capabilities = Capabilities {
+        eval: true,
+        ..Capabilities::PATCHES
+    };
     /// Whole-net refinement and exact patches, without evaluation.
     pub const REFINE_AND_PATCHES: Capabilities = Capabilities {
         refine: true,

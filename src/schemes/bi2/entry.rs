@@ -1,5 +1,5 @@
-//! The registry rows of the bi-2 family: ids, aliases, name suffixes and catalogue text, beside
-//! the family's rules (the registry lists them in catalogue order).
+//! The registry rows of the bi-2 family: ids, aliases, suffixes, catalogue
+//! text, beside the family's rules (the registry lists them in catalogue order).
 
 use crate::schemes::entry::{About, Entry};
 use crate::schemes::options::ids::{BI2_MIXED, PGS, PGS_DSCC, POLAR_BI2, TPS, TPS_ADJUSTABLE};

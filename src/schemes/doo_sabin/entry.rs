@@ -1,5 +1,5 @@
-//! The registry rows of Doo-Sabin and DS^CC: ids, aliases, name suffixes and catalogue text, beside
-//! the family's rules (the registry lists them in catalogue order).
+//! The registry rows of Doo-Sabin and DS^CC: ids, aliases, suffixes, catalogue
+//! text, beside the family's rules (the registry lists them in catalogue order).
 
 use crate::schemes::entry::{About, Entry};
 use crate::schemes::options::ids::{DOO_SABIN, DOO_SABIN_CC};

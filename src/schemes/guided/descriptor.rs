@@ -37,8 +37,7 @@ pub static BI3_MACRO: GuidedDescriptor = GuidedDescriptor {
 };
 
 impl Descriptor for GuidedDescriptor {
-    /// Sharp features: refined with OpenSubdiv's rules by Catmull-Clark's host; extraordinary
-    /// vertices next to them get Catmull-Clark's rings and cap, with a note.
+    /// Sharp features: as Catmull-Clark's host refines them (its rings and cap next to them).
     fn patches_take_features(&self) -> bool {
         true
     }
@@ -47,10 +46,7 @@ impl Descriptor for GuidedDescriptor {
     /// chart ([`super::surface`]'s parameter domain); the macro-patch variants' pieces and
     /// split caps cover the 2 x 2 quarters (bi-4) or 3 x 3 thirds (bi-3) of those squares.
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            eval: true,
-            ..Capabilities::PATCHES
-        }
+        Capabilities::PATCHES_AND_EVAL
     }
 
     fn params(&self) -> &'static [ParamKind] {

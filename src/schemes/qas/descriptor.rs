@@ -58,8 +58,7 @@ pub static DESCRIPTOR_05_04: QasDescriptor = QasDescriptor {
 };
 
 impl Descriptor for QasDescriptor {
-    /// Sharp features: refined with OpenSubdiv's rules by Catmull-Clark's host; extraordinary
-    /// vertices next to them get Catmull-Clark's rings and cap, with a note.
+    /// Sharp features: as Catmull-Clark's host refines them (its rings and cap next to them).
     fn patches_take_features(&self) -> bool {
         true
     }
@@ -67,10 +66,7 @@ impl Descriptor for QasDescriptor {
     /// Exact patches and evaluation: the caps' rings tile each sector's face dyadically in the
     /// d-net's chart ([`crate::schemes::eg::surface`]'s parameter domain).
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            eval: true,
-            ..Capabilities::PATCHES
-        }
+        Capabilities::PATCHES_AND_EVAL
     }
 
     fn params(&self) -> &'static [ParamKind] {

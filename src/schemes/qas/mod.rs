@@ -280,39 +280,6 @@ pub fn quadratic_bb(n: usize, s: usize, p: f64, lin: [f64; 2], quad: [f64; 3]) -
     ]
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quadratic_bb_satisfies_the_c2_sector_constraints() {
-        // (3): q^(s+1) = A q^s for a C^2 quadratic.
-        let n = 5;
-        let c = (2.0 * PI / n as f64).cos();
-        let (lin, quad) = ([0.3, -0.7], [0.5, 0.2, -0.4]);
-        for s in 0..n {
-            let q = quadratic_bb(n, s, 1.5, lin, quad);
-            let r = quadratic_bb(n, s + 1, 1.5, lin, quad);
-            let expect = [
-                q[0],
-                q[3],
-                q[5],
-                2.0 * (1.0 - c) * q[0] - q[1] + 2.0 * c * q[3],
-                2.0 * (1.0 - c) * q[3] - q[4] + 2.0 * c * q[5],
-                4.0 * (1.0 - c).powi(2) * q[0]
-                    + 4.0 * (c - 1.0) * q[1]
-                    + q[2]
-                    + 8.0 * c * (1.0 - c) * q[3]
-                    - 4.0 * c * q[4]
-                    + 4.0 * c * c * q[5],
-            ];
-            for k in 0..6 {
-                assert!((r[k] - expect[k]).abs() < 1e-12, "s={s} k={k}");
-            }
-        }
-    }
-}
-
 /// Parses a q file: lines `vertex V` (starts the section of input vertex `V`), `kind c2|c1|c1-c0`,
 /// `p X Y Z`, `q SECTOR K X Y Z` (`K = 2..6`); `#` starts a comment. Coefficients not given keep
 /// the values of the `qas-fit` rule. Errors name the line.
@@ -469,4 +436,37 @@ pub fn check_kind(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_bb_satisfies_the_c2_sector_constraints() {
+        // (3): q^(s+1) = A q^s for a C^2 quadratic.
+        let n = 5;
+        let c = (2.0 * PI / n as f64).cos();
+        let (lin, quad) = ([0.3, -0.7], [0.5, 0.2, -0.4]);
+        for s in 0..n {
+            let q = quadratic_bb(n, s, 1.5, lin, quad);
+            let r = quadratic_bb(n, s + 1, 1.5, lin, quad);
+            let expect = [
+                q[0],
+                q[3],
+                q[5],
+                2.0 * (1.0 - c) * q[0] - q[1] + 2.0 * c * q[3],
+                2.0 * (1.0 - c) * q[3] - q[4] + 2.0 * c * q[5],
+                4.0 * (1.0 - c).powi(2) * q[0]
+                    + 4.0 * (c - 1.0) * q[1]
+                    + q[2]
+                    + 8.0 * c * (1.0 - c) * q[3]
+                    - 4.0 * c * q[4]
+                    + 4.0 * c * c * q[5],
+            ];
+            for k in 0..6 {
+                assert!((r[k] - expect[k]).abs() < 1e-12, "s={s} k={k}");
+            }
+        }
+    }
 }
