@@ -29,6 +29,7 @@ pub mod local;
 pub mod local_scheme;
 pub mod mixed;
 pub mod pgs;
+mod pgs_dscc;
 pub mod polar;
 pub mod surface;
 pub mod ternary;
