@@ -18,6 +18,7 @@ pub mod api;
 pub mod batch;
 mod cad;
 pub(crate) mod check;
+mod compare;
 mod demo;
 mod eval;
 mod info;

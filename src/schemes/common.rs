@@ -5,13 +5,13 @@
 //! ([`PolyMesh::outgoing`](crate::mesh::PolyMesh::outgoing)), and [`RowBuf`] collects one stencil
 //! row in a reused buffer, merges duplicate sources and appends it to a [`StencilTable`].
 
-use crate::schemes::sdc::crease::SharpLevel;
 use super::split_child::{bare_child, child_extras, child_mesh, last_child};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::PolyMesh;
 use crate::mesh::split::UniformSplit;
 use crate::mesh::tags::SubdOptions as Opts;
+use crate::schemes::sdc::crease::SharpLevel;
 use crate::stencil::{Stencil, StencilTable, Terms};
 
 /// `cos(2 pi k / n)`, exact at the multiples of 30 degrees where the value is rational (so that

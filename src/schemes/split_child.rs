@@ -3,10 +3,10 @@
 //! (`sdc::crease`): written once for every split, the split only says which child
 //! half-edge lies on each half of a parent edge and which child faces a parent face has.
 
-use crate::schemes::sdc::crease::{ChildEdge, SharpLevel};
 use crate::geom::Point;
 use crate::mesh::split::UniformSplit;
 use crate::mesh::{Extras, FaceIndex, MeshParts, MeshView, PolyMesh, Topology};
+use crate::schemes::sdc::crease::{ChildEdge, SharpLevel};
 
 /// The child net of one step of `mesh` with the child points `positions` (one per child
 /// vertex), its half-edges derived from the parent's without search (for a manifold parent

@@ -323,6 +323,7 @@
 //! rings must be a three-direction lattice at the spoke ends (valence 6), as Loop's are.
 
 mod centre;
+mod choose;
 mod fan;
 pub mod hole;
 mod map;
@@ -335,9 +336,9 @@ mod tests;
 #[cfg(test)]
 mod two_tests;
 
-pub use hole::{CornerAngle, Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
-pub use map::{
-    CERTIFIED, Cap, CapMap, CapOptions, Centre, FAIRNESS_ORDER, MAX_CAP_VALENCE,
-    MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap, g1_cap_with, hole_cap_map,
-    lowest_certified_degree, lowest_certified_fan,
+pub use choose::{
+    Cap, CapOptions, MAX_CAP_VALENCE, MAX_COMPATIBILITY_DEFECT, cap_choice, cap_map, g1_cap,
+    g1_cap_with, hole_cap_map, lowest_certified_degree, lowest_certified_fan,
 };
+pub use hole::{CornerAngle, Degrees, Fan, Hole, Layout, QuadHole, Segment, spoke_tangent};
+pub use map::{CERTIFIED, CapMap, Centre, FAIRNESS_ORDER};

@@ -33,8 +33,8 @@
 //! `schemes::loop_subdivision::surface::g1`). Quad holes keep the quadratic fit their caps were
 //! measured with (Catmull-Clark's largest exponent, at valence 3, is `a = 1.29`).
 
+use super::choose::{Cap, CapOptions, g1_cap_with};
 use super::hole::{Fan, Hole, Layout, Segment};
-use super::map::{Cap, CapOptions, g1_cap_with};
 use crate::bezier::complex::CapStep;
 use crate::bezier::{BezierPatch, Side, curve};
 use crate::error::{Error, Result};
@@ -282,11 +282,11 @@ pub fn hole_data_tangents(hole: &Hole, plane: [Point; 2]) -> Result<[Point; 2]> 
 /// which its provider gives as zero and its cap map does not read (every spoke tangent zero).
 pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Result<Cap> {
     if hole.kind.pins_plane() {
-        super::map::check_cap_valence(hole.valence())?;
+        super::choose::check_cap_valence(hole.valence())?;
         hole.tangents = plane;
         g1_cap_with(&hole, opts)
     } else if hole.kind == Fan::Crease {
-        super::map::check_cap_valence(hole.valence())?;
+        super::choose::check_cap_valence(hole.valence())?;
         hole.tangents = crease_tangents(&hole, plane)?;
         g1_cap_with(&hole, opts)
     } else {
@@ -297,7 +297,7 @@ pub fn cap_from_plane(mut hole: Hole, plane: [Point; 2], opts: CapOptions) -> Re
 /// The G^1 cap of `hole` (its centre set by the provider) in the tangent plane with normal
 /// `normal`: the tangents from [`chart_tangents`], then [`g1_cap_with`] with `opts`.
 pub fn cap_in_plane(mut hole: Hole, normal: Point, opts: CapOptions) -> Result<Cap> {
-    super::map::check_cap_valence(hole.valence())?;
+    super::choose::check_cap_valence(hole.valence())?;
     hole.tangents = chart_tangents(&hole, normal)?;
     g1_cap_with(&hole, opts)
 }

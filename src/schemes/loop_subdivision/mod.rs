@@ -53,8 +53,8 @@ use rayon::prelude::*;
 use super::catmull_clark::Opts;
 use super::common::{RowBuf, check_child_size};
 use super::{Refinement, Scheme};
-use crate::schemes::sdc::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use crate::mesh::tri_split::TriSplit;
+use crate::schemes::sdc::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 
 /// Child points per parallel task.
 const BLOCK: usize = 4096;
