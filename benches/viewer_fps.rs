@@ -13,7 +13,7 @@
 //! The browser is Debian's chromium with SwiftShader (WebGL2 on the CPU; the machine's cores
 //! rasterise): it measures the drawing path, not a laptop GPU. Skips without chromium.
 
-#[path = "../tests/viewer/cdp.rs"]
+#[path = "../tests/it/viewer/cdp.rs"]
 mod cdp;
 
 use std::io::BufRead;

@@ -28,7 +28,7 @@ pub fn error_ratios(evals: &[Evaluation]) -> (Point, Vec<f64>) {
 }
 
 /// The limit evaluation of `scheme` on `mesh` at `at(2^-k)` (k = 2..=12) and `at(0)`
-/// ([`crate::support::limit_along`], at least `min_rings` rings); asserts that the ratios of
+/// ([`super::support::limit_along`], at least `min_rings` rings); asserts that the ratios of
 /// successive errors to the centre are `lambda` within 10% from k = 6 and returns the centre
 /// and the ratios.
 #[allow(dead_code)]
@@ -40,7 +40,7 @@ pub fn converges(
     min_rings: usize,
     what: &str,
 ) -> (Point, Vec<f64>) {
-    let evals = crate::support::limit_along(scheme, mesh, &at, min_rings);
+    let evals = super::support::limit_along(scheme, mesh, &at, min_rings);
     let (centre, ratios) = error_ratios(&evals);
     eprintln!("{scheme} {what}: lambda {lambda:.6}, error ratios {ratios:.6?}");
     assert_rate(&format!("{scheme} {what}"), &ratios, lambda, 4, 0.1);

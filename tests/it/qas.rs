@@ -11,7 +11,7 @@ use fairsub::surface::{ComplexOptions, Element, PatchComplex, Provenance, comple
 
 /// Parses the verbatim paper lines: (name, rows).
 fn paper_tables() -> Vec<(String, Vec<Vec<i32>>)> {
-    let text = include_str!("data/qas-tables.txt");
+    let text = include_str!("../data/qas-tables.txt");
     let mut out = Vec::new();
     let mut rest = text;
     while let Some(p) = rest.find(":= \\begin{pmatrix}") {

@@ -3,7 +3,7 @@
 //! random face points, agreement with the written patches, and the largest jump of the
 //! evaluation across the lines of a grid of every face.
 
-use crate::support::{Lcg, gallery, written};
+use super::support::{Lcg, gallery, written};
 use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::registry;

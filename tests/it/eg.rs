@@ -11,7 +11,7 @@ use fairsub::surface::{ComplexOptions, Element, Provenance, complex};
 
 /// Parses the verbatim paper lines into (n, array, rows).
 fn paper_arrays() -> Vec<(usize, String, Vec<Vec<i32>>)> {
-    let text = include_str!("data/eg-tables.txt");
+    let text = include_str!("../data/eg-tables.txt");
     let mut out = Vec::new();
     // Section 5 blocks: "A_{hk}^n &:= \begin{pmatrix} ... \end{pmatrix}".
     let mut rest = text;
