@@ -1,6 +1,6 @@
 """The Python package against the `fairsub` command line: refined points, patches, checks,
 evaluation, spectra, level stencils, pictures and error messages, for every scheme (the nets
-are the golden test's, tests/golden.rs)."""
+are the golden test's, tests/it/golden.rs)."""
 
 import json
 import struct
@@ -11,7 +11,7 @@ import pytest
 
 import fairsub
 
-# A net every scheme takes (as in tests/golden.rs).
+# A net every scheme takes (as in tests/it/golden.rs).
 REFINE = {
     "catmull-clark": "cnet-5-saddle",
     "doo-sabin": "prism-5",

@@ -61,7 +61,7 @@
 //! refined as an extraordinary element (three or more faces, an unkept corner under
 //! `edge-only`) hands the quarters of its faces to its corner points, as an interior vertex
 //! does; its Chaikin points and kept corner, and their descendants, lie beyond those knot
-//! lines, over no face (tracked since 2026-12-04: `tests/eval_dual.rs` checks agreement and
+//! lines, over no face (tracked since 2026-12-04: `tests/it/eval_dual.rs` checks agreement and
 //! continuity on an L-shaped net and a notched c-net). Quarters whose vertex writes no patch
 //! (boundary mode `none`) are not tracked: evaluating there is an error.
 //!

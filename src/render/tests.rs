@@ -1,4 +1,4 @@
-//! Unit tests of the render entry points (the acceptance tests are in `tests/render.rs`).
+//! Unit tests of the render entry points (the acceptance tests are in `tests/it/render.rs`).
 
 use super::*;
 

@@ -8,7 +8,7 @@
 //! ignored; run it with the folder:
 //!
 //! ```text
-//! FAIRSUB_MODELS=DIR cargo test --release --test acceptance_sweep -- --ignored --nocapture
+//! FAIRSUB_MODELS=DIR cargo test --release --test it acceptance_sweep:: -- --ignored --nocapture
 //! ```
 //!
 //! `FAIRSUB_JOBS` (default 2) runs that many `check` processes at once, `FAIRSUB_SWEEP_OUT`

@@ -5,19 +5,13 @@
 //! second run does no work, and a third run after an output was deleted, another changed and
 //! a row corrupted redoes exactly those jobs.
 
+use crate::common::scratch;
 use serde_json::{Value, json};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_fairsub");
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-batch-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Runs the binary; returns (success, stderr). IGES files carry their date: a fixed one
 /// (`SOURCE_DATE_EPOCH`, as reproducible builds set it) makes them comparable.

@@ -3,18 +3,12 @@
 //! jobs under it run; the same job passes under a budget it fits, also when two jobs run at
 //! once (the budget is not shared by the slots when it is given).
 
+use crate::common::scratch;
 use serde_json::{Value, json};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_fairsub");
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-batchmem-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// `fairsub batch MANIFEST --out OUT --jobs 2 --max-memory SIZE`: (success, stderr, rows by
 /// output).

@@ -5,6 +5,7 @@
 //! the paraboloid's curvature runs from 4/25 to 4, the tetrahedron's faces meet at the angle
 //! arccos(-1/3) between their normals.
 
+use crate::common;
 use fairsub::bezier::BezierPatch;
 use fairsub::io::{BvFile, BvPolyhedron, TriPatch};
 use fairsub::surface::Provenance;
@@ -12,23 +13,15 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// `fairsub ARGS`, which must succeed: its stdout.
 fn fairsub(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
-        .args(args)
-        .output()
-        .expect("fairsub runs");
-    assert!(
-        out.status.success(),
-        "fairsub {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    let (code, out, err) = common::run(args);
+    assert_eq!(code, 0, "fairsub {args:?}: {err}");
+    out
 }
 
 fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-bv-kinds-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch("bv-kinds")
 }
 
 /// The octant of the unit sphere with signs `sg`, as a rational bi-quadratic patch (the pole

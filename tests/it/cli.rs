@@ -1,18 +1,12 @@
 //! The `fairsub` command line: every gallery net through every classic scheme into every output
 //! format (read back), bad input with its clear error and exit code, and the demo.
 
-use std::path::{Path, PathBuf};
+use crate::common::scratch;
+use std::path::Path;
 use std::process::Command;
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_fairsub"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn run(args: &[&str]) -> (i32, String, String) {
@@ -244,7 +238,7 @@ fn bad_input_gives_clear_errors_and_exit_code_1() {
         ),
     ];
     // Doo-Sabin: Catmull-Clark and Loop accept non-manifold nets and repeated vertices as
-    // OpenSubdiv does (tests/osd_peer.rs); the other schemes refuse them.
+    // OpenSubdiv does (tests/it/osd_peer.rs); the other schemes refuse them.
     for (input, needle) in cases {
         let (code, _, err) = run(&[
             "subdivide",

@@ -113,7 +113,7 @@ fn prediction(scheme: &str, n: usize) -> Prediction {
 
 /// Curvature bounded, and what that can mean. No rule in use has mu = lambda^2 exactly except
 /// QAS+ (1/4 = (1/2)^2, Section 5); EG's mu / lambda^2 is 1.00015 .. 1.05815 in the paper and
-/// 0.9972 .. 1.0006 for the derived rules (tests/derive.rs). So K on ring k tends to `P g^k`
+/// 0.9972 .. 1.0006 for the derived rules (tests/it/derive.rs). So K on ring k tends to `P g^k`
 /// with g a hair from 1: it goes to 0 (g < 1) or to infinity (g > 1) so slowly that over all
 /// rings double precision can represent (lambda^k > 1e-16) it changes by at most
 /// `g_hi^k_f` (at most 1.072, at n = 7, where the saddle mode has g = 1.0012). "Bounded" is asserted

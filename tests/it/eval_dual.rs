@@ -88,7 +88,7 @@ fn dual_schemes_evaluate_next_to_extraordinary_boundary_vertices() {
 
 /// The same nets' complexes are G^1 at every join (fills included) under the dual schemes, as
 /// `check` measures them (1e-14 rad on 2026-12-04). Catmull-Clark and the schemes that fall
-/// back to it close them with open-fan G^1 caps (`tests/boundary_caps.rs`).
+/// back to it close them with open-fan G^1 caps (`tests/it/boundary_caps.rs`).
 #[test]
 fn dual_schemes_are_g1_at_extraordinary_boundary_vertices() {
     use fairsub::analysis::continuity::check;

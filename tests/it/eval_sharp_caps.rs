@@ -1,5 +1,5 @@
 //! Evaluation at `(face, u, v)` on the G^1 caps of darts and of vertices next to hole faces
-//! (`tests/dart_caps.rs`, `tests/wedge_caps.rs`): agreement with the patches `subdivide
+//! (`tests/it/dart_caps.rs`, `tests/it/wedge_caps.rs`): agreement with the patches `subdivide
 //! --rings` writes at random points of every face (caps included), and continuity of the
 //! evaluation across the dyadic lines of every face (a cap patch placed in the wrong sector or
 //! with a turned parameter jumps there).

@@ -126,7 +126,7 @@ fn bi2_mixed_evaluation_is_continuous_across_patch_boundaries() {
     }
 }
 
-/// On a DS-net `bi2-mixed`'s local-net rings are PGS's rings (tests/bi2.rs), so outside the
+/// On a DS-net `bi2-mixed`'s local-net rings are PGS's rings (tests/it/bi2.rs), so outside the
 /// caps the two evaluate to the same points at the same face parameters, although their
 /// domains are built apart (PGS's through the adaptive host's cells, bi2-mixed's from the
 /// DS-net's chart).

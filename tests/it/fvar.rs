@@ -1,9 +1,10 @@
 //! Face-varying data through PLY and OFF (issue 16): PLY texture coordinates (per vertex `u v`
 //! and face `texcoord` lists) are read into the same channel as OBJ `vt`, refined the same way
 //! (the same nets as OBJ give the same UVs at every face corner, and the OBJ nets are the ones
-//! `tests/osd_peer.rs` checks against OpenSubdiv), and written back to PLY; OFF output warns
+//! `tests/it/osd_peer.rs` checks against OpenSubdiv), and written back to PLY; OFF output warns
 //! that it drops them.
 
+use crate::common::scratch;
 use fairsub::io;
 use fairsub::mesh::PolyMesh;
 use std::path::{Path, PathBuf};
@@ -11,13 +12,6 @@ use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-fvar-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 /// `fairsub subdivide ARGS`: (success, stderr).

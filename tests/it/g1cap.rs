@@ -3,7 +3,7 @@
 //! and bi-6) or a triangle fan (Loop), the cap is added, and the project's `check` measures every join. Asserted:
 //! C^1 to the ring data (1e-12), G^1 below 1e-8 rad across spokes, at the centre and between ring
 //! and cap (`check`), the centre and tangent plane as given; printed: the curvature range of the
-//! cap and the G^1 defect of today's fill for comparison (`cargo test --release --test g1cap --
+//! cap and the G^1 defect of today's fill for comparison (`cargo test --release --test it g1cap:: --
 //! --nocapture`).
 
 use fairsub::PolyMesh;

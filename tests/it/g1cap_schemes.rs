@@ -1,7 +1,7 @@
 //! Every scheme's own G^1 cap, as `subdivide --rings` writes it, measured by `check` over the
 //! gallery: G^1 below 1e-8 rad at every join (caps included), C^1 between the last ring and the
 //! cap (or the scheme's continuity), the hole closed, and the cap's curvature printed beside the
-//! last ring's (`cargo test --release --test g1cap_schemes -- --nocapture`).
+//! last ring's (`cargo test --release --test it g1cap_schemes:: -- --nocapture`).
 
 use fairsub::PolyMesh;
 use fairsub::analysis::continuity::{ContinuityReport, check};
@@ -751,7 +751,7 @@ fn loop_caps() {
     }
 }
 
-/// Loop's extraordinary boundary vertices get open-fan caps (`tests/loop_boundary_caps.rs`
+/// Loop's extraordinary boundary vertices get open-fan caps (`tests/it/loop_boundary_caps.rs`
 /// measures them), and `--no-fill` leaves every hole open.
 #[test]
 fn loop_boundary_holes_get_open_caps_and_no_fill_leaves_them_open() {

@@ -7,11 +7,15 @@
 //! (`npm install gltf-validator`). Without it the test prints that it skipped, unless
 //! `FAIRSUB_REQUIRE_GLTF` is set (CI sets both), then it fails.
 
+use crate::common::{run_ok as fairsub, scratch, skip_slow};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn validator() -> Option<PathBuf> {
+    if skip_slow("gltf-validator") {
+        return None;
+    }
     match std::env::var_os("FAIRSUB_GLTF_VALIDATOR") {
         Some(p) => Some(PathBuf::from(p)),
         None if std::env::var_os("FAIRSUB_REQUIRE_GLTF").is_some() => {
@@ -44,19 +48,6 @@ fn validate(modules: &Path, files: &[PathBuf]) -> Vec<Value> {
         .collect()
 }
 
-fn fairsub(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
-        .args(args)
-        .output()
-        .expect("fairsub runs");
-    assert!(
-        out.status.success(),
-        "fairsub {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
 /// A 4 x 4 grid with texture coordinates (a seam down the middle) and a crease tag.
 const GRID: &str = "\
 v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 1\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0.5\n\
@@ -65,11 +56,9 @@ f 1/1 2/2 5/4 4/3\nf 2/7 3/8 6/10 5/9\nf 4/3 5/4 8/6 7/5\nf 5/9 6/10 9/12 8/11\n
 t crease 2/1/0 1 4 2.0\n";
 
 #[test]
-fn khronos_validator_finds_no_error_and_no_warning() {
+fn slow_khronos_validator_finds_no_error_and_no_warning() {
     let Some(modules) = validator() else { return };
-    let dir = std::env::temp_dir().join(format!("fairsub-gltf-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("gltf");
     let grid = dir.join("grid.obj");
     std::fs::write(&grid, GRID).unwrap();
     let p = |n: &str| dir.join(n);

@@ -8,7 +8,7 @@
 //! intended change of results, run
 //!
 //! ```sh
-//! FAIRSUB_BLESS=1 cargo test --release --test golden
+//! FAIRSUB_BLESS=1 cargo test --release --test it golden::
 //! ```
 //!
 //! and commit the changed files with a message that says which results changed and why.

@@ -371,7 +371,7 @@ fn macro_patch_variants_are_c2_and_curvature_bounded() {
             for shape in [CnetShape::Saddle, CnetShape::RaisedNode] {
                 let net = gallery::cnet(n, shape, 3);
                 let o = guided_complex(&net, opts(name, 8, true), |_| {}).unwrap();
-                // the hole is closed by the split G^1 cap (tests/g1cap_schemes.rs checks it)
+                // the hole is closed by the split G^1 cap (tests/it/g1cap_schemes.rs checks it)
                 assert!(o.notes.is_empty(), "no note: {:?}", o.notes);
                 let rings: Vec<_> = o
                     .complex

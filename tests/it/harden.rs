@@ -4,15 +4,9 @@
 //! inputs (huge faces, many patches or groups, a vertex of valence thousands) give their outcome,
 //! asserted by counts, not by time: `bench/scaling.sh` measures the time ratios.
 
-use std::path::{Path, PathBuf};
+use crate::common::scratch;
+use std::path::Path;
 use std::process::Command;
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-harden-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn run(args: &[&str]) -> (i32, String) {
     let o = Command::new(env!("CARGO_BIN_EXE_fairsub"))
@@ -596,10 +590,10 @@ fn check_on_30k_patches_and_30k_groups_finds_every_join() {
 }
 
 /// `analyze` and `charmap` at valence 100: guided-bi5 answers by the Fourier blocks of its
-/// Bloch basis (tests/fourier_analysis.rs compares them with the dense path) with table (5)'s
+/// Bloch basis (tests/it/fourier_analysis.rs compares them with the dense path) with table (5)'s
 /// multiplicities; its bi-4 guide (a numeric basis without sectors) is refused up front beyond
 /// its valence bound, and guided-bi5 beyond the Fourier bound; PGS answers by its Fourier
-/// blocks (tests/fourier_analysis.rs compares them with the dense path); PGS and non-box answer
+/// blocks (tests/it/fourier_analysis.rs compares them with the dense path); PGS and non-box answer
 /// at valence 40, under the bound.
 #[test]
 fn analyze_and_charmap_at_valence_100() {

@@ -2,27 +2,13 @@
 //! readers, atomicity of failed writes, and format choice. Unit tests beside each format cover
 //! parsing details and error messages.
 
+use crate::common::scratch;
 use fairsub::bezier::BezierPatch;
 use fairsub::error::Error;
 use fairsub::io::{self, MeshFormat, OutputFormat};
 use fairsub::mesh::PolyMesh;
 use fairsub::surface::{Element, PatchComplex, Provenance};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-static N: AtomicUsize = AtomicUsize::new(0);
-
-/// A fresh empty directory under the system temp dir.
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!(
-        "fairsub-io-it-{tag}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::path::Path;
 
 fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)

@@ -1,6 +1,14 @@
 //! The integration tests, one module per topic, linked into one test binary (issue 51: one
 //! link instead of one per file). `cargo test --release --test it -- NAME::` runs one topic;
 //! `tests/consolidate.sh` moved the former `tests/NAME.rs` files here (and moves new ones).
+//!
+//! Tests named `slow_*` run a peer program or a client (OpenSubdiv, OpenCASCADE, CGAL and
+//! OpenMesh, usd-core, the Khronos glTF-Validator, headless Chromium): `cargo test --release --
+//! --list` shows them, `FAIRSUB_SKIP_SLOW=1` skips them on a laptop, and CI (`.ci/run`) never
+//! does. Each says when it skipped (`-- --nocapture`). Helpers shared by the modules are in
+//! `common`.
+
+mod common;
 
 mod acceptance_sweep;
 mod analysis;

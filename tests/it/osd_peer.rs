@@ -40,6 +40,7 @@
 #[path = "osd_peer/compare.rs"]
 mod compare;
 
+use crate::common::root;
 use compare::{Refined, compare, parse_obj, parse_peer};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -116,10 +117,6 @@ fn nets_dir() -> PathBuf {
         .unwrap_or_else(|| root().join("tests/data/osd"))
 }
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn run(cmd: &mut Command) -> Result<(), String> {
     let o = cmd
         .output()
@@ -182,7 +179,10 @@ fn peer_path() -> PathBuf {
 /// Issue 16's acceptance test: tags, boundary modes, Chaikin, smooth triangles, non-manifold
 /// nets, holes, limit positions, face-varying data with every face-varying option.
 #[test]
-fn opensubdiv_parity() {
+fn slow_opensubdiv_parity() {
+    if crate::common::skip_slow("osd_refine") {
+        return;
+    }
     let peer = peer_path();
     if !peer.exists() {
         let msg = format!("{} missing (run tests/peer/build.sh)", peer.display());
@@ -196,8 +196,7 @@ fn opensubdiv_parity() {
     let only_today = std::env::var_os("FAIRSUB_PEER_ONLY_TODAY").is_some();
     let filter = std::env::var("FAIRSUB_PEER_FILTER").unwrap_or_default();
     let lines: Vec<&str> = text.lines().collect();
-    let dir = std::env::temp_dir().join(format!("fairsub-osd-peer-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch("osd-peer");
     let (mut ok, mut failed, mut with_uvs) = (0, Vec::new(), 0);
     for c in parse_cases(&text) {
         if (only_today && !c.today) || !lines[c.line - 1].contains(filter.as_str()) {

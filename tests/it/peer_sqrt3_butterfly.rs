@@ -147,22 +147,9 @@ fn open_nets() -> Vec<(&'static str, PolyMesh)> {
     .collect()
 }
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 /// The peer program, or `None` (skip) when it is missing and not required.
 fn peer(name: &str) -> Option<PathBuf> {
-    let p = root().join("target/peer").join(name);
-    if p.exists() {
-        return Some(p);
-    }
-    let msg = format!("{} missing (run tests/peer/build_tri.sh)", p.display());
-    if std::env::var_os("FAIRSUB_REQUIRE_PEER").is_some() {
-        panic!("FAIRSUB_REQUIRE_PEER is set and {msg}");
-    }
-    println!("peer_sqrt3_butterfly: skipped: {msg}");
-    None
+    crate::common::peer_program(name, "build_tri.sh", "FAIRSUB_REQUIRE_PEER")
 }
 
 fn write_obj(mesh: &PolyMesh, path: &std::path::Path) {
@@ -185,7 +172,7 @@ fn run_peer(
     levels: usize,
     tag: &str,
 ) -> (Vec<Point>, Vec<Vec<usize>>) {
-    let dir = std::env::temp_dir().join(format!("fairsub-tri-peer-{}", std::process::id()));
+    let dir = crate::common::scratch("tri-peer");
     std::fs::create_dir_all(&dir).unwrap();
     let (input, output) = (
         dir.join(format!("{tag}.obj")),
@@ -300,7 +287,7 @@ fn against_peer(bin: &std::path::Path, scheme: &str) -> (usize, f64) {
 }
 
 #[test]
-fn sqrt3_equals_cgal() {
+fn slow_sqrt3_equals_cgal() {
     let Some(bin) = peer("cgal_sqrt3") else {
         return;
     };
@@ -310,7 +297,7 @@ fn sqrt3_equals_cgal() {
 }
 
 #[test]
-fn butterfly_equals_openmesh() {
+fn slow_butterfly_equals_openmesh() {
     let Some(bin) = peer("om_butterfly") else {
         return;
     };

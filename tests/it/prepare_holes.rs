@@ -89,7 +89,7 @@ fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
 }
 
 /// The bi-2 schemes (TPS, adjustable TPS, the mixed and polar nets through the preparation's cut
-/// and dual step, `tests/prepare_tagged.rs`).
+/// and dual step, `tests/it/prepare_tagged.rs`).
 const SCHEMES: [&str; 7] = [
     "doo-sabin",
     "doo-sabin-cc",

@@ -1,5 +1,5 @@
 //! The acceptance of the preparation stage on nets of fairsub's own that reproduce what real
-//! models bring (the fetched models of `tests/acceptance_sweep.rs` are not in the repository):
+//! models bring (the fetched models of `tests/it/acceptance_sweep.rs` are not in the repository):
 //! equivalents of CGAL's `cross_quad` (a plus-shaped solid of five cubes), `P` (the letter P,
 //! genus 1) and `torus_quad` (a quad torus of 16 cubes), the cube with one edge split (interior
 //! valence 2, pentagons), the L-shaped grid (an extraordinary boundary vertex), a triangle

@@ -252,7 +252,7 @@ fn a_junction_with_two_faces_on_one_side_is_kept() {
         );
     }
     // TPS and polar bi-2 keep corners of one face only: the preparation cuts the net and
-    // takes a dual step first (tests/prepare_tagged.rs), which makes the junction's copies
+    // takes a dual step first (tests/it/prepare_tagged.rs), which makes the junction's copies
     // corners of one face; without it they refuse the junction by name
     for scheme in ["tps", "polar-bi2"] {
         let out = build(scheme, &net).unwrap_or_else(|e| panic!("{scheme}: {e}"));

@@ -242,7 +242,7 @@ fn cli_rings_take_creases_and_check_reports_them_sharp() {
     }
     // pgs cuts the net along its creases, but this one has darts (edges 0-1, 0-2 end inside
     // the surface): refused by name, nothing written (non-box takes it: its creases ending at
-    // darts stay inside the surface, closed by the fill, see `tests/sharp_bi2_nonbox.rs`)
+    // darts stay inside the surface, closed by the fill, see `tests/it/sharp_bi2_nonbox.rs`)
     {
         let (scheme, expect) = ("pgs", "vertex 1 is a dart");
         let out = std::env::temp_dir().join(format!("fairsub-{scheme}-{}.bv", std::process::id()));

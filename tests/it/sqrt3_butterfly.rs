@@ -1,7 +1,7 @@
 //! sqrt(3) subdivision and the modified butterfly scheme on their own (issue 48): Kobbelt's
 //! boundary rule, sqrt(3)'s limit positions, both local spectra against their closed forms,
 //! interpolation, and the command line (`schemes`, `subdivide --levels / --limit`, `analyze`).
-//! The point-by-point comparisons with CGAL and OpenMesh are in `tests/peer_sqrt3_butterfly.rs`.
+//! The point-by-point comparisons with CGAL and OpenMesh are in `tests/it/peer_sqrt3_butterfly.rs`.
 
 use fairsub::error::Result;
 use fairsub::geom::Point;

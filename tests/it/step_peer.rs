@@ -13,6 +13,7 @@
 //! The peer is built by CI (`.ci/run`); without it the test skips with a message, unless
 //! `FAIRSUB_REQUIRE_OCCT=1` makes that a failure.
 
+use crate::common;
 use fairsub::bezier::BezierPatch;
 use fairsub::bezier::bern::gauss_legendre;
 use fairsub::geom::{Point, cross, dot, norm};
@@ -21,22 +22,11 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn peer() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/peer/occt_step");
-    if p.exists() {
-        return Some(p);
-    }
-    if std::env::var("FAIRSUB_REQUIRE_OCCT").is_ok_and(|v| v == "1") {
-        panic!(
-            "FAIRSUB_REQUIRE_OCCT=1 but {} is missing: run tests/peer/build_occt.sh",
-            p.display()
-        );
-    }
-    eprintln!("skipping: the OpenCASCADE peer is not built (tests/peer/build_occt.sh)");
-    None
+    common::peer_program("occt_step", "build_occt.sh", "FAIRSUB_REQUIRE_OCCT")
 }
 
 fn fairsub() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fairsub"))
+    Command::new(common::BIN)
 }
 
 /// Volume, area and the volume's (closed) or area's (open) first moments of a patch complex.
@@ -238,13 +228,11 @@ const QUAD_SCHEMES: &[&str] = &[
 ];
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-step-peer-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch(&format!("step-peer-{name}"))
 }
 
 #[test]
-fn opencascade_reads_closed_solids_of_every_scheme() {
+fn slow_opencascade_reads_closed_solids_of_every_scheme() {
     let Some(occt) = peer() else { return };
     let dir = scratch("closed");
     for &scheme in QUAD_SCHEMES {
@@ -270,7 +258,7 @@ fn opencascade_reads_closed_solids_of_every_scheme() {
 }
 
 #[test]
-fn opencascade_reads_open_shells() {
+fn slow_opencascade_reads_open_shells() {
     let Some(occt) = peer() else { return };
     let dir = scratch("open");
     for (net, scheme) in [

@@ -10,12 +10,16 @@
 //! virtual environment with `pip install usd-core`). Without it the tests print that they
 //! skipped, unless `FAIRSUB_REQUIRE_USD` is set (CI sets both), then they fail.
 
+use crate::common::{run_ok as fairsub, scratch, skip_slow};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The Python with usd-core, or `None` (skip) when it is not configured and not required.
 fn usd_python() -> Option<PathBuf> {
+    if skip_slow("usd-core") {
+        return None;
+    }
     match std::env::var_os("FAIRSUB_USD_PYTHON") {
         Some(p) => Some(PathBuf::from(p)),
         None if std::env::var_os("FAIRSUB_REQUIRE_USD").is_some() => {
@@ -47,32 +51,12 @@ fn peer(py: &Path, args: &[&str]) -> Value {
     serde_json::from_slice(&out.stdout).expect("JSON from usdcore.py")
 }
 
-fn fairsub(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_fairsub"))
-        .args(args)
-        .output()
-        .expect("fairsub runs");
-    assert!(
-        out.status.success(),
-        "fairsub {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fairsub-usd-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
 #[test]
-fn usd_core_files_refine_as_the_obj_with_tags() {
+fn slow_usd_core_files_refine_as_the_obj_with_tags() {
     let Some(py) = usd_python() else { return };
     let dir = scratch("read");
     peer(&py, &["make", s(&dir)]);
@@ -141,7 +125,7 @@ fn inspect_clean(py: &Path, file: &Path) -> Value {
 }
 
 #[test]
-fn fairsub_files_open_in_usd_core_and_pass_every_validator() {
+fn slow_fairsub_files_open_in_usd_core_and_pass_every_validator() {
     let Some(py) = usd_python() else { return };
     let dir = scratch("write");
     peer(&py, &["make", s(&dir)]);

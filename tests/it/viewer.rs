@@ -184,6 +184,9 @@ fn opens_the_default_browser() {
 
 /// The browser, or `None` (the test skips) unless FAIRSUB_REQUIRE_BROWSER is set.
 fn chromium() -> Option<PathBuf> {
+    if crate::common::skip_slow("chromium") {
+        return None;
+    }
     let found = cdp::find();
     if found.is_none() && std::env::var_os("FAIRSUB_REQUIRE_BROWSER").is_some() {
         panic!("FAIRSUB_REQUIRE_BROWSER is set but chromium is missing");
@@ -243,7 +246,7 @@ fn url_param(b: &mut cdp::Browser, key: &str) -> Option<String> {
 }
 
 #[test]
-fn page_in_headless_chromium() {
+fn slow_page_in_headless_chromium() {
     let Some(exe) = chromium() else { return };
     let v = start(&["gallery:torus-evs", "--scheme", "eg", "--rings", "4"]);
     let base = format!("http://127.0.0.1:{}/", v.port);
@@ -684,7 +687,7 @@ fn scheme_options(b: &mut cdp::Browser, v: &Viewer, base: &str) {
 /// extraordinary point (EG's mean curvature there stays within 0.004 of zero over rings 4..6,
 /// Catmull-Clark's reaches 0.14: `fairsub check` on this net).
 #[test]
-fn scheme_menu_switches_the_surface() {
+fn slow_scheme_menu_switches_the_surface() {
     let Some(exe) = chromium() else { return };
     let v = start(&["gallery:cnet-5-saddle", "--scheme", "eg", "--rings", "4"]);
     // The camera looks down on the extraordinary vertex (the net's vertex 0, at the origin),
@@ -735,7 +738,7 @@ fn scheme_menu_switches_the_surface() {
 
 /// `fairsub view FILE.bv`: the file's patches as they are.
 #[test]
-fn bv_file_is_served_and_drawn() {
+fn slow_bv_file_is_served_and_drawn() {
     let dir = std::env::temp_dir().join(format!("fairsub-viewer-bv-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let bv = dir.join("saddle.bv");

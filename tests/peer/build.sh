@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the OpenSubdiv peer of tests/osd_peer.rs: target/peer/osd_refine from
+# Builds the OpenSubdiv peer of tests/it/osd_peer.rs: target/peer/osd_refine from
 # tests/peer/osd_refine.cpp against Debian's libosd-dev (OpenSubdiv 3.5).
 #
 #   tests/peer/build.sh            # from anywhere; prints the path of the program

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the OpenCASCADE peer of tests/step_peer.rs: target/peer/occt_step from
+# Builds the OpenCASCADE peer of tests/it/step_peer.rs: target/peer/occt_step from
 # tests/peer/occt_step.cpp against Debian's OpenCASCADE 7.6 (libocct-data-exchange-dev and
 # the libraries it depends on).
 #

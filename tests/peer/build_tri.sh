@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the sqrt(3) and modified butterfly peers of tests/peer_sqrt3_butterfly.rs:
+# Builds the sqrt(3) and modified butterfly peers of tests/it/peer_sqrt3_butterfly.rs:
 # target/peer/cgal_sqrt3 (CGAL's Sqrt3_subdivision, Debian libcgal-dev, header-only) and
 # target/peer/om_butterfly (OpenMesh's ModifiedButterflyT, Debian libopenmesh-dev), from
 # tests/peer/cgal_sqrt3.cpp and tests/peer/om_butterfly.cpp with tests/peer/tri_io.h.

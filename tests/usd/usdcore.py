@@ -1,4 +1,4 @@
-"""Pixar's usd-core (PyPI) as the peer of fairsub's USD reader and writer (tests/usd.rs).
+"""Pixar's usd-core (PyPI) as the peer of fairsub's USD reader and writer (tests/it/usd.rs).
 
     usdcore.py make DIR      write control nets with usd-core (usda, usdc, usdz) and the same
                              nets as OBJ files with OpenSubdiv's tag lines, for fairsub to read

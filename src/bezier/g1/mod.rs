@@ -59,7 +59,7 @@
 //! the sum over the cap patches of the fairness functional
 //! `F_k(P) = int_[0,1]^2 sum_(a+b=k) C(k, a) |d_u^a d_v^b P|^2`, `k = FAIRNESS_ORDER = 4`
 //! (plus a ridge of `1e-12` of the largest diagonal entry, to keep the minimiser unique). On the
-//! real rings of `tests/g1cap.rs` `F_4` gave the smallest cap curvature ranges of `F_2`, `F_3`, `F_4` (for
+//! real rings of `tests/it/g1cap.rs` `F_4` gave the smallest cap curvature ranges of `F_2`, `F_3`, `F_4` (for
 //! example Catmull-Clark, saddle c-net, `n = 8`: Gauss curvature down to -4.4, -2.2, -1.5 against
 //! the last ring's -0.22), and `F_4` vanishes on surfaces of total degree 3, which a regular
 //! hole therefore reproduces exactly. The solve: the remaining rows `E y = B q` over the
@@ -258,7 +258,7 @@
 //! bi-4 at odd `n` and bi-5 at even `n` (quads and Loop's triangles), bi-3 for two quad
 //! sectors (`w(0) = 2 cos(pi / 2) = 0`; test `cones_of_two_sectors_are_certified`, a corner
 //! tag on a valence-2 vertex; its apex is sharper, neighbouring normals near it up to 40
-//! degrees apart on a 40 x 40 grid, `tests/cone_caps.rs`); a dart's fan bi-4 for
+//! degrees apart on a 40 x 40 grid, `tests/it/cone_caps.rs`); a dart's fan bi-4 for
 //! quads, bi-6 for triangles (bi-5 at `n = 3`). Not a published construction.
 //!
 //! # Two sectors (valence 2)

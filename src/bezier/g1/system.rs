@@ -336,7 +336,7 @@ pub(crate) fn crease_rows(n: usize, d: usize, fan: Fan) -> Vec<(usize, Row)> {
 /// the apex towards its own end. Left to the fairness functional, which barely sees the apex,
 /// the inner spokes of Loop's flat valence-3 cone with one sharp edge left it bent 60 degrees
 /// towards the sharp one and the middle sector folded over at 1 ring; pinned, the cap folds
-/// only where the scheme's own mesh does (`tests/cone_caps.rs`). Not for the closed cone: at
+/// only where the scheme's own mesh does (`tests/it/cone_caps.rs`). Not for the closed cone: at
 /// even `n` the relation at the apex, `b_(s-1) + b_s = 2 w(0) a_s` around the cycle, then asks
 /// the data for `sum (-1)^s a_s = 0`, and no cap is certified.
 pub(crate) fn cone_spoke_rows(n: usize, d: usize) -> Vec<(usize, Row)> {

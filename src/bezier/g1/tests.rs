@@ -112,7 +112,7 @@ fn random_compatible_data_give_g1_caps() {
             .unwrap();
             let p = &cap.patches;
             // the spoke relation, exactly, as polynomial identity (random data have no
-            // meaningful normals; the real rings of tests/g1cap.rs check the angles)
+            // meaningful normals; the real rings of tests/it/g1cap.rs check the angles)
             let x: Vec<Point> = p.iter().flat_map(|b| b.cps.iter().copied()).collect();
             let size = hole.data().iter().map(|p| norm(*p)).fold(0.0, f64::max);
             for s in 0..n {
@@ -285,7 +285,7 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
 /// Open fans of triangles (Loop at boundary vertices): the lowest certified degree with the
 /// tangent plane is bi-5 at every `n` but the corner (`n = 1`, no inner spoke) and the
 /// regular boundary (`n = 3`), where bi-4 is; the real rings of
-/// `tests/loop_boundary_caps.rs` check the caps' joins.
+/// `tests/it/loop_boundary_caps.rs` check the caps' joins.
 #[test]
 fn open_triangle_fans_are_certified() {
     let deg = Degrees {

@@ -1,5 +1,5 @@
 //! USD round trips through fairsub's own writer and reader (usd-core's view of the same files
-//! is `tests/usd.rs`).
+//! is `tests/it/usd.rs`).
 
 use super::*;
 use crate::io::scene::{SceneMesh, net_tags};

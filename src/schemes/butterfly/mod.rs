@@ -23,7 +23,7 @@
 //! the boundary use the butterfly with a `c` point that lies across a boundary edge replaced by
 //! its ghost, the reflection `p + q - o` of the triangle's third corner `o` through the edge
 //! `pq`. That near-boundary rule is OpenMesh's (`ModifiedButterflyT`), which
-//! `tests/peer_sqrt3_butterfly.rs` compares point by point; it is fairsub's choice, not the
+//! `tests/it/peer_sqrt3_butterfly.rs` compares point by point; it is fairsub's choice, not the
 //! paper's own boundary stencils.
 
 pub mod descriptor;

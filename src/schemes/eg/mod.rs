@@ -19,7 +19,7 @@
 //!   every integer knot doubled, nodes at the Greville points: univariately a node at an integer
 //!   `k` is `(c_(k-1) + 10 c_k + c_(k+1)) / 12`, at `k + 1/2` it is `(c_k + c_(k+1)) / 2`
 //!   (blossoming), tensored. Checked: the paper's d-net limit-point formula (4) applied to `R c`
-//!   reproduces the c-net formula (3) exactly (`tests/eg.rs`).
+//!   reproduces the c-net formula (3) exactly (`tests/it/eg.rs`).
 //! * **Regular bi-4 refinement (1)**: univariate rules by position (old spacing 1): a new node at
 //!   an integer `k` is `(3, 10, 3)/16` of the old nodes at `k - 1/2, k, k + 1/2`; at `k + 1/4`
 //!   `(1, 6, 9)/16` of the same; at `k + 1/2` `(1, 6, 1)/8` of `k, k + 1/2, k + 1`; at `k + 3/4`

@@ -2,7 +2,7 @@
 //! for n = 6..10), integers scaled by 10^5, rows r = 0, 1, ...; each row unfolds the 4 x 3 node
 //! indices of one sector in the paper's order `00 10 20 30 01 11 21 31 02 12 22 32` (i fastest).
 //!
-//! The constants were generated from the paper's text; `tests/eg.rs` re-reads the verbatim
+//! The constants were generated from the paper's text; `tests/it/eg.rs` re-reads the verbatim
 //! lines (`tests/data/eg-tables.txt`) and compares every integer. The Appendix lost all rows but
 //! the first for n = 6..10 (see the papers README): those rows are kept for the record but give no
 //! rules. Known extraction errors are listed in [`ERRATA`] and applied when the tables are

@@ -18,7 +18,7 @@
 //! `z0, z5, z7, .., z10` given `z1 = 1/2, z2 = sqrt 2` and `z3, z4, z6` (Appendix B).
 //!
 //! Appendix A gives the solution as `z_i = (nu_2 z2 + nu_3 z3 + nu_4 z4 + nu_6 z6 + nu^) / k_i`.
-//! fairsub derives the same system and solves it (see `tests/qas.rs`); the printed `nu_2 .. nu_6`
+//! fairsub derives the same system and solves it (see `tests/it/qas.rs`); the printed `nu_2 .. nu_6`
 //! agree with the derivation exactly, the printed constants `nu^` do not: the extraction lost the
 //! hats of `c^ = cos(alpha/2)`, `s^ = sin(alpha/2)` in that column, and for `i = 7` also a digit
 //! (`4 c(18027 + 586 c)` must read `4 c^(180273 + 586 c)`). [`z_values`] uses the corrected

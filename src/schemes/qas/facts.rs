@@ -13,7 +13,7 @@ pub const BOUND_VALENCES: std::ops::RangeInclusive<usize> = 5..=10;
 
 /// The spectral radius of `M_d` of the printed Appendix C tables, computed by fairsub with the
 /// reconstructed K layout (papers README); not printed in the paper, which states only the bound.
-/// `tests/derive.rs` recomputes them from the tables.
+/// `tests/it/derive.rs` recomputes them from the tables.
 pub const RHO_MD_OF_PRINTED: [(usize, f64); 3] = [(5, 0.136208), (6, 0.125485), (7, 0.124899)];
 
 /// Source of [`RHO_MD_OF_PRINTED`].

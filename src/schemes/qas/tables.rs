@@ -3,7 +3,7 @@
 //! n = 5..8, and `K^n_lm` (5 x 5 for lm = 11, 22, 21, 12; the left 5 x 4 half for 31, 32) for
 //! n = 5..7. The paper gives no K for n = 8 and nothing for n = 9, 10.
 //!
-//! The constants were generated from the paper's text; `tests/qas.rs` re-reads the verbatim lines
+//! The constants were generated from the paper's text; `tests/it/qas.rs` re-reads the verbatim lines
 //! (`tests/data/qas-tables.txt`) and compares every integer.
 
 /// `T_5` as printed (6x5, weights times 10^5).

@@ -17,7 +17,7 @@
 //! polygon untouched and flips no boundary edge), so that two steps refine the boundary by 3
 //! as two steps refine the interior. These are the rules of Kobbelt's paper (Section 4,
 //! boundaries) as CGAL implements them (`Sqrt3_mask_3::border_node`, `Sqrt3_1step`), against
-//! which `tests/peer_sqrt3_butterfly.rs` compares point by point.
+//! which `tests/it/peer_sqrt3_butterfly.rs` compares point by point.
 //!
 //! # Limit positions
 //!

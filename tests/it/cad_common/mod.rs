@@ -1,4 +1,4 @@
-//! Helpers of the CAD face tests (`tests/cad_faces.rs`, `tests/cad_packed.rs`): gallery nets
+//! Helpers of the CAD face tests (`tests/it/cad_faces.rs`, `tests/it/cad_packed.rs`): gallery nets
 //! and their patch complexes.
 
 use fairsub::bezier::complex::PatchComplex;

@@ -1,5 +1,5 @@
 //! `fairsub eval` run in-process, for the evaluation tests that check the command line
-//! (`tests/eval.rs`, `tests/eval_polar.rs`).
+//! (`tests/it/eval.rs`, `tests/it/eval_polar.rs`).
 
 use fairsub::cli::{capture, run_words};
 

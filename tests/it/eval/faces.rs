@@ -1,5 +1,5 @@
 //! Checks shared by the evaluation tests of the cap, dual and ternary schemes
-//! (`tests/eval_caps.rs`, `tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`):
+//! (`tests/it/eval_caps.rs`, `tests/it/eval_dual.rs`, `tests/it/evalmore.rs`, `tests/it/eval_ternary.rs`):
 //! random face points, agreement with the written patches, and the largest jump of the
 //! evaluation across the lines of a grid of every face.
 

@@ -1,5 +1,5 @@
 //! Helpers shared by the tests of open-fan caps at extraordinary boundary vertices
-//! (`tests/boundary_caps.rs`, `tests/loop_boundary_caps.rs`).
+//! (`tests/it/boundary_caps.rs`, `tests/it/loop_boundary_caps.rs`).
 
 use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::{cross, dist, normalize};

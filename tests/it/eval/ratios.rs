@@ -1,5 +1,5 @@
 //! The rate at which limit evaluations approach an extraordinary element's limit point
-//! (`tests/eval_dual.rs`, `tests/evalmore.rs`, `tests/eval_ternary.rs`, `tests/eval_nonbox.rs`).
+//! (`tests/it/eval_dual.rs`, `tests/it/evalmore.rs`, `tests/it/eval_ternary.rs`, `tests/it/eval_nonbox.rs`).
 
 use fairsub::geom::{Point, norm, sub};
 use fairsub::surface::eval::Evaluation;

@@ -1,4 +1,4 @@
-//! Helpers shared by the evaluation tests (`tests/eval.rs`, `tests/eval_caps.rs`): gallery nets,
+//! Helpers shared by the evaluation tests (`tests/it/eval.rs`, `tests/it/eval_caps.rs`): gallery nets,
 //! deterministic random numbers and a temporary directory per test process.
 
 use fairsub::mesh::PolyMesh;
@@ -28,11 +28,9 @@ impl Lcg {
     }
 }
 
-/// A path `name` in a temporary directory of this test process (`prefix` names the test).
+/// A path `name` in a new scratch folder (`prefix` names the test; see `common::scratch`).
 pub fn tmp(prefix: &str, name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("{prefix}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
+    crate::common::scratch(prefix).join(name)
 }
 
 /// `mesh` written to an OBJ file and read back, with the file's path (the CLI reads the same

@@ -1,6 +1,6 @@
 //! The comparison of a refined net written by fairsub (OBJ) with the peer's (text): parsers for
 //! both outputs and `compare`, which matches vertices by position (coincident points in
-//! clusters), faces as cluster cycles and UVs per corner. See tests/osd_peer.rs for the rules.
+//! clusters), faces as cluster cycles and UVs per corner. See tests/it/osd_peer.rs for the rules.
 
 use std::collections::HashMap;
 

@@ -1,4 +1,4 @@
-//! The nets, values and PLY files of `tests/ply_data.rs`: the peer's OBJ nets, the test's own
+//! The nets, values and PLY files of `tests/it/ply_data.rs`: the peer's OBJ nets, the test's own
 //! per-vertex values of every PLY type, a PLY writer for the three encodings (independent of
 //! fairsub's), a reader of fairsub's PLY output, and a row-by-row stencil multiply.
 

@@ -205,8 +205,7 @@ pub fn rings_and_check(
     sharp_pieces: u64,
 ) -> (String, serde_json::Value) {
     let net = &osd_path(name);
-    let dir = std::env::temp_dir().join(format!("fairsub-sharp-{scheme}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch(&format!("sharp-{scheme}"));
     let out = dir.join("out.bv");
     let args = ["subdivide", net, "-s", scheme, "--rings", rings, "-o"];
     let (code, _, written) = run(&[&args[..], &[out.to_str().unwrap()]].concat());
@@ -356,12 +355,7 @@ pub fn scheme_of(loop_: bool, m: &PolyMesh) -> (Box<dyn Scheme>, Samples) {
 /// count and rows of the library's table of the same complex.
 pub fn stencil_caps_named(net: &str, scheme: &str, word: &str) -> usize {
     use fairsub::surface::table::PatchTable;
-    let dir = std::env::temp_dir().join(format!(
-        "fairsub-tab-{}-{}",
-        std::process::id(),
-        word.replace('/', "-")
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch(&format!("tab-{}", word.replace('/', "-")));
     let (bv, tab) = (dir.join("c.bv"), dir.join("c.tab"));
     let path = osd_path(net);
     let args = ["subdivide", &path, "-s", scheme, "--rings", "2", "-o"];

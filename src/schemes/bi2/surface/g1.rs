@@ -23,7 +23,7 @@
 //!   the last polar net) lies in the limit tangent plane through the limit point (16), so the
 //!   normal at the pole is the plane's from every direction (measured on perturbed prisms:
 //!   4e-15 rad between the normals at the pole, equal to the eigen-plane's normal to 1e-12;
-//!   `tests/g1cap_schemes.rs::polar_bi2`). It is kept (bi-2, the lowest degree) after that check;
+//!   `tests/it/g1cap_schemes.rs::polar_bi2`). It is kept (bi-2, the lowest degree) after that check;
 //!   a first row off the plane (beyond `1e-9` of its size) keeps the fill with a note.
 //!
 //! Centre: the element's limit point ((7), (21), (16): `LocalScheme::limit`). Tangent plane:

@@ -62,7 +62,7 @@
 //! pieces on an L-shaped grid (`k = 3`; the fill measured 6.9e-3), 1.1e-13 on `cnet-5-saddle`
 //! with a face removed at its centre (0.34 with the fill), 1.1e-14 on OpenSubdiv's
 //! `cc_boundary_valences` (`k = 3, 5`; 0.10 with the fill); the cap joins the ring C^1
-//! (`tests/boundary_caps.rs`).
+//! (`tests/it/boundary_caps.rs`).
 //!
 //! Elements whose hole does not have these data after the requested rings (the faces of two
 //! elements still touch, as the cube's after one ring) get up to [`MAX_EXTRA_CAP_LEVELS`](crate::host::adaptive::MAX_EXTRA_CAP_LEVELS) more

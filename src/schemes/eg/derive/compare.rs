@@ -1,7 +1,7 @@
 //! Derived EG rules against everything the paper prints: the complete arrays of n = 3 and 5 and
 //! the surviving first rows of n = 6..10, in units of 10^-5 (the unit of the printed integers).
 //!
-//! Spectra need the analysis layer; they are compared in `tests/derive.rs` and
+//! Spectra need the analysis layer; they are compared in `tests/it/derive.rs` and
 //! `examples/derived_rules.rs`, against [`crate::schemes::eg::facts`].
 
 use super::super::tables::{self, ERRATA};

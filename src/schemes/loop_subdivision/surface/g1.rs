@@ -78,7 +78,7 @@
 //!
 //! Measured with `fairsub check` at 3 rings: G^1 between the pieces and to the ring at most
 //! 4.3e-13 rad on the two triangulations of the L-shape (the fill measured 1.8e-2 between its
-//! pieces and 1.6e-4 to the ring); `tests/loop_boundary_caps.rs` covers fans of 1, 2, 4, 5, 6
+//! pieces and 1.6e-4 to the ring); `tests/it/loop_boundary_caps.rs` covers fans of 1, 2, 4, 5, 6
 //! and 7 triangles.
 //!
 //! # Holes that wait or keep the fill

@@ -7,7 +7,7 @@
 //! `4!/(i! j!) (d^i_s d^j_t f)^2`, integrated over each patch's unit square) over the sector's
 //! three bi-4 patches. The patches are affine in the free scalars, so both steps are linear.
 //! Measured: Appendix B is reproduced to 6e-11 for n = 5..10, and n = 4 gives the regular map
-//! (`tests/derive.rs`).
+//! (`tests/it/derive.rs`).
 
 use crate::error::{Error, Result};
 use crate::schemes::eg::derive::guide::fairness_gram;

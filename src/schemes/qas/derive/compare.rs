@@ -1,6 +1,6 @@
 //! Derived QAS+ tables against the printed ones (Appendix C: `K^5..K^7`, `T_5..T_8`), in units
 //! of 10^-5. Spectra (`rho(M_d)`) need the analysis layer and are compared in
-//! `tests/derive.rs` and `examples/derived_rules.rs` against [`crate::schemes::qas::facts`].
+//! `tests/it/derive.rs` and `examples/derived_rules.rs` against [`crate::schemes::qas::facts`].
 
 use super::super::{QasRules, tables};
 use super::derived_rules;

@@ -17,7 +17,7 @@
 //!
 //! The face-varying topology of each level (`level::FvLevel`) is derived from that level's
 //! values. The rules are those of OpenSubdiv 3.5's `Vtr::FVarLevel`, `Vtr::FVarRefinement` and
-//! `Far::PrimvarRefiner` (`docs/opensubdiv-rules.md` section 9); `tests/osd_peer.rs` checks
+//! `Far::PrimvarRefiner` (`docs/opensubdiv-rules.md` section 9); `tests/it/osd_peer.rs` checks
 //! them value by value.
 
 mod level;
