@@ -19,17 +19,12 @@ use fairsub::surface::table::{PatchTable, probe};
 use fairsub::surface::{ComplexOptions, complex};
 use std::path::Path;
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
-use support::{irregular_boundary_nets, via_obj, written_from};
-#[path = "eval/open_caps.rs"]
-mod open_caps;
-use open_caps::{centre_and_normal, open_caps, table_reapplies};
-#[path = "eval/faces.rs"]
-#[allow(dead_code)]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::open_caps;
+use crate::eval_helpers::support;
 use faces::{agrees_with, largest_jump, surface_of};
+use open_caps::{centre_and_normal, open_caps, table_reapplies};
+use support::{irregular_boundary_nets, via_obj, written_from};
 
 /// Catmull-Clark and the schemes that run its loop at extraordinary boundary vertices, and
 /// non-box (its own open-fan cap, centred in the plane of its own local matrix).

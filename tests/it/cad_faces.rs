@@ -2,8 +2,7 @@
 //! complex, exactly; their counts; their continuity as `check` reports it; and the B-rep
 //! topology of the STEP file (closed solids, shared edges, T-points split).
 
-#[path = "cad_common/mod.rs"]
-mod cad_common;
+use crate::cad_common;
 
 use cad_common::{complex, net};
 use fairsub::analysis::continuity;

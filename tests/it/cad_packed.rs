@@ -5,8 +5,7 @@
 //! interior knots (C^2); and the B-rep of the packed faces is closed (T-points where a
 //! rectangle's side meets several faces are split).
 
-#[path = "cad_common/mod.rs"]
-mod cad_common;
+use crate::cad_common;
 
 use cad_common::{complex, net};
 use fairsub::bezier::BezierPatch;

@@ -23,8 +23,7 @@
 //! the vertex's fan is upside down in the refined mesh itself, and the cap, C^1 to that ring,
 //! folds with it. OpenSubdiv's rules give the same mesh.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::geom::{cross, dist, dot};
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};

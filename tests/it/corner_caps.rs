@@ -13,8 +13,7 @@
 //! side folded over (the caps' normals at the corner turn the way the ring does); the probed
 //! patch table re-applies to moved points.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::geom::{cross, dot};
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};

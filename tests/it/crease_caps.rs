@@ -13,8 +13,7 @@
 //! of three or more quads, its centre the crease's limit point and its boundary spokes on the
 //! crease's limit curve; the probed patch table re-applies to moved points.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::dist;

@@ -17,8 +17,7 @@
 //! of the refinement's local matrix), which the smooth mask (OpenSubdiv's choice at a dart)
 //! does not.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::geom::{Point, axpy, dist};
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};

@@ -9,10 +9,8 @@ use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::Surface;
 
-#[path = "eval/cli.rs"]
-mod cli;
-#[path = "eval/support.rs"]
-mod support;
+use crate::eval_helpers::cli;
+use crate::eval_helpers::support;
 use cli::eval_words;
 use support::{Lcg, gallery, limit_along, tmp, toward_ev, written};
 

@@ -10,12 +10,10 @@ use fairsub::mesh::PolyMesh;
 use fairsub::schemes::catmull_clark::catmull_clark_lambda;
 use fairsub::schemes::registry::ids;
 
-#[path = "eval/support.rs"]
-mod support;
-use support::{gallery, limit_along, toward_ev};
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::support;
 use faces::{all_agree, all_continuous};
+use support::{gallery, limit_along, toward_ev};
 
 const NETS: [&str; 5] = [
     "cnet-5-saddle",

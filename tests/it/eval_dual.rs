@@ -13,19 +13,16 @@ use fairsub::geom::dist;
 use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::ids;
 
-#[path = "eval/support.rs"]
-mod support;
-use support::{gallery, irregular_boundary_nets, toward_ev, via_obj, written_from};
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
+use crate::eval_helpers::support;
 use faces::{
     Covered, agrees_with, all_agree, all_continuous, at_interior_vertex, face_points, largest_jump,
     surface_of,
 };
 use fairsub::mesh::Extras;
 use fairsub::mesh::tags::{BoundaryInterpolation, SubdOptions};
-#[path = "eval/ratios.rs"]
-mod ratios;
+use support::{gallery, irregular_boundary_nets, toward_ev, via_obj, written_from};
 
 fn dual_schemes() -> [&'static str; 3] {
     [

@@ -12,9 +12,7 @@ use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::{Surface, limit_surface, limit_surface_from, quad_corner_targets};
 use std::path::Path;
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
+use crate::eval_helpers::support;
 use support::{Lcg, gallery, irregular_boundary_nets};
 
 /// Random points of every face (n-gons on their strip), half of them `2^-k` (`k = 1..=9`, a

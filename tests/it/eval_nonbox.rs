@@ -22,15 +22,12 @@ use fairsub::schemes::nonbox::{FcvNet, NonBox};
 use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::eval::Surface;
 
-#[path = "eval/support.rs"]
-mod support;
-use support::{Lcg, gallery, tmp, toward_ev, written_from};
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
+use crate::eval_helpers::support;
 use faces::{agrees_at, all_agree, all_continuous, surface_of};
-#[path = "eval/ratios.rs"]
-mod ratios;
 use ratios::converges;
+use support::{Lcg, gallery, tmp, toward_ev, written_from};
 
 /// `fairsub analyze`'s subdominant eigenvalue of `scheme` at valence `n`.
 fn lambda(scheme: &str, n: usize) -> f64 {

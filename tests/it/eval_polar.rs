@@ -18,20 +18,14 @@ use fairsub::surface::eval::Surface;
 use std::collections::BTreeSet;
 
 // the shared helpers, of which this file uses some
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
-use support::{gallery, tmp, via_obj, written_from};
-#[path = "eval/faces.rs"]
-#[allow(dead_code)]
-mod faces;
-use faces::{agrees_at, face_points, jump_across, largest_jump, surface_of};
-#[path = "eval/cli.rs"]
-mod cli;
-#[path = "eval/ratios.rs"]
-mod ratios;
+use crate::eval_helpers::cli;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
+use crate::eval_helpers::support;
 use cli::eval_words;
+use faces::{agrees_at, face_points, jump_across, largest_jump, surface_of};
 use ratios::{converges, lambda};
+use support::{gallery, tmp, via_obj, written_from};
 
 const POLAR: &str = "polar-bi2";
 /// The pole given for face 0 (the bottom cap, centroid `(0, 0, -1)`) of prism-5.

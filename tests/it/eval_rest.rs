@@ -11,16 +11,13 @@ use fairsub::schemes::catmull_clark::catmull_clark_lambda;
 use fairsub::schemes::registry::ids;
 
 #[allow(dead_code)]
-#[path = "eval/support.rs"]
-mod support;
-use support::{gallery, limit_along, toward_ev};
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
 #[allow(dead_code)]
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::support;
 use faces::{all_agree, jump_across, largest_jump, surface_of};
-#[path = "eval/ratios.rs"]
-mod ratios;
 use ratios::{converges_at_ratio, error_ratios};
+use support::{gallery, limit_along, toward_ev};
 
 fn macro_schemes() -> [&'static str; 2] {
     [ids::GUIDED_BI4_MACRO.name(), ids::GUIDED_BI3_MACRO.name()]

@@ -5,13 +5,11 @@
 //! with a turned parameter jumps there).
 
 #[allow(dead_code)]
-#[path = "eval/support.rs"]
-mod support;
-use support::written_from;
+use crate::eval_helpers::faces;
 #[allow(dead_code)]
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::support;
 use faces::{agrees_at, agrees_with, largest_jump, surface_of};
+use support::written_from;
 
 #[test]
 fn dart_and_wedge_caps_evaluate_as_written() {

@@ -14,16 +14,13 @@ use fairsub::schemes::registry::{ids, registry};
 
 // `limit_along` samples at 2^-k and asks for 12 rings; TPS's rings shrink by 3, so the
 // convergence test below samples at 3^-k itself
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
 #[allow(dead_code)]
-#[path = "eval/support.rs"]
-mod support;
-use support::{gallery, toward_ev};
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::support;
 use faces::{all_agree, all_continuous, largest_jump, surface_of};
-#[path = "eval/ratios.rs"]
-mod ratios;
 use ratios::{error_ratios, limit_at_ratio};
+use support::{gallery, toward_ev};
 
 #[test]
 fn tps_eval_agrees_with_the_written_patches() {

@@ -14,17 +14,14 @@ use fairsub::schemes::bi2::mixed::fig15_like_net;
 use fairsub::schemes::bi2::pgs::ds_net;
 use fairsub::schemes::registry::ids;
 
-#[path = "eval/support.rs"]
-mod support;
-use support::{gallery, toward_ev, via_obj, written_from};
-#[path = "eval/faces.rs"]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::ratios;
+use crate::eval_helpers::support;
 use faces::{
     agrees_with, all_agree, all_continuous, face_points, jump_across, largest_jump, surface_of,
 };
-#[path = "eval/ratios.rs"]
-mod ratios;
 use ratios::lambda;
+use support::{gallery, toward_ev, via_obj, written_from};
 
 /// The error ratios of the limit evaluation along `at` ([`ratios::converges`]: asserted to
 /// be `lambda` within 10% from k = 6).

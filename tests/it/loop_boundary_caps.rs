@@ -16,17 +16,12 @@ use fairsub::mesh::PolyMesh;
 use fairsub::mesh::nets::{loop_net, tri_grid};
 use fairsub::surface::{ComplexOptions, complex};
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
-use support::{Lcg, irregular_boundary_nets, via_obj, written_from};
-#[path = "eval/open_caps.rs"]
-mod open_caps;
-use open_caps::{centre_and_normal, open_caps, table_reapplies};
-#[path = "eval/faces.rs"]
-#[allow(dead_code)]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::open_caps;
+use crate::eval_helpers::support;
 use faces::{agrees_at, largest_jump, surface_of};
+use open_caps::{centre_and_normal, open_caps, table_reapplies};
+use support::{Lcg, irregular_boundary_nets, via_obj, written_from};
 
 /// The quads of `m` split along one diagonal (`flip`: the other one).
 fn triangulated(m: &PolyMesh, flip: bool) -> PolyMesh {

@@ -82,3 +82,35 @@ mod usd;
 mod viewer;
 mod viewer_host;
 mod wedge_caps;
+
+// Helpers shared by several modules (tests/consolidate.sh).
+#[allow(dead_code)]
+#[path = "cad_common/mod.rs"]
+mod cad_common;
+#[allow(dead_code)]
+#[path = "eval"]
+mod eval_helpers {
+    #[path = "cli.rs"]
+    pub mod cli;
+    #[path = "faces.rs"]
+    pub mod faces;
+    #[path = "open_caps.rs"]
+    pub mod open_caps;
+    #[path = "ratios.rs"]
+    pub mod ratios;
+    #[path = "support.rs"]
+    pub mod support;
+}
+#[allow(dead_code)]
+#[path = "sharp"]
+mod sharp_helpers {
+    #[path = "support.rs"]
+    pub mod support;
+}
+#[allow(dead_code)]
+#[path = "viewer"]
+mod viewer_helpers {
+    #[path = "server.rs"]
+    pub mod server;
+}
+// End of the shared helpers.

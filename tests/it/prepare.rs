@@ -14,14 +14,10 @@ use fairsub::surface::ComplexOptions;
 use fairsub::surface::eval::Surface;
 use fairsub::surface::table::{PatchTable, probe};
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
-use support::{gallery, irregular_boundary_nets, via_obj, written_from};
-#[path = "eval/faces.rs"]
-#[allow(dead_code)]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::support;
 use faces::{face_points, jump_across};
+use support::{gallery, irregular_boundary_nets, via_obj, written_from};
 
 /// A net of fairsub's own that needs a step, the scheme, and the words its note names.
 struct Case {

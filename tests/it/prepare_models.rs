@@ -12,9 +12,7 @@ use fairsub::mesh::PolyMesh;
 use fairsub::schemes::registry::{ids, registry};
 use fairsub::surface::ComplexOptions;
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
+use crate::eval_helpers::support;
 
 /// The boundary quads of a union of unit cubes (`cells`, integer corners), outward, with
 /// shared corners, bent a little so that no two faces are coplanar.

@@ -6,14 +6,10 @@
 use fairsub::geom::{Point, cross, dist, dot, norm, sub};
 use fairsub::surface::eval::Surface;
 
-#[path = "eval/support.rs"]
-#[allow(dead_code)]
-mod support;
-use support::{Lcg, gallery};
-#[path = "eval/faces.rs"]
-#[allow(dead_code)]
-mod faces;
+use crate::eval_helpers::faces;
+use crate::eval_helpers::support;
 use faces::{face_points, surface_of};
+use support::{Lcg, gallery};
 
 /// Nets, schemes and rings whose surfaces are closed.
 const CASES: [(&str, &str, usize); 8] = [

@@ -6,8 +6,7 @@
 //! through the construction, sharpness 10 is the infinitely sharp crease, and the distance to
 //! it halves with every unit of sharpness.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 use support::{osd, table_reapplies};
 
 use fairsub::analysis::continuity;

@@ -11,8 +11,7 @@
 //! (every cap patch belongs to a G^1 cap), every join is G^1 below 1e-8 rad, and every cap's
 //! centre is a limit point of the uniformly refined net.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::bezier::complex::PatchComplex;
 use fairsub::host::ComplexOptions;

@@ -5,8 +5,7 @@
 //! triangles on both sides; semi-sharp creases are refined until spent; hole faces are not
 //! written; `check` reports the crease joins as sharp.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::geom::{self, Point};

@@ -4,8 +4,7 @@
 //! the crease curve is the cubic B-spline of the crease vertices and shared by the patches on
 //! both sides; hole faces are not written.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::geom::Point;

@@ -8,8 +8,7 @@
 
 #[path = "viewer/cdp.rs"]
 mod cdp;
-#[path = "viewer/server.rs"]
-mod server;
+use crate::viewer_helpers::server;
 #[path = "viewer/shot.rs"]
 mod shot;
 

@@ -2,8 +2,7 @@
 //! its own loopback address and port (a page elsewhere whose name was rebound to 127.0.0.1, a
 //! missing header, another port) gets 421 and nothing computed.
 
-#[path = "viewer/server.rs"]
-mod server;
+use crate::viewer_helpers::server;
 
 use server::{get, get_as, start};
 

@@ -12,8 +12,7 @@
 //! cap per run of present faces, centred at a limit point; the probed patch table re-applies
 //! to moved points.
 
-#[path = "sharp/support.rs"]
-mod support;
+use crate::sharp_helpers::support;
 
 use fairsub::mesh::nets::{CnetShape, cnet, loop_net};
 use fairsub::mesh::{Extras, PolyMesh};
