@@ -114,3 +114,6 @@ mod viewer_helpers {
     pub mod server;
 }
 // End of the shared helpers.
+mod compare_refine_only;
+mod public_api;
+mod reference_pages;

@@ -13,8 +13,7 @@ fn fairsub(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn refinement_only_schemes_are_compared_as_refined_nets() {
-    let dir = std::env::temp_dir().join(format!("fairsub-compare-ro-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::common::scratch("compare-ro");
     let png = dir.join("c.png");
     let out = fairsub(&[
         "compare",
