@@ -57,7 +57,7 @@ pub static ENTRIES: &[Entry] = &[
         About {
             family: "guided subdivision, Section 6.2: rings of 2 x 2 bi-4 macro patches (C^3 inner knot), fairsub's derivation (figures lost)",
             input: "as guided-bi5",
-            patches: "bi-3 on regular quads; K rings of 12n bi-4 patches; no cap (the hole stays open)",
+            patches: "bi-3 on regular quads; K rings of 12n bi-4 patches; fairsub's split G^1 cap, 2 x 2 bi-4 pieces per sector",
             smoothness: "C^2 rings and joins, curvature bounded at the centre",
             valences: "as guided-bi5",
             status: "reconstruction (rings only)",
@@ -71,7 +71,7 @@ pub static ENTRIES: &[Entry] = &[
         About {
             family: "guided subdivision, Section 6.2: rings of 3 x 3 bi-3 macro patches (C^2 knots), fairsub's derivation (figures lost)",
             input: "as guided-bi5",
-            patches: "bi-3 on regular quads; K rings of 27n bi-3 patches; no cap (the hole stays open)",
+            patches: "bi-3 on regular quads; K rings of 27n bi-3 patches; fairsub's split G^1 cap, 3 x 3 bi-5 pieces per sector",
             smoothness: "C^2 rings and joins, curvature bounded at the centre",
             valences: "as guided-bi5",
             status: "reconstruction (rings only)",

@@ -26,7 +26,7 @@ pub static ENTRIES: &[Entry] = &[
         About {
             family: "QAS+^3: bi-3 rings (2 x 2 macro-patches) through fairsub's derived bijection T_3^4",
             input: "as qas-plus",
-            patches: "bi-3 on regular quads; K rings of 12n bi-3 patches; bi-3 fill (C^0, 2 x 2 Coons per sector)",
+            patches: "bi-3 on regular quads; K rings of 12n bi-3 patches; fairsub's split G^1 cap, 2 x 2 bi-4 pieces per sector",
             smoothness: "C^2 rings and joins, curvature bounded (rho(M_d) = 0.136252 < 0.13626 at n = 5)",
             valences: "as qas-plus",
             status: "available (patches; T_3^4 derived: the earlier paper's formulas are not in the corpus)",
