@@ -1,5 +1,5 @@
-//! What the 1-4 split refiners share: the topology of one uniform step ([`UniformSplit`],
-//! implemented by [`super::quad_split::QuadSplit`] and [`super::tri_split::TriSplit`]) and the
+//! What the 1-4 split refiners share: the topology of one uniform step (`UniformSplit`,
+//! implemented by `quad_split::QuadSplit` and `tri_split::TriSplit`) and the
 //! sparse step over selected faces ([`sparse_split`]), both without any weights (OpenSubdiv's
 //! `Vtr` refinements, CGAL's hosts: the split is topology, the masks are the scheme's).
 //!

@@ -10,7 +10,7 @@
 //! `h = 3f + i`; its sides are `3(4f + i) + k`: `k = 0` from the vertex along `h`, `1` across
 //! the parent face, `2` back along `prev(h)`. The middle face `4f + 3` has side `k` from the
 //! point of edge `3f + k` to the next. Loop subdivision (uniform and adaptive levels) and the
-//! modified butterfly scheme refine on it ([`TriSplit`], [`super::split`]).
+//! modified butterfly scheme refine on it (`TriSplit`, `super::split`).
 
 use super::split::{UniformSplit, edge_half, general_child_topology};
 use super::{FaceIndex, MeshView, NONE, PolyMesh, Topology, number_edges};

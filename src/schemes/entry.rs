@@ -2,7 +2,7 @@
 //! parameters ([`Suffix`]), its catalogue text ([`About`]) and its descriptor.
 //!
 //! Each family writes its own rows in its `entry.rs` (the only files that spell scheme names),
-//! beside its rules; the registry ([`super::registry`]) lists the families' rows in catalogue
+//! beside its rules; the registry (`super::registry`) lists the families' rows in catalogue
 //! order.
 
 use crate::schemes::descriptor::{Capabilities, Descriptor};

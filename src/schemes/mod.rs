@@ -11,7 +11,7 @@
 //! face-varying data), the shared vocabulary ([`descriptor`], [`entry`], [`local`],
 //! [`circulant`], [`growth`], the [`Scheme`] trait), the scheme families (one folder each, with
 //! its rules, surfaces, analysis, descriptor and registry rows), the preparation stage
-//! ([`prepare`], which applies families' steps), and on top the [`registry`], which lists the
+//! ([`prepare`], which applies families' steps), and on top the `registry`, which lists the
 //! families' rows. Arrows only point down: no family imports the registry or the preparation
 //! stage's steps, and there is no import circle between these folders (`tests/architecture.rs`).
 

@@ -203,7 +203,7 @@ pub enum AlphaRule {
     /// TPS's published values.
     Published,
     /// Adjustable TPS as the paper states it: the stationary limit point is TPS's (21) (with
-    /// the valence-3 fallback of [`TernaryRules::stationary_alphas`]).
+    /// the valence-3 fallback of `bi2::ternary::TernaryRules::stationary_alphas`).
     #[default]
     TpsLimitPoint,
     /// fairsub's alternative for adjustable TPS: the stationary frequency-0 eigenvalues are
