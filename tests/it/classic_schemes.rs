@@ -53,25 +53,7 @@ fn tetrahedron() -> PolyMesh {
 }
 
 fn octahedron() -> PolyMesh {
-    let pos = vec![
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    let faces = [
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
-    PolyMesh::new(pos, &faces).unwrap()
+    fairsub::mesh::nets::octahedron()
 }
 
 /// A fan of `k` triangles around vertex 0: a closed disk (vertex 0 interior, valence k) or,

@@ -74,3 +74,22 @@ pub fn peer_program(name: &str, script: &str, require: &str) -> Option<PathBuf> 
     println!("{name}: skipped: {msg}");
     None
 }
+
+/// A 4 x 4 grid of quads (25 vertices), lifted into a bowl so no patch is planar.
+pub fn bowl_grid() -> (Vec<fairsub::geom::Point>, Vec<Vec<usize>>) {
+    let mut pos = Vec::new();
+    for j in 0..5 {
+        for i in 0..5 {
+            let (x, y) = (i as f64, j as f64);
+            pos.push([x, y, 0.1 * (x - 2.0).powi(2) + 0.07 * (y - 2.0).powi(2)]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..4 {
+        for i in 0..4 {
+            let a = 5 * j + i;
+            faces.push(vec![a, a + 1, a + 6, a + 5]);
+        }
+    }
+    (pos, faces)
+}

@@ -8,25 +8,6 @@ use fairsub::mesh::{Extras, PolyMesh};
 use fairsub::schemes::registry::registry;
 use fairsub::surface::ComplexOptions;
 
-/// A 4 x 4 grid of quads (25 vertices), lifted into a bowl so no patch is planar.
-fn grid() -> (Vec<Point>, Vec<Vec<usize>>) {
-    let mut pos = Vec::new();
-    for j in 0..5 {
-        for i in 0..5 {
-            let (x, y) = (i as f64, j as f64);
-            pos.push([x, y, 0.1 * (x - 2.0).powi(2) + 0.07 * (y - 2.0).powi(2)]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..4 {
-        for i in 0..4 {
-            let a = 5 * j + i;
-            faces.push(vec![a, a + 1, a + 6, a + 5]);
-        }
-    }
-    (pos, faces)
-}
-
 /// The faces of the 2 x 2 block at the grid's corner: vertex 0 (a corner) and vertex 6 (an
 /// interior vertex) are in hole faces only.
 const HOLES: [usize; 4] = [0, 1, 4, 5];
@@ -51,7 +32,7 @@ fn sorted(patches: &[fairsub::bezier::BezierPatch]) -> Vec<Vec<Point>> {
 /// Builds the tagged grid and the grid with the block deleted under `name`; checks the note,
 /// that patches exist and that the tagged surface is G^1. Returns both complexes' patches.
 fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
-    let (pos, faces) = grid();
+    let (pos, faces) = crate::common::bowl_grid();
     let ex = Extras {
         holes: HOLES.iter().map(|&f| f as u32).collect(),
         ..Extras::default()

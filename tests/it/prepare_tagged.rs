@@ -17,25 +17,6 @@ const OPTS: ComplexOptions = ComplexOptions {
     fill: true,
 };
 
-/// A 4 x 4 grid of quads (25 vertices), lifted into a bowl so no patch is planar.
-fn grid() -> (Vec<Point>, Vec<Vec<usize>>) {
-    let mut pos = Vec::new();
-    for j in 0..5 {
-        for i in 0..5 {
-            let (x, y) = (i as f64, j as f64);
-            pos.push([x, y, 0.1 * (x - 2.0).powi(2) + 0.07 * (y - 2.0).powi(2)]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..4 {
-        for i in 0..4 {
-            let a = 5 * j + i;
-            faces.push(vec![a, a + 1, a + 6, a + 5]);
-        }
-    }
-    (pos, faces)
-}
-
 /// Builds `mesh` under `scheme`: the complex and the notes.
 fn build(scheme: &str, mesh: &PolyMesh) -> (PatchComplex, Vec<String>) {
     let spec = registry().lookup(scheme).expect("registered");
@@ -69,7 +50,7 @@ fn a_hole_beside_boundary_vertices_of_three_faces_is_removed_before_the_dual_ste
     // face 5 a hole: its four vertices become boundary vertices of three faces, which TPS's
     // rules do not take (catmark_hole_test4): removed, then one Doo-Sabin and one
     // Catmull-Clark step
-    let (pos, faces) = grid();
+    let (pos, faces) = crate::common::bowl_grid();
     let tagged = PolyMesh::new(pos.clone(), &faces)
         .expect("the grid")
         .with_extras(Some(Extras {
@@ -180,7 +161,7 @@ fn creases_under_edge_only_are_cut_before_the_dual_step() {
     // catmark_fvar_project0: creases on an open net under edge-only, whose corners of one
     // face TPS's rules do not take; the cut net gets the Doo-Sabin step, which makes every
     // boundary vertex regular
-    let (pos, faces) = grid();
+    let (pos, faces) = crate::common::bowl_grid();
     let m = PolyMesh::new(pos, &faces).expect("the grid");
     // the crease along row y = 2 (vertices 10..14), boundary to boundary
     let sharp: Vec<([u32; 2], f32)> = (10..14).map(|a| ([a, a + 1], 10.0)).collect();
