@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the guide's reference pages from the code: the command-line reference from clap's
-# command tree and the scheme catalogue from the registry. tests/reference_pages.rs fails while
+# command tree and the scheme catalogue from the registry. tests/it/reference_pages.rs fails while
 # the checked-in pages differ from what the binary prints; run this and commit the pages.
 #
 # Usage: docs/make-reference.sh   (builds the release binary first)

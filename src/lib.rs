@@ -99,7 +99,7 @@ pub use surface::table::PatchTable;
 /// them): each page that holds a Rust block is the documentation of one item here, compiled
 /// only by rustdoc's test run, so normal builds do not read the pages. Every fenced block of a
 /// page carries an info string (`docs/check-links.py` checks it): a bare one would be compiled
-/// as Rust. `tests/reference_pages.rs` checks that every page with a Rust block is listed.
+/// as Rust. `tests/it/reference_pages.rs` checks that every page with a Rust block is listed.
 #[cfg(doctest)]
 mod doctests {
     /// README.md
