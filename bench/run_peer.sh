@@ -21,10 +21,14 @@
 #   3. an EG cap against a Catmull-Clark cap with the same rings (8 + fill) at valences 3 and 5.
 #
 # Environment: REPS (default 3), STENCIL_REPS (20), FACES (100k), LEVELS (3), STENCIL_FACES (10k),
-# OUT (target/peer). Not part of CI: it needs a C++ toolchain and OpenSubdiv, and takes about a
-# minute on two cores.
+# OUT (target/peer), TABLE (unset: also write the table as Markdown with its generated header,
+# bench/table.sh; the guide's is written by
+#   TABLE=docs/guide/src/tables/opensubdiv-refinement.md bench/run_peer.sh
+# ). Not part of CI: it needs a C++ toolchain and OpenSubdiv, and takes about a minute on two
+# cores.
 set -euo pipefail
 
+. "$(dirname "$0")/table.sh"
 cd "$(dirname "$0")/.."
 REPS=${REPS:-3}
 STENCIL_REPS=${STENCIL_REPS:-20}
@@ -74,10 +78,15 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 mb() { awk -v a="$1" 'BEGIN { printf "%.0f MB", a / 1e6 }'; }
 
 rows=()
-row() { rows+=("$(printf '%-58s %14s %14s %8s' "$1" "$2" "$3" "$4")"); }
+md=()
+row() {
+    rows+=("$(printf '%-58s %14s %14s %8s' "$1" "$2" "$3" "$4")")
+    md+=("| $1 | $2 | $3 | $4 |")
+}
 
 rm -f "$OUT"/compare-*.txt
 echo "load before measuring: $(uptime)"
+table_begin bench/run_peer.sh REPS STENCIL_REPS FACES LEVELS STENCIL_FACES
 
 # --- 1. whole process ---------------------------------------------------------------------------
 whole() { # scheme-name osd-scheme mesh label
@@ -99,13 +108,16 @@ whole() { # scheme-name osd-scheme mesh label
         t_fs1=$(min "$t" "$t_fs1")
     done
     "$TOOL" compare "$fs_ply" "$osd_ply" >"$OUT/compare-$key.txt"
-    local bytes
+    local bytes dist
     bytes=$(stat -c %s "$fs_ply")
+    dist=$(sed -n 's/^largest distance between matched points: \([^ ]*\).*/\1/p' "$OUT/compare-$key.txt")
+    same+=("$4: identical faces, points within $dist")
     row "$4: wall s (all cores)" "$t_osd" "$t_fs" "$(ratio "$t_osd" "$t_fs")x"
     row "$4: wall s (fairsub on 1 thread)" "$t_osd" "$t_fs1" "$(ratio "$t_osd" "$t_fs1")x"
     row "$4: peak RSS / output ($(mb "$bytes"))" "$(ratio "$rss_osd" "$bytes")" \
         "$(ratio "$rss_fs" "$bytes")" "$(ratio "$rss_osd" "$rss_fs")x"
 }
+same=()
 whole catmull-clark catmark "$OUT/quads.obj" "CC $FACES quads L$LEVELS"
 whole loop loop "$OUT/tris.obj" "Loop $FACES tris L$LEVELS"
 whole catmull-clark catmark "$OUT/creased.obj" "CC $FACES quads, creased, L$LEVELS"
@@ -142,3 +154,16 @@ grep -h "largest distance\|faces:" "$OUT"/compare-*.txt
 echo
 echo "EG cap against Catmull-Clark cap, same rings (whole c-net surfaces, best of $STENCIL_REPS):"
 printf '%s\n' "${caps[@]}"
+
+# --- the Markdown table (TABLE) -----------------------------------------------------------------
+{
+    echo "| measure (best of REPS; ratio OpenSubdiv / fairsub) | OpenSubdiv 3.5 | fairsub | ratio |"
+    echo "| --- | --- | --- | --- |"
+    printf '%s\n' "${md[@]}"
+    for c in "${caps[@]}"; do
+        # "valence N, R rings + fill: EG A ms (P patches), Catmull-Clark B ms (Q patches), EG / CC = X"
+        sed -n 's/^valence \([0-9]*\), \([0-9]*\) rings + fill: EG \([0-9.]*\) ms.*Catmull-Clark \([0-9.]*\) ms.*EG \/ CC = \([0-9.]*\)$/| EG cap against Catmull-Clark cap, valence \1, \2 rings + fill: ms (ratio: EG \/ CC) | - | EG \3, CC \4 | \5 |/p' <<<"$c"
+    done
+    echo
+    echo "Outputs checked the same mesh: $(IFS=';'; echo "${same[*]}" | sed 's/;/; /g')."
+} | table_write

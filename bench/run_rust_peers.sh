@@ -9,8 +9,12 @@
 # fairsub and its dependencies are the ones already built. Prints, per mesh, the check that both
 # crates' refined points equal fairsub's (matched by coordinates, faces then compared), and the
 # table of times with the ratios. Takes about a minute on two idle cores at 100k faces.
+# TABLE (unset) also writes both tables as Markdown with their generated header
+# (bench/table.sh); the guide's are written by
+#   TABLE=docs/guide/src/tables/rust-peers.md bench/run_rust_peers.sh
 set -euo pipefail
 
+. "$(dirname "$0")/table.sh"
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 FACES=${FACES:-100k}
 LEVELS=${LEVELS:-3}
@@ -19,5 +23,7 @@ cd "$ROOT/bench/rust-peers"
 [ -f Cargo.lock ] || cp "$ROOT/Cargo.lock" Cargo.lock
 CARGO_TARGET_DIR="$ROOT/target" cargo build --release --quiet
 echo "load before measuring: $(uptime)"
-"$ROOT/target/release/fairsub-rust-peers" "$FACES" "$LEVELS" "$REPS"
+table_begin bench/run_rust_peers.sh FACES LEVELS REPS
+"$ROOT/target/release/fairsub-rust-peers" "$FACES" "$LEVELS" "$REPS" "$ROOT/target/rust-peers.md"
 echo "load after measuring: $(uptime)"
+table_write <"$ROOT/target/rust-peers.md"

@@ -29,20 +29,29 @@
 #
 # Timings are wall-clock of the whole process (reading, work, writing) on whatever machine runs
 # the script; run it on an idle machine. It is not part of `cargo test` (the project has no timed
-# tests); its last output is recorded in the README's limits section.
+# tests). TABLE (unset) also writes the table as Markdown with its generated header
+# (bench/table.sh); the guide's is written by
+#   TABLE=docs/guide/src/tables/scaling.md bench/scaling.sh
 set -euo pipefail
 
+. "$(dirname "$0")/table.sh"
+cd "$(dirname "$0")/.."
+knobs=(REPS LIMIT BIN ANALYZE_N)
+[ -z "${FAN_SCHEMES:-}" ] || knobs+=(FAN_SCHEMES)
+[ -z "${CASES:-}" ] || knobs+=(CASES)
 REPS=${REPS:-3}
 LIMIT=${LIMIT:-15}
 BIN=${BIN:-target/release/fairsub}
 OUT=${OUT:-target/scaling}
+ANALYZE_N=${ANALYZE_N:-30}
 FAN_SCHEMES=${FAN_SCHEMES:-"catmull-clark doo-sabin doo-sabin-cc loop nonbox nonbox-4dir eg qas-plus qas-plus-bi3 qas-0.4 qas-0.5-0.4 pgs pgs-dscc polar-bi2 tps tps-adjustable bi2-mixed guided-bi5 guided-bi6 guided-bi4-macro guided-bi3-macro"}
 FANS=""
 for s in $FAN_SCHEMES; do FANS="$FANS fan-$s"; done
 CASES=${CASES:-"info-kgon check-bv bv-groups$FANS ds-kgon analyze-guided-bi5 analyze-pgs analyze-nonbox"}
 
-if [ ! -x "$BIN" ]; then
-    cargo build --release >&2
+# the default binary is brought up to date (a no-op when it is), so it is the commit's
+if [ "$BIN" = target/release/fairsub ] || [ ! -x "$BIN" ]; then
+    cargo build --release --quiet --bin fairsub >&2
 fi
 mkdir -p "$OUT"
 
@@ -104,17 +113,21 @@ best() {
 }
 
 fail=0
+md=()
+table_begin bench/scaling.sh "${knobs[@]}"
 printf '%-20s %10s %10s %10s %10s %7s\n' case n 10n "t(n) s" "t(10n) s" ratio
 report() { # name n t1 t2 (an empty time: the command failed, reported by best)
     local ratio status=ok
     if [ -z "$3" ] || [ -z "$4" ]; then
         printf '%-20s %10s FAILED (command failed)\n' "$1" "$2"
+        md+=("| \`$1\` | $2 | | | | command failed |")
         fail=1
         return
     fi
     ratio=$(echo "$4 / $3" | bc -l)
     if [ "$(echo "$ratio > $LIMIT" | bc -l)" = 1 ]; then status="FAIL (> $LIMIT)"; fail=1; fi
     printf '%-20s %10s %10s %10s %10s %7.2f %s\n' "$1" "$2" "$(($2 * 10))" "$3" "$4" "$ratio" "$status"
+    md+=("$(printf '| `%s` | %s -> %s | %.3f | %.3f | %.1f | %s |' "$1" "$2" "$(($2 * 10))" "$3" "$4" "$ratio" "$status")")
 }
 
 for c in $CASES; do
@@ -151,7 +164,7 @@ for c in $CASES; do
         ;;
     analyze-*)
         s=${c#analyze-}
-        n=${ANALYZE_N:-30}
+        n=$ANALYZE_N
         report "$c" "$n" "$(best "$BIN" analyze --scheme "$s" --valence "$n")" \
             "$(best "$BIN" analyze --scheme "$s" --valence "$((n * 10))")"
         ;;
@@ -161,4 +174,9 @@ for c in $CASES; do
         ;;
     esac
 done
+{
+    echo "| case | n -> 10 n | t(n) s | t(10 n) s | ratio | within $LIMIT |"
+    echo "| --- | --- | --- | --- | --- | --- |"
+    printf '%s\n' "${md[@]}"
+} | table_write
 exit $fail

@@ -3,8 +3,11 @@
 //! (stencil tables per level). Run by `bench/run_rust_peers.sh`.
 //!
 //! ```text
-//! fairsub-rust-peers [FACES] [LEVELS] [REPS]      # defaults 100k 3 1
+//! fairsub-rust-peers [FACES] [LEVELS] [REPS] [MARKDOWN]      # defaults 100k 3 1, none
 //! ```
+//!
+//! With MARKDOWN (a file name), the check and the times are also written there as two Markdown
+//! tables (`bench/run_rust_peers.sh` puts its generated header above them).
 //!
 //! Each mesh is built from the same flat arrays as `bench/meshes.rs` (the file is included):
 //! two small closed smoke nets (a cube, valence 3; a triangular prism, a triangle next to quads)
@@ -67,6 +70,7 @@ fn run() -> Res<()> {
         meshes::parse_count(args.first().map_or("100k", |s| s.as_str())).ok_or("bad face count")?;
     let levels: usize = args.get(1).map_or(Ok(3), |s| s.parse())?;
     let reps: usize = args.get(2).map_or(Ok(1), |s| s.parse())?;
+    let markdown = args.get(3);
     if !(1..=6).contains(&levels) {
         return Err("LEVELS must be 1 to 6".into());
     }
@@ -77,6 +81,7 @@ fn run() -> Res<()> {
     run_fairsub(&nets[0], levels)?;
     one.install(|| run_fairsub(&nets[0], levels))?;
     let mut rows = Vec::new();
+    let mut checks = Vec::new();
     for net in &nets {
         let (mut t_fs, mut t_fs1, mut t_osd, mut t_sk) = (f64::MAX, f64::MAX, f64::MAX, f64::MAX);
         let mut outs = None;
@@ -104,6 +109,10 @@ fn run() -> Res<()> {
             a.face_start.len() - 1,
             net.tol
         );
+        checks.push(format!(
+            "| {} | {d_osd:.1e} | {d_sk:.1e} | {:.0e} |",
+            net.name, net.tol
+        ));
         rows.push((net.name.clone(), t_fs, t_fs1, t_osd, t_sk));
     }
     println!();
@@ -114,7 +123,25 @@ fn run() -> Res<()> {
         "{:<28} {:>10} {:>10} {:>14} {:>14} {:>10} {:>10}",
         "mesh", "fairsub", "fairsub 1t", "opensubdiv-rs", "subdiv-kernels", "osd-rs/fs", "sk/fs"
     );
+    let threads = rayon::current_num_threads();
+    let mut md = format!(
+        "| mesh (Catmull-Clark to level {levels}) | opensubdiv-rs: largest distance / diagonal \
+         | subdiv-kernels | tolerance |\n| --- | --- | --- | --- |\n{}\n\n\
+         | mesh: milliseconds, best of {reps} | fairsub ({threads} threads) | fairsub (1 thread) \
+         | opensubdiv-rs | subdiv-kernels | opensubdiv-rs / fairsub | subdiv-kernels / fairsub |\n\
+         | --- | --- | --- | --- | --- | --- | --- |\n",
+        checks.join("\n")
+    );
     for (name, fs, fs1, osd, sk) in rows {
+        md.push_str(&format!(
+            "| {name} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1}x | {:.1}x |\n",
+            fs * 1e3,
+            fs1 * 1e3,
+            osd * 1e3,
+            sk * 1e3,
+            osd / fs,
+            sk / fs
+        ));
         println!(
             "{name:<28} {:>10.1} {:>10.1} {:>14.1} {:>14.1} {:>9.1}x {:>9.1}x",
             fs * 1e3,
@@ -125,10 +152,10 @@ fn run() -> Res<()> {
             sk / fs
         );
     }
-    println!(
-        "ratios: the peer's time over fairsub's on all cores ({} threads)",
-        rayon::current_num_threads()
-    );
+    println!("ratios: the peer's time over fairsub's on all cores ({threads} threads)");
+    if let Some(path) = markdown {
+        std::fs::write(path, md)?;
+    }
     Ok(())
 }
 
