@@ -10,6 +10,10 @@ lower case, whitespace to `-`, characters other than letters, digits, `-` and `_
 repeated slug numbered `-1`, `-2`, ...; `{#id}` attributes and HTML `id`/`name` count too.
 Every fenced block must say what it is (an info string: `sh`, `console`, `text`, `rust`, ...):
 rustdoc would compile a bare one as Rust (the pages are doctests: src/lib.rs, `doctests`).
+A line `{{#include FILE}}` (mdBook's include, FILE relative to the page; a `:range` or `:anchor`
+suffix is ignored and the whole file taken) is replaced by FILE's lines, as mdBook does, so
+their links are checked relative to the including page and their headings are its anchors;
+FILE must exist, and a file that a checked page includes is not checked again on its own.
 
 --book DIR (after `mdbook build`): every local `href`/`src` of the rendered HTML pages must
 name a file of the book, and its `#anchor` an `id` of that file; this catches what only the
@@ -35,6 +39,7 @@ INLINE_LINK = re.compile(
     r"(!?)\[((?:[^\[\]]|\[[^\]]*\])*)\]\(\s*(<[^>]*>|[^()\s]*(?:\([^()\s]*\)[^()\s]*)*)"
     r"(?:\s+(?:\"[^\"]*\"|'[^']*'|\([^)]*\)))?\s*\)"
 )
+INCLUDE = re.compile(r"^\s*\{\{#include\s+([^}:\s]+)(?::[^}]*)?\s*\}\}\s*$")
 REF_DEF = re.compile(r"^ {0,3}\[([^\]]+)\]:\s*(<[^>]*>|\S+)")
 HTML_ATTR = re.compile(r"""\b(href|src)\s*=\s*(?:"([^"]*)"|'([^']*)')""", re.I)
 HTML_ID = re.compile(r"""\b(?:id|name)\s*=\s*(?:"([^"]*)"|'([^']*)')""", re.I)
@@ -62,11 +67,34 @@ def heading_text(markdown):
     return text.replace("*", "").replace("_", "_")
 
 
-def lines_outside_code(lines):
+def expand_includes(path, lines, included, depth=0):
+    """(line number, text) of a page's lines with every `{{#include FILE}}` line replaced by
+    FILE's lines (numbered as the include line), the included paths added to `included`, and
+    the problems of includes that name no file."""
+    out, problems = [], []
+    for number, line in enumerate(lines, 1):
+        m = INCLUDE.match(line)
+        if not m:
+            out.append((number, line))
+            continue
+        target = os.path.normpath(os.path.join(os.path.dirname(path), m.group(1)))
+        if depth > 8 or not os.path.isfile(target):
+            problems.append((number, f"{{{{#include {m.group(1)}}}}}: no file {os.path.relpath(target, REPO)}"))
+            continue
+        included.add(target)
+        with open(target, encoding="utf-8") as f:
+            inner, inner_problems = expand_includes(target, f.read().split("\n"), included, depth + 1)
+        out += [(number, text) for _, text in inner]
+        problems += [(number, f"in {os.path.relpath(target, REPO)}: {reason}") for _, reason in inner_problems]
+    return out, problems
+
+
+def lines_outside_code(numbered):
     """(line number, text) of the lines outside fenced blocks, and the fences' problems."""
     out, problems = [], []
     fence = None
-    for number, line in enumerate(lines, 1):
+    number = 0
+    for number, line in numbered:
         m = FENCE.match(line)
         if fence is None:
             if m:
@@ -80,7 +108,7 @@ def lines_outside_code(lines):
         elif m and m.group(2)[0] == fence[0] and len(m.group(2)) >= len(fence) and not m.group(3).strip():
             fence = None
     if fence is not None:
-        problems.append((len(lines), "unclosed fenced block"))
+        problems.append((number, "unclosed fenced block"))
     return out, problems
 
 
@@ -91,7 +119,10 @@ class Page:
         self.path = path
         with open(path, encoding="utf-8") as f:
             lines = f.read().split("\n")
-        self.text_lines, self.problems = lines_outside_code(lines)
+        self.included = set()
+        numbered, include_problems = expand_includes(path, lines, self.included)
+        self.text_lines, self.problems = lines_outside_code(numbered)
+        self.problems += include_problems
         self.anchors = set()
         used = set()
         for _, line in self.text_lines:
@@ -136,7 +167,12 @@ def check_markdown(files):
         return pages[path]
 
     errors = []
+    included = set()
     for path in files:
+        included |= page(path).included
+    for path in files:
+        if path in included:
+            continue
         p = page(path)
         rel = os.path.relpath(path, REPO)
         for number, reason in p.problems:
