@@ -24,6 +24,9 @@ pub enum Need {
     NoInteriorValence2,
     /// Every boundary vertex regular: two faces, or one at a corner.
     RegularBoundary,
+    /// Sharp features infinitely sharp only: no semi-sharp crease or corner (a finite
+    /// positive sharpness), which the scheme's element rings have no step to spend.
+    InfinitelySharpOnly,
     /// A property only the scheme can test: `what` it is (for notes, after "needs"), `test`
     /// the elements where it fails.
     Scheme {
@@ -42,6 +45,12 @@ pub enum Step {
     /// A step the scheme's own construction takes (locally and exactly, with its own note),
     /// described in words; [`super::prepare::prepare`] leaves the net as it is and reports it.
     Own(&'static str),
+    /// A dual whole-net step repeated with fairsub's crease construction (the creases' sharp
+    /// rules, OpenSubdiv's fractional blend on the step a value runs out; see
+    /// `crate::schemes::doo_sabin::sharp`) until no finite sharpness is left: the step that
+    /// spends semi-sharp features for a scheme whose rules take infinitely sharp ones only
+    /// ([`Need::InfinitelySharpOnly`]).
+    Spend(NetStep),
 }
 
 /// One need of a scheme and the step that meets it.
@@ -61,6 +70,10 @@ impl Need {
             Need::NoInteriorValence2 => "needs every interior vertex of valence 3 or more",
             Need::RegularBoundary => {
                 "needs every boundary vertex regular (two faces, or one at a corner it keeps)"
+            }
+            Need::InfinitelySharpOnly => {
+                "takes infinitely sharp creases and corners only (its element rings have no \
+                 step that spends a finite sharpness)"
             }
             Need::Scheme { what, .. } => what,
         }

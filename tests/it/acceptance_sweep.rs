@@ -34,6 +34,10 @@ const IRREMOVABLE: &[(&str, &str)] = &[
         "semi-sharp corners (issue 45's bi-2 crease item)",
     ),
     (
+        "whole-net steps would make about",
+        "semi-sharp creases beyond the whole-net spending steps' size (bi-2 element rings)",
+    ),
+    (
         "does not take yet",
         "sharp features in non-box patches (issue 45's crease item)",
     ),

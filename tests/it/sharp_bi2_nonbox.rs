@@ -13,7 +13,7 @@ use fairsub::analysis::continuity;
 use fairsub::bezier::complex::PatchComplex;
 use fairsub::geom::{Point, dist};
 use fairsub::host::ComplexOptions;
-use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
+use fairsub::mesh::{PolyMesh, SharpEdges};
 use fairsub::schemes::registry::registry;
 use fairsub::surface::eval::Surface;
 
@@ -35,43 +35,9 @@ fn complex(scheme: &str, mesh: &PolyMesh, rings: usize) -> PatchComplex {
         .complex
 }
 
-/// The gallery cube refined twice by Catmull-Clark (96 quads, eight valence-3 vertices), with
-/// the crease loop `z = 0` of sharpness `equator` (none for 0) and, when `top` is positive,
-/// the loop of the four edges around the centre of the face `z = 1` with that sharpness.
+/// The creased cube of the crease tests ([`support::creased_cube`]).
 fn cube(equator: f32, top: f32) -> PolyMesh {
-    let cube = fairsub::gallery::all()
-        .into_iter()
-        .find(|(n, _)| n == "cube")
-        .expect("gallery cube")
-        .1;
-    let cc = fairsub::schemes::by_name("catmull-clark").expect("catmull-clark");
-    let m = fairsub::schemes::refine_levels(cc.as_ref(), &cube, 2, |_| {}).expect("refine");
-    let p = m.positions();
-    let zmax = p.iter().map(|x| x[2]).fold(f64::MIN, f64::max);
-    let centre = (0..m.num_vertices())
-        .find(|&v| (p[v][2] - zmax).abs() < 1e-12 && p[v][0].abs() < 1e-12 && p[v][1].abs() < 1e-12)
-        .expect("the top face's centre");
-    let around: Vec<u32> = m
-        .outgoing_halfedges(centre)
-        .iter()
-        .map(|&h| m.he_to(h))
-        .collect();
-    let mut sharp = Vec::new();
-    for e in 0..m.num_edges() {
-        let h = m.edge_halfedge(e);
-        let (a, b) = (m.he_from(h), m.he_to(h));
-        let on_equator = p[a as usize][2].abs() < 1e-12 && p[b as usize][2].abs() < 1e-12;
-        let on_top = around.contains(&a) && around.contains(&b);
-        if on_equator && equator > 0.0 {
-            sharp.push((e as u32, equator));
-        } else if on_top && top > 0.0 {
-            sharp.push((e as u32, top));
-        }
-    }
-    m.with_extras(Some(Extras {
-        sharp_edges: SharpEdges::ById(sharp),
-        ..Extras::default()
-    }))
+    support::creased_cube(equator, top)
 }
 
 #[test]
@@ -365,8 +331,11 @@ fn what_the_constructions_do_not_take_is_refused_by_name() {
         e.contains("vertex 0 is a dart of an infinitely sharp crease"),
         "{e}"
     );
-    // the bi-2 schemes with element rings take infinitely sharp creases only
-    let e = fairsub::surface::build(&spec("tps"), &cube(2.5, 0.0), opts, &mut |_| {})
+    // the bi-2 schemes with element rings take infinitely sharp creases only: with
+    // --prepare none (the default spends them first, tests/it/semisharp_rings.rs)
+    let mut strict = spec("tps");
+    strict.params.prepare = fairsub::schemes::options::PrepareMode::None;
+    let e = fairsub::surface::build(&strict, &cube(2.5, 0.0), opts, &mut |_| {})
         .unwrap_err()
         .to_string();
     assert!(e.contains("semi-sharp crease value 2.5"), "{e}");

@@ -162,7 +162,8 @@ fn what_a_cut_cannot_take_is_refused_by_name() {
         base.clone().with_extras(Some(ex))
     };
     // A semi-sharp crease loop: the dual hosts refine it until spent (fairsub's crease
-    // construction); a scheme whose patches do not take it yet names it; one semi-sharp edge
+    // construction); the element-ring schemes spend it by whole-net dual steps first
+    // (tests/it/semisharp_rings.rs) and, with --prepare none, name it; one semi-sharp edge
     // in an infinitely sharp loop leaves two infinitely sharp darts, refused.
     let equator = creased_cube_with(false);
     let mut ex = equator.extras().cloned().unwrap();
@@ -171,7 +172,16 @@ fn what_a_cut_cannot_take_is_refused_by_name() {
     }
     let semi = equator.with_extras(Some(ex));
     assert!(build("doo-sabin", &semi).is_ok());
-    let e = build("bi2-mixed", &semi).unwrap_err().to_string();
+    assert!(build("bi2-mixed", &semi).is_ok());
+    let mut strict = registry().lookup("bi2-mixed").expect("scheme");
+    strict.params.prepare = fairsub::schemes::options::PrepareMode::None;
+    let opts = ComplexOptions {
+        rings: 3,
+        fill: true,
+    };
+    let e = fairsub::surface::build(&strict, &semi, opts, &mut |_| {})
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("semi-sharp crease value 2.5"), "{e}");
     let one = with(&|ex| {
         if let SharpEdges::ById(v) = &mut ex.sharp_edges {

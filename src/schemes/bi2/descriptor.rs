@@ -208,14 +208,29 @@ impl Descriptor for Bi2Descriptor {
             step: Step::Net(steps),
         };
         let no_valence_2 = net(Need::NoInteriorValence2, &[NetStep::Pgs]);
+        // semi-sharp features: spent by the family's dual step with fairsub's crease
+        // construction (crate::schemes::prepare's spend), the step each member's preparation
+        // takes anyway (Doo-Sabin before TPS's Catmull-Clark step, PGS for the mixed and
+        // polar nets)
+        let spend = |step| Requirement {
+            need: Need::InfinitelySharpOnly,
+            step: Step::Spend(step),
+        };
         match (self.kind, purpose) {
-            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, _) => vec![
-                net(Need::NoInteriorValence2, DUAL_THEN_QUADS),
-                net(Need::RegularBoundary, DUAL_THEN_QUADS),
-                net(Need::Quads, &[NetStep::CatmullClark]),
-            ],
+            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, _) => {
+                let mut out = vec![
+                    net(Need::NoInteriorValence2, DUAL_THEN_QUADS),
+                    net(Need::RegularBoundary, DUAL_THEN_QUADS),
+                    net(Need::Quads, &[NetStep::CatmullClark]),
+                ];
+                if purpose == Purpose::Patches {
+                    out.insert(0, spend(NetStep::DooSabin));
+                }
+                out
+            }
             (Bi2Kind::Pgs, Purpose::Patches) => vec![no_valence_2],
             (Bi2Kind::Mixed | Bi2Kind::Polar, Purpose::Patches) => vec![
+                spend(NetStep::Pgs),
                 no_valence_2,
                 net(
                     Need::Scheme {

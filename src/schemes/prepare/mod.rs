@@ -41,6 +41,11 @@
 //!   faces into a `(k + 2)`-sided face whose boundary vertices have two faces each (the dual
 //!   schemes' boundary rules); the Catmull-Clark step then makes that face `k + 2` quads around
 //!   an interior vertex of valence `k + 2`. Every boundary vertex of the result is regular.
+//! * **Spending semi-sharp features** ([`Step::Spend`]: TPS, adjustable TPS, the mixed and
+//!   polar nets, whose element rings have no step that spends sharpness): the dual step those
+//!   schemes' preparation takes anyway (Doo-Sabin, PGS), repeated with the dual crease rules
+//!   until no finite sharpness is left, before everything else (`spend`, fairsub's
+//!   construction, derived there).
 //! * **Separating extraordinary elements** (`bi2-mixed`, `polar-bi2`) is taken by the bi-2
 //!   family's own constructions, as PGS and TPS take it for themselves
 //!   ([`Step::Own`], documented in `crate::schemes::bi2::surface`).
@@ -58,6 +63,7 @@
 //! the scheme's own sharp-feature rules decide.
 
 pub mod map;
+mod spend;
 mod steps;
 
 use crate::error::Result;
@@ -214,6 +220,11 @@ fn unmet(need: &Need, mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
             })
             .map(|v| Element::Vertex(v as u32))
             .collect(),
+        // the ends of semi-sharp edges and the semi-sharp vertices
+        Need::InfinitelySharpOnly => spend::semi_sharp_vertices(mesh)
+            .into_iter()
+            .map(Element::Vertex)
+            .collect(),
         Need::Scheme { test, .. } => test(mesh, spec),
     }
 }
@@ -241,30 +252,34 @@ pub fn prepare(
     if spec.params.prepare == Mode::None || requirements.is_empty() {
         return Ok(Prepared::unchanged(mesh));
     }
+    // semi-sharp features spent first where the scheme declares the step ([`spend`]); what
+    // follows sees a net with infinitely sharp features only
+    let (mesh, map, applied) = match spend::spend(&requirements, spec, mesh)? {
+        Some((net, map, a)) => (net, Some(map), vec![a]),
+        None => (mesh.clone(), None, Vec::new()),
+    };
     if purpose == Purpose::Patches
-        && let Some(cut) = cut_first(spec, mesh)
+        && let Some(cut) = cut_first(spec, &mesh, map.as_ref())
     {
         // the steps on the cut net; nothing to do there: the scheme cuts the net itself,
         // unless hole faces were removed (the map then keeps addressing the input faces, and
         // the vertices of hole faces only are gone)
         let holes = mesh.extras().is_some_and(|e| !e.holes.is_empty());
-        let prepared = run(
-            &requirements,
-            spec,
-            cut.mesh,
-            Some(cut.map),
-            vec![cut.applied],
-        )?;
+        let mut before = applied.clone();
+        before.push(cut.applied);
+        let prepared = run(&requirements, spec, cut.mesh, Some(cut.map), before)?;
+        // steps after the cut (the spending steps before it do not count: without steps
+        // after it the scheme gets the spent net uncut and cuts it itself, marking the
+        // crease sides)
         if holes
-            || prepared
-                .applied
+            || prepared.applied[applied.len()..]
                 .iter()
                 .any(|a| a.kind == Kind::Applied && !a.cut)
         {
             return Ok(prepared);
         }
     }
-    run(&requirements, spec, mesh.clone(), None, Vec::new())
+    run(&requirements, spec, mesh, map, applied)
 }
 
 /// A net cut along its infinitely sharp creases (hole faces removed) before the steps, with
@@ -279,8 +294,9 @@ struct CutFirst {
 /// as the dual schemes' patches cut it (`crate::schemes::doo_sabin::sharp`), so that the dual
 /// steps, which carry the cut net's kept corners but no crease or hole, can be applied. `None`
 /// where the net tags nothing, tags semi-sharp features (the steps would lose them) or has
-/// features the cut refuses (the scheme refuses them with its own message).
-fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
+/// features the cut refuses (the scheme refuses them with its own message). `map`: where the
+/// faces of `mesh` lie in the input faces (`None`: `mesh` is the input net).
+fn cut_first(spec: &Spec, mesh: &PolyMesh, map: Option<&ParamMap>) -> Option<CutFirst> {
     use crate::schemes::doo_sabin::sharp;
     if !has_features(mesh) || sharp::has_semi_sharp(mesh) {
         return None;
@@ -290,7 +306,10 @@ fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
         .filter(|&f| !mesh.is_hole(f))
         .collect();
     Some(CutFirst {
-        map: ParamMap::input(mesh).select(&kept),
+        map: map
+            .cloned()
+            .unwrap_or_else(|| ParamMap::input(mesh))
+            .select(&kept),
         applied: Applied {
             step: cut.notes.join("; "),
             need: "needs its steps to carry the net's sharp features (the dual steps carry \
@@ -335,6 +354,9 @@ fn run(
                 cut: false,
             };
             match r.step {
+                // taken before the rounds (`spend`); a net it left alone (hole tags) is the
+                // scheme's to refuse
+                Step::Spend(_) => continue,
                 Step::Own(words) => own.push(record(words.to_string(), Kind::Own)),
                 Step::Net(steps) => {
                     if steps.iter().any(|s| s.is_dual()) && !dual_carries(&net) {

@@ -7,7 +7,7 @@
 use fairsub::bezier::complex::{PatchComplex, Provenance};
 use fairsub::geom::Point;
 use fairsub::mesh::tags::SubdOptions;
-use fairsub::mesh::{PolyMesh, SharpEdges};
+use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
 use fairsub::schemes::Scheme;
 
 /// The path of the net `tests/data/osd/NAME.obj`.
@@ -380,4 +380,53 @@ pub fn stencil_caps_named(net: &str, scheme: &str, word: &str) -> usize {
     assert_eq!(&file.rows, table.rows(), "{net}");
     std::fs::remove_dir_all(&dir).ok();
     named
+}
+
+/// The gallery cube refined twice by Catmull-Clark (96 quads, eight valence-3 vertices), with
+/// the crease loop `z = 0` of sharpness `equator` (none for 0) and, when `top` is positive,
+/// the loop of the eight edges around the centre of the face `z = 1` with that sharpness.
+pub fn creased_cube(equator: f32, top: f32) -> PolyMesh {
+    let cube = fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == "cube")
+        .expect("gallery cube")
+        .1;
+    let cc = fairsub::schemes::by_name("catmull-clark").expect("catmull-clark");
+    let m = fairsub::schemes::refine_levels(cc.as_ref(), &cube, 2, |_| {}).expect("refine");
+    let p = m.positions();
+    let zmax = p.iter().map(|x| x[2]).fold(f64::MIN, f64::max);
+    let centre = (0..m.num_vertices())
+        .find(|&v| (p[v][2] - zmax).abs() < 1e-12 && p[v][0].abs() < 1e-12 && p[v][1].abs() < 1e-12)
+        .expect("the top face's centre");
+    // the loop around the centre: the edges of its four faces that do not touch it (eight
+    // edges; the centre's neighbours alone share no edge)
+    let mut around = vec![false; m.num_edges()];
+    for f in m.vertex_faces(centre) {
+        let h0 = m.face_halfedge(f as usize);
+        let mut h = h0;
+        loop {
+            if m.he_from(h) as usize != centre && m.he_to(h) as usize != centre {
+                around[m.he_edge(h) as usize] = true;
+            }
+            h = m.he_next(h);
+            if h == h0 {
+                break;
+            }
+        }
+    }
+    let mut sharp = Vec::new();
+    for (e, &on_top) in around.iter().enumerate() {
+        let h = m.edge_halfedge(e);
+        let (a, b) = (m.he_from(h), m.he_to(h));
+        let on_equator = p[a as usize][2].abs() < 1e-12 && p[b as usize][2].abs() < 1e-12;
+        if on_equator && equator > 0.0 {
+            sharp.push((e as u32, equator));
+        } else if on_top && top > 0.0 {
+            sharp.push((e as u32, top));
+        }
+    }
+    m.with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Extras::default()
+    }))
 }

@@ -1,0 +1,202 @@
+//! Semi-sharp creases under the bi-2 schemes with element rings (TPS, adjustable TPS, the mixed
+//! and polar nets): fairsub's construction spends them by the family's dual step with the dual
+//! crease rules before the scheme's rules (`schemes::prepare`'s spend,
+//! `docs/guide/src/creases.md`). Closed creased nets give closed G^1 surfaces, sharpness 10
+//! carried through the steps is the infinitely sharp crease, `--prepare none` keeps the
+//! refusal, and a sharpness the whole-net steps cannot afford is refused by name.
+
+use crate::sharp_helpers::support;
+use support::creased_cube;
+
+use fairsub::analysis::continuity;
+use fairsub::geom::Point;
+use fairsub::host::ComplexOptions;
+use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
+use fairsub::schemes::descriptor::SurfaceOutput;
+use fairsub::schemes::options::PrepareMode;
+use fairsub::schemes::registry::registry;
+
+/// The schemes whose semi-sharp creases are spent before their rules.
+const SCHEMES: &[&str] = &["tps", "tps-adjustable", "bi2-mixed", "polar-bi2"];
+
+const RINGS: ComplexOptions = ComplexOptions {
+    rings: 3,
+    fill: true,
+};
+
+fn build(scheme: &str, mesh: &PolyMesh, prepare: PrepareMode) -> fairsub::Result<SurfaceOutput> {
+    let mut spec = registry().lookup(scheme).expect("scheme");
+    spec.params.prepare = prepare;
+    fairsub::surface::build(&spec, mesh, RINGS, &mut |_| {})
+}
+
+/// The gallery cube (six quads, eight valence-3 vertices) with the edges `tags` picks
+/// (`tags(edge index, face 0's first two edges)`) tagged.
+fn tagged_cube(tags: impl Fn(usize, [usize; 2]) -> Option<f32>) -> PolyMesh {
+    let cube = fairsub::gallery::all()
+        .into_iter()
+        .find(|(n, _)| n == "cube")
+        .expect("gallery cube")
+        .1;
+    let h0 = cube.face_halfedge(0);
+    let first = [
+        cube.he_edge(h0) as usize,
+        cube.he_edge(cube.he_next(h0)) as usize,
+    ];
+    let sharp: Vec<(u32, f32)> = (0..cube.num_edges())
+        .filter_map(|e| tags(e, first).map(|s| (e as u32, s)))
+        .collect();
+    cube.with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Extras::default()
+    }))
+}
+
+/// OpenSubdiv's `catmark_cube_creases0` pattern: two edges of a face, sharpness 2, a chain
+/// through a valence-3 vertex ending at two darts.
+fn two_edge_chain() -> PolyMesh {
+    tagged_cube(|e, first| first.contains(&e).then_some(2.0))
+}
+
+/// `catmark_cube_creases1`'s pattern at lower sharpness: every edge but one at 2.5 (junctions
+/// of three creases at every corner), the last at 0.1.
+fn all_edges() -> PolyMesh {
+    tagged_cube(|e, first| Some(if e == first[0] { 0.1 } else { 2.5 }))
+}
+
+#[test]
+fn closed_semi_sharp_nets_give_closed_g1_surfaces() {
+    let nets = [
+        ("two-edge chain 2", two_edge_chain()),
+        ("all edges 2.5 / 0.1", all_edges()),
+        ("cube 2.5 / 0.7", creased_cube(2.5, 0.7)),
+        ("cube 10 / 1.5", creased_cube(10.0, 1.5)),
+    ];
+    for scheme in SCHEMES {
+        for (name, net) in &nets {
+            let out = build(scheme, net, PrepareMode::Auto)
+                .unwrap_or_else(|e| panic!("{scheme} {name}: {e}"));
+            let r = continuity::check(&out.complex);
+            eprintln!(
+                "{scheme} {name}: {} patches, open {}, C0 {:.1e}, G1 {:.1e}, sharp {} (C0 {:.1e})",
+                out.complex.len(),
+                r.open_sides,
+                r.all.c0,
+                r.all.g1,
+                r.sharp.pieces,
+                r.sharp.c0
+            );
+            assert_eq!(r.open_sides, 0, "{scheme} {name}: cracks");
+            assert!(r.all.c0 < 1e-12 && r.sharp.c0 < 1e-12, "{scheme} {name}");
+            assert!(r.all.g1 < 1e-8, "{scheme} {name}: G1 {:e}", r.all.g1);
+            // the infinitely sharp equator stays a sharp join, the spent creases are smooth
+            assert_eq!(r.sharp.pieces > 0, name.contains("10"), "{scheme} {name}");
+            // the note names the construction and the sharpest features
+            let note = out
+                .notes
+                .iter()
+                .find(|n| n.contains("with fairsub's crease construction"))
+                .unwrap_or_else(|| panic!("{scheme} {name}: no note in {:?}", out.notes));
+            let dual = if scheme.starts_with("tps") {
+                "Doo-Sabin"
+            } else {
+                "PGS"
+            };
+            assert!(note.contains(&format!("whole-net {dual} step")), "{note}");
+            assert!(note.contains("sharpness"), "{note}");
+        }
+    }
+}
+
+/// The points of the patches of `out` whose corners all lie below `z` (3 x 3 per patch), and
+/// every such point of all its patches sorted by x (for [`support::nearest`]).
+fn points_below(out: &SurfaceOutput, z: f64) -> Vec<Point> {
+    let mut pts = Vec::new();
+    for p in &out.complex.patches {
+        let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)];
+        if corners.iter().all(|&(u, v)| p.eval(u, v)[2] < z) {
+            for i in 0..3 {
+                for j in 0..3 {
+                    pts.push(p.eval(f64::from(i) / 2.0, f64::from(j) / 2.0));
+                }
+            }
+        }
+    }
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    pts
+}
+
+/// The largest distance from a point of `a` to the points of `b`, both sorted by x.
+fn farthest(a: &[Point], b: &[Point]) -> f64 {
+    a.iter()
+        .map(|&p| support::nearest(b, p))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn sharpness_ten_is_the_infinitely_sharp_crease() {
+    // the equator tagged 10 and carried through the spending step (the top loop is semi-sharp:
+    // one dual step with the crease rules) against the equator cut from the start and refined
+    // by the same dual step's boundary rules: the same surface below the top loop
+    for (scheme, dual) in [
+        ("tps", "doo-sabin"),
+        ("tps-adjustable", "doo-sabin"),
+        ("bi2-mixed", "pgs"),
+        ("polar-bi2", "pgs"),
+    ] {
+        let spent = build(scheme, &creased_cube(10.0, 0.5), PrepareMode::Auto).expect(scheme);
+        let cut =
+            fairsub::schemes::doo_sabin::sharp::cut_along_creases(&creased_cube(10.0, 0.0), scheme)
+                .expect("cut")
+                .expect("a crease");
+        let step = fairsub::schemes::by_name(dual).expect("dual scheme");
+        let once = fairsub::schemes::refine_levels(step.as_ref(), &cut.mesh, 1, |_| {})
+            .expect("one dual step");
+        let reference = build(scheme, &once, PrepareMode::Auto).expect(scheme);
+        let a = points_below(&spent, 0.2);
+        let b = points_below(&reference, 0.2);
+        assert!(
+            a.len() > 1000 && b.len() > 1000,
+            "{scheme}: {} {}",
+            a.len(),
+            b.len()
+        );
+        let same = farthest(&a, &b).max(farthest(&b, &a));
+        // a finite sharpness is another surface along the equator
+        let finite = build(scheme, &creased_cube(2.0, 0.5), PrepareMode::Auto).expect(scheme);
+        let other = farthest(&points_below(&finite, 0.2), &a);
+        eprintln!("{scheme}: sharpness 10 against the cut {same:.1e}, sharpness 2 {other:.1e}");
+        assert!(same < 1e-9, "{scheme}: {same:e}");
+        assert!(other > 1e-4, "{scheme}: {other:e}");
+    }
+}
+
+#[test]
+fn prepare_none_keeps_the_refusal() {
+    for scheme in SCHEMES {
+        let e = build(scheme, &creased_cube(2.5, 0.0), PrepareMode::None)
+            .err()
+            .unwrap_or_else(|| panic!("{scheme}: built"))
+            .to_string();
+        assert!(
+            e.contains("has the semi-sharp crease value 2.5")
+                && e.contains(&format!(
+                    "{scheme}'s patches take infinitely sharp creases only"
+                )),
+            "{scheme}: {e}"
+        );
+    }
+}
+
+#[test]
+fn a_sharpness_the_whole_net_steps_cannot_afford_is_refused_by_name() {
+    // sharpness 9 on 96 quads: nine dual steps, about 386 * 4^8 faces
+    let Err(e) = build("tps", &creased_cube(9.0, 0.0), PrepareMode::Auto) else {
+        panic!("built");
+    };
+    let e = e.to_string();
+    assert!(
+        e.contains("has the semi-sharp value 9") && e.contains("whole-net steps would make about"),
+        "{e}"
+    );
+}
