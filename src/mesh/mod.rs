@@ -18,6 +18,8 @@ mod extras;
 mod general;
 mod halfedge;
 pub mod nets;
+pub mod quad_split;
+pub mod split;
 pub mod sqrt3_split;
 pub mod tags;
 mod topology;

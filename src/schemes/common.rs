@@ -5,10 +5,13 @@
 //! ([`PolyMesh::outgoing`](crate::mesh::PolyMesh::outgoing)), and [`RowBuf`] collects one stencil
 //! row in a reused buffer, merges duplicate sources and appends it to a [`StencilTable`].
 
+use super::split_child::{bare_child, child_extras, child_mesh, last_child};
 use crate::error::{Error, Result};
 use crate::geom::Point;
+use crate::mesh::PolyMesh;
+use crate::mesh::split::UniformSplit;
 use crate::mesh::tags::SubdOptions as Opts;
-use crate::mesh::{Extras, PolyMesh};
+use crate::schemes::sdc::crease::SharpLevel;
 use crate::stencil::{Stencil, StencilTable, Terms};
 
 /// `cos(2 pi k / n)`, exact at the multiples of 30 degrees where the value is rational (so that
@@ -92,24 +95,20 @@ impl Terms for RowBuf {
 }
 
 /// What the level loop of a one-shot kernel ([`refine_one_shot`]) asks of a scheme whose
-/// refinement is a direct point kernel plus child connectivity derived from the parent's
-/// (Catmull-Clark, Loop). Each method is the scheme's own; the loop is written once.
+/// refinement is a direct point kernel on a uniform split of the mesh layer (Catmull-Clark on
+/// the quad split, Loop on the triangle split): the rules and points are the scheme's own, the
+/// child nets come from the split ([`super::split_child`]); the loop is written once.
 pub(crate) trait OneShot {
     /// The rules of one step on one level (plain, or with the level's sharp features).
     type Rules<'a>;
+    /// The split the scheme refines on.
+    type Split: UniformSplit;
     /// The rules for `mesh` under `opts`.
     fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Self::Rules<'a>;
     /// The child points of one step, from the direct kernel.
     fn points(mesh: &PolyMesh, rules: &Self::Rules<'_>) -> Vec<Point>;
-    /// The child with its half-edge connectivity and sharp features.
-    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Self::Rules<'_>) -> PolyMesh;
-    /// The child's sharp features named by end points (for a child without connectivity).
-    fn extras(mesh: &PolyMesh, rules: &Self::Rules<'_>) -> Option<Extras>;
-    /// The child of a borrowed manifold parent, without half-edges (built on first use).
-    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh;
-    /// The child of an owned manifold parent, without half-edges: the parent is taken apart
-    /// before the child's faces are allocated.
-    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh;
+    /// The level's sharp features, when its rules have them.
+    fn sharp<'r, 'a: 'r>(rules: &'r Self::Rules<'a>) -> Option<&'r SharpLevel<'a>>;
 }
 
 /// The last step of [`refine_one_shot`]: the child keeps no half-edges (built on first use, if
@@ -123,9 +122,9 @@ fn last_step<K: OneShot, P: std::borrow::Borrow<PolyMesh>>(
     let rules = K::rules(p, opts);
     let positions = K::points(p, &rules);
     if !p.is_manifold() {
-        return K::child(p, positions, &rules);
+        return child_mesh::<K::Split>(p, positions, K::sharp(&rules));
     }
-    let extras = K::extras(p, &rules);
+    let extras = K::sharp(&rules).map(|sl| child_extras::<K::Split>(p, sl, None));
     drop(rules);
     bare(parent, positions).with_extras(extras)
 }
@@ -146,11 +145,11 @@ pub(crate) fn refine_one_shot<K: OneShot>(
         let child = if l + 1 < levels {
             let p = owned.as_ref().unwrap_or(mesh);
             let rules = K::rules(p, opts);
-            K::child(p, K::points(p, &rules), &rules)
+            child_mesh::<K::Split>(p, K::points(p, &rules), K::sharp(&rules))
         } else {
             match owned.take() {
-                None => last_step::<K, _>(mesh, opts, K::bare_child),
-                Some(parent) => last_step::<K, _>(parent, opts, K::last_child),
+                None => last_step::<K, _>(mesh, opts, bare_child::<K::Split>),
+                Some(parent) => last_step::<K, _>(parent, opts, last_child::<K::Split>),
             }
         };
         owned = Some(child);

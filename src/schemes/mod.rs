@@ -38,6 +38,7 @@ pub mod sdc;
 pub mod sqrt3;
 
 mod common;
+mod split_child;
 
 pub use catmull_clark::CatmullClark;
 pub use doo_sabin::{DooSabin, DooSabinCc};

@@ -321,7 +321,6 @@ const MAX_LINES: usize = 600;
 const BEING_SPLIT: &[&str] = &[
     "src/schemes/catmull_clark/surface.rs",
     "src/schemes/catmull_clark/mod.rs",
-    "src/schemes/loop_subdivision/mod.rs",
     "src/schemes/nonbox/surface.rs",
     "src/schemes/doo_sabin/surface.rs",
     "src/schemes/doo_sabin/surface/step.rs",

@@ -247,3 +247,123 @@ fn off_output_warns_that_uvs_are_dropped() {
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A 3 x 3 quad grid (vertex `(i, j)` at index `4 j + i`, UV `(i, j) / 3`) whose interior
+/// vertex 5 = (1, 1) takes, in the two faces right of it (faces 1 and 4), the extra UV value
+/// 17: `gap` apart from vertex 5's own value 6 in u when `split`, else those faces share value 6.
+fn grid_with_seam_at_5(split: bool, gap: f64) -> String {
+    let mut s = String::new();
+    for j in 0..4 {
+        for i in 0..4 {
+            s += &format!("v {i} {j} {}\n", 0.1 * f64::from(i * j));
+        }
+    }
+    for j in 0..4 {
+        for i in 0..4 {
+            s += &format!("vt {} {}\n", f64::from(i) / 3.0, f64::from(j) / 3.0);
+        }
+    }
+    s += &format!("vt {} {}\n", 1.0 / 3.0 + gap, 1.0 / 3.0);
+    for j in 0..3 {
+        for i in 0..3 {
+            let f = 3 * j + i;
+            s += "f";
+            for (a, b) in [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)] {
+                let v = 4 * b + a;
+                let t = if split && v == 5 && (f == 1 || f == 4) {
+                    17
+                } else {
+                    v + 1
+                };
+                s += &format!(" {}/{t}", v + 1);
+            }
+            s += "\n";
+        }
+    }
+    s
+}
+
+/// A vertex with two face-varying values that are distinct but close (5e-5 apart, below
+/// Blender's 1e-4 UV grouping limit, which the Blender add-on applies before fairsub sees the
+/// net): fairsub keeps them as two values (a seam, as OpenSubdiv's value indices make it), and
+/// refines them linearly in the values. Against the same seam with equal values (value 17 =
+/// value 6), every corner of the two-step Catmull-Clark result moves by at most the gap, in u
+/// only, and with linear boundaries (`boundaries`, `all`) the vertex point of vertex 5 keeps
+/// both values exactly, each on the child faces of its own side, where the net without the
+/// seam has one; the positions and faces are those of the net without a seam.
+#[test]
+fn close_distinct_values_of_a_vertex_stay_two_values() {
+    let dir = scratch("fvar-close");
+    let gap = 5e-5;
+    let write = |name: &str, split: bool, gap: f64| {
+        let p = dir.join(name);
+        std::fs::write(&p, grid_with_seam_at_5(split, gap)).unwrap();
+        p
+    };
+    let shared = write("shared.obj", false, 0.0);
+    let equal = write("equal.obj", true, 0.0);
+    let close = write("close.obj", true, gap);
+    let (u5, u17) = (1.0 / 3.0, 1.0 / 3.0 + gap);
+    for fvar in ["none", "corners-only", "corners-plus1", "boundaries", "all"] {
+        let out = |src: &Path, tag: &str| {
+            let o = dir.join(format!("{tag}-{fvar}.obj"));
+            refine2(src, "catmull-clark", fvar, &[], &o);
+            read_obj(&o)
+        };
+        let (s, e, c) = (
+            out(&shared, "shared"),
+            out(&equal, "equal"),
+            out(&close, "close"),
+        );
+        assert_eq!((s.v.len(), s.f.len()), (169, 144), "{fvar}: counts");
+        for other in [&e, &c] {
+            assert_eq!(other.v, s.v, "{fvar}: positions");
+            let verts = |n: &Net| -> Vec<Vec<usize>> {
+                n.f.iter()
+                    .map(|f| f.iter().map(|x| x.0).collect())
+                    .collect()
+            };
+            assert_eq!(verts(other), verts(&s), "{fvar}: faces");
+        }
+        let mut largest: f64 = 0.0;
+        for (fe, fc) in e.f.iter().zip(&c.f) {
+            for (&(_, te), &(_, tc)) in fe.iter().zip(fc) {
+                let (a, b) = (e.vt[te], c.vt[tc]);
+                assert!(b[1] == a[1], "{fvar}: v moved: {a:?} -> {b:?}");
+                let d = b[0] - a[0];
+                assert!(
+                    (-1e-15..=gap * (1.0 + 1e-9)).contains(&d),
+                    "{fvar}: u moved by {d}"
+                );
+                largest = largest.max(d);
+            }
+        }
+        let values_at_5 = |n: &Net, side: &dyn Fn(usize) -> bool| -> Vec<f64> {
+            let mut u: Vec<f64> = (0..n.f.len())
+                .filter(|&k| side(k / 16))
+                .flat_map(|k| n.f[k].iter().filter(|x| x.0 == 5).map(|x| n.vt[x.1][0]))
+                .collect();
+            u.dedup();
+            u
+        };
+        let right = |f: usize| f == 1 || f == 4;
+        let left = |f: usize| !right(f);
+        if fvar == "boundaries" || fvar == "all" {
+            assert!(
+                (largest - gap).abs() < 1e-15,
+                "{fvar}: largest move {largest}"
+            );
+            assert_eq!(values_at_5(&c, &left), [u5], "{fvar}: left of the seam");
+            assert_eq!(values_at_5(&c, &right), [u17], "{fvar}: right of the seam");
+            // without the seam vertex 5 takes its own smooth rule: one value, on the linear
+            // UV field where it was
+            let one = values_at_5(&s, &|_| true);
+            assert!(
+                one.len() == 1 && (one[0] - u5).abs() < 1e-12,
+                "{fvar}: {one:?}"
+            );
+        } else {
+            assert!(largest > 0.0, "{fvar}: the gap moved nothing");
+        }
+    }
+}

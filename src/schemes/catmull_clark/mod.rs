@@ -18,7 +18,8 @@
 //! Child vertex order: one vertex point per parent vertex, then one edge point per parent edge
 //! (edge index order), then one face point per parent face. Child face `h` is the quad of parent
 //! corner (half-edge) `h`: (vertex point, edge point of the outgoing edge, face point, edge point
-//! of the incoming edge), so child faces inherit the parent orientation (see `child`).
+//! of the incoming edge), so child faces inherit the parent orientation: the mesh layer's quad
+//! split ([`crate::mesh::quad_split`]), which gives the child nets (`schemes::split_child`).
 //!
 //! # One source of truth, two ways to apply it
 //!
@@ -32,7 +33,6 @@
 //! parent level as soon as its child exists, and does not build the last level's half-edges.
 
 pub mod boundary_tangent;
-mod child;
 use crate::schemes::sdc::crease;
 pub mod dart;
 pub mod descriptor;
@@ -48,14 +48,17 @@ use super::common::check_child_size;
 use super::{Refinement, Scheme};
 use crate::error::Result;
 use crate::geom::Point;
+use crate::mesh::quad_split::{QuadSplit, quad_starts};
+use crate::mesh::split::UniformSplit;
 use crate::mesh::tags::{SubdOptions, TriangleSubdivision};
 use crate::mesh::{MeshView, NONE, PolyMesh};
 use crate::stencil::{RowWriter, StencilTable, Terms, axpy};
-use child::{BLOCK, child_corners};
-pub(crate) use child::{edge_half, general_child_topology, half_child_edge};
 use crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use rayon::prelude::*;
 use std::f64::consts::PI;
+
+/// Child points per parallel task.
+const BLOCK: usize = 4096;
 
 /// OpenSubdiv's options as the rules take them (see [`crate::mesh::tags`]).
 pub type Opts = SubdOptions;
@@ -461,22 +464,9 @@ impl CatmullClark {
 
     /// Child topology of one step: `(face_start, corners)` of the all-quad child net.
     pub fn child_topology(mesh: &PolyMesh) -> (Vec<u32>, Vec<u32>) {
-        let face_start = (0..mesh.num_halfedges() + 1)
-            .into_par_iter()
-            .map(|h| 4 * h as u32)
-            .collect();
-        (face_start, Self::child_corners(mesh))
-    }
-
-    /// The corners of the child faces (four per parent corner).
-    fn child_corners(mesh: &PolyMesh) -> Vec<u32> {
-        let m = mesh.view();
-        child_corners(
-            m.faces,
-            m.corners,
-            m.he_edge,
-            mesh.num_vertices(),
-            mesh.num_edges(),
+        (
+            quad_starts(mesh.num_halfedges()),
+            QuadSplit::child_corners(mesh),
         )
     }
 
@@ -499,19 +489,7 @@ impl CatmullClark {
     }
 
     fn child_mesh_by(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
-        let (nv, ne, nf) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_faces());
-        assert_eq!(positions.len(), nv + ne + nf, "one point per child vertex");
-        let corners = Self::child_corners(mesh);
-        let topo = if mesh.is_manifold() {
-            child::manifold_halfedges(mesh)
-        } else {
-            child::general_halfedges(mesh, &corners)
-        };
-        let extras = rules
-            .sharp
-            .as_ref()
-            .map(|sl| child::child_extras(mesh, sl, Some(&topo)));
-        PolyMesh::from_trusted_uniform(positions, 4, corners, Some(topo)).with_extras(extras)
+        super::split_child::child_mesh::<QuadSplit>(mesh, positions, rules.sharp.as_ref())
     }
 
     /// `levels` steps of one-shot refinement with the default options: the refined net only.
@@ -545,6 +523,7 @@ impl CatmullClark {
 
 impl super::common::OneShot for CatmullClark {
     type Rules<'a> = Rules<'a>;
+    type Split = QuadSplit;
 
     fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Rules<'a> {
         Rules::new(mesh, opts)
@@ -554,23 +533,8 @@ impl super::common::OneShot for CatmullClark {
         Self::refine_points_by(mesh, mesh.positions(), rules)
     }
 
-    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
-        Self::child_mesh_by(mesh, positions, rules)
-    }
-
-    fn extras(mesh: &PolyMesh, rules: &Rules<'_>) -> Option<crate::mesh::Extras> {
-        rules
-            .sharp
-            .as_ref()
-            .map(|sl| child::child_extras(mesh, sl, None))
-    }
-
-    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh {
-        PolyMesh::from_trusted_uniform(positions, 4, Self::child_corners(mesh), None)
-    }
-
-    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh {
-        child::last_child(mesh, positions)
+    fn sharp<'r, 'a: 'r>(rules: &'r Rules<'a>) -> Option<&'r SharpLevel<'a>> {
+        rules.sharp.as_ref()
     }
 }
 

@@ -59,9 +59,10 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, record_edge, select_rings,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, record_edge, select_around,
 };
 use crate::host::caps::CapBuilder;
+use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::sdc::crease::Scratch;
@@ -444,114 +445,61 @@ fn record_curves(m: &PolyMesh, f: usize, p: &BezierPatch, curves: &mut Curves<4>
     }
 }
 
-/// A point of the next level in [`refine_around`]: the face, vertex or edge point of an element
-/// of the level.
-#[derive(Clone, Copy)]
-enum Child {
-    Face(u32),
-    Vertex(u32),
-    Edge(u32),
-}
-
-/// Refines the marked faces and the ring of faces around them; returns the next level, whose
-/// active faces are the children of the marked faces (with its stencils over `level`'s points
-/// in [`Level::rows`] when `keep`).
+/// Refines the marked faces and the ring of faces around them on the mesh layer's quad split
+/// ([`sparse_split`]); returns the next level, whose active faces are the children of the
+/// marked faces (with its stencils over `level`'s points in [`Level::rows`] when `keep`).
 fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Level> {
     let m = &level.mesh;
-    let nf = m.num_faces();
     // The marked faces and the faces sharing a vertex with them.
-    let (sel, sel_faces) = select_rings(m, marked, 1);
+    let (sel, sel_faces) = select_around(m, marked);
     let nv = m.num_vertices();
-    let ne = m.num_edges();
     let rules = sharp::rules(level);
-    // Child vertex ids: vertex points, edge points, face points of selected faces' elements,
-    // numbered in one pass over the selected faces; their rows and trust are then computed in
-    // parallel blocks in that order (the same table as one after another).
-    const UNSET: u32 = u32::MAX;
-    let mut vid = vec![UNSET; nv];
-    let mut eid = vec![UNSET; ne];
-    let mut fid = vec![UNSET; nf];
-    let mut jobs: Vec<Child> = Vec::with_capacity(3 * sel_faces.len());
+    // Child vertex ids: numbered in one pass over the selected faces; their rows and trust are
+    // then computed in parallel blocks in that order (the same table as one after another).
+    let split = sparse_split(m, sel_faces, true, Numbering::FaceFirst);
     let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let face_pos_ok = |g: u32| {
         m.face(g as usize)
             .iter()
             .all(|&x| level.info[x as usize].pos_ok)
     };
-    let selected = sel_faces.len();
-    let mut face_start = Vec::with_capacity(4 * selected + 1);
-    face_start.push(0u32);
-    let mut corners = Vec::with_capacity(16 * selected);
-    let mut hole = Vec::with_capacity(4 * selected); // per child face: a hole's descendant
-    // per marked face its first child (its children are consecutive, one per corner)
-    let mut child_first = vec![UNSET; nf];
-    let mut is_marked = vec![false; nf];
-    for &(f, _) in marked {
-        is_marked[f as usize] = true;
-    }
-    let next_id = |jobs: &mut Vec<Child>, job: Child| {
-        jobs.push(job);
-        (jobs.len() - 1) as u32
-    };
-    for f in 0..nf {
-        if !sel[f] {
-            continue;
-        }
-        if fid[f] == UNSET {
-            fid[f] = next_id(&mut jobs, Child::Face(f as u32));
-        }
-        let fc = fid[f];
-        let h0 = m.face_halfedge(f);
-        let k = m.face_size(f) as u32;
-        for h in h0..h0 + k {
-            let v = m.he_from(h) as usize;
-            if vid[v] == UNSET {
-                vid[v] = next_id(&mut jobs, Child::Vertex(v as u32));
-            }
-            for g in [h, m.he_prev(h)] {
-                let e = m.he_edge(g) as usize;
-                if eid[e] == UNSET {
-                    eid[e] = next_id(&mut jobs, Child::Edge(e as u32));
-                }
-            }
-            let e_out = eid[m.he_edge(h) as usize];
-            let e_in = eid[m.he_edge(m.he_prev(h)) as usize];
-            if is_marked[f] && h == h0 {
-                child_first[f] = (face_start.len() - 1) as u32;
-            }
-            corners.extend_from_slice(&[vid[v], e_out, fc, e_in]);
-            face_start.push(corners.len() as u32);
-            hole.push(is_hole(level, f));
-        }
-    }
+    // per child face: a hole's descendant
+    let hole: Vec<bool> = split
+        .faces
+        .iter()
+        .flat_map(|&f| std::iter::repeat_n(is_hole(level, f as usize), m.face_size(f as usize)))
+        .collect();
+    let jobs = &split.points;
     // the child points' rows, written in place (no stencil per point)
     let table = StencilTable::build_par(nv, jobs.len(), 9, |range, table| {
         let (mut row, mut scratch) = (RowWriter::new(), Scratch::default());
         for &job in &jobs[range] {
             match job {
-                Child::Face(f) => {
+                SplitPoint::Face(f) => {
                     let face = m.face(f as usize);
                     for &x in face {
                         row.add(x, 1.0 / face.len() as f64);
                     }
                     row.push_into(table);
                 }
-                Child::Vertex(v) => {
+                SplitPoint::Vertex(v) => {
                     rules.push_vertex_row(v as usize, &mut scratch, &mut row, table)
                 }
-                Child::Edge(e) => rules.push_edge_row(e as usize, &mut scratch, &mut row, table),
+                SplitPoint::Edge(e) => {
+                    rules.push_edge_row(e as usize, &mut scratch, &mut row, table)
+                }
             }
         }
     });
     let mut info: Vec<Info> = jobs
         .par_iter()
         .map(|&job| match job {
-            Child::Face(f) => Info {
+            SplitPoint::Face(f) => Info {
                 pos_ok: face_pos_ok(f),
                 fan_ok: true,
                 origin: None,
             },
-            Child::Vertex(v) => {
+            SplitPoint::Vertex(v) => {
                 let v = v as usize;
                 let vi = level.info[v];
                 Info {
@@ -560,7 +508,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
                     origin: vi.origin,
                 }
             }
-            Child::Edge(e) => {
+            SplitPoint::Edge(e) => {
                 let e = e as usize;
                 let [a, b] = m.edge(e);
                 let (a_ok, b_ok) = (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
@@ -578,16 +526,18 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     // Children of a face point of a non-quad input face are extraordinary: origin = that face.
     for &(f, tag) in marked {
         if m.face_size(f as usize) != 4 {
-            info[fid[f as usize] as usize].origin = Some(Element::Face(tag.input_face));
+            info[split.face_point[f as usize] as usize].origin =
+                Some(Element::Face(tag.input_face));
         }
     }
     let positions = table.apply(m.positions());
-    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, (&vid, &eid), hole);
+    let child = PolyMesh::from_partial_refinement(positions, split.face_start, split.corners)?;
+    let ids = (&split.vertex_point[..], &split.edge_point[..]);
+    let (child, sharp) = sharp_child(level, rules.sharp.as_ref(), child, ids, hole);
     let mut active = Vec::new();
     for &(f, tag) in marked {
         for k in 0..m.face_size(f as usize) {
-            let c = child_first[f as usize] + k as u32;
+            let c = split.first_child[f as usize] + k as u32;
             let mut t = tag;
             // child k is the quad at corner k (of the face, or the sub-face k of an n-gon)
             t.domain = tag.domain.child(k as u32);

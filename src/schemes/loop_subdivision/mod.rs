@@ -33,9 +33,9 @@
 //! Child vertex `v` (for `v < V`) is the child of parent vertex `v`; child vertex `V + e` is the
 //! point of parent edge `e`. Parent triangle `f = (a, b, c)` with edge points `ab`, `bc`, `ca`
 //! becomes child faces `4f .. 4f + 3` = `(a, ab, ca)`, `(b, bc, ab)`, `(c, ca, bc)`,
-//! `(ab, bc, ca)`, oriented like the parent.
+//! `(ab, bc, ca)`, oriented like the parent: the mesh layer's triangle 1-4 split
+//! ([`crate::mesh::tri_split`]), which gives the child nets (`schemes::split_child`).
 
-mod child;
 pub mod dart;
 pub mod descriptor;
 pub mod entry;
@@ -46,15 +46,18 @@ pub use descriptor::DESCRIPTOR;
 
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::mesh::{MeshParts, MeshView, NONE, PolyMesh, Topology};
+use crate::mesh::{MeshView, NONE, PolyMesh};
 use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
 use rayon::prelude::*;
 
 use super::catmull_clark::Opts;
 use super::common::{RowBuf, check_child_size};
 use super::{Refinement, Scheme};
+use crate::mesh::tri_split::TriSplit;
 use crate::schemes::sdc::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
-use child::{BLOCK, child_corners};
+
+/// Child points per parallel task.
+const BLOCK: usize = 4096;
 
 /// Loop subdivision of triangle nets (scheme name `loop`) with the default options. See the
 /// [module](self) documentation for the rules and the layout of the child net.
@@ -426,20 +429,7 @@ impl Loop {
     }
 
     fn child_mesh_by(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
-        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
-        assert_eq!(positions.len(), nv + ne, "one point per child vertex");
-        let m = mesh.view();
-        let corners = child_corners(m.corners, m.he_edge, nv);
-        let topo = if mesh.is_manifold() {
-            child::manifold_halfedges(mesh)
-        } else {
-            child::general_halfedges(mesh, &corners)
-        };
-        let extras = rules
-            .sharp
-            .as_ref()
-            .map(|sl| child::child_extras(mesh, sl, Some(&topo)));
-        PolyMesh::from_trusted_uniform(positions, 3, corners, Some(topo)).with_extras(extras)
+        super::split_child::child_mesh::<TriSplit>(mesh, positions, rules.sharp.as_ref())
     }
 
     /// `levels` steps of one-shot refinement with the default options: the refined net only,
@@ -494,6 +484,7 @@ impl Loop {
 
 impl super::common::OneShot for Loop {
     type Rules<'a> = Rules<'a>;
+    type Split = TriSplit;
 
     fn rules<'a>(mesh: &'a PolyMesh, opts: &Opts) -> Rules<'a> {
         Rules::new(mesh, opts)
@@ -503,31 +494,8 @@ impl super::common::OneShot for Loop {
         Self::refine_points_by(mesh, mesh.positions(), rules)
     }
 
-    fn child(mesh: &PolyMesh, positions: Vec<Point>, rules: &Rules<'_>) -> PolyMesh {
-        Self::child_mesh_by(mesh, positions, rules)
-    }
-
-    fn extras(mesh: &PolyMesh, rules: &Rules<'_>) -> Option<crate::mesh::Extras> {
-        rules
-            .sharp
-            .as_ref()
-            .map(|sl| child::child_extras(mesh, sl, None))
-    }
-
-    fn bare_child(mesh: &PolyMesh, positions: Vec<Point>) -> PolyMesh {
-        let m = mesh.view();
-        let corners = child_corners(m.corners, m.he_edge, mesh.num_vertices());
-        PolyMesh::from_trusted_uniform(positions, 3, corners, None)
-    }
-
-    fn last_child(mesh: PolyMesh, positions: Vec<Point>) -> PolyMesh {
-        // Keep only what the child faces need from the parent.
-        let nv = mesh.num_vertices();
-        let MeshParts { corners, topo, .. } = mesh.into_parts();
-        let Topology { he_edge, .. } = topo.expect("an intermediate level has its topology");
-        let child = child_corners(&corners, &he_edge, nv);
-        drop((corners, he_edge));
-        PolyMesh::from_trusted_uniform(positions, 3, child, None)
+    fn sharp<'r, 'a: 'r>(rules: &'r Rules<'a>) -> Option<&'r SharpLevel<'a>> {
+        rules.sharp.as_ref()
     }
 }
 

@@ -88,12 +88,12 @@ use crate::host::adaptive::{
     retag_by_corners, select_around,
 };
 use crate::mesh::PolyMesh;
+use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
 use crate::mesh::tags::SubdOptions;
 use crate::schemes::sdc::crease::adaptive::{
     self as features, edge_known, is_hole, is_last_cap_level,
 };
 use crate::stencil::{Stencil, StencilTable};
-use std::collections::HashMap;
 
 mod fill;
 mod g1;
@@ -354,12 +354,12 @@ fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
     retag_by_corners(&level.mesh, &level.info, f, tag, regular, fans)
 }
 
-/// Refines the triangles around the corners of the marked triangles with Loop's rules; the
-/// next level's active triangles are the four children of each marked triangle.
+/// Refines the triangles around the corners of the marked triangles with Loop's rules on the
+/// mesh layer's triangle 1-4 split ([`sparse_split`]); the next level's active triangles are
+/// the four children of each marked triangle.
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-    const UNSET: u32 = u32::MAX;
     let m = &level.mesh;
-    let (nv, ne) = (m.num_vertices(), m.num_edges());
+    let nv = m.num_vertices();
     let (sel, sel_faces) = select_around(m, marked);
     let rules = Rules::new(m, &level.options());
     let whole_fan =
@@ -369,21 +369,13 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             .iter()
             .all(|&(x, _)| level.info[x as usize].pos_ok)
     };
-    let mut vid = vec![UNSET; nv];
-    let mut eid = vec![UNSET; ne];
-    let mut stencils: Vec<Stencil> = Vec::new();
-    let mut info: Vec<Info> = Vec::new();
-    let mut face_start = vec![0u32];
-    let mut corners: Vec<u32> = Vec::new();
-    let mut children: HashMap<u32, u32> = HashMap::new();
-    let mut hole = Vec::new(); // per child triangle: a hole's descendant
-    for &f in &sel_faces {
-        let fu = f as usize;
-        let h0 = m.face_halfedge(fu);
-        for h in h0..h0 + 3 {
-            let v = m.he_from(h) as usize;
-            if vid[v] == UNSET {
-                vid[v] = stencils.len() as u32;
+    let split = sparse_split(m, sel_faces, false, Numbering::CornersFirst);
+    let mut stencils: Vec<Stencil> = Vec::with_capacity(split.points.len());
+    let mut info: Vec<Info> = Vec::with_capacity(split.points.len());
+    for &p in &split.points {
+        match p {
+            SplitPoint::Vertex(v) => {
+                let v = v as usize;
                 let s = rules.vertex_stencil(v);
                 info.push(Info {
                     pos_ok: level.info[v].fan_ok && sources_ok(&s),
@@ -392,14 +384,16 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                 });
                 stencils.push(s);
             }
-            let e = m.he_edge(h) as usize;
-            if eid[e] == UNSET {
-                eid[e] = stencils.len() as u32;
+            SplitPoint::Edge(e) => {
+                let e = e as usize;
+                let h = m.edge_halfedge(e);
                 let [a, b] = m.edge(e);
                 let (a_ok, b_ok) = (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
                 let known =
                     edge_known(level, e, a_ok, b_ok, m.he_twin(h).is_some() || a_ok || b_ok);
-                let both_selected = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
+                // (one face of the edge is the selected face that made its point)
+                let both_selected = sel[m.he_face(h) as usize]
+                    && m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
                 let s = rules.edge_stencil(e);
                 info.push(Info {
                     pos_ok: known && sources_ok(&s),
@@ -408,26 +402,20 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                 });
                 stencils.push(s);
             }
+            SplitPoint::Face(_) => unreachable!("the triangle split has no face points"),
         }
-        let (a, b, c) = (
-            vid[m.he_from(h0) as usize],
-            vid[m.he_from(h0 + 1) as usize],
-            vid[m.he_from(h0 + 2) as usize],
-        );
-        let ab = eid[m.he_edge(h0) as usize];
-        let bc = eid[m.he_edge(h0 + 1) as usize];
-        let ca = eid[m.he_edge(h0 + 2) as usize];
-        children.insert(f, (face_start.len() - 1) as u32);
-        for tri in [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]] {
-            corners.extend_from_slice(&tri);
-            face_start.push(corners.len() as u32);
-        }
-        hole.extend([is_hole(level, fu); 4]);
     }
+    // per child triangle: a hole's descendant
+    let hole: Vec<bool> = split
+        .faces
+        .iter()
+        .flat_map(|&f| [is_hole(level, f as usize); 4])
+        .collect();
     let positions = StencilTable::from_rows(nv, stencils, 7).apply(m.positions());
-    let child = PolyMesh::from_partial_refinement(positions, face_start, corners)?;
-    let (child, sharp) = features::child(level, rules.sharp(), child, (&vid, &eid), hole);
-    let mut active = child_active(marked, |f| (children[&f], 4));
+    let child = PolyMesh::from_partial_refinement(positions, split.face_start, split.corners)?;
+    let ids = (&split.vertex_point[..], &split.edge_point[..]);
+    let (child, sharp) = features::child(level, rules.sharp(), child, ids, hole);
+    let mut active = child_active(marked, |f| (split.first_child[f as usize], 4));
     // four children per marked triangle, in the order of the corners above: the child domains
     for (i, (_, t)) in active.iter_mut().enumerate() {
         t.domain = t.domain.child((i % 4) as u32);

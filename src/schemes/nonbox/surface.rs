@@ -60,9 +60,10 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Cells, Curves, FanSectors, Info, Sink, Tag, child_active, edge_curve,
-    input_active, input_vertex_info, record_edge, retag_by_corners, select_around,
+    self, AdaptiveRules, Cells, Curves, FanSectors, Info, Sink, Tag, edge_curve, input_active,
+    input_vertex_info, record_edge, retag_by_corners, select_around,
 };
+use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
 use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::sharp::{NonBoxCreases, is_regular};
 use crate::schemes::nonbox::{e_vertex_stencil_with, nfcv_stencil_with, v_vertex_stencil_with};
@@ -356,12 +357,13 @@ fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
     retag_by_corners(m, &level.info, f, tag, is_regular, fans)
 }
 
-/// Refines the faces around the corners of the marked cells with the non-box rules; the next
-/// level's active cells are the children of the marked ones.
+/// Refines the faces around the corners of the marked cells with the non-box rules on the mesh
+/// layer's quad split ([`sparse_split`]: child `k` of a cell is the quad at its corner `k`, of
+/// the face or sub-face `k` of an n-gon, as Catmull-Clark's); the next level's active cells are
+/// the children of the marked ones. Every child face gets its FCV.
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-    const UNSET: u32 = u32::MAX;
     let m = &level.net.mesh;
-    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
+    let (nv, nf) = (m.num_vertices(), m.num_faces());
     let creases = NonBoxCreases::of(m)?;
     let mut scratch = Scratch::default();
     let (sel, sel_faces) = select_around(m, marked);
@@ -375,94 +377,86 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             || info[m.he_from(h) as usize].fan_ok
             || info[m.he_to(h) as usize].fan_ok
     };
-    let mut vid = vec![UNSET; nv];
-    let mut eid = vec![UNSET; ne];
-    let mut stencils: Vec<Stencil> = Vec::new();
-    let mut child_info: Vec<Info> = Vec::new();
-    let mut face_start = vec![0u32];
-    let mut corners: Vec<u32> = Vec::new();
-    let mut fcv_stencils: Vec<Stencil> = Vec::new();
-    let mut fcv_info: Vec<Info> = Vec::new();
-    let mut children: HashMap<u32, (u32, u32)> = HashMap::new();
-    for &g in &sel_faces {
-        let gu = g as usize;
-        let h0 = m.face_halfedge(gu);
-        let k = m.face_size(gu) as u32;
-        for h in h0..h0 + k {
-            let v = m.he_from(h) as usize;
-            if vid[v] == UNSET {
-                vid[v] = stencils.len() as u32;
+    let mut split = sparse_split(m, sel_faces, true, Numbering::CornersFirst);
+    let mut stencils: Vec<Stencil> = Vec::with_capacity(split.points.len());
+    let mut child_info: Vec<Info> = Vec::with_capacity(split.points.len());
+    for &p in &split.points {
+        let (s, i) = match p {
+            SplitPoint::Vertex(v) => {
+                let v = v as usize;
                 let s = v_vertex_stencil_with(m, v, creases.as_ref(), &mut scratch);
-                child_info.push(Info {
+                let i = Info {
                     pos_ok: info[v].fan_ok && sources_ok(&s),
                     fan_ok: whole_fan(v),
                     origin: info[v].origin,
-                });
-                stencils.push(s);
+                };
+                (s, i)
             }
-            let e = m.he_edge(h) as usize;
-            if eid[e] == UNSET {
-                eid[e] = stencils.len() as u32;
-                let s = e_vertex_stencil_with(m, e, creases.as_ref(), &mut scratch);
-                let both = m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
-                child_info.push(Info {
+            SplitPoint::Edge(e) => {
+                let h = m.edge_halfedge(e as usize);
+                let s = e_vertex_stencil_with(m, e as usize, creases.as_ref(), &mut scratch);
+                // (one face of the edge is the selected face that made its point)
+                let both = sel[m.he_face(h) as usize]
+                    && m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
+                let i = Info {
                     pos_ok: known(h) && sources_ok(&s),
                     fan_ok: known(h) && both,
                     origin: None,
-                });
-                stencils.push(s);
+                };
+                (s, i)
             }
-        }
-        let fc = stencils.len() as u32;
-        let s = fcv_rule_stencil(m, gu);
-        let origin = match marked_tag.get(&g) {
-            Some(t) if k != 4 => Some(Element::Face(t.input_face)),
-            _ => None,
+            SplitPoint::Face(g) => {
+                let s = fcv_rule_stencil(m, g as usize);
+                let origin = match marked_tag.get(&g) {
+                    Some(t) if m.face_size(g as usize) != 4 => Some(Element::Face(t.input_face)),
+                    _ => None,
+                };
+                let i = Info {
+                    pos_ok: sources_ok(&s),
+                    fan_ok: true,
+                    origin,
+                };
+                (s, i)
+            }
         };
-        child_info.push(Info {
-            pos_ok: sources_ok(&s),
-            fan_ok: true,
-            origin,
-        });
         stencils.push(s);
-        let first = (face_start.len() - 1) as u32;
-        for h in h0..h0 + k {
-            let v = m.he_from(h) as usize;
-            let e_out = m.he_edge(h) as usize;
-            let e_in = m.he_edge(m.he_prev(h)) as usize;
-            corners.extend_from_slice(&[vid[v], eid[e_out], fc, eid[e_in]]);
-            face_start.push(corners.len() as u32);
+        child_info.push(i);
+    }
+    // the FCV of every child face: one per corner of a selected face
+    let mut fcv_stencils: Vec<Stencil> = Vec::with_capacity(split.corners.len() / 4);
+    for &g in &split.faces {
+        let h0 = m.face_halfedge(g as usize);
+        for h in h0..h0 + m.face_size(g as usize) as u32 {
             let s = nfcv_stencil_with(m, h, creases.as_ref().map(|c| (c, &mut scratch)));
-            fcv_info.push(Info {
+            child_info.push(Info {
                 pos_ok: known(h) && known(m.he_prev(h)) && sources_ok(&s),
                 fan_ok: true,
                 origin: None,
             });
             fcv_stencils.push(s);
         }
-        children.insert(g, (first, k));
     }
     let nc = stencils.len();
     let table = StencilTable::from_rows(nv + nf, stencils.into_iter().chain(fcv_stencils), 6);
     let points = table.apply(&level.points);
+    let (vid, eid) = (&split.vertex_point, &split.edge_point);
     let extras = creases.map(|c| c.child_extras(|v| vid[v as usize], |e| eid[e as usize]));
-    let mesh = PolyMesh::from_partial_refinement(points[..nc].to_vec(), face_start, corners)?
-        .with_extras(extras);
+    let mesh = PolyMesh::from_partial_refinement(
+        points[..nc].to_vec(),
+        std::mem::take(&mut split.face_start),
+        std::mem::take(&mut split.corners),
+    )?
+    .with_extras(extras);
     let net = FcvNet {
         mesh,
         fcv: points[nc..].to_vec(),
     };
-    child_info.extend(fcv_info);
-    // child k of a cell is the quad at its corner k (of the face, or sub-face k of an n-gon),
-    // as Catmull-Clark's: corner k, the midpoint of the outgoing edge, the centre, the
-    // midpoint of the incoming edge
-    let mut active = child_active(marked, |f| children[&f]);
-    let mut at = 0;
+    let mut active = Vec::new();
     for &(f, tag) in marked {
-        let (_, count) = children[&f];
-        for k in 0..count {
-            active[at].1.domain = tag.domain.child(k);
-            at += 1;
+        for (k, c) in split.children(m, f, true).enumerate() {
+            let mut t = tag;
+            t.domain = tag.domain.child(k as u32);
+            active.push((c, t));
         }
     }
     Level::new(net, points, child_info, active, level.calm)
