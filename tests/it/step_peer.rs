@@ -128,9 +128,10 @@ fn said_count(said: &str, what: &str) -> usize {
 }
 
 /// Checks OpenCASCADE's area (and for closed solids volume) and centroid against `fairsub
-/// measure`'s report `m`, to `1e-9` relative (`rel_area` for the area); `size` scales the
-/// centroid's coordinates.
-fn compare_with_measure(r: &Value, m: &Value, size: f64, rel_area: f64, ctx: &str) {
+/// measure`'s report `m`: the area to `rel_area` relative, the volume and its centroid to
+/// `1e-9`, the area centroid of an open surface to `rel_c`; `size` scales the centroid's
+/// coordinates.
+fn compare_with_measure(r: &Value, m: &Value, size: f64, rel_area: f64, rel_c: f64, ctx: &str) {
     let a = r["area"].as_f64().unwrap();
     let ma = m["area"].as_f64().unwrap();
     assert!(
@@ -161,7 +162,7 @@ fn compare_with_measure(r: &Value, m: &Value, size: f64, rel_area: f64, ctx: &st
                 m["area_centroid"][k].as_f64().unwrap(),
             );
             assert!(
-                close(c, mc, size),
+                (c - mc).abs() <= rel_c * size,
                 "{ctx}: area centroid {k}: {c} vs measure's {mc}"
             );
         }
@@ -278,7 +279,7 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
     );
     // and the same figures as `fairsub measure` reports them
     let measured = measure(&format!("gallery:{net}"), scheme);
-    compare_with_measure(&r, &measured, size, rel, &ctx);
+    compare_with_measure(&r, &measured, size, rel, 1e-9, &ctx);
 }
 
 /// The schemes with patch output that take quad nets.
@@ -481,7 +482,11 @@ fn slow_opencascade_reads_opensubdiv_shapes() {
                 "{ctx}"
             );
             if eps != "0" {
-                compare_with_measure(&r, &measured, size, 1e-9, &ctx);
+                // 1e-9 plus the relative error OpenCASCADE's adaptive integration reports for
+                // its area at eps 1e-9 (the car: 8.6e-10; measured difference 1.1e-9)
+                // (the area centroid, a ratio of two such integrals, to twice that)
+                let rel = 1e-9 + r["area_error"].as_f64().unwrap().abs();
+                compare_with_measure(&r, &measured, size, rel, 2.0 * rel, &ctx);
             }
         }
     }
