@@ -50,7 +50,7 @@ pub fn write_step(complex: &PatchComplex, mode: FaceMode, path: &Path) -> Result
         eprintln!(
             "note: {} input faces are not merged into one B-spline (their patches are faces \
              of their own): their patches are triangles, do not tile the face, or a tensor \
-             grid across the face would be more than 8 times finer than its patches (deep \
+             grid across the face would cost more than twice their control points (deep \
              semi-sharp crease refinement)",
             faces.unmerged
         );

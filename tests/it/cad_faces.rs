@@ -178,3 +178,85 @@ fn topology_is_closed_with_t_points_split() {
     let f = cad::faces(&c, FaceMode::Input).unwrap();
     assert_eq!(f.len(), want);
 }
+
+/// A 6 x 6 grid of quads over a bump with semi-sharp creases of sharpness 6 (as on
+/// OpenSubdiv's car): along the row `y = 3` and up the column `x = 3` from it, so faces have a
+/// crease on one side, or on two sides meeting at a corner.
+fn creased_grid() -> fairsub::mesh::PolyMesh {
+    use std::fmt::Write as _;
+    let mut obj = String::new();
+    let id = |i: usize, j: usize| j * 7 + i;
+    for j in 0..=6 {
+        for i in 0..=6 {
+            let (x, y) = (i as f64, j as f64);
+            let z = 0.05 * ((x - 3.0).powi(2) + (y - 2.5).powi(2)) + 0.01 * x * y;
+            writeln!(obj, "v {x} {y} {z}").unwrap();
+        }
+    }
+    for j in 0..6 {
+        for i in 0..6 {
+            let c = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)].map(|k| k + 1);
+            writeln!(obj, "f {} {} {} {}", c[0], c[1], c[2], c[3]).unwrap();
+        }
+    }
+    // OpenSubdiv's tag lines count vertices from 0
+    for i in 0..6 {
+        writeln!(obj, "t crease 2/1/0 {} {} 6.0", id(i, 3), id(i + 1, 3)).unwrap();
+    }
+    for j in 3..6 {
+        writeln!(obj, "t crease 2/1/0 {} {} 6.0", id(3, j), id(3, j + 1)).unwrap();
+    }
+    let path = std::path::Path::new("creased-grid.obj");
+    fairsub::io::obj::read_obj_from(obj.as_bytes(), path)
+        .unwrap()
+        .mesh
+}
+
+#[test]
+fn semi_sharp_crease_faces_are_merged_at_their_continuity() {
+    // Beside a crease of sharpness 6 a face holds the creases' refinement down to 2^-6 of the
+    // face; Catmull-Clark's patches there are C^2 to each other, so every interior knot has
+    // multiplicity 1 and the face costs fewer control points than its patches (at the C^0
+    // multiplicity 3, a face with creases on two sides would need 37,249 instead of 4,489).
+    let mesh = creased_grid();
+    let c = complex("catmull-clark", &mesh, 3);
+    let f = cad::faces(&c, FaceMode::Input).unwrap();
+    assert_eq!(f.len(), 36);
+    assert_eq!(f.unmerged, 0);
+    assert_eq!(f.c0_faces, 0);
+    let spec = registry().lookup("catmull-clark").unwrap();
+    let surface = Surface::of_scheme(&spec, &mesh, c.clone()).unwrap();
+    let mut rng = Lcg(11);
+    let mut worst: f64 = 0.0;
+    let mut finest = 0;
+    for (s, src) in f.surfaces.iter().zip(&f.sources) {
+        let FaceSource::Input { face, .. } = *src else {
+            panic!("a face of its own: {src:?}");
+        };
+        assert_eq!(s.deg, [3, 3], "face {face}");
+        for k in 0..2 {
+            let (vals, mult) = cad::spline::distinct(&s.knots[k]);
+            assert!(
+                mult[1..mult.len() - 1].iter().all(|&m| m == 1),
+                "face {face}: knots {vals:?} x {mult:?}"
+            );
+            finest = finest.max(vals.len() - 1);
+        }
+        for _ in 0..40 {
+            let (u, v) = (rng.next(), rng.next());
+            let want = surface.evaluate(face, u, v).unwrap().point;
+            worst = worst.max(fairsub::geom::dist(s.eval(u, v), want));
+        }
+    }
+    // the crease's refinement reaches 2^-6 of the face
+    assert_eq!(finest, 64);
+    let size = fairsub::surface::adjacency::default_tolerance(&c) * 1e9;
+    assert!(worst <= 1e-12 * size, "off the complex by {worst:e}");
+    let points: usize = f.surfaces.iter().map(|s| s.cps.len()).sum();
+    let own: usize = c
+        .patches
+        .iter()
+        .map(|p| (p.deg_u + 1) * (p.deg_v + 1))
+        .sum();
+    assert!(points < own, "{points} control points, the patches {own}");
+}
