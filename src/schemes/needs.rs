@@ -94,6 +94,16 @@ pub enum NetStep {
 }
 
 impl NetStep {
+    /// The scheme of the step, by name.
+    pub fn name(self) -> &'static str {
+        match self {
+            NetStep::CatmullClark => "Catmull-Clark",
+            NetStep::DooSabin => "Doo-Sabin",
+            NetStep::DooSabinCc => "DS^CC",
+            NetStep::Pgs => "PGS",
+        }
+    }
+
     /// The step in words.
     pub fn words(self) -> &'static str {
         match self {

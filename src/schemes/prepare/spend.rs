@@ -39,7 +39,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{PolyMesh, SharpEdges};
 use crate::schemes::descriptor::Spec;
 use crate::schemes::doo_sabin::sharp::has_semi_sharp;
-use crate::schemes::needs::{Need, NetStep, Requirement, Step};
+use crate::schemes::needs::{Need, Requirement, Step};
 use crate::schemes::sdc::crease::INFINITE;
 
 /// The most faces the spending steps may make (estimated before the first step).
@@ -48,55 +48,51 @@ pub const MAX_FACES: usize = 2_000_000;
 /// The most steps: every finite sharpness is below 10.
 const MAX_STEPS: usize = 10;
 
-/// The semi-sharp features of `mesh`, named, with their sharpness (edges, then vertices).
-pub(super) fn semi_sharp_features(mesh: &PolyMesh) -> Vec<(String, f32)> {
-    let Some(ex) = mesh.extras() else {
-        return Vec::new();
-    };
-    let semi = |s: f32| s > 0.0 && s < INFINITE;
-    let mut out: Vec<(String, f32)> = match &ex.sharp_edges {
-        SharpEdges::ById(v) => v
+/// Whether `s` is a finite positive sharpness.
+fn semi(s: f32) -> bool {
+    s > 0.0 && s < INFINITE
+}
+
+/// The semi-sharp edges of `mesh` by their end points, with their sharpness.
+fn semi_sharp_edges(mesh: &PolyMesh) -> Vec<([u32; 2], f32)> {
+    match mesh.extras().map(|ex| &ex.sharp_edges) {
+        None => Vec::new(),
+        Some(SharpEdges::ById(v)) => v
             .iter()
             .filter(|p| semi(p.1))
             .map(|&(e, s)| {
                 let h = mesh.edge_halfedge(e as usize);
-                (format!("edge {}-{}", mesh.he_from(h), mesh.he_to(h)), s)
+                ([mesh.he_from(h), mesh.he_to(h)], s)
             })
             .collect(),
-        SharpEdges::ByPair(v) => v
-            .iter()
-            .filter(|p| semi(p.1))
-            .map(|&([a, b], s)| (format!("edge {a}-{b}"), s))
-            .collect(),
-    };
-    out.extend(
-        ex.sharp_vertices
-            .iter()
-            .filter(|p| semi(p.1))
-            .map(|&(v, s)| (format!("vertex {v}"), s)),
-    );
-    out
+        Some(SharpEdges::ByPair(v)) => v.iter().filter(|p| semi(p.1)).copied().collect(),
+    }
+}
+
+/// The semi-sharp vertex tags of `mesh`, with their sharpness.
+fn semi_sharp_tags(mesh: &PolyMesh) -> impl Iterator<Item = (u32, f32)> + '_ {
+    mesh.extras()
+        .into_iter()
+        .flat_map(|ex| ex.sharp_vertices.iter().copied().filter(|p| semi(p.1)))
+}
+
+/// The semi-sharp features of `mesh`, named, with their sharpness (edges, then vertices).
+pub(super) fn semi_sharp_features(mesh: &PolyMesh) -> Vec<(String, f32)> {
+    let edges = semi_sharp_edges(mesh)
+        .into_iter()
+        .map(|([a, b], s)| (format!("edge {a}-{b}"), s));
+    let vertices = semi_sharp_tags(mesh).map(|(v, s)| (format!("vertex {v}"), s));
+    edges.chain(vertices).collect()
 }
 
 /// The vertices at semi-sharp features of `mesh` (the ends of its semi-sharp edges, its
 /// semi-sharp vertices), sorted.
 pub(super) fn semi_sharp_vertices(mesh: &PolyMesh) -> Vec<u32> {
-    let Some(ex) = mesh.extras() else {
-        return Vec::new();
-    };
-    let semi = |s: f32| s > 0.0 && s < INFINITE;
-    let mut out: Vec<u32> = match &ex.sharp_edges {
-        SharpEdges::ById(v) => v
-            .iter()
-            .filter(|p| semi(p.1))
-            .flat_map(|&(e, _)| {
-                let h = mesh.edge_halfedge(e as usize);
-                [mesh.he_from(h), mesh.he_to(h)]
-            })
-            .collect(),
-        SharpEdges::ByPair(v) => v.iter().filter(|p| semi(p.1)).flat_map(|p| p.0).collect(),
-    };
-    out.extend(ex.sharp_vertices.iter().filter(|p| semi(p.1)).map(|p| p.0));
+    let mut out: Vec<u32> = semi_sharp_edges(mesh)
+        .into_iter()
+        .flat_map(|(ends, _)| ends)
+        .chain(semi_sharp_tags(mesh).map(|(v, _)| v))
+        .collect();
     out.sort_unstable();
     out.dedup();
     out
@@ -141,7 +137,7 @@ pub(super) fn spend(
              docs/guide/src/creases.md): its {steps} whole-net steps would make about \
              {estimate} faces (more than {MAX_FACES}): lower the sharpness, tag the crease infinitely sharp (10), or use \
              {}, {} or {}, whose patches refine only near a semi-sharp crease",
-            step_name(step),
+            step.name(),
             crate::schemes::options::ids::PGS,
             crate::schemes::options::ids::DOO_SABIN,
             crate::schemes::options::ids::CATMULL_CLARK,
@@ -163,7 +159,7 @@ pub(super) fn spend(
              rules while their sharpness lasts, OpenSubdiv's fractional blend on the step it \
              runs out; infinitely sharp creases stay sharp and are cut as without semi-sharp \
              ones; see docs/guide/src/creases.md)",
-            step_name(step),
+            step.name(),
             if taken == 1 { "" } else { "s" }
         ),
         need: Need::InfinitelySharpOnly.words().to_string(),
@@ -177,14 +173,4 @@ pub(super) fn spend(
         cut: false,
     };
     Ok(map.map(|m| (net, m, applied)))
-}
-
-/// The scheme of a step, by name.
-fn step_name(step: NetStep) -> &'static str {
-    match step {
-        NetStep::CatmullClark => "Catmull-Clark",
-        NetStep::DooSabin => "Doo-Sabin",
-        NetStep::DooSabinCc => "DS^CC",
-        NetStep::Pgs => "PGS",
-    }
 }
