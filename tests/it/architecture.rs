@@ -577,3 +577,27 @@ fn scheme_folders_import_without_a_circle() {
         graph.get("options")
     );
 }
+
+/// The names under `[dependencies]` of a manifest (one `name...` per line until the next table).
+fn dependency_names(manifest: &str) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(manifest))
+        .unwrap_or_else(|e| panic!("{manifest}: {e}"));
+    text.lines()
+        .skip_while(|l| l.trim() != "[dependencies]")
+        .skip(1)
+        .take_while(|l| !l.starts_with('['))
+        .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .map(|l| l.split(['.', '=', ' ']).next().expect("a name").to_string())
+        .collect()
+}
+
+/// unit/ compiles the library's own sources as its unit-test harness (Cargo.toml says why), so
+/// it must depend on exactly what the library depends on: a crate the library gains is added
+/// there too, and one it drops is dropped there.
+#[test]
+fn the_unit_test_package_depends_on_what_the_library_depends_on() {
+    let library = dependency_names("Cargo.toml");
+    let unit = dependency_names("unit/Cargo.toml");
+    assert!(library.len() > 10, "{library:?}");
+    assert_eq!(unit, library);
+}

@@ -169,10 +169,10 @@ fn compare_with_measure(r: &Value, m: &Value, size: f64, rel_area: f64, rel_c: f
     }
 }
 
-/// Writes `net` under `scheme` as STEP with `faces`, reads it with OpenCASCADE and checks it;
-/// `closed` says whether the net is closed.
-fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: bool) {
-    let step = dir.join(format!("{net}-{scheme}-{faces}.step"));
+/// Writes `net` under `scheme` as STEP in each of `--faces input`, `packed` and `patches`,
+/// reads each with OpenCASCADE and checks it; `closed` says whether the net is closed. The
+/// patch complex, its moments and `fairsub measure`'s report are computed once for the three.
+fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, closed: bool) {
     let bv = dir.join(format!("{net}-{scheme}.bv"));
     let run = |out: &Path, extra: &[&str]| {
         let o = fairsub()
@@ -196,11 +196,44 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
         );
         String::from_utf8_lossy(&o.stderr).into_owned()
     };
-    let said = run(&step, &["--faces", faces]);
     run(&bv, &[]);
-    let text = std::fs::read_to_string(&step).unwrap();
+    let patches = fairsub::io::read_bv(&bv).unwrap().patches.patches;
+    let m = moments(&patches);
+    let size = patches
+        .iter()
+        .flat_map(|p| p.cps.iter())
+        .flat_map(|q| q.iter())
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let measured = measure(&format!("gallery:{net}"), scheme);
+    for faces in ["input", "packed", "patches"] {
+        let step = dir.join(format!("{net}-{scheme}-{faces}.step"));
+        let said = run(&step, &["--faces", faces]);
+        check_read(
+            occt,
+            &step,
+            &said,
+            (scheme, net, faces),
+            closed,
+            (&m, size),
+            &measured,
+        );
+    }
+}
+
+/// Reads `step` (written with `said` on standard error) with OpenCASCADE and checks it against
+/// the complex's moments `m` (coordinates up to `size`) and `fairsub measure`'s report.
+fn check_read(
+    occt: &Path,
+    step: &Path,
+    said: &str,
+    (scheme, net, faces): (&str, &str, &str),
+    closed: bool,
+    (m, size): (&Moments, f64),
+    measured: &Value,
+) {
+    let text = std::fs::read_to_string(step).unwrap();
     let faces_written = text.matches("=ADVANCED_FACE(").count();
-    let o = bounded(Command::new(occt).arg(&step).arg("1e-12"), &step);
+    let o = bounded(Command::new(occt).arg(step).arg("1e-12"), step);
     assert!(
         o.status.success(),
         "{}: {}",
@@ -220,13 +253,6 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
         "{ctx}"
     );
     assert_eq!(r["valid"], Value::Bool(true), "{ctx}");
-    let patches = fairsub::io::read_bv(&bv).unwrap().patches.patches;
-    let m = moments(&patches);
-    let size = patches
-        .iter()
-        .flat_map(|p| p.cps.iter())
-        .flat_map(|q| q.iter())
-        .fold(0.0f64, |a, x| a.max(x.abs()));
     if closed {
         assert_eq!(r["free_edges"], 0, "{ctx}");
         assert_eq!(r["solids"], 1, "{ctx}");
@@ -278,8 +304,32 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, faces: &str, closed: 
         m.area
     );
     // and the same figures as `fairsub measure` reports them
-    let measured = measure(&format!("gallery:{net}"), scheme);
-    compare_with_measure(&r, &measured, size, rel, 1e-9, &ctx);
+    compare_with_measure(&r, measured, size, rel, 1e-9, &ctx);
+}
+
+/// Runs `f` on every case, on two threads (each case waits on a `fairsub` or OpenCASCADE
+/// process most of the time, so the cases overlap with each other and with the other tests).
+/// A failing case fails the test with its own message.
+fn in_parallel<T: Sync>(cases: &[T], f: impl Fn(&T) + Sync) {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        let workers: Vec<_> = (0..2)
+            .map(|_| {
+                s.spawn(|| {
+                    loop {
+                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(case) = cases.get(i) else { break };
+                        f(case);
+                    }
+                })
+            })
+            .collect();
+        for w in workers {
+            if let Err(e) = w.join() {
+                std::panic::resume_unwind(e);
+            }
+        }
+    });
 }
 
 /// The schemes with patch output that take quad nets.
@@ -310,12 +360,8 @@ fn scratch(name: &str) -> PathBuf {
 fn slow_opencascade_reads_closed_solids_of_every_scheme() {
     let Some(occt) = peer() else { return };
     let dir = scratch("closed");
-    for &scheme in QUAD_SCHEMES {
-        for faces in ["input", "packed", "patches"] {
-            check(&occt, &dir, "cube", scheme, faces, true);
-        }
-    }
-    for (net, scheme) in [
+    let mut cases: Vec<(&str, &str)> = QUAD_SCHEMES.iter().map(|&s| ("cube", s)).collect();
+    cases.extend([
         ("prism-5", "catmull-clark"),
         ("prism-3", "polar-bi2"),
         ("torus-evs", "catmull-clark"),
@@ -324,11 +370,10 @@ fn slow_opencascade_reads_closed_solids_of_every_scheme() {
         ("octahedron", "loop"),
         ("icosahedron", "eg"),
         ("tetrahedron", "pgs-dscc"),
-    ] {
-        for faces in ["input", "packed", "patches"] {
-            check(&occt, &dir, net, scheme, faces, true);
-        }
-    }
+    ]);
+    in_parallel(&cases, |&(net, scheme)| {
+        check(&occt, &dir, net, scheme, true)
+    });
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -336,18 +381,17 @@ fn slow_opencascade_reads_closed_solids_of_every_scheme() {
 fn slow_opencascade_reads_open_shells() {
     let Some(occt) = peer() else { return };
     let dir = scratch("open");
-    for (net, scheme) in [
+    let cases = [
         ("open-grid", "catmull-clark"),
         ("open-pipe", "catmull-clark"),
         ("cnet-5-convex", "guided-bi6"),
         ("open-grid", "doo-sabin"),
         ("open-pipe", "eg"),
         ("tri-grid", "loop"),
-    ] {
-        for faces in ["input", "packed", "patches"] {
-            check(&occt, &dir, net, scheme, faces, false);
-        }
-    }
+    ];
+    in_parallel(&cases, |&(net, scheme)| {
+        check(&occt, &dir, net, scheme, false)
+    });
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -68,7 +68,7 @@ fn random_compatible_data_give_split_g1_caps() {
 /// The lowest certified degree of split caps for every valence 3..=16 (segment degree 3 for
 /// `m = 2, 3`, as QAS+^3's and guided-bi3-macro's rings; 4 for `m = 2`, as guided-bi4-macro's),
 /// printed as the table of the module documentation. Slow (the `m = 3` maps at `n = 16` have
-/// 5184 unknowns): `cargo test --release --lib split_lowest -- --ignored --nocapture`.
+/// 5184 unknowns): `cargo test --release -p fairsub-unit split_lowest -- --ignored --nocapture`.
 #[test]
 #[ignore = "slow: the table of the module documentation"]
 fn split_lowest_certified_degrees() {
