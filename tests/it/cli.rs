@@ -2,6 +2,7 @@
 //! format (read back), bad input with its clear error and exit code, and the demo.
 
 use crate::common::scratch;
+use rayon::prelude::*;
 use std::path::Path;
 use std::process::Command;
 
@@ -30,134 +31,141 @@ fn schemes_for(mesh: &fairsub::PolyMesh) -> Vec<&'static str> {
 fn every_gallery_net_every_scheme_every_format() {
     let dir = scratch("gallery");
     let catalog = fairsub::schemes::catalog();
-    let mut runs = 0;
-    for (name, mesh) in fairsub::gallery::all() {
-        // Keep the run short: all special nets, and the c-nets of three valences.
-        if name.starts_with("cnet-")
-            && !["cnet-3-", "cnet-5-", "cnet-10-"]
-                .iter()
-                .any(|p| name.starts_with(p))
-        {
-            continue;
-        }
-        let net = format!("gallery:{name}");
-        for scheme in schemes_for(&mesh) {
-            let info = catalog.iter().find(|s| s.name == scheme).unwrap();
-            // Refined nets in every mesh format (and BezierView polyhedra).
-            let net_formats: &[&str] = if info.refine {
-                &["obj", "off", "ply", "bv"]
-            } else {
-                &[]
-            };
-            for &ext in net_formats {
-                let out = dir.join(format!("{name}-{scheme}.{ext}"));
-                let (code, _, err) = run(&[
-                    "subdivide",
-                    &net,
-                    "--scheme",
-                    scheme,
-                    "--levels",
-                    "1",
-                    "-o",
-                    out.to_str().unwrap(),
-                ]);
-                assert_eq!(code, 0, "{name} {scheme} {ext}: {err}");
-                runs += 1;
-                if ext == "bv" {
-                    let f = fairsub::io::read_bv(&out).unwrap();
-                    assert_eq!(f.polyhedra.len(), 1);
+    // Keep the run short: all special nets, and the c-nets of three valences.
+    let nets: Vec<_> = fairsub::gallery::all()
+        .into_iter()
+        .filter(|(name, _)| {
+            !name.starts_with("cnet-")
+                || ["cnet-3-", "cnet-5-", "cnet-10-"]
+                    .iter()
+                    .any(|p| name.starts_with(p))
+        })
+        .collect();
+    // one net per task, on the machine's threads; each writes its own files
+    let runs: usize = nets
+        .par_iter()
+        .map(|(name, mesh)| {
+            let mut runs = 0;
+            let net = format!("gallery:{name}");
+            for scheme in schemes_for(mesh) {
+                let info = catalog.iter().find(|s| s.name == scheme).unwrap();
+                // Refined nets in every mesh format (and BezierView polyhedra).
+                let net_formats: &[&str] = if info.refine {
+                    &["obj", "off", "ply", "bv"]
                 } else {
-                    let m = fairsub::io::read_mesh(&out).unwrap().mesh;
-                    let expect = fairsub::schemes::by_name(scheme)
-                        .unwrap()
-                        .refine(&mesh)
-                        .unwrap()
-                        .mesh;
-                    assert_eq!(
-                        (m.num_vertices(), m.num_faces()),
-                        (expect.num_vertices(), expect.num_faces())
-                    );
-                    let worst = m
-                        .positions()
-                        .iter()
-                        .zip(expect.positions())
-                        .map(|(a, b)| fairsub::geom::dist(*a, *b))
-                        .fold(0.0, f64::max);
-                    assert!(
-                        worst < 1e-9,
-                        "{name} {scheme} {ext}: positions differ by {worst}"
-                    );
+                    &[]
+                };
+                for &ext in net_formats {
+                    let out = dir.join(format!("{name}-{scheme}.{ext}"));
+                    let (code, _, err) = run(&[
+                        "subdivide",
+                        &net,
+                        "--scheme",
+                        scheme,
+                        "--levels",
+                        "1",
+                        "-o",
+                        out.to_str().unwrap(),
+                    ]);
+                    assert_eq!(code, 0, "{name} {scheme} {ext}: {err}");
+                    runs += 1;
+                    if ext == "bv" {
+                        let f = fairsub::io::read_bv(&out).unwrap();
+                        assert_eq!(f.polyhedra.len(), 1);
+                    } else {
+                        let m = fairsub::io::read_mesh(&out).unwrap().mesh;
+                        let expect = fairsub::schemes::by_name(scheme)
+                            .unwrap()
+                            .refine(mesh)
+                            .unwrap()
+                            .mesh;
+                        assert_eq!(
+                            (m.num_vertices(), m.num_faces()),
+                            (expect.num_vertices(), expect.num_faces())
+                        );
+                        let worst = m
+                            .positions()
+                            .iter()
+                            .zip(expect.positions())
+                            .map(|(a, b)| fairsub::geom::dist(*a, *b))
+                            .fold(0.0, f64::max);
+                        assert!(
+                            worst < 1e-9,
+                            "{name} {scheme} {ext}: positions differ by {worst}"
+                        );
+                    }
                 }
-            }
-            if !info.rings {
-                let out = dir.join("x.igs");
-                let (code, _, err) = run(&[
-                    "subdivide",
-                    &net,
-                    "--scheme",
-                    scheme,
-                    "--rings",
-                    "2",
-                    "-o",
-                    out.to_str().unwrap(),
-                ]);
-                assert_eq!(code, 1, "a scheme without patch output must say so: {err}");
-                assert!(err.contains("no exact patch output"), "{err}");
-                assert!(!out.exists());
-                continue;
-            }
-            // Exact patches into .bv, .igs and a tessellated .ply.
-            let bv = dir.join(format!("{name}-{scheme}-patches.bv"));
-            let igs = dir.join(format!("{name}-{scheme}.igs"));
-            let ply = dir.join(format!("{name}-{scheme}-tess.ply"));
-            for out in [&bv, &igs, &ply] {
-                let (code, _, err) = run(&[
-                    "subdivide",
-                    &net,
-                    "--scheme",
-                    scheme,
-                    "--rings",
-                    "2",
-                    "--tess",
-                    "3",
-                    "--faces",
-                    "patches",
-                    "-o",
-                    out.to_str().unwrap(),
-                ]);
-                assert_eq!(code, 0, "{name} {scheme} {}: {err}", out.display());
-                runs += 1;
-            }
-            let from_bv = fairsub::io::read_bv(&bv).unwrap().patches;
-            let from_igs = fairsub::io::read_iges(&igs).unwrap();
-            assert_eq!(from_bv.len(), from_igs.len());
-            for (a, b) in from_bv.patches.iter().zip(&from_igs.patches) {
-                for (p, q) in a.cps.iter().zip(&b.cps) {
-                    assert!(fairsub::geom::dist(*p, *q) < 1e-12);
+                if !info.rings {
+                    let out = dir.join(format!("{name}-{scheme}-refused.igs"));
+                    let (code, _, err) = run(&[
+                        "subdivide",
+                        &net,
+                        "--scheme",
+                        scheme,
+                        "--rings",
+                        "2",
+                        "-o",
+                        out.to_str().unwrap(),
+                    ]);
+                    assert_eq!(code, 1, "a scheme without patch output must say so: {err}");
+                    assert!(err.contains("no exact patch output"), "{err}");
+                    assert!(!out.exists());
+                    continue;
                 }
-            }
-            let t = fairsub::io::read_mesh(&ply).unwrap().mesh;
-            assert!(t.num_faces() > 0);
-            // Closed nets give watertight tessellations.
-            if mesh.boundary_loops().is_empty() {
-                assert!(
-                    t.boundary_loops().is_empty(),
-                    "{name} {scheme}: tessellation has a boundary"
-                );
-            }
-            {
-                let r = fairsub::analysis::continuity::check(&from_bv);
-                assert!(
-                    r.all.c0 < 1e-12 * r.size.max(1.0),
-                    "{name}: C0 {}",
-                    r.all.c0
-                );
+                // Exact patches into .bv, .igs and a tessellated .ply.
+                let bv = dir.join(format!("{name}-{scheme}-patches.bv"));
+                let igs = dir.join(format!("{name}-{scheme}.igs"));
+                let ply = dir.join(format!("{name}-{scheme}-tess.ply"));
+                for out in [&bv, &igs, &ply] {
+                    let (code, _, err) = run(&[
+                        "subdivide",
+                        &net,
+                        "--scheme",
+                        scheme,
+                        "--rings",
+                        "2",
+                        "--tess",
+                        "3",
+                        "--faces",
+                        "patches",
+                        "-o",
+                        out.to_str().unwrap(),
+                    ]);
+                    assert_eq!(code, 0, "{name} {scheme} {}: {err}", out.display());
+                    runs += 1;
+                }
+                let from_bv = fairsub::io::read_bv(&bv).unwrap().patches;
+                let from_igs = fairsub::io::read_iges(&igs).unwrap();
+                assert_eq!(from_bv.len(), from_igs.len());
+                for (a, b) in from_bv.patches.iter().zip(&from_igs.patches) {
+                    for (p, q) in a.cps.iter().zip(&b.cps) {
+                        assert!(fairsub::geom::dist(*p, *q) < 1e-12);
+                    }
+                }
+                let t = fairsub::io::read_mesh(&ply).unwrap().mesh;
+                assert!(t.num_faces() > 0);
+                // Closed nets give watertight tessellations.
                 if mesh.boundary_loops().is_empty() {
-                    assert_eq!(r.open_sides, 0, "{name}: cracks");
+                    assert!(
+                        t.boundary_loops().is_empty(),
+                        "{name} {scheme}: tessellation has a boundary"
+                    );
+                }
+                {
+                    let r = fairsub::analysis::continuity::check(&from_bv);
+                    assert!(
+                        r.all.c0 < 1e-12 * r.size.max(1.0),
+                        "{name}: C0 {}",
+                        r.all.c0
+                    );
+                    if mesh.boundary_loops().is_empty() {
+                        assert_eq!(r.open_sides, 0, "{name}: cracks");
+                    }
                 }
             }
-        }
-    }
+            runs
+        })
+        .sum();
     assert!(runs > 100);
     let _ = std::fs::remove_dir_all(&dir);
 }

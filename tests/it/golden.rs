@@ -20,6 +20,7 @@
 //! rounded to 12 significant digits; binary files: a hash of the bytes), to keep the repository
 //! small.
 
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -483,76 +484,17 @@ fn outputs_match_the_recorded_ones() {
     let bless = std::env::var_os("FAIRSUB_BLESS").is_some();
     let root = golden_root();
     let scratch = std::env::temp_dir().join(format!("fairsub-golden-{}", std::process::id()));
-    let mut failures = Vec::new();
     let cs = cases();
     let mut names: Vec<&str> = cs.iter().map(|c| c.name.as_str()).collect();
     names.sort();
     names.dedup();
     assert_eq!(names.len(), cs.len(), "case names are unique");
-    for c in &cs {
-        if bless {
-            let dir = root.join(&c.name);
-            run_case(c, &dir);
-            for f in list(&dir) {
-                let p = dir.join(&f);
-                let bytes = std::fs::read(&p).unwrap();
-                if bytes.len() > BIG {
-                    let mut d = p.clone().into_os_string();
-                    d.push(".digest");
-                    std::fs::write(d, digest(&f, &bytes)).unwrap();
-                    std::fs::remove_file(p).unwrap();
-                }
-            }
-            continue;
-        }
-        let now = scratch.join(&c.name);
-        run_case(c, &now);
-        let rec = root.join(&c.name);
-        let lr = list(&rec);
-        let ln: Vec<PathBuf> = list(&now)
-            .into_iter()
-            .map(|f| {
-                let mut d = f.clone().into_os_string();
-                d.push(".digest");
-                let d = PathBuf::from(d);
-                if lr.contains(&d) { d } else { f }
-            })
-            .collect();
-        if lr != ln {
-            failures.push(format!("{}: files recorded {lr:?}, now {ln:?}", c.name));
-            continue;
-        }
-        for f in lr {
-            if f.extension().is_some_and(|e| e == "digest") {
-                let orig = f.with_extension("");
-                let recorded = std::fs::read_to_string(rec.join(&f)).unwrap();
-                let d = digest(&orig, &std::fs::read(now.join(&orig)).unwrap());
-                if recorded != d {
-                    failures.push(format!(
-                        "{} {}: digest recorded {recorded:?}, now {d:?}",
-                        c.name,
-                        orig.display()
-                    ));
-                }
-                continue;
-            }
-            let (a, b) = (
-                std::fs::read(rec.join(&f)).unwrap(),
-                std::fs::read(now.join(&f)).unwrap(),
-            );
-            if a == b {
-                continue;
-            }
-            let r = if is_binary(&f, &a) {
-                Err("binary files differ".to_string())
-            } else {
-                compare_text(&String::from_utf8_lossy(&a), &String::from_utf8_lossy(&b))
-            };
-            if let Err(e) = r {
-                failures.push(format!("{} {}: {e}", c.name, f.display()));
-            }
-        }
-    }
+    // the cases run in parallel (each is one or a few runs of the command line); the failures
+    // are reported in the cases' order
+    let failures: Vec<String> = cs
+        .par_iter()
+        .flat_map_iter(|c| check_case(c, bless, &root, &scratch))
+        .collect();
     let _ = std::fs::remove_dir_all(&scratch);
     if bless {
         // Drop folders of cases that no longer exist.
@@ -572,4 +514,72 @@ fn outputs_match_the_recorded_ones() {
         cs.len(),
         failures.join("\n")
     );
+}
+
+/// Runs one case into `scratch` and compares its files with the recorded ones under `root`
+/// (or, with `bless`, records them): the differences found, each a line.
+fn check_case(c: &Case, bless: bool, root: &Path, scratch: &Path) -> Vec<String> {
+    let mut failures = Vec::new();
+    if bless {
+        let dir = root.join(&c.name);
+        run_case(c, &dir);
+        for f in list(&dir) {
+            let p = dir.join(&f);
+            let bytes = std::fs::read(&p).unwrap();
+            if bytes.len() > BIG {
+                let mut d = p.clone().into_os_string();
+                d.push(".digest");
+                std::fs::write(d, digest(&f, &bytes)).unwrap();
+                std::fs::remove_file(p).unwrap();
+            }
+        }
+        return Vec::new();
+    }
+    let now = scratch.join(&c.name);
+    run_case(c, &now);
+    let rec = root.join(&c.name);
+    let lr = list(&rec);
+    let ln: Vec<PathBuf> = list(&now)
+        .into_iter()
+        .map(|f| {
+            let mut d = f.clone().into_os_string();
+            d.push(".digest");
+            let d = PathBuf::from(d);
+            if lr.contains(&d) { d } else { f }
+        })
+        .collect();
+    if lr != ln {
+        return vec![format!("{}: files recorded {lr:?}, now {ln:?}", c.name)];
+    }
+    for f in lr {
+        if f.extension().is_some_and(|e| e == "digest") {
+            let orig = f.with_extension("");
+            let recorded = std::fs::read_to_string(rec.join(&f)).unwrap();
+            let d = digest(&orig, &std::fs::read(now.join(&orig)).unwrap());
+            if recorded != d {
+                failures.push(format!(
+                    "{} {}: digest recorded {recorded:?}, now {d:?}",
+                    c.name,
+                    orig.display()
+                ));
+            }
+            continue;
+        }
+        let (a, b) = (
+            std::fs::read(rec.join(&f)).unwrap(),
+            std::fs::read(now.join(&f)).unwrap(),
+        );
+        if a == b {
+            continue;
+        }
+        let r = if is_binary(&f, &a) {
+            Err("binary files differ".to_string())
+        } else {
+            compare_text(&String::from_utf8_lossy(&a), &String::from_utf8_lossy(&b))
+        };
+        if let Err(e) = r {
+            failures.push(format!("{} {}: {e}", c.name, f.display()));
+        }
+    }
+    failures
 }

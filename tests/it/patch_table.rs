@@ -9,6 +9,7 @@ use fairsub::PolyMesh;
 use fairsub::schemes::registry::registry;
 use fairsub::surface::table::{PatchTable, probe};
 use fairsub::surface::{ComplexOptions, PatchComplex};
+use rayon::prelude::*;
 
 /// The gallery nets the tables are checked on (each scheme takes some of them).
 const NETS: &[&str] = &[
@@ -62,37 +63,43 @@ fn every_scheme_reapplies_to_moved_points() {
         rings: 2,
         fill: true,
     };
-    let mut summary = Vec::new();
-    let mut failures = Vec::new();
-    for e in registry().entries() {
-        if !e.capabilities().patches {
-            continue;
-        }
-        let spec = registry().lookup(e.name).expect("registered");
-        let mut tested = 0;
-        let mut caps = 0;
-        for &name in NETS {
-            let mesh = net(name);
-            if e.descriptor.check_input(&mesh).is_err() {
-                continue;
-            }
-            let Ok(base) = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {}) else {
-                continue;
-            };
-            let what = format!("{} on {name}", e.name);
-            let table = match assert_reapplies(&spec, &mesh, opts, &base.complex, &what) {
-                Ok(t) => t,
-                Err(err) => {
-                    failures.push(err);
+    // one scheme per task, on the machine's threads (the schemes are independent)
+    let entries: Vec<_> = registry()
+        .entries()
+        .iter()
+        .filter(|e| e.capabilities().patches)
+        .collect();
+    let results: Vec<(String, Vec<String>)> = entries
+        .par_iter()
+        .map(|e| {
+            let spec = registry().lookup(e.name).expect("registered");
+            let (mut tested, mut caps, mut failures) = (0, 0, Vec::new());
+            for &name in NETS {
+                let mesh = net(name);
+                if e.descriptor.check_input(&mesh).is_err() {
                     continue;
                 }
-            };
-            caps += table.caps().len();
-            tested += 1;
-        }
-        assert!(tested > 0, "{}: no gallery net tested", e.name);
-        summary.push(format!("{} ({tested} nets, {caps} G^1 caps)", e.name));
-    }
+                let Ok(base) = fairsub::surface::build(&spec, &mesh, opts, &mut |_| {}) else {
+                    continue;
+                };
+                let what = format!("{} on {name}", e.name);
+                match assert_reapplies(&spec, &mesh, opts, &base.complex, &what) {
+                    Ok(table) => {
+                        caps += table.caps().len();
+                        tested += 1;
+                    }
+                    Err(err) => failures.push(err),
+                }
+            }
+            assert!(tested > 0, "{}: no gallery net tested", e.name);
+            (
+                format!("{} ({tested} nets, {caps} G^1 caps)", e.name),
+                failures,
+            )
+        })
+        .collect();
+    let summary: Vec<String> = results.iter().map(|(s, _)| s.clone()).collect();
+    let failures: Vec<String> = results.into_iter().flat_map(|(_, f)| f).collect();
     eprintln!("patch tables checked: {}", summary.join(", "));
     // Every gallery net gets its table: non-box's Hermite fill at an extraordinary boundary
     // vertex (tri-grid's corners), which projects a chord onto the limit tangent plane and is
