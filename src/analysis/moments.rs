@@ -52,7 +52,7 @@
 mod faces;
 pub mod quadrature;
 
-pub use faces::{FaceAreas, face_areas};
+pub use faces::{FaceAreas, face_areas, fan_face_areas};
 
 use crate::bezier::BezierPatch;
 use crate::geom::{Point, dot, norm};

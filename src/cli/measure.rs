@@ -93,7 +93,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
 /// face of the net under the scheme `per_face` gives.
 ///
 /// # Errors
-/// `per_face` with a scheme that does not evaluate, or whose input faces are fan triangles.
+/// `per_face` with a scheme that does not evaluate.
 pub(super) fn json_report(
     source: &str,
     complex: &crate::surface::PatchComplex,
@@ -126,14 +126,12 @@ fn face_areas(
         Error::InvalidArgument(format!("--per-face needs the input faces' domains: {e}"))
     })?;
     let d = crate::schemes::registry().descriptor(spec.id);
-    if d.eval_faces(spec, net)?.is_some() {
-        return Err(Error::InvalidArgument(format!(
-            "--per-face: {}'s input faces are fan triangles of the polygons its surface is \
-             built on; per-face areas of those are not supported yet",
-            spec.name()
-        )));
+    match d.eval_faces(spec, net)? {
+        // fan triangles of the polygons the surface is built on (nonbox-4dir's triangles)
+        Some(fans) => moments::fan_face_areas(complex, &fans, tol)
+            .map_err(|e| Error::InvalidArgument(format!("--per-face: {e}"))),
+        None => Ok(moments::face_areas(complex, net.num_faces(), tol)),
     }
-    Ok(moments::face_areas(complex, net.num_faces(), tol))
 }
 
 fn matrix_lines(name: &str, m: &[[f64; 3]; 3]) {

@@ -259,3 +259,140 @@ fn nonbox_4dir_limit_evaluation_converges_at_rate_lambda() {
         converges(scheme, &mesh, at, l, 12, &format!("vertex n = {n} (4dir)"));
     }
 }
+
+/// `net` with each vertex moved by up to `amount` in each coordinate (deterministic), so that
+/// no symmetry of the net makes two halves of a patch equal in area.
+fn perturbed(mut net: PolyMesh, amount: f64, seed: u64) -> PolyMesh {
+    let mut r = Lcg(seed);
+    let pos = net
+        .positions()
+        .iter()
+        .map(|p| p.map(|x| x + amount * (2.0 * r.next() - 1.0)))
+        .collect();
+    net.set_positions(pos);
+    net
+}
+
+/// `measure --json --per-face`'s areas (and the unassigned area, and the total) of the
+/// surface of `mesh` under `scheme` with `rings`.
+fn per_face_areas(mesh: &PolyMesh, scheme: &str, rings: usize) -> (Vec<f64>, f64, f64) {
+    let spec = registry().lookup(scheme).expect("scheme");
+    let opts = fairsub::surface::ComplexOptions { rings, fill: true };
+    let c = fairsub::surface::build(&spec, mesh, opts, &mut |_| {})
+        .expect("complex")
+        .complex;
+    let json = fairsub::cli::api::measure_json("net", &c, &spec, mesh, true, 1e-14)
+        .expect("per-face areas");
+    let v: serde_json::Value = serde_json::from_str(&json).expect("json");
+    let areas = v["faces"]["areas"]
+        .as_array()
+        .expect("areas")
+        .iter()
+        .map(|a| a.as_f64().expect("number"))
+        .collect();
+    let unassigned = v["faces"]["unassigned"].as_f64().expect("unassigned");
+    (areas, unassigned, v["area"].as_f64().expect("area"))
+}
+
+/// The area over triangle `t` of the surface `s` of a triangle mesh, from `eval`: the
+/// integral of `|du x dv|` over the triangle's barycentric domain, on its `4^levels` corner and
+/// middle sub-triangles with the collapsed 6 x 6 Gauss rule each (independent of the
+/// patches' areas: the evaluation's own fan-triangle map and chain rule).
+fn area_by_eval(s: &Surface, t: u32, levels: u32) -> f64 {
+    // 6-point Gauss-Legendre on [0, 1]
+    let g = [
+        (0.033_765_242_898_424, 0.085_662_246_189_585),
+        (0.169_395_306_766_868, 0.180_380_786_524_069),
+        (0.380_690_406_958_402, 0.233_956_967_286_346),
+        (0.619_309_593_041_598, 0.233_956_967_286_346),
+        (0.830_604_693_233_132, 0.180_380_786_524_069),
+        (0.966_234_757_101_576, 0.085_662_246_189_585),
+    ];
+    let m = 1u32 << levels;
+    let h = 1.0 / f64::from(m);
+    let mut total = 0.0;
+    // the sub-triangles (corner a, edge vectors e1, e2): "up" ones and "down" ones
+    for i in 0..m {
+        for j in 0..m - i {
+            let (a, b) = (f64::from(i) * h, f64::from(j) * h);
+            let mut tris = vec![([a, b], [h, 0.0], [0.0, h])];
+            if i + j + 1 < m {
+                tris.push(([a + h, b + h], [-h, 0.0], [0.0, -h]));
+            }
+            for (o, e1, e2) in tris {
+                for &(x, wx) in &g {
+                    for &(y, wy) in &g {
+                        // the collapsed square: (x, x y) on the triangle x >= y' (Jacobian x)
+                        let (p, q) = (x * (1.0 - y), x * y);
+                        let u = o[0] + p * e1[0] + q * e2[0];
+                        let v = o[1] + p * e1[1] + q * e2[1];
+                        let e = s.evaluate(t, u, v).expect("triangle point");
+                        let n = fairsub::geom::norm(fairsub::geom::cross(e.du, e.dv));
+                        total += wx * wy * x * n * h * h;
+                    }
+                }
+            }
+        }
+    }
+    total
+}
+
+/// `measure --per-face` under `nonbox-4dir` on a quasi-four-directional triangle mesh: one
+/// area per triangle, each the surface over the fan triangle `(V_i, V_(i+1), FCV)` of its
+/// polygon (the G^1 caps and Coons fills halved along the diagonal the triangles' side
+/// follows). On the perturbed cube, prism-5 and tetrahedron (no symmetry makes two halves
+/// equal) and on cnet-5-saddle (boundary fills): the triangles' areas add up to the surface's
+/// to 1e-12, a polygon's triangles to `nonbox`'s area over that polygon of the polygon net
+/// (the same surface) to 1e-12, and each triangle's area equals an integration of `eval`'s
+/// `|du x dv|` over the triangle (see the assertion for the bound).
+#[test]
+fn nonbox_4dir_per_face_areas_split_the_polygons() {
+    let nets = [
+        ("cube", perturbed(gallery("cube"), 0.15, 1), 1),
+        ("prism-5", perturbed(gallery("prism-5"), 0.1, 2), 2),
+        ("tetrahedron", perturbed(gallery("tetrahedron"), 0.1, 3), 1),
+        ("cnet-5-saddle", gallery("cnet-5-saddle"), 2),
+    ];
+    for (name, poly, rings) in nets {
+        let tri = fairsub::schemes::nonbox::fourdir::triangulate(&FcvNet::from_mesh(&poly));
+        let (tri, _) = support::via_obj(&tri.mesh, &format!("{name}-perturbed-4dir"));
+        let (areas, unassigned, total) = per_face_areas(&tri, ids::NONBOX_4DIR.name(), rings);
+        assert_eq!(
+            areas.len(),
+            tri.num_faces(),
+            "{name}: one area per triangle"
+        );
+        let sum: f64 = areas.iter().sum();
+        assert_eq!(unassigned, 0.0, "{name}");
+        assert!(
+            (sum - total).abs() <= 1e-12 * total,
+            "{name}: triangles {sum} vs area {total}"
+        );
+        // per polygon: its triangles are consecutive (`triangulate`'s order)
+        let (polys, _, poly_total) = per_face_areas(&poly, ids::NONBOX.name(), rings);
+        assert!((poly_total - total).abs() <= 1e-12 * total, "{name}");
+        let mut t = 0;
+        for (f, &a) in polys.iter().enumerate() {
+            let n = poly.face(f).len();
+            let mine: f64 = areas[t..t + n].iter().sum();
+            assert!(
+                (mine - a).abs() <= 1e-12 * a,
+                "{name}: polygon {f}: triangles {mine} vs nonbox {a}"
+            );
+            t += n;
+        }
+        // per triangle against eval
+        let (_, s) = surface_of(tri.clone(), ids::NONBOX_4DIR.name(), rings);
+        let mut worst: f64 = 0.0;
+        for (t, &a) in areas.iter().enumerate() {
+            assert!(a > 0.0, "{name}: triangle {t}: area {a}");
+            let e = area_by_eval(&s, t as u32, 3);
+            worst = worst.max((e - a).abs() / a);
+        }
+        eprintln!("{name} (4dir, {rings} rings): per-triangle areas vs eval: {worst:.2e}");
+        assert!(
+            worst < 1e-3,
+            "{name}: per-triangle areas off eval's by {worst:e}"
+        );
+    }
+}

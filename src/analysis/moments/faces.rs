@@ -9,9 +9,18 @@
 //! (`crate::surface::eval`'s `kite`) covers halves of two fan triangles: its half `u >= v`
 //! lies in its own domain's face, its half `v >= u` in the next kite's. Patches without a
 //! domain (schemes without `eval`) are unassigned too.
+//!
+//! When the input faces are fan triangles of the polygons the patches' domains refer to
+//! (`nonbox-4dir` on a quasi-four-directional triangle mesh), [`fan_face_areas`] gives each
+//! part to the fan triangle that holds it, or halves it first (the `fans` module).
+
+mod fans;
+
+pub use fans::fan_face_areas;
 
 use super::{Region, area_moments, size};
 use crate::bezier::BezierPatch;
+use crate::bezier::domain::{Affine, Domain};
 use crate::surface::PatchComplex;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -27,15 +36,55 @@ pub struct FaceAreas {
     pub unassigned: f64,
 }
 
-/// One integral: `region` of patch `patch` (transposed: its half `v >= u`), over `face`
-/// (`None`: over no face).
+/// How a part reads its patch: as stored, or through a symmetry of the parameter square
+/// (each keeps the area; `region` is in the symmetric patch's parameters).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum View {
+    /// `X(u, v)`.
+    Plain,
+    /// `X(v, u)`: its [`Region::Lower`] half is `X`'s half `u <= v`.
+    Transposed,
+    /// `X(1 - u, v)`: its lower half is `X`'s half `u + v <= 1`.
+    ReversedU,
+    /// `X(1 - v, u)`: its lower half is `X`'s half `u + v >= 1`.
+    ReversedUTransposed,
+}
+
+impl View {
+    /// The patch read this way.
+    fn of(self, p: &BezierPatch) -> BezierPatch {
+        match self {
+            View::Plain => p.clone(),
+            View::Transposed => p.transposed(),
+            View::ReversedU => p.reversed_u(),
+            View::ReversedUTransposed => p.reversed_u().transposed(),
+        }
+    }
+
+    /// The stored patch's parameters of the point `q` of the view's.
+    fn stored(self, [a, b]: [f64; 2]) -> [f64; 2] {
+        match self {
+            View::Plain => [a, b],
+            View::Transposed => [b, a],
+            View::ReversedU => [1.0 - a, b],
+            View::ReversedUTransposed => [1.0 - b, a],
+        }
+    }
+}
+
+/// One integral: `region` of patch `patch` read through `view`, over `face` (`None`: over no
+/// face).
+#[derive(Clone, Copy)]
 struct Part {
     patch: usize,
     region: Region,
-    transposed: bool,
+    view: View,
     face: Option<u32>,
     /// Whether it is a piece's window.
     piece: bool,
+    /// The cell the part lies in, and the map from the stored patch's parameters to the
+    /// domain's patch parameters (a piece's window to `[0, 1]^2`; the identity otherwise).
+    cell: Option<(Domain, Affine)>,
 }
 
 /// The parts of the complex's patches over their faces (see the module documentation).
@@ -58,9 +107,10 @@ fn parts(c: &PatchComplex) -> Vec<Part> {
         out.push(Part {
             patch: p.patch as usize,
             region: Region::Rect(lo, hi),
-            transposed: false,
+            view: View::Plain,
             face: Some(p.domain.face),
             piece: true,
+            cell: Some((p.domain, p.window_map().inverse())),
         });
     }
     for i in 0..c.len() {
@@ -69,30 +119,34 @@ fn parts(c: &PatchComplex) -> Vec<Part> {
             continue;
         }
         let face = c.domain(i).map(|d| d.face);
+        let cell = c.domain(i).map(|d| (d, Affine::IDENTITY));
         match next_kite.get(&i) {
             Some(&next) => {
                 let lower = Region::Lower([0.0, 0.0], 1.0);
                 out.push(Part {
                     patch: i,
                     region: lower,
-                    transposed: false,
+                    view: View::Plain,
                     face,
                     piece: false,
+                    cell,
                 });
                 out.push(Part {
                     patch: i,
                     region: lower,
-                    transposed: true,
+                    view: View::Transposed,
                     face: c.domain(next).map(|d| d.face),
                     piece: false,
+                    cell,
                 });
             }
             None => out.push(Part {
                 patch: i,
                 region: Region::WHOLE,
-                transposed: false,
+                view: View::Plain,
                 face,
                 piece: false,
+                cell,
             }),
         }
     }
@@ -102,17 +156,21 @@ fn parts(c: &PatchComplex) -> Vec<Part> {
 /// The area over each of the `num_faces` input faces of the surface `c` (integrated as in
 /// [`super::measure`], to relative tolerance `tol`).
 pub fn face_areas(c: &PatchComplex, num_faces: usize, tol: f64) -> FaceAreas {
-    let parts = parts(c);
+    sum_parts(c, &parts(c), num_faces, tol)
+}
+
+/// The area of each part, summed per face (`num_faces` of them).
+fn sum_parts(c: &PatchComplex, parts: &[Part], num_faces: usize, tol: f64) -> FaceAreas {
     let area_of =
         |patch: &BezierPatch, region: Region| area_moments(patch, region, tol, size(patch)).0[0];
     let areas: Vec<f64> = parts
         .par_iter()
         .map(|p| {
             let patch = &c.patches[p.patch];
-            if p.transposed {
-                area_of(&patch.transposed(), p.region)
-            } else {
+            if p.view == View::Plain {
                 area_of(patch, p.region)
+            } else {
+                area_of(&p.view.of(patch), p.region)
             }
         })
         .collect();

@@ -71,6 +71,34 @@ impl FanTriangle {
         });
         (sub, p, jac)
     }
+
+    /// Whether the host point `p` of sub-face `sub` (cell coordinates, as
+    /// [`FanTriangle::to_host`] gives them; `sub` is 0 on a quad host) lies in this triangle,
+    /// its sides widened by `eps`: the inverse test of `to_host`'s maps. On a quad host the
+    /// triangle is the criss-cross triangle on side `edge` (`y <= x` and `x + y <= 1` for
+    /// side 0, turning counter-clockwise); on an n-gon host it is the half `y <= x` of sub-face
+    /// `edge` and the half `x <= y` of sub-face `edge + 1`.
+    pub fn holds(&self, sub: u32, [x, y]: [f64; 2], eps: f64) -> bool {
+        let i = self.edge % self.sides.max(1);
+        if self.sides == 4 {
+            // below the diagonal y = x; below the anti-diagonal x + y = 1
+            let (below, below_anti) = (y - x <= eps, x + y - 1.0 <= eps);
+            let (above, above_anti) = (x - y <= eps, 1.0 - x - y <= eps);
+            sub == 0
+                && match i {
+                    0 => below && below_anti,
+                    1 => below && above_anti,
+                    2 => above && above_anti,
+                    _ => above && below_anti,
+                }
+        } else if sub == i {
+            y <= x + eps
+        } else if sub == (i + 1) % self.sides {
+            x <= y + eps
+        } else {
+            false
+        }
+    }
 }
 
 #[cfg(test)]
@@ -146,6 +174,46 @@ mod tests {
                     let area = if sides == 4 { 0.5 } else { 2.0 };
                     assert_eq!(det, area, "sides {sides} rot {rot} at ({u}, {v})");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn holds_inverts_to_host() {
+        // points of every fan triangle of a triangle, a quad and a hexagon host: held by their
+        // own triangle, by no other (inside, away from the sides) and only with `eps` on a side
+        for sides in [3u32, 4, 6] {
+            let fans: Vec<FanTriangle> = (0..sides)
+                .map(|edge| FanTriangle {
+                    host: 0,
+                    sides,
+                    edge,
+                    rot: (edge % 3) as u8,
+                })
+                .collect();
+            for f in &fans {
+                for (u, v) in [(0.1, 0.2), (0.6, 0.3), (0.2, 0.7), (0.3, 0.3), (0.05, 0.9)] {
+                    let (sub, p, _) = f.to_host(u, v);
+                    for g in &fans {
+                        assert_eq!(
+                            g.holds(sub, p, 1e-12),
+                            g.edge == f.edge,
+                            "sides {sides}: ({u}, {v}) of edge {} tested on edge {}",
+                            f.edge,
+                            g.edge
+                        );
+                    }
+                }
+                // a point on the side toward the centre shared with the next triangle
+                let next = &fans[((f.edge + 1) % sides) as usize];
+                let r = usize::from(f.rot);
+                // barycentric (s, t) = (1, 0) is host corner edge + 1; (s, t) = (1/2, 1/2) the
+                // middle of the side from it to the centre
+                let mut l = [0.0; 3];
+                l[(r + 1) % 3] = 0.5;
+                l[(r + 2) % 3] = 0.5;
+                let (sub, p, _) = f.to_host(l[1], l[2]);
+                assert!(f.holds(sub, p, 1e-12) && next.holds(sub, p, 1e-12));
             }
         }
     }
