@@ -22,6 +22,7 @@
 //! | [`Surface::check_json`], [`Surface::measure_json`] | continuity defects; area, volume, inertia | `check`, `measure` |
 //! | [`Surface::write`], [`Surface::tessellate`] | `.bv`, IGES, STEP, meshes | `subdivide --rings K -o F` |
 //! | [`analyze`] | a scheme's spectrum, limit stencil, characteristic map ([`Analysis`]) | `analyze` |
+//! | [`render`] | a picture of a surface or net ([`Image`]) with typed [`RenderOptions`] | `render` |
 //!
 //! Each entry point runs the command's own code path: the same checks, limits and messages.
 //!
@@ -83,12 +84,13 @@ pub mod surface;
 pub use bezier::BezierPatch;
 pub use error::{Error, MeshError, Result};
 pub use facade::{
-    AlphaRule, Analysis, BoundaryInterpolation, CreaseMethod, Fallback, FvarInterpolation, Options,
-    Prepare, Refined, RulesChoice, SchemeRow, Source, Surface, analyze, level_stencils, read_net,
-    refine, schemes, surface, write_net,
+    AlphaRule, Analysis, BadOption, BoundaryInterpolation, CreaseMethod, Drawn, Fallback,
+    FvarInterpolation, Image, LookOption, Mode, Options, Overlays, Prepare, Refined, RenderOptions,
+    RulesChoice, SchemeRow, ShadeOptions, Source, Surface, View, analyze, level_stencils, read_net,
+    refine, render, schemes, surface, write_net,
 };
 pub use geom::Point;
-pub use mesh::PolyMesh;
+pub use mesh::{Element, PolyMesh};
 pub use schemes::Spec;
 pub use stencil::StencilTable;
 pub use surface::PatchComplex;

@@ -1,12 +1,14 @@
 //! fairsub's Python bindings (the extension module `fairsub._fairsub`): thin PyO3 wrappers over
-//! the library's API (`fairsub::{refine, surface, level_stencils, analyze, schemes, ...}`),
-//! numpy arrays in and out. Keyword options become the typed `fairsub::Options`
-//! (`options.rs`); the library runs the command line's own code paths, so every option,
-//! default, limit and error message is the command line's; no rule is written here. Long work
-//! runs with the GIL released.
+//! the library's API (`fairsub::{refine, surface, level_stencils, analyze, schemes, render,
+//! ...}`), numpy arrays in and out. Keyword options become typed values: the scheme options
+//! `fairsub::Options` (`options.rs`), render's look `fairsub::RenderOptions` (`look.rs`). The
+//! library runs the command line's own code paths, so every option, default and limit is the
+//! command line's and so are the messages (a bad render value names the keyword instead of
+//! the flag); no rule is written here. Long work runs with the GIL released.
 
 mod batch;
 mod evaluate;
+mod look;
 mod net;
 mod options;
 mod shape;
@@ -15,7 +17,6 @@ mod table;
 use net::Net;
 
 use fairsub::StencilTable;
-use fairsub::cli::api;
 use fairsub::surface::eval;
 use numpy::PyUntypedArrayMethods;
 use numpy::ndarray::{Array2, Array3};
@@ -463,20 +464,24 @@ fn analyze_json(
     Ok(serde_json::to_string_pretty(&r).expect("serialisable"))
 }
 
-/// A picture as `fairsub render` draws it, (height, width, 3) uint8; `words` are render's look
-/// options (`--mode M --size WxH ...`).
+/// A picture as `fairsub render` draws it, (height, width, 3) uint8, of a Surface or a Net:
+/// the keywords are render's options, typed (`mode="highlight"`, `size=(w, h)`,
+/// `azimuth=-30.0`, `overlay="net,patches"`, ...: `look.rs`); a bad value is a ValueError
+/// naming the keyword.
 #[pyfunction]
-fn render_words<'py>(
+#[pyo3(signature = (what, **look))]
+fn render<'py>(
     py: Python<'py>,
     what: &Bound<'py, PyAny>,
-    words: Vec<String>,
+    look: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
+    let o = look::options(look)?;
     let image = if let Ok(s) = what.cast::<Surface>() {
         let s = &s.get().inner;
-        py.detach(|| api::render(Some(s.complex()), Some(s.net()), &words))
+        py.detach(|| fairsub::render(s, &o))
     } else if let Ok(n) = what.cast::<Net>() {
         let n = n.get();
-        py.detach(|| api::render(None, Some(&n.mesh), &words))
+        py.detach(|| fairsub::render(&n.mesh, &o))
     } else {
         return Err(PyValueError::new_err("render takes a Net or a Surface"));
     }
@@ -486,6 +491,12 @@ fn render_words<'py>(
             .expect("image shape")
             .into_pyarray(py),
     )
+}
+
+/// The defaults of `render`'s keywords (the library's, which are the command line's).
+#[pyfunction]
+fn render_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    look::defaults(py)
 }
 
 /// The extension module.
@@ -502,7 +513,8 @@ fn _fairsub(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(level_stencils, m)?)?;
     m.add_function(wrap_pyfunction!(schemes_json, m)?)?;
     m.add_function(wrap_pyfunction!(analyze_json, m)?)?;
-    m.add_function(wrap_pyfunction!(render_words, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(render_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(shape::scheme_options_json, m)?)?;
     m.add_function(wrap_pyfunction!(shape::curvature_colours, m)?)?;
     batch::register(m)?;

@@ -1,16 +1,16 @@
 //! The commands as library calls for front ends that hold command-line words (the viewer's
-//! page, the Python package's render options) and the writers the library API shares: the
-//! same argument words, parsed by the same clap definitions, the same loading, limits,
-//! construction and reports, with the results handed back instead of written. Typed calls go
-//! through the crate root's API (`crate::facade`). Nothing here is a second copy of a rule or of a command's logic: each function is
-//! the command's own code path (`subdivide::prepare` and `finish`, `check::report_json`, ...) with an
-//! in-memory net in place of a file where one is given.
+//! page builds `subdivide` words from its controls) and the writers the library API shares:
+//! the same argument words, parsed by the same clap definitions, the same loading, limits,
+//! construction and reports, with the results handed back instead of written. Typed calls
+//! (the Python package's, a Rust program's) go through the crate root's API
+//! (`crate::facade`). Nothing here is a second copy of a rule or of a command's logic: each
+//! function is the command's own code path (`subdivide::prepare` and `finish`,
+//! `check::report_json`, ...) with an in-memory net in place of a file where one is given.
 
 use super::subdivide::{self, Computed};
 use super::{Cli, Command, limits};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::render::{Mode, Scene};
 use crate::schemes::Spec;
 use crate::schemes::descriptor::ParamKind;
 use crate::surface::PatchComplex;
@@ -164,37 +164,6 @@ pub fn measure_json(
 /// `fairsub info --json`'s report of a net.
 pub fn info_json(source: &str, mesh: &PolyMesh) -> String {
     serde_json::to_string_pretty(&super::info::report(source, mesh)).expect("serialisable")
-}
-
-/// A picture as `fairsub render` draws it: `words` are render's look options (`--mode M`,
-/// `--size WxH`, `--azimuth`, `--stripes`, `--overlay`, ...); the scene is a complex (with its
-/// net for the net overlay) or a net.
-pub fn render(
-    complex: Option<&PatchComplex>,
-    net: Option<&PolyMesh>,
-    words: &[String],
-) -> Result<crate::render::Image> {
-    #[derive(Parser)]
-    struct Look {
-        #[arg(long, default_value = "shaded")]
-        mode: String,
-        #[command(flatten)]
-        look: super::render::LookArgs,
-    }
-    let all = std::iter::once("render".to_string()).chain(words.iter().cloned());
-    let l = Look::try_parse_from(all)
-        .map_err(|e| Error::InvalidArgument(e.to_string().trim().to_string()))?;
-    let mode: Mode = l.mode.parse()?;
-    let opts = l.look.options((800, 800), mode)?;
-    let scene = match (complex, net) {
-        (Some(c), net) => Scene::patches(c.clone(), net.cloned()),
-        (None, Some(m)) => Scene::mesh(m),
-        (None, None) => {
-            return Err(Error::InvalidArgument("nothing to render".into()));
-        }
-    };
-    crate::render::check_mode(&scene, mode)?;
-    Ok(crate::render::render(&scene, &opts)?.image)
 }
 
 /// Writes a patch stencil table as `subdivide --stencils` does (validated, atomic).

@@ -17,7 +17,14 @@ use crate::schemes::options::ids;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
-/// Camera, lights, stripes and range: the options `render` and `compare` share.
+/// A default of the library's [`RenderOptions::default`], for clap's `default_value_t`: the
+/// command's defaults are the library's, written once.
+fn default<T>(f: impl FnOnce(&RenderOptions) -> T) -> T {
+    f(&RenderOptions::default())
+}
+
+/// Camera, lights, stripes and range: the options `render` and `compare` share, parsed into
+/// the library's [`RenderOptions`] ([`LookArgs::options`]) whose defaults and checks they use.
 #[derive(Debug, clap::Args)]
 pub struct LookArgs {
     /// Image size WIDTHxHEIGHT in pixels (per cell for compare) [default: 800x800 for
@@ -25,19 +32,19 @@ pub struct LookArgs {
     #[arg(long)]
     pub size: Option<String>,
     /// Supersampling: AA x AA samples per pixel (1 = none).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = default(|d| d.supersample))]
     pub aa: usize,
     /// Eye angle around the z axis, degrees from +x (-90 puts +x to the right).
-    #[arg(long, default_value_t = -60.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = default(|d| d.view.azimuth_deg), allow_negative_numbers = true)]
     pub azimuth: f64,
     /// Eye angle above the xy plane, degrees (90 looks straight down).
-    #[arg(long, default_value_t = 40.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = default(|d| d.view.elevation_deg), allow_negative_numbers = true)]
     pub elevation: f64,
     /// Eye distance from the centre in model units [default: fit the view].
     #[arg(long)]
     pub distance: Option<f64>,
     /// Vertical field of view in degrees.
-    #[arg(long, default_value_t = 30.0)]
+    #[arg(long, default_value_t = default(|d| d.view.fov_deg))]
     pub fov: f64,
     /// Centre on the limit point of this input vertex (V, vertex:V or face:F).
     #[arg(long, value_name = "V")]
@@ -54,13 +61,13 @@ pub struct LookArgs {
     #[arg(long, value_delimiter = ',')]
     pub overlay: Vec<String>,
     /// Stripe periods across the visible surface (highlight, reflection lines, isophotes).
-    #[arg(long, default_value_t = 12.0)]
+    #[arg(long, default_value_t = default(|d| d.shade.stripes))]
     pub stripes: f64,
     /// Dark fraction of each stripe period, in (0, 1).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = default(|d| d.shade.stripe_width))]
     pub stripe_width: f64,
     /// Direction of the light lines in the image, degrees from horizontal.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = default(|d| d.shade.light_angle_deg), allow_negative_numbers = true)]
     pub light_angle: f64,
     /// No legend strip under curvature pictures.
     #[arg(long)]
@@ -68,6 +75,8 @@ pub struct LookArgs {
 }
 
 impl LookArgs {
+    /// The typed options these arguments give for `mode`, with `default_size` when `--size` is
+    /// not given; checked by [`RenderOptions::validate`] (the error names the option).
     pub(crate) fn options(
         &self,
         default_size: (usize, usize),
@@ -167,7 +176,7 @@ pub struct RenderArgs {
     #[arg(long, short)]
     pub levels: Option<usize>,
     /// shaded, highlight, reflection, isophote, gauss, mean or provenance.
-    #[arg(long, short, default_value = "shaded")]
+    #[arg(long, short, default_value = default(|d| d.mode.name()))]
     pub mode: String,
     #[command(flatten)]
     pub look: LookArgs,
@@ -334,7 +343,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
         None => None,
     };
     let mode: Mode = a.mode.parse()?;
-    let opts = a.look.options((800, 800), mode)?;
+    let opts = a.look.options(default(|d| (d.width, d.height)), mode)?;
     let bv = is_bv(&a.net);
     if bv && (a.scheme.is_some() || a.levels.is_some() || a.rings.is_some()) {
         return Err(Error::InvalidArgument(
@@ -419,3 +428,49 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
 }
 
 pub use super::compare::{demo_compare, run_compare};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cli::{Cli, Command};
+    use clap::Parser;
+
+    /// `fairsub render NET WORDS... -o x.png`'s typed options.
+    fn parsed(words: &[&str]) -> Result<RenderOptions> {
+        let mut all = vec!["fairsub", "render", "gallery:cube", "-o", "x.png"];
+        all.extend_from_slice(words);
+        let Command::Render(a) = Cli::try_parse_from(all).unwrap().command else {
+            panic!("not render")
+        };
+        let mode: Mode = a.mode.parse()?;
+        a.look.options(default(|d| (d.width, d.height)), mode)
+    }
+
+    #[test]
+    fn the_commands_defaults_are_the_librarys() {
+        assert_eq!(parsed(&[]).unwrap(), RenderOptions::default());
+        let o = parsed(&["--stripes", "7", "--azimuth", "-30", "--no-legend"]).unwrap();
+        let mut want = RenderOptions::default();
+        want.shade.stripes = 7.0;
+        want.view.azimuth_deg = -30.0;
+        want.legend = false;
+        assert_eq!(o, want);
+    }
+
+    #[test]
+    fn the_command_checks_by_the_librarys_rule() {
+        let e = parsed(&["--stripe-width", "1.5"]).unwrap_err().to_string();
+        let mut o = RenderOptions::default();
+        o.shade.stripe_width = 1.5;
+        assert_eq!(e, o.check().unwrap_err().cli_message());
+        assert_eq!(
+            e,
+            "bad --stripe-width 1.5: must lie strictly between 0 and 1"
+        );
+        let e = parsed(&["--fov", "200"]).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "bad --fov 200: the field of view must be between 1 and 170 degrees"
+        );
+    }
+}

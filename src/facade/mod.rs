@@ -8,10 +8,12 @@
 //! second copy of a rule.
 
 mod analyze;
+mod picture;
 mod refine;
 mod surface;
 
 pub use analyze::{Analysis, SchemeRow, analyze, schemes};
+pub use picture::{Drawn, render};
 pub use refine::{Refined, level_stencils, refine};
 pub use surface::{Surface, surface};
 
@@ -23,6 +25,9 @@ use std::path::{Path, PathBuf};
 
 pub use crate::host::Fallback;
 pub use crate::mesh::tags::{BoundaryInterpolation, CreaseMethod, FvarInterpolation};
+pub use crate::render::{
+    BadOption, Image, LookOption, Mode, Overlays, RenderOptions, ShadeOptions, View,
+};
 pub use crate::schemes::bi2::ternary::AlphaRule;
 pub use crate::schemes::descriptor::RulesChoice;
 pub use crate::schemes::prepare::Mode as Prepare;

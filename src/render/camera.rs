@@ -47,35 +47,6 @@ impl Default for View {
     }
 }
 
-impl View {
-    /// Checks the angles and the distance.
-    pub fn validate(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::InvalidArgument(m));
-        if !self.azimuth_deg.is_finite() || !self.elevation_deg.is_finite() {
-            return bad("--azimuth and --elevation must be finite numbers of degrees".into());
-        }
-        if !(self.fov_deg > 1.0 && self.fov_deg < 170.0) {
-            return bad(format!(
-                "bad field of view {}: must be between 1 and 170 degrees",
-                self.fov_deg
-            ));
-        }
-        if let Some(d) = self.distance
-            && !(d.is_finite() && d > 0.0)
-        {
-            return bad(format!("bad --distance {d}: must be a positive number"));
-        }
-        if let Some((k, l)) = self.zoom_rings
-            && (k == 0 || l < k)
-        {
-            return bad(format!(
-                "bad --zoom-rings {k}..{l}: rings are numbered from 1 (outermost) and K <= L"
-            ));
-        }
-        Ok(())
-    }
-}
-
 /// Parses `K..L`, `K..=L` or `K` (a single ring).
 pub fn parse_rings(s: &str) -> Result<(u32, u32)> {
     let bad = || {

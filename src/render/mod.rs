@@ -32,7 +32,7 @@ pub mod text;
 
 pub use camera::{Camera, Region, View};
 pub use image::{BACKGROUND, Image};
-pub use options::{MAX_SAMPLES, MAX_SIZE, RenderOptions, parse_size};
+pub use options::{BadOption, LookOption, MAX_SAMPLES, MAX_SIZE, RenderOptions, parse_size};
 pub use raster::{Frame, Sample};
 pub use shade::{Lights, ShadeOptions, StripePeriods};
 pub use stats::{FrameStats, GroupCurvature};

@@ -75,48 +75,6 @@ impl Default for ShadeOptions {
     }
 }
 
-impl ShadeOptions {
-    /// Checks the numbers; the error names the option.
-    pub fn validate(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::InvalidArgument(m));
-        if !(self.stripes.is_finite() && self.stripes > 0.0 && self.stripes <= 10_000.0) {
-            return bad(format!(
-                "bad --stripes {}: must be a positive number up to 10000",
-                self.stripes
-            ));
-        }
-        if !(self.stripe_width > 0.0 && self.stripe_width < 1.0) {
-            return bad(format!(
-                "bad --stripe-width {}: must lie strictly between 0 and 1",
-                self.stripe_width
-            ));
-        }
-        if !self.light_angle_deg.is_finite() {
-            return bad("--light-angle must be a finite number of degrees".into());
-        }
-        if !(self.light_height.is_finite() && self.light_height > 0.0) {
-            return bad(format!(
-                "bad light height {}: must be positive",
-                self.light_height
-            ));
-        }
-        if let Some(r) = self.range
-            && !(r.is_finite() && r > 0.0)
-        {
-            return bad(format!(
-                "bad --range {r}: must be a positive number (the map shows [-r, r])"
-            ));
-        }
-        if !(self.percentile > 0.0 && self.percentile <= 1.0) {
-            return bad(format!(
-                "bad percentile {}: must lie in (0, 1]",
-                self.percentile
-            ));
-        }
-        Ok(())
-    }
-}
-
 /// The light set of a picture (see the module notes).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Lights {

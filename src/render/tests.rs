@@ -27,7 +27,7 @@ fn sizes_parse() {
         o.validate()
             .unwrap_err()
             .to_string()
-            .contains("bad size 4x800")
+            .contains("bad --size 4x800")
     );
 }
 

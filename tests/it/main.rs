@@ -71,6 +71,7 @@ mod prepare_tagged;
 mod project;
 mod qas;
 mod render;
+mod render_api;
 mod semisharp_rings;
 mod sharp_bi2_nonbox;
 mod sharp_caps;

@@ -435,7 +435,7 @@ fn bad_requests_name_the_reason() {
     assert!(err(&o).contains("no patches in rings 5..6"), "{}", err(&o));
     let mut o = opts(Mode::Shaded, 64, 1);
     o.width = 0;
-    assert!(err(&o).contains("bad size"));
+    assert!(err(&o).contains("bad --size 0x64"), "{}", err(&o));
     let mut o = opts(Mode::Gauss, 64, 1);
     o.shade.range = Some(-1.0);
     assert!(err(&o).contains("bad --range"));

@@ -40,31 +40,13 @@ __all__ = [
     "surface",
     "analyze",
     "render",
+    "render_defaults",
     "level_stencils",
     "info",
     "scheme_options",
     "curvature_colours",
 ]
 __version__ = _fairsub.__version__
-
-
-def _words(options):
-    """Command-line words of keyword options (``render``'s look options): ``a_b=x`` ->
-    ``--a-b x``; ``True`` -> a flag; ``False`` / ``None`` -> nothing; a list or tuple -> the
-    option repeated."""
-    words = []
-    for key, value in options.items():
-        flag = "--" + key.rstrip("_").replace("_", "-")
-        if value is None or value is False:
-            continue
-        if value is True:
-            words.append(flag)
-        elif isinstance(value, (list, tuple)):
-            for v in value:
-                words += [flag, str(v)]
-        else:
-            words += [flag, str(value)]
-    return words
 
 
 def read(path, tolerant=False):
@@ -217,16 +199,43 @@ def analyze(scheme, valence, replicated_centre=False, **options):
     return _json.loads(_fairsub.analyze_json(scheme, valence, replicated_centre, options))
 
 
-def render(what, mode="shaded", size=(800, 800), **look):
+def render(what, mode=None, size=None, **look):
     """A picture as ``fairsub render`` draws it: a (height, width, 3) uint8 array of a Surface
-    (exact normals and curvature per pixel) or a Net. ``mode``: shaded, highlight, reflection,
-    isophote, gauss, mean, provenance; ``look``: the command's options (``azimuth``,
-    ``elevation``, ``stripes``, ``overlay="net,patches"``, ``range``, ``aa``, ...)."""
+    (exact normals and curvature per pixel), a Net, or a net file / gallery name.
+
+    The keywords are the command's look options, typed (``None`` or omitted: the command's
+    default, see ``render_defaults()``):
+
+    - ``mode``: ``"shaded"``, ``"highlight"``, ``"reflection"``, ``"isophote"``, ``"gauss"``,
+      ``"mean"`` or ``"provenance"`` (curvature and provenance need a Surface);
+    - ``size``: ``(width, height)`` in pixels, a number for a square, or ``"WxH"``;
+    - ``aa``: samples per pixel axis (1 to 8);
+    - ``azimuth``, ``elevation``, ``fov``, ``light_angle``: degrees; ``distance``: model units
+      (default: fit the view);
+    - ``focus``: a vertex index, ``"vertex:V"`` or ``"face:F"``; ``zoom_rings``: ``(K, L)``,
+      ``K`` or ``"K..L"`` (ring 1 the outermost);
+    - ``range``: a fixed curvature range ``[-range, range]`` (default: automatic);
+    - ``overlay``: ``"net"``, ``"patches"``, ``"net,patches"`` or a list of them;
+    - ``stripes``, ``stripe_width``: stripe periods across the view and their dark fraction;
+    - ``legend``: the numbers under curvature pictures (``no_legend=True``, the command
+      line's spelling, also turns it off).
+
+    A bad value raises ``ValueError`` naming the keyword (``bad stripe_width=1.5: must lie
+    strictly between 0 and 1``); an unknown keyword raises ``ValueError`` listing them.
+
+    >>> s = surface("gallery:cnet-5-saddle", "catmull-clark", rings=2)
+    >>> render(s, "mean", size=(64, 48), legend=False).shape
+    (48, 64, 3)
+    """
     if isinstance(what, str):
         what = read(what)
-    w, h = size
-    words = ["--mode", mode, "--size", f"{int(w)}x{int(h)}"] + _words(look)
-    return _fairsub.render_words(what, words)
+    return _fairsub.render(what, mode=mode, size=size, **look)
+
+
+def render_defaults():
+    """The defaults of ``render``'s keywords, as a dict (the library's, which are the
+    command line's: ``mode`` ``"shaded"``, ``size`` ``(800, 800)``, ``aa`` 2, ...)."""
+    return _fairsub.render_defaults()
 
 
 def level_stencils(net, scheme, levels=1, **options):

@@ -178,10 +178,25 @@ def analyze(
 ) -> Dict[str, Any]: ...
 def render(
     what: Union[Net, Surface, str],
-    mode: str = "shaded",
-    size: Tuple[int, int] = (800, 800),
-    **look: Any,
+    mode: Optional[str] = None,
+    size: Union[Tuple[int, int], int, str, None] = None,
+    *,
+    aa: Optional[int] = None,
+    azimuth: Optional[float] = None,
+    elevation: Optional[float] = None,
+    distance: Optional[float] = None,
+    fov: Optional[float] = None,
+    focus: Union[int, str, None] = None,
+    zoom_rings: Union[Tuple[int, int], int, str, None] = None,
+    range: Optional[float] = None,
+    overlay: Union[str, Sequence[str], None] = None,
+    stripes: Optional[float] = None,
+    stripe_width: Optional[float] = None,
+    light_angle: Optional[float] = None,
+    legend: Optional[bool] = None,
+    no_legend: Optional[bool] = None,
 ) -> npt.NDArray[np.uint8]: ...
+def render_defaults() -> Dict[str, Any]: ...
 def scheme_options(scheme: str) -> List[Dict[str, Any]]: ...
 def curvature_colours(
     values: npt.ArrayLike, range: Optional[float] = None, percentile: float = 0.98
