@@ -462,15 +462,18 @@ mod tests {
         let e = parsed(&["--stripe-width", "1.5"]).unwrap_err().to_string();
         let mut o = RenderOptions::default();
         o.shade.stripe_width = 1.5;
-        assert_eq!(e, o.check().unwrap_err().cli_message());
         assert_eq!(
             e,
-            "bad --stripe-width 1.5: must lie strictly between 0 and 1"
+            format!("invalid argument: {}", o.check().unwrap_err().cli_message())
+        );
+        assert_eq!(
+            e,
+            "invalid argument: bad --stripe-width 1.5: must lie strictly between 0 and 1"
         );
         let e = parsed(&["--fov", "200"]).unwrap_err().to_string();
         assert_eq!(
             e,
-            "bad --fov 200: the field of view must be between 1 and 170 degrees"
+            "invalid argument: bad --fov 200: the field of view must be between 1 and 170 degrees"
         );
     }
 }

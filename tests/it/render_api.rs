@@ -7,7 +7,7 @@ use fairsub::{Element, Mode, Options, Overlays, RenderOptions, render, surface};
 
 /// `fairsub render NET --scheme catmull-clark --rings 3 WORDS -o FILE`'s PNG bytes.
 fn cli_png(words: &[&str], tag: &str) -> Vec<u8> {
-    let png = scratch(&format!("render-api-{tag}.png"));
+    let png = scratch("render-api").join(format!("{tag}.png"));
     let mut args = vec![
         "render",
         "gallery:cnet-5-saddle",
@@ -34,7 +34,7 @@ fn lib_png(o: &RenderOptions, tag: &str) -> Vec<u8> {
         &Options::default(),
     )
     .unwrap();
-    let png = scratch(&format!("render-api-lib-{tag}.png"));
+    let png = scratch("render-api-lib").join(format!("{tag}.png"));
     render(&s, o).unwrap().write_png(&png).unwrap();
     std::fs::read(&png).unwrap()
 }
@@ -165,15 +165,19 @@ fn a_bad_value_gives_the_same_message_both_ways() {
         "bad --size 4x64: width and height must be between 8 and 16384 pixels",
         "bad --aa 9: samples per pixel axis must be 1 to 8",
     ];
-    let out = scratch("render-api-bad.png").display().to_string();
+    let out = scratch("render-api-bad")
+        .join("bad.png")
+        .display()
+        .to_string();
     for ((words, o), want) in cases.iter().zip(want) {
         let mut args = vec!["render", "gallery:cube", "-o", &out];
         args.extend_from_slice(words);
         let (code, _, err) = run(&args);
         assert_eq!(code, 1, "{err}");
-        assert_eq!(err.trim(), format!("error: {want}"));
+        // the crate's error for a bad argument: "invalid argument: " and the message
+        assert_eq!(err.trim(), format!("error: invalid argument: {want}"));
         let lib = render(&s, o).unwrap_err().to_string();
-        assert_eq!(lib, want);
+        assert_eq!(lib, format!("invalid argument: {want}"));
         let bad = o.check().unwrap_err();
         assert_eq!(bad.cli_message(), want);
     }
