@@ -40,9 +40,16 @@ fn expected(key: LookOption, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
     PyValueError::new_err(format!("bad {}={shown}: expected {what}", key.keyword()))
 }
 
-/// A library parser's error for the value of `key`, prefixed by the keyword.
+/// A library parser's error for the value of `key`, prefixed by the keyword (the reason of an
+/// invalid argument without the command line's "invalid argument: ").
 fn parsed<T>(key: LookOption, r: fairsub::Result<T>) -> PyResult<T> {
-    r.map_err(|e| PyValueError::new_err(format!("{}: {e}", key.keyword())))
+    r.map_err(|e| {
+        let reason = match &e {
+            fairsub::Error::InvalidArgument(m) => m.clone(),
+            other => other.to_string(),
+        };
+        PyValueError::new_err(format!("{}: {reason}", key.keyword()))
+    })
 }
 
 /// A string value, if it is one.

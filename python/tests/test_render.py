@@ -94,7 +94,7 @@ def test_bad_values_raise_value_error_naming_the_keyword(cli, tmp_path, surf):
         code, _, err = cli("render", NET, *words, "-o", tmp_path / "x.png")
         assert code == 1
         _, value, reason = re.fullmatch(r"bad (\w+)=(\S+): (.*)", message).groups()
-        assert err.strip() == f"error: bad {words[0]} {value}: {reason}"
+        assert err.strip() == f"error: invalid argument: bad {words[0]} {value}: {reason}"
     for look, start in [
         (dict(mode="wavy"), "mode: unknown mode 'wavy'"),
         (dict(focus="edge:3"), "focus: bad element 'edge:3'"),
