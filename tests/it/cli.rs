@@ -49,6 +49,22 @@ fn every_gallery_net_every_scheme_every_format() {
             let net = format!("gallery:{name}");
             for scheme in schemes_for(mesh) {
                 let info = catalog.iter().find(|s| s.name == scheme).unwrap();
+                // `fairsub subdivide NET --scheme S ARGS -o OUT`: exit code and stderr
+                let subdivide = |args: &[&str], out: &Path| {
+                    let mut all = vec!["subdivide", &net, "--scheme", scheme];
+                    all.extend_from_slice(args);
+                    all.extend(["-o", out.to_str().unwrap()]);
+                    let (code, _, err) = run(&all);
+                    (code, err)
+                };
+                // the refined net the mesh formats must hold (once for the three of them)
+                let expect = info.refine.then(|| {
+                    fairsub::schemes::by_name(scheme)
+                        .unwrap()
+                        .refine(mesh)
+                        .unwrap()
+                        .mesh
+                });
                 // Refined nets in every mesh format (and BezierView polyhedra).
                 let net_formats: &[&str] = if info.refine {
                     &["obj", "off", "ply", "bv"]
@@ -57,16 +73,7 @@ fn every_gallery_net_every_scheme_every_format() {
                 };
                 for &ext in net_formats {
                     let out = dir.join(format!("{name}-{scheme}.{ext}"));
-                    let (code, _, err) = run(&[
-                        "subdivide",
-                        &net,
-                        "--scheme",
-                        scheme,
-                        "--levels",
-                        "1",
-                        "-o",
-                        out.to_str().unwrap(),
-                    ]);
+                    let (code, err) = subdivide(&["--levels", "1"], &out);
                     assert_eq!(code, 0, "{name} {scheme} {ext}: {err}");
                     runs += 1;
                     if ext == "bv" {
@@ -74,11 +81,7 @@ fn every_gallery_net_every_scheme_every_format() {
                         assert_eq!(f.polyhedra.len(), 1);
                     } else {
                         let m = fairsub::io::read_mesh(&out).unwrap().mesh;
-                        let expect = fairsub::schemes::by_name(scheme)
-                            .unwrap()
-                            .refine(mesh)
-                            .unwrap()
-                            .mesh;
+                        let expect = expect.as_ref().expect("refined above");
                         assert_eq!(
                             (m.num_vertices(), m.num_faces()),
                             (expect.num_vertices(), expect.num_faces())
@@ -97,16 +100,7 @@ fn every_gallery_net_every_scheme_every_format() {
                 }
                 if !info.rings {
                     let out = dir.join(format!("{name}-{scheme}-refused.igs"));
-                    let (code, _, err) = run(&[
-                        "subdivide",
-                        &net,
-                        "--scheme",
-                        scheme,
-                        "--rings",
-                        "2",
-                        "-o",
-                        out.to_str().unwrap(),
-                    ]);
+                    let (code, err) = subdivide(&["--rings", "2"], &out);
                     assert_eq!(code, 1, "a scheme without patch output must say so: {err}");
                     assert!(err.contains("no exact patch output"), "{err}");
                     assert!(!out.exists());
@@ -117,20 +111,8 @@ fn every_gallery_net_every_scheme_every_format() {
                 let igs = dir.join(format!("{name}-{scheme}.igs"));
                 let ply = dir.join(format!("{name}-{scheme}-tess.ply"));
                 for out in [&bv, &igs, &ply] {
-                    let (code, _, err) = run(&[
-                        "subdivide",
-                        &net,
-                        "--scheme",
-                        scheme,
-                        "--rings",
-                        "2",
-                        "--tess",
-                        "3",
-                        "--faces",
-                        "patches",
-                        "-o",
-                        out.to_str().unwrap(),
-                    ]);
+                    let (code, err) =
+                        subdivide(&["--rings", "2", "--tess", "3", "--faces", "patches"], out);
                     assert_eq!(code, 0, "{name} {scheme} {}: {err}", out.display());
                     runs += 1;
                 }
