@@ -205,9 +205,19 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, closed: bool) {
         .flat_map(|q| q.iter())
         .fold(0.0f64, |a, x| a.max(x.abs()));
     let measured = measure(&format!("gallery:{net}"), scheme);
+    let mut read: Vec<(&str, String)> = Vec::new();
     for faces in ["input", "packed", "patches"] {
         let step = dir.join(format!("{net}-{scheme}-{faces}.step"));
         let said = run(&step, &["--faces", faces]);
+        // Where packing finds nothing to join beyond the input's faces, `packed` writes the
+        // same B-rep as `input`: the files then differ only in their name, and OpenCASCADE is
+        // not asked to read (and integrate over) the same faces twice.
+        let body = same_body(&std::fs::read_to_string(&step).unwrap(), &step);
+        if let Some((first, _)) = read.iter().find(|(_, b)| *b == body) {
+            eprintln!("{scheme} on {net}: --faces {faces} wrote the B-rep of --faces {first}");
+            continue;
+        }
+        read.push((faces, body));
         check_read(
             occt,
             &step,
@@ -218,6 +228,18 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, closed: bool) {
             &measured,
         );
     }
+}
+
+/// The text of the STEP file `step` with its own name (the file stem, written into the header
+/// and the product's names) and the header's time stamp taken out: equal bodies are the same
+/// B-rep.
+fn same_body(text: &str, step: &Path) -> String {
+    let stem = step.file_stem().unwrap().to_string_lossy();
+    text.lines()
+        .filter(|l| !l.starts_with("FILE_NAME("))
+        .map(|l| l.replace(stem.as_ref(), "NAME"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Reads `step` (written with `said` on standard error) with OpenCASCADE and checks it against
@@ -356,12 +378,24 @@ fn scratch(name: &str) -> PathBuf {
     common::scratch(&format!("step-peer-{name}"))
 }
 
+// The closed solids are two tests, the cube under every quad scheme and the other nets, so that
+// libtest's threads share the work instead of one long test finishing the run alone.
 #[test]
-fn slow_opencascade_reads_closed_solids_of_every_scheme() {
+fn slow_opencascade_reads_closed_solids_of_every_quad_scheme() {
     let Some(occt) = peer() else { return };
-    let dir = scratch("closed");
-    let mut cases: Vec<(&str, &str)> = QUAD_SCHEMES.iter().map(|&s| ("cube", s)).collect();
-    cases.extend([
+    let dir = scratch("closed-quad");
+    let cases: Vec<(&str, &str)> = QUAD_SCHEMES.iter().map(|&s| ("cube", s)).collect();
+    in_parallel(&cases, |&(net, scheme)| {
+        check(&occt, &dir, net, scheme, true)
+    });
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn slow_opencascade_reads_closed_solids_of_other_nets_and_schemes() {
+    let Some(occt) = peer() else { return };
+    let dir = scratch("closed-other");
+    let cases = [
         ("prism-5", "catmull-clark"),
         ("prism-3", "polar-bi2"),
         ("torus-evs", "catmull-clark"),
@@ -370,7 +404,7 @@ fn slow_opencascade_reads_closed_solids_of_every_scheme() {
         ("octahedron", "loop"),
         ("icosahedron", "eg"),
         ("tetrahedron", "pgs-dscc"),
-    ]);
+    ];
     in_parallel(&cases, |&(net, scheme)| {
         check(&occt, &dir, net, scheme, true)
     });
