@@ -212,7 +212,8 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, closed: bool) {
         // Where packing finds nothing to join beyond the input's faces, `packed` writes the
         // same B-rep as `input`: the files then differ only in their name, and OpenCASCADE is
         // not asked to read (and integrate over) the same faces twice.
-        let body = same_body(&std::fs::read_to_string(&step).unwrap(), &step);
+        let text = std::fs::read_to_string(&step).unwrap();
+        let body = same_body(&text, &step);
         if let Some((first, _)) = read.iter().find(|(_, b)| *b == body) {
             eprintln!("{scheme} on {net}: --faces {faces} wrote the B-rep of --faces {first}");
             continue;
@@ -220,7 +221,7 @@ fn check(occt: &Path, dir: &Path, net: &str, scheme: &str, closed: bool) {
         read.push((faces, body));
         check_read(
             occt,
-            &step,
+            (&step, &text),
             &said,
             (scheme, net, faces),
             closed,
@@ -242,18 +243,18 @@ fn same_body(text: &str, step: &Path) -> String {
         .join("\n")
 }
 
-/// Reads `step` (written with `said` on standard error) with OpenCASCADE and checks it against
-/// the complex's moments `m` (coordinates up to `size`) and `fairsub measure`'s report.
+/// Reads `step` (whose text is `text`, written with `said` on standard error) with
+/// OpenCASCADE and checks it against the complex's moments `m` (coordinates up to `size`) and
+/// `fairsub measure`'s report.
 fn check_read(
     occt: &Path,
-    step: &Path,
+    (step, text): (&Path, &str),
     said: &str,
     (scheme, net, faces): (&str, &str, &str),
     closed: bool,
     (m, size): (&Moments, f64),
     measured: &Value,
 ) {
-    let text = std::fs::read_to_string(step).unwrap();
     let faces_written = text.matches("=ADVANCED_FACE(").count();
     let o = bounded(Command::new(occt).arg(step).arg("1e-12"), step);
     assert!(
@@ -378,23 +379,27 @@ fn scratch(name: &str) -> PathBuf {
     common::scratch(&format!("step-peer-{name}"))
 }
 
-// The closed solids are two tests, the cube under every quad scheme and the other nets, so that
-// libtest's threads share the work instead of one long test finishing the run alone.
-#[test]
-fn slow_opencascade_reads_closed_solids_of_every_quad_scheme() {
+/// Runs [`check`] on every (net, scheme) of `cases` in a scratch folder `folder`; `closed` says
+/// whether the nets are closed.
+fn check_cases(folder: &str, cases: &[(&str, &str)], closed: bool) {
     let Some(occt) = peer() else { return };
-    let dir = scratch("closed-quad");
-    let cases: Vec<(&str, &str)> = QUAD_SCHEMES.iter().map(|&s| ("cube", s)).collect();
-    in_parallel(&cases, |&(net, scheme)| {
-        check(&occt, &dir, net, scheme, true)
+    let dir = scratch(folder);
+    in_parallel(cases, |&(net, scheme)| {
+        check(&occt, &dir, net, scheme, closed)
     });
     std::fs::remove_dir_all(&dir).ok();
 }
 
+// The closed solids are two tests, the cube under every quad scheme and the other nets, so that
+// libtest's threads share the work instead of one long test finishing the run alone.
+#[test]
+fn slow_opencascade_reads_closed_solids_of_every_quad_scheme() {
+    let cases: Vec<(&str, &str)> = QUAD_SCHEMES.iter().map(|&s| ("cube", s)).collect();
+    check_cases("closed-quad", &cases, true);
+}
+
 #[test]
 fn slow_opencascade_reads_closed_solids_of_other_nets_and_schemes() {
-    let Some(occt) = peer() else { return };
-    let dir = scratch("closed-other");
     let cases = [
         ("prism-5", "catmull-clark"),
         ("prism-3", "polar-bi2"),
@@ -405,16 +410,11 @@ fn slow_opencascade_reads_closed_solids_of_other_nets_and_schemes() {
         ("icosahedron", "eg"),
         ("tetrahedron", "pgs-dscc"),
     ];
-    in_parallel(&cases, |&(net, scheme)| {
-        check(&occt, &dir, net, scheme, true)
-    });
-    std::fs::remove_dir_all(&dir).ok();
+    check_cases("closed-other", &cases, true);
 }
 
 #[test]
 fn slow_opencascade_reads_open_shells() {
-    let Some(occt) = peer() else { return };
-    let dir = scratch("open");
     let cases = [
         ("open-grid", "catmull-clark"),
         ("open-pipe", "catmull-clark"),
@@ -423,10 +423,7 @@ fn slow_opencascade_reads_open_shells() {
         ("open-pipe", "eg"),
         ("tri-grid", "loop"),
     ];
-    in_parallel(&cases, |&(net, scheme)| {
-        check(&occt, &dir, net, scheme, false)
-    });
-    std::fs::remove_dir_all(&dir).ok();
+    check_cases("open", &cases, false);
 }
 
 /// The OBJ text of one of OpenSubdiv's regression shapes (`regression/shapes/NAME.h`: a C++
