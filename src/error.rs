@@ -192,11 +192,11 @@ impl From<MeshError> for Error {
 /// Result alias used throughout the crate.
 pub type Result<T> = std::result::Result<T, Error>;
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn parse_errors_show_a_line_only_when_known() {
         let at = |line| Error::Parse {
             path: PathBuf::from("net.obj"),

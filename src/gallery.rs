@@ -55,11 +55,11 @@ pub fn all() -> Vec<(String, PolyMesh)> {
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn cnets_have_one_extraordinary_vertex() {
         for n in 3..=10 {
             let m = cnet(n, CnetShape::Convex, 3);
@@ -79,7 +79,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn torus_has_four_valence_3_and_four_valence_5() {
         let m = torus_with_evs();
         let mut v3 = 0;
@@ -101,7 +101,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn closed_solids_are_closed() {
         for m in [cube(), tetrahedron(), octahedron(), icosahedron(), prism(5)] {
             assert!(m.boundary_loops().is_empty());
@@ -114,11 +114,11 @@ mod tests {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod cnet_walk_tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn cnet_indices_reproduce_the_gallery_order() {
         for n in 3..=8 {
             let m = cnet(n, CnetShape::Saddle, 3);

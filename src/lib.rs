@@ -80,6 +80,9 @@ pub mod schemes;
 pub mod stencil;
 #[doc(hidden)]
 pub mod surface;
+#[cfg(feature = "unit-tests")]
+#[doc(hidden)]
+pub mod unit;
 
 pub use bezier::BezierPatch;
 pub use error::{Error, MeshError, Result};

@@ -315,11 +315,11 @@ pub fn certify_ring(ring: &[BezierPatch], lambda: f64) -> InjectivityCertificate
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn jacobian_of_a_bilinear_square_is_its_area() {
         // Square [0,2]^2 as a bi-1 patch: x_u = 2, y_v = 2 -> J = 4.
         let p = BezierPatch::new(
@@ -342,7 +342,7 @@ mod tests {
         assert!(j.c.iter().all(|&c| (c + 4.0).abs() < 1e-14));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn jacobian_matches_pointwise_determinant() {
         let p = BezierPatch::from_fn(3, 3, |i, j| {
             let (x, y) = (i as f64, j as f64);

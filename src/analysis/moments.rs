@@ -495,5 +495,5 @@ pub fn measure(c: &PatchComplex, opts: &MeasureOptions) -> Measurement {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -156,11 +156,11 @@ pub fn gauss_legendre(k: usize) -> Vec<(f64, f64)> {
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn subsegment_and_raise_agree_with_evaluation() {
         let c = [0.3, -1.0, 2.0, 0.5, 1.5, -0.2];
         let eval = |cs: &[f64], t: f64| -> f64 {

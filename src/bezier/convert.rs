@@ -302,5 +302,5 @@ pub fn triangle_to_tensor(n: usize, tri: &[Point]) -> BezierPatch {
     })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

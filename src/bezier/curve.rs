@@ -402,7 +402,7 @@ impl BezierCurve {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::geom::dist;
@@ -430,7 +430,7 @@ mod tests {
         p
     }
 
-    #[test]
+    #[crate::unit::test]
     fn eval_matches_bernstein_sum_and_derivatives_match_differences() {
         let c = cubic();
         for k in 0..=20 {
@@ -462,7 +462,7 @@ mod tests {
         assert_eq!((p, d1, d2), ([0.5, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0; 3]));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn bernstein_is_a_partition_of_unity() {
         let mut b = [0.0; 9];
         bernstein(8, 0.37, &mut b);
@@ -471,7 +471,7 @@ mod tests {
         assert!((b[3] - 56.0 * 0.63f64.powi(5) * 0.37f64.powi(3)).abs() < 1e-15);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn split_subsegment_raise() {
         let c = cubic();
         let (l, r) = split(&c, 0.3);
@@ -496,7 +496,7 @@ mod tests {
         assert!((t - 0.61).abs() < 1e-10 && d < 1e-12, "{t} {d}");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn curve_wrapper() {
         let c = BezierCurve::new(cubic());
         assert_eq!(c.degree(), 3);

@@ -532,5 +532,5 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -526,7 +526,7 @@ impl BezierPatch {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;
 
 /// Position and first and second derivatives of the tensor-product patch `cps` (rows of `nv`

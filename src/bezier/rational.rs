@@ -142,7 +142,7 @@ pub(super) fn derivatives(p: &BezierPatch, w: &[f64], u: f64, v: f64) -> Derivat
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::geom::norm;
@@ -165,7 +165,7 @@ mod tests {
         BezierPatch::rational(2, 2, cps, ws).unwrap()
     }
 
-    #[test]
+    #[crate::unit::test]
     fn sphere_octant_is_exact() {
         let p = sphere_octant();
         for &(u, v) in &[(0.1, 0.2), (0.5, 0.5), (0.9, 0.3), (0.0, 0.7)] {
@@ -182,7 +182,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn derivatives_match_differences() {
         let p = sphere_octant();
         let (u, v, h) = (0.37, 0.61, 1e-5);
@@ -198,7 +198,7 @@ mod tests {
         assert!(close(d.dvv, fd(dv(u, v + h), dv(u, v - h))));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn homogeneous_operations_keep_the_surface() {
         let p = sphere_octant();
         let (a, b) = p.split_u(0.3);

@@ -37,7 +37,7 @@ fn reference_eval(p: &BezierPatch, u: f64, v: f64) -> Point {
     s
 }
 
-#[test]
+#[crate::unit::test]
 fn eval_matches_explicit_bernstein_sum() {
     let mut rng = Lcg(1);
     for (du, dv) in [(0, 0), (1, 3), (3, 2), (4, 4), (8, 5), (20, 3)] {
@@ -53,7 +53,7 @@ fn eval_matches_explicit_bernstein_sum() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn derivatives_match_derivative_nets_and_finite_differences() {
     let mut rng = Lcg(2);
     for (du, dv) in [(3, 3), (2, 4), (1, 1), (5, 2), (17, 2)] {
@@ -82,7 +82,7 @@ fn derivatives_match_derivative_nets_and_finite_differences() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn curvature_of_plane_cylinder_paraboloid() {
     // plane, tilted: everything zero
     let plane = BezierPatch::from_fn(3, 2, |i, j| {
@@ -129,7 +129,7 @@ fn curvature_of_plane_cylinder_paraboloid() {
     assert!((c2.mean - 1.0 / r).abs() < 1e-14 && (c2.gauss - c.gauss).abs() < 1e-14);
 }
 
-#[test]
+#[crate::unit::test]
 fn curvature_matches_graph_formulas() {
     // height field z = f(x, y) with x = u, y = v exactly (linear precision in x, y)
     let mut rng = Lcg(4);
@@ -152,7 +152,7 @@ fn curvature_matches_graph_formulas() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn approximate_circular_cylinder() {
     // quarter circle of radius r as a cubic (kappa = 0.5523), extruded: K = 0 and |H| ~ 1/(2r)
     let r = 3.0;
@@ -180,7 +180,7 @@ fn polar_patch() -> BezierPatch {
     })
 }
 
-#[test]
+#[crate::unit::test]
 fn normal_at_collapsed_edge_is_the_limit() {
     let p = polar_patch();
     assert!(p.is_collapsed(Side::U0, 0.0) && !p.is_collapsed(Side::U1, 0.0));
@@ -219,7 +219,7 @@ fn normal_at_collapsed_edge_is_the_limit() {
     assert!(point.curvatures(0.5, 0.5).mean.is_nan());
 }
 
-#[test]
+#[crate::unit::test]
 fn split_subpatch_raise_transpose_reverse() {
     let mut rng = Lcg(9);
     let p = random_patch(&mut rng, 3, 4);
@@ -255,7 +255,7 @@ fn split_subpatch_raise_transpose_reverse() {
     assert_eq!(p.raise_v().deg_v, 5);
 }
 
-#[test]
+#[crate::unit::test]
 fn boundaries_corners_bbox_map() {
     let mut rng = Lcg(12);
     let p = random_patch(&mut rng, 2, 3);

@@ -195,11 +195,11 @@ pub fn write_net(m: &PolyMesh, path: &std::path::Path) -> Result<()> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn option_words_come_from_the_command() {
         let w = option_words(&[
             ParamKind::AlphaRule,

@@ -520,12 +520,12 @@ pub fn check_render(width: usize, height: usize, aa: usize, cells: usize) -> Res
     )
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::budget::GIB;
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn sizes_parse_in_binary_units() {
         assert_eq!(parse_memory("4G").unwrap(), 4 << 30);
         assert_eq!(parse_memory("512m").unwrap(), 512 << 20);
@@ -537,20 +537,20 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn sizes_print_readably() {
         assert_eq!(human(512.0), "512 bytes");
         assert_eq!(human(3.0 * GIB + 0.2 * GIB), "3.2 GiB");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_default_budget_is_half_a_known_limit() {
         let b = default_budget();
         assert!(b.bytes > 0.0 && b.bytes.is_finite(), "{b:?}");
         assert!(b.source.starts_with("half of"), "{b:?}");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn a_budget_set_on_one_thread_is_used_there_only() {
         with_budget(Some(1 << 20), || {
             assert_eq!(budget().bytes, 1048576.0);

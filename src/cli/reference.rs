@@ -327,11 +327,11 @@ pub(crate) fn schemes_markdown(rows: &[CatalogueRow], entries: &[Entry]) -> Stri
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn escape_keeps_code_spans_and_escapes_markup() {
         assert_eq!(
             escape("C^1 <SIZE> a*b `x_<y>`"),
@@ -340,7 +340,7 @@ mod tests {
         assert_eq!(escape("odd ` tick_"), "odd ` tick\\_");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn slug_follows_mdbook() {
         assert_eq!(slug("fairsub subdivide"), "fairsub-subdivide");
         assert_eq!(slug("qas-0.5-0.4"), "qas-05-04");

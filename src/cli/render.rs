@@ -429,7 +429,7 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
 
 pub use super::compare::{demo_compare, run_compare};
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::cli::{Cli, Command};
@@ -446,7 +446,7 @@ mod tests {
         a.look.options(default(|d| (d.width, d.height)), mode)
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_commands_defaults_are_the_librarys() {
         assert_eq!(parsed(&[]).unwrap(), RenderOptions::default());
         let o = parsed(&["--stripes", "7", "--azimuth", "-30", "--no-legend"]).unwrap();
@@ -457,7 +457,7 @@ mod tests {
         assert_eq!(o, want);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_command_checks_by_the_librarys_rule() {
         let e = parsed(&["--stripe-width", "1.5"]).unwrap_err().to_string();
         let mut o = RenderOptions::default();

@@ -282,11 +282,11 @@ fn respond(state: &mut api::State, req: tiny_http::Request, port: u16) {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn queries_decode_and_unknown_paths_are_404() {
         let (p, q) = split_url("/api/surface?scheme=a%2Db&rings=3&x");
         assert_eq!(p, "/api/surface");
@@ -296,7 +296,7 @@ mod tests {
         assert_eq!(percent_decode("%2e%2E/%zz%"), "../%zz%");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn only_the_own_host_and_port_are_served() {
         for ok in [
             "127.0.0.1:8765",

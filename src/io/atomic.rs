@@ -211,7 +211,7 @@ pub(crate) fn write_bytes_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomically(path, |w| w.write_all(bytes).map_err(|e| io_error(path, e)))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -236,7 +236,7 @@ mod tests {
         v
     }
 
-    #[test]
+    #[crate::unit::test]
     fn atomic_write_commits_on_success() {
         let dir = tmpdir("ok");
         let p = dir.join("a.txt");
@@ -245,7 +245,7 @@ mod tests {
         assert_eq!(entries_then_remove(&dir), ["a.txt"]);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn atomic_write_leaves_nothing_on_error_and_keeps_the_old_file() {
         let dir = tmpdir("err");
         let p = dir.join("b.obj");
@@ -265,7 +265,7 @@ mod tests {
         assert_eq!(entries_then_remove(&dir), ["c.off"]);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn staged_writes_wait_for_commit_or_discard() {
         let dir = tmpdir("staged");
         let (a, b) = (dir.join("a.obj"), dir.join("b.bv"));
@@ -290,7 +290,7 @@ mod tests {
         assert_eq!(entries_then_remove(&dir), ["a.obj", "b.bv"]);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn atomic_write_into_missing_directory_is_an_io_error() {
         let dir = tmpdir("missing");
         let p = dir.join("no/such/dir/d.ply");

@@ -362,12 +362,12 @@ pub fn write_limit_obj(path: &Path, mesh: &PolyMesh, normals: &[Point]) -> Resul
     write_bytes_atomically(path, limit_obj_string(mesh, normals)?.as_bytes())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::io::testutil;
 
-    #[test]
+    #[crate::unit::test]
     fn side_file_follows_the_text_rule_and_names_lines() {
         let cube = crate::gallery::cube();
         let p = Path::new("c.fcv");
@@ -393,7 +393,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn obj_net_with_fcvs_tolerates_invalid_utf8_in_comments() {
         let net = FcvNet::barycentric(crate::gallery::cube());
         let mut text = fcv_obj_string(&net).unwrap().into_bytes();

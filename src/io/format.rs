@@ -125,11 +125,11 @@ pub(crate) fn extension_lowercase(path: &Path) -> Option<String> {
         .map(|e| e.to_ascii_lowercase())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn output_format_by_name_and_extension() {
         use MeshFormat::*;
         let p = Path::new("out.PLY");

@@ -326,11 +326,11 @@ pub fn write_gltf(path: &Path, m: &SceneMesh, flavor: GltfFlavor) -> Result<()> 
     write_bytes_atomically(path, &gltf_bytes(m, &name, flavor)?)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn base64_matches_rfc4648() {
         for (i, o) in [
             ("", ""),
@@ -345,7 +345,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn glb_has_aligned_chunks_and_split_seams() {
         let net = crate::gallery::all().into_iter().next().unwrap().1;
         let mut m = SceneMesh::from_net(&net, None);

@@ -21,11 +21,11 @@ impl FirstSeen {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn numbers_by_first_appearance() {
         let mut s = FirstSeen::default();
         let got: Vec<(usize, bool)> = ["a", "b", "a", "c", "b"]

@@ -42,7 +42,7 @@ mod polygons;
 pub mod scene;
 pub mod step;
 pub mod table;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod testutil;
 mod text;
 mod textout;
@@ -408,11 +408,11 @@ fn locate_mesh_error(path: &Path, err: Error, at: &FileLines<'_>) -> Error {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn invalid_polygons_create_no_file() {
         let dir = std::env::temp_dir().join(format!(
             "fairsub-io-poly-{}-{}",
@@ -430,7 +430,7 @@ mod tests {
         std::fs::remove_dir_all(dir).unwrap();
     }
 
-    #[test]
+    #[crate::unit::test]
     fn every_writer_roundtrips_exactly() {
         let p = testutil::polygons();
         let name = Path::new("w");
@@ -451,7 +451,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn read_mesh_rejects_unknown_extension() {
         let e = read_mesh(Path::new("model.stl")).unwrap_err();
         let m = e.to_string();
@@ -462,7 +462,7 @@ mod tests {
         assert!(matches!(e, Error::Unsupported(_)));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn read_mesh_missing_file_names_it() {
         let e = read_mesh(Path::new("/nonexistent/dir/model.OBJ")).unwrap_err();
         match e {
@@ -471,7 +471,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn mesh_errors_without_a_line_name_the_file() {
         let none = |_: usize| None;
         let at = FileLines {

@@ -578,5 +578,5 @@ pub(crate) fn write_obj_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io::Resu
     out.finish()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -226,5 +226,5 @@ pub(crate) fn write_off_to(w: &mut dyn Write, p: &Polygons<'_>) -> std::io::Resu
     out.finish()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

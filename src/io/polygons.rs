@@ -156,11 +156,11 @@ fn first_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> Option<usize> {
         .find_map_first(|c| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(n)).find(|&i| bad(i)))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn bad_arrays_are_named() {
         let pos = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let msg =

@@ -306,11 +306,11 @@ pub fn write_step(
     )
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::real;
 
-    #[test]
+    #[crate::unit::test]
     fn reals_have_a_point_and_read_back() {
         for x in [0.0, 1.0, -0.5, 1e-7, 1.25e-3, 123456789.0, -2.5e300, 0.1] {
             let s = real(x);

@@ -178,7 +178,7 @@ impl<'a> Iterator for Lines<'a> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -188,7 +188,7 @@ mod tests {
             .collect()
     }
 
-    #[test]
+    #[crate::unit::test]
     fn lines_split_like_str_lines_and_drop_comments() {
         let got = lines(b"a b # c\r\n\n# only\nlast");
         assert_eq!(
@@ -204,7 +204,7 @@ mod tests {
         assert_eq!(lines(b"x\n"), [(1, "x".to_string())]);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn invalid_utf8_is_allowed_in_comments_only() {
         // In a comment: fine.
         assert_eq!(lines(b"1 2 # caf\xe9\n3")[1], (2, "3".to_string()));
@@ -219,7 +219,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn next_content_skips_blank_lines_and_counts_to_the_end() {
         let mut it = Lines::new(b"\n  \n# c\n x \n\n", Path::new("t"));
         assert_eq!(it.next_content().unwrap(), Some((4, "x")));
@@ -228,7 +228,7 @@ mod tests {
         assert_eq!(Lines::new(b"", Path::new("t")).end_line(), 1);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn whole_texts_follow_the_rule() {
         let p = Path::new("q.txt");
         let t = decode_text(b"vertex 3 # caf\xe9\np 1 2 3\n".to_vec(), p).unwrap();
@@ -241,7 +241,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn file_errors_name_the_file_without_a_line() {
         let e = file_error(Path::new("m.ply"), "binary data ends early");
         assert_eq!(e.to_string(), "m.ply: binary data ends early");

@@ -103,11 +103,11 @@ impl<'w> ChunkedText<'w> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn push_f64_roundtrips() {
         for x in [
             0.0,
@@ -132,7 +132,7 @@ mod tests {
         assert_eq!(s, "1e-7");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn point_and_face_lines() {
         let mut bytes = Vec::new();
         let mut out = ChunkedText::new(&mut bytes);

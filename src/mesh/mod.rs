@@ -511,7 +511,7 @@ impl PolyMesh {
 /// Asserts that two meshes have the same faces and the same half-edge connectivity, edge
 /// numbering and vertex half-edges (for tests of refinement kernels that build the child's
 /// connectivity directly).
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 pub(crate) fn assert_same_topology(a: &PolyMesh, b: &PolyMesh, what: &str) {
     assert_eq!(a.face_starts(), b.face_starts(), "{what}: face offsets");
     assert_eq!(a.corners(), b.corners(), "{what}: corners");
@@ -537,5 +537,5 @@ pub(crate) fn assert_same_topology(a: &PolyMesh, b: &PolyMesh, what: &str) {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

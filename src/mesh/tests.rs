@@ -3,7 +3,7 @@
 use super::*;
 use crate::error::Error;
 
-#[test]
+#[crate::unit::test]
 fn grid_connectivity() {
     let m = crate::mesh::nets::quad_grid(3, |_, _| 0.0);
     assert_eq!(m.num_vertices(), 16);
@@ -42,7 +42,7 @@ fn grid_connectivity() {
     assert!(m.is_boundary_vertex(nb1[0] as usize) && m.is_boundary_vertex(nb1[2] as usize));
 }
 
-#[test]
+#[crate::unit::test]
 fn errors_name_the_element() {
     let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
     let e = PolyMesh::new(p.clone(), &[vec![0, 1]]).unwrap_err();
@@ -103,7 +103,7 @@ fn errors_name_the_element() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn parallel_build_reports_the_first_problem() {
     // A grid with more half-edges than one parallel block, with two flipped faces: the
     // error names the first one in half-edge order, as a sequential scan would.
@@ -148,7 +148,7 @@ fn gallery_mixed() -> PolyMesh {
     PolyMesh::new(p, &[vec![0, 1, 2, 3], vec![1, 4, 2]]).unwrap()
 }
 
-#[test]
+#[crate::unit::test]
 fn unused_vertices_dropped() {
     let p = vec![[0.0; 3], [9.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let m = PolyMesh::new(p, &[vec![0, 2, 3]]).unwrap();
@@ -157,7 +157,7 @@ fn unused_vertices_dropped() {
     assert_eq!(m.face(0), &[0, 1, 2]);
 }
 
-#[test]
+#[crate::unit::test]
 fn one_walker_around_fan_vertices() {
     // Three triangles fanned around vertex 0 (a boundary vertex); vertex 1 lies in one face only.
     let pos = vec![
@@ -180,7 +180,7 @@ fn one_walker_around_fan_vertices() {
     assert_eq!(m.view().outgoing(3).count(), 2);
 }
 
-#[test]
+#[crate::unit::test]
 fn interior_rings_close_or_fail() {
     let m = crate::mesh::nets::quad_grid(3, |_, _| 0.0);
     let hs = m.outgoing_halfedges(5);
@@ -190,7 +190,7 @@ fn interior_rings_close_or_fail() {
     assert_eq!(m.interior_ring_from(m.vertex_halfedge(1)), None);
 }
 
-#[test]
+#[crate::unit::test]
 fn vertex_data_goes_through_a_table_and_is_stored_by_its_kind() {
     // Two points, five channels (two groups of `VertexData::GROUP`); a table with a negative
     // weight takes the colours past their range.

@@ -513,11 +513,11 @@ pub fn focus_point(c: &PatchComplex, e: Element) -> Result<Point> {
     Ok(crate::geom::centroid(inner))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn azimuth_minus_90_puts_x_to_the_right() {
         let (d, up) = direction(-90.0, 30.0);
         let cam = Camera::look_at(scale(d, 5.0), [0.0; 3], up, 30.0, 100, 100);
@@ -532,7 +532,7 @@ mod tests {
         assert!((crate::geom::norm(r) - 1.0).abs() < 1e-12);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn projection_and_rays_agree() {
         let (d, up) = direction(20.0, 35.0);
         let cam = Camera::look_at(scale(d, 4.0), [0.1, 0.2, 0.3], up, 40.0, 320, 200);
@@ -547,7 +547,7 @@ mod tests {
         assert!((cx - 160.0).abs() < 1e-9 && (cy - 100.0).abs() < 1e-9);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn parses_ring_ranges_and_elements() {
         assert_eq!(parse_rings("3..5").unwrap(), (3, 5));
         assert_eq!(parse_rings("3..=5").unwrap(), (3, 5));

@@ -536,5 +536,5 @@ pub fn compare(scenes: &[(String, Scene)], modes: &[Mode], opts: &RenderOptions)
     })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -81,11 +81,11 @@ pub fn compose(
     img
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn cells_land_in_their_places() {
         let red = Image::filled(20, 10, [255, 0, 0]);
         let blue = Image::filled(20, 10, [0, 0, 255]);

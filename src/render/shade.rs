@@ -40,7 +40,7 @@ use rayon::prelude::*;
 
 mod overlay;
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 use overlay::clip_segment;
 use overlay::{draw_net, patch_lines};
 
@@ -491,5 +491,5 @@ fn downsample(cols: &[[u8; 3]], w: usize, h: usize, ss: usize) -> Image {
     img
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -2,7 +2,7 @@
 
 use super::*;
 
-#[test]
+#[crate::unit::test]
 fn modes_parse_and_name() {
     for m in Mode::ALL {
         assert_eq!(m.name().parse::<Mode>().unwrap(), m);
@@ -14,7 +14,7 @@ fn modes_parse_and_name() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn sizes_parse() {
     assert_eq!(parse_size("800x600").unwrap(), (800, 600));
     assert_eq!(parse_size("256").unwrap(), (256, 256));
@@ -31,14 +31,14 @@ fn sizes_parse() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn nice_ceil_rounds_up_to_two_digits() {
     assert_eq!(nice_ceil(0.01234), 0.013);
     assert_eq!(nice_ceil(1.0), 1.0);
     assert_eq!(nice_ceil(987.0), 990.0);
 }
 
-#[test]
+#[crate::unit::test]
 fn png_bytes_are_deterministic_and_decodable() {
     let mut img = Image::filled(17, 9, [10, 20, 30]);
     img.set(3, 4, [200, 100, 0]);
@@ -52,7 +52,7 @@ fn png_bytes_are_deterministic_and_decodable() {
     assert_eq!(&buf[..info.buffer_size()], &img.data[..]);
 }
 
-#[test]
+#[crate::unit::test]
 fn overlays_parse() {
     let o = Overlays::parse(&["net,patches"]).unwrap();
     assert!(o.net && o.patches);

@@ -163,11 +163,11 @@ pub fn legend(width: usize, mode: Mode, range: f64) -> Image {
     img
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn numbers_are_short() {
         assert_eq!(format_number(0.013), "0.013");
         assert_eq!(format_number(-2.5), "-2.5");
@@ -177,7 +177,7 @@ mod tests {
         assert_eq!(format_number(0.0), "0");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn text_draws_ink_in_its_box_only() {
         let mut img = Image::filled(40, 12, [255; 3]);
         draw_text(&mut img, 2, 2, "H1", 1, [0; 3]);
@@ -204,7 +204,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn legend_shows_the_colour_bar() {
         let img = legend(320, Mode::Mean, 0.5);
         assert_eq!(img.width, 320);

@@ -158,11 +158,11 @@ pub(crate) fn refine_one_shot<K: OneShot>(
     Ok(owned.unwrap_or_else(|| mesh.clone()))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn rows_merge() {
         let mut t = StencilTable::new(3);
         let mut row = RowBuf::default();
@@ -174,7 +174,7 @@ mod tests {
         assert_eq!(t.row(0), (&[0u32, 2][..], &[0.5, 0.5][..]));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn exact_trigonometry() {
         assert_eq!(cos_2pi(1, 6), 0.5);
         assert_eq!(cos_2pi(1, 4), 0.0);

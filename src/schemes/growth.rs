@@ -210,11 +210,11 @@ pub fn levels(start: NetSize, levels: usize, step: impl Fn(&NetSize) -> NetSize)
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn cube_sizes_are_exact_for_the_closed_splits() {
         let cube = crate::mesh::nets::cube();
         let s = NetSize::of(&cube);
@@ -234,7 +234,7 @@ mod tests {
         assert_eq!((t.vertices, t.edges, t.faces), (56.0, 108.0, 54.0));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn thirty_levels_overflow_no_count() {
         let s = NetSize::of(&crate::mesh::nets::cube());
         let l = levels(s, 30, primal_quad);

@@ -178,11 +178,11 @@ impl LayeredTable {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn stacked_apply_equals_composed_table() {
         // 3 control points, a level of 2 midpoints, a level of 1 midpoint of those
         let mut t = LayeredTable::new(3);

@@ -266,5 +266,5 @@ pub use packed::PackedStencilTable;
 pub use table::StencilTable;
 pub use track::linear_weights;
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -2,7 +2,7 @@
 
 use super::*;
 
-#[test]
+#[crate::unit::test]
 fn apply_and_compose() {
     let mut a = StencilTable::new(3);
     a.push(Stencil::from_pairs([(0, 0.5), (1, 0.5)]));
@@ -20,7 +20,7 @@ fn apply_and_compose() {
     assert_eq!(s.entries(), &[(0, 1.0)]);
 }
 
-#[test]
+#[crate::unit::test]
 fn packed_tables_share_weights_and_give_the_same_bits() {
     // Rows 0..n repeat one weight vector, except row 5 (its own weights).
     let n = 10_000;
@@ -40,7 +40,7 @@ fn packed_tables_share_weights_and_give_the_same_bits() {
     assert_eq!(a, b);
 }
 
-#[test]
+#[crate::unit::test]
 fn parallel_apply_matches_serial() {
     let n = 10_000;
     let mut t = StencilTable::new(n);
@@ -54,7 +54,7 @@ fn parallel_apply_matches_serial() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn short_rows_merge_to_the_bits_of_the_stable_sort() {
     // rows of 2..100 terms over few sources with weights whose sums depend on their order:
     // the linear merge of short rows must give the stable sort's sums bit for bit

@@ -550,5 +550,5 @@ impl Walker<'_> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -12,7 +12,7 @@ pub mod closest;
 pub mod eval;
 pub mod table;
 pub mod tessellate;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 pub(crate) mod testing;
 pub mod validate;
 

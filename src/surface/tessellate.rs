@@ -456,5 +456,5 @@ fn triangulate_quad(
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

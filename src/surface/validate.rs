@@ -140,7 +140,7 @@ impl Tessellation {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::bezier::BezierPatch;
@@ -153,7 +153,7 @@ mod tests {
         BezierPatch::new(1, 1, cps)
     }
 
-    #[test]
+    #[crate::unit::test]
     fn patches_are_named_by_provenance() {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0); 3],
@@ -179,7 +179,7 @@ mod tests {
         assert_eq!(describe_patch(&c, 2), "patch 2 (cap of face 3, sector 0)");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn non_finite_coefficients_are_refused_by_patch() {
         let mut p = square(0.0, 0.0, 1.0);
         p.cps[3] = [f64::INFINITY, 0.0, 0.0];
@@ -195,7 +195,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn a_valid_tessellation_becomes_the_mesh_a_reader_would_read() {
         let c = PatchComplex {
             patches: vec![square(0.0, 0.0, 1.0), square(1.0, 0.0, 1.0)],
@@ -207,7 +207,7 @@ mod tests {
         assert_eq!((m.num_vertices(), m.num_faces()), (15, 16));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn coincident_patches_are_refused_naming_them() {
         // Three copies of one square: every inner edge is shared by three triangles.
         let c = PatchComplex {
@@ -224,7 +224,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn an_all_degenerate_complex_is_refused() {
         // A patch collapsed to a point covers nothing and is skipped; a complex of such
         // patches only tessellates to nothing.

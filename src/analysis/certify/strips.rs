@@ -141,7 +141,7 @@ impl<'a> Strips<'a> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -155,7 +155,7 @@ mod tests {
             .collect()
     }
 
-    #[test]
+    #[crate::unit::test]
     fn windings_match_the_angle_sum() {
         let c = circle(200, 1.0);
         let s = Strips::new(&c);
@@ -168,7 +168,7 @@ mod tests {
         assert_eq!(Strips::new(&r).winding([0.1, 0.1]), -1);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn a_figure_eight_is_not_simple() {
         let c = circle(100, 1.0);
         assert!(Strips::new(&c).is_simple());

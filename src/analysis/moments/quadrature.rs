@@ -169,11 +169,11 @@ pub fn for_each_sample(patch: &BezierPatch, rule: &Columns, mut f: impl FnMut(Sa
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn rules_integrate_monomials_exactly_up_to_degree_2q_minus_1() {
         for q in 1..=MAX_POINTS {
             let r = gauss_legendre(q);
@@ -199,7 +199,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_conical_rule_integrates_over_the_lower_triangle() {
         // int_{v <= u} u^a v^b = 1 / ((b + 1) (a + b + 2))
         for a in 0..6usize {

@@ -43,7 +43,7 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * b.abs().max(1.0)
 }
 
-#[test]
+#[crate::unit::test]
 fn a_cube_of_reparametrised_patches_has_its_closed_form_moments() {
     let m = measure(&complex_of(cube()), &MeasureOptions::default());
     assert!(m.closed, "{m:?}");
@@ -71,7 +71,7 @@ fn a_cube_of_reparametrised_patches_has_its_closed_form_moments() {
     assert!(m.closure < 1e-15);
 }
 
-#[test]
+#[crate::unit::test]
 fn a_cube_turned_inside_out_reports_the_same_volume_inward() {
     let patches: Vec<BezierPatch> = cube().iter().map(|p| p.transposed()).collect();
     let m = measure(&complex_of(patches), &MeasureOptions::default());
@@ -122,7 +122,7 @@ fn paraboloid_block() -> Vec<BezierPatch> {
     out
 }
 
-#[test]
+#[crate::unit::test]
 fn the_paraboloid_block_has_its_closed_form_volume_and_centroid() {
     let m = measure(&complex_of(paraboloid_block()), &MeasureOptions::default());
     assert!(m.closed, "{m:?}");
@@ -165,7 +165,7 @@ fn gallery_complex(name: &str, scheme: &str, rings: usize) -> PatchComplex {
         .expect("complex")
 }
 
-#[test]
+#[crate::unit::test]
 fn catmull_clark_surfaces_are_watertight_by_the_divergence_theorem() {
     for name in ["cube", "octahedron", "torus-evs"] {
         let c = gallery_complex(name, "catmull-clark", 4);
@@ -193,7 +193,7 @@ fn rigid(p: Point) -> Point {
     add(r, [3.0, -1.5, 0.25])
 }
 
-#[test]
+#[crate::unit::test]
 fn moments_are_invariant_under_rigid_motion() {
     let c = gallery_complex("torus-evs", "catmull-clark", 3);
     let mut moved = c.clone();
@@ -234,7 +234,7 @@ fn mesh_volume_area(t: &crate::surface::tessellate::Tessellation) -> (f64, f64) 
     (v, a)
 }
 
-#[test]
+#[crate::unit::test]
 fn the_gallery_cube_agrees_with_the_limit_of_its_tessellations() {
     let c = gallery_complex("cube", "catmull-clark", 4);
     let m = measure(&c, &MeasureOptions::default());
@@ -260,7 +260,7 @@ fn the_gallery_cube_agrees_with_the_limit_of_its_tessellations() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn the_area_rule_converges_geometrically_to_the_adaptive_value() {
     let c = gallery_complex("torus-evs", "catmull-clark", 3);
     let m = measure(&c, &MeasureOptions::default());
@@ -290,7 +290,7 @@ fn the_area_rule_converges_geometrically_to_the_adaptive_value() {
     assert!(errs[10] < 1e-13, "{errs:?}");
 }
 
-#[test]
+#[crate::unit::test]
 fn face_areas_add_up_to_the_area() {
     for (name, scheme) in [
         ("cube", "catmull-clark"),

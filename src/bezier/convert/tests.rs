@@ -94,7 +94,7 @@ fn patch_from(p: usize, net: &[Vec<Point>], a: usize, b: usize) -> BezierPatch {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn patches_equal_independent_bspline_evaluation() {
     let mut rng = Lcg(7);
     for p in [2usize, 3, 4] {
@@ -115,7 +115,7 @@ fn patches_equal_independent_bspline_evaluation() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn curve_conversions_equal_independent_evaluation() {
     let mut rng = Lcg(3);
     let d: Vec<Point> = (0..5).map(|_| rng.point()).collect();
@@ -164,7 +164,7 @@ fn jumps(a: &BezierPatch, b: &BezierPatch, along_u: bool) -> [f64; 3] {
     j
 }
 
-#[test]
+#[crate::unit::test]
 fn neighbouring_patches_join_with_the_spline_continuity() {
     let mut rng = Lcg(11);
     // (degree, node shift between neighbouring patches, expected continuity order)
@@ -189,7 +189,7 @@ fn neighbouring_patches_join_with_the_spline_continuity() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn stencils_and_point_conversions_agree() {
     let mut rng = Lcg(5);
     let net = random_net(&mut rng, 5);
@@ -244,7 +244,7 @@ fn paper(w16: [f64; 9]) -> Stencil {
     Stencil::from_pairs(order.iter().zip(w16).map(|(&i, w)| (i, w / 16.0)))
 }
 
-#[test]
+#[crate::unit::test]
 fn eg_formula_6_matches_tensor_form() {
     let idx: [[usize; 5]; 5] = std::array::from_fn(|k| std::array::from_fn(|l| d(k, l)));
     let st = biquartic_c2_stencils(&idx);

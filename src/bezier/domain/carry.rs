@@ -76,7 +76,7 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -84,7 +84,7 @@ mod tests {
         (a[0] - b[0]).abs() < 1e-15 && (a[1] - b[1]).abs() < 1e-15
     }
 
-    #[test]
+    #[crate::unit::test]
     fn framed_in_composes_the_cell_map() {
         // a ring cell in thirds of a prepared quad, carried into the quarter at corner 2 of
         // input face 5 with its (0, 0) at the quarter's corner 1
@@ -103,7 +103,7 @@ mod tests {
         assert!(!Domain::UNTRACKED.framed_in(1, 0, quarter).is_tracked());
     }
 
-    #[test]
+    #[crate::unit::test]
     fn peel_splits_off_the_quarter() {
         let d = Domain::polygon(3, 4)
             .child(2)

@@ -101,7 +101,7 @@ impl FanTriangle {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -112,7 +112,7 @@ mod tests {
         (sub, p)
     }
 
-    #[test]
+    #[crate::unit::test]
     fn corners_land_on_the_host_corners_and_centre() {
         for rot in 0..3u8 {
             // quad: host corners i, i + 1, the centre
@@ -139,7 +139,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_two_halves_meet_on_the_median_and_jacobians_are_positive() {
         let p = FanTriangle {
             host: 0,
@@ -178,7 +178,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn holds_inverts_to_host() {
         // points of every fan triangle of a triangle, a quad and a hexagon host: held by their
         // own triangle, by no other (inside, away from the sides) and only with `eps` on a side

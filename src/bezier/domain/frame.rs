@@ -94,11 +94,11 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn framed_cells_compose_with_ratio_children() {
         // [0.3, 0.45] x [0.2, 0.3] of face 5, (0, 0) at its corner (0.45, 0.2), u toward +v,
         // v toward -u (a quarter at corner 1 of a refined face, say)

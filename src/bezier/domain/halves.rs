@@ -78,11 +78,11 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn halves_tile_the_cell() {
         for k in 0..4u8 {
             let m = Shape::half_map(k);

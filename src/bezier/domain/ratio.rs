@@ -69,11 +69,11 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn ratio_children_tile_the_cell() {
         let t = 0.6;
         for k in 0..4u8 {

@@ -1,6 +1,6 @@
 use super::*;
 
-#[test]
+#[crate::unit::test]
 fn quad_children_tile_the_cell() {
     // each child's centre lies in that child, and the child maps are orientation preserving
     for k in 0..4u8 {
@@ -19,7 +19,7 @@ fn quad_children_tile_the_cell() {
     assert_eq!(m.apply([0.0, 1.0]), [0.5, 0.0]);
 }
 
-#[test]
+#[crate::unit::test]
 fn triangle_children_tile_the_cell() {
     for k in 0..4u8 {
         let m = Shape::Triangle.child_map(k);
@@ -34,7 +34,7 @@ fn triangle_children_tile_the_cell() {
     assert_eq!(m.apply([0.0, 1.0]), [0.0, 0.5]);
 }
 
-#[test]
+#[crate::unit::test]
 fn squares_are_the_frame_scaled() {
     for rot in 0..4u32 {
         let base = Domain::face(2, 4).child(1).rotated(rot);
@@ -57,7 +57,7 @@ fn squares_are_the_frame_scaled() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn domains_compose_child_maps() {
     let d = Domain::face(7, 4).child(2).child(1).rotated(3);
     assert_eq!(d.depth, 2);

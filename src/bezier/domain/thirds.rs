@@ -150,11 +150,11 @@ impl Domain {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn thirds_tile_the_cell_and_keep_dyadic_paths() {
         for k in 0..9u8 {
             let m = Shape::third_map(k);
@@ -191,7 +191,7 @@ mod tests {
         assert!(!deep.third_child(8).is_tracked());
     }
 
-    #[test]
+    #[crate::unit::test]
     fn thirds_of_a_turned_frame_are_the_frame_scaled() {
         for rot in 0..4u32 {
             let base = Domain::face(2, 4).child(3).rotated(rot);

@@ -328,12 +328,12 @@ mod fan;
 pub mod hole;
 mod map;
 pub mod ring;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod split_tests;
 mod system;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod two_tests;
 
 pub use choose::{

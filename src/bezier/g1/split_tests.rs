@@ -8,7 +8,7 @@ use super::*;
 use crate::bezier::BezierCurve;
 use crate::geom::{Point, add, axpy, norm, sub};
 
-#[test]
+#[crate::unit::test]
 fn random_compatible_data_give_split_g1_caps() {
     let mut rng = Lcg(5);
     for (m, n) in [(2, 3), (2, 5), (2, 6), (3, 5)] {
@@ -69,7 +69,7 @@ fn random_compatible_data_give_split_g1_caps() {
 /// `m = 2, 3`, as QAS+^3's and guided-bi3-macro's rings; 4 for `m = 2`, as guided-bi4-macro's),
 /// printed as the table of the module documentation. Slow (the `m = 3` maps at `n = 16` have
 /// 5184 unknowns): `cargo test --release -p fairsub-unit split_lowest -- --ignored --nocapture`.
-#[test]
+#[crate::unit::test]
 #[ignore = "slow: the table of the module documentation"]
 fn split_lowest_certified_degrees() {
     for (m, db) in [(2, 3), (2, 4), (3, 3)] {

@@ -96,7 +96,7 @@ pub(crate) fn random_hole(
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn random_compatible_data_give_g1_caps() {
     let mut rng = Lcg(7);
     for n in [3, 4, 5, 6, 7, 8] {
@@ -147,7 +147,7 @@ fn random_compatible_data_give_g1_caps() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn certificates_per_degree() {
     // quad layout, kappa = 0: bi-4 fails for even n != 4, bi-5 passes everywhere.
     for n in 3..=10 {
@@ -172,7 +172,7 @@ fn certificates_per_degree() {
 
 /// The lowest certified degree for every valence 3..=16, per layout and centre condition
 /// (segment degrees 3 / 3; a triangle hole's quad data then have degree 4).
-#[test]
+#[crate::unit::test]
 fn lowest_certified_degrees() {
     let deg = Degrees {
         boundary: 3,
@@ -207,7 +207,7 @@ fn lowest_certified_degrees() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn bad_holes_are_refused_with_the_place_named() {
     let mut rng = Lcg(11);
     let mut hole = random_quad_hole(5, 5, 0.0, &mut rng);
@@ -232,7 +232,7 @@ fn bad_holes_are_refused_with_the_place_named() {
 /// enclosure condition closes the chain of twists; bi-3 measures 0.7 and more), the quadratic
 /// jet at bi-4 for `n = 3, 4` (bi-5 above), the relation exact on the inner spokes,
 /// C^1 to the data, spokes 0 and n free.
-#[test]
+#[crate::unit::test]
 fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
     let deg = Degrees {
         boundary: 3,
@@ -286,7 +286,7 @@ fn open_fans_are_certified_and_g1_on_their_inner_spokes() {
 /// tangent plane is bi-5 at every `n` but the corner (`n = 1`, no inner spoke) and the
 /// regular boundary (`n = 3`), where bi-4 is; the real rings of
 /// `tests/it/loop_boundary_caps.rs` check the caps' joins.
-#[test]
+#[crate::unit::test]
 fn open_triangle_fans_are_certified() {
     let deg = Degrees {
         boundary: 4,
@@ -312,7 +312,7 @@ fn open_triangle_fans_are_certified() {
 /// boundary spoke and nothing else, so every open layout keeps its certificate and lowest
 /// degree; on compatible data the boundary spokes are the cubic Hermite interpolants of their
 /// end data and the inner spokes stay G^1.
-#[test]
+#[crate::unit::test]
 fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_spokes() {
     let quads = Degrees {
         boundary: 3,
@@ -377,7 +377,7 @@ fn crease_fans_keep_the_certificates_and_put_hermite_cubics_on_their_boundary_sp
 /// Dart fans ([`Fan::Dart`]): certified at the degree of the plain open fan or one above; on
 /// compatible data the two sides of the sharp spoke are one curve (C^0), every inner spoke is
 /// G^1 and every spoke leaves the centre in the plane of `T0, T1` at the full turn's angles.
-#[test]
+#[crate::unit::test]
 fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
     let deg = Degrees {
         boundary: 3,
@@ -441,7 +441,7 @@ fn dart_fans_are_certified_c0_on_their_sharp_spoke_and_g1_elsewhere() {
 /// to 12, at most bi-5 (quads) and bi-6 (Loop's triangles); on compatible quad data every spoke
 /// tangent is zero and every join spoke G^1 up to the apex (the relation divided by the
 /// parameter: the normals on both sides agree at `u = 1e-3` as well as further out).
-#[test]
+#[crate::unit::test]
 fn cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes() {
     let quads = Degrees {
         boundary: 3,
@@ -500,7 +500,7 @@ fn cone_fans_are_certified_with_zero_spoke_tangents_and_g1_spokes() {
 /// quads and Loop's triangles: certified at every `k < m` up to `m = 12`, at most bi-5 (quads)
 /// and bi-6 (triangles); on compatible quad data the inner spokes are G^1 and the spokes leave
 /// the centre at the angles `2 pi s / m`.
-#[test]
+#[crate::unit::test]
 fn wedges_are_certified_at_the_angles_of_the_full_turn() {
     let quads = Degrees {
         boundary: 3,
@@ -547,7 +547,7 @@ fn wedges_are_certified_at_the_angles_of_the_full_turn() {
 /// Corner sectors ([`Fan::Corner`]): certified at every `n` up to 10, convex and reflex, with
 /// spoke `n` leaving the centre along `T1` (convex) or `-T1` (reflex) and both boundary spokes
 /// the Hermite cubics of their end data.
-#[test]
+#[crate::unit::test]
 fn corner_sectors_are_certified_with_both_sharp_spokes_pinned() {
     let deg = Degrees {
         boundary: 3,

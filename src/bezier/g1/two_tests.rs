@@ -7,7 +7,7 @@ use super::tests::{Lcg, assert_spoke_g1, random_hole};
 use super::*;
 use crate::geom::{cross, dot, norm, normalize};
 
-#[test]
+#[crate::unit::test]
 fn two_sector_certificates() {
     let deg = Degrees {
         boundary: 3,
@@ -44,7 +44,7 @@ fn two_sector_certificates() {
     assert!(CapMap::new(2, Layout::Triangle, tris, 5, Centre::TangentPlane).is_err());
 }
 
-#[test]
+#[crate::unit::test]
 fn two_sectors_are_g1_on_both_spokes_and_at_the_centre() {
     let mut rng = Lcg(41);
     for d in [5, 6, 7] {
@@ -88,7 +88,7 @@ fn two_sectors_are_g1_on_both_spokes_and_at_the_centre() {
 /// A cone point of two sectors ([`Fan::Cone`], a corner tag on a valence-2 vertex): the
 /// half-turn chart's weight is `w(0) = 2 cos(pi / 2) = 0`, and the cap is certified from bi-3
 /// on (measured 1.7e-15 at bi-3, 1.5e-14 at bi-5).
-#[test]
+#[crate::unit::test]
 fn cones_of_two_sectors_are_certified() {
     let deg = Degrees {
         boundary: 3,

@@ -551,11 +551,11 @@ fn bytecount(b: &[u8]) -> usize {
     b.iter().filter(|&&c| c == b'\n').count()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn binary_records_hold_every_number_bit_for_bit() {
         let evals = sample();
         let bytes =
@@ -624,7 +624,7 @@ mod tests {
     /// Several groups, the last one short, of points whose faces are scrambled (evaluated in
     /// another order than written): every line in its point's place (the look-ahead of the
     /// short group once read stale places of the group before and indexed past it).
-    #[test]
+    #[crate::unit::test]
     fn groups_of_any_length_keep_the_points_order() {
         let n = 2 * BLOCK * AHEAD + 12_345;
         let face = |i: usize| ((i as u64 * 2_654_435_761) % 9973) as u32;
@@ -663,7 +663,7 @@ mod tests {
         assert_eq!(written, BLOCK * AHEAD, "the groups before the failing one");
     }
 
-    #[test]
+    #[crate::unit::test]
     fn json_is_serde_jsons_pretty_array() {
         let evals = sample();
         for n in [1, 2, 4096, 4097, evals.len()] {
@@ -673,7 +673,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn lines_read_back_to_the_same_bits() {
         let evals = sample();
         let text = collect(|w| write_lines(evals.len(), &|i| evals[i].face, &|i| Ok(evals[i]), w));
@@ -704,7 +704,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn plain_lines_read_as_the_general_parser_reads_them() {
         for line in [
             "0:0.5:0.25",
@@ -758,7 +758,7 @@ mod tests {
         Lines::new(text).next().and_then(|(_, p)| p)
     }
 
-    #[test]
+    #[crate::unit::test]
     fn lines_are_cut_as_str_lines_cuts_them() {
         for text in [
             "",
@@ -773,7 +773,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn file_points_and_their_errors_keep_their_lines() {
         let mut text = String::from("# header\n\n");
         for i in 0..20_000u32 {

@@ -155,7 +155,7 @@ impl From<AlphaRuleArg> for AlphaRule {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::super::super::{Cli, Command};
     use clap::Parser;
@@ -178,7 +178,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn words_parse_back_into_the_same_options() {
         let given = [
             "--lambda",

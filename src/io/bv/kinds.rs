@@ -132,7 +132,7 @@ fn face_patches(pos: &[Point], face: &[usize]) -> Vec<BezierPatch> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::geom::dist;
@@ -158,7 +158,7 @@ mod tests {
         p
     }
 
-    #[test]
+    #[crate::unit::test]
     fn triangles_become_exact_tensor_patches() {
         for d in 1..=6 {
             let cps: Vec<Point> = (0..TriPatch::count(d))
@@ -180,7 +180,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn polyhedron_faces_are_flat_patches_with_sharp_sides() {
         let f = super::super::parse_bv(
             "1\n5 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 1.5 0\n4 0 1 2 3\n3 3 2 4\n",

@@ -138,5 +138,5 @@ pub struct BvFile {
     pub warnings: Vec<String>,
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

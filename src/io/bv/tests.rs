@@ -31,7 +31,7 @@ fn complex() -> PatchComplex {
     testutil::complex(e, items)
 }
 
-#[test]
+#[crate::unit::test]
 fn triangular_index_matches_bezierview_picture() {
     // 9 / 7 8 / 4 5 6 / 0 1 2 3 for degree 3: row k, position j.
     assert_eq!(TriPatch::index(3, 0, 0), 0);
@@ -53,7 +53,7 @@ fn triangular_index_matches_bezierview_picture() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn writer_layout() {
     let s = bv_to_string(&complex()).unwrap();
     let lines: Vec<&str> = s.lines().collect();
@@ -73,7 +73,7 @@ fn writer_layout() {
     assert_eq!(p, complex().patches[0].cp(0, 1).to_vec());
 }
 
-#[test]
+#[crate::unit::test]
 fn roundtrip_is_exact_and_keeps_groups() {
     let c = complex();
     let s = bv_to_string(&c).unwrap();
@@ -96,7 +96,7 @@ fn roundtrip_is_exact_and_keeps_groups() {
     assert_eq!(f.to_bv_string().unwrap(), s);
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_foreign_files_leniently() {
     // The tensor example of SurfLab's page, a triangle, a polyhedron with a quad,
     // comments and odd whitespace.
@@ -147,7 +147,7 @@ fn reads_foreign_files_leniently() {
     assert_eq!(m.num_faces(), 2);
 }
 
-#[test]
+#[crate::unit::test]
 fn mesh_as_polyhedron_roundtrip() {
     let pos = vec![
         [0.0, 0.0, 0.0],
@@ -166,7 +166,7 @@ fn mesh_as_polyhedron_roundtrip() {
     assert_eq!(f.polyhedra[0].group, None);
 }
 
-#[test]
+#[crate::unit::test]
 fn errors_name_lines() {
     testutil::assert_parse_errors(
         |s| parse_bv(s, Path::new("e.bv")),
@@ -197,7 +197,7 @@ fn errors_name_lines() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn rational_patches_keep_their_weights_and_round_trip() {
     // homogeneous coefficients: the second point (1, 0, 0) with weight 2
     let f = parse_bv(
@@ -227,7 +227,7 @@ fn rational_patches_keep_their_weights_and_round_trip() {
     assert!(f.patches.patches[0].weights.is_none() && f.warnings.len() == 1);
 }
 
-#[test]
+#[crate::unit::test]
 fn writer_rejects_bad_patches() {
     let mut c = complex();
     c.patches[1].cps[4][2] = f64::INFINITY;
@@ -242,7 +242,7 @@ fn writer_rejects_bad_patches() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn invalid_utf8_is_an_error_outside_comments_only() {
     let f = testutil::assert_text_rule(
         |b| read::parse_bv_bytes(b, Path::new("u.bv")),
@@ -253,7 +253,7 @@ fn invalid_utf8_is_an_error_outside_comments_only() {
     assert_eq!(f.patches.len(), 1);
 }
 
-#[test]
+#[crate::unit::test]
 fn many_groups_take_linear_time() {
     // 200,000 distinct group lines (a quadratic lookup took 25 s for 100,000), then a group
     // seen before (its id is updated) and one patch.

@@ -52,5 +52,5 @@ pub use read::{parse_iges, read_iges};
 pub(crate) use write::now_date as file_date;
 pub use write::{iges_faces_to_string, iges_to_string, write_iges, write_iges_faces};
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -34,7 +34,7 @@ fn text() -> String {
     iges_text(&complex(), "out dir/model.igs", "20260102.030405").unwrap()
 }
 
-#[test]
+#[crate::unit::test]
 fn reals_and_dates() {
     assert_eq!(iges_real(1.0), "1.0D0");
     assert_eq!(iges_real(-1.25e-3), "-1.25D-3");
@@ -50,7 +50,7 @@ fn reals_and_dates() {
     assert_eq!(iges_date(1_767_323_045), "20260102.030405");
 }
 
-#[test]
+#[crate::unit::test]
 fn records_are_80_columns_with_sections_in_order() {
     let t = text();
     let lines: Vec<&str> = t.lines().collect();
@@ -107,7 +107,7 @@ fn records_are_80_columns_with_sections_in_order() {
     assert_eq!(&p1[64..80], "       1P      1");
 }
 
-#[test]
+#[crate::unit::test]
 fn roundtrip_is_exact() {
     let c = complex();
     let back = parse_iges(&text(), Path::new("m.igs")).unwrap();
@@ -130,7 +130,7 @@ fn roundtrip_is_exact() {
     assert_eq!(params.len(), first_pt + 48 + 4);
 }
 
-#[test]
+#[crate::unit::test]
 fn degree_zero_is_raised_exactly() {
     let mut c = PatchComplex::new();
     c.push(
@@ -154,7 +154,7 @@ fn degree_zero_is_raised_exactly() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn empty_complex_is_a_valid_file() {
     let t = iges_text(&PatchComplex::new(), "e.igs", "20000101.000000").unwrap();
     assert!(parse_iges(&t, Path::new("e.igs")).unwrap().is_empty());
@@ -188,7 +188,7 @@ fn shift_count(lines: &mut [String], by: i64) {
     r.replace_range(24..32, &format!("{:>8}", n + by));
 }
 
-#[test]
+#[crate::unit::test]
 fn corrupted_files_are_rejected_with_clear_messages() {
     type Mutation = fn(&mut Vec<String>);
     let cases: [(Mutation, &[&str]); 12] = [
@@ -255,7 +255,7 @@ fn params(s: &str) -> Vec<String> {
     split_params(s, ',', ';').unwrap()
 }
 
-#[test]
+#[crate::unit::test]
 fn entity_128_conversion_rules() {
     // A bilinear patch: X(i,j) with i fastest.
     let ok = "128,1,1,1,1,0,0,1,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,1.,1.,1.,\
@@ -294,7 +294,7 @@ fn entity_128_conversion_rules() {
     ));
 }
 
-#[test]
+#[crate::unit::test]
 fn other_entity_types_are_unsupported() {
     let t = text().replace("     128", "     126");
     let e = parse_iges(&t, Path::new("o.igs")).unwrap_err();

@@ -7,7 +7,7 @@ fn read(s: &str) -> Result<LoadedMesh> {
     read_obj_from(s.as_bytes(), Path::new("t.obj"))
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_ngons_slash_forms_and_negative_indices() {
     let src = "# a quad and a pentagon sharing an edge\n\
                mtllib x.mtl\n\
@@ -53,7 +53,7 @@ fn reads_ngons_slash_forms_and_negative_indices() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn line_continuation_and_crlf() {
     let src = "v 0 0 0\r\nv 1 \\\r\n 0 0\r\nv 0 1 0\r\nf 1 2 \\\n3\r\nf 1 2 x\n";
     // Physical lines count: the bad face is on line 7.
@@ -63,7 +63,7 @@ fn line_continuation_and_crlf() {
     assert_eq!(m.mesh.face(0), &[0, 1, 2]);
 }
 
-#[test]
+#[crate::unit::test]
 fn dropped_vertex_is_reported() {
     let m = read("v 0 0 0\nv 9 9 9\nv 1 0 0\nv 0 1 0\nf 1 3 4\n").unwrap();
     assert_eq!(m.mesh.num_vertices(), 3);
@@ -81,7 +81,7 @@ fn dropped_vertex_is_reported() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn errors_name_lines() {
     testutil::assert_parse_errors(
         read,
@@ -111,7 +111,7 @@ fn errors_name_lines() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn invalid_utf8_is_an_error_outside_comments_only() {
     let ok = b"v 0 0 0\nv 1 0 0\nv 0 1 0\n# caf\xe9 \xff\nf 1 2 3 # \xe9\n";
     // The same byte in a coordinate: an error naming line and column, not a replaced character.
@@ -125,7 +125,7 @@ fn invalid_utf8_is_an_error_outside_comments_only() {
     assert_eq!(m.mesh.num_faces(), 1);
 }
 
-#[test]
+#[crate::unit::test]
 fn mesh_validation_errors_point_at_the_face_line() {
     testutil::assert_parse_errors(
         read,
@@ -148,7 +148,7 @@ fn mesh_validation_errors_point_at_the_face_line() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn lines_across_buffer_ends_and_unicode_whitespace() {
     // A tiny reader buffer splits most lines; continuations, CRLF and comments survive.
     let src = "# x\nv 0 0 0\r\nv 1 0 0 # c\nv 0 \\\n1 0\nvt 1 1\nvt 2 2\nf 1 2 3\n";

@@ -7,7 +7,7 @@ fn read(s: &str) -> Result<LoadedMesh> {
     read_off_from(s.as_bytes(), Path::new("t.off"))
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_off_with_comments_and_ngons() {
     let src = "OFF # header\n# a comment\n\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0.25\n\
                4 0 1 2 3\n3 3 2 4\n";
@@ -19,7 +19,7 @@ fn reads_off_with_comments_and_ngons() {
     assert!(m.warnings.is_empty(), "{:?}", m.warnings);
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_coff_noff_and_counts_on_header_line() {
     let src =
         "COFF 3 1 3\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n";
@@ -35,7 +35,7 @@ fn reads_coff_noff_and_counts_on_header_line() {
     assert!(m.warnings[0].contains("no 'OFF' header"));
 }
 
-#[test]
+#[crate::unit::test]
 fn errors_name_lines() {
     testutil::assert_parse_errors(
         read,
@@ -93,7 +93,7 @@ fn errors_name_lines() {
     assert!(matches!(read("OFF BINARY\n"), Err(Error::Unsupported(_))));
 }
 
-#[test]
+#[crate::unit::test]
 fn invalid_utf8_is_an_error_outside_comments_only() {
     let m = testutil::assert_text_rule(
         |b| read_off_from(b, Path::new("t.off")),

@@ -117,5 +117,5 @@ pub fn read_ply_with<R: BufRead>(mut reader: R, path: &Path, tolerant: bool) -> 
     Ok(LoadedMesh { mesh, warnings })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -129,7 +129,7 @@ fn check_five(m: &LoadedMesh) {
     assert_eq!(m.warnings, vec!["ignored PLY elements: edge".to_string()]);
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_all_encodings_written_by_ply_rs() {
     for enc in [
         Encoding::Ascii,
@@ -144,7 +144,7 @@ fn reads_all_encodings_written_by_ply_rs() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn reads_hand_written_big_endian_with_int_coordinates() {
     let mut b = b"ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty short x\n\
                   property int y\nproperty uchar z\nelement face 1\n\
@@ -167,7 +167,7 @@ fn reads_hand_written_big_endian_with_int_coordinates() {
     assert_eq!(m.mesh.face(0), &[0, 1, 2]);
 }
 
-#[test]
+#[crate::unit::test]
 fn missing_elements_and_properties_are_named_at_their_header_line() {
     let m = msg(b"ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n1\n");
     assert_eq!(
@@ -203,7 +203,7 @@ fn missing_elements_and_properties_are_named_at_their_header_line() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn header_errors_name_their_line() {
     assert_eq!(
         msg(b"PLY file\n"),
@@ -226,7 +226,7 @@ fn header_errors_name_their_line() {
     assert!(m.starts_with("t.ply:3: PLY header: "), "{m}");
 }
 
-#[test]
+#[crate::unit::test]
 fn ascii_errors_name_line_element_and_property() {
     let head = ascii_head(2);
     // Lines 10..12 vertices, 13..14 faces.
@@ -283,7 +283,7 @@ fn ascii_errors_name_line_element_and_property() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn invalid_utf8_only_in_comments() {
     let head = ascii_head(1);
     let body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
@@ -317,7 +317,7 @@ fn invalid_utf8_only_in_comments() {
     assert!(msg(&b).starts_with("t.ply:11: invalid UTF-8 at column 5 (byte 0xFF)"));
 }
 
-#[test]
+#[crate::unit::test]
 fn binary_errors_name_the_file_and_the_element() {
     let m = msg(&binary_triangle([0, -1, 2]));
     assert_eq!(
@@ -362,7 +362,7 @@ fn binary_errors_name_the_file_and_the_element() {
     );
 }
 
-#[test]
+#[crate::unit::test]
 fn binary_writer_layout() {
     let p = testutil::polygons();
     let mut buf = Vec::new();
@@ -374,7 +374,7 @@ fn binary_writer_layout() {
     assert!(buf.starts_with(header.as_bytes()));
 }
 
-#[test]
+#[crate::unit::test]
 fn parallel_binary_writer_equals_a_plain_encoding() {
     // Enough vertices and faces for many jobs and batches; mixed face sizes.
     let n = 300_000;

@@ -60,5 +60,5 @@ pub const NO_USDC: &str = "fairsub writes USD as text (.usda, .usd) or as a pack
      not as .usdc: the crate writer of openusd 0.6 (the last release that builds on this \
      toolchain) stores prim children in a form usd-core rejects";
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

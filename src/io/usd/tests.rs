@@ -47,7 +47,7 @@ fn grid() -> crate::mesh::PolyMesh {
     m
 }
 
-#[test]
+#[crate::unit::test]
 fn control_nets_round_trip_in_every_encoding() {
     let net = grid();
     let dir = std::env::temp_dir().join(format!("fairsub-usd-{}", std::process::id()));
@@ -89,7 +89,7 @@ fn control_nets_round_trip_in_every_encoding() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-#[test]
+#[crate::unit::test]
 fn bad_files_name_the_attribute() {
     let dir = std::env::temp_dir().join(format!("fairsub-usd-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -2,7 +2,7 @@
 
 use super::*;
 
-#[test]
+#[crate::unit::test]
 fn diverging_map_is_blue_white_red() {
     let b = diverging(-1.0);
     let w = diverging(0.0);
@@ -13,7 +13,7 @@ fn diverging_map_is_blue_white_red() {
     assert_eq!(diverging(f64::NAN), w);
 }
 
-#[test]
+#[crate::unit::test]
 fn highlight_parameter_matches_plane_intersection() {
     let cam = Camera::look_at([0.3, -4.0, 2.0], [0.0; 3], [0.0, 0.0, 1.0], 30.0, 100, 100);
     let region = Region {
@@ -35,7 +35,7 @@ fn highlight_parameter_matches_plane_intersection() {
     assert!(dot(sub(a, p), m).abs() < 1e-12);
 }
 
-#[test]
+#[crate::unit::test]
 fn segments_clip_to_the_image() {
     let (p, q) = clip_segment([-100.0, 5.0], [200.0, 5.0], 50.0, 50.0).unwrap();
     assert_eq!((p[0], q[0]), (-1.0, 51.0));

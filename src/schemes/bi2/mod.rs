@@ -137,11 +137,11 @@ pub fn bi2_patch_stencils(net: &[[Stencil; 3]; 3], wu: [f64; 3], wv: [f64; 3]) -
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn uniform_rules() {
         // Binary (Chaikin / Doo-Sabin): end child 3/4, 1/4.
         assert!((end_child_weight(1.0, 1.0, 0.5) - 0.25).abs() < 1e-15);
@@ -156,7 +156,7 @@ mod tests {
         assert_eq!(r, [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.5, 0.5]]);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn blossom_reproduces_quadratics() {
         // Coefficients of f(x) = x^2 on the knots: d = F(a, b) = a b.
         let (wl, w, wr) = (0.3, 1.0, 0.7);

@@ -541,5 +541,5 @@ pub fn ds_net(n: usize, height: impl Fn(f64, f64) -> f64) -> Result<PolyMesh> {
     PolyMesh::new(pos, &faces)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

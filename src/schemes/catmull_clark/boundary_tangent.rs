@@ -108,11 +108,11 @@ pub fn across_weights(k: usize) -> Option<Arc<(f64, Vec<f64>)>> {
     Some(out)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn subdominant_eigenvalues_and_symmetric_weights() {
         let want = [0.57968, 0.61112, 0.62634, 0.6348, 0.63996, 0.64333];
         for (k, want) in (3..=8).zip(want) {

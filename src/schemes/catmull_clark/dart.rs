@@ -77,13 +77,13 @@ pub fn dart_masks(n: usize) -> Option<Arc<DartMasks>> {
     cached_masks(&CACHE, n, |n| ring_matrix(n, true))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The spectrum of the module documentation, and left eigenvectors: the limit mask sums
     /// to 1, the tangent masks to 0, each a left eigenvector of the dart's matrix.
-    #[test]
+    #[crate::unit::test]
     fn dart_spectra_and_masks() {
         let want = [
             (3, [0.46206, 0.41010]),
@@ -115,7 +115,7 @@ mod tests {
     /// Without the dart the matrix is Catmull-Clark's smooth one: its subdominant eigenvalue is
     /// the closed form `(5 + c + cos(pi / n) sqrt(18 + 2 c)) / 16`, `c = cos(2 pi / n)`
     /// (double); the dart keeps the antisymmetric one (its mode has no weight on `e_0`).
-    #[test]
+    #[crate::unit::test]
     fn without_the_dart_the_rules_are_the_smooth_ones() {
         for n in 3..=12 {
             let pi = std::f64::consts::PI;

@@ -297,7 +297,7 @@ impl<const D: usize> CcTerms for Eval<'_, D> {
 impl Rules<'_> {
     /// The stencil of the vertex point of `v` under these rules (the tests' reference for the
     /// rows [`Rules::push_vertex_row`] writes).
-    #[cfg(test)]
+    #[cfg(feature = "unit-tests")]
     pub(crate) fn vertex_stencil(&self, v: usize) -> crate::stencil::Stencil {
         let mut s = crate::stencil::Stencil::new();
         let m = self.m;
@@ -334,7 +334,7 @@ impl Rules<'_> {
     }
 
     /// The stencil of the edge point of edge `e` under these rules.
-    #[cfg(test)]
+    #[cfg(feature = "unit-tests")]
     pub(crate) fn edge_stencil(&self, e: usize) -> crate::stencil::Stencil {
         let mut s = crate::stencil::Stencil::new();
         let m = self.m;
@@ -606,5 +606,5 @@ pub fn catmull_clark_lambda(n: usize) -> f64 {
     (c + 5.0 + ((c + 1.0) * (c + 9.0)).sqrt()) / 16.0
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -273,11 +273,11 @@ pub fn bi3_net_cut(mesh: &PolyMesh, f: usize, cut: &dyn Fn(u32) -> bool) -> Opti
         .map(Net::Ghosted)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn interior_and_boundary_nets() {
         let m = crate::mesh::nets::quad_grid(4, |_, _| 0.0);
         // Interior face (1,1): its net is the grid points (0..4) x (0..4) - exact positions.

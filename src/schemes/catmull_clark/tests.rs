@@ -4,7 +4,7 @@
 use super::*;
 use crate::geom;
 
-#[test]
+#[crate::unit::test]
 fn cube_one_level_by_hand() {
     let m = crate::mesh::nets::unit_cube();
     let r = CatmullClark.refine(&m).unwrap();
@@ -33,7 +33,7 @@ fn cube_one_level_by_hand() {
     assert!(r.mesh.is_all_quads());
 }
 
-#[test]
+#[crate::unit::test]
 fn limit_is_fixed_under_refinement() {
     // Limit of a vertex equals the limit of its child (vertex points keep their index).
     let m = crate::mesh::nets::unit_cube();
@@ -53,7 +53,7 @@ fn max_dist(a: &[Point], b: &[Point]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-#[test]
+#[crate::unit::test]
 fn direct_child_equals_generic_build_and_kernel_equals_table() {
     for (name, mesh) in crate::gallery::all() {
         let mut m = mesh;
@@ -81,7 +81,7 @@ fn direct_child_equals_generic_build_and_kernel_equals_table() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn one_shot_levels_equal_repeated_steps() {
     for (name, mesh) in crate::gallery::all() {
         for levels in 0..=3 {

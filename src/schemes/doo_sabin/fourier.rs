@@ -135,7 +135,7 @@ pub fn refine_cc_net(mesh: &PolyMesh) -> Result<PolyMesh> {
     )
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::schemes::doo_sabin::{DooSabin, DooSabinCc, corner_point_stencil};
@@ -155,7 +155,7 @@ mod tests {
         PolyMesh::new(pts, &[(0..n).collect::<Vec<usize>>()]).unwrap()
     }
 
-    #[test]
+    #[crate::unit::test]
     fn net_step_equals_the_refinement() {
         use crate::schemes::Scheme;
         for n in [5, 40] {
@@ -171,7 +171,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn fourier_corners_equal_the_stencils() {
         for n in [3, 5, 8, 33, 100] {
             let m = ngon(n);

@@ -539,11 +539,11 @@ fn dual_limit_stencils(
     Ok(table)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn quad_weights_are_the_bi2_mask() {
         let expect = [9.0 / 16.0, 3.0 / 16.0, 1.0 / 16.0, 3.0 / 16.0];
         assert_eq!(DooSabin::weights(4), expect);
@@ -559,7 +559,7 @@ mod tests {
         assert!((t[0] - (0.5 + 1.0 / 12.0)).abs() < 1e-16);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn interior_valence_two_vertices_lose_their_v_face() {
         // A pillow of two quads glued along all four edges: every vertex is interior of
         // valence 2. One step drops the four 2-sided V-faces and gives a cube.

@@ -667,5 +667,5 @@ mod refine;
 pub(crate) mod step;
 pub use refine::step_cells;
 use refine::{refine_around, rule_free};
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -562,11 +562,11 @@ pub fn c0_from_dnet(n: usize) -> Stencil {
     st.merged()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn rows_and_partition_of_unity() {
         for n in [3, 4, 5] {
             let r = EgRules::new(n).unwrap();
@@ -579,7 +579,7 @@ mod tests {
         assert!(EgRules::new(11).is_err());
     }
 
-    #[test]
+    #[crate::unit::test]
     fn step_rows_are_affine() {
         for n in [3, 4, 5] {
             let st = Eg::new(n).unwrap().step().unwrap();

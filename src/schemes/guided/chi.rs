@@ -114,11 +114,11 @@ fn qas_half(n: usize) -> Result<CharRing> {
     })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn rings_are_normalised_and_self_similar() {
         for (n, kind) in [
             (5, ChiKind::CatmullClark),

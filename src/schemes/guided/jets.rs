@@ -156,11 +156,11 @@ pub fn block_entry(d: usize, corner: (usize, usize), i: usize, j: usize) -> usiz
     r * (d + 1) + c
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn jets_reproduce_a_polynomial_composition() {
         // phi = identity scaled into [0.2, 0.6]^2: the bi-5 jets of g o phi at the four corners
         // assemble the exact restriction of g (degree 5 in each variable).

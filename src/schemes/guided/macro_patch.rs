@@ -204,11 +204,11 @@ impl MacroKind {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn t_keeps_end_jets_and_prolongation_is_exact_on_splines() {
         for kind in [MacroKind::Bi4, MacroKind::Bi3] {
             let t = kind.from_quintic();

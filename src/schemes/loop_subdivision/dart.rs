@@ -44,14 +44,14 @@ pub fn dart_masks(n: usize) -> Option<Arc<DartMasks>> {
     cached_masks(&CACHE, n, |n| ring_matrix(n, true))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The spectrum of the module documentation; left eigenvectors summing to 1 (limit) and 0
     /// (tangents); the antisymmetric mode's eigenvalue is the smooth vertex's, and without the
     /// dart the matrix is Loop's smooth one (subdominant `3/8 + cos(2 pi / n) / 4`, double).
-    #[test]
+    #[crate::unit::test]
     fn loop_dart_spectra_and_masks() {
         for (n, l) in [
             (3, [0.39827, 0.25]),

@@ -571,5 +571,5 @@ impl Scheme for Loop {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

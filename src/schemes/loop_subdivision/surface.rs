@@ -431,5 +431,5 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -4,7 +4,7 @@
 use super::*;
 
 /// Regular interior (valence 6) weights, Warren's n = 3 value, and the limit masks.
-#[test]
+#[crate::unit::test]
 fn published_weights() {
     assert_eq!(Loop::vertex_beta(6), 1.0 / 16.0);
     assert_eq!(Loop::vertex_beta(3), 3.0 / 16.0);
@@ -17,7 +17,7 @@ fn published_weights() {
     assert!((Loop::vertex_beta(5) - 0.084_093_2).abs() < 1e-7);
 }
 
-#[test]
+#[crate::unit::test]
 fn quad_face_is_named() {
     let pos = vec![
         [0.0; 3],
@@ -37,7 +37,7 @@ fn quad_face_is_named() {
     assert!(Loop.limit_tangent_stencils(&m).is_err());
 }
 
-#[test]
+#[crate::unit::test]
 fn direct_child_and_one_shot_levels_equal_the_generic_path() {
     let dist = |a: &[Point], b: &[Point]| {
         a.iter()

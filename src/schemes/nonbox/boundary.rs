@@ -196,11 +196,11 @@ pub fn open_fan_tangents(net: &FcvNet, v: usize) -> Option<(Stencil, Stencil)> {
     Some((along, across.merged()))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn open_local_matrix_and_across_tangents() {
         let mut found = Vec::new();
         for k in 3..=8 {

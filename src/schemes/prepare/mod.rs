@@ -402,5 +402,5 @@ fn dual_carries(mesh: &PolyMesh) -> bool {
         })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -33,7 +33,7 @@ fn covered_area(mesh: &PolyMesh, map: &ParamMap) -> std::collections::BTreeMap<(
     out
 }
 
-#[test]
+#[crate::unit::test]
 fn the_catmull_clark_step_makes_quads_of_the_quarters() {
     let mesh = nets::octahedron();
     let p = prepared(ids::TPS, &mesh, Mode::Auto);
@@ -68,7 +68,7 @@ fn dual_child(m: &PolyMesh) -> PolyMesh {
     crate::schemes::DooSabin.refine(m).expect("a step").mesh
 }
 
-#[test]
+#[crate::unit::test]
 fn the_dual_step_tiles_the_quarters_of_the_input_faces() {
     // the cube: every quad's four quarters split in four, each by one child face
     let mesh = nets::cube();
@@ -105,7 +105,7 @@ fn the_dual_step_tiles_the_quarters_of_the_input_faces() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn nothing_is_applied_without_need_or_under_none() {
     let cube = nets::cube();
     for id in [ids::TPS, ids::DOO_SABIN, ids::PGS, ids::CATMULL_CLARK] {
@@ -118,7 +118,7 @@ fn nothing_is_applied_without_need_or_under_none() {
     assert_eq!(p.mesh.num_faces(), 8);
 }
 
-#[test]
+#[crate::unit::test]
 fn the_dual_steps_leave_tagged_nets_to_the_scheme() {
     // an infinitely sharp crease on the split-edge cube: the Doo-Sabin step does not carry
     // it, so the net is given to the scheme as it is, with a note

@@ -319,11 +319,11 @@ pub fn chi_ring(n: usize) -> Result<(Vec<BezierPatch>, f64)> {
     Ok((out, defect))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn regular_valence_gives_the_regular_map() {
         // n = 4 with the regular z3, z4, z6: the construction is consistent and the corrected
         // Appendix A returns the regular z5, z7..z10.

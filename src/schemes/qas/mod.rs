@@ -438,11 +438,11 @@ pub fn check_kind(
     Ok(())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn quadratic_bb_satisfies_the_c2_sector_constraints() {
         // (3): q^(s+1) = A q^s for a C^2 quadratic.
         let n = 5;

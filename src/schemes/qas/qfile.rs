@@ -87,7 +87,7 @@ fn check_vertex(mesh: &PolyMesh, v: usize) -> std::result::Result<usize, String>
     Ok(n)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::mesh::nets::{CnetShape, cnet};
@@ -97,12 +97,12 @@ mod tests {
         check_q_file(text, Path::new("e.q"), &net).map_err(|e| e.to_string())
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_extraordinary_vertex_and_its_sectors_pass() {
         assert_eq!(check("vertex 0\nkind c2\np 0 0 0\nq 4 2 1 0 0\n"), Ok(()));
     }
 
-    #[test]
+    #[crate::unit::test]
     fn unknown_regular_and_boundary_vertices_are_refused_at_their_line() {
         let e = check("# expansions\nvertex 9999\n").unwrap_err();
         assert!(
@@ -120,7 +120,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn a_sector_beyond_the_valence_is_refused() {
         let e = check("vertex 0\nq 5 2 1 0 0\n").unwrap_err();
         assert!(
@@ -129,7 +129,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn a_valence_without_rules_is_refused() {
         let net = cnet(9, CnetShape::Convex, 3);
         let e = check_q_file("vertex 0\n", Path::new("e.q"), &net).unwrap_err();

@@ -175,7 +175,7 @@ fn masks_at(s: &DMatrix<f64>, la: f64, lb: f64) -> Option<DartMasks> {
 /// The tests' check of masks computed from the ring matrix `s`: the limit mask a left
 /// eigenvector of 1 summing to 1, each tangent mask a left eigenvector of its eigenvalue
 /// summing to 0 (`what` names the case in messages).
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 pub(crate) fn assert_left_eigenvectors(s: &DMatrix<f64>, m: &DartMasks, what: &str) {
     let lim = nalgebra::DVector::from_vec(m.limit.clone());
     assert!((s.transpose() * &lim - &lim).amax() < 1e-12, "{what}");
@@ -193,7 +193,7 @@ pub(crate) fn assert_left_eigenvectors(s: &DMatrix<f64>, m: &DartMasks, what: &s
 /// The tests' check of a scheme's rules: the smooth ring matrix `smooth` has the subdominant
 /// eigenvalue `want` (double, to 1e-7), and the dart keeps it (its antisymmetric mode has no
 /// weight on the sharp edge's end).
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 pub(crate) fn assert_smooth_pair_kept(smooth: &DMatrix<f64>, m: &DartMasks, want: f64, what: &str) {
     let mut ev: Vec<f64> = smooth
         .complex_eigenvalues()

@@ -26,7 +26,7 @@ fn max_mismatch(c: &PatchComplex, sb: &[SharedBoundary]) -> f64 {
     worst
 }
 
-#[test]
+#[crate::unit::test]
 fn regular_grid_edges() {
     let c = grid(4);
     let sb = shared_boundaries(&c, default_tolerance(&c));
@@ -49,7 +49,7 @@ fn regular_grid_edges() {
     assert!(max_mismatch(&c, &sb) < 1e-14);
 }
 
-#[test]
+#[crate::unit::test]
 fn two_to_one_t_junctions() {
     // 3x3 grid with the centre patch (index 4) split into four
     let c = refine_some(&grid(3), &[4]);
@@ -70,7 +70,7 @@ fn two_to_one_t_junctions() {
     assert!(max_mismatch(&c, &sb) < 1e-14);
 }
 
-#[test]
+#[crate::unit::test]
 fn reversed_patches_and_three_to_one_junction() {
     // two patches side by side; the right one split in three along v and reversed in v
     let c0 = grid(2);
@@ -101,7 +101,7 @@ fn reversed_patches_and_three_to_one_junction() {
     assert!(max_mismatch(&c, &sb) < 1e-13);
 }
 
-#[test]
+#[crate::unit::test]
 fn collapsed_sides_share_nothing() {
     let c = lunes(5);
     let sb = shared_boundaries(&c, default_tolerance(&c));
@@ -116,7 +116,7 @@ fn collapsed_sides_share_nothing() {
     assert!(max_mismatch(&c, &sb) < 1e-14);
 }
 
-#[test]
+#[crate::unit::test]
 fn closed_torus_with_junctions() {
     let c = refine_some(&torus(6, 4), &[0, 7, 14]);
     let sb = shared_boundaries(&c, default_tolerance(&c));
@@ -146,14 +146,14 @@ fn bilinear_grid(m: usize) -> PatchComplex {
     c
 }
 
-#[test]
+#[crate::unit::test]
 fn many_patches() {
     let m = 120;
     let sb = shared_boundaries(&bilinear_grid(m), 1e-9);
     assert_eq!(sb.len(), 2 * m * (m - 1));
 }
 
-#[test]
+#[crate::unit::test]
 fn welding() {
     let pts = [
         [0.0, 0.0, 0.0],

@@ -332,7 +332,7 @@ impl SplineSurface {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -343,7 +343,7 @@ mod tests {
         })
     }
 
-    #[test]
+    #[crate::unit::test]
     fn one_span_surfaces_evaluate_as_their_patch() {
         let b = patch();
         let s = SplineSurface::from_bezier(&b);
@@ -356,7 +356,7 @@ mod tests {
         assert!(curve::coefficient_distance(&pieces[0].1.cps, &b.cps) < 1e-14);
     }
 
-    #[test]
+    #[crate::unit::test]
     fn restriction_keeps_the_curve() {
         let c = SplineCurve::from_bezier(vec![
             [0.0, 0.0, 0.0],

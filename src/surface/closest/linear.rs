@@ -118,11 +118,11 @@ pub(super) fn combine_local(w: [f64; 3], t: [[f64; 2]; 3]) -> [f64; 2] {
     std::array::from_fn(|k| w[0] * t[0][k] + w[1] * t[1][k] + w[2] * t[2][k])
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn grids_are_cut_into_the_right_number_of_triangles() {
         assert_eq!(triangles(Shape::Quad, 5).len(), 32);
         assert_eq!(triangles(Shape::Triangle, 5).len(), 16);
@@ -135,7 +135,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[crate::unit::test]
     fn the_closest_point_of_a_triangle_is_the_brute_force_one() {
         let t = [[0.0, 0.0, 0.0], [2.0, 0.1, 0.0], [0.3, 1.5, 0.2]];
         let mut x = 0x1234_5678_9abc_def1u64;

@@ -48,7 +48,7 @@ pub(super) fn to_cell(d: &Derivatives, jac: [[f64; 2]; 2]) -> Derivatives {
     super::chain(d, jac)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -63,7 +63,7 @@ mod tests {
         ]
     }
 
-    #[test]
+    #[crate::unit::test]
     fn locate_inverts_the_triangle_maps() {
         for k in 0..4 {
             for i in 0..=16 {

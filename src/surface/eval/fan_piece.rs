@@ -75,7 +75,7 @@ pub(super) fn to_chart(d: &Derivatives, uv: [f64; 2]) -> Derivatives {
     super::kite::pull_back(d, j, [-0.5, -0.5])
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -83,7 +83,7 @@ mod tests {
         [u - u * v / 2.0, v - u * v / 2.0]
     }
 
-    #[test]
+    #[crate::unit::test]
     fn locate_inverts_the_map_on_the_triangle() {
         for i in 0..=20 {
             for k in 0..=20 - i {
@@ -105,7 +105,7 @@ mod tests {
 
     /// A quadratic in the chart pulled back through the map has the quadratic's chart
     /// derivatives.
-    #[test]
+    #[crate::unit::test]
     fn chart_derivatives_by_the_inverse_function_rule() {
         use crate::geom::axpy;
         let truth = |a: f64, b: f64| Derivatives {

@@ -95,7 +95,7 @@ pub(super) fn pull_back(d: &Derivatives, j: [[f64; 2]; 2], twist: [f64; 2]) -> D
     out
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
@@ -108,7 +108,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn locate_inverts_the_kite_maps_on_the_triangle() {
         for i in 0..=20 {
             for k in 0..=20 - i {
@@ -133,7 +133,7 @@ mod tests {
 
     /// The chart derivatives of a polynomial in the chart, pulled back through a kite, are the
     /// polynomial's own.
-    #[test]
+    #[crate::unit::test]
     fn chart_derivatives_by_the_inverse_function_rule() {
         // f(a, b) = (a^2 + 3ab - b^2 + a, 2 b^2 - ab, a b^2) at the kite parameters
         let f = |a: f64, b: f64| {

@@ -112,11 +112,11 @@ pub fn derivatives(patch: &BezierPatch, st: [f64; 2]) -> Result<Derivatives> {
     })
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn stored_triangle_matches_its_tensor_patch() {
         // a random quartic triangle, stored as the loop surface stores it
         let mut tri = [[0.0; 3]; 15];

@@ -77,7 +77,7 @@ fn check_geometry(c: &PatchComplex, t: &Tessellation) {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn closed_torus() {
     let c = torus(6, 4);
     for n in [1usize, 2, 4] {
@@ -91,7 +91,7 @@ fn closed_torus() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn torus_with_t_junctions() {
     // three patches split into quarters: their neighbours see 2:1 T-junctions
     let c = refine_some(&torus(6, 4), &[0, 7, 14]);
@@ -118,7 +118,7 @@ fn torus_with_t_junctions() {
     assert!(mesh.is_ok());
 }
 
-#[test]
+#[crate::unit::test]
 fn sphere_of_lunes_with_collapsed_sides() {
     let c = lunes(5);
     // (n = 1 would leave each lune a segment between its poles: no triangles)
@@ -132,7 +132,7 @@ fn sphere_of_lunes_with_collapsed_sides() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn degenerate_input_does_not_panic() {
     let empty = PatchComplex::new();
     assert_eq!(tessellate(&empty, 4), Tessellation::default());
@@ -176,7 +176,7 @@ fn degenerate_input_does_not_panic() {
     assert_eq!(t.num_triangles(), 2);
 }
 
-#[test]
+#[crate::unit::test]
 fn polygons_for_writers() {
     let c = refine_some(&grid(3), &[4]);
     let t = tessellate(&c, 2);

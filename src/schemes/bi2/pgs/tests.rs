@@ -2,7 +2,7 @@
 
 use super::*;
 
-#[test]
+#[crate::unit::test]
 fn regular_parameters_are_bi2() {
     let p = PgsParams::new(4).unwrap();
     assert_eq!(p.mu, 1.0);
@@ -12,7 +12,7 @@ fn regular_parameters_are_bi2() {
     assert!(PgsParams::new(2).is_err());
 }
 
-#[test]
+#[crate::unit::test]
 fn ds_net_labels() {
     for n in [3, 5, 8] {
         let m = ds_net(n, |_, _| 0.0).unwrap();
@@ -29,7 +29,7 @@ fn ds_net_labels() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn face_corners_equal_the_corner_stencils() {
     // A facet with a DS-net (rule (4)) and one without (the outer ring's faces: Doo-Sabin).
     for n in [3, 5, 8, 40] {

@@ -460,11 +460,11 @@ mod step;
 use step::ternary_limit_stencils;
 pub use step::{edge_child_index, face_child_index, regular_patch, ternary_step};
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn published_alphas_satisfy_the_limit_equations() {
         // The adjustable solve at e = 1/3, uniform widths, returns TPS's published alphas.
         let adj = TernaryRules {
@@ -479,7 +479,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[crate::unit::test]
     fn uniform_rules_are_17() {
         let m = crate::mesh::nets::cnet(5, crate::mesh::nets::CnetShape::Convex, 2);
         let r = Tps.refine(&m).unwrap();

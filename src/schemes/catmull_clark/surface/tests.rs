@@ -67,7 +67,7 @@ pub(crate) fn max_gap(c: &PatchComplex) -> f64 {
     worst
 }
 
-#[test]
+#[crate::unit::test]
 fn cube_rings_and_fill_are_closed() {
     let m = crate::mesh::nets::unit_cube();
     for rings in [1, 2, 3] {

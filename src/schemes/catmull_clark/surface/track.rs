@@ -305,13 +305,13 @@ impl Tracker {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The side-by-side sums are the conversion's stencils applied one after another, bit for
     /// bit, and `tensor_apply`'s products: on nets of mixed signs, magnitudes and zeros.
-    #[test]
+    #[crate::unit::test]
     fn coefficients_are_the_stencils_bit_for_bit() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut next = || {

@@ -11,7 +11,7 @@ fn opts(rings: usize) -> ComplexOptions {
 /// included), and the points `(a / 2, b / 2)` of every patch are limit points of the once
 /// refined net: face centroids, or on the boundary the midpoints of boundary edges (knots of
 /// the Chaikin limit curve).
-#[test]
+#[crate::unit::test]
 fn regular_grid_patches_are_limit_points() {
     let m = crate::mesh::nets::open_grid();
     let c = doo_sabin_complex(&m, opts(3), |_| {}).unwrap();
@@ -48,7 +48,7 @@ fn regular_grid_patches_are_limit_points() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn cube_rings_and_fill() {
     let m = crate::mesh::nets::cube();
     // Every vertex has valence 3: ring 1 is empty, ring 2 has 3 * 3 patches per vertex.
@@ -71,7 +71,7 @@ fn cube_rings_and_fill() {
     assert_eq!(c.len(), 8 * 9 + 8 * 3);
 }
 
-#[test]
+#[crate::unit::test]
 fn rings_zero_names_the_vertex() {
     let m = crate::mesh::nets::cube();
     let e = doo_sabin_complex(&m, opts(0), |_| {})

@@ -177,11 +177,11 @@ pub fn fairness_gram(d: usize, k: usize) -> DMatrix<f64> {
     g
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn the_shear_and_quadratics_lie_in_the_guide_space() {
         for n in [3, 5, 8] {
             let c = constraints(n);

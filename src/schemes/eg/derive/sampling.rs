@@ -272,11 +272,11 @@ pub fn composed_jet_matrix(d: usize, x: &Jet, y: &Jet) -> DMatrix<f64> {
     mono * conv
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[crate::unit::test]
     fn bi4_patches_are_sampled_exactly() {
         // The jets of a bi-4 polynomial give back its L-net; its nodes reproduce the patch.
         let p = |a: usize, b: usize| (a * 7 + b * 3) as f64 * 0.1 + ((a * b) as f64).sin();

@@ -5,7 +5,7 @@ use super::*;
 use crate::schemes::loop_subdivision::limit::tangent_mask;
 use crate::schemes::{Loop, Scheme};
 
-#[test]
+#[crate::unit::test]
 fn table_is_affine_and_symmetric() {
     for (m, w) in BOX_SPLINE_BEZIER {
         assert_eq!(m.iter().sum::<usize>(), 4);
@@ -32,7 +32,7 @@ fn table_is_affine_and_symmetric() {
 /// (x, y = lattice coordinates, which Loop's rules reproduce) put height 1 on one of the 12
 /// control points of a middle triangle, take Loop limit heights at the 15 degree-4 lattice
 /// points of the triangle after two steps, and solve the Bernstein collocation system.
-#[test]
+#[crate::unit::test]
 fn table_is_loops_limit_interpolant() {
     let n = 6;
     let id = |i: usize, j: usize| j * (n + 1) + i;
@@ -108,7 +108,7 @@ fn table_is_loops_limit_interpolant() {
     }
 }
 
-#[test]
+#[crate::unit::test]
 fn tensor_form_equals_triangle() {
     let tri: [Point; 15] = std::array::from_fn(|k| {
         let x = k as f64;
@@ -125,7 +125,7 @@ fn tensor_form_equals_triangle() {
 /// On the open triangle grid every regular triangle (boundary ones included) is a box-spline
 /// piece: its corners are Loop limit points, its half-lattice points limit points of the
 /// refined net and its quarter-lattice points those of the twice refined net.
-#[test]
+#[crate::unit::test]
 fn box_spline_matches_loop_limits() {
     let m = crate::mesh::nets::tri_grid();
     let c = loop_complex(
@@ -168,7 +168,7 @@ fn box_spline_matches_loop_limits() {
 
 /// Above `fill::FOURIER_ABOVE` the fill's edge derivatives at an interior vertex come from the
 /// fan's mode-1 sums: equal to the tangent mask's sum to rounding.
-#[test]
+#[crate::unit::test]
 fn fourier_fan_derivative_equals_the_mask() {
     for n in [33usize, 40, 101] {
         // A wavy fan of n triangles around vertex 0, closed by an outer ring of triangles.

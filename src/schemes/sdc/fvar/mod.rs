@@ -21,7 +21,7 @@
 //! them value by value.
 
 mod level;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;
 
 use crate::mesh::tags::{FvarInterpolation, SubdOptions};

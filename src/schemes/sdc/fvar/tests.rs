@@ -64,7 +64,7 @@ fn uv_at(fvar: FvarInterpolation, boundary: BoundaryInterpolation, c: u32, f: us
     uv.values[uv.corners[k] as usize]
 }
 
-#[test]
+#[crate::unit::test]
 fn seam_values_follow_the_option() {
     use BoundaryInterpolation::{EdgeAndCorner, EdgeOnly};
     use FvarInterpolation::*;
