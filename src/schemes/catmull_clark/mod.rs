@@ -23,8 +23,8 @@
 //!
 //! # One source of truth, two ways to apply it
 //!
-//! The rules are written once (`face_rule`, the edge and vertex rules of `Rules`) against
-//! `CcTerms`: terms on parent vertices and on parent face points. A stencil table
+//! The rules are written once (`rules.rs`: `face_rule`, the edge and vertex rules of `Rules`)
+//! against `CcTerms`: terms on parent vertices and on parent face points. A stencil table
 //! ([`CatmullClark::stencils`]) expands each face-point term into the face's corners; the direct
 //! kernel ([`CatmullClark::refine_points`]) computes the face points first and reads them back,
 //! as OpenSubdiv's primvar refiner does. The child connectivity is derived from the parent's
@@ -40,6 +40,7 @@ pub mod entry;
 mod limit;
 pub mod local;
 pub mod regular;
+mod rules;
 pub mod surface;
 pub use descriptor::DESCRIPTOR;
 pub use limit::LimitStencils;
@@ -56,6 +57,9 @@ use crate::stencil::{RowWriter, StencilTable, Terms, axpy};
 use crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
 use rayon::prelude::*;
 use std::f64::consts::PI;
+
+pub(crate) use rules::Rules;
+use rules::{Eval, Expand, face_rule};
 
 /// Child points per parallel task.
 const BLOCK: usize = 4096;
@@ -74,273 +78,6 @@ pub struct CatmullClark;
 pub struct Configured {
     /// The options.
     pub options: Opts,
-}
-
-/// Receives the terms of a Catmull-Clark rule: weights on parent vertices and on parent face
-/// points (see the module documentation).
-pub(crate) trait CcTerms {
-    /// Adds `w` times parent vertex `v`.
-    fn vertex(&mut self, v: u32, w: f64);
-    /// Adds `w` times the face point of parent face `f` ([`face_rule`]).
-    fn face_point(&mut self, f: u32, w: f64);
-}
-
-/// Face point of face `f`, scaled by `scale`: `scale / k` times each of its `k` corners.
-#[inline]
-fn face_rule(m: &MeshView<'_>, f: usize, scale: f64, out: &mut impl CcTerms) {
-    let face = m.face_corners(f);
-    let w = scale / face.len() as f64;
-    for &v in face {
-        out.vertex(v, w);
-    }
-}
-
-/// OpenSubdiv's face weight of a triangle in the smooth edge mask under
-/// `TriangleSubdivision::Smooth` (`CATMARK_SMOOTH_TRI_EDGE_WEIGHT`).
-const SMOOTH_TRI_WEIGHT: f64 = 0.47;
-
-/// The smooth mask of interior edge `e`, scaled: `(a + b + F1 + F2) / 4`; with smooth
-/// triangles and a triangle among its two faces, face weights `w = (w1 + w2) / 2` (0.47 for a
-/// triangle, 1/4 otherwise) and vertex weights `(1 - 2w) / 2`.
-#[inline(always)]
-fn smooth_edge(m: &MeshView<'_>, e: usize, tris: bool, scale: f64, out: &mut impl CcTerms) {
-    let h = m.edge_he[e];
-    let (a, b, t) = (m.from(h), m.to(h), m.twin(h));
-    let (f1, f2) = (m.face(h), m.face(t));
-    let (mut vw, mut fw) = (0.25, 0.25);
-    if tris {
-        let w = |f: u32| {
-            if m.face_corners(f as usize).len() == 3 {
-                SMOOTH_TRI_WEIGHT
-            } else {
-                0.25
-            }
-        };
-        let (w1, w2) = (w(f1), w(f2));
-        if w1 != 0.25 || w2 != 0.25 {
-            fw = 0.5 * (w1 + w2);
-            vw = 0.5 * (1.0 - 2.0 * fw);
-        }
-    }
-    out.vertex(a, vw * scale);
-    out.vertex(b, vw * scale);
-    out.face_point(f1, fw * scale);
-    out.face_point(f2, fw * scale);
-}
-
-/// The smooth mask of interior vertex `v`, scaled:
-/// `(n - 2)/n v + 1/n^2 sum(edge neighbours) + 1/n^2 sum(face points)`.
-#[inline(always)]
-fn smooth_vertex(m: &MeshView<'_>, v: usize, scale: f64, out: &mut impl CcTerms) {
-    let n = m.outgoing(v).count() as f64;
-    out.vertex(v as u32, scale * (n - 2.0) / n);
-    let w = scale / (n * n);
-    for h in m.outgoing(v) {
-        out.vertex(m.to(h), w);
-        out.face_point(m.face(h), w);
-    }
-}
-
-/// The rules of one step: plain, or with the sharp features of the level.
-pub(crate) struct Rules<'a> {
-    m: MeshView<'a>,
-    sharp: Option<SharpLevel<'a>>,
-    tris: bool,
-}
-
-impl<'a> Rules<'a> {
-    /// The rules for `mesh` under `opts`.
-    pub fn new(mesh: &'a PolyMesh, opts: &Opts) -> Rules<'a> {
-        let tris =
-            opts.triangles() == TriangleSubdivision::Smooth && mesh.uniform_face_size() != Some(4);
-        Rules {
-            m: mesh.view(),
-            sharp: SharpLevel::new(mesh, opts),
-            tris,
-        }
-    }
-
-    /// Edge point of edge `e`: the smooth mask inside, the midpoint on the boundary; with
-    /// sharp features the edge's plan.
-    #[inline(always)]
-    fn edge(&self, e: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
-        self.edge_in::<false>(e, scratch, out)
-    }
-
-    /// Whether the level has neither sharp features nor smooth triangles: the plain rules.
-    fn plain(&self) -> bool {
-        self.sharp.is_none() && !self.tris
-    }
-
-    /// [`Rules::edge`]; `PLAIN` (only where [`Rules::plain`] holds) compiles the feature checks
-    /// away.
-    #[inline(always)]
-    fn edge_in<const PLAIN: bool>(&self, e: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
-        let m = &self.m;
-        let (sharp, tris) = if PLAIN {
-            (None, false)
-        } else {
-            (self.sharp.as_ref(), self.tris)
-        };
-        let plan = match sharp {
-            Some(sl) => sl.edge_plan(e as u32, scratch),
-            None if m.twin(m.edge_he[e]) == NONE => {
-                // EdgePlan::Crease's terms, emitted here: passing `out` to the plan's closure
-                // kept the kernel's accumulator in memory for every point (+6% instructions of
-                // `--levels 3`, callgrind)
-                let h = m.edge_he[e];
-                out.vertex(m.from(h), CREASE_EDGE);
-                out.vertex(m.to(h), CREASE_EDGE);
-                return;
-            }
-            None => EdgePlan::Smooth,
-        };
-        if plan == EdgePlan::Smooth {
-            return smooth_edge(m, e, tris, 1.0, out);
-        }
-        let h = m.edge_he[e];
-        plan.emit(m.from(h), m.to(h), |t| match t {
-            Emit::Smooth(s) => smooth_edge(m, e, tris, s, out),
-            Emit::Vertex(u, w) => out.vertex(u, w),
-        });
-    }
-
-    /// Vertex point of `v`: the smooth mask inside; `3/4 v + 1/8 (a + b)` on the boundary; a
-    /// corner stays put; with sharp features the vertex's plan.
-    #[inline(always)]
-    fn vertex(&self, v: usize, scratch: &mut Scratch, out: &mut impl CcTerms) {
-        self.vertex_in::<false>(v, scratch, out)
-    }
-
-    /// [`Rules::vertex`]; `PLAIN` as in [`Rules::edge_in`].
-    #[inline(always)]
-    fn vertex_in<const PLAIN: bool>(
-        &self,
-        v: usize,
-        scratch: &mut Scratch,
-        out: &mut impl CcTerms,
-    ) {
-        let m = &self.m;
-        let sharp = if PLAIN { None } else { self.sharp.as_ref() };
-        match sharp {
-            Some(sl) if sl.special[v] => {
-                sl.vertex_plan(v as u32, scratch)
-                    .emit(v as u32, |t| match t {
-                        Emit::Smooth(s) => smooth_vertex(m, v, s, out),
-                        Emit::Vertex(u, w) => out.vertex(u, w),
-                    })
-            }
-            None if m.is_boundary_vertex(v) => {
-                if m.is_corner(v) {
-                    out.vertex(v as u32, 1.0);
-                } else {
-                    let (a, b) = m.boundary_neighbors(v);
-                    out.vertex(v as u32, 0.75);
-                    out.vertex(a, 0.125);
-                    out.vertex(b, 0.125);
-                }
-            }
-            _ => smooth_vertex(m, v, 1.0, out),
-        }
-    }
-}
-
-/// Expands face-point terms into the face's corners: the table form of a rule.
-struct Expand<'a, T> {
-    m: MeshView<'a>,
-    row: &'a mut T,
-}
-
-impl<T: Terms> CcTerms for Expand<'_, T> {
-    #[inline]
-    fn vertex(&mut self, v: u32, w: f64) {
-        self.row.add(v, w);
-    }
-
-    #[inline]
-    fn face_point(&mut self, f: u32, w: f64) {
-        let m = self.m;
-        face_rule(&m, f as usize, w, self);
-    }
-}
-
-/// Evaluates a rule on point data, reading face points from the already computed child points.
-struct Eval<'a, const D: usize> {
-    src: &'a [[f64; D]],
-    faces: &'a [[f64; D]],
-    acc: [f64; D],
-}
-
-impl<'a, const D: usize> Eval<'a, D> {
-    #[inline]
-    fn new(src: &'a [[f64; D]], faces: &'a [[f64; D]]) -> Self {
-        Eval {
-            src,
-            faces,
-            acc: [0.0; D],
-        }
-    }
-}
-
-impl<const D: usize> CcTerms for Eval<'_, D> {
-    #[inline]
-    fn vertex(&mut self, v: u32, w: f64) {
-        axpy(&mut self.acc, w, &self.src[v as usize]);
-    }
-
-    #[inline]
-    fn face_point(&mut self, f: u32, w: f64) {
-        axpy(&mut self.acc, w, &self.faces[f as usize]);
-    }
-}
-
-impl Rules<'_> {
-    /// The stencil of the vertex point of `v` under these rules (the tests' reference for the
-    /// rows [`Rules::push_vertex_row`] writes).
-    #[cfg(feature = "unit-tests")]
-    pub(crate) fn vertex_stencil(&self, v: usize) -> crate::stencil::Stencil {
-        let mut s = crate::stencil::Stencil::new();
-        let m = self.m;
-        self.vertex(v, &mut Scratch::default(), &mut Expand { m, row: &mut s });
-        s.merged()
-    }
-
-    /// Appends the row of the vertex point of `v` ([`Rules::vertex_stencil`]) to `table`,
-    /// through the reusable buffers `scratch` and `row` (no allocation per row).
-    pub(crate) fn push_vertex_row(
-        &self,
-        v: usize,
-        scratch: &mut Scratch,
-        row: &mut RowWriter,
-        table: &mut StencilTable,
-    ) {
-        let m = self.m;
-        self.vertex(v, scratch, &mut Expand { m, row: &mut *row });
-        row.push_into(table);
-    }
-
-    /// Appends the row of the edge point of `e` ([`Rules::edge_stencil`]) to `table`, as
-    /// [`Rules::push_vertex_row`].
-    pub(crate) fn push_edge_row(
-        &self,
-        e: usize,
-        scratch: &mut Scratch,
-        row: &mut RowWriter,
-        table: &mut StencilTable,
-    ) {
-        let m = self.m;
-        self.edge(e, scratch, &mut Expand { m, row: &mut *row });
-        row.push_into(table);
-    }
-
-    /// The stencil of the edge point of edge `e` under these rules.
-    #[cfg(feature = "unit-tests")]
-    pub(crate) fn edge_stencil(&self, e: usize) -> crate::stencil::Stencil {
-        let mut s = crate::stencil::Stencil::new();
-        let m = self.m;
-        self.edge(e, &mut Scratch::default(), &mut Expand { m, row: &mut s });
-        s.merged()
-    }
 }
 
 /// Fails when a child net would not fit fairsub's 32-bit indices.

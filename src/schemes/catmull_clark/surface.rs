@@ -46,7 +46,9 @@
 //! C^0 to the last ring and between fill patches and G^1 at the centre; it is not G^1 across its
 //! own boundaries. `fairsub check` measures its defects.
 
+mod caps;
 mod emit;
+mod fill;
 mod g1;
 mod jets;
 pub mod sharp;
@@ -71,6 +73,8 @@ use crate::schemes::sdc::crease::adaptive::{
     child as sharp_child, crease_curve, edge_known, is_hole, is_last_cap_level, touches_features,
 };
 use crate::stencil::{RowWriter, StencilTable, Terms};
+use caps::apply_caps;
+use fill::fill;
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 pub use track::{bspline_coefficients, bspline_patch, catmull_clark_tracked};
@@ -259,121 +263,6 @@ impl AdaptiveRules for CcRules<'_> {
     }
 }
 
-/// Caps every cappable extraordinary corner of the marked faces; returns the faces left.
-fn apply_caps(
-    level: &Level,
-    marked: Vec<(u32, Tag)>,
-    builder: &dyn CapBuilder,
-    l: u32,
-    out: &mut PatchComplex,
-) -> Result<Vec<(u32, Tag)>> {
-    let m = &level.mesh;
-    let mut cand: HashMap<u32, Vec<u32>> = HashMap::new();
-    // Each corner is examined once: a vertex of valence n is a corner of n marked faces, and
-    // its c-net walk costs n, so asking again for every face (as when it is not accepted and
-    // so not in `cand`) is n^2.
-    let mut seen: HashSet<u32> = HashSet::new();
-    for &(f, _) in &marked {
-        for &v in m.face(f as usize) {
-            let vi = level.info[v as usize];
-            if !seen.insert(v)
-                || m.is_regular_quad_vertex(v as usize)
-                || m.is_boundary_vertex(v as usize)
-            {
-                continue;
-            }
-            let Some(element) = vi.origin else { continue };
-            if !vi.fan_ok || !vi.pos_ok {
-                continue;
-            }
-            let Some(idx) = m.cnet_indices(v as usize, 2) else {
-                continue;
-            };
-            let n = m.valence(v as usize);
-            if touches_features(level, &idx) {
-                builder.note(format!(
-                    "{} (valence {n}) is next to a sharp feature (within the two rings of its \
-                     c-net): Catmull-Clark rings with OpenSubdiv's rules there until it is \
-                     clear of it, Catmull-Clark's cap if it never is",
-                    crate::host::caps::describe(element)
-                ));
-                continue;
-            }
-            // The one-ring (chart points (1, 0) and (1, 1) of each sector) must be regular and
-            // complete, and the whole c-net trusted.
-            let ring1_ok = (0..n).all(|s| {
-                [idx[1 + 6 * s], idx[2 + 6 * s]]
-                    .iter()
-                    .all(|&w| level.info[w as usize].fan_ok && m.is_regular_quad_vertex(w as usize))
-            });
-            if !ring1_ok || idx.iter().any(|&w| !level.info[w as usize].pos_ok) {
-                continue;
-            }
-            if !builder.accepts(n, element)? {
-                continue;
-            }
-            cand.insert(v, idx);
-        }
-    }
-    // Keep a vertex only if every extraordinary vertex of its c-net is capped too.
-    loop {
-        let drop: Vec<u32> = cand
-            .iter()
-            .filter(|(v, idx)| {
-                idx.iter().any(|&w| {
-                    w != **v && !m.is_regular_quad_vertex(w as usize) && !cand.contains_key(&w)
-                })
-            })
-            .map(|(&v, _)| v)
-            .collect();
-        if drop.is_empty() {
-            break;
-        }
-        for v in drop {
-            cand.remove(&v);
-        }
-    }
-    let mut capped: Vec<u32> = cand.keys().copied().collect();
-    capped.sort_unstable();
-    let domains: HashMap<u32, Domain> = if capped.is_empty() {
-        HashMap::new()
-    } else {
-        marked.iter().map(|&(f, tag)| (f, tag.domain)).collect()
-    };
-    for &v in &capped {
-        let idx = &cand[&v];
-        let pts: Vec<Point> = idx.iter().map(|&w| m.position(w as usize)).collect();
-        let element = level.info[v as usize].origin.expect("checked above");
-        let sectors = sector_domains(m, v, &domains);
-        builder.build(&pts, m.valence(v as usize), element, l + 1, &sectors, out)?;
-    }
-    Ok(marked
-        .into_iter()
-        .filter(|&(f, _)| !m.face(f as usize).iter().any(|w| cand.contains_key(w)))
-        .collect())
-}
-
-/// The domain of each sector's face around the interior vertex `v`, in the sector order of
-/// [`PolyMesh::cnet_indices`], rotated to `v`'s corner (the frame [`CapBuilder::build`]
-/// documents); [`Domain::UNTRACKED`] for faces without one in `domains`.
-fn sector_domains(m: &PolyMesh, v: u32, domains: &HashMap<u32, Domain>) -> Vec<Domain> {
-    let h0 = m.vertex_halfedge(v as usize);
-    let ring = m.interior_ring_from(h0).unwrap_or_default();
-    ring.iter()
-        .map(|&h| {
-            let f = m.he_face(h);
-            let face = m.face(f as usize);
-            let to = m.he_to(h);
-            let corner = (0..face.len())
-                .find(|&c| face[c] == v && face[(c + 1) % face.len()] == to)
-                .unwrap_or(0);
-            domains
-                .get(&f)
-                .map_or(Domain::UNTRACKED, |d| d.rotated(corner as u32))
-        })
-        .collect()
-}
-
 /// The bi-3 patch of face `f` if it is regular and all its net points are trusted.
 fn regular_patch(level: &Level, f: usize) -> Option<BezierPatch> {
     regular_net(level, f).map(|net| net_patch(level, &net))
@@ -558,81 +447,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
         sharp,
         rows: keep.then_some(table),
     })
-}
-
-/// The Hermite-Coons fill of the marked faces of the last level; `emitted` lists the level's
-/// emitted faces and their patches.
-fn fill(
-    level: &Level,
-    marked: &[(u32, Tag)],
-    emitted: &[(u32, u32)],
-    out: &mut PatchComplex,
-) -> Result<()> {
-    let m = &level.mesh;
-    let mut jets = jets::Jets::new(m);
-    let patch_of: HashMap<u32, u32> = emitted.iter().copied().collect();
-    let mut curves: Curves<4> = HashMap::new();
-    for &(f, tag) in marked {
-        let face = m.face(f as usize);
-        if face.len() != 4 {
-            return Err(Error::Unsupported(format!(
-                "the fill needs quads; face {f} of the last level has {} sides",
-                face.len()
-            )));
-        }
-        let mut sides = [[[0.0; 3]; 4]; 4];
-        for k in 0..4 {
-            let (a, b) = (face[k], face[(k + 1) % 4]);
-            let key = (a.min(b), a.max(b));
-            // an edge shared with an emitted patch takes that patch's side (the face across is
-            // the only emitted face at the edge)
-            if !curves.contains_key(&key)
-                && let Some(t) = m.he_twin(m.face_halfedge(f as usize) + k as u32)
-                && let Some(&p) = patch_of.get(&m.he_face(t))
-            {
-                let g = m.he_face(t) as usize;
-                record_curves(m, g, &out.patches[p as usize], &mut curves);
-            }
-            let c = *curves.entry(key).or_insert_with(|| {
-                let (lo, hi) = key;
-                if let Some(c) = crease_curve(level, lo, hi) {
-                    return c;
-                }
-                let (p0, d0) = jets.limit_and_derivative(lo as usize, hi as usize);
-                let (p3, d3) = jets.limit_and_derivative(hi as usize, lo as usize);
-                [
-                    p0,
-                    geom::axpy(p0, 1.0 / 3.0, d0),
-                    geom::axpy(p3, 1.0 / 3.0, d3),
-                    p3,
-                ]
-            });
-            let mut c = c;
-            if a > b {
-                c.reverse();
-            }
-            sides[k] = c;
-        }
-        // sides: 0 = v0 (corner 0 -> 1), 1 = u1 (1 -> 2), 2 = v1 run backwards (2 -> 3), 3 = u0
-        // run backwards (3 -> 0).
-        let mut v1 = sides[2];
-        v1.reverse();
-        let mut u0 = sides[3];
-        u0.reverse();
-        let patch = BezierPatch::coons(3, &sides[0], &sides[1], &v1, &u0);
-        let element = tag.element.unwrap_or(Element::Face(tag.input_face));
-        // the fill patch has the face's own corners: its domain is the face's cell
-        out.push_in(
-            patch,
-            Provenance::Cap {
-                element,
-                sector: tag.sector,
-            },
-            tag.domain,
-        );
-        sharp::mark_sides(level, f as usize, out);
-    }
-    Ok(())
 }
 
 #[cfg(feature = "unit-tests")]
