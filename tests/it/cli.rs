@@ -335,6 +335,25 @@ fn demo_runs_without_input() {
         .patches;
     // Valence-5 extended c-net: 20 regular faces + 6 rings of 15 patches + 5 fill patches.
     assert_eq!(c.len(), 9 * 5 - 5 + 6 * 15 + 5);
+    // Every scheme of the registry is in the demo: the triangle schemes on the net cut into
+    // triangles (45 quads, 90 triangles), refined 3 times: Loop and the modified butterfly split
+    // each triangle into 4, sqrt(3) into 3.
+    let faces = |name: &str| {
+        fairsub::io::read_mesh(&dir.join(name))
+            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            .mesh
+            .num_faces()
+    };
+    assert_eq!(faces("demo-net-triangles.obj"), 90);
+    assert_eq!(faces("demo-loop-level3.obj"), 90 * 64);
+    assert_eq!(faces("demo-butterfly-level3.obj"), 90 * 64);
+    assert_eq!(faces("demo-sqrt3-level3.obj"), 90 * 27);
+    for e in fairsub::schemes::registry().entries() {
+        if e.capabilities().refine {
+            let level3 = dir.join(format!("demo-{}-level3.obj", e.name));
+            assert!(level3.exists(), "the demo left out {}", e.name);
+        }
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
