@@ -3,7 +3,8 @@
 //! crease rules before the scheme's rules (`schemes::prepare`'s spend,
 //! `docs/guide/src/creases.md`). Closed creased nets give closed G^1 surfaces, sharpness 10
 //! carried through the steps is the infinitely sharp crease, `--prepare none` keeps the
-//! refusal, and a sharpness the whole-net steps cannot afford is refused by name.
+//! refusal, a sharpness the whole-net steps cannot afford is refused by name, and the patch
+//! tables re-apply through the spending steps.
 
 use crate::sharp_helpers::support;
 use support::creased_cube;
@@ -199,4 +200,22 @@ fn a_sharpness_the_whole_net_steps_cannot_afford_is_refused_by_name() {
         e.contains("has the semi-sharp value 9") && e.contains("whole-net steps would make about"),
         "{e}"
     );
+}
+
+#[test]
+fn patch_tables_reapply_through_the_spending_step() {
+    // The table of a net whose creases are spent first is the table of the whole construction
+    // (the spending steps, the cut, the scheme's rings and caps) as a linear map of the input
+    // points: moved input points give the complex built from them (1e-12 of the net's size).
+    // (OpenSubdiv's creases0 pattern: two whole-net steps of the six-face cube; the larger
+    // creased nets of the other tests make the probed tables of these schemes cost seconds each)
+    let net = two_edge_chain();
+    for scheme in SCHEMES {
+        support::table_reapplies(
+            scheme,
+            &format!("two-edge chain under {scheme}"),
+            &net,
+            |_| true,
+        );
+    }
 }
