@@ -13,6 +13,7 @@
 //! through DNS rebinding (its own name resolved to 127.0.0.1) and make it compute for it.
 
 mod api;
+mod mesh;
 
 use crate::error::{Error, Result};
 use std::sync::atomic::{AtomicBool, Ordering};

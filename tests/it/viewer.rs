@@ -201,6 +201,93 @@ const W: u32 = 640;
 const H: u32 = 400;
 
 /// A screenshot of the page (the canvas rectangle read from the page).
+/// The schemes without exact patches (sqrt(3), modified butterfly) show their refined net: the
+/// points `fairsub subdivide --levels N --limit` writes, fanned into triangles, with discrete
+/// normals and curvatures (outward normals and negative mean curvature everywhere on the convex
+/// icosahedron, as the exact patches' sign has it).
+#[test]
+fn schemes_without_patches_show_their_refined_net() {
+    let v = start(&["gallery:icosahedron", "--scheme", "loop", "--rings", "2"]);
+    let (_, body) = get(v.port, "/api/schemes");
+    let s: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    let patches = |name: &str| {
+        s["schemes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|x| x["name"] == name)
+            .unwrap_or_else(|| panic!("{name} listed"))["patches"]
+            .as_bool()
+            .unwrap()
+    };
+    assert!(!patches("sqrt3") && !patches("butterfly") && patches("loop"));
+    let dir = std::env::temp_dir().join(format!("fairsub-viewer-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for scheme in ["sqrt3", "butterfly"] {
+        let (status, body) = get(v.port, &format!("/api/surface?scheme={scheme}&rings=2"));
+        assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+        let word = |i: usize| u32::from_le_bytes(body[4 * i..4 * i + 4].try_into().unwrap());
+        let float = |i: usize| f32::from_le_bytes(body[4 * i..4 * i + 4].try_into().unwrap());
+        let (nv, nt, nb, ne, faces) = [1, 2, 3, 4, 5].map(|i| word(i) as usize).into();
+        assert_eq!(body.len(), 48 + 36 * nv + 12 * nt + 24 * nb + 24 * ne);
+        // the command line's refined net, point by point
+        let obj = dir.join(format!("{scheme}.obj"));
+        fairsub::cli::run_words([
+            "fairsub",
+            "subdivide",
+            "gallery:icosahedron",
+            "--scheme",
+            scheme,
+            "--levels",
+            "2",
+            "--limit",
+            "-o",
+            obj.to_str().unwrap(),
+        ])
+        .unwrap();
+        let text = std::fs::read_to_string(&obj).unwrap();
+        let points: Vec<[f64; 3]> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let x: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+                [x[0], x[1], x[2]]
+            })
+            .collect();
+        let tris = text.lines().filter(|l| l.starts_with("f ")).count();
+        assert_eq!((nv, nt, faces), (points.len(), tris, tris), "{scheme}");
+        assert_eq!(ne, 30, "the icosahedron's edges");
+        let (pos, nrm, gauss, mean) = (12, 12 + 3 * nv, 12 + 6 * nv, 12 + 7 * nv);
+        for (i, p) in points.iter().enumerate() {
+            let q = [0, 1, 2].map(|k| float(pos + 3 * i + k) as f64);
+            let n = [0, 1, 2].map(|k| float(nrm + 3 * i + k) as f64);
+            assert!(
+                (0..3).all(|k| (p[k] - q[k]).abs() < 1e-6),
+                "{scheme} vertex {i}: {q:?} vs {p:?}"
+            );
+            let out: f64 = (0..3).map(|k| n[k] * p[k]).sum();
+            let len: f64 = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((len - 1.0).abs() < 1e-6 && out > 0.0, "{scheme} normal {i}");
+            let (k, h) = (float(gauss + i), float(mean + i));
+            assert!(
+                h < 0.0 && k.is_finite(),
+                "{scheme} vertex {i}: K {k}, H {h}"
+            );
+        }
+        let (status, body) = get(v.port, &format!("/api/check?scheme={scheme}&rings=2"));
+        assert_eq!(status, 200);
+        let r: serde_json::Value = serde_json::from_slice(&body).unwrap();
+        assert_eq!(r["mesh"]["faces"], tris, "{scheme}");
+        assert_eq!(r["mesh"]["levels"], 2);
+        assert!(r["notes"][0].as_str().unwrap().contains("no exact patches"));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    // the refined net grows by 3 or 4 each level: the viewer takes at most 6
+    let (status, body) = get(v.port, "/api/surface?scheme=sqrt3&rings=7");
+    assert_eq!(status, 422);
+    assert!(String::from_utf8_lossy(&body).contains("at most 6 levels"));
+}
+
 fn shot(b: &mut cdp::Browser) -> Shot {
     let r = b.eval("JSON.stringify(document.getElementById('gl').getBoundingClientRect())");
     let r: serde_json::Value = serde_json::from_str(r.as_str().unwrap()).unwrap();
@@ -742,6 +829,41 @@ fn slow_scheme_menu_switches_the_surface() {
     );
     let check = b.eval("document.getElementById('check').textContent");
     assert!(check.as_str().unwrap().starts_with("patches"), "{check}");
+    // A scheme without exact patches: its refined net at the field's level, the field named
+    // "levels", the check panel saying what is shown.
+    let ico = start(&["gallery:icosahedron", "--scheme", "loop", "--rings", "3"]);
+    b.open(&format!("{}&mode=mean&overlay=patches", ico.url));
+    let loop_surface = shot(&mut b);
+    set_control(&mut b, "#scheme", "sqrt3", "change");
+    let sqrt3 = shot(&mut b);
+    let text = |b: &mut cdp::Browser, id: &str| {
+        let t = b.eval(&format!("document.getElementById('{id}').textContent"));
+        t.as_str().unwrap().to_string()
+    };
+    assert_eq!(text(&mut b, "ringsname"), "levels");
+    let check = text(&mut b, "check");
+    assert!(
+        check.starts_with("net at level 3 (limit points): 540 faces"),
+        "{check}"
+    );
+    assert_eq!(text(&mut b, "error"), "");
+    let drawn = b.eval("document.body.dataset.triangles");
+    assert_eq!(drawn.as_str(), Some("540"), "the net's triangles drawn");
+    // the same sphere-like surface, drawn as large, with other lines in the patches overlay:
+    // measured 7,778 of 150,420 canvas pixels changed, coverage 0.228 (Loop 0.227)
+    let w = sqrt3.width();
+    let (a, c) = (loop_surface.covered(0, w), sqrt3.covered(0, w));
+    let (px, changed) = (sqrt3.pixels().count(), sqrt3.changed(&loop_surface, 60));
+    eprintln!(
+        "Loop -> sqrt(3) net: {changed} of {px} canvas pixels changed, coverage {a:.3} -> {c:.3}"
+    );
+    assert!((c - a).abs() < 0.1 * a && a > 0.1, "coverage {a} -> {c}");
+    assert!(
+        changed * 40 > px,
+        "Loop -> sqrt(3) changes only {changed} of {px} canvas pixels"
+    );
+    set_control(&mut b, "#scheme", "loop", "change");
+    assert_eq!(text(&mut b, "ringsname"), "rings");
 }
 
 /// `fairsub view FILE.bv`: the file's patches as they are.

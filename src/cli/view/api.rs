@@ -24,6 +24,8 @@ use std::collections::BTreeSet;
 pub const DEFAULT_TESS: usize = 8;
 /// Most rings the page may ask for.
 const MAX_RINGS: usize = 12;
+/// Most levels of a scheme without exact patches (its refined net is shown).
+const MAX_LEVELS: usize = 6;
 /// Complexes kept for repeated requests (the page asks for surface and check of each).
 const CACHE: usize = 4;
 
@@ -40,9 +42,20 @@ struct Built {
     key: String,
     /// The scheme that built it (`None` for a `.bv` file).
     spec: Option<Spec>,
-    complex: PatchComplex,
+    shown: Shown,
     notes: Vec<String>,
     buffer: Option<Vec<u8>>,
+}
+
+/// What a scheme made of the net: exact patches, or (for the schemes without them: sqrt(3),
+/// modified butterfly) the net refined `levels` times, its points at their limit when `limit`.
+enum Shown {
+    Complex(PatchComplex),
+    Mesh {
+        mesh: PolyMesh,
+        levels: usize,
+        limit: bool,
+    },
 }
 
 /// The server's state: the input, the start options and the cache of built surfaces.
@@ -188,12 +201,21 @@ impl State {
             .map(str::to_string)
             .or_else(|| self.scheme.clone())
             .ok_or_else(|| Error::InvalidArgument("no scheme given".into()))?;
+        let id = registry().lookup(&scheme)?.id;
+        let patches = registry().entry(id).capabilities().patches;
+        let rings = self.rings(q)?;
+        if !patches && rings > MAX_LEVELS {
+            return Err(Error::InvalidArgument(format!(
+                "{scheme} has no exact patches and shows its refined net: at most {MAX_LEVELS} \
+                 levels, not {rings}"
+            )));
+        }
         let mut w = vec![
             self.input.clone(),
             "--scheme".into(),
             scheme.clone(),
-            "--rings".into(),
-            self.rings(q)?.to_string(),
+            if patches { "--rings" } else { "--levels" }.into(),
+            rings.to_string(),
         ];
         let known = all_option_words();
         for (k, v) in q {
@@ -217,12 +239,15 @@ impl State {
                 w.extend([flag, v.clone()]);
             }
         }
-        let id = registry().lookup(&scheme)?.id;
         let takes = cli_api::option_words(registry().descriptor(id).params());
         for (k, v) in files {
             if takes.iter().any(|o| o.name == *k) {
                 w.extend([format!("--{k}"), v.clone()]);
             }
+        }
+        if !patches {
+            // last: a scheme without limit masks is asked again without it
+            w.push("--limit".into());
         }
         Ok(w)
     }
@@ -248,19 +273,34 @@ impl State {
             let b = self.cache.remove(k);
             self.cache.push(b);
         } else {
-            let (spec, complex, notes) = match &self.source {
-                Source::Bv(c, _, _) => (None, c.clone(), Vec::new()),
-                Source::Net(_) => {
-                    // `fairsub subdivide WORDS`'s own path: the same parsing, loading, limits
-                    // and construction as the command line and the Python package.
-                    let out = cli_api::subdivide(&words, None)?;
-                    match out.computed {
-                        Computed::Complex(c, notes) => (Some(out.spec), c, notes),
-                        _ => unreachable!("--rings makes a patch complex"),
+            let (spec, shown, notes) = match &self.source {
+                Source::Bv(c, _, _) => (None, Shown::Complex(c.clone()), Vec::new()),
+                // `fairsub subdivide WORDS`'s own path: the same parsing, loading, limits and
+                // construction as the command line and the Python package.
+                Source::Net(_) => match cli_api::subdivide(&words, None) {
+                    // a scheme without limit masks shows its refined net as it is
+                    Err(Error::Unsupported(_)) if words.last().is_some_and(|w| w == "--limit") => {
+                        let out = cli_api::subdivide(&words[..words.len() - 1], None)?;
+                        (
+                            Some(out.spec),
+                            shown(out.computed, &words, false),
+                            Vec::new(),
+                        )
                     }
-                }
+                    out => {
+                        let out = out?;
+                        let limit = words.iter().any(|w| w == "--limit");
+                        let notes = match &out.computed {
+                            Computed::Complex(_, notes) => notes.clone(),
+                            _ => Vec::new(),
+                        };
+                        (Some(out.spec), shown(out.computed, &words, limit), notes)
+                    }
+                },
             };
-            if complex.is_empty() {
+            if let Shown::Complex(c) = &shown
+                && c.is_empty()
+            {
                 return Err(Error::InvalidArgument("the scheme made no patches".into()));
             }
             if self.cache.len() == CACHE {
@@ -269,7 +309,7 @@ impl State {
             self.cache.push(Built {
                 key,
                 spec,
-                complex,
+                shown,
                 notes,
                 buffer: None,
             });
@@ -288,10 +328,14 @@ impl State {
         let list: Vec<_> = registry()
             .entries()
             .iter()
-            .filter(|e| e.descriptor.capabilities().patches)
+            .filter(|e| {
+                let c = e.descriptor.capabilities();
+                c.patches || c.refine
+            })
             .map(|e| {
                 serde_json::json!({
                     "name": e.name,
+                    "patches": e.descriptor.capabilities().patches,
                     "aliases": e.aliases,
                     "family": e.about.family,
                     "options": cli_api::option_words(e.descriptor.params()),
@@ -324,10 +368,34 @@ impl State {
     fn check(&mut self, q: &[(String, String)]) -> Result<Reply> {
         let input = self.input.clone();
         let b = self.built(q)?;
-        // `fairsub check --json`'s own report of the same complex
-        let text =
-            super::super::check::report_json(&input, &b.complex, b.spec.as_ref(), b.notes.clone());
-        Ok(Reply::json_text(text))
+        match &b.shown {
+            // `fairsub check --json`'s own report of the same complex
+            Shown::Complex(c) => Ok(Reply::json_text(super::super::check::report_json(
+                &input,
+                c,
+                b.spec.as_ref(),
+                b.notes.clone(),
+            ))),
+            Shown::Mesh {
+                mesh,
+                levels,
+                limit,
+            } => Ok(Reply::json(&serde_json::json!({
+                "mesh": {
+                    "levels": levels,
+                    "limit": limit,
+                    "vertices": mesh.num_vertices(),
+                    "faces": mesh.num_faces(),
+                },
+                "notes": [format!(
+                    "{} has no exact patches: the surface shown is the net refined {levels} \
+                     times{}, with discrete normals and curvature (angle deficit, cotangent \
+                     Laplacian)",
+                    b.spec.as_ref().map_or("the scheme", |s| s.name()),
+                    if *limit { ", every point at its limit position" } else { "" }
+                )],
+            }))),
+        }
     }
 
     fn surface(&mut self, q: &[(String, String)]) -> Result<Reply> {
@@ -335,10 +403,35 @@ impl State {
         let net = self.net().cloned();
         let b = self.built(q)?;
         if b.buffer.is_none() {
-            super::super::limits::check_tessellation(&b.complex, tess)?;
-            b.buffer = Some(surface_buffer(&b.complex, net.as_ref(), tess));
+            b.buffer = Some(match &b.shown {
+                Shown::Complex(c) => {
+                    super::super::limits::check_tessellation(c, tess)?;
+                    surface_buffer(c, net.as_ref(), tess)
+                }
+                Shown::Mesh { mesh, .. } => super::mesh::mesh_buffer(mesh, net.as_ref()),
+            });
         }
         Ok(Reply::binary(b.buffer.clone().expect("just built")))
+    }
+}
+
+/// The shown surface of what `fairsub subdivide WORDS` computed.
+fn shown(c: Computed, words: &[String], limit: bool) -> Shown {
+    match c {
+        Computed::Complex(c, _) => Shown::Complex(c),
+        Computed::Net(mesh) | Computed::FcvNet(mesh) | Computed::LimitMesh(mesh, _) => {
+            let levels = words
+                .iter()
+                .position(|w| w == "--levels")
+                .and_then(|i| words.get(i + 1))
+                .and_then(|l| l.parse().ok())
+                .unwrap_or(0);
+            Shown::Mesh {
+                mesh,
+                levels,
+                limit,
+            }
+        }
     }
 }
 
@@ -406,6 +499,23 @@ pub fn surface_buffer(c: &PatchComplex, net: Option<&PolyMesh>, tess: usize) -> 
             }
         }
     }
+    let prov: Vec<f32> = (0..t.num_vertices())
+        .map(|v| provenance_code(&c.provenance[t.patch_of_vertex[v] as usize]))
+        .collect();
+    encode(&Shape {
+        positions: &t.positions,
+        normals: &t.normals,
+        curvature: &curv,
+        provenance: &prov,
+        triangles: &t.triangles,
+        boundary: &boundary,
+        edges: &net_edges(net),
+        patches: c.len(),
+    })
+}
+
+/// The edges of `net` as point pairs (each once), for the net overlay.
+pub(super) fn net_edges(net: Option<&PolyMesh>) -> Vec<Point> {
     let mut edges = Vec::new();
     if let Some(m) = net {
         let mut seen = BTreeSet::new();
@@ -419,44 +529,63 @@ pub fn surface_buffer(c: &PatchComplex, net: Option<&PolyMesh>, tess: usize) -> 
             }
         }
     }
+    edges
+}
+
+/// What a surface buffer holds (layout in the module notes), per vertex and per triangle.
+pub(super) struct Shape<'a> {
+    pub positions: &'a [Point],
+    pub normals: &'a [Point],
+    /// Gauss and mean curvature.
+    pub curvature: &'a [[f32; 2]],
+    pub provenance: &'a [f32],
+    pub triangles: &'a [[u32; 3]],
+    /// Patch (or face) boundaries, two points per segment.
+    pub boundary: &'a [Point],
+    /// Net edges, two points per segment.
+    pub edges: &'a [Point],
+    /// Patches (or faces) shown.
+    pub patches: usize,
+}
+
+/// The surface buffer of `s` (layout in the module notes).
+pub(super) fn encode(s: &Shape) -> Vec<u8> {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in &t.positions {
+    for p in s.positions {
         for i in 0..3 {
             lo[i] = lo[i].min(p[i]);
             hi[i] = hi[i].max(p[i]);
         }
     }
-    let nv = t.num_vertices();
-    let mut out = Vec::with_capacity(48 + nv * 36 + t.num_triangles() * 12);
+    let nv = s.positions.len();
+    let mut out = Vec::with_capacity(48 + nv * 36 + s.triangles.len() * 12);
     out.extend_from_slice(b"FSV1");
     for n in [
         nv,
-        t.num_triangles(),
-        boundary.len() / 2,
-        edges.len() / 2,
-        c.len(),
+        s.triangles.len(),
+        s.boundary.len() / 2,
+        s.edges.len() / 2,
+        s.patches,
     ] {
         out.extend_from_slice(&(n as u32).to_le_bytes());
     }
     push_points(&mut out, [lo, hi]);
-    push_points(&mut out, t.positions.iter().copied());
-    push_points(&mut out, t.normals.iter().copied());
-    let scalars = |out: &mut Vec<u8>, f: &dyn Fn(usize) -> f32| {
-        for v in 0..nv {
-            out.extend_from_slice(&f(v).to_le_bytes());
+    push_points(&mut out, s.positions.iter().copied());
+    push_points(&mut out, s.normals.iter().copied());
+    for k in 0..2 {
+        for c in s.curvature {
+            out.extend_from_slice(&c[k].to_le_bytes());
         }
-    };
-    scalars(&mut out, &|v| curv[v][0]);
-    scalars(&mut out, &|v| curv[v][1]);
-    scalars(&mut out, &|v| {
-        provenance_code(&c.provenance[t.patch_of_vertex[v] as usize])
-    });
-    for tri in &t.triangles {
+    }
+    for p in s.provenance {
+        out.extend_from_slice(&p.to_le_bytes());
+    }
+    for tri in s.triangles {
         for i in tri {
             out.extend_from_slice(&i.to_le_bytes());
         }
     }
-    push_points(&mut out, boundary);
-    push_points(&mut out, edges);
+    push_points(&mut out, s.boundary.iter().copied());
+    push_points(&mut out, s.edges.iter().copied());
     out
 }

@@ -426,7 +426,15 @@ function showInfo(i) {
 
 // `check --json`'s report as tables: the joins by kind, C^1 up to scaling, curvature per ring.
 function showCheck(r) {
-  const c = r.continuity, box = $("check");
+  const box = $("check");
+  if (r.mesh) {
+    // a scheme without exact patches: its refined net
+    const m = r.mesh;
+    box.replaceChildren(el("div", `net at level ${m.levels}${m.limit ? " (limit points)" : ""}: ${m.faces} faces, ${m.vertices} vertices`, "sum"));
+    for (const n of r.notes || []) box.appendChild(el("div", "note: " + n, "note"));
+    return;
+  }
+  const c = r.continuity;
   box.replaceChildren(el("div", `patches ${c.patches}, open sides ${c.open_sides}, size ${num(c.size)}`, "sum"));
   if (r.kinds) {
     const k = r.kinds;
@@ -512,6 +520,12 @@ function control(o) {
   return label;
 }
 
+// The rings field counts levels of the refined net for a scheme without exact patches.
+function ringsLabel() {
+  const s = meta.schemes.find((x) => x.name === state.scheme);
+  $("ringsname").textContent = s && s.patches === false ? "levels" : "rings";
+}
+
 function bindControls() {
   const sel = $("scheme"), split = $("split");
   for (const s of meta.schemes) {
@@ -528,11 +542,12 @@ function bindControls() {
     const recompute = ["scheme", "split", "rings"].includes(k);
     el.addEventListener(el.tagName === "SELECT" || recompute ? "change" : "input", () => {
       state[k] = NUMERIC.includes(k) ? parseFloat(el.value) : el.value;
-      if (k === "scheme" || k === "split") buildOptions();
+      if (k === "scheme" || k === "split") { buildOptions(); ringsLabel(); }
       if (recompute) load(); else redraw();
     });
   }
   buildOptions();
+  ringsLabel();
   for (const k of ["net", "patches"]) {
     $(k).checked = state[k];
     $(k).addEventListener("change", () => { state[k] = $(k).checked; redraw(); });
