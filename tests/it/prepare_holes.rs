@@ -4,7 +4,7 @@
 //! the net with those faces deleted outright, patch for patch.
 
 use fairsub::geom::{Point, dist};
-use fairsub::mesh::{Extras, PolyMesh};
+use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
 use fairsub::schemes::registry::registry;
 use fairsub::surface::ComplexOptions;
 
@@ -29,31 +29,58 @@ fn sorted(patches: &[fairsub::bezier::BezierPatch]) -> Vec<Vec<Point>> {
     out.into_iter().map(|(_, c)| c).collect()
 }
 
-/// Builds the tagged grid and the grid with the block deleted under `name`; checks the note,
-/// that patches exist and that the tagged surface is G^1. Returns both complexes' patches.
-fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
-    let (pos, faces) = crate::common::bowl_grid();
+/// The grid's row of edges at `y = 3`, boundary to boundary, away from the hole block.
+const CREASE: [[u32; 2]; 4] = [[15, 16], [16, 17], [17, 18], [18, 19]];
+
+/// `m` with `holes` and, with `sharpness`, the crease [`CREASE`] tagged by edge index (as a
+/// file's `t crease` tags are).
+fn tagged(m: PolyMesh, holes: &[usize], sharpness: Option<f32>) -> PolyMesh {
+    let sharp = sharpness.map_or_else(Vec::new, |s| {
+        CREASE
+            .iter()
+            .map(|&[a, b]| {
+                // the net may have dropped vertices in no face: input numbering
+                let v = |x: u32| m.input_vertex(x as usize).expect("a vertex");
+                (m.find_edge(v(a), v(b)).expect("an edge"), s)
+            })
+            .collect()
+    });
     let ex = Extras {
-        holes: HOLES.iter().map(|&f| f as u32).collect(),
+        holes: holes.iter().map(|&f| f as u32).collect(),
+        sharp_edges: SharpEdges::ById(sharp),
         ..Extras::default()
     };
-    let tagged = PolyMesh::new(pos.clone(), &faces)
-        .expect("the grid")
-        .with_extras(Some(ex));
+    m.with_extras(Some(ex))
+}
+
+/// Builds the tagged grid (with the crease of `sharpness`, if any) and the grid with the block
+/// deleted (and the same crease) under `name`; checks the note, that patches exist, that the
+/// tagged surface is G^1 and keeps the crease as a sharp join. Returns both complexes' patches.
+fn both_creased(name: &str, sharpness: Option<f32>) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
+    let (pos, faces) = crate::common::bowl_grid();
+    let tagged_net = tagged(
+        PolyMesh::new(pos.clone(), &faces).expect("the grid"),
+        &HOLES,
+        sharpness,
+    );
     let kept: Vec<Vec<usize>> = faces
         .iter()
         .enumerate()
         .filter(|(f, _)| !HOLES.contains(f))
         .map(|(_, f)| f.clone())
         .collect();
-    let deleted = PolyMesh::new(pos, &kept).expect("the grid without the block");
+    let deleted = tagged(
+        PolyMesh::new(pos, &kept).expect("the grid without the block"),
+        &[],
+        sharpness,
+    );
     assert_eq!(deleted.num_faces(), 12);
     let opts = ComplexOptions {
         rings: 3,
         fill: true,
     };
     let spec = registry().lookup(name).expect("registered");
-    let out = fairsub::surface::build(&spec, &tagged, opts, &mut |_| {})
+    let out = fairsub::surface::build(&spec, &tagged_net, opts, &mut |_| {})
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(
         out.notes.iter().any(|n| n.contains("4 hole faces removed")),
@@ -64,6 +91,13 @@ fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
     let c = fairsub::analysis::continuity::check(&out.complex);
     let g1 = c.by_kind.values().map(|d| d.g1).fold(0.0f64, f64::max);
     assert!(g1 < 1e-8, "{name}: G^1 {g1:e}");
+    // an infinitely sharp crease stays a sharp join, a semi-sharp one is spent
+    let sharp = sharpness.is_some_and(|s| s >= 10.0);
+    assert_eq!(
+        c.sharp.pieces > 0,
+        sharp,
+        "{name} {sharpness:?}: the crease"
+    );
     let want = fairsub::surface::build(&spec, &deleted, opts, &mut |_| {})
         .unwrap_or_else(|e| panic!("{name} without the block: {e}"));
     (sorted(&out.complex.patches), sorted(&want.complex.patches))
@@ -80,6 +114,11 @@ const SCHEMES: [&str; 7] = [
     "tps",
     "tps-adjustable",
 ];
+
+/// [`both_creased`] without a crease.
+fn both(name: &str) -> (Vec<Vec<Point>>, Vec<Vec<Point>>) {
+    both_creased(name, None)
+}
 
 #[test]
 fn hole_faces_leaving_a_vertex_in_no_face_are_removed_and_the_surface_built() {
@@ -106,5 +145,41 @@ fn hole_faces_give_the_surface_of_the_net_without_them() {
             })
             .fold(0.0f64, f64::max);
         assert!(worst < 1e-12, "{name}: control points differ by {worst:e}");
+    }
+}
+
+/// Measured 2026-12-07 on main: a net with hole tags lost every crease tagged by edge index
+/// under the bi-2 schemes (`PolyMesh::without_holes`, which renumbers the edges for output
+/// nets, drops those tags, and the hole removal before the cut used it): "the net is cut along
+/// its 0 infinitely sharp edges". The removal now carries the creases by their end points. An
+/// infinitely sharp crease under every bi-2 scheme, and a semi-sharp one under the schemes
+/// whose patches take it (Doo-Sabin, DS^CC, PGS; the four that spend sharpness by whole-net
+/// steps refuse hole tags with it, `semisharp_rings.rs`).
+#[test]
+fn hole_faces_keep_the_creases_of_the_net() {
+    let cases = SCHEMES
+        .iter()
+        .map(|&n| (n, 10.0))
+        .chain(["doo-sabin", "doo-sabin-cc", "pgs"].map(|n| (n, 1.5)));
+    for (name, s) in cases {
+        let (a, b) = both_creased(name, Some(s));
+        // the crease changes the surface (so a dropped crease cannot pass)
+        let (smooth, _) = both(name);
+        assert!(
+            smooth.len() != a.len()
+                || smooth.iter().zip(&a).any(|(p, q)| p.len() != q.len()
+                    || p.iter().zip(q).any(|(x, y)| dist(*x, *y) > 1e-3)),
+            "{name} {s}: the crease changes nothing"
+        );
+        assert_eq!(a.len(), b.len(), "{name} {s}: patch counts");
+        let worst = a
+            .iter()
+            .zip(&b)
+            .flat_map(|(p, q)| p.iter().zip(q).map(|(x, y)| dist(*x, *y)))
+            .fold(0.0f64, f64::max);
+        assert!(
+            worst < 1e-12,
+            "{name} {s}: control points differ by {worst:e}"
+        );
     }
 }
