@@ -219,3 +219,92 @@ fn patch_tables_reapply_through_the_spending_step() {
         );
     }
 }
+
+/// Hole tags beside semi-sharp creases (refused before 2026-12-07: the dual steps carry no
+/// hole): the hole faces are removed before the spending steps, as the dual schemes' patches
+/// remove them, so the surface is that of the net with those faces deleted outright, patch for
+/// patch, and G^1 with the hole's boundary open.
+#[test]
+fn hole_faces_are_removed_before_the_spending_steps() {
+    let chain = two_edge_chain();
+    let ex = chain.extras().cloned().expect("tags");
+    let fairsub::mesh::SharpEdges::ById(tags) = &ex.sharp_edges else {
+        panic!("tags by edge index");
+    };
+    // the face across from the chain (face 0) is the hole
+    let hole = 1;
+    let tagged = chain.clone().with_extras(Some(Extras {
+        holes: vec![hole as u32],
+        ..ex.clone()
+    }));
+    let kept: Vec<Vec<usize>> = (0..chain.num_faces())
+        .filter(|&f| f != hole)
+        .map(|f| chain.face(f).iter().map(|&v| v as usize).collect())
+        .collect();
+    let open = PolyMesh::new(chain.positions().to_vec(), &kept).expect("the open box");
+    let sharp = tags
+        .iter()
+        .map(|&(e, s)| {
+            let h = chain.edge_halfedge(e as usize);
+            let e = open
+                .find_edge(chain.he_from(h), chain.he_to(h))
+                .expect("kept");
+            (e, s)
+        })
+        .collect();
+    let open = open.with_extras(Some(Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Extras::default()
+    }));
+    for scheme in SCHEMES {
+        let out =
+            build(scheme, &tagged, PrepareMode::Auto).unwrap_or_else(|e| panic!("{scheme}: {e}"));
+        let want =
+            build(scheme, &open, PrepareMode::Auto).unwrap_or_else(|e| panic!("{scheme}: {e}"));
+        assert!(
+            out.notes.iter().any(|n| n.contains("1 hole faces removed")),
+            "{scheme}: {:?}",
+            out.notes
+        );
+        let r = continuity::check(&out.complex);
+        assert!(
+            r.all.c0 < 1e-12 && r.all.g1 < 1e-8,
+            "{scheme}: G1 {:e}",
+            r.all.g1
+        );
+        assert!(r.open_sides > 0, "{scheme}: the hole's boundary");
+        let (a, b) = (&out.complex.patches, &want.complex.patches);
+        assert_eq!(a.len(), b.len(), "{scheme}: patch counts");
+        let worst = a
+            .iter()
+            .zip(b)
+            .flat_map(|(p, q)| {
+                p.cps
+                    .iter()
+                    .zip(&q.cps)
+                    .map(|(x, y)| fairsub::geom::dist(*x, *y))
+            })
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "{scheme}: {} patches, against the open box {worst:.1e}",
+            a.len()
+        );
+        assert!(worst < 1e-12, "{scheme}: {worst:e}");
+        // evaluation keeps addressing the input faces; the hole's face has no surface
+        let spec = registry().lookup(scheme).expect("scheme");
+        let s = fairsub::surface::eval::Surface::build(&spec, &tagged, RINGS).expect(scheme);
+        let w = fairsub::surface::eval::Surface::build(&spec, &open, RINGS).expect(scheme);
+        for f in (0..chain.num_faces()).filter(|&f| f != hole) {
+            let g = f - usize::from(f > hole);
+            for (u, v) in [(0.3, 0.6), (0.5, 0.5), (0.9, 0.2)] {
+                let p = s.evaluate(f as u32, u, v).expect("a kept face").point;
+                let q = w.evaluate(g as u32, u, v).expect("the open box").point;
+                assert!(fairsub::geom::dist(p, q) < 1e-12, "{scheme} face {f}");
+            }
+        }
+        assert!(
+            s.evaluate(hole as u32, 0.5, 0.5).is_err(),
+            "{scheme}: the hole"
+        );
+    }
+}

@@ -354,8 +354,8 @@ fn run(
                 cut: false,
             };
             match r.step {
-                // taken before the rounds (`spend`); a net it left alone (hole tags) is the
-                // scheme's to refuse
+                // taken before the rounds (`spend`); a need it left unmet
+                // is the scheme's to refuse
                 Step::Spend(_) => continue,
                 Step::Own(words) => own.push(record(words.to_string(), Kind::Own)),
                 Step::Net(steps) => {

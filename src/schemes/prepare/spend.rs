@@ -38,7 +38,7 @@ use super::{Applied, Kind, NAMED};
 use crate::error::{Error, Result};
 use crate::mesh::{PolyMesh, SharpEdges};
 use crate::schemes::descriptor::Spec;
-use crate::schemes::doo_sabin::sharp::has_semi_sharp;
+use crate::schemes::doo_sabin::sharp::{has_semi_sharp, without_holes};
 use crate::schemes::needs::{Need, Requirement, Step};
 use crate::schemes::sdc::crease::INFINITE;
 
@@ -99,10 +99,11 @@ pub(super) fn semi_sharp_vertices(mesh: &PolyMesh) -> Vec<u32> {
 }
 
 /// The spending steps for `spec` on `mesh` when its `requirements` declare them
-/// ([`Step::Spend`]) and the net tags semi-sharp features (hole tags aside: the dual steps do
-/// not carry holes, and the scheme refuses such a net with its own message): the spent net,
-/// the map from its faces to the input faces, and the note. `None` when there is nothing to
-/// spend.
+/// ([`Step::Spend`]) and the net tags semi-sharp features: the spent net, the map from its
+/// faces to the input faces, and the note. `None` when there is nothing to spend. The dual
+/// steps do not carry holes, so hole faces are removed first, as the dual schemes' patches
+/// remove them (`crate::schemes::doo_sabin::sharp`: a bi-2 patch spans four faces, the surface
+/// ends on the hole's boundary curve); the map then picks the kept faces.
 ///
 /// # Errors
 /// [`Error::Unsupported`] when the steps would make more than [`MAX_FACES`] faces, naming the
@@ -119,7 +120,7 @@ pub(super) fn spend(
     }) else {
         return Ok(None);
     };
-    if !has_semi_sharp(mesh) || mesh.extras().is_some_and(|e| !e.holes.is_empty()) {
+    if !has_semi_sharp(mesh) {
         return Ok(None);
     }
     let mut features = semi_sharp_features(mesh);
@@ -143,8 +144,19 @@ pub(super) fn spend(
             crate::schemes::options::ids::CATMULL_CLARK,
         )));
     }
-    let mut net = mesh.clone();
-    let mut map: Option<ParamMap> = None;
+    let holes = mesh.extras().map_or(0, |e| e.holes.len());
+    let mut hole_note = Vec::new();
+    let (mut net, mut map) = if holes == 0 {
+        (mesh.clone(), None)
+    } else {
+        let kept: Vec<usize> = (0..mesh.num_faces())
+            .filter(|&f| !mesh.is_hole(f))
+            .collect();
+        (
+            without_holes(mesh, holes, name, &mut hole_note),
+            Some(ParamMap::input(mesh).select(&kept)),
+        )
+    };
     let mut taken = 0;
     while taken < MAX_STEPS && (taken < steps || has_semi_sharp(&net)) {
         let (child, next) = step.apply(spec, &net, map.as_ref())?;
@@ -155,10 +167,13 @@ pub(super) fn spend(
     let count = features.len();
     let applied = Applied {
         step: format!(
-            "{taken} whole-net {} step{} with fairsub's crease construction (the creases' sharp \
-             rules while their sharpness lasts, OpenSubdiv's fractional blend on the step it \
-             runs out; infinitely sharp creases stay sharp and are cut as without semi-sharp \
+            "{}{taken} whole-net {} step{} with fairsub's crease construction (the creases' \
+             sharp rules while their sharpness lasts, OpenSubdiv's fractional blend on the step \
+             it runs out; infinitely sharp creases stay sharp and are cut as without semi-sharp \
              ones; see docs/guide/src/creases.md)",
+            hole_note
+                .first()
+                .map_or(String::new(), |n| format!("{n}; then ")),
             step.name(),
             if taken == 1 { "" } else { "s" }
         ),
