@@ -50,17 +50,20 @@
 //!   family's own constructions, as PGS and TPS take it for themselves
 //!   ([`Step::Own`], documented in `crate::schemes::bi2::surface`).
 //!
-//! Sharp features. The Catmull-Clark step carries every tag; the dual steps carry boundaries
-//! and kept corners (infinitely sharp boundary corners) but no crease or hole. For patches on
+//! Sharp features. The Catmull-Clark step carries every tag; the dual steps carry boundaries,
+//! kept corners (infinitely sharp boundary corners) and creases (the dual crease rules, as the
+//! dual schemes' own levels refine them) but no hole. For patches on
 //! a net that tags only infinitely sharp features, the needs are tested on the net cut along
 //! its creases with its hole faces removed (`crate::schemes::doo_sabin::sharp`, as the bi-2
 //! schemes' patches cut it themselves): where that net needs a whole-net step, the cut is the
 //! first step (its faces are the input's faces minus the holes, the map picks them) and the
 //! steps follow on the cut net, whose crease sides stay one curve (both sides refine the same
 //! crease polygon); where it needs none, the net is given to the scheme uncut, which cuts it.
-//! Nets with semi-sharp tags, or features the cut refuses, and nets refined whole
-//! (`--levels`) get no dual step: they are given to the scheme as they are, with a note, and
-//! the scheme's own sharp-feature rules decide.
+//! Nets with semi-sharp tags get the dual steps with the crease rules where those carry the
+//! tags (Doo-Sabin, DS^CC and PGS at interior vertices of valence 2; the spending steps of the
+//! schemes without semi-sharp rules). Nets whose features no step carries or the cut refuses,
+//! and nets refined whole (`--levels`) get no dual step: they are given to the scheme as they
+//! are, with a note, and the scheme's own sharp-feature rules decide.
 
 pub mod map;
 mod spend;
@@ -388,15 +391,19 @@ fn has_features(mesh: &PolyMesh) -> bool {
     mesh.extras().is_some_and(|e| e.has_features())
 }
 
-/// Whether the dual steps carry the net's sharp features: none, or only infinitely sharp
-/// corners on the boundary (the kept corners of a net cut along its creases, which a dual
-/// step keeps; see `crate::schemes::doo_sabin`).
+/// Whether the dual steps carry the net's sharp features: none; infinitely sharp corners on
+/// the boundary (the kept corners of a net cut along its creases, which a dual step keeps; see
+/// `crate::schemes::doo_sabin`); creases of any sharpness, which the dual step's crease rules
+/// refine as the dual schemes' own levels do (`crate::schemes::doo_sabin::sharp::step`: an
+/// infinitely sharp crease stays one, a semi-sharp one loses a unit), except under the
+/// boundary mode `none`, for which those rules have no counterpart. Not holes.
 fn dual_carries(mesh: &PolyMesh) -> bool {
     let Some(ex) = mesh.extras().filter(|e| e.has_features()) else {
         return true;
     };
+    let none = ex.options.boundary() == crate::mesh::tags::BoundaryInterpolation::None;
     ex.holes.is_empty()
-        && ex.sharp_edges.is_empty()
+        && (ex.sharp_edges.is_empty() || !none)
         && ex.sharp_vertices.iter().all(|&(v, s)| {
             s >= crate::schemes::sdc::crease::INFINITE && mesh.is_boundary_vertex(v as usize)
         })

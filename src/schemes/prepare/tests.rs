@@ -120,11 +120,13 @@ fn nothing_is_applied_without_need_or_under_none() {
 
 #[crate::unit::test]
 fn the_dual_steps_leave_tagged_nets_to_the_scheme() {
-    // an infinitely sharp crease on the split-edge cube: the Doo-Sabin step does not carry
-    // it, so the net is given to the scheme as it is, with a note
+    // a semi-sharp crease beside a hole tag on the split-edge cube: the Doo-Sabin step
+    // carries the crease but not the hole, so the net is given to the scheme as it is, with a
+    // note
     let m = nets::split_edge_cube();
     let tags = crate::mesh::Extras {
-        sharp_edges: crate::mesh::SharpEdges::ById(vec![(0, 10.0)]),
+        sharp_edges: crate::mesh::SharpEdges::ById(vec![(0, 2.0)]),
+        holes: vec![m.num_faces() as u32 - 1],
         ..Default::default()
     };
     let m = m.with_extras(Some(tags));
