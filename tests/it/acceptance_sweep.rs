@@ -152,16 +152,18 @@ fn every_scheme_on_every_model() {
     let mut table = format!("| model | {} |\n|---|", schemes.join(" | "));
     table.push_str(&"---|".repeat(schemes.len()));
     let mut failures = Vec::new();
-    let mut current = String::new();
-    for ((model, scheme), o) in &results {
-        if *model != current {
-            table.push_str(&format!("\n| {model} |"));
-            current = model.clone();
-        }
-        let (cell, ok) = describe(o);
-        table.push_str(&format!(" {cell} |"));
-        if !ok {
-            failures.push(format!("{model} under {scheme}: {cell}"));
+    // rows by model, cells in the header's (the registry's) order: the results' map sorts the
+    // schemes by name, which put cells under the wrong columns until 2026-12-07
+    let names: std::collections::BTreeSet<&String> = results.keys().map(|(m, _)| m).collect();
+    for model in names {
+        table.push_str(&format!("\n| {model} |"));
+        for scheme in &schemes {
+            let o = &results[&(model.clone(), *scheme)];
+            let (cell, ok) = describe(o);
+            table.push_str(&format!(" {cell} |"));
+            if !ok {
+                failures.push(format!("{model} under {scheme}: {cell}"));
+            }
         }
     }
     table.push('\n');
