@@ -17,7 +17,7 @@
 use super::api::{Shape, encode, net_edges};
 use crate::geom::{Point, add, cross, dot, norm, scale, sub};
 use crate::mesh::PolyMesh;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 use std::f64::consts::PI;
 
 /// The surface buffer of the refined net `mesh`, with the edges of the control net `net`.
@@ -25,17 +25,6 @@ pub(super) fn mesh_buffer(mesh: &PolyMesh, net: Option<&PolyMesh>) -> Vec<u8> {
     let positions = mesh.positions();
     let triangles = fan_triangles(mesh);
     let (normals, curvature) = discrete_geometry(positions, &triangles);
-    let mut faces_edges = Vec::new();
-    let mut seen = BTreeSet::new();
-    for f in mesh.faces() {
-        for (i, &a) in f.iter().enumerate() {
-            let b = f[(i + 1) % f.len()];
-            if seen.insert((a.min(b), a.max(b))) {
-                faces_edges.push(positions[a as usize]);
-                faces_edges.push(positions[b as usize]);
-            }
-        }
-    }
     let curvature: Vec<[f32; 2]> = curvature
         .iter()
         .map(|&[k, h]| [k as f32, h as f32])
@@ -46,7 +35,8 @@ pub(super) fn mesh_buffer(mesh: &PolyMesh, net: Option<&PolyMesh>) -> Vec<u8> {
         curvature: &curvature,
         provenance: &vec![-1.0; positions.len()],
         triangles: &triangles,
-        boundary: &faces_edges,
+        // the refined net's edges stand for the patch boundaries
+        boundary: &net_edges(Some(mesh)),
         edges: &net_edges(net),
         patches: mesh.num_faces(),
     })
