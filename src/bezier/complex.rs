@@ -179,6 +179,23 @@ impl PatchComplex {
         self.uncapped.extend(other.uncapped);
     }
 
+    /// Moves every tracked domain from face `f` of the net the complex was built on to face
+    /// `faces[f]` of another net with the same faces (a net whose faces were kept from it in
+    /// order, such as a net without its hole faces); a face past `faces` leaves its domain
+    /// untracked.
+    pub fn renumber_faces(&mut self, faces: &[u32]) {
+        let moved = |d: Domain| match faces.get(d.face as usize) {
+            Some(&f) if d.is_tracked() => Domain { face: f, ..d },
+            _ => Domain::UNTRACKED,
+        };
+        for d in self.domains.iter_mut().flatten() {
+            *d = moved(*d);
+        }
+        for p in &mut self.pieces {
+            p.domain = moved(p.domain);
+        }
+    }
+
     /// Marks side `side` (its [`Side::index`](super::Side::index)) of patch `patch` as lying
     /// on a sharp feature.
     pub fn mark_sharp(&mut self, patch: usize, side: usize) {

@@ -152,15 +152,13 @@ fn hole_faces_give_the_surface_of_the_net_without_them() {
 /// under the bi-2 schemes (`PolyMesh::without_holes`, which renumbers the edges for output
 /// nets, drops those tags, and the hole removal before the cut used it): "the net is cut along
 /// its 0 infinitely sharp edges". The removal now carries the creases by their end points. An
-/// infinitely sharp crease under every bi-2 scheme, and a semi-sharp one under the schemes
-/// whose patches take it (Doo-Sabin, DS^CC, PGS; the four that spend sharpness by whole-net
-/// steps refuse hole tags with it, `semisharp_rings.rs`).
+/// infinitely sharp crease and a semi-sharp one under every bi-2 scheme.
 #[test]
 fn hole_faces_keep_the_creases_of_the_net() {
     let cases = SCHEMES
         .iter()
         .map(|&n| (n, 10.0))
-        .chain(["doo-sabin", "doo-sabin-cc", "pgs"].map(|n| (n, 1.5)));
+        .chain(SCHEMES.iter().map(|&n| (n, 1.5)));
     for (name, s) in cases {
         let (a, b) = both_creased(name, Some(s));
         // the crease changes the surface (so a dropped crease cannot pass)
@@ -181,5 +179,75 @@ fn hole_faces_keep_the_creases_of_the_net() {
             worst < 1e-12,
             "{name} {s}: control points differ by {worst:e}"
         );
+    }
+}
+
+/// Measured 2026-12-07 on main: with hole tags beside a semi-sharp crease (and beside an
+/// infinitely sharp one under `--prepare none`), evaluation under Doo-Sabin, DS^CC and PGS
+/// addressed the faces of the net without the holes: on the cube with face 4 a hole, `eval
+/// 5:0.3:0.6` was "no patch of the surface covers face 5", and face 4 gave face 5's point. The
+/// patches are built on that net (`doo_sabin::sharp::on_cut_net`), whose domains now go back
+/// to the input faces. Every kept face of the tagged grid evaluates as its face of the grid
+/// without the block, every hole face is an error.
+#[test]
+fn hole_faces_keep_evaluation_on_the_input_faces() {
+    use fairsub::schemes::options::PrepareMode;
+    use fairsub::surface::eval::Surface;
+    let (pos, faces) = crate::common::bowl_grid();
+    let kept: Vec<usize> = (0..faces.len()).filter(|f| !HOLES.contains(f)).collect();
+    let deleted_faces: Vec<Vec<usize>> = kept.iter().map(|&f| faces[f].clone()).collect();
+    let opts = ComplexOptions {
+        rings: 3,
+        fill: true,
+    };
+    let dual = ["doo-sabin", "doo-sabin-cc", "pgs"];
+    let cases = SCHEMES
+        .iter()
+        .flat_map(|&n| [(n, 10.0, PrepareMode::Auto), (n, 1.5, PrepareMode::Auto)])
+        .chain(
+            dual.iter()
+                .flat_map(|&n| [(n, 10.0, PrepareMode::None), (n, 1.5, PrepareMode::None)]),
+        );
+    for (name, s, mode) in cases {
+        let net = tagged(
+            PolyMesh::new(pos.clone(), &faces).expect("the grid"),
+            &HOLES,
+            Some(s),
+        );
+        let deleted = tagged(
+            PolyMesh::new(pos.clone(), &deleted_faces).expect("the grid without the block"),
+            &[],
+            Some(s),
+        );
+        let mut spec = registry().lookup(name).expect("registered");
+        spec.params.prepare = mode;
+        let a = Surface::build(&spec, &net, opts).unwrap_or_else(|e| panic!("{name} {s}: {e}"));
+        let b = Surface::build(&spec, &deleted, opts)
+            .unwrap_or_else(|e| panic!("{name} {s} without the block: {e}"));
+        let (mut worst, mut count) = (0.0f64, 0);
+        for (g, &f) in kept.iter().enumerate() {
+            for (u, v) in [(0.3, 0.6), (0.5, 0.5), (0.9, 0.2), (0.6, 0.95)] {
+                let (Ok(p), Ok(q)) = (a.evaluate(f as u32, u, v), b.evaluate(g as u32, u, v))
+                else {
+                    // both or neither: the crease strip is addressed by no face
+                    assert_eq!(
+                        a.evaluate(f as u32, u, v).is_ok(),
+                        b.evaluate(g as u32, u, v).is_ok(),
+                        "{name} {s} {mode:?}: face {f} at ({u}, {v})"
+                    );
+                    continue;
+                };
+                worst = worst.max(dist(p.point, q.point));
+                count += 1;
+            }
+        }
+        assert!(count >= 40, "{name} {s} {mode:?}: {count} points");
+        assert!(worst < 1e-12, "{name} {s} {mode:?}: {worst:e}");
+        for &f in &HOLES {
+            assert!(
+                a.evaluate(f as u32, 0.5, 0.5).is_err(),
+                "{name} {s} {mode:?}: hole face {f}"
+            );
+        }
     }
 }

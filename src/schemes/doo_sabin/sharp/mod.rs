@@ -224,11 +224,22 @@ pub fn on_cut_net(
     semi_sharp: bool,
     build: impl FnOnce(&PolyMesh) -> Result<SurfaceOutput>,
 ) -> Result<SurfaceOutput> {
+    // both nets below are built without the hole faces: the domains go back to the input
+    // faces, so that evaluation keeps addressing them
+    let to_input = |out: &mut SurfaceOutput| {
+        if mesh.extras().is_some_and(|e| !e.holes.is_empty()) {
+            let kept: Vec<u32> = (0..mesh.num_faces() as u32)
+                .filter(|&f| !mesh.is_hole(f as usize))
+                .collect();
+            out.complex.renumber_faces(&kept);
+        }
+    };
     if let Some((net, mut notes)) = semi_sharp_net(mesh, name, semi_sharp)? {
         let mut out = build(&net)?;
         keep_crease_sides(&mut out.complex);
         notes.append(&mut out.notes);
         out.notes = notes;
+        to_input(&mut out);
         return Ok(out);
     }
     match cut_along_creases(mesh, name)? {
