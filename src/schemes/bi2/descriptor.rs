@@ -147,17 +147,31 @@ impl Descriptor for Bi2Descriptor {
         let poles = spec.params.poles.clone();
         let (name, mode) = (spec.name(), spec.params.prepare);
         patch_fn(move |mesh, opts, progress| {
-            let semi = matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc);
-            crate::schemes::doo_sabin::sharp::on_cut_net(mesh, name, semi, |mesh| {
+            use crate::schemes::doo_sabin::sharp;
+            // semi-sharp features under the mixed and polar nets: PGS's construction, the
+            // surface their spending steps give (`super::surface::spent_by_pgs`)
+            let by_pgs = matches!(kind, Bi2Kind::Mixed | Bi2Kind::Polar)
+                && mode == crate::schemes::options::PrepareMode::Auto
+                && sharp::has_semi_sharp(mesh);
+            let semi = matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) || by_pgs;
+            sharp::on_cut_net(mesh, name, semi, |mesh| {
                 use super::surface as s;
+                if by_pgs {
+                    let (complex, note) = s::spent_by_pgs(mesh, opts, name, progress)?;
+                    return Ok(SurfaceOutput {
+                        complex,
+                        fell_back: Vec::new(),
+                        notes: vec![note],
+                    });
+                }
                 if !matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) {
-                    crate::schemes::doo_sabin::sharp::refuse_kept_corners_with_faces(mesh, name)?;
+                    sharp::refuse_kept_corners_with_faces(mesh, name)?;
                     // the mixed and polar nets give such boundaries to PGS's construction
                     // (super::surface's elements) when preparing
                     let separates = matches!(kind, Bi2Kind::Mixed | Bi2Kind::Polar)
                         && mode == crate::schemes::options::PrepareMode::Auto;
                     if !separates {
-                        crate::schemes::doo_sabin::sharp::refuse_boundary_modes(mesh, name)?;
+                        sharp::refuse_boundary_modes(mesh, name)?;
                     }
                 }
                 let with_notes = |(complex, notes)| SurfaceOutput {
@@ -209,9 +223,10 @@ impl Descriptor for Bi2Descriptor {
         };
         let no_valence_2 = net(Need::NoInteriorValence2, &[NetStep::Pgs]);
         // semi-sharp features: spent by the family's dual step with fairsub's crease
-        // construction (crate::schemes::prepare's spend), the step each member's preparation
-        // takes anyway (Doo-Sabin before TPS's Catmull-Clark step, PGS for the mixed and
-        // polar nets)
+        // construction, the step each member's preparation takes anyway: Doo-Sabin before
+        // TPS's Catmull-Clark step (whole-net steps, crate::schemes::prepare's spend); PGS for
+        // the mixed and polar nets, whose spent net is a PGS net, so PGS's construction builds
+        // its surface refining only near the features (super::surface::spent_by_pgs)
         let spend = |step| Requirement {
             need: Need::InfinitelySharpOnly,
             step: Step::Spend(step),
@@ -230,7 +245,15 @@ impl Descriptor for Bi2Descriptor {
             }
             (Bi2Kind::Pgs, Purpose::Patches) => vec![no_valence_2],
             (Bi2Kind::Mixed | Bi2Kind::Polar, Purpose::Patches) => vec![
-                spend(NetStep::Pgs),
+                Requirement {
+                    need: Need::InfinitelySharpOnly,
+                    step: Step::Own(
+                        "the family's dual step spends the sharpness (fairsub's crease \
+                         construction), and after one PGS step every element is a facet: the \
+                         surface is PGS's, built by PGS's construction, which refines only near \
+                         the semi-sharp features",
+                    ),
+                },
                 no_valence_2,
                 net(
                     Need::Scheme {

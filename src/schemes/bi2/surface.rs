@@ -73,6 +73,7 @@ mod g1;
 mod poles;
 mod thirds;
 use cells::FacetCells;
+pub(crate) use elements::spent_by_pgs;
 pub use elements::{mixed_complex, polar_complex, unseparated, unseparated_polar};
 use poles::PoleCells;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.

@@ -41,11 +41,13 @@
 //!   faces into a `(k + 2)`-sided face whose boundary vertices have two faces each (the dual
 //!   schemes' boundary rules); the Catmull-Clark step then makes that face `k + 2` quads around
 //!   an interior vertex of valence `k + 2`. Every boundary vertex of the result is regular.
-//! * **Spending semi-sharp features** ([`Step::Spend`]: TPS, adjustable TPS, the mixed and
-//!   polar nets, whose element rings have no step that spends sharpness): the dual step those
-//!   schemes' preparation takes anyway (Doo-Sabin, PGS), repeated with the dual crease rules
-//!   until no finite sharpness is left, before everything else (`spend`, fairsub's
-//!   construction, derived there).
+//! * **Spending semi-sharp features** ([`Step::Spend`]: TPS and adjustable TPS, whose element
+//!   rings have no step that spends sharpness): the dual step their preparation takes anyway
+//!   (Doo-Sabin), repeated with the dual crease rules until no finite sharpness is left, before
+//!   everything else (`spend`, fairsub's construction, derived there). The mixed and polar
+//!   nets' step (PGS) would leave a PGS net, so they take PGS's construction instead, which
+//!   takes those steps near the features only ([`Step::Own`], `crate::schemes::bi2::surface`;
+//!   the same surface, a unit test here).
 //! * **Separating extraordinary elements** (`bi2-mixed`, `polar-bi2`) is taken by the bi-2
 //!   family's own constructions, as PGS and TPS take it for themselves
 //!   ([`Step::Own`], documented in `crate::schemes::bi2::surface`).

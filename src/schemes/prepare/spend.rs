@@ -1,6 +1,7 @@
 //! Spending semi-sharp features before the schemes whose rules take infinitely sharp ones only
-//! (TPS, adjustable TPS, the mixed and polar bi-2 nets): fairsub's semi-sharp construction for
-//! them, the step [`Step::Spend`] declares.
+//! (TPS, adjustable TPS): fairsub's semi-sharp construction for them, the step [`Step::Spend`]
+//! declares. (The mixed and polar bi-2 nets, whose spending step is PGS's, take PGS's
+//! construction instead: see `crate::schemes::bi2::surface`'s elements.)
 //!
 //! # The construction (fairsub's, not the bi-2 paper's: the paper has no crease rules)
 //!
@@ -38,7 +39,7 @@ use super::{Applied, Kind, NAMED};
 use crate::error::{Error, Result};
 use crate::mesh::{PolyMesh, SharpEdges};
 use crate::schemes::descriptor::Spec;
-use crate::schemes::doo_sabin::sharp::{has_semi_sharp, without_holes};
+use crate::schemes::doo_sabin::sharp::{has_semi_sharp, spending_steps, without_holes};
 use crate::schemes::needs::{Need, Requirement, Step};
 use crate::schemes::sdc::crease::INFINITE;
 
@@ -126,7 +127,7 @@ pub(super) fn spend(
     let mut features = semi_sharp_features(mesh);
     features.sort_by(|a, b| b.1.total_cmp(&a.1));
     let (sharpest, top) = features[0].clone();
-    let steps = (top.ceil() as usize).clamp(1, MAX_STEPS);
+    let steps = spending_steps(mesh).clamp(1, MAX_STEPS);
     // a dual step makes a face per face, edge and vertex; each later one about four per face
     let first = mesh.num_faces() + mesh.num_edges() + mesh.num_vertices();
     let estimate = first.saturating_mul(4usize.saturating_pow(steps as u32 - 1));

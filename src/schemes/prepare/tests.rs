@@ -150,3 +150,93 @@ fn the_dual_steps_leave_tagged_nets_to_the_scheme() {
     let ex = p.mesh.extras().expect("tags");
     assert_eq!(ex.sharp_edges.len(), 2);
 }
+
+/// `mesh` with the semi-sharp edges `(a, b, sharpness)` (by their end points).
+fn with_creases(mesh: PolyMesh, creases: &[(u32, u32, f32)]) -> PolyMesh {
+    let sharp = creases.iter().map(|&(a, b, s)| ([a, b], s)).collect();
+    mesh.with_extras(Some(crate::mesh::Extras {
+        sharp_edges: crate::mesh::SharpEdges::ByPair(sharp),
+        ..Default::default()
+    }))
+}
+
+/// The mixed and polar nets build the surface of a net with semi-sharp creases by PGS's
+/// construction with the spending steps counted as rings (`bi2::surface::spent_by_pgs`): it
+/// is the surface of the whole-net PGS steps that spend the sharpness followed by the scheme
+/// on the spent net (the construction they took before, and TPS still takes with Doo-Sabin
+/// steps), point for point on every input face.
+#[crate::unit::test]
+fn pgs_construction_equals_the_whole_net_spending_steps() {
+    use crate::surface::eval::Surface;
+    let opts = crate::host::ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let nets = [
+        // a loop around the top face (2.5: three steps) and a side edge fading out (0.7)
+        with_creases(
+            nets::cube(),
+            &[
+                (0, 1, 2.5),
+                (1, 2, 2.5),
+                (2, 3, 2.5),
+                (3, 0, 2.5),
+                (4, 5, 0.7),
+            ],
+        ),
+        // a pentagonal prism (poles for polar-bi2) with one cap's rim at 1.5
+        with_creases(
+            nets::prism(5),
+            &[
+                (15, 16, 1.5),
+                (16, 17, 1.5),
+                (17, 18, 1.5),
+                (18, 19, 1.5),
+                (19, 15, 1.5),
+            ],
+        ),
+    ];
+    for id in [ids::BI2_MIXED, ids::POLAR_BI2] {
+        let spec = Spec::new(id);
+        for (i, net) in nets.iter().enumerate() {
+            let steps = crate::schemes::doo_sabin::sharp::spending_steps(net);
+            assert!(steps >= 2, "net {i}");
+            let local = Surface::build(&spec, net, opts).expect("PGS's construction");
+            // the whole-net steps, then the scheme on the spent net, moved to the input faces
+            let (mut spent, mut map) = (net.clone(), None);
+            for _ in 0..steps {
+                let (child, next) = NetStep::Pgs
+                    .apply(&spec, &spent, map.as_ref())
+                    .expect("a PGS step");
+                spent = child;
+                map = Some(next);
+            }
+            assert!(!crate::schemes::doo_sabin::sharp::has_semi_sharp(&spent));
+            let on_spent = Surface::build(&spec, &spent, opts).expect("the spent net");
+            let mut complex = on_spent.complex().clone();
+            map.expect("steps").lift(&spent, &mut complex);
+            let whole = Surface::new(net, complex);
+            let mut worst = 0.0f64;
+            let mut count = 0;
+            for f in 0..net.num_faces() as u32 {
+                for a in 1..8 {
+                    for b in 1..8 {
+                        let (u, v) = (f64::from(a) / 8.0, f64::from(b) / 8.0);
+                        let (Ok(p), Ok(q)) = (local.evaluate(f, u, v), whole.evaluate(f, u, v))
+                        else {
+                            continue;
+                        };
+                        worst = worst.max(crate::geom::dist(p.point, q.point));
+                        count += 1;
+                    }
+                }
+            }
+            eprintln!("{id} net {i}: {steps} steps, {count} points, {worst:.1e}");
+            assert!(
+                count > 49 * net.num_faces() / 2,
+                "{id} net {i}: {count} points"
+            );
+            assert!(worst < 1e-12, "{id} net {i}: {worst:e}");
+        }
+    }
+}

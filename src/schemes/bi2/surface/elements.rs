@@ -25,6 +25,20 @@
 //!
 //! The note names the elements that were not separated and the construction taken. Under
 //! `--prepare none` the schemes refuse such nets, naming the element.
+//!
+//! # Semi-sharp features (fairsub's construction)
+//!
+//! The element rings have no step that spends a finite sharpness; the family's dual step with
+//! the dual crease rules does (`crate::schemes::doo_sabin::sharp`, the construction TPS takes as
+//! whole-net Doo-Sabin steps, `crate::schemes::prepare`). For the mixed and polar nets that step
+//! is PGS's, and after one PGS step every vertex is regular and every element a facet (poles
+//! too: a pole's fan becomes triangles around an n-gon): the spent net is a PGS net, and the
+//! mixed net of facets is PGS's surface. So [`spent_by_pgs`] builds that surface by PGS's own
+//! construction, which takes the same steps with the same crease rules but only near the
+//! features, instead of `k` whole-net steps (about `4^k` times the net): equal to the
+//! whole-net steps' surface when given `k` more rings, `k` the steps that spend the largest
+//! finite sharpness, since a ring of PGS's construction is one such step around its element
+//! (tested against the whole-net steps, `crate::schemes::prepare`'s tests).
 
 use super::*;
 use crate::schemes::bi2::mixed::{Bi2Element, elements};
@@ -72,6 +86,45 @@ pub fn polar_complex(
     poles::to_input_faces(mesh, &net, &mut c);
     notes.extend(more);
     Ok((c, notes))
+}
+
+/// The surface of a mixed or polar net (scheme `name`) with semi-sharp features under the
+/// preparation (see the [module](self) documentation): PGS's construction with
+/// `opts.rings + k` rings, `k` the whole-net steps that would spend the largest finite
+/// sharpness, so that rings count from the spent net as after any preparation step; with its
+/// note.
+///
+/// # Errors
+/// Those of PGS's construction (an infinitely sharp dart, ...).
+pub(crate) fn spent_by_pgs(
+    mesh: &PolyMesh,
+    opts: ComplexOptions,
+    name: &str,
+    progress: impl FnMut(usize),
+) -> Result<(PatchComplex, String)> {
+    let steps = crate::schemes::doo_sabin::sharp::spending_steps(mesh);
+    let rings = opts.rings + steps;
+    let complex = pgs_complex(
+        mesh,
+        ComplexOptions { rings, ..opts },
+        PgsOptions::default(),
+        progress,
+    )?;
+    let poles = if name == ids::POLAR_BI2.name() {
+        " (poles included)"
+    } else {
+        ""
+    };
+    let note = format!(
+        "semi-sharp features under {name}: the family's PGS steps with fairsub's crease \
+         construction spend them ({steps} for the largest finite sharpness), after which every \
+         element is a facet{poles} and the surface is {p}'s; it is built by {p}'s \
+         construction, which takes those steps only near the features, with the {} rings \
+         asked for counted from the spent net ({rings} in all)",
+        opts.rings,
+        p = ids::PGS,
+    );
+    Ok((complex, note))
 }
 
 /// The elements of a mixed net with their local nets; poles named by `named` (else by their

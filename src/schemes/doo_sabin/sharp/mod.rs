@@ -255,6 +255,7 @@ pub fn on_cut_net(
             let mut notes = cut.notes;
             notes.append(&mut out.notes);
             out.notes = notes;
+            to_input(&mut out);
             Ok(out)
         }
     }
@@ -270,6 +271,29 @@ pub fn has_semi_sharp(mesh: &PolyMesh) -> bool {
                 SharpEdges::ByPair(v) => v.iter().any(|&(_, s)| semi(s)),
             }
     })
+}
+
+/// How many dual steps spend every finite sharpness of `mesh`: the ceiling of the largest
+/// finite positive sharpness (each step lowers every finite value by one, OpenSubdiv's
+/// fractional blend taking the last fraction), at least 1 when the net has one, 0 without.
+pub(crate) fn spending_steps(mesh: &PolyMesh) -> usize {
+    let Some(ex) = mesh.extras() else {
+        return 0;
+    };
+    let semi = |s: f32| s > 0.0 && s < INFINITE;
+    let edges: Box<dyn Iterator<Item = f32>> = match &ex.sharp_edges {
+        SharpEdges::ById(v) => Box::new(v.iter().map(|p| p.1)),
+        SharpEdges::ByPair(v) => Box::new(v.iter().map(|p| p.1)),
+    };
+    let top = edges
+        .chain(ex.sharp_vertices.iter().map(|p| p.1))
+        .filter(|&s| semi(s))
+        .fold(0.0f32, f32::max);
+    if top > 0.0 {
+        (top.ceil() as usize).max(1)
+    } else {
+        0
+    }
 }
 
 /// For a net with semi-sharp features: the net the builder refines with its creases in place
