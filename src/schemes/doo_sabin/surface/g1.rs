@@ -35,9 +35,10 @@
 //!   bi-4 for odd `n`, bi-5 for even `n`.
 //!
 //! Elements that are not of this form after the requested rings (holes that still touch, as
-//! the V-faces of the cube after one level) get up to [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; those
-//! that never are (an `n`-gon at the boundary, corners next to two `n`-gons, `--rings 0`) keep
-//! the centroid fill of the parent module (C^0 across the spokes).
+//! the V-faces of the cube after one level, and any hole while semi-sharp creases refine the
+//! levels, [`no_cap_yet`]) get up to [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more
+//! levels; those that never are (an `n`-gon at the boundary, corners next to two `n`-gons,
+//! `--rings 0`) keep the centroid fill of the parent module (C^0 across the spokes).
 
 use super::{Level, vertex_net};
 use crate::bezier::complex::PatchComplex;
@@ -58,6 +59,21 @@ fn turned(p: BezierPatch, r: usize) -> BezierPatch {
     (0..r).fold(p, |q, _| q.transposed().reversed_v())
 }
 
+/// Why an element has no cap data at `level`: [`NoCap::Later`] while creases refine the level
+/// (a level after a semi-sharp one: its strips, kept points and sector vertices still shape
+/// the neighbourhood, and facets they made touch; measured on OpenSubdiv's `catmark_helmet`,
+/// whose boundary vertex 2 ends a crease of sharpness 7: its hole had no cap data at level 8
+/// and took the centroid fill, 0.30 rad across its spokes, while level 9 caps it G^1), so
+/// that up to [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels are taken;
+/// [`NoCap::Never`] otherwise.
+fn no_cap_yet(level: &Level) -> NoCap {
+    if level.calm < CALM {
+        NoCap::Later
+    } else {
+        NoCap::Never
+    }
+}
+
 /// The holes of element `element` whose marked vertices are `verts`: one per facet of the
 /// element (several for the sectors of a crease vertex, fairsub's crease construction), each
 /// with its centre, two vectors spanning its tangent plane, and the tag of each sector (in the
@@ -70,23 +86,18 @@ fn holes_of(
     marked: &HashSet<u32>,
 ) -> Result<Vec<CapHole>, NoCap> {
     let m = &level.mesh;
-    // facets touching at a corner separate after more levels when creases made them
-    let touching = if level.calm < CALM {
-        NoCap::Later
-    } else {
-        NoCap::Never
-    };
+    let touching = no_cap_yet(level);
     let mut facets: Vec<u32> = Vec::new();
     let mut of_facet: HashMap<u32, Vec<(u32, Tag)>> = HashMap::new();
     for &(v, tag) in verts {
-        let vn = vertex_net(m, v as usize).ok_or(NoCap::Never)?;
+        let vn = vertex_net(m, v as usize).ok_or(touching)?;
         let f = match vn.ngons.as_slice() {
             &[(_, f)] => f,
-            [] => return Err(NoCap::Never),
+            [] => return Err(touching),
             _ => return Err(touching),
         };
         if level.face_origin[f as usize] != Some(element) {
-            return Err(NoCap::Never);
+            return Err(touching);
         }
         of_facet
             .entry(f)
@@ -115,10 +126,11 @@ fn hole_of(
     marked: &HashSet<u32>,
 ) -> Result<CapHole, NoCap> {
     let m = &level.mesh;
+    let never = no_cap_yet(level);
     let face = m.face(f as usize).to_vec();
     let n = face.len();
     if verts.len() != n || n < 3 {
-        return Err(NoCap::Never);
+        return Err(never);
     }
     // Linear in n: the tags, F's corners and F's limit point are looked up, not searched or
     // recomputed per corner.
@@ -130,17 +142,17 @@ fn hole_of(
     let mut tags = Vec::with_capacity(n);
     let mut later = false;
     for &vk in &face {
-        let tag = *tag_of.get(&vk).ok_or(NoCap::Never)?;
+        let tag = *tag_of.get(&vk).ok_or(never)?;
         let vu = vk as usize;
         if m.is_boundary_vertex(vu) {
-            return Err(NoCap::Never);
+            return Err(never);
         }
-        let vn = vertex_net(m, vu).ok_or(NoCap::Never)?;
+        let vn = vertex_net(m, vu).ok_or(never)?;
         let &[(c, g)] = vn.ngons.as_slice() else {
-            return Err(NoCap::Never);
+            return Err(never);
         };
         if g != f {
-            return Err(NoCap::Never);
+            return Err(never);
         }
         // the edge neighbours of v_k outside F hold the ring patches across the outer sides
         let outside = m
@@ -150,7 +162,7 @@ fn hole_of(
             .filter(|w| !in_face.contains(w))
             .collect::<Vec<_>>();
         if outside.len() != 2 {
-            return Err(NoCap::Never);
+            return Err(never);
         }
         if outside.iter().any(|w| marked.contains(w)) {
             later = true;
