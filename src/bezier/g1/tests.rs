@@ -621,3 +621,54 @@ fn centre_derivative(cap: &[crate::bezier::BezierPatch], s: usize) -> Point {
         }
     }
 }
+
+/// A compatible hole, shrunk about its centre by `s` and moved by `offset`: its data rounded
+/// to the coordinates of that place, as a ring computed there has them.
+fn moved_hole(hole: &Hole, s: f64, offset: Point) -> Hole {
+    let c = hole.centre;
+    let to = |p: Point| crate::geom::add(crate::geom::add(c, offset), scale(sub(p, c), s));
+    let mut out = hole.clone();
+    out.centre = to(c);
+    out.tangents = hole.tangents.map(|t| scale(t, s));
+    for seg in out.sectors.iter_mut().flatten() {
+        seg.boundary = seg.boundary.iter().map(|&p| to(p)).collect();
+        seg.cross = seg.cross.iter().map(|&v| scale(v, s)).collect();
+    }
+    out
+}
+
+/// A hole far from the origin and small has data whose rounding, relative to the hole, is
+/// `eps |centre| / size`: its compatibility defect is rounding, not a ring that is not C^1,
+/// and the cap is built ([`super::choose::rounding_floor`]). Before 2026-12-07 the fixed bound
+/// 1e-7 refused such holes (OpenSubdiv's rook under PGS at `--rings 11`), and they took the
+/// C^0 fill. Data that are not C^1 are still refused there.
+#[crate::unit::test]
+fn small_holes_far_from_the_origin_are_capped() {
+    let mut rng = Lcg(11);
+    let hole = random_quad_hole(5, 5, 0.0, &mut rng);
+    let small = moved_hole(&hole, 1e-9, [3.0, -3.0, 3.0]);
+    let opts = CapOptions::default();
+    let cap = g1_cap_with(&small, opts).expect("capped");
+    let floor = super::choose::rounding_floor(&small);
+    eprintln!("defect {:.2e}, floor {floor:.2e}", cap.compatibility.0);
+    // rounding alone puts it above the fixed bound, which refused it
+    assert!(
+        cap.compatibility.0 > MAX_COMPATIBILITY_DEFECT,
+        "{:e}",
+        cap.compatibility.0
+    );
+    assert!(cap.compatibility.0 < floor);
+    // the same hole centred at the origin is compatible to the fixed bound
+    let home = moved_hole(&hole, 1e-9, scale(hole.centre, -1.0));
+    let at_home = g1_cap_with(&home, opts).expect("capped");
+    assert!(
+        at_home.compatibility.0 < 1e-9,
+        "{:e}",
+        at_home.compatibility.0
+    );
+    // a ring that is not C^1 is refused there all the same
+    let mut broken = small.clone();
+    broken.sectors[0][0].cross[1] =
+        crate::geom::add(broken.sectors[0][0].cross[1], [0.0, 0.0, 0.1 * 1e-9]);
+    assert!(g1_cap_with(&broken, opts).is_err());
+}
