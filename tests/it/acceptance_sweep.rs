@@ -35,7 +35,7 @@ const IRREMOVABLE: &[(&str, &str)] = &[
     ),
     (
         "whole-net steps would make about",
-        "semi-sharp creases beyond the whole-net spending steps' size (bi-2 element rings)",
+        "semi-sharp creases beyond the size of TPS's whole-net spending steps",
     ),
     (
         "does not take yet",
