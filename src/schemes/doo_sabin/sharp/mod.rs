@@ -280,14 +280,13 @@ pub(crate) fn spending_steps(mesh: &PolyMesh) -> usize {
     let Some(ex) = mesh.extras() else {
         return 0;
     };
-    let semi = |s: f32| s > 0.0 && s < INFINITE;
     let edges: Box<dyn Iterator<Item = f32>> = match &ex.sharp_edges {
         SharpEdges::ById(v) => Box::new(v.iter().map(|p| p.1)),
         SharpEdges::ByPair(v) => Box::new(v.iter().map(|p| p.1)),
     };
     let top = edges
         .chain(ex.sharp_vertices.iter().map(|p| p.1))
-        .filter(|&s| semi(s))
+        .filter(|&s| crate::schemes::sdc::crease::adaptive::is_semi(s))
         .fold(0.0f32, f32::max);
     if top > 0.0 {
         (top.ceil() as usize).max(1)

@@ -86,18 +86,18 @@ fn holes_of(
     marked: &HashSet<u32>,
 ) -> Result<Vec<CapHole>, NoCap> {
     let m = &level.mesh;
-    let touching = no_cap_yet(level);
+    let not_yet = no_cap_yet(level);
     let mut facets: Vec<u32> = Vec::new();
     let mut of_facet: HashMap<u32, Vec<(u32, Tag)>> = HashMap::new();
     for &(v, tag) in verts {
-        let vn = vertex_net(m, v as usize).ok_or(touching)?;
+        let vn = vertex_net(m, v as usize).ok_or(not_yet)?;
         let f = match vn.ngons.as_slice() {
             &[(_, f)] => f,
-            [] => return Err(touching),
-            _ => return Err(touching),
+            [] => return Err(not_yet),
+            _ => return Err(not_yet),
         };
         if level.face_origin[f as usize] != Some(element) {
-            return Err(touching);
+            return Err(not_yet);
         }
         of_facet
             .entry(f)
@@ -126,11 +126,11 @@ fn hole_of(
     marked: &HashSet<u32>,
 ) -> Result<CapHole, NoCap> {
     let m = &level.mesh;
-    let never = no_cap_yet(level);
+    let not_yet = no_cap_yet(level);
     let face = m.face(f as usize).to_vec();
     let n = face.len();
     if verts.len() != n || n < 3 {
-        return Err(never);
+        return Err(not_yet);
     }
     // Linear in n: the tags, F's corners and F's limit point are looked up, not searched or
     // recomputed per corner.
@@ -142,17 +142,17 @@ fn hole_of(
     let mut tags = Vec::with_capacity(n);
     let mut later = false;
     for &vk in &face {
-        let tag = *tag_of.get(&vk).ok_or(never)?;
+        let tag = *tag_of.get(&vk).ok_or(not_yet)?;
         let vu = vk as usize;
         if m.is_boundary_vertex(vu) {
-            return Err(never);
+            return Err(not_yet);
         }
-        let vn = vertex_net(m, vu).ok_or(never)?;
+        let vn = vertex_net(m, vu).ok_or(not_yet)?;
         let &[(c, g)] = vn.ngons.as_slice() else {
-            return Err(never);
+            return Err(not_yet);
         };
         if g != f {
-            return Err(never);
+            return Err(not_yet);
         }
         // the edge neighbours of v_k outside F hold the ring patches across the outer sides
         let outside = m
@@ -162,7 +162,7 @@ fn hole_of(
             .filter(|w| !in_face.contains(w))
             .collect::<Vec<_>>();
         if outside.len() != 2 {
-            return Err(never);
+            return Err(not_yet);
         }
         if outside.iter().any(|w| marked.contains(w)) {
             later = true;
