@@ -166,7 +166,7 @@ pub struct Cap {
 }
 
 /// Relative compatibility defect above which [`g1_cap`] refuses a hole (or above its
-/// [`rounding_floor`], if that is larger).
+/// `rounding_floor`, if that is larger).
 pub const MAX_COMPATIBILITY_DEFECT: f64 = 1e-7;
 
 /// The compatibility defect a hole's data may have from rounding alone, relative to its size:
