@@ -183,9 +183,12 @@ impl PatchComplex {
     /// `faces[f]` of another net with the same faces (a net whose faces were kept from it in
     /// order, such as a net without its hole faces); a face past `faces` leaves its domain
     /// untracked.
-    pub fn renumber_faces(&mut self, faces: &[u32]) {
+    pub fn renumber_faces(&mut self, faces: &[usize]) {
         let moved = |d: Domain| match faces.get(d.face as usize) {
-            Some(&f) if d.is_tracked() => Domain { face: f, ..d },
+            Some(&f) if d.is_tracked() => Domain {
+                face: f as u32,
+                ..d
+            },
             _ => Domain::UNTRACKED,
         };
         for d in self.domains.iter_mut().flatten() {

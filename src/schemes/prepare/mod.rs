@@ -307,14 +307,11 @@ fn cut_first(spec: &Spec, mesh: &PolyMesh, map: Option<&ParamMap>) -> Option<Cut
         return None;
     }
     let cut = sharp::cut_along_creases(mesh, spec.name()).ok()??;
-    let kept: Vec<usize> = (0..mesh.num_faces())
-        .filter(|&f| !mesh.is_hole(f))
-        .collect();
     Some(CutFirst {
         map: map
             .cloned()
             .unwrap_or_else(|| ParamMap::input(mesh))
-            .select(&kept),
+            .select(&sharp::kept_faces(mesh)),
         applied: Applied {
             step: cut.notes.join("; "),
             need: "needs its steps to carry the net's sharp features (the dual steps carry \

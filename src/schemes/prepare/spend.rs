@@ -39,7 +39,7 @@ use super::{Applied, Kind, NAMED};
 use crate::error::{Error, Result};
 use crate::mesh::{PolyMesh, SharpEdges};
 use crate::schemes::descriptor::Spec;
-use crate::schemes::doo_sabin::sharp::{has_semi_sharp, spending_steps, without_holes};
+use crate::schemes::doo_sabin::sharp::{has_semi_sharp, kept_faces, spending_steps, without_holes};
 use crate::schemes::needs::{Need, Requirement, Step};
 use crate::schemes::sdc::crease::INFINITE;
 
@@ -150,12 +150,9 @@ pub(super) fn spend(
     let (mut net, mut map) = if holes == 0 {
         (mesh.clone(), None)
     } else {
-        let kept: Vec<usize> = (0..mesh.num_faces())
-            .filter(|&f| !mesh.is_hole(f))
-            .collect();
         (
             without_holes(mesh, holes, name, &mut hole_note),
-            Some(ParamMap::input(mesh).select(&kept)),
+            Some(ParamMap::input(mesh).select(&kept_faces(mesh))),
         )
     };
     let mut taken = 0;

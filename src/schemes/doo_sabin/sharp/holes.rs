@@ -6,6 +6,14 @@
 
 use crate::mesh::{PolyMesh, SharpEdges};
 
+/// The faces of `mesh` that are not hole faces, in order: face `k` of [`without_holes`]'s net
+/// is face `kept_faces(mesh)[k]` of `mesh`.
+pub(crate) fn kept_faces(mesh: &PolyMesh) -> Vec<usize> {
+    (0..mesh.num_faces())
+        .filter(|&f| !mesh.is_hole(f))
+        .collect()
+}
+
 /// `mesh` without its `holes` tagged hole faces, with a note when there are any: a bi-2 patch
 /// spans the quarters of four faces, so a hole cannot be refined for support and left out.
 pub(crate) fn without_holes(

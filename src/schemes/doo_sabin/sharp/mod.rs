@@ -51,7 +51,7 @@ mod refuse;
 mod sides;
 pub(crate) mod step;
 
-pub(crate) use holes::without_holes;
+pub(crate) use holes::{kept_faces, without_holes};
 pub use refuse::{kept_corners_with_faces, refuse_boundary_modes, refuse_kept_corners_with_faces};
 pub(crate) use sides::keep_crease_sides;
 
@@ -228,10 +228,7 @@ pub fn on_cut_net(
     // faces, so that evaluation keeps addressing them
     let to_input = |out: &mut SurfaceOutput| {
         if mesh.extras().is_some_and(|e| !e.holes.is_empty()) {
-            let kept: Vec<u32> = (0..mesh.num_faces() as u32)
-                .filter(|&f| !mesh.is_hole(f as usize))
-                .collect();
-            out.complex.renumber_faces(&kept);
+            out.complex.renumber_faces(&kept_faces(mesh));
         }
     };
     if let Some((net, mut notes)) = semi_sharp_net(mesh, name, semi_sharp)? {
@@ -263,19 +260,12 @@ pub fn on_cut_net(
 
 /// Whether `mesh` tags a semi-sharp feature (a finite positive sharpness).
 pub fn has_semi_sharp(mesh: &PolyMesh) -> bool {
-    mesh.extras().is_some_and(|ex| {
-        let semi = |s: f32| s > 0.0 && s < INFINITE;
-        ex.sharp_vertices.iter().any(|&(_, s)| semi(s))
-            || match &ex.sharp_edges {
-                SharpEdges::ById(v) => v.iter().any(|&(_, s)| semi(s)),
-                SharpEdges::ByPair(v) => v.iter().any(|&(_, s)| semi(s)),
-            }
-    })
+    spending_steps(mesh) > 0
 }
 
 /// How many dual steps spend every finite sharpness of `mesh`: the ceiling of the largest
 /// finite positive sharpness (each step lowers every finite value by one, OpenSubdiv's
-/// fractional blend taking the last fraction), at least 1 when the net has one, 0 without.
+/// fractional blend taking the last fraction); 0 without one.
 pub(crate) fn spending_steps(mesh: &PolyMesh) -> usize {
     let Some(ex) = mesh.extras() else {
         return 0;
@@ -288,11 +278,7 @@ pub(crate) fn spending_steps(mesh: &PolyMesh) -> usize {
         .chain(ex.sharp_vertices.iter().map(|p| p.1))
         .filter(|&s| crate::schemes::sdc::crease::adaptive::is_semi(s))
         .fold(0.0f32, f32::max);
-    if top > 0.0 {
-        (top.ceil() as usize).max(1)
-    } else {
-        0
-    }
+    top.ceil() as usize
 }
 
 /// For a net with semi-sharp features: the net the builder refines with its creases in place

@@ -91,10 +91,8 @@ fn holes_of(
     let mut of_facet: HashMap<u32, Vec<(u32, Tag)>> = HashMap::new();
     for &(v, tag) in verts {
         let vn = vertex_net(m, v as usize).ok_or(not_yet)?;
-        let f = match vn.ngons.as_slice() {
-            &[(_, f)] => f,
-            [] => return Err(not_yet),
-            _ => return Err(not_yet),
+        let &[(_, f)] = vn.ngons.as_slice() else {
+            return Err(not_yet);
         };
         if level.face_origin[f as usize] != Some(element) {
             return Err(not_yet);
