@@ -109,6 +109,19 @@ impl PatchComplex {
         Self::default()
     }
 
+    /// Moves the patches from `first` on and the holes of the cap steps from `first_cap` on
+    /// by `by` (a construction made about a local origin, put back in place).
+    pub fn translate_from(&mut self, first: usize, first_cap: usize, by: Point) {
+        for p in &mut self.patches[first..] {
+            for q in &mut p.cps {
+                *q = crate::geom::add(*q, by);
+            }
+        }
+        for step in &mut self.caps[first_cap..] {
+            step.hole.translate(by);
+        }
+    }
+
     /// Adds a patch.
     pub fn push(&mut self, patch: BezierPatch, provenance: Provenance) {
         self.patches.push(patch);

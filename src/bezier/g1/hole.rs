@@ -315,6 +315,17 @@ impl Hole {
         d
     }
 
+    /// Moves the hole by `by`: its centre and boundary curves (tangents and cross-boundary
+    /// derivatives are vectors and stay).
+    pub fn translate(&mut self, by: Point) {
+        self.centre = crate::geom::add(self.centre, by);
+        for seg in self.sectors.iter_mut().flatten() {
+            for p in &mut seg.boundary {
+                *p = crate::geom::add(*p, by);
+            }
+        }
+    }
+
     /// [`Hole::data`] about the centre: the centre and every boundary coefficient less the
     /// centre (the tangents and cross derivatives are vectors and stay). A cap map is affine,
     /// so the cap of these data plus the centre is the cap of the hole; but a map is exact

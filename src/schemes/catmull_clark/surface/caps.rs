@@ -87,10 +87,21 @@ pub(super) fn apply_caps(
     };
     for &v in &capped {
         let idx = &cand[&v];
-        let pts: Vec<Point> = idx.iter().map(|&w| m.position(w as usize)).collect();
+        // built about the vertex and moved back: the builders' maps (rings by powers of the
+        // subdivision matrix, the guide's fit, the caps' solves) have entries far above 1, so
+        // in place their rounding grows with the distance from the origin, not with the c-net
+        // (OpenSubdiv's bishop under guided-bi5: 5.5e-7 rad inside a cap, 4.8e-7 of it above
+        // the normals' rounding floor)
+        let o = m.position(v as usize);
+        let pts: Vec<Point> = idx
+            .iter()
+            .map(|&w| crate::geom::sub(m.position(w as usize), o))
+            .collect();
         let element = level.info[v as usize].origin.expect("checked above");
         let sectors = sector_domains(m, v, &domains);
+        let (first, first_cap) = (out.len(), out.caps.len());
         builder.build(&pts, m.valence(v as usize), element, l + 1, &sectors, out)?;
+        out.translate_from(first, first_cap, o);
     }
     Ok(marked
         .into_iter()
