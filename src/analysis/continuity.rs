@@ -47,6 +47,15 @@ pub struct Defects {
     pub c2: f64,
     /// Largest angle between normals, radians.
     pub g1: f64,
+    /// The rounding floor of the normals where the largest G^1 defect sits: how far the two
+    /// unit normals can turn when every coefficient of the two patches moves by one unit in
+    /// the last place of its patch's largest coordinate. A defect
+    /// below its floor is what the doubles of the control points can hold, not the
+    /// construction's; thin, nearly folded patches (beside a semi-sharp crease under a dual
+    /// scheme) have floors far above 1e-8 rad.
+    pub g1_rounding: f64,
+    /// Largest part of a G^1 defect above the rounding floor of its place: `max(0, G1 - floor)`.
+    pub g1_beyond_rounding: f64,
     /// Where the largest C^0 defect sits.
     pub c0_at: Option<Location>,
     /// Where the largest C^1 defect sits.
@@ -80,7 +89,9 @@ impl Defects {
         if o.g1 > self.g1 {
             self.g1 = o.g1;
             self.g1_at = o.g1_at;
+            self.g1_rounding = o.g1_rounding;
         }
+        self.g1_beyond_rounding = self.g1_beyond_rounding.max(o.g1_beyond_rounding);
     }
 }
 
@@ -126,13 +137,13 @@ pub struct ContinuityReport {
 const SAMPLES: usize = 9;
 
 /// Derivatives across side `side` of `p` at side parameter `t`, pointing out of the patch:
-/// `(point, first, second, normal)`. Where the patch is singular (its partials vanish or are
+/// `(point, first, second, normal, the normal's rounding floor)`. Where the patch is singular (its partials vanish or are
 /// parallel: the apex of a cone point's cap, a pole) the normal is the limit along the side,
 /// from the side's middle: the tangent plane along the join, which two patches G^1 across
 /// the side share even at an apex that has no tangent plane of its own; elsewhere on a
 /// singular point, and where that limit does not exist, the limit from the interior
 /// ([`BezierPatch::normal_from`]).
-fn across(p: &BezierPatch, side: Side, t: f64) -> (Point, Point, Point, Point) {
+fn across(p: &BezierPatch, side: Side, t: f64) -> (Point, Point, Point, Point, f64) {
     let [u, v] = side.domain_point(t);
     let d = p.derivatives(u, v);
     let toward = if t < 0.5 { 1.0 } else { -1.0 };
@@ -140,18 +151,74 @@ fn across(p: &BezierPatch, side: Side, t: f64) -> (Point, Point, Point, Point) {
         Side::U0 | Side::U1 => [0.0, toward],
         Side::V0 | Side::V1 => [toward, 0.0],
     };
-    let n = if d.is_regular() {
-        p.normal_from(u, v, &d)
+    let (n, floor) = if d.is_regular() {
+        (p.normal_from(u, v, &d), normal_rounding(p, &d, along))
     } else {
-        d.normal_toward(along)
-            .unwrap_or_else(|| p.normal_from(u, v, &d))
+        match d.normal_toward(along) {
+            Some(n) => (n, normal_rounding(p, &d, along)),
+            // the normal of an interior limit: no floor claimed
+            None => (p.normal_from(u, v, &d), 0.0),
+        }
     };
     match side {
-        Side::U1 => (d.p, d.du, d.duu, n),
-        Side::U0 => (d.p, geom::scale(d.du, -1.0), d.duu, n),
-        Side::V1 => (d.p, d.dv, d.dvv, n),
-        Side::V0 => (d.p, geom::scale(d.dv, -1.0), d.dvv, n),
+        Side::U1 => (d.p, d.du, d.duu, n, floor),
+        Side::U0 => (d.p, geom::scale(d.du, -1.0), d.duu, n, floor),
+        Side::V1 => (d.p, d.dv, d.dvv, n, floor),
+        Side::V0 => (d.p, geom::scale(d.dv, -1.0), d.dvv, n, floor),
     }
+}
+
+/// The rounding floor of a polynomial patch's unit normal at a point (radians): the
+/// first-order bound of the angle the normal turns when every coefficient moves by at most one
+/// unit in the last place of the patch's largest coordinate `M` (`eps M` per coordinate,
+/// `sqrt 3 eps M` per point). A partial of degree `d` is `d` times a Bernstein combination of
+/// coefficient differences, so it moves by at most `2 sqrt 3 d eps M`; a second partial by
+/// `4 sqrt 3 d (d - 1) eps M` (mixed: `4 sqrt 3 d_u d_v eps M`). The normal is the direction of
+/// `x cross y` (`du x dv` at a regular point; at a collapsed side or corner the first term of
+/// [`crate::bezier::Derivatives::normal_toward`] along the side, `a x dv + du x b`), which turns
+/// by at most `|delta n| / |n|` with `|delta (x cross y)| <= |delta x| |y| + |x| |delta y|`.
+/// Exact doubles cannot do better, whatever computed them. Zero where the normal needs a
+/// further term (both partials and their first changes vanish) and for rational patches.
+fn normal_rounding(p: &BezierPatch, d: &crate::bezier::Derivatives, along: [f64; 2]) -> f64 {
+    if p.weights.is_some() {
+        return 0.0;
+    }
+    let m = p
+        .cps
+        .iter()
+        .flat_map(|q| q.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let e = 3f64.sqrt() * f64::EPSILON * m;
+    let (du, dv) = (p.deg_u as f64, p.deg_v as f64);
+    let (e_u, e_v) = (2.0 * du * e, 2.0 * dv * e);
+    let (n, dn) = if d.is_regular() {
+        (
+            geom::cross(d.du, d.dv),
+            e_u * geom::norm(d.dv) + geom::norm(d.du) * e_v,
+        )
+    } else {
+        let (e_uu, e_uv, e_vv) = (
+            4.0 * du * (du - 1.0).max(0.0) * e,
+            4.0 * du * dv * e,
+            4.0 * dv * (dv - 1.0).max(0.0) * e,
+        );
+        let [hu, hv] = along;
+        let a = geom::add(geom::scale(d.duu, hu), geom::scale(d.duv, hv));
+        let b = geom::add(geom::scale(d.duv, hu), geom::scale(d.dvv, hv));
+        let (e_a, e_b) = (
+            hu.abs() * e_uu + hv.abs() * e_uv,
+            hu.abs() * e_uv + hv.abs() * e_vv,
+        );
+        (
+            geom::add(geom::cross(a, d.dv), geom::cross(d.du, b)),
+            e_a * geom::norm(d.dv)
+                + geom::norm(a) * e_v
+                + e_u * geom::norm(b)
+                + geom::norm(d.du) * e_b,
+        )
+    };
+    let len = geom::norm(n);
+    if len > 0.0 { dn / len } else { 0.0 }
 }
 
 fn kind_name(p: &Provenance) -> String {
@@ -169,8 +236,8 @@ fn measure(c: &PatchComplex, sb: &SharedBoundary) -> Defects {
     for k in 0..SAMPLES {
         let t = sb.t[0] + (sb.t[1] - sb.t[0]) * k as f64 / (SAMPLES - 1) as f64;
         let s = sb.map_to_b(t);
-        let (xa, da, dda, na) = across(pa, sb.side_a, t);
-        let (xb, db, ddb, nb) = across(pb, sb.side_b, s);
+        let (xa, da, dda, na, ra) = across(pa, sb.side_a, t);
+        let (xb, db, ddb, nb, rb) = across(pb, sb.side_b, s);
         // B's outward derivative points back into A: the derivative from A into B is -db.
         let c0 = geom::dist(xa, xb);
         let c1 = geom::norm(geom::add(da, geom::scale(db, 1.0 / rho)));
@@ -202,7 +269,9 @@ fn measure(c: &PatchComplex, sb: &SharedBoundary) -> Defects {
         if g1 > d.g1 || d.g1_at.is_none() {
             d.g1 = g1;
             d.g1_at = Some(loc);
+            d.g1_rounding = ra + rb;
         }
+        d.g1_beyond_rounding = d.g1_beyond_rounding.max(g1 - ra - rb);
     }
     d
 }

@@ -268,6 +268,19 @@ pub fn check(a: CheckArgs) -> Result<()> {
             l.point
         );
     }
+    if let Some(l) = &c.all.g1_at {
+        say!(
+            "  largest G1 defect {:.3e} rad between patches {} and {} at {:?}; the normals' \
+             rounding floor there (one unit in the last place of every coefficient) is {:.1e}; \
+             the largest G1 defect above its place's floor is {:.1e}",
+            c.all.g1,
+            l.patch_a,
+            l.patch_b,
+            l.point,
+            c.all.g1_rounding,
+            c.all.g1_beyond_rounding
+        );
+    }
     for o in c.open.iter().take(8) {
         say!(
             "  open side {} of patch {} ({}) at {:?}",
