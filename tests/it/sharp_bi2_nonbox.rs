@@ -373,3 +373,46 @@ fn nonbox_keeps_creases_ending_at_darts_inside_the_surface_closed() {
         assert!(r.sharp.pieces > 0, "{scheme}: the creases are sharp joins");
     }
 }
+
+/// A loop of infinitely sharp creases around one face (OpenSubdiv's `catmark_fvar_project0`):
+/// non-box's cut leaves each of the four crease vertices a copy of three cells outside the loop
+/// (an open fan, G^1-capped) and one of one cell on the island (filled). The copies share the
+/// vertex's element; until each copy was its own hole, the four cells made one hole of no fan,
+/// filled C^0 without a note: 2.3e-3 rad, halving with every ring.
+#[test]
+fn each_copy_of_a_cut_crease_vertex_is_its_own_hole() {
+    let net = osd("catmark_fvar_project0");
+    for scheme in ["nonbox", "nonbox-4dir"] {
+        let spec = registry().lookup(scheme).expect("scheme");
+        let opts = ComplexOptions {
+            rings: 3,
+            fill: true,
+        };
+        let s = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+        let r = continuity::check(&s.complex);
+        assert!(r.all.g1 < 1e-10, "{scheme}: G1 {:e}", r.all.g1);
+        assert_eq!(
+            s.complex.caps.len(),
+            4,
+            "{scheme}: one cap per crease vertex"
+        );
+        let island: Vec<_> = s
+            .complex
+            .uncapped
+            .iter()
+            .filter(|(_, why)| why.contains("has 1 cell(s)"))
+            .map(|(e, _)| *e)
+            .collect();
+        assert_eq!(island.len(), 4, "{scheme}: {:?}", s.complex.uncapped);
+        assert!(
+            s.notes
+                .iter()
+                .any(|n| n.contains("copy on one side of an infinitely sharp crease")),
+            "{scheme}: {:?}",
+            s.notes
+        );
+        // the patch table repeats the four open-fan caps on moved points
+        let caps = table_reapplies(scheme, "catmark_fvar_project0", &net, |h| h.is_open());
+        assert_eq!(caps, 4, "{scheme}");
+    }
+}

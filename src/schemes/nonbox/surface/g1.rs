@@ -181,17 +181,96 @@ fn two_cell_plane(m: &PolyMesh, quads: &[QuadSector]) -> (Stencil, Stencil) {
     (along, across)
 }
 
-/// Whether some marked element would get its cap after more levels.
-pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
-    caps_waiting(marked, |e, cells| hole_of(level, e, cells))
+/// The marked cells in batches that hold at most one centre per element. A net cut along
+/// its infinitely sharp creases ([`super::sharp`]) has a copy of a crease vertex on each side
+/// of the cut, all with the vertex's element: each copy is a hole of its own (an open fan),
+/// while the host groups cells by element. Batch `k` holds the cells around the `k`-th copy
+/// of every element met (in the order of `marked`), the cells without an element in batch 0.
+fn copy_batches(level: &Level, marked: &[(u32, Tag)]) -> Vec<Vec<(u32, Tag)>> {
+    let m = &level.net.mesh;
+    let mut copies: HashMap<Element, Vec<u32>> = HashMap::new();
+    let mut batches: Vec<Vec<(u32, Tag)>> = vec![Vec::new()];
+    for &(f, tag) in marked {
+        let k = tag.element.map_or(0, |e| {
+            // the copy a cell belongs to: its first corner from the element (as the hole's
+            // centre is found, `fan_centre_from`)
+            let Some(x) = m
+                .face(f as usize)
+                .iter()
+                .copied()
+                .find(|&v| level.info[v as usize].origin == Some(e))
+            else {
+                return 0;
+            };
+            let seen = copies.entry(e).or_default();
+            seen.iter().position(|&y| y == x).unwrap_or_else(|| {
+                seen.push(x);
+                seen.len() - 1
+            })
+        });
+        if batches.len() <= k {
+            batches.resize_with(k + 1, Vec::new);
+        }
+        batches[k].push((f, tag));
+    }
+    batches
 }
 
-/// Caps every element of the marked cells that has its hole data; returns the cells left for
-/// the Coons fill.
+/// Whether some marked element would get its cap after more levels.
+pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+    copy_batches(level, marked)
+        .iter()
+        .any(|b| caps_waiting(b, |e, cells| hole_of(level, e, cells)))
+}
+
+/// Caps every element of the marked cells that has its hole data (every copy of a vertex
+/// that the cut along its creases made, on its own: [`copy_batches`]); returns the cells left
+/// for the Coons fill. A copy left to the fill beside a capped copy of the same vertex is
+/// named in the complex's uncapped elements (with the copy's sectors), as the host names the
+/// elements it cannot cap.
 pub(super) fn g1_caps(
     level: &Level,
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
-    g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok())
+    let batches = copy_batches(level, marked);
+    if batches.len() == 1 {
+        return g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok());
+    }
+    let mut left = Vec::new();
+    for batch in &batches {
+        left.extend(g1_cap_elements(batch, out, |e, cells| {
+            hole_of(level, e, cells).ok()
+        }));
+    }
+    let capped: std::collections::HashSet<Element> = out
+        .caps
+        .iter()
+        .filter_map(|c| match out.provenance.get(c.first as usize) {
+            Some(crate::bezier::complex::Provenance::Cap { element, .. }) => Some(*element),
+            _ => None,
+        })
+        .collect();
+    let mut named: Vec<(Element, usize)> = Vec::new();
+    for &(_, tag) in &left {
+        if let Some(e) = tag.element.filter(|e| capped.contains(e)) {
+            match named.iter_mut().find(|(x, _)| *x == e) {
+                Some((_, k)) => *k += 1,
+                None => named.push((e, 1)),
+            }
+        }
+    }
+    for (e, k) in named {
+        if !out.uncapped.iter().any(|(x, _)| *x == e) {
+            out.uncapped.push((
+                e,
+                format!(
+                    "its copy on one side of an infinitely sharp crease has {k} cell(s), a \
+                     fan this scheme's G^1 caps do not take (the copy on the other side is \
+                     capped)"
+                ),
+            ));
+        }
+    }
+    left
 }
