@@ -192,6 +192,49 @@ impl PatchComplex {
         self.uncapped.extend(other.uncapped);
     }
 
+    /// The complex of the patches `keep` accepts, in order, with their domains, pieces and
+    /// sharp sides, the cap steps whose patches are all kept, and the uncapped elements (a
+    /// construction that puts another's patches in place of some of its own).
+    pub fn retain(&self, keep: impl Fn(usize) -> bool) -> PatchComplex {
+        let mut to = vec![None; self.len()];
+        let mut out = PatchComplex::new();
+        for (i, slot) in to.iter_mut().enumerate() {
+            if keep(i) {
+                *slot = Some(out.len() as u32);
+                out.push(self.patches[i].clone(), self.provenance[i]);
+                if let Some(d) = self.domain(i) {
+                    out.set_domain(out.len() - 1, d);
+                }
+            }
+        }
+        out.pieces = self
+            .pieces
+            .iter()
+            .filter_map(|p| {
+                Some(Piece {
+                    patch: to[p.patch as usize]?,
+                    ..*p
+                })
+            })
+            .collect();
+        out.sharp_sides = self
+            .sharp_sides
+            .iter()
+            .filter_map(|&(p, m)| Some((to[p as usize]?, m)))
+            .collect();
+        out.caps = self
+            .caps
+            .iter()
+            .filter(|c| (c.first..c.first + c.count).all(|i| to[i as usize].is_some()))
+            .map(|c| CapStep {
+                first: to[c.first as usize].expect("kept"),
+                ..c.clone()
+            })
+            .collect();
+        out.uncapped = self.uncapped.clone();
+        out
+    }
+
     /// Moves every tracked domain from face `f` of the net the complex was built on to face
     /// `faces[f]` of another net with the same faces (a net whose faces were kept from it in
     /// order, such as a net without its hole faces); a face past `faces` leaves its domain

@@ -27,6 +27,10 @@ pub enum Need {
     /// Sharp features infinitely sharp only: no semi-sharp crease or corner (a finite
     /// positive sharpness), which the scheme's element rings have no step to spend.
     InfinitelySharpOnly,
+    /// `need` on nets with (`true`) or without (`false`) semi-sharp features only, met
+    /// otherwise: a scheme whose construction on semi-sharp nets needs less (TPS, whose
+    /// semi-sharp nets are Doo-Sabin's construction beside its elements).
+    IfSemiSharp(bool, &'static Need),
     /// A property only the scheme can test: `what` it is (for notes, after "needs"), `test`
     /// the elements where it fails.
     Scheme {
@@ -45,12 +49,6 @@ pub enum Step {
     /// A step the scheme's own construction takes (locally and exactly, with its own note),
     /// described in words; [`super::prepare::prepare`] leaves the net as it is and reports it.
     Own(&'static str),
-    /// A dual whole-net step repeated with fairsub's crease construction (the creases' sharp
-    /// rules, OpenSubdiv's fractional blend on the step a value runs out; see
-    /// `crate::schemes::doo_sabin::sharp`) until no finite sharpness is left: the step that
-    /// spends semi-sharp features for a scheme whose rules take infinitely sharp ones only
-    /// ([`Need::InfinitelySharpOnly`]).
-    Spend(NetStep),
 }
 
 /// One need of a scheme and the step that meets it.
@@ -75,6 +73,7 @@ impl Need {
                 "takes infinitely sharp creases and corners only (its element rings have no \
                  step that spends a finite sharpness)"
             }
+            Need::IfSemiSharp(_, need) => need.words(),
             Need::Scheme { what, .. } => what,
         }
     }

@@ -37,10 +37,6 @@ const IRREMOVABLE: &[(&str, &str)] = &[
         "semi-sharp corners (issue 45's bi-2 crease item)",
     ),
     (
-        "whole-net steps would make about",
-        "semi-sharp creases beyond the size of TPS's whole-net spending steps",
-    ),
-    (
         "does not take yet",
         "sharp features in non-box patches (issue 45's crease item)",
     ),

@@ -1,17 +1,16 @@
 //! Semi-sharp creases under the bi-2 schemes with element rings (TPS, adjustable TPS, the mixed
 //! and polar nets): fairsub's construction spends them by the family's dual step with the dual
-//! crease rules before the scheme's rules (`schemes::prepare`'s spend: whole-net Doo-Sabin
-//! steps for TPS; PGS's construction, near the features only, for the mixed and polar nets,
-//! whose spent net is a PGS net; `docs/guide/src/creases.md`). Closed creased nets give closed G^1 surfaces, sharpness 10
-//! carried through the steps is the infinitely sharp crease, `--prepare none` keeps the
-//! refusal, a sharpness the whole-net steps cannot afford is refused by name, and the patch
-//! tables re-apply through the spending steps.
+//! crease rules, near the features only (`schemes::bi2::surface`: Doo-Sabin's construction
+//! beside TPS's elements clear of the features for TPS; PGS's construction for the mixed and
+//! polar nets, whose spent net is a PGS net; `docs/guide/src/creases.md`). Closed creased nets
+//! give closed G^1 surfaces, TPS's elements join the dual strips G^1, sharpness 10 carried
+//! through the construction is the infinitely sharp crease, `--prepare none` keeps the refusal,
+//! sharpness 9 is built, and the patch tables re-apply through the construction.
 
 use crate::sharp_helpers::support;
 use support::creased_cube;
 
 use fairsub::analysis::continuity;
-use fairsub::geom::Point;
 use fairsub::host::ComplexOptions;
 use fairsub::mesh::{Extras, PolyMesh, SharpEdges};
 use fairsub::schemes::descriptor::SurfaceOutput;
@@ -99,10 +98,10 @@ fn closed_semi_sharp_nets_give_closed_g1_surfaces() {
                 .iter()
                 .find(|n| n.contains("with fairsub's crease construction"))
                 .unwrap_or_else(|| panic!("{scheme} {name}: no note in {:?}", out.notes));
-            // TPS spends by whole-net Doo-Sabin steps; the mixed and polar nets, whose spent
-            // net is a PGS net, by PGS's construction (near the features only)
+            // TPS by Doo-Sabin's construction beside its elements; the mixed and polar nets,
+            // whose spent net is a PGS net, by PGS's construction (near the features only)
             let how = if scheme.starts_with("tps") {
-                "whole-net Doo-Sabin step"
+                "clear of the features get"
             } else {
                 "built by pgs's construction, which takes those steps only near the features"
             };
@@ -112,61 +111,114 @@ fn closed_semi_sharp_nets_give_closed_g1_surfaces() {
     }
 }
 
-/// The points of the patches of `out` whose corners all lie below `z` (3 x 3 per patch), and
-/// every such point of all its patches sorted by x (for [`support::nearest`]).
-fn points_below(out: &SurfaceOutput, z: f64) -> Vec<Point> {
-    let mut pts = Vec::new();
-    for p in &out.complex.patches {
-        let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)];
-        if corners.iter().all(|&(u, v)| p.eval(u, v)[2] < z) {
-            for i in 0..3 {
-                for j in 0..3 {
-                    pts.push(p.eval(f64::from(i) / 2.0, f64::from(j) / 2.0));
-                }
+/// The input-face points of `a` and `b` below `z` (in `b`) at seven places of each of the
+/// creased cube's 96 faces: how many, the largest distance between them, and between `b` and
+/// `c` there.
+fn below_top_loop(
+    a: &fairsub::surface::eval::Surface,
+    b: &fairsub::surface::eval::Surface,
+    c: &fairsub::surface::eval::Surface,
+    z: f64,
+) -> (usize, f64, f64) {
+    let (mut below, mut same, mut other) = (0, 0.0f64, 0.0f64);
+    for f in 0..96u32 {
+        let near_sides = [(0.5, 0.02), (0.98, 0.5), (0.5, 0.98), (0.02, 0.5)];
+        for (u, v) in [(0.2, 0.3), (0.5, 0.5), (0.8, 0.9)]
+            .into_iter()
+            .chain(near_sides)
+        {
+            let p = a.evaluate(f, u, v).expect("a face").point;
+            if p[2] > z {
+                continue;
             }
+            below += 1;
+            let q = b.evaluate(f, u, v).expect("a face").point;
+            same = same.max(fairsub::geom::dist(p, q));
+            let r = c.evaluate(f, u, v).expect("a face").point;
+            other = other.max(fairsub::geom::dist(q, r));
         }
     }
-    pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    pts
+    (below, same, other)
 }
 
-/// The largest distance from a point of `a` to the points of `b`, both sorted by x.
-fn farthest(a: &[Point], b: &[Point]) -> f64 {
-    a.iter()
-        .map(|&p| support::nearest(b, p))
-        .fold(0.0, f64::max)
-}
-
+/// TPS and adjustable TPS on the cube with the equator tagged 10 beside a semi-sharp top loop:
+/// every extraordinary vertex of this cube is within reach of a feature, so the surface is
+/// Doo-Sabin's crease construction with the top loop's one ring more, and below the top loop
+/// it is Doo-Sabin's surface of the equator cut from the start (the infinitely sharp crease),
+/// point for point on the input faces; an equator of sharpness 0.5 is another surface there.
 #[test]
 fn sharpness_ten_is_the_infinitely_sharp_crease() {
-    // the equator tagged 10 and carried through the spending step (the top loop is semi-sharp:
-    // one dual step with the crease rules) against the equator cut from the start and refined
-    // by the same dual step's boundary rules: the same surface below the top loop
-    for (scheme, dual) in [("tps", "doo-sabin"), ("tps-adjustable", "doo-sabin")] {
-        let spent = build(scheme, &creased_cube(10.0, 0.5), PrepareMode::Auto).expect(scheme);
-        let cut =
-            fairsub::schemes::doo_sabin::sharp::cut_along_creases(&creased_cube(10.0, 0.0), scheme)
-                .expect("cut")
-                .expect("a crease");
-        let step = fairsub::schemes::by_name(dual).expect("dual scheme");
-        let once = fairsub::schemes::refine_levels(step.as_ref(), &cut.mesh, 1, |_| {})
-            .expect("one dual step");
-        let reference = build(scheme, &once, PrepareMode::Auto).expect(scheme);
-        let a = points_below(&spent, 0.2);
-        let b = points_below(&reference, 0.2);
-        assert!(
-            a.len() > 1000 && b.len() > 1000,
-            "{scheme}: {} {}",
-            a.len(),
-            b.len()
+    use fairsub::surface::eval::Surface;
+    let ds = registry().lookup("doo-sabin").expect("doo-sabin");
+    let four = ComplexOptions { rings: 4, ..RINGS };
+    let cut = Surface::build(&ds, &creased_cube(10.0, 0.0), four).expect("doo-sabin");
+    for scheme in ["tps", "tps-adjustable"] {
+        let spec = registry().lookup(scheme).expect(scheme);
+        let spent = Surface::build(&spec, &creased_cube(10.0, 0.5), RINGS).expect(scheme);
+        let finite = Surface::build(&spec, &creased_cube(0.5, 0.5), RINGS).expect(scheme);
+        let (below, same, other) = below_top_loop(&cut, &spent, &finite, 0.2);
+        eprintln!(
+            "{scheme}: {below} points below the top loop, 10 against the cut {same:.1e}, 0.5 \
+             {other:.1e}"
         );
-        let same = farthest(&a, &b).max(farthest(&b, &a));
-        // a finite sharpness is another surface along the equator
-        let finite = build(scheme, &creased_cube(2.0, 0.5), PrepareMode::Auto).expect(scheme);
-        let other = farthest(&points_below(&finite, 0.2), &a);
-        eprintln!("{scheme}: sharpness 10 against the cut {same:.1e}, sharpness 2 {other:.1e}");
+        assert!(below >= 350, "{scheme}: {below}");
         assert!(same < 1e-9, "{scheme}: {same:e}");
         assert!(other > 1e-4, "{scheme}: {other:e}");
+    }
+}
+
+/// A semi-sharp loop on the top face of the creased cube leaves its four bottom corners
+/// (valence 3) clear: they keep TPS's rings and cap, which join Doo-Sabin's strip around the
+/// loop and the regular patches G^1 (closed surface); without the loop the surface there is
+/// TPS's own, patch for patch on the bottom corners' cells.
+#[test]
+fn tps_elements_clear_of_the_features_join_the_dual_strips() {
+    use fairsub::surface::eval::Surface;
+    for scheme in ["tps", "tps-adjustable"] {
+        let out = build(scheme, &creased_cube(0.0, 2.5), PrepareMode::Auto)
+            .unwrap_or_else(|e| panic!("{scheme}: {e}"));
+        let note = out
+            .notes
+            .iter()
+            .find(|n| n.contains("clear of the features get"))
+            .unwrap_or_else(|| panic!("{scheme}: {:?}", out.notes));
+        assert!(note.contains(": 4 extraordinary vertices clear"), "{note}");
+        let r = continuity::check(&out.complex);
+        eprintln!(
+            "{scheme}: {} patches, open {}, G1 {:.1e}",
+            out.complex.len(),
+            r.open_sides,
+            r.all.g1
+        );
+        assert_eq!(r.open_sides, 0, "{scheme}");
+        assert!(
+            r.all.c0 < 1e-12 && r.all.g1 < 1e-8,
+            "{scheme}: {:e}",
+            r.all.g1
+        );
+        // near the bottom corners the surface is TPS's of the net without the loop
+        let spec = registry().lookup(scheme).expect(scheme);
+        let with = Surface::build(&spec, &creased_cube(0.0, 2.5), RINGS).expect(scheme);
+        let without = Surface::build(&spec, &creased_cube(0.0, 0.0), RINGS).expect(scheme);
+        let (mut near, mut worst) = (0, 0.0f64);
+        for f in 0..96u32 {
+            for k in 0..25 {
+                let (u, v) = (
+                    0.05 + 0.225 * f64::from(k / 5),
+                    0.05 + 0.225 * f64::from(k % 5),
+                );
+                let p = without.evaluate(f, u, v).expect("a face").point;
+                if p[2] > -0.6 {
+                    continue;
+                }
+                near += 1;
+                let q = with.evaluate(f, u, v).expect("a face").point;
+                worst = worst.max(fairsub::geom::dist(p, q));
+            }
+        }
+        eprintln!("{scheme}: {near} points near the bottom, against TPS's own {worst:.1e}");
+        assert!(near >= 300, "{scheme}: {near}");
+        assert!(worst < 1e-12, "{scheme}: {worst:e}");
     }
 }
 
@@ -233,20 +285,12 @@ fn prepare_none_keeps_the_refusal() {
     }
 }
 
+/// Sharpness 9 on the 96-quad cube: nine whole-net dual steps would make about 386 * 4^8
+/// faces (TPS refused it until 2026-12-07, the mixed and polar nets until the day before); the
+/// constructions refine only near the crease.
 #[test]
-fn a_sharpness_the_whole_net_steps_cannot_afford_is_refused_by_name_under_tps_only() {
-    // sharpness 9 on 96 quads: nine dual steps, about 386 * 4^8 faces
-    let Err(e) = build("tps", &creased_cube(9.0, 0.0), PrepareMode::Auto) else {
-        panic!("built");
-    };
-    let e = e.to_string();
-    assert!(
-        e.contains("has the semi-sharp value 9") && e.contains("whole-net steps would make about"),
-        "{e}"
-    );
-    // the mixed and polar nets take PGS's construction, which refines only near the crease
-    // (refused on this net before 2026-12-07, as TPS still is)
-    for scheme in ["bi2-mixed", "polar-bi2"] {
+fn sharpness_nine_is_built_near_the_crease_only() {
+    for scheme in SCHEMES {
         let out = build(scheme, &creased_cube(9.0, 0.0), PrepareMode::Auto)
             .unwrap_or_else(|e| panic!("{scheme}: {e}"));
         let r = continuity::check(&out.complex);

@@ -134,7 +134,9 @@ impl Descriptor for Bi2Descriptor {
     }
 
     /// Infinitely sharp creases and corners: the net is cut along them
-    /// ([`crate::schemes::doo_sabin::sharp`]); semi-sharp features are refused.
+    /// ([`crate::schemes::doo_sabin::sharp`]). Semi-sharp features: the dual crease
+    /// construction (Doo-Sabin, DS^CC, PGS), PGS's (the mixed and polar nets) and Doo-Sabin's
+    /// beside TPS's elements (TPS, adjustable TPS), under `--prepare auto`.
     fn patches_take_features(&self) -> bool {
         true
     }
@@ -153,9 +155,28 @@ impl Descriptor for Bi2Descriptor {
             let by_pgs = matches!(kind, Bi2Kind::Mixed | Bi2Kind::Polar)
                 && mode == crate::schemes::options::PrepareMode::Auto
                 && sharp::has_semi_sharp(mesh);
-            let semi = matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) || by_pgs;
+            // semi-sharp features under TPS and adjustable TPS: Doo-Sabin's crease
+            // construction near the features, TPS's elements clear of them
+            // (`super::surface::tps_spent_locally`)
+            let local = matches!(kind, Bi2Kind::Tps | Bi2Kind::TpsAdjustable)
+                && mode == crate::schemes::options::PrepareMode::Auto
+                && sharp::has_semi_sharp(mesh);
+            let semi = matches!(kind, Bi2Kind::Pgs | Bi2Kind::PgsDscc) || by_pgs || local;
             sharp::on_cut_net(mesh, name, semi, |mesh| {
                 use super::surface as s;
+                if local {
+                    let rules = if kind == Bi2Kind::Tps {
+                        TernaryRules::TPS
+                    } else {
+                        rules
+                    };
+                    let (complex, notes) = s::tps_spent_locally(mesh, opts, rules, name, progress)?;
+                    return Ok(SurfaceOutput {
+                        complex,
+                        fell_back: Vec::new(),
+                        notes,
+                    });
+                }
                 if by_pgs {
                     let (complex, note) = s::spent_by_pgs(mesh, opts, name, progress)?;
                     return Ok(SurfaceOutput {
@@ -222,26 +243,37 @@ impl Descriptor for Bi2Descriptor {
             step: Step::Net(steps),
         };
         let no_valence_2 = net(Need::NoInteriorValence2, &[NetStep::Pgs]);
-        // semi-sharp features: spent by the family's dual step with fairsub's crease
-        // construction, the step each member's preparation takes anyway: Doo-Sabin before
-        // TPS's Catmull-Clark step (whole-net steps, crate::schemes::prepare's spend); PGS for
-        // the mixed and polar nets, whose spent net is a PGS net, so PGS's construction builds
-        // its surface refining only near the features (super::surface::spent_by_pgs)
-        let spend = |step| Requirement {
-            need: Need::InfinitelySharpOnly,
-            step: Step::Spend(step),
-        };
         match (self.kind, purpose) {
-            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, _) => {
-                let mut out = vec![
-                    net(Need::NoInteriorValence2, DUAL_THEN_QUADS),
-                    net(Need::RegularBoundary, DUAL_THEN_QUADS),
-                    net(Need::Quads, &[NetStep::CatmullClark]),
-                ];
-                if purpose == Purpose::Patches {
-                    out.insert(0, spend(NetStep::DooSabin));
-                }
-                out
+            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, Purpose::Refine) => vec![
+                net(Need::NoInteriorValence2, DUAL_THEN_QUADS),
+                net(Need::RegularBoundary, DUAL_THEN_QUADS),
+                net(Need::Quads, &[NetStep::CatmullClark]),
+            ],
+            (Bi2Kind::Tps | Bi2Kind::TpsAdjustable, Purpose::Patches) => {
+                // with semi-sharp features the surface is Doo-Sabin's construction beside
+                // TPS's elements (`super::surface::tps_spent_locally`), which takes any
+                // boundary and face but no interior vertex of valence 2: the dual step alone
+                // (it carries the creases); without them, TPS's own needs
+                let without =
+                    |need: &'static Need, steps| net(Need::IfSemiSharp(false, need), steps);
+                vec![
+                    Requirement {
+                        need: Need::InfinitelySharpOnly,
+                        step: Step::Own(
+                            "the family's dual step spends the sharpness (fairsub's crease \
+                             construction): Doo-Sabin's construction refines near the \
+                             semi-sharp features only, and extraordinary vertices clear of \
+                             them keep TPS's rings and cap",
+                        ),
+                    },
+                    net(
+                        Need::IfSemiSharp(true, &Need::NoInteriorValence2),
+                        &[NetStep::DooSabin],
+                    ),
+                    without(&Need::NoInteriorValence2, DUAL_THEN_QUADS),
+                    without(&Need::RegularBoundary, DUAL_THEN_QUADS),
+                    without(&Need::Quads, &[NetStep::CatmullClark]),
+                ]
             }
             (Bi2Kind::Pgs, Purpose::Patches) => vec![no_valence_2],
             (Bi2Kind::Mixed | Bi2Kind::Polar, Purpose::Patches) => vec![

@@ -71,11 +71,13 @@ mod cells;
 mod elements;
 mod g1;
 mod poles;
+mod spent;
 mod thirds;
 use cells::FacetCells;
 pub(crate) use elements::spent_by_pgs;
 pub use elements::{mixed_complex, polar_complex, unseparated, unseparated_polar};
 use poles::PoleCells;
+pub(crate) use spent::tps_spent_locally;
 /// One extraordinary element with its local net over the mesh at level `start` of its scheme.
 struct RingElement {
     element: Element,

@@ -41,13 +41,12 @@
 //!   faces into a `(k + 2)`-sided face whose boundary vertices have two faces each (the dual
 //!   schemes' boundary rules); the Catmull-Clark step then makes that face `k + 2` quads around
 //!   an interior vertex of valence `k + 2`. Every boundary vertex of the result is regular.
-//! * **Spending semi-sharp features** ([`Step::Spend`]: TPS and adjustable TPS, whose element
-//!   rings have no step that spends sharpness): the dual step their preparation takes anyway
-//!   (Doo-Sabin), repeated with the dual crease rules until no finite sharpness is left, before
-//!   everything else (`spend`, fairsub's construction, derived there). The mixed and polar
-//!   nets' step (PGS) would leave a PGS net, so they take PGS's construction instead, which
-//!   takes those steps near the features only ([`Step::Own`], `crate::schemes::bi2::surface`;
-//!   the same surface, a unit test here).
+//! * **Spending semi-sharp features** (TPS, adjustable TPS, the mixed and polar nets, whose
+//!   element rings have no step that spends sharpness) is taken by the schemes' own
+//!   constructions ([`Step::Own`]): the family's dual step with the dual crease rules, near the
+//!   features only (`crate::schemes::bi2::surface`: PGS's construction for the mixed and polar
+//!   nets, the same surface as whole-net PGS steps, a unit test here; Doo-Sabin's beside TPS's
+//!   elements for TPS).
 //! * **Separating extraordinary elements** (`bi2-mixed`, `polar-bi2`) is taken by the bi-2
 //!   family's own constructions, as PGS and TPS take it for themselves
 //!   ([`Step::Own`], documented in `crate::schemes::bi2::surface`).
@@ -62,13 +61,13 @@
 //! steps follow on the cut net, whose crease sides stay one curve (both sides refine the same
 //! crease polygon); where it needs none, the net is given to the scheme uncut, which cuts it.
 //! Nets with semi-sharp tags get the dual steps with the crease rules where those carry the
-//! tags (Doo-Sabin, DS^CC and PGS at interior vertices of valence 2; the spending steps of the
-//! schemes without semi-sharp rules). Nets whose features no step carries or the cut refuses,
+//! tags (Doo-Sabin, DS^CC and PGS at interior vertices of valence 2, TPS's Doo-Sabin step
+//! there). Nets whose features no step carries or the cut refuses,
 //! and nets refined whole (`--levels`) get no dual step: they are given to the scheme as they
 //! are, with a note, and the scheme's own sharp-feature rules decide.
 
 pub mod map;
-mod spend;
+mod semi;
 mod steps;
 
 use crate::error::Result;
@@ -226,10 +225,17 @@ fn unmet(need: &Need, mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
             .map(|v| Element::Vertex(v as u32))
             .collect(),
         // the ends of semi-sharp edges and the semi-sharp vertices
-        Need::InfinitelySharpOnly => spend::semi_sharp_vertices(mesh)
+        Need::InfinitelySharpOnly => semi::semi_sharp_vertices(mesh)
             .into_iter()
             .map(Element::Vertex)
             .collect(),
+        Need::IfSemiSharp(with, need) => {
+            if crate::schemes::doo_sabin::sharp::has_semi_sharp(mesh) == *with {
+                unmet(need, mesh, spec)
+            } else {
+                Vec::new()
+            }
+        }
         Need::Scheme { test, .. } => test(mesh, spec),
     }
 }
@@ -257,34 +263,32 @@ pub fn prepare(
     if spec.params.prepare == Mode::None || requirements.is_empty() {
         return Ok(Prepared::unchanged(mesh));
     }
-    // semi-sharp features spent first where the scheme declares the step ([`spend`]); what
-    // follows sees a net with infinitely sharp features only
-    let (mesh, map, applied) = match spend::spend(&requirements, spec, mesh)? {
-        Some((net, map, a)) => (net, Some(map), vec![a]),
-        None => (mesh.clone(), None, Vec::new()),
-    };
     if purpose == Purpose::Patches
-        && let Some(cut) = cut_first(spec, &mesh, map.as_ref())
+        && let Some(cut) = cut_first(spec, mesh, None)
     {
         // the steps on the cut net; nothing to do there: the scheme cuts the net itself,
         // unless hole faces were removed (the map then keeps addressing the input faces, and
         // the vertices of hole faces only are gone)
         let holes = mesh.extras().is_some_and(|e| !e.holes.is_empty());
-        let mut before = applied.clone();
-        before.push(cut.applied);
-        let prepared = run(&requirements, spec, cut.mesh, Some(cut.map), before)?;
-        // steps after the cut (the spending steps before it do not count: without steps
-        // after it the scheme gets the spent net uncut and cuts it itself, marking the
-        // crease sides)
+        let prepared = run(
+            &requirements,
+            spec,
+            cut.mesh,
+            Some(cut.map),
+            vec![cut.applied],
+        )?;
+        // without steps after the cut the scheme gets the net uncut and cuts it itself,
+        // marking the crease sides
         if holes
-            || prepared.applied[applied.len()..]
+            || prepared
+                .applied
                 .iter()
                 .any(|a| a.kind == Kind::Applied && !a.cut)
         {
             return Ok(prepared);
         }
     }
-    run(&requirements, spec, mesh, map, applied)
+    run(&requirements, spec, mesh.clone(), None, Vec::new())
 }
 
 /// A net cut along its infinitely sharp creases (hole faces removed) before the steps, with
@@ -356,9 +360,6 @@ fn run(
                 cut: false,
             };
             match r.step {
-                // taken before the rounds (`spend`); a need it left unmet
-                // is the scheme's to refuse
-                Step::Spend(_) => continue,
                 Step::Own(words) => own.push(record(words.to_string(), Kind::Own)),
                 Step::Net(steps) => {
                     if steps.iter().any(|s| s.is_dual()) && !dual_carries(&net) {
