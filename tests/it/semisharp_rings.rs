@@ -167,6 +167,23 @@ fn sharpness_ten_is_the_infinitely_sharp_crease() {
     }
 }
 
+/// Asserts that `out` is closed (no open side), C^0 to 1e-12 and G^1 to 1e-8.
+fn closed_and_g1(scheme: &str, out: &SurfaceOutput) {
+    let r = continuity::check(&out.complex);
+    eprintln!(
+        "{scheme}: {} patches, open {}, G1 {:.1e}",
+        out.complex.len(),
+        r.open_sides,
+        r.all.g1
+    );
+    assert_eq!(r.open_sides, 0, "{scheme}");
+    assert!(
+        r.all.c0 < 1e-12 && r.all.g1 < 1e-8,
+        "{scheme}: {:e}",
+        r.all.g1
+    );
+}
+
 /// A semi-sharp loop on the top face of the creased cube leaves its four bottom corners
 /// (valence 3) clear: they keep TPS's rings and cap, which join Doo-Sabin's strip around the
 /// loop and the regular patches G^1 (closed surface); without the loop the surface there is
@@ -183,19 +200,7 @@ fn tps_elements_clear_of_the_features_join_the_dual_strips() {
             .find(|n| n.contains("clear of the features get"))
             .unwrap_or_else(|| panic!("{scheme}: {:?}", out.notes));
         assert!(note.contains(": 4 extraordinary vertices clear"), "{note}");
-        let r = continuity::check(&out.complex);
-        eprintln!(
-            "{scheme}: {} patches, open {}, G1 {:.1e}",
-            out.complex.len(),
-            r.open_sides,
-            r.all.g1
-        );
-        assert_eq!(r.open_sides, 0, "{scheme}");
-        assert!(
-            r.all.c0 < 1e-12 && r.all.g1 < 1e-8,
-            "{scheme}: {:e}",
-            r.all.g1
-        );
+        closed_and_g1(scheme, &out);
         // near the bottom corners the surface is TPS's of the net without the loop
         let spec = registry().lookup(scheme).expect(scheme);
         let with = Surface::build(&spec, &creased_cube(0.0, 2.5), RINGS).expect(scheme);
@@ -293,19 +298,7 @@ fn sharpness_nine_is_built_near_the_crease_only() {
     for scheme in SCHEMES {
         let out = build(scheme, &creased_cube(9.0, 0.0), PrepareMode::Auto)
             .unwrap_or_else(|e| panic!("{scheme}: {e}"));
-        let r = continuity::check(&out.complex);
-        eprintln!(
-            "{scheme}: {} patches, open {}, G1 {:.1e}",
-            out.complex.len(),
-            r.open_sides,
-            r.all.g1
-        );
-        assert_eq!(r.open_sides, 0, "{scheme}");
-        assert!(
-            r.all.c0 < 1e-12 && r.all.g1 < 1e-8,
-            "{scheme}: {:e}",
-            r.all.g1
-        );
+        closed_and_g1(scheme, &out);
         assert!(
             out.complex.len() < 200_000,
             "{scheme}: {}",

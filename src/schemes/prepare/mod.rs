@@ -264,7 +264,7 @@ pub fn prepare(
         return Ok(Prepared::unchanged(mesh));
     }
     if purpose == Purpose::Patches
-        && let Some(cut) = cut_first(spec, mesh, None)
+        && let Some(cut) = cut_first(spec, mesh)
     {
         // the steps on the cut net; nothing to do there: the scheme cuts the net itself,
         // unless hole faces were removed (the map then keeps addressing the input faces, and
@@ -303,19 +303,15 @@ struct CutFirst {
 /// as the dual schemes' patches cut it (`crate::schemes::doo_sabin::sharp`), so that the dual
 /// steps, which carry the cut net's kept corners but no crease or hole, can be applied. `None`
 /// where the net tags nothing, tags semi-sharp features (the steps would lose them) or has
-/// features the cut refuses (the scheme refuses them with its own message). `map`: where the
-/// faces of `mesh` lie in the input faces (`None`: `mesh` is the input net).
-fn cut_first(spec: &Spec, mesh: &PolyMesh, map: Option<&ParamMap>) -> Option<CutFirst> {
+/// features the cut refuses (the scheme refuses them with its own message).
+fn cut_first(spec: &Spec, mesh: &PolyMesh) -> Option<CutFirst> {
     use crate::schemes::doo_sabin::sharp;
     if !has_features(mesh) || sharp::has_semi_sharp(mesh) {
         return None;
     }
     let cut = sharp::cut_along_creases(mesh, spec.name()).ok()??;
     Some(CutFirst {
-        map: map
-            .cloned()
-            .unwrap_or_else(|| ParamMap::input(mesh))
-            .select(&sharp::kept_faces(mesh)),
+        map: ParamMap::input(mesh).select(&sharp::kept_faces(mesh)),
         applied: Applied {
             step: cut.notes.join("; "),
             need: "needs its steps to carry the net's sharp features (the dual steps carry \
