@@ -416,3 +416,45 @@ fn each_copy_of_a_cut_crease_vertex_is_its_own_hole() {
         assert_eq!(caps, 4, "{scheme}");
     }
 }
+
+/// Kept corners of the cut net with two or more cells on one side (OpenSubdiv's
+/// `catmark_inf_crease0` and `catmark_inf_crease1`: three infinitely sharp edges meeting at a
+/// vertex of four faces) get Catmull-Clark's corner cap under non-box; the C^0 fill closed
+/// them until 2026-12-07 (0.87 and 0.57 rad). `catmark_inf_crease1` is then G^1 everywhere;
+/// `catmark_inf_crease0` keeps the fill at a copy of one cell where a crease turns (named).
+#[test]
+fn kept_corners_with_two_cells_get_corner_caps() {
+    use fairsub::bezier::g1::Fan;
+    let corner = |h: &fairsub::bezier::g1::Hole| matches!(h.kind, Fan::Corner(_));
+    for scheme in ["nonbox", "nonbox-4dir"] {
+        let spec = registry().lookup(scheme).expect("scheme");
+        let opts = ComplexOptions {
+            rings: 3,
+            fill: true,
+        };
+        for (name, g1) in [
+            ("catmark_inf_crease1", 1e-10),
+            ("catmark_inf_crease0", 2e-3),
+        ] {
+            let net = osd(name);
+            let s = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+            let caps = s.complex.caps.iter().filter(|c| corner(&c.hole)).count();
+            let r = continuity::check(&s.complex);
+            eprintln!("{scheme} {name}: {caps} corner caps, G1 {:.1e}", r.all.g1);
+            assert!(caps >= 1, "{scheme} {name}: no corner cap");
+            assert!(r.all.g1 < g1, "{scheme} {name}: G1 {:e}", r.all.g1);
+            assert!(
+                !s.notes.iter().any(|n| n.contains("a hole of 2 sectors")),
+                "{scheme} {name}: {:?}",
+                s.notes
+            );
+        }
+        let caps = table_reapplies(
+            scheme,
+            "catmark_inf_crease1",
+            &osd("catmark_inf_crease1"),
+            corner,
+        );
+        assert!(caps >= 1, "{scheme}: the table's corner caps");
+    }
+}

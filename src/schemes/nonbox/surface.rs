@@ -227,12 +227,12 @@ impl AdaptiveRules for NonBoxRules<'_> {
             .iter()
             .all(|&(f, _)| level.net.mesh.face_size(f as usize) == 4)
             && is_last_cap_level_calm((l, rings, self.fill), level.calm, || {
-                g1::waiting(level, marked)
+                g1::waiting(level, &self.net.mesh, marked)
             })
     }
 
     fn fill(&self, level: &Level, marked: &[(u32, Tag)], to: Sink<Curves<4>>) -> Result<()> {
-        let left = g1::g1_caps(level, marked, to.out);
+        let left = g1::g1_caps(level, &self.net.mesh, marked, to.out);
         fill(level, &left, to.curves, to.out);
         Ok(())
     }

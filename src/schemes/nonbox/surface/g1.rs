@@ -39,6 +39,15 @@
 //! in the plane of the boundary tangent `a - b` and the eigen tangent across the boundary of the
 //! scheme's own local matrix ([`crate::schemes::nonbox::boundary`]).
 //!
+//! **Kept corners** of a net cut along its creases (a copy of a vertex with three or more sharp
+//! edges, on one side of the cut) with `k >= 2` quads get Catmull-Clark's corner cap
+//! ([`crate::bezier::g1::Fan::Corner`]): centred at the corner (the rules keep it), in the
+//! plane of the two sharp edges' derivatives there, `e_a - x` and `+-(e_b - x)` (non-box's
+//! boundary rules are the cubic B-spline rules, so its limit curves are Catmull-Clark's), a
+//! quarter-turn, or three on a side with more than half of the corner's faces in the input net
+//! (`corner_plane`). Until 2026-12-07 the fill closed them: 0.87 rad on OpenSubdiv's
+//! `catmark_inf_crease0`, 0.57 on `catmark_inf_crease1`.
+//!
 //! Holes that touch another element's after the requested rings get up to
 //! [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
 //! whose two rings are not regular quads, still touching after that) keep the C^0 Coons fill of
@@ -46,7 +55,7 @@
 
 use super::{Level, trusted_cell};
 use crate::bezier::complex::PatchComplex;
-use crate::bezier::g1::{Hole, Segment};
+use crate::bezier::g1::{CornerAngle, Hole, Segment};
 use crate::geom::{Point, axpy, scale};
 use crate::host::adaptive::{
     NoCap, QuadSector, Tag, caps_waiting, fan_centre_from, g1_cap_elements, quad_hole_segments,
@@ -114,18 +123,18 @@ fn segment_across(level: &Level, hole_he: u32, from: u32) -> Option<Segment> {
 /// The hole of one element, two vectors spanning its limit tangent plane and the tags of its sectors, or why there is none.
 fn hole_of(
     level: &Level,
+    input: &PolyMesh,
     element: Element,
     cells: &[(u32, Tag)],
 ) -> Result<(Hole, [Point; 2], Vec<Tag>), NoCap> {
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
-    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (3, 2))?;
+    // open fans of two cells only at kept corners (a plain boundary vertex of two cells is
+    // regular)
+    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (2, 2))?;
     let xu = x as usize;
-    if open && crate::schemes::nonbox::sharp::is_corner(m, xu) {
-        // a kept corner of a net cut along its creases: the fill closes it
-        return Err(NoCap::Never);
-    }
-    if cells.len() != n {
+    let corner = open && crate::schemes::nonbox::sharp::is_corner(m, xu);
+    if cells.len() != n || (open && !corner && n < 3) {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
@@ -147,6 +156,11 @@ fn hole_of(
         })
         .collect::<Result<Vec<Tag>, NoCap>>()?;
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    if corner {
+        let (angle, plane) = corner_plane(level, input, element, xu, &quads)?;
+        let x = level.points[xu];
+        return Ok((Hole::untangented_corner(x, sectors, angle), plane, tags));
+    }
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = if open {
         open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
@@ -162,6 +176,41 @@ fn hole_of(
         Hole::untangented(centre, sectors)
     };
     Ok((hole, plane, tags))
+}
+
+/// The chart angle and plane vectors of a kept corner's open fan `quads` (a copy of a corner
+/// on one side of the cut along its creases, [`super::sharp`]): `T0 = e_a - x` and
+/// `T1 = +-(e_b - x)` for the ends `e_a, e_b` of its boundary spokes, the derivatives of the two
+/// sharp edges' limit curves at the corner (non-box's boundary rules are the cubic B-spline
+/// rules of the boundary polygon, whose end the corner fixes: Catmull-Clark's corner plane,
+/// `crate::schemes::sdc::crease::adaptive::corner_plane`), `-` on a reflex side: more than
+/// half of the faces around the corner in the input net `input` (topology, not geometry,
+/// decides, as for Catmull-Clark). `Never` when the two edges are (nearly) straight through
+/// the corner (sine below 1e-3: they span no plane) or the element is not an input vertex.
+fn corner_plane(
+    level: &Level,
+    input: &PolyMesh,
+    element: Element,
+    x: usize,
+    quads: &[QuadSector],
+) -> Result<(CornerAngle, [Point; 2]), NoCap> {
+    let (Element::Vertex(v0), Some(first), Some(last)) = (element, quads.first(), quads.last())
+    else {
+        return Err(NoCap::Never);
+    };
+    let x = level.points[x];
+    let ta = crate::geom::sub(level.points[first.p as usize], x);
+    let tb = crate::geom::sub(level.points[last.q as usize], x);
+    let (na, nb) = (crate::geom::norm(ta), crate::geom::norm(tb));
+    if crate::geom::norm(crate::geom::cross(ta, tb)) <= 1e-3 * na * nb {
+        return Err(NoCap::Never);
+    }
+    let around = input.vertex_faces(v0 as usize).len();
+    Ok(if 2 * quads.len() > around {
+        (CornerAngle::Reflex, [ta, scale(tb, -1.0)])
+    } else {
+        (CornerAngle::Convex, [ta, tb])
+    })
 }
 
 /// The plane of the half-plane cap of a vertex of two cells ([`crate::bezier::g1`], "Two
@@ -217,10 +266,10 @@ fn copy_batches(level: &Level, marked: &[(u32, Tag)]) -> Vec<Vec<(u32, Tag)>> {
 }
 
 /// Whether some marked element would get its cap after more levels.
-pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
+pub(super) fn waiting(level: &Level, input: &PolyMesh, marked: &[(u32, Tag)]) -> bool {
     copy_batches(level, marked)
         .iter()
-        .any(|b| caps_waiting(b, |e, cells| hole_of(level, e, cells)))
+        .any(|b| caps_waiting(b, |e, cells| hole_of(level, input, e, cells)))
 }
 
 /// Caps every element of the marked cells that has its hole data (every copy of a vertex
@@ -230,17 +279,18 @@ pub(super) fn waiting(level: &Level, marked: &[(u32, Tag)]) -> bool {
 /// elements it cannot cap.
 pub(super) fn g1_caps(
     level: &Level,
+    input: &PolyMesh,
     marked: &[(u32, Tag)],
     out: &mut PatchComplex,
 ) -> Vec<(u32, Tag)> {
     let batches = copy_batches(level, marked);
     if batches.len() == 1 {
-        return g1_cap_elements(marked, out, |e, cells| hole_of(level, e, cells).ok());
+        return g1_cap_elements(marked, out, |e, cells| hole_of(level, input, e, cells).ok());
     }
     let mut left = Vec::new();
     for batch in &batches {
         left.extend(g1_cap_elements(batch, out, |e, cells| {
-            hole_of(level, e, cells).ok()
+            hole_of(level, input, e, cells).ok()
         }));
     }
     let capped: std::collections::HashSet<Element> = out
