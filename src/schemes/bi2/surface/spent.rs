@@ -32,46 +32,32 @@
 //! features' ends (tested in `tests/it/semisharp_rings.rs`).
 
 use super::*;
-use crate::mesh::SharpEdges;
 use std::collections::HashSet;
 
 /// Per vertex of `mesh`: whether a sharp feature touches it (an end of an edge of positive
 /// sharpness, a vertex of positive sharpness).
-fn feature_vertices(mesh: &PolyMesh) -> Vec<bool> {
+///
+/// # Errors
+/// A tagged pair that is not an edge of the net.
+fn feature_vertices(mesh: &PolyMesh) -> Result<Vec<bool>> {
     let mut at = vec![false; mesh.num_vertices()];
     let Some(ex) = mesh.extras() else {
-        return at;
+        return Ok(at);
     };
-    let mut mark = |v: u32| {
-        if let Some(x) = at.get_mut(v as usize) {
-            *x = true;
-        }
-    };
-    match &ex.sharp_edges {
-        SharpEdges::ById(v) => {
-            for &(e, s) in v {
-                if s > 0.0 {
-                    let h = mesh.edge_halfedge(e as usize);
-                    mark(mesh.he_from(h));
-                    mark(mesh.he_to(h));
-                }
-            }
-        }
-        SharpEdges::ByPair(v) => {
-            for &([a, b], s) in v {
-                if s > 0.0 {
-                    mark(a);
-                    mark(b);
-                }
-            }
-        }
+    let edges = crate::schemes::doo_sabin::sharp::edge_sharpness(mesh, ex)?;
+    for (e, _) in edges.iter().enumerate().filter(|(_, s)| **s > 0.0) {
+        let h = mesh.edge_halfedge(e);
+        at[mesh.he_from(h) as usize] = true;
+        at[mesh.he_to(h) as usize] = true;
     }
     for &(v, s) in &ex.sharp_vertices {
-        if s > 0.0 {
-            mark(v);
+        if s > 0.0
+            && let Some(x) = at.get_mut(v as usize)
+        {
+            *x = true;
         }
     }
-    at
+    Ok(at)
 }
 
 /// Whether no feature touches a vertex of the faces around `v` or of the faces around those,
@@ -104,7 +90,7 @@ pub(crate) fn tps_spent_locally(
     progress: impl FnMut(usize),
 ) -> Result<(PatchComplex, Vec<String>)> {
     let steps = crate::schemes::doo_sabin::sharp::spending_steps(mesh);
-    let features = feature_vertices(mesh);
+    let features = feature_vertices(mesh)?;
     let face_cells = thirds::FaceCells::input(mesh);
     let split = if rules == TernaryRules::TPS {
         thirds::Split::Thirds

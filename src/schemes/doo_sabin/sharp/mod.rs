@@ -411,7 +411,7 @@ fn sharp_edge_flags(mesh: &PolyMesh, ex: &Extras, name: &str) -> Result<Vec<bool
 ///
 /// # Errors
 /// [`Error::Unsupported`] for a tagged pair that is not an edge of the net.
-fn edge_sharpness(mesh: &PolyMesh, ex: &Extras) -> Result<Vec<f32>> {
+pub(crate) fn edge_sharpness(mesh: &PolyMesh, ex: &Extras) -> Result<Vec<f32>> {
     let mut out = vec![0f32; mesh.num_edges()];
     match &ex.sharp_edges {
         SharpEdges::ById(v) => {

@@ -65,6 +65,7 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use crate::schemes::nonbox::boundary::open_fan_tangents;
+use crate::schemes::sdc::crease::adaptive::corner_chart;
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
@@ -178,15 +179,13 @@ fn hole_of(
     Ok((hole, plane, tags))
 }
 
-/// The chart angle and plane vectors of a kept corner's open fan `quads` (a copy of a corner
-/// on one side of the cut along its creases, [`super::sharp`]): `T0 = e_a - x` and
-/// `T1 = +-(e_b - x)` for the ends `e_a, e_b` of its boundary spokes, the derivatives of the two
-/// sharp edges' limit curves at the corner (non-box's boundary rules are the cubic B-spline
-/// rules of the boundary polygon, whose end the corner fixes: Catmull-Clark's corner plane,
-/// `crate::schemes::sdc::crease::adaptive::corner_plane`), `-` on a reflex side: more than
-/// half of the faces around the corner in the input net `input` (topology, not geometry,
-/// decides, as for Catmull-Clark). `Never` when the two edges are (nearly) straight through
-/// the corner (sine below 1e-3: they span no plane) or the element is not an input vertex.
+/// The chart angle and plane vectors of a kept corner's open fan `quads` around `x` (a copy of
+/// a corner on one side of the cut along its creases, [`super::sharp`]): Catmull-Clark's corner
+/// chart of the ends of its boundary spokes (`crate::schemes::sdc::crease::adaptive::
+/// corner_chart`; non-box's boundary rules are the cubic B-spline rules, so its limit curves at
+/// the corner are Catmull-Clark's), reflex on a side with more than half of the corner's faces
+/// in the input net `input` (the cut net's copy has only its own side). `Never` as the chart
+/// says, or when the element is not an input vertex.
 fn corner_plane(
     level: &Level,
     input: &PolyMesh,
@@ -198,19 +197,14 @@ fn corner_plane(
     else {
         return Err(NoCap::Never);
     };
-    let x = level.points[x];
-    let ta = crate::geom::sub(level.points[first.p as usize], x);
-    let tb = crate::geom::sub(level.points[last.q as usize], x);
-    let (na, nb) = (crate::geom::norm(ta), crate::geom::norm(tb));
-    if crate::geom::norm(crate::geom::cross(ta, tb)) <= 1e-3 * na * nb {
-        return Err(NoCap::Never);
-    }
+    let p = &level.points;
     let around = input.vertex_faces(v0 as usize).len();
-    Ok(if 2 * quads.len() > around {
-        (CornerAngle::Reflex, [ta, scale(tb, -1.0)])
-    } else {
-        (CornerAngle::Convex, [ta, tb])
-    })
+    corner_chart(
+        p[x],
+        p[first.p as usize],
+        p[last.q as usize],
+        2 * quads.len() > around,
+    )
 }
 
 /// The plane of the half-plane cap of a vertex of two cells ([`crate::bezier::g1`], "Two

@@ -202,26 +202,41 @@ fn marked_sides(
 }
 
 /// The chart angle and plane vectors of the corner `x`'s side `(ha, hb, k)` ([`corner_sides`]):
-/// `T0 = e_a - x` and `T1 = +-(e_b - x)`, the derivatives of the two sharp edges' limit curves
-/// at the corner (the cubic B-spline of the sharp polygon whose end the corner rule fixes: its
-/// phantom point `2 x - e`), `-` on a reflex side (more than half of the faces around `x`:
-/// topology, not geometry, decides, so a patch table's re-application to moved points takes
-/// the same chart). `Never` when the two edges are (nearly) straight through `x` (sine below
-/// 1e-3): they span no plane.
+/// [`corner_chart`] of the ends of its sharp edges, reflex when the side holds more than half
+/// of the faces around `x`.
 pub(crate) fn corner_plane(
     m: &PolyMesh,
     x: usize,
     (ha, hb, k): (u32, u32, usize),
 ) -> Result<(CornerAngle, [Point; 2]), NoCap> {
     let pos = m.positions();
-    let (ta, tb) = (
-        geom::sub(pos[m.he_to(ha) as usize], pos[x]),
-        geom::sub(pos[m.he_to(hb) as usize], pos[x]),
-    );
+    corner_chart(
+        pos[x],
+        pos[m.he_to(ha) as usize],
+        pos[m.he_to(hb) as usize],
+        2 * k > m.valence(x),
+    )
+}
+
+/// The chart angle and plane vectors of a corner `x`'s side between the sharp edges to `e_a`
+/// and `e_b`: `T0 = e_a - x` and `T1 = +-(e_b - x)`, the derivatives of the two sharp edges'
+/// limit curves at the corner (the cubic B-spline of the sharp polygon whose end the corner
+/// rule fixes: its phantom point `2 x - e`; Catmull-Clark's, Loop's and non-box's boundary
+/// rules alike), `-` on a `reflex` side (more than half of the faces around the corner:
+/// topology, not geometry, decides, so a patch table's re-application to moved points takes
+/// the same chart). `Never` when the two edges are (nearly) straight through `x` (sine below
+/// 1e-3): they span no plane.
+pub(crate) fn corner_chart(
+    x: Point,
+    e_a: Point,
+    e_b: Point,
+    reflex: bool,
+) -> Result<(CornerAngle, [Point; 2]), NoCap> {
+    let (ta, tb) = (geom::sub(e_a, x), geom::sub(e_b, x));
     if geom::norm(geom::cross(ta, tb)) <= 1e-3 * geom::norm(ta) * geom::norm(tb) {
         return Err(NoCap::Never);
     }
-    Ok(if 2 * k > m.valence(x) {
+    Ok(if reflex {
         (CornerAngle::Reflex, [ta, geom::scale(tb, -1.0)])
     } else {
         (CornerAngle::Convex, [ta, tb])
