@@ -93,8 +93,13 @@ pub struct PatchComplex {
 pub struct CapStep {
     /// The first cap patch.
     pub first: u32,
-    /// Number of cap patches (one per sector).
+    /// Number of the cap's patches in the complex: one per sector, or one per sector of
+    /// `kept`.
     pub count: u32,
+    /// The sectors whose patches the complex holds, in order, when it holds only some of them
+    /// (`None`: all): a complex that left out the patches over some faces
+    /// ([`PatchComplex::retain`]). The cap is built whole and these sectors kept.
+    pub kept: Option<Vec<u32>>,
     /// The hole: centre and ring segments (tangents unset).
     pub hole: Hole,
     /// Two vectors spanning the limit tangent plane.
@@ -193,8 +198,10 @@ impl PatchComplex {
     }
 
     /// The complex of the patches `keep` accepts, in order, with their domains, pieces and
-    /// sharp sides, the cap steps whose patches are all kept, and the uncapped elements (a
-    /// construction that puts another's patches in place of some of its own).
+    /// sharp sides, the cap steps of the kept cap patches (a cap partly kept records its kept
+    /// sectors, [`CapStep::kept`]), and the uncapped elements (a construction that puts
+    /// another's patches in place of some of its own, or leaves out the patches over some
+    /// faces).
     pub fn retain(&self, keep: impl Fn(usize) -> bool) -> PatchComplex {
         let mut to = vec![None; self.len()];
         let mut out = PatchComplex::new();
@@ -225,10 +232,26 @@ impl PatchComplex {
         out.caps = self
             .caps
             .iter()
-            .filter(|c| (c.first..c.first + c.count).all(|i| to[i as usize].is_some()))
-            .map(|c| CapStep {
-                first: to[c.first as usize].expect("kept"),
-                ..c.clone()
+            .filter_map(|c| {
+                // the kept patches of a cap stay consecutive
+                let run: Vec<u32> = (0..c.count)
+                    .filter(|&i| to[(c.first + i) as usize].is_some())
+                    .collect();
+                let first = to[(c.first + *run.first()?) as usize]?;
+                let kept = if run.len() == c.count as usize {
+                    c.kept.clone()
+                } else {
+                    Some(match &c.kept {
+                        Some(k) => run.iter().map(|&i| k[i as usize]).collect(),
+                        None => run.clone(),
+                    })
+                };
+                Some(CapStep {
+                    first,
+                    count: run.len() as u32,
+                    kept,
+                    ..c.clone()
+                })
             })
             .collect();
         out.uncapped = self.uncapped.clone();

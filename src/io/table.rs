@@ -11,7 +11,7 @@
 //! capmaps M
 //! constants 0|1      1: a constant line per row follows the rows
 //! p DU DV FIRST KIND GROUP        P lines: bi-degree, first row, linear|cap, provenance group
-//! c FIRST COUNT ROW MAP DEGREE CENTRE FAN SECTORS SEGMENTS B C ...   C lines, see below
+//! c FIRST COUNT ROW MAP DEGREE CENTRE FAN SECTORS SEGMENTS B C ... [kept S ...]   C lines
 //! m ID VALENCE ROWS COLS          M blocks, each followed by ROWS lines of COLS numbers
 //! r K I1 W1 ... IK WK             R lines: row r is sum_k Wk * point[Ik]
 //! k X Y Z                         R lines when constants is 1
@@ -43,7 +43,9 @@
 //! themselves; `corner/reflex`: over three quarters, the last spoke along `-B`) or `cone` (a
 //! hole closed around a cone point, [`crate::bezier::g1::Fan::Cone`]: `T0 = T1 = 0`, `A, B`
 //! are zero rows, `w(0) = 2 cos(pi / SECTORS)`) or `cone/dart` (a dart's fan around a cone
-//! point, the same). Version 2 added `FAN`; version 1 files are refused.
+//! point, the same). A line may end in `kept S1 .. S_COUNT`: the complex keeps the patches of
+//! those sectors only (in this order), the cap being built whole (non-box beside OpenSubdiv's
+//! hole faces). Version 2 added `FAN`; version 1 files are refused.
 
 use super::atomic::write_atomically;
 use super::text::{io_error, parse_error};
@@ -156,6 +158,12 @@ pub fn write_table(path: &Path, table: &PatchTable) -> Result<()> {
             for (b, c) in shape.iter().flatten() {
                 let _ = write!(out.buf, " {b} {c}");
             }
+            if let Some(kept) = &st.kept {
+                out.buf.push_str(" kept");
+                for s in kept {
+                    let _ = write!(out.buf, " {s}");
+                }
+            }
             out.buf.push('\n');
         }
         for (id, map) in maps.iter().enumerate() {
@@ -202,6 +210,9 @@ pub struct TableFile {
     pub rows: StencilTable,
     /// Per cap `(first_patch, count, data_row, map, degree)`.
     pub caps: Vec<(u32, u32, u32, u32, u32)>,
+    /// Per cap, the sectors its `count` patches are when the complex keeps only some
+    /// (`kept S1 .. S_COUNT` at the end of its line; `None`: all).
+    pub cap_sectors: Vec<Option<Vec<u32>>>,
     /// The cap maps' matrices, row major, with `(rows, cols)`.
     pub maps: Vec<((usize, usize), Vec<f64>)>,
     /// The constants (empty when the file has none).
@@ -273,9 +284,20 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
             _ => return Err(parse_error(path, l, "expected 'p DU DV FIRST KIND GROUP'")),
         }
     }
-    let mut caps = Vec::new();
+    let (mut caps, mut cap_sectors) = (Vec::new(), Vec::new());
     for _ in 0..ncaps {
         let (l, line) = next("a cap line")?;
+        let (line, kept) = match line.split_once(" kept") {
+            Some((head, kept)) => {
+                let kept: Vec<u32> = kept
+                    .split_whitespace()
+                    .map(str::parse)
+                    .collect::<std::result::Result<_, _>>()
+                    .map_err(|_| parse_error(path, l, "bad 'kept' sectors"))?;
+                (head, Some(kept))
+            }
+            None => (line, None),
+        };
         let w: Vec<&str> = line.split_whitespace().collect();
         let v: Vec<u32> = w
             .iter()
@@ -296,7 +318,15 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
                  crease, dart, corner, corner/reflex, cone, cone/dart or wedge/M)",
             ));
         }
+        if kept.as_ref().is_some_and(|k| k.len() != v[1] as usize) {
+            return Err(parse_error(
+                path,
+                l,
+                "expected one 'kept' sector per cap patch",
+            ));
+        }
         caps.push((v[0], v[1], v[2], v[3], v[4]));
+        cap_sectors.push(kept);
     }
     let mut maps = Vec::new();
     for _ in 0..nmaps {
@@ -371,6 +401,7 @@ pub fn read_table(path: &Path) -> Result<TableFile> {
         patches,
         rows,
         caps,
+        cap_sectors,
         maps,
         constants,
     })

@@ -229,7 +229,8 @@ impl Surface {
         let mut kites = HashMap::new();
         let mut fan_pieces = HashSet::new();
         for step in &complex.caps {
-            if step.hole.sectors.first().is_some_and(|s| s.len() == 1) {
+            // (a partly kept cap is of quad sectors: `nonbox`'s, beside hole faces)
+            if step.hole.sectors.first().is_some_and(|s| s.len() == 1) && step.kept.is_none() {
                 let (first, n) = (step.first as usize, step.count as usize);
                 for s in 0..n {
                     if step.hole.is_open() {
@@ -345,9 +346,10 @@ impl Surface {
         let found = self.cells.locate(host, sub, shape, p);
         found.map(|(leaf, cell)| (leaf, cell, jac)).ok_or_else(|| {
             Error::InvalidArgument(format!(
-                "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the hole \
-                 inside the last ring is open (--no-fill), or the patches there carry no face \
-                 domain (the quarters at boundary vertices under boundary mode none)"
+                "no patch of the surface covers face {face} at (u, v) = ({u}, {v}): the face \
+                 is one of the net's hole faces (OpenSubdiv's hole tag: no surface there), the \
+                 hole inside the last ring is open (--no-fill), or the patches there carry no \
+                 face domain (the quarters at boundary vertices under boundary mode none)"
             ))
         })
     }

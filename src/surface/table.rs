@@ -457,9 +457,23 @@ impl PatchTable {
         &self,
         k: usize,
         cap: &TableCap,
-        built: Vec<BezierPatch>,
+        mut built: Vec<BezierPatch>,
         patches: &mut [BezierPatch],
     ) -> Result<()> {
+        if let Some(kept) = &cap.step.kept {
+            // a partly kept cap: built whole, its kept sectors placed
+            let mut all: Vec<Option<BezierPatch>> = built.into_iter().map(Some).collect();
+            built = Vec::with_capacity(kept.len());
+            for &s in kept {
+                built.push(
+                    all.get_mut(s as usize)
+                        .and_then(Option::take)
+                        .ok_or_else(|| {
+                            Error::Unsupported(format!("cap {k} now has no sector {s}"))
+                        })?,
+                );
+            }
+        }
         if built.len() != cap.step.count as usize {
             return Err(Error::Unsupported(format!(
                 "cap {k} now has {} patches, the table {}",

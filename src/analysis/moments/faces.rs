@@ -93,7 +93,10 @@ fn parts(c: &PatchComplex) -> Vec<Part> {
     // kites of closed triangle holes: patch -> the next kite
     let mut next_kite: HashMap<usize, usize> = HashMap::new();
     for step in &c.caps {
-        if step.hole.sectors.first().is_some_and(|s| s.len() == 1) && !step.hole.is_open() {
+        if step.hole.sectors.first().is_some_and(|s| s.len() == 1)
+            && !step.hole.is_open()
+            && step.kept.is_none()
+        {
             let (first, n) = (step.first as usize, step.count as usize);
             for s in 0..n {
                 next_kite.insert(first + s, first + (s + 1) % n);

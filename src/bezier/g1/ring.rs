@@ -316,6 +316,7 @@ pub fn cap_step(
     let step = CapStep {
         first: first as u32,
         count: cap.patches.len() as u32,
+        kept: None,
         hole,
         plane,
         options: opts,
