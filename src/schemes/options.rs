@@ -130,6 +130,10 @@ pub enum ParamKind {
     /// (the bi-2 family, non-box: fairsub's crease constructions) without the rest of
     /// [`ParamKind::SharpFeatures`]; the options are put on the net.
     Creases,
+    /// The net's hole tags (OpenSubdiv's `t hole`) under `--levels` too, for a scheme with
+    /// [`ParamKind::Creases`] whose refinement carries them to the children of hole faces
+    /// (non-box); its patch output takes them either way.
+    Holes,
 }
 
 impl ParamKind {
@@ -148,6 +152,7 @@ impl ParamKind {
             ParamKind::SmoothTriangles => "--smooth-triangles",
             ParamKind::BoundaryMode => "--boundary",
             ParamKind::Creases => "--creases / --crease-method",
+            ParamKind::Holes => "the net's hole tags",
         }
     }
 }

@@ -58,6 +58,7 @@ mod io;
 mod loop_boundary_caps;
 mod measure_rational;
 mod nonbox;
+mod nonbox_holes;
 mod osd_peer;
 mod patch_table;
 mod patch_table_tracked;

@@ -168,7 +168,7 @@ pub fn refuse_features(spec: &Spec, mesh: &PolyMesh, arg: &str, what: &str) -> R
     let Some(ex) = mesh.extras() else {
         return Ok(());
     };
-    if takes_creases(spec) && ex.holes.is_empty() {
+    if takes_creases(spec) && (ex.holes.is_empty() || takes(spec, ParamKind::Holes)) {
         // creases and corners are the scheme's own; the crease method is read off the net
     } else if ex.has_features() {
         return Err(Error::Unsupported(format!(

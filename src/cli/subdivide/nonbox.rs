@@ -115,7 +115,10 @@ pub fn compute_net(
         let (m, normals) = r?;
         return Ok(Computed::LimitMesh(m, normals));
     }
-    let m = super::refine_with(scheme, mesh, levels, limit)?;
+    // hole faces are refined for support and not written
+    let m = crate::schemes::nonbox::holes::without_hole_faces(super::refine_with(
+        scheme, mesh, levels, limit,
+    )?);
     Ok(if scheme.fcv_layout() == FcvLayout::Quads && !limit {
         Computed::FcvNet(m)
     } else {

@@ -3,6 +3,7 @@
 
 use super::{NonBox, NonBox4Dir};
 use crate::bezier::BezierPatch;
+use crate::bezier::complex::PatchComplex;
 use crate::bezier::domain::FanTriangle;
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -39,9 +40,14 @@ impl Descriptor for NonBoxDescriptor {
     }
 
     /// The FCVs; the net's creases and corners with OpenSubdiv's rules carried over
-    /// (`nonbox::sharp`, fairsub's construction).
+    /// (`nonbox::sharp`, fairsub's construction); `nonbox` refines hole tags too
+    /// (`nonbox::holes`).
     fn params(&self) -> &'static [ParamKind] {
-        &[ParamKind::Fcv, ParamKind::Creases]
+        if self.four_dir {
+            &[ParamKind::Fcv, ParamKind::Creases]
+        } else {
+            &[ParamKind::Fcv, ParamKind::Creases, ParamKind::Holes]
+        }
     }
 
     /// Creases and corners, infinitely sharp and semi-sharp (`nonbox::sharp`).
@@ -61,20 +67,36 @@ impl Descriptor for NonBoxDescriptor {
     /// were read.
     fn patch_rules(&self, _: &Spec) -> Result<Option<Box<dyn PatchRules>>> {
         let four_dir = self.four_dir;
-        patch_fn(move |mesh, opts, progress| {
-            let mut complex = if four_dir {
-                super::surface::nonbox_4dir_mesh_complex(mesh, opts, progress)?
-            } else {
-                super::surface::nonbox_mesh_complex(mesh, opts, progress)?
+        patch_fn(move |mesh, opts, mut progress| {
+            let mut build = |m: &PolyMesh| -> Result<PatchComplex> {
+                let mut complex = if four_dir {
+                    super::surface::nonbox_4dir_mesh_complex(m, opts, &mut progress)?
+                } else {
+                    super::surface::nonbox_mesh_complex(m, opts, &mut progress)?
+                };
+                if m.extras().is_some_and(|e| e.has_features()) {
+                    // the sides marked on the boundary of the cut net: crease sides kept
+                    crate::schemes::doo_sabin::sharp::keep_crease_sides(&mut complex);
+                }
+                Ok(complex)
             };
-            if mesh.extras().is_some_and(|e| e.has_features()) {
-                // the sides marked on the boundary of the cut net: crease sides kept
-                crate::schemes::doo_sabin::sharp::keep_crease_sides(&mut complex);
-            }
+            let mut notes = super::input_notes(four_dir, mesh);
+            // hole faces: the surface of the net without the tags, less their patches
+            let fan = match four_dir && mesh.extras().is_some_and(|e| !e.holes.is_empty()) {
+                true => super::surface::nonbox_4dir_fan_faces(mesh)?,
+                false => None,
+            };
+            let complex = match super::holes::leave_out_holes(mesh, fan.as_deref(), &mut build)? {
+                Some((complex, note)) => {
+                    notes.push(note);
+                    complex
+                }
+                None => build(mesh)?,
+            };
             Ok(SurfaceOutput {
                 complex,
                 fell_back: Vec::new(),
-                notes: super::input_notes(four_dir, mesh),
+                notes,
             })
         })
     }

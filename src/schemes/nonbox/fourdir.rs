@@ -72,6 +72,8 @@ pub fn triangulate(net: &FcvNet) -> FourDirNet {
                 v.iter().map(|&(e, s)| (m.edge(e as usize), s)).collect(),
             );
         }
+        // triangle `h` stands on half-edge `h`
+        ex.holes = super::holes::halfedge_holes(m);
         ex
     });
     let mesh = PolyMesh::from_refinement(net.points(), face_start, corners)

@@ -90,10 +90,13 @@ pub use descriptor::{DESCRIPTOR, DESCRIPTOR_4DIR};
 pub mod bezier;
 pub mod boundary;
 pub mod fourdir;
+pub(crate) mod holes;
 pub mod mask;
+mod net;
 pub(crate) mod sharp;
 
 pub use fourdir::{FourDirNet, NonBox4Dir};
+pub use net::{FcvNet, fcv_insertion, layout_vertex_count};
 
 use super::{Refinement, Scheme};
 use crate::error::{Error, Result};
@@ -121,10 +124,6 @@ pub fn a_k(k: usize) -> f64 {
 pub fn subdominant_eigenvalue(k: usize) -> f64 {
     0.5 + 0.25 * (2.0 * PI / k as f64).cos()
 }
-
-mod net;
-
-pub use net::{FcvNet, fcv_insertion, layout_vertex_count};
 
 /// One refinement step of a net: the child net and the table mapping parent points to child
 /// points (see the [module](self) documentation for both orders).
@@ -361,14 +360,15 @@ impl NonBox {
     /// documentation).
     pub fn step(net: &FcvNet) -> Result<FcvStep> {
         let mesh = &net.mesh;
-        let creases = sharp::NonBoxCreases::of(mesh)?;
+        let creases = sharp::NonBoxCreases::of(mesh);
         let st = step_stencils_with(mesh, creases.as_ref());
         let (fs, cn) = CatmullClark::child_topology(mesh);
         let pts = st.apply(&net.points());
         let nv = mesh.num_vertices() as u32;
         let nc = mesh.num_vertices() + mesh.num_edges() + mesh.num_faces();
-        let child = PolyMesh::from_refinement(pts[..nc].to_vec(), fs, cn)?
-            .with_extras(creases.map(|c| c.child_extras(|v| v, |e| nv + e)));
+        let extras =
+            holes::with_child_holes(mesh, creases.map(|c| c.child_extras(|v| v, |e| nv + e)));
+        let child = PolyMesh::from_refinement(pts[..nc].to_vec(), fs, cn)?.with_extras(extras);
         let net = FcvNet::new(child, pts[nc..].to_vec())?;
         Ok(FcvStep { net, stencils: st })
     }
@@ -506,7 +506,7 @@ impl NonBox {
             tri.mesh.face_starts().to_vec(),
             tri.mesh.corners().to_vec(),
         )?;
-        Ok((mesh, normals))
+        Ok((holes::without_hole_triangles(mesh, &fine.mesh), normals))
     }
 }
 

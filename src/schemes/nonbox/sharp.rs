@@ -23,7 +23,6 @@
 //! Catmull-Clark's child topology: the half of edge `e` at `v` joins the child V-vertex of `v`
 //! and the child E-vertex of `e`.
 
-use crate::error::{Error, Result};
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, PolyMesh};
 use crate::schemes::sdc::crease::{ChildEdge, Emit, LimitPlan, Scratch, SharpLevel};
@@ -38,23 +37,12 @@ pub(crate) struct NonBoxCreases<'a> {
 impl<'a> NonBoxCreases<'a> {
     /// The sharp features of `mesh` (its extras; non-box always interpolates its boundary
     /// edge-and-corner, and reads the crease method from the net), or `None` when it tags none
-    /// (the plain rules of [`crate::schemes::nonbox`] apply).
-    ///
-    /// # Errors
-    /// [`Error::Unsupported`] for hole tags, which non-box has no rule for.
-    pub fn of(mesh: &'a PolyMesh) -> Result<Option<NonBoxCreases<'a>>> {
-        let Some(ex) = mesh.extras() else {
-            return Ok(None);
-        };
-        if !ex.holes.is_empty() {
-            return Err(Error::Unsupported(format!(
-                "the net tags {} hole faces; non-box has no rule for holes (remove the tags, \
-                 or delete the faces)",
-                ex.holes.len()
-            )));
-        }
+    /// (the plain rules of [`crate::schemes::nonbox`] apply). Hole tags change no rule
+    /// (`super::holes`).
+    pub fn of(mesh: &'a PolyMesh) -> Option<NonBoxCreases<'a>> {
+        let ex = mesh.extras()?;
         if ex.sharp_edges.is_empty() && ex.sharp_vertices.is_empty() {
-            return Ok(None);
+            return None;
         }
         // edge-and-corner unless the net says edge-only (a net cut along its creases)
         let opts = SubdOptions {
@@ -65,7 +53,7 @@ impl<'a> NonBoxCreases<'a> {
             crease_method: ex.options.crease_method,
             ..SubdOptions::default()
         };
-        Ok(SharpLevel::new(mesh, &opts).map(|sl| NonBoxCreases { sl, mesh }))
+        SharpLevel::new(mesh, &opts).map(|sl| NonBoxCreases { sl, mesh })
     }
 
     /// The sharpness of edge `e` (boundary edges are infinitely sharp).

@@ -366,7 +366,7 @@ fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let m = &level.net.mesh;
     let (nv, nf) = (m.num_vertices(), m.num_faces());
-    let creases = NonBoxCreases::of(m)?;
+    let creases = NonBoxCreases::of(m);
     let mut scratch = Scratch::default();
     let (sel, sel_faces) = select_around(m, marked);
     let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();

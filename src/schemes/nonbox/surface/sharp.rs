@@ -48,7 +48,7 @@ pub(super) struct LevelSharp {
 /// Those of reading the net's tags ([`NonBoxCreases::of`]).
 pub(super) fn level_sharp(net: &FcvNet, parent_calm: usize) -> Result<LevelSharp> {
     let m = &net.mesh;
-    let Some(c) = NonBoxCreases::of(m)? else {
+    let Some(c) = NonBoxCreases::of(m) else {
         return Ok(LevelSharp {
             near_semi: None,
             calm: calm_after(parent_calm, &[], &[]),
@@ -140,7 +140,7 @@ fn prune_darts(m: &PolyMesh, cut: &mut [bool]) {
 /// Those of building the cut net.
 pub(super) fn cut_net(net: &FcvNet, info: &[Info], cut: &[bool]) -> Result<(FcvNet, Vec<Info>)> {
     let m = &net.mesh;
-    let c = NonBoxCreases::of(m)?;
+    let c = NonBoxCreases::of(m);
     let nv = m.num_vertices();
     let corner: Vec<bool> = (0..nv)
         .map(|v| c.as_ref().is_some_and(|c| c.is_corner(v)))
