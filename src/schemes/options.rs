@@ -137,7 +137,7 @@ pub enum ParamKind {
 }
 
 impl ParamKind {
-    /// The command-line option that sets it.
+    /// The command-line option that sets it (for [`ParamKind::Holes`], the net's tag).
     pub fn option(self) -> &'static str {
         match self {
             ParamKind::Fallback => "--fallback",
@@ -152,7 +152,7 @@ impl ParamKind {
             ParamKind::SmoothTriangles => "--smooth-triangles",
             ParamKind::BoundaryMode => "--boundary",
             ParamKind::Creases => "--creases / --crease-method",
-            ParamKind::Holes => "the net's hole tags",
+            ParamKind::Holes => "t hole",
         }
     }
 }

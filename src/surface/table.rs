@@ -462,17 +462,8 @@ impl PatchTable {
     ) -> Result<()> {
         if let Some(kept) = &cap.step.kept {
             // a partly kept cap: built whole, its kept sectors placed
-            let mut all: Vec<Option<BezierPatch>> = built.into_iter().map(Some).collect();
-            built = Vec::with_capacity(kept.len());
-            for &s in kept {
-                built.push(
-                    all.get_mut(s as usize)
-                        .and_then(Option::take)
-                        .ok_or_else(|| {
-                            Error::Unsupported(format!("cap {k} now has no sector {s}"))
-                        })?,
-                );
-            }
+            built = holes::kept_sectors(built, kept)
+                .ok_or_else(|| Error::Unsupported(format!("cap {k} now lacks a kept sector")))?;
         }
         if built.len() != cap.step.count as usize {
             return Err(Error::Unsupported(format!(

@@ -124,9 +124,11 @@ pub(super) fn leave_out_holes(
             }
             if let Some(p) = (0..hosts).find(|&p| tagged[p] != 0 && tagged[p] != all[p]) {
                 return Err(Error::Unsupported(format!(
-                    "non-box-4dir: {} of the {} triangles of polygon {p} (around its FCV) are \
-                     hole faces; its patches span all of them: tag all or none",
-                    tagged[p], all[p]
+                    "{}: {} of the {} triangles of polygon {p} (around its FCV) are hole faces; \
+                     its patches span all of them: tag all or none",
+                    crate::schemes::options::ids::NONBOX_4DIR,
+                    tagged[p],
+                    all[p]
                 )));
             }
             tagged.iter().map(|&n| n > 0).collect()

@@ -1,6 +1,7 @@
 //! The G^1 caps of a patch table: each cap's data rows (centre, plane vectors, the hole's
 //! segments) and how the hole is read back from them at [`super::PatchTable::apply`].
 
+use crate::bezier::BezierPatch;
 use crate::bezier::complex::CapStep;
 use crate::bezier::g1::{Centre, Hole, Segment};
 use crate::geom::Point;
@@ -80,4 +81,13 @@ pub(super) fn hole_from(vals: &[Point], shape: &HoleShape, like: &Hole) -> (Hole
         .collect();
     let hole = Hole::untangented_as(vals[0], sectors, like.kind);
     (hole, [vals[1], vals[2]])
+}
+
+/// The patches of the sectors `kept` of a cap built whole (a cap the complex keeps in part,
+/// [`CapStep::kept`]); `None` when the cap lacks one of them.
+pub(super) fn kept_sectors(built: Vec<BezierPatch>, kept: &[u32]) -> Option<Vec<BezierPatch>> {
+    let mut all: Vec<Option<BezierPatch>> = built.into_iter().map(Some).collect();
+    kept.iter()
+        .map(|&s| all.get_mut(s as usize).and_then(Option::take))
+        .collect()
 }
