@@ -106,3 +106,37 @@ fn loop_vertices_next_to_holes_get_wedge_caps() {
     ));
     wedges_are_capped(true, all);
 }
+
+/// OpenSubdiv's `loop_triangle_edgenone` under Catmull-Clark: the boundary mode `none` makes
+/// holes of the faces at boundary vertices without a sharp boundary edge, so the vertices along
+/// the boundary edges tagged sharp keep one or two of their three quads. Each run is a wedge of
+/// the open fan (`pi / n` apart), centred at the boundary limit point: no fill patch is left
+/// (the fill measured 1.4e-2 rad at 3 rings until 2026-12-07; 7.4e-14 now), every join G^1
+/// below 1e-8, the table re-applies to moved points.
+#[test]
+fn boundary_vertices_next_to_holes_get_open_wedge_caps() {
+    let name = "loop_triangle_edgenone";
+    let m = osd(name);
+    let (scheme, samples) = support::scheme_of(false, &m);
+    let mut counts = Vec::new();
+    for rings in 1..=3 {
+        let what = format!("{name}, {rings} rings");
+        let c = support::complex_of(false, &m, rings);
+        check_capped(&what, &m, &c, scheme.as_ref(), samples, false, false);
+        // the open fans' wedges: 2 n sectors in all, of them the run's
+        counts.push(
+            c.caps
+                .iter()
+                .filter(|s| s.hole.kind.wedge() == Some(6))
+                .count(),
+        );
+    }
+    assert_eq!(counts, [15, 15, 15]);
+    // with the net's options, as `subdivide` reads them
+    let mut spec = fairsub::schemes::registry::registry()
+        .lookup("catmull-clark")
+        .unwrap();
+    spec.params.subd = support::file_options(&m);
+    let in_table = support::spec_table_reapplies(&spec, name, &m, |h| h.kind.wedge() == Some(6));
+    assert_eq!(in_table, 15);
+}

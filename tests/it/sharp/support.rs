@@ -247,10 +247,21 @@ pub fn table_reapplies(
     mesh: &PolyMesh,
     kind: impl Fn(&fairsub::bezier::g1::Hole) -> bool,
 ) -> usize {
-    use fairsub::surface::table::{PatchTable, probe};
     let spec = fairsub::schemes::registry::registry()
         .lookup(scheme)
         .expect("registered");
+    spec_table_reapplies(&spec, name, mesh, kind)
+}
+
+/// [`table_reapplies`] of a scheme with its options (`spec`).
+pub fn spec_table_reapplies(
+    spec: &fairsub::schemes::Spec,
+    name: &str,
+    mesh: &PolyMesh,
+    kind: impl Fn(&fairsub::bezier::g1::Hole) -> bool,
+) -> usize {
+    use fairsub::surface::table::{PatchTable, probe};
+    let spec = spec.clone();
     let opts = fairsub::host::ComplexOptions {
         rings: 2,
         fill: true,

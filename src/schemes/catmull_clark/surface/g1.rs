@@ -77,7 +77,8 @@
 //! ([`crate::schemes::catmull_clark::dart`], [`crate::bezier::g1::Fan::Dart`]). A corner with
 //! sharp edges gets one open fan per side of two or more quads between them, its sharp spokes
 //! the edges' exact curves ([`crease::corner_caps`]); each run of quads between OpenSubdiv hole
-//! faces one open fan at the full turn's angles ([`wedge`]). A cone point (a vertex of
+//! faces one open fan at the full turn's angles, at a boundary vertex at the open fan's
+//! ([`wedge`]). A cone point (a vertex of
 //! sharpness infinity without two sharp edges) gets a closed cap, or a dart's fan along its one
 //! sharp edge, centred at the vertex with zero spoke tangents ([`crease::cone_cap`],
 //! [`crate::bezier::g1::Fan::Cone`]). Elements that never have the data (boundary vertices of more than
@@ -352,8 +353,8 @@ pub(super) fn g1_caps_by_targets(
 
 /// The holes of one element: those of a crease vertex's sides ([`crease::crease_caps`]), of a
 /// dart ([`crease::dart_cap`]), of a corner's sides ([`crease::corner_caps`]), of the runs of
-/// quads between hole faces
-/// ([`wedge::wedge_caps`]), else the one of [`hole_of`].
+/// quads between hole faces ([`wedge::wedge_caps`], at a boundary vertex
+/// [`wedge::open_wedge_caps`]), else the one of [`hole_of`].
 fn holes_of(
     level: &Level,
     limits: &LimitStencils<'_>,
@@ -361,6 +362,9 @@ fn holes_of(
     faces: &[(u32, Tag)],
 ) -> Result<Vec<CapData>, NoCap> {
     let (x, n, open) = fan_centre_from(&level.mesh, &level.info, element, faces[0].0, (1, 2))?;
+    if open && let Some(caps) = wedge::open_wedge_caps(level, limits, x as usize, faces)? {
+        return Ok(caps);
+    }
     if open && n == 1 {
         return crease::boundary_corner_cap(level, x as usize, faces).map(|c| vec![c]);
     }

@@ -9,13 +9,21 @@
 //! fixed outer layers), the G^1 relation on the `n - 1` inner spokes; **centre** `x`'s limit
 //! point and **tangent plane** its eigen tangents, the smooth ones (a hole changes no rule),
 //! shared by every run around `x`, so the runs meet at one point in one plane.
+//!
+//! A plain boundary vertex with hole faces among its `n` quads (OpenSubdiv's boundary mode
+//! `none` makes the faces at its boundary vertices holes, beside boundary edges tagged sharp) is
+//! the same at the open fan's angles: `pi / n` apart, so a run of `k` quads is `k` of the `2 n`
+//! sectors of a wedge, centred at the boundary limit point in the boundary tangent plane (the
+//! open fan's, [`super::hole_of`]).
 
 use super::super::Level;
-use super::segment_across;
+use super::{cap_centre, cap_plane, segment_across};
 use crate::bezier::g1::Hole;
-use crate::host::adaptive::{CapData, NoCap, Tag, quad_hole_segments, quad_sectors_around};
+use crate::host::adaptive::{
+    CapData, NoCap, Tag, quad_hole_segments, quad_sectors_around, quad_sectors_open,
+};
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
-use crate::schemes::sdc::crease::adaptive::{beside_holes, present_runs};
+use crate::schemes::sdc::crease::adaptive::{beside_holes, cap_feature, is_hole, present_runs};
 use std::collections::HashMap;
 
 /// The caps of the interior vertex `x` whose marked cells are `faces`: `Ok(None)` when no face
@@ -49,6 +57,57 @@ pub(in crate::schemes::catmull_clark::surface) fn wedge_caps(
         let tags = super::crease::sector_tags(&run, &tag_at)?;
         let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
         caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
+    }
+    Ok(Some(caps))
+}
+
+/// The caps of the plain boundary vertex `x` whose marked cells are `faces`: `Ok(None)` when
+/// no quad of its open fan is a hole, else one wedge per run of present quads (module
+/// documentation); `Later` while a semi-sharp feature is left at `x`, `Never` for other
+/// features or when the present quads are not exactly the cells.
+pub(in crate::schemes::catmull_clark::surface) fn open_wedge_caps(
+    level: &Level,
+    limits: &LimitStencils<'_>,
+    x: usize,
+    faces: &[(u32, Tag)],
+) -> Result<Option<Vec<CapData>>, NoCap> {
+    let m = &level.mesh;
+    let n = m.outgoing(x).count();
+    let Some(all) = quad_sectors_open(m, x as u32, n) else {
+        return Ok(None);
+    };
+    let hole: Vec<bool> = all
+        .iter()
+        .map(|s| is_hole(level, s.face as usize))
+        .collect();
+    if !hole.contains(&true) {
+        return Ok(None);
+    }
+    match cap_feature(level, x) {
+        Some(true) => return Err(NoCap::Later),
+        Some(false) => return Err(NoCap::Never),
+        None => {}
+    }
+    if hole.iter().filter(|&&h| !h).count() != faces.len() {
+        return Err(NoCap::Never);
+    }
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
+    let pos = m.positions();
+    let centre = cap_centre(limits, m, x).apply(pos);
+    let (t1, t2) = cap_plane(m, x).ok_or(NoCap::Never)?;
+    let plane = [t1.apply(pos), t2.apply(pos)];
+    let mut caps = Vec::new();
+    let mut s = 0;
+    while s < n {
+        if hole[s] {
+            s += 1;
+            continue;
+        }
+        let run: Vec<_> = (s..n).take_while(|&i| !hole[i]).map(|i| all[i]).collect();
+        s += run.len();
+        let tags = super::crease::sector_tags(&run, &tag_at)?;
+        let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
+        caps.push((Hole::untangented_wedge(centre, sectors, 2 * n), plane, tags));
     }
     Ok(Some(caps))
 }
