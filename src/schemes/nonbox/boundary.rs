@@ -23,6 +23,21 @@
 //! 0.7165, 0.7252, 0.7310`), the paper's subdominant eigenvalue of an interior vertex of
 //! valence `2 k`: the boundary fan behaves like half of a closed fan of twice its valence.
 //! Together they span the plane the open-fan G^1 cap of [`super::surface`] is centred in.
+//!
+//! # One quad
+//!
+//! A boundary vertex of one quad on a boundary that passes (a net's edge-only boundary, or a
+//! copy of a crease vertex on the side of one quad after the cut) is not a corner: the boundary
+//! curve runs through it, and its fan is half a closed fan of valence 2. Its local matrix
+//! (`k = 1`, the net tagged edge-only) has the eigenvalues `1, 1/2, 1/4, 1/4, 1/8, ...`: the
+//! boundary tangent `a - b` at `1/2`, and at `1/4` both the boundary polygon's bend
+//! `v - (a + b) / 2` (the curve's own second difference, no derivative on the flat half-disc)
+//! and a mode across the boundary. The double eigenvalue leaves the across vector defined up to
+//! the bend; fairsub takes the combination without weight on the vertex itself,
+//! `F - (a + b) / 2` (`F` the quad's FCV), a left eigenvector at `1/4` (tested below). The cap
+//! there ([`super::surface`]'s one-cell crease fan) is G^1 to its ring whichever combination
+//! spans the plane with `a - b`: this choice is fairsub's, not derived from a unique limit
+//! tangent plane.
 
 use super::{FcvNet, NonBox};
 use crate::mesh::PolyMesh;
@@ -38,14 +53,14 @@ pub const MAX_BOUNDARY_FACES: usize = crate::bezier::g1::MAX_CAP_VALENCE;
 /// The `10 k + 3` point indices (vertices, then FCVs, as in [`FcvNet::points`]) of the open
 /// local net around the start vertex of the outgoing boundary half-edge `h`, in the labelling
 /// of the [module](self) documentation; `None` when `h` is not on the boundary, the fan has
-/// fewer than 3 faces or the two rings of quads are not regular.
+/// 2 faces (a regular vertex) or the two rings of quads are not regular.
 pub fn open_labelled_points(m: &PolyMesh, h: u32) -> Option<Vec<usize>> {
     if m.he_twin(h).is_some() {
         return None;
     }
     let v = m.he_from(h) as usize;
     let hs: Vec<u32> = m.outgoing_halfedges(v);
-    if hs.first() != Some(&h) || hs.len() < 3 {
+    if hs.first() != Some(&h) || hs.len() == 2 {
         return None;
     }
     let mut out = vec![v];
@@ -95,7 +110,18 @@ fn open_cnet(k: usize) -> Option<FcvNet> {
             }
         }
     }
-    Some(FcvNet::barycentric(PolyMesh::new(pos, &faces).ok()?))
+    let mesh = PolyMesh::new(pos, &faces).ok()?;
+    // one quad: a boundary that passes (edge-only), not a corner
+    let edge_only = crate::mesh::Extras {
+        options: crate::mesh::tags::SubdOptions {
+            boundary: Some(crate::mesh::tags::BoundaryInterpolation::EdgeOnly),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    Some(FcvNet::barycentric(
+        mesh.with_extras((k == 1).then_some(edge_only)),
+    ))
 }
 
 /// The local matrix of the open fan of `k` quads ([module](self) documentation) and the flat
@@ -182,16 +208,23 @@ fn compute_across(k: usize) -> Option<(f64, Vec<f64>)> {
 
 /// The stencils `(along, across)` of the limit tangents at boundary vertex `v` of `k >= 3`
 /// quads: the boundary curve's `a - b` and [`across_weights`] over its labelled points;
-/// `None` where the two rings around `v` are not regular quads.
+/// `None` where the two rings around `v` are not regular quads. At a vertex of one quad on a
+/// boundary that passes: `a - b` and `F - (a + b) / 2` ([module](self) documentation, "One
+/// quad").
 pub fn open_fan_tangents(net: &FcvNet, v: usize) -> Option<(Stencil, Stencil)> {
     let m = &net.mesh;
     let h = m.vertex_halfedge(v);
-    let pts = open_labelled_points(m, h)?;
-    let k = m.vertex_faces(v).len();
-    let w = across_weights(k)?;
     let nb = m.vertex_neighbors(v);
     let (a, b) = (nb[0] as usize, nb[nb.len() - 1] as usize);
     let along = Stencil::from_pairs([(a, 1.0), (b, -1.0)]);
+    let faces = m.vertex_faces(v);
+    if faces.len() == 1 && m.he_twin(h).is_none() {
+        // one quad (module documentation)
+        let f = net.fcv_point(faces[0] as usize);
+        return Some((along, Stencil::from_pairs([(f, 1.0), (a, -0.5), (b, -0.5)])));
+    }
+    let pts = open_labelled_points(m, h)?;
+    let w = across_weights(faces.len())?;
     let across = Stencil::from_pairs(pts.iter().copied().zip(w.1.iter().copied()));
     Some((along, across.merged()))
 }
@@ -199,6 +232,34 @@ pub fn open_fan_tangents(net: &FcvNet, v: usize) -> Option<(Stencil, Stencil)> {
 #[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
+
+    /// One quad on an edge-only boundary: eigenvalues `1, 1/2, 1/4, 1/4, 1/8 ...`; `a - b` a
+    /// left eigenvector at `1/2`; the bend `v - (a + b) / 2` and `F - (a + b) / 2` left
+    /// eigenvectors at `1/4` (labelled points: `v` 0, `a` 1, `F` 2, `b` 11).
+    #[crate::unit::test]
+    fn one_quad_local_matrix() {
+        let (s, _) = open_local(1).expect("invariant");
+        assert_eq!(s.nrows(), 13);
+        let n = s.nrows();
+        let st = faer::Mat::<f64>::from_fn(n, n, |i, j| s[(j, i)]);
+        let eig = st.eigen().expect("eigenvalues");
+        let vals = eig.S().column_vector();
+        let mut v: Vec<f64> = (0..n).map(|i| vals[i].re).collect();
+        v.sort_by(|a, b| b.total_cmp(a));
+        for (got, want) in v.iter().zip([1.0, 0.5, 0.25, 0.25, 0.125]) {
+            assert!((got - want).abs() < 1e-9, "{v:?}");
+        }
+        let left = |pairs: &[(usize, f64)], lambda: f64| {
+            let mut x = nalgebra::DVector::zeros(n);
+            for &(i, w) in pairs {
+                x[i] = w;
+            }
+            (s.transpose() * &x - &x * lambda).amax()
+        };
+        assert!(left(&[(1, 1.0), (11, -1.0)], 0.5) < 1e-12);
+        assert!(left(&[(0, 1.0), (1, -0.5), (11, -0.5)], 0.25) < 1e-12);
+        assert!(left(&[(2, 1.0), (1, -0.5), (11, -0.5)], 0.25) < 1e-12);
+    }
 
     #[crate::unit::test]
     fn open_local_matrix_and_across_tangents() {

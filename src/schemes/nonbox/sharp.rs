@@ -41,7 +41,10 @@ impl<'a> NonBoxCreases<'a> {
     /// (`super::holes`).
     pub fn of(mesh: &'a PolyMesh) -> Option<NonBoxCreases<'a>> {
         let ex = mesh.extras()?;
-        if ex.sharp_edges.is_empty() && ex.sharp_vertices.is_empty() {
+        // (an edge-only boundary changes the rule at a boundary vertex of one face: the
+        // plain rules keep it as a corner)
+        let edge_only = ex.options.boundary() == BoundaryInterpolation::EdgeOnly;
+        if ex.sharp_edges.is_empty() && ex.sharp_vertices.is_empty() && !edge_only {
             return None;
         }
         // edge-and-corner unless the net says edge-only (a net cut along its creases)

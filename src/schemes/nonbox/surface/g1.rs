@@ -48,6 +48,14 @@
 //! (`corner_plane`). Until 2026-12-07 the fill closed them: 0.87 rad on OpenSubdiv's
 //! `catmark_inf_crease0`, 0.57 on `catmark_inf_crease1`.
 //!
+//! **Copies of one cell on a boundary that passes** (where a crease turns at a vertex that is
+//! no corner, the cut leaves a copy with one cell on the inner side; a vertex of one face on
+//! an edge-only boundary) get Catmull-Clark's crease fan of one sector
+//! ([`crate::bezier::g1::Fan::Crease`]): spokes the boundary curve's two halves, `T0` its
+//! derivative `(p - q) / 2`, in the plane of that and `F - (a + b) / 2`
+//! ([`crate::schemes::nonbox::boundary`], "One quad"). Until 2026-12-07 the fill closed them:
+//! 1.1e-3 rad on `catmark_inf_crease0`, 1.6e-3 on `loop_triangle_edgeonly`.
+//!
 //! Holes that touch another element's after the requested rings get up to
 //! [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
 //! whose two rings are not regular quads, still touching after that) keep the C^0 Coons fill of
@@ -131,11 +139,11 @@ fn hole_of(
     let m = &level.net.mesh;
     let (f0, _) = cells[0];
     // open fans of two cells only at kept corners (a plain boundary vertex of two cells is
-    // regular)
-    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (2, 2))?;
+    // regular, so is a corner of one), of one cell only on a boundary that passes (edge-only)
+    let (x, n, open) = fan_centre_from(m, &level.info, element, f0, (1, 2))?;
     let xu = x as usize;
     let corner = open && crate::schemes::nonbox::sharp::is_corner(m, xu);
-    if cells.len() != n || (open && !corner && n < 3) {
+    if cells.len() != n || (open && !corner && n == 2) || (corner && n < 2) {
         return Err(NoCap::Never);
     }
     let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
@@ -163,6 +171,9 @@ fn hole_of(
         return Ok((Hole::untangented_corner(x, sectors, angle), plane, tags));
     }
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
+    if open && n == 1 {
+        return one_cell_crease(level, xu, &quads, centre).map(|(h, plane)| (h, plane, tags));
+    }
     let (t1, t2) = if open {
         open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
     } else if n == 2 {
@@ -177,6 +188,32 @@ fn hole_of(
         Hole::untangented(centre, sectors)
     };
     Ok((hole, plane, tags))
+}
+
+/// The hole of a boundary vertex `x` of one cell on a boundary that passes (a net's edge-only
+/// boundary, or a copy on one side of a crease cut where the crease turns): Catmull-Clark's
+/// crease fan of one sector (`crate::bezier::g1::Fan::Crease`): its spokes the boundary
+/// curve's two halves, `T0` the curve's derivative `(p - q) / 2` at `x` (the cubic B-spline of
+/// the boundary polygon, as Catmull-Clark's, in the chart where the cells are unit squares), in
+/// the plane of that derivative and the tangent across the boundary of non-box's own local
+/// matrix of one quad ([`crate::schemes::nonbox::boundary::open_fan_tangents`]).
+fn one_cell_crease(
+    level: &Level,
+    x: usize,
+    quads: &[QuadSector],
+    centre: Point,
+) -> Result<(Hole, [Point; 2]), NoCap> {
+    let sectors = quad_hole_segments(quads, |he, from| segment_across(level, he, from))?;
+    let (_, across) = open_fan_tangents(&level.net, x).ok_or(NoCap::Never)?;
+    let p = &level.points;
+    let along = scale(
+        axpy(p[quads[0].p as usize], -1.0, p[quads[0].q as usize]),
+        0.5,
+    );
+    Ok((
+        Hole::untangented_crease(centre, sectors),
+        [along, across.apply(p)],
+    ))
 }
 
 /// The chart angle and plane vectors of a kept corner's open fan `quads` around `x` (a copy of
