@@ -386,12 +386,7 @@ fn each_copy_of_a_cut_crease_vertex_is_its_own_hole() {
     use fairsub::bezier::g1::Fan;
     let net = osd("catmark_fvar_project0");
     for scheme in ["nonbox", "nonbox-4dir"] {
-        let spec = registry().lookup(scheme).expect("scheme");
-        let opts = ComplexOptions {
-            rings: 3,
-            fill: true,
-        };
-        let s = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+        let s = rings3(scheme, &net);
         let r = continuity::check(&s.complex);
         assert!(r.all.g1 < 1e-10, "{scheme}: G1 {:e}", r.all.g1);
         let kinds: Vec<(bool, usize)> = s
@@ -429,17 +424,12 @@ fn kept_corners_with_two_cells_get_corner_caps() {
     use fairsub::bezier::g1::Fan;
     let corner = |h: &fairsub::bezier::g1::Hole| matches!(h.kind, Fan::Corner(_));
     for scheme in ["nonbox", "nonbox-4dir"] {
-        let spec = registry().lookup(scheme).expect("scheme");
-        let opts = ComplexOptions {
-            rings: 3,
-            fill: true,
-        };
         for (name, g1) in [
             ("catmark_inf_crease1", 1e-10),
             ("catmark_inf_crease0", 1e-10),
         ] {
             let net = osd(name);
-            let s = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+            let s = rings3(scheme, &net);
             let caps = s.complex.caps.iter().filter(|c| corner(&c.hole)).count();
             let r = continuity::check(&s.complex);
             eprintln!("{scheme} {name}: {caps} corner caps, G1 {:.1e}", r.all.g1);
@@ -473,17 +463,9 @@ fn one_cell_copies_get_crease_fans() {
     let one_cell =
         |h: &fairsub::bezier::g1::Hole| matches!(h.kind, Fan::Crease) && h.sectors.len() == 1;
     for scheme in ["nonbox", "nonbox-4dir"] {
-        let spec = registry().lookup(scheme).expect("scheme");
-        let opts = ComplexOptions {
-            rings: 3,
-            fill: true,
-        };
-        for (name, fans) in [
-            ("catmark_inf_crease0", ONE_CELL_FANS[0]),
-            ("loop_triangle_edgeonly", ONE_CELL_FANS[1]),
-        ] {
+        for (name, fans) in [("catmark_inf_crease0", 1), ("loop_triangle_edgeonly", 9)] {
             let net = osd(name);
-            let s = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+            let s = rings3(scheme, &net);
             let caps = s.complex.caps.iter().filter(|c| one_cell(&c.hole)).count();
             let r = continuity::check(&s.complex);
             eprintln!("{scheme} {name}: {caps} one-cell fans, G1 {:.1e}", r.all.g1);
@@ -501,5 +483,12 @@ fn one_cell_copies_get_crease_fans() {
     }
 }
 
-/// The one-cell fans of [`one_cell_copies_get_crease_fans`]'s nets, measured.
-const ONE_CELL_FANS: [usize; 2] = [1, 9];
+/// `scheme`'s surface of `net` at 3 rings with the fill.
+fn rings3(scheme: &str, net: &PolyMesh) -> fairsub::host::SurfaceOutput {
+    let spec = registry().lookup(scheme).expect("scheme");
+    let opts = ComplexOptions {
+        rings: 3,
+        fill: true,
+    };
+    fairsub::surface::build(&spec, net, opts, &mut |_| {}).expect("builds")
+}

@@ -73,7 +73,7 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use crate::schemes::nonbox::boundary::open_fan_tangents;
-use crate::schemes::sdc::crease::adaptive::corner_chart;
+use crate::schemes::sdc::crease::adaptive::{corner_chart, one_quad_crease_fan};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
 
@@ -170,10 +170,10 @@ fn hole_of(
         let x = level.points[xu];
         return Ok((Hole::untangented_corner(x, sectors, angle), plane, tags));
     }
-    let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     if open && n == 1 {
-        return one_cell_crease(level, xu, &quads, centre).map(|(h, plane)| (h, plane, tags));
+        return one_cell_crease(level, xu, &quads[0], sectors).map(|(h, plane)| (h, plane, tags));
     }
+    let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = if open {
         open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
     } else if n == 2 {
@@ -190,30 +190,23 @@ fn hole_of(
     Ok((hole, plane, tags))
 }
 
-/// The hole of a boundary vertex `x` of one cell on a boundary that passes (a net's edge-only
-/// boundary, or a copy on one side of a crease cut where the crease turns): Catmull-Clark's
-/// crease fan of one sector (`crate::bezier::g1::Fan::Crease`): its spokes the boundary
-/// curve's two halves, `T0` the curve's derivative `(p - q) / 2` at `x` (the cubic B-spline of
-/// the boundary polygon, as Catmull-Clark's, in the chart where the cells are unit squares), in
-/// the plane of that derivative and the tangent across the boundary of non-box's own local
-/// matrix of one quad ([`crate::schemes::nonbox::boundary::open_fan_tangents`]).
+/// The hole of a boundary vertex `x` of one cell `sec` (its `sectors`) on a boundary that
+/// passes (a net's edge-only boundary, or a copy on one side of a crease cut where the crease
+/// turns): Catmull-Clark's crease fan of one sector
+/// ([`one_quad_crease_fan`]: non-box's boundary rules are the cubic B-spline rules too, and
+/// its limit point there `NonBox::limit_stencil`'s `(a + 4 v + b) / 6`), across the boundary
+/// the tangent of non-box's own local matrix of one quad
+/// ([`crate::schemes::nonbox::boundary::open_fan_tangents`]).
 fn one_cell_crease(
     level: &Level,
     x: usize,
-    quads: &[QuadSector],
-    centre: Point,
+    sec: &QuadSector,
+    sectors: Vec<Vec<Segment>>,
 ) -> Result<(Hole, [Point; 2]), NoCap> {
-    let sectors = quad_hole_segments(quads, |he, from| segment_across(level, he, from))?;
     let (_, across) = open_fan_tangents(&level.net, x).ok_or(NoCap::Never)?;
     let p = &level.points;
-    let along = scale(
-        axpy(p[quads[0].p as usize], -1.0, p[quads[0].q as usize]),
-        0.5,
-    );
-    Ok((
-        Hole::untangented_crease(centre, sectors),
-        [along, across.apply(p)],
-    ))
+    let ends = [p[sec.p as usize], p[x], p[sec.q as usize]];
+    Ok(one_quad_crease_fan(sectors, ends, across.apply(p)))
 }
 
 /// The chart angle and plane vectors of a kept corner's open fan `quads` around `x` (a copy of

@@ -39,8 +39,8 @@ use crate::host::adaptive::{
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::dart::dart_masks;
 use crate::schemes::sdc::crease::adaptive::{
-    cone_point, corner_plane, corner_sides, crease_limit, crease_sides, dart_halfedge,
-    is_plain_boundary,
+    cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge, is_plain_boundary,
+    one_quad_crease_fan,
 };
 use std::collections::HashMap;
 
@@ -117,11 +117,10 @@ pub(in crate::schemes::catmull_clark::surface) fn boundary_corner_cap(
     };
     let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
     let pos = m.positions();
-    let (p, q) = (pos[sec.p as usize], pos[sec.q as usize]);
     let far = pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize];
-    let centre = crease_limit(p, pos[x], q);
-    let plane = [scale(sub(p, q), 0.5), sub(far, pos[x])];
-    Ok((Hole::untangented_crease(centre, sectors), plane, vec![tag]))
+    let ends = [pos[sec.p as usize], pos[x], pos[sec.q as usize]];
+    let (hole, plane) = one_quad_crease_fan(sectors, ends, sub(far, pos[x]));
+    Ok((hole, plane, vec![tag]))
 }
 
 /// The cap of the dart `x` whose marked cells are `faces` ([`Fan::Dart`]): `Ok(None)` when

@@ -19,8 +19,9 @@
 use super::super::Level;
 use super::{cap_centre, cap_plane, segment_across};
 use crate::bezier::g1::Hole;
+use crate::geom::Point;
 use crate::host::adaptive::{
-    CapData, NoCap, Tag, quad_hole_segments, quad_sectors_around, quad_sectors_open,
+    CapData, NoCap, QuadSector, Tag, quad_hole_segments, quad_sectors_around, quad_sectors_open,
 };
 use crate::schemes::catmull_clark::{CatmullClark, LimitStencils};
 use crate::schemes::sdc::crease::adaptive::{beside_holes, cap_feature, is_hole, present_runs};
@@ -46,19 +47,31 @@ pub(in crate::schemes::catmull_clark::surface) fn wedge_caps(
     let all = quad_sectors_around(m, x as u32, f0, n).ok_or(NoCap::Never)?;
     let fan: Vec<u32> = all.iter().map(|sec| sec.face).collect();
     let runs = present_runs(level, &fan, faces.len()).ok_or(NoCap::Never)?;
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
     let pos = m.positions();
     let centre = limits.limit(x);
     let (t1, t2) = CatmullClark::tangent_stencils(m, x).ok_or(NoCap::Never)?;
     let plane = [t1.apply(pos), t2.apply(pos)];
+    let runs = runs.iter().map(|run| run.iter().map(|&i| all[i]).collect());
+    wedges(level, faces, runs, (centre, plane), n).map(Some)
+}
+
+/// One wedge per run of quads (`runs`, in fan order) of the `turn` sectors of a full turn,
+/// all centred at `centre` in `plane`, with the tags of the marked cells `faces`.
+fn wedges(
+    level: &Level,
+    faces: &[(u32, Tag)],
+    runs: impl Iterator<Item = Vec<QuadSector>>,
+    (centre, plane): (Point, [Point; 2]),
+    turn: usize,
+) -> Result<Vec<CapData>, NoCap> {
+    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
     let mut caps = Vec::new();
     for run in runs {
-        let run: Vec<_> = run.into_iter().map(|i| all[i]).collect();
         let tags = super::crease::sector_tags(&run, &tag_at)?;
         let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
-        caps.push((Hole::untangented_wedge(centre, sectors, n), plane, tags));
+        caps.push((Hole::untangented_wedge(centre, sectors, turn), plane, tags));
     }
-    Ok(Some(caps))
+    Ok(caps)
 }
 
 /// The caps of the plain boundary vertex `x` whose marked cells are `faces`: `Ok(None)` when
@@ -76,11 +89,11 @@ pub(in crate::schemes::catmull_clark::surface) fn open_wedge_caps(
     let Some(all) = quad_sectors_open(m, x as u32, n) else {
         return Ok(None);
     };
-    let hole: Vec<bool> = all
+    let present = all
         .iter()
-        .map(|s| is_hole(level, s.face as usize))
-        .collect();
-    if !hole.contains(&true) {
+        .filter(|s| !is_hole(level, s.face as usize))
+        .count();
+    if present == n {
         return Ok(None);
     }
     match cap_feature(level, x) {
@@ -88,26 +101,17 @@ pub(in crate::schemes::catmull_clark::surface) fn open_wedge_caps(
         Some(false) => return Err(NoCap::Never),
         None => {}
     }
-    if hole.iter().filter(|&&h| !h).count() != faces.len() {
+    if present != faces.len() {
         return Err(NoCap::Never);
     }
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
     let pos = m.positions();
     let centre = cap_centre(limits, m, x).apply(pos);
     let (t1, t2) = cap_plane(m, x).ok_or(NoCap::Never)?;
     let plane = [t1.apply(pos), t2.apply(pos)];
-    let mut caps = Vec::new();
-    let mut s = 0;
-    while s < n {
-        if hole[s] {
-            s += 1;
-            continue;
-        }
-        let run: Vec<_> = (s..n).take_while(|&i| !hole[i]).map(|i| all[i]).collect();
-        s += run.len();
-        let tags = super::crease::sector_tags(&run, &tag_at)?;
-        let sectors = quad_hole_segments(&run, |he, from| segment_across(level, he, from))?;
-        caps.push((Hole::untangented_wedge(centre, sectors, 2 * n), plane, tags));
-    }
-    Ok(Some(caps))
+    // the runs between hole quads, from the boundary; the open fan is half a turn
+    let runs = all
+        .split(|s| is_hole(level, s.face as usize))
+        .filter(|run| !run.is_empty())
+        .map(<[QuadSector]>::to_vec);
+    wedges(level, faces, runs, (centre, plane), 2 * n).map(Some)
 }

@@ -127,6 +127,24 @@ pub(crate) fn present_runs(level: &Level, faces: &[u32], cells: usize) -> Option
     )
 }
 
+/// The crease fan of one sector ([`Fan::Crease`](crate::bezier::g1::Fan::Crease)) at a
+/// boundary vertex `x` of one quad on a boundary that passes (Catmull-Clark's and non-box's
+/// boundary rules are the cubic B-spline rules of the boundary polygon): the hole of the
+/// quad's `sectors` centred at the curve's limit point [`crease_limit`]`(p, x, q)` (`p`, `q`
+/// the ends of its spokes 0 and 1), in the plane of the curve's derivative `(p - q) / 2`
+/// along spoke 0 (its `T0`) and `across`, a vector across the boundary in the scheme's
+/// tangent plane.
+pub(crate) fn one_quad_crease_fan(
+    sectors: Vec<Vec<crate::bezier::g1::Segment>>,
+    [p, x, q]: [Point; 3],
+    across: Point,
+) -> (crate::bezier::g1::Hole, [Point; 2]) {
+    (
+        crate::bezier::g1::Hole::untangented_crease(crease_limit(p, x, q), sectors),
+        [geom::scale(geom::sub(p, q), 0.5), across],
+    )
+}
+
 /// The limit point `(a + 4 x + b) / 6` of a vertex `x` under the crease rule between its
 /// crease (or boundary) neighbours `a` and `b`: the cubic B-spline of the crease polygon.
 pub(crate) fn crease_limit(a: Point, x: Point, b: Point) -> Point {
