@@ -395,10 +395,10 @@ fn valence_two_vertices_beside_creases_get_the_dual_step() {
     use fairsub::mesh::{Extras, SharpEdges};
     let cube = net("split-edge-cube");
     let edge = |a: u32, b: u32| cube.find_edge(a, b).expect("an edge");
-    // the loop around a face without a vertex of valence 2, semi-sharp. Not an infinitely
-    // sharp loop beside it: the net Doo-Sabin's own `--levels 1` makes of that is refused by
-    // its patches ("vertex 40 is a dart"), with or without the preparation (measured
-    // 2026-12-07, open).
+    // the loop around a face without a vertex of valence 2, semi-sharp; then also an
+    // infinitely sharp loop around the pentagon of the valence-2 vertex. The net Doo-Sabin's
+    // own `--levels 1` makes of the second was refused by its patches ("vertex 40 is a dart")
+    // until the dart caps; it is built now, its sharp loop kept.
     let loop_of = |f: usize, s: f32| {
         let c = cube.face(f).to_vec();
         (0..c.len())
@@ -408,7 +408,11 @@ fn valence_two_vertices_beside_creases_get_the_dual_step() {
     let plain = (0..cube.num_faces())
         .rfind(|&f| cube.face(f).iter().all(|&v| cube.valence(v as usize) > 2))
         .expect("a face without a vertex of valence 2");
-    let sharp = loop_of(plain, 1.5);
+    let semi = loop_of(plain, 1.5);
+    let pentagon = (0..cube.num_faces())
+        .find(|&f| cube.face(f).iter().any(|&v| cube.valence(v as usize) == 2))
+        .expect("a face with the vertex of valence 2");
+    let both = [semi.clone(), loop_of(pentagon, f32::INFINITY)].concat();
     let smooth = fairsub::surface::build(
         &spec(ids::DOO_SABIN, Mode::Auto),
         &cube,
@@ -419,59 +423,61 @@ fn valence_two_vertices_beside_creases_get_the_dual_step() {
         &mut |_| {},
     )
     .expect("the untagged net");
-    let tagged = cube.with_extras(Some(Extras {
-        sharp_edges: SharpEdges::ById(sharp),
-        ..Extras::default()
-    }));
     let opts = ComplexOptions {
         rings: 3,
         fill: true,
     };
-    for (id, step) in [
-        (ids::DOO_SABIN, "one Doo-Sabin step"),
-        (ids::DOO_SABIN_CC, "one DS^CC step"),
-        (ids::PGS, "one PGS step"),
-    ] {
-        let name = id.name();
-        let out = fairsub::surface::build(&spec(id, Mode::Auto), &tagged, opts, &mut |_| {})
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert!(
-            out.notes
+    for (sharp, kept) in [(semi, false), (both, true)] {
+        let tagged = cube.clone().with_extras(Some(Extras {
+            sharp_edges: SharpEdges::ById(sharp),
+            ..Extras::default()
+        }));
+        for (id, step) in [
+            (ids::DOO_SABIN, "one Doo-Sabin step"),
+            (ids::DOO_SABIN_CC, "one DS^CC step"),
+            (ids::PGS, "one PGS step"),
+        ] {
+            let name = id.name();
+            let out = fairsub::surface::build(&spec(id, Mode::Auto), &tagged, opts, &mut |_| {})
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(
+                out.notes
+                    .iter()
+                    .any(|n| n.contains(step) && n.contains("valence 3 or more")),
+                "{name}: {:?}",
+                out.notes
+            );
+            let e = fairsub::surface::build(&spec(id, Mode::None), &tagged, opts, &mut |_| {})
+                .err()
+                .unwrap_or_else(|| panic!("{name}: built unprepared"))
+                .to_string();
+            assert!(e.contains("interior vertex of valence 2"), "{name}: {e}");
+            let scheme = fairsub::schemes::by_name(name).expect("the scheme");
+            let once = fairsub::schemes::refine_levels(scheme.as_ref(), &tagged, 1, |_| {})
+                .expect("one step");
+            let want = fairsub::surface::build(&spec(id, Mode::Auto), &once, opts, &mut |_| {})
+                .unwrap_or_else(|e| panic!("{name} on its level 1: {e}"));
+            let (a, b) = (&out.complex.patches, &want.complex.patches);
+            assert_eq!(a.len(), b.len(), "{name}: patch counts");
+            let worst = a
                 .iter()
-                .any(|n| n.contains(step) && n.contains("valence 3 or more")),
-            "{name}: {:?}",
-            out.notes
-        );
-        let e = fairsub::surface::build(&spec(id, Mode::None), &tagged, opts, &mut |_| {})
-            .err()
-            .unwrap_or_else(|| panic!("{name}: built unprepared"))
-            .to_string();
-        assert!(e.contains("interior vertex of valence 2"), "{name}: {e}");
-        let scheme = fairsub::schemes::by_name(name).expect("the scheme");
-        let once =
-            fairsub::schemes::refine_levels(scheme.as_ref(), &tagged, 1, |_| {}).expect("one step");
-        let want = fairsub::surface::build(&spec(id, Mode::Auto), &once, opts, &mut |_| {})
-            .unwrap_or_else(|e| panic!("{name} on its level 1: {e}"));
-        let (a, b) = (&out.complex.patches, &want.complex.patches);
-        assert_eq!(a.len(), b.len(), "{name}: patch counts");
-        let worst = a
-            .iter()
-            .zip(b)
-            .flat_map(|(p, q)| p.cps.iter().zip(&q.cps).map(|(x, y)| dist(*x, *y)))
-            .fold(0.0f64, f64::max);
-        let r = fairsub::analysis::continuity::check(&out.complex);
-        eprintln!(
-            "{name}: {} patches, against level 1 {worst:.1e}, G1 {:.1e}, sharp {}",
-            a.len(),
-            r.all.g1,
-            r.sharp.pieces
-        );
-        assert!(worst < 1e-12, "{name}: {worst:e}");
-        // G^1, the spent crease smooth
-        assert!(r.all.g1 < 1e-8 && r.sharp.pieces == 0, "{name}");
-        if id == ids::DOO_SABIN {
-            // the crease changes the surface (so a dropped crease cannot pass)
-            assert_ne!(a.len(), smooth.complex.patches.len(), "the crease");
+                .zip(b)
+                .flat_map(|(p, q)| p.cps.iter().zip(&q.cps).map(|(x, y)| dist(*x, *y)))
+                .fold(0.0f64, f64::max);
+            let r = fairsub::analysis::continuity::check(&out.complex);
+            eprintln!(
+                "{name}: {} patches, against level 1 {worst:.1e}, G1 {:.1e}, sharp {}",
+                a.len(),
+                r.all.g1,
+                r.sharp.pieces
+            );
+            assert!(worst < 1e-12, "{name}: {worst:e}");
+            // G^1 off the sharp loop; the spent crease smooth, the infinitely sharp one kept
+            assert!(r.all.g1 < 1e-8 && (r.sharp.pieces > 0) == kept, "{name}");
+            if id == ids::DOO_SABIN {
+                // the crease changes the surface (so a dropped crease cannot pass)
+                assert_ne!(a.len(), smooth.complex.patches.len(), "the crease");
+            }
         }
     }
 }
