@@ -350,28 +350,141 @@ fn what_the_constructions_do_not_take_is_refused_by_name() {
     assert!(e.contains("vertex 0 is tagged as a corner"), "{e}");
 }
 
-#[test]
-fn nonbox_keeps_creases_ending_at_darts_inside_the_surface_closed() {
-    // cc_cube_infsharp: infinitely sharp edges 0-1 and 0-2 end at darts (vertices 1 and 2),
-    // which the dual schemes refuse; non-box leaves that chain uncut (its sides are sharp
-    // joins of the fill) and cuts the rest
-    let net = osd("cc_cube_infsharp");
-    for scheme in ["nonbox", "nonbox-4dir"] {
-        let c = complex(scheme, &net, 2);
-        let r = continuity::check(&c);
-        eprintln!(
-            "{scheme}: {} patches, open {}, C0 {:.1e}, G1 {:.1e}, sharp {} (C0 {:.1e})",
-            c.len(),
-            r.open_sides,
-            r.all.c0,
-            r.all.g1,
-            r.sharp.pieces,
-            r.sharp.c0
-        );
-        assert_eq!(r.open_sides, 0, "{scheme}: cracks");
-        assert!(r.all.c0 < 1e-12 && r.sharp.c0 < 1e-12, "{scheme}");
-        assert!(r.sharp.pieces > 0, "{scheme}: the creases are sharp joins");
+/// A 6 x 6 grid, bent, with an infinitely sharp crease of two edges in its middle row (a dart
+/// at each end, vertices 23 and 25).
+fn grid_with_dart_chain() -> PolyMesh {
+    let n = 6;
+    let mut p = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 - 3.0, j as f64 - 3.0);
+            p.push([x, y, 0.05 * (x * x - 0.5 * y * y)]);
+        }
     }
+    let faces: Vec<[usize; 4]> = (0..n)
+        .flat_map(|j| {
+            (0..n).map(move |i| {
+                let a = j * (n + 1) + i;
+                [a, a + 1, a + n + 2, a + n + 1]
+            })
+        })
+        .collect();
+    let m = PolyMesh::new(p, &faces).expect("grid");
+    let edge = |a: u32, b: u32| m.find_edge(a, b).expect("an edge");
+    let sharp = vec![(edge(23, 24), 10.0), (edge(24, 25), 10.0)];
+    m.with_extras(Some(fairsub::mesh::Extras {
+        sharp_edges: SharpEdges::ById(sharp),
+        ..Default::default()
+    }))
+}
+
+/// Infinitely sharp creases that end at darts inside the surface (OpenSubdiv's
+/// `cc_cube_infsharp` and `cc_torus_dart`, and [`grid_with_dart_chain`]): non-box refines the
+/// uncut net (a dart by the smooth rule, as OpenSubdiv's rules say), reads the patches off a copy
+/// cut along every crease, and closes each dart's fan with the dart cap ([`Fan::Dart`], centred
+/// at the dart's limit point in its tangent plane, from `nonbox::local::dart`). Until
+/// 2026-12-07 those chains were not cut and their cells waited: the C^0 fill closed a strip
+/// along each (3.6e-4 rad on the grid at 3 rings). The patches off the darts' faces are the
+/// same at 1 and at 3 rings (exact), and the patch table re-applies.
+///
+/// [`Fan::Dart`]: fairsub::bezier::g1::Fan::Dart
+#[test]
+fn nonbox_caps_the_darts_of_creases_ending_inside_the_surface() {
+    use fairsub::bezier::g1::Fan;
+    let is_dart = |h: &fairsub::bezier::g1::Hole| matches!(h.kind, Fan::Dart);
+    let grid = grid_with_dart_chain();
+    let nets = [
+        (
+            "cc_cube_infsharp",
+            osd("cc_cube_infsharp"),
+            vec![1, 2],
+            true,
+        ),
+        ("cc_torus_dart", osd("cc_torus_dart"), vec![0, 2], true),
+        ("grid", grid.clone(), vec![23, 25], false),
+    ];
+    for scheme in ["nonbox", "nonbox-4dir"] {
+        for (name, net, darts, closed) in &nets {
+            let c = complex(scheme, net, 3);
+            let r = continuity::check(&c);
+            let caps = c.caps.iter().filter(|s| is_dart(&s.hole)).count();
+            eprintln!(
+                "{scheme} {name}: {} patches, {caps} dart caps, open {}, G1 {:.1e}, sharp {}",
+                c.len(),
+                r.open_sides,
+                r.all.g1,
+                r.sharp.pieces,
+            );
+            assert_eq!(caps, darts.len(), "{scheme} {name}");
+            assert_eq!(support::fill_patches(&c), 0, "{scheme} {name}");
+            if *closed {
+                assert_eq!(r.open_sides, 0, "{scheme} {name}: cracks");
+            }
+            assert!(r.all.c0 < 1e-12 && r.sharp.c0 < 1e-12, "{scheme} {name}");
+            assert!(r.all.g1 < 1e-10, "{scheme} {name}: G1 {:e}", r.all.g1);
+            assert!(
+                r.sharp.pieces > 0,
+                "{scheme} {name}: the creases are sharp joins"
+            );
+            if scheme == "nonbox" {
+                // off the darts' faces the surface does not depend on the rings
+                let pts: Vec<(u32, f64, f64)> = (0..net.num_faces())
+                    .filter(|&f| !net.face(f).iter().any(|v| darts.contains(v)))
+                    .flat_map(|f| {
+                        (0..=4).flat_map(move |i| {
+                            (0..=4).map(move |j| (f as u32, f64::from(i) / 4.0, f64::from(j) / 4.0))
+                        })
+                    })
+                    .collect();
+                let at = |rings: usize| {
+                    let spec = registry().lookup(scheme).expect("scheme");
+                    let s = Surface::build(&spec, net, ComplexOptions { rings, fill: true })
+                        .expect("surface");
+                    pts.iter()
+                        .map(|&(f, u, v)| s.evaluate(f, u, v).expect("a face point").point)
+                        .collect::<Vec<Point>>()
+                };
+                let d = largest(&at(1), &at(3));
+                eprintln!(
+                    "{name}: {} points off the darts, 1 against 3 rings {d:.1e}",
+                    pts.len()
+                );
+                assert!(d < 1e-12, "{name}: {d:e}");
+                // the surface of the net its own `--levels 1` makes (which refines each dart by
+                // the smooth rule) lies on this one, caps included (both at level 3)
+                let s = fairsub::schemes::by_name(scheme).expect("scheme");
+                let once =
+                    fairsub::schemes::refine_levels(s.as_ref(), net, 1, |_| {}).expect("one step");
+                let samples: Vec<Point> = complex(scheme, &once, 2)
+                    .patches
+                    .iter()
+                    .flat_map(|p| [p.eval(0.25, 0.25), p.eval(0.75, 0.5)])
+                    .collect();
+                let spec = registry().lookup(scheme).expect("scheme");
+                let here = Surface::build(
+                    &spec,
+                    net,
+                    ComplexOptions {
+                        rings: 3,
+                        fill: true,
+                    },
+                )
+                .expect("surface");
+                let off = here
+                    .closest_points(&samples)
+                    .iter()
+                    .map(|c| c.as_ref().expect("a closest point").distance)
+                    .fold(0.0, f64::max);
+                eprintln!(
+                    "{name}: level 1's surface {off:.1e} off, {} points",
+                    samples.len()
+                );
+                assert!(off < 1e-10, "{name}: {off:e}");
+            }
+        }
+    }
+    let caps = table_reapplies("nonbox", "grid with a dart chain", &grid, is_dart);
+    assert_eq!(caps, 2, "the table's dart caps");
 }
 
 /// A loop of infinitely sharp creases around one face (OpenSubdiv's `catmark_fvar_project0`):

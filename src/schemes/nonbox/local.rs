@@ -51,6 +51,8 @@ use crate::stencil::{Stencil, StencilTable};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
 
+pub(crate) mod dart;
+
 /// Points per sector of the local net.
 pub const SECTOR: usize = 10;
 

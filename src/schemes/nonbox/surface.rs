@@ -91,6 +91,19 @@ pub struct Level {
     uncut: Option<Vec<bool>>,
     /// Levels since the last one with a semi-sharp feature.
     calm: usize,
+    /// Where infinitely sharp creases end at darts: the level's net before the cut, which is
+    /// refined (`net` is cut along every crease, the dart chains too, and gives the patches).
+    uncut_net: Option<Box<UncutNet>>,
+}
+
+/// A level's net before the cut along the crease chains that end at darts (its darts refine
+/// by OpenSubdiv's smooth rule; a slit's end in the cut net would refine by the boundary rule):
+/// its points and trust, and each cut vertex's origin in it.
+struct UncutNet {
+    net: FcvNet,
+    points: Vec<Point>,
+    info: Vec<Info>,
+    origin: Vec<u32>,
 }
 
 impl Level {
@@ -104,14 +117,31 @@ impl Level {
         parent_calm: usize,
     ) -> Result<Level> {
         let mut ls = sharp::level_sharp(&net, parent_calm)?;
-        let (net, info, points) = match &ls.cut {
-            Some(cut) if ls.calm > 0 => {
-                let (cut_net, cut_info) = sharp::cut_net(&net, &info, cut)?;
+        let (net, info, points, uncut_net) = match (&ls.cut, &ls.uncut) {
+            // chains ending at darts: the patches from a copy cut along every crease
+            (cut, Some(uncut)) if ls.calm > 0 => {
+                let all: Vec<bool> = match cut {
+                    Some(cut) => cut.iter().zip(uncut).map(|(&a, &b)| a || b).collect(),
+                    None => uncut.clone(),
+                };
+                let (view, view_info, origin) = sharp::cut_net(&net, &info, &all)?;
+                ls = sharp::level_sharp(&view, ls.calm - 1)?;
+                let view_points = view.points();
+                let uncut = UncutNet {
+                    net,
+                    points,
+                    info,
+                    origin,
+                };
+                (view, view_info, view_points, Some(Box::new(uncut)))
+            }
+            (Some(cut), None) if ls.calm > 0 => {
+                let (cut_net, cut_info, _) = sharp::cut_net(&net, &info, cut)?;
                 ls = sharp::level_sharp(&cut_net, ls.calm - 1)?;
                 let points = cut_net.points();
-                (cut_net, cut_info, points)
+                (cut_net, cut_info, points, None)
             }
-            _ => (net, info, points),
+            _ => (net, info, points, None),
         };
         Ok(Level {
             net,
@@ -121,6 +151,7 @@ impl Level {
             near_semi: ls.near_semi,
             uncut: ls.uncut,
             calm: ls.calm,
+            uncut_net,
         })
     }
 }
@@ -364,13 +395,16 @@ fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
 /// the face or sub-face `k` of an n-gon, as Catmull-Clark's); the next level's active cells are
 /// the children of the marked ones. Every child face gets its FCV.
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-    let m = &level.net.mesh;
+    let (net, level_points, info) = match &level.uncut_net {
+        Some(u) => (&u.net, &u.points, &u.info),
+        None => (&level.net, &level.points, &level.info),
+    };
+    let m = &net.mesh;
     let (nv, nf) = (m.num_vertices(), m.num_faces());
     let creases = NonBoxCreases::of(m);
     let mut scratch = Scratch::default();
     let (sel, sel_faces) = select_around(m, marked);
     let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();
-    let info = &level.info;
     let whole_fan = |v: usize| info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
     let sources_ok = |s: &Stencil| s.entries().iter().all(|&(x, _)| info[x as usize].pos_ok);
     // An edge's boundary status is known when it has a twin or one end has its whole fan.
@@ -440,7 +474,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     }
     let nc = stencils.len();
     let table = StencilTable::from_rows(nv + nf, stencils.into_iter().chain(fcv_stencils), 6);
-    let points = table.apply(&level.points);
+    let points = table.apply(level_points);
     let (vid, eid) = (&split.vertex_point, &split.edge_point);
     let extras = creases.map(|c| c.child_extras(|v| vid[v as usize], |e| eid[e as usize]));
     let mesh = PolyMesh::from_partial_refinement(

@@ -150,7 +150,7 @@ pub(crate) fn masks_of_positive(s: &DMatrix<f64>) -> Option<DartMasks> {
 }
 
 /// The limit mask and the tangent masks of eigenvalues `la >= lb` of `s`.
-fn masks_at(s: &DMatrix<f64>, la: f64, lb: f64) -> Option<DartMasks> {
+pub(crate) fn masks_at(s: &DMatrix<f64>, la: f64, lb: f64) -> Option<DartMasks> {
     let mut limit = left_null(s, 1.0, 1)?.pop()?;
     let sum: f64 = limit.iter().sum();
     limit.iter_mut().for_each(|w| *w /= sum);

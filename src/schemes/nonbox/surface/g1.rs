@@ -56,6 +56,16 @@
 //! ([`crate::schemes::nonbox::boundary`], "One quad"). Until 2026-12-07 the fill closed them:
 //! 1.1e-3 rad on `catmark_inf_crease0`, 1.6e-3 on `loop_triangle_edgeonly`.
 //!
+//! **Darts** (an interior vertex where a chain of infinitely sharp creases ends): the level
+//! is refined uncut and its patches read off a copy cut along every crease
+//! ([`super::sharp`]), where the dart is the end of a slit, an open fan of its `k` cells whose
+//! two boundary neighbours are copies of one vertex. It gets the dart fan's cap
+//! ([`crate::bezier::g1::Fan::Dart`], as Catmull-Clark's darts): the full turn from the sharp
+//! edge back to it, centred at the dart's limit point in its tangent plane, the left
+//! eigenvectors of non-box's local matrix of a dart applied to the uncut level's points
+//! ([`crate::schemes::nonbox::local::dart`]). Until 2026-12-07 the fill closed a strip along
+//! those chains (3.6e-4 rad on a grid with a crease of two edges inside).
+//!
 //! Holes that touch another element's after the requested rings get up to
 //! [`crate::host::adaptive::MAX_EXTRA_CAP_LEVELS`] more levels; holes without the data (non-quad cells, boundary vertices
 //! whose two rings are not regular quads, still touching after that) keep the C^0 Coons fill of
@@ -73,6 +83,8 @@ use crate::mesh::{Element, PolyMesh};
 use crate::schemes::nonbox::NonBox;
 use crate::schemes::nonbox::bezier::triangle_to_tensor;
 use crate::schemes::nonbox::boundary::open_fan_tangents;
+use crate::schemes::nonbox::local::dart::dart_masks;
+use crate::schemes::nonbox::local::labelled_points;
 use crate::schemes::sdc::crease::adaptive::{corner_chart, one_quad_crease_fan};
 use crate::stencil::Stencil;
 use std::collections::HashMap;
@@ -173,6 +185,10 @@ fn hole_of(
     if open && n == 1 {
         return one_cell_crease(level, xu, &quads[0], sectors).map(|(h, plane)| (h, plane, tags));
     }
+    if open && let Some(frame) = dart_frame(level, xu) {
+        let (centre, plane) = frame?;
+        return Ok((Hole::untangented_dart(centre, sectors), plane, tags));
+    }
     let centre = NonBox::limit_stencil(&level.net, xu).apply(&level.points);
     let (t1, t2) = if open {
         open_fan_tangents(&level.net, xu).ok_or(NoCap::Never)?
@@ -188,6 +204,38 @@ fn hole_of(
         Hole::untangented(centre, sectors)
     };
     Ok((hole, plane, tags))
+}
+
+/// Whether `x` is the end of a slit that the cut along a crease chain ending at a dart made
+/// (its two boundary neighbours are copies of one vertex of the uncut level): then the dart's
+/// limit point and two vectors spanning its tangent plane, from the masks of
+/// [`crate::schemes::nonbox::local::dart`] applied to the uncut level's points; inside,
+/// `Later` while its two rings are not regular quads, `Never` where no masks are computed at
+/// its valence.
+fn dart_frame(level: &Level, x: usize) -> Option<Result<(Point, [Point; 2]), NoCap>> {
+    let u = level.uncut_net.as_ref()?;
+    let nb = level.net.mesh.vertex_neighbors(x);
+    let (a, b) = (*nb.first()? as usize, *nb.last()? as usize);
+    if a == b || u.origin[a] != u.origin[b] {
+        return None;
+    }
+    let um = &u.net.mesh;
+    let (x0, e0) = (u.origin[x] as usize, u.origin[a]);
+    let frame = || {
+        let masks = dart_masks(um.vertex_faces(x0).len()).ok_or(NoCap::Never)?;
+        let h = um
+            .outgoing_halfedges(x0)
+            .into_iter()
+            .find(|&h| um.he_to(h) == e0)
+            .ok_or(NoCap::Never)?;
+        let ring: Vec<Point> = labelled_points(um, h)
+            .ok_or(NoCap::Later)?
+            .iter()
+            .map(|&i| u.points[i])
+            .collect();
+        Ok(masks.apply(&ring))
+    };
+    Some(frame())
 }
 
 /// The hole of a boundary vertex `x` of one cell `sec` (its `sectors`) on a boundary that

@@ -17,6 +17,11 @@
 //!   passes follows the crease. A cell is regular there when each corner is interior of
 //!   valence 4, on the boundary with two faces and not a corner, or on the boundary with one
 //!   face and a corner ([`crate::schemes::nonbox::sharp::is_regular`]).
+//! - Chains of infinitely sharp creases that end at a dart are not cut for refinement: the
+//!   dart takes the smooth V rule, where a slit's end in a cut net would take the boundary
+//!   rule. Such a level keeps its uncut net for refinement, and its patches are read off a
+//!   copy cut along every crease, the dart chains too; a cell's patch there reads no child of
+//!   the dart, so it is exact, and the dart is capped (`super::g1`).
 
 use crate::error::Result;
 use crate::host::adaptive::Info;
@@ -104,8 +109,8 @@ pub(super) fn level_sharp(net: &FcvNet, parent_calm: usize) -> Result<LevelSharp
 
 /// Leaves out of the cut the chains of infinitely sharp creases that end at a dart (an interior
 /// vertex with one of them): cut there, the net would get a slit whose end the boundary rules
-/// do not refine as OpenSubdiv's dart rule does. Those creases stay inside the surface, their
-/// cells wait, and the host's fill closes them (C^0).
+/// do not refine as OpenSubdiv's dart rule does. Such a level keeps its uncut net for
+/// refinement, and its patches are read off a copy cut along every crease (`super::Level`).
 fn prune_darts(m: &PolyMesh, cut: &mut [bool]) {
     let mut valence = vec![0u32; m.num_vertices()];
     for e in (0..cut.len()).filter(|&e| cut[e]) {
@@ -133,12 +138,16 @@ fn prune_darts(m: &PolyMesh, cut: &mut [bool]) {
 }
 
 /// `net` cut along the edges `cut` flags, with the trust of its points (`info`: vertices, then
-/// FCVs) carried to the copies; the cut net's extras tag OpenSubdiv's corners (see the
-/// [module](self) documentation) and keep the crease method.
+/// FCVs) carried to the copies, and each vertex's origin in `net`; the cut net's extras tag
+/// OpenSubdiv's corners (see the [module](self) documentation) and keep the crease method.
 ///
 /// # Errors
 /// Those of building the cut net.
-pub(super) fn cut_net(net: &FcvNet, info: &[Info], cut: &[bool]) -> Result<(FcvNet, Vec<Info>)> {
+pub(super) fn cut_net(
+    net: &FcvNet,
+    info: &[Info],
+    cut: &[bool],
+) -> Result<(FcvNet, Vec<Info>, Vec<u32>)> {
     let m = &net.mesh;
     let c = NonBoxCreases::of(m);
     let nv = m.num_vertices();
@@ -169,5 +178,5 @@ pub(super) fn cut_net(net: &FcvNet, info: &[Info], cut: &[bool]) -> Result<(FcvN
         mesh,
         fcv: net.fcv.clone(),
     };
-    Ok((net, cut_info))
+    Ok((net, cut_info, cut.origin))
 }
