@@ -156,6 +156,17 @@ impl Level {
     }
 }
 
+impl Level {
+    /// The net refinement reads, with its points and their trust: the uncut net where crease
+    /// chains end at darts, else the level's own.
+    fn refined(&self) -> (&FcvNet, &[Point], &[Info]) {
+        match &self.uncut_net {
+            Some(u) => (&u.net, &u.points, &u.info),
+            None => (&self.net, &self.points, &self.info),
+        }
+    }
+}
+
 impl Cells for Level {
     fn active(&self) -> &[(u32, Tag)] {
         &self.active
@@ -395,10 +406,7 @@ fn retag(level: &Level, f: usize, tag: Tag, fans: &mut FanSectors) -> Tag {
 /// the face or sub-face `k` of an n-gon, as Catmull-Clark's); the next level's active cells are
 /// the children of the marked ones. Every child face gets its FCV.
 fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
-    let (net, level_points, info) = match &level.uncut_net {
-        Some(u) => (&u.net, &u.points, &u.info),
-        None => (&level.net, &level.points, &level.info),
-    };
+    let (net, level_points, info) = level.refined();
     let m = &net.mesh;
     let (nv, nf) = (m.num_vertices(), m.num_faces());
     let creases = NonBoxCreases::of(m);
