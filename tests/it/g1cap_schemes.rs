@@ -285,6 +285,35 @@ fn holes_without_a_cap_are_named_in_a_note() {
     }
 }
 
+/// A pole of 64 quads (a UV sphere of 64 segments after its first step) gets its G^1 cap:
+/// until 2026-12-07 the caps stopped at valence 32 and the fill closed such poles (OpenSubdiv's
+/// `catmark_pole64` 1.4e-2 rad at 3 rings).
+#[test]
+fn poles_of_valence_64_are_capped() {
+    let spec = fairsub::schemes::registry::registry()
+        .lookup("catmull-clark")
+        .expect("scheme");
+    let opts = ComplexOptions {
+        rings: 2,
+        fill: true,
+    };
+    let net = gallery::cnet(64, CnetShape::Convex, 2);
+    let out = fairsub::surface::build(&spec, &net, opts, &mut |_| {}).expect("builds");
+    assert!(
+        out.notes.iter().all(|n| !n.starts_with("no G^1 cap")),
+        "{:?}",
+        out.notes
+    );
+    assert_eq!(out.complex.caps.len(), 1);
+    let r = fairsub::analysis::continuity::check(&out.complex);
+    eprintln!(
+        "valence 64: {} patches, G1 {:.1e}",
+        out.complex.len(),
+        r.all.g1
+    );
+    assert!(r.all.g1 < 1e-10, "G1 {:e}", r.all.g1);
+}
+
 /// Valence-2 vertices get the half-plane cap (two bi-5 patches, [`fairsub::bezier::g1`], "Two
 /// sectors") under every quad scheme that reaches them: Catmull-Clark and, on its rings, EG,
 /// QAS+ and guided subdivision (the split-edge cube), non-box (the octahedron read as a pillow
