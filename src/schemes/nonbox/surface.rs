@@ -154,9 +154,7 @@ impl Level {
             uncut_net,
         })
     }
-}
 
-impl Level {
     /// The net refinement reads, with its points and their trust: the uncut net where crease
     /// chains end at darts, else the level's own.
     fn refined(&self) -> (&FcvNet, &[Point], &[Info]) {
