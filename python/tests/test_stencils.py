@@ -105,9 +105,9 @@ def test_per_point_data_and_the_csr_rows():
 
 
 def test_tables_the_construction_cannot_give_raise(tmp_path):
-    # non-box's fill at a boundary vertex of more quads (33) than a G^1 cap takes projects a
+    # non-box's fill at a boundary vertex of more quads (65) than a G^1 cap takes projects a
     # chord onto a plane: no table (tri-grid's corners get open-fan caps since 2026-12-04)
-    k = 33
+    k = 65
     lines = ["v 0 0 0"]
     for i in range(2 * k + 1):
         t = math.pi * i / (2 * k)
