@@ -436,10 +436,13 @@ fn nonbox_caps_the_darts_of_creases_ending_inside_the_surface() {
                         })
                     })
                     .collect();
-                let at = |rings: usize| {
+                let surface = |rings: usize| {
                     let spec = registry().lookup(scheme).expect("scheme");
-                    let s = Surface::build(&spec, net, ComplexOptions { rings, fill: true })
-                        .expect("surface");
+                    Surface::build(&spec, net, ComplexOptions { rings, fill: true })
+                        .expect("surface")
+                };
+                let at = |rings: usize| {
+                    let s = surface(rings);
                     pts.iter()
                         .map(|&(f, u, v)| s.evaluate(f, u, v).expect("a face point").point)
                         .collect::<Vec<Point>>()
@@ -460,16 +463,7 @@ fn nonbox_caps_the_darts_of_creases_ending_inside_the_surface() {
                     .iter()
                     .flat_map(|p| [p.eval(0.25, 0.25), p.eval(0.75, 0.5)])
                     .collect();
-                let spec = registry().lookup(scheme).expect("scheme");
-                let here = Surface::build(
-                    &spec,
-                    net,
-                    ComplexOptions {
-                        rings: 3,
-                        fill: true,
-                    },
-                )
-                .expect("surface");
+                let here = surface(3);
                 let off = here
                     .closest_points(&samples)
                     .iter()

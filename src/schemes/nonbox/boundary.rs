@@ -136,13 +136,7 @@ fn open_local(k: usize) -> Option<(DMatrix<f64>, Vec<[f64; 3]>)> {
     let rows = open_labelled_points(&step.net.mesh, 4 * h0)?;
     let t = step.stencils.select_rows(&rows).restrict_sources(&cols)?;
     let n = cols.len();
-    let mut s = DMatrix::zeros(n, n);
-    for r in 0..n {
-        let (c, w) = t.row(r);
-        for (&c, &w) in c.iter().zip(w) {
-            s[(r, c as usize)] += w;
-        }
-    }
+    let s = DMatrix::from_row_slice(n, n, &t.to_dense());
     let pts = net.points();
     Some((s, cols.iter().map(|&c| pts[c]).collect()))
 }

@@ -117,31 +117,33 @@ impl Level {
         parent_calm: usize,
     ) -> Result<Level> {
         let mut ls = sharp::level_sharp(&net, parent_calm)?;
-        let (net, info, points, uncut_net) = match (&ls.cut, &ls.uncut) {
-            // chains ending at darts: the patches from a copy cut along every crease
-            (cut, Some(uncut)) if ls.calm > 0 => {
-                let all: Vec<bool> = match cut {
-                    Some(cut) => cut.iter().zip(uncut).map(|(&a, &b)| a || b).collect(),
-                    None => uncut.clone(),
-                };
-                let (view, view_info, origin) = sharp::cut_net(&net, &info, &all)?;
-                ls = sharp::level_sharp(&view, ls.calm - 1)?;
-                let view_points = view.points();
-                let uncut = UncutNet {
-                    net,
-                    points,
-                    info,
-                    origin,
-                };
-                (view, view_info, view_points, Some(Box::new(uncut)))
+        // once no semi-sharp value is left: cut along the infinitely sharp creases, those of
+        // chains ending at darts too, whose level keeps its uncut net for refinement
+        let to_cut = match (ls.calm > 0, &ls.cut, &ls.uncut) {
+            (false, ..) | (true, None, None) => None,
+            (true, Some(cut), None) => Some(cut.clone()),
+            (true, None, Some(uncut)) => Some(uncut.clone()),
+            (true, Some(cut), Some(uncut)) => {
+                Some(cut.iter().zip(uncut).map(|(&a, &b)| a || b).collect())
             }
-            (Some(cut), None) if ls.calm > 0 => {
-                let (cut_net, cut_info, _) = sharp::cut_net(&net, &info, cut)?;
+        };
+        let (net, info, points, uncut_net) = match to_cut {
+            Some(cut) => {
+                let darts = ls.uncut.is_some();
+                let (cut_net, cut_info, origin) = sharp::cut_net(&net, &info, &cut)?;
                 ls = sharp::level_sharp(&cut_net, ls.calm - 1)?;
-                let points = cut_net.points();
-                (cut_net, cut_info, points, None)
+                let cut_points = cut_net.points();
+                let uncut = darts.then(|| {
+                    Box::new(UncutNet {
+                        net,
+                        points,
+                        info,
+                        origin,
+                    })
+                });
+                (cut_net, cut_info, cut_points, uncut)
             }
-            _ => (net, info, points, None),
+            None => (net, info, points, None),
         };
         Ok(Level {
             net,

@@ -21,10 +21,9 @@ use super::{SECTOR, labelled_points, local_fcv_net};
 use crate::mesh::{Extras, SharpEdges};
 use crate::schemes::nonbox::{FcvNet, NonBox};
 use crate::schemes::sdc::crease::INFINITE;
-use crate::schemes::sdc::dart::{DartMasks, MAX_DART_VALENCE, masks_at};
+use crate::schemes::sdc::dart::{DartMasks, MaskCache, MasksOf, cached_masks_with, masks_at};
 use nalgebra::DMatrix;
-use std::collections::HashMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 /// The `(10 k + 1)^2` local matrix of a non-box dart of valence `k` (module documentation);
 /// `None` when the tagged local net is not invariant.
@@ -52,14 +51,7 @@ pub(crate) fn dart_local(k: usize) -> Option<DMatrix<f64>> {
     let t = step.stencils.select_rows(&rows).restrict_sources(&cols)?;
     let n = cols.len();
     debug_assert_eq!(n, SECTOR * k + 1);
-    let mut s = DMatrix::zeros(n, n);
-    for r in 0..n {
-        let (c, w) = t.row(r);
-        for (&c, &w) in c.iter().zip(w) {
-            s[(r, c as usize)] += w;
-        }
-    }
-    Some(s)
+    Some(DMatrix::from_row_slice(n, n, &t.to_dense()))
 }
 
 /// The two largest eigenvalues below 1 of `s` when they are real and positive, `1` is an
@@ -79,24 +71,18 @@ fn subdominant_pair(s: &DMatrix<f64>) -> Option<(f64, f64)> {
 }
 
 /// The masks of a non-box dart of valence `k` over the labelled points of [`labelled_points`]
-/// taken from its sharp edge (`None` below 3, above [`MAX_DART_VALENCE`], or where the spectrum
+/// taken from its sharp edge (`None` below 3, above [`MAX_DART_VALENCE`](crate::schemes::sdc::dart::MAX_DART_VALENCE), or where the spectrum
 /// is not as the module documentation says); computed once per valence.
 pub(crate) fn dart_masks(k: usize) -> Option<Arc<DartMasks>> {
-    if !(3..=MAX_DART_VALENCE).contains(&k) {
-        return None;
-    }
-    type Cache = Mutex<HashMap<usize, Option<Arc<DartMasks>>>>;
-    static CACHE: OnceLock<Cache> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
-    if let Some(w) = cache.lock().ok()?.get(&k) {
-        return w.clone();
-    }
-    let out = dart_local(k).and_then(|s| {
-        let (la, lb) = subdominant_pair(&s)?;
-        masks_at(&s, la, lb).map(Arc::new)
-    });
-    cache.lock().ok()?.insert(k, out.clone());
-    out
+    static CACHE: MaskCache = OnceLock::new();
+    let masks: MasksOf = |s| {
+        let (la, lb) = subdominant_pair(s)?;
+        masks_at(s, la, lb)
+    };
+    // (an empty matrix where the local net is not invariant: no masks)
+    cached_masks_with(&CACHE, k, (3, masks), |k| {
+        dart_local(k).unwrap_or_else(|| DMatrix::zeros(0, 0))
+    })
 }
 
 #[cfg(feature = "unit-tests")]
