@@ -22,10 +22,12 @@ use std::collections::HashMap;
 pub use super::ComplexOptions;
 
 mod g1_caps;
+mod trust;
 pub use g1_caps::{
     CapData, MAX_EXTRA_CAP_LEVELS, NoCap, RingTargets, caps_waiting, fan_centre, fan_centre_from,
     g1_cap_elements, hole_centre, honour_ring_targets, with_ring_targets,
 };
+pub(crate) use trust::SplitTrust;
 
 /// A scheme's rules for the adaptive loop ([`run`]).
 pub trait AdaptiveRules {

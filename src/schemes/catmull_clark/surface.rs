@@ -61,7 +61,8 @@ use crate::error::{Error, Result};
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, record_edge, select_around,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, SplitTrust, Tag, record_edge,
+    select_around,
 };
 use crate::host::caps::CapBuilder;
 use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
@@ -346,12 +347,6 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
     // Child vertex ids: numbered in one pass over the selected faces; their rows and trust are
     // then computed in parallel blocks in that order (the same table as one after another).
     let split = sparse_split(m, sel_faces, true, Numbering::FaceFirst);
-    let all_faces_selected = |v: usize| m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
-    let face_pos_ok = |g: u32| {
-        m.face(g as usize)
-            .iter()
-            .all(|&x| level.info[x as usize].pos_ok)
-    };
     // per child face: a hole's descendant
     let hole: Vec<bool> = split
         .faces
@@ -380,22 +375,14 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
             }
         }
     });
+    let trust = SplitTrust::new(m, &level.info, &sel);
     let mut info: Vec<Info> = jobs
         .par_iter()
         .map(|&job| match job {
-            SplitPoint::Face(f) => Info {
-                pos_ok: face_pos_ok(f),
-                fan_ok: true,
-                origin: None,
-            },
+            SplitPoint::Face(f) => trust.face_point(trust.face_ok(f), None),
             SplitPoint::Vertex(v) => {
                 let v = v as usize;
-                let vi = level.info[v];
-                Info {
-                    pos_ok: vi.fan_ok && m.vertex_faces(v).iter().all(|&g| face_pos_ok(g)),
-                    fan_ok: vi.fan_ok && all_faces_selected(v),
-                    origin: vi.origin,
-                }
+                trust.vertex(v, m.outgoing(v).all(|h| trust.face_ok(m.he_face(h))))
             }
             SplitPoint::Edge(e) => {
                 let e = e as usize;
@@ -404,11 +391,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)], keep: bool) -> Result<Lev
                 let known = edge_known(level, e, a_ok, b_ok, a_ok || b_ok);
                 let hh = m.edge_halfedge(e);
                 let faces = [Some(m.he_face(hh)), m.he_twin(hh).map(|t| m.he_face(t))];
-                Info {
-                    pos_ok: known && faces.iter().flatten().all(|&g| face_pos_ok(g)),
-                    fan_ok: known && faces.iter().flatten().all(|&g| sel[g as usize]),
-                    origin: None,
-                }
+                trust.edge(e, known, faces.iter().flatten().all(|&g| trust.face_ok(g)))
             }
         })
         .collect();

@@ -84,8 +84,8 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, Tag, child_active, record_edge,
-    retag_by_corners, select_around,
+    self, AdaptiveRules, Curves, FanSectors, Info, MeshLevel, Sink, SplitTrust, Tag, child_active,
+    record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::PolyMesh;
 use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
@@ -198,7 +198,7 @@ impl AdaptiveRules for LoopRules {
     type Curves = Curves<5>;
 
     fn start(&self, mesh: &PolyMesh, _opts: ComplexOptions) -> Result<Level> {
-        super::require_triangles(mesh, "Loop patches need")?;
+        crate::schemes::common::require_triangles(mesh, "Loop patches need")?;
         Ok(Level::input(mesh, Some(&self.subd)))
     }
 
@@ -362,26 +362,15 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let nv = m.num_vertices();
     let (sel, sel_faces) = select_around(m, marked);
     let rules = Rules::new(m, &level.options());
-    let whole_fan =
-        |v: usize| level.info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
-    let sources_ok = |s: &Stencil| {
-        s.entries()
-            .iter()
-            .all(|&(x, _)| level.info[x as usize].pos_ok)
-    };
+    let trust = SplitTrust::new(m, &level.info, &sel);
     let split = sparse_split(m, sel_faces, false, Numbering::CornersFirst);
     let mut stencils: Vec<Stencil> = Vec::with_capacity(split.points.len());
     let mut info: Vec<Info> = Vec::with_capacity(split.points.len());
     for &p in &split.points {
         match p {
             SplitPoint::Vertex(v) => {
-                let v = v as usize;
-                let s = rules.vertex_stencil(v);
-                info.push(Info {
-                    pos_ok: level.info[v].fan_ok && sources_ok(&s),
-                    fan_ok: whole_fan(v),
-                    origin: level.info[v].origin,
-                });
+                let s = rules.vertex_stencil(v as usize);
+                info.push(trust.vertex(v as usize, trust.reads_ok(&s)));
                 stencils.push(s);
             }
             SplitPoint::Edge(e) => {
@@ -389,17 +378,9 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                 let h = m.edge_halfedge(e);
                 let [a, b] = m.edge(e);
                 let (a_ok, b_ok) = (level.info[a as usize].fan_ok, level.info[b as usize].fan_ok);
-                let known =
-                    edge_known(level, e, a_ok, b_ok, m.he_twin(h).is_some() || a_ok || b_ok);
-                // (one face of the edge is the selected face that made its point)
-                let both_selected = sel[m.he_face(h) as usize]
-                    && m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
+                let known = edge_known(level, e, a_ok, b_ok, trust.edge_side_known(h));
                 let s = rules.edge_stencil(e);
-                info.push(Info {
-                    pos_ok: known && sources_ok(&s),
-                    fan_ok: known && both_selected,
-                    origin: None,
-                });
+                info.push(trust.edge(e, known, trust.reads_ok(&s)));
                 stencils.push(s);
             }
             SplitPoint::Face(_) => unreachable!("the triangle split has no face points"),

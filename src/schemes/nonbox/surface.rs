@@ -60,8 +60,8 @@ use crate::error::Result;
 use crate::geom::{self, Point};
 use crate::host::ComplexOptions;
 use crate::host::adaptive::{
-    self, AdaptiveRules, Cells, Curves, FanSectors, Info, Sink, Tag, edge_curve, input_active,
-    input_vertex_info, record_edge, retag_by_corners, select_around,
+    self, AdaptiveRules, Cells, Curves, FanSectors, Info, Sink, SplitTrust, Tag, edge_curve,
+    input_active, input_vertex_info, record_edge, retag_by_corners, select_around,
 };
 use crate::mesh::split::{Numbering, SplitPoint, sparse_split};
 use crate::mesh::{Element, PolyMesh};
@@ -413,14 +413,8 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
     let mut scratch = Scratch::default();
     let (sel, sel_faces) = select_around(m, marked);
     let marked_tag: HashMap<u32, Tag> = marked.iter().copied().collect();
-    let whole_fan = |v: usize| info[v].fan_ok && m.vertex_faces(v).iter().all(|&g| sel[g as usize]);
-    let sources_ok = |s: &Stencil| s.entries().iter().all(|&(x, _)| info[x as usize].pos_ok);
-    // An edge's boundary status is known when it has a twin or one end has its whole fan.
-    let known = |h: u32| {
-        m.he_twin(h).is_some()
-            || info[m.he_from(h) as usize].fan_ok
-            || info[m.he_to(h) as usize].fan_ok
-    };
+    let trust = SplitTrust::new(m, info, &sel);
+    let known = |h: u32| trust.edge_side_known(h);
     let mut split = sparse_split(m, sel_faces, true, Numbering::CornersFirst);
     let mut stencils: Vec<Stencil> = Vec::with_capacity(split.points.len());
     let mut child_info: Vec<Info> = Vec::with_capacity(split.points.len());
@@ -429,24 +423,13 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
             SplitPoint::Vertex(v) => {
                 let v = v as usize;
                 let s = v_vertex_stencil_with(m, v, creases.as_ref(), &mut scratch);
-                let i = Info {
-                    pos_ok: info[v].fan_ok && sources_ok(&s),
-                    fan_ok: whole_fan(v),
-                    origin: info[v].origin,
-                };
+                let i = trust.vertex(v, trust.reads_ok(&s));
                 (s, i)
             }
             SplitPoint::Edge(e) => {
                 let h = m.edge_halfedge(e as usize);
                 let s = e_vertex_stencil_with(m, e as usize, creases.as_ref(), &mut scratch);
-                // (one face of the edge is the selected face that made its point)
-                let both = sel[m.he_face(h) as usize]
-                    && m.he_twin(h).is_none_or(|t| sel[m.he_face(t) as usize]);
-                let i = Info {
-                    pos_ok: known(h) && sources_ok(&s),
-                    fan_ok: known(h) && both,
-                    origin: None,
-                };
+                let i = trust.edge(e as usize, known(h), trust.reads_ok(&s));
                 (s, i)
             }
             SplitPoint::Face(g) => {
@@ -455,11 +438,7 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
                     Some(t) if m.face_size(g as usize) != 4 => Some(Element::Face(t.input_face)),
                     _ => None,
                 };
-                let i = Info {
-                    pos_ok: sources_ok(&s),
-                    fan_ok: true,
-                    origin,
-                };
+                let i = trust.face_point(trust.reads_ok(&s), origin);
                 (s, i)
             }
         };
@@ -472,11 +451,8 @@ fn refine_around(level: &Level, marked: &[(u32, Tag)]) -> Result<Level> {
         let h0 = m.face_halfedge(g as usize);
         for h in h0..h0 + m.face_size(g as usize) as u32 {
             let s = nfcv_stencil_with(m, h, creases.as_ref().map(|c| (c, &mut scratch)));
-            child_info.push(Info {
-                pos_ok: known(h) && known(m.he_prev(h)) && sources_ok(&s),
-                fan_ok: true,
-                origin: None,
-            });
+            let reads_ok = known(h) && known(m.he_prev(h)) && trust.reads_ok(&s);
+            child_info.push(trust.face_point(reads_ok, None));
             fcv_stencils.push(s);
         }
     }

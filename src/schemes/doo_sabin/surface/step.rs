@@ -16,7 +16,7 @@
 use super::DualRules;
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::host::adaptive::Info;
+use crate::host::adaptive::{Info, SplitTrust};
 use crate::mesh::tags::SubdOptions;
 use crate::mesh::{Element, Extras, PolyMesh, SharpEdges};
 use crate::schemes::doo_sabin::fourier::FaceCorners;
@@ -139,19 +139,8 @@ pub(crate) fn dual_step(
     for &f in &sel_faces {
         sel[f as usize] = true;
     }
-    let mut fan_selected = vec![false; nv];
-    let mut fan_known = vec![false; nv];
-    for &f in &sel_faces {
-        for &x in m.face(f as usize) {
-            let x = x as usize;
-            if !fan_known[x] {
-                fan_known[x] = true;
-                fan_selected[x] =
-                    inp.info[x].fan_ok && m.outgoing(x).all(|h| sel[m.he_face(h) as usize]);
-            }
-        }
-    }
-    let whole_fan = |v: usize| fan_selected[v];
+    let trust = SplitTrust::new(m, inp.info, &sel);
+    let whole_fan = |v: usize| trust.whole_fan(v);
     // A parent edge gets Chaikin points when it is sharp: with creases, by its sharpness
     // (boundary edges are infinitely sharp); without, when it is a true boundary edge (of the
     // partial net: an end has its true fan).
@@ -228,12 +217,7 @@ pub(crate) fn dual_step(
                     (st, pos, rf)
                 }
             };
-            let info = Info {
-                pos_ok: pos,
-                fan_ok: whole_fan(v),
-                origin: None,
-            };
-            o.corner_pt[h as usize] = push(&mut o, st, info, rf);
+            o.corner_pt[h as usize] = push(&mut o, st, trust.dual_point(v, pos), rf);
             let e = m.he_edge(h) as usize;
             if sharp_edge(h) && o.edge_pt[e][0] == UNSET {
                 let eh = m.edge_halfedge(e);
@@ -244,12 +228,7 @@ pub(crate) fn dual_step(
                     let (wa, wb) = CHAIKIN[k];
                     let mut s = Stencil::new();
                     s.add(a, wa * w).add(b, wb * w);
-                    let info = Info {
-                        pos_ok: pos,
-                        fan_ok: whole_fan(end),
-                        origin: None,
-                    };
-                    o.edge_pt[e][k] = push(&mut o, s, info, false);
+                    o.edge_pt[e][k] = push(&mut o, s, trust.dual_point(end, pos), false);
                     if w < 1.0 {
                         blends.push((o.edge_pt[e][k], e, k));
                     }
@@ -270,11 +249,7 @@ pub(crate) fn dual_step(
                 VertexPlan::Blend { w, .. } => w,
                 VertexPlan::Single(_) => 1.0,
             };
-            let info = Info {
-                pos_ok: inp.info[x].pos_ok,
-                fan_ok: whole_fan(x),
-                origin: None,
-            };
+            let info = trust.dual_point(x, inp.info[x].pos_ok);
             o.kept[x] = push(&mut o, Stencil::from_pairs([(x, w)]), info, false);
             if w < 1.0 {
                 kept_blends.push((o.kept[x], x, plan));
