@@ -66,7 +66,7 @@ pub fn sqrt3_split(mesh: &PolyMesh, border: bool) -> Result<Sqrt3Split> {
     let mut apex = vec![u32::MAX; mesh.num_halfedges()];
     let mut corners = Vec::with_capacity(9 * nf);
     for f in 0..nf {
-        super::tri_split::require_triangle(mesh, f, "the sqrt(3) split")?;
+        super::tri_split::require_triangle(mesh, f, "the sqrt(3) split needs", "")?;
         let h0 = mesh.face_halfedge(f);
         let hs = [h0, mesh.he_next(h0), mesh.he_prev(h0)];
         let open: Vec<u32> = hs

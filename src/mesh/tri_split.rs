@@ -21,37 +21,36 @@ use std::ops::Range;
 /// Child points (or parent half-edges) per parallel task.
 const BLOCK: usize = 4096;
 
-/// The child triangles of one 1-4 split of the triangle net `mesh` (three corners each, in the
-/// layout of the [module](self)). Errors name the first face that is not a triangle.
-pub fn tri_split(mesh: &PolyMesh) -> Result<Vec<u32>> {
+/// Whether one 1-4 split of `mesh` can be made: a triangle net whose child points fit
+/// fairsub's 32-bit indices. Errors name the first face that is not a triangle.
+pub fn check(mesh: &PolyMesh) -> Result<()> {
     let nv = mesh.num_vertices() as u32;
     if nv as usize + mesh.num_edges() > u32::MAX as usize {
         return Err(Error::Unsupported(
             "one 1-4 split would create more points than 32-bit indices allow".into(),
         ));
     }
-    require_triangles(mesh, "the triangle 1-4 split")?;
-    Ok(TriSplit::child_corners(mesh))
+    require_triangles(mesh, "the triangle 1-4 split needs", "")
 }
 
-/// The error of a split that needs triangles (`what`) naming the first face of `mesh` that is
-/// not one.
-pub(crate) fn require_triangles(mesh: &PolyMesh, what: &str) -> Result<()> {
+/// The error naming the first face of `mesh` that is not a triangle: "`needs` a triangle net,
+/// but face .. has .. corners`hint`" (`needs` says who needs triangles, "Loop patches need").
+pub(crate) fn require_triangles(mesh: &PolyMesh, needs: &str, hint: &str) -> Result<()> {
     if mesh.uniform_face_size() == Some(3) {
         return Ok(());
     }
-    (0..mesh.num_faces()).try_for_each(|f| require_triangle(mesh, f, what))
+    (0..mesh.num_faces()).try_for_each(|f| require_triangle(mesh, f, needs, hint))
 }
 
-/// The error of a split that needs triangles (`what`) when face `f` is not one.
-pub(crate) fn require_triangle(mesh: &PolyMesh, f: usize, what: &str) -> Result<()> {
+/// The error of [`require_triangles`] when face `f` is not a triangle.
+pub(crate) fn require_triangle(mesh: &PolyMesh, f: usize, needs: &str, hint: &str) -> Result<()> {
     let k = mesh.face_size(f);
     if k == 3 {
         return Ok(());
     }
     Err(Error::UnsupportedFace {
         face: f,
-        msg: format!("{what} needs a triangle net, but face {f} has {k} corners"),
+        msg: format!("{needs} a triangle net, but face {f} has {k} corners{hint}"),
     })
 }
 

@@ -47,6 +47,17 @@ pub(crate) fn check_child_size(scheme: &str, points: usize) -> Result<()> {
     Ok(())
 }
 
+/// The error of a triangle scheme naming the first face of `mesh` that is not a triangle
+/// (`needs` says who needs triangles: "Loop subdivision needs", "Loop patches need"), with the
+/// way out: triangulate, or use Catmull-Clark.
+pub(crate) fn require_triangles(mesh: &PolyMesh, needs: &str) -> Result<()> {
+    let hint = format!(
+        "; triangulate the net or use {}",
+        crate::schemes::options::ids::CATMULL_CLARK
+    );
+    crate::mesh::tri_split::require_triangles(mesh, needs, &hint)
+}
+
 /// A reusable buffer for one stencil row.
 #[derive(Debug, Default)]
 pub(crate) struct RowBuf {

@@ -24,7 +24,7 @@ impl Descriptor for ButterflyDescriptor {
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
-        crate::schemes::loop_subdivision::require_triangles(
+        crate::schemes::common::require_triangles(
             mesh,
             &format!("{} needs", crate::schemes::options::ids::BUTTERFLY),
         )

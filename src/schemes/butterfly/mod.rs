@@ -33,10 +33,10 @@ pub use descriptor::DESCRIPTOR;
 
 use super::common::{RowBuf, cos_2pi};
 use super::options::ids;
-use super::{Refinement, Scheme, finish_refinement, growth};
+use super::{Refinement, Scheme, growth, split_child};
 use crate::error::Result;
 use crate::mesh::PolyMesh;
-use crate::mesh::tri_split::{tri_split, triangle_starts};
+use crate::mesh::tri_split::{self, TriSplit};
 use crate::stencil::StencilTable;
 
 /// The modified butterfly scheme (scheme name `butterfly`).
@@ -123,7 +123,7 @@ impl Scheme for Butterfly {
     }
 
     fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        let corners = tri_split(mesh)?;
+        tri_split::check(mesh)?;
         let nv = mesh.num_vertices();
         let mut table = StencilTable::with_capacity(nv, nv + mesh.num_edges(), 8);
         table.push_points(0..nv as u32);
@@ -132,7 +132,14 @@ impl Scheme for Butterfly {
             edge_mask(mesh, e, &mut row);
             row.flush_into(&mut table);
         }
-        finish_refinement(mesh, table, triangle_starts(&corners), corners)
+        // the child's half-edges from the parent's, as Loop's (the butterfly has no sharp
+        // features)
+        let positions = table.apply(mesh.positions());
+        let mesh = split_child::child_mesh::<TriSplit>(mesh, positions, None);
+        Ok(Refinement {
+            mesh,
+            stencils: table,
+        })
     }
 
     fn step_size(&self, s: &growth::NetSize) -> growth::NetSize {

@@ -24,7 +24,7 @@ impl Descriptor for LoopDescriptor {
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
-        super::require_triangles(mesh, "Loop subdivision needs")
+        crate::schemes::common::require_triangles(mesh, "Loop subdivision needs")
     }
 
     fn params(&self) -> &'static [ParamKind] {

@@ -44,7 +44,7 @@ pub mod local;
 pub mod surface;
 pub use descriptor::DESCRIPTOR;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geom::Point;
 use crate::mesh::{MeshView, NONE, PolyMesh};
 use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
@@ -73,26 +73,7 @@ pub struct Configured {
 
 /// Loop needs a pure triangle net: the first face that is not a triangle is named.
 fn check_triangles(mesh: &PolyMesh) -> Result<()> {
-    require_triangles(mesh, "Loop subdivision needs")
-}
-
-/// The error naming the first face of `mesh` that is not a triangle (`what` says who needs
-/// triangles: "Loop subdivision needs", "Loop patches need").
-pub(crate) fn require_triangles(mesh: &PolyMesh, what: &str) -> Result<()> {
-    if mesh.uniform_face_size() == Some(3) {
-        return Ok(());
-    }
-    match (0..mesh.num_faces()).find(|&f| mesh.face_size(f) != 3) {
-        None => Ok(()),
-        Some(f) => Err(Error::UnsupportedFace {
-            face: f,
-            msg: format!(
-                "{what} a triangle net, but face {f} has {} corners; triangulate the net or use {}",
-                mesh.face_size(f),
-                crate::schemes::options::ids::CATMULL_CLARK
-            ),
-        }),
-    }
+    super::common::require_triangles(mesh, "Loop subdivision needs")
 }
 
 /// The smooth vertex-centred mask of Loop's shape at interior vertex `v`, scaled: `v` keeps

@@ -24,7 +24,7 @@ impl Descriptor for Sqrt3Descriptor {
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
-        crate::schemes::loop_subdivision::require_triangles(mesh, "sqrt(3) subdivision needs")
+        crate::schemes::common::require_triangles(mesh, "sqrt(3) subdivision needs")
     }
 
     fn mesh_rules(&self, _: &Spec) -> Result<Option<Box<dyn Scheme>>> {
