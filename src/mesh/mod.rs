@@ -13,6 +13,7 @@
 
 mod check;
 mod csr;
+pub mod dual_split;
 mod element;
 mod extras;
 mod general;

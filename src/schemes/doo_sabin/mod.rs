@@ -90,7 +90,9 @@
 //! `H + 2b` (near `a`) and `H + 2b + 1` (near `b`) for the `b`-th boundary edge in edge order;
 //! then the kept corners in vertex order. Child faces: the F-face of parent face `f` (index `f`,
 //! its corners are the points `h` of `f` in order), the E-face of every edge in edge order, the
-//! V-face of every vertex in vertex order (omitted for interior vertices of valence 2).
+//! V-face of every vertex in vertex order (omitted for interior vertices of valence 2). This is
+//! the mesh layer's dual split numbered by kind ([`crate::mesh::dual_split::DualOrder::ByKind`]);
+//! this module gives its points their stencils.
 //!
 //! # Limit points
 //!
@@ -110,6 +112,7 @@ pub mod surface;
 pub use descriptor::{DESCRIPTOR, DESCRIPTOR_CC};
 
 use crate::error::{Error, Result};
+use crate::mesh::dual_split::{DualFeatures, DualOrder, DualPoint, VFaces, dual_split};
 use crate::mesh::tags::{BoundaryInterpolation, SubdOptions};
 use crate::mesh::{Extras, NONE, PolyMesh};
 use crate::schemes::sdc::crease::INFINITE;
@@ -302,12 +305,14 @@ pub(crate) fn refine_dual_with(
     name: &str,
     mut corner_rule: impl FnMut(&PolyMesh, u32, &mut RowBuf),
 ) -> Result<Refinement> {
+    // (at most a corner point per half-edge, two Chaikin points per edge, a kept point per
+    // vertex)
+    check_child_size(
+        name,
+        mesh.num_halfedges() + 2 * mesh.num_edges() + mesh.num_vertices(),
+    )?;
     if let Some(c) = sharp::step::Creases::of(mesh, name)? {
         // fairsub's crease construction ([`sharp`]), laid out as documented there
-        check_child_size(
-            name,
-            mesh.num_halfedges() + 2 * mesh.num_edges() + mesh.num_vertices(),
-        )?;
         let mut row = RowBuf::default();
         let mut corner = |m: &PolyMesh, h: u32| {
             corner_rule(m, h, &mut row);
@@ -315,113 +320,41 @@ pub(crate) fn refine_dual_with(
         };
         return sharp::levels::refine_creased(mesh, &c, &mut corner);
     }
-    let (nv, ne, nf, nh) = (
-        mesh.num_vertices(),
-        mesh.num_edges(),
-        mesh.num_faces(),
-        mesh.num_halfedges(),
-    );
-    // Numbering of boundary edges and corners among the child points.
-    let mut bedge = vec![NONE; ne];
-    let mut nb = 0u32;
-    for (e, slot) in bedge.iter_mut().enumerate() {
-        if mesh.is_boundary_edge(e) {
-            *slot = nb;
-            nb += 1;
-        }
-    }
     // Boundary `none`: the boundary strip (its Chaikin points, kept corners, boundary E-faces
     // and V-faces) is not made; see the module's boundary modes.
     let trim = boundary_mode(mesh) == BoundaryInterpolation::None;
-    if trim {
-        nb = 0;
-    }
-    let mut corner = vec![NONE; nv];
-    let mut nc = 0u32;
-    for (v, slot) in corner.iter_mut().enumerate() {
-        if !trim && sharp::is_kept_corner(mesh, v) {
-            *slot = nc;
-            nc += 1;
-        }
-    }
-    check_child_size(name, nh + 2 * nb as usize + nc as usize)?;
-    let h_count = nh as u32;
-    let edge_point = |e: u32, far: bool| h_count + 2 * bedge[e as usize] + far as u32;
+    let all: Vec<u32> = (0..mesh.num_faces() as u32).collect();
+    let split = dual_split(
+        mesh,
+        all,
+        &mut PlainFeatures { mesh, trim },
+        DualOrder::ByKind,
+    );
 
     // Stencils, in child point order.
-    let mut table = StencilTable::with_capacity(nv, nh + 2 * nb as usize + nc as usize, 4);
+    let mut table = StencilTable::with_capacity(mesh.num_vertices(), split.points.len(), 4);
     let mut row = RowBuf::default();
-    for h in 0..h_count {
-        corner_rule(mesh, h, &mut row);
-        row.flush_into(&mut table);
-    }
-    for e in (0..ne).filter(|&e| !trim && mesh.is_boundary_edge(e)) {
-        let h = mesh.edge_halfedge(e);
-        let (a, b) = (mesh.he_from(h), mesh.he_to(h));
-        for (wa, wb) in CHAIKIN {
-            row.add(a, wa);
-            row.add(b, wb);
-            row.flush_into(&mut table);
-        }
-    }
-    for v in (0..nv).filter(|&v| corner[v] != NONE) {
-        row.add(v as u32, 1.0);
-        row.flush_into(&mut table);
-    }
-
-    // Faces, written straight into the flat arrays.
-    let mut face_start: Vec<u32> = Vec::with_capacity(nf + ne + nv + 1);
-    let mut corners: Vec<u32> = Vec::with_capacity(2 * nh + 4 * ne + 2 * nb as usize + nc as usize);
-    face_start.extend_from_slice(mesh.face_starts());
-    corners.extend(0..h_count);
-    for e in 0..ne {
-        let h = mesh.edge_halfedge(e);
-        let quad = match mesh.he_twin(h) {
-            Some(t) => [mesh.he_next(h), h, mesh.he_next(t), t],
-            None if trim => continue,
-            None => [
-                mesh.he_next(h),
-                h,
-                edge_point(e as u32, false),
-                edge_point(e as u32, true),
-            ],
-        };
-        corners.extend_from_slice(&quad);
-        face_start.push(corners.len() as u32);
-    }
-    for (v, &kept) in corner.iter().enumerate() {
-        let start = corners.len();
-        let boundary = mesh.is_boundary_vertex(v);
-        if boundary && trim {
-            continue;
-        }
-        let h0 = mesh.vertex_halfedge(v);
-        if boundary {
-            corners.push(edge_point(mesh.he_edge(h0), false));
-        }
-        let mut last = h0;
-        for h in mesh.outgoing(v) {
-            corners.push(h);
-            last = h;
-        }
-        if boundary {
-            corners.push(edge_point(mesh.he_edge(mesh.he_prev(last)), true));
-            if kept != NONE {
-                corners.push(h_count + 2 * nb + kept);
+    for &p in &split.points {
+        match p {
+            DualPoint::Corner(h) => corner_rule(mesh, h, &mut row),
+            DualPoint::Chaikin { edge, end } => {
+                let [a, b] = mesh.edge(edge as usize);
+                let (wa, wb) = CHAIKIN[end as usize];
+                row.add(a, wa);
+                row.add(b, wb);
             }
-        } else if corners.len() - start < 3 {
-            // Interior valence 2: drop the 2-sided V-face (see the module documentation).
-            corners.truncate(start);
-            continue;
+            DualPoint::Kept(v) => row.add(v, 1.0),
         }
-        face_start.push(corners.len() as u32);
+        row.flush_into(&mut table);
     }
+    let kept = split.kept;
+    let (face_start, corners) = (split.face_start, split.corners);
     let mut r = finish_refinement(mesh, table, face_start, corners)?;
     // The child keeps the boundary mode, and a kept corner's child point stays kept.
     if let Some(ex) = mesh.extras() {
-        let kept: Vec<(u32, f32)> = (0..nv)
-            .filter(|&v| corner[v] != NONE && sharp::is_tagged_corner(mesh, v))
-            .map(|v| (h_count + 2 * nb + corner[v], INFINITE))
+        let kept: Vec<(u32, f32)> = (0..mesh.num_vertices())
+            .filter(|&v| kept[v] != NONE && sharp::is_tagged_corner(mesh, v))
+            .map(|v| (kept[v], INFINITE))
             .collect();
         if !kept.is_empty() || ex.options.boundary.is_some() {
             let extras = Extras {
@@ -437,6 +370,32 @@ pub(crate) fn refine_dual_with(
         }
     }
     Ok(r)
+}
+
+/// The features of a whole net's step without creases: Chaikin points on the boundary edges,
+/// kept points at the kept corners, a V-face at every vertex (one sector); with the boundary
+/// mode `none` (`trim`) no boundary strip.
+struct PlainFeatures<'a> {
+    mesh: &'a PolyMesh,
+    trim: bool,
+}
+
+impl DualFeatures for PlainFeatures<'_> {
+    fn chaikin(&mut self, e: usize) -> bool {
+        !self.trim && self.mesh.is_boundary_edge(e)
+    }
+
+    fn kept(&mut self, v: usize) -> bool {
+        !self.trim && sharp::is_kept_corner(self.mesh, v)
+    }
+
+    fn v_faces(&mut self, v: usize, _: &[u32]) -> VFaces {
+        if self.trim && self.mesh.is_boundary_vertex(v) {
+            VFaces::None
+        } else {
+            VFaces::Whole
+        }
+    }
 }
 
 /// The boundary mode a dual scheme refines `mesh` with: the net's `interpolateboundary`

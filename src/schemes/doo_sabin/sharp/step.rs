@@ -12,6 +12,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
+use crate::mesh::dual_split::Sector;
 use crate::mesh::tags::BoundaryInterpolation;
 use crate::schemes::sdc::crease::{
     INFINITE, Scratch, SharpLevel, VertexMask, VertexPlan, decrement,
@@ -25,20 +26,6 @@ pub(crate) struct Creases<'a> {
     mesh: &'a PolyMesh,
     /// Per vertex: an edge inside the surface at it is sharp.
     on_crease: Vec<bool>,
-}
-
-/// The sectors of a vertex's fan between its sharp edges.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct Sector {
-    /// Indices into the vertex's outgoing half-edges (counter-clockwise; on the boundary from
-    /// the outgoing boundary edge) of the faces of the sector, in order.
-    pub faces: Vec<usize>,
-    /// The sharp edge the sector starts at (counter-clockwise), or `None` when the vertex has
-    /// no sharp edge (one sector, the whole fan).
-    pub open: Option<u32>,
-    /// The sharp edge it ends at: the same as `open` at a dart (one sharp edge inside the
-    /// surface, none on the boundary).
-    pub close: Option<u32>,
 }
 
 impl<'a> Creases<'a> {

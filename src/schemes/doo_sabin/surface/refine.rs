@@ -4,12 +4,13 @@
 //! vertices. Split from the parent module, which holds the host, the regular patches and the
 //! centroid fill.
 
-use super::step::{StepIn, UNSET, dual_step};
+use super::step::{StepIn, dual_step};
 use super::{DualRules, Level};
 use crate::bezier::domain::Domain;
 use crate::error::Result;
 use crate::host::adaptive::Tag;
-use crate::mesh::PolyMesh;
+use crate::mesh::dual_split::DualOrder;
+use crate::mesh::{NONE, PolyMesh};
 use crate::schemes::doo_sabin::sharp::step::Creases;
 use std::collections::HashMap;
 
@@ -42,7 +43,8 @@ pub(super) fn refine_around(
         face_corners: Some(rules.face_corners),
     };
     let mut corner = |mm: &PolyMesh, h: u32| (rules.corner)(mm, h);
-    let out = dual_step(&inp, sel_faces, &mut corner, creases.as_ref())?;
+    let sel = (sel_faces, DualOrder::ByFace);
+    let out = dual_step(&inp, sel, &mut corner, creases.as_ref())?;
     let positions = out.positions(m.positions());
     let child =
         PolyMesh::from_partial_refinement(positions, out.face_start.clone(), out.corners.clone())?
@@ -68,7 +70,7 @@ pub(super) fn refine_around(
             let w = out.corner_pt[h as usize];
             let mut t = tag;
             t.domain = Domain::UNTRACKED;
-            if w != UNSET && (level.first || !on_boundary) {
+            if w != NONE && (level.first || !on_boundary) {
                 let g = m.he_face(h);
                 t.domain = child_domain(m, level.first, &child, h, i, tag.domain, f_face[&g], w);
             }
@@ -84,12 +86,12 @@ pub(super) fn refine_around(
             let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
             active.push((out.edge_pt[e as usize][k], untracked));
         }
-        if out.kept[v] != UNSET {
+        if out.kept[v] != NONE {
             active.push((out.kept[v], untracked));
         }
     }
     // Children that could not be made (a cut the bookkeeping did not trust) stay out.
-    active.retain(|&(x, _)| x != UNSET);
+    active.retain(|&(x, _)| x != NONE);
     debug_assert_eq!(out.rule_free.len(), out.info.len());
     // a child descends from its parent's element: a V-face it makes later (a sector of a
     // crease vertex, a dart's tip, a kept point of valence 3) is a facet of that element

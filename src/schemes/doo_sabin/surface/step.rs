@@ -1,11 +1,13 @@
-//! One dual step on a selection of faces: the child points (corner points by the scheme's rule,
-//! Chaikin points on sharp edges, kept points), their trust, and the child faces (F-, E- and
-//! V-faces). The adaptive host refines the faces around its marked vertices with it
+//! One dual step on a selection of faces: the mesh layer's dual split
+//! ([`crate::mesh::dual_split`]) with this family's sharp features, its child points given their
+//! stencils (corner points by the scheme's rule, Chaikin points on sharp edges, kept points)
+//! and their trust, its child faces (F-, E- and V-faces) their input elements and sharpness.
+//! The adaptive host refines the faces around its marked vertices with it
 //! ([`super::refine`]); a whole net with sharp features is refined with all its faces selected
 //! ([`crate::schemes::doo_sabin::refine_dual_with`]).
 //!
 //! Without creases ([`Creases`]) the points and faces are those of the boundary rules of
-//! [`crate::schemes::doo_sabin`] in the order the adaptive host has always used. With creases
+//! [`crate::schemes::doo_sabin`]. With creases
 //! they follow fairsub's crease construction ([`crate::schemes::doo_sabin::sharp`]): a sharp
 //! edge inside the surface gets the two Chaikin points of its sides (shared by both sides),
 //! its E-face splits into one half per side, a vertex's V-face into the sectors between its
@@ -17,20 +19,20 @@ use super::DualRules;
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::host::adaptive::{Info, SplitTrust};
+use crate::mesh::dual_split::{
+    DualFace, DualFeatures, DualOrder, DualPoint, DualSplit, VFaces, dual_split,
+};
 use crate::mesh::tags::SubdOptions;
-use crate::mesh::{Element, Extras, PolyMesh, SharpEdges};
+use crate::mesh::{Element, Extras, NONE, PolyMesh, SharpEdges};
 use crate::schemes::doo_sabin::fourier::FaceCorners;
 use crate::schemes::doo_sabin::fourier::LARGE_FACE;
-use crate::schemes::doo_sabin::sharp::step::{Creases, Sector};
+use crate::schemes::doo_sabin::sharp::step::Creases;
 use crate::schemes::doo_sabin::{CHAIKIN, sharp::is_kept_corner};
 use crate::schemes::sdc::crease::{Scratch, VertexMask, VertexPlan};
 use crate::stencil::{Stencil, StencilTable};
 
 mod faces;
 use faces::faces;
-
-/// A point not made yet.
-pub(crate) const UNSET: u32 = u32::MAX;
 
 /// What one step reads: a level's net, the trust of its points and, under the boundary mode
 /// `none`, which of them are rule-free.
@@ -73,7 +75,7 @@ pub(crate) struct StepOut {
     pub fixed: Vec<(u32, Point)>,
     /// Blended points, in an order where parts come first.
     pub derived: Vec<Derived>,
-    /// The corner point of each parent half-edge (`UNSET` outside the selection).
+    /// The corner point of each parent half-edge ([`NONE`] outside the selection).
     pub corner_pt: Vec<u32>,
     /// The two Chaikin points of each sharp parent edge (near the start, near the end of its
     /// edge half-edge).
@@ -125,58 +127,53 @@ impl StepOut {
     }
 }
 
-/// One step of the faces `sel_faces` of `inp` (see the [module](self) documentation).
+/// One step of the faces `sel_faces` of `inp` (see the [module](self) documentation): the
+/// mesh layer's dual split ([`dual_split`]) with the sharp features of `creases` (or the plain
+/// boundary rules), numbered by `order`; this function gives its points their stencils and
+/// trust.
 pub(crate) fn dual_step(
     inp: &StepIn<'_>,
-    mut sel_faces: Vec<u32>,
+    (sel_faces, order): (Vec<u32>, DualOrder),
     corner: &mut dyn FnMut(&PolyMesh, u32) -> Stencil,
     creases: Option<&Creases<'_>>,
 ) -> Result<StepOut> {
     let m = inp.mesh;
-    let (nv, nf, ne) = (m.num_vertices(), m.num_faces(), m.num_edges());
-    sel_faces.sort_unstable();
-    let mut sel = vec![false; nf];
+    let mut sel = vec![false; m.num_faces()];
     for &f in &sel_faces {
         sel[f as usize] = true;
     }
     let trust = SplitTrust::new(m, inp.info, &sel);
-    let whole_fan = |v: usize| trust.whole_fan(v);
-    // A parent edge gets Chaikin points when it is sharp: with creases, by its sharpness
-    // (boundary edges are infinitely sharp); without, when it is a true boundary edge (of the
-    // partial net: an end has its true fan).
-    let sharp_edge = |h: u32| match creases {
-        Some(c) => c.is_sharp(m.he_edge(h) as usize),
-        None => {
-            m.he_twin(h).is_none()
-                && (inp.info[m.he_from(h) as usize].fan_ok || inp.info[m.he_to(h) as usize].fan_ok)
-        }
+    let mut features = StepFeatures {
+        inp,
+        creases,
+        trust: &trust,
+        scratch: Scratch::default(),
     };
+    let mut split = dual_split(m, sel_faces, &mut features, order);
     let free = |x: u32| inp.rule_free.is_none_or(|r| r[x as usize]);
+    let n = split.points.len();
+    let untrusted = Info {
+        pos_ok: false,
+        fan_ok: false,
+        origin: None,
+    };
     let mut o = StepOut {
-        stencils: Vec::new(),
-        info: Vec::new(),
-        rule_free: Vec::new(),
+        stencils: vec![Stencil::new(); n],
+        info: vec![untrusted; n],
+        rule_free: vec![false; n],
         fixed: Vec::new(),
         derived: Vec::new(),
-        corner_pt: vec![UNSET; m.num_halfedges()],
-        edge_pt: vec![[UNSET; 2]; ne],
-        kept: vec![UNSET; nv],
-        face_start: vec![0],
+        corner_pt: Vec::new(),
+        edge_pt: Vec::new(),
+        kept: Vec::new(),
+        face_start: Vec::new(),
         corners: Vec::new(),
         face_origin: Vec::new(),
         sel_faces: Vec::new(),
         extras: None,
     };
-    let push = |o: &mut StepOut, s: Stencil, i: Info, rf: bool| -> u32 {
-        o.stencils.push(s);
-        o.info.push(i);
-        o.rule_free.push(rf);
-        (o.stencils.len() - 1) as u32
-    };
-    let mut scratch = Scratch::default();
-    let mut blends: Vec<(u32, usize, usize)> = Vec::new();
-    let mut kept_blends: Vec<(u32, usize, VertexPlan)> = Vec::new();
-    for &f in &sel_faces {
+    // the corner points, face by face (a large face's at once)
+    for &f in &split.sel_faces {
         let f = f as usize;
         let h0 = m.face_halfedge(f);
         let alone = creases
@@ -196,11 +193,10 @@ pub(crate) fn dual_step(
                 (fc.points, ok, rf)
             });
         for h in h0..h0 + m.face_size(f) as u32 {
-            let v = m.he_from(h) as usize;
+            let p = split.corner_pt[h as usize] as usize;
             let (st, pos, rf) = match &large {
                 Some((points, ok, rf)) => {
-                    o.fixed
-                        .push((o.stencils.len() as u32, points[(h - h0) as usize]));
+                    o.fixed.push((p as u32, points[(h - h0) as usize]));
                     (Stencil::new(), *ok, *rf)
                 }
                 None => {
@@ -209,60 +205,107 @@ pub(crate) fn dual_step(
                         None => corner(m, h),
                     };
                     // trusted when every point the rule reads is (it may reach beyond the face)
-                    let pos = st
-                        .entries()
-                        .iter()
-                        .all(|&(x, _)| inp.info[x as usize].pos_ok);
+                    let pos = trust.reads_ok(&st);
                     let rf = st.entries().iter().all(|&(x, _)| free(x));
                     (st, pos, rf)
                 }
             };
-            o.corner_pt[h as usize] = push(&mut o, st, trust.dual_point(v, pos), rf);
-            let e = m.he_edge(h) as usize;
-            if sharp_edge(h) && o.edge_pt[e][0] == UNSET {
-                let eh = m.edge_halfedge(e);
-                let (a, b) = (m.he_from(eh) as usize, m.he_to(eh) as usize);
-                let pos = inp.info[a].pos_ok && inp.info[b].pos_ok;
+            o.stencils[p] = st;
+            o.info[p] = trust.dual_point(m.he_from(h) as usize, pos);
+            o.rule_free[p] = rf;
+        }
+    }
+    // the Chaikin points and the kept points, in their order
+    let mut scratch = Scratch::default();
+    let mut blends: Vec<(u32, usize, usize)> = Vec::new();
+    let mut kept_blends: Vec<(u32, usize, VertexPlan)> = Vec::new();
+    for (p, &point) in split.points.iter().enumerate() {
+        match point {
+            DualPoint::Corner(_) => {}
+            DualPoint::Chaikin { edge, end } => {
+                let (e, k) = (edge as usize, end as usize);
+                let [a, b] = m.edge(e).map(|x| x as usize);
                 let w = creases.map_or(1.0, |c| c.weight(e));
-                for (k, end) in [a, b].into_iter().enumerate() {
-                    let (wa, wb) = CHAIKIN[k];
-                    let mut s = Stencil::new();
-                    s.add(a, wa * w).add(b, wb * w);
-                    o.edge_pt[e][k] = push(&mut o, s, trust.dual_point(end, pos), false);
-                    if w < 1.0 {
-                        blends.push((o.edge_pt[e][k], e, k));
-                    }
+                let (wa, wb) = CHAIKIN[k];
+                let mut st = Stencil::new();
+                st.add(a, wa * w).add(b, wb * w);
+                let pos = inp.info[a].pos_ok && inp.info[b].pos_ok;
+                o.stencils[p] = st;
+                o.info[p] = trust.dual_point([a, b][k], pos);
+                if w < 1.0 {
+                    blends.push((p as u32, e, k));
+                }
+            }
+            DualPoint::Kept(x) => {
+                let x = x as usize;
+                let plan = match creases {
+                    Some(c) => c.kept(x, &mut scratch),
+                    None => Some(VertexPlan::Single(VertexMask::Corner)),
+                }
+                .expect("the features gave a kept point only where a plan keeps one");
+                let w = match plan {
+                    VertexPlan::Blend { w, .. } => w,
+                    VertexPlan::Single(_) => 1.0,
+                };
+                o.stencils[p] = Stencil::from_pairs([(x, w)]);
+                o.info[p] = trust.dual_point(x, inp.info[x].pos_ok);
+                if w < 1.0 {
+                    kept_blends.push((p as u32, x, plan));
                 }
             }
         }
-        for &x in m.face(f) {
-            let x = x as usize;
-            if o.kept[x] != UNSET || !inp.info[x].fan_ok {
-                continue;
-            }
-            let plan = match creases {
-                Some(c) => c.kept(x, &mut scratch),
-                None => is_kept_corner(m, x).then_some(VertexPlan::Single(VertexMask::Corner)),
-            };
-            let Some(plan) = plan else { continue };
-            let w = match plan {
-                VertexPlan::Blend { w, .. } => w,
-                VertexPlan::Single(_) => 1.0,
-            };
-            let info = trust.dual_point(x, inp.info[x].pos_ok);
-            o.kept[x] = push(&mut o, Stencil::from_pairs([(x, w)]), info, false);
-            if w < 1.0 {
-                kept_blends.push((o.kept[x], x, plan));
-            }
-        }
     }
+    o.corner_pt = std::mem::take(&mut split.corner_pt);
+    o.edge_pt = std::mem::take(&mut split.edge_pt);
+    o.kept = std::mem::take(&mut split.kept);
     blend_chaikin_points(m, &mut o, &blends);
     if let Some(c) = creases {
         blend_kept_points(m, c, &mut o, &kept_blends);
     }
-    o.sel_faces = sel_faces;
-    faces(inp, &sel, &whole_fan, creases, &mut o)?;
+    faces(inp, split, creases, &mut o)?;
     Ok(o)
+}
+
+/// The sharp features of one dual step for the mesh layer's split: Chaikin points on sharp
+/// edges (with creases, by sharpness; without, on the true boundary edges of the partial net:
+/// an end has its true fan), kept points where the vertex rule keeps the corner, V-faces at
+/// the vertices whose whole fan is refined, split into the sectors between sharp edges.
+struct StepFeatures<'a> {
+    inp: &'a StepIn<'a>,
+    creases: Option<&'a Creases<'a>>,
+    trust: &'a SplitTrust<'a>,
+    scratch: Scratch,
+}
+
+impl DualFeatures for StepFeatures<'_> {
+    fn chaikin(&mut self, e: usize) -> bool {
+        let m = self.inp.mesh;
+        match self.creases {
+            Some(c) => c.is_sharp(e),
+            None => {
+                let h = m.edge_halfedge(e);
+                let info = self.inp.info;
+                m.he_twin(h).is_none()
+                    && (info[m.he_from(h) as usize].fan_ok || info[m.he_to(h) as usize].fan_ok)
+            }
+        }
+    }
+
+    fn kept(&mut self, v: usize) -> bool {
+        self.inp.info[v].fan_ok
+            && match self.creases {
+                Some(c) => c.kept(v, &mut self.scratch).is_some(),
+                None => is_kept_corner(self.inp.mesh, v),
+            }
+    }
+
+    fn v_faces(&mut self, v: usize, hs: &[u32]) -> VFaces {
+        match self.creases {
+            _ if !self.trust.whole_fan(v) => VFaces::None,
+            Some(c) => VFaces::Sectors(c.sectors(v, hs)),
+            None => VFaces::Whole,
+        }
+    }
 }
 
 /// The blends of the Chaikin points of decaying creases: toward the midpoint of the two corner
@@ -279,7 +322,7 @@ fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[(u32, usize, us
             (o.corner_pt[m.he_next(h) as usize], o.corner_pt[t as usize])
         };
         let w = o.stencils[p as usize].weight_sum();
-        if c1 == UNSET || c2 == UNSET {
+        if c1 == NONE || c2 == NONE {
             o.info[p as usize].pos_ok = false;
             continue;
         }
@@ -312,7 +355,7 @@ fn blend_kept_points(
             VertexMask::Crease(a, b) => [a, b]
                 .into_iter()
                 .map(|to| {
-                    let pt = c.spoke_to(v, to, &mut spokes).map_or(UNSET, |e| {
+                    let pt = c.spoke_to(v, to, &mut spokes).map_or(NONE, |e| {
                         let e = e as usize;
                         let near = usize::from(m.he_from(m.edge_halfedge(e)) as usize != v);
                         o.edge_pt[e][near]
@@ -328,7 +371,7 @@ fn blend_kept_points(
                     .collect()
             }
         };
-        if parts.iter().any(|&(x, _)| x == UNSET) {
+        if parts.iter().any(|&(x, _)| x == NONE) {
             o.info[p as usize].pos_ok = false;
             continue;
         }
