@@ -23,6 +23,7 @@ pub mod quad_split;
 pub mod split;
 pub mod sqrt3_split;
 pub mod tags;
+pub mod ternary_split;
 mod topology;
 pub mod tri_split;
 mod view;

@@ -3,6 +3,8 @@
 //! the boundary phantoms, and the limit stencils.
 
 use super::*;
+use crate::mesh::NONE;
+use crate::mesh::ternary_split::{self, TernaryCell, TernarySplit};
 
 /// The kind of a vertex for ternary refinement.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -241,9 +243,10 @@ fn face_child(mesh: &PolyMesh, w: &Widths, h: u32, e: f64) -> Stencil {
 }
 
 /// One ternary step of a quad net with knot widths: the child net, its stencils and its
-/// widths. Child layout: vertex children `0..V` (child `v` of vertex `v`); edge children
-/// `V + 2e + k` (`k = 0` next to the start of the edge's half-edge, `1` next to its end); face
-/// children `V + 2E + h` (next to the start of half-edge `h`); then the boundary layer.
+/// widths, on the mesh layer's ternary split ([`TernarySplit`], whose layout the child keeps):
+/// vertex children `0..V` (child `v` of vertex `v`); edge children `V + 2e + k` (`k = 0` next
+/// to the start of the edge's half-edge, `1` next to its end); face children `V + 2E + h`
+/// (next to the start of half-edge `h`); then the boundary layer.
 ///
 /// # Errors
 /// [`Error::Unsupported`] for non-quad faces, boundary vertices with more than two quads and
@@ -258,35 +261,13 @@ pub fn ternary_step(
     let (nv, ne, nh) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_halfedges());
     let e = rules.e;
     let sigma = 1.0 - 2.0 * e;
-    // Boundary-layer numbering.
-    let base = (nv + 2 * ne + nh) as u32;
-    let mut next = base;
-    // Per boundary vertex: outer child (non-corner), or [out, in, corner-corner] for corners.
-    let mut outer = vec![[u32::MAX; 3]; nv];
-    for (slot, kind) in outer.iter_mut().zip(&kinds) {
-        match kind {
-            VKind::Boundary => {
-                slot[0] = next;
-                next += 1;
-            }
-            VKind::Corner => {
-                *slot = [next, next + 1, next + 2];
-                next += 3;
-            }
-            _ => {}
-        }
-    }
-    let mut outer_edge = vec![u32::MAX; ne];
-    for (e_idx, slot) in outer_edge.iter_mut().enumerate() {
-        if mesh.is_boundary_edge(e_idx) {
-            *slot = next;
-            next += 2;
-        }
-    }
-    check_child_size(name, next as usize)?;
+    // The child points and faces (the boundary layer's numbering among them).
+    let split = TernarySplit::new(mesh);
+    check_child_size(name, split.num_points)?;
+    let outer_edge = &split.outer_edge;
 
     // Stencils.
-    let mut rows: Vec<Stencil> = Vec::with_capacity(next as usize);
+    let mut rows: Vec<Stencil> = Vec::with_capacity(split.num_points);
     for (v, &kind) in kinds.iter().enumerate() {
         rows.push(match kind {
             VKind::Extraordinary => vertex_child_extraordinary(mesh, widths, v, rules)?,
@@ -344,7 +325,7 @@ pub fn ternary_step(
         }
     }
     for (ei, &oe) in outer_edge.iter().enumerate() {
-        if oe == u32::MAX {
+        if oe == NONE {
             continue;
         }
         let h = mesh.edge_halfedge(ei) as usize;
@@ -357,180 +338,102 @@ pub fn ternary_step(
         let t = end_child_weight(widths[h][1], widths[h][0], e);
         rows.push(Stencil::from_pairs([(b, 1.0 - t), (a, t)]));
     }
-    debug_assert_eq!(rows.len(), next as usize);
+    debug_assert_eq!(rows.len(), split.num_points);
     let table = StencilTable::from_rows(nv, rows, 9);
 
-    // Topology and widths.
-    let edge_child_idx = |h: u32, near_from: bool| -> u32 {
-        let ei = mesh.he_edge(h);
-        let g = mesh.edge_halfedge(ei as usize);
-        let k = u32::from(if g == h { !near_from } else { near_from });
-        (nv as u32) + 2 * ei + k
-    };
-    let mut face_start = vec![0u32];
-    let mut corners: Vec<u32> = Vec::with_capacity(9 * nh + 16 * ne);
-    let mut cw: Widths = Vec::with_capacity(9 * nh + 16 * ne);
-    let mut push_face =
-        |pts: [u32; 4], wid: [[f64; 2]; 4], corners: &mut Vec<u32>, cw: &mut Widths| {
-            corners.extend_from_slice(&pts);
-            cw.extend_from_slice(&wid);
-            face_start.push(corners.len() as u32);
-        };
-    // Per face: the 4x4 child grid in the face's chart rotated to start at corner k.
-    let chart = |f: usize, k: usize| -> FaceChart {
-        let h0f = mesh.face_halfedge(f);
-        let hk = |j: usize| h0f + ((k + j) % 4) as u32;
-        let (h0, h1, h2, h3) = (hk(0), hk(1), hk(2), hk(3));
-        let v: [u32; 4] = [
-            mesh.he_from(h0),
-            mesh.he_from(h1),
-            mesh.he_from(h2),
-            mesh.he_from(h3),
-        ];
-        let wd = |h: u32, i: usize| widths[h as usize][i];
-        let wu = [wd(h0, 0), wd(h0, 1), wd(h2, 0), wd(h2, 1)];
-        let wv = [wd(h3, 1), wd(h1, 0), wd(h1, 1), wd(h3, 0)];
-        let mut g = [[0u32; 4]; 4];
-        g[0][0] = v[0];
-        g[3][0] = v[1];
-        g[3][3] = v[2];
-        g[0][3] = v[3];
-        g[1][0] = edge_child_idx(h0, true);
-        g[2][0] = edge_child_idx(h0, false);
-        g[3][1] = edge_child_idx(h1, true);
-        g[3][2] = edge_child_idx(h1, false);
-        g[2][3] = edge_child_idx(h2, true);
-        g[1][3] = edge_child_idx(h2, false);
-        g[0][2] = edge_child_idx(h3, true);
-        g[0][1] = edge_child_idx(h3, false);
-        let fc = |h: u32| (nv + 2 * ne) as u32 + h;
-        g[1][1] = fc(h0);
-        g[2][1] = fc(h1);
-        g[2][2] = fc(h2);
-        g[1][2] = fc(h3);
-        let mut uw = [[0.0; 4]; 4];
-        let mut vw = [[0.0; 4]; 4];
-        for i in 0..4 {
-            for j in 0..4 {
-                let c = match (i >= 2, j >= 2) {
-                    (false, false) => 0,
-                    (true, false) => 1,
-                    (true, true) => 2,
-                    (false, true) => 3,
-                };
-                let fu = if i == 0 || i == 3 { sigma } else { e };
-                let fv = if j == 0 || j == 3 { sigma } else { e };
-                uw[i][j] = fu * wu[c];
-                vw[i][j] = fv * wv[c];
+    // The child knot widths, per child face corner: `(along, across)` for each side, read
+    // off the chart of the cell's parent face.
+    let chart = |f: usize, k: usize| chart_widths(mesh, widths, f, k, e);
+    let mut cw: Widths = Vec::with_capacity(split.corners.len());
+    for &cell in &split.cells {
+        match cell {
+            TernaryCell::Inner { face, i, j } => {
+                let (uw, vw) = chart(face as usize, 0);
+                let (i, j) = (i as usize, j as usize);
+                cw.extend_from_slice(&[
+                    [uw[i][j], uw[i + 1][j]],
+                    [vw[i + 1][j], vw[i + 1][j + 1]],
+                    [uw[i + 1][j + 1], uw[i][j + 1]],
+                    [vw[i][j + 1], vw[i][j]],
+                ]);
             }
-        }
-        (g, uw, vw)
-    };
-    for f in 0..mesh.num_faces() {
-        let (g, uw, vw) = chart(f, 0);
-        for i in 0..3 {
-            for j in 0..3 {
-                push_face(
-                    [g[i][j], g[i + 1][j], g[i + 1][j + 1], g[i][j + 1]],
-                    [
-                        [uw[i][j], uw[i + 1][j]],
-                        [vw[i + 1][j], vw[i + 1][j + 1]],
-                        [uw[i + 1][j + 1], uw[i][j + 1]],
-                        [vw[i][j + 1], vw[i][j]],
-                    ],
-                    &mut corners,
-                    &mut cw,
-                );
-            }
-        }
-    }
-    // Boundary strips (one per boundary edge) and corner cells.
-    for (ei, &oe) in outer_edge.iter().enumerate() {
-        if oe == u32::MAX {
-            continue;
-        }
-        let h = mesh.edge_halfedge(ei);
-        let f = mesh.he_face(h) as usize;
-        let k = (h - mesh.face_halfedge(f)) as usize;
-        let (g, uw, vw) = chart(f, k);
-        let (a, b) = (mesh.he_from(h) as usize, mesh.he_to(h) as usize);
-        // Outer points along the strip, with (along, across) widths.
-        // A corner's first outer child lies along its outgoing boundary edge, its second
-        // along the incoming one.
-        let oa = outer[a][0];
-        let ob = if kinds[b] == VKind::Corner {
-            outer[b][1]
-        } else {
-            outer[b][0]
-        };
-        let row = [g[0][0], g[1][0], g[2][0], g[3][0]];
-        let out = [oa, oe, oe + 1, ob];
-        let along = [uw[0][0], uw[1][0], uw[2][0], uw[3][0]];
-        let across_row = [vw[0][0], vw[1][0], vw[2][0], vw[3][0]];
-        // The outer children are end pieces across: e times the parent's width across.
-        let across_out = [
-            vw[0][0] / sigma * e,
-            vw[1][0] / sigma * e,
-            vw[2][0] / sigma * e,
-            vw[3][0] / sigma * e,
-        ];
-        for q in 0..3 {
-            push_face(
-                [out[q], out[q + 1], row[q + 1], row[q]],
-                [
+            TernaryCell::Strip { edge, q } => {
+                let h = mesh.edge_halfedge(edge as usize);
+                let f = mesh.he_face(h) as usize;
+                let (uw, vw) = chart(f, (h - mesh.face_halfedge(f)) as usize);
+                let q = q as usize;
+                let along = [uw[0][0], uw[1][0], uw[2][0], uw[3][0]];
+                let across_row = [vw[0][0], vw[1][0], vw[2][0], vw[3][0]];
+                // the outer children are end pieces across: e times the parent's width across
+                let across_out = across_row.map(|x| x / sigma * e);
+                cw.extend_from_slice(&[
                     [along[q], along[q + 1]],
                     [across_out[q + 1], across_row[q + 1]],
                     [along[q + 1], along[q]],
                     [across_row[q], across_out[q]],
-                ],
-                &mut corners,
-                &mut cw,
-            );
+                ]);
+            }
+            TernaryCell::Corner(v) => {
+                let h0 = mesh.vertex_halfedge(v as usize);
+                let f = mesh.he_face(h0) as usize;
+                let (uw, vw) = chart(f, (h0 - mesh.face_halfedge(f)) as usize);
+                let (wu, wv) = (uw[0][0] / sigma, vw[0][0] / sigma);
+                cw.extend_from_slice(&[
+                    [e * wu, sigma * wu],
+                    [e * wv, sigma * wv],
+                    [sigma * wu, e * wu],
+                    [sigma * wv, e * wv],
+                ]);
+            }
         }
     }
-    for (v, &kind) in kinds.iter().enumerate() {
-        if kind != VKind::Corner {
-            continue;
-        }
-        let h0 = mesh.vertex_halfedge(v);
-        let f = mesh.he_face(h0) as usize;
-        let k = (h0 - mesh.face_halfedge(f)) as usize;
-        let (_, uw, vw) = chart(f, k);
-        let (wu, wv) = (uw[0][0] / sigma, vw[0][0] / sigma);
-        let [o_out, o_in, cc] = outer[v];
-        push_face(
-            [cc, o_out, v as u32, o_in],
-            [
-                [e * wu, sigma * wu],
-                [e * wv, sigma * wv],
-                [sigma * wu, e * wu],
-                [sigma * wv, e * wv],
-            ],
-            &mut corners,
-            &mut cw,
-        );
-    }
-    let r = finish_refinement(mesh, table, face_start, corners)?;
+    let r = finish_refinement(mesh, table, split.face_start, split.corners)?;
     Ok((r, cw))
+}
+
+/// The knot widths of the 4 x 4 child points of quad `f` in its chart rotated to start at
+/// corner `k` ([`ternary_split::grid`]): along `u` and along `v`, each the parent's width of
+/// the piece times `1 - 2e` (the end pieces) or `e` (the middle ones).
+fn chart_widths(mesh: &PolyMesh, widths: &Widths, f: usize, k: usize, e: f64) -> ChartWidths {
+    let sigma = 1.0 - 2.0 * e;
+    let h0f = mesh.face_halfedge(f);
+    let hk = |j: usize| h0f + ((k + j) % 4) as u32;
+    let (h0, h1, h2, h3) = (hk(0), hk(1), hk(2), hk(3));
+    let wd = |h: u32, i: usize| widths[h as usize][i];
+    let wu = [wd(h0, 0), wd(h0, 1), wd(h2, 0), wd(h2, 1)];
+    let wv = [wd(h3, 1), wd(h1, 0), wd(h1, 1), wd(h3, 0)];
+    let mut uw = [[0.0; 4]; 4];
+    let mut vw = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            let c = match (i >= 2, j >= 2) {
+                (false, false) => 0,
+                (true, false) => 1,
+                (true, true) => 2,
+                (false, true) => 3,
+            };
+            let fu = if i == 0 || i == 3 { sigma } else { e };
+            let fv = if j == 0 || j == 3 { sigma } else { e };
+            uw[i][j] = fu * wu[c];
+            vw[i][j] = fv * wv[c];
+        }
+    }
+    (uw, vw)
 }
 
 /// Index of the edge child of [`ternary_step`] on the edge of half-edge `h`, next to `from(h)`
 /// (`near_from`) or to `to(h)`.
 pub fn edge_child_index(mesh: &PolyMesh, h: u32, near_from: bool) -> usize {
-    let ei = mesh.he_edge(h) as usize;
-    let g = mesh.edge_halfedge(ei);
-    let k = usize::from(if g == h { !near_from } else { near_from });
-    mesh.num_vertices() + 2 * ei + k
+    ternary_split::edge_child(mesh, h, near_from) as usize
 }
 
 /// Index of the face child of [`ternary_step`] next to `from(h)` in the face of `h`.
 pub fn face_child_index(mesh: &PolyMesh, h: u32) -> usize {
-    mesh.num_vertices() + 2 * mesh.num_edges() + h as usize
+    ternary_split::face_child(mesh, h) as usize
 }
 
-/// The 4x4 child grid of a face in its chart (child indices), with each child's knot width
-/// along the chart's `u` and `v`.
-type FaceChart = ([[u32; 4]; 4], [[f64; 4]; 4], [[f64; 4]; 4]);
+/// The knot widths of a face's 4 x 4 child points in its chart, along `u` and along `v`.
+type ChartWidths = ([[f64; 4]; 4], [[f64; 4]; 4]);
 
 /// The edge child next to the end of boundary half-edge `h` (`a -> b`, no twin): the mirror of
 /// [`edge_child`] for the reversed direction, whose phantom side is the edge itself.
