@@ -53,7 +53,7 @@ pub(crate) fn refine_creased(
     let out = dual_step(&inp, (all, DualOrder::ByKind), corner, Some(creases))?;
     let table = StencilTable::from_rows(mesh.num_vertices(), out.composed_stencils(), 6);
     let positions = table.apply(mesh.positions());
-    let child = PolyMesh::from_refinement(positions, out.face_start, out.corners)?;
+    let child = PolyMesh::from_refinement(positions, out.split.face_start, out.split.corners)?;
     let extras = out.extras;
     Ok(Refinement {
         mesh: child.with_extras(extras),

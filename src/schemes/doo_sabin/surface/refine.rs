@@ -46,11 +46,15 @@ pub(super) fn refine_around(
     let sel = (sel_faces, DualOrder::ByFace);
     let out = dual_step(&inp, sel, &mut corner, creases.as_ref())?;
     let positions = out.positions(m.positions());
-    let child =
-        PolyMesh::from_partial_refinement(positions, out.face_start.clone(), out.corners.clone())?
-            .with_extras(out.extras.clone());
+    let child = PolyMesh::from_partial_refinement(
+        positions,
+        out.split.face_start.clone(),
+        out.split.corners.clone(),
+    )?
+    .with_extras(out.extras.clone());
     // The F-face of each selected face in the child (the first faces, in `sel_faces` order).
     let f_face: HashMap<u32, u32> = out
+        .split
         .sel_faces
         .iter()
         .enumerate()
@@ -67,7 +71,7 @@ pub(super) fn refine_around(
         // patches lie beyond the knot lines, over no face
         let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
         for (i, &h) in hs.iter().enumerate() {
-            let w = out.corner_pt[h as usize];
+            let w = out.split.corner_pt[h as usize];
             let mut t = tag;
             t.domain = Domain::UNTRACKED;
             if w != NONE && (level.first || !on_boundary) {
@@ -84,10 +88,10 @@ pub(super) fn refine_around(
         };
         for e in sharp_spokes(m, v, &hs, creases.as_ref()) {
             let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
-            active.push((out.edge_pt[e as usize][k], untracked));
+            active.push((out.split.edge_pt[e as usize][k], untracked));
         }
-        if out.kept[v] != NONE {
-            active.push((out.kept[v], untracked));
+        if out.split.kept[v] != NONE {
+            active.push((out.split.kept[v], untracked));
         }
     }
     // Children that could not be made (a cut the bookkeeping did not trust) stay out.

@@ -75,21 +75,11 @@ pub(crate) struct StepOut {
     pub fixed: Vec<(u32, Point)>,
     /// Blended points, in an order where parts come first.
     pub derived: Vec<Derived>,
-    /// The corner point of each parent half-edge ([`NONE`] outside the selection).
-    pub corner_pt: Vec<u32>,
-    /// The two Chaikin points of each sharp parent edge (near the start, near the end of its
-    /// edge half-edge).
-    pub edge_pt: Vec<[u32; 2]>,
-    /// The kept point of each parent vertex.
-    pub kept: Vec<u32>,
-    /// Child faces.
-    pub face_start: Vec<u32>,
-    /// Child face corners.
-    pub corners: Vec<u32>,
     /// Input element of each child face that is not a quad.
     pub face_origin: Vec<Option<Element>>,
-    /// The selected parent faces (the F-faces are the first child faces, in this order).
-    pub sel_faces: Vec<u32>,
+    /// The split: its points (corner, Chaikin and kept points of each parent element) and
+    /// child faces.
+    pub split: DualSplit,
     /// The child's sharp features (with creases only).
     pub extras: Option<Extras>,
 }
@@ -149,7 +139,7 @@ pub(crate) fn dual_step(
         trust: &trust,
         scratch: Scratch::default(),
     };
-    let mut split = dual_split(m, sel_faces, &mut features, order);
+    let split = dual_split(m, sel_faces, &mut features, order);
     let free = |x: u32| inp.rule_free.is_none_or(|r| r[x as usize]);
     let n = split.points.len();
     let untrusted = Info {
@@ -163,15 +153,11 @@ pub(crate) fn dual_step(
         rule_free: vec![false; n],
         fixed: Vec::new(),
         derived: Vec::new(),
-        corner_pt: Vec::new(),
-        edge_pt: Vec::new(),
-        kept: Vec::new(),
-        face_start: Vec::new(),
-        corners: Vec::new(),
         face_origin: Vec::new(),
-        sel_faces: Vec::new(),
+        split,
         extras: None,
     };
+    let split = &o.split;
     // the corner points, face by face (a large face's at once)
     for &f in &split.sel_faces {
         let f = f as usize;
@@ -255,14 +241,11 @@ pub(crate) fn dual_step(
             }
         }
     }
-    o.corner_pt = std::mem::take(&mut split.corner_pt);
-    o.edge_pt = std::mem::take(&mut split.edge_pt);
-    o.kept = std::mem::take(&mut split.kept);
     blend_chaikin_points(m, &mut o, &blends);
     if let Some(c) = creases {
         blend_kept_points(m, c, &mut o, &kept_blends);
     }
-    faces(inp, split, creases, &mut o)?;
+    faces(inp, creases, &mut o)?;
     Ok(o)
 }
 
@@ -317,9 +300,15 @@ fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[(u32, usize, us
         let Some(t) = m.he_twin(h) else { continue };
         // the corners at the end `k` of the two faces of the edge
         let (c1, c2) = if k == 0 {
-            (o.corner_pt[h as usize], o.corner_pt[m.he_next(t) as usize])
+            (
+                o.split.corner_pt[h as usize],
+                o.split.corner_pt[m.he_next(t) as usize],
+            )
         } else {
-            (o.corner_pt[m.he_next(h) as usize], o.corner_pt[t as usize])
+            (
+                o.split.corner_pt[m.he_next(h) as usize],
+                o.split.corner_pt[t as usize],
+            )
         };
         let w = o.stencils[p as usize].weight_sum();
         if c1 == NONE || c2 == NONE {
@@ -358,7 +347,7 @@ fn blend_kept_points(
                     let pt = c.spoke_to(v, to, &mut spokes).map_or(NONE, |e| {
                         let e = e as usize;
                         let near = usize::from(m.he_from(m.edge_halfedge(e)) as usize != v);
-                        o.edge_pt[e][near]
+                        o.split.edge_pt[e][near]
                     });
                     (pt, 0.5 * rest)
                 })
@@ -367,7 +356,7 @@ fn blend_kept_points(
                 let hs = m.outgoing_halfedges(v);
                 let k = hs.len() as f64;
                 hs.iter()
-                    .map(|&h| (o.corner_pt[h as usize], rest / k))
+                    .map(|&h| (o.split.corner_pt[h as usize], rest / k))
                     .collect()
             }
         };

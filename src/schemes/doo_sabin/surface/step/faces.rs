@@ -5,14 +5,14 @@
 
 use super::*;
 
-/// The child faces of `split` into `o` (whose points are already made), with each face's input element and, with creases, the
-/// child's sharpness.
+/// The input element of each child face of `o`'s split (whose points are made) and, with
+/// creases, the child's sharpness.
 pub(super) fn faces(
     inp: &StepIn<'_>,
-    split: DualSplit,
     creases: Option<&Creases<'_>>,
     o: &mut StepOut,
 ) -> Result<()> {
+    let split = &o.split;
     if !split.is_complete() {
         return Err(Error::Unsupported(
             "adaptive Doo-Sabin refinement met an inconsistent neighbourhood (a boundary edge \
@@ -21,7 +21,7 @@ pub(super) fn faces(
         ));
     }
     let m = inp.mesh;
-    o.face_origin = (0..split.num_faces())
+    let face_origin = (0..split.num_faces())
         .map(|i| match split.face(i) {
             DualFace::Face(f) => inp.face_origin[f as usize],
             DualFace::Edge => None,
@@ -36,7 +36,7 @@ pub(super) fn faces(
     if let Some(c) = creases {
         let mut scratch = Scratch::default();
         let mut sharp_edges: Vec<([u32; 2], f32)> = Vec::new();
-        for (e, &pts) in o.edge_pt.iter().enumerate() {
+        for (e, &pts) in split.edge_pt.iter().enumerate() {
             if pts[0] != NONE {
                 let s = c.middle(e, &mut scratch);
                 if s > 0.0 {
@@ -59,7 +59,7 @@ pub(super) fn faces(
             .iter()
             .filter_map(|&v| {
                 let s = c.child_vertex(v as usize);
-                (o.kept[v as usize] != NONE && s > 0.0).then_some((o.kept[v as usize], s))
+                (split.kept[v as usize] != NONE && s > 0.0).then_some((split.kept[v as usize], s))
             })
             .collect();
         sharp_vertices.sort_unstable_by_key(|p| p.0);
@@ -76,9 +76,7 @@ pub(super) fn faces(
             ..Extras::default()
         });
     }
-    o.face_start = split.face_start;
-    o.corners = split.corners;
-    o.sel_faces = split.sel_faces;
+    o.face_origin = face_origin;
     Ok(())
 }
 
@@ -98,7 +96,7 @@ fn sector_sharpness(
             out.push(([a, b], x));
         }
     };
-    if o.kept[v] != NONE {
+    if o.split.kept[v] != NONE {
         let kp = poly[n - 1];
         let before = poly[n - 2];
         push(before, kp, c.half(close as usize, v, scratch));
