@@ -345,10 +345,15 @@ pub fn ternary_step(
     // off the chart of the cell's parent face.
     let chart = |f: usize, k: usize| chart_widths(mesh, widths, f, k, e);
     let mut cw: Widths = Vec::with_capacity(split.corners.len());
+    let mut inner: (u32, ChartWidths) = (NONE, ([[0.0; 4]; 4], [[0.0; 4]; 4]));
     for &cell in &split.cells {
         match cell {
             TernaryCell::Inner { face, i, j } => {
-                let (uw, vw) = chart(face as usize, 0);
+                // (a face's nine cells come together: its chart once)
+                if inner.0 != face {
+                    inner = (face, chart(face as usize, 0));
+                }
+                let (uw, vw) = &inner.1;
                 let (i, j) = (i as usize, j as usize);
                 cw.extend_from_slice(&[
                     [uw[i][j], uw[i + 1][j]],
