@@ -223,99 +223,122 @@ pub fn dual_split(
         v_faces: Vec::with_capacity(faces.saturating_sub(nf + ne)),
         v_done: Vec::with_capacity(faces.saturating_sub(nf + ne)),
     };
-    let mut chaikin_known = vec![false; ne];
-    let mut kept_known = vec![false; nv];
-    match order {
-        DualOrder::ByFace => {
-            for &f in &s.sel_faces.clone() {
-                let h0 = m.face_halfedge(f as usize);
-                for h in h0..h0 + m.face_size(f as usize) as u32 {
-                    s.corner_pt[h as usize] = s.push(DualPoint::Corner(h));
-                    let e = m.he_edge(h) as usize;
-                    if !chaikin_known[e] {
-                        chaikin_known[e] = true;
-                        if features.chaikin(e) {
-                            s.push_chaikin(e);
-                        }
-                    }
-                }
-                for &x in m.face(f as usize) {
-                    if !kept_known[x as usize] {
-                        kept_known[x as usize] = true;
-                        if features.kept(x as usize) {
-                            s.kept[x as usize] = s.push(DualPoint::Kept(x));
-                        }
-                    }
-                }
-            }
-        }
-        DualOrder::ByKind => {
-            assert_eq!(
-                s.sel_faces.len(),
-                nf,
-                "a whole net's step selects every face"
-            );
-            s.points.extend((0..nh as u32).map(DualPoint::Corner));
-            for (h, c) in s.corner_pt.iter_mut().enumerate() {
-                *c = h as u32;
-            }
-            for e in 0..ne {
-                if features.chaikin(e) {
-                    s.push_chaikin(e);
-                }
-            }
-            for v in 0..nv {
-                if features.kept(v) {
-                    s.kept[v] = s.push(DualPoint::Kept(v as u32));
-                }
-            }
-        }
-    }
+    s.number_points(m, features, order);
     s.face_start.push(0);
     s.f_faces(&mv);
     s.e_faces(&mv, &sel);
-    let vertices: Vec<u32> = match order {
-        DualOrder::ByKind => (0..nv as u32).collect(),
-        DualOrder::ByFace => {
-            let mut met = vec![false; nv];
-            let mut out = Vec::new();
-            for &f in &s.sel_faces {
-                for &x in mv.face_corners(f as usize) {
-                    if !met[x as usize] {
-                        met[x as usize] = true;
-                        out.push(x);
-                    }
-                }
-            }
-            out
-        }
-    };
-    let mut hs = Vec::new();
-    for v in vertices {
-        hs.clear();
-        for h in mv.outgoing(v as usize) {
-            hs.push(h);
-        }
-        match features.v_faces(v as usize, &hs) {
-            VFaces::None => continue,
-            VFaces::Whole => {
-                s.v_done.push(v);
-                let (open, close) = whole_fan_ends(&mv, v as usize, &hs);
-                s.push_sector_face(&mv, v as usize, (open, close), hs.iter().copied());
-            }
-            VFaces::Sectors(sectors) => {
-                s.v_done.push(v);
-                for sector in sectors {
-                    let corners = sector.faces.iter().map(|&i| hs[i]);
-                    s.push_sector_face(&mv, v as usize, (sector.open, sector.close), corners);
-                }
-            }
-        }
-    }
+    s.make_v_faces(&mv, features, order);
     s
 }
 
 impl DualSplit {
+    /// The child points, numbered by `order` (see [`DualOrder`]).
+    fn number_points(&mut self, m: &PolyMesh, features: &mut dyn DualFeatures, order: DualOrder) {
+        let (nv, nf, ne, nh) = (
+            m.num_vertices(),
+            m.num_faces(),
+            m.num_edges(),
+            m.num_halfedges(),
+        );
+        let mut chaikin_known = vec![false; ne];
+        let mut kept_known = vec![false; nv];
+        match order {
+            DualOrder::ByFace => {
+                for &f in &self.sel_faces.clone() {
+                    let h0 = m.face_halfedge(f as usize);
+                    for h in h0..h0 + m.face_size(f as usize) as u32 {
+                        self.corner_pt[h as usize] = self.push(DualPoint::Corner(h));
+                        let e = m.he_edge(h) as usize;
+                        if !chaikin_known[e] {
+                            chaikin_known[e] = true;
+                            if features.chaikin(e) {
+                                self.push_chaikin(e);
+                            }
+                        }
+                    }
+                    for &x in m.face(f as usize) {
+                        if !kept_known[x as usize] {
+                            kept_known[x as usize] = true;
+                            if features.kept(x as usize) {
+                                self.kept[x as usize] = self.push(DualPoint::Kept(x));
+                            }
+                        }
+                    }
+                }
+            }
+            DualOrder::ByKind => {
+                assert_eq!(
+                    self.sel_faces.len(),
+                    nf,
+                    "a whole net's step selects every face"
+                );
+                self.points.extend((0..nh as u32).map(DualPoint::Corner));
+                for (h, c) in self.corner_pt.iter_mut().enumerate() {
+                    *c = h as u32;
+                }
+                for e in 0..ne {
+                    if features.chaikin(e) {
+                        self.push_chaikin(e);
+                    }
+                }
+                for v in 0..nv {
+                    if features.kept(v) {
+                        self.kept[v] = self.push(DualPoint::Kept(v as u32));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The V-faces: of every vertex (`ByKind`) or of the vertices in the order the selected
+    /// faces meet them (`ByFace`), one per sector the features give.
+    fn make_v_faces(
+        &mut self,
+        mv: &MeshView<'_>,
+        features: &mut dyn DualFeatures,
+        order: DualOrder,
+    ) {
+        let nv = mv.vert_he.len();
+        let vertices: Vec<u32> = match order {
+            DualOrder::ByKind => (0..nv as u32).collect(),
+            DualOrder::ByFace => {
+                let mut met = vec![false; nv];
+                let mut out = Vec::new();
+                for &f in &self.sel_faces {
+                    for &x in mv.face_corners(f as usize) {
+                        if !met[x as usize] {
+                            met[x as usize] = true;
+                            out.push(x);
+                        }
+                    }
+                }
+                out
+            }
+        };
+        let mut hs = Vec::new();
+        for v in vertices {
+            hs.clear();
+            for h in mv.outgoing(v as usize) {
+                hs.push(h);
+            }
+            match features.v_faces(v as usize, &hs) {
+                VFaces::None => continue,
+                VFaces::Whole => {
+                    self.v_done.push(v);
+                    let (open, close) = whole_fan_ends(mv, v as usize, &hs);
+                    self.push_sector_face(mv, v as usize, (open, close), hs.iter().copied());
+                }
+                VFaces::Sectors(sectors) => {
+                    self.v_done.push(v);
+                    for sector in sectors {
+                        let corners = sector.faces.iter().map(|&i| hs[i]);
+                        self.push_sector_face(mv, v as usize, (sector.open, sector.close), corners);
+                    }
+                }
+            }
+        }
+    }
+
     fn push(&mut self, p: DualPoint) -> u32 {
         self.points.push(p);
         (self.points.len() - 1) as u32
