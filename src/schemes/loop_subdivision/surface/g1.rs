@@ -115,8 +115,8 @@ use crate::schemes::loop_subdivision::Rules;
 use crate::schemes::loop_subdivision::dart::dart_masks;
 use crate::schemes::loop_subdivision::limit::{across_weights, tangent_rows};
 use crate::schemes::sdc::crease::adaptive::{
-    beside_holes, cap_feature, cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge,
-    is_plain_boundary, is_special, present_runs,
+    SideFan, TagAt, beside_holes, cap_feature, cone_cap_by, corner_caps_by, crease_caps_by,
+    dart_cap_by, is_plain_boundary, is_special, present_runs,
 };
 use std::collections::HashMap;
 
@@ -266,16 +266,10 @@ fn crease_caps(
     x: usize,
     cells: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some((centre, sides)) = crease_sides(level, x, cells, 3)? else {
-        return Ok(None);
-    };
     let m = &level.mesh;
     let pos = m.positions();
-    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let mut caps = Vec::new();
-    for (ha, hb, k) in sides {
-        let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
-        let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
+    crease_caps_by(level, x, cells, 3, |tag_at, (ha, hb, k)| {
+        let (_, fan) = side_fan(level, x, ha, k, tag_at)?;
         // the side's neighbours e_0 .. e_k counter-clockwise: e_0 ends ha, e_k ends hb
         let e = |h: u32| pos[m.he_to(h) as usize];
         let (a, b) = across_weights(k);
@@ -290,14 +284,24 @@ fn crease_caps(
             // the plane matters
             across = sub(axpy(e(ha), 1.0, e(hb)), scale(pos[x], 2.0));
         }
-        let along = scale(sub(e(ha), e(hb)), 0.5);
-        caps.push((
-            Hole::untangented_crease(centre, sectors),
-            [along, across],
-            tags,
-        ));
-    }
-    Ok(Some(caps))
+        Ok((fan, across))
+    })
+}
+
+/// The `k` triangles `(face, corner of x)` from the face of `ha` around `x` (a crease or
+/// corner side, or a dart's full turn: [`Ends::Crease`]), with their hole segments and cap
+/// tags.
+fn side_fan(
+    level: &Level,
+    x: usize,
+    ha: u32,
+    k: usize,
+    tag_at: &TagAt,
+) -> Result<(Vec<(u32, usize)>, SideFan), NoCap> {
+    let m = &level.mesh;
+    let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
+    let sides = fan_sectors(level, &fan, tag_at, Ends::Crease)?;
+    Ok((fan, sides))
 }
 
 /// The cap of the dart `x` whose marked cells are `cells` (Catmull-Clark's construction,
@@ -306,31 +310,27 @@ fn crease_caps(
 /// spokes `0` and `n`, one Hermite cubic), centred at the dart's own limit point in the plane of
 /// its own eigen tangents ([`dart_masks`]).
 fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
-    let Some((h, plain)) = dart_halfedge(level, x) else {
-        return Ok(None);
-    };
-    if !plain {
-        return Err(NoCap::Later);
-    }
-    let m = &level.mesh;
-    let n = m.outgoing_halfedges(x).len();
-    let masks = dart_masks(n).ok_or(NoCap::Never)?;
-    if cells.len() != n {
-        return Err(NoCap::Later);
-    }
-    let fan = tri_fan(m, x as u32, m.he_face(h), n, None).ok_or(NoCap::Never)?;
-    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
-    // the masks' points: x, e_0 .. e_(n-1) (each fan triangle's corner after x)
-    let pos = m.positions();
-    let ring: Vec<_> = std::iter::once(pos[x])
-        .chain(
-            fan.iter()
-                .map(|&(f, c)| pos[m.face(f as usize)[(c + 1) % 3] as usize]),
-        )
-        .collect();
-    let (centre, plane) = masks.apply(&ring);
-    Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
+    dart_cap_by(
+        level,
+        x,
+        cells,
+        dart_masks,
+        NoCap::Later,
+        |masks, h, n, tag_at| {
+            let (fan, sides) = side_fan(level, x, h, n, tag_at)?;
+            let m = &level.mesh;
+            let pos = m.positions();
+            // the masks' points: x, e_0 .. e_(n-1) (each fan triangle's corner after x)
+            let ring: Vec<_> = std::iter::once(pos[x])
+                .chain(
+                    fan.iter()
+                        .map(|&(f, c)| pos[m.face(f as usize)[(c + 1) % 3] as usize]),
+                )
+                .collect();
+            let (centre, plane) = masks.apply(&ring);
+            Ok((sides, centre, plane))
+        },
+    )
 }
 
 /// The cap of the cone point `x` whose marked cells are `cells` (Catmull-Clark's
@@ -339,28 +339,15 @@ fn dart_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapD
 /// from its one sharp edge, centred at `x` (the corner rule keeps it), every spoke tangent zero
 /// ([`Fan::Cone`]).
 fn cone_cap(level: &Level, x: usize, cells: &[(u32, Tag)]) -> Result<Option<CapData>, NoCap> {
-    let Some(sharp) = cone_point(level, x)? else {
-        return Ok(None);
-    };
-    let m = &level.mesh;
-    let hs = m.outgoing_halfedges(x);
-    let n = hs.len();
-    if cells.len() != n {
-        return Err(NoCap::Later);
-    }
-    let (fan, ends) = match sharp {
-        Some(h) => (tri_fan(m, x as u32, m.he_face(h), n, None), Ends::Crease),
-        None => (fan_around(m, x as u32, m.he_face(hs[0]), n), Ends::Closed),
-    };
-    let fan = fan.ok_or(NoCap::Never)?;
-    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let (sectors, tags) = fan_sectors(level, &fan, &tag_at, ends)?;
-    let centre = m.positions()[x];
-    let hole = match sharp {
-        Some(_) => Hole::untangented_dart(centre, sectors),
-        None => Hole::untangented(centre, sectors),
-    };
-    Ok(Some((hole.into_cone(), [[0.0; 3]; 2], tags)))
+    cone_cap_by(level, x, cells, NoCap::Later, |sharp, hs, tag_at| {
+        let m = &level.mesh;
+        let n = hs.len();
+        let (fan, ends) = match sharp {
+            Some(h) => (tri_fan(m, x as u32, m.he_face(h), n, None), Ends::Crease),
+            None => (fan_around(m, x as u32, m.he_face(hs[0]), n), Ends::Closed),
+        };
+        fan_sectors(level, &fan.ok_or(NoCap::Never)?, tag_at, ends)
+    })
 }
 
 /// The caps of the interior vertex `x` whose marked cells are `cells` next to OpenSubdiv hole
@@ -408,24 +395,9 @@ fn corner_caps(
     x: usize,
     cells: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some(sides) = corner_sides(level, x, cells, usize::MAX)? else {
-        return Ok(None);
-    };
-    let m = &level.mesh;
-    let pos = m.positions();
-    let tag_at: HashMap<u32, Tag> = cells.iter().copied().collect();
-    let mut caps = Vec::new();
-    for (ha, hb, k) in sides {
-        let fan = tri_fan(m, x as u32, m.he_face(ha), k, None).ok_or(NoCap::Never)?;
-        let (sectors, tags) = fan_sectors(level, &fan, &tag_at, Ends::Crease)?;
-        let (angle, plane) = corner_plane(m, x, (ha, hb, k))?;
-        caps.push((
-            Hole::untangented_corner(pos[x], sectors, angle),
-            plane,
-            tags,
-        ));
-    }
-    Ok(Some(caps))
+    corner_caps_by(level, x, cells, usize::MAX, |tag_at, (ha, _, k)| {
+        Ok(side_fan(level, x, ha, k, tag_at)?.1)
+    })
 }
 
 /// The holes of one element: those of a crease vertex's sides ([`crease_caps`]), of a dart

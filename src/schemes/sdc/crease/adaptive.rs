@@ -30,7 +30,9 @@ use crate::mesh::{Extras, PolyMesh, SharpEdges};
 
 use super::{INFINITE, Rule, Scratch, SharpLevel, classify, decrement};
 
+mod side_caps;
 mod sides;
+pub(crate) use side_caps::*;
 pub(crate) use sides::*;
 
 /// One level of the adaptive refinement of a mesh-based scheme with OpenSubdiv's features.

@@ -31,7 +31,7 @@
 
 use super::super::Level;
 use super::segment_across;
-use crate::bezier::g1::Hole;
+
 use crate::geom::{axpy, scale, sub};
 use crate::host::adaptive::{
     CapData, NoCap, QuadSector, Tag, quad_hole_segments, quad_sectors_between, quad_sectors_open,
@@ -39,7 +39,7 @@ use crate::host::adaptive::{
 use crate::schemes::catmull_clark::boundary_tangent::across_weights;
 use crate::schemes::catmull_clark::dart::dart_masks;
 use crate::schemes::sdc::crease::adaptive::{
-    cone_point, corner_plane, corner_sides, crease_sides, dart_halfedge, is_plain_boundary,
+    SideFan, TagAt, cone_cap_by, corner_caps_by, crease_caps_by, dart_cap_by, is_plain_boundary,
     one_quad_crease_fan,
 };
 use std::collections::HashMap;
@@ -54,18 +54,11 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some((centre, sides)) = crease_sides(level, x, faces, 2)? else {
-        return Ok(None);
-    };
     let m = &level.mesh;
     let pos = m.positions();
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let mut caps = Vec::new();
-    for (ha, _, k) in sides {
-        let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
-        let tags = sector_tags(&quads, &tag_at)?;
-        let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
-        let (p, q) = (pos[quads[0].p as usize], pos[quads[k - 1].q as usize]);
+    crease_caps_by(level, x, faces, 2, |tag_at, (ha, _, k)| {
+        let (quads, fan) = side_fan(level, x, ha, k, tag_at)?;
+        let q = pos[quads[k - 1].q as usize];
         let far = |i: usize| {
             let sec = &quads[i];
             pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize]
@@ -83,14 +76,24 @@ pub(in crate::schemes::catmull_clark::surface) fn crease_caps(
             // one face: only its side of the plane matters (`T1 = -T0`), towards its far corner
             None => sub(far(0), pos[x]),
         };
-        let along = scale(sub(p, q), 0.5);
-        caps.push((
-            Hole::untangented_crease(centre, sectors),
-            [along, across],
-            tags,
-        ));
-    }
-    Ok(Some(caps))
+        Ok((fan, across))
+    })
+}
+
+/// The quads of the side of `k` faces from the face of `ha` around `x`, with their hole
+/// segments and cap tags.
+fn side_fan(
+    level: &Level,
+    x: usize,
+    ha: u32,
+    k: usize,
+    tag_at: &TagAt,
+) -> Result<(Vec<QuadSector>, SideFan), NoCap> {
+    let m = &level.mesh;
+    let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
+    let tags = sector_tags(&quads, tag_at)?;
+    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
+    Ok((quads, (sectors, tags)))
 }
 
 /// The cap of a boundary vertex `x` of one quad under the crease rule (edge-only boundary: its
@@ -133,34 +136,29 @@ pub(in crate::schemes::catmull_clark::surface) fn dart_cap(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<CapData>, NoCap> {
-    let Some((h, plain)) = dart_halfedge(level, x) else {
-        return Ok(None);
-    };
-    if !plain {
-        return Err(NoCap::Later);
-    }
-    let m = &level.mesh;
-    let n = m.outgoing_halfedges(x).len();
-    let masks = dart_masks(n).ok_or(NoCap::Never)?;
-    if faces.len() != n {
-        return Err(NoCap::Never);
-    }
-    let quads = quad_sectors_between(m, x as u32, m.he_face(h), n).ok_or(NoCap::Never)?;
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let tags = sector_tags(&quads, &tag_at)?;
-    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
-    let pos = m.positions();
-    // the masks' points: x, e_0 .. e_(n-1), f_0 .. f_(n-1)
-    let ring: Vec<_> = std::iter::once(pos[x])
-        .chain(quads.iter().map(|sec| pos[sec.p as usize]))
-        .chain(
-            quads
-                .iter()
-                .map(|sec| pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize]),
-        )
-        .collect();
-    let (centre, plane) = masks.apply(&ring);
-    Ok(Some((Hole::untangented_dart(centre, sectors), plane, tags)))
+    dart_cap_by(
+        level,
+        x,
+        faces,
+        dart_masks,
+        NoCap::Never,
+        |masks, h, n, tag_at| {
+            let (quads, fan) = side_fan(level, x, h, n, tag_at)?;
+            let m = &level.mesh;
+            let pos = m.positions();
+            // the masks' points: x, e_0 .. e_(n-1), f_0 .. f_(n-1)
+            let ring: Vec<_> = std::iter::once(pos[x])
+                .chain(quads.iter().map(|sec| pos[sec.p as usize]))
+                .chain(
+                    quads
+                        .iter()
+                        .map(|sec| pos[m.face(sec.face as usize)[(sec.corner + 2) % 4] as usize]),
+                )
+                .collect();
+            let (centre, plane) = masks.apply(&ring);
+            Ok((fan, centre, plane))
+        },
+    )
 }
 
 /// The cap of the cone point `x` whose marked cells are `faces` ([`Fan::Cone`]): `Ok(None)`
@@ -173,25 +171,9 @@ pub(in crate::schemes::catmull_clark::surface) fn cone_cap(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<CapData>, NoCap> {
-    let Some(sharp) = cone_point(level, x)? else {
-        return Ok(None);
-    };
-    let m = &level.mesh;
-    let hs = m.outgoing_halfedges(x);
-    if faces.len() != hs.len() {
-        return Err(NoCap::Never);
-    }
-    let start = m.he_face(sharp.unwrap_or(hs[0]));
-    let quads = quad_sectors_between(m, x as u32, start, hs.len()).ok_or(NoCap::Never)?;
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let tags = sector_tags(&quads, &tag_at)?;
-    let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
-    let centre = m.positions()[x];
-    let hole = match sharp {
-        Some(_) => Hole::untangented_dart(centre, sectors),
-        None => Hole::untangented(centre, sectors),
-    };
-    Ok(Some((hole.into_cone(), [[0.0; 3]; 2], tags)))
+    cone_cap_by(level, x, faces, NoCap::Never, |sharp, hs, tag_at| {
+        Ok(side_fan(level, x, sharp.unwrap_or(hs[0]), hs.len(), tag_at)?.1)
+    })
 }
 
 /// The cap tags of a fan's quads: each marked face's tag with its domain turned so that the cap
@@ -223,23 +205,7 @@ pub(in crate::schemes::catmull_clark::surface) fn corner_caps(
     x: usize,
     faces: &[(u32, Tag)],
 ) -> Result<Option<Vec<CapData>>, NoCap> {
-    let Some(sides) = corner_sides(level, x, faces, 1)? else {
-        return Ok(None);
-    };
-    let m = &level.mesh;
-    let pos = m.positions();
-    let tag_at: HashMap<u32, Tag> = faces.iter().copied().collect();
-    let mut caps = Vec::new();
-    for (ha, hb, k) in sides {
-        let quads = quad_sectors_between(m, x as u32, m.he_face(ha), k).ok_or(NoCap::Never)?;
-        let tags = sector_tags(&quads, &tag_at)?;
-        let sectors = quad_hole_segments(&quads, |he, from| segment_across(level, he, from))?;
-        let (angle, plane) = corner_plane(m, x, (ha, hb, k))?;
-        caps.push((
-            Hole::untangented_corner(pos[x], sectors, angle),
-            plane,
-            tags,
-        ));
-    }
-    Ok(Some(caps))
+    corner_caps_by(level, x, faces, 1, |tag_at, (ha, _, k)| {
+        Ok(side_fan(level, x, ha, k, tag_at)?.1)
+    })
 }
