@@ -52,9 +52,9 @@ use crate::geom::Point;
 use crate::mesh::quad_split::{QuadSplit, quad_starts};
 use crate::mesh::split::UniformSplit;
 use crate::mesh::tags::{SubdOptions, TriangleSubdivision};
-use crate::mesh::{MeshView, NONE, PolyMesh};
+use crate::mesh::{MeshView, PolyMesh};
 use crate::stencil::{RowWriter, StencilTable, Terms, axpy};
-use crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
+use crease::{EdgeTerms, Emit, Scratch, SharpLevel, edge_terms};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 

@@ -14,6 +14,27 @@ pub(crate) trait CcTerms {
     fn face_point(&mut self, f: u32, w: f64);
 }
 
+/// Catmull-Clark's receiver of [`edge_terms`]: the smooth mask of edge `e` ([`smooth_edge`])
+/// and vertex weights into `out`.
+struct CcEdge<'r, 'm, O> {
+    m: &'r MeshView<'m>,
+    e: usize,
+    tris: bool,
+    out: &'r mut O,
+}
+
+impl<O: CcTerms> EdgeTerms for CcEdge<'_, '_, O> {
+    #[inline(always)]
+    fn smooth(&mut self, s: f64) {
+        smooth_edge(self.m, self.e, self.tris, s, self.out)
+    }
+
+    #[inline(always)]
+    fn vertex(&mut self, u: u32, w: f64) {
+        self.out.vertex(u, w)
+    }
+}
+
 /// Face point of face `f`, scaled by `scale`: `scale / k` times each of its `k` corners.
 #[inline]
 pub(super) fn face_rule(m: &MeshView<'_>, f: usize, scale: f64, out: &mut impl CcTerms) {
@@ -116,33 +137,13 @@ impl<'a> Rules<'a> {
         scratch: &mut Scratch,
         out: &mut impl CcTerms,
     ) {
-        let m = &self.m;
         let (sharp, tris) = if PLAIN {
             (None, false)
         } else {
             (self.sharp.as_ref(), self.tris)
         };
-        let plan = match sharp {
-            Some(sl) => sl.edge_plan(e as u32, scratch),
-            None if m.twin(m.edge_he[e]) == NONE => {
-                // EdgePlan::Crease's terms, emitted here: passing `out` to the plan's closure
-                // kept the kernel's accumulator in memory for every point (+6% instructions of
-                // `--levels 3`, callgrind)
-                let h = m.edge_he[e];
-                out.vertex(m.from(h), CREASE_EDGE);
-                out.vertex(m.to(h), CREASE_EDGE);
-                return;
-            }
-            None => EdgePlan::Smooth,
-        };
-        if plan == EdgePlan::Smooth {
-            return smooth_edge(m, e, tris, 1.0, out);
-        }
-        let h = m.edge_he[e];
-        plan.emit(m.from(h), m.to(h), |t| match t {
-            Emit::Smooth(s) => smooth_edge(m, e, tris, s, out),
-            Emit::Vertex(u, w) => out.vertex(u, w),
-        });
+        let m = &self.m;
+        edge_terms(m, e, sharp, scratch, &mut CcEdge { m, e, tris, out });
     }
 
     /// Vertex point of `v`: the smooth mask inside; `3/4 v + 1/8 (a + b)` on the boundary; a

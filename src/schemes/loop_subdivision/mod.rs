@@ -46,7 +46,7 @@ pub use descriptor::DESCRIPTOR;
 
 use crate::error::Result;
 use crate::geom::Point;
-use crate::mesh::{MeshView, NONE, PolyMesh};
+use crate::mesh::{MeshView, PolyMesh};
 use crate::stencil::{Accumulator, Stencil, StencilTable, Terms};
 use rayon::prelude::*;
 
@@ -54,7 +54,7 @@ use super::catmull_clark::Opts;
 use super::common::{RowBuf, check_child_size};
 use super::{Refinement, Scheme};
 use crate::mesh::tri_split::TriSplit;
-use crate::schemes::sdc::crease::{CREASE_EDGE, EdgePlan, Emit, Scratch, SharpLevel};
+use crate::schemes::sdc::crease::{EdgeTerms, Emit, Scratch, SharpLevel, edge_terms};
 
 /// Child points per parallel task.
 const BLOCK: usize = 4096;
@@ -110,6 +110,26 @@ fn vertex_mask(m: &MeshView<'_>, v: usize, w: fn(usize) -> f64, b: f64, row: &mu
         row.add(vi, 1.0 - 2.0 * b);
         row.add(p, b);
         row.add(q, b);
+    }
+}
+
+/// Loop's receiver of [`edge_terms`]: the smooth mask of edge `e` ([`smooth_edge`]) and
+/// vertex weights into `row`.
+struct LoopEdge<'r, 'm, R> {
+    m: &'r MeshView<'m>,
+    e: usize,
+    row: &'r mut R,
+}
+
+impl<R: Terms> EdgeTerms for LoopEdge<'_, '_, R> {
+    #[inline(always)]
+    fn smooth(&mut self, s: f64) {
+        smooth_edge(self.m, self.e, s, self.row)
+    }
+
+    #[inline(always)]
+    fn vertex(&mut self, u: u32, w: f64) {
+        self.row.add(u, w)
     }
 }
 
@@ -181,26 +201,7 @@ impl<'a> Rules<'a> {
     fn edge_in<const PLAIN: bool>(&self, e: usize, scratch: &mut Scratch, row: &mut impl Terms) {
         let m = &self.m;
         let sharp = if PLAIN { None } else { self.sharp.as_ref() };
-        let plan = match sharp {
-            Some(sl) => sl.edge_plan(e as u32, scratch),
-            None if m.twin(m.edge_he[e]) == NONE => {
-                // EdgePlan::Crease's terms, emitted here: passing `row` to the plan's closure
-                // kept the kernel's accumulator in memory for every point (callgrind)
-                let h = m.edge_he[e];
-                row.add(m.from(h), CREASE_EDGE);
-                row.add(m.to(h), CREASE_EDGE);
-                return;
-            }
-            None => EdgePlan::Smooth,
-        };
-        if plan == EdgePlan::Smooth {
-            return smooth_edge(m, e, 1.0, row);
-        }
-        let h = m.edge_he[e];
-        plan.emit(m.from(h), m.to(h), |t| match t {
-            Emit::Smooth(s) => smooth_edge(m, e, s, row),
-            Emit::Vertex(u, w) => row.add(u, w),
-        });
+        edge_terms(m, e, sharp, scratch, &mut LoopEdge { m, e, row });
     }
 
     /// The refined point of vertex `v`.
