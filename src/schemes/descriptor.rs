@@ -80,6 +80,13 @@ impl Capabilities {
         eval: true,
         ..Capabilities::PATCHES
     };
+    /// Whole-net refinement only: schemes without exact patches (sqrt(3), the modified
+    /// butterfly), so no `--rings`.
+    pub const REFINE: Capabilities = Capabilities {
+        refine: true,
+        patches: false,
+        eval: false,
+    };
     /// Whole-net refinement and exact patches, without evaluation.
     pub const REFINE_AND_PATCHES: Capabilities = Capabilities {
         refine: true,

@@ -16,11 +16,7 @@ pub static DESCRIPTOR: ButterflyDescriptor = ButterflyDescriptor;
 
 impl Descriptor for ButterflyDescriptor {
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: true,
-            patches: false,
-            eval: false,
-        }
+        Capabilities::REFINE
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {

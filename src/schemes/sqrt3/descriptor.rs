@@ -16,11 +16,7 @@ pub static DESCRIPTOR: Sqrt3Descriptor = Sqrt3Descriptor;
 
 impl Descriptor for Sqrt3Descriptor {
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            refine: true,
-            patches: false,
-            eval: false,
-        }
+        Capabilities::REFINE
     }
 
     fn check_input(&self, mesh: &PolyMesh) -> Result<()> {
