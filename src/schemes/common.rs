@@ -169,6 +169,53 @@ pub(crate) fn refine_one_shot<K: OneShot>(
     Ok(owned.unwrap_or_else(|| mesh.clone()))
 }
 
+/// `impl Scheme for $unit` by `$configured::default()`: a scheme's unit type (`CatmullClark`,
+/// `Loop`) is its configured type with OpenSubdiv's default options, method for method.
+macro_rules! scheme_by_default {
+    ($unit:ty => $configured:ty) => {
+        impl $crate::schemes::Scheme for $unit {
+            fn name(&self) -> &'static str {
+                <$configured>::default().name()
+            }
+
+            fn step_size(
+                &self,
+                s: &$crate::schemes::growth::NetSize,
+            ) -> $crate::schemes::growth::NetSize {
+                <$configured>::default().step_size(s)
+            }
+
+            fn refine(
+                &self,
+                mesh: &$crate::mesh::PolyMesh,
+            ) -> $crate::error::Result<$crate::schemes::Refinement> {
+                <$configured>::default().refine(mesh)
+            }
+
+            fn refine_uniform(
+                &self,
+                mesh: &$crate::mesh::PolyMesh,
+                levels: usize,
+                progress: &mut dyn FnMut(usize),
+            ) -> $crate::error::Result<$crate::mesh::PolyMesh> {
+                <$configured>::default().refine_uniform(mesh, levels, progress)
+            }
+
+            fn limit_stencils(
+                &self,
+                mesh: &$crate::mesh::PolyMesh,
+            ) -> $crate::error::Result<$crate::stencil::StencilTable> {
+                <$configured>::default().limit_stencils(mesh)
+            }
+
+            fn face_varying(&self) -> Option<$crate::schemes::sdc::fvar::FvarRules> {
+                <$configured>::default().face_varying()
+            }
+        }
+    };
+}
+pub(crate) use scheme_by_default;
+
 #[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;

@@ -309,32 +309,7 @@ impl Scheme for Configured {
     }
 }
 
-impl Scheme for CatmullClark {
-    fn name(&self) -> &'static str {
-        Configured::default().name()
-    }
-
-    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        Configured::default().refine(mesh)
-    }
-
-    fn refine_uniform(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<PolyMesh> {
-        Configured::default().refine_uniform(mesh, levels, progress)
-    }
-
-    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
-        Configured::default().limit_stencils(mesh)
-    }
-
-    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
-        Configured::default().face_varying()
-    }
-}
+super::common::scheme_by_default!(CatmullClark => Configured);
 
 /// Catmull-Clark's subdominant eigenvalue in closed form,
 /// `(c + 5 + sqrt((c + 1)(c + 9))) / 16` with `c = cos(2 pi / n)`.

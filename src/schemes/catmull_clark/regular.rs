@@ -170,6 +170,17 @@ pub fn bi3_net_cut(mesh: &PolyMesh, f: usize, cut: &dyn Fn(u32) -> bool) -> Opti
     if mesh.face_size(f) != 4 {
         return None;
     }
+    net_of_slots(&cut_slots(mesh, f, cut)?)
+}
+
+/// The 4x4 grid of quad `f`'s neighbourhood gathered around its corners with the edges for
+/// which `cut(edge)` holds as boundaries: `None` at a cell where the grid would disagree with
+/// itself (degenerate topology); cells beyond a boundary or a cut stay empty.
+fn cut_slots(
+    mesh: &PolyMesh,
+    f: usize,
+    cut: &dyn Fn(u32) -> bool,
+) -> Option<[[Option<u32>; 4]; 4]> {
     let twin = |h: u32| mesh.he_twin(h).filter(|_| !cut(mesh.he_edge(h)));
     let mut slot: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
     let corner_pos: [Slot; 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
@@ -233,6 +244,12 @@ pub fn bi3_net_cut(mesh: &PolyMesh, f: usize, cut: &dyn Fn(u32) -> bool) -> Opti
         }
         dir = rot(dir);
     }
+    Some(slot)
+}
+
+/// The bi-3 net of a gathered grid ([`cut_slots`]): the 16 vertices themselves when the grid
+/// is full, else with its empty cells filled by ghosts.
+fn net_of_slots(slot: &[[Option<u32>; 4]; 4]) -> Option<Net> {
     // A full grid (no ghosts): a gather of 16 vertices, held inline.
     if slot.iter().flatten().all(|s| s.is_some()) {
         let mut grid = [(0u32, 1.0); 16];
@@ -241,7 +258,12 @@ pub fn bi3_net_cut(mesh: &PolyMesh, f: usize, cut: &dyn Fn(u32) -> bool) -> Opti
         }
         return Some(Net::Grid(grid));
     }
-    // Ghosts: first whole missing columns (i = 0 or 3), then rows, by linear extrapolation.
+    ghosted(slot)
+}
+
+/// A grid with empty cells: ghosts `2 b - i` fill first whole missing columns (i = 0 or 3),
+/// then rows, by linear extrapolation; `None` when a cell stays empty.
+fn ghosted(slot: &[[Option<u32>; 4]; 4]) -> Option<Net> {
     let mut net: Vec<Option<Stencil>> = (0..16)
         .map(|k| slot[k / 4][k % 4].map(|v| Stencil::point(v as usize)))
         .collect();

@@ -296,7 +296,46 @@ pub struct Reparametrisation {
 /// `1e-9 F_2` added to make the minimiser unique.
 pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
     let n = chi.n;
-    let c = cos_n(n);
+    let mut rows = layer_rows(chi);
+    rows.extend(spoke_rows(n));
+    let mut a = DMatrix::zeros(rows.len(), 98);
+    let mut b = nalgebra::DVector::zeros(rows.len());
+    for (r, (row, rhs)) in rows.iter().enumerate() {
+        for &(k, w) in row {
+            a[(r, k)] += w;
+        }
+        b[r] = *rhs;
+    }
+    let ns = crate::linalg::null_space(&a, 1e-9);
+    let free_parameters = ns.len();
+    if free_parameters == 0 {
+        return Err(Error::Unsupported(format!(
+            "valence {n}: the cap reparametrisation has no freedom"
+        )));
+    }
+    let x = fairest(&a, &b, &ns, n)?;
+    let residual = (&a * &x - &b).amax();
+    let out: Vec<[f64; 3]> = (0..49).map(|r| [x[r], x[49 + r], 0.0]).collect();
+    Ok(Reparametrisation {
+        psi: BezierPatch::new(6, 6, out),
+        free_parameters,
+        residual,
+    })
+}
+
+/// A sparse row of the reparametrisation's linear conditions on its 98 unknowns (the x and y
+/// control points of the bi-6 `psi`, `49 k + 7 i + j`) and its right-hand side.
+type Row = (Vec<(usize, f64)>, f64);
+
+/// The index of unknown `k` (0: x, 1: y) of control point `(i, j)` of `psi`.
+fn psi_index(k: usize, i: usize, j: usize) -> usize {
+    49 * k + 7 * i + j
+}
+
+/// The conditions of the fixed layers and the symmetries: the two outer layers are the
+/// characteristic map's pieces `A` and `C` (raised to degree 6), the spokes are rays, and
+/// `psi(v, u) = swap(psi(u, v))`.
+fn layer_rows(chi: &CharRing) -> Vec<Row> {
     let phi = chi.in_guide_domain();
     let e = phi[0].deg_u;
     let ra = raise(e, 6);
@@ -313,8 +352,8 @@ pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
     };
     let fa = [&pa * comp(&phi[0], 0), &pa * comp(&phi[0], 1)];
     let fc = [&pc * comp(&phi[2], 0), &pc * comp(&phi[2], 1)];
-    let idx = |k: usize, i: usize, j: usize| 49 * k + 7 * i + j;
-    let mut rows: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
+    let idx = psi_index;
+    let mut rows = Vec::new();
     for i in 0..7 {
         for j in 0..7 {
             for k in 0..2 {
@@ -329,10 +368,20 @@ pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
             rows.push((vec![(idx(0, j, i), 1.0), (idx(1, i, j), -1.0)], 0.0));
         }
     }
+    rows
+}
+
+/// Condition (6) for `sigma^` along the spoke, sampled at ten parameters `u`: the G^1
+/// relation between the sector's map and its neighbour's (turned by `2 pi / n`) with the
+/// weight `-2 c (1 - u)^2`.
+fn spoke_rows(n: usize) -> Vec<Row> {
+    let c = cos_n(n);
+    let idx = psi_index;
     let ang = 2.0 * std::f64::consts::PI / n as f64;
     let e0 = [1.0, 0.0];
     let e1 = [ang.cos(), ang.sin()];
     let em = [ang.cos(), -ang.sin()];
+    let mut rows = Vec::new();
     for p in 0..10 {
         let u = (p as f64 + 0.5) / 10.0;
         for r in 0..2 {
@@ -361,30 +410,26 @@ pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
             rows.push((row, 0.0));
         }
     }
-    let a = DMatrix::from_fn(rows.len(), 98, |_, _| 0.0);
-    let mut a = a;
-    let mut b = nalgebra::DVector::zeros(rows.len());
-    for (r, (row, rhs)) in rows.iter().enumerate() {
-        for &(k, w) in row {
-            a[(r, k)] += w;
-        }
-        b[r] = *rhs;
-    }
-    let ns = crate::linalg::null_space(&a, 1e-9);
-    let free_parameters = ns.len();
-    if free_parameters == 0 {
-        return Err(Error::Unsupported(format!(
-            "valence {n}: the cap reparametrisation has no freedom"
-        )));
-    }
+    rows
+}
+
+/// The solution of `a x = b` that minimises `F_5` of the planar map `sigma^ = L_0 psi`
+/// (`psi^T (G kron L_0^T L_0) psi`, with `1e-9 F_2` for a unique minimiser) over the null
+/// space `ns` of `a`.
+fn fairest(
+    a: &DMatrix<f64>,
+    b: &nalgebra::DVector<f64>,
+    ns: &[nalgebra::DVector<f64>],
+    n: usize,
+) -> Result<nalgebra::DVector<f64>> {
     let x0 = a
         .clone()
         .pseudo_inverse(1e-10)
         .map_err(|e| Error::Unsupported(format!("valence {n}: cap reparametrisation: {e}")))?
-        * &b;
-    // F_5 of the planar map sigma^ = L_0 psi: psi^T (G kron L_0^T L_0) psi.
+        * b;
     let g = fairness_gram(6, 5) + fairness_gram(6, 2) * 1e-9;
-    let ltl = [[1.0, e1[0]], [e1[0], 1.0]];
+    let cos = (2.0 * std::f64::consts::PI / n as f64).cos();
+    let ltl = [[1.0, cos], [cos, 1.0]];
     let mut h = DMatrix::zeros(98, 98);
     for k in 0..2 {
         for l in 0..2 {
@@ -392,19 +437,12 @@ pub fn reparametrisation(chi: &CharRing) -> Result<Reparametrisation> {
                 .copy_from(&(&g * ltl[k][l]));
         }
     }
-    let nm = DMatrix::from_columns(&ns);
+    let nm = DMatrix::from_columns(ns);
     let lhs = nm.transpose() * &h * &nm;
     let rhs = -(nm.transpose() * &h * &x0);
     let y = lhs
         .lu()
         .solve(&rhs)
         .ok_or_else(|| Error::Unsupported(format!("valence {n}: F_5 minimiser is singular")))?;
-    let x = x0 + nm * y;
-    let residual = (&a * &x - &b).amax();
-    let out: Vec<[f64; 3]> = (0..49).map(|r| [x[r], x[49 + r], 0.0]).collect();
-    Ok(Reparametrisation {
-        psi: BezierPatch::new(6, 6, out),
-        free_parameters,
-        residual,
-    })
+    Ok(x0 + nm * y)
 }

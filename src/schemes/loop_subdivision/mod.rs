@@ -522,36 +522,7 @@ impl Scheme for Configured {
     }
 }
 
-impl Scheme for Loop {
-    fn name(&self) -> &'static str {
-        Configured::default().name()
-    }
-
-    fn step_size(&self, s: &crate::schemes::growth::NetSize) -> crate::schemes::growth::NetSize {
-        Configured::default().step_size(s)
-    }
-
-    fn refine(&self, mesh: &PolyMesh) -> Result<Refinement> {
-        Configured::default().refine(mesh)
-    }
-
-    fn refine_uniform(
-        &self,
-        mesh: &PolyMesh,
-        levels: usize,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<PolyMesh> {
-        Configured::default().refine_uniform(mesh, levels, progress)
-    }
-
-    fn limit_stencils(&self, mesh: &PolyMesh) -> Result<StencilTable> {
-        Configured::default().limit_stencils(mesh)
-    }
-
-    fn face_varying(&self) -> Option<crate::schemes::sdc::fvar::FvarRules> {
-        Configured::default().face_varying()
-    }
-}
+super::common::scheme_by_default!(Loop => Configured);
 
 #[cfg(feature = "unit-tests")]
 mod tests;

@@ -20,64 +20,14 @@ pub(super) fn apply_caps(
     let mut seen: HashSet<u32> = HashSet::new();
     for &(f, _) in &marked {
         for &v in m.face(f as usize) {
-            let vi = level.info[v as usize];
-            if !seen.insert(v)
-                || m.is_regular_quad_vertex(v as usize)
-                || m.is_boundary_vertex(v as usize)
+            if seen.insert(v)
+                && let Some(idx) = cappable(level, v, builder)?
             {
-                continue;
+                cand.insert(v, idx);
             }
-            let Some(element) = vi.origin else { continue };
-            if !vi.fan_ok || !vi.pos_ok {
-                continue;
-            }
-            let Some(idx) = m.cnet_indices(v as usize, 2) else {
-                continue;
-            };
-            let n = m.valence(v as usize);
-            if touches_features(level, &idx) {
-                builder.note(format!(
-                    "{} (valence {n}) is next to a sharp feature (within the two rings of its \
-                     c-net): Catmull-Clark rings with OpenSubdiv's rules there until it is \
-                     clear of it, Catmull-Clark's cap if it never is",
-                    crate::host::caps::describe(element)
-                ));
-                continue;
-            }
-            // The one-ring (chart points (1, 0) and (1, 1) of each sector) must be regular and
-            // complete, and the whole c-net trusted.
-            let ring1_ok = (0..n).all(|s| {
-                [idx[1 + 6 * s], idx[2 + 6 * s]]
-                    .iter()
-                    .all(|&w| level.info[w as usize].fan_ok && m.is_regular_quad_vertex(w as usize))
-            });
-            if !ring1_ok || idx.iter().any(|&w| !level.info[w as usize].pos_ok) {
-                continue;
-            }
-            if !builder.accepts(n, element)? {
-                continue;
-            }
-            cand.insert(v, idx);
         }
     }
-    // Keep a vertex only if every extraordinary vertex of its c-net is capped too.
-    loop {
-        let drop: Vec<u32> = cand
-            .iter()
-            .filter(|(v, idx)| {
-                idx.iter().any(|&w| {
-                    w != **v && !m.is_regular_quad_vertex(w as usize) && !cand.contains_key(&w)
-                })
-            })
-            .map(|(&v, _)| v)
-            .collect();
-        if drop.is_empty() {
-            break;
-        }
-        for v in drop {
-            cand.remove(&v);
-        }
-    }
+    keep_closed(m, &mut cand);
     let mut capped: Vec<u32> = cand.keys().copied().collect();
     capped.sort_unstable();
     let domains: HashMap<u32, Domain> = if capped.is_empty() {
@@ -107,6 +57,69 @@ pub(super) fn apply_caps(
         .into_iter()
         .filter(|&(f, _)| !m.face(f as usize).iter().any(|w| cand.contains_key(w)))
         .collect())
+}
+
+/// The c-net (two rings) of the corner `v` when the builder caps it: an interior extraordinary
+/// vertex of an input element whose fan and c-net are trusted, away from sharp features (with a
+/// note), with a regular complete one-ring, and accepted by the builder at its valence.
+fn cappable(level: &Level, v: u32, builder: &dyn CapBuilder) -> Result<Option<Vec<u32>>> {
+    let m = &level.mesh;
+    let vi = level.info[v as usize];
+    if m.is_regular_quad_vertex(v as usize) || m.is_boundary_vertex(v as usize) {
+        return Ok(None);
+    }
+    let Some(element) = vi.origin else {
+        return Ok(None);
+    };
+    if !vi.fan_ok || !vi.pos_ok {
+        return Ok(None);
+    }
+    let Some(idx) = m.cnet_indices(v as usize, 2) else {
+        return Ok(None);
+    };
+    let n = m.valence(v as usize);
+    if touches_features(level, &idx) {
+        builder.note(format!(
+            "{} (valence {n}) is next to a sharp feature (within the two rings of its \
+             c-net): Catmull-Clark rings with OpenSubdiv's rules there until it is \
+             clear of it, Catmull-Clark's cap if it never is",
+            crate::host::caps::describe(element)
+        ));
+        return Ok(None);
+    }
+    // The one-ring (chart points (1, 0) and (1, 1) of each sector) must be regular and
+    // complete, and the whole c-net trusted.
+    let ring1_ok = (0..n).all(|s| {
+        [idx[1 + 6 * s], idx[2 + 6 * s]]
+            .iter()
+            .all(|&w| level.info[w as usize].fan_ok && m.is_regular_quad_vertex(w as usize))
+    });
+    if !ring1_ok || idx.iter().any(|&w| !level.info[w as usize].pos_ok) {
+        return Ok(None);
+    }
+    Ok(builder.accepts(n, element)?.then_some(idx))
+}
+
+/// Keeps a candidate vertex only if every extraordinary vertex of its c-net is a candidate too
+/// (dropping one may drop others: repeated until nothing changes).
+fn keep_closed(m: &PolyMesh, cand: &mut HashMap<u32, Vec<u32>>) {
+    loop {
+        let drop: Vec<u32> = cand
+            .iter()
+            .filter(|(v, idx)| {
+                idx.iter().any(|&w| {
+                    w != **v && !m.is_regular_quad_vertex(w as usize) && !cand.contains_key(&w)
+                })
+            })
+            .map(|(&v, _)| v)
+            .collect();
+        if drop.is_empty() {
+            break;
+        }
+        for v in drop {
+            cand.remove(&v);
+        }
+    }
 }
 
 /// The domain of each sector's face around the interior vertex `v`, in the sector order of

@@ -88,6 +88,16 @@ pub(super) struct FvLevel<'a> {
 }
 
 impl<'a> FvLevel<'a> {
+    /// The number of the level's vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.value_start.len() - 1
+    }
+
+    /// The number of the level's edges.
+    pub fn num_edges(&self) -> usize {
+        self.discts.len()
+    }
+
     /// The face-varying topology of `mesh` with corner values `corner_value` under `opts`.
     pub fn new(
         mesh: &'a PolyMesh,

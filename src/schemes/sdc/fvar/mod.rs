@@ -64,37 +64,73 @@ pub fn refine(
     rules: &FvarRules,
 ) -> FaceVarying {
     let pa = FvLevel::new(parent, &uv.corners, &rules.options, base, &uv.classes);
-    let (nv, ne) = (parent.num_vertices(), parent.num_edges());
-    let m = pa.m;
-    // Child values: per vertex point the parent's values, per seam edge one per face.
-    let count = |c: usize| -> u32 {
-        if c < nv {
-            pa.values(c).len() as u32
-        } else if c < nv + ne {
-            if pa.discts[c - nv] {
-                pa.edge_faces(c - nv).len() as u32
-            } else {
-                1
-            }
-        } else {
-            1
-        }
-    };
     let ncv = child.num_vertices();
+    // Child values: per vertex point the parent's values, per seam edge one per face.
     let mut offset = Vec::with_capacity(ncv + 1);
     offset.push(0u32);
     for c in 0..ncv {
-        offset.push(offset[c] + count(c));
+        offset.push(offset[c] + value_count(&pa, c));
     }
-    // The value of every child corner.
+    let corners = child_corners(&pa, child, rules.split, &offset);
+    let classes = child_classes(&pa, uv, ncv);
+    let ca = FvLevel::new(child, &corners, &rules.options, false, &classes);
+    let linear = rules.options.fvar() == FvarInterpolation::All;
+    let mut out = vec![[0.0; 2]; *offset.last().unwrap_or(&0) as usize];
+    let (nv, ne) = (parent.num_vertices(), parent.num_edges());
+    for c in 0..ncv {
+        let o = offset[c] as usize;
+        if c < nv {
+            vertex_values(&pa, &ca, uv, stencils, linear, c, o, &mut out);
+        } else if c < nv + ne {
+            edge_values(&pa, uv, stencils, linear, c, &mut out[o..]);
+        } else {
+            let f = (c - nv - ne) as u32;
+            let vals: Vec<u32> = face_halfedges(&pa, f)
+                .map(|h| uv.corners[h as usize])
+                .collect();
+            let w = 1.0 / vals.len() as f64;
+            out[o] = combine(
+                &vals
+                    .iter()
+                    .map(|&x| (uv.values[x as usize], w))
+                    .collect::<Vec<_>>(),
+            );
+        }
+    }
+    FaceVarying {
+        values: out,
+        corners,
+        names: uv.names.clone(),
+        classes,
+    }
+}
+
+/// How many values child vertex `c` gets: a vertex point one per parent value of its vertex,
+/// an edge point one per face of its edge on a seam (else one), a face point one.
+fn value_count(pa: &FvLevel<'_>, c: usize) -> u32 {
+    let (nv, ne) = (pa.num_vertices(), pa.num_edges());
+    if c < nv {
+        pa.values(c).len() as u32
+    } else if c < nv + ne && pa.discts[c - nv] {
+        pa.edge_faces(c - nv).len() as u32
+    } else {
+        1
+    }
+}
+
+/// The value of every child corner: the child vertex's first value (`offset`) plus the
+/// sibling its parent corner (vertex point) or its parent face (seam edge point) picks.
+fn child_corners(pa: &FvLevel<'_>, child: &PolyMesh, split: Split, offset: &[u32]) -> Vec<u32> {
+    let m = pa.m;
+    let (nv, ne) = (pa.num_vertices(), pa.num_edges());
     let k = child.uniform_face_size().unwrap_or(0).max(1);
-    let corners: Vec<u32> = child
+    child
         .corners()
         .iter()
         .enumerate()
         .map(|(i, &c)| {
             let cf = (i / k) as u32;
-            let f = match rules.split {
+            let f = match split {
                 Split::Quads => m.face(cf),
                 Split::Triangles => cf / 4,
             };
@@ -102,14 +138,14 @@ pub fn refine(
             let sibling = if c < nv {
                 // The parent corner of a vertex point's corner: child face `h` (quads), the
                 // corner triangle `4f + i` at `3f + i` (triangles).
-                let own = match rules.split {
+                let own = match split {
                     Split::Quads => cf,
                     Split::Triangles => 3 * f + cf % 4,
                 };
                 let h = if (own as usize) < pa.sibling.len() && m.from(own) as usize == c {
                     Some(own)
                 } else {
-                    face_halfedges(&pa, f).find(|&h| m.from(h) as usize == c)
+                    face_halfedges(pa, f).find(|&h| m.from(h) as usize == c)
                 };
                 h.map_or(0, |h| pa.sibling[h as usize])
             } else if c < nv + ne && pa.discts[c - nv] {
@@ -122,9 +158,13 @@ pub fn refine(
             };
             offset[c] + sibling
         })
-        .collect();
-    // Seam classes of the child values: a vertex point's values keep their parent values'
-    // classes, every other value is a class of its own.
+        .collect()
+}
+
+/// Seam classes of the child values: a vertex point's values keep their parent values'
+/// classes, every other value is a class of its own.
+fn child_classes(pa: &FvLevel<'_>, uv: &FaceVarying, ncv: usize) -> Vec<u32> {
+    let nv = pa.num_vertices();
     let class_of = |v: u32| uv.classes.get(v as usize).copied().unwrap_or(v);
     let space = uv
         .classes
@@ -132,9 +172,9 @@ pub fn refine(
         .max()
         .map_or(0, |&c| c + 1)
         .max(uv.values.len() as u32);
-    let mut classes = Vec::with_capacity(*offset.last().unwrap_or(&0) as usize);
+    let mut classes = Vec::new();
     for c in 0..ncv {
-        for s in 0..count(c) as usize {
+        for s in 0..value_count(pa, c) as usize {
             let own = space + classes.len() as u32;
             classes.push(if c < nv {
                 class_of(pa.values(c)[s])
@@ -143,67 +183,75 @@ pub fn refine(
             });
         }
     }
-    let ca = FvLevel::new(child, &corners, &rules.options, false, &classes);
-    let linear = rules.options.fvar() == FvarInterpolation::All;
+    classes
+}
+
+/// The values of vertex point `c` (its first at `out[o]`): the vertex's own stencil where its
+/// value topology matches, else each value by its tag (it stays, follows the crease rule along
+/// its span's fvar boundary, or blends the two while a semi-sharp feature decays).
+#[allow(clippy::too_many_arguments)]
+fn vertex_values(
+    pa: &FvLevel<'_>,
+    ca: &FvLevel<'_>,
+    uv: &FaceVarying,
+    stencils: &StencilTable,
+    linear: bool,
+    c: usize,
+    o: usize,
+    out: &mut [[f64; 2]],
+) {
     let src = &uv.values;
     let at = |val: u32| src[val as usize];
-    let mut out = vec![[0.0; 2]; *offset.last().unwrap_or(&0) as usize];
-    for c in 0..ncv {
-        let o = offset[c] as usize;
-        if c < nv {
-            let tags = pa.tags(c);
-            if tags.first() == Some(&Tag::Match) && !linear {
-                out[o] = mapped(&pa, stencils.row(c), pa.ring(c), src);
-                continue;
-            }
-            for (j, (&val, &tag)) in pa.values(c).iter().zip(tags).enumerate() {
-                let child_tag = ca
-                    .values(c)
-                    .iter()
-                    .position(|&x| x as usize == o + j)
-                    .and_then(|k| ca.tags(c).get(k).copied())
-                    .unwrap_or(Tag::Corner);
-                out[o + j] = match tag.span() {
-                    Some((start, end)) if !linear && !child_tag.stays() => {
-                        let w = match tag {
-                            Tag::SemiSharp { .. } => pa.fractional_weight(c, start, end),
-                            Tag::DepSharp { .. } => other_weight(&pa, c, j),
-                            _ => 0.0,
-                        };
-                        let [a, b] = pa.crease_ends(c, start, end);
-                        let (cv, ce) = CREASE_VERTEX;
-                        let (vw, ew) = ((1.0 - w) * cv + w, (1.0 - w) * ce);
-                        combine(&[(at(val), vw), (at(a), ew), (at(b), ew)])
-                    }
-                    _ => at(val),
-                };
-            }
-        } else if c < nv + ne {
-            let e = c - nv;
-            let hs = pa.edge_faces(e);
-            if !pa.discts[e] && !pa.linear[e] && !linear {
-                out[o] = mapped(&pa, stencils.row(c), hs, src);
-                continue;
-            }
-            let sides = if pa.discts[e] { hs.len() } else { 1 };
-            for (j, &h) in hs.iter().take(sides).enumerate() {
-                let [a, b] = pa.edge_values(h);
-                out[o + j] = combine(&[(at(a), 0.5), (at(b), 0.5)]);
-            }
-        } else {
-            let f = (c - nv - ne) as u32;
-            let vals: Vec<u32> = face_halfedges(&pa, f)
-                .map(|h| uv.corners[h as usize])
-                .collect();
-            let w = 1.0 / vals.len() as f64;
-            out[o] = combine(&vals.iter().map(|&x| (at(x), w)).collect::<Vec<_>>());
-        }
+    let tags = pa.tags(c);
+    if tags.first() == Some(&Tag::Match) && !linear {
+        out[o] = mapped(pa, stencils.row(c), pa.ring(c), src);
+        return;
     }
-    FaceVarying {
-        values: out,
-        corners,
-        names: uv.names.clone(),
-        classes,
+    for (j, (&val, &tag)) in pa.values(c).iter().zip(tags).enumerate() {
+        let child_tag = ca
+            .values(c)
+            .iter()
+            .position(|&x| x as usize == o + j)
+            .and_then(|k| ca.tags(c).get(k).copied())
+            .unwrap_or(Tag::Corner);
+        out[o + j] = match tag.span() {
+            Some((start, end)) if !linear && !child_tag.stays() => {
+                let w = match tag {
+                    Tag::SemiSharp { .. } => pa.fractional_weight(c, start, end),
+                    Tag::DepSharp { .. } => other_weight(pa, c, j),
+                    _ => 0.0,
+                };
+                let [a, b] = pa.crease_ends(c, start, end);
+                let (cv, ce) = CREASE_VERTEX;
+                let (vw, ew) = ((1.0 - w) * cv + w, (1.0 - w) * ce);
+                combine(&[(at(val), vw), (at(a), ew), (at(b), ew)])
+            }
+            _ => at(val),
+        };
+    }
+}
+
+/// The values of edge point `c` (from `out[0]`): the edge's own stencil where its values agree
+/// across it, else each face side's midpoint of its two values (a seam, a linear boundary, or
+/// everything linear).
+fn edge_values(
+    pa: &FvLevel<'_>,
+    uv: &FaceVarying,
+    stencils: &StencilTable,
+    linear: bool,
+    c: usize,
+    out: &mut [[f64; 2]],
+) {
+    let e = c - pa.num_vertices();
+    let hs = pa.edge_faces(e);
+    if !pa.discts[e] && !pa.linear[e] && !linear {
+        out[0] = mapped(pa, stencils.row(c), hs, &uv.values);
+        return;
+    }
+    let sides = if pa.discts[e] { hs.len() } else { 1 };
+    for (j, &h) in hs.iter().take(sides).enumerate() {
+        let [a, b] = pa.edge_values(h);
+        out[j] = combine(&[(uv.values[a as usize], 0.5), (uv.values[b as usize], 0.5)]);
     }
 }
 
