@@ -54,10 +54,7 @@ pub fn analyze(a: AnalyzeArgs) -> Result<()> {
     super::limits::check_analysis(&spec, a.valence, a.replicated_centre)?;
     let r = report::analyze(&spec, a.valence, a.replicated_centre)?;
     if a.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&r).expect("serialisable")
-        );
+        super::say_json(&r);
         return Ok(());
     }
     if let Some(v) = &r.rules {
@@ -199,10 +196,7 @@ pub fn charmap(a: CharmapArgs) -> Result<()> {
         },
     }
     if a.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&cert).expect("serialisable")
-        );
+        super::say_json(&cert);
     } else {
         say!(
             "{} valence {}: lambda {:.12}; {}; Jacobian min coefficient {:.3e}; wrote {}",

@@ -212,12 +212,23 @@ pub fn check(a: CheckArgs) -> Result<()> {
     r.kinds = loaded.kinds;
     r.deviation = deviation;
     if a.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&r).expect("serialisable")
-        );
+        super::say_json(&r);
         return Ok(());
     }
+    say_joins(&r);
+    say_extremes(&r.continuity);
+    if let Some(sc) = &r.c1_up_to_scaling {
+        say_scaled(sc);
+    }
+    if let (Some(d), Some(m)) = (&r.deviation, &a.against) {
+        say_deviation(d, m);
+    }
+    say_curvature(&r.curvature);
+    Ok(())
+}
+
+/// The text report's head: the counts, what a `.bv` file held, and the joins' defects by kind.
+fn say_joins(r: &CheckReport) {
     let c = &r.continuity;
     say!(
         "{}: {} patches, {} shared pieces, {} open sides, size {:.4}",
@@ -259,6 +270,10 @@ pub fn check(a: CheckArgs) -> Result<()> {
             d.g1
         );
     }
+}
+
+/// The text report of the largest C0 gap and G1 defect and (up to 8 of) the open sides.
+fn say_extremes(c: &continuity::ContinuityReport) {
     if let Some(l) = &c.all.c0_at {
         say!(
             "  largest C0 gap {:.3e} between patches {} and {} at {:?}",
@@ -296,49 +311,57 @@ pub fn check(a: CheckArgs) -> Result<()> {
             c.open_sides
         );
     }
-    if let Some(sc) = &r.c1_up_to_scaling {
-        say!("  C1 up to per-piece scaling (D_A + kappa D_B = 0 across each piece):");
+}
+
+/// The text report of C1 up to per-piece scaling, by kind of join.
+fn say_scaled(sc: &scaled::ScaledContinuity) {
+    say!("  C1 up to per-piece scaling (D_A + kappa D_B = 0 across each piece):");
+    say!(
+        "  {:<22} {:>7} {:>12} {:>10} {:>10} {:>10}",
+        "join",
+        "pieces",
+        "C1 relative",
+        "kappa min",
+        "kappa max",
+        "G1 (rad)"
+    );
+    for (k, d) in &sc.by_kind {
         say!(
-            "  {:<22} {:>7} {:>12} {:>10} {:>10} {:>10}",
-            "join",
-            "pieces",
-            "C1 relative",
-            "kappa min",
-            "kappa max",
-            "G1 (rad)"
-        );
-        for (k, d) in &sc.by_kind {
-            say!(
-                "  {:<22} {:>7} {:>12.2e} {:>10.4} {:>10.4} {:>10.2e}",
-                k,
-                d.pieces,
-                d.c1_relative,
-                d.kappa_min,
-                d.kappa_max,
-                d.g1
-            );
-        }
-    }
-    if let (Some(d), Some(m)) = (&r.deviation, &a.against) {
-        let c = &d.max_closest;
-        say!(
-            "  deviation of {m}'s {} vertices: max {:.6e}, mean {:.6e}, rms {:.6e}",
-            d.points,
-            d.max,
-            d.mean,
-            d.rms
-        );
-        say!(
-            "    max at vertex {} {:?}, nearest surface point {:?} (face {} at ({}, {}))",
-            d.max_index,
-            d.max_point,
-            c.point,
-            c.face,
-            c.u,
-            c.v
+            "  {:<22} {:>7} {:>12.2e} {:>10.4} {:>10.4} {:>10.2e}",
+            k,
+            d.pieces,
+            d.c1_relative,
+            d.kappa_min,
+            d.kappa_max,
+            d.g1
         );
     }
-    for e in &r.curvature {
+}
+
+/// The text report of `--against`: the deviation of mesh `m`'s vertices from the surface.
+fn say_deviation(d: &crate::surface::closest::Deviation, m: &str) {
+    let c = &d.max_closest;
+    say!(
+        "  deviation of {m}'s {} vertices: max {:.6e}, mean {:.6e}, rms {:.6e}",
+        d.points,
+        d.max,
+        d.mean,
+        d.rms
+    );
+    say!(
+        "    max at vertex {} {:?}, nearest surface point {:?} (face {} at ({}, {}))",
+        d.max_index,
+        d.max_point,
+        c.point,
+        c.face,
+        c.u,
+        c.v
+    );
+}
+
+/// The text report of the curvature bounds, ring by ring, around each element.
+fn say_curvature(elements: &[curvature::ElementCurvature]) {
+    for e in elements {
         say!("  curvature around {:?}:", e.element);
         for ring in &e.rings {
             say!(
@@ -355,5 +378,4 @@ pub fn check(a: CheckArgs) -> Result<()> {
             );
         }
     }
-    Ok(())
 }

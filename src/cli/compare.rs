@@ -3,7 +3,7 @@
 //! scene builders and `render` itself are in `render.rs`; this file holds the grid (split from
 //! it by topic).
 
-use super::render::{CompareArgs, GROUP_SAMPLES, RangeReport, complex_scene, is_bv};
+use super::render::{CompareArgs, RangeReport, complex_scene, group_curvature, is_bv};
 use super::spec::{self, SchemeOptions};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
@@ -162,26 +162,14 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
                     scheme: name.clone(),
                     patches: scene.complex().map_or(0, |c| c.len()),
                     frame: st.clone(),
-                    groups: scene
-                        .complex()
-                        .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
-                        .unwrap_or_default(),
+                    groups: group_curvature(scene),
                 })
                 .collect(),
         };
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&report).expect("serialisable")
-        );
+        super::say_json(&report);
     }
-    eprintln!(
-        "wrote {} ({}x{}: {} schemes x {} modes)",
-        a.output.display(),
-        panel.image.width,
-        panel.image.height,
-        schemes.len(),
-        modes.len()
-    );
+    let detail = format!(": {} schemes x {} modes", schemes.len(), modes.len());
+    super::render::say_wrote(&a.output, &panel.image, &detail);
     Ok(())
 }
 

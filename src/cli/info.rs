@@ -222,17 +222,25 @@ fn rules_by_valence(
     out
 }
 
-/// Builds the report of a net.
-pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
+/// How many faces have each number of sides.
+fn face_sizes(m: &PolyMesh) -> BTreeMap<usize, usize> {
     let mut face_sizes = BTreeMap::new();
     for f in 0..m.num_faces() {
         *face_sizes.entry(m.face_size(f)).or_insert(0) += 1;
     }
+    face_sizes
+}
+
+/// A non-manifold vertex has no single fan: its valence and boundary are not defined.
+fn is_manifold_vertex(m: &PolyMesh, v: usize) -> bool {
+    !m.is_nonmanifold_vertex(v)
+}
+
+/// How many interior and how many boundary (manifold) vertices have each valence.
+fn valence_counts(m: &PolyMesh) -> (BTreeMap<usize, usize>, BTreeMap<usize, usize>) {
     let mut interior_valences = BTreeMap::new();
     let mut boundary_valences = BTreeMap::new();
-    // A non-manifold vertex has no single fan: its valence and boundary are not defined.
-    let manifold = |v: &usize| !m.is_nonmanifold_vertex(*v);
-    for v in (0..m.num_vertices()).filter(manifold) {
+    for v in (0..m.num_vertices()).filter(|&v| is_manifold_vertex(m, v)) {
         let map = if m.is_boundary_vertex(v) {
             &mut boundary_valences
         } else {
@@ -240,8 +248,12 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
         };
         *map.entry(m.valence(v)).or_insert(0) += 1;
     }
-    let quad = m.is_all_quads();
-    let tri = m.is_all_triangles();
+    (interior_valences, boundary_valences)
+}
+
+/// The manifold vertices that are not regular for the net's kind (all triangles: valence 6
+/// inside, 3 or 4 on the boundary; otherwise the regular quad vertex).
+fn extraordinary_vertices(m: &PolyMesh, tri: bool) -> Vec<ExtraordinaryVertex> {
     let regular = |v: usize| -> bool {
         if tri {
             let n = m.valence(v);
@@ -254,21 +266,32 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
             m.is_regular_quad_vertex(v)
         }
     };
-    let evs: Vec<ExtraordinaryVertex> = (0..m.num_vertices())
-        .filter(manifold)
+    (0..m.num_vertices())
+        .filter(|&v| is_manifold_vertex(m, v))
         .filter(|&v| !regular(v))
         .map(|v| ExtraordinaryVertex {
             vertex: v,
             valence: m.valence(v),
             boundary: m.is_boundary_vertex(v),
         })
-        .collect();
-    let mut problems = Vec::new();
+        .collect()
+}
+
+/// The notes on extraordinary elements that keep schemes from taking the net as it is:
+/// adjacent extraordinary vertices, extraordinary boundary vertices and non-quad faces (a
+/// quad-dominant net), or an irregular boundary vertex (a triangle net).
+fn layout_problems(
+    m: &PolyMesh,
+    quad: bool,
+    tri: bool,
+    evs: &[ExtraordinaryVertex],
+    problems: &mut Vec<String>,
+) {
     if !tri {
         // Adjacent extraordinary vertices: the c-net based schemes need them separated.
         let is_ev: Vec<bool> = {
             let mut b = vec![false; m.num_vertices()];
-            for e in &evs {
+            for e in evs {
                 b[e.vertex] = true;
             }
             b
@@ -306,6 +329,17 @@ pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
             e.vertex, e.valence
         ));
     }
+}
+
+/// Builds the report of a net.
+pub fn report(source: &str, m: &PolyMesh) -> InfoReport {
+    let face_sizes = face_sizes(m);
+    let (interior_valences, boundary_valences) = valence_counts(m);
+    let quad = m.is_all_quads();
+    let tri = m.is_all_triangles();
+    let evs = extraordinary_vertices(m, tri);
+    let mut problems = Vec::new();
+    layout_problems(m, quad, tri, &evs, &mut problems);
     let non_manifold = NonManifoldReport::of(m);
     if !m.is_manifold() {
         problems.push(format!(
@@ -360,12 +394,30 @@ pub fn run(net: &str, scheme: Option<&str>, json: bool) -> Result<()> {
         r.preparation = Some(preparation(s, &loaded.mesh)?);
     }
     if json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&r).expect("serialisable")
-        );
+        super::say_json(&r);
         return Ok(());
     }
+    say_counts(&r);
+    for (scheme, rows) in &r.rules_by_valence {
+        let words: Vec<String> = rows
+            .iter()
+            .map(|v| format!("n={}: {}", v.valence, v.rules))
+            .collect();
+        say!("  {scheme} rules: {}", words.join("; "));
+    }
+    say_non_manifold(&r.non_manifold);
+    for p in &r.problems {
+        say!("  note: {p}");
+    }
+    if let Some(p) = &r.preparation {
+        say_preparation(p);
+    }
+    Ok(())
+}
+
+/// The text report of the net's counts: elements, face sizes, valences, boundary loops,
+/// extraordinary elements, bounding box and dropped vertices.
+fn say_counts(r: &InfoReport) {
     say!("{}", r.source);
     say!(
         "  {} vertices, {} edges, {} faces (Euler characteristic {})",
@@ -430,14 +482,10 @@ pub fn run(net: &str, scheme: Option<&str>, json: bool) -> Result<()> {
     if !r.dropped_vertices.is_empty() {
         say!("  dropped unused vertices: {:?}", r.dropped_vertices);
     }
-    for (scheme, rows) in &r.rules_by_valence {
-        let words: Vec<String> = rows
-            .iter()
-            .map(|v| format!("n={}: {}", v.valence, v.rules))
-            .collect();
-        say!("  {scheme} rules: {}", words.join("; "));
-    }
-    let nm = &r.non_manifold;
+}
+
+/// The text report of the non-manifold edges, vertices and faces (up to 20 of each).
+fn say_non_manifold(nm: &NonManifoldReport) {
     if !nm.edges.is_empty() {
         let es: Vec<String> = nm
             .edges
@@ -468,13 +516,6 @@ pub fn run(net: &str, scheme: Option<&str>, json: bool) -> Result<()> {
             fs.join(" ")
         );
     }
-    for p in &r.problems {
-        say!("  note: {p}");
-    }
-    if let Some(p) = &r.preparation {
-        say_preparation(p);
-    }
-    Ok(())
 }
 
 /// The text report of what would be prepared.

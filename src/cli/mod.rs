@@ -58,6 +58,14 @@ pub(crate) fn say_line(line: String) {
     });
 }
 
+/// Writes `value` as pretty-printed JSON (one line break at the end) to this thread's sink.
+pub(crate) fn say_json<T: serde::Serialize>(value: &T) {
+    say!(
+        "{}",
+        serde_json::to_string_pretty(value).expect("serialisable")
+    );
+}
+
 /// Writes a block of complete lines of ASCII or UTF-8 text (each ending in a newline) to this
 /// thread's sink: one write for many lines (`fairsub eval`'s 10^6 points), no check of the
 /// text on the way to standard output.
@@ -479,10 +487,7 @@ fn schemes(json: bool, markdown: bool) -> Result<()> {
         return Ok(());
     }
     if json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&rows).expect("serialisable")
-        );
+        say_json(&rows);
         return Ok(());
     }
     for row in rows {

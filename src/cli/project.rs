@@ -153,10 +153,7 @@ pub fn run(a: ProjectArgs) -> Result<()> {
     let s = build_surface(&a.net, &a.scheme, a.rings, !a.no_fill)?;
     let found = crate::surface::closest::closest_points(&s, &points)?;
     if a.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&found).expect("serialisable")
-        );
+        super::say_json(&found);
     } else if a.binary {
         let mut out = Vec::with_capacity(96 * found.len());
         for c in &found {

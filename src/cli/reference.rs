@@ -234,6 +234,20 @@ pub(crate) fn schemes_markdown(rows: &[CatalogueRow], entries: &[Entry]) -> Stri
          subdivide --rings K`, `eval`, `measure`, `check`). Every scheme takes `--prepare` (the \
          smallest documented step for nets its rules do not take).\n\n",
     );
+    summary_table(&mut out, rows);
+    out.push('\n');
+    for (row, e) in rows.iter().zip(entries) {
+        scheme_section(&mut out, row, e);
+        out.push('\n');
+    }
+    while out.ends_with("\n\n") {
+        out.pop();
+    }
+    out
+}
+
+/// The catalogue's summary table: a row per scheme with a link to its section.
+fn summary_table(out: &mut String, rows: &[CatalogueRow]) {
     out.push_str(
         "| Scheme | Family and paper | Smoothness | Valences | `--levels` | `--rings` (exact patches) |\n\
          | --- | --- | --- | --- | --- | --- |\n",
@@ -252,79 +266,76 @@ pub(crate) fn schemes_markdown(rows: &[CatalogueRow], entries: &[Entry]) -> Stri
             yes_no(s.rings)
         );
     }
-    out.push('\n');
-    for (row, e) in rows.iter().zip(entries) {
-        let s = &row.info;
-        let _ = writeln!(out, "## {}\n", s.name);
-        let _ = writeln!(out, "{}\n", escape(s.family));
-        let mut item = |label: &str, text: String| {
-            let _ = writeln!(out, "- **{label}:** {text}");
-        };
-        if !e.aliases.is_empty() {
-            item(
-                "Also named",
-                e.aliases
-                    .iter()
-                    .map(|a| format!("`{a}`"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            );
-        }
-        if !e.suffixes.is_empty() {
-            item(
-                "Name suffixes",
-                e.suffixes
-                    .iter()
-                    .map(|x| format!("`{}`", x.text))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            );
-        }
-        item("Status", escape(s.status));
-        item("Input", escape(s.input));
-        item("Patches", escape(s.patches));
-        item("Smoothness", escape(s.smoothness));
-        item("Valences", escape(s.valences));
-        if let Some(r) = &row.rules_by_valence {
-            item("Rules by valence", escape(&ranges_words(r)));
-        }
-        if let Some(r) = &row.rules_by_valence_derived {
-            item("With `--rules derived`", escape(&ranges_words(r)));
-        }
-        let params = e.descriptor.params();
+}
+
+/// A scheme's section of the catalogue (without its closing blank line): family, names,
+/// status, input, patches, smoothness, valences, rules, options and commands.
+fn scheme_section(out: &mut String, row: &CatalogueRow, e: &Entry) {
+    let s = &row.info;
+    let _ = writeln!(out, "## {}\n", s.name);
+    let _ = writeln!(out, "{}\n", escape(s.family));
+    let mut item = |label: &str, text: String| {
+        let _ = writeln!(out, "- **{label}:** {text}");
+    };
+    if !e.aliases.is_empty() {
         item(
-            "Options",
-            if params.is_empty() {
-                "none beyond `--prepare`".to_string()
-            } else {
-                params
-                    .iter()
-                    .map(|p| {
-                        p.option()
-                            .split(" / ")
-                            .map(|o| format!("`{o}`"))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    })
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            },
+            "Also named",
+            e.aliases
+                .iter()
+                .map(|a| format!("`{a}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
         );
+    }
+    if !e.suffixes.is_empty() {
         item(
-            "Commands",
-            match (s.refine, s.rings) {
-                (true, true) => "`subdivide --levels`, `subdivide --rings`".to_string(),
-                (true, false) => "`subdivide --levels` (no exact patches)".to_string(),
-                (false, true) => "`subdivide --rings` (no net refinement)".to_string(),
-                (false, false) => "none".to_string(),
-            },
+            "Name suffixes",
+            e.suffixes
+                .iter()
+                .map(|x| format!("`{}`", x.text))
+                .collect::<Vec<_>>()
+                .join(", "),
         );
-        out.push('\n');
     }
-    while out.ends_with("\n\n") {
-        out.pop();
+    item("Status", escape(s.status));
+    item("Input", escape(s.input));
+    item("Patches", escape(s.patches));
+    item("Smoothness", escape(s.smoothness));
+    item("Valences", escape(s.valences));
+    if let Some(r) = &row.rules_by_valence {
+        item("Rules by valence", escape(&ranges_words(r)));
     }
-    out
+    if let Some(r) = &row.rules_by_valence_derived {
+        item("With `--rules derived`", escape(&ranges_words(r)));
+    }
+    let params = e.descriptor.params();
+    item(
+        "Options",
+        if params.is_empty() {
+            "none beyond `--prepare`".to_string()
+        } else {
+            params
+                .iter()
+                .map(|p| {
+                    p.option()
+                        .split(" / ")
+                        .map(|o| format!("`{o}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                })
+                .collect::<Vec<_>>()
+                .join("; ")
+        },
+    );
+    item(
+        "Commands",
+        match (s.refine, s.rings) {
+            (true, true) => "`subdivide --levels`, `subdivide --rings`".to_string(),
+            (true, false) => "`subdivide --levels` (no exact patches)".to_string(),
+            (false, true) => "`subdivide --rings` (no net refinement)".to_string(),
+            (false, false) => "none".to_string(),
+        },
+    );
 }
 
 #[cfg(feature = "unit-tests")]

@@ -317,7 +317,50 @@ struct RenderReport<'a> {
 
 /// Runs `fairsub render`.
 pub fn run_render(mut a: RenderArgs) -> Result<()> {
-    let spec = match &a.scheme {
+    let spec = render_spec(&mut a)?;
+    let mode: Mode = a.mode.parse()?;
+    let opts = a.look.options(default(|d| (d.width, d.height)), mode)?;
+    let bv = is_bv(&a.net);
+    check_render_sources(&a, bv)?;
+    super::limits::check_render(opts.width, opts.height, opts.supersample, 1)?;
+    let (scene, rings) = render_scene(&a, spec.as_ref(), bv)?;
+    let out = render::render(&scene, &opts)?;
+    out.image.write_png(&a.output)?;
+    if a.json {
+        let report = RenderReport {
+            input: &a.net,
+            scheme: a.scheme.as_deref(),
+            rings,
+            mode,
+            output: a.output.display().to_string(),
+            width: out.image.width,
+            height: out.image.height,
+            supersample: opts.supersample,
+            camera: &out.camera,
+            region: &out.region,
+            range: out.range.map(|value| RangeReport {
+                mode,
+                value,
+                automatic: opts.shade.range.is_none(),
+            }),
+            stripe_period: out.stripe_period,
+            frame: &out.stats,
+            groups: group_curvature(&scene),
+        };
+        super::say_json(&report);
+    }
+    let range = out
+        .range
+        .map(|r| format!(", range +-{}", render::text::format_number(r)));
+    let detail = format!(", {}{}", mode.name(), range.unwrap_or_default());
+    say_wrote(&a.output, &out.image, &detail);
+    Ok(())
+}
+
+/// The scheme of `render --scheme` (its label replaces the name in `a`), or none; `--lambda`
+/// and `--rules` without a scheme are errors.
+fn render_spec(a: &mut RenderArgs) -> Result<Option<Spec>> {
+    Ok(match &a.scheme {
         Some(s) => {
             let spec = spec::resolve(
                 s,
@@ -341,10 +384,12 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
             ));
         }
         None => None,
-    };
-    let mode: Mode = a.mode.parse()?;
-    let opts = a.look.options(default(|d| (d.width, d.height)), mode)?;
-    let bv = is_bv(&a.net);
+    })
+}
+
+/// Checks that the options fit what is drawn: a `.bv` file's patches, the refined net
+/// (`--levels`) or the patch complex (`--rings`) of a scheme.
+fn check_render_sources(a: &RenderArgs, bv: bool) -> Result<()> {
     if bv && (a.scheme.is_some() || a.levels.is_some() || a.rings.is_some()) {
         return Err(Error::InvalidArgument(
             "a .bv file holds its patches already: drop --scheme, --levels and --rings".into(),
@@ -360,71 +405,49 @@ pub fn run_render(mut a: RenderArgs) -> Result<()> {
             "--levels and --rings need --scheme".into(),
         ));
     }
-    super::limits::check_render(opts.width, opts.height, opts.supersample, 1)?;
-    let mut rings = None;
-    let scene = if bv {
-        bv_scene(&a.net)?
-    } else {
-        let net = super::load_net(&a.net)?.mesh;
-        match (&spec, a.levels) {
-            (None, _) => Scene::mesh(&net),
-            (Some(s), Some(levels)) => {
-                let rules = super::subdivide::mesh_rules(s)?;
-                super::limits::check_levels(rules.as_ref(), &net, levels)?;
-                let fine = super::subdivide::refine_with(rules.as_ref(), &net, levels, false)?;
-                let mut scene = Scene::mesh(&fine);
-                scene.net = Some(net);
-                scene
-            }
-            (Some(s), None) => {
-                let r = a.rings.unwrap_or(super::subdivide::DEFAULT_RINGS);
-                rings = Some(r);
-                complex_scene(s, &net, r, !a.no_fill)?
-            }
-        }
-    };
-    let out = render::render(&scene, &opts)?;
-    out.image.write_png(&a.output)?;
-    if a.json {
-        let report = RenderReport {
-            input: &a.net,
-            scheme: a.scheme.as_deref(),
-            rings,
-            mode,
-            output: a.output.display().to_string(),
-            width: out.image.width,
-            height: out.image.height,
-            supersample: opts.supersample,
-            camera: &out.camera,
-            region: &out.region,
-            range: out.range.map(|value| RangeReport {
-                mode,
-                value,
-                automatic: opts.shade.range.is_none(),
-            }),
-            stripe_period: out.stripe_period,
-            frame: &out.stats,
-            groups: scene
-                .complex()
-                .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
-                .unwrap_or_default(),
-        };
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&report).expect("serialisable")
-        );
-    }
-    eprintln!(
-        "wrote {} ({}x{}, {}{})",
-        a.output.display(),
-        out.image.width,
-        out.image.height,
-        mode.name(),
-        out.range
-            .map(|r| format!(", range +-{}", render::text::format_number(r)))
-            .unwrap_or_default()
-    );
     Ok(())
+}
+
+/// The scene `render` draws: a `.bv` file's patches, the net, the net refined `--levels`
+/// times (with the net drawn over it), or the scheme's patch complex (and its rings).
+fn render_scene(a: &RenderArgs, spec: Option<&Spec>, bv: bool) -> Result<(Scene, Option<usize>)> {
+    if bv {
+        return Ok((bv_scene(&a.net)?, None));
+    }
+    let net = super::load_net(&a.net)?.mesh;
+    Ok(match (spec, a.levels) {
+        (None, _) => (Scene::mesh(&net), None),
+        (Some(s), Some(levels)) => {
+            let rules = super::subdivide::mesh_rules(s)?;
+            super::limits::check_levels(rules.as_ref(), &net, levels)?;
+            let fine = super::subdivide::refine_with(rules.as_ref(), &net, levels, false)?;
+            let mut scene = Scene::mesh(&fine);
+            scene.net = Some(net);
+            (scene, None)
+        }
+        (Some(s), None) => {
+            let r = a.rings.unwrap_or(super::subdivide::DEFAULT_RINGS);
+            (complex_scene(s, &net, r, !a.no_fill)?, Some(r))
+        }
+    })
+}
+
+/// Tells on standard error that the image `output` was written: its size, then `detail`.
+pub(super) fn say_wrote(output: &Path, image: &render::Image, detail: &str) {
+    eprintln!(
+        "wrote {} ({}x{}{detail})",
+        output.display(),
+        image.width,
+        image.height
+    );
+}
+
+/// The per-ring curvature numbers of a scene's patches (none for a net).
+pub(super) fn group_curvature(scene: &Scene) -> Vec<stats::GroupCurvature> {
+    scene
+        .complex()
+        .map(|c| stats::curvature_by_group(c, GROUP_SAMPLES))
+        .unwrap_or_default()
 }
 
 pub use super::compare::{demo_compare, run_compare};

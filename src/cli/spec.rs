@@ -65,18 +65,7 @@ fn takes(spec: &Spec, kind: ParamKind) -> bool {
 pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
     let mut spec = registry().lookup(name)?;
     if let Some(l) = o.lambda {
-        if !takes(&spec, ParamKind::Contraction) {
-            return Err(Error::InvalidArgument(format!(
-                "--lambda {l}: only the guided schemes ({}) take a contraction; '{name}' has its own",
-                takers(ParamKind::Contraction).join(", ")
-            )));
-        }
-        if (l - 0.5).abs() > 1e-12 {
-            return Err(Error::InvalidArgument(format!(
-                "--lambda {l}: guided subdivision offers lambda = 0.5 (QAS+'s characteristic map, valences 5..10) or, without --lambda, Catmull-Clark's lambda"
-            )));
-        }
-        spec.params.chi = Some(ChiKind::Half);
+        set_contraction(&mut spec, name, l)?;
     }
     if o.split_ratio.is_some() || o.alpha_rule.is_some() {
         if !takes(&spec, ParamKind::SplitRatio) {
@@ -130,16 +119,48 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
         spec.params.rules = r;
     }
     let s = o.subd;
+    check_sharp_features(&spec, name, o)?;
+    spec.params.subd = s;
+    if let Some(f) = o.fallback {
+        spec.params.fallback = f;
+    }
+    spec.params.prepare = o.prepare;
+    Ok(spec)
+}
+
+/// `--lambda l` on the scheme `name`: only the guided schemes take a contraction, and they
+/// offer 0.5 (or, without the option, Catmull-Clark's lambda).
+fn set_contraction(spec: &mut Spec, name: &str, l: f64) -> Result<()> {
+    if !takes(spec, ParamKind::Contraction) {
+        return Err(Error::InvalidArgument(format!(
+            "--lambda {l}: only the guided schemes ({}) take a contraction; '{name}' has its own",
+            takers(ParamKind::Contraction).join(", ")
+        )));
+    }
+    if (l - 0.5).abs() > 1e-12 {
+        return Err(Error::InvalidArgument(format!(
+            "--lambda {l}: guided subdivision offers lambda = 0.5 (QAS+'s characteristic map, valences 5..10) or, without --lambda, Catmull-Clark's lambda"
+        )));
+    }
+    spec.params.chi = Some(ChiKind::Half);
+    Ok(())
+}
+
+/// Checks OpenSubdiv's sharp features and options (`--boundary`, `--crease-method`, `--fvar`,
+/// `--creases`, `--smooth-triangles`) against the scheme `name`: the dual schemes' boundary
+/// modes and the schemes with a crease construction of their own take some of them on the net.
+fn check_sharp_features(spec: &Spec, name: &str, o: &SchemeOptions<'_>) -> Result<()> {
+    let s = o.subd;
     let boundary_only = s.crease_method.is_none() && s.fvar.is_none() && !o.creases;
     let crease_only =
-        s.fvar.is_none() && (s.boundary.is_none() || takes(&spec, ParamKind::BoundaryMode));
-    if s.boundary.is_some() && boundary_only && takes(&spec, ParamKind::BoundaryMode) {
+        s.fvar.is_none() && (s.boundary.is_none() || takes(spec, ParamKind::BoundaryMode));
+    if s.boundary.is_some() && boundary_only && takes(spec, ParamKind::BoundaryMode) {
         // the dual schemes' boundary modes: the front end puts the option on the net
-    } else if crease_only && takes(&spec, ParamKind::Creases) {
+    } else if crease_only && takes(spec, ParamKind::Creases) {
         // crease tags and the crease method of the schemes with a crease construction of
         // their own: the front end puts them on the net
     } else if (s.boundary.is_some() || s.crease_method.is_some() || s.fvar.is_some() || o.creases)
-        && !takes(&spec, ParamKind::SharpFeatures)
+        && !takes(spec, ParamKind::SharpFeatures)
     {
         return Err(Error::InvalidArgument(format!(
             "{} set OpenSubdiv's sharp features and options, which {} take, not '{name}'",
@@ -147,7 +168,7 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
             and_list(&takers(ParamKind::SharpFeatures))
         )));
     }
-    if s.triangles.is_some() && !takes(&spec, ParamKind::SmoothTriangles) {
+    if s.triangles.is_some() && !takes(spec, ParamKind::SmoothTriangles) {
         return Err(Error::InvalidArgument(format!(
             "--smooth-triangles is OpenSubdiv's Catmark option, which {} take{}, not '{name}'",
             and_list(&takers(ParamKind::SmoothTriangles)),
@@ -158,12 +179,7 @@ pub fn resolve(name: &str, o: &SchemeOptions<'_>) -> Result<Spec> {
             }
         )));
     }
-    spec.params.subd = s;
-    if let Some(f) = o.fallback {
-        spec.params.fallback = f;
-    }
-    spec.params.prepare = o.prepare;
-    Ok(spec)
+    Ok(())
 }
 
 /// The name a report shows for `spec` given as `name`: with `--lambda 0.5` a guided scheme is

@@ -252,9 +252,9 @@ fn obj_fcvs_from_bytes(
 ) -> Result<(PolyMesh, Option<Vec<Point>>, Vec<String>)> {
     let data = obj::parse_obj(bytes, path)?;
     let nf = data.num_faces();
-    let total = data.positions.len();
+    let total = data.listed.positions.len();
     // The last nf `v` lines, candidates for the FCVs (the mesh drops them as unused).
-    let tail: Vec<Point> = data.positions[total.saturating_sub(nf)..].to_vec();
+    let tail: Vec<Point> = data.listed.positions[total.saturating_sub(nf)..].to_vec();
     let LoadedMesh { mesh, warnings } = data.into_mesh(path)?;
     let marker = fcv_marker(bytes);
     let dropped = mesh.dropped_vertices().to_vec();

@@ -140,7 +140,40 @@ fn document(m: &SceneMesh, name: &str) -> Result<(json::Root, Vec<u8>)> {
         bin: Vec::new(),
     };
     use json::accessor::{ComponentType as C, Type as T};
-    use json::buffer::Target::{ArrayBuffer, ElementArrayBuffer};
+    use json::buffer::Target::ElementArrayBuffer;
+    let attributes = vertex_attributes(&mut b, m, &v);
+    let idx: Vec<u8> = v
+        .triangles
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    let indices = b.accessor(
+        &idx,
+        3 * v.triangles.len(),
+        (T::Scalar, C::U32),
+        ElementArrayBuffer,
+        None,
+    );
+    scene(&mut b, name, attributes, indices);
+    while !b.bin.len().is_multiple_of(4) {
+        b.bin.push(0);
+    }
+    Ok((b.root, b.bin))
+}
+
+/// A primitive's attributes: the accessor of each semantic.
+type Attributes = std::collections::BTreeMap<
+    json::validation::Checked<json::mesh::Semantic>,
+    json::Index<json::Accessor>,
+>;
+
+/// The accessors of the glTF vertices' attributes: positions (with their bounds), unit
+/// normals (the face normals where the mesh's are not of unit length), texture coordinates
+/// (t flipped) and colours when the mesh has them.
+fn vertex_attributes(b: &mut Builder, m: &SceneMesh, v: &Vertices) -> Attributes {
+    use json::accessor::{ComponentType as C, Type as T};
+    use json::buffer::Target::ArrayBuffer;
     let pos: Vec<[f32; 3]> = v
         .point
         .iter()
@@ -195,19 +228,17 @@ fn document(m: &SceneMesh, name: &str) -> Result<(json::Root, Vec<u8>)> {
         let a = b.accessor(&f32_bytes(rgb), n, (T::Vec3, C::F32), ArrayBuffer, None);
         attributes.insert(Valid(json::mesh::Semantic::Colors(0)), a);
     }
-    let idx: Vec<u8> = v
-        .triangles
-        .iter()
-        .flatten()
-        .flat_map(|i| i.to_le_bytes())
-        .collect();
-    let indices = b.accessor(
-        &idx,
-        3 * v.triangles.len(),
-        (T::Scalar, C::U32),
-        ElementArrayBuffer,
-        None,
-    );
+    attributes
+}
+
+/// The mesh of one triangle primitive (`attributes`, `indices`), its node and scene, all
+/// named `name`, and the asset's generator and version.
+fn scene(
+    b: &mut Builder,
+    name: &str,
+    attributes: Attributes,
+    indices: json::Index<json::Accessor>,
+) {
     let mesh = b.root.push(json::Mesh {
         extensions: None,
         extras: Default::default(),
@@ -243,10 +274,6 @@ fn document(m: &SceneMesh, name: &str) -> Result<(json::Root, Vec<u8>)> {
         min_version: None,
         version: "2.0".to_string(),
     };
-    while !b.bin.len().is_multiple_of(4) {
-        b.bin.push(0);
-    }
-    Ok((b.root, b.bin))
 }
 
 /// The bytes of the file.

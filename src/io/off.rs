@@ -31,10 +31,54 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
     let bytes = read_all(reader, path)?;
     // Non-empty content lines (comments stripped, trimmed) with their 1-based numbers.
     let mut lines = Lines::new(&bytes, path);
+    let mut warnings = Vec::new();
+    let (counts_line, toks) = read_header(&mut lines, path, &mut warnings)?;
+    let (nv, nf) = parse_counts(&toks, counts_line, path)?;
+    // Counts come from the file: never reserve more than its size can hold (a vertex or face
+    // line has at least 6 bytes), so a garbage count cannot trigger a huge allocation.
+    let cap = |n: usize| n.min(bytes.len() / 6 + 1);
+    let mut listed = ListedMesh {
+        positions: Vec::with_capacity(cap(nv)),
+        vertex_line: Vec::with_capacity(cap(nv)),
+        face_start: Vec::with_capacity(cap(nf) + 1),
+        corners: Vec::with_capacity(3 * cap(nf)),
+        face_line: Vec::with_capacity(cap(nf)),
+    };
+    read_vertices(&mut lines, path, nv, &mut listed)?;
+    read_faces(&mut lines, path, (nf, nv), &mut listed)?;
+    if let Some((l, _)) = lines.next_content()? {
+        warnings.push(format!(
+            "ignored content after the last face, from line {l} on"
+        ));
+    }
+    if listed.face_line.is_empty() {
+        return Err(parse_error(
+            path,
+            counts_line,
+            format!("no faces ({nv} vertices); fairsub needs a polygon mesh"),
+        ));
+    }
+    let mesh = finish_listed(
+        path,
+        listed,
+        " (faces and vertices counted from 0 in file order)",
+        &mut warnings,
+        tolerant,
+    )?;
+    Ok(LoadedMesh { mesh, warnings })
+}
+
+/// The header: the keyword (`OFF`, `COFF`, ...; refused: other dimensions and binary OFF) and
+/// the counts line's tokens with its number (on the keyword's line or the next one; the first
+/// line itself, with a warning, when the file has no keyword).
+fn read_header<'a>(
+    lines: &mut Lines<'a>,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> Result<(usize, Vec<&'a str>)> {
     let (first_line, first) =
         lines.require(|| "empty file: expected an 'OFF' header".to_string())?;
     let mut toks: Vec<&str> = first.split_whitespace().collect();
-    let mut warnings = Vec::new();
     let mut counts_line = first_line;
     if toks[0].parse::<u64>().is_err() {
         let kw = toks[0];
@@ -79,6 +123,11 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
     } else {
         warnings.push("no 'OFF' header keyword; the first line was read as the counts".to_string());
     }
+    Ok((counts_line, toks))
+}
+
+/// The vertex and face counts of the counts line (number `counts_line`).
+fn parse_counts(toks: &[&str], counts_line: usize, path: &Path) -> Result<(usize, usize)> {
     if toks.len() < 2 {
         return Err(parse_error(
             path,
@@ -107,12 +156,16 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
         ));
     }
     let nf = count(1, "face")?;
+    Ok((nv, nf))
+}
 
-    // Counts come from the file: never reserve more than its size can hold (a vertex or face
-    // line has at least 6 bytes), so a garbage count cannot trigger a huge allocation.
-    let cap = |n: usize| n.min(bytes.len() / 6 + 1);
-    let mut positions = Vec::with_capacity(cap(nv));
-    let mut vertex_line = Vec::with_capacity(cap(nv));
+/// The `nv` vertex lines: x y z each (anything after them is ignored).
+fn read_vertices(
+    lines: &mut Lines<'_>,
+    path: &Path,
+    nv: usize,
+    listed: &mut ListedMesh,
+) -> Result<()> {
     for k in 0..nv {
         let (l, t) = lines.require(|| format!("file ends after {k} of {nv} vertices"))?;
         let mut it = t.split_whitespace();
@@ -136,14 +189,22 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
                 )
             })?;
         }
-        positions.push(p);
-        vertex_line.push(l as u32);
+        listed.positions.push(p);
+        listed.vertex_line.push(l as u32);
     }
+    Ok(())
+}
 
-    let mut face_start: Vec<u32> = Vec::with_capacity(cap(nf) + 1);
-    face_start.push(0);
-    let mut corners: Vec<u32> = Vec::with_capacity(3 * cap(nf));
-    let mut face_line = Vec::with_capacity(cap(nf));
+/// The `nf` face lines: a corner count, then that many indices below `nv` (anything after
+/// them is ignored).
+fn read_faces(
+    lines: &mut Lines<'_>,
+    path: &Path,
+    (nf, nv): (usize, usize),
+    listed: &mut ListedMesh,
+) -> Result<()> {
+    let corners = &mut listed.corners;
+    listed.face_start.push(0);
     for k in 0..nf {
         let (l, t) = lines.require(|| format!("file ends after {k} of {nf} faces"))?;
         let mut it = t.split_whitespace();
@@ -184,36 +245,10 @@ pub fn read_off_with<R: Read>(reader: R, path: &Path, tolerant: bool) -> Result<
         if corners.len() > u32::MAX as usize {
             return Err(parse_error(path, l, "more than 2^32 - 1 face corners"));
         }
-        face_start.push(corners.len() as u32);
-        face_line.push(l as u32);
+        listed.face_start.push(corners.len() as u32);
+        listed.face_line.push(l as u32);
     }
-    if let Some((l, _)) = lines.next_content()? {
-        warnings.push(format!(
-            "ignored content after the last face, from line {l} on"
-        ));
-    }
-    if face_line.is_empty() {
-        return Err(parse_error(
-            path,
-            counts_line,
-            format!("no faces ({nv} vertices); fairsub needs a polygon mesh"),
-        ));
-    }
-    let listed = ListedMesh {
-        positions,
-        face_start,
-        corners,
-        vertex_line,
-        face_line,
-    };
-    let mesh = finish_listed(
-        path,
-        listed,
-        " (faces and vertices counted from 0 in file order)",
-        &mut warnings,
-        tolerant,
-    )?;
-    Ok(LoadedMesh { mesh, warnings })
+    Ok(())
 }
 
 /// Writes polygons as ascii OFF with round-trip precision.

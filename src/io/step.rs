@@ -157,21 +157,40 @@ pub fn step_to_string(
     file_name: &str,
     tolerance: f64,
 ) -> Result<String> {
-    let name = string(file_name);
     let stem = string(
         Path::new(file_name)
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or("fairsub"),
     );
+    let out = header(surfaces.len(), brep, file_name);
+    let mut d = Data { out, next: 1 };
+    let pds = product(&mut d, &stem);
+    let ctx = representation_context(&mut d, tolerance);
+    let origin = d.point([0.0; 3]);
+    let z = d.add("DIRECTION('',(0.,0.,1.))");
+    let x = d.add("DIRECTION('',(1.,0.,0.))");
+    let axis = d.add(&format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
+    let faces = advanced_faces(&mut d, surfaces, brep);
+    let rep = shape_representation(&mut d, brep, &faces, &stem, (axis, ctx));
+    d.add(&format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"));
+    let mut out = d.out;
+    out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
+    Ok(out)
+}
+
+/// The file's start: the `HEADER` section (what the file holds, its name and date, the AP214
+/// schema) and the opening of the `DATA` section.
+fn header(faces: usize, brep: &Brep, file_name: &str) -> String {
+    let name = string(file_name);
     let closed = brep.is_closed();
-    let mut out = String::with_capacity(200 * surfaces.len() + 1000);
+    let mut out = String::with_capacity(200 * faces + 1000);
     out.push_str("ISO-10303-21;\nHEADER;\n");
     let _ = writeln!(
         out,
         "FILE_DESCRIPTION(('fairsub {}: {} B-spline faces, {} edges, {}'),'2;1');",
         env!("CARGO_PKG_VERSION"),
-        surfaces.len(),
+        faces,
         brep.edges.len(),
         if closed { "closed shell" } else { "open shell" }
     );
@@ -182,7 +201,11 @@ pub fn step_to_string(
         env!("CARGO_PKG_VERSION")
     );
     out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
-    let mut d = Data { out, next: 1 };
+    out
+}
+
+/// The product named `stem` and its contexts, down to its shape's definition (returned).
+fn product(d: &mut Data, stem: &str) -> usize {
     let app = d.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
     d.add(&format!(
         "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
@@ -197,7 +220,12 @@ pub fn step_to_string(
         "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
     ));
     let pd = d.add(&format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"));
-    let pds = d.add(&format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"));
+    d.add(&format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"))
+}
+
+/// The geometric context: millimetres, radians, steradians and the distance accuracy
+/// `tolerance`.
+fn representation_context(d: &mut Data, tolerance: f64) -> usize {
     let mm = d.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))");
     let rad = d.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
     let sr = d.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
@@ -205,14 +233,14 @@ pub fn step_to_string(
         "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{mm},'distance_accuracy_value','maximum gap between faces')",
         real(tolerance)
     ));
-    let ctx = d.add(&format!(
+    d.add(&format!(
         "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{rad},#{sr}))REPRESENTATION_CONTEXT('',''))"
-    ));
-    let origin = d.point([0.0; 3]);
-    let z = d.add("DIRECTION('',(0.,0.,1.))");
-    let x = d.add("DIRECTION('',(1.,0.,0.))");
-    let axis = d.add(&format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
-    // topology
+    ))
+}
+
+/// The topology: a vertex point per B-rep vertex, an edge curve per edge, and per surface an
+/// advanced face bounded by its loop of oriented edges.
+fn advanced_faces(d: &mut Data, surfaces: &[SplineSurface], brep: &Brep) -> Vec<usize> {
     let vertices: Vec<usize> = brep
         .vertices
         .iter()
@@ -225,7 +253,7 @@ pub fn step_to_string(
         .edges
         .iter()
         .map(|e| {
-            let c = curve(&mut d, &e.curve);
+            let c = curve(d, &e.curve);
             d.add(&format!(
                 "EDGE_CURVE('',#{},#{},#{c},.T.)",
                 vertices[e.ends[0] as usize], vertices[e.ends[1] as usize]
@@ -246,10 +274,22 @@ pub fn step_to_string(
             .collect();
         let lp = d.add(&format!("EDGE_LOOP('',{})", refs(oes)));
         let bound = d.add(&format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
-        let surf = surface(&mut d, s);
+        let surf = surface(d, s);
         faces.push(d.add(&format!("ADVANCED_FACE('',(#{bound}),#{surf},.T.)")));
     }
-    // one shell per connected component: all closed, solids; otherwise a surface model
+    faces
+}
+
+/// One shell per connected component of `faces`: all closed, solids in an advanced B-rep
+/// representation; otherwise a shell-based surface model; placed by `axis` in context `ctx`.
+fn shape_representation(
+    d: &mut Data,
+    brep: &Brep,
+    faces: &[usize],
+    stem: &str,
+    (axis, ctx): (usize, usize),
+) -> usize {
+    let closed = brep.is_closed();
     let shells: Vec<(usize, bool)> = brep
         .shell_faces()
         .iter()
@@ -265,7 +305,7 @@ pub fn step_to_string(
             )
         })
         .collect();
-    let rep = if closed {
+    if closed {
         let solids: Vec<usize> = shells
             .iter()
             .map(|(s, _)| d.add(&format!("MANIFOLD_SOLID_BREP('{stem}',#{s})")))
@@ -282,11 +322,7 @@ pub fn step_to_string(
         d.add(&format!(
             "MANIFOLD_SURFACE_SHAPE_REPRESENTATION('{stem}',(#{axis},#{model}),#{ctx})"
         ))
-    };
-    d.add(&format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"));
-    let mut out = d.out;
-    out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
-    Ok(out)
+    }
 }
 
 /// Writes the faces with their topology as a STEP file (atomically).

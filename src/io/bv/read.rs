@@ -207,24 +207,11 @@ pub(super) fn parse_bv_bytes(bytes: &[u8], path: &Path) -> Result<BvFile> {
     let mut group_numbers = FirstSeen::default();
     let mut group: Option<usize> = None;
     let mut seg = 0usize;
-    let (mut pn_tri, mut pn_quad, mut rational) = (0usize, 0usize, 0usize);
+    let mut plain = PlainCounts::default();
     while let Some(t) = cur.peek() {
         cur.pos += 1;
         if t.s == "group" || t.s == "Group" {
-            let id = cur.int(&|| format!("the group id after 'group' on line {}", t.line))?;
-            let name_tok = cur.next(&|| format!("the group name after 'group {id}'"))?;
-            let name = name_tok.s.to_string();
-            // BezierView reads the rest of the group line itself.
-            while cur.peek().is_some_and(|n| n.line == name_tok.line) {
-                cur.pos += 1;
-            }
-            let (k, new) = group_numbers.number(&name);
-            if new {
-                file.groups.push(BvGroup { id, name });
-            } else {
-                file.groups[k].id = id;
-            }
-            group = Some(k);
+            group = Some(read_group(&mut cur, t, &mut file, &mut group_numbers)?);
             continue;
         }
         seg += 1;
@@ -261,66 +248,13 @@ pub(super) fn parse_bv_bytes(bytes: &[u8], path: &Path) -> Result<BvFile> {
                 });
             }
             3 | 9 => {
-                let deg = cur.count(&|| what("the degree"), MAX_DEGREE)?;
-                let ndeg = if kind == 9 {
-                    Some(cur.count(&|| what("the normal degree"), MAX_DEGREE)?)
-                } else {
-                    None
-                };
-                let cps = cur.points(TriPatch::count(deg), &|k| {
-                    what(&format!("control point {k}"))
-                })?;
-                if let Some(nd) = ndeg {
-                    cur.points(TriPatch::count(nd), &|k| {
-                        what(&format!("normal coefficient {k}"))
-                    })?;
-                    pn_tri += 1;
-                }
-                file.tri_patches.push(TriPatch { deg, cps });
+                file.tri_patches
+                    .push(read_triangular(&mut cur, kind, &what, &mut plain)?);
                 file.tri_groups.push(group);
             }
             4 | 5 | 8 | 10 => {
-                let du = cur.count(&|| what("the degree in u"), MAX_DEGREE)?;
-                let dv = if kind == 4 {
-                    du
-                } else {
-                    cur.count(&|| what("the degree in v"), MAX_DEGREE)?
-                };
-                let ndeg = if kind == 10 {
-                    let a = cur.count(&|| what("the normal degree in u"), MAX_DEGREE)?;
-                    let b = cur.count(&|| what("the normal degree in v"), MAX_DEGREE)?;
-                    Some((a, b))
-                } else {
-                    None
-                };
-                let n = (du + 1) * (dv + 1);
-                let (cps, weights) = if kind == 8 {
-                    let (cps, ws) = cur.rational_points(n, &what)?;
-                    // equal weights: a polynomial patch
-                    let equal = ws.iter().all(|&w| (w - ws[0]).abs() <= 1e-12 * ws[0]);
-                    rational += usize::from(equal);
-                    (cps, (!equal).then_some(ws))
-                } else {
-                    (
-                        cur.points(n, &|k| what(&format!("control point {k}")))?,
-                        None,
-                    )
-                };
-                if let Some((a, b)) = ndeg {
-                    cur.points((a + 1) * (b + 1), &|k| {
-                        what(&format!("normal coefficient {k}"))
-                    })?;
-                    pn_quad += 1;
-                }
-                file.patches.push(
-                    BezierPatch {
-                        deg_u: du,
-                        deg_v: dv,
-                        cps,
-                        weights,
-                    },
-                    Provenance::Unknown,
-                );
+                let patch = read_tensor(&mut cur, kind, &what, &mut plain)?;
+                file.patches.push(patch, Provenance::Unknown);
                 file.patch_groups.push(group);
             }
             other => {
@@ -332,20 +266,140 @@ pub(super) fn parse_bv_bytes(bytes: &[u8], path: &Path) -> Result<BvFile> {
             }
         }
     }
-    if pn_tri > 0 {
-        file.warnings.push(format!(
-            "{pn_tri} PN triangle patches (type 9) read as plain triangular patches; their normals were dropped"
-        ));
-    }
-    if pn_quad > 0 {
-        file.warnings.push(format!(
-            "{pn_quad} PN quad patches (type 10) read as plain patches; their normals were dropped"
-        ));
-    }
-    if rational > 0 {
-        file.warnings.push(format!(
-            "{rational} rational patches (type 8) with equal weights read as polynomial patches"
-        ));
-    }
+    plain.warn(&mut file.warnings);
     Ok(file)
+}
+
+/// The patches read as plainer ones than their type: PN triangles and quads without their
+/// normals, rational patches with equal weights as polynomial ones.
+#[derive(Default)]
+struct PlainCounts {
+    pn_tri: usize,
+    pn_quad: usize,
+    rational: usize,
+}
+
+impl PlainCounts {
+    /// A warning for each kind of patch read as a plainer one.
+    fn warn(&self, warnings: &mut Vec<String>) {
+        let PlainCounts {
+            pn_tri,
+            pn_quad,
+            rational,
+        } = *self;
+        if pn_tri > 0 {
+            warnings.push(format!(
+                "{pn_tri} PN triangle patches (type 9) read as plain triangular patches; their normals were dropped"
+            ));
+        }
+        if pn_quad > 0 {
+            warnings.push(format!(
+                "{pn_quad} PN quad patches (type 10) read as plain patches; their normals were dropped"
+            ));
+        }
+        if rational > 0 {
+            warnings.push(format!(
+                "{rational} rational patches (type 8) with equal weights read as polynomial patches"
+            ));
+        }
+    }
+}
+
+/// A `group ID NAME` line (`t` is its keyword): the rest of the line is skipped, as BezierView
+/// does; a name seen before keeps its number and takes the new id. Returns the group's number.
+fn read_group(
+    cur: &mut Cursor<'_>,
+    t: Tok<'_>,
+    file: &mut BvFile,
+    group_numbers: &mut FirstSeen,
+) -> Result<usize> {
+    let id = cur.int(&|| format!("the group id after 'group' on line {}", t.line))?;
+    let name_tok = cur.next(&|| format!("the group name after 'group {id}'"))?;
+    let name = name_tok.s.to_string();
+    // BezierView reads the rest of the group line itself.
+    while cur.peek().is_some_and(|n| n.line == name_tok.line) {
+        cur.pos += 1;
+    }
+    let (k, new) = group_numbers.number(&name);
+    if new {
+        file.groups.push(BvGroup { id, name });
+    } else {
+        file.groups[k].id = id;
+    }
+    Ok(k)
+}
+
+/// A triangular patch (type 3) or PN triangle (type 9, whose normal coefficients are read and
+/// dropped); `what` names a value in messages.
+fn read_triangular(
+    cur: &mut Cursor<'_>,
+    kind: i64,
+    what: &dyn Fn(&str) -> String,
+    plain: &mut PlainCounts,
+) -> Result<TriPatch> {
+    let deg = cur.count(&|| what("the degree"), MAX_DEGREE)?;
+    let ndeg = if kind == 9 {
+        Some(cur.count(&|| what("the normal degree"), MAX_DEGREE)?)
+    } else {
+        None
+    };
+    let cps = cur.points(TriPatch::count(deg), &|k| {
+        what(&format!("control point {k}"))
+    })?;
+    if let Some(nd) = ndeg {
+        cur.points(TriPatch::count(nd), &|k| {
+            what(&format!("normal coefficient {k}"))
+        })?;
+        plain.pn_tri += 1;
+    }
+    Ok(TriPatch { deg, cps })
+}
+
+/// A tensor-product patch: type 4 (one degree), 5 (two), 8 (rational; equal weights make a
+/// polynomial patch) or 10 (PN quad, whose normal coefficients are read and dropped); `what`
+/// names a value in messages.
+fn read_tensor(
+    cur: &mut Cursor<'_>,
+    kind: i64,
+    what: &dyn Fn(&str) -> String,
+    plain: &mut PlainCounts,
+) -> Result<BezierPatch> {
+    let du = cur.count(&|| what("the degree in u"), MAX_DEGREE)?;
+    let dv = if kind == 4 {
+        du
+    } else {
+        cur.count(&|| what("the degree in v"), MAX_DEGREE)?
+    };
+    let ndeg = if kind == 10 {
+        let a = cur.count(&|| what("the normal degree in u"), MAX_DEGREE)?;
+        let b = cur.count(&|| what("the normal degree in v"), MAX_DEGREE)?;
+        Some((a, b))
+    } else {
+        None
+    };
+    let n = (du + 1) * (dv + 1);
+    let (cps, weights) = if kind == 8 {
+        let (cps, ws) = cur.rational_points(n, what)?;
+        // equal weights: a polynomial patch
+        let equal = ws.iter().all(|&w| (w - ws[0]).abs() <= 1e-12 * ws[0]);
+        plain.rational += usize::from(equal);
+        (cps, (!equal).then_some(ws))
+    } else {
+        (
+            cur.points(n, &|k| what(&format!("control point {k}")))?,
+            None,
+        )
+    };
+    if let Some((a, b)) = ndeg {
+        cur.points((a + 1) * (b + 1), &|k| {
+            what(&format!("normal coefficient {k}"))
+        })?;
+        plain.pn_quad += 1;
+    }
+    Ok(BezierPatch {
+        deg_u: du,
+        deg_v: dv,
+        cps,
+        weights,
+    })
 }

@@ -228,89 +228,9 @@ impl<'a> Records<'a> {
         let mut claimed = vec![false; np];
         let mut entries = Vec::with_capacity(d_lines.len() / 2);
         for e in 0..d_lines.len() / 2 {
-            let (a, b) = (rec(d_lines[2 * e]), rec(d_lines[2 * e + 1]));
-            let line = d_lines[2 * e] + 1;
-            let seq = 2 * e + 1;
-            let field = |r: &str, k: usize| r[8 * k..8 * k + 8].trim().to_string();
-            let int = |r: &str, k: usize, l: usize| -> Result<i64> {
-                let f = field(r, k);
-                if f.is_empty() {
-                    return Ok(0);
-                }
-                f.parse::<i64>().map_err(|_| {
-                    parse_error(
-                        path,
-                        l,
-                        format!(
-                            "directory entry field {} is '{f}', not an integer",
-                            k + 1 + if l == line { 0 } else { 10 }
-                        ),
-                    )
-                })
-            };
-            let entity = int(a, 0, line)?;
-            let entity2 = int(b, 0, line + 1)?;
-            if entity != entity2 {
-                return Err(parse_error(
-                    path,
-                    line + 1,
-                    format!(
-                        "directory entry {seq}: entity type {entity} in its first record but {entity2} in its second"
-                    ),
-                ));
-            }
-            let p_start = int(a, 1, line)?;
-            let p_count = int(b, 3, line + 1)?;
-            if p_start < 1 || p_start as usize > np {
-                return Err(parse_error(
-                    path,
-                    line,
-                    format!(
-                        "directory entry {seq}: parameter data pointer {p_start} is outside the P section (1..={np})"
-                    ),
-                ));
-            }
-            if p_count < 1 || (p_start + p_count - 1) as usize > np {
-                return Err(parse_error(
-                    path,
-                    line + 1,
-                    format!(
-                        "directory entry {seq}: parameter record count {p_count} from record {p_start} runs past the P section ({np} records)"
-                    ),
-                ));
-            }
-            let (p_start, p_count) = (p_start as usize, p_count as usize);
-            for q in p_start - 1..p_start - 1 + p_count {
-                if p_owner[q] != seq {
-                    return Err(parse_error(
-                        path,
-                        p_lines[q] + 1,
-                        format!(
-                            "parameter record {} names directory entry {} in columns 66-72, but directory entry {seq} (line {line}) points to it",
-                            q + 1,
-                            p_owner[q]
-                        ),
-                    ));
-                }
-                if claimed[q] {
-                    return Err(parse_error(
-                        path,
-                        p_lines[q] + 1,
-                        format!(
-                            "parameter record {} belongs to two directory entries",
-                            q + 1
-                        ),
-                    ));
-                }
-                claimed[q] = true;
-            }
-            entries.push(DirEntry {
-                line,
-                seq,
-                entity,
-                p_start,
-                p_count,
-            });
+            let entry = self.dir_entry(e, path)?;
+            claim_records(&entry, &p_owner, &mut claimed, p_lines, path)?;
+            entries.push(entry);
         }
         if let Some(q) = claimed.iter().position(|c| !c) {
             return Err(parse_error(
@@ -320,6 +240,72 @@ impl<'a> Records<'a> {
             ));
         }
         Ok(entries)
+    }
+
+    /// Directory entry `e` (its two records): the entity type, the same in both, and the
+    /// parameter records it points to, inside the P section.
+    fn dir_entry(&self, e: usize, path: &Path) -> Result<DirEntry> {
+        let d_lines = &self.sections[2];
+        let np = self.sections[3].len();
+        let rec = |i: usize| self.rec(i);
+        let (a, b) = (rec(d_lines[2 * e]), rec(d_lines[2 * e + 1]));
+        let line = d_lines[2 * e] + 1;
+        let seq = 2 * e + 1;
+        let field = |r: &str, k: usize| r[8 * k..8 * k + 8].trim().to_string();
+        let int = |r: &str, k: usize, l: usize| -> Result<i64> {
+            let f = field(r, k);
+            if f.is_empty() {
+                return Ok(0);
+            }
+            f.parse::<i64>().map_err(|_| {
+                parse_error(
+                    path,
+                    l,
+                    format!(
+                        "directory entry field {} is '{f}', not an integer",
+                        k + 1 + if l == line { 0 } else { 10 }
+                    ),
+                )
+            })
+        };
+        let entity = int(a, 0, line)?;
+        let entity2 = int(b, 0, line + 1)?;
+        if entity != entity2 {
+            return Err(parse_error(
+                path,
+                line + 1,
+                format!(
+                    "directory entry {seq}: entity type {entity} in its first record but {entity2} in its second"
+                ),
+            ));
+        }
+        let p_start = int(a, 1, line)?;
+        let p_count = int(b, 3, line + 1)?;
+        if p_start < 1 || p_start as usize > np {
+            return Err(parse_error(
+                path,
+                line,
+                format!(
+                    "directory entry {seq}: parameter data pointer {p_start} is outside the P section (1..={np})"
+                ),
+            ));
+        }
+        if p_count < 1 || (p_start + p_count - 1) as usize > np {
+            return Err(parse_error(
+                path,
+                line + 1,
+                format!(
+                    "directory entry {seq}: parameter record count {p_count} from record {p_start} runs past the P section ({np} records)"
+                ),
+            ));
+        }
+        Ok(DirEntry {
+            line,
+            seq,
+            entity,
+            p_start: p_start as usize,
+            p_count: p_count as usize,
+        })
     }
 
     /// The patches of the entities (only entity 128 is read).
@@ -370,4 +356,41 @@ impl<'a> Records<'a> {
         }
         Ok(out)
     }
+}
+
+/// Marks the parameter records of `entry` as claimed: each must name the entry in columns
+/// 66-72 (`p_owner`) and belong to no other.
+fn claim_records(
+    entry: &DirEntry,
+    p_owner: &[usize],
+    claimed: &mut [bool],
+    p_lines: &[usize],
+    path: &Path,
+) -> Result<()> {
+    let (line, seq, p_start, p_count) = (entry.line, entry.seq, entry.p_start, entry.p_count);
+    for q in p_start - 1..p_start - 1 + p_count {
+        if p_owner[q] != seq {
+            return Err(parse_error(
+                path,
+                p_lines[q] + 1,
+                format!(
+                    "parameter record {} names directory entry {} in columns 66-72, but directory entry {seq} (line {line}) points to it",
+                    q + 1,
+                    p_owner[q]
+                ),
+            ));
+        }
+        if claimed[q] {
+            return Err(parse_error(
+                path,
+                p_lines[q] + 1,
+                format!(
+                    "parameter record {} belongs to two directory entries",
+                    q + 1
+                ),
+            ));
+        }
+        claimed[q] = true;
+    }
+    Ok(())
 }

@@ -305,6 +305,32 @@ fn sections<'a>(
     let max_coord = points
         .flat_map(|q| q.iter())
         .fold(0.0f64, |m, x| m.max(x.abs()));
+    let g = global_section(max_coord, file_name, date);
+    let (d, p) = entity_sections(entities);
+    let mut t = Section::new('T');
+    t.push(&format!(
+        "S{:07}G{:07}D{:07}P{:07}",
+        s.lines.len(),
+        g.lines.len(),
+        d.lines.len(),
+        p.lines.len()
+    ));
+    let mut out = String::with_capacity(
+        81 * (s.lines.len() + g.lines.len() + d.lines.len() + p.lines.len() + 1),
+    );
+    for sec in [&s, &g, &d, &p, &t] {
+        for l in &sec.lines {
+            out.push_str(l);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// The global section: delimiters, product and file names (from `file_name`), the writer,
+/// number formats, millimetres, the `date`, the resolution and size from the largest
+/// coordinate `max_coord`, and the IGES version.
+fn global_section(max_coord: f64, file_name: &str, date: &str) -> Section {
     let name = sanitize(file_name, 60);
     let stem = sanitize(
         Path::new(file_name)
@@ -348,7 +374,12 @@ fn sections<'a>(
     ];
     let mut g = Section::new('G');
     g.push_params(&delimited(global), 72, "");
+    g
+}
 
+/// The directory and parameter sections of one entity 128 per `(parameters, group name)`,
+/// each labelled with its group and numbered within it.
+fn entity_sections(entities: impl Iterator<Item = (Vec<String>, String)>) -> (Section, Section) {
     let mut d = Section::new('D');
     let mut p = Section::new('P');
     // The entity subscript: the number of the patch within its group.
@@ -373,24 +404,7 @@ fn sections<'a>(
             128, 0, 0, count, 0, "", "", label, group_counts[gk]
         ));
     }
-    let mut t = Section::new('T');
-    t.push(&format!(
-        "S{:07}G{:07}D{:07}P{:07}",
-        s.lines.len(),
-        g.lines.len(),
-        d.lines.len(),
-        p.lines.len()
-    ));
-    let mut out = String::with_capacity(
-        81 * (s.lines.len() + g.lines.len() + d.lines.len() + p.lines.len() + 1),
-    );
-    for sec in [&s, &g, &d, &p, &t] {
-        for l in &sec.lines {
-            out.push_str(l);
-            out.push('\n');
-        }
-    }
-    out
+    (d, p)
 }
 
 /// Writes CAD faces as an IGES 5.3 file (atomically).

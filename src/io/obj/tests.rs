@@ -1,5 +1,6 @@
 //! Unit tests of the OBJ reader and writer.
 
+use super::statement::parse_i64;
 use super::*;
 use crate::io::testutil;
 

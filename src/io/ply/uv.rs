@@ -119,6 +119,31 @@ pub(crate) fn write_ply_extras_to(
     } else {
         Some(Vec::new())
     };
+    let mut head = extras_header(p, uv, has_uv, vertex.as_deref(), data, binary);
+    let mut bytes: Vec<u8> = Vec::new();
+    if binary {
+        w.write_all(head.as_bytes())?;
+        head.clear();
+    }
+    let mut out = ChunkedText::new(w);
+    out.buf.push_str(&head);
+    write_vertex_rows((&mut out, &mut bytes), p, vertex.as_deref(), data, binary)?;
+    write_face_rows((&mut out, &mut bytes), p, uv, vertex.is_none(), binary)?;
+    flush_bytes(&mut out, &mut bytes)?;
+    out.finish()
+}
+
+/// The header: the plain polygons' one with the texture coordinates (per vertex, after z, when
+/// `vertex` has them or there are none; else the face `texcoord` list) and the per-vertex
+/// data's properties.
+fn extras_header(
+    p: &Polygons<'_>,
+    uv: &FaceVarying,
+    has_uv: bool,
+    vertex: Option<&[[f64; 2]]>,
+    data: Option<&VertexData>,
+    binary: bool,
+) -> String {
     let wide_tex = 2 * p.max_face > u8::MAX as usize;
     let format = if binary {
         "binary_little_endian"
@@ -126,7 +151,7 @@ pub(crate) fn write_ply_extras_to(
         "ascii"
     };
     let mut head = super::write::header_text(p, format);
-    let names = match &vertex {
+    let names = match vertex {
         Some(_) => {
             let ok = UV_PAIRS
                 .iter()
@@ -168,21 +193,25 @@ pub(crate) fn write_ply_extras_to(
         ),
     };
     head = head.replacen(extra.0, &extra.1, 1);
-    let wide_count = p.max_face > u8::MAX as usize;
-    let mut bytes: Vec<u8> = Vec::new();
-    if binary {
-        w.write_all(head.as_bytes())?;
-        head.clear();
-    }
-    let mut out = ChunkedText::new(w);
-    out.buf.push_str(&head);
+    head
+}
+
+/// The vertex lines (ascii) or rows (binary, into `bytes`): x y z, the texture coordinates
+/// when they are per vertex, then the per-vertex data.
+fn write_vertex_rows(
+    (out, bytes): (&mut ChunkedText<'_>, &mut Vec<u8>),
+    p: &Polygons<'_>,
+    vertex: Option<&[[f64; 2]]>,
+    data: Option<&VertexData>,
+    binary: bool,
+) -> std::io::Result<()> {
     for (i, q) in p.positions.iter().enumerate() {
-        let t = vertex.as_ref().and_then(|vals| vals.get(i).copied());
+        let t = vertex.and_then(|vals| vals.get(i).copied());
         let row = q.iter().copied().chain(t.into_iter().flatten());
         if binary {
             row.for_each(|x| bytes.extend_from_slice(&x.to_le_bytes()));
             if let Some(d) = data {
-                super::data::push_binary(&mut bytes, d, i);
+                super::data::push_binary(bytes, d, i);
             }
         } else {
             for (j, x) in row.enumerate() {
@@ -198,14 +227,27 @@ pub(crate) fn write_ply_extras_to(
             out.maybe_flush()?;
         }
         if bytes.len() >= 1 << 20 {
-            flush_bytes(&mut out, &mut bytes)?;
+            flush_bytes(out, bytes)?;
         }
     }
+    Ok(())
+}
+
+/// The face lines (ascii) or rows (binary, into `bytes`): the corner count and corners, then
+/// the corners' texture coordinates when they are per corner (`per_corner`).
+fn write_face_rows(
+    (out, bytes): (&mut ChunkedText<'_>, &mut Vec<u8>),
+    p: &Polygons<'_>,
+    uv: &FaceVarying,
+    per_corner: bool,
+    binary: bool,
+) -> std::io::Result<()> {
+    let wide_tex = 2 * p.max_face > u8::MAX as usize;
+    let wide_count = p.max_face > u8::MAX as usize;
     let mut k = 0;
     for face in p.faces() {
         let n = face.len();
-        let tex = vertex
-            .is_none()
+        let tex = per_corner
             .then(|| &uv.corners[k..k + n])
             .into_iter()
             .flatten()
@@ -219,7 +261,7 @@ pub(crate) fn write_ply_extras_to(
             }
             face.iter()
                 .for_each(|v| bytes.extend_from_slice(&v.to_le_bytes()));
-            if vertex.is_none() {
+            if per_corner {
                 if wide_tex {
                     bytes.extend_from_slice(&(2 * n as i32).to_le_bytes());
                 } else {
@@ -228,7 +270,7 @@ pub(crate) fn write_ply_extras_to(
                 tex.for_each(|x| bytes.extend_from_slice(&x.to_le_bytes()));
             }
             if bytes.len() >= 1 << 20 {
-                flush_bytes(&mut out, &mut bytes)?;
+                flush_bytes(out, bytes)?;
             }
         } else {
             use std::fmt::Write as _;
@@ -236,7 +278,7 @@ pub(crate) fn write_ply_extras_to(
             for &v in face {
                 let _ = write!(out.buf, " {v}");
             }
-            if vertex.is_none() {
+            if per_corner {
                 let _ = write!(out.buf, " {}", 2 * n);
                 for x in tex {
                     out.buf.push(' ');
@@ -247,8 +289,7 @@ pub(crate) fn write_ply_extras_to(
             out.maybe_flush()?;
         }
     }
-    flush_bytes(&mut out, &mut bytes)?;
-    out.finish()
+    Ok(())
 }
 
 /// Writes the binary bytes gathered so far (the text buffer is empty in binary mode).

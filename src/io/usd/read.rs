@@ -6,8 +6,8 @@ use crate::error::{Error, Result};
 use crate::geom::Point;
 use crate::mesh::FaceVarying;
 use crate::mesh::tags::{
-    BoundaryInterpolation, CornerTag, CreaseTag, FvarInterpolation, HoleTag, Named, Tags,
-    TriangleSubdivision,
+    BoundaryInterpolation, CornerTag, CreaseTag, FvarInterpolation, HoleTag, Named, SubdOptions,
+    Tags, TriangleSubdivision,
 };
 use openusd::sdf::Value;
 use openusd::usd::{Prim, PrimPredicate, Stage};
@@ -381,21 +381,48 @@ fn st(
 
 /// The OpenSubdiv tags of the mesh.
 fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
-    let mut t = Tags::default();
-    let sharp = |name: &str, k: usize, x: f64| -> Result<f32> {
-        if !x.is_finite() || x < 0.0 {
-            return Err(bad(
+    let mut t = Tags {
+        creases: crease_tags(prim, path, w)?,
+        corners: corner_tags(prim, path, w)?,
+        ..Tags::default()
+    };
+    for &f in &ints(prim, "holeIndices", path, w)? {
+        let face = u32::try_from(f).map_err(|_| {
+            bad(
                 path,
                 prim,
-                name,
-                format!("sharpness {k} is {x}; sharpness is a number >= 0"),
-            ));
-        }
-        Ok(x as f32)
-    };
-    let vertex = |name: &str, v: i64| -> Result<u32> {
-        u32::try_from(v).map_err(|_| bad(path, prim, name, format!("vertex index {v} is negative")))
-    };
+                "holeIndices",
+                format!("face index {f} is negative"),
+            )
+        })?;
+        t.holes.push(HoleTag { face, line: 0 });
+    }
+    subd_options(prim, path, w, &mut t.options)?;
+    Ok(t)
+}
+
+/// Sharpness `k` of attribute `name`: a number >= 0.
+fn sharpness(prim: &Prim, path: &Path, name: &str, k: usize, x: f64) -> Result<f32> {
+    if !x.is_finite() || x < 0.0 {
+        return Err(bad(
+            path,
+            prim,
+            name,
+            format!("sharpness {k} is {x}; sharpness is a number >= 0"),
+        ));
+    }
+    Ok(x as f32)
+}
+
+/// A vertex index of attribute `name`: not negative.
+fn vertex_index(prim: &Prim, path: &Path, name: &str, v: i64) -> Result<u32> {
+    u32::try_from(v).map_err(|_| bad(path, prim, name, format!("vertex index {v} is negative")))
+}
+
+/// The crease tags: `creaseIndices` cut into creases by `creaseLengths`, each edge with its
+/// crease's sharpness or its own (`creaseSharpnesses`, one per crease or one per edge).
+fn crease_tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Vec<CreaseTag>> {
+    let mut creases = Vec::new();
     let (ci, cl, cs) = (
         ints(prim, "creaseIndices", path, w)?,
         ints(prim, "creaseLengths", path, w)?,
@@ -430,16 +457,28 @@ fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
         }
         for k in 0..len as usize - 1 {
             let s = if per_edge { cs[e] } else { cs[c] };
-            t.creases.push(CreaseTag {
-                a: vertex("creaseIndices", ci[at + k])?,
-                b: vertex("creaseIndices", ci[at + k + 1])?,
-                sharpness: sharp("creaseSharpnesses", if per_edge { e } else { c }, s)?,
+            creases.push(CreaseTag {
+                a: vertex_index(prim, path, "creaseIndices", ci[at + k])?,
+                b: vertex_index(prim, path, "creaseIndices", ci[at + k + 1])?,
+                sharpness: sharpness(
+                    prim,
+                    path,
+                    "creaseSharpnesses",
+                    if per_edge { e } else { c },
+                    s,
+                )?,
                 line: 0,
             });
             e += 1;
         }
         at += len as usize;
     }
+    Ok(creases)
+}
+
+/// The corner tags: `cornerIndices` with one `cornerSharpnesses` value each.
+fn corner_tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Vec<CornerTag>> {
+    let mut corners = Vec::new();
     let (vi, vs) = (
         ints(prim, "cornerIndices", path, w)?,
         floats(prim, "cornerSharpnesses", path, w)?,
@@ -453,29 +492,29 @@ fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
         ));
     }
     for (k, (&v, &s)) in vi.iter().zip(&vs).enumerate() {
-        t.corners.push(CornerTag {
-            vertex: vertex("cornerIndices", v)?,
-            sharpness: sharp("cornerSharpnesses", k, s)?,
+        corners.push(CornerTag {
+            vertex: vertex_index(prim, path, "cornerIndices", v)?,
+            sharpness: sharpness(prim, path, "cornerSharpnesses", k, s)?,
             line: 0,
         });
     }
-    for &f in &ints(prim, "holeIndices", path, w)? {
-        let face = u32::try_from(f).map_err(|_| {
-            bad(
-                path,
-                prim,
-                "holeIndices",
-                format!("face index {f} is negative"),
-            )
-        })?;
-        t.holes.push(HoleTag { face, line: 0 });
-    }
+    Ok(corners)
+}
+
+/// The options `interpolateBoundary`, `faceVaryingLinearInterpolation` and
+/// `triangleSubdivisionRule`, where the file gives them.
+fn subd_options(
+    prim: &Prim,
+    path: &Path,
+    w: &mut Vec<String>,
+    options: &mut SubdOptions,
+) -> Result<()> {
     let opt = |name: &str, w: &mut Vec<String>| token(prim, name, path, w);
     let unknown = |name: &str, v: &str, choices: &str| {
         bad(path, prim, name, format!("'{v}' is not one of {choices}"))
     };
     if let Some(b) = opt("interpolateBoundary", w)? {
-        t.options.boundary = Some(match b.as_str() {
+        options.boundary = Some(match b.as_str() {
             "none" => BoundaryInterpolation::None,
             "edgeOnly" => BoundaryInterpolation::EdgeOnly,
             "edgeAndCorner" => BoundaryInterpolation::EdgeAndCorner,
@@ -490,7 +529,7 @@ fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
     }
     if let Some(f) = opt("faceVaryingLinearInterpolation", w)? {
         let all = <FvarInterpolation as Named>::ALL;
-        t.options.fvar = Some(
+        options.fvar = Some(
             all.iter()
                 .copied()
                 .find(|&v| super::write::fvar_token(v) == f)
@@ -504,7 +543,7 @@ fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
         );
     }
     if let Some(r) = opt("triangleSubdivisionRule", w)? {
-        t.options.triangles = Some(match r.as_str() {
+        options.triangles = Some(match r.as_str() {
             "catmullClark" => TriangleSubdivision::Catmark,
             "smooth" => TriangleSubdivision::Smooth,
             v => {
@@ -516,7 +555,7 @@ fn tags(prim: &Prim, path: &Path, w: &mut Vec<String>) -> Result<Tags> {
             }
         });
     }
-    Ok(t)
+    Ok(())
 }
 
 /// A note when the file's `subdivisionScheme` is not Catmull-Clark's.

@@ -2,7 +2,7 @@
 //! file) holding one `Mesh`, built as Sdf specs and encoded by `openusd` as `.usda` text, or a
 //! `.usdz` package of that text layer.
 
-use super::super::scene::SceneMesh;
+use super::super::scene::{NetTags, SceneMesh};
 use super::super::write_bytes_atomically;
 use super::UsdFlavor;
 use crate::error::{Error, Result};
@@ -127,46 +127,53 @@ fn mesh_attrs(m: &SceneMesh) -> Result<Vec<Attr>> {
         });
     }
     if let Some(t) = &m.net {
-        if !t.creases.is_empty() {
-            // every sharp edge its own crease of two vertices
-            let idx = t.creases.iter().flat_map(|(e, _)| *e);
-            a.push(attr("creaseIndices", "int[]", ints(idx)));
-            a.push(attr(
-                "creaseLengths",
-                "int[]",
-                ints(t.creases.iter().map(|_| 2)),
-            ));
-            let s = t.creases.iter().map(|&(_, s)| s).collect();
-            a.push(attr("creaseSharpnesses", "float[]", Value::FloatVec(s)));
-        }
-        if !t.corners.is_empty() {
-            a.push(attr(
-                "cornerIndices",
-                "int[]",
-                ints(t.corners.iter().map(|c| c.0)),
-            ));
-            let s = t.corners.iter().map(|c| c.1).collect();
-            a.push(attr("cornerSharpnesses", "float[]", Value::FloatVec(s)));
-        }
-        if !t.holes.is_empty() {
-            a.push(attr("holeIndices", "int[]", ints(t.holes.iter().copied())));
-        }
-        let o = &t.options;
-        let token = |name: &str, v: &str| attr(name, "token", Value::Token(v.into()));
-        a.push(token("interpolateBoundary", boundary_token(o.boundary())));
-        a.push(token(
-            "faceVaryingLinearInterpolation",
-            fvar_token(o.fvar()),
-        ));
-        if t.scheme == "catmullClark" {
-            let rule = match o.triangles() {
-                TriangleSubdivision::Catmark => "catmullClark",
-                TriangleSubdivision::Smooth => "smooth",
-            };
-            a.push(token("triangleSubdivisionRule", rule));
-        }
+        net_attrs(&mut a, t);
     }
     Ok(a)
+}
+
+/// The attributes of a control net's tags: creases (each sharp edge its own crease of two
+/// vertices), corners, holes, the boundary and face-varying interpolation, and Catmull-Clark's
+/// triangle rule.
+fn net_attrs(a: &mut Vec<Attr>, t: &NetTags) {
+    if !t.creases.is_empty() {
+        // every sharp edge its own crease of two vertices
+        let idx = t.creases.iter().flat_map(|(e, _)| *e);
+        a.push(attr("creaseIndices", "int[]", ints(idx)));
+        a.push(attr(
+            "creaseLengths",
+            "int[]",
+            ints(t.creases.iter().map(|_| 2)),
+        ));
+        let s = t.creases.iter().map(|&(_, s)| s).collect();
+        a.push(attr("creaseSharpnesses", "float[]", Value::FloatVec(s)));
+    }
+    if !t.corners.is_empty() {
+        a.push(attr(
+            "cornerIndices",
+            "int[]",
+            ints(t.corners.iter().map(|c| c.0)),
+        ));
+        let s = t.corners.iter().map(|c| c.1).collect();
+        a.push(attr("cornerSharpnesses", "float[]", Value::FloatVec(s)));
+    }
+    if !t.holes.is_empty() {
+        a.push(attr("holeIndices", "int[]", ints(t.holes.iter().copied())));
+    }
+    let o = &t.options;
+    let token = |name: &str, v: &str| attr(name, "token", Value::Token(v.into()));
+    a.push(token("interpolateBoundary", boundary_token(o.boundary())));
+    a.push(token(
+        "faceVaryingLinearInterpolation",
+        fvar_token(o.fvar()),
+    ));
+    if t.scheme == "catmullClark" {
+        let rule = match o.triangles() {
+            TriangleSubdivision::Catmark => "catmullClark",
+            TriangleSubdivision::Smooth => "smooth",
+        };
+        a.push(token("triangleSubdivisionRule", rule));
+    }
 }
 
 /// A USD prim name from a file stem: letters, digits and `_`, not starting with a digit.
