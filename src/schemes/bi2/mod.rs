@@ -46,6 +46,17 @@ pub fn cos_2pi(k: i64, n: i64) -> f64 {
     super::common::cos_2pi(k, n)
 }
 
+/// `Ok` for `n >= 3`, else [`crate::error::Error::InvalidArgument`] saying `needs` and the
+/// `n` given (the family's valences, facet sizes and canonical nets start at 3).
+pub(crate) fn at_least_three(n: usize, needs: &str) -> crate::error::Result<()> {
+    if n < 3 {
+        return Err(crate::error::Error::InvalidArgument(format!(
+            "{needs} (got {n})"
+        )));
+    }
+    Ok(())
+}
+
 /// Weights `(wl, w, wr)` of the three B-spline coefficients `(d_l, d, d_r)` in the blossom
 /// `F(s, t)` of the quadratic piece `[-w/2, w/2]` of `d`, whose neighbours' pieces have widths
 /// `wl` and `wr`. `F(s, t)` is the B-spline coefficient of the sub-interval `[s, t]` after knot
