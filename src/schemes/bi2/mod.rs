@@ -17,7 +17,8 @@
 //! knots ([`blossom_weights`], [`end_child_weight`], [`middle_child_weights`]), which give both
 //! the uniform masks (Doo-Sabin's 3/4, 1/4; ternary 2/3, 1/3 and 1/9, 7/9, 1/9) and the
 //! non-uniform ones of adjustable TPS, and the B-spline to Bezier conversion of a bi-2 piece
-//! with non-uniform knots ([`quadratic_bezier_rows`], [`bi2_patch_stencils`]).
+//! with non-uniform knots ([`quadratic_bezier_rows`], [`bi2_patch_stencils`]); and the refusal
+//! of valences and facet sizes below 3 that their parameters and canonical nets share.
 //!
 //! Conventions: a control point is the B-spline coefficient of one knot interval (its
 //! *piece*); a piece of width `w` is the interval `[-w/2, w/2]` around its own point; its
