@@ -16,21 +16,25 @@
 //! (5), (6), (13), (14), (19), (20). Its limit stencil is affine over the replicated net, so the
 //! centre's weight is the sum of its copies' weights.
 
+use super::Pgs;
 use super::descriptor::{Bi2Kind, DEFAULT_E};
 use super::local_scheme::{LocalScheme, pgs_rows};
 use super::pgs::{PgsParams, ds_net};
 use super::polar::PolarParams;
 use super::surface::ring_patches;
-use super::ternary::{AlphaRule, TernaryRules, TpsParams, adjustable_lambda};
-use super::{Pgs, cos_2pi};
+#[cfg(doc)]
+use super::ternary::AlphaRule;
+use super::ternary::{TernaryRules, TpsParams};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::schemes::Scheme;
 use crate::schemes::circulant::{SparseLocal, choose};
-use crate::schemes::local::{FourierBlock, LocalMatrix, LocalOperator};
+use crate::schemes::local::{LocalMatrix, LocalOperator};
 use crate::schemes::options::ids;
 use crate::stencil::Stencil;
 use nalgebra::DMatrix;
+
+mod checks;
 
 /// The replicated-centre form of a local matrix with one centre point: `n (1 + sector)`
 /// points, sector `s` holding a copy of the centre first, then its own points; every copy's row
@@ -301,47 +305,6 @@ pub fn characteristic_ring_rules(
 /// identities, whose difference is reported).
 pub use crate::schemes::descriptor::Published as PublishedCheck;
 
-fn check(quantity: impl Into<String>, published: f64, computed: f64) -> PublishedCheck {
-    PublishedCheck::new(quantity, published, computed)
-}
-
-/// Coefficients (highest first) of `prod (x - r)` for real roots.
-fn poly(roots: &[f64]) -> Vec<f64> {
-    let mut c = vec![1.0];
-    for &r in roots {
-        let mut next = vec![0.0; c.len() + 1];
-        for (i, &a) in c.iter().enumerate() {
-            next[i] += a;
-            next[i + 1] -= a * r;
-        }
-        c = next;
-    }
-    c
-}
-
-/// Product of two polynomials (highest first).
-fn poly_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
-    let mut c = vec![0.0; a.len() + b.len() - 1];
-    for (i, &x) in a.iter().enumerate() {
-        for (j, &y) in b.iter().enumerate() {
-            c[i + j] += x * y;
-        }
-    }
-    c
-}
-
-/// Largest coefficient difference between a block's characteristic polynomial and `expect`.
-fn poly_difference(block: &FourierBlock, expect: &[f64]) -> f64 {
-    let got = block.characteristic_polynomial();
-    if got.len() != expect.len() {
-        return f64::INFINITY;
-    }
-    got.iter()
-        .zip(expect)
-        .map(|(g, e)| (g - nalgebra::Complex::new(*e, 0.0)).norm())
-        .fold(0.0, f64::max)
-}
-
 /// The paper's numbers for a bi-2 scheme at valence `n` beside the ones computed from its
 /// stencils: characteristic polynomials (as the largest coefficient difference over the
 /// Fourier blocks), subdominant and subsubdominant eigenvalues, limit-point weights.
@@ -365,7 +328,6 @@ pub fn published_rules(
     n: usize,
     adj: TernaryRules,
 ) -> Result<Vec<PublishedCheck>> {
-    let e = adj.e;
     let lm = operator_rules(scheme, n, adj)?;
     let spec = lm.spectrum();
     let blocks = lm.fourier_blocks()?;
@@ -373,199 +335,19 @@ pub fn published_rules(
     let k = lm.sector();
     // Affine weights of the centre (sum of its copies) and of one first-ring point.
     let centre_weight: f64 = (0..n).map(|s| limit[s * k]).sum();
-    let c1 = cos_2pi(1, n as i64);
-    let mut out = Vec::new();
+    let found = checks::Computed {
+        n,
+        spec,
+        blocks,
+        limit,
+        k,
+        centre_weight,
+    };
     match scheme {
-        Bi2Kind::Pgs => {
-            let p = PgsParams::new(n)?;
-            let d = poly(&[0.25, 0.125, 0.0625, 0.0, 0.0, 0.0, 0.0, 0.0]);
-            let mut worst: f64 = 0.0;
-            for b in &blocks {
-                let expect = if b.frequency == 0 {
-                    poly_mul(&poly(&[1.0, p.w1 + 2.0 * p.w2 - p.alpha]), &d)
-                } else {
-                    let ck = cos_2pi(b.frequency as i64, n as i64);
-                    poly_mul(&poly(&[0.0, p.w1 + 2.0 * p.w2 * ck]), &d)
-                };
-                worst = worst.max(poly_difference(b, &expect));
-            }
-            out.push(check(
-                "characteristic polynomials (5), (6): largest coefficient difference",
-                0.0,
-                worst,
-            ));
-            out.push(check(
-                "subdominant eigenvalue lambda_sub (10)",
-                p.lambda,
-                spec.lambda,
-            ));
-            out.push(check(
-                "subsubdominant eigenvalue nu_n as stated in Section 2",
-                p.published_subsubdominant(),
-                spec.mu,
-            ));
-            out.push(check(
-                "limit point (7): weight of p, 1 - tau",
-                1.0 - p.tau,
-                centre_weight,
-            ));
-            out.push(check(
-                "limit point (7): weight of each a_i, tau / n",
-                p.tau / n as f64,
-                limit[1],
-            ));
-        }
-        Bi2Kind::Polar => {
-            let p = PolarParams::new(n)?;
-            let mut worst: f64 = 0.0;
-            for b in &blocks {
-                let expect = if b.frequency == 0 {
-                    poly(&[1.0, 0.25, 0.0, p.beta - p.alpha])
-                } else {
-                    let gk: f64 = (0..n)
-                        .map(|j| p.gamma[j] * cos_2pi((b.frequency * j) as i64, n as i64))
-                        .sum();
-                    poly(&[0.25, 0.0, 0.0, gk])
-                };
-                worst = worst.max(poly_difference(b, &expect));
-            }
-            out.push(check(
-                "characteristic polynomials (13), (14): largest coefficient difference",
-                0.0,
-                worst,
-            ));
-            out.push(check("subdominant eigenvalue 1/2", 0.5, spec.lambda));
-            out.push(check("subsubdominant eigenvalue 1/4", 0.25, spec.mu));
-            out.push(check(
-                "limit point (16): weight of p",
-                2.0 / 3.0,
-                centre_weight,
-            ));
-            out.push(check(
-                "limit point (16): weight of each a_i",
-                1.0 / (3.0 * n as f64),
-                limit[1],
-            ));
-        }
-        Bi2Kind::Tps | Bi2Kind::TpsAdjustable => {
-            let t = TpsParams::new(n)?;
-            let adjustable = scheme == Bi2Kind::TpsAdjustable;
-            if !adjustable {
-                let mut worst: f64 = 0.0;
-                for b in &blocks {
-                    let expect = if b.frequency == 0 {
-                        let q = [
-                            1.0,
-                            t.alpha1 + t.alpha2 - 14.0 / 27.0,
-                            (1.0 - 3.0 * t.alpha1 + 3.0 * t.alpha2) / 81.0,
-                        ];
-                        poly_mul(&poly(&[1.0, 0.0, 0.0, 0.0, 0.0]), &q)
-                    } else {
-                        let ck = cos_2pi(b.frequency as i64, n as i64);
-                        let q = [1.0, -2.0 / 27.0 * (5.0 + 2.0 * ck), 1.0 / 81.0];
-                        poly_mul(&poly(&[0.0; 5]), &q)
-                    };
-                    worst = worst.max(poly_difference(b, &expect));
-                }
-                out.push(check(
-                    "characteristic polynomials (19), (20): largest coefficient difference",
-                    0.0,
-                    worst,
-                ));
-                out.push(check(
-                    "subdominant eigenvalue (5 + 2c + 2 sqrt(c^2 + 5c + 4)) / 27",
-                    t.lambda,
-                    spec.lambda,
-                ));
-                if n == 3 {
-                    out.push(check(
-                        "subsubdominant nu_3 = .082 (printed)",
-                        0.082,
-                        spec.mu,
-                    ));
-                } else {
-                    out.push(check(
-                        "subsubdominant with the printed c_2 = cos(pi / n)",
-                        t.printed_subsubdominant(),
-                        spec.mu,
-                    ));
-                    out.push(check(
-                        "subsubdominant with c_2 = cos(4 pi / n) (root of D_2 in (20))",
-                        t.corrected_subsubdominant(),
-                        spec.mu,
-                    ));
-                }
-            } else {
-                out.push(check(
-                    format!("subdominant eigenvalue (22), e = {e}"),
-                    adjustable_lambda(e, c1),
-                    spec.lambda,
-                ));
-                out.push(check(
-                    "multiplicity of the subdominant eigenvalue (frequencies 1, n - 1)",
-                    2.0,
-                    spec.lambda_multiplicity as f64,
-                ));
-                // The limit point of a surface from an input net: the stationary limit
-                // functional after the first step (uniform knots), over the input q-net.
-                let rules = adj;
-                let ls = LocalScheme::ternary(n, rules)?;
-                let size = ls.size;
-                let mut lnon = vec![0.0; size];
-                for s in 0..n {
-                    lnon[0] += limit[s * k];
-                    for x in 0..6 {
-                        lnon[1 + 6 * s + x] = limit[s * k + 1 + x];
-                    }
-                }
-                let mut w = vec![0.0; size];
-                for (r, &lr) in lnon.iter().enumerate() {
-                    let st = ls.first.stencil(r);
-                    for &(c, wc) in st.entries() {
-                        w[c as usize] += lr * wc;
-                    }
-                }
-                let qa: f64 = (0..n).map(|s| w[1 + 6 * s]).sum();
-                let qb: f64 = (0..n).map(|s| w[2 + 6 * s]).sum();
-                out.push(check(
-                    "limit point from an input net (first step, then stationary): weight of q",
-                    1.0 - t.tau1 - t.tau2,
-                    w[0],
-                ));
-                out.push(check(
-                    "limit point from an input net: weight of the a_i together, tau_1",
-                    t.tau1,
-                    qa,
-                ));
-                out.push(check(
-                    "limit point from an input net: weight of the b_i together, tau_2",
-                    t.tau2,
-                    qb,
-                ));
-                let (_, _, fallback) = rules.stationary_alphas(n)?;
-                if fallback || n == 4 || rules.alphas == AlphaRule::RegularSpectrum {
-                    // The stationary net has non-uniform knots; its own limit functional is
-                    // not (21) (n = 4: the exact spline value; fallback: lambda^2, lambda^4).
-                    return Ok(out);
-                }
-            }
-            out.push(check(
-                "limit point (21): weight of q, 1 - tau_1 - tau_2",
-                1.0 - t.tau1 - t.tau2,
-                centre_weight,
-            ));
-            out.push(check(
-                "limit point (21): weight of each a_i, tau_1 / n",
-                t.tau1 / n as f64,
-                limit[1],
-            ));
-            out.push(check(
-                "limit point (21): weight of each b_i, tau_2 / n",
-                t.tau2 / n as f64,
-                limit[2],
-            ));
-        }
-        other => return Err(no_analysis(other)),
+        Bi2Kind::Pgs => checks::pgs_checks(&found),
+        Bi2Kind::Polar => checks::polar_checks(&found),
+        Bi2Kind::Tps => checks::tps_checks(&found),
+        Bi2Kind::TpsAdjustable => checks::adjustable_checks(&found, adj),
+        other => Err(no_analysis(other)),
     }
-    Ok(out)
 }

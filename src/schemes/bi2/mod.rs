@@ -17,7 +17,8 @@
 //! knots ([`blossom_weights`], [`end_child_weight`], [`middle_child_weights`]), which give both
 //! the uniform masks (Doo-Sabin's 3/4, 1/4; ternary 2/3, 1/3 and 1/9, 7/9, 1/9) and the
 //! non-uniform ones of adjustable TPS, and the B-spline to Bezier conversion of a bi-2 piece
-//! with non-uniform knots ([`quadratic_bezier_rows`], [`bi2_patch_stencils`]).
+//! with non-uniform knots ([`quadratic_bezier_rows`], [`bi2_patch_stencils`]); and the refusal
+//! of valences and facet sizes below 3 that their parameters and canonical nets share.
 //!
 //! Conventions: a control point is the B-spline coefficient of one knot interval (its
 //! *piece*); a piece of width `w` is the interval `[-w/2, w/2]` around its own point; its
@@ -44,6 +45,17 @@ use crate::stencil::Stencil;
 /// `cos(2 pi k / n)`, exact where the value is rational.
 pub fn cos_2pi(k: i64, n: i64) -> f64 {
     super::common::cos_2pi(k, n)
+}
+
+/// `Ok` for `n >= 3`, else [`crate::error::Error::InvalidArgument`] saying `needs` and the
+/// `n` given (the family's valences, facet sizes and canonical nets start at 3).
+pub(crate) fn at_least_three(n: usize, needs: &str) -> crate::error::Result<()> {
+    if n < 3 {
+        return Err(crate::error::Error::InvalidArgument(format!(
+            "{needs} (got {n})"
+        )));
+    }
+    Ok(())
 }
 
 /// Weights `(wl, w, wr)` of the three B-spline coefficients `(d_l, d, d_r)` in the blossom

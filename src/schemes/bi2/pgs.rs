@@ -93,11 +93,7 @@ impl PgsParams {
     /// # Errors
     /// [`Error::InvalidArgument`] for `n < 3`.
     pub fn new(n: usize) -> Result<PgsParams> {
-        if n < 3 {
-            return Err(Error::InvalidArgument(format!(
-                "PGS needs a facet of at least 3 sides (got {n})"
-            )));
-        }
+        super::at_least_three(n, "PGS needs a facet of at least 3 sides")?;
         let c = super::cos_2pi(1, n as i64);
         let mu = if n == 3 {
             0.6
@@ -494,11 +490,7 @@ pub fn ds_net_chart(n: usize, s: usize, x2: i64, y2: i64) -> Option<usize> {
 /// `2 pi s / n`) with height `height(x, y)`. Face 0 is the facet; then per sector its four
 /// quads `(i, j)`, `i, j in 0..2`, then its two quads shared with sector `s + 1`.
 pub fn ds_net(n: usize, height: impl Fn(f64, f64) -> f64) -> Result<PolyMesh> {
-    if n < 3 {
-        return Err(Error::InvalidArgument(format!(
-            "a DS-net needs a facet of at least 3 sides (got {n})"
-        )));
-    }
+    super::at_least_three(n, "a DS-net needs a facet of at least 3 sides")?;
     let e = |s: usize| {
         let c = super::cos_2pi(s as i64, n as i64);
         let sn = super::cos_2pi(4 * s as i64 - n as i64, 4 * n as i64);

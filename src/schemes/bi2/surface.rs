@@ -288,13 +288,50 @@ fn assemble(
 ) -> Result<(PatchComplex, Vec<String>)> {
     let pos = mesh.positions();
     let mut out = PatchComplex::new();
+    push_regular_patches(mesh, track, widths, face_cells, &mut out);
     // Each element's local net is carried as positions, not as stencils over the input: a
     // facet's centre reads all n ring points, so composed stencils would grow to n entries
     // per point (n^2 work per level, n^3 with the merges) where positions cost n per level.
-    let to_patch = |c: &[Stencil], local: &[Point]| -> BezierPatch {
-        let cps: Vec<Point> = c.iter().map(|s| s.apply(local)).collect();
-        BezierPatch::new(2, 2, cps)
-    };
+    let mut locals: Vec<Vec<Point>> = elements
+        .iter()
+        .map(|e| e.local0.iter().map(|s| s.apply(pos)).collect())
+        .collect();
+    for l in 1..=opts.rings {
+        for (el, local) in elements.iter().zip(locals.iter_mut()) {
+            let step = el.scheme.step(el.start + l - 1);
+            *local = step.apply(local);
+            push_ring(el, l, local, track, &mut out);
+        }
+        progress(l);
+    }
+    let mut notes = Vec::new();
+    if opts.fill {
+        let mut masks = g1::Masks::default();
+        for (el, local) in elements.iter().zip(&locals) {
+            push_cap(
+                el, opts.rings, local, track, &mut masks, &mut out, &mut notes,
+            )?;
+        }
+    }
+    Ok((out, notes))
+}
+
+/// The bi-2 patch of the control coefficients `c` over an element's local net `local`.
+fn local_patch(c: &[Stencil], local: &[Point]) -> BezierPatch {
+    let cps: Vec<Point> = c.iter().map(|s| s.apply(local)).collect();
+    BezierPatch::new(2, 2, cps)
+}
+
+/// The regular patch of every regular vertex (with knot widths when given), its boundary
+/// sides marked and, with `track` or `face_cells`, its input-face pieces recorded.
+fn push_regular_patches(
+    mesh: &PolyMesh,
+    track: bool,
+    widths: Option<&Widths>,
+    face_cells: Option<&thirds::FaceCells>,
+    out: &mut PatchComplex,
+) {
+    let pos = mesh.positions();
     for v in 0..mesh.num_vertices() {
         let patch = match widths {
             Some(w) => crate::schemes::bi2::ternary::regular_patch(mesh, w, v),
@@ -304,95 +341,96 @@ fn assemble(
             let face = mesh.vertex_faces(v).first().copied().unwrap_or(0);
             let cps = c.iter().map(|s| s.apply(pos)).collect();
             out.push(BezierPatch::new(2, 2, cps), Provenance::Regular { face });
-            ds::mark_boundary_sides(mesh, v, &mut out);
+            ds::mark_boundary_sides(mesh, v, out);
             if track {
-                ds::input_vertex_pieces(mesh, v, &mut out);
+                ds::input_vertex_pieces(mesh, v, out);
             } else if let Some(cells) = face_cells {
-                thirds::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, &mut out);
+                thirds::vertex_pieces(mesh, cells, v, (out.len() - 1) as u32, out);
             }
         }
     }
-    let mut locals: Vec<Vec<Point>> = elements
+}
+
+/// Ring `l` of element `el` from its local net `local` at that level, with the ring's
+/// domains (tracked cells, pole cells, or thirds of the sectors).
+fn push_ring(el: &RingElement, l: usize, local: &[Point], track: bool, out: &mut PatchComplex) {
+    let first = out.len();
+    for (i, (c, sector)) in el.scheme.ring(el.start + l).into_iter().enumerate() {
+        let prov = Provenance::Ring {
+            element: el.element,
+            ring: l as u32,
+            sector,
+        };
+        let cell = match (&el.cells, track) {
+            (Some(cells), true) => cells.ring(el.start + l, i / 3, i % 3),
+            _ => Domain::UNTRACKED,
+        };
+        out.push_in(local_patch(&c, local), prov, cell);
+        if let (Some(pole), true) = (&el.pole, track) {
+            pole.ring(el.start + l, i, (out.len() - 1) as u32, out);
+        }
+    }
+    if !el.sectors.is_empty() {
+        thirds::ring_pieces(&el.sectors, l, first, el.split, out);
+    }
+}
+
+/// The G^1 cap of element `el` inside its last ring (`rings`), from its local net there; where
+/// the cap cannot be built, the C^0 fill with a note. With the cap's domains as the rings'.
+fn push_cap(
+    el: &RingElement,
+    rings: usize,
+    local: &[Point],
+    track: bool,
+    masks: &mut g1::Masks,
+    out: &mut PatchComplex,
+    notes: &mut Vec<String>,
+) -> Result<()> {
+    // The fill reads the local net and, at index `size`, the limit point.
+    let l = el.start + rings;
+    let mut with_limit = local.to_vec();
+    with_limit.push(el.scheme.limit()?.apply(local));
+    let fill: Vec<(BezierPatch, u32)> = el
+        .scheme
+        .fill(l)?
         .iter()
-        .map(|e| e.local0.iter().map(|s| s.apply(pos)).collect())
+        .map(|(c, sector)| (local_patch(c, &with_limit), *sector))
         .collect();
-    for l in 1..=opts.rings {
-        for (el, local) in elements.iter().zip(locals.iter_mut()) {
-            let step = el.scheme.step(el.start + l - 1);
-            *local = step.apply(local);
-            let first = out.len();
-            for (i, (c, sector)) in el.scheme.ring(el.start + l).into_iter().enumerate() {
-                let prov = Provenance::Ring {
-                    element: el.element,
-                    ring: l as u32,
-                    sector,
-                };
-                let cell = match (&el.cells, track) {
-                    (Some(cells), true) => cells.ring(el.start + l, i / 3, i % 3),
-                    _ => Domain::UNTRACKED,
-                };
-                out.push_in(to_patch(&c, local), prov, cell);
-                if let (Some(pole), true) = (&el.pole, track) {
-                    pole.ring(el.start + l, i, (out.len() - 1) as u32, &mut out);
-                }
-            }
-            if !el.sectors.is_empty() {
-                thirds::ring_pieces(&el.sectors, l, first, el.split, &mut out);
-            }
+    let patches: Vec<BezierPatch> = fill.iter().map(|(p, _)| p.clone()).collect();
+    let cap = g1::element_cap(&el.scheme, l, local, &patches, masks, out.len());
+    let capped: Vec<(BezierPatch, u32)> = match cap {
+        Ok((cap, step)) => {
+            out.caps.extend(step);
+            cap.into_iter().zip(fill.iter().map(|f| f.1)).collect()
         }
-        progress(l);
-    }
-    let mut notes = Vec::new();
-    if opts.fill {
-        let mut masks = g1::Masks::default();
-        for (el, local) in elements.iter().zip(&locals) {
-            // The fill reads the local net and, at index `size`, the limit point.
-            let l = el.start + opts.rings;
-            let mut with_limit = local.clone();
-            with_limit.push(el.scheme.limit()?.apply(local));
-            let fill: Vec<(BezierPatch, u32)> = el
-                .scheme
-                .fill(l)?
-                .iter()
-                .map(|(c, sector)| (to_patch(c, &with_limit), *sector))
-                .collect();
-            let patches: Vec<BezierPatch> = fill.iter().map(|(p, _)| p.clone()).collect();
-            let cap = g1::element_cap(&el.scheme, l, local, &patches, &mut masks, out.len());
-            let capped: Vec<(BezierPatch, u32)> = match cap {
-                Ok((cap, step)) => {
-                    out.caps.extend(step);
-                    cap.into_iter().zip(fill.iter().map(|f| f.1)).collect()
-                }
-                Err(e) => {
-                    notes.push(format!(
-                        "{} (valence {}): the C^0 fill closes the hole, no G^1 cap ({e})",
-                        crate::host::caps::describe(el.element),
-                        el.scheme.n
-                    ));
-                    fill
-                }
-            };
-            let first = out.len();
-            for (p, sector) in capped {
-                let prov = Provenance::Cap {
-                    element: el.element,
-                    sector,
-                };
-                let cell = match (&el.cells, track) {
-                    (Some(cells), true) => cells.cap(l, sector as usize),
-                    _ => Domain::UNTRACKED,
-                };
-                out.push_in(p, prov, cell);
-                if let (Some(pole), true) = (&el.pole, track) {
-                    pole.cap(l, sector as usize, (out.len() - 1) as u32, &mut out);
-                }
-            }
-            if !el.sectors.is_empty() {
-                thirds::cap_domains(&el.sectors, opts.rings, first, el.split, &mut out);
-            }
+        Err(e) => {
+            notes.push(format!(
+                "{} (valence {}): the C^0 fill closes the hole, no G^1 cap ({e})",
+                crate::host::caps::describe(el.element),
+                el.scheme.n
+            ));
+            fill
+        }
+    };
+    let first = out.len();
+    for (p, sector) in capped {
+        let prov = Provenance::Cap {
+            element: el.element,
+            sector,
+        };
+        let cell = match (&el.cells, track) {
+            (Some(cells), true) => cells.cap(l, sector as usize),
+            _ => Domain::UNTRACKED,
+        };
+        out.push_in(p, prov, cell);
+        if let (Some(pole), true) = (&el.pole, track) {
+            pole.cap(l, sector as usize, (out.len() - 1) as u32, out);
         }
     }
-    Ok((out, notes))
+    if !el.sectors.is_empty() {
+        thirds::cap_domains(&el.sectors, rings, first, el.split, out);
+    }
+    Ok(())
 }
 
 /// The PGS surface of any polygon mesh, through the Doo-Sabin machinery of [`crate::schemes::doo_sabin::surface`]
@@ -511,6 +549,6 @@ pub fn ring_patches(scheme: &LocalScheme, l: usize, points: &[Point]) -> Vec<Bez
     scheme
         .ring(l)
         .into_iter()
-        .map(|(c, _)| BezierPatch::new(2, 2, c.iter().map(|s| s.apply(points)).collect()))
+        .map(|(c, _)| local_patch(&c, points))
         .collect()
 }

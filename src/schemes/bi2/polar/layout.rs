@@ -128,14 +128,6 @@ pub enum EdgeKind {
 /// # Errors
 /// [`Error::Unsupported`] naming the face, edge or vertex that breaks the polar layout.
 pub fn edge_kinds(mesh: &PolyMesh, poles: &[u32]) -> Result<Vec<EdgeKind>> {
-    let not_polar = |what: String| {
-        Error::Unsupported(format!(
-            "{what}: {} refines polar layouts (poles with fans of triangles and rings of \
-             quads around them); write the exact surface of other nets with {} --rings K",
-            ids::POLAR_BI2,
-            ids::BI2_MIXED
-        ))
-    };
     if poles.is_empty() {
         return Err(not_polar("the net has no pole and no cap".into()));
     }
@@ -144,73 +136,9 @@ pub fn edge_kinds(mesh: &PolyMesh, poles: &[u32]) -> Result<Vec<EdgeKind>> {
         is_pole[p as usize] = true;
     }
     let mut kind: Vec<Option<EdgeKind>> = vec![None; mesh.num_edges()];
-    let set = |e: usize, k: EdgeKind, kind: &mut Vec<Option<EdgeKind>>| -> Result<bool> {
-        match kind[e] {
-            Some(x) if x != k => Err(not_polar(format!(
-                "edge {e} would be both radial and circular"
-            ))),
-            Some(_) => Ok(false),
-            None => {
-                kind[e] = Some(k);
-                Ok(true)
-            }
-        }
-    };
-    for f in 0..mesh.num_faces() {
-        let n = mesh.face_size(f);
-        let h0 = mesh.face_halfedge(f);
-        if n == 3 {
-            let hs = [h0, h0 + 1, h0 + 2];
-            let pk: Vec<usize> = (0..3)
-                .filter(|&k| is_pole[mesh.he_from(hs[k]) as usize])
-                .collect();
-            if pk.len() != 1 {
-                return Err(not_polar(format!(
-                    "triangle {f} has {} poles (a fan triangle has exactly one)",
-                    pk.len()
-                )));
-            }
-            let k = pk[0];
-            set(mesh.he_edge(hs[k]) as usize, EdgeKind::Radial, &mut kind)?;
-            set(
-                mesh.he_edge(hs[(k + 2) % 3]) as usize,
-                EdgeKind::Radial,
-                &mut kind,
-            )?;
-            set(
-                mesh.he_edge(hs[(k + 1) % 3]) as usize,
-                EdgeKind::Circular,
-                &mut kind,
-            )?;
-        } else if n != 4 {
-            return Err(not_polar(format!("face {f} has {n} sides")));
-        }
-    }
+    fan_kinds(mesh, &is_pole, &mut kind)?;
     // Propagate across quads until nothing changes.
-    loop {
-        let mut changed = false;
-        for f in 0..mesh.num_faces() {
-            if mesh.face_size(f) != 4 {
-                continue;
-            }
-            let h0 = mesh.face_halfedge(f);
-            let es: Vec<usize> = (0..4).map(|k| mesh.he_edge(h0 + k) as usize).collect();
-            let known = (0..4).find_map(|k| kind[es[k]].map(|x| (k, x)));
-            if let Some((k, x)) = known {
-                let other = match x {
-                    EdgeKind::Radial => EdgeKind::Circular,
-                    EdgeKind::Circular => EdgeKind::Radial,
-                };
-                for (j, &ej) in es.iter().enumerate() {
-                    let want = if (j + 4 - k) % 2 == 0 { x } else { other };
-                    changed |= set(ej, want, &mut kind)?;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
+    while propagate_across_quads(mesh, &mut kind)? {}
     let mut out = Vec::with_capacity(kind.len());
     for (e, k) in kind.into_iter().enumerate() {
         match k {
@@ -228,4 +156,91 @@ pub fn edge_kinds(mesh: &PolyMesh, poles: &[u32]) -> Result<Vec<EdgeKind>> {
         }
     }
     Ok(out)
+}
+
+/// The error for a net that is not a polar layout: `what` breaks it, and the way out.
+fn not_polar(what: String) -> Error {
+    Error::Unsupported(format!(
+        "{what}: {} refines polar layouts (poles with fans of triangles and rings of \
+         quads around them); write the exact surface of other nets with {} --rings K",
+        ids::POLAR_BI2,
+        ids::BI2_MIXED
+    ))
+}
+
+/// Gives edge `e` the kind `k`: `true` when it had none, `false` when it had `k`, an error
+/// when it had the other kind.
+fn set_kind(e: usize, k: EdgeKind, kind: &mut [Option<EdgeKind>]) -> Result<bool> {
+    match kind[e] {
+        Some(x) if x != k => Err(not_polar(format!(
+            "edge {e} would be both radial and circular"
+        ))),
+        Some(_) => Ok(false),
+        None => {
+            kind[e] = Some(k);
+            Ok(true)
+        }
+    }
+}
+
+/// The kinds of the fan triangles' edges (the two at the pole radial, the third circular);
+/// an error for a triangle without exactly one pole and for faces neither triangles nor
+/// quads.
+fn fan_kinds(mesh: &PolyMesh, is_pole: &[bool], kind: &mut [Option<EdgeKind>]) -> Result<()> {
+    for f in 0..mesh.num_faces() {
+        let n = mesh.face_size(f);
+        let h0 = mesh.face_halfedge(f);
+        if n == 3 {
+            let hs = [h0, h0 + 1, h0 + 2];
+            let pk: Vec<usize> = (0..3)
+                .filter(|&k| is_pole[mesh.he_from(hs[k]) as usize])
+                .collect();
+            if pk.len() != 1 {
+                return Err(not_polar(format!(
+                    "triangle {f} has {} poles (a fan triangle has exactly one)",
+                    pk.len()
+                )));
+            }
+            let k = pk[0];
+            set_kind(mesh.he_edge(hs[k]) as usize, EdgeKind::Radial, kind)?;
+            set_kind(
+                mesh.he_edge(hs[(k + 2) % 3]) as usize,
+                EdgeKind::Radial,
+                kind,
+            )?;
+            set_kind(
+                mesh.he_edge(hs[(k + 1) % 3]) as usize,
+                EdgeKind::Circular,
+                kind,
+            )?;
+        } else if n != 4 {
+            return Err(not_polar(format!("face {f} has {n} sides")));
+        }
+    }
+    Ok(())
+}
+
+/// One pass over the quads: a quad with an edge of known kind gives its opposite edge the
+/// same kind and its adjacent edges the other. Returns whether any edge got a kind.
+fn propagate_across_quads(mesh: &PolyMesh, kind: &mut [Option<EdgeKind>]) -> Result<bool> {
+    let mut changed = false;
+    for f in 0..mesh.num_faces() {
+        if mesh.face_size(f) != 4 {
+            continue;
+        }
+        let h0 = mesh.face_halfedge(f);
+        let es: Vec<usize> = (0..4).map(|k| mesh.he_edge(h0 + k) as usize).collect();
+        let known = (0..4).find_map(|k| kind[es[k]].map(|x| (k, x)));
+        if let Some((k, x)) = known {
+            let other = match x {
+                EdgeKind::Radial => EdgeKind::Circular,
+                EdgeKind::Circular => EdgeKind::Radial,
+            };
+            for (j, &ej) in es.iter().enumerate() {
+                let want = if (j + 4 - k) % 2 == 0 { x } else { other };
+                changed |= set_kind(ej, want, kind)?;
+            }
+        }
+    }
+    Ok(changed)
 }

@@ -60,11 +60,7 @@ impl PolarParams {
     /// # Errors
     /// [`Error::InvalidArgument`] for `n < 3`.
     pub fn new(n: usize) -> Result<PolarParams> {
-        if n < 3 {
-            return Err(Error::InvalidArgument(format!(
-                "a pole needs a valence of at least 3 (got {n})"
-            )));
-        }
+        super::at_least_three(n, "a pole needs a valence of at least 3")?;
         let gamma: Vec<f64> = (0..n)
             .map(|j| (0.5 + super::cos_2pi(j as i64, n as i64)) / n as f64)
             .collect();
@@ -140,6 +136,44 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
     for &p in &poles {
         is_pole[p as usize] = true;
     }
+    check_valences(mesh, &is_pole)?;
+    let mut rows: Vec<Stencil> = Vec::new();
+    let pole_pt = pole_points(mesh, &poles, &mut rows);
+    let spoke_pt = spoke_points(mesh, &kinds, &is_pole, &mut rows)?;
+    let mut kept = vec![UNSET; nv];
+    for (v, slot) in kept.iter_mut().enumerate() {
+        if mesh.is_boundary_vertex(v) {
+            *slot = rows.len() as u32;
+            rows.push(Stencil::point(v));
+        }
+    }
+    let points = ChildPoints {
+        kinds: &kinds,
+        is_pole: &is_pole,
+        pole_pt: &pole_pt,
+        spoke_pt: &spoke_pt,
+        kept: &kept,
+    };
+    let (face_start, corners) = points.faces(mesh);
+    if corners.contains(&UNSET) {
+        return Err(Error::Unsupported(
+            "the polar layout is inconsistent (a face corner without a spoke point)".into(),
+        ));
+    }
+    let table = StencilTable::from_rows(nv, rows, 8);
+    Ok(RadialStep {
+        refinement: finish_refinement(mesh, table, face_start, corners)?,
+        pole_point: pole_pt,
+        spoke_point: spoke_pt,
+    })
+}
+
+/// A child index not (yet) given.
+const UNSET: u32 = u32::MAX;
+
+/// Every vertex but the poles has valence 4 (3 on a circular boundary), else an error naming
+/// the vertex.
+fn check_valences(mesh: &PolyMesh, is_pole: &[bool]) -> Result<()> {
     for (v, &pole) in is_pole.iter().enumerate() {
         if pole {
             continue;
@@ -159,10 +193,14 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
             )));
         }
     }
-    const UNSET: u32 = u32::MAX;
-    let mut rows: Vec<Stencil> = Vec::new();
-    let mut pole_pt = vec![UNSET; nv];
-    for &p in &poles {
+    Ok(())
+}
+
+/// Rule (12): the child `p^new` of every pole, pushed to `rows`; per vertex its pole point's
+/// index (`UNSET` for other vertices).
+fn pole_points(mesh: &PolyMesh, poles: &[u32], rows: &mut Vec<Stencil>) -> Vec<u32> {
+    let mut pole_pt = vec![UNSET; mesh.num_vertices()];
+    for &p in poles {
         let hs: Vec<u32> = mesh.outgoing(p as usize).collect();
         let n = hs.len();
         let mut s = Stencil::new();
@@ -173,7 +211,17 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
         pole_pt[p as usize] = rows.len() as u32;
         rows.push(s.merged());
     }
-    // Points on spoke edges: [near from(edge half-edge), near to].
+    pole_pt
+}
+
+/// The child points on spoke edges, pushed to `rows`: the two Chaikin points of a spoke
+/// segment, rule (11) on a spoke from a pole. Per edge: `[near from(edge half-edge), near to]`.
+fn spoke_points(
+    mesh: &PolyMesh,
+    kinds: &[EdgeKind],
+    is_pole: &[bool],
+    rows: &mut Vec<Stencil>,
+) -> Result<Vec<[u32; 2]>> {
     let mut spoke_pt = vec![[UNSET; 2]; mesh.num_edges()];
     for e in 0..mesh.num_edges() {
         if kinds[e] != EdgeKind::Radial {
@@ -200,67 +248,70 @@ pub fn radial_step_detailed(mesh: &PolyMesh) -> Result<RadialStep> {
             }
         }
     }
-    let mut kept = vec![UNSET; nv];
-    for (v, slot) in kept.iter_mut().enumerate() {
-        if mesh.is_boundary_vertex(v) {
-            *slot = rows.len() as u32;
-            rows.push(Stencil::point(v));
-        }
-    }
-    // The point of each face corner.
-    let corner_pt = |h: u32| -> u32 {
-        match PolarBi2::corner_spoke(mesh, &kinds, &is_pole, h) {
-            None => pole_pt[mesh.he_from(h) as usize],
+    Ok(spoke_pt)
+}
+
+/// The child points of one radial step, by the parent element they belong to.
+struct ChildPoints<'a> {
+    kinds: &'a [EdgeKind],
+    is_pole: &'a [bool],
+    pole_pt: &'a [u32],
+    spoke_pt: &'a [[u32; 2]],
+    kept: &'a [u32],
+}
+
+impl ChildPoints<'_> {
+    /// The point of face corner `h`: its pole's point or the point of its spoke edge next to
+    /// it.
+    fn corner(&self, mesh: &PolyMesh, h: u32) -> u32 {
+        match PolarBi2::corner_spoke(mesh, self.kinds, self.is_pole, h) {
+            None => self.pole_pt[mesh.he_from(h) as usize],
             Some(g) => {
                 let e = mesh.he_edge(g) as usize;
                 let v = mesh.he_from(h);
                 let first = mesh.he_from(mesh.edge_halfedge(e)) == v;
-                spoke_pt[e][if first { 0 } else { 1 }]
+                self.spoke_pt[e][if first { 0 } else { 1 }]
             }
         }
-    };
-    let mut face_start = vec![0u32];
-    let mut corners = Vec::new();
-    for f in 0..mesh.num_faces() {
-        let h0 = mesh.face_halfedge(f);
-        for h in h0..h0 + mesh.face_size(f) as u32 {
-            corners.push(corner_pt(h));
+    }
+
+    /// The child faces: every face's F-face, then the E-face of every circular edge (closed
+    /// by the kept points on a boundary), as face starts and corners.
+    fn faces(&self, mesh: &PolyMesh) -> (Vec<u32>, Vec<u32>) {
+        let corner_pt = |h: u32| self.corner(mesh, h);
+        let mut face_start = vec![0u32];
+        let mut corners = Vec::new();
+        for f in 0..mesh.num_faces() {
+            let h0 = mesh.face_halfedge(f);
+            for h in h0..h0 + mesh.face_size(f) as u32 {
+                corners.push(corner_pt(h));
+            }
+            face_start.push(corners.len() as u32);
         }
-        face_start.push(corners.len() as u32);
-    }
-    for (e, &kind) in kinds.iter().enumerate() {
-        if kind != EdgeKind::Circular {
-            continue;
+        for (e, &kind) in self.kinds.iter().enumerate() {
+            if kind != EdgeKind::Circular {
+                continue;
+            }
+            let h = mesh.edge_halfedge(e);
+            let quad = match mesh.he_twin(h) {
+                Some(t) => [
+                    corner_pt(mesh.he_next(h)),
+                    corner_pt(h),
+                    corner_pt(mesh.he_next(t)),
+                    corner_pt(t),
+                ],
+                None => [
+                    corner_pt(mesh.he_next(h)),
+                    corner_pt(h),
+                    self.kept[mesh.he_from(h) as usize],
+                    self.kept[mesh.he_to(h) as usize],
+                ],
+            };
+            corners.extend_from_slice(&quad);
+            face_start.push(corners.len() as u32);
         }
-        let h = mesh.edge_halfedge(e);
-        let quad = match mesh.he_twin(h) {
-            Some(t) => [
-                corner_pt(mesh.he_next(h)),
-                corner_pt(h),
-                corner_pt(mesh.he_next(t)),
-                corner_pt(t),
-            ],
-            None => [
-                corner_pt(mesh.he_next(h)),
-                corner_pt(h),
-                kept[mesh.he_from(h) as usize],
-                kept[mesh.he_to(h) as usize],
-            ],
-        };
-        corners.extend_from_slice(&quad);
-        face_start.push(corners.len() as u32);
+        (face_start, corners)
     }
-    if corners.contains(&UNSET) {
-        return Err(Error::Unsupported(
-            "the polar layout is inconsistent (a face corner without a spoke point)".into(),
-        ));
-    }
-    let table = StencilTable::from_rows(nv, rows, 8);
-    Ok(RadialStep {
-        refinement: finish_refinement(mesh, table, face_start, corners)?,
-        pole_point: pole_pt,
-        spoke_point: spoke_pt,
-    })
 }
 
 /// Rule (11): the new ring point on the spoke from pole `p` to its fan vertex `v`.
@@ -444,11 +495,7 @@ impl Scheme for PolarBi2 {
 /// `s` the points `a_s, b_s, c_s` (vertices `1 + 3s .. 3 + 3s`) on the spoke at angle
 /// `2 pi s / n`, radii 1, 2, 3, heights `height(x, y)`.
 pub fn polar_net(n: usize, height: impl Fn(f64, f64) -> f64) -> Result<PolyMesh> {
-    if n < 3 {
-        return Err(Error::InvalidArgument(format!(
-            "a polar net needs a valence of at least 3 (got {n})"
-        )));
-    }
+    super::at_least_three(n, "a polar net needs a valence of at least 3")?;
     let mut pos = vec![[0.0, 0.0, height(0.0, 0.0)]];
     for s in 0..n {
         let (c, sn) = (

@@ -175,11 +175,7 @@ fn mixed_elements(
                 Ok(el)
             }
             Bi2Element::Pole(p) => {
-                let element = named
-                    .iter()
-                    .find(|x| x.0 == p)
-                    .map(|x| x.1)
-                    .unwrap_or(Element::Vertex(p));
+                let element = pole_element(named, p);
                 polar_element(mesh, p as usize, element, name)
             }
         })
@@ -241,6 +237,16 @@ pub fn unseparated_polar(mesh: &PolyMesh, spec: &Spec) -> Vec<Element> {
     }
 }
 
+/// The input element pole `p` stands for: the one `named` gives it (a cap's face), else the
+/// vertex itself.
+fn pole_element(named: &[(u32, Element)], p: u32) -> Element {
+    named
+        .iter()
+        .find(|x| x.0 == p)
+        .map(|x| x.1)
+        .unwrap_or(Element::Vertex(p))
+}
+
 /// [`unseparated`] with poles named by `named`.
 fn unseparated_in(mesh: &PolyMesh, named: &[(u32, Element)]) -> Vec<Element> {
     let name = ids::BI2_MIXED.name();
@@ -260,11 +266,7 @@ fn unseparated_in(mesh: &PolyMesh, named: &[(u32, Element)]) -> Vec<Element> {
                 Element::Vertex(v),
             ),
             Bi2Element::Pole(p) => {
-                let element = named
-                    .iter()
-                    .find(|x| x.0 == p)
-                    .map(|x| x.1)
-                    .unwrap_or(Element::Vertex(p));
+                let element = pole_element(named, p);
                 (
                     polar_element(mesh, p as usize, element, name).is_ok(),
                     element,

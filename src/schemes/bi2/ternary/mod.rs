@@ -100,11 +100,7 @@ impl TpsParams {
     /// # Errors
     /// [`Error::InvalidArgument`] for `n < 3`.
     pub fn new(n: usize) -> Result<TpsParams> {
-        if n < 3 {
-            return Err(Error::InvalidArgument(format!(
-                "TPS needs a valence of at least 3 (got {n})"
-            )));
-        }
+        super::at_least_three(n, "TPS needs a valence of at least 3")?;
         let nf = n as f64;
         let alpha1 = if n == 3 {
             339.0 / 896.0

@@ -258,23 +258,36 @@ pub fn ternary_step(
     name: &str,
 ) -> Result<(Refinement, Widths)> {
     let kinds = classify(mesh, name)?;
-    let (nv, ne, nh) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_halfedges());
-    let e = rules.e;
-    let sigma = 1.0 - 2.0 * e;
     // The child points and faces (the boundary layer's numbering among them).
     let split = TernarySplit::new(mesh);
     check_child_size(name, split.num_points)?;
-    let outer_edge = &split.outer_edge;
-
-    // Stencils.
     let mut rows: Vec<Stencil> = Vec::with_capacity(split.num_points);
+    primal_rows(mesh, widths, rules, &kinds, &mut rows)?;
+    boundary_layer_rows(mesh, widths, &kinds, &split.outer_edge, rules.e, &mut rows);
+    debug_assert_eq!(rows.len(), split.num_points);
+    let table = StencilTable::from_rows(mesh.num_vertices(), rows, 9);
+    let cw = child_widths(mesh, widths, &split.cells, split.corners.len(), rules.e);
+    let r = finish_refinement(mesh, table, split.face_start, split.corners)?;
+    Ok((r, cw))
+}
+
+/// The stencils of the children of the net's own elements, in the split's order: vertex
+/// children, the two children of each edge, the child of each face corner.
+fn primal_rows(
+    mesh: &PolyMesh,
+    widths: &Widths,
+    rules: &TernaryRules,
+    kinds: &[VKind],
+    rows: &mut Vec<Stencil>,
+) -> Result<()> {
+    let e = rules.e;
     for (v, &kind) in kinds.iter().enumerate() {
         rows.push(match kind {
             VKind::Extraordinary => vertex_child_extraordinary(mesh, widths, v, rules)?,
             k => vertex_child_regular(mesh, widths, v, k, e),
         });
     }
-    for ei in 0..ne {
+    for ei in 0..mesh.num_edges() {
         let h = mesh.edge_halfedge(ei);
         rows.push(edge_child(mesh, widths, h, e));
         let back = mesh.he_twin(h);
@@ -283,9 +296,23 @@ pub fn ternary_step(
             None => edge_child_reversed_boundary(mesh, widths, h, e),
         });
     }
-    for h in 0..nh as u32 {
+    for h in 0..mesh.num_halfedges() as u32 {
         rows.push(face_child(mesh, widths, h, e));
     }
+    Ok(())
+}
+
+/// The stencils of the boundary layer, in the split's order: the middle children of boundary
+/// and corner vertices (a corner's two and itself), then the two end children of each
+/// boundary edge's outer edge.
+fn boundary_layer_rows(
+    mesh: &PolyMesh,
+    widths: &Widths,
+    kinds: &[VKind],
+    outer_edge: &[u32],
+    e: f64,
+    rows: &mut Vec<Stencil>,
+) {
     for (v, &kind) in kinds.iter().enumerate() {
         match kind {
             VKind::Boundary => {
@@ -338,15 +365,22 @@ pub fn ternary_step(
         let t = end_child_weight(widths[h][1], widths[h][0], e);
         rows.push(Stencil::from_pairs([(b, 1.0 - t), (a, t)]));
     }
-    debug_assert_eq!(rows.len(), split.num_points);
-    let table = StencilTable::from_rows(nv, rows, 9);
+}
 
-    // The child knot widths, per child face corner: `(along, across)` for each side, read
-    // off the chart of the cell's parent face.
+/// The child knot widths, per child face corner: `(along, across)` for each side, read off
+/// the chart of the cell's parent face.
+fn child_widths(
+    mesh: &PolyMesh,
+    widths: &Widths,
+    cells: &[TernaryCell],
+    num_corners: usize,
+    e: f64,
+) -> Widths {
+    let sigma = 1.0 - 2.0 * e;
     let chart = |f: usize, k: usize| chart_widths(mesh, widths, f, k, e);
-    let mut cw: Widths = Vec::with_capacity(split.corners.len());
+    let mut cw: Widths = Vec::with_capacity(num_corners);
     let mut inner: (u32, ChartWidths) = (NONE, ([[0.0; 4]; 4], [[0.0; 4]; 4]));
-    for &cell in &split.cells {
+    for &cell in cells {
         match cell {
             TernaryCell::Inner { face, i, j } => {
                 // (a face's nine cells come together: its chart once)
@@ -392,8 +426,7 @@ pub fn ternary_step(
             }
         }
     }
-    let r = finish_refinement(mesh, table, split.face_start, split.corners)?;
-    Ok((r, cw))
+    cw
 }
 
 /// The knot widths of the 4 x 4 child points of quad `f` in its chart rotated to start at

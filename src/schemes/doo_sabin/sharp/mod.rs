@@ -116,8 +116,50 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
         origin,
         corners,
     } = cut(&mesh, &sharp);
-    // Interior sharp edges per vertex (a sharp boundary edge is a boundary already).
-    let mut crease_valence = vec![0u32; nv];
+    let crease_valence = crease_valences(&mesh, &sharp);
+    let keep = kept_corners(&mesh, &ex, &crease_valence, mode, name)?;
+    let face_start = mesh.face_starts().to_vec();
+    let kept: Vec<(u32, f32)> = (0..positions.len() as u32)
+        .filter(|&v| keep[origin[v as usize] as usize])
+        .map(|v| (v, INFINITE))
+        .collect();
+    let cut_edges = crease_valence.iter().sum::<u32>() / 2;
+    let copies = positions.len() - nv;
+    let out = PolyMesh::from_flat(positions, face_start, corners)?;
+    // the net drops the vertices in no face (those of removed hole faces only): the kept
+    // corners follow the renumbering
+    let dropped = out.dropped_vertices();
+    let kept: Vec<(u32, f32)> = kept
+        .into_iter()
+        .filter(|p| dropped.binary_search(&(p.0 as usize)).is_err())
+        .map(|(v, s)| (v - dropped.partition_point(|&d| d < v as usize) as u32, s))
+        .collect();
+    let extras = Extras {
+        sharp_vertices: kept.clone(),
+        options: SubdOptions {
+            boundary: Some(BoundaryInterpolation::EdgeOnly),
+            ..SubdOptions::default()
+        },
+        ..Extras::default()
+    };
+    notes.push(format!(
+        "sharp features: the net is cut along its {cut_edges} infinitely sharp edges ({copies} \
+         vertex copies, numbered from {nv}); both sides of a crease end on the quadratic \
+         B-spline of the crease polygon, which interpolates the {} kept corners (crease ends, \
+         junctions, crease vertices on the boundary, corner tags, and under edge-and-corner \
+         the net's corners); elements on a crease take the Doo-Sabin boundary rules",
+        kept.len()
+    ));
+    Ok(Some(CutNet {
+        mesh: out.with_extras(Some(extras)),
+        notes,
+    }))
+}
+
+/// Per vertex, how many interior sharp edges meet it (a sharp boundary edge is a boundary
+/// already).
+fn crease_valences(mesh: &PolyMesh, sharp: &[bool]) -> Vec<u32> {
+    let mut crease_valence = vec![0u32; mesh.num_vertices()];
     for e in (0..mesh.num_edges()).filter(|&e| sharp[e]) {
         let h = mesh.edge_halfedge(e);
         if mesh.he_twin(h).is_some() {
@@ -125,6 +167,20 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
             crease_valence[mesh.he_to(h) as usize] += 1;
         }
     }
+    crease_valence
+}
+
+/// Per vertex, whether the cut keeps it as a corner: crease ends and junctions, crease
+/// vertices on the boundary, corner tags and, under edge-and-corner, the net's own corners.
+/// Darts, semi-sharp corners and interior corners off any crease are refused.
+fn kept_corners(
+    mesh: &PolyMesh,
+    ex: &Extras,
+    crease_valence: &[u32],
+    mode: BoundaryInterpolation,
+    name: &str,
+) -> Result<Vec<bool>> {
+    let nv = mesh.num_vertices();
     // Kept corners; darts refused.
     // A vertex only the removed hole faces had is in no face now: nothing to keep there.
     let in_a_face = |v: usize| mesh.vertex_halfedge(v) != NONE;
@@ -174,42 +230,7 @@ pub fn cut_along_creases(mesh: &PolyMesh, name: &str) -> Result<Option<CutNet>> 
             *k |= in_a_face(v) && mesh.is_boundary_vertex(v) && mesh.is_corner(v);
         }
     }
-    let face_start = mesh.face_starts().to_vec();
-    let kept: Vec<(u32, f32)> = (0..positions.len() as u32)
-        .filter(|&v| keep[origin[v as usize] as usize])
-        .map(|v| (v, INFINITE))
-        .collect();
-    let cut_edges = crease_valence.iter().sum::<u32>() / 2;
-    let copies = positions.len() - nv;
-    let out = PolyMesh::from_flat(positions, face_start, corners)?;
-    // the net drops the vertices in no face (those of removed hole faces only): the kept
-    // corners follow the renumbering
-    let dropped = out.dropped_vertices();
-    let kept: Vec<(u32, f32)> = kept
-        .into_iter()
-        .filter(|p| dropped.binary_search(&(p.0 as usize)).is_err())
-        .map(|(v, s)| (v - dropped.partition_point(|&d| d < v as usize) as u32, s))
-        .collect();
-    let extras = Extras {
-        sharp_vertices: kept.clone(),
-        options: SubdOptions {
-            boundary: Some(BoundaryInterpolation::EdgeOnly),
-            ..SubdOptions::default()
-        },
-        ..Extras::default()
-    };
-    notes.push(format!(
-        "sharp features: the net is cut along its {cut_edges} infinitely sharp edges ({copies} \
-         vertex copies, numbered from {nv}); both sides of a crease end on the quadratic \
-         B-spline of the crease polygon, which interpolates the {} kept corners (crease ends, \
-         junctions, crease vertices on the boundary, corner tags, and under edge-and-corner \
-         the net's corners); elements on a crease take the Doo-Sabin boundary rules",
-        kept.len()
-    ));
-    Ok(Some(CutNet {
-        mesh: out.with_extras(Some(extras)),
-        notes,
-    }))
+    Ok(keep)
 }
 
 /// Runs `build` on the net cut along its creases ([`cut_along_creases`]; the net itself when it

@@ -4,7 +4,7 @@
 //! vertices. Split from the parent module, which holds the host, the regular patches and the
 //! centroid fill.
 
-use super::step::{StepIn, dual_step};
+use super::step::{StepIn, StepOut, dual_step};
 use super::{DualRules, Level};
 use crate::bezier::domain::Domain;
 use crate::error::Result;
@@ -25,16 +25,7 @@ pub(super) fn refine_around(
 ) -> Result<Level> {
     let m = &level.mesh;
     let creases = Creases::of(m, name)?;
-    let mut sel = vec![false; m.num_faces()];
-    let mut sel_faces = Vec::new();
-    for &(v, _) in marked {
-        for f in m.vertex_faces(v as usize) {
-            if !sel[f as usize] {
-                sel[f as usize] = true;
-                sel_faces.push(f);
-            }
-        }
-    }
+    let sel_faces = faces_around(m, marked);
     let inp = StepIn {
         mesh: m,
         info: &level.info,
@@ -52,48 +43,7 @@ pub(super) fn refine_around(
         out.split.corners.clone(),
     )?
     .with_extras(out.extras.clone());
-    // The F-face of each selected face in the child (the first faces, in `sel_faces` order).
-    let f_face: HashMap<u32, u32> = out
-        .split
-        .sel_faces
-        .iter()
-        .enumerate()
-        .map(|(i, &f)| (f, i as u32))
-        .collect();
-    let mut active = Vec::new();
-    for &(v, tag) in marked {
-        let v = v as usize;
-        let hs = m.outgoing_halfedges(v);
-        // on the true boundary (its whole fan present): the corner points of an input
-        // vertex get the quarters of its faces as anywhere (their patches' sides toward the
-        // boundary edges are knot lines inside the surface, as the regular boundary vertices'
-        // are); on later levels boundary vertices are Chaikin points and kept corners, whose
-        // patches lie beyond the knot lines, over no face
-        let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
-        for (i, &h) in hs.iter().enumerate() {
-            let w = out.split.corner_pt[h as usize];
-            let mut t = tag;
-            t.domain = Domain::UNTRACKED;
-            if w != NONE && (level.first || !on_boundary) {
-                let g = m.he_face(h);
-                t.domain = child_domain(m, level.first, &child, h, i, tag.domain, f_face[&g], w);
-            }
-            active.push((w, t));
-        }
-        // the Chaikin points near v of its sharp edges (boundary edges: the outgoing one
-        // first, the incoming one last) and its kept point: over no face
-        let untracked = Tag {
-            domain: Domain::UNTRACKED,
-            ..tag
-        };
-        for e in sharp_spokes(m, v, &hs, creases.as_ref()) {
-            let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
-            active.push((out.split.edge_pt[e as usize][k], untracked));
-        }
-        if out.split.kept[v] != NONE {
-            active.push((out.split.kept[v], untracked));
-        }
-    }
+    let mut active = active_children(level, marked, &out, &child, creases.as_ref());
     // Children that could not be made (a cut the bookkeeping did not trust) stay out.
     active.retain(|&(x, _)| x != NONE);
     debug_assert_eq!(out.rule_free.len(), out.info.len());
@@ -122,6 +72,78 @@ pub(super) fn refine_around(
         return cut_child(child, name);
     }
     Ok(child)
+}
+
+/// The faces around the marked vertices, each once, in the order the marked vertices meet
+/// them.
+fn faces_around(m: &PolyMesh, marked: &[(u32, Tag)]) -> Vec<u32> {
+    let mut sel = vec![false; m.num_faces()];
+    let mut sel_faces = Vec::new();
+    for &(v, _) in marked {
+        for f in m.vertex_faces(v as usize) {
+            if !sel[f as usize] {
+                sel[f as usize] = true;
+                sel_faces.push(f);
+            }
+        }
+    }
+    sel_faces
+}
+
+/// The children of the marked vertices with their tags (`NONE` for a child not made): the
+/// corner points of each marked vertex, with the quarters of its cell as domains, then, over
+/// no face, the Chaikin points near it of its sharp edges and its kept point.
+fn active_children(
+    level: &Level,
+    marked: &[(u32, Tag)],
+    out: &StepOut,
+    child: &PolyMesh,
+    creases: Option<&Creases<'_>>,
+) -> Vec<(u32, Tag)> {
+    let m = &level.mesh;
+    let mut active = Vec::new();
+    // The F-face of each selected face in the child (the first faces, in `sel_faces` order).
+    let f_face: HashMap<u32, u32> = out
+        .split
+        .sel_faces
+        .iter()
+        .enumerate()
+        .map(|(i, &f)| (f, i as u32))
+        .collect();
+    for &(v, tag) in marked {
+        let v = v as usize;
+        let hs = m.outgoing_halfedges(v);
+        // on the true boundary (its whole fan present): the corner points of an input
+        // vertex get the quarters of its faces as anywhere (their patches' sides toward the
+        // boundary edges are knot lines inside the surface, as the regular boundary vertices'
+        // are); on later levels boundary vertices are Chaikin points and kept corners, whose
+        // patches lie beyond the knot lines, over no face
+        let on_boundary = m.is_boundary_vertex(v) && level.info[v].fan_ok;
+        for (i, &h) in hs.iter().enumerate() {
+            let w = out.split.corner_pt[h as usize];
+            let mut t = tag;
+            t.domain = Domain::UNTRACKED;
+            if w != NONE && (level.first || !on_boundary) {
+                let g = m.he_face(h);
+                t.domain = child_domain(m, level.first, child, h, i, tag.domain, f_face[&g], w);
+            }
+            active.push((w, t));
+        }
+        // the Chaikin points near v of its sharp edges (boundary edges: the outgoing one
+        // first, the incoming one last) and its kept point: over no face
+        let untracked = Tag {
+            domain: Domain::UNTRACKED,
+            ..tag
+        };
+        for e in sharp_spokes(m, v, &hs, creases) {
+            let k = usize::from(m.he_from(m.edge_halfedge(e as usize)) as usize != v);
+            active.push((out.split.edge_pt[e as usize][k], untracked));
+        }
+        if out.split.kept[v] != NONE {
+            active.push((out.split.kept[v], untracked));
+        }
+    }
+    active
 }
 
 /// `level` cut along its (infinitely sharp) creases ([`crate::schemes::doo_sabin::sharp::cut_level`]):

@@ -138,9 +138,10 @@ pub(crate) fn dual_step(
         creases,
         trust: &trust,
         scratch: Scratch::default(),
+        kept_plans: Vec::new(),
     };
     let split = dual_split(m, sel_faces, &mut features, order);
-    let free = |x: u32| inp.rule_free.is_none_or(|r| r[x as usize]);
+    let kept_plans = features.kept_plans;
     let n = split.points.len();
     let untrusted = Info {
         pos_ok: false,
@@ -157,10 +158,34 @@ pub(crate) fn dual_step(
         split,
         extras: None,
     };
-    let split = &o.split;
-    // the corner points, face by face (a large face's at once)
-    for &f in &split.sel_faces {
-        let f = f as usize;
+    corner_points(inp, corner, creases, &trust, &mut o);
+    let (blends, kept_blends) = edge_and_kept_points(inp, creases, &trust, &kept_plans, &mut o);
+    blend_chaikin_points(m, &mut o, &blends);
+    if let Some(c) = creases {
+        blend_kept_points(m, c, &mut o, &kept_blends);
+    }
+    faces(inp, creases, &mut o)?;
+    Ok(o)
+}
+
+/// Whether no boundary rule entered point `x` (always, unless the boundary mode is `none`).
+fn rule_free(inp: &StepIn<'_>, x: u32) -> bool {
+    inp.rule_free.is_none_or(|r| r[x as usize])
+}
+
+/// The corner points, face by face: by the scheme's corner rule (on the face alone where a
+/// crease touches it), or a large face's all at once as positions; each trusted when every
+/// point its rule reads is.
+fn corner_points(
+    inp: &StepIn<'_>,
+    corner: &mut dyn FnMut(&PolyMesh, u32) -> Stencil,
+    creases: Option<&Creases<'_>>,
+    trust: &SplitTrust<'_>,
+    o: &mut StepOut,
+) {
+    let m = inp.mesh;
+    for i in 0..o.split.sel_faces.len() {
+        let f = o.split.sel_faces[i] as usize;
         let h0 = m.face_halfedge(f);
         let alone = creases
             .is_some_and(|c| c.touches(f))
@@ -175,11 +200,11 @@ pub(crate) fn dual_step(
                     None => rule(m, f),
                 };
                 let ok = fc.reads.iter().all(|&x| inp.info[x as usize].pos_ok);
-                let rf = fc.reads.iter().all(|&x| free(x));
+                let rf = fc.reads.iter().all(|&x| rule_free(inp, x));
                 (fc.points, ok, rf)
             });
         for h in h0..h0 + m.face_size(f) as u32 {
-            let p = split.corner_pt[h as usize] as usize;
+            let p = o.split.corner_pt[h as usize] as usize;
             let (st, pos, rf) = match &large {
                 Some((points, ok, rf)) => {
                     o.fixed.push((p as u32, points[(h - h0) as usize]));
@@ -192,7 +217,7 @@ pub(crate) fn dual_step(
                     };
                     // trusted when every point the rule reads is (it may reach beyond the face)
                     let pos = trust.reads_ok(&st);
-                    let rf = st.entries().iter().all(|&(x, _)| free(x));
+                    let rf = st.entries().iter().all(|&(x, _)| rule_free(inp, x));
                     (st, pos, rf)
                 }
             };
@@ -201,12 +226,30 @@ pub(crate) fn dual_step(
             o.rule_free[p] = rf;
         }
     }
-    // the Chaikin points and the kept points, in their order
-    let mut scratch = Scratch::default();
-    let mut blends: Vec<(u32, usize, usize)> = Vec::new();
-    let mut kept_blends: Vec<(u32, usize, VertexPlan)> = Vec::new();
-    for (p, &point) in split.points.iter().enumerate() {
-        match point {
+}
+
+/// A Chaikin point whose crease decays this step: `(point, edge, end)`.
+type ChaikinBlend = (u32, usize, usize);
+
+/// A kept point whose corner decays this step: `(point, vertex, plan)`.
+type KeptBlend = (u32, usize, VertexPlan);
+
+/// The Chaikin points of sharp edges and the kept points, in their order (`kept_plans`: the
+/// kept points' vertex plans, in the same order). Returns the points whose feature decays
+/// this step.
+fn edge_and_kept_points(
+    inp: &StepIn<'_>,
+    creases: Option<&Creases<'_>>,
+    trust: &SplitTrust<'_>,
+    kept_plans: &[VertexPlan],
+    o: &mut StepOut,
+) -> (Vec<ChaikinBlend>, Vec<KeptBlend>) {
+    let m = inp.mesh;
+    let mut blends: Vec<ChaikinBlend> = Vec::new();
+    let mut kept_blends: Vec<KeptBlend> = Vec::new();
+    let mut plans = kept_plans.iter();
+    for p in 0..o.split.points.len() {
+        match o.split.points[p] {
             DualPoint::Corner(_) => {}
             DualPoint::Chaikin { edge, end } => {
                 let (e, k) = (edge as usize, end as usize);
@@ -224,11 +267,9 @@ pub(crate) fn dual_step(
             }
             DualPoint::Kept(x) => {
                 let x = x as usize;
-                let plan = match creases {
-                    Some(c) => c.kept(x, &mut scratch),
-                    None => Some(VertexPlan::Single(VertexMask::Corner)),
-                }
-                .expect("the features gave a kept point only where a plan keeps one");
+                let plan = *plans
+                    .next()
+                    .expect("the features gave a plan for every kept point");
                 let w = match plan {
                     VertexPlan::Blend { w, .. } => w,
                     VertexPlan::Single(_) => 1.0,
@@ -241,12 +282,8 @@ pub(crate) fn dual_step(
             }
         }
     }
-    blend_chaikin_points(m, &mut o, &blends);
-    if let Some(c) = creases {
-        blend_kept_points(m, c, &mut o, &kept_blends);
-    }
-    faces(inp, creases, &mut o)?;
-    Ok(o)
+    debug_assert!(plans.next().is_none(), "a plan without its kept point");
+    (blends, kept_blends)
 }
 
 /// The sharp features of one dual step for the mesh layer's split: Chaikin points on sharp
@@ -258,6 +295,9 @@ struct StepFeatures<'a> {
     creases: Option<&'a Creases<'a>>,
     trust: &'a SplitTrust<'a>,
     scratch: Scratch,
+    /// The vertex plan of each kept point, in the order the split numbers them (it asks
+    /// [`DualFeatures::kept`] once per vertex and numbers a kept point at each yes).
+    kept_plans: Vec<VertexPlan>,
 }
 
 impl DualFeatures for StepFeatures<'_> {
@@ -275,11 +315,22 @@ impl DualFeatures for StepFeatures<'_> {
     }
 
     fn kept(&mut self, v: usize) -> bool {
-        self.inp.info[v].fan_ok
-            && match self.creases {
-                Some(c) => c.kept(v, &mut self.scratch).is_some(),
-                None => is_kept_corner(self.inp.mesh, v),
+        if !self.inp.info[v].fan_ok {
+            return false;
+        }
+        let plan = match self.creases {
+            Some(c) => c.kept(v, &mut self.scratch),
+            None => {
+                is_kept_corner(self.inp.mesh, v).then_some(VertexPlan::Single(VertexMask::Corner))
             }
+        };
+        match plan {
+            Some(plan) => {
+                self.kept_plans.push(plan);
+                true
+            }
+            None => false,
+        }
     }
 
     fn v_faces(&mut self, v: usize, hs: &[u32]) -> VFaces {
@@ -294,7 +345,7 @@ impl DualFeatures for StepFeatures<'_> {
 /// The blends of the Chaikin points of decaying creases: toward the midpoint of the two corner
 /// points they sit between (the E-face's side at that end), with the weight left by the
 /// edge's fractional sharpness. A point whose corner points are not made is not trusted.
-fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[(u32, usize, usize)]) {
+fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[ChaikinBlend]) {
     for &(p, e, k) in blends {
         let h = m.edge_halfedge(e);
         let Some(t) = m.he_twin(h) else { continue };
@@ -328,12 +379,7 @@ fn blend_chaikin_points(m: &PolyMesh, o: &mut StepOut, blends: &[(u32, usize, us
 /// The blends of the kept points of decaying corners: toward the midpoint of the Chaikin points
 /// of the two edges that stay sharp when the child's rule is the crease rule, else toward the
 /// centroid of the vertex's corner points.
-fn blend_kept_points(
-    m: &PolyMesh,
-    c: &Creases<'_>,
-    o: &mut StepOut,
-    blends: &[(u32, usize, VertexPlan)],
-) {
+fn blend_kept_points(m: &PolyMesh, c: &Creases<'_>, o: &mut StepOut, blends: &[KeptBlend]) {
     let mut spokes = Vec::new();
     for &(p, v, plan) in blends {
         let VertexPlan::Blend { child, w, .. } = plan else {
