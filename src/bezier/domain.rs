@@ -423,17 +423,9 @@ impl Domain {
         }
         if self.sub == Domain::WHOLE {
             return Domain {
-                sub: k,
-                shape: Shape::Quad,
-                depth: 0,
-                path: 0,
-                thirds: 0,
-                split_at: 0,
-                ratio: 0,
-                halves: 0,
-                rot: 0,
                 face: self.face,
-                frame: Frame::NONE,
+                sub: k,
+                ..Domain::UNTRACKED
             };
         }
         if self.depth == MAX_DEPTH {

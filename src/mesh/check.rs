@@ -44,9 +44,20 @@ pub(super) fn uniform_size(face_start: &[u32]) -> u32 {
     }
 }
 
+/// The number of faces of flat face arrays (`face_start` holds one offset more), refusing a net
+/// without faces or without points. One source for [`super::PolyMesh::from_flat`] and
+/// [`super::PolyMesh::from_flat_general`].
+pub(super) fn face_count(positions: &[Point], face_start: &[u32]) -> Result<usize> {
+    let nf = face_start.len().saturating_sub(1);
+    if nf == 0 || positions.is_empty() {
+        return Err(MeshError::Empty.into());
+    }
+    Ok(nf)
+}
+
 /// The checks every face of a flat input passes: at least three corners, each naming one of the
 /// `nv` vertices (errors name face `f`). One source for [`PolyMesh::from_flat`] and
-/// [`PolyMesh::from_flat_general`].
+/// [`super::PolyMesh::from_flat_general`].
 pub(crate) fn check_face(face: &[u32], f: usize, nv: usize) -> Result<()> {
     if face.len() < 3 {
         return Err(MeshError::FaceTooSmall {

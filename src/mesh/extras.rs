@@ -10,7 +10,7 @@
 //! lines and PLY properties, writers write them back.
 
 use super::tags::{SubdOptions, Tags};
-use super::{FaceIndex, MeshError, NONE, PolyMesh, Topology, uniform_size};
+use super::{FaceIndex, NONE, PolyMesh, Topology, uniform_size};
 use crate::error::{Error, Result};
 use crate::geom::Point;
 use std::sync::OnceLock;
@@ -238,10 +238,7 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let nf = face_start.len().saturating_sub(1);
-        if nf == 0 || positions.is_empty() {
-            return Err(MeshError::Empty.into());
-        }
+        let nf = super::face_count(&positions, &face_start)?;
         let nv = positions.len();
         let mut repeats = false;
         // The linear repeated-corner test (comparing every pair of corners cost k^2 in a k-gon:
@@ -282,13 +279,8 @@ impl PolyMesh {
         corners: &[u32],
         uniform: u32,
     ) -> Topology {
-        let nh = corners.len();
-        let he_face = super::csr::halfedge_faces(face_start, nh, uniform);
-        let faces = FaceIndex {
-            face_start,
-            he_face: &he_face,
-            uniform,
-        };
+        let he_face = super::csr::halfedge_faces(face_start, corners.len(), uniform);
+        let faces = FaceIndex::new(face_start, &he_face, uniform);
         let (raw, count, nm) = super::general::osd_edges(faces, corners);
         Topology::build_general(nv, faces, corners, &raw, count, &nm, &[])
     }

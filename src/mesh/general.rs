@@ -155,128 +155,14 @@ impl Topology {
         raw_nm: &[bool],
         nm_vertex: &[bool],
     ) -> Topology {
-        let nh = corners.len();
-        let to = |h: u32| corners[faces.next(h) as usize];
-        // Renumber the edges by first occurrence.
-        let mut new_id = vec![NONE; raw_count];
-        let mut he_edge = vec![0u32; nh];
-        let mut edge_he: Vec<u32> = Vec::new();
-        let mut edge_nm: Vec<bool> = Vec::new();
-        for h in 0..nh {
-            let r = raw_edge[h] as usize;
-            if new_id[r] == NONE {
-                new_id[r] = edge_he.len() as u32;
-                edge_he.push(h as u32);
-                edge_nm.push(raw_nm.get(r).copied().unwrap_or(false));
-            }
-            he_edge[h] = new_id[r];
-        }
-        drop(new_id);
-        let ne = edge_he.len();
-        // Sides per edge (CSR, in half-edge order).
-        let (side_start, sides) = super::csr::buckets(&he_edge, ne);
-        let mut twin = vec![NONE; nh];
-        for e in 0..ne {
-            let s = &sides[side_start[e] as usize..side_start[e + 1] as usize];
-            match *s {
-                [h1, h2] if !edge_nm[e] => {
-                    let opposite = corners[h1 as usize] == to(h2) && to(h1) == corners[h2 as usize];
-                    if opposite && faces.face(h1) != faces.face(h2) {
-                        twin[h1 as usize] = h2;
-                        twin[h2 as usize] = h1;
-                    } else {
-                        edge_nm[e] = true;
-                    }
-                }
-                [_] => {}
-                _ => edge_nm[e] = true,
-            }
-        }
+        let mut edges = Edges::renumber(raw_edge, raw_count, raw_nm);
+        let twin = edges.pair_twins(faces, corners);
         // Outgoing half-edges per vertex (CSR, in increasing order).
-        let (out_start, out_he) = super::csr::buckets(corners, nv);
-        let outs = |v: usize| &out_he[out_start[v] as usize..out_start[v + 1] as usize];
-        let mut vertex_nm: Vec<bool> = (0..nv)
-            .map(|v| nm_vertex.get(v).copied().unwrap_or(false) || outs(v).is_empty())
-            .collect();
-        for e in 0..ne {
-            if edge_nm[e] {
-                let h = edge_he[e];
-                vertex_nm[corners[h as usize] as usize] = true;
-                vertex_nm[to(h) as usize] = true;
-            }
-        }
-        let mut vert_he = vec![NONE; nv];
-        for v in 0..nv {
-            let o = outs(v);
-            let Some(&first) = o.first() else { continue };
-            let mut start = first;
-            let mut boundary_starts = 0;
-            for &h in o {
-                if twin[h as usize] == NONE {
-                    boundary_starts += 1;
-                    start = h;
-                }
-            }
-            if !vertex_nm[v] {
-                // One fan: the rotation from `start` reaches every outgoing half-edge.
-                let count = super::topology::fan_len(&twin, faces, start, o.len());
-                if count != o.len() || boundary_starts > 1 {
-                    vertex_nm[v] = true;
-                }
-            }
-            vert_he[v] = if vertex_nm[v] { first } else { start };
-        }
-        let any_nm = vertex_nm.iter().any(|&b| b) || edge_nm.iter().any(|&b| b);
-        let nm = any_nm.then(|| {
-            let end_of = |h: u32, at_from: bool| -> u8 {
-                // The end of edge(h) that the start (or the end) of h is.
-                let e = he_edge[h as usize] as usize;
-                let first = edge_he[e];
-                let from_is_0 = h == first || corners[h as usize] == corners[first as usize];
-                u8::from(from_is_0 != at_from)
-            };
-            let mut t = NonManifold {
-                edge: edge_nm.clone(),
-                vertex: vertex_nm.clone(),
-                vert_edge_start: vec![0],
-                vert_out_start: vec![0],
-                edge_sides_start: vec![0],
-                ..NonManifold::default()
-            };
-            for v in 0..nv {
-                if !vertex_nm[v] {
-                    continue;
-                }
-                t.vertices.push(v as u32);
-                let mut es: Vec<(u32, u8)> = Vec::new();
-                for &h in outs(v) {
-                    let p = faces.prev(h);
-                    for pair in [
-                        (he_edge[h as usize], end_of(h, true)),
-                        (he_edge[p as usize], end_of(p, false)),
-                    ] {
-                        if !es.contains(&pair) {
-                            es.push(pair);
-                        }
-                    }
-                }
-                es.sort_unstable();
-                t.vert_edges.extend_from_slice(&es);
-                t.vert_edge_start.push(t.vert_edges.len() as u32);
-                t.vert_out.extend_from_slice(outs(v));
-                t.vert_out_start.push(t.vert_out.len() as u32);
-            }
-            for e in 0..ne {
-                if edge_nm[e] {
-                    t.edges.push(e as u32);
-                    t.edge_sides.extend_from_slice(
-                        &sides[side_start[e] as usize..side_start[e + 1] as usize],
-                    );
-                    t.edge_sides_start.push(t.edge_sides.len() as u32);
-                }
-            }
-            Box::new(t)
-        });
+        let outs = Buckets::of(corners, nv);
+        let (vertex_nm, vert_he) =
+            vertex_halfedges(faces, corners, &edges, &twin, &outs, nm_vertex);
+        let any_nm = vertex_nm.iter().any(|&b| b) || edges.nm.iter().any(|&b| b);
+        let nm = any_nm.then(|| side_table(faces, corners, &edges, &vertex_nm, &outs));
         let he_face = if faces.uniform == 0 {
             faces.he_face.to_vec()
         } else {
@@ -285,10 +171,192 @@ impl Topology {
         Topology {
             he_face,
             twin,
-            he_edge,
-            edge_he,
+            he_edge: edges.he_edge,
+            edge_he: edges.edge_he,
             vert_he,
             nm,
         }
     }
+}
+
+/// Items bucketed by key (CSR): bucket `k` is `items[start[k]..start[k + 1]]`.
+struct Buckets {
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Buckets {
+    /// The indices `i` of `keys` bucketed by `keys[i] < n`, each bucket in increasing order.
+    fn of(keys: &[u32], n: usize) -> Buckets {
+        let (start, items) = super::csr::buckets(keys, n);
+        Buckets { start, items }
+    }
+
+    /// Bucket `k`.
+    #[inline]
+    fn get(&self, k: usize) -> &[u32] {
+        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+}
+
+/// The edges of the tolerant build, numbered by first occurrence.
+struct Edges {
+    /// Edge of each half-edge.
+    he_edge: Vec<u32>,
+    /// First half-edge of each edge.
+    edge_he: Vec<u32>,
+    /// Whether each edge is non-manifold (inherited, then as found).
+    nm: Vec<bool>,
+    /// The sides (half-edges) of each edge, in half-edge order.
+    sides: Buckets,
+}
+
+impl Edges {
+    /// Renumbers the raw edge ids of the half-edges by first occurrence, keeping their
+    /// inherited non-manifold flags.
+    fn renumber(raw_edge: &[u32], raw_count: usize, raw_nm: &[bool]) -> Edges {
+        let nh = raw_edge.len();
+        let mut new_id = vec![NONE; raw_count];
+        let mut he_edge = vec![0u32; nh];
+        let mut edge_he: Vec<u32> = Vec::new();
+        let mut nm: Vec<bool> = Vec::new();
+        for h in 0..nh {
+            let r = raw_edge[h] as usize;
+            if new_id[r] == NONE {
+                new_id[r] = edge_he.len() as u32;
+                edge_he.push(h as u32);
+                nm.push(raw_nm.get(r).copied().unwrap_or(false));
+            }
+            he_edge[h] = new_id[r];
+        }
+        drop(new_id);
+        let sides = Buckets::of(&he_edge, edge_he.len());
+        Edges {
+            he_edge,
+            edge_he,
+            nm,
+            sides,
+        }
+    }
+
+    /// Twins for the edges with exactly two opposite sides in different faces (not flagged
+    /// before); every other edge with more than one side is flagged non-manifold.
+    fn pair_twins(&mut self, faces: FaceIndex<'_>, corners: &[u32]) -> Vec<u32> {
+        let to = |h: u32| corners[faces.next(h) as usize];
+        let mut twin = vec![NONE; corners.len()];
+        for e in 0..self.edge_he.len() {
+            match *self.sides.get(e) {
+                [h1, h2] if !self.nm[e] => {
+                    let opposite = corners[h1 as usize] == to(h2) && to(h1) == corners[h2 as usize];
+                    if opposite && faces.face(h1) != faces.face(h2) {
+                        twin[h1 as usize] = h2;
+                        twin[h2 as usize] = h1;
+                    } else {
+                        self.nm[e] = true;
+                    }
+                }
+                [_] => {}
+                _ => self.nm[e] = true,
+            }
+        }
+        twin
+    }
+}
+
+/// Which vertices are non-manifold (inherited in `nm_vertex`, unused, on a non-manifold edge,
+/// or joining several fans) and each vertex's half-edge: the boundary outgoing one of a
+/// manifold vertex, else the first outgoing one.
+fn vertex_halfedges(
+    faces: FaceIndex<'_>,
+    corners: &[u32],
+    edges: &Edges,
+    twin: &[u32],
+    outs: &Buckets,
+    nm_vertex: &[bool],
+) -> (Vec<bool>, Vec<u32>) {
+    let nv = outs.start.len() - 1;
+    let to = |h: u32| corners[faces.next(h) as usize];
+    let mut vertex_nm: Vec<bool> = (0..nv)
+        .map(|v| nm_vertex.get(v).copied().unwrap_or(false) || outs.get(v).is_empty())
+        .collect();
+    for (e, &h) in edges.edge_he.iter().enumerate() {
+        if edges.nm[e] {
+            vertex_nm[corners[h as usize] as usize] = true;
+            vertex_nm[to(h) as usize] = true;
+        }
+    }
+    let mut vert_he = vec![NONE; nv];
+    for v in 0..nv {
+        let o = outs.get(v);
+        let Some(&first) = o.first() else { continue };
+        let mut start = first;
+        let mut boundary_starts = 0;
+        for &h in o {
+            if twin[h as usize] == NONE {
+                boundary_starts += 1;
+                start = h;
+            }
+        }
+        if !vertex_nm[v] {
+            // One fan: the rotation from `start` reaches every outgoing half-edge.
+            let count = super::topology::fan_len(twin, faces, start, o.len());
+            if count != o.len() || boundary_starts > 1 {
+                vertex_nm[v] = true;
+            }
+        }
+        vert_he[v] = if vertex_nm[v] { first } else { start };
+    }
+    (vertex_nm, vert_he)
+}
+
+/// The [`NonManifold`] side table: the flags, and the incident edges and outgoing half-edges
+/// of every non-manifold vertex and the sides of every non-manifold edge.
+fn side_table(
+    faces: FaceIndex<'_>,
+    corners: &[u32],
+    edges: &Edges,
+    vertex_nm: &[bool],
+    outs: &Buckets,
+) -> Box<NonManifold> {
+    let end_of = |h: u32, at_from: bool| -> u8 {
+        // The end of edge(h) that the start (or the end) of h is.
+        let e = edges.he_edge[h as usize] as usize;
+        let first = edges.edge_he[e];
+        let from_is_0 = h == first || corners[h as usize] == corners[first as usize];
+        u8::from(from_is_0 != at_from)
+    };
+    let mut t = NonManifold {
+        edge: edges.nm.clone(),
+        vertex: vertex_nm.to_vec(),
+        vert_edge_start: vec![0],
+        vert_out_start: vec![0],
+        edge_sides_start: vec![0],
+        ..NonManifold::default()
+    };
+    for (v, _) in vertex_nm.iter().enumerate().filter(|(_, nm)| **nm) {
+        t.vertices.push(v as u32);
+        let mut es: Vec<(u32, u8)> = Vec::new();
+        for &h in outs.get(v) {
+            let p = faces.prev(h);
+            for pair in [
+                (edges.he_edge[h as usize], end_of(h, true)),
+                (edges.he_edge[p as usize], end_of(p, false)),
+            ] {
+                if !es.contains(&pair) {
+                    es.push(pair);
+                }
+            }
+        }
+        es.sort_unstable();
+        t.vert_edges.extend_from_slice(&es);
+        t.vert_edge_start.push(t.vert_edges.len() as u32);
+        t.vert_out.extend_from_slice(outs.get(v));
+        t.vert_out_start.push(t.vert_out.len() as u32);
+    }
+    for (e, _) in edges.nm.iter().enumerate().filter(|(_, nm)| **nm) {
+        t.edges.push(e as u32);
+        t.edge_sides.extend_from_slice(edges.sides.get(e));
+        t.edge_sides_start.push(t.edge_sides.len() as u32);
+    }
+    Box::new(t)
 }

@@ -30,7 +30,7 @@ mod view;
 mod walk;
 
 pub(crate) use check::{check_face, check_finite};
-use check::{repeated_corner, uniform_size};
+use check::{face_count, repeated_corner, uniform_size};
 pub use element::Element;
 pub use extras::{Extras, FaceVarying, ScalarKind, SharpEdges, VertexData};
 pub(crate) use general::NonManifold;
@@ -146,10 +146,7 @@ impl PolyMesh {
         face_start: Vec<u32>,
         corners: Vec<u32>,
     ) -> Result<PolyMesh> {
-        let nf = face_start.len().saturating_sub(1);
-        if nf == 0 || positions.is_empty() {
-            return Err(MeshError::Empty.into());
-        }
+        let nf = face_count(&positions, &face_start)?;
         let nv = positions.len();
         // For large faces: the last face that used each vertex (so a repeat is found in time
         // linear in the face size); allocated only when a large face appears.

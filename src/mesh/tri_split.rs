@@ -171,14 +171,7 @@ impl UniformSplit for TriSplit {
                 }
             })
             .collect();
-        Topology {
-            he_face: Vec::new(),
-            twin,
-            he_edge,
-            edge_he,
-            vert_he,
-            nm: None,
-        }
+        Topology::of_uniform_manifold(twin, he_edge, edge_he, vert_he)
     }
 
     /// The child edges: the two halves of every parent edge and three edges inside each

@@ -141,7 +141,18 @@ pub(crate) struct FaceIndex<'a> {
     pub uniform: u32,
 }
 
-impl FaceIndex<'_> {
+impl<'a> FaceIndex<'a> {
+    /// The lookup of faces with offsets `face_start` and face of each half-edge `he_face` (both
+    /// may be empty when all faces have `uniform` corners).
+    #[inline]
+    pub fn new(face_start: &'a [u32], he_face: &'a [u32], uniform: u32) -> FaceIndex<'a> {
+        FaceIndex {
+            face_start,
+            he_face,
+            uniform,
+        }
+    }
+
     /// First half-edge of face `f`.
     #[inline]
     pub fn start(&self, f: usize) -> u32 {

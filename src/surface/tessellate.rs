@@ -168,17 +168,29 @@ pub fn tessellate_with_tolerance(c: &PatchComplex, n: usize, tol: f64) -> Tessel
 /// [`tessellate_with_tolerance`] on a complex without degenerate patches.
 fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
     let n = n.max(1);
-    let np = c.len();
     let shared = shared_boundaries(c, tol);
     let grid: Vec<f64> = (0..=n).map(|k| k as f64 / n as f64).collect();
+    let slots = Slots::new(side_samples(c.len(), n, &grid, &shared));
+    let slot_eval = evaluate_slots(c, &slots);
+    let mut uf = identify_slots(c, &slots, &shared, &slot_eval, tol);
+    let mut t = Tessellation::default();
+    let vertex_of_slot = boundary_vertices(c, &slots, &mut uf, &slot_eval, &mut t);
+    let interior_base = interior_vertices(c, &grid, &mut t);
+    for p in 0..c.len() {
+        triangulate_patch(c, p, &grid, &slots, &vertex_of_slot, interior_base, &mut t);
+    }
+    t
+}
 
-    // 1. sample parameters of every side (index 4 p + side)
+/// The sample parameters of every side (index `4 p + side`): the grid samples and those the
+/// shared boundaries bring from the other side.
+fn side_samples(np: usize, n: usize, grid: &[f64], shared: &[SharedBoundary]) -> Vec<SideSamples> {
     let mut extra: Vec<Vec<f64>> = vec![Vec::new(); 4 * np];
-    for r in &shared {
+    for r in shared {
         let (slo, shi) = (r.s[0].min(r.s[1]), r.s[0].max(r.s[1]));
         let ka = 4 * r.a + r.side_a.index();
         let kb = 4 * r.b + r.side_b.index();
-        for &g in &grid {
+        for &g in grid {
             if g >= slo - PARAM_EPS && g <= shi + PARAM_EPS {
                 extra[ka].push(r.map_to_a(g));
             }
@@ -187,35 +199,78 @@ fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
             }
         }
     }
-    let samples: Vec<SideSamples> = extra.into_iter().map(|e| merge_samples(n, e)).collect();
-    let mut slot_base = Vec::with_capacity(4 * np + 1);
-    slot_base.push(0usize);
-    for s in &samples {
-        slot_base.push(slot_base.last().copied().unwrap_or(0) + s.params.len());
-    }
-    let nslots = slot_base[4 * np];
-    let slot = |p: usize, side: Side, k: usize| (slot_base[4 * p + side.index()] + k) as u32;
+    extra.into_iter().map(|e| merge_samples(n, e)).collect()
+}
 
-    // 2. evaluate every boundary slot (position, normal)
-    let slot_eval: Vec<(Point, Point)> = (0..np)
+/// The boundary samples of all sides numbered one after another (side by side, in side
+/// index order): slot `slot(p, side, k)` is sample `k` of `side` of patch `p`.
+struct Slots {
+    samples: Vec<SideSamples>,
+    base: Vec<usize>,
+}
+
+impl Slots {
+    /// Numbers the samples of every side.
+    fn new(samples: Vec<SideSamples>) -> Slots {
+        let mut base = Vec::with_capacity(samples.len() + 1);
+        base.push(0usize);
+        for s in &samples {
+            base.push(base.last().copied().unwrap_or(0) + s.params.len());
+        }
+        Slots { samples, base }
+    }
+
+    /// Number of slots.
+    fn len(&self) -> usize {
+        self.base[self.samples.len()]
+    }
+
+    /// The samples of `side` of patch `p`.
+    fn side(&self, p: usize, side: Side) -> &SideSamples {
+        &self.samples[4 * p + side.index()]
+    }
+
+    /// The slot of sample `k` of `side` of patch `p`.
+    fn slot(&self, p: usize, side: Side, k: usize) -> u32 {
+        (self.base[4 * p + side.index()] + k) as u32
+    }
+
+    /// The index of the last sample of `side` of patch `p`.
+    fn last(&self, p: usize, side: Side) -> usize {
+        self.side(p, side).params.len() - 1
+    }
+}
+
+/// Position and normal at every boundary slot, in slot order.
+fn evaluate_slots(c: &PatchComplex, slots: &Slots) -> Vec<(Point, Point)> {
+    (0..c.len())
         .into_par_iter()
         .flat_map_iter(|p| {
             let patch = &c.patches[p];
-            let samples = &samples;
             Side::ALL.into_iter().flat_map(move |side| {
-                samples[4 * p + side.index()].params.iter().map(move |&t| {
+                slots.side(p, side).params.iter().map(move |&t| {
                     let [u, v] = side.domain_point(t);
                     let d = patch.derivatives(u, v);
                     (d.p, patch.normal_from(u, v, &d))
                 })
             })
         })
-        .collect();
+        .collect()
+}
 
-    // 3. identify slots that are one surface point
-    let mut uf = UnionFind::new(nslots);
+/// Unites the slots that are one surface point: the corners of each patch, collapsed sides,
+/// the two sides of shared boundaries, and corners welded within `tol`.
+fn identify_slots(
+    c: &PatchComplex,
+    slots: &Slots,
+    shared: &[SharedBoundary],
+    slot_eval: &[(Point, Point)],
+    tol: f64,
+) -> UnionFind {
+    let mut uf = UnionFind::new(slots.len());
+    let slot = |p: usize, side: Side, k: usize| slots.slot(p, side, k);
     for (p, patch) in c.patches.iter().enumerate() {
-        let last = |side: Side| samples[4 * p + side.index()].params.len() - 1;
+        let last = |side: Side| slots.last(p, side);
         uf.union(slot(p, Side::U0, 0), slot(p, Side::V0, 0));
         uf.union(slot(p, Side::V0, last(Side::V0)), slot(p, Side::U1, 0));
         uf.union(slot(p, Side::U0, last(Side::U0)), slot(p, Side::V1, 0));
@@ -231,20 +286,30 @@ fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
             }
         }
     }
-    for r in &shared {
-        join_shared(r, &samples, &slot, &mut uf);
+    for r in shared {
+        join_shared(r, &slots.samples, &slot, &mut uf);
     }
-    // Patches that touch only at a corner (no shared side around it) are joined by welding the
-    // corner samples. Samples inside sides need no welding: a side piece without a partner is
-    // an open boundary, where welding isolated points would only pinch the mesh.
+    weld_corners(c.len(), slots, slot_eval, tol, &mut uf);
+    uf
+}
+
+/// Joins patches that touch only at a corner (no shared side around it) by welding the corner
+/// samples. Samples inside sides need no welding: a side piece without a partner is an open
+/// boundary, where welding isolated points would only pinch the mesh.
+fn weld_corners(
+    np: usize,
+    slots: &Slots,
+    slot_eval: &[(Point, Point)],
+    tol: f64,
+    uf: &mut UnionFind,
+) {
     let corner_slots: Vec<u32> = (0..np)
         .flat_map(|p| {
-            let last = |side: Side| samples[4 * p + side.index()].params.len() - 1;
             [
-                slot(p, Side::V0, 0),
-                slot(p, Side::V0, last(Side::V0)),
-                slot(p, Side::V1, 0),
-                slot(p, Side::V1, last(Side::V1)),
+                slots.slot(p, Side::V0, 0),
+                slots.slot(p, Side::V0, slots.last(p, Side::V0)),
+                slots.slot(p, Side::V1, 0),
+                slots.slot(p, Side::V1, slots.last(p, Side::V1)),
             ]
         })
         .collect();
@@ -261,16 +326,24 @@ fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
             uf.union(first_of_weld[w as usize], corner_slots[k]);
         }
     }
+}
 
-    // 4. vertices: one per slot class, then the interior grid points of every patch
-    let mut t = Tessellation::default();
-    let mut vertex_of_slot = vec![0u32; nslots];
-    let mut vertex_of_root = vec![u32::MAX; nslots];
+/// One vertex per class of identified slots, in slot order, with the mean normal of its slots
+/// (the first patch's where they cancel); returns the vertex of every slot.
+fn boundary_vertices(
+    c: &PatchComplex,
+    slots: &Slots,
+    uf: &mut UnionFind,
+    slot_eval: &[(Point, Point)],
+    t: &mut Tessellation,
+) -> Vec<u32> {
+    let mut vertex_of_slot = vec![0u32; slots.len()];
+    let mut vertex_of_root = vec![u32::MAX; slots.len()];
     let mut normal_sum: Vec<Point> = Vec::new();
-    for p in 0..np {
+    for p in 0..c.len() {
         for side in Side::ALL {
-            for (k, &tp) in samples[4 * p + side.index()].params.iter().enumerate() {
-                let s = slot(p, side, k) as usize;
+            for (k, &tp) in slots.side(p, side).params.iter().enumerate() {
+                let s = slots.slot(p, side, k) as usize;
                 let r = uf.find(s as u32) as usize;
                 if vertex_of_root[r] == u32::MAX {
                     vertex_of_root[r] = t.positions.len() as u32;
@@ -296,13 +369,19 @@ fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
             c.patches[p].normal(u, w)
         });
     }
+    vertex_of_slot
+}
+
+/// Appends the interior grid points of every patch (`(n - 1)^2` per patch, row by row);
+/// returns the index of the first.
+fn interior_vertices(c: &PatchComplex, grid: &[f64], t: &mut Tessellation) -> usize {
+    let n = grid.len() - 1;
     let m = n - 1; // interior points per row
     let interior_base = t.positions.len();
-    let interior: Vec<(Point, Point)> = (0..np)
+    let interior: Vec<(Point, Point)> = (0..c.len())
         .into_par_iter()
         .flat_map_iter(|p| {
             let patch = &c.patches[p];
-            let grid = &grid;
             (1..n).flat_map(move |i| {
                 (1..n).map(move |j| {
                     let d = patch.derivatives(grid[i], grid[j]);
@@ -318,65 +397,76 @@ fn tessellate_all(c: &PatchComplex, n: usize, tol: f64) -> Tessellation {
         t.uv.push([grid[ij / m + 1], grid[ij % m + 1]]);
         t.patch_of_vertex.push(p as u32);
     }
+    interior_base
+}
 
-    // 5. triangles, quad by quad
-    for p in 0..np {
-        let side_slots = |side: Side, a: usize, b: usize| -> Vec<u32> {
-            // vertices of the samples strictly between grid samples a and b of the side
-            let ss = &samples[4 * p + side.index()];
-            (ss.own[a] + 1..ss.own[b])
-                .map(|k| vertex_of_slot[slot(p, side, k) as usize])
-                .collect()
+/// The triangles of patch `p`, grid quad by grid quad, each boundary quad with the extra
+/// boundary points of its sides.
+fn triangulate_patch(
+    c: &PatchComplex,
+    p: usize,
+    grid: &[f64],
+    slots: &Slots,
+    vertex_of_slot: &[u32],
+    interior_base: usize,
+    t: &mut Tessellation,
+) {
+    let n = grid.len() - 1;
+    let m = n - 1;
+    let side_slots = |side: Side, a: usize, b: usize| -> Vec<u32> {
+        // vertices of the samples strictly between grid samples a and b of the side
+        let ss = slots.side(p, side);
+        (ss.own[a] + 1..ss.own[b])
+            .map(|k| vertex_of_slot[slots.slot(p, side, k) as usize])
+            .collect()
+    };
+    let gid = |i: usize, j: usize| -> u32 {
+        let on = |side: Side, k: usize| {
+            vertex_of_slot[slots.slot(p, side, slots.side(p, side).own[k]) as usize]
         };
-        let gid = |i: usize, j: usize| -> u32 {
-            let on = |side: Side, k: usize| {
-                vertex_of_slot[slot(p, side, samples[4 * p + side.index()].own[k]) as usize]
-            };
+        if j == 0 {
+            on(Side::V0, i)
+        } else if j == n {
+            on(Side::V1, i)
+        } else if i == 0 {
+            on(Side::U0, j)
+        } else if i == n {
+            on(Side::U1, j)
+        } else {
+            (interior_base + p * m * m + (i - 1) * m + (j - 1)) as u32
+        }
+    };
+    for i in 0..n {
+        for j in 0..n {
+            // the quad's four edges counter-clockwise, each with its extra boundary points
+            let mut edges: [(u32, Vec<u32>); 4] = [
+                (gid(i, j), Vec::new()),
+                (gid(i + 1, j), Vec::new()),
+                (gid(i + 1, j + 1), Vec::new()),
+                (gid(i, j + 1), Vec::new()),
+            ];
             if j == 0 {
-                on(Side::V0, i)
-            } else if j == n {
-                on(Side::V1, i)
-            } else if i == 0 {
-                on(Side::U0, j)
-            } else if i == n {
-                on(Side::U1, j)
-            } else {
-                (interior_base + p * m * m + (i - 1) * m + (j - 1)) as u32
+                edges[0].1 = side_slots(Side::V0, i, i + 1);
             }
-        };
-        for i in 0..n {
-            for j in 0..n {
-                // the quad's four edges counter-clockwise, each with its extra boundary points
-                let mut edges: [(u32, Vec<u32>); 4] = [
-                    (gid(i, j), Vec::new()),
-                    (gid(i + 1, j), Vec::new()),
-                    (gid(i + 1, j + 1), Vec::new()),
-                    (gid(i, j + 1), Vec::new()),
-                ];
-                if j == 0 {
-                    edges[0].1 = side_slots(Side::V0, i, i + 1);
-                }
-                if i + 1 == n {
-                    edges[1].1 = side_slots(Side::U1, j, j + 1);
-                }
-                if j + 1 == n {
-                    edges[2].1 = side_slots(Side::V1, i, i + 1);
-                    edges[2].1.reverse();
-                }
-                if i == 0 {
-                    edges[3].1 = side_slots(Side::U0, j, j + 1);
-                    edges[3].1.reverse();
-                }
-                let centre = || {
-                    let (u, v) = ((grid[i] + grid[i + 1]) / 2.0, (grid[j] + grid[j + 1]) / 2.0);
-                    let d = c.patches[p].derivatives(u, v);
-                    (d.p, c.patches[p].normal_from(u, v, &d), [u, v])
-                };
-                triangulate_quad(&edges, centre, p as u32, &mut t);
+            if i + 1 == n {
+                edges[1].1 = side_slots(Side::U1, j, j + 1);
             }
+            if j + 1 == n {
+                edges[2].1 = side_slots(Side::V1, i, i + 1);
+                edges[2].1.reverse();
+            }
+            if i == 0 {
+                edges[3].1 = side_slots(Side::U0, j, j + 1);
+                edges[3].1.reverse();
+            }
+            let centre = || {
+                let (u, v) = ((grid[i] + grid[i + 1]) / 2.0, (grid[j] + grid[j + 1]) / 2.0);
+                let d = c.patches[p].derivatives(u, v);
+                (d.p, c.patches[p].normal_from(u, v, &d), [u, v])
+            };
+            triangulate_quad(&edges, centre, p as u32, t);
         }
     }
-    t
 }
 
 /// Unites the slots of the two sides of a shared boundary that are the same parameter.

@@ -1,9 +1,10 @@
-//! Patch complexes with known structure for the tests of the surface modules.
+//! Patch complexes with known structure, and the chain rule of the chart tests, for the tests
+//! of the surface modules.
 
 use super::{PatchComplex, Provenance};
-use crate::bezier::BezierPatch;
 use crate::bezier::convert::bicubic_bspline_to_bezier;
-use crate::geom::Point;
+use crate::bezier::{BezierPatch, Derivatives};
+use crate::geom::{Point, axpy};
 use std::f64::consts::PI;
 
 /// Closed torus of `m x k` bi-3 patches from a periodic regular net (all valence 4): u runs
@@ -101,4 +102,35 @@ pub(crate) fn lunes(n: usize) -> PatchComplex {
         c.push(p, Provenance::Unknown);
     }
     c
+}
+
+/// The derivatives of `f(K(u, v))` from those of `f` at `K(u, v)` (`t`) by the second-order
+/// chain rule, for a map `K` with Jacobian `j` (`j[a][q] = d K_a / d q`) and twist
+/// `d^2 K / du dv = tw` (its other second derivatives zero); for the chart tests.
+pub(crate) fn chain_rule(t: &Derivatives, j: [[f64; 2]; 2], tw: [f64; 2]) -> Derivatives {
+    let g = [t.du, t.dv];
+    let h = [[t.duu, t.duv], [t.duv, t.dvv]];
+    let pd = |q: usize| (0..2).fold([0.0; 3], |r, a| axpy(r, j[a][q], g[a]));
+    let pdd = |q: usize, w: usize| {
+        let mut r = [0.0; 3];
+        for a in 0..2 {
+            for c in 0..2 {
+                r = axpy(r, j[a][q] * j[c][w], h[a][c]);
+            }
+        }
+        if q != w {
+            for a in 0..2 {
+                r = axpy(r, tw[a], g[a]);
+            }
+        }
+        r
+    };
+    Derivatives {
+        p: t.p,
+        du: pd(0),
+        dv: pd(1),
+        duu: pdd(0, 0),
+        duv: pdd(0, 1),
+        dvv: pdd(1, 1),
+    }
 }

@@ -4,7 +4,8 @@
 //! and keeps it (split from `map.rs` by topic).
 
 use super::centre::is_half_plane;
-use super::hole::{Conversion, Degrees, Fan, Hole, Layout};
+use super::conversion::Conversion;
+use super::hole::{Degrees, Fan, Hole, Layout};
 use super::map::{CERTIFIED, CapMap, Centre, Solved};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};

@@ -6,8 +6,10 @@
 use super::centre::centre_unknowns;
 pub(super) use super::choose::Key;
 use super::choose::hole_size;
-use super::hole::{Conversion, Degrees, Fan, Hole, Layout};
-use super::system::{QuadData, cidx, compatibility, conditions, dense, patch_energy};
+use super::compat::compatibility;
+use super::conversion::Conversion;
+use super::hole::{Degrees, Fan, Hole, Layout};
+use super::system::{QuadData, cidx, conditions, dense, patch_energy};
 use crate::bezier::BezierPatch;
 use crate::error::{Error, Result};
 use crate::geom::{add, axpy};

@@ -324,6 +324,8 @@
 
 mod centre;
 mod choose;
+mod compat;
+mod conversion;
 mod fan;
 pub mod hole;
 mod map;

@@ -1,7 +1,7 @@
 //! The linear system of the cap: its unknowns (all Bezier coefficients of the `n` bi-`d` cap
 //! patches, one coordinate at a time), its conditions (fixed coefficients from the data, C^0 and
-//! the G^1 relation along every spoke), the data-compatibility conditions of the ring, and the
-//! fairness energy. All rows are scalar and the same for x, y, z.
+//! the G^1 relation along every spoke) and the fairness energy (the ring's data-compatibility
+//! conditions are in `compat`). All rows are scalar and the same for x, y, z.
 
 use super::centre::{half_plane_rows, is_half_plane, jet_rows};
 use super::hole::{CornerAngle, Fan};
@@ -356,7 +356,7 @@ pub(crate) fn cone_spoke_rows(n: usize, d: usize) -> Vec<(usize, Row)> {
 pub(crate) const INNER_SMOOTHNESS: usize = 2;
 
 /// `l`-th difference weights `(-1)^(l - t) C(l, t)`, `t = 0..=l`.
-fn differences(l: usize) -> Vec<f64> {
+pub(crate) fn differences(l: usize) -> Vec<f64> {
     (0..=l)
         .map(|t| {
             if (l - t).is_multiple_of(2) {
@@ -408,132 +408,6 @@ pub(crate) fn inner_rows(n: usize, d: usize, m: usize, r: usize) -> Vec<Row> {
         }
     }
     rows
-}
-
-/// The ring's compatibility conditions on canonical data, `G q = 0`: the corner block of each
-/// sector is defined consistently by both segments, and at each spoke end the two sectors agree
-/// on the end point and the spoke tangent, their boundary tangents satisfy the spoke relation
-/// at `u = 1` (opposite where `w1 = 0`: the ring's boundary is C^1 there) and, where `w1 = 0`,
-/// their cross-derivative twists satisfy the relation's derivative at `u = 1` (see [`super`];
-/// where `w1 != 0` that derivative also holds the cap's own `d_uu P_s(1, 0)`, so it is a
-/// condition on the cap, not on the data); for split sectors, the pieces of each side join
-/// C^[`INNER_SMOOTHNESS`] in boundary and cross derivative. Each row is labelled with the sector
-/// or spoke. An open fan ([`Fan::is_open`]) has no conditions at the ends of its boundary
-/// spokes `0` and `n` (one sector each), except that a dart's two sides of its sharp spoke end
-/// at one point with one derivative along the spoke (the ring is C^0 along the sharp edge).
-pub(crate) fn compatibility(
-    n: usize,
-    fan: Fan,
-    d: usize,
-    m: usize,
-    (kappa, w1): (f64, f64),
-) -> Vec<(String, Row)> {
-    let qd = QuadData { d, m };
-    let df = d as f64;
-    // -w'(1) of the last part of the spoke, in its own parameter
-    let kappa = kappa / m as f64;
-    let mut g = Vec::new();
-    for s in 0..n {
-        let l = m - 1;
-        let (a, ca, b, cb) = (
-            |j| qd.a(s, l, j),
-            |j| qd.ca(s, l, j),
-            |j| qd.b(s, l, j),
-            |j| qd.cb(s, l, j),
-        );
-        let corner = format!("corner of sector {s}");
-        g.push((corner.clone(), vec![(a(d), 1.0), (b(d), -1.0)]));
-        g.push((
-            corner.clone(),
-            vec![(a(d - 1), 1.0), (b(d), -1.0), (cb(d), -1.0 / df)],
-        ));
-        g.push((
-            corner.clone(),
-            vec![(a(d), 1.0), (ca(d), 1.0 / df), (b(d - 1), -1.0)],
-        ));
-        g.push((
-            corner,
-            vec![
-                (a(d - 1), 1.0),
-                (ca(d - 1), 1.0 / df),
-                (b(d - 1), -1.0),
-                (cb(d - 1), -1.0 / df),
-            ],
-        ));
-        let q = (s + n - 1) % n;
-        let end = format!("end of spoke {s} (sectors {q}, {s})");
-        if inner_spokes(n, fan).contains(&s) {
-            g.push((
-                end.clone(),
-                vec![(qd.a(s, 0, 0), 1.0), (qd.b(q, 0, 0), -1.0)],
-            ));
-            g.push((
-                end.clone(),
-                vec![
-                    (qd.a(s, 0, 0), 1.0),
-                    (qd.ca(s, 0, 0), 1.0 / df),
-                    (qd.b(q, 0, 0), -1.0),
-                    (qd.cb(q, 0, 0), -1.0 / df),
-                ],
-            ));
-            // R(1) / d = (a_1 - a_0) + (b_1 - b_0) + w1 cross_a(0) / d = 0
-            let mut r1 = vec![
-                (qd.a(s, 0, 1), 1.0),
-                (qd.a(s, 0, 0), -1.0),
-                (qd.b(q, 0, 1), 1.0),
-                (qd.b(q, 0, 0), -1.0),
-            ];
-            if w1 != 0.0 {
-                r1.push((qd.ca(s, 0, 0), w1 / df));
-            }
-            g.push((end.clone(), r1));
-            if w1 == 0.0 {
-                // R'(1) = -d (dcross_a + dcross_b) - kappa cross_a(0) = 0
-                g.push((
-                    end,
-                    vec![
-                        (qd.ca(s, 0, 1), -df),
-                        (qd.ca(s, 0, 0), df - kappa),
-                        (qd.cb(q, 0, 1), -df),
-                        (qd.cb(q, 0, 0), df),
-                    ],
-                ));
-            }
-        }
-        // knots between the pieces of each side: boundary and cross C^r
-        for k in 0..m.saturating_sub(1) {
-            for (side, name) in [(0, "a"), (1, "b")] {
-                let label = format!("knot {} of side {name} of sector {s}", k + 1);
-                for l in 0..=INNER_SMOOTHNESS {
-                    let w = differences(l);
-                    for cross in [false, true] {
-                        let at = |k: usize, j: usize| match (side, cross) {
-                            (0, false) => qd.a(s, k, j),
-                            (0, true) => qd.ca(s, k, j),
-                            (_, false) => qd.b(s, k, j),
-                            (_, true) => qd.cb(s, k, j),
-                        };
-                        let mut row = Vec::new();
-                        for (t, &wt) in w.iter().enumerate() {
-                            row.push((at(k, d - l + t), wt));
-                            row.push((at(k + 1, t), -wt));
-                        }
-                        g.push((label.clone(), row));
-                    }
-                }
-            }
-        }
-    }
-    if fan.is_dart() {
-        // the sharp spoke's two sides end at one point with one derivative along it
-        let end = format!("end of the dart's sharp spoke (sectors {}, 0)", n - 1);
-        g.push((
-            end.clone(),
-            vec![(qd.a(0, 0, 0), 1.0), (qd.b(n - 1, 0, 0), -1.0)],
-        ));
-        g.push((end, vec![(qd.ca(0, 0, 0), 1.0), (qd.cb(n - 1, 0, 0), -1.0)]));
-    }
-    g
 }
 
 /// Gram matrix `int_0^1 B_i^p B_j^p`.

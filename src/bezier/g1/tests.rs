@@ -1,7 +1,8 @@
 //! The cap on random data that satisfy the ring's compatibility conditions: conditions met,
 //! normals continuous across spokes and at the centre, C^1 to the data, certificates.
 
-use super::system::{QuadData, compatibility, dense};
+use super::compat::compatibility;
+use super::system::{QuadData, dense};
 use super::*;
 use crate::bezier::BezierCurve;
 use crate::geom::{Point, norm, scale, sub};

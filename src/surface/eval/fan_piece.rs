@@ -107,7 +107,6 @@ mod tests {
     /// derivatives.
     #[crate::unit::test]
     fn chart_derivatives_by_the_inverse_function_rule() {
-        use crate::geom::axpy;
         let truth = |a: f64, b: f64| Derivatives {
             p: [a * a + b, a * b, b * b - a],
             du: [2.0 * a, b, -1.0],
@@ -121,29 +120,7 @@ mod tests {
             let t = truth(a, b);
             let [u, v] = uv;
             let j = [[1.0 - v / 2.0, -u / 2.0], [-v / 2.0, 1.0 - u / 2.0]];
-            let g = [t.du, t.dv];
-            let h = [[t.duu, t.duv], [t.duv, t.dvv]];
-            let pd = |q: usize| (0..2).fold([0.0; 3], |r, a| axpy(r, j[a][q], g[a]));
-            let pdd = |q: usize, w: usize| {
-                let mut r = [0.0; 3];
-                for a in 0..2 {
-                    for c in 0..2 {
-                        r = axpy(r, j[a][q] * j[c][w], h[a][c]);
-                    }
-                }
-                if q != w {
-                    r = axpy(axpy(r, -0.5, g[0]), -0.5, g[1]);
-                }
-                r
-            };
-            let p = Derivatives {
-                p: t.p,
-                du: pd(0),
-                dv: pd(1),
-                duu: pdd(0, 0),
-                duv: pdd(0, 1),
-                dvv: pdd(1, 1),
-            };
+            let p = crate::surface::testing::chain_rule(&t, j, [-0.5, -0.5]);
             let c = to_chart(&p, uv);
             for (x, y) in [(c.du, t.du), (c.dv, t.dv), (c.duu, t.duu), (c.duv, t.duv)] {
                 for k in 0..3 {

@@ -167,31 +167,7 @@ mod tests {
                         [0.0, -0.5],
                     )
                 };
-                let g = [t.du, t.dv];
-                let h = [[t.duu, t.duv], [t.duv, t.dvv]];
-                let pd = |q: usize| (0..2).fold([0.0; 3], |r, a| axpy(r, j[a][q], g[a]));
-                let pdd = |q: usize, w: usize| {
-                    let mut r = [0.0; 3];
-                    for a in 0..2 {
-                        for c in 0..2 {
-                            r = axpy(r, j[a][q] * j[c][w], h[a][c]);
-                        }
-                    }
-                    if q != w {
-                        for a in 0..2 {
-                            r = axpy(r, tw[a], g[a]);
-                        }
-                    }
-                    r
-                };
-                let p = Derivatives {
-                    p: t.p,
-                    du: pd(0),
-                    dv: pd(1),
-                    duu: pdd(0, 0),
-                    duv: pdd(0, 1),
-                    dvv: pdd(1, 1),
-                };
+                let p = crate::surface::testing::chain_rule(&t, j, tw);
                 let c = to_chart(&p, uv, nb);
                 for (x, y) in [
                     (c.du, t.du),

@@ -119,13 +119,24 @@ pub fn build_from(
     lap("probe runs");
     let rows = assemble(n, y0.len(), entries);
     lap("assembled");
-    let w = rows.apply(&p0);
+    let constants = constant_part(&y0, &rows.apply(&p0), &skip, tau);
+    let table = PatchTable::from_parts(base, rows, constants)?;
+    check(&table, &p0, base, s, "the net's points")?;
+    lap("checked at the net's points");
+    check_moved(&table, mesh, construct, &sig, s)?;
+    lap("checked at moved points");
+    Ok(table)
+}
+
+/// The constant part `c = F(P) - W P` of the outputs `y0 = F(P)` given `w = W P`: zero on the
+/// cap patches' rows (`skip`), and empty when it is all at the rounding level `tau`.
+fn constant_part(y0: &[Point], w: &[Point], skip: &[bool], tau: f64) -> Vec<Point> {
     let mut constants: Vec<Point> = y0
         .iter()
-        .zip(&w)
+        .zip(w)
         .map(|(y, v)| crate::geom::sub(*y, *v))
         .collect();
-    for (c, &k) in constants.iter_mut().zip(&skip) {
+    for (c, &k) in constants.iter_mut().zip(skip) {
         if k {
             *c = [0.0; 3];
         }
@@ -137,19 +148,26 @@ pub fn build_from(
     if cmax <= 1e3 * tau {
         constants.clear();
     }
-    let table = PatchTable::from_parts(base, rows, constants)?;
-    check(&table, &p0, base, s, "the net's points")?;
-    lap("checked at the net's points");
-    let moved = moved_points(&p0, 0.05 * s, 0);
+    constants
+}
+
+/// The second check: the table applied to randomly moved points (by `0.05 s`) equals the
+/// construction's complex of those points, whose structure (`sig`) must not change.
+fn check_moved(
+    table: &PatchTable,
+    mesh: &PolyMesh,
+    construct: &Construction<'_>,
+    sig: &Signature,
+    s: f64,
+) -> Result<()> {
+    let moved = moved_points(mesh.positions(), 0.05 * s, 0);
     let mut m = mesh.clone();
     m.set_positions(moved.clone());
     let truth = construct(&m)?;
-    if signature(&truth) != sig {
+    if signature(&truth) != *sig {
         return Err(changed_structure());
     }
-    check(&table, &moved, &truth, s, "randomly moved points")?;
-    lap("checked at moved points");
-    Ok(table)
+    check(table, &moved, &truth, s, "randomly moved points")
 }
 
 /// The rows of the coefficients of cap patches (tabulated by the cap steps instead).
