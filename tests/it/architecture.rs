@@ -577,3 +577,163 @@ fn scheme_folders_import_without_a_circle() {
         graph.get("options")
     );
 }
+
+/// The source with comments and the contents of string and char literals blanked (newlines
+/// kept), so that its braces are the code's and its line numbers the file's.
+fn blanked(src: &str) -> String {
+    let b: Vec<char> = src.chars().collect();
+    let mut out = String::with_capacity(src.len());
+    let blank = |c: char| if c == '\n' { '\n' } else { ' ' };
+    let mut i = 0;
+    while i < b.len() {
+        let (c, next) = (b[i], b.get(i + 1).copied());
+        if c == '/' && next == Some('/') {
+            while i < b.len() && b[i] != '\n' {
+                out.push(' ');
+                i += 1;
+            }
+        } else if c == '/' && next == Some('*') {
+            let mut depth = 0;
+            while i < b.len() {
+                if b[i] == '/' && b.get(i + 1) == Some(&'*') {
+                    depth += 1;
+                    out.push_str("  ");
+                    i += 2;
+                } else if b[i] == '*' && b.get(i + 1) == Some(&'/') {
+                    depth -= 1;
+                    out.push_str("  ");
+                    i += 2;
+                    if depth == 0 {
+                        break;
+                    }
+                } else {
+                    out.push(blank(b[i]));
+                    i += 1;
+                }
+            }
+        } else if c == 'r'
+            && (next == Some('"') || (next == Some('#') && b.get(i + 2) == Some(&'"')))
+            && (i == 0 || !(b[i - 1].is_alphanumeric() || b[i - 1] == '_'))
+        {
+            // Raw string r"..." or r#"..."#.
+            let mut hashes = 0;
+            i += 1;
+            while b[i] == '#' {
+                hashes += 1;
+                i += 1;
+            }
+            i += 1;
+            while i < b.len()
+                && !(b[i] == '"' && (0..hashes).all(|k| b.get(i + 1 + k) == Some(&'#')))
+            {
+                out.push(blank(b[i]));
+                i += 1;
+            }
+            out.push_str("\"\"");
+            i += 1 + hashes;
+        } else if c == '"' {
+            i += 1;
+            while i < b.len() && b[i] != '"' {
+                if b[i] == '\\' {
+                    out.push(' ');
+                    i += 1;
+                }
+                if i < b.len() {
+                    out.push(blank(b[i]));
+                }
+                i += 1;
+            }
+            out.push_str("\"\"");
+            i += 1;
+        } else if c == '\'' && (next == Some('\\') || b.get(i + 2) == Some(&'\'')) {
+            // A char literal (a lifetime has no closing quote).
+            i += 1;
+            while i < b.len() && b[i] != '\'' {
+                if b[i] == '\\' {
+                    i += 1;
+                }
+                i += 1;
+            }
+            out.push_str("''");
+            i += 1;
+        } else {
+            out.push(c);
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The name of the function whose signature starts on `line`, if one does (`fn`, after any
+/// visibility and `const` / `unsafe`).
+fn fn_name(line: &str) -> Option<&str> {
+    let mut rest = line.trim_start();
+    if let Some(r) = rest.strip_prefix("pub") {
+        rest = match r.strip_prefix('(') {
+            Some(r) => r.split_once(')')?.1,
+            None => r,
+        }
+        .trim_start();
+    }
+    for kw in ["const ", "unsafe "] {
+        rest = rest.strip_prefix(kw).unwrap_or(rest);
+    }
+    let name = rest.strip_prefix("fn ")?;
+    let end = name.find(|c: char| !(c.is_alphanumeric() || c == '_'))?;
+    Some(&name[..end])
+}
+
+/// The longest a function of a non-test source file may be (lines from its `fn` line to its
+/// closing brace). ARCHITECTURE.md would name any exception (a table or a match whose clearest
+/// form is one function); there is none.
+const MAX_FN_LINES: usize = 100;
+
+#[test]
+fn no_function_is_too_long() {
+    let mut long = Vec::new();
+    for p in sources() {
+        if is_test_file(&p) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let code = blanked(&strip_unit_tests(&text, UNIT_CFG));
+        let lines: Vec<&str> = code.lines().collect();
+        for (i, line) in lines.iter().enumerate() {
+            let Some(name) = fn_name(line) else { continue };
+            let (mut depth, mut opened) = (0i64, false);
+            let mut end = None;
+            'body: for (j, l) in lines.iter().enumerate().skip(i) {
+                for ch in l.chars() {
+                    match ch {
+                        '{' => {
+                            depth += 1;
+                            opened = true;
+                        }
+                        '}' => depth -= 1,
+                        // a declaration without a body (a trait's method)
+                        ';' if !opened => break 'body,
+                        _ => {}
+                    }
+                    if opened && depth == 0 {
+                        end = Some(j);
+                        break 'body;
+                    }
+                }
+            }
+            if let Some(j) = end
+                && j - i + 1 > MAX_FN_LINES
+            {
+                long.push(format!(
+                    "{}:{} {name} ({} lines)",
+                    p.display(),
+                    i + 1,
+                    j - i + 1
+                ));
+            }
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "functions over {MAX_FN_LINES} lines: {long:?}"
+    );
+}
