@@ -71,22 +71,40 @@ fn is_test_file(p: &Path) -> bool {
         || p.components().any(|c| c.as_os_str() == "tests")
 }
 
-/// The source without comments, string and char literal contents (a literal becomes `"$k"`,
-/// `k` its index in `strings`), and without the unit tests' items ([`UNIT_CFG`]); `strings` receives the
-/// string literals of the code that is left.
-fn code_only(src: &str, strings: &mut Vec<String>) -> String {
-    // The attribute's string literal would become `"$k"` below: mark it without one first.
-    let src = src.replace(UNIT_CFG, UNIT_CFG_CODE);
+/// The source read once as Rust's lexer would for comments and literals. Without
+/// `keep_lines`, comments go and each string literal becomes `"$k"`, `k` its index in the
+/// returned literals; with it, comments and literal contents become spaces (newlines kept),
+/// so that braces are the code's and line numbers the file's. A char literal becomes `' '`;
+/// lifetimes (`'a`, no closing quote) pass through.
+fn lex(src: &str, keep_lines: bool) -> (String, Vec<String>) {
     let b: Vec<char> = src.chars().collect();
     let mut out = String::with_capacity(src.len());
+    let mut strings = Vec::new();
+    // What is skipped (a comment, a literal's contents): kept as blanks with `keep_lines`.
+    let skip = |out: &mut String, part: &[char]| {
+        if keep_lines {
+            out.extend(part.iter().map(|&c| if c == '\n' { '\n' } else { ' ' }));
+        }
+    };
+    let mut literal = |out: &mut String, part: &[char]| {
+        if keep_lines {
+            out.push('"');
+            skip(out, part);
+            out.push('"');
+        } else {
+            out.push_str(&format!("\"${}\"", strings.len()));
+            strings.push(part.iter().collect::<String>());
+        }
+    };
     let mut i = 0;
     while i < b.len() {
-        let c = b[i];
-        let next = b.get(i + 1).copied();
+        let (c, next) = (b[i], b.get(i + 1).copied());
+        let start = i;
         if c == '/' && next == Some('/') {
             while i < b.len() && b[i] != '\n' {
                 i += 1;
             }
+            skip(&mut out, &b[start..i]);
         } else if c == '/' && next == Some('*') {
             let mut depth = 0;
             while i < b.len() {
@@ -103,6 +121,7 @@ fn code_only(src: &str, strings: &mut Vec<String>) -> String {
                     i += 1;
                 }
             }
+            skip(&mut out, &b[start..i.min(b.len())]);
         } else if c == 'r'
             && (next == Some('"') || (next == Some('#') && b.get(i + 2) == Some(&'"')))
             && (i == 0 || !(b[i - 1].is_alphanumeric() || b[i - 1] == '_'))
@@ -115,39 +134,50 @@ fn code_only(src: &str, strings: &mut Vec<String>) -> String {
                 i += 1;
             }
             i += 1;
-            let start = i;
-            loop {
-                if b[i] == '"' && (0..hashes).all(|k| b.get(i + 1 + k) == Some(&'#')) {
-                    break;
-                }
+            let from = i;
+            while !(b[i] == '"' && (0..hashes).all(|k| b.get(i + 1 + k) == Some(&'#'))) {
                 i += 1;
             }
-            out.push_str(&format!("\"${}\"", strings.len()));
-            strings.push(b[start..i].iter().collect());
+            literal(&mut out, &b[from..i]);
             i += 1 + hashes;
         } else if c == '"' {
             i += 1;
-            let start = i;
+            let from = i;
             while b[i] != '"' {
                 if b[i] == '\\' {
                     i += 1;
                 }
                 i += 1;
             }
-            out.push_str(&format!("\"${}\"", strings.len()));
-            strings.push(b[start..i].iter().collect());
+            literal(&mut out, &b[from..i]);
             i += 1;
-        } else if c == '\''
-            && (next == Some('\\') && b.get(i + 3) == Some(&'\'') || b.get(i + 2) == Some(&'\''))
-        {
-            // A char literal ('a', '\n'); lifetimes ('a) pass through.
-            i += if next == Some('\\') { 4 } else { 3 };
+        } else if c == '\'' && (next == Some('\\') || b.get(i + 2) == Some(&'\'')) {
+            // A char literal ('a', '\n', '\u{..}').
+            i += 1;
+            while b[i] != '\'' {
+                if b[i] == '\\' {
+                    i += 1;
+                }
+                i += 1;
+            }
+            i += 1;
             out.push_str("' '");
         } else {
             out.push(c);
             i += 1;
         }
     }
+    (out, strings)
+}
+
+/// The source without comments, string and char literal contents (a literal becomes `"$k"`,
+/// `k` its index in `strings`), and without the unit tests' items ([`UNIT_CFG`]); `strings` receives the
+/// string literals of the code that is left.
+fn code_only(src: &str, strings: &mut Vec<String>) -> String {
+    // The attribute's string literal would become `"$k"` below: mark it without one first.
+    let src = src.replace(UNIT_CFG, UNIT_CFG_CODE);
+    let (out, all) = lex(&src, false);
+    *strings = all;
     let kept = strip_unit_tests(&out, UNIT_CFG_CODE);
     // Keep the literals of the code that is left.
     let mut left = Vec::new();
@@ -581,87 +611,7 @@ fn scheme_folders_import_without_a_circle() {
 /// The source with comments and the contents of string and char literals blanked (newlines
 /// kept), so that its braces are the code's and its line numbers the file's.
 fn blanked(src: &str) -> String {
-    let b: Vec<char> = src.chars().collect();
-    let mut out = String::with_capacity(src.len());
-    let blank = |c: char| if c == '\n' { '\n' } else { ' ' };
-    let mut i = 0;
-    while i < b.len() {
-        let (c, next) = (b[i], b.get(i + 1).copied());
-        if c == '/' && next == Some('/') {
-            while i < b.len() && b[i] != '\n' {
-                out.push(' ');
-                i += 1;
-            }
-        } else if c == '/' && next == Some('*') {
-            let mut depth = 0;
-            while i < b.len() {
-                if b[i] == '/' && b.get(i + 1) == Some(&'*') {
-                    depth += 1;
-                    out.push_str("  ");
-                    i += 2;
-                } else if b[i] == '*' && b.get(i + 1) == Some(&'/') {
-                    depth -= 1;
-                    out.push_str("  ");
-                    i += 2;
-                    if depth == 0 {
-                        break;
-                    }
-                } else {
-                    out.push(blank(b[i]));
-                    i += 1;
-                }
-            }
-        } else if c == 'r'
-            && (next == Some('"') || (next == Some('#') && b.get(i + 2) == Some(&'"')))
-            && (i == 0 || !(b[i - 1].is_alphanumeric() || b[i - 1] == '_'))
-        {
-            // Raw string r"..." or r#"..."#.
-            let mut hashes = 0;
-            i += 1;
-            while b[i] == '#' {
-                hashes += 1;
-                i += 1;
-            }
-            i += 1;
-            while i < b.len()
-                && !(b[i] == '"' && (0..hashes).all(|k| b.get(i + 1 + k) == Some(&'#')))
-            {
-                out.push(blank(b[i]));
-                i += 1;
-            }
-            out.push_str("\"\"");
-            i += 1 + hashes;
-        } else if c == '"' {
-            i += 1;
-            while i < b.len() && b[i] != '"' {
-                if b[i] == '\\' {
-                    out.push(' ');
-                    i += 1;
-                }
-                if i < b.len() {
-                    out.push(blank(b[i]));
-                }
-                i += 1;
-            }
-            out.push_str("\"\"");
-            i += 1;
-        } else if c == '\'' && (next == Some('\\') || b.get(i + 2) == Some(&'\'')) {
-            // A char literal (a lifetime has no closing quote).
-            i += 1;
-            while i < b.len() && b[i] != '\'' {
-                if b[i] == '\\' {
-                    i += 1;
-                }
-                i += 1;
-            }
-            out.push_str("''");
-            i += 1;
-        } else {
-            out.push(c);
-            i += 1;
-        }
-    }
-    out
+    lex(src, true).0
 }
 
 /// The name of the function whose signature starts on `line`, if one does (`fn`, after any
