@@ -203,10 +203,6 @@ pub fn dual_split(
         }
         DualOrder::ByFace => (0, 0),
     };
-    let mut sel = vec![false; nf];
-    for &f in &sel_faces {
-        sel[f as usize] = true;
-    }
     let mut s = DualSplit {
         points: Vec::with_capacity(points),
         corner_pt: vec![NONE; nh],
@@ -226,7 +222,7 @@ pub fn dual_split(
     s.number_points(m, features, order);
     s.face_start.push(0);
     s.f_faces(&mv);
-    s.e_faces(&mv, &sel);
+    s.e_faces(&mv);
     s.make_v_faces(&mv, features, order);
     s
 }
@@ -244,7 +240,8 @@ impl DualSplit {
         let mut kept_known = vec![false; nv];
         match order {
             DualOrder::ByFace => {
-                for &f in &self.sel_faces.clone() {
+                let sel_faces = std::mem::take(&mut self.sel_faces);
+                for &f in &sel_faces {
                     let h0 = m.face_halfedge(f as usize);
                     for h in h0..h0 + m.face_size(f as usize) as u32 {
                         self.corner_pt[h as usize] = self.push(DualPoint::Corner(h));
@@ -265,6 +262,7 @@ impl DualSplit {
                         }
                     }
                 }
+                self.sel_faces = sel_faces;
             }
             DualOrder::ByKind => {
                 assert_eq!(
@@ -370,8 +368,8 @@ impl DualSplit {
     }
 
     /// The E-faces: whole between two selected faces, one half per selected side at an edge
-    /// with Chaikin points.
-    fn e_faces(&mut self, m: &MeshView<'_>, sel: &[bool]) {
+    /// with Chaikin points. A half-edge's face is selected when it has a corner point.
+    fn e_faces(&mut self, m: &MeshView<'_>) {
         for e in 0..m.edge_he.len() {
             let h = m.edge_he[e];
             let pts = self.edge_pt[e];
@@ -386,7 +384,7 @@ impl DualSplit {
             };
             let mut quads: [Option<[u32; 4]>; 2] = [None, None];
             let t = m.twin(h);
-            let selected = |x: u32| sel[m.face(x) as usize];
+            let selected = |x: u32| cp(x) != NONE;
             match t {
                 NONE if pts[0] != NONE => quads[0] = Some(half(h)),
                 NONE => continue,
